@@ -1,0 +1,1043 @@
+/* draw.cpp - the pictures behind draw.h, drawn with OpenCV (core, imgproc, imgcodecs).
+ *
+ * The only C++ and the only OpenCV user in the host: everything crosses the extern "C"
+ * interface of draw.h, every OpenCV exception is caught here and turned into -1 plus a
+ * message. Text uses OpenCV's Hershey font, so strings are ASCII; a few UTF-8 symbols
+ * that the model names and axis labels use (Greek letters, pi, <=, x) are spelled out.
+ */
+#include "draw.h"
+
+extern "C" {
+#include "outdir.h"
+}
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+/* ---- small helpers ------------------------------------------------------------ */
+
+void set_err(char *err, size_t errlen, const char *fmt, ...)
+{
+    if (!err || errlen == 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+const cv::Scalar INK(40, 40, 40);          /* text and axes (BGR) */
+const cv::Scalar GRID(225, 225, 225);
+const cv::Scalar WHITE(255, 255, 255);
+const cv::Scalar NODATA(90, 90, 90);       /* NaN cells / background pixels */
+const int FONT = cv::FONT_HERSHEY_SIMPLEX;
+const double S_TICK = 0.5, S_LABEL = 0.58, S_TITLE = 0.72;
+
+/* Tableau 10, a palette that stays distinguishable for common colour-vision deficiencies. */
+cv::Scalar palette(int i)
+{
+    static const unsigned char rgb[10][3] = {
+        {31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40}, {148, 103, 189},
+        {140, 86, 75}, {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+    if (i < 0) return cv::Scalar(0, 0, 0);
+    const unsigned char *c = rgb[i % 10];
+    return cv::Scalar(c[2], c[1], c[0]);
+}
+
+/* UTF-8 to the ASCII the Hershey font can draw. */
+std::string ascii(const char *s)
+{
+    static const struct { const char *utf8, *text; } map[] = {
+        {"\xce\xb4", "delta"}, {"\xce\x94", "Delta"}, {"\xcf\x88", "psi"}, {"\xce\xb8", "theta"},
+        {"\xcf\x80", "pi"}, {"\xce\xb1", "alpha"}, {"\xce\xbe", "xi"}, {"\xe2\x89\xa4", "<="},
+        {"\xe2\x89\xa5", ">="}, {"\xc3\x97", "x"}, {"\xc2\xb7", "*"}, {"\xc2\xb2", "^2"},
+        {"\xe2\x80\x93", "-"}, {"\xe2\x80\x94", "-"}, {"\xe2\x88\x92", "-"}, {"\xe2\x80\xa6", "..."},
+        {"\xc2\xb5", "u"}, {"\xe2\x88\x9a", "sqrt"}, {"\xe2\x88\x88", "in"}};
+    std::string out;
+    if (!s) return out;
+    for (size_t i = 0; s[i];) {
+        unsigned char c = (unsigned char)s[i];
+        if (c < 0x80) {
+            out += (c == '\t') ? ' ' : (char)c;
+            i++;
+            continue;
+        }
+        bool done = false;
+        for (const auto &m : map) {
+            size_t n = strlen(m.utf8);
+            if (strncmp(s + i, m.utf8, n) == 0) {
+                out += m.text;
+                i += n;
+                done = true;
+                break;
+            }
+        }
+        if (done) continue;
+        out += '?';
+        i++; /* skip the continuation bytes of this code point */
+        while (((unsigned char)s[i] & 0xC0) == 0x80) i++;
+    }
+    return out;
+}
+
+std::vector<std::string> split_lines(const std::string &s)
+{
+    std::vector<std::string> lines;
+    size_t start = 0;
+    for (;;) {
+        size_t nl = s.find('\n', start);
+        lines.push_back(s.substr(start, nl == std::string::npos ? std::string::npos : nl - start));
+        if (nl == std::string::npos) break;
+        start = nl + 1;
+    }
+    return lines;
+}
+
+cv::Size text_size(const std::string &t, double scale, int *baseline = nullptr)
+{
+    int b = 0;
+    cv::Size sz = cv::getTextSize(t, FONT, scale, 1, &b);
+    if (baseline) *baseline = b;
+    return sz;
+}
+
+/* Draw text; halign -1 left, 0 centre, 1 right of x; valign -1 top at y, 0 centred on y,
+ * 1 baseline at y. */
+void put(cv::Mat &img, const std::string &t, int x, int y, double scale, int halign, int valign,
+         cv::Scalar colour = INK, int thickness = 1)
+{
+    if (t.empty()) return;
+    cv::Size sz = text_size(t, scale);
+    int px = x - (halign == 0 ? sz.width / 2 : halign > 0 ? sz.width : 0);
+    int py = y + (valign < 0 ? sz.height : valign == 0 ? sz.height / 2 : 0);
+    cv::putText(img, t, cv::Point(px, py), FONT, scale, colour, thickness, cv::LINE_AA);
+}
+
+/* Text rotated 90 degrees counter-clockwise (reads bottom to top), centred on (cx, cy). */
+void put_vertical(cv::Mat &img, const std::string &t, int cx, int cy, double scale)
+{
+    if (t.empty()) return;
+    int base = 0;
+    cv::Size sz = text_size(t, scale, &base);
+    cv::Mat tile(sz.height + base + 4, sz.width + 4, CV_8UC3, WHITE);
+    cv::putText(tile, t, cv::Point(2, sz.height + 2), FONT, scale, INK, 1, cv::LINE_AA);
+    cv::Mat rot;
+    cv::rotate(tile, rot, cv::ROTATE_90_COUNTERCLOCKWISE);
+    cv::Rect dst(cx - rot.cols / 2, cy - rot.rows / 2, rot.cols, rot.rows);
+    cv::Rect clip = dst & cv::Rect(0, 0, img.cols, img.rows);
+    if (clip.area() <= 0) return;
+    cv::Mat src = rot(cv::Rect(clip.x - dst.x, clip.y - dst.y, clip.width, clip.height));
+    /* darker-of blend, so the tile's white does not paint over anything */
+    cv::Mat roi = img(clip);
+    cv::min(roi, src, roi);
+}
+
+int title_height(const std::string &title)
+{
+    return 18 + 28 * (int)split_lines(title).size();
+}
+
+void put_title(cv::Mat &img, const std::string &title)
+{
+    std::vector<std::string> lines = split_lines(title);
+    int y = 12;
+    for (size_t i = 0; i < lines.size(); i++) {
+        put(img, lines[i], img.cols / 2, y, i == 0 ? S_TITLE : S_LABEL, 0, -1, INK, i == 0 ? 2 : 1);
+        y += 28;
+    }
+}
+
+/* ---- colour maps ---------------------------------------------------------------- */
+
+const cv::Mat &colormap_lut(int cmap)
+{
+    static cv::Mat luts[2];
+    int k = (cmap == DRAW_CMAP_INFERNO) ? 1 : 0;
+    if (luts[k].empty()) {
+        cv::Mat ramp(1, 256, CV_8UC1);
+        for (int i = 0; i < 256; i++) ramp.at<unsigned char>(0, i) = (unsigned char)i;
+        cv::applyColorMap(ramp, luts[k], k ? cv::COLORMAP_INFERNO : cv::COLORMAP_VIRIDIS);
+    }
+    return luts[k];
+}
+
+cv::Vec3b cmap_bgr(int cmap, int index)
+{
+    index = std::max(0, std::min(255, index));
+    return colormap_lut(cmap).at<cv::Vec3b>(0, index);
+}
+
+/* Colour-map index of v on [vmin, vmax]; the top of the scale is exactly 255. */
+int value_index(double v, double vmin, double vmax)
+{
+    double t = (v - vmin) / (vmax - vmin);
+    if (!(t > 0)) return 0;
+    if (t >= 1) return 255;
+    return (int)std::lround(t * 255.0);
+}
+
+/* ---- axes and ticks ------------------------------------------------------------- */
+
+struct Axis {
+    double lo, hi;
+    bool log;
+    double p0, p1; /* pixel of lo and of hi */
+    double t(double v) const { return log ? std::log10(v) : v; }
+    double map(double v) const { return p0 + (t(v) - t(lo)) / (t(hi) - t(lo)) * (p1 - p0); }
+    bool inside(double v) const
+    {
+        double a = std::min(lo, hi), b = std::max(lo, hi);
+        double eps = (b - a) * 1e-9;
+        return std::isfinite(v) && v >= a - eps && v <= b + eps && (!log || v > 0);
+    }
+};
+
+double nice_step(double raw)
+{
+    if (!(raw > 0) || !std::isfinite(raw)) return 1;
+    double e = std::pow(10.0, std::floor(std::log10(raw)));
+    double f = raw / e;
+    double m = f <= 1 ? 1 : f <= 2 ? 2 : f <= 2.5 ? 2.5 : f <= 5 ? 5 : 10;
+    return m * e;
+}
+
+std::vector<double> linear_ticks(double lo, double hi, int target, double *step_out)
+{
+    std::vector<double> ticks;
+    double step = nice_step((hi - lo) / std::max(1, target));
+    if (step_out) *step_out = step;
+    double first = std::ceil(lo / step - 1e-9) * step;
+    for (double v = first; v <= hi + step * 1e-9; v += step) {
+        ticks.push_back(std::fabs(v) < step * 1e-9 ? 0.0 : v);
+        if (ticks.size() > 50) break;
+    }
+    return ticks;
+}
+
+std::vector<double> log_ticks(double lo, double hi)
+{
+    std::vector<double> ticks;
+    int e0 = (int)std::floor(std::log10(lo)) - 1, e1 = (int)std::ceil(std::log10(hi)) + 1;
+    static const double m125[] = {1, 2, 5}, m1[] = {1};
+    double decades = std::log10(hi / lo);
+    const double *ms = decades <= 4 ? m125 : m1;
+    int nm = decades <= 4 ? 3 : 1;
+    for (int e = e0; e <= e1; e++)
+        for (int k = 0; k < nm; k++) {
+            double v = ms[k] * std::pow(10.0, e);
+            if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) ticks.push_back(v);
+        }
+    if (ticks.size() < 2) { /* less than a decade: every integer multiple */
+        ticks.clear();
+        for (int e = e0; e <= e1; e++)
+            for (int k = 1; k <= 9; k++) {
+                double v = k * std::pow(10.0, e);
+                if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) ticks.push_back(v);
+            }
+    }
+    return ticks;
+}
+
+/* Label for a tick value; step (> 0) sets the decimals of linear ticks. */
+std::string tick_label(double v, double step, int format)
+{
+    char buf[64];
+    double scale = (format == DRAW_FMT_PERCENT) ? 100.0 : 1.0;
+    double x = v * scale, s = step * scale;
+    const char *suffix = (format == DRAW_FMT_PERCENT) ? "%" : "";
+    double ax = std::fabs(x);
+    if (s > 0 && ax < 1e5 && (ax >= 1e-3 || x == 0)) {
+        int dec = std::max(0, (int)std::ceil(-std::log10(s) - 1e-9));
+        if (std::fabs(s * std::pow(10.0, dec) - std::round(s * std::pow(10.0, dec))) > 1e-6) dec++;
+        dec = std::min(dec, 6);
+        snprintf(buf, sizeof buf, "%.*f%s", dec, x, suffix);
+    } else {
+        snprintf(buf, sizeof buf, "%.3g%s", x, suffix);
+    }
+    return buf;
+}
+
+std::vector<double> axis_ticks(const Axis &a, int target, double *step)
+{
+    double lo = std::min(a.lo, a.hi), hi = std::max(a.lo, a.hi);
+    if (a.log) {
+        if (step) *step = 0;
+        return log_ticks(lo, hi);
+    }
+    return linear_ticks(lo, hi, target, step);
+}
+
+/* Tick marks and labels below a horizontal axis at pixel row y. */
+void draw_x_ticks(cv::Mat &img, const Axis &a, int y, int format, int target, int grid_top = -1)
+{
+    double step = 0;
+    for (double v : axis_ticks(a, target, &step)) {
+        int px = (int)std::lround(a.map(v));
+        if (grid_top >= 0) cv::line(img, cv::Point(px, grid_top), cv::Point(px, y - 1), GRID, 1);
+        cv::line(img, cv::Point(px, y), cv::Point(px, y + 5), INK, 1);
+        put(img, tick_label(v, step, format), px, y + 9, S_TICK, 0, -1);
+    }
+}
+
+/* Tick marks and labels left of a vertical axis at pixel column x; returns the widest label. */
+int draw_y_ticks(cv::Mat &img, const Axis &a, int x, int format, int target, int grid_right = -1)
+{
+    double step = 0;
+    int widest = 0;
+    for (double v : axis_ticks(a, target, &step)) {
+        int py = (int)std::lround(a.map(v));
+        if (grid_right >= 0) cv::line(img, cv::Point(x + 1, py), cv::Point(grid_right, py), GRID, 1);
+        cv::line(img, cv::Point(x - 5, py), cv::Point(x, py), INK, 1);
+        std::string t = tick_label(v, step, format);
+        widest = std::max(widest, text_size(t, S_TICK).width);
+        put(img, t, x - 8, py, S_TICK, 1, 0);
+    }
+    return widest;
+}
+
+int y_label_width(const Axis &a, int format, int target)
+{
+    double step = 0;
+    int widest = 0;
+    for (double v : axis_ticks(a, target, &step))
+        widest = std::max(widest, text_size(tick_label(v, step, format), S_TICK).width);
+    return widest;
+}
+
+/* Vertical colour bar at rect (top = vmax) with ticks and labels to its right and the
+ * caption rotated beside them. */
+void draw_colour_bar(cv::Mat &img, cv::Rect r, int cmap, double vmin, double vmax, int format,
+                     const std::string &caption)
+{
+    for (int y = 0; y < r.height; y++) {
+        /* bottom row = index 0, top row = index 255 */
+        int idx = r.height > 1 ? (int)std::lround(255.0 * (r.height - 1 - y) / (r.height - 1)) : 255;
+        cv::Vec3b c = cmap_bgr(cmap, idx);
+        cv::line(img, cv::Point(r.x, r.y + y), cv::Point(r.x + r.width - 1, r.y + y),
+                 cv::Scalar(c[0], c[1], c[2]), 1);
+    }
+    cv::rectangle(img, cv::Rect(r.x - 1, r.y - 1, r.width + 2, r.height + 2), INK, 1);
+    Axis a{vmin, vmax, false, (double)(r.y + r.height - 1), (double)r.y};
+    double step = 0;
+    int widest = 0;
+    for (double v : linear_ticks(vmin, vmax, 6, &step)) {
+        int py = (int)std::lround(a.map(v));
+        cv::line(img, cv::Point(r.x + r.width, py), cv::Point(r.x + r.width + 5, py), INK, 1);
+        std::string t = tick_label(v, step, format);
+        widest = std::max(widest, text_size(t, S_TICK).width);
+        put(img, t, r.x + r.width + 8, py, S_TICK, -1, 0);
+    }
+    put_vertical(img, caption, r.x + r.width + 8 + widest + 16, r.y + r.height / 2, S_LABEL);
+}
+
+int colour_bar_extent(double vmin, double vmax, int format, int bar_w)
+{
+    double step = 0;
+    int widest = 0;
+    for (double v : linear_ticks(vmin, vmax, 6, &step))
+        widest = std::max(widest, text_size(tick_label(v, step, format), S_TICK).width);
+    return bar_w + 8 + widest + 16 + 14;
+}
+
+/* Scale for a colour bar: the caller's [vmin, vmax] or [0, data max]; never empty. */
+void colour_scale(double vmin, double vmax, double data_max, double *lo, double *hi)
+{
+    if (std::isfinite(vmin) && std::isfinite(vmax) && vmax > vmin) {
+        *lo = vmin;
+        *hi = vmax;
+        return;
+    }
+    *lo = 0;
+    *hi = (std::isfinite(data_max) && data_max > 0) ? data_max : 1;
+}
+
+/* ---- writing --------------------------------------------------------------------- */
+
+int write_png(const char *path, const cv::Mat &bgr, char *err, size_t errlen)
+{
+    std::vector<unsigned char> buf;
+    if (!cv::imencode(".png", bgr, buf)) {
+        set_err(err, errlen, "%s: PNG encoding failed", path);
+        return -1;
+    }
+    char why[512] = "";
+    if (write_file_atomic(path, buf.data(), buf.size(), why, sizeof why) != 0) {
+        set_err(err, errlen, "%s", why[0] ? why : "cannot write file");
+        if (!strstr(err, path)) {
+            std::string msg = std::string(path) + ": " + why;
+            set_err(err, errlen, "%s", msg.c_str());
+        }
+        return -1;
+    }
+    return 0;
+}
+
+bool check_path(const char *path, char *err, size_t errlen)
+{
+    if (!path || !*path) {
+        set_err(err, errlen, "picture path is empty");
+        return false;
+    }
+    return true;
+}
+
+/* ---- error images ------------------------------------------------------------------- */
+
+double finite_max(const float *v, size_t n)
+{
+    double m = NAN;
+    for (size_t i = 0; i < n; i++)
+        if (std::isfinite(v[i]) && !(v[i] <= m)) m = v[i];
+    return m;
+}
+
+/* False-colour an error image into dst (BGR, width x height). */
+void error_to_bgr(const float *e, int w, int h, double lo, double hi, cv::Mat dst)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            float v = e[(size_t)y * w + x];
+            if (!std::isfinite(v)) {
+                dst.at<cv::Vec3b>(y, x) = cv::Vec3b((uchar)NODATA[0], (uchar)NODATA[1], (uchar)NODATA[2]);
+            } else {
+                dst.at<cv::Vec3b>(y, x) = cmap_bgr(DRAW_CMAP_INFERNO, value_index(v, lo, hi));
+            }
+        }
+}
+
+void rgb_to_bgr(const unsigned char *rgb, int w, int h, cv::Mat dst)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const unsigned char *p = rgb + ((size_t)y * w + x) * 3;
+            dst.at<cv::Vec3b>(y, x) = cv::Vec3b(p[2], p[1], p[0]);
+        }
+}
+
+bool check_image_args(const char *path, int width, int height, const void *data, const char *what,
+                      char *err, size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return false;
+    if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
+        set_err(err, errlen, "%s: image size %dx%d outside 1..16384", path, width, height);
+        return false;
+    }
+    if (!data) {
+        set_err(err, errlen, "%s: no %s data", path, what);
+        return false;
+    }
+    return true;
+}
+
+/* Images of width x height (count of them) in a row, captions above, the error colour bar
+ * on the right; the last image is the error. */
+int image_row(const char *path, int w, int h, const unsigned char *ref_rgb, const unsigned char *model_rgb,
+              const float *abs_err, float vmax, const char *title, char *err, size_t errlen)
+{
+    bool sheet = ref_rgb != nullptr;
+    double lo, hi;
+    colour_scale(0, vmax, finite_max(abs_err, (size_t)w * h), &lo, &hi);
+    const int M = 12, GAP = 12, BAR_W = 20, BAR_MIN_H = 220;
+    int nimg = sheet ? 3 : 1;
+    std::string t = ascii(title);
+    int th = title_height(t);
+    int cap_h = sheet ? 26 : 0;
+    int bar_h = std::max(h, BAR_MIN_H);
+    int bar_extent = colour_bar_extent(lo, hi, DRAW_FMT_PLAIN, BAR_W);
+    static const char *captions[3] = {"reference", "model", "abs. error"};
+    /* each image sits centred in a slot at least as wide as its caption */
+    int slot = w;
+    if (sheet)
+        for (int k = 0; k < 3; k++) slot = std::max(slot, text_size(captions[k], S_LABEL).width + 8);
+    int width = M + nimg * slot + (nimg - 1) * GAP + 18 + bar_extent + M;
+    int title_w = 0;
+    for (const std::string &l : split_lines(t)) title_w = std::max(title_w, text_size(l, S_TITLE).width + 2 * M);
+    width = std::max(width, title_w);
+    int height = th + cap_h + bar_h + M;
+    cv::Mat img(height, width, CV_8UC3, WHITE);
+    put_title(img, t);
+    int y0 = th + cap_h;
+    for (int k = 0; k < nimg; k++) {
+        int sx = M + k * (slot + GAP), x0 = sx + (slot - w) / 2;
+        cv::Mat dst = img(cv::Rect(x0, y0, w, h));
+        if (sheet && k == 0) rgb_to_bgr(ref_rgb, w, h, dst);
+        else if (sheet && k == 1) rgb_to_bgr(model_rgb, w, h, dst);
+        else error_to_bgr(abs_err, w, h, lo, hi, dst);
+        if (sheet) put(img, captions[k], sx + slot / 2, y0 - 6, S_LABEL, 0, 1);
+    }
+    int bx = M + nimg * slot + (nimg - 1) * GAP + 18;
+    draw_colour_bar(img, cv::Rect(bx, y0, BAR_W, bar_h), DRAW_CMAP_INFERNO, lo, hi, DRAW_FMT_PLAIN,
+                    "absolute error");
+    return write_png(path, img, err, errlen);
+}
+
+/* ---- heatmaps --------------------------------------------------------------------- */
+
+struct PanelGeom {
+    int left, plot_w, plot_h, bar_gap, bar_w, bar_extent, width;
+};
+
+const int HM_PLOT_W = 460, HM_PLOT_H = 360, HM_TOP = 34, HM_BOTTOM = 64, HM_BAR_W = 22;
+
+/* Map pixel index p (0..npix-1) to the cells it shows: [lo, hi]. When cells outnumber
+ * pixels, a pixel covers several cells and shows their maximum, so a peak never vanishes. */
+void pixel_cells(int p, int npix, int ncells, int *lo, int *hi)
+{
+    if (ncells <= npix) {
+        int c = (int)((p + 0.5) * ncells / npix);
+        *lo = *hi = std::min(c, ncells - 1);
+    } else {
+        *lo = (int)((long long)p * ncells / npix);
+        *hi = std::max(*lo, (int)(((long long)(p + 1) * ncells + npix - 1) / npix) - 1);
+        *hi = std::min(*hi, ncells - 1);
+    }
+}
+
+/* The middle pixel of those that show cell c. */
+int cell_pixel(int c, int npix, int ncells)
+{
+    int first = -1, last = -1;
+    for (int p = 0; p < npix; p++) {
+        int lo, hi;
+        pixel_cells(p, npix, ncells, &lo, &hi);
+        if (c >= lo && c <= hi) {
+            if (first < 0) first = p;
+            last = p;
+        }
+    }
+    return first < 0 ? -1 : (first + last) / 2;
+}
+
+bool check_panel(const draw_heatmap_panel &p, const char *path, int k, char *err, size_t errlen)
+{
+    if (p.cols < 1 || p.rows < 1 || p.cols > 100000 || p.rows > 100000 || !p.values) {
+        set_err(err, errlen, "%s: panel %d has no grid (cols %d, rows %d)", path, k, p.cols, p.rows);
+        return false;
+    }
+    if (!(std::isfinite(p.x_min) && std::isfinite(p.x_max) && p.x_max > p.x_min) ||
+        !(std::isfinite(p.y_min) && std::isfinite(p.y_max) && p.y_max > p.y_min) ||
+        (p.x_log && !(p.x_min > 0)) || (p.y_log && !(p.y_min > 0))) {
+        set_err(err, errlen, "%s: panel %d has an empty or invalid axis range", path, k);
+        return false;
+    }
+    return true;
+}
+
+void draw_panel(cv::Mat &img, int x0, int y0, const draw_heatmap_panel &p, const PanelGeom &g,
+                draw_panel_layout *out)
+{
+    size_t n = (size_t)p.cols * p.rows;
+    /* the largest finite value and its cell (first one in row-major order) */
+    double vmaxd = NAN;
+    int mc = -1, mr = -1;
+    for (size_t i = 0; i < n; i++) {
+        float v = p.values[i];
+        if (std::isfinite(v) && !(v <= vmaxd)) {
+            vmaxd = v;
+            mc = (int)(i % p.cols);
+            mr = (int)(i / p.cols);
+        }
+    }
+    double lo, hi;
+    colour_scale(p.vmin, p.vmax, vmaxd, &lo, &hi);
+
+    cv::Rect plot(x0 + g.left, y0 + HM_TOP, g.plot_w, g.plot_h);
+    put(img, ascii(p.subtitle), plot.x + plot.width / 2, y0 + 8, S_LABEL, 0, -1);
+
+    std::vector<int> clo(plot.width), chi(plot.width), rlo(plot.height), rhi(plot.height);
+    for (int px = 0; px < plot.width; px++) pixel_cells(px, plot.width, p.cols, &clo[px], &chi[px]);
+    for (int q = 0; q < plot.height; q++) pixel_cells(q, plot.height, p.rows, &rlo[q], &rhi[q]);
+    for (int py = 0; py < plot.height; py++) {
+        int q = plot.height - 1 - py; /* row 0 at the bottom */
+        for (int px = 0; px < plot.width; px++) {
+            double m = NAN;
+            for (int r = rlo[q]; r <= rhi[q]; r++)
+                for (int c = clo[px]; c <= chi[px]; c++) {
+                    float v = p.values[(size_t)r * p.cols + c];
+                    if (std::isfinite(v) && !(v <= m)) m = v;
+                }
+            cv::Vec3b col = std::isfinite(m) ? cmap_bgr(p.cmap, value_index(m, lo, hi))
+                                             : cv::Vec3b((uchar)NODATA[0], (uchar)NODATA[1], (uchar)NODATA[2]);
+            img.at<cv::Vec3b>(plot.y + py, plot.x + px) = col;
+        }
+    }
+    cv::rectangle(img, cv::Rect(plot.x - 1, plot.y - 1, plot.width + 2, plot.height + 2), INK, 1);
+
+    /* axes: the first and last cell centres are x_min/x_max, y_min/y_max */
+    Axis ax{p.x_min, p.x_max, p.x_log != 0, plot.x + 0.5 * plot.width / p.cols,
+            plot.x + plot.width - 0.5 * plot.width / p.cols};
+    Axis ay{p.y_min, p.y_max, p.y_log != 0, plot.y + plot.height - 0.5 * plot.height / p.rows,
+            plot.y + 0.5 * plot.height / p.rows};
+    if (p.cols == 1) ax.p0 = plot.x, ax.p1 = plot.x + plot.width - 1;
+    if (p.rows == 1) ay.p0 = plot.y + plot.height - 1, ay.p1 = plot.y;
+    draw_x_ticks(img, ax, plot.y + plot.height + 1, DRAW_FMT_PLAIN, 5);
+    int yw = draw_y_ticks(img, ay, plot.x - 1, DRAW_FMT_PLAIN, 6);
+    put(img, ascii(p.x_label), plot.x + plot.width / 2, plot.y + plot.height + 34, S_LABEL, 0, -1);
+    put_vertical(img, ascii(p.y_label), plot.x - 8 - yw - 16, plot.y + plot.height / 2, S_LABEL);
+
+    cv::Rect bar(plot.x + plot.width + g.bar_gap, plot.y, g.bar_w, plot.height);
+    draw_colour_bar(img, bar, p.cmap, lo, hi, p.value_format, ascii(p.bar_label));
+
+    int mpx = -1, mpy = -1;
+    if (p.mark_max && mc >= 0 && vmaxd > lo) {
+        mpx = plot.x + cell_pixel(mc, plot.width, p.cols);
+        mpy = plot.y + (plot.height - 1 - cell_pixel(mr, plot.height, p.rows));
+        /* a ring that leaves the cell itself visible: white inside black, seen on any colour */
+        cv::circle(img, cv::Point(mpx, mpy), 9, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+        cv::circle(img, cv::Point(mpx, mpy), 9, WHITE, 1, cv::LINE_AA);
+        /* and a tick on the colour bar at the maximum */
+        int by = (int)std::lround(bar.y + (bar.height - 1) * (1 - (vmaxd - lo) / (hi - lo)));
+        if (by >= bar.y && by < bar.y + bar.height) {
+            cv::Point tri[3] = {cv::Point(bar.x - 2, by), cv::Point(bar.x - 10, by - 5), cv::Point(bar.x - 10, by + 5)};
+            cv::fillConvexPoly(img, tri, 3, INK, cv::LINE_AA);
+        }
+    }
+    if (out) {
+        out->plot_x = plot.x;
+        out->plot_y = plot.y;
+        out->plot_w = plot.width;
+        out->plot_h = plot.height;
+        out->bar_x = bar.x;
+        out->bar_y = bar.y;
+        out->bar_w = bar.width;
+        out->bar_h = bar.height;
+        out->max_col = mc;
+        out->max_row = mr;
+        out->max_px = mpx;
+        out->max_py = mpy;
+        out->max_value = vmaxd;
+        out->vmin_used = lo;
+        out->vmax_used = hi;
+    }
+}
+
+/* ---- line plots --------------------------------------------------------------------- */
+
+bool usable(double v, bool log) { return std::isfinite(v) && (!log || v > 0); }
+
+/* Polyline with an optional dash pattern, clipped by drawing into the plot's sub-image. */
+void draw_polyline(cv::Mat &roi, const std::vector<cv::Point2d> &pts, cv::Scalar col, bool dashed, int thick)
+{
+    if (pts.size() == 1) {
+        cv::circle(roi, cv::Point((int)std::lround(pts[0].x), (int)std::lround(pts[0].y)), 2, col, -1, cv::LINE_AA);
+        return;
+    }
+    const double on = 9, off = 6;
+    double phase = 0;
+    for (size_t i = 1; i < pts.size(); i++) {
+        cv::Point2d a = pts[i - 1], b = pts[i];
+        if (!dashed) {
+            /* sub-pixel precision: 4 fractional bits */
+            cv::line(roi, cv::Point((int)std::lround(a.x * 16), (int)std::lround(a.y * 16)),
+                     cv::Point((int)std::lround(b.x * 16), (int)std::lround(b.y * 16)), col, thick, cv::LINE_AA, 4);
+            continue;
+        }
+        double len = cv::norm(b - a), pos = 0;
+        while (pos < len) {
+            double period_left = (phase < on) ? on - phase : on + off - phase;
+            double step = std::min(period_left, len - pos);
+            if (phase < on) {
+                cv::Point2d s = a + (b - a) * (pos / len), e = a + (b - a) * ((pos + step) / len);
+                cv::line(roi, cv::Point((int)std::lround(s.x * 16), (int)std::lround(s.y * 16)),
+                         cv::Point((int)std::lround(e.x * 16), (int)std::lround(e.y * 16)), col, thick, cv::LINE_AA, 4);
+            }
+            pos += step;
+            phase += step;
+            if (phase >= on + off) phase -= on + off;
+        }
+    }
+}
+
+void data_range(const struct draw_line_plot *p, bool xaxis, double *lo, double *hi)
+{
+    bool log = xaxis ? p->x_log : p->y_log;
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (int s = 0; s < p->nseries; s++) {
+        const draw_series &se = p->series[s];
+        for (int i = 0; i < se.count; i++) {
+            double x = se.x[i], y = se.y[i];
+            if (!usable(x, p->x_log) || !usable(y, p->y_log)) continue;
+            double v = xaxis ? x : y;
+            *lo = std::min(*lo, v);
+            *hi = std::max(*hi, v);
+        }
+    }
+    if (!(*hi >= *lo)) {
+        *lo = log ? 1 : 0;
+        *hi = log ? 10 : 1;
+    }
+}
+
+/* Axis range: the caller's, or the data's padded to tick positions. */
+void finish_range(double lo, double hi, bool log, bool include_zero, bool pad, double *out_lo, double *out_hi)
+{
+    if (log) {
+        if (hi <= lo) {
+            lo /= 2;
+            hi *= 2;
+        }
+        if (pad) {
+            double f = std::pow(hi / lo, 0.04);
+            lo /= f;
+            hi *= f;
+        }
+    } else {
+        if (include_zero && lo > 0) lo = 0;
+        if (include_zero && hi < 0) hi = 0;
+        if (hi <= lo) {
+            double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
+            lo -= d;
+            hi += d;
+        }
+        if (pad) {
+            double step = nice_step((hi - lo) / 6);
+            double nlo = std::floor(lo / step + 1e-9) * step, nhi = std::ceil(hi / step - 1e-9) * step;
+            if (nhi - hi < 0.02 * (nhi - nlo)) nhi += step * 0.5; /* room above the highest curve */
+            lo = nlo;
+            hi = nhi;
+        }
+    }
+    *out_lo = lo;
+    *out_hi = hi;
+}
+
+} /* namespace */
+
+/* ==== extern "C" interface ================================================================ */
+
+extern "C" void draw_colormap_rgb(int cmap, int index, unsigned char rgb[3])
+{
+    try {
+        cv::Vec3b c = cmap_bgr(cmap, index);
+        rgb[0] = c[2];
+        rgb[1] = c[1];
+        rgb[2] = c[0];
+    } catch (...) {
+        rgb[0] = rgb[1] = rgb[2] = 0;
+    }
+}
+
+extern "C" int draw_png_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *err,
+                             size_t errlen)
+{
+    if (!check_image_args(path, width, height, rgb, "pixel", err, errlen)) return -1;
+    try {
+        cv::Mat img(height, width, CV_8UC3);
+        rgb_to_bgr(rgb, width, height, img);
+        return write_png(path, img, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
+extern "C" int draw_error_image(const char *path, int width, int height, const float *abs_err, float vmax,
+                                const char *title, char *err, size_t errlen)
+{
+    if (!check_image_args(path, width, height, abs_err, "error", err, errlen)) return -1;
+    try {
+        return image_row(path, width, height, nullptr, nullptr, abs_err, vmax, title, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
+extern "C" int draw_contact_sheet(const char *path, int width, int height, const unsigned char *ref_rgb,
+                                  const unsigned char *model_rgb, const float *abs_err, float vmax,
+                                  const char *title, char *err, size_t errlen)
+{
+    if (!check_image_args(path, width, height, abs_err, "error", err, errlen)) return -1;
+    if (!ref_rgb || !model_rgb) {
+        set_err(err, errlen, "%s: contact sheet needs both the reference and the model image", path);
+        return -1;
+    }
+    try {
+        return image_row(path, width, height, ref_rgb, model_rgb, abs_err, vmax, title, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
+extern "C" int draw_heatmap_figure(const char *path, const char *title, int npanels,
+                                   const struct draw_heatmap_panel *panels, struct draw_panel_layout *layout,
+                                   char *err, size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return -1;
+    if (npanels < 1 || npanels > 4 || !panels) {
+        set_err(err, errlen, "%s: a heatmap figure has 1..4 panels, not %d", path, npanels);
+        return -1;
+    }
+    for (int k = 0; k < npanels; k++)
+        if (!check_panel(panels[k], path, k, err, errlen)) return -1;
+    try {
+        std::vector<PanelGeom> geom(npanels);
+        int total_w = 0;
+        for (int k = 0; k < npanels; k++) {
+            const draw_heatmap_panel &p = panels[k];
+            PanelGeom &g = geom[k];
+            double fmax = finite_max(p.values, (size_t)p.cols * p.rows), lo, hi;
+            colour_scale(p.vmin, p.vmax, fmax, &lo, &hi);
+            Axis ay{p.y_min, p.y_max, p.y_log != 0, 0, 1};
+            g.left = 8 + 24 + y_label_width(ay, DRAW_FMT_PLAIN, 6) + 8 + 8;
+            g.plot_w = HM_PLOT_W;
+            g.plot_h = HM_PLOT_H;
+            g.bar_gap = 20;
+            g.bar_w = HM_BAR_W;
+            g.bar_extent = colour_bar_extent(lo, hi, p.value_format, HM_BAR_W);
+            g.width = g.left + g.plot_w + g.bar_gap + g.bar_extent + 16;
+            total_w += g.width;
+        }
+        std::string t = ascii(title);
+        for (const std::string &l : split_lines(t)) total_w = std::max(total_w, text_size(l, S_TITLE).width + 24);
+        int th = title_height(t);
+        int height = th + HM_TOP + HM_PLOT_H + HM_BOTTOM;
+        cv::Mat img(height, total_w, CV_8UC3, WHITE);
+        put_title(img, t);
+        int x0 = 0;
+        for (int k = 0; k < npanels; k++) {
+            draw_panel(img, x0, th, panels[k], geom[k], layout ? &layout[k] : nullptr);
+            x0 += geom[k].width;
+        }
+        return write_png(path, img, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
+extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, char *err, size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return -1;
+    if (!p || p->nseries < 0 || (p->nseries > 0 && !p->series)) {
+        set_err(err, errlen, "%s: no plot description", path);
+        return -1;
+    }
+    for (int s = 0; s < p->nseries; s++)
+        if (p->series[s].count < 0 || (p->series[s].count > 0 && (!p->series[s].x || !p->series[s].y))) {
+            set_err(err, errlen, "%s: series %d has no data", path, s);
+            return -1;
+        }
+    if ((p->x_log && p->x_max > p->x_min && !(p->x_min > 0)) || (p->y_log && p->y_max > p->y_min && !(p->y_min > 0))) {
+        set_err(err, errlen, "%s: a log axis needs a positive range", path);
+        return -1;
+    }
+    try {
+        double xlo, xhi, ylo, yhi;
+        if (p->x_max > p->x_min) {
+            xlo = p->x_min;
+            xhi = p->x_max;
+        } else {
+            data_range(p, true, &xlo, &xhi);
+            finish_range(xlo, xhi, p->x_log, false, false, &xlo, &xhi);
+        }
+        if (p->y_max > p->y_min) {
+            ylo = p->y_min;
+            yhi = p->y_max;
+        } else {
+            data_range(p, false, &ylo, &yhi);
+            finish_range(ylo, yhi, p->y_log, true, true, &ylo, &yhi);
+        }
+        int W = p->width > 0 ? p->width : 1000, H = p->height > 0 ? p->height : 620;
+        std::string t = ascii(p->title);
+        int th = title_height(t);
+        /* legend to the right of the plot, never over the curves */
+        int legend_w = 0, nleg = 0;
+        for (int s = 0; s < p->nseries; s++)
+            if (p->series[s].label) {
+                legend_w = std::max(legend_w, text_size(ascii(p->series[s].label), S_LABEL).width);
+                nleg++;
+            }
+        legend_w = nleg ? legend_w + 70 : 0;
+        Axis ay{ylo, yhi, p->y_log != 0, 0, 1};
+        int left = 12 + 24 + y_label_width(ay, p->y_format, 7) + 14;
+        int right = 24 + legend_w;
+        int bottom = 66;
+        W = std::max(W, left + right + 200);
+        H = std::max(H, th + bottom + 150);
+        cv::Rect plot(left, th + 8, W - left - right, H - th - 8 - bottom);
+        cv::Mat img(H, W, CV_8UC3, WHITE);
+        put_title(img, t);
+        Axis ax{xlo, xhi, p->x_log != 0, (double)plot.x, (double)(plot.x + plot.width - 1)};
+        ay = Axis{ylo, yhi, p->y_log != 0, (double)(plot.y + plot.height - 1), (double)plot.y};
+        draw_x_ticks(img, ax, plot.y + plot.height, DRAW_FMT_PLAIN, 8, plot.y);
+        draw_y_ticks(img, ay, plot.x - 1, p->y_format, 7, plot.x + plot.width - 1);
+        int yw = y_label_width(ay, p->y_format, 7);
+        put(img, ascii(p->x_label), plot.x + plot.width / 2, plot.y + plot.height + 36, S_LABEL, 0, -1);
+        put_vertical(img, ascii(p->y_label), plot.x - 8 - yw - 18, plot.y + plot.height / 2, S_LABEL);
+
+        cv::Mat roi = img(plot);
+        for (int v = 0; v < p->nvlines; v++) {
+            double xv = p->vlines[v];
+            if (!ax.inside(xv)) continue;
+            int px = (int)std::lround(ax.map(xv)) - plot.x;
+            for (int y = 0; y < plot.height; y += 6)
+                cv::line(roi, cv::Point(px, y), cv::Point(px, std::min(y + 2, plot.height - 1)), cv::Scalar(110, 110, 110), 1);
+            if (p->vline_labels && p->vline_labels[v])
+                put(roi, ascii(p->vline_labels[v]), px + 5, 6, S_TICK, -1, -1, cv::Scalar(90, 90, 90));
+        }
+        /* coloured series first, the black reference last so it stays visible on top */
+        for (int pass = 0; pass < 2; pass++)
+            for (int s = 0; s < p->nseries; s++) {
+                const draw_series &se = p->series[s];
+                if ((se.colour == DRAW_COLOUR_BLACK) != (pass == 1)) continue;
+                cv::Scalar col = palette(se.colour);
+                std::vector<cv::Point2d> run;
+                auto flush = [&]() {
+                    if (!run.empty()) draw_polyline(roi, run, col, se.dashed != 0, 2);
+                    run.clear();
+                };
+                for (int i = 0; i < se.count; i++) {
+                    double x = se.x[i], y = se.y[i];
+                    if (!usable(x, p->x_log) || !usable(y, p->y_log)) {
+                        flush();
+                        continue;
+                    }
+                    cv::Point2d q(ax.map(x) - plot.x, ay.map(y) - plot.y);
+                    run.push_back(q);
+                    if (se.markers)
+                        cv::circle(roi, cv::Point((int)std::lround(q.x), (int)std::lround(q.y)), 3, col, 1, cv::LINE_AA);
+                }
+                flush();
+            }
+        cv::rectangle(img, cv::Rect(plot.x - 1, plot.y - 1, plot.width + 2, plot.height + 2), INK, 1);
+
+        if (nleg) {
+            int lx = plot.x + plot.width + 16, ly = plot.y + 6;
+            int lh = nleg * 26 + 10;
+            cv::rectangle(img, cv::Rect(lx, ly, legend_w, lh), cv::Scalar(180, 180, 180), 1);
+            int row = 0;
+            for (int s = 0; s < p->nseries; s++) {
+                const draw_series &se = p->series[s];
+                if (!se.label) continue;
+                int cy = ly + 18 + row * 26;
+                std::vector<cv::Point2d> sample = {cv::Point2d(lx + 10, cy), cv::Point2d(lx + 48, cy)};
+                draw_polyline(img, sample, palette(se.colour), se.dashed != 0, 2);
+                if (se.markers) cv::circle(img, cv::Point(lx + 29, cy), 3, palette(se.colour), 1, cv::LINE_AA);
+                put(img, ascii(se.label), lx + 58, cy, S_LABEL, -1, 0);
+                row++;
+            }
+        }
+        return write_png(path, img, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
+extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, char *err, size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return -1;
+    if (!c || c->nbars < 1 || c->nbars > 200 || !c->labels || !c->values) {
+        set_err(err, errlen, "%s: a bar chart needs 1..200 labelled values", path);
+        return -1;
+    }
+    try {
+        std::vector<std::string> texts(c->nbars);
+        double vmax = 0;
+        int label_w = 0, text_w = 0;
+        for (int i = 0; i < c->nbars; i++) {
+            double v = c->values[i];
+            char buf[64];
+            if (c->value_text && c->value_text[i]) texts[i] = ascii(c->value_text[i]);
+            else if (std::isfinite(v)) {
+                snprintf(buf, sizeof buf, "%.3g", v);
+                texts[i] = buf;
+            } else texts[i] = "n/a";
+            if (std::isfinite(v)) vmax = std::max(vmax, v);
+            if (c->err_hi && std::isfinite(c->err_hi[i])) vmax = std::max(vmax, c->err_hi[i]);
+            label_w = std::max(label_w, text_size(ascii(c->labels[i]), S_LABEL).width);
+            text_w = std::max(text_w, text_size(texts[i], S_TICK).width);
+        }
+        if (!(vmax > 0)) vmax = 1;
+        double step = nice_step(vmax / 6);
+        double xhi = std::ceil(vmax / step - 1e-9) * step;
+        std::string t = ascii(c->title);
+        int th = title_height(t);
+        int W = c->width > 0 ? c->width : 1000;
+        int left = 16 + label_w + 12, right = text_w + 30;
+        int row_h = 32, bottom = 70;
+        W = std::max(W, left + right + 240);
+        int H = th + 10 + c->nbars * row_h + bottom;
+        cv::Mat img(H, W, CV_8UC3, WHITE);
+        put_title(img, t);
+        cv::Rect plot(left, th + 10, W - left - right, c->nbars * row_h);
+        Axis ax{0, xhi, false, (double)plot.x, (double)(plot.x + plot.width - 1)};
+        draw_x_ticks(img, ax, plot.y + plot.height, DRAW_FMT_PLAIN, 6, plot.y);
+        put(img, ascii(c->x_label), plot.x + plot.width / 2, plot.y + plot.height + 36, S_LABEL, 0, -1);
+        for (int i = 0; i < c->nbars; i++) {
+            int y = plot.y + i * row_h;
+            put(img, ascii(c->labels[i]), plot.x - 10, y + row_h / 2, S_LABEL, 1, 0);
+            double v = c->values[i];
+            int end = plot.x;
+            if (std::isfinite(v) && v > 0) {
+                end = (int)std::lround(ax.map(std::min(v, xhi)));
+                cv::Scalar col = (i == c->highlight) ? cv::Scalar(60, 60, 60) : palette(0);
+                cv::rectangle(img, cv::Rect(plot.x, y + 6, std::max(1, end - plot.x), row_h - 12), col, cv::FILLED);
+            }
+            if (c->err_lo && c->err_hi && std::isfinite(c->err_lo[i]) && std::isfinite(c->err_hi[i])) {
+                int a = (int)std::lround(ax.map(std::max(0.0, c->err_lo[i])));
+                int b = (int)std::lround(ax.map(std::min(xhi, c->err_hi[i])));
+                int cy = y + row_h / 2;
+                cv::line(img, cv::Point(a, cy), cv::Point(b, cy), INK, 1);
+                cv::line(img, cv::Point(a, cy - 5), cv::Point(a, cy + 5), INK, 1);
+                cv::line(img, cv::Point(b, cy - 5), cv::Point(b, cy + 5), INK, 1);
+                end = std::max(end, b);
+            }
+            put(img, texts[i], end + 6, y + row_h / 2, S_TICK, -1, 0);
+        }
+        cv::line(img, cv::Point(plot.x - 1, plot.y), cv::Point(plot.x - 1, plot.y + plot.height), INK, 1);
+        cv::line(img, cv::Point(plot.x - 1, plot.y + plot.height), cv::Point(plot.x + plot.width, plot.y + plot.height), INK, 1);
+        return write_png(path, img, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
+extern "C" int draw_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *err,
+                              size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return -1;
+    try {
+        cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
+        if (img.empty()) {
+            set_err(err, errlen, "%s: cannot be read or decoded as an image", path);
+            return -1;
+        }
+        size_t n = (size_t)img.cols * img.rows * 3;
+        unsigned char *buf = (unsigned char *)malloc(n);
+        if (!buf) {
+            set_err(err, errlen, "%s: out of memory", path);
+            return -1;
+        }
+        for (int y = 0; y < img.rows; y++)
+            for (int x = 0; x < img.cols; x++) {
+                cv::Vec3b c = img.at<cv::Vec3b>(y, x);
+                unsigned char *q = buf + ((size_t)y * img.cols + x) * 3;
+                q[0] = c[2];
+                q[1] = c[1];
+                q[2] = c[0];
+            }
+        *width = img.cols;
+        *height = img.rows;
+        *rgb = buf;
+        return 0;
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}

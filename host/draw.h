@@ -1,0 +1,152 @@
+/* draw.h - every picture brdfbench writes: error heatmaps, line plots, bar charts,
+ * image-pass pictures (false-colour error images, contact sheets) and plain RGB PNGs.
+ *
+ * The implementation (draw.cpp) is the only place that uses OpenCV; this interface is
+ * plain C. All text is ASCII (OpenCV's built-in Hershey fonts have no Greek), so
+ * callers spell "delta"/"Delta" out.
+ *
+ * Every function that writes a file returns 0 on success and -1 with a one-line message
+ * in err (naming the file) on failure. PNGs are encoded in memory and written
+ * atomically (temp file in the same folder, fsync, rename): a failed write leaves any
+ * previous file of that name intact.
+ */
+#ifndef BRDF_DRAW_H
+#define BRDF_DRAW_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- image-pass pictures ------------------------------------------------------- */
+
+/* RGB row-major (3 bytes per pixel, width*3 bytes per row), written as a PNG. */
+int draw_png_rgb8(const char *path, int width, int height, const unsigned char *rgb,
+                  char *err, size_t errlen);
+
+/* False-colour picture of a per-pixel absolute error (row-major, width*height floats;
+ * NaN = background, drawn dark grey) at 1:1 scale, with a title band above and a
+ * labelled colour bar (inferno, 0 at the bottom, vmax at the top) on the right.
+ * vmax <= 0 or non-finite: the largest finite value of abs_err is used. */
+int draw_error_image(const char *path, int width, int height, const float *abs_err,
+                     float vmax, const char *title, char *err, size_t errlen);
+
+/* Three panels side by side at 1:1 scale: reference image, model image (both RGB
+ * row-major) and the false-colour absolute error (as draw_error_image), each captioned,
+ * with a title band and the error's colour bar. */
+int draw_contact_sheet(const char *path, int width, int height,
+                       const unsigned char *ref_rgb, const unsigned char *model_rgb,
+                       const float *abs_err, float vmax, const char *title,
+                       char *err, size_t errlen);
+
+/* ---- colour maps ---------------------------------------------------------------- */
+
+enum draw_cmap { DRAW_CMAP_VIRIDIS = 0, DRAW_CMAP_INFERNO = 1 };
+
+/* The colour map's entry 0..255 (0 = bottom, 255 = top) as R, G, B. */
+void draw_colormap_rgb(int cmap, int index, unsigned char rgb[3]);
+
+/* How numbers on a value axis or colour bar are labelled. */
+enum draw_value_format {
+    DRAW_FMT_PLAIN = 0,   /* 0.128 */
+    DRAW_FMT_PERCENT = 1  /* values are fractions, labelled times 100 with '%': 1.3% */
+};
+
+/* ---- heatmaps ---------------------------------------------------------------------- */
+
+/* One heatmap panel: a grid of values, column index along x (left to right), row index
+ * along y (row 0 at the bottom). Column/row centres span [x_min, x_max] / [y_min, y_max]
+ * evenly (in log space where *_log is set). */
+struct draw_heatmap_panel {
+    int cols, rows;
+    const float *values;        /* rows*cols, row-major, row 0 first; NaN = no data (grey) */
+    double x_min, x_max;
+    int x_log;
+    const char *x_label;
+    double y_min, y_max;
+    int y_log;
+    const char *y_label;
+    double vmin, vmax;          /* colour scale; vmax <= vmin: [0, largest finite value] */
+    int cmap;                   /* enum draw_cmap */
+    int value_format;           /* enum draw_value_format, for the colour bar */
+    const char *bar_label;      /* colour bar caption, e.g. "relative error delta" */
+    const char *subtitle;       /* panel heading */
+    int mark_max;               /* ring around the cell holding the largest finite value */
+};
+
+/* Where a panel landed in the written PNG, in pixels (x right, y down); for captions
+ * and for tests that decode the picture. */
+struct draw_panel_layout {
+    int plot_x, plot_y, plot_w, plot_h;  /* the coloured grid */
+    int bar_x, bar_y, bar_w, bar_h;      /* colour bar; bar_y is its top (vmax) row */
+    int max_col, max_row;                /* cell of the largest finite value, -1 if none */
+    int max_px, max_py;                  /* marker centre (centre of that cell), -1 if none marked */
+    double max_value;                    /* NaN when the panel holds no finite value */
+    double vmin_used, vmax_used;         /* the colour scale actually drawn */
+};
+
+/* A figure of npanels (1..4) heatmaps side by side under one title (a second title line
+ * may follow a '\n'). layout may be NULL, else it receives npanels entries. */
+int draw_heatmap_figure(const char *path, const char *title, int npanels,
+                        const struct draw_heatmap_panel *panels,
+                        struct draw_panel_layout *layout, char *err, size_t errlen);
+
+/* ---- line plots ---------------------------------------------------------------------- */
+
+#define DRAW_COLOUR_BLACK (-1)   /* series colour: black (the reference, by convention) */
+
+struct draw_series {
+    const double *x, *y;
+    int count;                  /* a non-finite point (or <= 0 on a log axis) breaks the line */
+    const char *label;          /* legend entry; NULL = not in the legend */
+    int colour;                 /* palette index 0..9, or DRAW_COLOUR_BLACK */
+    int dashed;
+    int markers;                /* small circles at the data points */
+};
+
+struct draw_line_plot {
+    const char *title, *x_label, *y_label;
+    int x_log, y_log;
+    double x_min, x_max;        /* x_max <= x_min: from the data */
+    double y_min, y_max;        /* y_max <= y_min: from the data (linear axes include 0) */
+    int y_format;               /* enum draw_value_format */
+    int nseries;
+    const struct draw_series *series;
+    int nvlines;                /* dotted vertical guides (e.g. a zone boundary) */
+    const double *vlines;
+    const char *const *vline_labels;  /* may be NULL */
+    int width, height;          /* 0: 1000 x 620 */
+};
+
+int draw_line_plot(const char *path, const struct draw_line_plot *plot, char *err, size_t errlen);
+
+/* ---- bar charts ------------------------------------------------------------------------ */
+
+/* Horizontal bars, one per label, value written at the bar's end. err_lo/err_hi (may be
+ * NULL) draw a whisker from err_lo[i] to err_hi[i] (e.g. min..max of repeats). A
+ * non-finite value draws no bar and the text "n/a". */
+struct draw_bar_chart {
+    const char *title, *x_label;
+    int nbars;
+    const char *const *labels;
+    const double *values;
+    const double *err_lo, *err_hi;
+    const char *const *value_text;  /* may be NULL: the value printed with %.3g */
+    int highlight;                  /* index of a bar drawn in black (the reference), -1 none */
+    int width;                      /* 0: 1000 */
+};
+
+int draw_bar_chart(const char *path, const struct draw_bar_chart *chart, char *err, size_t errlen);
+
+/* ---- reading back ------------------------------------------------------------------------ */
+
+/* Decode a PNG (or any format OpenCV reads) into a malloc'd RGB row-major buffer. */
+int draw_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb,
+                   char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BRDF_DRAW_H */
