@@ -17,6 +17,7 @@ extern "C" {
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
@@ -40,7 +41,8 @@ void set_err(char *err, size_t errlen, const char *fmt, ...)
 const cv::Scalar INK(40, 40, 40);          /* text and axes (BGR) */
 const cv::Scalar GRID(225, 225, 225);
 const cv::Scalar WHITE(255, 255, 255);
-const cv::Scalar NODATA(90, 90, 90);       /* NaN cells / background pixels */
+const cv::Scalar NODATA(100, 90, 90);      /* NaN cells / background pixels: RGB (90, 90, 100), a
+                                              bluish grey no anti-aliased text pixel takes */
 const int FONT = cv::FONT_HERSHEY_SIMPLEX;
 const double S_TICK = 0.5, S_LABEL = 0.58, S_TITLE = 0.72;
 
@@ -262,6 +264,8 @@ std::string tick_label(double v, double step, int format)
         if (std::fabs(s * std::pow(10.0, dec) - std::round(s * std::pow(10.0, dec))) > 1e-6) dec++;
         dec = std::min(dec, 6);
         snprintf(buf, sizeof buf, "%.*f%s", dec, x, suffix);
+    } else if (x == std::round(x) && ax < 1e7) {
+        snprintf(buf, sizeof buf, "%.0f%s", x, suffix); /* log-axis ticks: 1000, not 1e+03 */
     } else {
         snprintf(buf, sizeof buf, "%.3g%s", x, suffix);
     }
@@ -810,6 +814,10 @@ extern "C" int draw_heatmap_figure(const char *path, const char *title, int npan
         int x0 = 0;
         for (int k = 0; k < npanels; k++) {
             draw_panel(img, x0, th, panels[k], geom[k], layout ? &layout[k] : nullptr);
+            if (layout) {
+                layout[k].image_w = img.cols;
+                layout[k].image_h = img.rows;
+            }
             x0 += geom[k].width;
         }
         return write_png(path, img, err, errlen);
@@ -1012,6 +1020,12 @@ extern "C" int draw_read_rgb8(const char *path, int *width, int *height, unsigne
                               size_t errlen)
 {
     if (!check_path(path, err, errlen)) return -1;
+    FILE *f = fopen(path, "rb"); /* a clear message, and no warning from imread */
+    if (!f) {
+        set_err(err, errlen, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    fclose(f);
     try {
         cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
         if (img.empty()) {

@@ -26,7 +26,7 @@ int draw_png_rgb8(const char *path, int width, int height, const unsigned char *
                   char *err, size_t errlen);
 
 /* False-colour picture of a per-pixel absolute error (row-major, width*height floats;
- * NaN = background, drawn dark grey) at 1:1 scale, with a title band above and a
+ * NaN = background, drawn bluish grey RGB 90,90,100) at 1:1 scale, with a title band above and a
  * labelled colour bar (inferno, 0 at the bottom, vmax at the top) on the right.
  * vmax <= 0 or non-finite: the largest finite value of abs_err is used. */
 int draw_error_image(const char *path, int width, int height, const float *abs_err,
@@ -78,6 +78,7 @@ struct draw_heatmap_panel {
 /* Where a panel landed in the written PNG, in pixels (x right, y down); for captions
  * and for tests that decode the picture. */
 struct draw_panel_layout {
+    int image_w, image_h;                /* size of the whole written picture */
     int plot_x, plot_y, plot_w, plot_h;  /* the coloured grid */
     int bar_x, bar_y, bar_w, bar_h;      /* colour bar; bar_y is its top (vmax) row */
     int max_col, max_row;                /* cell of the largest finite value, -1 if none */

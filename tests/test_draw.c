@@ -1,0 +1,330 @@
+/* test_draw.c - pictures decoded back with OpenCV (through draw_read_rgb8) and checked:
+ * sizes, the colour under the maximum marker, colour-bar monotonicity, a zero field drawn
+ * as the colour map's bottom colour, exact pixels of RGB round trips and contact sheets,
+ * and a failed write reported with the file's name. No OpenCL device needed. */
+#include "draw.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static int passed, failed;
+
+#define CHECK(cond, ...)                                                     \
+    do {                                                                     \
+        if (cond) {                                                          \
+            passed++;                                                        \
+        } else {                                                             \
+            failed++;                                                        \
+            printf("FAIL %s:%d: ", __FILE__, __LINE__);                      \
+            printf(__VA_ARGS__);                                             \
+            printf("\n");                                                    \
+        }                                                                    \
+    } while (0)
+
+/* matplotlib's viridis and inferno tables (_cm_listed.py), first and last entries times
+ * 255, rounded: viridis (0.267004, 0.004874, 0.329415) and (0.993248, 0.906157, 0.143936);
+ * inferno (0.001462, 0.000466, 0.013866) and (0.988362, 0.998364, 0.644924). */
+static const int VIRIDIS_BOTTOM[3] = {68, 1, 84}, VIRIDIS_TOP[3] = {253, 231, 37};
+static const int INFERNO_TOP[3] = {252, 255, 164};
+
+static char dir[256];
+
+static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
+
+static const unsigned char *px(const unsigned char *rgb, int w, int x, int y) { return rgb + ((size_t)y * w + x) * 3; }
+
+static int near(const unsigned char *p, const int want[3], int tol)
+{
+    for (int k = 0; k < 3; k++)
+        if (abs((int)p[k] - want[k]) > tol) return 0;
+    return 1;
+}
+
+/* Index of the colour-map entry nearest to p (squared RGB distance). */
+static int nearest_index(int cmap, const unsigned char *p)
+{
+    int best = 0;
+    long bestd = -1;
+    for (int i = 0; i < 256; i++) {
+        unsigned char c[3];
+        draw_colormap_rgb(cmap, i, c);
+        long d = 0;
+        for (int k = 0; k < 3; k++) d += (long)(c[k] - p[k]) * (c[k] - p[k]);
+        if (bestd < 0 || d < bestd) bestd = d, best = i;
+    }
+    return best;
+}
+
+static void test_colormap_ends(void)
+{
+    unsigned char c[3];
+    draw_colormap_rgb(DRAW_CMAP_VIRIDIS, 0, c);
+    CHECK(near(c, VIRIDIS_BOTTOM, 2), "viridis bottom is %d,%d,%d", c[0], c[1], c[2]);
+    draw_colormap_rgb(DRAW_CMAP_VIRIDIS, 255, c);
+    CHECK(near(c, VIRIDIS_TOP, 2), "viridis top is %d,%d,%d", c[0], c[1], c[2]);
+    draw_colormap_rgb(DRAW_CMAP_INFERNO, 255, c);
+    CHECK(near(c, INFERNO_TOP, 2), "inferno top is %d,%d,%d", c[0], c[1], c[2]);
+}
+
+static void test_png_round_trip(void)
+{
+    enum { W = 7, H = 5 };
+    unsigned char rgb[W * H * 3];
+    for (int i = 0; i < W * H * 3; i++) rgb[i] = (unsigned char)((i * 37 + 11) & 255);
+    char path[512], err[512];
+    path_in(path, sizeof path, "round_trip.png");
+    CHECK(draw_png_rgb8(path, W, H, rgb, err, sizeof err) == 0, "write: %s", err);
+    int w = 0, h = 0;
+    unsigned char *back = NULL;
+    CHECK(draw_read_rgb8(path, &w, &h, &back, err, sizeof err) == 0, "read: %s", err);
+    CHECK(w == W && h == H, "size %dx%d, want %dx%d", w, h, W, H);
+    /* PNG is lossless: every byte comes back */
+    CHECK(back && w == W && h == H && memcmp(back, rgb, sizeof rgb) == 0, "pixels differ after round trip");
+    free(back);
+}
+
+static void test_heatmap(void)
+{
+    enum { C = 50, R = 40 };
+    static float ramp[C * R], zero[C * R];
+    /* v = (c / 49) (r / 39): its largest value, 1, is only at the last column of the last row */
+    for (int r = 0; r < R; r++)
+        for (int c = 0; c < C; c++) {
+            ramp[r * C + c] = (float)((c / 49.0) * (r / 39.0));
+            zero[r * C + c] = 0.0f;
+        }
+    struct draw_heatmap_panel p[2];
+    memset(p, 0, sizeof p);
+    p[0].cols = C, p[0].rows = R, p[0].values = ramp;
+    p[0].x_min = 0, p[0].x_max = 1, p[0].x_label = "x / x_e(n)";
+    p[0].y_min = 2, p[0].y_max = 1000, p[0].y_log = 1, p[0].y_label = "n";
+    p[0].cmap = DRAW_CMAP_VIRIDIS, p[0].value_format = DRAW_FMT_PERCENT;
+    p[0].bar_label = "relative error \xce\xb4", p[0].subtitle = "ramp", p[0].mark_max = 1;
+    p[1] = p[0];
+    p[1].values = zero, p[1].subtitle = "reference vs reference";
+    char path[512], err[512];
+    path_in(path, sizeof path, "heatmap.png");
+    struct draw_panel_layout L[2];
+    memset(L, 0, sizeof L);
+    CHECK(draw_heatmap_figure(path, "test heatmap\nsecond line", 2, p, L, err, sizeof err) == 0, "heatmap: %s", err);
+    int w = 0, h = 0;
+    unsigned char *img = NULL;
+    CHECK(draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0, "read: %s", err);
+    if (!img) return;
+    CHECK(w == L[0].image_w && h == L[0].image_h, "decoded %dx%d, layout says %dx%d", w, h, L[0].image_w, L[0].image_h);
+    for (int k = 0; k < 2; k++)
+        CHECK(L[k].plot_x >= 0 && L[k].plot_y >= 0 && L[k].plot_x + L[k].plot_w <= w &&
+                  L[k].plot_y + L[k].plot_h <= h && L[k].bar_x + L[k].bar_w <= w && L[k].bar_y + L[k].bar_h <= h,
+              "panel %d does not fit in the picture", k);
+    /* the maximum is the last cell (worked above), its colour the map's top */
+    CHECK(L[0].max_col == C - 1 && L[0].max_row == R - 1, "max cell %d,%d", L[0].max_col, L[0].max_row);
+    CHECK(fabs(L[0].max_value - 1.0) < 1e-6, "max value %g", L[0].max_value);
+    CHECK(L[0].max_px >= L[0].plot_x && L[0].max_px < L[0].plot_x + L[0].plot_w &&
+              L[0].max_py >= L[0].plot_y && L[0].max_py < L[0].plot_y + L[0].plot_h,
+          "marker %d,%d outside the plot", L[0].max_px, L[0].max_py);
+    if (L[0].max_px >= 0) {
+        const unsigned char *m = px(img, w, L[0].max_px, L[0].max_py);
+        CHECK(near(m, VIRIDIS_TOP, 3), "colour under the marker %d,%d,%d, want viridis top", m[0], m[1], m[2]);
+    }
+    /* the cell of the smallest value (0, at row 0 / column 0) sits bottom-left: bottom colour */
+    {
+        const unsigned char *m = px(img, w, L[0].plot_x, L[0].plot_y + L[0].plot_h - 1);
+        CHECK(near(m, VIRIDIS_BOTTOM, 3), "bottom-left colour %d,%d,%d", m[0], m[1], m[2]);
+    }
+    /* colour bar: from bottom to top the colour-map index never falls, and the luma
+     * (a lightness proxy; viridis is monotone in lightness) rises overall */
+    {
+        int x = L[0].bar_x + L[0].bar_w / 2, prev = -1, mono = 1;
+        double luma_first = 0, luma_last = 0, luma_prev = -1;
+        int luma_mono = 1;
+        for (int y = L[0].bar_y + L[0].bar_h - 1; y >= L[0].bar_y; y--) {
+            const unsigned char *q = px(img, w, x, y);
+            int idx = nearest_index(DRAW_CMAP_VIRIDIS, q);
+            if (idx < prev) mono = 0;
+            prev = idx;
+            double luma = 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
+            if (y == L[0].bar_y + L[0].bar_h - 1) luma_first = luma;
+            luma_last = luma;
+            /* 1.0: the 8-bit table itself wobbles by up to 0.25 */
+            if (luma_prev >= 0 && luma < luma_prev - 1.0) luma_mono = 0;
+            luma_prev = luma;
+        }
+        CHECK(mono, "colour bar index is not monotone");
+        CHECK(luma_mono && luma_last > luma_first + 100, "colour bar lightness not rising (%g -> %g)", luma_first, luma_last);
+        CHECK(near(px(img, w, x, L[0].bar_y + L[0].bar_h - 1), VIRIDIS_BOTTOM, 3), "colour bar bottom");
+        CHECK(near(px(img, w, x, L[0].bar_y), VIRIDIS_TOP, 3), "colour bar top");
+    }
+    /* a zero field (a model against itself) is uniformly the bottom colour, unmarked */
+    {
+        long off = 0;
+        for (int y = L[1].plot_y; y < L[1].plot_y + L[1].plot_h; y++)
+            for (int x = L[1].plot_x; x < L[1].plot_x + L[1].plot_w; x++)
+                if (!near(px(img, w, x, y), VIRIDIS_BOTTOM, 0)) off++;
+        CHECK(off == 0, "%ld pixels of the zero field are not the bottom colour", off);
+        CHECK(L[1].max_px == -1, "zero field marked at %d,%d", L[1].max_px, L[1].max_py);
+    }
+    free(img);
+}
+
+/* More cells than pixels: the single peak must still show (max pooling) and be marked. */
+static void test_heatmap_dense_peak(void)
+{
+    enum { C = 2000, R = 900 };
+    float *v = calloc((size_t)C * R, sizeof *v);
+    if (!v) return;
+    v[(size_t)517 * C + 1234] = 0.5f; /* one isolated peak */
+    for (int c = 0; c < 10; c++) v[c] = NAN; /* some no-data cells */
+    struct draw_heatmap_panel p;
+    memset(&p, 0, sizeof p);
+    p.cols = C, p.rows = R, p.values = v, p.x_min = 0, p.x_max = 1, p.y_min = 0, p.y_max = 1;
+    p.cmap = DRAW_CMAP_VIRIDIS, p.mark_max = 1, p.subtitle = "dense";
+    char path[512], err[512];
+    path_in(path, sizeof path, "dense.png");
+    struct draw_panel_layout L;
+    CHECK(draw_heatmap_figure(path, "dense", 1, &p, &L, err, sizeof err) == 0, "dense: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        CHECK(L.max_col == 1234 && L.max_row == 517, "dense max at %d,%d", L.max_col, L.max_row);
+        CHECK(L.max_px >= 0 && near(px(img, w, L.max_px, L.max_py), VIRIDIS_TOP, 3), "dense peak not drawn at its marker");
+        free(img);
+    }
+    free(v);
+}
+
+static void test_error_image_and_sheet(void)
+{
+    enum { W = 40, H = 30 };
+    static float e[W * H];
+    static unsigned char red[W * H * 3], blue[W * H * 3];
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            /* largest value 1 at x = 39, y = 29; column 0 is background */
+            e[y * W + x] = x == 0 ? NAN : (float)(x * y) / (float)(39 * 29);
+            unsigned char *r = red + (y * W + x) * 3, *b = blue + (y * W + x) * 3;
+            r[0] = 255, r[1] = 0, r[2] = 0;
+            b[0] = 0, b[1] = 0, b[2] = 255;
+        }
+    char path[512], err[512];
+    path_in(path, sizeof path, "error_image.png");
+    CHECK(draw_error_image(path, W, H, e, 0.0f, "error image", err, sizeof err) == 0, "error image: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        CHECK(w >= W && h >= H, "error image %dx%d smaller than its data", w, h);
+        long top = 0, grey = 0;
+        static const int NODATA[3] = {90, 90, 100}; /* draw.h: NaN is drawn RGB (90, 90, 100) */
+        for (int i = 0; i < w * h; i++) {
+            if (near(img + 3 * i, INFERNO_TOP, 0)) top++;
+            if (near(img + 3 * i, NODATA, 0)) grey++;
+        }
+        /* the colour bar's top rows and the one maximum pixel carry the top colour */
+        CHECK(top >= 1, "no pixel of the colour map's top");
+        CHECK(grey == H, "%ld background pixels, want one column of %d", grey, H);
+        free(img);
+    } else {
+        CHECK(0, "read: %s", err);
+    }
+    path_in(path, sizeof path, "contact_sheet.png");
+    CHECK(draw_contact_sheet(path, W, H, red, blue, e, 1.0f, "sheet", err, sizeof err) == 0, "sheet: %s", err);
+    img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        long nred = 0, nblue = 0;
+        static const int RED[3] = {255, 0, 0}, BLUE[3] = {0, 0, 255};
+        for (int i = 0; i < w * h; i++) {
+            if (near(img + 3 * i, RED, 0)) nred++;
+            if (near(img + 3 * i, BLUE, 0)) nblue++;
+        }
+        /* both images are copied 1:1: exactly W*H pure red and pure blue pixels (neither
+         * colour map nor the grey text contains them) */
+        CHECK(nred == W * H && nblue == W * H, "red %ld blue %ld, want %d each", nred, nblue, W * H);
+        free(img);
+    }
+    /* missing inputs are refused with a message */
+    CHECK(draw_contact_sheet(path, W, H, NULL, blue, e, 1.0f, "x", err, sizeof err) == -1 && err[0], "NULL image accepted");
+}
+
+static void test_line_plot_and_bars(void)
+{
+    enum { N = 100 };
+    double x[N], y[N], y2[N];
+    for (int i = 0; i < N; i++) {
+        x[i] = 2.0 * pow(500.0, i / (N - 1.0));
+        y[i] = 0.01 + 0.001 * i;
+        y2[i] = i == 50 ? NAN : 0.02;
+    }
+    struct draw_series s[2] = {{x, y, N, "rising", 0, 0, 0}, {x, y2, N, "flat, with a gap", DRAW_COLOUR_BLACK, 1, 1}};
+    double vl[1] = {16};
+    const char *vll[1] = {"n = 16"};
+    struct draw_line_plot lp;
+    memset(&lp, 0, sizeof lp);
+    lp.title = "plot", lp.x_label = "n", lp.y_label = "max \xce\xb4", lp.x_log = 1;
+    lp.y_format = DRAW_FMT_PERCENT, lp.nseries = 2, lp.series = s;
+    lp.nvlines = 1, lp.vlines = vl, lp.vline_labels = vll, lp.width = 800, lp.height = 500;
+    char path[512], err[512];
+    path_in(path, sizeof path, "line_plot.png");
+    CHECK(draw_line_plot(path, &lp, err, sizeof err) == 0, "line plot: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        CHECK(w == 800 && h == 500, "line plot %dx%d, asked 800x500", w, h);
+        /* palette colour 0 is Tableau blue (31, 119, 180): the first series is drawn in it */
+        static const int BLUE[3] = {31, 119, 180};
+        long n = 0;
+        for (int i = 0; i < w * h; i++) n += near(img + 3 * i, BLUE, 0);
+        CHECK(n > 100, "only %ld pixels of the first series' colour", n);
+        free(img);
+    }
+    const char *labels[3] = {"phong", "fvol", "schlick"};
+    double v[3] = {1.0, 2.5, NAN};
+    struct draw_bar_chart bc;
+    memset(&bc, 0, sizeof bc);
+    bc.title = "bars", bc.x_label = "G evaluations / s", bc.nbars = 3, bc.labels = labels, bc.values = v;
+    bc.highlight = 0, bc.width = 700;
+    path_in(path, sizeof path, "bars.png");
+    CHECK(draw_bar_chart(path, &bc, err, sizeof err) == 0, "bars: %s", err);
+    img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        CHECK(w == 700, "bar chart width %d, asked 700", w);
+        free(img);
+    }
+}
+
+static void test_errors(void)
+{
+    unsigned char rgb[12] = {0};
+    char err[512] = "";
+    const char *bad = "/nonexistent-folder-of-brdfbench/x.png";
+    CHECK(draw_png_rgb8(bad, 2, 2, rgb, err, sizeof err) == -1, "write into a missing folder succeeded");
+    CHECK(strstr(err, bad) != NULL, "message does not name the file: %s", err);
+    CHECK(draw_png_rgb8("x.png", 0, 2, rgb, err, sizeof err) == -1, "zero width accepted");
+    int w, h;
+    unsigned char *img = NULL;
+    CHECK(draw_read_rgb8(bad, &w, &h, &img, err, sizeof err) == -1 && strstr(err, bad), "reading a missing file: %s", err);
+    struct draw_heatmap_panel p;
+    memset(&p, 0, sizeof p);
+    CHECK(draw_heatmap_figure("x.png", "t", 1, &p, NULL, err, sizeof err) == -1, "empty panel accepted");
+}
+
+int main(void)
+{
+    const char *base = getenv("TEST_TMPDIR");
+    snprintf(dir, sizeof dir, "%s/test_draw_XXXXXX", base && *base ? base : "/tmp");
+    if (!mkdtemp(dir)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    test_colormap_ends();
+    test_png_round_trip();
+    test_heatmap();
+    test_heatmap_dense_peak();
+    test_error_image_and_sheet();
+    test_line_plot_and_bars();
+    test_errors();
+    printf("pictures in %s\n", dir);
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}
