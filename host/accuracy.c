@@ -1,0 +1,419 @@
+/* accuracy.c - the dense-grid sweep on the device and its double-precision check. */
+#include "accuracy.h"
+#include "exitcodes.h"
+#include "refine.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define ACC_OUT_STRIDE 8     /* must match kernels/accuracy.cl */
+#define ACC_PROBE_POINTS 4096
+
+static const double half_pi = 1.57079632679489661923;
+
+double zone_epicentre_end(double n) { return acos(exp(-0.511 / n)); }
+
+double error_abs_host(const struct model_spec *m, const struct model_spec *ref, double c, double n)
+{
+    return fabs(model_eval_host(m, c, n) - model_eval_host(ref, c, n));
+}
+
+double error_rel_host(const struct model_spec *m, const struct model_spec *ref, double c, double n)
+{
+    double r = model_eval_host(ref, c, n);
+    return fabs(model_eval_host(m, c, n) - r) / r;
+}
+
+long accuracy_grid_count(const struct accuracy_grid *g)
+{
+    double span = (g->n_max - g->n_min) / g->n_step;
+    if (!(span >= 0) || span > 1e12)
+        return -1;
+    long count = (long)floor(span + 1e-9) + 1;
+    if (g->n_min + (double)(count - 1) * g->n_step < g->n_max * (1 - 1e-12))
+        ++count;   /* n_max itself is always a grid point */
+    return count;
+}
+
+double accuracy_grid_n(const struct accuracy_grid *g, long i)
+{
+    long count = accuracy_grid_count(g);
+    double v = (i >= count - 1) ? g->n_max : g->n_min + (double)i * g->n_step;
+    return (double)(float)v;   /* the device sees n as a float */
+}
+
+int accuracy_grid_check(const struct accuracy_grid *g, const struct cl_session *s, char *err, size_t errlen)
+{
+    if (!isfinite(g->n_min) || g->n_min <= 0 || g->n_min > ACC_MAX_N) {
+        snprintf(err, errlen, "--n-min: %g is out of range (accepted: 0 < n-min <= %g)", g->n_min, ACC_MAX_N);
+        return EXIT_USAGE;
+    }
+    if (!isfinite(g->n_max) || g->n_max <= 0 || g->n_max > ACC_MAX_N) {
+        snprintf(err, errlen, "--n-max: %g is out of range (accepted: 0 < n-max <= %g)", g->n_max, ACC_MAX_N);
+        return EXIT_USAGE;
+    }
+    if (g->n_min >= g->n_max) {
+        snprintf(err, errlen, "--n-min (%g) must be below --n-max (%g)", g->n_min, g->n_max);
+        return EXIT_USAGE;
+    }
+    if (!isfinite(g->n_step) || g->n_step <= 0) {
+        snprintf(err, errlen, "--n-step: %g is out of range (accepted: a number > 0)", g->n_step);
+        return EXIT_USAGE;
+    }
+    long count = accuracy_grid_count(g);
+    if (count < 2 || count > ACC_MAX_N_COUNT) {
+        snprintf(err, errlen, "--n-step: %g gives %ld values of n (accepted: 2 to %ld)", g->n_step, count,
+                 ACC_MAX_N_COUNT);
+        return EXIT_USAGE;
+    }
+    if (g->samples < ACC_MIN_SAMPLES || g->samples > ACC_MAX_SAMPLES || g->samples % 16 != 0) {
+        snprintf(err, errlen, "--samples: %ld is out of range (accepted: a multiple of 16 in [%d, %ld])",
+                 g->samples, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES);
+        return EXIT_USAGE;
+    }
+    if ((double)count * (double)g->samples > ACC_MAX_WORK) {
+        snprintf(err, errlen, "--samples: %ld samples x %ld values of n is more than %.0e points per model",
+                 g->samples, count, ACC_MAX_WORK);
+        return EXIT_USAGE;
+    }
+    if (s) {
+        double bytes = (double)count * ACC_OUT_STRIDE * sizeof(float);
+        if (bytes > (double)s->max_alloc || bytes > 0.5 * (double)s->global_mem) {
+            snprintf(err, errlen, "--n-step: %ld values of n need %.3g bytes, more than the device allows (%.3g)",
+                     count, bytes, (double)s->max_alloc);
+            return EXIT_USAGE;
+        }
+    }
+    return 0;
+}
+
+int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *build_options)
+{
+    memset(a, 0, sizeof *a);
+    a->s = s;
+    snprintf(a->build_options, sizeof a->build_options, "%s", build_options ? build_options : "");
+    int rc = clsession_build(s, "accuracy.cl", NULL, a->build_options, &a->program);
+    if (rc)
+        return rc;
+    cl_int e;
+    a->sweep = clCreateKernel(a->program, "accuracy_sweep", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(accuracy_sweep)", fail);
+    a->probe = clCreateKernel(a->program, "models_probe", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(models_probe)", fail);
+    return 0;
+fail:
+    accuracy_close(a);
+    return rc;
+}
+
+void accuracy_close(struct accuracy_ctx *a)
+{
+    if (a->probe)
+        clReleaseKernel(a->probe);
+    if (a->sweep)
+        clReleaseKernel(a->sweep);
+    if (a->program)
+        clReleaseProgram(a->program);
+    a->probe = a->sweep = NULL;
+    a->program = NULL;
+}
+
+void accuracy_result_free(struct accuracy_result *r)
+{
+    free(r->per_n);
+    r->per_n = NULL;
+}
+
+int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const float *c, const float *n,
+                   size_t count, float *out)
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bc = NULL, bn = NULL, bo = NULL;
+    size_t padded = (count + 15) / 16 * 16;
+    float *pc = calloc(padded, sizeof *pc), *pn = calloc(padded, sizeof *pn), *po = calloc(padded, sizeof *po);
+    if (!pc || !pn || !po) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    memcpy(pc, c, count * sizeof *pc);
+    memcpy(pn, n, count * sizeof *pn);
+    for (size_t i = count; i < padded; ++i)
+        pn[i] = 1.0f;
+    bc = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pc, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe c)", done);
+    bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pn, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe n)", done);
+    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe out)", done);
+    cl_int id = m->info->kernel_id;
+    float p0 = (float)m->params[0], p1 = (float)m->params[1];
+    CL_CHECK_GOTO(clSetKernelArg(a->probe, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->probe, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->probe, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->probe, 3, sizeof bc, &bc), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->probe, 4, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->probe, 5, sizeof bo, &bo), done);
+    size_t global = padded / 16;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, a->probe, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
+    memcpy(out, po, count * sizeof *out);
+done:
+    if (bo) clReleaseMemObject(bo);
+    if (bn) clReleaseMemObject(bn);
+    if (bc) clReleaseMemObject(bc);
+    free(po);
+    free(pn);
+    free(pc);
+    return rc;
+}
+
+/* The error function that a refinement maximises: x -> error at cos x for fixed n. */
+struct refine_ctx {
+    const struct model_spec *m, *ref;
+    double n;
+    int relative;
+};
+
+static double refine_error(double x, void *p)
+{
+    const struct refine_ctx *r = p;
+    double c = cos(x);
+    return r->relative ? error_rel_host(r->m, r->ref, c, r->n) : error_abs_host(r->m, r->ref, c, r->n);
+}
+
+enum zone { ZONE_EPICENTRE, ZONE_ATTENUATION };
+
+/* The grid bracket [lo, hi] around x: one sample either side, as the kernel spaces them. */
+static void grid_bracket(enum zone z, double n, long samples, double x, double *lo, double *hi)
+{
+    double x_e = zone_epicentre_end(n);
+    if (z == ZONE_EPICENTRE) {
+        double h = x_e / (double)(samples - 1);
+        *lo = fmax(0.0, x - h);
+        *hi = fmin(x_e, x + h);
+        return;
+    }
+    double w = half_pi - x_e;
+    double j = sqrt(fmax(0.0, (x - x_e) / w)) * (double)samples;
+    double jl = fmax(0.0, j - 1.0) / (double)samples, jh = fmin((double)samples, j + 1.0) / (double)samples;
+    *lo = x_e + w * jl * jl;
+    *hi = fmin(half_pi, x_e + w * jh * jh);
+}
+
+/* Polishes one per-n maximum in double: from the device's grid maximum at cosine c,
+ * a Brent search over the grid bracket around it. */
+static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone z, int relative, double n, float c)
+{
+    struct acc_extreme e = { NAN, n, NAN };
+    if (!(c >= 0))
+        return e;
+    struct refine_ctx rc = { &r->model, &r->reference, n, relative };
+    double x0 = acos((double)c), lo, hi;
+    grid_bracket(z, n, r->grid.samples, x0, &lo, &hi);
+    x0 = fmin(fmax(x0, lo), hi);
+    refine_maximum(refine_error, &rc, lo, x0, hi, &e.x, &e.value);
+    return e;
+}
+
+/* The largest of a per-n figure over the n grid. */
+static void range_max_double(const struct accuracy_result *r, size_t offset, struct acc_extreme *out)
+{
+    out->value = out->n = out->x = NAN;
+    for (long i = 0; i < r->n_count; ++i) {
+        const struct acc_extreme *e = (const struct acc_extreme *)((const char *)&r->per_n[i] + offset);
+        if (e->value > out->value || (isnan(out->value) && isfinite(e->value)))
+            *out = *e;
+    }
+}
+
+static void range_max_device(const struct accuracy_result *r, size_t value_offset, size_t cos_offset,
+                             struct acc_extreme *out)
+{
+    out->value = out->n = out->x = NAN;
+    for (long i = 0; i < r->n_count; ++i) {
+        float v = *(const float *)((const char *)&r->per_n[i] + value_offset);
+        float c = *(const float *)((const char *)&r->per_n[i] + cos_offset);
+        if (v >= 0 && (v > out->value || isnan(out->value))) {
+            out->value = v;
+            out->n = r->per_n[i].n;
+            out->x = acos((double)c);
+        }
+    }
+}
+
+/* Recomputes every per-n figure in double at the device's own inputs. */
+static void check_per_n(struct accuracy_result *r)
+{
+    r->check_rel_diff = r->check_abs_diff = 0;
+    for (long i = 0; i < r->n_count; ++i) {
+        const struct acc_per_n *p = &r->per_n[i];
+        if (p->epi_rel >= 0) {
+            double d = fabs(p->epi_rel - error_rel_host(&r->model, &r->reference, p->epi_rel_c, p->n));
+            if (!(d <= r->check_rel_diff)) r->check_rel_diff = d;
+        }
+        if (p->att_abs >= 0) {
+            double d = fabs(p->att_abs - error_abs_host(&r->model, &r->reference, p->att_abs_c, p->n));
+            if (!(d <= r->check_abs_diff)) r->check_abs_diff = d;
+        }
+        if (p->epi_abs >= 0) {
+            double d = fabs(p->epi_abs - error_abs_host(&r->model, &r->reference, p->epi_abs_c, p->n));
+            if (!(d <= r->check_abs_diff)) r->check_abs_diff = d;
+        }
+    }
+}
+
+/* Compares single model values at pseudo-random points of both zones with the double
+ * reference; the difference is relative to the reference lobe's peak f_ref(1, n). */
+static int check_probe(struct accuracy_ctx *a, struct accuracy_result *r)
+{
+    float *c = malloc(ACC_PROBE_POINTS * sizeof *c), *n = malloc(ACC_PROBE_POINTS * sizeof *n);
+    float *out = malloc(ACC_PROBE_POINTS * sizeof *out);
+    int rc = 0;
+    if (!c || !n || !out) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    uint64_t state = 0x9e3779b97f4a7c15ULL;
+    for (int i = 0; i < ACC_PROBE_POINTS; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        double u = (double)(state >> 11) / 9007199254740992.0;
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        double v = (double)(state >> 11) / 9007199254740992.0;
+        double nv = r->per_n[(long)(u * (double)r->n_count) % r->n_count].n;
+        double x_e = zone_epicentre_end(nv);
+        /* Half the points in the epicentre, half over the lobe's fall-off (out to 4 x_e). */
+        double x = (i % 2 == 0) ? v * x_e : fmin(half_pi, x_e + v * 3.0 * x_e);
+        c[i] = (float)cos(x);
+        n[i] = (float)nv;
+    }
+    rc = accuracy_probe(a, &r->model, c, n, ACC_PROBE_POINTS, out);
+    if (rc)
+        goto done;
+    r->probe_rel_diff = 0;
+    for (int i = 0; i < ACC_PROBE_POINTS; ++i) {
+        double host = model_eval_host(&r->model, c[i], n[i]);
+        double peak = fabs(model_eval_host(&r->reference, 1.0, n[i]));
+        double d = fabs((double)out[i] - host) / (peak > 0 ? peak : 1.0);
+        if (!(d <= r->probe_rel_diff))
+            r->probe_rel_diff = d;
+    }
+done:
+    free(out);
+    free(n);
+    free(c);
+    return rc;
+}
+
+int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                 struct accuracy_result *out)
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bn = NULL, bo = NULL;
+    cl_event ev = NULL;
+    float *nv = NULL, *raw = NULL;
+    memset(out, 0, sizeof *out);
+    out->model = *m;
+    model_reference_spec(m, &out->reference);
+    out->grid = *g;
+    out->n_count = accuracy_grid_count(g);
+    long count = out->n_count;
+    nv = malloc((size_t)count * sizeof *nv);
+    raw = malloc((size_t)count * ACC_OUT_STRIDE * sizeof *raw);
+    out->per_n = calloc((size_t)count, sizeof *out->per_n);
+    if (!nv || !raw || !out->per_n) {
+        fprintf(stderr, "brdfbench: out of memory for %ld values of n\n", count);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    for (long i = 0; i < count; ++i)
+        nv[i] = (float)accuracy_grid_n(g, i);
+
+    bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), nv, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(n values)", done);
+    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, (size_t)count * ACC_OUT_STRIDE * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sweep out)", done);
+    cl_int id = m->info->kernel_id, ref_id = out->reference.info->kernel_id;
+    float p0 = (float)m->params[0], p1 = (float)m->params[1];
+    float rp0 = (float)out->reference.params[0], rp1 = (float)out->reference.params[1];
+    cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 3, sizeof ref_id, &ref_id), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 4, sizeof rp0, &rp0), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 5, sizeof rp1, &rp1), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 6, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 7, sizeof ncount, &ncount), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 8, sizeof samples, &samples), done);
+    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 9, sizeof bo, &bo), done);
+    size_t global = (size_t)count;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, a->sweep, 1, NULL, &global, NULL, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
+                                      raw, 0, NULL, NULL), done);
+    out->device_seconds = cl_event_seconds(ev);
+    out->points = (double)count * 2.0 * (double)g->samples;
+
+    out->invalid_n = out->invalid_x = NAN;
+    for (long i = 0; i < count; ++i) {
+        const float *o = raw + i * ACC_OUT_STRIDE;
+        struct acc_per_n *p = &out->per_n[i];
+        p->n = nv[i];
+        p->epi_rel = o[0]; p->epi_rel_c = o[1];
+        p->att_abs = o[2]; p->att_abs_c = o[3];
+        p->epi_abs = o[4]; p->epi_abs_c = o[5];
+        p->invalid_count = o[6]; p->invalid_c = o[7];
+        if (o[6] > 0) {
+            if (out->invalid_count == 0) {
+                out->invalid_n = p->n;
+                out->invalid_x = acos((double)o[7]);
+            }
+            out->invalid_count += (long long)o[6];
+        }
+    }
+
+    check_per_n(out);
+    for (long i = 0; i < count; ++i) {
+        struct acc_per_n *p = &out->per_n[i];
+        p->epi_rel_d = refine_one(out, ZONE_EPICENTRE, 1, p->n, p->epi_rel_c);
+        p->att_abs_d = refine_one(out, ZONE_ATTENUATION, 0, p->n, p->att_abs_c);
+        p->epi_abs_d = refine_one(out, ZONE_EPICENTRE, 0, p->n, p->epi_abs_c);
+    }
+    struct acc_extreme epi_abs, grid_epi_abs;
+    range_max_double(out, offsetof(struct acc_per_n, epi_rel_d), &out->epicentre);
+    range_max_double(out, offsetof(struct acc_per_n, att_abs_d), &out->attenuation);
+    range_max_double(out, offsetof(struct acc_per_n, epi_abs_d), &epi_abs);
+    range_max_device(out, offsetof(struct acc_per_n, epi_rel), offsetof(struct acc_per_n, epi_rel_c),
+                     &out->grid_epicentre);
+    range_max_device(out, offsetof(struct acc_per_n, att_abs), offsetof(struct acc_per_n, att_abs_c),
+                     &out->grid_attenuation);
+    range_max_device(out, offsetof(struct acc_per_n, epi_abs), offsetof(struct acc_per_n, epi_abs_c),
+                     &grid_epi_abs);
+    out->whole = (epi_abs.value > out->attenuation.value || isnan(out->attenuation.value)) ? epi_abs : out->attenuation;
+    out->grid_whole = (grid_epi_abs.value > out->grid_attenuation.value || isnan(out->grid_attenuation.value))
+                          ? grid_epi_abs : out->grid_attenuation;
+    rc = check_probe(a, out);
+    if (rc)
+        goto done;
+
+    out->ok = isfinite(out->epicentre.value) && isfinite(out->attenuation.value);
+    if (out->invalid_count > 0)
+        snprintf(out->reason, sizeof out->reason,
+                 "%lld model values were NaN, Inf or negative (first at n = %g, x = %.6g); they are excluded from the maxima",
+                 out->invalid_count, out->invalid_n, out->invalid_x);
+    else if (!out->ok)
+        snprintf(out->reason, sizeof out->reason, "no finite error values");
+done:
+    if (ev) clReleaseEvent(ev);
+    if (bo) clReleaseMemObject(bo);
+    if (bn) clReleaseMemObject(bn);
+    free(raw);
+    free(nv);
+    return rc;
+}

@@ -1,0 +1,91 @@
+/* accuracy.h - the dense-grid accuracy sweep as a library: the device sweeps both zones of
+ * SPEC.md for every n, the host recomputes every reduced figure in double at the device's
+ * own inputs, and polishes the range maxima with a local maximisation in double. */
+#ifndef BRDF_ACCURACY_H
+#define BRDF_ACCURACY_H
+
+#include "clsession.h"
+#include "models.h"
+
+#define ACC_DEFAULT_SAMPLES 4096
+#define ACC_MIN_SAMPLES 16
+#define ACC_MAX_SAMPLES (1L << 22)
+#define ACC_MAX_N 1e6
+#define ACC_MAX_N_COUNT 10000000L
+#define ACC_MAX_WORK 1e12        /* n values x samples: beyond this a sweep would run for hours */
+
+struct accuracy_grid {
+    double n_min, n_max, n_step;   /* n_min, n_min + step, ..., and n_max itself */
+    long samples;                  /* per zone per n, a multiple of 16 */
+};
+
+/* One maximum with where it occurs. value is NAN when there is none (see status). */
+struct acc_extreme {
+    double value, n, x;
+};
+
+/* Per-n figures: as the device reduced them (float, with the cosines where they occur), and
+ * the same maxima polished in double on the host (value and x). */
+struct acc_per_n {
+    double n;
+    float epi_rel, epi_rel_c;
+    float att_abs, att_abs_c;
+    float epi_abs, epi_abs_c;
+    float invalid_count, invalid_c;
+    struct acc_extreme epi_rel_d, att_abs_d, epi_abs_d;
+};
+
+struct accuracy_result {
+    struct model_spec model, reference;
+    struct accuracy_grid grid;
+    long n_count;
+    struct acc_per_n *per_n;
+    /* Range maxima over n of the per-n maxima polished in double. */
+    struct acc_extreme epicentre, attenuation, whole;
+    /* The same maxima as the device found them on its grid, in float. */
+    struct acc_extreme grid_epicentre, grid_attenuation, grid_whole;
+    /* Largest |device - double host| over every per-n reduced figure, recomputed at the
+       device's own inputs: for relative figures (delta) and absolute figures (Delta). */
+    double check_rel_diff, check_abs_diff;
+    /* Largest relative difference of single model values at random probe points. */
+    double probe_rel_diff;
+    long long invalid_count;       /* model values that were NaN, Inf or negative */
+    double invalid_n, invalid_x;   /* the first such point */
+    double device_seconds;         /* sum of kernel times (profiling events) */
+    double points;                 /* samples evaluated (each: the model and its reference) */
+    int ok;                        /* 0 when figures are missing; reason says why */
+    char reason[256];
+};
+
+struct accuracy_ctx {
+    struct cl_session *s;
+    cl_program program;
+    cl_kernel sweep, probe;
+    char build_options[256];
+};
+
+/* Validates a grid against its domains and the device's limits before any allocation.
+ * Returns 0 or EXIT_USAGE with a one-line message naming the argument. */
+int accuracy_grid_check(const struct accuracy_grid *g, const struct cl_session *s, char *err, size_t errlen);
+/* Number of n values of a grid and the i-th one (as the device sees it: rounded to float). */
+long accuracy_grid_count(const struct accuracy_grid *g);
+double accuracy_grid_n(const struct accuracy_grid *g, long i);
+
+/* Builds the sweep program once. Returns 0 or an exit code. */
+int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *build_options);
+void accuracy_close(struct accuracy_ctx *a);
+/* Runs the sweep of one model over a checked grid. Returns 0 or an exit code. */
+int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                 struct accuracy_result *out);
+void accuracy_result_free(struct accuracy_result *r);
+/* Evaluates a model on the device at count points (c[i], n[i]); out has count values. */
+int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const float *c, const float *n,
+                   size_t count, float *out);
+
+/* Zone geometry in double (SPEC.md). */
+double zone_epicentre_end(double n);
+/* Double-precision errors at cosine c: relative |f - r| / r and absolute |f - r|. */
+double error_rel_host(const struct model_spec *m, const struct model_spec *ref, double c, double n);
+double error_abs_host(const struct model_spec *m, const struct model_spec *ref, double c, double n);
+
+#endif

@@ -1,0 +1,189 @@
+/* accuracy_report.c - writes the sweep's results: JSON contract, per-n CSV, a table. */
+#include "accuracy_report.h"
+#include "context.h"
+#include "jsonw.h"
+#include "outdir.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Size of one unit in the 4th significant digit of v (0 for v = 0). */
+static double fourth_digit_unit(double v)
+{
+    return (v > 0 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
+}
+
+double accuracy_check_in_digits(const struct accuracy_result *r)
+{
+    double worst = 0;
+    double ue = fourth_digit_unit(r->epicentre.value), ua = fourth_digit_unit(r->attenuation.value);
+    if (ue > 0)
+        worst = fmax(worst, r->check_rel_diff / ue);
+    if (ua > 0)
+        worst = fmax(worst, r->check_abs_diff / ua);
+    return worst;
+}
+
+static void jw_extreme(struct jw *w, const char *key, const char *metric, const char *grid_metric,
+                       const struct acc_extreme *e, const struct acc_extreme *g, const char *reason)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, metric, e->value);
+    jw_kv_num(w, "at_n", e->n);
+    jw_kv_num(w, "at_x", e->x);
+    jw_kv_num(w, grid_metric, g->value);
+    if (!isfinite(e->value))
+        jw_kv_str(w, "reason", reason && *reason ? reason : "no finite values");
+    jw_obj_end(w);
+}
+
+int accuracy_write_json(const char *path, const struct accuracy_result *res, int count,
+                        const struct cl_session *s, const char *build_options, char *err, size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", ACCURACY_SCHEMA);
+    jw_context_begin(&w, s, build_options);
+    if (count > 0) {
+        const struct accuracy_grid *g = &res[0].grid;
+        jw_key(&w, "grid");
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "n_min", g->n_min);
+        jw_kv_num(&w, "n_max", g->n_max);
+        jw_kv_num(&w, "n_step", g->n_step);
+        jw_kv_int(&w, "n_count", res[0].n_count);
+        jw_kv_int(&w, "samples_per_zone", g->samples);
+        jw_kv_str(&w, "epicentre", "x uniform over [0, x_e(n)], x_e(n) = acos(exp(-0.511/n)), both ends included");
+        jw_kv_str(&w, "attenuation", "x = x_e + (pi/2 - x_e) t^2, t = j/samples, j = 1..samples");
+        jw_kv_str(&w, "maxima", "located on the device grid (float), recomputed and polished in double on the host (GSL Brent)");
+        jw_obj_end(&w);
+    }
+    jw_obj_end(&w);   /* context */
+    jw_key(&w, "results");
+    jw_arr_begin(&w);
+    for (int i = 0; i < count; ++i) {
+        const struct accuracy_result *r = &res[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", r->model.info->id);
+        jw_kv_str(&w, "label", r->model.label);
+        jw_key(&w, "params");
+        jw_obj_begin(&w);
+        for (int p = 0; p < r->model.info->nparams; ++p)
+            jw_kv_num(&w, r->model.info->params[p].name, r->model.params[p]);
+        jw_obj_end(&w);
+        jw_kv_str(&w, "reference", r->reference.label);
+        jw_kv_num(&w, "n_min", r->grid.n_min);
+        jw_kv_num(&w, "n_max", r->grid.n_max);
+        jw_kv_str(&w, "status", r->ok ? (r->invalid_count ? "invalid_values" : "ok") : "failed");
+        if (r->reason[0])
+            jw_kv_str(&w, "reason", r->reason);
+        jw_extreme(&w, "epicentre", "max_rel", "grid_max_rel", &r->epicentre, &r->grid_epicentre, r->reason);
+        jw_extreme(&w, "attenuation", "max_abs", "grid_max_abs", &r->attenuation, &r->grid_attenuation, r->reason);
+        jw_extreme(&w, "whole", "max_abs", "grid_max_abs", &r->whole, &r->grid_whole, r->reason);
+        jw_key(&w, "check");
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "max_rel_diff", r->check_rel_diff);
+        jw_kv_num(&w, "max_abs_diff", r->check_abs_diff);
+        jw_kv_num(&w, "probe_max_diff_of_peak", r->probe_rel_diff);
+        jw_kv_num(&w, "in_4th_digit_units", accuracy_check_in_digits(r));
+        jw_kv_str(&w, "what", "every per-n device figure recomputed in double at the device's own input; "
+                              "probe: model values at 4096 points against double, relative to the reference's peak");
+        jw_obj_end(&w);
+        jw_key(&w, "invalid");
+        jw_obj_begin(&w);
+        jw_kv_int(&w, "count", r->invalid_count);
+        jw_kv_num(&w, "at_n", r->invalid_n);
+        jw_kv_num(&w, "at_x", r->invalid_x);
+        jw_obj_end(&w);
+        jw_key(&w, "timing");
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "device_seconds", r->device_seconds);
+        jw_kv_num(&w, "points", r->points);
+        jw_kv_num(&w, "gpoints_per_s", r->points / r->device_seconds * 1e-9);
+        jw_obj_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+/* Appends formatted text to a growable buffer; returns -1 when out of memory. */
+static int buf_printf(char **buf, size_t *len, size_t *cap, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+#include <stdarg.h>
+static int buf_printf(char **buf, size_t *len, size_t *cap, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(*buf ? *buf + *len : NULL, *buf ? *cap - *len : 0, fmt, ap);
+        va_end(ap);
+        if (n < 0)
+            return -1;
+        if (*buf && *len + (size_t)n < *cap) {
+            *len += (size_t)n;
+            return 0;
+        }
+        size_t ncap = *cap ? *cap * 2 : 65536;
+        while (ncap < *len + (size_t)n + 1)
+            ncap *= 2;
+        char *nb = realloc(*buf, ncap);
+        if (!nb)
+            return -1;
+        *buf = nb;
+        *cap = ncap;
+    }
+}
+
+int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen)
+{
+    char *buf = NULL;
+    size_t len = 0, cap = 0;
+    int bad = buf_printf(&buf, &len, &cap,
+                         "model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs,attenuation_at_x,"
+                         "whole_max_abs,whole_at_x,invalid_count\n");
+    for (int i = 0; i < count && !bad; ++i) {
+        const struct accuracy_result *r = &res[i];
+        for (long k = 0; k < r->n_count && !bad; ++k) {
+            const struct acc_per_n *p = &r->per_n[k];
+            const struct acc_extreme *whole = p->att_abs_d.value >= p->epi_abs_d.value ? &p->att_abs_d : &p->epi_abs_d;
+            /* The label may hold commas (quad:a=..,b=..): quote it. */
+            bad = buf_printf(&buf, &len, &cap, "\"%s\",%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.0f\n", r->model.label,
+                             p->n, p->epi_rel_d.value, p->epi_rel_d.x, p->att_abs_d.value, p->att_abs_d.x,
+                             whole->value, whole->x, p->invalid_count);
+        }
+    }
+    int rc;
+    if (bad) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        rc = -1;
+    } else {
+        rc = write_file_atomic(path, buf, len, err, errlen);
+    }
+    free(buf);
+    return rc;
+}
+
+void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count)
+{
+    fprintf(f, "%-22s %-8s %10s %8s %8s  %9s %8s %8s  %9s  %8s\n", "model", "ref", "max delta", "at n", "at x",
+            "max Delta", "at n", "at x", "whole", "Gpts/s");
+    fprintf(f, "%-22s %-8s %10s %8s %8s  %9s %8s %8s  %9s  %8s\n", "", "", "(epicentre)", "", "(rad)",
+            "(atten.)", "", "(rad)", "max Delta", "");
+    for (int i = 0; i < count; ++i) {
+        const struct accuracy_result *r = &res[i];
+        fprintf(f, "%-22s %-8s %9.4g%% %8.6g %8.4g  %9.4g %8.6g %8.4g  %9.4g  %8.3g\n", r->model.label,
+                r->reference.info->id, 100.0 * r->epicentre.value, r->epicentre.n, r->epicentre.x,
+                r->attenuation.value, r->attenuation.n, r->attenuation.x, r->whole.value,
+                r->points / r->device_seconds * 1e-9);
+        if (r->reason[0])
+            fprintf(f, "  note: %s\n", r->reason);
+    }
+}

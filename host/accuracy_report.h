@@ -1,0 +1,20 @@
+/* accuracy_report.h - accuracy.json, accuracy.csv and the printed table. */
+#ifndef BRDF_ACCURACY_REPORT_H
+#define BRDF_ACCURACY_REPORT_H
+
+#include <stdio.h>
+
+#include "accuracy.h"
+
+#define ACCURACY_SCHEMA "brdfbench.accuracy/1"
+
+/* The largest device-vs-double difference of a result, in units of the 4th significant
+ * digit of the figure it belongs to (so "far below 1" means the digits printed hold). */
+double accuracy_check_in_digits(const struct accuracy_result *r);
+
+int accuracy_write_json(const char *path, const struct accuracy_result *res, int count,
+                        const struct cl_session *s, const char *build_options, char *err, size_t errlen);
+int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen);
+void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count);
+
+#endif

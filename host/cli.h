@@ -1,0 +1,38 @@
+/* cli.h - checked parsing of command-line values. Parsers return 0 or EXIT_USAGE and write
+ * a one-line message naming the argument and its accepted range; none calls exit(). */
+#ifndef BRDF_CLI_H
+#define BRDF_CLI_H
+
+#include <stddef.h>
+
+int cli_parse_double(const char *arg, const char *text, double min, double max,
+                     double *out, char *err, size_t errlen);
+int cli_parse_long(const char *arg, const char *text, long min, long max,
+                   long *out, char *err, size_t errlen);
+/* "WxH" with both sides in [1, max_side]. */
+int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
+                       long *width, long *height, char *err, size_t errlen);
+/* The value of flag argv[*i] (either "--flag=value" or "--flag value"); advances *i.
+ * Returns NULL and writes a message when the value is missing. `name` is the flag. */
+const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
+/* 1 when argv[i] is `name` or starts with `name=`. */
+int cli_flag_is(const char *argv_i, const char *name);
+/* size_t multiplication with overflow detection: returns 0 on overflow. */
+int cli_mul_size(size_t a, size_t b, size_t *out);
+
+#endif
+
+/* Device selection flags shared by every command that runs kernels. */
+struct device_options {
+    int platform;            /* -1: the first platform with a device */
+    int device;              /* -1: its first device */
+    const char *kernel_dir;  /* NULL: the kernels embedded in the binary */
+};
+#define DEVICE_OPTIONS_HELP \
+    "  --platform N       OpenCL platform index (default: the first with a device; see brdfbench list)\n" \
+    "  --device N         device index on that platform (default 0)\n" \
+    "  --kernel-dir DIR   read kernels/*.cl from DIR instead of the embedded copies\n"
+void device_options_init(struct device_options *o);
+/* Consumes argv[*i] if it is a device flag: returns 1 (consumed), 0 (not a device flag) or
+ * EXIT_USAGE negated (-2) with a message. Applies --kernel-dir at once. */
+int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen);

@@ -1,0 +1,292 @@
+/* clsession.c - OpenCL platform/device selection, program building and error names. */
+#define _POSIX_C_SOURCE 200809L
+#include "clsession.h"
+#include "exitcodes.h"
+#include "kernels_embedded.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+const char *cl_error_name(cl_int err)
+{
+    switch (err) {
+#define E(x) case x: return #x;
+    E(CL_SUCCESS) E(CL_DEVICE_NOT_FOUND) E(CL_DEVICE_NOT_AVAILABLE) E(CL_COMPILER_NOT_AVAILABLE)
+    E(CL_MEM_OBJECT_ALLOCATION_FAILURE) E(CL_OUT_OF_RESOURCES) E(CL_OUT_OF_HOST_MEMORY)
+    E(CL_PROFILING_INFO_NOT_AVAILABLE) E(CL_MEM_COPY_OVERLAP) E(CL_IMAGE_FORMAT_MISMATCH)
+    E(CL_IMAGE_FORMAT_NOT_SUPPORTED) E(CL_BUILD_PROGRAM_FAILURE) E(CL_MAP_FAILURE)
+    E(CL_MISALIGNED_SUB_BUFFER_OFFSET) E(CL_EXEC_STATUS_ERROR_FOR_EVENTS_IN_WAIT_LIST)
+    E(CL_COMPILE_PROGRAM_FAILURE) E(CL_LINKER_NOT_AVAILABLE) E(CL_LINK_PROGRAM_FAILURE)
+    E(CL_DEVICE_PARTITION_FAILED) E(CL_KERNEL_ARG_INFO_NOT_AVAILABLE) E(CL_INVALID_VALUE)
+    E(CL_INVALID_DEVICE_TYPE) E(CL_INVALID_PLATFORM) E(CL_INVALID_DEVICE) E(CL_INVALID_CONTEXT)
+    E(CL_INVALID_QUEUE_PROPERTIES) E(CL_INVALID_COMMAND_QUEUE) E(CL_INVALID_HOST_PTR)
+    E(CL_INVALID_MEM_OBJECT) E(CL_INVALID_IMAGE_FORMAT_DESCRIPTOR) E(CL_INVALID_IMAGE_SIZE)
+    E(CL_INVALID_SAMPLER) E(CL_INVALID_BINARY) E(CL_INVALID_BUILD_OPTIONS) E(CL_INVALID_PROGRAM)
+    E(CL_INVALID_PROGRAM_EXECUTABLE) E(CL_INVALID_KERNEL_NAME) E(CL_INVALID_KERNEL_DEFINITION)
+    E(CL_INVALID_KERNEL) E(CL_INVALID_ARG_INDEX) E(CL_INVALID_ARG_VALUE) E(CL_INVALID_ARG_SIZE)
+    E(CL_INVALID_KERNEL_ARGS) E(CL_INVALID_WORK_DIMENSION) E(CL_INVALID_WORK_GROUP_SIZE)
+    E(CL_INVALID_WORK_ITEM_SIZE) E(CL_INVALID_GLOBAL_OFFSET) E(CL_INVALID_EVENT_WAIT_LIST)
+    E(CL_INVALID_EVENT) E(CL_INVALID_OPERATION) E(CL_INVALID_GL_OBJECT) E(CL_INVALID_BUFFER_SIZE)
+    E(CL_INVALID_MIP_LEVEL) E(CL_INVALID_GLOBAL_WORK_SIZE) E(CL_INVALID_PROPERTY)
+    E(CL_INVALID_IMAGE_DESCRIPTOR) E(CL_INVALID_COMPILER_OPTIONS) E(CL_INVALID_LINKER_OPTIONS)
+    E(CL_INVALID_DEVICE_PARTITION_COUNT)
+#undef E
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
+    default: return "unknown OpenCL error";
+    }
+}
+
+void cl_report(const char *call, cl_int err, const char *file, int line)
+{
+    fprintf(stderr, "brdfbench: OpenCL error: %s failed with %s (%d) at %s:%d\n", call,
+            cl_error_name(err), (int)err, file, line);
+}
+
+double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+double cl_event_seconds(cl_event ev)
+{
+    cl_ulong t0 = 0, t1 = 0;
+    if (clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL) != CL_SUCCESS ||
+        clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL) != CL_SUCCESS ||
+        t1 < t0)
+        return NAN;
+    return 1e-9 * (double)(t1 - t0);
+}
+
+static const char *no_device_hint =
+    "install the CPU OpenCL driver: apt-get install pocl-opencl-icd (and ocl-icd-libopencl1)";
+
+int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    cl_uint nplat = 0;
+    cl_int e = clGetPlatformIDs(0, NULL, &nplat);
+    if (e == -1001 || (e == CL_SUCCESS && nplat == 0)) {
+        snprintf(err, errlen, "no OpenCL platform found; %s", no_device_hint);
+        return EXIT_NO_DEVICE;
+    }
+    if (e != CL_SUCCESS) {
+        snprintf(err, errlen, "clGetPlatformIDs failed with %s; %s", cl_error_name(e), no_device_hint);
+        return EXIT_NO_DEVICE;
+    }
+    cl_platform_id plats[16];
+    if (nplat > 16)
+        nplat = 16;
+    clGetPlatformIDs(nplat, plats, NULL);
+    if (platform_index >= (int)nplat) {
+        snprintf(err, errlen, "--platform: %d is out of range (accepted: 0 to %u; see brdfbench list)",
+                 platform_index, nplat - 1);
+        return EXIT_USAGE;
+    }
+    int found = 0;
+    for (cl_uint p = 0; p < nplat && !found; ++p) {
+        if (platform_index >= 0 && (int)p != platform_index)
+            continue;
+        cl_uint ndev = 0;
+        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 0, NULL, &ndev) != CL_SUCCESS || ndev == 0)
+            continue;
+        cl_device_id devs[16];
+        if (ndev > 16)
+            ndev = 16;
+        clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, ndev, devs, NULL);
+        if (device_index >= (int)ndev) {
+            snprintf(err, errlen, "--device: %d is out of range for platform %u (accepted: 0 to %u)",
+                     device_index, p, ndev - 1);
+            return EXIT_USAGE;
+        }
+        int d = device_index >= 0 ? device_index : 0;
+        s->platform = plats[p];
+        s->device = devs[d];
+        s->platform_index = (int)p;
+        s->device_index = d;
+        found = 1;
+    }
+    if (!found) {
+        snprintf(err, errlen, "no OpenCL device found%s; %s",
+                 platform_index >= 0 ? " on the chosen platform" : "", no_device_hint);
+        return EXIT_NO_DEVICE;
+    }
+    clGetPlatformInfo(s->platform, CL_PLATFORM_NAME, sizeof s->platform_name, s->platform_name, NULL);
+    clGetPlatformInfo(s->platform, CL_PLATFORM_VERSION, sizeof s->platform_version, s->platform_version, NULL);
+    clGetDeviceInfo(s->device, CL_DEVICE_NAME, sizeof s->device_name, s->device_name, NULL);
+    clGetDeviceInfo(s->device, CL_DEVICE_VERSION, sizeof s->device_version, s->device_version, NULL);
+    clGetDeviceInfo(s->device, CL_DRIVER_VERSION, sizeof s->driver_version, s->driver_version, NULL);
+    clGetDeviceInfo(s->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof s->compute_units, &s->compute_units, NULL);
+    clGetDeviceInfo(s->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof s->global_mem, &s->global_mem, NULL);
+    clGetDeviceInfo(s->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof s->max_alloc, &s->max_alloc, NULL);
+    char ext[8192] = "";
+    clGetDeviceInfo(s->device, CL_DEVICE_EXTENSIONS, sizeof ext, ext, NULL);
+    s->has_fp64 = strstr(ext, "cl_khr_fp64") != NULL;
+
+    s->ctx = clCreateContext(NULL, 1, &s->device, NULL, NULL, &e);
+    if (e != CL_SUCCESS) {
+        snprintf(err, errlen, "clCreateContext failed with %s", cl_error_name(e));
+        return EXIT_RUNTIME;
+    }
+    s->queue = clCreateCommandQueue(s->ctx, s->device, CL_QUEUE_PROFILING_ENABLE, &e);
+    if (e != CL_SUCCESS) {
+        snprintf(err, errlen, "clCreateCommandQueue failed with %s", cl_error_name(e));
+        clReleaseContext(s->ctx);
+        s->ctx = NULL;
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+void clsession_close(struct cl_session *s)
+{
+    if (s->queue)
+        clReleaseCommandQueue(s->queue);
+    if (s->ctx)
+        clReleaseContext(s->ctx);
+    s->queue = NULL;
+    s->ctx = NULL;
+}
+
+static const char *kernel_dir_override = NULL;
+
+void clsession_set_kernel_dir(const char *dir) { kernel_dir_override = dir; }
+
+char *clsession_kernel_source(const char *name, size_t *len)
+{
+    if (kernel_dir_override) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", kernel_dir_override, name);
+        FILE *f = fopen(path, "rb");
+        if (!f)
+            return NULL;
+        fseek(f, 0, SEEK_END);
+        long n = ftell(f);
+        fseek(f, 0, SEEK_SET);
+        char *buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
+        if (!buf || fread(buf, 1, (size_t)n, f) != (size_t)n) {
+            free(buf);
+            fclose(f);
+            return NULL;
+        }
+        fclose(f);
+        buf[n] = '\0';
+        if (len)
+            *len = (size_t)n;
+        return buf;
+    }
+    for (int i = 0; i < embedded_kernel_count; ++i) {
+        if (strcmp(embedded_kernels[i].name, name) == 0) {
+            char *buf = malloc(embedded_kernels[i].size + 1);
+            if (!buf)
+                return NULL;
+            memcpy(buf, embedded_kernels[i].data, embedded_kernels[i].size);
+            buf[embedded_kernels[i].size] = '\0';
+            if (len)
+                *len = embedded_kernels[i].size;
+            return buf;
+        }
+    }
+    return NULL;
+}
+
+/* Replaces each line `#include "brdf_models.h"` of src by the header's text, with #line
+ * directives so that build logs point at the right file and line. */
+static char *resolve_model_include(const char *src, const char *file)
+{
+    static const char *directive = "#include \"brdf_models.h\"";
+    size_t hlen = 0;
+    char *header = clsession_kernel_source("brdf_models.h", &hlen);
+    if (!header)
+        return NULL;
+    size_t cap = strlen(src) + hlen + 1024;
+    char *out = malloc(cap);
+    if (!out) {
+        free(header);
+        return NULL;
+    }
+    out[0] = '\0';
+    size_t used = 0;
+    const char *p = src;
+    int line = 1;
+    int done = 0;
+    while (*p) {
+        const char *eol = strchr(p, '\n');
+        size_t n = eol ? (size_t)(eol - p + 1) : strlen(p);
+        if (!done && strncmp(p, directive, strlen(directive)) == 0) {
+            used += (size_t)snprintf(out + used, cap - used, "#line 1 \"brdf_models.h\"\n%s\n#line %d \"%s\"\n",
+                                     header, line + 1, file);
+            done = 1;
+        } else {
+            memcpy(out + used, p, n);
+            used += n;
+            out[used] = '\0';
+        }
+        p += n;
+        ++line;
+    }
+    free(header);
+    return out;
+}
+
+static int build_common(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                        const char *options, cl_program *out, int fail_code)
+{
+    int rc = 0;
+    cl_int e;
+    *out = NULL;
+    char *raw = clsession_kernel_source(kernel_file, NULL);
+    if (!raw) {
+        fprintf(stderr, "brdfbench: kernel source %s not found%s%s\n", kernel_file,
+                kernel_dir_override ? " in --kernel-dir " : "", kernel_dir_override ? kernel_dir_override : "");
+        return EXIT_RUNTIME;
+    }
+    char *src = resolve_model_include(raw, kernel_file);
+    free(raw);
+    if (!src) {
+        fprintf(stderr, "brdfbench: kernel header brdf_models.h not found\n");
+        return EXIT_RUNTIME;
+    }
+    const char *parts[2] = { src, extra_source ? extra_source : "" };
+    double t0 = wall_seconds();
+    cl_program prog = clCreateProgramWithSource(s->ctx, 2, parts, NULL, &e);
+    free(src);
+    CL_CHECK_ERR_GOTO(e, "clCreateProgramWithSource", done);
+    e = clBuildProgram(prog, 1, &s->device, options ? options : "", NULL, NULL);
+    s->last_build_seconds = wall_seconds() - t0;
+    if (e != CL_SUCCESS) {
+        size_t loglen = 0;
+        clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &loglen);
+        char *log = malloc(loglen + 1);
+        if (log) {
+            log[0] = '\0';
+            clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, loglen, log, NULL);
+            log[loglen] = '\0';
+        }
+        fprintf(stderr, "brdfbench: building %s failed with %s\noptions: %s\nbuild log:\n%s\n", kernel_file,
+                cl_error_name(e), options && *options ? options : "(none)", log ? log : "(unavailable)");
+        free(log);
+        clReleaseProgram(prog);
+        return fail_code;
+    }
+    *out = prog;
+done:
+    return rc;
+}
+
+int clsession_build(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                    const char *options, cl_program *out)
+{
+    return build_common(s, kernel_file, extra_source, options, out, EXIT_RUNTIME);
+}
+
+int clsession_build_user(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                         const char *options, cl_program *out, int user_line_offset)
+{
+    (void)user_line_offset;
+    return build_common(s, kernel_file, extra_source, options, out, EXIT_USAGE);
+}

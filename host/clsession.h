@@ -1,0 +1,78 @@
+/* clsession.h - one OpenCL session per run: platform and device selection, a profiling
+ * queue, kernel sources (embedded at build time or read from --kernel-dir), the one
+ * program-build helper, and error reporting by name with file:line. */
+#ifndef BRDF_CLSESSION_H
+#define BRDF_CLSESSION_H
+
+#ifndef CL_TARGET_OPENCL_VERSION
+#define CL_TARGET_OPENCL_VERSION 120
+#endif
+#include <CL/cl.h>
+#include <stddef.h>
+
+struct cl_session {
+    cl_platform_id platform;
+    cl_device_id device;
+    cl_context ctx;
+    cl_command_queue queue;       /* in order, profiling enabled */
+    int platform_index, device_index;
+    char platform_name[256], platform_version[256];
+    char device_name[256], device_version[256], driver_version[256];
+    cl_uint compute_units;
+    cl_ulong global_mem, max_alloc;
+    int has_fp64;
+    double last_build_seconds;    /* wall time of the latest clsession_build */
+};
+
+/* Name of an OpenCL error code ("CL_BUILD_PROGRAM_FAILURE"). */
+const char *cl_error_name(cl_int err);
+
+/* Reports a failed OpenCL call on stderr: call, error name, file:line. */
+void cl_report(const char *call, cl_int err, const char *file, int line);
+/* Evaluates an OpenCL call returning cl_int; on failure reports it and jumps to `label`
+ * with rc = EXIT_RUNTIME (the enclosing function declares `int rc`). */
+#define CL_CHECK_GOTO(call, label)                                             \
+    do {                                                                       \
+        cl_int cl_check_err_ = (call);                                         \
+        if (cl_check_err_ != CL_SUCCESS) {                                     \
+            cl_report(#call, cl_check_err_, __FILE__, __LINE__);               \
+            rc = 3;                                                            \
+            goto label;                                                        \
+        }                                                                      \
+    } while (0)
+/* For calls that return an object and set an error out-parameter `e`. */
+#define CL_CHECK_ERR_GOTO(e, what, label)                                      \
+    do {                                                                       \
+        if ((e) != CL_SUCCESS) {                                               \
+            cl_report(what, (e), __FILE__, __LINE__);                          \
+            rc = 3;                                                            \
+            goto label;                                                        \
+        }                                                                      \
+    } while (0)
+
+/* Opens platform/device (indices; -1 = first with a device). Returns 0, EXIT_USAGE for an
+ * index out of range, EXIT_RUNTIME, or EXIT_NO_DEVICE with a hint in err. */
+int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen);
+void clsession_close(struct cl_session *s);
+
+/* Kernel sources: embedded copies by default; --kernel-dir reads them from a folder. */
+void clsession_set_kernel_dir(const char *dir);
+/* The text of kernels/<name> (embedded or from the kernel dir); NULL if unknown.
+ * The caller frees the result. */
+char *clsession_kernel_source(const char *name, size_t *len);
+
+/* Builds a program from kernels/<file> (its `#include "brdf_models.h"` is resolved by the
+ * host) plus optional extra source text appended after it. On failure prints the build log
+ * and the options on stderr and returns EXIT_RUNTIME (3). */
+int clsession_build(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                    const char *options, cl_program *out);
+/* Same, but a failed build returns EXIT_USAGE: for user-supplied sources. */
+int clsession_build_user(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                         const char *options, cl_program *out, int user_line_offset);
+
+/* Seconds between a profiling event's start and end; NAN if the timer failed. */
+double cl_event_seconds(cl_event ev);
+/* Monotonic wall clock in seconds. */
+double wall_seconds(void);
+
+#endif

@@ -1,0 +1,9 @@
+/* commands.h - the subcommands of brdfbench; each returns an exit code (exitcodes.h). */
+#ifndef BRDF_COMMANDS_H
+#define BRDF_COMMANDS_H
+
+int cmd_list(int argc, char **argv);
+int cmd_accuracy(int argc, char **argv);
+/* more commands below, one per line */
+
+#endif

@@ -1,0 +1,41 @@
+/* jsonw.h - a small streaming JSON writer into a growable buffer.
+ * Non-finite numbers are written as null (DESIGN.md, habit 6): callers add a status and a
+ * reason beside such a value with jw_null_reason(). */
+#ifndef BRDF_JSONW_H
+#define BRDF_JSONW_H
+
+#include <stddef.h>
+
+#define JW_MAX_DEPTH 32
+
+struct jw {
+    char *buf;
+    size_t len, cap;
+    int depth;
+    int count[JW_MAX_DEPTH];  /* items written at each depth, for commas */
+    int after_key;
+    int failed;               /* out of memory */
+};
+
+void jw_init(struct jw *w);
+void jw_free(struct jw *w);
+void jw_obj_begin(struct jw *w);
+void jw_obj_end(struct jw *w);
+void jw_arr_begin(struct jw *w);
+void jw_arr_end(struct jw *w);
+void jw_key(struct jw *w, const char *key);
+void jw_str(struct jw *w, const char *s);
+void jw_num(struct jw *w, double v);       /* %.17g, or null when not finite */
+void jw_numf(struct jw *w, double v, int sig); /* with `sig` significant digits */
+void jw_int(struct jw *w, long long v);
+void jw_bool(struct jw *w, int v);
+void jw_null(struct jw *w);
+/* Convenience: "key": value pairs. */
+void jw_kv_str(struct jw *w, const char *key, const char *s);
+void jw_kv_num(struct jw *w, const char *key, double v);
+void jw_kv_int(struct jw *w, const char *key, long long v);
+void jw_kv_bool(struct jw *w, const char *key, int v);
+/* Writes the buffer (plus a newline) atomically to path. Returns 0 or -1. */
+int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen);
+
+#endif

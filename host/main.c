@@ -1,0 +1,50 @@
+/* main.c - the brdfbench command line: dispatches to one subcommand. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "context.h"
+#include "exitcodes.h"
+
+struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *help;
+};
+
+static const struct command commands[] = {
+    { "list", cmd_list, "the models (formulas, parameters, references) and the OpenCL devices" },
+    { "accuracy", cmd_accuracy, "dense-grid accuracy sweep of models on the OpenCL device" },
+    /* more commands below, one per line */
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: brdfbench COMMAND [OPTIONS]   (brdfbench COMMAND --help for its options)\n\ncommands:\n");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
+        fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].help);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return EXIT_USAGE;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+        usage(stdout);
+        return EXIT_OK;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("brdfbench %s (%s)\n", BRDF_VERSION, brdf_git_revision);
+        return EXIT_OK;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "brdfbench: unknown command '%s' (accepted:", argv[1]);
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
+        fprintf(stderr, " %s", commands[i].name);
+    fprintf(stderr, ")\n");
+    return EXIT_USAGE;
+}

@@ -1,0 +1,60 @@
+/* models.h - the model registry: ids, parameters with ranges, references, descriptions.
+ * The registry drives the CLI, the listing and every loop over models; the formulas
+ * themselves live only in kernels/brdf_models.h. */
+#ifndef BRDF_MODELS_REGISTRY_H
+#define BRDF_MODELS_REGISTRY_H
+
+#include <stddef.h>
+
+#define MODEL_MAX_PARAMS 2
+#define MODEL_LABEL_MAX 96
+
+enum lobe_variable { LOBE_PSI, LOBE_THETA_H };
+
+struct model_param {
+    const char *name;
+    double min, max, def;
+    int integer;          /* 1 when only integer values are accepted */
+    const char *meaning;
+};
+
+struct model_info {
+    const char *id;
+    int kernel_id;                  /* enum brdf_model_id */
+    const char *family;             /* "reference", "quadratic", "rational", "normalised", "microfacet" */
+    enum lobe_variable lobe;        /* psi (Phong family) or theta_h (Blinn family) */
+    int nparams;
+    struct model_param params[MODEL_MAX_PARAMS];
+    const char *reference_id;       /* the model its errors are measured against */
+    const char *formula;            /* formula in words */
+    const char *root;               /* where a quadratic model is zeroed, or NULL */
+    const char *description;
+    int in_default_set;             /* part of "all models" */
+};
+
+/* A model with parameter values, e.g. "fq:Q=0.64". */
+struct model_spec {
+    const struct model_info *info;
+    double params[MODEL_MAX_PARAMS];
+    char label[MODEL_LABEL_MAX];    /* canonical text: id, or id:name=value,... */
+};
+
+int models_count(void);
+const struct model_info *models_at(int i);
+const struct model_info *models_find(const char *id);
+
+/* Parses "id" or "id:name=value,name=value". Returns 0, or 2 with a one-line message. */
+int model_spec_parse(const char *text, struct model_spec *out, char *err, size_t errlen);
+/* Default parameters for a registry entry. */
+void model_spec_default(const struct model_info *info, struct model_spec *out);
+/* Parses a comma-free list separated by ';' or a list "a,b:k=2,c" (a parameter list after ':'
+ * binds to its model). "all" gives every model of the default set. Returns count or -2 on error. */
+int model_spec_list_parse(const char *text, struct model_spec *out, int max, char *err, size_t errlen);
+/* The default set: every registry model with in_default_set. */
+int model_spec_list_default(struct model_spec *out, int max);
+/* The reference model of a spec, with default parameters. */
+void model_reference_spec(const struct model_spec *spec, struct model_spec *ref);
+/* Double-precision host evaluation of the model (the reference implementation). */
+double model_eval_host(const struct model_spec *spec, double c, double n);
+
+#endif

@@ -1,0 +1,150 @@
+/*
+ * brdf_models.h - every lobe model of SPEC.md, written once.
+ *
+ * This header is the single source of truth for the model formulas. It is written in the
+ * common subset of C11 and OpenCL C so that the same text is compiled
+ *   - by the OpenCL driver for the device, with REAL = float or a float vector (float16), and
+ *   - by the host compiler as the double-precision reference, with REAL = double.
+ * The includer defines REAL (the evaluation type, scalar or vector) and RSCALAR (its element
+ * type) before including this file. Nothing else in the project writes a model's formula.
+ *
+ * Conventions: c = cos x of the lobe angle (x = psi for the Phong family, theta_h for the Blinn
+ * family), n = shininess, p0/p1 = the model's parameters (see host/models.c for their names and
+ * ranges). Lobe models are defined for c in [0, 1]; a negative cosine is treated as 0.
+ * Formulas are written for accuracy in float: (c - 1) is exact for c >= 0.5 (Sterbenz), and
+ * Q^(1/n) - 1 is computed as expm1(log(Q)/n) to avoid cancellation at large n.
+ */
+#ifndef BRDF_MODELS_H
+#define BRDF_MODELS_H
+
+#if !defined(REAL) || !defined(RSCALAR)
+#error "define REAL (evaluation type) and RSCALAR (its element type) before including brdf_models.h"
+#endif
+
+#ifdef __OPENCL_VERSION__
+#define BRDF_FN static inline
+#else
+#include <math.h>
+#define BRDF_FN static inline
+#endif
+
+/* A literal in the element type, so that float code never promotes to double. */
+#define RC(x) ((RSCALAR)(x))
+/* A scalar broadcast to REAL (a vector literal in OpenCL C, a cast in C). */
+#define RSPLAT(x) ((REAL)(x))
+
+#define BRDF_PI 3.14159265358979323846
+
+/* Model ids shared by the kernels and the host registry (host/models.c). */
+enum brdf_model_id {
+    BRDF_PHONG = 0,   /* c^n, reference of the Phong family (x = psi)               */
+    BRDF_BLINN,       /* c^n, reference of the Blinn family (x = theta_h)           */
+    BRDF_CQ2,         /* (n/2 (c-1) + 1)^2, classic cosine-quadratic                */
+    BRDF_FVOL,        /* (0.463 n (c-1) + 1)^2, paper 1                             */
+    BRDF_FVOL64,      /* (29/64 n (c-1) + 1)^2, paper 1's cheap variant             */
+    BRDF_SCHLICK,     /* c / (n - n c + c)                                          */
+    BRDF_LYON,        /* (1 - n (1-c) / 2^k)^(2^k), p0 = k                          */
+    BRDF_FQ,          /* (k_Q(n) (c-1) + 1)^2, p0 = Q                               */
+    BRDF_FQ2,         /* ((0.448 n + 0.099)(c-1) + 1)^2, paper 2                    */
+    BRDF_FQ2N,        /* 0.214 (0.807 + n) * fq2, paper 2's normalised form         */
+    BRDF_PHONGN,      /* (n+2)/(2 pi) c^n                                           */
+    BRDF_BLINNN,      /* (n+2)(n+4) / (8 pi (2^(-n/2) + n)) c^n                     */
+    BRDF_BECKMANN,    /* Beckmann D(theta_h; alpha(n))                              */
+    BRDF_GGX,         /* GGX D(theta_h; alpha(n))                                   */
+    BRDF_QUAD,        /* ((a n + b)(c-1) + 1)^2, p0 = a, p1 = b: the fitted family  */
+    BRDF_USER,        /* a user model compiled at run time (brdf_user_eval)         */
+    BRDF_MODEL_COUNT
+};
+
+/* Epicentre zone end, as a cosine: the reference c^n equals e^(-0.511) there (SPEC.md). */
+BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-0.511) / n); }
+
+/* The cosine-quadratic core, zeroed past its root so that it never rises again. */
+BRDF_FN REAL brdf_quadratic(REAL c, REAL k)
+{
+    REAL base = fmax(k * (c - RC(1.0)) + RC(1.0), RC(0.0));
+    return base * base;
+}
+
+/* k_Q(n) = (sqrt(Q) - 1) / (Q^(1/n) - 1) (paper 2), with Q^(1/n) - 1 = expm1(ln Q / n). */
+BRDF_FN REAL brdf_k_q(REAL n, RSCALAR q)
+{
+    return (sqrt(q) - RC(1.0)) / expm1(RSPLAT(log(q)) / n);
+}
+
+/* Lyon 1993: (1 - n (1-c) / 2^k)^(2^k) by k squarings, 0 where n (1-c) > 2^k. */
+BRDF_FN REAL brdf_lyon(REAL c, REAL n, int k)
+{
+    REAL base = fmax(RC(1.0) - n * (RC(1.0) - c) * RC(exp2(-(RSCALAR)k)), RC(0.0));
+    for (int i = 0; i < k; ++i)
+        base = base * base;
+    return base;
+}
+
+/* Microfacet roughness from shininess: alpha(n) = sqrt(2 / (n + 2)). */
+BRDF_FN REAL brdf_alpha_from_n(REAL n) { return sqrt(RC(2.0) / (n + RC(2.0))); }
+
+/* sin^2 from the cosine as (1 - c)(1 + c): exact-ish in float near c = 1, where 1 - c*c
+   would cancel (1 - c is exact for c >= 0.5). */
+BRDF_FN REAL brdf_sin2(REAL c) { return (RC(1.0) - c) * (RC(1.0) + c); }
+
+/* Beckmann D = exp(-tan^2 / a^2) / (pi a^2 cos^4); tends to 0 at grazing (c -> 0). */
+BRDF_FN REAL brdf_d_beckmann(REAL c, REAL alpha)
+{
+    REAL a2 = alpha * alpha;
+    REAL c2 = c * c;
+    /* -tan^2/a^2 = -sin^2 / (c^2 a^2); at c = 0 it is -inf and exp gives 0, so the
+       denominator is only kept away from 0 to avoid 0/0. */
+    return exp(-brdf_sin2(c) / (c2 * a2)) / (RC(BRDF_PI) * a2 * fmax(c2 * c2, RC(1e-30)));
+}
+
+/* GGX D = a^2 / (pi cos^4 (a^2 + tan^2)^2) = a^2 / (pi (sin^2 + c^2 a^2)^2). */
+BRDF_FN REAL brdf_d_ggx(REAL c, REAL alpha)
+{
+    REAL a2 = alpha * alpha;
+    REAL d = brdf_sin2(c) + c * c * a2;
+    return a2 / (RC(BRDF_PI) * d * d);
+}
+
+/* Normalisation of Phong: (n + 2) / (2 pi). */
+BRDF_FN REAL brdf_phong_norm(REAL n) { return (n + RC(2.0)) / RC(2.0 * BRDF_PI); }
+
+/* Normalisation of Blinn-Phong (Giesen): (n+2)(n+4) / (8 pi (2^(-n/2) + n)). */
+BRDF_FN REAL brdf_blinn_norm(REAL n)
+{
+    return (n + RC(2.0)) * (n + RC(4.0)) / (RC(8.0 * BRDF_PI) * (exp2(-n * RC(0.5)) + n));
+}
+
+#ifdef BRDF_HAVE_USER_MODEL
+/* Supplied by a user model file compiled at run time. */
+BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1);
+#endif
+
+/* Evaluate model `id` at cosine c and shininess n with parameters p0, p1. */
+BRDF_FN REAL brdf_eval(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
+{
+    c = fmax(c, RC(0.0));
+    switch (id) {
+    case BRDF_PHONG:
+    case BRDF_BLINN:    return pow(c, n);
+    case BRDF_CQ2:      return brdf_quadratic(c, n * RC(0.5));
+    case BRDF_FVOL:     return brdf_quadratic(c, n * RC(0.463));
+    case BRDF_FVOL64:   return brdf_quadratic(c, n * RC(29.0 / 64.0));
+    case BRDF_SCHLICK:  return c / (n * (RC(1.0) - c) + c);
+    case BRDF_LYON:     return brdf_lyon(c, n, (int)p0);
+    case BRDF_FQ:       return brdf_quadratic(c, brdf_k_q(n, p0));
+    case BRDF_FQ2:      return brdf_quadratic(c, n * RC(0.448) + RC(0.099));
+    case BRDF_FQ2N:     return RC(0.214) * (RC(0.807) + n) * brdf_quadratic(c, n * RC(0.448) + RC(0.099));
+    case BRDF_PHONGN:   return brdf_phong_norm(n) * pow(c, n);
+    case BRDF_BLINNN:   return brdf_blinn_norm(n) * pow(c, n);
+    case BRDF_BECKMANN: return brdf_d_beckmann(c, brdf_alpha_from_n(n));
+    case BRDF_GGX:      return brdf_d_ggx(c, brdf_alpha_from_n(n));
+    case BRDF_QUAD:     return brdf_quadratic(c, n * p0 + p1);
+#ifdef BRDF_HAVE_USER_MODEL
+    case BRDF_USER:     return brdf_user_eval(c, n, p0, p1);
+#endif
+    default:            return RSPLAT(NAN);
+    }
+}
+
+#endif /* BRDF_MODELS_H */
