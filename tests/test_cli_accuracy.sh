@@ -1,1 +1,101 @@
-exit 0
+#!/usr/bin/env bash
+# test_cli_accuracy.sh - `brdfbench accuracy` end to end: the JSON contract, the CSV, and
+# each error path of the foundation (message and exit code; nothing written on bad input).
+set -u
+BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+SRC=${SRC_DIR:?}
+T=$(mktemp -d)
+trap 'chmod -R u+w "$T"; rm -rf "$T"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
+expect() {
+    local code=$1 pattern=$2
+    shift 2
+    "$BIN" "$@" >"$T/out" 2>"$T/err"
+    local rc=$?
+    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 300 "$T/err")"; return; fi
+    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 300 "$T/err")' lacks /$pattern/"; return; fi
+    ok
+}
+
+# A small sweep into a folder; the JSON contract is checked with python's strict parser.
+"$BIN" accuracy --models cq2,fq:Q=0.64,lyon:k=3 --n-min 2 --n-max 50 --samples 256 --out "$T/run" >"$T/table" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "small sweep exit $rc: $(cat "$T/err")"
+python3 - "$T/run/accuracy.json" <<'PY' && ok || bad "accuracy.json contract"
+import json, sys
+def no_const(x): raise ValueError("non-finite number in JSON: " + x)
+d = json.load(open(sys.argv[1]), parse_constant=no_const)
+assert d["schema"] == "brdfbench.accuracy/1"
+ctx = d["context"]
+for k in ("date", "device", "platform_version", "build_options", "git_revision", "grid"):
+    assert k in ctx, k
+assert ctx["grid"]["n_min"] == 2 and ctx["grid"]["n_max"] == 50 and ctx["grid"]["samples_per_zone"] == 256
+res = d["results"]
+assert [r["model"] for r in res] == ["cq2", "fq", "lyon"]
+assert res[1]["params"] == {"Q": 0.64} and res[2]["params"] == {"k": 3}
+for r in res:
+    assert r["n_min"] == 2 and r["n_max"] == 50
+    for zone, metric in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+        z = r[zone]
+        assert isinstance(z[metric], float) and z[metric] > 0, (zone, z)
+        assert 2 <= z["at_n"] <= 50 and 0 <= z["at_x"] <= 1.5707963267948966 + 1e-12
+    # The whole range's max |error| is the larger of the two zones' (zones partition [0, pi/2]).
+    assert r["whole"]["max_abs"] >= r["attenuation"]["max_abs"]
+    assert r["check"]["in_4th_digit_units"] < 0.05
+# cq2 at n = 50: its epicentre maximum is at the zone end (closed form: see test_accuracy.c);
+# the range maximum is at the largest n, where x_e = acos(exp(-0.511/50)).
+import math
+u = -math.expm1(-0.511 / 50)
+expect = 1 - (1 - 50 * u / 2) ** 2 / math.exp(-0.511)
+assert abs(res[0]["epicentre"]["max_rel"] - expect) < 1e-12, (res[0]["epicentre"], expect)
+assert res[0]["epicentre"]["at_n"] == 50
+PY
+# The CSV: a header and one row per model per n (49 values of n, 3 models).
+rows=$(($(wc -l <"$T/run/accuracy.csv") - 1))
+[ "$rows" -eq 147 ] && ok || bad "accuracy.csv has $rows rows, expected 147"
+head -1 "$T/run/accuracy.csv" | grep -q '^model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs' && ok || bad "csv header"
+grep -q 'G points/s' "$T/table" && grep -q 'largest difference' "$T/table" && ok || bad "table lacks speed or check line"
+
+# Error paths: one line naming the argument and the accepted range, exit 2, nothing written.
+sum_before=$(md5sum "$T/run/accuracy.json")
+expect 2 "unknown model 'nosuch'" accuracy --models nosuch --out "$T/run"
+expect 2 "parameter Q='1.5' must be a number in \[1e-06, 0.999999\]" accuracy --models fq:Q=1.5 --out "$T/run"
+expect 2 "no parameter 'z'" accuracy --models lyon:z=2 --out "$T/run"
+expect 2 "n-min \(10\) must be below --n-max \(5\)" accuracy --n-min 10 --n-max 5 --out "$T/run"
+expect 2 "n-min: '0' is not a finite number in" accuracy --n-min 0 --out "$T/run"
+expect 2 "n-min: '-3' is not a finite number" accuracy --n-min -3 --out "$T/run"
+expect 2 "n-max: 'nan' is not a finite number" accuracy --n-max nan --out "$T/run"
+expect 2 "n-step: 'inf' is not a finite number" accuracy --n-step inf --out "$T/run"
+expect 2 "samples: '0' is not an integer in \[16, " accuracy --samples 0 --out "$T/run"
+expect 2 "samples: '99999999999' is not an integer in" accuracy --samples 99999999999 --out "$T/run"
+expect 2 "samples: 100 is not a multiple of 16" accuracy --samples 100 --out "$T/run"
+expect 2 "n-step: 1e-06 gives .* values of n \(accepted: 2 to" accuracy --n-step 1e-6 --out "$T/run"
+expect 2 "unknown option '--bogus'" accuracy --bogus
+expect 2 "models: missing value" accuracy --models
+[ "$(md5sum "$T/run/accuracy.json")" = "$sum_before" ] && ok || bad "a rejected run changed earlier results"
+
+# An output folder that cannot be written: exit 3, earlier results untouched.
+expect 3 "cannot create folder" accuracy --models cq2 --n-max 10 --samples 64 --out /proc/brdfbench-nope
+mkdir -p "$T/ro" && chmod a-w "$T/ro"
+if [ "$(id -u)" -ne 0 ]; then
+    expect 3 "not writable" accuracy --models cq2 --n-max 10 --samples 64 --out "$T/ro"
+fi
+
+# A kernel that fails to build: the build log and the options, exit 3.
+mkdir -p "$T/kern" && cp "$SRC"/kernels/* "$T/kern/"
+echo 'this is not OpenCL C;' >>"$T/kern/accuracy.cl"
+expect 3 "building accuracy.cl failed with CL_BUILD_PROGRAM_FAILURE" accuracy --kernel-dir "$T/kern" --models cq2 --n-max 10 --samples 64 --out "$T/k"
+grep -q '^build log:' "$T/err" && grep -q '^options:' "$T/err" && ok || bad "build failure lacks log or options"
+[ ! -e "$T/k/accuracy.json" ] && ok || bad "failed build wrote results"
+
+# No OpenCL platform: a one-line hint, exit 77.
+mkdir -p "$T/novendors"
+OCL_ICD_VENDORS="$T/novendors" expect 77 "no OpenCL platform found; install the CPU OpenCL driver: apt-get install pocl-opencl-icd" accuracy --models cq2 --out "$T/nd"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# test.sh - set-up, build, and the test suite (ctest). Exits non-zero on any failure.
+# Under CI (CI=true) a missing OpenCL device is a failure, not a skip: CI installs PoCL.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+if [ "${CI:-}" = "true" ]; then
+  rc=0
+  ./build/brdfbench accuracy --models cq2 --n-max 4 --samples 16 --out "$(mktemp -d)" --quiet || rc=$?
+  if [ "$rc" -ne 0 ]; then
+    echo "test.sh: the OpenCL device check failed (exit $rc); CI needs PoCL working" >&2
+    exit 1
+  fi
+fi
+cd build
+ctest --output-on-failure -j2 --timeout 600

@@ -1,0 +1,34 @@
+/* check.h - a minimal test harness: CHECK records a pass or a failure with its location,
+ * and check_summary() prints "N passed, M failed" and gives the exit status. */
+#ifndef BRDF_TEST_CHECK_H
+#define BRDF_TEST_CHECK_H
+
+#include <math.h>
+#include <stdio.h>
+
+static int check_passed, check_failed;
+
+#define CHECK(cond, ...)                                                        \
+    do {                                                                        \
+        if (cond) {                                                             \
+            ++check_passed;                                                     \
+        } else {                                                                \
+            ++check_failed;                                                     \
+            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);     \
+            fprintf(stderr, __VA_ARGS__);                                       \
+            fputc('\n', stderr);                                                \
+        }                                                                       \
+    } while (0)
+
+/* |a - b| <= tol, with both values in the message. */
+#define CHECK_NEAR(a, b, tol, what)                                             \
+    CHECK(fabs((double)(a) - (double)(b)) <= (tol), "%s: %.17g vs %.17g (tol %g)", \
+          (what), (double)(a), (double)(b), (double)(tol))
+
+static inline int check_summary(void)
+{
+    printf("%d passed, %d failed\n", check_passed, check_failed);
+    return check_failed ? 1 : 0;
+}
+
+#endif
