@@ -4,6 +4,9 @@
 
 int cmd_list(int argc, char **argv);
 int cmd_accuracy(int argc, char **argv);
+int cmd_all(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
+int cmd_heatmap(int argc, char **argv);
 /* more commands below, one per line */
 
 #endif

@@ -114,6 +114,27 @@ cv::Size text_size(const std::string &t, double scale, int *baseline = nullptr)
     return sz;
 }
 
+/* putText, except that '^' (which the Hershey font draws as a wave) becomes a caret drawn
+ * with two strokes in the space of a blank, so "c^n" reads as it should. */
+void hershey_text(cv::Mat &img, const std::string &t, cv::Point org, double scale, cv::Scalar colour, int thickness)
+{
+    std::string plain = t;
+    for (char &c : plain)
+        if (c == '^') c = ' ';
+    cv::putText(img, plain, org, FONT, scale, colour, thickness, cv::LINE_AA);
+    if (t.find('^') == std::string::npos) return;
+    int cap = cv::getTextSize("M", FONT, scale, thickness, nullptr).height;
+    int blank = cv::getTextSize("a b", FONT, scale, thickness, nullptr).width -
+                cv::getTextSize("ab", FONT, scale, thickness, nullptr).width;
+    for (size_t i = 0; i < t.size(); i++) {
+        if (t[i] != '^') continue;
+        int x0 = org.x + (i ? cv::getTextSize(plain.substr(0, i), FONT, scale, thickness, nullptr).width : 0);
+        cv::Point a(x0 + 1, org.y - cap * 6 / 10), b(x0 + blank / 2, org.y - cap), c(x0 + blank - 1, org.y - cap * 6 / 10);
+        cv::line(img, a, b, colour, thickness, cv::LINE_AA);
+        cv::line(img, b, c, colour, thickness, cv::LINE_AA);
+    }
+}
+
 /* Draw text; halign -1 left, 0 centre, 1 right of x; valign -1 top at y, 0 centred on y,
  * 1 baseline at y. */
 void put(cv::Mat &img, const std::string &t, int x, int y, double scale, int halign, int valign,
@@ -123,7 +144,7 @@ void put(cv::Mat &img, const std::string &t, int x, int y, double scale, int hal
     cv::Size sz = text_size(t, scale);
     int px = x - (halign == 0 ? sz.width / 2 : halign > 0 ? sz.width : 0);
     int py = y + (valign < 0 ? sz.height : valign == 0 ? sz.height / 2 : 0);
-    cv::putText(img, t, cv::Point(px, py), FONT, scale, colour, thickness, cv::LINE_AA);
+    hershey_text(img, t, cv::Point(px, py), scale, colour, thickness);
 }
 
 /* Text rotated 90 degrees counter-clockwise (reads bottom to top), centred on (cx, cy). */
@@ -133,7 +154,7 @@ void put_vertical(cv::Mat &img, const std::string &t, int cx, int cy, double sca
     int base = 0;
     cv::Size sz = text_size(t, scale, &base);
     cv::Mat tile(sz.height + base + 4, sz.width + 4, CV_8UC3, WHITE);
-    cv::putText(tile, t, cv::Point(2, sz.height + 2), FONT, scale, INK, 1, cv::LINE_AA);
+    hershey_text(tile, t, cv::Point(2, sz.height + 2), scale, INK, 1);
     cv::Mat rot;
     cv::rotate(tile, rot, cv::ROTATE_90_COUNTERCLOCKWISE);
     cv::Rect dst(cx - rot.cols / 2, cy - rot.rows / 2, rot.cols, rot.rows);

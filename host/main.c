@@ -15,6 +15,9 @@ struct command {
 static const struct command commands[] = {
     { "list", cmd_list, "the models (formulas, parameters, references) and the OpenCL devices" },
     { "accuracy", cmd_accuracy, "dense-grid accuracy sweep of models on the OpenCL device" },
+    { "all", cmd_all, "the main job: every sweep, heatmap, plot and report.md in results/<date-time>/" },
+    { "plot", cmd_plot, "redraw every picture of a run folder from its JSON (no device)" },
+    { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)" },
     /* more commands below, one per line */
 };
 

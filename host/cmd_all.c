@@ -1,0 +1,537 @@
+/* cmd_all.c - `brdfbench all`, the main job: the accuracy sweep of every model, the Q sweep
+ * of f_Q, the error fields and heatmaps, the plots, and whatever other parts exist (claims,
+ * throughput, image passes), into a new run folder results/<date-time>/ with results/latest
+ * pointing at it and report.md there. One progress line per step on stderr, with a live
+ * bar when stderr is a terminal. */
+#define _POSIX_C_SOURCE 200809L
+#include "accuracy.h"
+#include "accuracy_report.h"
+#include "cli.h"
+#include "commands.h"
+#include "context.h"
+#include "exitcodes.h"
+#include "field.h"
+#include "outdir.h"
+#include "plots.h"
+#include "report.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define ALL_MAX_MODELS 64
+#define ALL_MAX_Q 256
+#define ALL_STEPS 8
+
+struct all_settings {
+    struct accuracy_grid grid;     /* the main sweep */
+    struct accuracy_grid q_grid;   /* each f_Q of the Q sweep */
+    double q_min, q_max, q_step;
+    struct field_grid field;
+};
+
+struct all_run {
+    struct all_settings set;
+    struct cl_session s;
+    struct accuracy_ctx actx;
+    int actx_open;
+    const char *results_root;
+    char run_dir[4096];
+    char command[1024];
+    double t0;
+    int step;
+    int tty;
+    struct model_spec models[ALL_MAX_MODELS];
+    int nmodels;
+    struct accuracy_result *acc;
+    int nacc;
+    /* Q sweep */
+    int nq;
+    double q[ALL_MAX_Q], q_delta[ALL_MAX_Q], q_Delta[ALL_MAX_Q];
+    double f2_delta, f2_Delta;
+    struct plot_set plots;
+    struct report_picture *pics;
+    int npics, cappics;
+    struct md_buf steps;
+    int picture_failures;
+    char picture_error[1024];
+    struct report_block claims, throughput, images;
+    struct md_buf claims_md, throughput_md, images_md;
+};
+
+/* ---- progress ------------------------------------------------------------------- */
+
+static double elapsed(const struct all_run *r) { return wall_seconds() - r->t0; }
+
+/* A live bar on a terminal: [#####.....] 7/14 fvol */
+static void progress(const struct all_run *r, const char *what, int done, int total, const char *item)
+{
+    if (!r->tty || total <= 0) return;
+    int width = 30, fill = done * width / total;
+    char bar[64];
+    for (int i = 0; i < width; i++) bar[i] = i < fill ? '#' : '.';
+    bar[width] = 0;
+    fprintf(stderr, "\r\033[K[%6.1f s] %-10s [%s] %d/%d %s", elapsed(r), what, bar, done, total, item ? item : "");
+    fflush(stderr);
+}
+
+/* The line that closes a step: on stderr and in the report's step list. */
+static void step_done(struct all_run *r, const char *name, double started, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void step_done(struct all_run *r, const char *name, double started, const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    r->step++;
+    if (r->tty) fprintf(stderr, "\r\033[K");
+    fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, ALL_STEPS, name, msg,
+            wall_seconds() - started);
+    md_printf(&r->steps, "%d. **%s**: %s (%.1f s)\n", r->step, name, msg, wall_seconds() - started);
+}
+
+static void add_picture(struct all_run *r, const char *file, int section, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void add_picture(struct all_run *r, const char *file, int section, const char *fmt, ...)
+{
+    if (r->npics == r->cappics) {
+        int nc = r->cappics ? 2 * r->cappics : 32;
+        struct report_picture *np = realloc(r->pics, (size_t)nc * sizeof *np);
+        if (!np) return; /* the picture stays on disk, only its report entry is lost */
+        r->pics = np;
+        r->cappics = nc;
+    }
+    struct report_picture *p = &r->pics[r->npics++];
+    snprintf(p->file, sizeof p->file, "%s", file);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(p->caption, sizeof p->caption, fmt, ap);
+    va_end(ap);
+    p->section = section;
+}
+
+static void picture_failed(struct all_run *r, const char *msg)
+{
+    if (!r->picture_failures) snprintf(r->picture_error, sizeof r->picture_error, "%s", msg);
+    r->picture_failures++;
+    if (r->tty) fprintf(stderr, "\r\033[K");
+    fprintf(stderr, "brdfbench all: %s\n", msg);
+}
+
+static int is_self_referenced(const struct model_spec *m)
+{
+    struct model_spec ref;
+    model_reference_spec(m, &ref);
+    return strcmp(ref.label, m->label) == 0;
+}
+
+/* ---- steps ---------------------------------------------------------------------- */
+
+static int step_accuracy(struct all_run *r)
+{
+    double t = wall_seconds();
+    char err[1024], path[4200];
+    int rc;
+    if (accuracy_grid_check(&r->set.grid, &r->s, err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        return EXIT_USAGE;
+    }
+    r->acc = calloc((size_t)r->nmodels, sizeof *r->acc);
+    if (!r->acc) return EXIT_RUNTIME;
+    for (int m = 0; m < r->nmodels; m++) {
+        progress(r, "accuracy", m, r->nmodels, r->models[m].label);
+        if ((rc = accuracy_run(&r->actx, &r->models[m], &r->set.grid, &r->acc[m])) != 0) return rc;
+        r->nacc = m + 1;
+    }
+    path_join(path, sizeof path, r->run_dir, "accuracy.json");
+    if (accuracy_write_json(path, r->acc, r->nacc, &r->s, r->actx.build_options, err, sizeof err)) goto fail;
+    path_join(path, sizeof path, r->run_dir, "accuracy.csv");
+    if (accuracy_write_csv(path, r->acc, r->nacc, err, sizeof err)) goto fail;
+    step_done(r, "accuracy", t, "%d models, n in [%g, %g] step %g, %ld samples per zone -> accuracy.json, accuracy.csv",
+              r->nacc, r->set.grid.n_min, r->set.grid.n_max, r->set.grid.n_step, r->set.grid.samples);
+    return 0;
+fail:
+    fprintf(stderr, "brdfbench all: %s\n", err);
+    return EXIT_RUNTIME;
+}
+
+/* max delta (epicentre) and max Delta (whole range) of f_Q for Q on a grid, and of f2
+ * (cq2), which does not depend on Q, on the same n grid: paper 2 figs. 2-3. */
+static int step_q_sweep(struct all_run *r)
+{
+    double t = wall_seconds();
+    char err[512];
+    int rc;
+    const struct accuracy_grid *g = &r->set.q_grid;
+    if (accuracy_grid_check(g, &r->s, err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: Q sweep: %s\n", err);
+        return EXIT_USAGE;
+    }
+    r->nq = 0;
+    int total = (int)floor((r->set.q_max - r->set.q_min) / r->set.q_step + 1e-9) + 1;
+    if (total > ALL_MAX_Q) total = ALL_MAX_Q;
+    for (int i = 0; i < total; i++) {
+        double q = r->set.q_min + i * r->set.q_step;
+        char text[64];
+        struct model_spec m;
+        struct accuracy_result res;
+        snprintf(text, sizeof text, "fq:Q=%.6g", q);
+        if (model_spec_parse(text, &m, err, sizeof err)) {
+            fprintf(stderr, "brdfbench all: Q sweep: %s\n", err);
+            return EXIT_USAGE;
+        }
+        progress(r, "Q sweep", i, total, text);
+        if ((rc = accuracy_run(&r->actx, &m, g, &res)) != 0) return rc;
+        r->q[r->nq] = q;
+        r->q_delta[r->nq] = res.epicentre.value;
+        r->q_Delta[r->nq] = res.whole.value;
+        r->nq++;
+        accuracy_result_free(&res);
+    }
+    struct model_spec f2;
+    struct accuracy_result res;
+    r->f2_delta = r->f2_Delta = NAN;
+    if (model_spec_parse("cq2", &f2, err, sizeof err) == 0) {
+        if ((rc = accuracy_run(&r->actx, &f2, g, &res)) != 0) return rc;
+        r->f2_delta = res.epicentre.value;
+        r->f2_Delta = res.whole.value;
+        accuracy_result_free(&res);
+    }
+    step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone", r->nq,
+              r->set.q_min, r->q[r->nq - 1], g->n_min, g->n_max, g->n_step, g->samples);
+    return 0;
+}
+
+static int step_heatmaps(struct all_run *r)
+{
+    double t = wall_seconds();
+    struct field_ctx f;
+    int rc = field_open(&f, &r->s, "");
+    if (rc) return rc;
+    int drawn = 0, total = 0;
+    double worst_rel = 0, worst_abs = 0;
+    for (int m = 0; m < r->nmodels; m++)
+        if (!is_self_referenced(&r->models[m])) total++;
+    for (int m = 0; m < r->nmodels; m++) {
+        const struct model_spec *spec = &r->models[m];
+        if (is_self_referenced(spec)) continue; /* zero by definition: nothing to see */
+        progress(r, "heatmaps", drawn, total, spec->label);
+        struct field_result fr;
+        if ((rc = field_run(&f, spec, &r->set.field, &fr)) != 0) break;
+        worst_rel = fmax(worst_rel, fr.check_rel_diff);
+        worst_abs = fmax(worst_abs, fr.check_abs_diff);
+        char safe[96], name[160], path[4300], err[1024];
+        field_safe_label(spec->label, safe, sizeof safe);
+        snprintf(name, sizeof name, "field_%s.json", safe);
+        path_join(path, sizeof path, r->run_dir, name);
+        if (field_write_json(path, &fr, err, sizeof err)) {
+            fprintf(stderr, "brdfbench all: %s\n", err);
+            field_result_free(&fr);
+            rc = EXIT_RUNTIME;
+            break;
+        }
+        snprintf(name, sizeof name, "heatmap_%s.png", safe);
+        path_join(path, sizeof path, r->run_dir, name);
+        if (field_draw_heatmap(path, &fr, err, sizeof err)) picture_failed(r, err);
+        else drawn++;
+        add_picture(r, name, REPORT_HEATMAPS,
+                    "%s against %s: delta over the epicentre (left), Delta over the attenuation zone (right); "
+                    "grid maxima %.4g%% and %.4g",
+                    spec->label, fr.reference.label, 100 * fr.epi_peak.value, fr.att_peak.value);
+        field_result_free(&fr);
+    }
+    field_close(&f);
+    if (rc) return rc;
+    step_done(r, "heatmaps", t, "%d of %d pictures, %dx%d cells per zone, n in [%g, %g]; device vs double on sampled "
+              "cells: delta within %.2g, Delta within %.2g",
+              drawn, total, r->set.field.cols, r->set.field.rows, r->set.field.n_min, r->set.field.n_max, worst_rel,
+              worst_abs);
+    return 0;
+}
+
+/* Specs from a list of ids the papers' figures use; ids missing from the registry are skipped. */
+static int specs_of(const char *const *ids, int n, struct model_spec *out)
+{
+    int k = 0;
+    char err[256];
+    for (int i = 0; i < n; i++)
+        if (model_spec_parse(ids[i], &out[k], err, sizeof err) == 0) k++;
+    return k;
+}
+
+static int step_plots(struct all_run *r)
+{
+    double t = wall_seconds();
+    char err[1024], path[4200];
+    struct model_spec specs[8];
+    int n;
+    /* paper 1, fig. 2: F_B, F_S, F_VOL, F_2 at n = 16 */
+    static const char *const fig2[] = {"phong", "schlick", "fvol", "cq2"};
+    if ((n = specs_of(fig2, 4, specs)) > 0)
+        plots_add_curves(&r->plots, "curves_n16_paper1_fig2.png",
+                         "f against x at n = 16: phong (reference), schlick, fvol, cq2 (paper 1, fig. 2)",
+                         "Lobes at n = 16 (paper 1, fig. 2)", 16, specs, n);
+    /* paper 2, fig. 5: f_Q2, f_2, f_b at n = 20 (and f_Q itself) */
+    static const char *const fig5[] = {"phong", "fq2", "fq", "cq2"};
+    if ((n = specs_of(fig5, 4, specs)) > 0)
+        plots_add_curves(&r->plots, "curves_n20_paper2_fig5.png",
+                         "f against x at n = 20: phong (reference), fq2, fq (Q = 0.64), cq2 (paper 2, fig. 5)",
+                         "Lobes at n = 20 (paper 2, fig. 5)", 20, specs, n);
+    /* paper 1 figs. 3, 5 and paper 2 fig. 6: per-n maxima, lobe approximations */
+    static const char *const lobe_families[] = {"quadratic", "rational"};
+    static const char *const norm_families[] = {"normalised", "microfacet"};
+    plots_add_max_vs_n(&r->plots, "max_rel_error_epicentre_vs_n.png",
+                       "max delta over the epicentre against n, lobe approximations against phong (paper 1 fig. 3, "
+                       "paper 2 fig. 6a)",
+                       "Max relative error delta over the epicentre, per n", r->acc, r->nacc, 1, lobe_families, 2);
+    plots_add_max_vs_n(&r->plots, "max_abs_error_vs_n.png",
+                       "max Delta over [0, pi/2] against n, lobe approximations against phong (paper 1 fig. 5, "
+                       "paper 2 fig. 6b)",
+                       "Max absolute error Delta over [0, pi/2], per n", r->acc, r->nacc, 0, lobe_families, 2);
+    plots_add_max_vs_n(&r->plots, "max_rel_error_epicentre_vs_n_normalised.png",
+                       "max delta over the epicentre against n, normalised and microfacet lobes against their "
+                       "normalised references",
+                       "Max relative error delta over the epicentre, normalised lobes", r->acc, r->nacc, 1,
+                       norm_families, 2);
+    plots_add_max_vs_n(&r->plots, "max_abs_error_vs_n_normalised.png",
+                       "max Delta over [0, pi/2] against n, normalised and microfacet lobes against their normalised "
+                       "references",
+                       "Max absolute error Delta over [0, pi/2], normalised lobes", r->acc, r->nacc, 0, norm_families,
+                       2);
+    if (r->nq > 0) {
+        plots_add_against_q(&r->plots, "fq_max_rel_error_vs_q.png",
+                            "max delta of f_Q over the epicentre (n in [2, 1000]) against Q, with f2 (paper 2, fig. 2)",
+                            "f_Q: max relative error delta over the epicentre against Q (paper 2, fig. 2)",
+                            "max delta over the epicentre", 1, r->q, r->q_delta, r->nq, "fq (f_Q)", r->f2_delta,
+                            "cq2 (f2), independent of Q", 0.64);
+        plots_add_against_q(&r->plots, "fq_max_abs_error_vs_q.png",
+                            "max Delta of f_Q over [0, pi/2] (n in [2, 1000]) against Q, with f2 (paper 2, fig. 3)",
+                            "f_Q: max absolute error Delta against Q (paper 2, fig. 3)", "max Delta over [0, pi/2]", 0,
+                            r->q, r->q_Delta, r->nq, "fq (f_Q)", r->f2_Delta, "cq2 (f2), independent of Q", 0.64);
+    }
+    path_join(path, sizeof path, r->run_dir, "plots.json");
+    if (plots_write_json(&r->plots, path, err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        return EXIT_RUNTIME;
+    }
+    int drawn = 0;
+    for (int i = 0; i < r->plots.count; i++) {
+        const struct plot_figure *f = &r->plots.figs[i];
+        progress(r, "plots", i, r->plots.count, f->file);
+        path_join(path, sizeof path, r->run_dir, f->file);
+        if (plot_figure_draw(f, path, err, sizeof err)) picture_failed(r, err);
+        else drawn++;
+        add_picture(r, f->file, f->kind == PLOT_BARS ? REPORT_THROUGHPUT : REPORT_PLOTS, "%s", f->caption);
+    }
+    step_done(r, "plots", t, "%d of %d pictures -> plots.json", drawn, r->plots.count);
+    return 0;
+}
+
+/* The parts below belong to other commands of brdfbench. Each one fills its report block
+ * (markdown, or why it is missing) and adds its pictures; wiring a part in is its library
+ * call in place of the `missing` line. */
+static int step_claims(struct all_run *r)
+{
+    double t = wall_seconds();
+    r->claims.missing = "the claims check (`brdfbench reproduce`) is not part of this build.";
+    step_done(r, "claims", t, "not available in this build");
+    return 0;
+}
+
+static int step_throughput(struct all_run *r)
+{
+    double t = wall_seconds();
+    r->throughput.missing = "the throughput measurement (`brdfbench throughput`) is not part of this build.";
+    step_done(r, "throughput", t, "not available in this build");
+    return 0;
+}
+
+static int step_images(struct all_run *r)
+{
+    double t = wall_seconds();
+    r->images.missing = "the image passes (`brdfbench render`) are not part of this build.";
+    step_done(r, "images", t, "not available in this build");
+    return 0;
+}
+
+static int step_report(struct all_run *r, double wall)
+{
+    double t = wall_seconds();
+    char date[64], err[1024];
+    utc_now_iso(date, sizeof date);
+    struct report_input in;
+    memset(&in, 0, sizeof in);
+    in.run_dir = r->run_dir;
+    in.command = r->command;
+    in.date = date;
+    in.device = r->s.device_name;
+    in.platform_version = r->s.platform_version;
+    in.host_cpu = host_cpu_name();
+    in.git_revision = brdf_git_revision;
+    in.wall_seconds = wall;
+    in.acc = r->acc;
+    in.nacc = r->nacc;
+    in.acc_grid = &r->set.grid;
+    in.claims = r->claims;
+    in.throughput = r->throughput;
+    in.images = r->images;
+    in.pictures = r->pics;
+    in.npictures = r->npics;
+    /* the step list closes with this step's own line, written before the page */
+    md_printf(&r->steps, "%d. **report**: report.md\n", r->step + 1);
+    in.steps_md = r->steps.s;
+    int rc = report_write(&in, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        return EXIT_RUNTIME;
+    }
+    r->step++;
+    fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, ALL_STEPS, "report",
+            r->run_dir, wall_seconds() - t);
+    return 0;
+}
+
+/* ---- command ---------------------------------------------------------------------- */
+
+static void all_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: brdfbench all [OPTIONS]\n"
+            "  The main job: the accuracy sweep of every model, the f_Q sweep over Q, error heatmaps,\n"
+            "  plots, and the claims, throughput and image passes where they exist, into a new run\n"
+            "  folder results/<date-time>/ (results/latest points at it) with report.md there.\n"
+            "  --models LIST        models of the sweep and the heatmaps (default: all; see brdfbench list)\n"
+            "  --results-root DIR   where run folders are made (default: results)\n"
+            "  --out DIR            write into DIR instead of a new run folder (results/latest unchanged)\n"
+            "  --quick              coarse grids (seconds; for tests and trials, not for figures)\n"
+            DEVICE_OPTIONS_HELP);
+}
+
+static void settings_default(struct all_settings *s, int quick)
+{
+    struct accuracy_grid full = {2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES};
+    struct accuracy_grid fast = {2.0, 1000.0, 10.0, 256};
+    s->grid = quick ? fast : full;
+    s->q_grid = (struct accuracy_grid){2.0, 1000.0, quick ? 25.0 : 1.0, quick ? 128 : 1024};
+    s->q_min = 0.30;
+    s->q_max = 0.90;
+    s->q_step = quick ? 0.05 : 0.01;
+    s->field = (struct field_grid){quick ? 41 : FIELD_DEFAULT_ROWS, quick ? 61 : FIELD_DEFAULT_COLS, 2.0, 1000.0};
+}
+
+static void run_free(struct all_run *r)
+{
+    for (int m = 0; m < r->nacc; m++) accuracy_result_free(&r->acc[m]);
+    free(r->acc);
+    plots_free(&r->plots);
+    free(r->pics);
+    md_free(&r->steps);
+    md_free(&r->claims_md);
+    md_free(&r->throughput_md);
+    md_free(&r->images_md);
+    if (r->actx_open) accuracy_close(&r->actx);
+}
+
+int cmd_all(int argc, char **argv)
+{
+    char err[1024];
+    static struct all_run run; /* large; one per process */
+    struct all_run *r = &run;
+    memset(r, 0, sizeof *r);
+    r->t0 = wall_seconds();
+    r->tty = isatty(STDERR_FILENO);
+    r->results_root = "results";
+    const char *models_text = "all", *out_dir = NULL;
+    int quick = 0;
+    struct device_options dev;
+    device_options_init(&dev);
+    size_t used = (size_t)snprintf(r->command, sizeof r->command, "brdfbench all");
+    for (int i = 1; i < argc && used < sizeof r->command; i++)
+        used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
+
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d < 0) goto usage_error;
+        if (d > 0) continue;
+        if (strcmp(a, "--help") == 0) {
+            all_usage(stdout);
+            return EXIT_OK;
+        } else if (strcmp(a, "--quick") == 0) {
+            quick = 1;
+        } else if (cli_flag_is(a, "--models")) {
+            if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err))) goto usage_error;
+        } else if (cli_flag_is(a, "--results-root")) {
+            if (!(r->results_root = cli_flag_value(argc, argv, &i, "--results-root", err, sizeof err))) goto usage_error;
+        } else if (cli_flag_is(a, "--out")) {
+            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err))) goto usage_error;
+        } else {
+            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench all --help)", a);
+            goto usage_error;
+        }
+    }
+    settings_default(&r->set, quick);
+    r->nmodels = model_spec_list_parse(models_text, r->models, ALL_MAX_MODELS, err, sizeof err);
+    if (r->nmodels < 0) goto usage_error;
+    if (accuracy_grid_check(&r->set.grid, NULL, err, sizeof err)) goto usage_error;
+
+    int rc = clsession_open(&r->s, dev.platform, dev.device, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        return rc;
+    }
+    /* the run folder exists before any work, so a bad location fails fast */
+    if (out_dir) {
+        if (outdir_prepare(out_dir, err, sizeof err)) {
+            fprintf(stderr, "brdfbench all: %s\n", err);
+            clsession_close(&r->s);
+            return EXIT_RUNTIME;
+        }
+        snprintf(r->run_dir, sizeof r->run_dir, "%s", out_dir);
+    } else if (outdir_new_run(r->results_root, r->run_dir, sizeof r->run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        clsession_close(&r->s);
+        return EXIT_RUNTIME;
+    }
+    fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->run_dir,
+            quick ? " (quick grids)" : "");
+    md_init(&r->steps);
+    plots_init(&r->plots);
+    if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) goto done;
+    r->actx_open = 1;
+
+    if ((rc = step_accuracy(r)) != 0) goto done;
+    if ((rc = step_q_sweep(r)) != 0) goto done;
+    if ((rc = step_claims(r)) != 0) goto done;
+    if ((rc = step_throughput(r)) != 0) goto done;
+    if ((rc = step_heatmaps(r)) != 0) goto done;
+    if ((rc = step_plots(r)) != 0) goto done;
+    if ((rc = step_images(r)) != 0) goto done;
+    if ((rc = step_report(r, elapsed(r))) != 0) goto done;
+    if (r->picture_failures) {
+        fprintf(stderr, "brdfbench all: %d picture(s) could not be written; first: %s\n", r->picture_failures,
+                r->picture_error);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if (!out_dir && outdir_set_latest(r->results_root, r->run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->run_dir);
+    printf("%s/report.md\n", r->run_dir);
+done:
+    run_free(r);
+    clsession_close(&r->s);
+    return rc;
+
+usage_error:
+    fprintf(stderr, "brdfbench all: %s\n", err);
+    return EXIT_USAGE;
+}

@@ -1,0 +1,230 @@
+/* report.c - report.md of a run folder (see report.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "report.h"
+
+#include "accuracy_report.h"
+#include "outdir.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+void md_init(struct md_buf *b) { memset(b, 0, sizeof *b); }
+
+void md_free(struct md_buf *b)
+{
+    free(b->s);
+    memset(b, 0, sizeof *b);
+}
+
+void md_printf(struct md_buf *b, const char *fmt, ...)
+{
+    if (b->failed) return;
+    for (;;) {
+        size_t room = b->cap - b->len;
+        va_list ap;
+        va_start(ap, fmt);
+        int n = b->s ? vsnprintf(b->s + b->len, room, fmt, ap) : -2;
+        va_end(ap);
+        if (n >= 0 && (size_t)n < room) {
+            b->len += (size_t)n;
+            return;
+        }
+        if (n == -1) {
+            b->failed = 1;
+            return;
+        }
+        size_t need = b->len + (n > 0 ? (size_t)n : 0) + 1;
+        size_t nc = b->cap ? b->cap : 4096;
+        while (nc < need) nc *= 2;
+        char *ns = realloc(b->s, nc);
+        if (!ns) {
+            b->failed = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = nc;
+    }
+}
+
+static int file_exists(const char *dir, const char *name)
+{
+    char path[4096];
+    struct stat st;
+    if (path_join(path, sizeof path, dir, name)) return 0;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
+}
+
+/* Markdown table cells must not contain '|' or line breaks. */
+static void md_cell(struct md_buf *b, const char *s)
+{
+    for (; s && *s; s++) {
+        if (*s == '|') md_printf(b, "\\|");
+        else if (*s == '\n') md_printf(b, " ");
+        else md_printf(b, "%c", *s);
+    }
+}
+
+static void md_pct(struct md_buf *b, double v)
+{
+    if (isfinite(v)) md_printf(b, " %.4g%% |", 100 * v);
+    else md_printf(b, " n/a |");
+}
+
+static void md_num(struct md_buf *b, double v, const char *fmt)
+{
+    if (isfinite(v)) {
+        md_printf(b, " ");
+        md_printf(b, fmt, v);
+        md_printf(b, " |");
+    } else {
+        md_printf(b, " n/a |");
+    }
+}
+
+static void accuracy_table(struct md_buf *b, const struct report_input *in)
+{
+    md_printf(b, "## Accuracy per model\n\n");
+    if (!in->acc || in->nacc < 1) {
+        md_printf(b, "Not available: the accuracy sweep did not run.\n\n");
+        return;
+    }
+    if (in->acc_grid)
+        md_printf(b,
+                  "Dense grid: n from %g to %g in steps of %g, %ld samples per zone per n; each maximum located on the "
+                  "device (float) and then recomputed and refined in double on the host. delta = |f - f_ref| / f_ref "
+                  "over the epicentre x in [0, x_e(n)], x_e(n) = acos(exp(-0.511/n)); Delta = |f - f_ref| over the "
+                  "attenuation zone (x_e(n), pi/2] and over the whole range. x is psi for the Phong family, theta_h "
+                  "for the Blinn family and the microfacet distributions.\n\n",
+                  in->acc_grid->n_min, in->acc_grid->n_max, in->acc_grid->n_step, in->acc_grid->samples);
+    md_printf(b, "| model | reference | max delta, epicentre | at n | at x (rad) | max Delta, attenuation | at n | at x (rad) "
+                 "| max Delta, whole range | device vs double (4th-digit units) | status |\n");
+    md_printf(b, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (int i = 0; i < in->nacc; i++) {
+        const struct accuracy_result *r = &in->acc[i];
+        md_printf(b, "| `");
+        md_cell(b, r->model.label);
+        md_printf(b, "` | `");
+        md_cell(b, r->reference.label);
+        md_printf(b, "` |");
+        md_pct(b, r->epicentre.value);
+        md_num(b, r->epicentre.n, "%.6g");
+        md_num(b, r->epicentre.x, "%.5f");
+        md_num(b, r->attenuation.value, "%.4g");
+        md_num(b, r->attenuation.n, "%.6g");
+        md_num(b, r->attenuation.x, "%.5f");
+        md_num(b, r->whole.value, "%.4g");
+        md_num(b, accuracy_check_in_digits(r), "%.2g");
+        if (!r->ok) {
+            md_printf(b, " failed: ");
+            md_cell(b, r->reason);
+            md_printf(b, " |\n");
+        } else if (r->invalid_count) {
+            md_printf(b, " %lld invalid values (first at n = %g, x = %g) |\n", r->invalid_count, r->invalid_n, r->invalid_x);
+        } else if (strcmp(r->model.label, r->reference.label) == 0) {
+            md_printf(b, " reference (zero by definition) |\n");
+        } else {
+            md_printf(b, " ok |\n");
+        }
+    }
+    md_printf(b, "\n");
+}
+
+static void block(struct md_buf *b, const char *heading, const struct report_block *blk)
+{
+    md_printf(b, "## %s\n\n", heading);
+    if (blk->markdown) md_printf(b, "%s\n\n", blk->markdown);
+    else md_printf(b, "Not available: %s\n\n", blk->missing ? blk->missing : "this part did not run.");
+}
+
+static void pictures(struct md_buf *b, const struct report_input *in, int section)
+{
+    int any = 0;
+    for (int i = 0; i < in->npictures; i++) {
+        const struct report_picture *p = &in->pictures[i];
+        if (p->section != section) continue;
+        any = 1;
+        if (file_exists(in->run_dir, p->file)) {
+            md_printf(b, "![");
+            md_cell(b, p->caption);
+            md_printf(b, "](%s)\n\n*", p->file);
+            md_cell(b, p->caption);
+            md_printf(b, "* (`%s`)\n\n", p->file);
+        } else {
+            md_printf(b, "Picture `%s` was not written (see the run's error output): ", p->file);
+            md_cell(b, p->caption);
+            md_printf(b, "\n\n");
+        }
+    }
+    if (!any) md_printf(b, "No pictures in this section.\n\n");
+}
+
+char *report_markdown(const struct report_input *in)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "# brdfbench report\n\n");
+    md_printf(&b, "| | |\n|---|---|\n");
+    md_printf(&b, "| command | `%s` |\n", in->command ? in->command : "brdfbench all");
+    if (in->date) md_printf(&b, "| date (UTC) | %s |\n", in->date);
+    if (in->device) {
+        md_printf(&b, "| OpenCL device | ");
+        md_cell(&b, in->device);
+        md_printf(&b, " |\n| platform | ");
+        md_cell(&b, in->platform_version);
+        md_printf(&b, " |\n");
+    }
+    if (in->host_cpu) {
+        md_printf(&b, "| host CPU | ");
+        md_cell(&b, in->host_cpu);
+        md_printf(&b, " |\n");
+    }
+    if (in->git_revision) md_printf(&b, "| git revision | `%s` |\n", in->git_revision);
+    if (in->wall_seconds >= 0) md_printf(&b, "| wall time | %.1f s |\n", in->wall_seconds);
+    md_printf(&b, "\nData files beside this page: `accuracy.json`/`accuracy.csv` (the sweep), `plots.json` (every "
+                  "plot's data), `field_<model>.json` (every heatmap's grid). `brdfbench plot %s` redraws the "
+                  "pictures from them without recomputing.\n\n",
+              in->run_dir);
+    if (in->steps_md) md_printf(&b, "Steps:\n\n%s\n", in->steps_md);
+
+    block(&b, "Claims of the papers", &in->claims);
+    accuracy_table(&b, in);
+    block(&b, "Throughput", &in->throughput);
+    pictures(&b, in, REPORT_THROUGHPUT);
+
+    md_printf(&b, "## Error heatmaps\n\n");
+    md_printf(&b, "Per model against its reference: left, the relative error delta(x, n) over the epicentre, x "
+                  "normalised per n as x / x_e(n) in [0, 1]; right, the absolute error Delta(x, n) over the attenuation "
+                  "zone, x / x_e(n) on a log axis from 1 to the largest reach of pi/2 (grey where x passes pi/2 for that "
+                  "n). n on a log axis; colour map viridis, scaled from 0 to each panel's maximum, which is ringed. The "
+                  "maxima in the titles are those of the picture's grid; the table above gives the refined ones.\n\n");
+    pictures(&b, in, REPORT_HEATMAPS);
+    md_printf(&b, "## Plots\n\n");
+    pictures(&b, in, REPORT_PLOTS);
+    block(&b, "Image passes", &in->images);
+    pictures(&b, in, REPORT_IMAGES);
+    if (in->notes_md) md_printf(&b, "## Notes\n\n%s\n", in->notes_md);
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;
+}
+
+int report_write(const struct report_input *in, char *err, size_t errlen)
+{
+    char *text = report_markdown(in);
+    if (!text) {
+        snprintf(err, errlen, "report.md: out of memory");
+        return -1;
+    }
+    char path[4096];
+    int rc = path_join(path, sizeof path, in->run_dir, "report.md");
+    if (rc) snprintf(err, errlen, "%s/report.md: path too long", in->run_dir);
+    else rc = write_file_atomic(path, text, strlen(text), err, errlen);
+    free(text);
+    return rc ? -1 : 0;
+}

@@ -1,0 +1,65 @@
+/* report.h - report.md, the page a person reads first in a run folder: how the run was
+ * made, the claims table, the per-model accuracy table, the throughput table, and every
+ * picture inline with a one-line caption. A picture is linked only when its file exists in
+ * the run folder; a section whose results do not exist says so and why. */
+#ifndef BRDF_REPORT_H
+#define BRDF_REPORT_H
+
+#include <stddef.h>
+
+#include "accuracy.h"
+
+enum report_section {
+    REPORT_HEATMAPS = 0,
+    REPORT_PLOTS,
+    REPORT_THROUGHPUT,
+    REPORT_IMAGES,
+    REPORT_SECTION_COUNT
+};
+
+struct report_picture {
+    char file[160];       /* name inside the run folder */
+    char caption[400];    /* one line */
+    int section;          /* enum report_section */
+};
+
+/* A block of markdown supplied by another part of the run (claims, throughput, image
+ * passes), or the reason it is missing. */
+struct report_block {
+    const char *markdown;  /* NULL: not available */
+    const char *missing;   /* why not, shown when markdown is NULL */
+};
+
+struct report_input {
+    const char *run_dir;
+    const char *command;          /* the command line that made the run */
+    const char *date;             /* ISO 8601 */
+    const char *device, *platform_version, *host_cpu, *git_revision;
+    double wall_seconds;          /* < 0: not known yet */
+    const char *steps_md;         /* optional: the step log as a markdown list */
+    /* accuracy */
+    const struct accuracy_result *acc;
+    int nacc;
+    const struct accuracy_grid *acc_grid;
+    struct report_block claims, throughput, images;
+    const struct report_picture *pictures;
+    int npictures;
+    const char *notes_md;         /* optional closing notes */
+};
+
+/* Builds the markdown text (malloc'd, NUL-terminated) or NULL when out of memory. */
+char *report_markdown(const struct report_input *in);
+/* Writes run_dir/report.md atomically. Returns 0 or -1 with a message. */
+int report_write(const struct report_input *in, char *err, size_t errlen);
+
+/* Markdown helpers shared with the code that fills report blocks: a growable string. */
+struct md_buf {
+    char *s;
+    size_t len, cap;
+    int failed;
+};
+void md_init(struct md_buf *b);
+void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void md_free(struct md_buf *b);
+
+#endif
