@@ -224,7 +224,7 @@ static int step_heatmaps(struct all_run *r)
         struct field_result fr;
         if ((rc = field_run(&f, spec, &r->set.field, &fr)) != 0) break;
         worst_rel = fmax(worst_rel, fr.check_rel_diff);
-        worst_abs = fmax(worst_abs, fr.check_abs_diff);
+        if (fr.att_peak.value > 0) worst_abs = fmax(worst_abs, fr.check_abs_diff / fr.att_peak.value);
         char safe[96], name[160], path[4300], err[1024];
         field_safe_label(spec->label, safe, sizeof safe);
         snprintf(name, sizeof name, "field_%s.json", safe);
@@ -237,7 +237,7 @@ static int step_heatmaps(struct all_run *r)
         }
         snprintf(name, sizeof name, "heatmap_%s.png", safe);
         path_join(path, sizeof path, r->run_dir, name);
-        if (field_draw_heatmap(path, &fr, err, sizeof err)) picture_failed(r, err);
+        if (field_draw_heatmap(path, &fr, NULL, err, sizeof err)) picture_failed(r, err);
         else drawn++;
         add_picture(r, name, REPORT_HEATMAPS,
                     "%s against %s: delta over the epicentre (left), Delta over the attenuation zone (right); "
@@ -248,9 +248,9 @@ static int step_heatmaps(struct all_run *r)
     field_close(&f);
     if (rc) return rc;
     step_done(r, "heatmaps", t, "%d of %d pictures, %dx%d cells per zone, n in [%g, %g]; device vs double on sampled "
-              "cells: delta within %.2g, Delta within %.2g",
+              "cells: delta within %.2g (absolute), Delta within %.2g%% of its maximum",
               drawn, total, r->set.field.cols, r->set.field.rows, r->set.field.n_min, r->set.field.n_max, worst_rel,
-              worst_abs);
+              100 * worst_abs);
     return 0;
 }
 

@@ -48,7 +48,7 @@ static int redraw_field(const char *dir, const char *json_name, int *drawn)
     snprintf(name, sizeof name, "heatmap_%.*s.png", (int)(len - strlen("field_") - strlen(".json")),
              json_name + strlen("field_"));
     int rc = 0;
-    if (path_join(png, sizeof png, dir, name) || field_draw_heatmap(png, &fr, err, sizeof err)) {
+    if (path_join(png, sizeof png, dir, name) || field_draw_heatmap(png, &fr, NULL, err, sizeof err)) {
         fprintf(stderr, "brdfbench: %s\n", err);
         rc = EXIT_RUNTIME;
     } else {

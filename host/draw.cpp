@@ -827,12 +827,13 @@ extern "C" int draw_heatmap_figure(const char *path, const char *title, int npan
             total_w += g.width;
         }
         std::string t = ascii(title);
+        int panels_w = total_w;
         for (const std::string &l : split_lines(t)) total_w = std::max(total_w, text_size(l, S_TITLE).width + 24);
         int th = title_height(t);
         int height = th + HM_TOP + HM_PLOT_H + HM_BOTTOM;
         cv::Mat img(height, total_w, CV_8UC3, WHITE);
         put_title(img, t);
-        int x0 = 0;
+        int x0 = (total_w - panels_w) / 2; /* centred under a title wider than the panels */
         for (int k = 0; k < npanels; k++) {
             draw_panel(img, x0, th, panels[k], geom[k], layout ? &layout[k] : nullptr);
             if (layout) {
@@ -918,11 +919,13 @@ extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, 
             if (p->vline_labels && p->vline_labels[v])
                 put(roi, ascii(p->vline_labels[v]), px + 5, 6, S_TICK, -1, -1, cv::Scalar(90, 90, 90));
         }
-        /* coloured series first, the black reference last so it stays visible on top */
-        for (int pass = 0; pass < 2; pass++)
+        /* solid coloured series first, then dashed ones (so a curve hidden under another
+         * still shows through the gaps), the black reference last, on top */
+        for (int pass = 0; pass < 3; pass++)
             for (int s = 0; s < p->nseries; s++) {
                 const draw_series &se = p->series[s];
-                if ((se.colour == DRAW_COLOUR_BLACK) != (pass == 1)) continue;
+                int want = se.colour == DRAW_COLOUR_BLACK ? 2 : se.dashed ? 1 : 0;
+                if (want != pass) continue;
                 cv::Scalar col = palette(se.colour);
                 std::vector<cv::Point2d> run;
                 auto flush = [&]() {

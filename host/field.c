@@ -381,7 +381,8 @@ void field_safe_label(const char *label, char *out, size_t len)
 
 /* ---- picture ------------------------------------------------------------------------ */
 
-int field_draw_heatmap(const char *path, const struct field_result *r, char *err, size_t errlen)
+int field_draw_heatmap(const char *path, const struct field_result *r, struct draw_panel_layout *layout, char *err,
+                       size_t errlen)
 {
     const char *var = r->model.info->lobe == LOBE_PSI ? "psi" : "theta_h";
     char title[512], sub0[160], sub1[160], xl0[160], xl1[160];
@@ -420,5 +421,5 @@ int field_draw_heatmap(const char *path, const struct field_result *r, char *err
     p[1].value_format = DRAW_FMT_PLAIN;
     p[1].bar_label = "absolute error Delta";
     p[1].subtitle = sub1;
-    return draw_heatmap_figure(path, title, 2, p, NULL, err, errlen);
+    return draw_heatmap_figure(path, title, 2, p, layout, err, errlen);
 }

@@ -78,8 +78,11 @@ int field_read_json(const char *path, struct field_result *r, char *err, size_t 
  * heatmap_<it>.png). */
 void field_safe_label(const char *label, char *out, size_t len);
 
+struct draw_panel_layout;
 /* The heatmap picture of a field: both zones side by side, titled with the model, its
- * parameters and both maxima, each maximum ringed. Returns 0 or -1 with a message. */
-int field_draw_heatmap(const char *path, const struct field_result *r, char *err, size_t errlen);
+ * parameters and both maxima, each maximum ringed. layout: NULL, or two entries that
+ * receive where each panel landed. Returns 0 or -1 with a message. */
+int field_draw_heatmap(const char *path, const struct field_result *r, struct draw_panel_layout *layout, char *err,
+                       size_t errlen);
 
 #endif

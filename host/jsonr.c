@@ -121,6 +121,7 @@ static void put_utf8(char *buf, size_t *n, unsigned cp)
  * longer than its source, so the source length bounds the buffer. */
 static int parse_string(struct parser *p, char **out)
 {
+    int line = p->line, col = p->col; /* an unterminated string is reported where it opens */
     advance(p); /* opening quote */
     size_t start = p->pos, end = start;
     while (end < p->len && p->s[end] != '"') end += (p->s[end] == '\\') ? 2 : 1;
@@ -131,6 +132,7 @@ static int parse_string(struct parser *p, char **out)
         int c = peek(p);
         if (c < 0) {
             free(buf);
+            p->line = line, p->col = col;
             return perr(p, "unterminated string");
         }
         if (c == '"') {

@@ -104,10 +104,13 @@ int plots_add_curves(struct plot_set *set, const char *file, const char *caption
     const char *var = models[0].info->lobe == LOBE_PSI ? "psi" : "theta_h";
     snprintf(f->x_label, sizeof f->x_label, "x = %s (rad)", var);
     snprintf(f->y_label, sizeof f->y_label, "f(cos x, n = %g)", n);
+    /* x up to 4 x_e(n): the whole lobe and the start of its tail, readable at any n
+       (the reference is below exp(-16 * 0.511) there); capped at pi/2 */
+    double x_end = fmin(half_pi, 4 * acos(exp(-0.511 / n)));
     f->x_min = 0;
-    f->x_max = half_pi;
+    f->x_max = x_end;
     double x[CURVE_POINTS], y[CURVE_POINTS];
-    for (int i = 0; i < CURVE_POINTS; i++) x[i] = half_pi * i / (CURVE_POINTS - 1);
+    for (int i = 0; i < CURVE_POINTS; i++) x[i] = x_end * i / (CURVE_POINTS - 1);
     struct model_spec ref;
     model_reference_spec(&models[0], &ref);
     for (int k = -1; k < count; k++) {
@@ -117,7 +120,9 @@ int plots_add_curves(struct plot_set *set, const char *file, const char *caption
         char label[MODEL_LABEL_MAX + 16];
         if (k < 0) snprintf(label, sizeof label, "%s (reference)", m->label);
         else snprintf(label, sizeof label, "%s", m->label);
-        if (plot_series_add(f, label, k < 0 ? DRAW_COLOUR_BLACK : plot_model_colour(m), 0, x, y, CURVE_POINTS))
+        /* every other model dashed, so curves that coincide stay distinguishable */
+        if (plot_series_add(f, label, k < 0 ? DRAW_COLOUR_BLACK : plot_model_colour(m), k >= 0 && k % 2 == 1, x, y,
+                            CURVE_POINTS))
             return -1;
     }
     f->nvlines = 1;

@@ -64,7 +64,7 @@ int plot_series_add(struct plot_figure *fig, const char *label, int colour, int 
 /* A stable colour per model: its registry position (references are black). */
 int plot_model_colour(const struct model_spec *m);
 
-/* f(x) for x in [0, pi/2] at shininess n: the reference of models[0] in black, then each
+/* f(x) for x in [0, min(pi/2, 4 x_e(n))] at shininess n: the reference of models[0] in black, then each
  * model; a dotted line at x_e(n). Evaluated in double on the host. */
 int plots_add_curves(struct plot_set *set, const char *file, const char *caption, const char *title, double n,
                      const struct model_spec *models, int count);

@@ -148,11 +148,9 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
         if (p->section != section) continue;
         any = 1;
         if (file_exists(in->run_dir, p->file)) {
-            md_printf(b, "![");
+            md_printf(b, "![%s](%s)\n\n*", p->file, p->file);
             md_cell(b, p->caption);
-            md_printf(b, "](%s)\n\n*", p->file);
-            md_cell(b, p->caption);
-            md_printf(b, "* (`%s`)\n\n", p->file);
+            md_printf(b, "*\n\n");
         } else {
             md_printf(b, "Picture `%s` was not written (see the run's error output): ", p->file);
             md_cell(b, p->caption);

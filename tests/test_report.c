@@ -1,0 +1,344 @@
+/* test_report.c - heatmap fields, plots and the report, from small sweeps made here:
+ *   - a reference against itself gives a zero field, drawn uniformly in the bottom colour;
+ *   - a field cell at the epicentre's end matches the closed form of SPEC.md there;
+ *   - the colour under the heatmap's maximum marker is the colour map's top;
+ *   - field and plot JSON survive a round trip, and broken files are refused with the file,
+ *     line and problem named;
+ *   - every picture decodes with its expected size;
+ *   - report.md links only files that exist. */
+#define _POSIX_C_SOURCE 200809L
+#include "accuracy.h"
+#include "check.h"
+#include "clsession.h"
+#include "draw.h"
+#include "exitcodes.h"
+#include "field.h"
+#include "models.h"
+#include "outdir.h"
+#include "plots.h"
+#include "report.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* matplotlib's viridis, first and last entries x 255 (see test_draw.c) */
+static const int VIRIDIS_BOTTOM[3] = {68, 1, 84}, VIRIDIS_TOP[3] = {253, 231, 37};
+static const int NODATA[3] = {90, 90, 100}; /* draw.h: NaN cells */
+
+static char dir[256];
+
+static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
+
+static int near(const unsigned char *p, const int want[3], int tol)
+{
+    for (int k = 0; k < 3; k++)
+        if (abs((int)p[k] - want[k]) > tol) return 0;
+    return 1;
+}
+
+static struct model_spec spec(const char *text)
+{
+    struct model_spec s;
+    char err[256];
+    if (model_spec_parse(text, &s, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        exit(3);
+    }
+    return s;
+}
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static const struct field_grid small = {21, 31, 2.0, 1000.0};
+
+static void test_self_field(struct field_ctx *fc)
+{
+    struct model_spec phong = spec("phong");
+    struct field_result fr;
+    CHECK(field_run(fc, &phong, &small, &fr) == 0, "field of phong");
+    if (!fr.epi_rel) return;
+    size_t cells = (size_t)small.rows * small.cols, zero = 0, nan_or_zero = 0;
+    for (size_t i = 0; i < cells; i++) {
+        zero += fr.epi_rel[i] == 0.0f;
+        nan_or_zero += isnan(fr.att_abs[i]) || fr.att_abs[i] == 0.0f;
+    }
+    /* f and f_ref are the same expression at the same input: every difference is exactly 0 */
+    CHECK(zero == cells && nan_or_zero == cells, "phong vs phong: %zu / %zu zero cells", zero, cells);
+    char path[512], err[1024];
+    path_in(path, sizeof path, "heatmap_phong.png");
+    struct draw_panel_layout L[2];
+    CHECK(field_draw_heatmap(path, &fr, L, err, sizeof err) == 0, "draw: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        CHECK(w == L[0].image_w && h == L[0].image_h, "size %dx%d vs layout %dx%d", w, h, L[0].image_w, L[0].image_h);
+        long off = 0, grey = 0, bottom = 0;
+        for (int y = L[0].plot_y; y < L[0].plot_y + L[0].plot_h; y++)
+            for (int x = L[0].plot_x; x < L[0].plot_x + L[0].plot_w; x++)
+                off += !near(img + 3 * ((size_t)y * w + x), VIRIDIS_BOTTOM, 0);
+        CHECK(off == 0, "%ld epicentre pixels of a zero field are not the bottom colour", off);
+        for (int y = L[1].plot_y; y < L[1].plot_y + L[1].plot_h; y++)
+            for (int x = L[1].plot_x; x < L[1].plot_x + L[1].plot_w; x++) {
+                const unsigned char *p = img + 3 * ((size_t)y * w + x);
+                if (near(p, VIRIDIS_BOTTOM, 0)) bottom++;
+                else if (near(p, NODATA, 0)) grey++;
+            }
+        CHECK(bottom + grey == (long)L[1].plot_w * L[1].plot_h && bottom > 0,
+              "attenuation of a zero field: %ld bottom + %ld no-data of %d", bottom, grey, L[1].plot_w * L[1].plot_h);
+        CHECK(L[0].max_px == -1 && L[1].max_px == -1, "a zero field has no maximum marker");
+        free(img);
+    }
+    field_result_free(&fr);
+}
+
+static void test_fvol_field(struct field_ctx *fc)
+{
+    struct model_spec fvol = spec("fvol");
+    struct field_result fr;
+    CHECK(field_run(fc, &fvol, &small, &fr) == 0, "field of fvol");
+    if (!fr.epi_rel) return;
+    /* closed form at the epicentre's end (last column), SPEC.md: c = exp(-0.511/n),
+     * c^n = exp(-0.511), delta = |(0.463 n (c - 1) + 1)^2 - c^n| / c^n. Row 0 is n = 2. */
+    double n = 2, c = exp(-0.511 / n), ref = exp(-0.511), q = 0.463 * n * (c - 1) + 1;
+    double want = fabs(q * q - ref) / ref;
+    CHECK_NEAR(fr.epi_rel[small.cols - 1], want, 2e-5, "fvol delta at n = 2, x = x_e");
+    /* x = 0 is exact for every lobe model: f(1) = f_ref(1) = 1 */
+    CHECK(fr.epi_rel[0] == 0.0f, "delta at x = 0 is %g", fr.epi_rel[0]);
+    /* the attenuation zone of the largest n reaches pi/2 in the last column (u_max's definition) */
+    size_t last = (size_t)small.rows * small.cols - 1;
+    CHECK(!isnan(fr.att_abs[last]), "last cell of the largest n is inside the zone");
+    CHECK(isnan(fr.att_abs[small.cols - 1]), "n = 2 ends before the largest reach: NaN");
+    CHECK(fr.check_cells > 0 && fr.check_rel_diff < 1e-4, "device vs double %g over %d cells", fr.check_rel_diff,
+          fr.check_cells);
+
+    char path[512], err[1024];
+    path_in(path, sizeof path, "heatmap_fvol.png");
+    struct draw_panel_layout L[2];
+    CHECK(field_draw_heatmap(path, &fr, L, err, sizeof err) == 0, "draw: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+        for (int k = 0; k < 2; k++) {
+            CHECK(L[k].max_px >= 0, "panel %d has a marker", k);
+            if (L[k].max_px >= 0) {
+                const unsigned char *p = img + 3 * ((size_t)L[k].max_py * w + L[k].max_px);
+                CHECK(near(p, VIRIDIS_TOP, 3), "panel %d: colour %d,%d,%d under the marker", k, p[0], p[1], p[2]);
+            }
+        }
+        CHECK(L[0].max_row == fr.epi_peak.row && L[0].max_col == fr.epi_peak.col, "marker on the field's peak");
+        free(img);
+    }
+
+    /* JSON round trip: 4 significant digits */
+    path_in(path, sizeof path, "field_fvol.json");
+    CHECK(field_write_json(path, &fr, err, sizeof err) == 0, "write: %s", err);
+    struct field_result back;
+    CHECK(field_read_json(path, &back, err, sizeof err) == 0, "read: %s", err);
+    if (back.epi_rel) {
+        size_t cells = (size_t)small.rows * small.cols, bad = 0;
+        for (size_t i = 0; i < cells; i++) {
+            double a = fr.epi_rel[i], b = back.epi_rel[i];
+            if (fabs(a - b) > 5e-4 * fabs(a) + 1e-30) bad++;
+            a = fr.att_abs[i], b = back.att_abs[i];
+            if (isnan(a) != isnan(b) || (!isnan(a) && fabs(a - b) > 5e-4 * fabs(a) + 1e-30)) bad++;
+        }
+        CHECK(bad == 0, "%zu cells changed by more than the 4 digits kept", bad);
+        CHECK(strcmp(back.model.label, "fvol") == 0 && strcmp(back.reference.label, "phong") == 0, "labels");
+        CHECK(back.epi_peak.row == fr.epi_peak.row && back.epi_peak.col == fr.epi_peak.col, "same peak cell");
+        field_result_free(&back);
+    }
+    /* broken inputs: missing file, truncated text, wrong count */
+    path_in(path, sizeof path, "missing.json");
+    CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path), "missing file: %s", err);
+    path_in(path, sizeof path, "broken.json");
+    write_text(path, "{\"schema\": \"brdfbench.field/1\",\n \"model\": \"fvol\",\n \"grid\": {\"rows\": 2,,}}\n");
+    CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path) && strstr(err, ":3:"),
+          "malformed file names file and line 3: %s", err);
+    write_text(path, "{\"schema\": \"brdfbench.field/1\", \"model\": \"fvol\", \"reference\": \"phong\",\n"
+                     "\"grid\": {\"rows\": 2, \"cols\": 2, \"n_min\": 2, \"n_max\": 10, \"u_max\": 3, \"n\": [2, 10]},\n"
+                     "\"epicentre_rel\": [0, 0, 0], \"attenuation_abs\": [0, 0, 0, 0]}\n");
+    CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, "epicentre_rel") && strstr(err, ":3:"),
+          "short array named: %s", err);
+    write_text(path, "{\"schema\": \"brdfbench.field/1\", \"model\": \"nosuch\", \"reference\": \"phong\"}");
+    CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path), "bad model: %s", err);
+    field_result_free(&fr);
+}
+
+static void test_plots_and_report(struct cl_session *s)
+{
+    struct accuracy_ctx a;
+    CHECK(accuracy_open(&a, s, "") == 0, "accuracy_open");
+    struct accuracy_grid g = {2, 200, 9, 64};
+    struct accuracy_result res[2];
+    struct model_spec ms[2] = {spec("fvol"), spec("cq2")};
+    int ok = accuracy_run(&a, &ms[0], &g, &res[0]) == 0 && accuracy_run(&a, &ms[1], &g, &res[1]) == 0;
+    CHECK(ok, "two small sweeps");
+    accuracy_close(&a);
+    if (!ok) return;
+
+    struct plot_set set;
+    plots_init(&set);
+    static const char *const fam[] = {"quadratic"};
+    CHECK(plots_add_max_vs_n(&set, "max_rel.png", "caption one", "max delta", res, 2, 1, fam, 1) == 0, "max vs n");
+    CHECK(set.count == 1 && set.figs[0].nseries == 2, "two series (fvol and cq2)");
+    /* the per-n maxima plotted never exceed the refined maximum over the range */
+    for (int sidx = 0; sidx < set.figs[0].nseries; sidx++) {
+        const struct plot_series *se = &set.figs[0].series[sidx];
+        double top = 0;
+        for (size_t i = 0; i < se->count; i++) top = fmax(top, se->y[i]);
+        CHECK(top <= res[sidx].epicentre.value * (1 + 1e-4), "series %d peak %g above the refined %g", sidx, top,
+              res[sidx].epicentre.value);
+    }
+    CHECK(plots_add_curves(&set, "curves.png", "caption two", "curves", 16, ms, 2) == 0, "curves");
+    /* the reference curve is c^n: at x = 0 it is 1, and at the last x it is cos(x)^16 */
+    {
+        const struct plot_series *ref = &set.figs[1].series[0];
+        CHECK(ref->y[0] == 1.0, "phong at x = 0");
+        double x = ref->x[ref->count - 1];
+        CHECK_NEAR(ref->y[ref->count - 1], pow(cos(x), 16), 1e-12, "phong at the last x");
+    }
+    const char *labels[3] = {"phong", "fvol", "cq2"};
+    double v[3] = {1, 2.5, 2.4};
+    CHECK(plots_add_bars(&set, "bars.png", "caption three", "bars", "G evaluations / s", labels, v, NULL, NULL, 3, 0) == 0,
+          "bars");
+    char err[1024], path[512];
+    CHECK(plots_draw(&set, dir, err, sizeof err) == 0, "draw plots: %s", err);
+    path_in(path, sizeof path, "plots.json");
+    CHECK(plots_write_json(&set, path, err, sizeof err) == 0, "write plots.json: %s", err);
+    struct plot_set back;
+    CHECK(plots_read_json(path, &back, err, sizeof err) == 0, "read plots.json: %s", err);
+    if (back.count == 3) {
+        CHECK(back.figs[0].nseries == 2 && back.figs[0].series[0].count == set.figs[0].series[0].count, "series kept");
+        CHECK(back.figs[2].kind == PLOT_BARS && back.figs[2].nbars == 3 && strcmp(back.figs[2].bar_labels[1], "fvol") == 0,
+              "bars kept");
+        CHECK(fabs(back.figs[1].series[0].y[5] - set.figs[1].series[0].y[5]) <= 1e-6 * set.figs[1].series[0].y[5],
+              "values kept to 7 digits");
+        /* redraw from the file read back */
+        CHECK(plots_draw(&back, dir, err, sizeof err) == 0, "redraw: %s", err);
+    } else {
+        CHECK(0, "plots.json read back %d figures, want 3", back.count);
+    }
+    plots_free(&back);
+    /* every plot decodes at its size: line plots 1000 x 620 (draw.h's default), bars 1000 wide */
+    static const char *files[3] = {"max_rel.png", "curves.png", "bars.png"};
+    for (int i = 0; i < 3; i++) {
+        int w, h;
+        unsigned char *img = NULL;
+        path_in(path, sizeof path, files[i]);
+        CHECK(draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0, "decode %s: %s", files[i], err);
+        if (img) CHECK(w == 1000 && (i == 2 || h == 620), "%s is %dx%d", files[i], w, h);
+        free(img);
+    }
+    /* malformed plots.json */
+    path_in(path, sizeof path, "bad_plots.json");
+    write_text(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": [\n  {\"file\": \"x.png\"}\n]}\n");
+    CHECK(plots_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path) && strstr(err, ":2:") &&
+              strstr(err, "caption"),
+          "missing member named with file and line: %s", err);
+    write_text(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": [{\"file\": \"../x.png\", \"caption\": \"\","
+                     "\"kind\": \"lines\", \"title\": \"\", \"x_label\": \"\", \"y_label\": \"\", \"x_log\": false,"
+                     "\"y_log\": false, \"y_format\": \"plain\", \"x_range\": [0, 0], \"y_range\": [0, 0],"
+                     "\"vlines\": [], \"series\": []}]}");
+    CHECK(plots_read_json(path, &back, err, sizeof err) == 2 && strstr(err, "plain file name"),
+          "a path outside the run folder is refused: %s", err);
+
+    /* report: three pictures exist, one does not; only the three are linked */
+    struct report_picture pics[4] = {
+        {"max_rel.png", "caption one", REPORT_PLOTS},
+        {"curves.png", "caption two", REPORT_PLOTS},
+        {"bars.png", "caption three", REPORT_THROUGHPUT},
+        {"never_written.png", "caption four", REPORT_PLOTS},
+    };
+    struct report_input in;
+    memset(&in, 0, sizeof in);
+    in.run_dir = dir;
+    in.command = "test";
+    in.wall_seconds = -1;
+    in.acc = res;
+    in.nacc = 2;
+    in.acc_grid = &g;
+    in.claims.missing = "not in this test";
+    in.throughput.markdown = "| model | rate |\n|---|---|\n| fvol | 2.5 |";
+    in.images.missing = "not in this test";
+    in.pictures = pics;
+    in.npictures = 4;
+    CHECK(report_write(&in, err, sizeof err) == 0, "report: %s", err);
+    path_in(path, sizeof path, "report.md");
+    FILE *f = fopen(path, "r");
+    char *text = NULL;
+    size_t len = 0;
+    if (f) {
+        text = calloc(1, 1 << 20);
+        len = text ? fread(text, 1, (1 << 20) - 1, f) : 0;
+        fclose(f);
+    }
+    CHECK(text && len > 0, "report.md read");
+    if (text) {
+        int links = 0, missing = 0;
+        /* every markdown link target "](target)" must be a file in the run folder */
+        for (char *p = strstr(text, "]("); p; p = strstr(p + 2, "](")) {
+            char *end = strchr(p + 2, ')');
+            if (!end) break;
+            char name[256], full[600];
+            snprintf(name, sizeof name, "%.*s", (int)(end - p - 2), p + 2);
+            snprintf(full, sizeof full, "%s/%s", dir, name);
+            struct stat st;
+            links++;
+            if (stat(full, &st) != 0) {
+                missing++;
+                fprintf(stderr, "report links a missing file: %s\n", name);
+            }
+        }
+        CHECK(links == 3 && missing == 0, "%d links, %d to missing files (want 3 and 0)", links, missing);
+        CHECK(strstr(text, "never_written.png") && strstr(text, "was not written"), "the missing picture is named");
+        CHECK(strstr(text, "`fvol`") && strstr(text, "`cq2`"), "accuracy table rows");
+        CHECK(strstr(text, "| fvol | 2.5 |") != NULL, "throughput block included");
+        CHECK(strstr(text, "Not available: not in this test") != NULL, "missing sections say why");
+        free(text);
+    }
+    plots_free(&set);
+    accuracy_result_free(&res[0]);
+    accuracy_result_free(&res[1]);
+}
+
+int main(void)
+{
+    const char *base = getenv("TEST_TMPDIR");
+    snprintf(dir, sizeof dir, "%s/test_report_XXXXXX", base && *base ? base : "/tmp");
+    if (!mkdtemp(dir)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    struct cl_session s;
+    char err[1024];
+    int rc = clsession_open(&s, -1, -1, err, sizeof err);
+    if (rc == EXIT_NO_DEVICE) {
+        printf("no OpenCL device: %s\n0 passed, 0 failed\n", err);
+        return 77;
+    }
+    if (rc) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    struct field_ctx fc;
+    CHECK(field_open(&fc, &s, "") == 0, "field_open");
+    if (fc.kernel) {
+        test_self_field(&fc);
+        test_fvol_field(&fc);
+        field_close(&fc);
+    }
+    test_plots_and_report(&s);
+    clsession_close(&s);
+    printf("pictures in %s\n", dir);
+    return check_summary();
+}

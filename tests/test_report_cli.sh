@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# test_report_cli.sh - `brdfbench all`, `plot` and `heatmap` end to end on small sweeps:
+# the run folder and results/latest, report.md linking only files that exist, every PNG a
+# PNG, redraw from JSON without a device, and the error paths (malformed or missing JSON:
+# exit 2 naming the file; a picture that cannot be written: exit 3, other outputs intact).
+set -u
+BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
+expect() {
+    local code=$1 pattern=$2
+    shift 2
+    "$BIN" "$@" >"$T/out" 2>"$T/err"
+    local rc=$?
+    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 400 "$T/err")"; return; fi
+    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 400 "$T/err")' lacks /$pattern/"; return; fi
+    ok
+}
+
+# is_png FILE: the 8-byte PNG signature (89 50 4E 47 0D 0A 1A 0A, RFC 2083)
+is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+
+# links_exist DIR: every markdown link target in DIR/report.md is a file in DIR
+links_exist() {
+    local dir=$1 n=0 target
+    while read -r target; do
+        n=$((n + 1))
+        [ -f "$dir/$target" ] || { echo "report links a missing file: $target" >&2; return 1; }
+    done < <(grep -oE '\]\([^)]+\)' "$dir/report.md" | sed -E 's/^\]\((.*)\)$/\1/')
+    [ "$n" -gt 0 ]
+}
+
+MODELS="phong,fvol,cq2,fq:Q=0.64"
+"$BIN" all --quick --models "$MODELS" --results-root "$T/results" >"$T/out" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "all --quick exit $rc: $(cat "$T/err")"
+RUN="$T/results/latest"
+[ -L "$RUN" ] && [ -d "$RUN/" ] && ok || bad "results/latest is not a link to a run folder"
+[ -f "$RUN/report.md" ] && ok || bad "no report.md"
+# progress: one line per step with the elapsed time, then the report's path on stdout
+[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]/8 ' "$T/err")" -eq 8 ] && ok || bad "want 8 step lines: $(cat "$T/err")"
+grep -q "report.md" "$T/out" && ok || bad "stdout lacks the report path"
+links_exist "$RUN" && ok || bad "report.md links a missing file"
+# every model but the self-referenced phong has a heatmap and its field; phong has none
+for m in fvol cq2 fq_Q0.64; do
+    is_png "$RUN/heatmap_$m.png" && [ -s "$RUN/field_$m.json" ] && ok || bad "heatmap or field of $m missing"
+    grep -q "(heatmap_$m.png)" "$RUN/report.md" && ok || bad "report does not show heatmap_$m.png"
+done
+[ ! -e "$RUN/heatmap_phong.png" ] && ok || bad "a reference against itself got a heatmap"
+for p in curves_n16_paper1_fig2 curves_n20_paper2_fig5 max_rel_error_epicentre_vs_n max_abs_error_vs_n \
+         fq_max_rel_error_vs_q fq_max_abs_error_vs_q; do
+    is_png "$RUN/$p.png" && ok || bad "$p.png missing or not a PNG"
+done
+for f in accuracy.json accuracy.csv plots.json; do [ -s "$RUN/$f" ] && ok || bad "$f missing"; done
+grep -q '| `fvol` | `phong` |' "$RUN/report.md" && ok || bad "accuracy table lacks fvol"
+
+# redraw without a device: the same pictures come back
+rm -f "$RUN/heatmap_fvol.png" "$RUN/max_abs_error_vs_n.png"
+expect 0 "redrawn" plot "$RUN"
+is_png "$RUN/heatmap_fvol.png" && is_png "$RUN/max_abs_error_vs_n.png" && ok || bad "plot did not redraw"
+rm -f "$RUN/heatmap_cq2.png"
+expect 0 "1 picture" heatmap "$RUN" --model cq2
+is_png "$RUN/heatmap_cq2.png" && ok || bad "heatmap --model cq2 did not redraw"
+
+# input errors: exit 2, the file named
+cp -r "$RUN/" "$T/broken"
+printf '{"schema": "brdfbench.plots/1", "figures": [\n  {"file": "a.png",}\n]}\n' >"$T/broken/plots.json"
+expect 2 "plots.json:2:.*trailing comma" plot "$T/broken"
+rm "$T/broken/plots.json"
+expect 2 "plots.json: cannot open" plot "$T/broken"
+printf '{"schema": "brdfbench.field/1"}' >"$T/broken/field_fvol.json"
+expect 2 "field_fvol.json:1:1: member \"model\" is missing" heatmap "$T/broken"
+expect 2 "field_nosuch.json: cannot open" heatmap "$RUN" --model nosuch
+expect 2 "not a folder" plot "$T/none"
+expect 2 "unknown option" all --frobnicate
+expect 2 "unknown model" all --models nosuch
+
+# a picture that cannot be written (a folder in its place): exit 3, the other outputs intact
+mkdir -p "$T/out3/heatmap_fvol.png/keep"
+expect 3 "heatmap_fvol.png" all --quick --models fvol,cq2 --out "$T/out3"
+[ -s "$T/out3/accuracy.json" ] && [ -s "$T/out3/field_fvol.json" ] && is_png "$T/out3/heatmap_cq2.png" && ok ||
+    bad "other outputs missing after a picture failed"
+[ -f "$T/out3/report.md" ] && links_exist "$T/out3" && ok || bad "report after a failed picture"
+grep -q "(heatmap_fvol.png)" "$T/out3/report.md" && bad "report links the picture that failed" || ok
+# redraw into a folder where one picture cannot be written: exit 3, the rest redrawn
+rm -f "$T/out3/heatmap_cq2.png"
+expect 3 "heatmap_fvol.png" heatmap "$T/out3"
+is_png "$T/out3/heatmap_cq2.png" && ok || bad "heatmap_cq2.png not redrawn beside a failing one"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
