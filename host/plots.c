@@ -180,7 +180,8 @@ int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *capti
         hi = fmax(hi, r->per_n[r->n_count - 1].n);
         char label[96];
         snprintf(label, sizeof label, "%s", r->model.label);
-        int rc = plot_series_add(f, label, plot_model_colour(&r->model), 0, x, y, (size_t)nb);
+        /* every other series dashed, so curves that coincide (fq and fq2) both stay visible */
+        int rc = plot_series_add(f, label, plot_model_colour(&r->model), f->nseries % 2 == 1, x, y, (size_t)nb);
         free(x);
         free(y);
         if (rc) return -1;
