@@ -385,7 +385,7 @@ int field_draw_heatmap(const char *path, const struct field_result *r, struct dr
                        size_t errlen)
 {
     const char *var = r->model.info->lobe == LOBE_PSI ? "psi" : "theta_h";
-    char title[512], sub0[160], sub1[160], xl0[160], xl1[160];
+    char title[1024], sub0[160], sub1[160], xl0[160], xl1[160];
     char peak0[160] = "no finite value", peak1[160] = "no finite value";
     if (isfinite(r->epi_peak.value))
         snprintf(peak0, sizeof peak0, "max delta %.4g%% at n = %.4g, %s = %.4g rad", 100 * r->epi_peak.value,
