@@ -214,14 +214,24 @@ static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone 
     if (!(c >= 0))
         return e;
     struct refine_ctx rc = { &r->model, &r->reference, n, relative };
-    double x0 = acos((double)c), lo, hi;
-    grid_bracket(z, n, r->grid.samples, x0, &lo, &hi);
-    x0 = fmin(fmax(x0, lo), hi);
-    refine_maximum(refine_error, &rc, lo, x0, hi, &e.x, &e.value);
-    /* The zone's ends compete too: where two local maxima are nearly equal (a minimax
-       design equioscillates), float noise may have picked the smaller one on the device. */
     double x_e = zone_epicentre_end(n);
     double ends[2] = { z == ZONE_EPICENTRE ? 0.0 : x_e, z == ZONE_EPICENTRE ? x_e : half_pi };
+    double x0 = acos((double)c), lo, hi;
+    /* Where the error is flat near its maximum, float noise can put the device's best sample a
+       few samples away from the true maximum; a maximum found at an end of the bracket that is
+       not an end of the zone means the error still rises beyond it, so the bracket walks on.
+       Each step raises the value, so the walk ends at a local maximum. */
+    for (int walk = 0; walk < 64; ++walk) {
+        grid_bracket(z, n, r->grid.samples, x0, &lo, &hi);
+        x0 = fmin(fmax(x0, lo), hi);
+        refine_maximum(refine_error, &rc, lo, x0, hi, &e.x, &e.value);
+        int rises_on = (e.x == lo && lo > ends[0]) || (e.x == hi && hi < ends[1]);
+        if (!rises_on || e.x == x0)
+            break;
+        x0 = e.x;
+    }
+    /* The zone's ends compete too: where two local maxima are nearly equal (a minimax
+       design equioscillates), float noise may have picked the smaller one on the device. */
     for (int k = 0; k < 2; ++k) {
         double v = refine_error(ends[k], &rc);
         if (v > e.value) {
@@ -321,6 +331,15 @@ done:
     return rc;
 }
 
+/* An explicit work-group size for the sweep. Left to PoCL, a range such as 999 = 27 x 37
+ * became a single work-group and ran on one thread; a few work-items per group leaves enough
+ * groups (about 8 per compute unit) to keep every thread busy. */
+static size_t sweep_local_size(long count, cl_uint compute_units)
+{
+    long per_group = count / (8L * (long)(compute_units ? compute_units : 1));
+    return (size_t)(per_group < 1 ? 1 : per_group > 8 ? 8 : per_group);
+}
+
 int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                  struct accuracy_result *out)
 {
@@ -364,8 +383,8 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     CL_CHECK_GOTO(clSetKernelArg(a->sweep, 7, sizeof ncount, &ncount), done);
     CL_CHECK_GOTO(clSetKernelArg(a->sweep, 8, sizeof samples, &samples), done);
     CL_CHECK_GOTO(clSetKernelArg(a->sweep, 9, sizeof bo, &bo), done);
-    size_t local = getenv("ACC_LOCAL") ? (size_t)atol(getenv("ACC_LOCAL")) : 1;
-    size_t global = ((size_t)count + local - 1) / local * local;
+    size_t local = sweep_local_size(count, a->s->compute_units);
+    size_t global = ((size_t)count + local - 1) / local * local;   /* the kernel skips the padding */
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, a->sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
                                       raw, 0, NULL, NULL), done);

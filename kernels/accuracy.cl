@@ -6,6 +6,10 @@
  * forms of pow/cos/exp, while its scalar forms are not vectorised). Each work-item reduces
  * its own samples, so no barrier is needed.
  *
+ * Sample cosines come from native_cos: on PoCL 3.1 it is 4x cheaper than cos over [0, pi/2]
+ * (measured 1.9 ulp against 1.4 ulp for cos there). The cosine only places a sample: every
+ * figure is taken at the exact float cosine the model saw, which the kernel reports.
+ *
  * Per n it writes ACC_OUT_STRIDE floats:
  *   [0] max relative error in the epicentre   [1] the cosine where it occurs
  *   [2] max absolute error in the attenuation [3] the cosine where it occurs
@@ -80,7 +84,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         const float16 j = (float16)((float)i) + lane;
 
         /* Epicentre: x uniform over [0, x_e], both ends included. */
-        float16 c = fmax(cos(x_e * (j * inv_last)), 0.0f);
+        float16 c = fmax(native_cos(x_e * (j * inv_last)), 0.0f);
         float16 f = brdf_eval(model, c, nv, p0, p1);
         float16 r = brdf_eval(ref_model, c, nv, rp0, rp1);
         float16 d = fabs(f - r);
@@ -93,7 +97,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         /* Attenuation: x = x_e + width t^2, t in (0, 1]; t^2 crowds samples near x_e,
            where the lobe falls off, while still reaching pi/2. */
         float16 t = (j + 1.0f) * inv_count;
-        c = fmax(cos(x_e + width * (t * t)), 0.0f);
+        c = fmax(native_cos(x_e + width * (t * t)), 0.0f);
         f = brdf_eval(model, c, nv, p0, p1);
         r = brdf_eval(ref_model, c, nv, rp0, rp1);
         d = fabs(f - r);
