@@ -229,7 +229,7 @@ static int step_heatmaps(struct all_run *r)
         field_safe_label(spec->label, safe, sizeof safe);
         snprintf(name, sizeof name, "field_%s.json", safe);
         path_join(path, sizeof path, r->run_dir, name);
-        if (field_write_json(path, &fr, err, sizeof err)) {
+        if (field_write_json(path, &fr, &r->s, err, sizeof err)) {
             fprintf(stderr, "brdfbench all: %s\n", err);
             field_result_free(&fr);
             rc = EXIT_RUNTIME;
@@ -315,7 +315,7 @@ static int step_plots(struct all_run *r)
                             r->q, r->q_Delta, r->nq, "fq (f_Q)", r->f2_Delta, "cq2 (f2), independent of Q", 0.64);
     }
     path_join(path, sizeof path, r->run_dir, "plots.json");
-    if (plots_write_json(&r->plots, path, err, sizeof err)) {
+    if (plots_write_json(&r->plots, path, &r->s, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         return EXIT_RUNTIME;
     }

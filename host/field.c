@@ -5,6 +5,7 @@
 #include "draw.h"
 #include "exitcodes.h"
 #include "jsonr.h"
+#include "context.h"
 #include "jsonw.h"
 
 #include <math.h>
@@ -230,12 +231,15 @@ static void jw_field(struct jw *w, const char *key, const float *v, size_t count
     jw_arr_end(w);
 }
 
-int field_write_json(const char *path, const struct field_result *r, char *err, size_t errlen)
+int field_write_json(const char *path, const struct field_result *r, const struct cl_session *s, char *err,
+                     size_t errlen)
 {
     struct jw w;
     jw_init(&w);
     jw_obj_begin(&w);
     jw_kv_str(&w, "schema", FIELD_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_obj_end(&w);
     jw_kv_str(&w, "model", r->model.label);
     jw_kv_str(&w, "reference", r->reference.label);
     jw_key(&w, "grid");

@@ -3,6 +3,7 @@
 #include "plots.h"
 
 #include "draw.h"
+#include "context.h"
 #include "jsonr.h"
 #include "jsonw.h"
 #include "outdir.h"
@@ -326,12 +327,15 @@ static void jw_doubles(struct jw *w, const char *key, const double *v, size_t n)
     jw_arr_end(w);
 }
 
-int plots_write_json(const struct plot_set *set, const char *path, char *err, size_t errlen)
+int plots_write_json(const struct plot_set *set, const char *path, const struct cl_session *s, char *err,
+                     size_t errlen)
 {
     struct jw w;
     jw_init(&w);
     jw_obj_begin(&w);
     jw_kv_str(&w, "schema", PLOTS_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_obj_end(&w);
     jw_key(&w, "figures");
     jw_arr_begin(&w);
     for (int i = 0; i < set->count; i++) {

@@ -90,8 +90,11 @@ int plots_add_bars(struct plot_set *set, const char *file, const char *caption, 
 int plots_draw(const struct plot_set *set, const char *dir, char *err, size_t errlen);
 int plot_figure_draw(const struct plot_figure *fig, const char *path, char *err, size_t errlen);
 
-/* plots.json. write: 0 or -1; read: 0, or 2 naming file, line and problem. */
-int plots_write_json(const struct plot_set *set, const char *path, char *err, size_t errlen);
+/* plots.json (with the context block of session s, which may be NULL). write: 0 or -1;
+ * read: 0, or 2 naming file, line and problem. */
+struct cl_session;
+int plots_write_json(const struct plot_set *set, const char *path, const struct cl_session *s, char *err,
+                     size_t errlen);
 int plots_read_json(const char *path, struct plot_set *set, char *err, size_t errlen);
 
 #endif

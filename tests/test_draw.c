@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <unistd.h>
 
 static int passed, failed;
@@ -31,6 +32,23 @@ static const int VIRIDIS_BOTTOM[3] = {68, 1, 84}, VIRIDIS_TOP[3] = {253, 231, 37
 static const int INFERNO_TOP[3] = {252, 255, 164};
 
 static char dir[256];
+
+/* Removes the flat output folder of a passing run (BRDF_KEEP_TEST_OUTPUT keeps it). */
+static void remove_dir(const char *path)
+{
+    if (getenv("BRDF_KEEP_TEST_OUTPUT")) return;
+    DIR *d = opendir(path);
+    if (!d) return;
+    struct dirent *e;
+    char full[1024];
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
+        snprintf(full, sizeof full, "%s/%s", path, e->d_name);
+        unlink(full);
+    }
+    closedir(d);
+    rmdir(path);
+}
 
 static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
 
@@ -324,7 +342,8 @@ int main(void)
     test_error_image_and_sheet();
     test_line_plot_and_bars();
     test_errors();
-    printf("pictures in %s\n", dir);
+    if (failed) printf("pictures kept in %s\n", dir);
+    else remove_dir(dir);
     printf("%d passed, %d failed\n", passed, failed);
     return failed ? 1 : 0;
 }

@@ -22,6 +22,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
+#include <unistd.h>
 #include <sys/stat.h>
 
 /* matplotlib's viridis, first and last entries x 255 (see test_draw.c) */
@@ -29,6 +31,23 @@ static const int VIRIDIS_BOTTOM[3] = {68, 1, 84}, VIRIDIS_TOP[3] = {253, 231, 37
 static const int NODATA[3] = {90, 90, 100}; /* draw.h: NaN cells */
 
 static char dir[256];
+
+/* Removes the flat output folder of a passing run (BRDF_KEEP_TEST_OUTPUT keeps it). */
+static void remove_dir(const char *path)
+{
+    if (getenv("BRDF_KEEP_TEST_OUTPUT")) return;
+    DIR *d = opendir(path);
+    if (!d) return;
+    struct dirent *e;
+    char full[1024];
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
+        snprintf(full, sizeof full, "%s/%s", path, e->d_name);
+        unlink(full);
+    }
+    closedir(d);
+    rmdir(path);
+}
 
 static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
 
@@ -141,7 +160,7 @@ static void test_fvol_field(struct field_ctx *fc)
 
     /* JSON round trip: 4 significant digits */
     path_in(path, sizeof path, "field_fvol.json");
-    CHECK(field_write_json(path, &fr, err, sizeof err) == 0, "write: %s", err);
+    CHECK(field_write_json(path, &fr, NULL, err, sizeof err) == 0, "write: %s", err);
     struct field_result back;
     CHECK(field_read_json(path, &back, err, sizeof err) == 0, "read: %s", err);
     if (back.epi_rel) {
@@ -214,7 +233,7 @@ static void test_plots_and_report(struct cl_session *s)
     char err[1024], path[512];
     CHECK(plots_draw(&set, dir, err, sizeof err) == 0, "draw plots: %s", err);
     path_in(path, sizeof path, "plots.json");
-    CHECK(plots_write_json(&set, path, err, sizeof err) == 0, "write plots.json: %s", err);
+    CHECK(plots_write_json(&set, path, NULL, err, sizeof err) == 0, "write plots.json: %s", err);
     struct plot_set back;
     CHECK(plots_read_json(path, &back, err, sizeof err) == 0, "read plots.json: %s", err);
     if (back.count == 3) {
@@ -339,6 +358,7 @@ int main(void)
     }
     test_plots_and_report(&s);
     clsession_close(&s);
-    printf("pictures in %s\n", dir);
+    if (check_failed) printf("pictures kept in %s\n", dir);
+    else remove_dir(dir);
     return check_summary();
 }
