@@ -2,6 +2,7 @@
  * The host reference compiles kernels/brdf_models.h with REAL = double, so each formula
  * exists once; this file adds only names, parameter domains and descriptions. */
 #include "models.h"
+#include "usermodel.h"
 
 #include <errno.h>
 #include <math.h>
@@ -70,11 +71,27 @@ const struct model_info *models_at(int i)
     return (i >= 0 && i < models_count()) ? &registry[i] : NULL;
 }
 
+static const struct model_info *user_models[MODELS_MAX_USER];
+static int user_model_count;
+
+int models_register_user(const struct model_info *info)
+{
+    if (user_model_count >= MODELS_MAX_USER)
+        return -1;
+    user_models[user_model_count++] = info;
+    return 0;
+}
+
+void models_unregister_users(void) { user_model_count = 0; }
+
 const struct model_info *models_find(const char *id)
 {
     for (int i = 0; i < models_count(); ++i)
         if (strcmp(registry[i].id, id) == 0)
             return &registry[i];
+    for (int i = 0; i < user_model_count; ++i)
+        if (strcmp(user_models[i]->id, id) == 0)
+            return user_models[i];
     return NULL;
 }
 
@@ -101,6 +118,8 @@ static void list_model_ids(char *buf, size_t len)
     buf[0] = '\0';
     for (int i = 0; i < models_count() && used < len; ++i)
         used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", registry[i].id);
+    for (int i = 0; i < user_model_count && used < len; ++i)
+        used += (size_t)snprintf(buf + used, len - used, ", %s", user_models[i]->id);
 }
 
 /* Parses one "name=value" assignment into spec. */
@@ -252,5 +271,7 @@ void model_reference_spec(const struct model_spec *spec, struct model_spec *ref)
 
 double model_eval_host(const struct model_spec *spec, double c, double n)
 {
+    if (spec->info->kernel_id == BRDF_USER)
+        return usermodel_eval_host(spec, c, n);
     return brdf_eval(spec->info->kernel_id, c, n, spec->params[0], spec->params[1]);
 }

@@ -54,7 +54,15 @@ int model_spec_list_parse(const char *text, struct model_spec *out, int max, cha
 int model_spec_list_default(struct model_spec *out, int max);
 /* The reference model of a spec, with default parameters. */
 void model_reference_spec(const struct model_spec *spec, struct model_spec *ref);
-/* Double-precision host evaluation of the model (the reference implementation). */
+/* Double-precision host evaluation of the model (the reference implementation). A user
+ * model (kernel_id BRDF_USER, host/usermodel.h) is evaluated by its reference on the device. */
 double model_eval_host(const struct model_spec *spec, double c, double n);
+
+/* User models compiled at run time (host/usermodel.h) are found by models_find like the
+ * built-in ones; they are not part of models_count/models_at (the registry proper).
+ * Returns 0, or -1 when the table is full. */
+#define MODELS_MAX_USER 8
+int models_register_user(const struct model_info *info);
+void models_unregister_users(void);
 
 #endif

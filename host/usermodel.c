@@ -1,0 +1,771 @@
+/* usermodel.c - parsing, registering, building and evaluating user-defined models
+ * (see usermodel.h and docs/user-models.md). */
+#define _POSIX_C_SOURCE 200809L
+#include "usermodel.h"
+#include "cli.h"
+#include "exitcodes.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The model ids (BRDF_USER); the header's functions are not used here. */
+#define REAL double
+#define RSCALAR double
+#include "brdf_models.h"
+#undef REAL
+#undef RSCALAR
+
+static struct user_model *registry[USERMODEL_MAX];
+static int registry_count;
+
+/* ---- small text helpers ------------------------------------------------------------- */
+
+static int is_ident_start(int c) { return isalpha(c) || c == '_'; }
+static int is_ident_char(int c) { return isalnum(c) || c == '_'; }
+
+/* 1 when s is a C identifier of 1 to max characters. */
+static int is_identifier(const char *s, size_t max)
+{
+    size_t n = strlen(s);
+    if (n == 0 || n > max || !is_ident_start((unsigned char)s[0]))
+        return 0;
+    for (size_t i = 1; i < n; ++i)
+        if (!is_ident_char((unsigned char)s[i]))
+            return 0;
+    return 1;
+}
+
+/* Names the user's text may not take: the evaluation's own variables and words of the
+ * generated code, so that a name never shadows them. */
+static int is_reserved_name(const char *s)
+{
+    static const char *words[] = { "c", "n", "p0", "p1", "REAL", "RSCALAR", "RC", "RSPLAT", "all",
+                                   "brdf_eval", "brdf_user_eval", "float", "double", "int", "return",
+                                   "if", "else", "for", "while", "do", "switch", "case", "static",
+                                   "inline", "const", "void", "kernel", "__kernel", NULL };
+    for (int i = 0; words[i]; ++i)
+        if (strcmp(s, words[i]) == 0)
+            return 1;
+    return strncmp(s, "brdf_", 5) == 0 || strncmp(s, "BRDF_", 5) == 0;
+}
+
+static char *trim(char *s)
+{
+    while (*s == ' ' || *s == '\t' || *s == '\r')
+        ++s;
+    size_t n = strlen(s);
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r'))
+        s[--n] = '\0';
+    return s;
+}
+
+/* A strict number: the whole token, finite, no ERANGE. */
+static int parse_number(const char *t, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(t, &end);
+    if (*t == '\0' || end == t || *end != '\0' || errno == ERANGE || !isfinite(v))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* Appends text to a growable string. */
+struct sbuf {
+    char *s;
+    size_t len, cap;
+    int failed;
+};
+
+static void sb_add(struct sbuf *b, const char *text, size_t n)
+{
+    if (b->failed)
+        return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 1024;
+        while (cap < b->len + n + 1)
+            cap *= 2;
+        char *ns = realloc(b->s, cap);
+        if (!ns) {
+            b->failed = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = cap;
+    }
+    memcpy(b->s + b->len, text, n);
+    b->len += n;
+    b->s[b->len] = '\0';
+}
+
+static void sb_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void sb_printf(struct sbuf *b, const char *fmt, ...)
+{
+    char tmp[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= sizeof tmp) {
+        b->failed = 1;
+        return;
+    }
+    sb_add(b, tmp, (size_t)n);
+}
+
+/* A file name as the string of a #line directive: quotes and backslashes escaped. */
+static void sb_line_directive(struct sbuf *b, int line, const char *name)
+{
+    sb_printf(b, "\n#line %d \"", line);
+    for (const char *p = name; *p; ++p) {
+        if (*p == '"' || *p == '\\')
+            sb_add(b, "\\", 1);
+        sb_add(b, p, 1);
+    }
+    sb_add(b, "\"\n", 2);
+}
+
+/* ---- the model_info of a user model --------------------------------------------------- */
+
+static struct user_model *usermodel_new(void)
+{
+    struct user_model *um = calloc(1, sizeof *um);
+    if (!um)
+        return NULL;
+    snprintf(um->reference, sizeof um->reference, "phong");
+    return um;
+}
+
+/* Points the embedded model_info at the model's own strings. */
+static void usermodel_fill_info(struct user_model *um)
+{
+    struct model_info *in = &um->info;
+    in->id = um->name;
+    in->kernel_id = BRDF_USER;
+    in->family = "user";
+    in->reference_id = um->reference;
+    in->formula = um->formula;
+    in->root = NULL;
+    in->description = um->description;
+    in->in_default_set = 0;
+    for (int p = 0; p < in->nparams; ++p) {
+        in->params[p].name = um->param_names[p];
+        in->params[p].meaning = "declared by the model file";
+    }
+}
+
+void usermodel_free(struct user_model *um)
+{
+    if (!um)
+        return;
+    usermodel_reference_close(um);
+    free(um->device_source);
+    free(um);
+}
+
+/* ---- model files ---------------------------------------------------------------------- */
+
+static int file_fail(char *err, size_t errlen, const char *path, int line, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+static int file_fail(char *err, size_t errlen, const char *path, int line, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (line > 0)
+        snprintf(err, errlen, "%s:%d: %s", path, line, msg);
+    else
+        snprintf(err, errlen, "%s: %s", path, msg);
+    return EXIT_USAGE;
+}
+
+/* One "param: NAME MIN MAX DEFAULT [integer]" line. */
+static int parse_param_line(struct user_model *um, char *value, const char *path, int line, char *err,
+                            size_t errlen)
+{
+    static const char *form = "expected 'param: NAME MIN MAX DEFAULT [integer]'";
+    char *tok[6];
+    int count = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(value, " \t", &save); t; t = strtok_r(NULL, " \t", &save)) {
+        if (count == 5)
+            return file_fail(err, errlen, path, line, "too many words in a parameter declaration; %s", form);
+        tok[count++] = t;
+    }
+    if (count < 4)
+        return file_fail(err, errlen, path, line, "too few words in a parameter declaration; %s", form);
+    if (um->info.nparams >= MODEL_MAX_PARAMS)
+        return file_fail(err, errlen, path, line, "more than %d parameters (accepted: 0 to %d)",
+                         MODEL_MAX_PARAMS, MODEL_MAX_PARAMS);
+    if (!is_identifier(tok[0], USERMODEL_NAME_MAX) || is_reserved_name(tok[0]))
+        return file_fail(err, errlen, path, line,
+                         "parameter name '%.60s' is not an identifier of 1 to %d characters or is reserved "
+                         "(c, n, p0, p1, brdf_*)", tok[0], USERMODEL_NAME_MAX);
+    for (int p = 0; p < um->info.nparams; ++p)
+        if (strcmp(um->param_names[p], tok[0]) == 0)
+            return file_fail(err, errlen, path, line, "parameter '%s' is declared twice", tok[0]);
+    double v[3];
+    static const char *what[3] = { "MIN", "MAX", "DEFAULT" };
+    for (int k = 0; k < 3; ++k)
+        if (parse_number(tok[1 + k], &v[k]))
+            return file_fail(err, errlen, path, line, "parameter '%s': %s '%.40s' is not a finite number",
+                             tok[0], what[k], tok[1 + k]);
+    int integer = 0;
+    if (count == 5) {
+        if (strcmp(tok[4], "integer") != 0)
+            return file_fail(err, errlen, path, line, "parameter '%s': unknown word '%.40s'; %s", tok[0], tok[4],
+                             form);
+        integer = 1;
+    }
+    if (!(v[0] < v[1]))
+        return file_fail(err, errlen, path, line, "parameter '%s': MIN %g must be below MAX %g", tok[0], v[0], v[1]);
+    if (v[2] < v[0] || v[2] > v[1] || (integer && v[2] != floor(v[2])))
+        return file_fail(err, errlen, path, line, "parameter '%s': DEFAULT %g is not %s in [%g, %g]", tok[0],
+                         v[2], integer ? "an integer" : "a number", v[0], v[1]);
+    int p = um->info.nparams++;
+    snprintf(um->param_names[p], sizeof um->param_names[p], "%s", tok[0]);
+    um->info.params[p].min = v[0];
+    um->info.params[p].max = v[1];
+    um->info.params[p].def = v[2];
+    um->info.params[p].integer = integer;
+    return 0;
+}
+
+/* 1 when text holds `name` as a whole identifier followed (after blanks) by '('. */
+static int has_call_or_definition(const char *text, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = strstr(text, name); p; p = strstr(p + 1, name)) {
+        if (p > text && is_ident_char((unsigned char)p[-1]))
+            continue;
+        const char *q = p + n;
+        if (is_ident_char((unsigned char)*q))
+            continue;
+        while (*q == ' ' || *q == '\t' || *q == '\n' || *q == '\r')
+            ++q;
+        if (*q == '(')
+            return 1;
+    }
+    return 0;
+}
+
+/* The text appended to a kernel file for a model file: its whole text from line 1 (so the
+ * compiler's line numbers are the file's own), then the wrapper that brdf_eval calls. */
+static int make_file_source(struct user_model *um, const char *text, size_t len)
+{
+    struct sbuf b = { 0 };
+    sb_line_directive(&b, 1, um->origin);
+    sb_add(&b, text, len);
+    char wrapper_name[600];
+    snprintf(wrapper_name, sizeof wrapper_name, "brdfbench wrapper of %s", um->origin);
+    sb_line_directive(&b, 1, wrapper_name);
+    sb_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n");
+    sb_printf(&b, "    (void)p0;\n    (void)p1;\n    return %s(c, n%s%s);\n}\n", um->function,
+              um->info.nparams > 0 ? ", p0" : "", um->info.nparams > 1 ? ", p1" : "");
+    if (b.failed) {
+        free(b.s);
+        return -1;
+    }
+    um->device_source = b.s;
+    return 0;
+}
+
+int usermodel_parse_file_text(const char *text, size_t len, const char *path, struct user_model **out,
+                              char *err, size_t errlen)
+{
+    *out = NULL;
+    if (len == 0)
+        return file_fail(err, errlen, path, 0, "empty model file (see docs/user-models.md)");
+    if (len > USERMODEL_MAX_FILE)
+        return file_fail(err, errlen, path, 0, "larger than %d bytes", USERMODEL_MAX_FILE);
+    if (memchr(text, '\0', len))
+        return file_fail(err, errlen, path, 0, "NUL byte in a model file (a text file is expected)");
+    char *copy = malloc(len + 1);
+    struct user_model *um = usermodel_new();
+    if (!copy || !um) {
+        free(copy);
+        free(um);
+        return file_fail(err, errlen, path, 0, "out of memory");
+    }
+    memcpy(copy, text, len);
+    copy[len] = '\0';
+    snprintf(um->origin, sizeof um->origin, "%s", path);
+    um->from_file = 1;
+    int rc = 0;
+
+    /* The header: the first thing in the file, a block comment opening with brdfbench-model. */
+    char *p = copy;
+    int line = 1;
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') {
+        if (*p == '\n')
+            ++line;
+        ++p;
+    }
+    char *close = NULL;
+    if (strncmp(p, "/*", 2) != 0 || !(close = strstr(p + 2, "*/"))) {
+        rc = file_fail(err, errlen, path, line,
+                       "a model file begins with a header comment '/* brdfbench-model ... */' "
+                       "(see docs/user-models.md)");
+        goto done;
+    }
+    *close = '\0';
+    p += 2;
+    int first = 1, have_name = 0, have_reference = 0, have_description = 0, have_function = 0, have_lobe = 0;
+    for (;;) {
+        char *eol = strchr(p, '\n');
+        if (eol)
+            *eol = '\0';
+        char *s = trim(p);
+        if (!first && *s == '*')
+            s = trim(s + 1);
+        if (first) {
+            if (strcmp(s, "brdfbench-model") != 0) {
+                rc = file_fail(err, errlen, path, line,
+                               "the header comment must open with 'brdfbench-model' on its first line (found '%.40s')",
+                               s);
+                goto done;
+            }
+            first = 0;
+        } else if (*s) {
+            char *colon = strchr(s, ':');
+            if (!colon) {
+                rc = file_fail(err, errlen, path, line, "expected 'key: value' (keys: name, param, reference, "
+                                                        "lobe, function, description), found '%.40s'", s);
+                goto done;
+            }
+            *colon = '\0';
+            char *key = trim(s), *value = trim(colon + 1);
+            if (strcmp(key, "name") == 0) {
+                if (have_name++) {
+                    rc = file_fail(err, errlen, path, line, "'name' is declared twice");
+                    goto done;
+                }
+                if (!is_identifier(value, USERMODEL_NAME_MAX) || is_reserved_name(value)) {
+                    rc = file_fail(err, errlen, path, line,
+                                   "name '%.60s' is not an identifier of 1 to %d characters (letters, digits, _) "
+                                   "or is reserved", value, USERMODEL_NAME_MAX);
+                    goto done;
+                }
+                snprintf(um->name, sizeof um->name, "%s", value);
+            } else if (strcmp(key, "function") == 0) {
+                if (have_function++) {
+                    rc = file_fail(err, errlen, path, line, "'function' is declared twice");
+                    goto done;
+                }
+                if (!is_identifier(value, USERMODEL_NAME_MAX) || is_reserved_name(value)) {
+                    rc = file_fail(err, errlen, path, line, "function '%.60s' is not an identifier of 1 to %d "
+                                   "characters or is reserved", value, USERMODEL_NAME_MAX);
+                    goto done;
+                }
+                snprintf(um->function, sizeof um->function, "%s", value);
+            } else if (strcmp(key, "reference") == 0) {
+                const struct model_info *ref = models_find(value);
+                if (have_reference++ || !ref || ref->kernel_id == BRDF_USER) {
+                    rc = file_fail(err, errlen, path, line, have_reference > 1 ? "'reference' is declared twice"
+                                   : "reference '%.40s' is not a built-in model (see brdfbench list)", value);
+                    goto done;
+                }
+                snprintf(um->reference, sizeof um->reference, "%s", ref->id);
+            } else if (strcmp(key, "lobe") == 0) {
+                if (have_lobe++ || (strcmp(value, "psi") != 0 && strcmp(value, "theta_h") != 0)) {
+                    rc = file_fail(err, errlen, path, line, have_lobe > 1 ? "'lobe' is declared twice"
+                                   : "lobe '%.40s' is unknown (accepted: psi, theta_h)", value);
+                    goto done;
+                }
+                um->info.lobe = strcmp(value, "psi") == 0 ? LOBE_PSI : LOBE_THETA_H;
+            } else if (strcmp(key, "description") == 0) {
+                if (have_description++) {
+                    rc = file_fail(err, errlen, path, line, "'description' is declared twice");
+                    goto done;
+                }
+                snprintf(um->description, sizeof um->description, "%s", value);
+            } else if (strcmp(key, "param") == 0) {
+                if ((rc = parse_param_line(um, value, path, line, err, errlen)) != 0)
+                    goto done;
+            } else {
+                rc = file_fail(err, errlen, path, line, "unknown key '%.40s' (accepted: name, param, reference, "
+                               "lobe, function, description)", key);
+                goto done;
+            }
+        }
+        if (!eol)
+            break;
+        p = eol + 1;
+        ++line;
+    }
+    if (!have_name) {
+        rc = file_fail(err, errlen, path, 0, "the header declares no 'name: NAME'");
+        goto done;
+    }
+    if (!have_function)
+        snprintf(um->function, sizeof um->function, "%s", um->name);
+    for (int k = 0; k < um->info.nparams; ++k)
+        if (strcmp(um->param_names[k], um->name) == 0 || strcmp(um->param_names[k], um->function) == 0) {
+            rc = file_fail(err, errlen, path, 0, "parameter '%s' has the model's or its function's name",
+                           um->param_names[k]);
+            goto done;
+        }
+    /* The body (after the header) must define the function; the compiler checks the rest. */
+    memcpy(copy, text, len);
+    copy[len] = '\0';
+    if (!has_call_or_definition(copy + (close - copy) + 2, um->function)) {
+        rc = file_fail(err, errlen, path, 0,
+                       "no function '%s' after the header (expected REAL %s(REAL c, REAL n%s%s) { ... })",
+                       um->function, um->function, um->info.nparams > 0 ? ", RSCALAR ..." : "",
+                       um->info.nparams > 1 ? ", RSCALAR ..." : "");
+        goto done;
+    }
+    if (!have_description)
+        snprintf(um->description, sizeof um->description, "user model from %.200s", path);
+    snprintf(um->formula, sizeof um->formula, "%s(c, n%s) in %.200s", um->function,
+             um->info.nparams ? ", ..." : "", path);
+    usermodel_fill_info(um);
+    if (make_file_source(um, text, len)) {
+        rc = file_fail(err, errlen, path, 0, "out of memory");
+        goto done;
+    }
+done:
+    free(copy);
+    if (rc)
+        usermodel_free(um);
+    else
+        *out = um;
+    return rc;
+}
+
+/* ---- expressions ---------------------------------------------------------------------- */
+
+int usermodel_parse_expression(const char *arg, struct user_model **out, char *err, size_t errlen)
+{
+    *out = NULL;
+    const char *eq = arg ? strchr(arg, '=') : NULL;
+    if (!eq) {
+        snprintf(err, errlen, "--model: '%.60s' is not NAME=EXPR (e.g. --model 'sq=c*c')", arg ? arg : "");
+        return EXIT_USAGE;
+    }
+    char name[USERMODEL_NAME_MAX + 1];
+    size_t nlen = (size_t)(eq - arg);
+    if (nlen == 0 || nlen > USERMODEL_NAME_MAX) {
+        snprintf(err, errlen, "--model: the name before '=' must have 1 to %d characters", USERMODEL_NAME_MAX);
+        return EXIT_USAGE;
+    }
+    memcpy(name, arg, nlen);
+    name[nlen] = '\0';
+    if (!is_identifier(name, USERMODEL_NAME_MAX) || is_reserved_name(name)) {
+        snprintf(err, errlen, "--model: name '%s' is not an identifier (letters, digits, _) or is reserved", name);
+        return EXIT_USAGE;
+    }
+    const char *expr = eq + 1;
+    size_t elen = strlen(expr);
+    if (elen == 0 || elen > USERMODEL_MAX_EXPR) {
+        snprintf(err, errlen, "--model %s: the expression must have 1 to %d characters", name, USERMODEL_MAX_EXPR);
+        return EXIT_USAGE;
+    }
+    int blank = 1;
+    for (size_t i = 0; i < elen; ++i) {
+        unsigned char ch = (unsigned char)expr[i];
+        if (ch < 0x20 || ch > 0x7e || strchr(";{}#\\\"'", ch) ||
+            (ch == '/' && (expr[i + 1] == '/' || expr[i + 1] == '*')) || (ch == '*' && expr[i + 1] == '/')) {
+            snprintf(err, errlen, "--model %s: character %zu of the expression is not allowed (an expression "
+                     "of c and n: numbers, operators, parentheses, OpenCL math functions; no ; { } # quotes, "
+                     "comments or control characters)", name, i + 1);
+            return EXIT_USAGE;
+        }
+        if (ch != ' ')
+            blank = 0;
+    }
+    if (blank) {
+        snprintf(err, errlen, "--model %s: the expression is blank", name);
+        return EXIT_USAGE;
+    }
+    struct user_model *um = usermodel_new();
+    if (!um) {
+        snprintf(err, errlen, "--model: out of memory");
+        return EXIT_RUNTIME;
+    }
+    snprintf(um->name, sizeof um->name, "%s", name);
+    snprintf(um->function, sizeof um->function, "%s", name);
+    snprintf(um->origin, sizeof um->origin, "--model %s", name);
+    snprintf(um->formula, sizeof um->formula, "%s", expr);
+    snprintf(um->description, sizeof um->description, "user expression %.200s", expr);
+    usermodel_fill_info(um);
+
+    /* The expression stands alone on line 1 of its own #line name, so the compiler's
+       line:column point into the expression as the user typed it. */
+    struct sbuf b = { 0 };
+    char wrapper_name[600];
+    snprintf(wrapper_name, sizeof wrapper_name, "brdfbench wrapper of %s", um->origin);
+    sb_line_directive(&b, 1, wrapper_name);
+    sb_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n"
+                  "    (void)p0;\n    (void)p1;\n    return RSPLAT(0.0) + (");
+    sb_line_directive(&b, 1, um->origin);
+    sb_add(&b, expr, elen);
+    sb_line_directive(&b, 6, wrapper_name);
+    sb_printf(&b, "    );\n}\n");
+    if (b.failed) {
+        free(b.s);
+        usermodel_free(um);
+        snprintf(err, errlen, "--model: out of memory");
+        return EXIT_RUNTIME;
+    }
+    um->device_source = b.s;
+    *out = um;
+    return 0;
+}
+
+/* ---- the registry ---------------------------------------------------------------------- */
+
+int usermodel_register(struct user_model *um, char *err, size_t errlen)
+{
+    const struct model_info *taken = models_find(um->name);
+    if (taken) {
+        if (usermodel_of_info(taken))
+            snprintf(err, errlen, "%s: user model '%s' is already defined by %s", um->origin, um->name,
+                     usermodel_of_info(taken)->origin);
+        else
+            snprintf(err, errlen, "%s: '%s' is the name of a built-in model (choose another name)", um->origin,
+                     um->name);
+        usermodel_free(um);
+        return EXIT_USAGE;
+    }
+    if (registry_count >= USERMODEL_MAX || models_register_user(&um->info) != 0) {
+        snprintf(err, errlen, "%s: at most %d user models per run", um->origin, USERMODEL_MAX);
+        usermodel_free(um);
+        return EXIT_USAGE;
+    }
+    registry[registry_count++] = um;
+    return 0;
+}
+
+void usermodel_clear_all(void)
+{
+    models_unregister_users();
+    for (int i = 0; i < registry_count; ++i)
+        usermodel_free(registry[i]);
+    registry_count = 0;
+}
+
+int usermodel_count(void) { return registry_count; }
+
+const struct user_model *usermodel_at(int i) { return (i >= 0 && i < registry_count) ? registry[i] : NULL; }
+
+const char *usermodel_names(void)
+{
+    static char names[USERMODEL_MAX * (USERMODEL_NAME_MAX + 1) + 1];
+    size_t used = 0;
+    names[0] = '\0';
+    for (int i = 0; i < registry_count; ++i)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? "," : "", registry[i]->name);
+    return names;
+}
+
+const struct user_model *usermodel_of_info(const struct model_info *info)
+{
+    return (info && info->kernel_id == BRDF_USER) ? (const struct user_model *)info : NULL;
+}
+
+const struct user_model *usermodel_of(const struct model_spec *m) { return m ? usermodel_of_info(m->info) : NULL; }
+
+int usermodel_load_file(const char *path, const struct user_model **out, char *err, size_t errlen)
+{
+    if (out)
+        *out = NULL;
+    for (int i = 0; i < registry_count; ++i)
+        if (registry[i]->from_file && strcmp(registry[i]->origin, path) == 0) {
+            if (out)
+                *out = registry[i];
+            return 0;
+        }
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "--model-file: cannot read %s: %s", path, strerror(errno));
+        return EXIT_USAGE;
+    }
+    char *buf = malloc(USERMODEL_MAX_FILE + 1);
+    if (!buf) {
+        fclose(f);
+        snprintf(err, errlen, "--model-file: out of memory");
+        return EXIT_RUNTIME;
+    }
+    size_t len = fread(buf, 1, USERMODEL_MAX_FILE + 1, f);
+    int bad = ferror(f);
+    int saved = errno;
+    fclose(f);
+    if (bad) {
+        free(buf);
+        snprintf(err, errlen, "--model-file: cannot read %s: %s", path, strerror(saved));
+        return EXIT_USAGE;
+    }
+    struct user_model *um = NULL;
+    int rc = usermodel_parse_file_text(buf, len, path, &um, err, errlen);
+    free(buf);
+    if (rc)
+        return rc;
+    rc = usermodel_register(um, err, errlen);
+    if (rc)
+        return rc;
+    if (out)
+        *out = um;
+    return 0;
+}
+
+int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen)
+{
+    const char *a = argv[*i];
+    if (cli_flag_is(a, "--model-file")) {
+        const char *v = cli_flag_value(argc, argv, i, "--model-file", err, errlen);
+        if (!v)
+            return -2;
+        if (*v == '\0') {
+            snprintf(err, errlen, "--model-file: empty file name");
+            return -2;
+        }
+        return usermodel_load_file(v, NULL, err, errlen) ? -2 : 1;
+    }
+    if (cli_flag_is(a, "--model")) {
+        const char *v = cli_flag_value(argc, argv, i, "--model", err, errlen);
+        if (!v)
+            return -2;
+        struct user_model *um = NULL;
+        if (usermodel_parse_expression(v, &um, err, errlen) || usermodel_register(um, err, errlen))
+            return -2;
+        return 1;
+    }
+    return 0;
+}
+
+/* ---- building ------------------------------------------------------------------------- */
+
+int usermodel_build(struct cl_session *s, const char *kernel_file, const struct model_spec *m,
+                    const char *options, cl_program *out)
+{
+    const struct user_model *um = usermodel_of(m);
+    if (!um)
+        return clsession_build(s, kernel_file, NULL, options, out);
+    char opts[1024];
+    snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", options && *options ? " " : "",
+             USERMODEL_FLOAT_OPTIONS);
+    int rc = clsession_build_user(s, kernel_file, um->device_source, opts, out, 0);
+    if (rc == EXIT_USAGE)
+        fprintf(stderr, "brdfbench: user model '%s' (%s) does not compile; the build log above names the "
+                        "lines of %s\n", um->name, um->origin, um->from_file ? um->origin : "the expression");
+    return rc;
+}
+
+int usermodel_reference_open(const struct user_model *cum, struct cl_session *s)
+{
+    /* Every user model is allocated by this file: its device state may change. */
+    struct user_model *um = (struct user_model *)cum;
+    if (um->ref_point && um->ref_session == s)
+        return 0;
+    usermodel_reference_close(um);
+    const char *no_fp64 = getenv("BRDFBENCH_NO_FP64");
+    int use_double = s->has_fp64 && !(no_fp64 && strcmp(no_fp64, "1") == 0);
+    const char *opts = use_double ? "-DBRDF_HAVE_USER_MODEL -DUSERMODEL_REF_DOUBLE" : USERMODEL_FLOAT_OPTIONS;
+    int rc = clsession_build_user(s, "usermodel_ref.cl", um->device_source, opts, &um->ref_program, 0);
+    if (rc) {
+        if (rc == EXIT_USAGE)
+            fprintf(stderr, "brdfbench: user model '%s' (%s) does not compile for its %s reference; the build "
+                            "log above names the lines of %s\n", um->name, um->origin,
+                    use_double ? "double" : "float", um->from_file ? um->origin : "the expression");
+        um->ref_program = NULL;
+        return rc;
+    }
+    cl_int e;
+    um->ref_point = clCreateKernel(um->ref_program, "usermodel_ref_point", &e);
+    if (e != CL_SUCCESS) {
+        cl_report("clCreateKernel(usermodel_ref_point)", e, __FILE__, __LINE__);
+        clReleaseProgram(um->ref_program);
+        um->ref_program = NULL;
+        um->ref_point = NULL;
+        return EXIT_RUNTIME;
+    }
+    um->ref_out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof(double), NULL, &e);
+    if (e != CL_SUCCESS) {
+        cl_report("clCreateBuffer(user model reference)", e, __FILE__, __LINE__);
+        usermodel_reference_close(um);
+        return EXIT_RUNTIME;
+    }
+    um->ref_session = s;
+    um->ref_is_double = use_double;
+    um->ref_warned = 0;
+    return 0;
+}
+
+void usermodel_reference_close(const struct user_model *cum)
+{
+    /* Called from usermodel_free too, before the model is in the registry. */
+    struct user_model *um = (struct user_model *)cum;
+    if (um->ref_out)
+        clReleaseMemObject(um->ref_out);
+    if (um->ref_point)
+        clReleaseKernel(um->ref_point);
+    if (um->ref_program)
+        clReleaseProgram(um->ref_program);
+    um->ref_out = NULL;
+    um->ref_point = NULL;
+    um->ref_program = NULL;
+    um->ref_session = NULL;
+}
+
+const char *usermodel_reference_note(const struct user_model *um)
+{
+    if (!um || !um->ref_point || um->ref_is_double)
+        return NULL;
+    return "the device has no cl_khr_fp64: this user model's reference is evaluated in float on the device, "
+           "so its float-vs-double check does not hold";
+}
+
+double usermodel_eval_host(const struct model_spec *m, double c, double n)
+{
+    struct user_model *um = (struct user_model *)usermodel_of(m);
+    if (!um || !um->ref_point)
+        return NAN;
+    struct cl_session *s = um->ref_session;
+    cl_int e = CL_SUCCESS;
+    double result = NAN;
+    cl_mem out = um->ref_out;
+    /* One point per launch: the accuracy sweep's refinement asks for points one at a time. */
+    if (um->ref_is_double) {
+        double args[4] = { m->params[0], m->params[1], c, n };
+        for (cl_uint k = 0; k < 4 && e == CL_SUCCESS; ++k)
+            e = clSetKernelArg(um->ref_point, k, sizeof(double), &args[k]);
+    } else {
+        float args[4] = { (float)m->params[0], (float)m->params[1], (float)c, (float)n };
+        for (cl_uint k = 0; k < 4 && e == CL_SUCCESS; ++k)
+            e = clSetKernelArg(um->ref_point, k, sizeof(float), &args[k]);
+    }
+    if (e == CL_SUCCESS)
+        e = clSetKernelArg(um->ref_point, 4, sizeof out, &out);
+    size_t one = 1;
+    if (e == CL_SUCCESS)
+        e = clEnqueueNDRangeKernel(s->queue, um->ref_point, 1, NULL, &one, NULL, 0, NULL, NULL);
+    if (e == CL_SUCCESS) {
+        if (um->ref_is_double) {
+            e = clEnqueueReadBuffer(s->queue, out, CL_TRUE, 0, sizeof(double), &result, 0, NULL, NULL);
+        } else {
+            float v = NAN;
+            e = clEnqueueReadBuffer(s->queue, out, CL_TRUE, 0, sizeof(float), &v, 0, NULL, NULL);
+            result = v;
+        }
+    }
+    if (e != CL_SUCCESS)
+        goto fail;
+    um->ref_calls++;
+    return result;
+fail:
+    if (!um->ref_warned) {
+        um->ref_warned = 1;
+        fprintf(stderr, "brdfbench: evaluating the reference of user model '%s' failed with %s\n", um->name,
+                cl_error_name(e));
+    }
+    return NAN;
+}
