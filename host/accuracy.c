@@ -2,6 +2,7 @@
 #include "accuracy.h"
 #include "exitcodes.h"
 #include "refine.h"
+#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -112,6 +113,14 @@ fail:
 
 void accuracy_close(struct accuracy_ctx *a)
 {
+    for (int i = 0; i < a->user_count; ++i) {
+        struct acc_user_program *u = &a->user[i];
+        if (u->probe) clReleaseKernel(u->probe);
+        if (u->sweep) clReleaseKernel(u->sweep);
+        if (u->program) clReleaseProgram(u->program);
+        usermodel_reference_close((const struct user_model *)u->model);
+    }
+    a->user_count = 0;
     if (a->probe)
         clReleaseKernel(a->probe);
     if (a->sweep)
@@ -120,6 +129,53 @@ void accuracy_close(struct accuracy_ctx *a)
         clReleaseProgram(a->program);
     a->probe = a->sweep = NULL;
     a->program = NULL;
+}
+
+int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m)
+{
+    const struct user_model *um = usermodel_of(m);
+    if (!um)
+        return 0;
+    for (int i = 0; i < a->user_count; ++i)
+        if (a->user[i].model == m->info)
+            return usermodel_reference_open(um, a->s);   /* idempotent; another context may have closed it */
+    if (a->user_count >= ACC_MAX_USER_PROGRAMS) {
+        fprintf(stderr, "brdfbench: at most %d user models per sweep context\n", ACC_MAX_USER_PROGRAMS);
+        return EXIT_RUNTIME;
+    }
+    struct acc_user_program *u = &a->user[a->user_count];
+    memset(u, 0, sizeof *u);
+    int rc = usermodel_build(a->s, "accuracy.cl", m, a->build_options, &u->program);
+    if (rc)
+        return rc;
+    cl_int e;
+    u->model = m->info;
+    ++a->user_count;   /* from here accuracy_close releases it */
+    u->sweep = clCreateKernel(u->program, "accuracy_sweep", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(accuracy_sweep, user model)", fail);
+    u->probe = clCreateKernel(u->program, "models_probe", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(models_probe, user model)", fail);
+    rc = usermodel_reference_open(um, a->s);
+fail:
+    return rc;
+}
+
+/* The sweep and probe kernels that evaluate model m. */
+static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
+{
+    *sweep = a->sweep;
+    *probe = a->probe;
+    if (!usermodel_of(m))
+        return 0;
+    int rc = accuracy_prepare(a, m);
+    if (rc)
+        return rc;
+    for (int i = 0; i < a->user_count; ++i)
+        if (a->user[i].model == m->info) {
+            *sweep = a->user[i].sweep;
+            *probe = a->user[i].probe;
+        }
+    return 0;
 }
 
 void accuracy_result_free(struct accuracy_result *r)
@@ -134,6 +190,9 @@ int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const flo
     int rc = 0;
     cl_int e;
     cl_mem bc = NULL, bn = NULL, bo = NULL;
+    cl_kernel sweep_unused, probe;
+    if ((rc = kernels_for(a, m, &sweep_unused, &probe)) != 0)
+        return rc;
     size_t padded = (count + 15) / 16 * 16;
     float *pc = calloc(padded, sizeof *pc), *pn = calloc(padded, sizeof *pn), *po = calloc(padded, sizeof *po);
     if (!pc || !pn || !po) {
@@ -153,14 +212,14 @@ int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const flo
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe out)", done);
     cl_int id = m->info->kernel_id;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(a->probe, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->probe, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->probe, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->probe, 3, sizeof bc, &bc), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->probe, 4, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->probe, 5, sizeof bo, &bo), done);
+    CL_CHECK_GOTO(clSetKernelArg(probe, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(probe, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(probe, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(probe, 3, sizeof bc, &bc), done);
+    CL_CHECK_GOTO(clSetKernelArg(probe, 4, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(probe, 5, sizeof bo, &bo), done);
     size_t global = padded / 16;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, a->probe, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, probe, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
     memcpy(out, po, count * sizeof *out);
 done:
@@ -348,7 +407,10 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     cl_mem bn = NULL, bo = NULL;
     cl_event ev = NULL;
     float *nv = NULL, *raw = NULL;
+    cl_kernel sweep, probe_unused;
     memset(out, 0, sizeof *out);
+    if ((rc = kernels_for(a, m, &sweep, &probe_unused)) != 0)
+        return rc;
     out->model = *m;
     model_reference_spec(m, &out->reference);
     out->grid = *g;
@@ -373,19 +435,19 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)out->reference.params[0], rp1 = (float)out->reference.params[1];
     cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 3, sizeof ref_id, &ref_id), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 4, sizeof rp0, &rp0), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 5, sizeof rp1, &rp1), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 6, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 7, sizeof ncount, &ncount), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 8, sizeof samples, &samples), done);
-    CL_CHECK_GOTO(clSetKernelArg(a->sweep, 9, sizeof bo, &bo), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 3, sizeof ref_id, &ref_id), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 4, sizeof rp0, &rp0), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 5, sizeof rp1, &rp1), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
     size_t local = sweep_local_size(count, a->s->compute_units);
     size_t global = ((size_t)count + local - 1) / local * local;   /* the kernel skips the padding */
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, a->sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
                                       raw, 0, NULL, NULL), done);
     out->device_seconds = cl_event_seconds(ev);
@@ -440,6 +502,9 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
                  out->invalid_count, out->invalid_n, out->invalid_x);
     else if (!out->ok)
         snprintf(out->reason, sizeof out->reason, "no finite error values");
+    const char *note = usermodel_reference_note(usermodel_of(m));
+    if (note && !out->reason[0])
+        snprintf(out->reason, sizeof out->reason, "%s", note);
 done:
     if (ev) clReleaseEvent(ev);
     if (bo) clReleaseMemObject(bo);

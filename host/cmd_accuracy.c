@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
+#include "usermodel.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +30,8 @@ static void accuracy_usage(FILE *f)
             "  --out DIR          write accuracy.json and accuracy.csv into DIR\n"
             "                     (default: a new folder results/<date-time>/, with results/latest)\n"
             "  --quiet            no table on stdout\n"
+            USERMODEL_OPTIONS_HELP
+            "                     (with a user model and no --models, only the user models run)\n"
             DEVICE_OPTIONS_HELP,
             ACC_MAX_SAMPLES, ACC_DEFAULT_SAMPLES);
 }
@@ -40,7 +43,7 @@ int cmd_accuracy(int argc, char **argv)
     struct device_options dev;
     device_options_init(&dev);
     const char *models_text = "all", *out_dir = NULL;
-    int quiet = 0;
+    int quiet = 0, models_given = 0;
     struct model_spec models[MAX_MODELS];
 
     for (int i = 1; i < argc; ++i) {
@@ -50,6 +53,11 @@ int cmd_accuracy(int argc, char **argv)
             goto usage_error;
         if (d > 0)
             continue;
+        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
+        if (u < 0)
+            goto usage_error;
+        if (u > 0)
+            continue;
         if (strcmp(a, "--help") == 0) {
             accuracy_usage(stdout);
             return EXIT_OK;
@@ -58,6 +66,7 @@ int cmd_accuracy(int argc, char **argv)
         } else if (cli_flag_is(a, "--models")) {
             if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err)))
                 goto usage_error;
+            models_given = 1;
         } else if (cli_flag_is(a, "--out")) {
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
@@ -87,6 +96,8 @@ int cmd_accuracy(int argc, char **argv)
             goto usage_error;
         }
     }
+    if (!models_given && usermodel_count() > 0)
+        models_text = usermodel_names();
     int nmodels = model_spec_list_parse(models_text, models, MAX_MODELS, err, sizeof err);
     if (nmodels < 0)
         goto usage_error;
@@ -126,6 +137,10 @@ int cmd_accuracy(int argc, char **argv)
         return EXIT_RUNTIME;
     }
     rc = accuracy_open(&actx, &s, "");
+    if (rc)
+        goto cleanup;
+    for (int m = 0; m < nmodels && !rc; ++m)
+        rc = accuracy_prepare(&actx, &models[m]);   /* a user model's compile error before any sweep */
     if (rc)
         goto cleanup;
     if (!quiet)
