@@ -18,6 +18,7 @@ static const struct command commands[] = {
     { "all", cmd_all, "the main job: every sweep, heatmap, plot and report.md in results/<date-time>/" },
     { "plot", cmd_plot, "redraw every picture of a run folder from its JSON (no device)" },
     { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)" },
+    { "gate", cmd_gate, "accuracy gates for CI: checks figures of a gates file against bounds (JUnit, JSON)" },
     /* more commands below, one per line */
 };
 

@@ -1,0 +1,1074 @@
+/* gate.c - the gates file, the sweeps it needs, the judgement, and its reports (gate.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "gate.h"
+#include "context.h"
+#include "exitcodes.h"
+#include "jsonr.h"
+#include "jsonw.h"
+#include "outdir.h"
+#include "usermodel.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static const struct {
+    const char *name, *meaning;
+} metrics[GATE_METRIC_COUNT] = {
+    { "epicentre.max_rel", "max relative error |f - f_ref| / f_ref over the epicentre zone" },
+    { "epicentre.max_abs", "max absolute error |f - f_ref| over the epicentre zone" },
+    { "attenuation.max_abs", "max absolute error |f - f_ref| over the attenuation zone" },
+    { "whole.max_abs", "max absolute error |f - f_ref| over x in [0, pi/2]" },
+    { "energy.max_abs_dev", "max over n of |2 pi int_0^(pi/2) f(cos x, n) cos x sin x dx - 1|" },
+    { "invalid.count", "model values that were NaN, Inf or negative in the sweep" },
+};
+
+const char *gate_metric_name(enum gate_metric m) { return metrics[m].name; }
+const char *gate_metric_meaning(enum gate_metric m) { return metrics[m].meaning; }
+
+static int metric_needs_sweep(enum gate_metric m) { return m != GATE_ENERGY_MAX_DEV; }
+
+/* ---- parsing the gates file ------------------------------------------------------------ */
+
+static const char *type_word(enum jr_type t)
+{
+    static const char *w[] = { "null", "a boolean", "a number", "a string", "an array", "an object" };
+    return w[t];
+}
+
+/* A member's value of the expected type, or NULL when absent. Returns 0 or EXIT_USAGE. */
+static int member(const struct jr_doc *d, const struct jr_value *obj, const char *key, enum jr_type type,
+                  const char *where, const struct jr_value **out, char *err, size_t errlen)
+{
+    *out = jr_get(obj, key);
+    if (*out && (*out)->type != type)
+        return jr_fail(d, *out, err, errlen, "%s\"%s\" is %s, %s expected", where, key, type_word((*out)->type),
+                       type_word(type));
+    return 0;
+}
+
+static void list_metrics(char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int m = 0; m < GATE_METRIC_COUNT && used < len; ++m)
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", m ? ", " : "", metrics[m].name);
+}
+
+/* A path named in the gates file: relative paths are relative to the gates file's folder. */
+static int resolve_path(char *out, size_t outlen, const char *base_dir, const char *path)
+{
+    int n = (path[0] == '/' || !base_dir || !*base_dir) ? snprintf(out, outlen, "%s", path)
+                                                          : snprintf(out, outlen, "%s/%s", base_dir, path);
+    return (n < 0 || (size_t)n >= outlen) ? -1 : 0;
+}
+
+/* The user model a gate declares with "model_file" or "expression", registered. */
+static int gate_user_model(const struct jr_doc *d, const char *where,
+                           const struct jr_value *model_v, const struct jr_value *file_v,
+                           const struct jr_value *expr_v, const char *base_dir, char *err, size_t errlen)
+{
+    char msg[1024];
+    if (file_v && expr_v)
+        return jr_fail(d, expr_v, err, errlen, "%sgive either \"model_file\" or \"expression\", not both", where);
+    if (file_v) {
+        char path[4096];
+        const struct user_model *um = NULL;
+        if (!file_v->str[0] || resolve_path(path, sizeof path, base_dir, file_v->str))
+            return jr_fail(d, file_v, err, errlen, "%s\"model_file\" is empty or too long", where);
+        if (usermodel_load_file(path, &um, msg, sizeof msg))
+            return jr_fail(d, file_v, err, errlen, "%s%s", where, msg);
+        /* "model" names the model of that file (with parameters, if any). */
+        char id[USERMODEL_NAME_MAX + 2];
+        snprintf(id, sizeof id, "%.*s", (int)strcspn(model_v->str, ":"), model_v->str);
+        if (strcmp(id, um->name) != 0)
+            return jr_fail(d, model_v, err, errlen, "%smodel '%.60s' is not the model of %.200s (it declares '%s')",
+                           where, id, path, um->name);
+        return 0;
+    }
+    if (expr_v) {
+        char text[USERMODEL_NAME_MAX + USERMODEL_MAX_EXPR + 8];
+        if (strchr(model_v->str, ':'))
+            return jr_fail(d, model_v, err, errlen, "%san expression model takes no parameters (\"model\": a name)",
+                           where);
+        const struct model_info *taken = models_find(model_v->str);
+        if (usermodel_of_info(taken) && !usermodel_of_info(taken)->from_file &&
+            strcmp(usermodel_of_info(taken)->formula, expr_v->str) == 0)
+            return 0;   /* the same expression model, declared by an earlier gate */
+        int tn = snprintf(text, sizeof text, "%s=%s", model_v->str, expr_v->str);
+        if (tn < 0 || (size_t)tn >= sizeof text)
+            return jr_fail(d, expr_v, err, errlen, "%s\"expression\" is longer than %d characters", where,
+                           USERMODEL_MAX_EXPR);
+        struct user_model *um = NULL;
+        if (usermodel_parse_expression(text, &um, msg, sizeof msg) || usermodel_register(um, msg, sizeof msg))
+            return jr_fail(d, expr_v, err, errlen, "%s%s", where, msg);
+        return 0;
+    }
+    return 0;
+}
+
+static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int index, const char *base_dir,
+                      struct gate *g, char *err, size_t errlen)
+{
+    static const char *keys[] = { "model", "model_file", "expression", "metric", "n_min", "n_max", "n_step",
+                                  "samples", "min", "max", "name", "claimed", "note", NULL };
+    char where[32], msg[1024];
+    snprintf(where, sizeof where, "gate %d: ", index + 1);
+    memset(g, 0, sizeof *g);
+    g->line = gv->line;
+    g->col = gv->col;
+    if (gv->type != JR_OBJ)
+        return jr_fail(d, gv, err, errlen, "%sa gate is an object, found %s", where, type_word(gv->type));
+    for (size_t k = 0; k < gv->count; ++k) {
+        int known = 0;
+        for (int j = 0; keys[j] && !known; ++j)
+            known = strcmp(gv->keys[k], keys[j]) == 0;
+        if (!known)
+            return jr_fail(d, &gv->items[k], err, errlen,
+                           "%sunknown member \"%.40s\" (accepted: model, model_file, expression, metric, n_min, "
+                           "n_max, n_step, samples, min, max, name, claimed, note)", where, gv->keys[k]);
+    }
+    const struct jr_value *model_v, *file_v, *expr_v, *metric_v, *v;
+    if (member(d, gv, "model", JR_STR, where, &model_v, err, errlen) ||
+        member(d, gv, "model_file", JR_STR, where, &file_v, err, errlen) ||
+        member(d, gv, "expression", JR_STR, where, &expr_v, err, errlen) ||
+        member(d, gv, "metric", JR_STR, where, &metric_v, err, errlen))
+        return EXIT_USAGE;
+    if (!model_v)
+        return jr_fail(d, gv, err, errlen, "%s\"model\" is missing (e.g. \"fq2\" or \"fq:Q=0.64\")", where);
+    if (!metric_v) {
+        list_metrics(msg, sizeof msg);
+        return jr_fail(d, gv, err, errlen, "%s\"metric\" is missing (accepted: %s)", where, msg);
+    }
+    if (gate_user_model(d, where, model_v, file_v, expr_v, base_dir, err, errlen))
+        return EXIT_USAGE;
+    if (model_spec_parse(model_v->str, &g->model, msg, sizeof msg))
+        return jr_fail(d, model_v, err, errlen, "%s%s", where, msg);
+    int metric = -1;
+    for (int m = 0; m < GATE_METRIC_COUNT; ++m)
+        if (strcmp(metric_v->str, metrics[m].name) == 0)
+            metric = m;
+    if (metric < 0) {
+        list_metrics(msg, sizeof msg);
+        return jr_fail(d, metric_v, err, errlen, "%sunknown metric '%.60s' (accepted: %s)", where, metric_v->str, msg);
+    }
+    g->metric = (enum gate_metric)metric;
+
+    /* The grid: the accuracy command's defaults. */
+    g->grid.n_min = 2.0;
+    g->grid.n_max = 1000.0;
+    g->grid.n_step = 1.0;
+    g->grid.samples = ACC_DEFAULT_SAMPLES;
+    static const char *num_keys[] = { "n_min", "n_max", "n_step", "samples", "min", "max", "claimed" };
+    const struct jr_value *nv[7];
+    for (int k = 0; k < 7; ++k)
+        if (member(d, gv, num_keys[k], JR_NUM, where, &nv[k], err, errlen))
+            return EXIT_USAGE;
+    if (nv[0] && !(nv[0]->num > 0 && nv[0]->num <= ACC_MAX_N))
+        return jr_fail(d, nv[0], err, errlen, "%s\"n_min\" %g is out of range (accepted: 0 < n_min <= %g)", where,
+                       nv[0]->num, ACC_MAX_N);
+    if (nv[1] && !(nv[1]->num > 0 && nv[1]->num <= ACC_MAX_N))
+        return jr_fail(d, nv[1], err, errlen, "%s\"n_max\" %g is out of range (accepted: 0 < n_max <= %g)", where,
+                       nv[1]->num, ACC_MAX_N);
+    if (nv[2] && !(nv[2]->num > 0 && nv[2]->num <= ACC_MAX_N))
+        return jr_fail(d, nv[2], err, errlen, "%s\"n_step\" %g is out of range (accepted: 0 < n_step <= %g)", where,
+                       nv[2]->num, ACC_MAX_N);
+    if (nv[3] && !(nv[3]->num >= ACC_MIN_SAMPLES && nv[3]->num <= (double)ACC_MAX_SAMPLES &&
+                   nv[3]->num == floor(nv[3]->num) && fmod(nv[3]->num, 16.0) == 0))
+        return jr_fail(d, nv[3], err, errlen, "%s\"samples\" %g is out of range (accepted: a multiple of 16 in "
+                       "[%d, %ld])", where, nv[3]->num, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES);
+    if (nv[0]) g->grid.n_min = nv[0]->num;
+    if (nv[1]) g->grid.n_max = nv[1]->num;
+    if (nv[2]) g->grid.n_step = nv[2]->num;
+    if (nv[3]) g->grid.samples = (long)nv[3]->num;
+    if (!(g->grid.n_min < g->grid.n_max))
+        return jr_fail(d, nv[0] ? nv[0] : (nv[1] ? nv[1] : gv), err, errlen,
+                       "%s\"n_min\" (%g) must be below \"n_max\" (%g)", where, g->grid.n_min, g->grid.n_max);
+    if (accuracy_grid_check(&g->grid, NULL, msg, sizeof msg))
+        return jr_fail(d, gv, err, errlen, "%sgrid: %s", where, msg);
+    if (!nv[4] && !nv[5])
+        return jr_fail(d, gv, err, errlen, "%sa bound is missing: give \"max\" (and optionally \"min\")", where);
+    if (nv[4]) { g->has_min = 1; g->min = nv[4]->num; }
+    if (nv[5]) { g->has_max = 1; g->max = nv[5]->num; }
+    if (g->has_min && g->has_max && !(g->min <= g->max))
+        return jr_fail(d, nv[4], err, errlen, "%s\"min\" (%g) is above \"max\" (%g)", where, g->min, g->max);
+    if (nv[6]) { g->has_claimed = 1; g->claimed = nv[6]->num; }
+
+    if (member(d, gv, "name", JR_STR, where, &v, err, errlen))
+        return EXIT_USAGE;
+    if (v) {
+        if (!v->str[0] || strlen(v->str) >= sizeof g->name)
+            return jr_fail(d, v, err, errlen, "%s\"name\" must have 1 to %zu characters", where, sizeof g->name - 1);
+        snprintf(g->name, sizeof g->name, "%s", v->str);
+    } else {
+        snprintf(g->name, sizeof g->name, "%s %s n=[%g,%g]", g->model.label, metrics[g->metric].name,
+                 g->grid.n_min, g->grid.n_max);
+    }
+    if (member(d, gv, "note", JR_STR, where, &v, err, errlen))
+        return EXIT_USAGE;
+    if (v)
+        snprintf(g->note, sizeof g->note, "%s", v->str);
+    g->measured = g->at_n = g->at_x = NAN;
+    g->invalid_n = g->invalid_x = NAN;
+    g->baseline = g->baseline_change = NAN;
+    return 0;
+}
+
+int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir,
+                        struct gate_set *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    snprintf(out->path, sizeof out->path, "%s", name);
+    out->tolerance = GATE_DEFAULT_TOLERANCE;
+    struct jr_doc doc;
+    if (len == 0) {
+        snprintf(err, errlen, "%s: empty file (expected {\"gates\": [...]}, see docs/gates.md)", name);
+        return EXIT_USAGE;
+    }
+    if (jr_parse_text(text, len, name, &doc, err, errlen))
+        return EXIT_USAGE;
+    int rc = 0;
+    const struct jr_value *root = &doc.root, *gates, *v;
+    if (root->type != JR_OBJ) {
+        rc = jr_fail(&doc, root, err, errlen, "the gates file is an object {\"gates\": [...]}, found %s",
+                     type_word(root->type));
+        goto done;
+    }
+    for (size_t k = 0; k < root->count; ++k)
+        if (strcmp(root->keys[k], "gates") != 0 && strcmp(root->keys[k], "description") != 0 &&
+            strcmp(root->keys[k], "schema") != 0) {
+            rc = jr_fail(&doc, &root->items[k], err, errlen,
+                         "unknown member \"%.40s\" (accepted: gates, description, schema)", root->keys[k]);
+            goto done;
+        }
+    if ((rc = member(&doc, root, "schema", JR_STR, "", &v, err, errlen)) != 0)
+        goto done;
+    if (v && strcmp(v->str, GATES_SCHEMA) != 0) {
+        rc = jr_fail(&doc, v, err, errlen, "schema '%.60s' is not supported (accepted: %s)", v->str, GATES_SCHEMA);
+        goto done;
+    }
+    if ((rc = member(&doc, root, "description", JR_STR, "", &v, err, errlen)) != 0)
+        goto done;
+    if (v)
+        snprintf(out->description, sizeof out->description, "%s", v->str);
+    if ((rc = member(&doc, root, "gates", JR_ARR, "", &gates, err, errlen)) != 0)
+        goto done;
+    if (!gates) {
+        rc = jr_fail(&doc, root, err, errlen, "member \"gates\" is missing (an array of gates)");
+        goto done;
+    }
+    if (gates->count == 0 || gates->count > GATE_MAX_GATES) {
+        rc = jr_fail(&doc, gates, err, errlen, "\"gates\" has %zu gates (accepted: 1 to %d)", gates->count,
+                     GATE_MAX_GATES);
+        goto done;
+    }
+    out->gates = calloc(gates->count, sizeof *out->gates);
+    if (!out->gates) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    for (size_t i = 0; i < gates->count; ++i) {
+        if ((rc = parse_gate(&doc, &gates->items[i], (int)i, base_dir, &out->gates[i], err, errlen)) != 0)
+            goto done;
+        out->count++;
+    }
+done:
+    jr_free(&doc);
+    if (rc) {
+        free(out->gates);
+        out->gates = NULL;
+        out->count = 0;
+    }
+    return rc;
+}
+
+int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot read the gates file: %s", path, strerror(errno));
+        return EXIT_USAGE;
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f);
+        snprintf(err, errlen, "%s: is a folder, not a gates file", path);
+        return EXIT_USAGE;
+    }
+    const size_t max = 4u << 20;
+    char *buf = malloc(max + 1);
+    if (!buf) {
+        fclose(f);
+        snprintf(err, errlen, "%s: out of memory", path);
+        return EXIT_RUNTIME;
+    }
+    size_t len = fread(buf, 1, max + 1, f);
+    int bad = ferror(f);
+    fclose(f);
+    if (bad || len > max) {
+        free(buf);
+        snprintf(err, errlen, bad ? "%s: cannot read the gates file" : "%s: larger than 4 MiB", path);
+        return EXIT_USAGE;
+    }
+    char base[4096];
+    snprintf(base, sizeof base, "%s", path);
+    char *slash = strrchr(base, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(base, sizeof base, ".");
+    if (slash == base)
+        snprintf(base, sizeof base, "/");
+    int rc = gate_set_parse_text(buf, len, path, base, out, err, errlen);
+    free(buf);
+    return rc;
+}
+
+void gate_set_free(struct gate_set *g)
+{
+    free(g->gates);
+    g->gates = NULL;
+    g->count = 0;
+}
+
+/* ---- the baseline ---------------------------------------------------------------------- */
+
+static int same_number(double a, double b) { return fabs(a - b) <= 1e-9 * fmax(1.0, fabs(a)); }
+
+/* The figure of metric m in one result object of accuracy.json; NAN when not recorded. */
+static int baseline_value(const struct jr_value *res, enum gate_metric m, double *out)
+{
+    const char *section = NULL, *key = NULL;
+    switch (m) {
+    case GATE_EPICENTRE_MAX_REL:   section = "epicentre"; key = "max_rel"; break;
+    case GATE_ATTENUATION_MAX_ABS: section = "attenuation"; key = "max_abs"; break;
+    case GATE_WHOLE_MAX_ABS:       section = "whole"; key = "max_abs"; break;
+    case GATE_INVALID_COUNT:       section = "invalid"; key = "count"; break;
+    default: return -1;   /* not part of accuracy.json */
+    }
+    const struct jr_value *sec = jr_get(res, section), *v = jr_get(sec, key);
+    if (!v || v->type != JR_NUM)
+        return -1;
+    *out = v->num;
+    return 0;
+}
+
+int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, char *err, size_t errlen)
+{
+    char file[sizeof g->baseline_path];
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        snprintf(err, errlen, "--baseline: cannot read %s: %s", path, strerror(errno));
+        return EXIT_USAGE;
+    }
+    if (S_ISDIR(st.st_mode)) {
+        if (path_join(file, sizeof file, path, "accuracy.json")) {
+            snprintf(err, errlen, "--baseline: path too long");
+            return EXIT_USAGE;
+        }
+    } else {
+        snprintf(file, sizeof file, "%s", path);
+    }
+    struct jr_doc doc;
+    char msg[1024];
+    if (jr_parse_file(file, &doc, msg, sizeof msg)) {
+        snprintf(err, errlen, "--baseline: %s", msg);
+        return EXIT_USAGE;
+    }
+    int rc = 0;
+    const struct jr_value *schema = jr_get(&doc.root, "schema"), *results = jr_get(&doc.root, "results");
+    if (!schema || schema->type != JR_STR || strcmp(schema->str, "brdfbench.accuracy/1") != 0) {
+        rc = jr_fail(&doc, schema ? schema : &doc.root, msg, sizeof msg,
+                     "not an accuracy.json (schema brdfbench.accuracy/1 expected)");
+        snprintf(err, errlen, "--baseline: %s", msg);
+        goto done;
+    }
+    if (!results || results->type != JR_ARR) {
+        rc = jr_fail(&doc, &doc.root, msg, sizeof msg, "member \"results\" (an array) is missing");
+        snprintf(err, errlen, "--baseline: %s", msg);
+        goto done;
+    }
+    const struct jr_value *grid = jr_get(jr_get(&doc.root, "context"), "grid");
+    const struct jr_value *step_v = jr_get(grid, "n_step");
+    double base_step = (step_v && step_v->type == JR_NUM) ? step_v->num : NAN;
+    snprintf(g->baseline_path, sizeof g->baseline_path, "%s", file);
+    g->tolerance = tolerance;
+    for (int i = 0; i < g->count; ++i) {
+        struct gate *gt = &g->gates[i];
+        gt->baseline_status = GATE_BASELINE_MISSING;
+        if (!same_number(base_step, gt->grid.n_step))
+            continue;
+        for (size_t k = 0; k < results->count; ++k) {
+            const struct jr_value *r = &results->items[k];
+            const struct jr_value *label = jr_get(r, "label"), *a = jr_get(r, "n_min"), *b = jr_get(r, "n_max");
+            if (!label || label->type != JR_STR || strcmp(label->str, gt->model.label) != 0 || !a ||
+                a->type != JR_NUM || !b || b->type != JR_NUM || !same_number(a->num, gt->grid.n_min) ||
+                !same_number(b->num, gt->grid.n_max))
+                continue;
+            double v;
+            if (baseline_value(r, gt->metric, &v) == 0) {
+                gt->baseline = v;
+                gt->baseline_status = GATE_BASELINE_OK;   /* judged after the run */
+            }
+            break;
+        }
+    }
+done:
+    jr_free(&doc);
+    return rc;
+}
+
+/* ---- running --------------------------------------------------------------------------- */
+
+int gate_set_check_device(const struct gate_set *g, const struct cl_session *s, char *err, size_t errlen)
+{
+    char msg[1024];
+    for (int i = 0; i < g->count; ++i)
+        if (metric_needs_sweep(g->gates[i].metric) && accuracy_grid_check(&g->gates[i].grid, s, msg, sizeof msg)) {
+            snprintf(err, errlen, "%s:%d:%d: gate %d: grid: %s", g->path, g->gates[i].line, g->gates[i].col, i + 1,
+                     msg);
+            return EXIT_USAGE;
+        }
+    return 0;
+}
+
+/* A sweep that the gates need: a model over a grid. */
+struct gate_sweep {
+    struct model_spec model;
+    struct accuracy_grid grid;
+    struct accuracy_result result;
+    int ran;
+};
+
+/* 1 when x lies on the lattice a + k h (k >= 0 integer), within rounding. */
+static int on_lattice(double x, double a, double h)
+{
+    double k = (x - a) / h;
+    return k >= -1e-9 && fabs(k - nearbyint(k)) <= 1e-9 * fmax(1.0, fabs(k));
+}
+
+/* 1 when sweep grid s holds every n value of gate grid g (so g's figures can be read off s). */
+static int grid_covers(const struct accuracy_grid *s, const struct accuracy_grid *g)
+{
+    return s->samples == g->samples && same_number(s->n_step, g->n_step) && s->n_min <= g->n_min &&
+           s->n_max >= g->n_max && on_lattice(g->n_min, s->n_min, s->n_step) &&
+           (same_number(g->n_max, s->n_max) || on_lattice(g->n_max, s->n_min, s->n_step));
+}
+
+static int same_model(const struct model_spec *a, const struct model_spec *b)
+{
+    return a->info == b->info && strcmp(a->label, b->label) == 0;
+}
+
+/* Keeps the larger of best and e (NaN never wins over a number). */
+static void keep_max(struct acc_extreme *best, const struct acc_extreme *e)
+{
+    if (e->value > best->value || (isnan(best->value) && isfinite(e->value)))
+        *best = *e;
+}
+
+/* Reads a gate's figure off a sweep over a grid that covers its own. */
+static void gate_from_sweep(struct gate *g, const struct accuracy_result *r)
+{
+    float lo = (float)g->grid.n_min, hi = (float)g->grid.n_max;
+    struct acc_extreme best = { NAN, NAN, NAN };
+    long long invalid = 0;
+    g->invalid_n = g->invalid_x = NAN;
+    for (long i = 0; i < r->n_count; ++i) {
+        const struct acc_per_n *p = &r->per_n[i];
+        if (p->n < lo || p->n > hi)
+            continue;
+        if (p->invalid_count > 0) {
+            if (invalid == 0) {
+                g->invalid_n = p->n;
+                g->invalid_x = acos((double)p->invalid_c);
+            }
+            invalid += (long long)p->invalid_count;
+        }
+        switch (g->metric) {
+        case GATE_EPICENTRE_MAX_REL:   keep_max(&best, &p->epi_rel_d); break;
+        case GATE_EPICENTRE_MAX_ABS:   keep_max(&best, &p->epi_abs_d); break;
+        case GATE_ATTENUATION_MAX_ABS: keep_max(&best, &p->att_abs_d); break;
+        case GATE_WHOLE_MAX_ABS:       keep_max(&best, &p->epi_abs_d); keep_max(&best, &p->att_abs_d); break;
+        default: break;
+        }
+    }
+    g->invalid_count = invalid;
+    if (g->metric == GATE_INVALID_COUNT) {
+        g->measured = (double)invalid;
+        g->at_n = g->invalid_n;
+        g->at_x = g->invalid_x;
+    } else {
+        g->measured = best.value;
+        g->at_n = best.n;
+        g->at_x = best.x;
+    }
+}
+
+struct energy_ctx {
+    const struct model_spec *m;
+    double n;
+};
+
+/* 2 pi f(c, n) c: the integrand of the energy over c = cos x in [0, 1]
+   (2 pi int_0^(pi/2) f(cos x) cos x sin x dx = 2 pi int_0^1 f(c) c dc). */
+static double energy_integrand(double c, void *p)
+{
+    const struct energy_ctx *e = p;
+    return 2.0 * 3.14159265358979323846 * model_eval_host(e->m, c, e->n) * c;
+}
+
+/* The energy 2 pi int_0^1 f(c, n) c dc by GSL's adaptive quadrature, with break points where
+   a lobe of width ~1/n changes fastest. NAN when the integral fails or f is not finite. */
+static double energy_at(const struct model_spec *m, double n, gsl_integration_workspace *w)
+{
+    struct energy_ctx ctx = { m, n };
+    gsl_function fn = { energy_integrand, &ctx };
+    double pts[8];
+    size_t np = 0;
+    pts[np++] = 0.0;
+    static const double widths[] = { 64.0, 16.0, 4.0, 1.0 };
+    for (int k = 0; k < 4; ++k) {
+        double c = 1.0 - widths[k] / n;
+        if (c > pts[np - 1] + 1e-12 && c < 1.0)
+            pts[np++] = c;
+    }
+    pts[np++] = 1.0;
+    double result = NAN, abserr = NAN;
+    int status = gsl_integration_qagp(&fn, pts, np, 1e-13, 1e-10, 1000, w, &result, &abserr);
+    if (!isfinite(result) || (status != GSL_SUCCESS && !(abserr <= 1e-9 * fmax(1.0, fabs(result)))))
+        return NAN;
+    return result;
+}
+
+static void gate_energy(struct gate *g)
+{
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+    long count = accuracy_grid_count(&g->grid);
+    g->measured = g->at_n = g->at_x = NAN;
+    int bad = 0;
+    for (long i = 0; w && i < count; ++i) {
+        double n = accuracy_grid_n(&g->grid, i);
+        double dev = fabs(energy_at(&g->model, n, w) - 1.0);
+        if (!isfinite(dev)) {
+            if (!bad++)
+                snprintf(g->reason, sizeof g->reason, "the energy integral failed or was not finite at n = %g", n);
+            continue;
+        }
+        if (isnan(g->measured) || dev > g->measured) {
+            g->measured = dev;
+            g->at_n = n;
+        }
+    }
+    if (!w)
+        snprintf(g->reason, sizeof g->reason, "out of memory");
+    else if (bad)
+        g->measured = NAN;   /* a maximum that skipped points is no maximum */
+    if (w)
+        gsl_integration_workspace_free(w);
+    gsl_set_error_handler(old);
+}
+
+/* PASS/FAIL against the bounds and the baseline. */
+static void gate_judge(struct gate *g, double tolerance)
+{
+    char why[400] = "";
+    int fail = 0;
+    if (!isfinite(g->measured)) {
+        fail = 1;
+        snprintf(why, sizeof why, "%s", g->reason[0] ? g->reason : "no finite value was measured");
+        g->margin = g->margin_rel = NAN;
+    } else {
+        double m_hi = g->has_max ? g->max - g->measured : INFINITY;
+        double m_lo = g->has_min ? g->measured - g->min : INFINITY;
+        g->margin = fmin(m_hi, m_lo);
+        double bound = m_hi <= m_lo ? g->max : g->min;
+        g->margin_rel = bound != 0 ? g->margin / fabs(bound) : NAN;
+        if (g->margin < 0) {
+            fail = 1;
+            if (m_hi < 0)
+                snprintf(why, sizeof why, "measured %.6g is above max %.6g", g->measured, g->max);
+            else
+                snprintf(why, sizeof why, "measured %.6g is below min %.6g", g->measured, g->min);
+        }
+        if (g->metric != GATE_INVALID_COUNT && g->invalid_count > 0) {
+            fail = 1;
+            size_t used = strlen(why);
+            snprintf(why + used, sizeof why - used,
+                     "%s%lld model values were NaN, Inf or negative (first at n = %g, x = %.6g)",
+                     used ? "; " : "", g->invalid_count, g->invalid_n, g->invalid_x);
+        }
+    }
+    if (g->baseline_status == GATE_BASELINE_OK || g->baseline_status == GATE_BASELINE_REGRESSION) {
+        g->baseline_change = g->baseline != 0 ? (g->measured - g->baseline) / fabs(g->baseline) : NAN;
+        double allowed = tolerance * fabs(g->baseline) + GATE_BASELINE_FLOOR;
+        if (!(g->measured - g->baseline <= allowed)) {
+            g->baseline_status = GATE_BASELINE_REGRESSION;
+            fail = 1;
+            size_t used = strlen(why);
+            snprintf(why + used, sizeof why - used, "%sregression: %.6g against baseline %.6g (%+.3g%%, tolerance %g%%)",
+                     used ? "; " : "", g->measured, g->baseline, 100.0 * g->baseline_change, 100.0 * tolerance);
+        } else {
+            g->baseline_status = GATE_BASELINE_OK;
+        }
+    }
+    g->status = fail ? GATE_FAIL : GATE_PASS;
+    if (fail)
+        snprintf(g->reason, sizeof g->reason, "%s", why);
+}
+
+int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
+{
+    int rc = 0;
+    struct accuracy_ctx actx;
+    memset(&actx, 0, sizeof actx);
+    struct gate_sweep *sweeps = calloc((size_t)gs->count, sizeof *sweeps);
+    int *plan = malloc((size_t)gs->count * sizeof *plan), *order = malloc((size_t)gs->count * sizeof *order);
+    int nsweeps = 0;
+    if (!sweeps || !plan || !order) {
+        fprintf(stderr, "brdfbench gate: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    /* Plan: widest grids first, so a narrower gate on the same model reads its figure off a
+       wider sweep that holds its n values instead of running its own. */
+    for (int i = 0; i < gs->count; ++i)
+        order[i] = i;
+    for (int i = 1; i < gs->count; ++i)
+        for (int j = i; j > 0; --j) {
+            const struct accuracy_grid *a = &gs->gates[order[j - 1]].grid, *b = &gs->gates[order[j]].grid;
+            if (b->n_max - b->n_min <= a->n_max - a->n_min)
+                break;
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    for (int k = 0; k < gs->count; ++k) {
+        int i = order[k];
+        struct gate *g = &gs->gates[i];
+        plan[i] = -1;
+        if (!metric_needs_sweep(g->metric))
+            continue;
+        for (int j = 0; j < nsweeps && plan[i] < 0; ++j)
+            if (same_model(&sweeps[j].model, &g->model) && grid_covers(&sweeps[j].grid, &g->grid))
+                plan[i] = j;
+        if (plan[i] < 0) {
+            sweeps[nsweeps].model = g->model;
+            sweeps[nsweeps].grid = g->grid;
+            plan[i] = nsweeps++;
+        }
+    }
+    gs->sweeps_run = nsweeps;
+    if ((rc = accuracy_open(&actx, s, "")) != 0)
+        goto done;
+    /* Every user model compiles before the first sweep runs. */
+    for (int i = 0; i < gs->count && !rc; ++i)
+        rc = accuracy_prepare(&actx, &gs->gates[i].model);
+    if (rc)
+        goto done;
+    for (int i = 0; i < gs->count; ++i) {
+        struct gate *g = &gs->gates[i];
+        double t0 = wall_seconds();
+        if (plan[i] >= 0) {
+            struct gate_sweep *sw = &sweeps[plan[i]];
+            if (!sw->ran) {
+                if ((rc = accuracy_run(&actx, &sw->model, &sw->grid, &sw->result)) != 0)
+                    goto done;
+                sw->ran = 1;
+                if (progress)
+                    fprintf(progress, "sweep %d/%d: %s n=[%g,%g] step %g, %ld samples per zone (%.2f s)\n",
+                            plan[i] + 1, nsweeps, sw->model.label, sw->grid.n_min, sw->grid.n_max, sw->grid.n_step,
+                            sw->grid.samples, wall_seconds() - t0);
+            }
+            gate_from_sweep(g, &sw->result);
+            if (sw->result.reason[0] && sw->result.invalid_count == 0)
+                snprintf(g->reason, sizeof g->reason, "%s", sw->result.reason);
+        } else {
+            if ((rc = accuracy_prepare(&actx, &g->model)) != 0)   /* the reference of a user model */
+                goto done;
+            gate_energy(g);
+            if (progress)
+                fprintf(progress, "energy: %s n=[%g,%g] step %g (%.2f s)\n", g->model.label, g->grid.n_min,
+                        g->grid.n_max, g->grid.n_step, wall_seconds() - t0);
+        }
+        g->seconds = wall_seconds() - t0;
+        gate_judge(g, gs->tolerance);
+    }
+done:
+    accuracy_close(&actx);
+    if (sweeps)
+        for (int j = 0; j < nsweeps; ++j)
+            if (sweeps[j].ran)
+                accuracy_result_free(&sweeps[j].result);
+    free(sweeps);
+    free(plan);
+    free(order);
+    return rc;
+}
+
+int gate_set_failures(const struct gate_set *g)
+{
+    int n = 0;
+    for (int i = 0; i < g->count; ++i)
+        n += g->gates[i].status == GATE_FAIL;
+    return n;
+}
+
+/* ---- reports --------------------------------------------------------------------------- */
+
+static void bound_text(const struct gate *g, char *buf, size_t len)
+{
+    if (g->has_min && g->has_max)
+        snprintf(buf, len, "[%.6g, %.6g]", g->min, g->max);
+    else if (g->has_max)
+        snprintf(buf, len, "max %.6g", g->max);
+    else
+        snprintf(buf, len, "min %.6g", g->min);
+}
+
+/* The one line of a gate, without the PASS/FAIL word. */
+static void gate_line(const struct gate *g, char *buf, size_t len)
+{
+    char bound[96], where[96] = "", margin[64] = "", base[128] = "", claimed[64] = "";
+    bound_text(g, bound, sizeof bound);
+    if (isfinite(g->at_n) && isfinite(g->at_x))
+        snprintf(where, sizeof where, " at n=%g x=%.4g", g->at_n, g->at_x);
+    else if (isfinite(g->at_n))
+        snprintf(where, sizeof where, " at n=%g", g->at_n);
+    if (isfinite(g->margin) && isfinite(g->margin_rel))
+        snprintf(margin, sizeof margin, "; margin %+.3g (%+.3g%%)", g->margin, 100.0 * g->margin_rel);
+    else if (isfinite(g->margin))
+        snprintf(margin, sizeof margin, "; margin %+.3g", g->margin);
+    if (g->baseline_status == GATE_BASELINE_OK || g->baseline_status == GATE_BASELINE_REGRESSION)
+        snprintf(base, sizeof base, "; baseline %.6g (%+.3g%%)", g->baseline,
+                 isfinite(g->baseline_change) ? 100.0 * g->baseline_change : 0.0);
+    else if (g->baseline_status == GATE_BASELINE_MISSING)
+        snprintf(base, sizeof base, "; baseline: no matching entry");
+    if (g->has_claimed)
+        snprintf(claimed, sizeof claimed, "; claimed %.6g", g->claimed);
+    snprintf(buf, len, "%s: measured %.7g%s; bound %s%s%s%s%s%s", g->name, g->measured, where, bound, margin, base,
+             claimed, g->reason[0] ? " -- " : "", g->reason);
+}
+
+void gate_set_print(FILE *f, const struct gate_set *gs)
+{
+    char line[1400];
+    for (int i = 0; i < gs->count; ++i) {
+        const struct gate *g = &gs->gates[i];
+        gate_line(g, line, sizeof line);
+        fprintf(f, "%s  %s\n", g->status == GATE_PASS ? "PASS" : g->status == GATE_FAIL ? "FAIL" : "----", line);
+    }
+    int failed = gate_set_failures(gs);
+    fprintf(f, "%d gates: %d passed, %d failed (%s; %d sweeps)\n", gs->count, gs->count - failed, failed, gs->path,
+            gs->sweeps_run);
+}
+
+/* Writes data to path: atomically for a file, in place for an existing device (e.g.
+   /dev/stdout, /dev/full), where a rename would replace the device itself. */
+static int write_output(const char *path, const char *data, size_t len, char *err, size_t errlen)
+{
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        if (S_ISDIR(st.st_mode)) {
+            snprintf(err, errlen, "cannot write %s: it is a folder", path);
+            return -1;
+        }
+        int fd = open(path, O_WRONLY);
+        if (fd < 0) {
+            snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
+            return -1;
+        }
+        size_t done = 0;
+        while (done < len) {
+            ssize_t w = write(fd, data + done, len - done);
+            if (w < 0 && errno == EINTR)
+                continue;
+            if (w <= 0) {
+                snprintf(err, errlen, "cannot write %s: %s", path, w < 0 ? strerror(errno) : "nothing written");
+                close(fd);
+                return -1;
+            }
+            done += (size_t)w;
+        }
+        if (close(fd) != 0) {
+            snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
+            return -1;
+        }
+        return 0;
+    }
+    return write_file_atomic(path, data, len, err, errlen);
+}
+
+int gate_output_check(const char *flag, const char *path, char *err, size_t errlen)
+{
+    struct stat st;
+    if (!path[0]) {
+        snprintf(err, errlen, "%s: empty file name", flag);
+        return -1;
+    }
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            snprintf(err, errlen, "%s: %s is a folder (a file name is expected)", flag, path);
+            return -1;
+        }
+        if (!S_ISREG(st.st_mode))
+            return access(path, W_OK) == 0 ? 0 : (snprintf(err, errlen, "%s: cannot write %s: %s", flag, path,
+                                                           strerror(errno)), -1);
+    }
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == dir)
+        dir[1] = '\0';
+    else
+        *slash = '\0';
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(err, errlen, "%s: folder %s does not exist", flag, dir);
+        return -1;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "%s: folder %s is not writable: %s", flag, dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+/* Text growing in a buffer, with XML escaping. */
+struct xbuf {
+    char *s;
+    size_t len, cap;
+    int failed;
+};
+
+static void xb_raw(struct xbuf *b, const char *t, size_t n)
+{
+    if (b->failed)
+        return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 8192;
+        while (cap < b->len + n + 1)
+            cap *= 2;
+        char *ns = realloc(b->s, cap);
+        if (!ns) {
+            b->failed = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = cap;
+    }
+    memcpy(b->s + b->len, t, n);
+    b->len += n;
+    b->s[b->len] = '\0';
+}
+
+static void xb_printf(struct xbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void xb_printf(struct xbuf *b, const char *fmt, ...)
+{
+    char tmp[512];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n > 0)
+        xb_raw(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
+}
+
+/* Escaped text for an XML attribute or element; control characters (not allowed in XML 1.0)
+   become spaces. */
+static void xb_text(struct xbuf *b, const char *t)
+{
+    for (; *t; ++t) {
+        switch (*t) {
+        case '&': xb_raw(b, "&amp;", 5); break;
+        case '<': xb_raw(b, "&lt;", 4); break;
+        case '>': xb_raw(b, "&gt;", 4); break;
+        case '"': xb_raw(b, "&quot;", 6); break;
+        case '\'': xb_raw(b, "&apos;", 6); break;
+        default:
+            if ((unsigned char)*t < 0x20 && *t != '\n' && *t != '\t')
+                xb_raw(b, " ", 1);
+            else
+                xb_raw(b, t, 1);
+        }
+    }
+}
+
+int gate_set_write_junit(const struct gate_set *gs, const char *path, const struct cl_session *s, char *err,
+                         size_t errlen)
+{
+    struct xbuf b = { 0 };
+    int failed = gate_set_failures(gs);
+    double total = 0;
+    for (int i = 0; i < gs->count; ++i)
+        total += gs->gates[i].seconds;
+    char stamp[64];
+    utc_now_iso(stamp, sizeof stamp);
+    xb_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    xb_printf(&b, "<testsuites name=\"brdfbench gate\" tests=\"%d\" failures=\"%d\" errors=\"0\" time=\"%.3f\">\n",
+              gs->count, failed, total);
+    xb_printf(&b, "  <testsuite name=\"");
+    xb_text(&b, gs->path);
+    xb_printf(&b, "\" tests=\"%d\" failures=\"%d\" errors=\"0\" skipped=\"0\" time=\"%.3f\" timestamp=\"", gs->count,
+              failed, total);
+    xb_text(&b, stamp);
+    xb_printf(&b, "\">\n    <properties>\n");
+    const char *props[][2] = { { "device", s ? s->device_name : "" }, { "platform_version", s ? s->platform_version : "" },
+                               { "brdfbench_version", BRDF_VERSION }, { "git_revision", brdf_git_revision },
+                               { "baseline", gs->baseline_path } };
+    for (size_t k = 0; k < sizeof props / sizeof props[0]; ++k) {
+        if (!props[k][1][0])
+            continue;
+        xb_printf(&b, "      <property name=\"%s\" value=\"", props[k][0]);
+        xb_text(&b, props[k][1]);
+        xb_printf(&b, "\"/>\n");
+    }
+    xb_printf(&b, "    </properties>\n");
+    char line[1400];
+    for (int i = 0; i < gs->count; ++i) {
+        const struct gate *g = &gs->gates[i];
+        gate_line(g, line, sizeof line);
+        xb_printf(&b, "    <testcase classname=\"brdfbench.gate.");
+        xb_text(&b, g->model.info->id);
+        xb_printf(&b, "\" name=\"");
+        xb_text(&b, g->name);
+        xb_printf(&b, "\" time=\"%.3f\">\n", g->seconds);
+        if (g->status == GATE_FAIL) {
+            const char *type = g->baseline_status == GATE_BASELINE_REGRESSION ? "regression"
+                               : !isfinite(g->measured)                        ? "no_value"
+                               : g->invalid_count > 0 && g->metric != GATE_INVALID_COUNT ? "invalid_values"
+                                                                               : "bound";
+            xb_printf(&b, "      <failure type=\"%s\" message=\"", type);
+            xb_text(&b, g->reason);
+            xb_printf(&b, "\">");
+            xb_text(&b, line);
+            xb_printf(&b, "</failure>\n");
+        }
+        xb_printf(&b, "      <system-out>");
+        xb_text(&b, line);
+        xb_printf(&b, "</system-out>\n    </testcase>\n");
+    }
+    xb_printf(&b, "  </testsuite>\n</testsuites>\n");
+    int rc;
+    if (b.failed) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        rc = -1;
+    } else {
+        rc = write_output(path, b.s, b.len, err, errlen);
+    }
+    free(b.s);
+    return rc;
+}
+
+int gate_set_write_json(const struct gate_set *gs, const char *path, const struct cl_session *s, char *err,
+                        size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", GATE_RESULT_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_obj_end(&w);
+    jw_kv_str(&w, "gates_file", gs->path);
+    if (gs->description[0])
+        jw_kv_str(&w, "description", gs->description);
+    int failed = gate_set_failures(gs);
+    jw_key(&w, "summary");
+    jw_obj_begin(&w);
+    jw_kv_int(&w, "gates", gs->count);
+    jw_kv_int(&w, "passed", gs->count - failed);
+    jw_kv_int(&w, "failed", failed);
+    jw_kv_int(&w, "sweeps", gs->sweeps_run);
+    jw_obj_end(&w);
+    jw_key(&w, "baseline");
+    if (gs->baseline_path[0]) {
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "path", gs->baseline_path);
+        jw_kv_num(&w, "tolerance", gs->tolerance);
+        jw_kv_num(&w, "floor", GATE_BASELINE_FLOOR);
+        jw_obj_end(&w);
+    } else {
+        jw_null(&w);
+    }
+    jw_key(&w, "gates");
+    jw_arr_begin(&w);
+    for (int i = 0; i < gs->count; ++i) {
+        const struct gate *g = &gs->gates[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "name", g->name);
+        jw_kv_str(&w, "model", g->model.info->id);
+        jw_kv_str(&w, "label", g->model.label);
+        jw_kv_str(&w, "reference", g->model.info->reference_id);
+        jw_kv_bool(&w, "user_model", usermodel_of(&g->model) != NULL);
+        jw_kv_str(&w, "metric", gate_metric_name(g->metric));
+        jw_kv_num(&w, "n_min", g->grid.n_min);
+        jw_kv_num(&w, "n_max", g->grid.n_max);
+        jw_kv_num(&w, "n_step", g->grid.n_step);
+        jw_kv_int(&w, "samples", g->grid.samples);
+        jw_key(&w, "min");
+        g->has_min ? jw_num(&w, g->min) : jw_null(&w);
+        jw_key(&w, "max");
+        g->has_max ? jw_num(&w, g->max) : jw_null(&w);
+        jw_kv_str(&w, "status", g->status == GATE_PASS ? "pass" : g->status == GATE_FAIL ? "fail" : "not_run");
+        jw_kv_num(&w, "measured", g->measured);
+        jw_kv_num(&w, "at_n", g->at_n);
+        jw_kv_num(&w, "at_x", g->at_x);
+        jw_kv_num(&w, "margin", g->margin);
+        jw_kv_num(&w, "margin_rel", g->margin_rel);
+        jw_kv_int(&w, "invalid_count", g->invalid_count);
+        if (g->reason[0])
+            jw_kv_str(&w, "reason", g->reason);
+        else if (!isfinite(g->measured))
+            jw_kv_str(&w, "reason", "not measured");
+        if (g->has_claimed)
+            jw_kv_num(&w, "claimed", g->claimed);
+        if (g->note[0])
+            jw_kv_str(&w, "note", g->note);
+        if (g->baseline_status != GATE_BASELINE_NONE) {
+            jw_key(&w, "baseline");
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "status", g->baseline_status == GATE_BASELINE_OK           ? "ok"
+                                    : g->baseline_status == GATE_BASELINE_REGRESSION ? "regression"
+                                                                                     : "missing");
+            jw_kv_num(&w, "value", g->baseline);
+            jw_kv_num(&w, "change_rel", g->baseline_change);
+            jw_obj_end(&w);
+        }
+        jw_kv_num(&w, "seconds", g->seconds);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    int rc;
+    if (w.failed) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        rc = -1;
+    } else {
+        char *text = w.buf;
+        size_t len = w.len;
+        /* jw_write_file adds a newline and writes atomically; a device file gets the same text. */
+        char *with_nl = malloc(len + 2);
+        if (!with_nl) {
+            snprintf(err, errlen, "%s: out of memory", path);
+            rc = -1;
+        } else {
+            memcpy(with_nl, text, len);
+            with_nl[len] = '\n';
+            rc = write_output(path, with_nl, len + 1, err, errlen);
+            free(with_nl);
+        }
+    }
+    jw_free(&w);
+    return rc;
+}

@@ -1,0 +1,107 @@
+/* gate.h - accuracy gates for CI: a gates file (JSON, docs/gates.md) lists checks of a model's
+ * figure over an n range against bounds; the gate command runs only the sweeps they need,
+ * prints one line per gate, writes JUnit XML and JSON, and compares with a baseline. */
+#ifndef BRDF_GATE_H
+#define BRDF_GATE_H
+
+#include <stdio.h>
+
+#include "accuracy.h"
+#include "clsession.h"
+#include "models.h"
+
+#define GATES_SCHEMA "brdfbench.gates/1"       /* the gates file (input) */
+#define GATE_RESULT_SCHEMA "brdfbench.gate/1"  /* the --json result (output) */
+#define GATE_MAX_GATES 1000
+#define GATE_DEFAULT_TOLERANCE 1e-3            /* --tolerance: relative regression allowed */
+#define GATE_BASELINE_FLOOR 1e-9               /* absolute slack of a baseline comparison */
+
+enum gate_metric {
+    GATE_EPICENTRE_MAX_REL,   /* max relative error over the epicentre zone (SPEC.md delta) */
+    GATE_EPICENTRE_MAX_ABS,   /* max absolute error over the epicentre zone */
+    GATE_ATTENUATION_MAX_ABS, /* max absolute error over the attenuation zone (SPEC.md Delta) */
+    GATE_WHOLE_MAX_ABS,       /* max absolute error over x in [0, pi/2] */
+    GATE_ENERGY_MAX_DEV,      /* max over n of |2 pi int_0^(pi/2) f cos x sin x dx - 1| */
+    GATE_INVALID_COUNT,       /* model values that were NaN, Inf or negative in the sweep */
+    GATE_METRIC_COUNT
+};
+
+/* The name of a metric in a gates file ("epicentre.max_rel") and what it measures. */
+const char *gate_metric_name(enum gate_metric m);
+const char *gate_metric_meaning(enum gate_metric m);
+
+enum gate_status { GATE_NOT_RUN, GATE_PASS, GATE_FAIL };
+enum gate_baseline_status { GATE_BASELINE_NONE, GATE_BASELINE_OK, GATE_BASELINE_REGRESSION,
+                            GATE_BASELINE_MISSING };
+
+struct gate {
+    /* As declared. */
+    char name[200];
+    struct model_spec model;
+    enum gate_metric metric;
+    struct accuracy_grid grid;
+    int has_min, has_max;
+    double min, max;
+    int has_claimed;
+    double claimed;            /* a paper's figure, reported beside the measured one */
+    char note[256];
+    int line, col;             /* where the gate is in the gates file */
+
+    /* Measured. */
+    enum gate_status status;
+    double measured, at_n, at_x;
+    double margin, margin_rel; /* distance to the nearer bound: > 0 inside, < 0 outside */
+    long long invalid_count;   /* invalid model values in the gate's n range */
+    double invalid_n, invalid_x;
+    char reason[400];          /* why it failed, or a note */
+    double seconds;            /* wall time of the work first done for this gate */
+
+    /* Against a baseline (--baseline). */
+    enum gate_baseline_status baseline_status;
+    double baseline, baseline_change;   /* value, and (measured - baseline) / |baseline| */
+};
+
+struct gate_set {
+    char path[4096];           /* the gates file, as given */
+    char description[512];
+    int count;
+    struct gate *gates;
+    char baseline_path[4096];  /* "" when no baseline */
+    double tolerance;
+    int sweeps_run;            /* sweeps the gates needed */
+};
+
+/* Parses a gates file's text. name is used in messages ("name:line:col: problem"); model
+ * files named in it are read relative to base_dir. User models it defines are registered
+ * (host/usermodel.h). Returns 0, or EXIT_USAGE with a message. No device is needed. */
+int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir,
+                        struct gate_set *out, char *err, size_t errlen);
+int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errlen);
+void gate_set_free(struct gate_set *g);
+
+/* Reads a baseline: a run folder holding accuracy.json, or such a file. Sets each gate's
+ * baseline fields (compared after gate_set_run). Returns 0 or EXIT_USAGE. */
+int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, char *err, size_t errlen);
+
+/* Checks every gate's grid against the device's limits. Returns 0 or EXIT_USAGE. */
+int gate_set_check_device(const struct gate_set *g, const struct cl_session *s, char *err, size_t errlen);
+/* Runs the sweeps and integrals the gates need and judges every gate. progress (may be NULL)
+ * gets one line per sweep. Returns 0 or an exit code (a runtime failure, a user model that
+ * does not compile). */
+int gate_set_run(struct gate_set *g, struct cl_session *s, FILE *progress);
+/* Number of gates that failed (after gate_set_run). */
+int gate_set_failures(const struct gate_set *g);
+
+/* One line per gate and a summary. */
+void gate_set_print(FILE *f, const struct gate_set *g);
+/* JUnit XML (one testsuite, one testcase per gate) and the JSON result. Both are written
+ * atomically; an existing device file (e.g. /dev/stdout) is written in place. 0 or -1. */
+int gate_set_write_junit(const struct gate_set *g, const char *path, const struct cl_session *s,
+                         char *err, size_t errlen);
+int gate_set_write_json(const struct gate_set *g, const char *path, const struct cl_session *s,
+                        char *err, size_t errlen);
+/* Checks before any sweep that path can be written: its folder exists and is writable, or it
+ * is an existing device file. 0 or -1 with a message. */
+int gate_output_check(const char *flag, const char *path, char *err, size_t errlen);
+
+#endif
