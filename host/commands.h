@@ -8,6 +8,7 @@ int cmd_all(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_heatmap(int argc, char **argv);
 int cmd_gate(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 /* more commands below, one per line */
 
 #endif

@@ -19,6 +19,7 @@ static const struct command commands[] = {
     { "plot", cmd_plot, "redraw every picture of a run folder from its JSON (no device)" },
     { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)" },
     { "gate", cmd_gate, "accuracy gates for CI: checks figures of a gates file against bounds (JUnit, JSON)" },
+    { "render", cmd_render, "full-image shading passes (spheres, teapot, bunny): error images, metrics, Mpixel/s" },
     /* more commands below, one per line */
 };
 

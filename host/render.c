@@ -1,0 +1,1550 @@
+/* render.c - the full-image shading passes (see render.h): scenes, G-buffers, the shading
+ * kernel per model and its reference, error images and metrics, the double host reference
+ * on a sample, timings against the copy kernel, render.json and the PNGs. */
+#define _XOPEN_SOURCE 700
+#include "render.h"
+
+#include "context.h"
+#include "draw.h"
+#include "exitcodes.h"
+#include "geometry.h"
+#include "jsonw.h"
+#include "outdir.h"
+#include "raster.h"
+#include "report.h"
+
+#include <errno.h>
+#include <ftw.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* The model header as the host's double-precision code (for alpha(n) of the microfacet
+   models); the formulas themselves are evaluated through model_eval_host. */
+#define REAL double
+#define RSCALAR double
+#include "brdf_models.h"
+#undef REAL
+#undef RSCALAR
+
+/* Host copies of the kernel's constants (kernels/shade.cl); the tests compare the device's
+   output with the host's exact curves, so a mismatch shows there. */
+#define SHADE_LOBE_PSI 0
+#define SHADE_LOBE_THETA_H 1
+#define SHADE_CT_BECKMANN 2
+#define SHADE_CT_GGX 3
+#define DISPLAY_MIN_EXP (-16)
+#define DISPLAY_MAX_EXP 8
+#define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
+#define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
+#define BACKGROUND_RGB {32, 38, 42}
+
+/* Work-items of one launch: each walks a contiguous run of pixels, so a few per core
+   balance the load without barriers; the same count for every size keeps one launch
+   shape (PoCL compiles per shape). */
+#define RENDER_WORK_ITEMS 256
+
+/* World direction towards the light (upper left, in front), for every scene. */
+static const double light_dir_world[3] = {-0.45, 0.6, 0.66};
+/* Where the mesh cameras look from (right, above, in front), and their field of view. */
+static const double mesh_view_from[3] = {0.35, 0.45, 1.0};
+static const double world_up[3] = {0.0, 1.0, 0.0};
+#define MESH_FOV_DEG 30.0
+#define MESH_FILL 0.92
+
+static const char *const scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
+static const char *const mode_names[4] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
+                                          "cook-torrance-ggx"};
+
+static void set_err(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+}
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static void normalize3(double *a)
+{
+    double l = sqrt(dot3(a, a));
+    if (l > 0)
+        for (int c = 0; c < 3; c++)
+            a[c] /= l;
+}
+
+/* ------------------------------------------------------------------ options */
+
+void render_options_default(struct render_options *o)
+{
+    memset(o, 0, sizeof *o);
+    for (int i = 0; i < RENDER_SCENE_COUNT; i++)
+        o->scene_on[i] = 1;
+    o->width = 1920;
+    o->height = 1080;
+    o->ntime_sizes = 2;
+    o->time_w[0] = 1920;
+    o->time_h[0] = 1080;
+    o->time_w[1] = 3840;
+    o->time_h[1] = 2160;
+    o->reps = 7;
+    o->warmup = 2;
+    o->nmodels = model_spec_list_default(o->models, RENDER_MAX_MODELS);
+    static const double cols[] = {4, 16, 64, 256, 1000};
+    o->ncols = 5;
+    memcpy(o->sphere_n, cols, sizeof cols);
+    o->mesh_n = 64;
+    o->tess = 16;
+    o->point_light = 0;
+    o->exposure = 1.2;
+    o->kd = 0.35;
+    o->ks = 1.0;
+    o->ambient = 0.03;
+    o->f0 = 0.5;
+    o->tint[0] = 1.0; /* copper-like: the highlight of a lobe with peak 1 stays unsaturated */
+    o->tint[1] = 0.72;
+    o->tint[2] = 0.45;
+    o->threshold = 0.01;
+    o->ref_samples = 4096;
+    o->teapot_path = RENDER_TEAPOT_PATH;
+    o->bunny_path = RENDER_BUNNY_PATH;
+    o->write_images = 1;
+    o->verbose = 1;
+}
+
+int render_check_size(const struct cl_session *s, const char *what, long width, long height,
+                      int nmodels_rows, char *err, size_t errlen)
+{
+    double global_mib = s ? (double)s->global_mem / 1048576.0 : 0;
+    double alloc_mib = s ? (double)s->max_alloc / 1048576.0 : 0;
+    int ok = width >= RENDER_MIN_SIDE && height >= RENDER_MIN_SIDE && width <= RENDER_MAX_SIDE &&
+             height <= RENDER_MAX_SIDE;
+    size_t gbytes = ok ? gbuffer_bytes(width, height) : 0;
+    if (ok && gbytes == 0)
+        ok = 0;
+    if (ok && s) {
+        /* the G-buffer plus RGBA8 and float outputs on the device; half of global memory
+           leaves room for the host's copies (PoCL's device memory is the host's) */
+        double dev = (double)gbytes * RENDER_DEVICE_BYTES_PER_PIXEL / (GB_NPLANES * 4.0);
+        if (dev > 0.5 * (double)s->global_mem || (double)gbytes > (double)s->max_alloc)
+            ok = 0;
+    }
+    if (!ok) {
+        if (s)
+            set_err(err, errlen,
+                    "%s: %ldx%ld is outside the accepted range: W and H integers in [%d, %d], "
+                    "W*H*%d bytes within half the device's global memory (%.0f MiB) and the "
+                    "G-buffer (W*H*28 bytes) within its largest buffer (%.0f MiB)",
+                    what, width, height, RENDER_MIN_SIDE, RENDER_MAX_SIDE,
+                    RENDER_DEVICE_BYTES_PER_PIXEL, 0.5 * global_mib, alloc_mib);
+        else
+            set_err(err, errlen, "%s: %ldx%ld is outside the accepted range: W and H integers "
+                    "in [%d, %d]", what, width, height, RENDER_MIN_SIDE, RENDER_MAX_SIDE);
+        return EXIT_USAGE;
+    }
+    if (nmodels_rows > 0 && height < 8L * nmodels_rows) {
+        set_err(err, errlen,
+                "%s: %ldx%ld is too low for the sphere grid: it needs at least 8 pixel rows per "
+                "model (H >= %d for %d models)",
+                what, width, height, 8 * nmodels_rows, nmodels_rows);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------------ shading, host side */
+
+int render_shading_mode(const struct model_spec *m)
+{
+    if (strcmp(m->info->family, "microfacet") == 0)
+        return m->info->kernel_id == BRDF_GGX ? SHADE_CT_GGX : SHADE_CT_BECKMANN;
+    return m->info->lobe == LOBE_PSI ? SHADE_LOBE_PSI : SHADE_LOBE_THETA_H;
+}
+
+static double smith_g1_ggx_ref(double x, double alpha)
+{
+    double a2 = alpha * alpha;
+    return 2.0 * x / (x + sqrt(a2 + (1.0 - a2) * x * x));
+}
+
+static double smith_g1_beckmann_ref(double x, double alpha)
+{
+    double a = x / (alpha * sqrt(fmax(1.0 - x * x, 1e-12)));
+    if (a >= 1.6)
+        return 1.0;
+    return (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+}
+
+void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
+                      const struct render_options *o, const double pos[3], const double nrm[3],
+                      double n, double *spec, double *radiance)
+{
+    double v[3], l[3], e;
+    for (int c = 0; c < 3; c++)
+        v[c] = lt->eye[c] - pos[c];
+    normalize3(v);
+    if (lt->point) {
+        for (int c = 0; c < 3; c++)
+            l[c] = lt->light[c] - pos[c];
+        double d2 = dot3(l, l);
+        normalize3(l);
+        e = lt->intensity / d2;
+    } else {
+        for (int c = 0; c < 3; c++)
+            l[c] = lt->light[c];
+        e = lt->intensity;
+    }
+    double ndotl = dot3(nrm, l), ndotv = dot3(nrm, v), cosine, s;
+    if (mode == SHADE_LOBE_PSI) {
+        double r[3];
+        for (int c = 0; c < 3; c++)
+            r[c] = 2.0 * ndotl * nrm[c] - l[c];
+        cosine = dot3(r, v);
+        s = model_eval_host(m, cosine, n);
+    } else {
+        double h[3];
+        for (int c = 0; c < 3; c++)
+            h[c] = l[c] + v[c];
+        normalize3(h);
+        cosine = dot3(nrm, h);
+        s = model_eval_host(m, cosine, n);
+        if (mode != SHADE_LOBE_THETA_H) {
+            double vdoth = fmax(dot3(v, h), 0.0);
+            double fresnel = o->f0 + (1.0 - o->f0) * pow(1.0 - vdoth, 5.0);
+            double alpha = brdf_alpha_from_n(n);
+            double nl = fmax(ndotl, 1e-6), nv = fmax(ndotv, 1e-6);
+            double g = mode == SHADE_CT_GGX
+                           ? smith_g1_ggx_ref(nl, alpha) * smith_g1_ggx_ref(nv, alpha)
+                           : smith_g1_beckmann_ref(nl, alpha) * smith_g1_beckmann_ref(nv, alpha);
+            s = s * fresnel * g / (4.0 * nl * nv);
+        }
+    }
+    int lit = n > 0 && ndotl > 0 && cosine > 0 && (mode < SHADE_CT_BECKMANN || ndotv > 0);
+    *spec = lit ? e * ndotl * o->ks * s : 0.0;
+    *radiance = e * fmax(ndotl, 0.0) * o->kd + o->ambient + *spec;
+}
+
+static unsigned char srgb8_exact(double t)
+{
+    t = fmin(fmax(t, 0.0), 1.0);
+    double e = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1.0 / 2.4) - 0.055;
+    double code = floor(e * 255.0 + 0.5);
+    return (unsigned char)fmin(fmax(code, 0.0), 255.0);
+}
+
+void render_display_exact(const struct render_options *o, double radiance, unsigned char rgb[3])
+{
+    for (int k = 0; k < 3; k++)
+        rgb[k] = srgb8_exact(1.0 - exp(-o->exposure * o->tint[k] * radiance));
+}
+
+static float float_from_bits(uint32_t b)
+{
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
+/* The display table the kernel indexes by (float bits >> 15) - DISPLAY_BIN0: each bin
+   holds the exact colour at its geometric centre (bin 0 also takes everything below,
+   down to 0, which is black). *max_code_error receives the largest difference between a
+   bin's entry and the exact colour anywhere in the bin (the curve is monotone, so the
+   bin's ends bound it). */
+static void display_table_build(const struct render_options *o, uint32_t *table,
+                                int *max_code_error)
+{
+    int worst = 0;
+    for (int i = 0; i < DISPLAY_BINS; i++) {
+        uint32_t bits = (uint32_t)(DISPLAY_BIN0 + i) << 15;
+        double lo = float_from_bits(bits), hi = float_from_bits(bits + (1u << 15));
+        if (i == 0)
+            lo = 0.0;
+        double centre = i == 0 ? 0.0 : sqrt(lo * hi);
+        if (i == DISPLAY_BINS - 1)
+            hi = INFINITY;
+        unsigned char c[3], a[3], b[3];
+        render_display_exact(o, centre, c);
+        render_display_exact(o, lo, a);
+        render_display_exact(o, isinf(hi) ? 1e30 : hi, b);
+        for (int k = 0; k < 3; k++) {
+            worst = abs((int)c[k] - (int)a[k]) > worst ? abs((int)c[k] - (int)a[k]) : worst;
+            worst = abs((int)c[k] - (int)b[k]) > worst ? abs((int)c[k] - (int)b[k]) : worst;
+        }
+        table[i] = (uint32_t)c[0] | ((uint32_t)c[1] << 8) | ((uint32_t)c[2] << 16) | 0xff000000u;
+    }
+    if (max_code_error)
+        *max_code_error = worst;
+}
+
+/* ------------------------------------------------------------------ device */
+
+int render_device_open(struct render_device *d, struct cl_session *s,
+                       const struct render_options *o, char *err, size_t errlen)
+{
+    int rc = 0;
+    cl_int e;
+    memset(d, 0, sizeof *d);
+    d->s = s;
+    d->global_size = RENDER_WORK_ITEMS;
+    uint32_t *table = malloc(DISPLAY_BINS * sizeof *table);
+    if (!table) {
+        set_err(err, errlen, "out of memory");
+        return EXIT_RUNTIME;
+    }
+    display_table_build(o, table, NULL);
+    rc = clsession_build(s, "shade.cl", NULL, "", &d->program);
+    if (rc) {
+        set_err(err, errlen, "building kernels/shade.cl failed (build log above)");
+        free(table);
+        return rc;
+    }
+    d->shade = clCreateKernel(d->program, "shade", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(shade)", fail);
+    d->copy = clCreateKernel(d->program, "copy_gbuffer", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(copy_gbuffer)", fail);
+    d->display_table = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                      DISPLAY_BINS * sizeof *table, table, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(display table)", fail);
+    free(table);
+    return 0;
+fail:
+    free(table);
+    set_err(err, errlen, "OpenCL error while setting up the shading kernels (see above)");
+    render_device_close(d);
+    return rc;
+}
+
+void render_device_close(struct render_device *d)
+{
+    if (d->display_table)
+        clReleaseMemObject(d->display_table);
+    if (d->copy)
+        clReleaseKernel(d->copy);
+    if (d->shade)
+        clReleaseKernel(d->shade);
+    if (d->program)
+        clReleaseProgram(d->program);
+    memset(d, 0, sizeof *d);
+}
+
+static int launch(struct render_device *d, cl_kernel k, double *seconds)
+{
+    int rc = 0;
+    cl_event ev = NULL;
+    size_t global = d->global_size, local = 1;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(d->s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev),
+                  done);
+    CL_CHECK_GOTO(clWaitForEvents(1, &ev), done);
+    if (seconds)
+        *seconds = cl_event_seconds(ev);
+done:
+    if (ev)
+        clReleaseEvent(ev);
+    return rc;
+}
+
+static void shade_params(const struct render_light *lt, const struct render_options *o,
+                         cl_float16 *p)
+{
+    memset(p, 0, sizeof *p);
+    p->s[0] = (float)lt->eye[0];
+    p->s[1] = (float)lt->eye[1];
+    p->s[2] = (float)lt->eye[2];
+    p->s[3] = (float)o->ambient;
+    p->s[4] = (float)lt->light[0];
+    p->s[5] = (float)lt->light[1];
+    p->s[6] = (float)lt->light[2];
+    p->s[7] = lt->point ? 1.0f : 0.0f;
+    p->s[8] = (float)lt->intensity;
+    p->s[9] = (float)o->kd;
+    p->s[10] = (float)o->ks;
+    p->s[11] = (float)o->f0;
+}
+
+static int set_common_args(cl_kernel k, cl_mem gbuf, size_t stride, size_t npix, cl_mem rgba,
+                           cl_mem spec)
+{
+    int rc = 0;
+    cl_uint st = (cl_uint)stride, nch = (cl_uint)((npix + 15) / 16);
+    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof gbuf, &gbuf), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof st, &st), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof nch, &nch), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof rgba, &rgba), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof spec, &spec), done);
+done:
+    return rc;
+}
+
+int render_device_shade(struct render_device *d, cl_mem gbuf, size_t stride, size_t npix,
+                        cl_mem out_rgba, cl_mem out_spec, const struct model_spec *m, int mode,
+                        const struct render_light *lt, const struct render_options *o,
+                        unsigned *rgba, float *spec, double *seconds)
+{
+    int rc = set_common_args(d->shade, gbuf, stride, npix, out_rgba, out_spec);
+    if (rc)
+        return rc;
+    cl_int kmode = mode, kmodel = m->info->kernel_id;
+    cl_float p0 = (cl_float)m->params[0], p1 = (cl_float)m->params[1];
+    cl_float16 params;
+    shade_params(lt, o, &params);
+    CL_CHECK_GOTO(clSetKernelArg(d->shade, 5, sizeof kmode, &kmode), done);
+    CL_CHECK_GOTO(clSetKernelArg(d->shade, 6, sizeof kmodel, &kmodel), done);
+    CL_CHECK_GOTO(clSetKernelArg(d->shade, 7, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(d->shade, 8, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(d->shade, 9, sizeof params, &params), done);
+    CL_CHECK_GOTO(clSetKernelArg(d->shade, 10, sizeof d->display_table, &d->display_table),
+                  done);
+    rc = launch(d, d->shade, seconds);
+    if (rc)
+        return rc;
+    if (rgba)
+        CL_CHECK_GOTO(clEnqueueReadBuffer(d->s->queue, out_rgba, CL_TRUE, 0, npix * sizeof *rgba,
+                                          rgba, 0, NULL, NULL),
+                      done);
+    if (spec)
+        CL_CHECK_GOTO(clEnqueueReadBuffer(d->s->queue, out_spec, CL_TRUE, 0, npix * sizeof *spec,
+                                          spec, 0, NULL, NULL),
+                      done);
+done:
+    return rc;
+}
+
+static int device_copy(struct render_device *d, cl_mem gbuf, size_t stride, size_t npix,
+                       cl_mem out_rgba, cl_mem out_spec, double *seconds)
+{
+    int rc = set_common_args(d->copy, gbuf, stride, npix, out_rgba, out_spec);
+    if (rc)
+        return rc;
+    return launch(d, d->copy, seconds);
+}
+
+/* ------------------------------------------------------------------ scenes */
+
+struct scene_data {
+    int kind;
+    struct mesh mesh;          /* teapot and bunny */
+    size_t patches;            /* teapot: Bezier patches read */
+    char source[600];          /* the file read, or "analytic" */
+};
+
+static int scene_load(int kind, const struct render_options *o, struct scene_data *sd, char *err,
+                      size_t errlen)
+{
+    memset(sd, 0, sizeof *sd);
+    sd->kind = kind;
+    if (kind == RENDER_SPHERES) {
+        snprintf(sd->source, sizeof sd->source, "analytic spheres");
+        return 0;
+    }
+    const char *path = kind == RENDER_TEAPOT ? o->teapot_path : o->bunny_path;
+    const char *def = kind == RENDER_TEAPOT ? RENDER_TEAPOT_PATH : RENDER_BUNNY_PATH;
+    const char *pkg = kind == RENDER_TEAPOT ? RENDER_TEAPOT_PACKAGE : RENDER_BUNNY_PACKAGE;
+    snprintf(sd->source, sizeof sd->source, "%s", path);
+    if (access(path, R_OK) != 0) {
+        int is_default = strcmp(path, def) == 0;
+        if (is_default)
+            set_err(err, errlen,
+                    "%s scene: %s is missing: it comes with Debian's %s package (apt-get install "
+                    "%s; where /usr/share/doc is excluded from installs: apt-get download %s && "
+                    "dpkg-deb -x %s_*.deb / ; scripts/setup.sh does this)",
+                    scene_names[kind], path, pkg, pkg, pkg, pkg);
+        else
+            set_err(err, errlen, "%s scene: cannot read %s: %s", scene_names[kind], path,
+                    strerror(errno));
+        return is_default ? EXIT_RUNTIME : EXIT_USAGE;
+    }
+    int rc;
+    if (kind == RENDER_TEAPOT) {
+        struct bezier_patch *p = NULL;
+        rc = patches_read(path, &p, &sd->patches, err, errlen);
+        if (rc == 0)
+            rc = patches_tessellate(p, sd->patches, o->tess, &sd->mesh, err, errlen);
+        free(p);
+        if (rc == 0) {
+            /* the file's teapot stands on z = 0 with z up; the scenes are y-up: a rotation
+               of -90 degrees about x, (x, y, z) -> (x, z, -y) */
+            for (size_t v = 0; v < sd->mesh.nverts; v++) {
+                float *q = sd->mesh.pos + 3 * v, *n = sd->mesh.nrm + 3 * v, t;
+                t = q[1];
+                q[1] = q[2];
+                q[2] = -t;
+                t = n[1];
+                n[1] = n[2];
+                n[2] = -t;
+            }
+        }
+    } else {
+        rc = obj_read(path, &sd->mesh, err, errlen);
+        if (rc == 0)
+            rc = mesh_smooth_normals(&sd->mesh, err, errlen);
+    }
+    if (rc)
+        mesh_free(&sd->mesh);
+    return rc;
+}
+
+/* G-buffer and light of a scene at a size. */
+static int scene_gbuffer(const struct scene_data *sd, const struct render_options *o, int w, int h,
+                         struct gbuffer *g, struct render_light *lt, char *err, size_t errlen)
+{
+    int rc = gbuffer_alloc(g, w, h, err, errlen);
+    if (rc)
+        return rc;
+    struct camera cam;
+    if (sd->kind == RENDER_SPHERES) {
+        rc = raster_spheres(g, o->nmodels, o->ncols, o->sphere_n, &cam, err, errlen);
+    } else {
+        camera_fit_mesh(&cam, &sd->mesh, mesh_view_from, world_up, MESH_FOV_DEG,
+                        (double)w / h, MESH_FILL);
+        rc = raster_mesh(g, &sd->mesh, &cam, (float)o->mesh_n, err, errlen);
+    }
+    if (rc) {
+        gbuffer_free(g);
+        return rc;
+    }
+    double dir[3] = {light_dir_world[0], light_dir_world[1], light_dir_world[2]};
+    normalize3(dir);
+    double d[3] = {cam.eye[0] - cam.target[0], cam.eye[1] - cam.target[1],
+                   cam.eye[2] - cam.target[2]};
+    double dist = sqrt(dot3(d, d));
+    for (int c = 0; c < 3; c++)
+        lt->eye[c] = cam.eye[c];
+    lt->point = o->point_light;
+    if (o->point_light) {
+        /* at the camera's distance from the scene's centre, E = 1 at the centre */
+        for (int c = 0; c < 3; c++)
+            lt->light[c] = cam.target[c] + dist * dir[c];
+        lt->intensity = dist * dist;
+    } else {
+        for (int c = 0; c < 3; c++)
+            lt->light[c] = dir[c];
+        lt->intensity = 1.0;
+    }
+    return 0;
+}
+
+/* Rows [y0, y1) of the frame a model's figures cover: its band of the sphere grid (the rows
+   raster_spheres gives to grid row `row`), or the whole frame. */
+static void model_region(const struct scene_data *sd, const struct render_options *o, int h,
+                         int row, int *y0, int *y1)
+{
+    if (sd->kind != RENDER_SPHERES) {
+        *y0 = 0;
+        *y1 = h;
+        return;
+    }
+    int a = -1, b = h;
+    for (int y = 0; y < h; y++) {
+        int r = (int)((long)y * o->nmodels / h);
+        if (r == row && a < 0)
+            a = y;
+        if (r > row) {
+            b = y;
+            break;
+        }
+    }
+    *y0 = a < 0 ? 0 : a;
+    *y1 = b;
+}
+
+/* ------------------------------------------------------------------ metrics */
+
+struct image_metrics {
+    size_t pixels;             /* foreground pixels in the region */
+    double max_abs;
+    int max_x, max_y;          /* frame coordinates of the largest error */
+    double mean_abs, rmse;
+    double psnr_db;            /* 8-bit RGB; NAN when the images are identical */
+    double share_above;        /* share of pixels with error above the threshold */
+    double peak_reference;     /* largest reference specular radiance in the region */
+};
+
+struct reference_check {
+    int samples;
+    double max_abs;            /* |device - double| of the specular radiance */
+    double value_at_max;       /* the double value there */
+    double peak;               /* largest double specular radiance among the samples */
+    double relative_to_peak;   /* max_abs / max(peak, 1e-30) */
+    int max_code;              /* largest 8-bit difference to the exact display colour */
+    double bound;              /* stated bound on max_abs */
+    int within;
+};
+
+/* Error, metrics and the error picture for rows [y0, y1). errimg: (y1-y0) x w floats. */
+static void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsigned *rgba_m,
+                            const float *spec_m, const unsigned *rgba_r, const float *spec_r,
+                            double threshold, float *errimg, struct image_metrics *mt)
+{
+    const float *sh = gbuffer_plane(g, GB_SHIN);
+    const int w = g->width;
+    memset(mt, 0, sizeof *mt);
+    mt->max_x = mt->max_y = -1;
+    double sum = 0, sum2 = 0, sq8 = 0;
+    size_t above = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = 0; x < w; x++) {
+            size_t i = (size_t)y * w + x;
+            float *out = errimg + (size_t)(y - y0) * w + x;
+            if (!(sh[i] > 0)) {
+                *out = NAN;
+                continue;
+            }
+            double e = fabs((double)spec_m[i] - (double)spec_r[i]);
+            *out = (float)e;
+            mt->pixels++;
+            sum += e;
+            sum2 += e * e;
+            above += e > threshold;
+            if (e > mt->max_abs || mt->max_x < 0) {
+                mt->max_abs = e;
+                mt->max_x = x;
+                mt->max_y = y;
+            }
+            if (spec_r[i] > mt->peak_reference)
+                mt->peak_reference = spec_r[i];
+            for (int k = 0; k < 3; k++) {
+                double d = (double)((rgba_m[i] >> (8 * k)) & 255u) -
+                           (double)((rgba_r[i] >> (8 * k)) & 255u);
+                sq8 += d * d;
+            }
+        }
+    if (mt->pixels) {
+        mt->mean_abs = sum / mt->pixels;
+        mt->rmse = sqrt(sum2 / mt->pixels);
+        mt->share_above = (double)above / mt->pixels;
+        double mse8 = sq8 / (3.0 * mt->pixels);
+        mt->psnr_db = mse8 > 0 ? 10.0 * log10(255.0 * 255.0 / mse8) : NAN;
+    } else {
+        mt->psnr_db = NAN;
+    }
+}
+
+/* The device's specular radiance and colours against the double reference on up to
+   o->ref_samples foreground pixels of rows [y0, y1), spread evenly, plus the brightest. */
+static void check_reference(const struct gbuffer *g, int y0, int y1, const struct model_spec *m,
+                            int mode, const struct render_light *lt, const struct render_options *o,
+                            const unsigned *rgba, const float *spec, struct reference_check *rc)
+{
+    const float *pl[GB_NPLANES];
+    for (int k = 0; k < GB_NPLANES; k++)
+        pl[k] = gbuffer_plane(g, k);
+    memset(rc, 0, sizeof *rc);
+    size_t first = (size_t)y0 * g->width, last = (size_t)y1 * g->width, fg = 0, brightest = first;
+    for (size_t i = first; i < last; i++)
+        if (pl[GB_SHIN][i] > 0) {
+            fg++;
+            if (spec[i] > spec[brightest] || !(pl[GB_SHIN][brightest] > 0))
+                brightest = i;
+        }
+    if (fg == 0)
+        return;
+    size_t want = o->ref_samples > 0 ? (size_t)o->ref_samples : 1;
+    size_t step = fg > want ? fg / want : 1, k = 0;
+    for (size_t i = first; i <= last; i++) {
+        size_t pi;
+        if (i == last) {
+            pi = brightest; /* the highlight's peak, where the lobe matters most */
+        } else {
+            if (!(pl[GB_SHIN][i] > 0) || (k++ % step) != 0)
+                continue;
+            pi = i;
+        }
+        double pos[3] = {pl[GB_PX][pi], pl[GB_PY][pi], pl[GB_PZ][pi]};
+        double nrm[3] = {pl[GB_NX][pi], pl[GB_NY][pi], pl[GB_NZ][pi]};
+        double s_ref, rad_ref;
+        render_shade_ref(m, mode, lt, o, pos, nrm, pl[GB_SHIN][pi], &s_ref, &rad_ref);
+        double d = fabs((double)spec[pi] - s_ref);
+        if (d > rc->max_abs || rc->samples == 0) {
+            rc->max_abs = d;
+            rc->value_at_max = s_ref;
+        }
+        if (s_ref > rc->peak)
+            rc->peak = s_ref;
+        unsigned char exact[3];
+        render_display_exact(o, rad_ref, exact);
+        for (int c = 0; c < 3; c++) {
+            int dc = abs((int)((rgba[pi] >> (8 * c)) & 255u) - (int)exact[c]);
+            if (dc > rc->max_code)
+                rc->max_code = dc;
+        }
+        rc->samples++;
+    }
+    rc->relative_to_peak = rc->max_abs / fmax(rc->peak, 1e-30);
+    /* Float shading carries the lobe cosine to a few float ulps (1 ulp = 6e-8 near 1); a
+       lobe's relative change per unit of cosine is about n for c^n and the quadratics and
+       2(n+2) for GGX near its peak, so with n <= 1000 and 8 ulps the specular radiance
+       agrees to 8 * 6e-8 * 2002 = 1e-3 of the peak. */
+    rc->bound = 1e-3 * fmax(rc->peak, 1e-6);
+    rc->within = rc->max_abs <= rc->bound && rc->max_code <= 2;
+}
+
+/* ------------------------------------------------------------------ files */
+
+/* A model label as a file name: "fq:Q=0.64" -> "fq_Q=0.64". */
+static void label_to_file(const char *label, char *out, size_t len)
+{
+    size_t i = 0;
+    for (; label[i] && i + 1 < len; i++) {
+        char c = label[i];
+        out[i] = (c == ':' || c == ',' || c == '/' || c == ' ') ? '_' : c;
+    }
+    out[i] = '\0';
+}
+
+static void rgba_to_rgb(const unsigned *rgba, size_t n, unsigned char *rgb)
+{
+    for (size_t i = 0; i < n; i++) {
+        rgb[3 * i + 0] = (unsigned char)(rgba[i] & 255u);
+        rgb[3 * i + 1] = (unsigned char)((rgba[i] >> 8) & 255u);
+        rgb[3 * i + 2] = (unsigned char)((rgba[i] >> 16) & 255u);
+    }
+}
+
+static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb;
+    (void)flag;
+    (void)ftw;
+    return remove(path);
+}
+
+static void remove_tree(const char *dir)
+{
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* ------------------------------------------------------------------ the run */
+
+struct model_result {
+    int mode;
+    struct model_spec ref;
+    struct image_metrics metrics;
+    struct reference_check check;
+    char image[256], error[256], contact[256];  /* paths relative to out_dir */
+};
+
+struct timed_entry {
+    struct model_spec spec;
+    int mode;
+    int is_model;              /* in the user's list (not only a reference) */
+    char name[MODEL_LABEL_MAX + 32];
+    double med, min, max;      /* seconds */
+    double copy_med;           /* the copy kernel's median, interleaved with these reps */
+};
+
+struct size_timing {
+    int w, h;
+    size_t foreground;
+    double copy_med;           /* median over every copy launch at this size */
+    int nentries;
+    struct timed_entry entries[2 * RENDER_MAX_MODELS];
+};
+
+struct scene_result {
+    int kind;
+    int done;
+    char source[600];
+    size_t triangles, patches, foreground;
+    double raster_seconds;
+    struct render_light light;
+    struct model_result models[RENDER_MAX_MODELS];
+    char grid_contact[256];
+    int ntimings;
+    struct size_timing timings[RENDER_MAX_TIME_SIZES];
+};
+
+struct shaded_cache {
+    int n;
+    struct {
+        int mode;
+        char label[MODEL_LABEL_MAX];
+        unsigned *rgba;
+        float *spec;
+    } e[2 * RENDER_MAX_MODELS];
+};
+
+static void cache_free(struct shaded_cache *c)
+{
+    for (int i = 0; i < c->n; i++) {
+        free(c->e[i].rgba);
+        free(c->e[i].spec);
+    }
+    c->n = 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Image pass of one scene: every model and its reference shaded at o->width x o->height. */
+static int image_pass(struct render_device *dev, const struct scene_data *sd,
+                      const struct render_options *o, const char *stage_dir,
+                      struct scene_result *res, char *err, size_t errlen)
+{
+    struct cl_session *s = dev->s;
+    const int w = o->width, h = o->height;
+    struct gbuffer g;
+    struct shaded_cache cache = {0};
+    cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
+    unsigned *rgba_m = NULL;
+    float *spec_m = NULL, *errimg = NULL, *grid_err = NULL;
+    unsigned char *rgb_m = NULL, *rgb_r = NULL, *grid_m = NULL, *grid_r = NULL;
+    int rc = 0;
+    cl_int e;
+    double t0 = wall_seconds();
+    rc = scene_gbuffer(sd, o, w, h, &g, &res->light, err, errlen);
+    if (rc)
+        return rc;
+    res->raster_seconds = wall_seconds() - t0;
+    res->foreground = g.foreground;
+    const size_t npix = g.npix;
+    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                          g.stride * GB_NPLANES * sizeof(float), g.data, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(G-buffer)", fail);
+    out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(rgba)", fail);
+    out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(spec)", fail);
+    rgba_m = malloc(npix * sizeof *rgba_m);
+    spec_m = malloc(npix * sizeof *spec_m);
+    errimg = malloc(npix * sizeof *errimg);
+    rgb_m = malloc(npix * 3);
+    rgb_r = malloc(npix * 3);
+    if (!rgba_m || !spec_m || !errimg || !rgb_m || !rgb_r)
+        goto oom;
+    if (sd->kind == RENDER_SPHERES) {
+        grid_err = malloc(npix * sizeof *grid_err);
+        grid_m = malloc(npix * 3);
+        grid_r = malloc(npix * 3);
+        if (!grid_err || !grid_m || !grid_r)
+            goto oom;
+    }
+    char scene_dir[4200];
+    path_join(scene_dir, sizeof scene_dir, stage_dir, scene_names[sd->kind]);
+    if (o->write_images && outdir_prepare(scene_dir, err, errlen) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+
+    for (int mi = 0; mi < o->nmodels; mi++) {
+        const struct model_spec *m = &o->models[mi];
+        struct model_result *mr = &res->models[mi];
+        mr->mode = render_shading_mode(m);
+        model_reference_spec(m, &mr->ref);
+        rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, m, mr->mode,
+                                 &res->light, o, rgba_m, spec_m, NULL);
+        if (rc)
+            goto fail;
+        /* the reference in the model's own shading mode, shaded once per scene */
+        int ci = -1;
+        for (int k = 0; k < cache.n; k++)
+            if (cache.e[k].mode == mr->mode && strcmp(cache.e[k].label, mr->ref.label) == 0)
+                ci = k;
+        if (ci < 0) {
+            ci = cache.n;
+            cache.e[ci].mode = mr->mode;
+            snprintf(cache.e[ci].label, sizeof cache.e[ci].label, "%s", mr->ref.label);
+            cache.e[ci].rgba = malloc(npix * sizeof(unsigned));
+            cache.e[ci].spec = malloc(npix * sizeof(float));
+            cache.n++;
+            if (!cache.e[ci].rgba || !cache.e[ci].spec)
+                goto oom;
+            rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, &mr->ref,
+                                     mr->mode, &res->light, o, cache.e[ci].rgba,
+                                     cache.e[ci].spec, NULL);
+            if (rc)
+                goto fail;
+        }
+        const unsigned *rgba_r = cache.e[ci].rgba;
+        const float *spec_r = cache.e[ci].spec;
+        int y0, y1;
+        model_region(sd, o, h, mi, &y0, &y1);
+        compute_metrics(&g, y0, y1, rgba_m, spec_m, rgba_r, spec_r, o->threshold, errimg,
+                        &mr->metrics);
+        check_reference(&g, y0, y1, m, mr->mode, &res->light, o, rgba_m, spec_m, &mr->check);
+        size_t off = (size_t)y0 * w, n = (size_t)(y1 - y0) * w;
+        rgba_to_rgb(rgba_m + off, n, rgb_m);
+        rgba_to_rgb(rgba_r + off, n, rgb_r);
+        if (grid_m) {
+            memcpy(grid_m + 3 * off, rgb_m, 3 * n);
+            memcpy(grid_r + 3 * off, rgb_r, 3 * n);
+            /* rows differ in scale (normalised lobes peak near (n+2)/(2 pi)): the grid shows
+               each row's error relative to its reference's peak */
+            double peak = mr->metrics.peak_reference;
+            for (size_t k = 0; k < n; k++)
+                grid_err[off + k] = peak > 0 ? (float)(errimg[k] / peak) : errimg[k];
+        }
+        if (o->write_images) {
+            char base[MODEL_LABEL_MAX + 8], name[300], path[4600], title[400];
+            label_to_file(m->label, base, sizeof base);
+            const char *sc = scene_names[sd->kind];
+            snprintf(mr->image, sizeof mr->image, "render/%s/%s.png", sc, base);
+            snprintf(mr->error, sizeof mr->error, "render/%s/%s_error.png", sc, base);
+            snprintf(mr->contact, sizeof mr->contact, "render/%s/%s_contact.png", sc, base);
+            snprintf(name, sizeof name, "%s.png", base);
+            path_join(path, sizeof path, scene_dir, name);
+            if (draw_png_rgb8(path, w, y1 - y0, rgb_m, err, errlen) != 0)
+                goto io_fail;
+            snprintf(title, sizeof title,
+                     "%s: |%s - %s| specular radiance (%s), max %.3g mean %.3g", sc, m->label,
+                     mr->ref.label, mode_names[mr->mode], mr->metrics.max_abs,
+                     mr->metrics.mean_abs);
+            snprintf(name, sizeof name, "%s_error.png", base);
+            path_join(path, sizeof path, scene_dir, name);
+            if (draw_error_image(path, w, y1 - y0, errimg, (float)mr->metrics.max_abs, title, err,
+                                 errlen) != 0)
+                goto io_fail;
+            snprintf(title, sizeof title, "%s: reference %s | model %s | error (max %.3g)", sc,
+                     mr->ref.label, m->label, mr->metrics.max_abs);
+            snprintf(name, sizeof name, "%s_contact.png", base);
+            path_join(path, sizeof path, scene_dir, name);
+            if (draw_contact_sheet(path, w, y1 - y0, rgb_r, rgb_m, errimg,
+                                   (float)mr->metrics.max_abs, title, err, errlen) != 0)
+                goto io_fail;
+        }
+        if (o->verbose) {
+            printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB  ref-check %s (%.2g of peak)\n",
+                   scene_names[sd->kind], m->label, mr->metrics.max_abs, mr->metrics.mean_abs,
+                   isfinite(mr->metrics.psnr_db) ? mr->metrics.psnr_db : INFINITY,
+                   mr->check.within ? "ok" : "OUT OF BOUND", mr->check.relative_to_peak);
+            fflush(stdout);
+        }
+    }
+    if (grid_m && o->write_images) {
+        /* the whole grid: row r holds model r, its reference and its error */
+        double vmax = 0;
+        for (int mi = 0; mi < o->nmodels; mi++) {
+            const struct image_metrics *mt = &res->models[mi].metrics;
+            if (mt->peak_reference > 0)
+                vmax = fmax(vmax, mt->max_abs / mt->peak_reference);
+        }
+        char path[4600], title[300];
+        path_join(path, sizeof path, scene_dir, "contact.png");
+        snprintf(title, sizeof title,
+                 "spheres: a row per model (as listed), a column per shininess; references | "
+                 "models | error / the row's reference peak (max %.3g)", vmax);
+        if (draw_contact_sheet(path, w, h, grid_r, grid_m, grid_err, (float)vmax, title, err,
+                               errlen) != 0)
+            goto io_fail;
+        snprintf(res->grid_contact, sizeof res->grid_contact, "render/spheres/contact.png");
+    }
+    goto done;
+oom:
+    set_err(err, errlen, "%s: out of memory for %dx%d images", scene_names[sd->kind], w, h);
+    rc = EXIT_RUNTIME;
+    goto done;
+io_fail:
+    rc = EXIT_RUNTIME;
+    goto done;
+fail:
+    if (!err[0])
+        set_err(err, errlen, "%s: OpenCL error in the image pass (see above)",
+                scene_names[sd->kind]);
+    rc = rc ? rc : EXIT_RUNTIME;
+done:
+    cache_free(&cache);
+    free(rgba_m);
+    free(spec_m);
+    free(errimg);
+    free(rgb_m);
+    free(rgb_r);
+    free(grid_err);
+    free(grid_m);
+    free(grid_r);
+    if (out_spec)
+        clReleaseMemObject(out_spec);
+    if (out_rgba)
+        clReleaseMemObject(out_rgba);
+    if (gbuf)
+        clReleaseMemObject(gbuf);
+    gbuffer_free(&g);
+    return rc;
+}
+
+/* The models and their references, each once per shading mode, in the order timed. */
+static void timed_entries(const struct render_options *o, struct size_timing *st)
+{
+    st->nentries = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (int mi = 0; mi < o->nmodels; mi++) {
+            struct model_spec ref;
+            const struct model_spec *m = &o->models[mi];
+            int mode = render_shading_mode(m);
+            if (pass == 1)
+                model_reference_spec(m, &ref);
+            const struct model_spec *sp = pass == 0 ? m : &ref;
+            int found = 0;
+            for (int k = 0; k < st->nentries; k++)
+                if (st->entries[k].mode == mode && strcmp(st->entries[k].spec.label, sp->label) == 0)
+                    found = 1;
+            if (found)
+                continue;
+            struct timed_entry *te = &st->entries[st->nentries++];
+            memset(te, 0, sizeof *te);
+            te->spec = *sp;
+            te->mode = mode;
+            te->is_model = pass == 0;
+            if (mode == render_shading_mode(sp))
+                snprintf(te->name, sizeof te->name, "%s", sp->label);
+            else
+                snprintf(te->name, sizeof te->name, "%s@%s", sp->label, mode_names[mode]);
+        }
+}
+
+/* Timing of one scene at one size: for every entry, warm-up launches, then reps launches
+   each preceded by a copy-kernel launch, so the ratio to the copy comes from launches
+   interleaved in time. */
+static int time_pass(struct render_device *dev, const struct scene_data *sd,
+                     const struct render_options *o, int w, int h, struct size_timing *st,
+                     char *err, size_t errlen)
+{
+    struct cl_session *s = dev->s;
+    struct gbuffer g;
+    struct render_light lt;
+    cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
+    double *tm = NULL, *tc = NULL, *all_copy = NULL;
+    int rc = scene_gbuffer(sd, o, w, h, &g, &lt, err, errlen);
+    if (rc)
+        return rc;
+    cl_int e;
+    st->w = w;
+    st->h = h;
+    st->foreground = g.foreground;
+    timed_entries(o, st);
+    int reps = o->reps;
+    tm = malloc((size_t)reps * sizeof *tm);
+    tc = malloc((size_t)reps * sizeof *tc);
+    all_copy = malloc((size_t)reps * st->nentries * sizeof *all_copy);
+    if (!tm || !tc || !all_copy) {
+        set_err(err, errlen, "out of memory");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                          g.stride * GB_NPLANES * sizeof(float), g.data, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(G-buffer)", fail);
+    out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(rgba)", fail);
+    out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(spec)", fail);
+    int ncopy = 0;
+    for (int k = 0; k < st->nentries; k++) {
+        struct timed_entry *te = &st->entries[k];
+        for (int r = 0; r < o->warmup; r++) {
+            if ((rc = device_copy(dev, gbuf, g.stride, g.npix, out_rgba, out_spec, NULL)) ||
+                (rc = render_device_shade(dev, gbuf, g.stride, g.npix, out_rgba, out_spec,
+                                          &te->spec, te->mode, &lt, o, NULL, NULL, NULL)))
+                goto fail;
+        }
+        for (int r = 0; r < reps; r++) {
+            if ((rc = device_copy(dev, gbuf, g.stride, g.npix, out_rgba, out_spec, &tc[r])) ||
+                (rc = render_device_shade(dev, gbuf, g.stride, g.npix, out_rgba, out_spec,
+                                          &te->spec, te->mode, &lt, o, NULL, NULL, &tm[r])))
+                goto fail;
+            all_copy[ncopy++] = tc[r];
+        }
+        te->med = median(tm, reps);
+        te->min = tm[0];
+        te->max = tm[reps - 1];
+        te->copy_med = median(tc, reps);
+        if (!(te->med > 0) || !(te->copy_med > 0)) {
+            set_err(err, errlen, "%s: the profiling timer gave no time for %s", scene_names[sd->kind],
+                    te->name);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+    }
+    st->copy_med = median(all_copy, ncopy);
+    goto done;
+fail:
+    if (!err[0])
+        set_err(err, errlen, "%s: OpenCL error in the timing pass at %dx%d (see above)",
+                scene_names[sd->kind], w, h);
+    rc = rc ? rc : EXIT_RUNTIME;
+done:
+    free(tm);
+    free(tc);
+    free(all_copy);
+    if (out_spec)
+        clReleaseMemObject(out_spec);
+    if (out_rgba)
+        clReleaseMemObject(out_rgba);
+    if (gbuf)
+        clReleaseMemObject(gbuf);
+    gbuffer_free(&g);
+    return rc;
+}
+
+static double mpix(const struct size_timing *st, double seconds)
+{
+    return (double)st->w * st->h / seconds * 1e-6;
+}
+
+/* The entry of a model's reference in the same shading mode. */
+static const struct timed_entry *reference_entry(const struct size_timing *st,
+                                                 const struct timed_entry *te)
+{
+    struct model_spec ref;
+    model_reference_spec(&te->spec, &ref);
+    for (int k = 0; k < st->nentries; k++)
+        if (st->entries[k].mode == te->mode && strcmp(st->entries[k].spec.label, ref.label) == 0)
+            return &st->entries[k];
+    return NULL;
+}
+
+/* A lobe model (not Cook-Torrance): the speed target applies to these. */
+static int is_lobe_entry(const struct timed_entry *te)
+{
+    return te->mode == SHADE_LOBE_PSI || te->mode == SHADE_LOBE_THETA_H;
+}
+
+#define SPEED_TARGET_FRACTION 0.5
+
+static void write_metrics_json(struct jw *w, const struct image_metrics *mt, double threshold)
+{
+    jw_key(w, "metrics");
+    jw_obj_begin(w);
+    jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
+    jw_kv_int(w, "pixels", (long long)mt->pixels);
+    jw_kv_num(w, "max_abs", mt->max_abs);
+    jw_key(w, "max_at_pixel");
+    jw_arr_begin(w);
+    jw_int(w, mt->max_x);
+    jw_int(w, mt->max_y);
+    jw_arr_end(w);
+    jw_kv_num(w, "mean_abs", mt->mean_abs);
+    jw_kv_num(w, "rmse", mt->rmse);
+    jw_kv_num(w, "psnr_db", mt->psnr_db);
+    jw_kv_str(w, "psnr_basis", "8-bit sRGB colours of the foreground, peak 255");
+    if (!isfinite(mt->psnr_db))
+        jw_kv_str(w, "psnr_status", mt->pixels ? "identical images: PSNR is infinite"
+                                               : "no foreground pixels");
+    jw_kv_num(w, "threshold", threshold);
+    jw_kv_num(w, "share_above_threshold", mt->share_above);
+    jw_kv_num(w, "peak_reference", mt->peak_reference);
+    jw_obj_end(w);
+}
+
+static int write_json(const char *path, const struct cl_session *s, const struct render_options *o,
+                      const struct scene_result *res, int display_code_error, char *err,
+                      size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", "brdfbench.render/1");
+    jw_context_begin(&w, s, "");
+    jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
+    jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
+              "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
+    jw_obj_end(&w);
+
+    jw_key(&w, "options");
+    jw_obj_begin(&w);
+    jw_key(&w, "image_size");
+    jw_arr_begin(&w);
+    jw_int(&w, o->width);
+    jw_int(&w, o->height);
+    jw_arr_end(&w);
+    jw_key(&w, "timing_sizes");
+    jw_arr_begin(&w);
+    for (int i = 0; i < o->ntime_sizes; i++) {
+        jw_arr_begin(&w);
+        jw_int(&w, o->time_w[i]);
+        jw_int(&w, o->time_h[i]);
+        jw_arr_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_kv_int(&w, "reps", o->reps);
+    jw_kv_int(&w, "warmup", o->warmup);
+    jw_key(&w, "sphere_shininess");
+    jw_arr_begin(&w);
+    for (int i = 0; i < o->ncols; i++)
+        jw_num(&w, o->sphere_n[i]);
+    jw_arr_end(&w);
+    jw_kv_num(&w, "mesh_shininess", o->mesh_n);
+    jw_kv_int(&w, "teapot_tessellation", o->tess);
+    jw_kv_str(&w, "light", o->point_light ? "point" : "directional");
+    jw_kv_num(&w, "exposure", o->exposure);
+    jw_kv_num(&w, "kd", o->kd);
+    jw_kv_num(&w, "ks", o->ks);
+    jw_kv_num(&w, "ambient", o->ambient);
+    jw_kv_num(&w, "schlick_f0", o->f0);
+    jw_key(&w, "tint");
+    jw_arr_begin(&w);
+    for (int k = 0; k < 3; k++)
+        jw_num(&w, o->tint[k]);
+    jw_arr_end(&w);
+    jw_kv_int(&w, "reference_samples_per_model", o->ref_samples);
+    jw_obj_end(&w);
+
+    jw_key(&w, "display");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "curve", "channel k: sRGB8(1 - exp(-exposure tint_k radiance))");
+    jw_kv_int(&w, "table_bins", DISPLAY_BINS);
+    jw_kv_int(&w, "table_max_code_error", display_code_error);
+    jw_obj_end(&w);
+
+    jw_key(&w, "scenes");
+    jw_arr_begin(&w);
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
+        const struct scene_result *sr = &res[si];
+        if (!sr->done)
+            continue;
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "scene", scene_names[si]);
+        jw_kv_str(&w, "source", sr->source);
+        if (si == RENDER_TEAPOT) {
+            jw_kv_str(&w, "package", RENDER_TEAPOT_PACKAGE);
+            jw_kv_int(&w, "patches", (long long)sr->patches);
+        } else if (si == RENDER_BUNNY) {
+            jw_kv_str(&w, "package", RENDER_BUNNY_PACKAGE);
+        }
+        if (si != RENDER_SPHERES)
+            jw_kv_int(&w, "triangles", (long long)sr->triangles);
+        jw_key(&w, "light");
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "kind", sr->light.point ? "point" : "directional");
+        jw_key(&w, sr->light.point ? "position" : "direction");
+        jw_arr_begin(&w);
+        for (int c = 0; c < 3; c++)
+            jw_num(&w, sr->light.light[c]);
+        jw_arr_end(&w);
+        jw_kv_num(&w, "intensity", sr->light.intensity);
+        jw_key(&w, "eye");
+        jw_arr_begin(&w);
+        for (int c = 0; c < 3; c++)
+            jw_num(&w, sr->light.eye[c]);
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+        jw_key(&w, "image");
+        jw_obj_begin(&w);
+        jw_kv_int(&w, "width", o->width);
+        jw_kv_int(&w, "height", o->height);
+        jw_kv_int(&w, "foreground_pixels", (long long)sr->foreground);
+        jw_kv_num(&w, "gbuffer_seconds", sr->raster_seconds);
+        if (sr->grid_contact[0])
+            jw_kv_str(&w, "contact_sheet", sr->grid_contact);
+        jw_obj_end(&w);
+        jw_key(&w, "models");
+        jw_arr_begin(&w);
+        for (int mi = 0; mi < o->nmodels; mi++) {
+            const struct model_result *mr = &sr->models[mi];
+            const struct model_spec *m = &o->models[mi];
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "model", m->label);
+            jw_kv_str(&w, "family", m->info->family);
+            jw_kv_str(&w, "reference", mr->ref.label);
+            jw_kv_str(&w, "shading", mode_names[mr->mode]);
+            if (si == RENDER_SPHERES) {
+                int y0, y1;
+                struct scene_data dummy = {.kind = RENDER_SPHERES};
+                model_region(&dummy, o, o->height, mi, &y0, &y1);
+                jw_key(&w, "grid_rows");
+                jw_arr_begin(&w);
+                jw_int(&w, y0);
+                jw_int(&w, y1);
+                jw_arr_end(&w);
+            }
+            if (mr->image[0]) {
+                jw_key(&w, "files");
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "image", mr->image);
+                jw_kv_str(&w, "error_image", mr->error);
+                jw_kv_str(&w, "contact_sheet", mr->contact);
+                jw_obj_end(&w);
+            }
+            write_metrics_json(&w, &mr->metrics, o->threshold);
+            jw_key(&w, "double_reference_check");
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "samples", mr->check.samples);
+            jw_kv_num(&w, "max_abs_specular_difference", mr->check.max_abs);
+            jw_kv_num(&w, "double_value_there", mr->check.value_at_max);
+            jw_kv_num(&w, "peak_specular", mr->check.peak);
+            jw_kv_num(&w, "relative_to_peak", mr->check.relative_to_peak);
+            jw_kv_num(&w, "bound", mr->check.bound);
+            jw_kv_str(&w, "bound_rule", "1e-3 of the sampled peak specular radiance; 8-bit "
+                      "colours within 2 codes of the exact curve");
+            jw_kv_int(&w, "max_code_difference", mr->check.max_code);
+            jw_kv_bool(&w, "within_bound", mr->check.within);
+            jw_obj_end(&w);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_key(&w, "timings");
+        jw_arr_begin(&w);
+        for (int ti = 0; ti < sr->ntimings; ti++) {
+            const struct size_timing *st = &sr->timings[ti];
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "width", st->w);
+            jw_kv_int(&w, "height", st->h);
+            jw_kv_int(&w, "foreground_pixels", (long long)st->foreground);
+            jw_key(&w, "copy");
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "bytes_per_pixel", RENDER_DEVICE_BYTES_PER_PIXEL);
+            jw_kv_num(&w, "median_ms", st->copy_med * 1e3);
+            jw_kv_num(&w, "mpixel_per_s", mpix(st, st->copy_med));
+            jw_kv_num(&w, "gbyte_per_s",
+                      (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
+            jw_obj_end(&w);
+            jw_key(&w, "entries");
+            jw_arr_begin(&w);
+            for (int k = 0; k < st->nentries; k++) {
+                const struct timed_entry *te = &st->entries[k];
+                const struct timed_entry *re = reference_entry(st, te);
+                double frac = te->copy_med / te->med;
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "name", te->name);
+                jw_kv_str(&w, "model", te->spec.label);
+                jw_kv_str(&w, "shading", mode_names[te->mode]);
+                jw_kv_bool(&w, "selected_model", te->is_model);
+                jw_kv_num(&w, "median_ms", te->med * 1e3);
+                jw_kv_num(&w, "min_ms", te->min * 1e3);
+                jw_kv_num(&w, "max_ms", te->max * 1e3);
+                jw_kv_num(&w, "mpixel_per_s", mpix(st, te->med));
+                jw_kv_num(&w, "copy_median_ms_interleaved", te->copy_med * 1e3);
+                jw_kv_num(&w, "fraction_of_copy", frac);
+                if (is_lobe_entry(te)) {
+                    jw_kv_num(&w, "target_fraction", SPEED_TARGET_FRACTION);
+                    jw_kv_bool(&w, "target_met", frac >= SPEED_TARGET_FRACTION);
+                }
+                if (re) {
+                    jw_kv_str(&w, "reference", re->name);
+                    jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);
+                }
+                jw_obj_end(&w);
+            }
+            jw_arr_end(&w);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+/* The markdown summary: per scene a table of the models' figures. */
+static char *summary_markdown(const struct render_options *o, const struct scene_result *res,
+                              const struct cl_session *s)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "Device: %s (%s). Images %dx%d; timings: median of %d launches after %d "
+              "warm-up, each after a copy-kernel launch over the same %d bytes per pixel.\n\n",
+              s->device_name, s->platform_version, o->width, o->height, o->reps, o->warmup,
+              RENDER_DEVICE_BYTES_PER_PIXEL);
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
+        const struct scene_result *sr = &res[si];
+        if (!sr->done)
+            continue;
+        md_printf(&b, "### %s\n\n", scene_names[si]);
+        if (sr->grid_contact[0])
+            md_printf(&b, "![%s contact sheet](%s)\n\n", scene_names[si], sr->grid_contact);
+        const struct size_timing *big = sr->ntimings ? &sr->timings[sr->ntimings - 1] : NULL;
+        md_printf(&b, "| model | reference | max abs error | mean abs error | PSNR (dB) | > %g | "
+                  "ref check |", o->threshold);
+        if (big)
+            md_printf(&b, " Mpixel/s at %dx%d | of copy | vs reference |", big->w, big->h);
+        md_printf(&b, "\n|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
+        for (int mi = 0; mi < o->nmodels; mi++) {
+            const struct model_result *mr = &sr->models[mi];
+            char psnr[32];
+            if (isfinite(mr->metrics.psnr_db))
+                snprintf(psnr, sizeof psnr, "%.1f", mr->metrics.psnr_db);
+            else
+                snprintf(psnr, sizeof psnr, "identical");
+            md_printf(&b, "| %s | %s | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
+                      mr->ref.label, mr->metrics.max_abs, mr->metrics.mean_abs, psnr,
+                      100.0 * mr->metrics.share_above, mr->check.within ? "ok" : "out of bound");
+            if (big) {
+                const struct timed_entry *te = NULL;
+                for (int k = 0; k < big->nentries; k++)
+                    if (big->entries[k].is_model &&
+                        strcmp(big->entries[k].spec.label, o->models[mi].label) == 0)
+                        te = &big->entries[k];
+                const struct timed_entry *re = te ? reference_entry(big, te) : NULL;
+                if (te)
+                    md_printf(&b, " %.0f | %.0f%% | %.2fx |", mpix(big, te->med),
+                              100.0 * te->copy_med / te->med, re ? re->med / te->med : NAN);
+            }
+            md_printf(&b, "\n");
+        }
+        if (big)
+            md_printf(&b, "\nCopy kernel at %dx%d: %.0f Mpixel/s (%.1f GB/s).\n", big->w, big->h,
+                      mpix(big, big->copy_med),
+                      (double)big->w * big->h * RENDER_DEVICE_BYTES_PER_PIXEL / big->copy_med *
+                          1e-9);
+        md_printf(&b, "\n");
+    }
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;
+}
+
+static void print_timings(const struct scene_result *sr)
+{
+    for (int ti = 0; ti < sr->ntimings; ti++) {
+        const struct size_timing *st = &sr->timings[ti];
+        printf("  %s %dx%d: copy %.0f Mpixel/s (%.1f GB/s)\n", scene_names[sr->kind], st->w, st->h,
+               mpix(st, st->copy_med),
+               (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
+        for (int k = 0; k < st->nentries; k++) {
+            const struct timed_entry *te = &st->entries[k];
+            const struct timed_entry *re = reference_entry(st, te);
+            printf("    %-34s %8.1f Mpixel/s  %5.1f%% of copy  %5.2fx vs %s\n", te->name,
+                   mpix(st, te->med), 100.0 * te->copy_med / te->med,
+                   re ? re->med / te->med : NAN, re ? re->name : "-");
+        }
+    }
+    fflush(stdout);
+}
+
+int render_run(struct cl_session *s, const struct render_options *o, const char *out_dir,
+               char **summary_md, char *err, size_t errlen)
+{
+    int rc = 0;
+    err[0] = '\0';
+    if (summary_md)
+        *summary_md = NULL;
+    if (o->nmodels < 1 || o->nmodels > RENDER_MAX_MODELS || o->ncols < 1 ||
+        o->ncols > RENDER_MAX_COLS || o->reps < 1 || o->warmup < 0) {
+        set_err(err, errlen, "render: bad options (models 1..%d, sphere columns 1..%d, reps >= 1)",
+                RENDER_MAX_MODELS, RENDER_MAX_COLS);
+        return EXIT_USAGE;
+    }
+    int rows = o->scene_on[RENDER_SPHERES] ? o->nmodels : 0;
+    if ((rc = render_check_size(s, "--size", o->width, o->height, rows, err, errlen)))
+        return rc;
+    for (int i = 0; i < o->ntime_sizes; i++)
+        if ((rc = render_check_size(s, "--time-sizes", o->time_w[i], o->time_h[i], rows, err,
+                                    errlen)))
+            return rc;
+
+    struct scene_result *res = calloc(RENDER_SCENE_COUNT, sizeof *res);
+    struct render_device dev;
+    memset(&dev, 0, sizeof dev);
+    char stage[4200] = "", final_dir[4200], old_dir[4200] = "";
+    if (!res) {
+        set_err(err, errlen, "out of memory");
+        return EXIT_RUNTIME;
+    }
+    if (outdir_prepare(out_dir, err, errlen) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    /* everything is staged in a fresh folder and moved into place at the end */
+    char name[64];
+    snprintf(name, sizeof name, ".render-staging-%ld", (long)getpid());
+    path_join(stage, sizeof stage, out_dir, name);
+    remove_tree(stage);
+    if (outdir_prepare(stage, err, errlen) != 0) {
+        stage[0] = '\0';
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if ((rc = render_device_open(&dev, s, o, err, errlen)))
+        goto done;
+    uint32_t *table = malloc(DISPLAY_BINS * sizeof *table);
+    int display_code_error = -1;
+    if (table) {
+        display_table_build(o, table, &display_code_error);
+        free(table);
+    }
+
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
+        if (!o->scene_on[si])
+            continue;
+        struct scene_result *sr = &res[si];
+        struct scene_data sd;
+        double t0 = wall_seconds();
+        sr->kind = si;
+        if ((rc = scene_load(si, o, &sd, err, errlen)))
+            goto done;
+        snprintf(sr->source, sizeof sr->source, "%s", sd.source);
+        sr->triangles = sd.mesh.ntris;
+        sr->patches = sd.patches;
+        if (o->verbose) {
+            printf("%s: %s", scene_names[si], sd.source);
+            if (si != RENDER_SPHERES)
+                printf(" (%zu triangles)", sd.mesh.ntris);
+            printf("\n");
+            fflush(stdout);
+        }
+        rc = image_pass(&dev, &sd, o, stage, sr, err, errlen);
+        for (int ti = 0; rc == 0 && ti < o->ntime_sizes; ti++) {
+            rc = time_pass(&dev, &sd, o, o->time_w[ti], o->time_h[ti], &sr->timings[ti], err,
+                           errlen);
+            sr->ntimings = ti + 1;
+        }
+        mesh_free(&sd.mesh);
+        if (rc)
+            goto done;
+        sr->done = 1;
+        if (o->verbose) {
+            print_timings(sr);
+            printf("  (%s: %.1f s)\n", scene_names[si], wall_seconds() - t0);
+        }
+    }
+
+    /* move the staged pictures into place, then write render.json */
+    path_join(final_dir, sizeof final_dir, out_dir, "render");
+    struct stat st;
+    if (stat(final_dir, &st) == 0) {
+        snprintf(name, sizeof name, ".render-old-%ld", (long)getpid());
+        path_join(old_dir, sizeof old_dir, out_dir, name);
+        remove_tree(old_dir);
+        if (rename(final_dir, old_dir) != 0) {
+            set_err(err, errlen, "cannot move %s aside: %s", final_dir, strerror(errno));
+            old_dir[0] = '\0';
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+    }
+    if (rename(stage, final_dir) != 0) {
+        set_err(err, errlen, "cannot move %s to %s: %s", stage, final_dir, strerror(errno));
+        if (old_dir[0])
+            rename(old_dir, final_dir);
+        old_dir[0] = '\0';
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    stage[0] = '\0';
+    char json_path[4300];
+    path_join(json_path, sizeof json_path, out_dir, "render.json");
+    if (write_json(json_path, s, o, res, display_code_error, err, errlen) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if (summary_md)
+        *summary_md = summary_markdown(o, res, s);
+done:
+    if (stage[0])
+        remove_tree(stage);
+    if (old_dir[0])
+        remove_tree(old_dir);
+    render_device_close(&dev);
+    free(res);
+    return rc;
+}

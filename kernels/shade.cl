@@ -1,0 +1,200 @@
+/*
+ * shade.cl - the full-image shading pass of `brdfbench render`, and the copy kernel that
+ * moves the same bytes per pixel (the memory-bound ceiling the shading is compared with).
+ *
+ * Input: the G-buffer as planes of floats (px py pz nx ny nz shininess, `stride` floats
+ * apart; shininess 0 marks background). Output per pixel: RGBA8 (packed little-endian in
+ * a uint) and the linear specular radiance as a float (the quantity the error images
+ * compare). 28 bytes in, 8 bytes out per pixel.
+ *
+ * Each work-item owns a contiguous run of pixels and walks it sixteen at a time with
+ * float16 values: PoCL 3.1 turns explicit float16 into 512-bit code and calls the vector
+ * forms of pow/exp, while it neither vectorises scalar pow/exp nor goes past 256 bits when
+ * it vectorises scalar code across work-items. One launch shape serves every image size
+ * (the pixel count is an argument), so PoCL compiles each kernel once.
+ *
+ * Shading (per pixel; E = irradiance from the light at normal incidence):
+ *   specular radiance  L_s = E (N.L) ks S, with
+ *       S = f(c, n), c = R.V (psi, Phong family) or N.H (theta_h, Blinn family), or
+ *       S = D F G / (4 (N.L)(N.V)) for Cook-Torrance: D the model, Schlick F, the
+ *           separable Smith G that belongs to D (Beckmann or GGX)
+ *   radiance           L = E (N.L) kd + ambient + L_s              (white light)
+ * The material is tinted: display colour channel k = sRGB8(1 - exp(-exposure tint_k L)),
+ * i.e. diffuse and specular reflectance both scaled by the tint (a coloured metal). One
+ * scalar radiance per pixel then needs one table look-up for its display colour instead
+ * of three transcendental tone curves, which would cost more than most models do.
+ * The table (built by the host, host/render.c) is indexed by the float's exponent and 8
+ * leading mantissa bits: relative bins of 2^-8, within one 8-bit code of the exact curve.
+ * The double-precision host reference (host/render.c) recomputes both outputs on a sample.
+ */
+#define REAL float16
+#define RSCALAR float
+#include "brdf_models.h"
+
+/* Shading modes: which cosine feeds the model and whether it is a microfacet D. */
+#define SHADE_LOBE_PSI 0
+#define SHADE_LOBE_THETA_H 1
+#define SHADE_CT_BECKMANN 2 /* Cook-Torrance with the Smith G of the Beckmann distribution */
+#define SHADE_CT_GGX 3      /* Cook-Torrance with the Smith G of GGX */
+
+/* Display table: bin of radiance x = (float bits >> 15) - DISPLAY_BIN0, clamped to
+ * [0, DISPLAY_BINS - 1]; covers x in [2^-16, 2^8) (below: code 0, above: saturated). */
+#define DISPLAY_MIN_EXP (-16)
+#define DISPLAY_MAX_EXP 8
+#define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
+#define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
+
+#define BACKGROUND_RGBA 0xff2a2620u /* sRGB (32, 38, 42), opaque */
+
+/* params (float16 by value):
+ *   s0 s1 s2  eye position            s3  ambient radiance
+ *   s4 s5 s6  light: unit direction towards it, or its position
+ *   s7        1 for a point light (E = I / d^2), 0 for a directional one (E = I)
+ *   s8        light intensity I       s9  kd      sa  ks      sb  Schlick F0
+ *   sc..sf    unused */
+
+/* Separable Smith masking G1 of GGX for a direction with cosine x to the normal. */
+static float16 smith_g1_ggx(float16 x, float16 alpha)
+{
+    float16 a2 = alpha * alpha;
+    return 2.0f * x / (x + sqrt(a2 + (1.0f - a2) * x * x));
+}
+
+/* Smith G1 of Beckmann in the rational form of Walter et al. 2007. */
+static float16 smith_g1_beckmann(float16 x, float16 alpha)
+{
+    float16 a = x / (alpha * sqrt(fmax(1.0f - x * x, 1e-12f)));
+    float16 g = (3.535f * a + 2.181f * a * a) / (1.0f + 2.276f * a + 2.577f * a * a);
+    return select(g, (float16)1.0f, isgreaterequal(a, 1.6f));
+}
+
+static uint16 display_lookup(__global const uint *table, float16 x)
+{
+    int16 i = clamp((as_int16(x) >> 15) - DISPLAY_BIN0, 0, DISPLAY_BINS - 1);
+    /* LLVM turns these sixteen loads into one 512-bit gather */
+    return (uint16)(table[i.s0], table[i.s1], table[i.s2], table[i.s3], table[i.s4],
+                    table[i.s5], table[i.s6], table[i.s7], table[i.s8], table[i.s9],
+                    table[i.sa], table[i.sb], table[i.sc], table[i.sd], table[i.se],
+                    table[i.sf]);
+}
+
+__kernel void shade(__global const float *gbuf, const uint stride, const uint nchunks,
+                    __global uint *out_rgba, __global float *out_spec, const int mode,
+                    const int model, const float p0, const float p1, const float16 params,
+                    __global const uint *display_table)
+{
+    const uint nitems = (uint)get_global_size(0);
+    const uint gid = (uint)get_global_id(0);
+    /* contiguous runs of 16-pixel chunks, one per work-item */
+    const uint per = (nchunks + nitems - 1) / nitems;
+    const uint c0 = min(gid * per, nchunks);
+    const uint c1 = min(c0 + per, nchunks);
+
+    __global const float *gpx = gbuf;
+    __global const float *gpy = gbuf + stride;
+    __global const float *gpz = gbuf + 2 * (size_t)stride;
+    __global const float *gnx = gbuf + 3 * (size_t)stride;
+    __global const float *gny = gbuf + 4 * (size_t)stride;
+    __global const float *gnz = gbuf + 5 * (size_t)stride;
+    __global const float *gsh = gbuf + 6 * (size_t)stride;
+
+    const float ambient = params.s3;
+    const int point_light = params.s7 > 0.5f;
+    const float kd = params.s9, ks = params.sa, f0 = params.sb;
+
+    for (uint ch = c0; ch < c1; ++ch) {
+        float16 px = vload16(ch, gpx), py = vload16(ch, gpy), pz = vload16(ch, gpz);
+        float16 nx = vload16(ch, gnx), ny = vload16(ch, gny), nz = vload16(ch, gnz);
+        float16 n = vload16(ch, gsh);
+        int16 fg = isgreater(n, 0.0f);
+
+        /* V: towards the eye */
+        float16 vx = params.s0 - px, vy = params.s1 - py, vz = params.s2 - pz;
+        float16 vinv = rsqrt(vx * vx + vy * vy + vz * vz);
+        vx *= vinv;
+        vy *= vinv;
+        vz *= vinv;
+
+        /* L: towards the light; e: irradiance at normal incidence */
+        float16 lx, ly, lz, e;
+        if (point_light) {
+            lx = params.s4 - px;
+            ly = params.s5 - py;
+            lz = params.s6 - pz;
+            float16 d2 = lx * lx + ly * ly + lz * lz;
+            float16 linv = rsqrt(d2);
+            lx *= linv;
+            ly *= linv;
+            lz *= linv;
+            e = params.s8 / d2;
+        } else {
+            lx = (float16)params.s4;
+            ly = (float16)params.s5;
+            lz = (float16)params.s6;
+            e = (float16)params.s8;
+        }
+        float16 ndotl = nx * lx + ny * ly + nz * lz;
+        float16 ndotv = nx * vx + ny * vy + nz * vz;
+
+        float16 ldotv = lx * vx + ly * vy + lz * vz;
+        float16 c, s;
+        if (mode == SHADE_LOBE_PSI) {
+            /* c = R.V with R = 2 (N.L) N - L */
+            c = 2.0f * ndotl * ndotv - ldotv;
+            s = brdf_eval(model, c, n, p0, p1);
+        } else {
+            /* H = (L + V) / |L + V|, |L + V| = sqrt(2 + 2 L.V): c = N.H without forming H */
+            float16 hinv = rsqrt(fmax(2.0f + 2.0f * ldotv, 1e-30f));
+            c = (ndotl + ndotv) * hinv;
+            s = brdf_eval(model, c, n, p0, p1);
+            if (mode != SHADE_LOBE_THETA_H) {
+                /* V.H = (1 + L.V) / |L + V| */
+                float16 vdoth = fmax((1.0f + ldotv) * hinv, 0.0f);
+                float16 m = 1.0f - vdoth;
+                float16 m2 = m * m;
+                float16 fresnel = f0 + (1.0f - f0) * (m2 * m2 * m);
+                float16 alpha = brdf_alpha_from_n(n);
+                float16 nl = fmax(ndotl, 1e-6f), nv = fmax(ndotv, 1e-6f);
+                float16 masking =
+                    mode == SHADE_CT_GGX
+                        ? smith_g1_ggx(nl, alpha) * smith_g1_ggx(nv, alpha)
+                        : smith_g1_beckmann(nl, alpha) * smith_g1_beckmann(nv, alpha);
+                s = s * fresnel * masking / (4.0f * nl * nv);
+            }
+        }
+        /* lit: in front of the light, and the lobe's cosine inside the model's domain
+           [0, 1]; Cook-Torrance also needs the viewer above the surface */
+        int16 lit = fg & isgreater(ndotl, 0.0f) & isgreater(c, 0.0f);
+        if (mode >= SHADE_CT_BECKMANN)
+            lit &= isgreater(ndotv, 0.0f);
+        float16 spec = select((float16)0.0f, e * ndotl * ks * s, lit);
+        float16 radiance = e * fmax(ndotl, 0.0f) * kd + ambient + spec;
+
+        uint16 rgba = display_lookup(display_table, radiance);
+        rgba = select((uint16)BACKGROUND_RGBA, rgba, as_uint16(fg));
+        vstore16(rgba, ch, out_rgba);
+        vstore16(spec, ch, out_spec);
+    }
+}
+
+/* The same bytes as `shade` (seven planes in, a uint and a float out per pixel) with one
+ * add per value: the rate shading would reach if its arithmetic were free. */
+__kernel void copy_gbuffer(__global const float *gbuf, const uint stride, const uint nchunks,
+                           __global uint *out_rgba, __global float *out_spec)
+{
+    const uint nitems = (uint)get_global_size(0);
+    const uint gid = (uint)get_global_id(0);
+    const uint per = (nchunks + nitems - 1) / nitems;
+    const uint c0 = min(gid * per, nchunks);
+    const uint c1 = min(c0 + per, nchunks);
+    for (uint ch = c0; ch < c1; ++ch) {
+        float16 a = vload16(ch, gbuf) + vload16(ch, gbuf + stride) +
+                    vload16(ch, gbuf + 2 * (size_t)stride);
+        float16 b = vload16(ch, gbuf + 3 * (size_t)stride) +
+                    vload16(ch, gbuf + 4 * (size_t)stride) +
+                    vload16(ch, gbuf + 5 * (size_t)stride);
+        float16 n = vload16(ch, gbuf + 6 * (size_t)stride);
+        vstore16(as_uint16(a + b), ch, out_rgba);
+        vstore16(a + n, ch, out_spec);
+    }
+}

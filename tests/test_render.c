@@ -1,0 +1,401 @@
+/* test_render.c - the image passes: sphere pixels whose normal is known in closed form shade
+ * on the device to the values worked out here and to the double reference; a model shaded
+ * against itself gives an all-zero error; a small render_run writes the reference's zero
+ * error, cq2's non-zero error and fq2's smaller mean error (SPEC.md: fq2's max delta 1.256%
+ * and max Delta 0.128 against cq2's 7.924% and 0.162); bad scene files fail with their
+ * file and line and leave the previous results as they were. */
+#include "clsession.h"
+#include "jsonr.h"
+#include "raster.h"
+#include "render.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static int passed, failed;
+
+#define CHECK(cond, ...)                                                                   \
+    do {                                                                                   \
+        if (cond) {                                                                        \
+            passed++;                                                                      \
+        } else {                                                                           \
+            failed++;                                                                      \
+            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                    \
+            printf(__VA_ARGS__);                                                           \
+            printf("\n");                                                                  \
+        }                                                                                  \
+    } while (0)
+
+#define PI 3.14159265358979323846
+
+static double dot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static void unit(double *a)
+{
+    double l = sqrt(dot(a, a));
+    for (int c = 0; c < 3; c++)
+        a[c] /= l;
+}
+
+static char tmpdir[256];
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        perror(path);
+        exit(3);
+    }
+    fputs(text, f);
+    fclose(f);
+}
+
+static char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *b = malloc((size_t)n + 1);
+    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
+        free(b);
+        b = NULL;
+    }
+    fclose(f);
+    if (b) {
+        b[n] = '\0';
+        *len = (size_t)n;
+    }
+    return b;
+}
+
+/* One sphere (1 x 1 grid) filling a 64 x 64 frame. raster.h's layout: cells 1 high, the
+   sphere of radius 0.42 at the origin, the camera at (0, 0, 4) looking down -z with the
+   frame at z = 0 exactly one cell high, so tan(fov/2) = 0.5 / 4. */
+static void test_sphere_pixels(struct cl_session *s)
+{
+    const int W = 64, H = 64;
+    double shin = 64.0;
+    struct gbuffer g;
+    struct camera cam;
+    char err[512];
+    if (gbuffer_alloc(&g, W, H, err, sizeof err) != 0 ||
+        raster_spheres(&g, 1, 1, &shin, &cam, err, sizeof err) != 0) {
+        CHECK(0, "sphere G-buffer: %s", err);
+        return;
+    }
+    struct render_options o;
+    render_options_default(&o);
+    struct render_device dev;
+    int rc = render_device_open(&dev, s, &o, err, sizeof err);
+    CHECK(rc == 0, "render_device_open: %s", err);
+    if (rc) {
+        gbuffer_free(&g);
+        return;
+    }
+    cl_int e;
+    cl_mem gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                 g.stride * GB_NPLANES * sizeof(float), g.data, &e);
+    cl_mem orgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * 4, NULL, &e);
+    cl_mem ospec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * 4, NULL, &e);
+    unsigned *rgba = malloc(g.npix * sizeof *rgba);
+    float *spec = malloc(g.npix * sizeof *spec);
+
+    /* light from the upper right front, directional, E = 1; a dielectric F0 so that the
+       Fresnel term's angle dependence shows (V.H = 0.886 at the test pixel) */
+    struct render_light lt = {{0, 0, 4}, {0.6, 0.5, 0.6}, 0, 1.0};
+    o.f0 = 0.04;
+    unit(lt.light);
+    const int px = 40, py = 22;
+    /* the pixel's ray, written out here: x right, y up, forward -z */
+    double t = 0.5 / 4.0;
+    double dir[3] = {(2.0 * (px + 0.5) / W - 1.0) * t, (1.0 - 2.0 * (py + 0.5) / H) * t, -1.0};
+    unit(dir);
+    /* |eye + s dir|^2 = r^2, nearer root */
+    double b = dot(lt.eye, dir), cc = dot(lt.eye, lt.eye) - 0.42 * 0.42;
+    double sroot = -b - sqrt(b * b - cc);
+    double P[3], N[3], V[3], L[3] = {lt.light[0], lt.light[1], lt.light[2]};
+    for (int k = 0; k < 3; k++) {
+        P[k] = lt.eye[k] + sroot * dir[k];
+        N[k] = P[k] / 0.42;
+        V[k] = -dir[k];
+    }
+    size_t pi = (size_t)py * W + px;
+    CHECK(fabs(gbuffer_plane(&g, GB_NX)[pi] - N[0]) < 1e-6 &&
+              fabs(gbuffer_plane(&g, GB_NY)[pi] - N[1]) < 1e-6 &&
+              fabs(gbuffer_plane(&g, GB_NZ)[pi] - N[2]) < 1e-6,
+          "G-buffer normal (%g %g %g), closed form (%g %g %g)", gbuffer_plane(&g, GB_NX)[pi],
+          gbuffer_plane(&g, GB_NY)[pi], gbuffer_plane(&g, GB_NZ)[pi], N[0], N[1], N[2]);
+    double nl = dot(N, L), nv = dot(N, V);
+    CHECK(nl > 0.3 && nv > 0.3, "test pixel must face light and eye (N.L %g, N.V %g)", nl, nv);
+
+    /* Phong: R = 2 (N.L) N - L, spec = E (N.L) ks (R.V)^n */
+    double R[3], H2[3];
+    for (int k = 0; k < 3; k++) {
+        R[k] = 2.0 * nl * N[k] - L[k];
+        H2[k] = L[k] + V[k];
+    }
+    unit(H2);
+    double want_phong = nl * o.ks * pow(dot(R, V), 64.0);
+    /* Blinn: spec = E (N.L) ks (N.H)^n */
+    double want_blinn = nl * o.ks * pow(dot(N, H2), 64.0);
+    /* Cook-Torrance with GGX (SPEC.md): alpha = sqrt(2 / (n + 2)),
+       D = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2), F = F0 + (1 - F0)(1 - V.H)^5,
+       G = G1(N.L) G1(N.V), G1(x) = 2x / (x + sqrt(alpha^2 + (1 - alpha^2) x^2));
+       spec = E (N.L) ks D F G / (4 (N.L)(N.V)) */
+    double a2 = 2.0 / 66.0, ch = dot(N, H2), vh = dot(V, H2);
+    double dg = a2 / (PI * pow(ch * ch * (a2 - 1.0) + 1.0, 2));
+    double fr = o.f0 + (1.0 - o.f0) * pow(1.0 - vh, 5);
+    double g1l = 2 * nl / (nl + sqrt(a2 + (1 - a2) * nl * nl));
+    double g1v = 2 * nv / (nv + sqrt(a2 + (1 - a2) * nv * nv));
+    double want_ggx = o.ks * dg * fr * g1l * g1v / (4.0 * nv);
+
+    const struct {
+        const char *model;
+        double want;
+    } cases[] = {{"phong", want_phong}, {"blinn", want_blinn}, {"ggx", want_ggx}};
+    for (int k = 0; k < 3; k++) {
+        struct model_spec m;
+        model_spec_parse(cases[k].model, &m, err, sizeof err);
+        int mode = render_shading_mode(&m);
+        rc = render_device_shade(&dev, gbuf, g.stride, g.npix, orgba, ospec, &m, mode, &lt, &o,
+                                 rgba, spec, NULL);
+        CHECK(rc == 0, "%s: device shading failed", cases[k].model);
+        if (rc)
+            continue;
+        /* float G-buffer and float shading: relative 1e-4 covers n = 64 times a few ulps of
+           the cosine, while a wrong vector or factor is off by far more */
+        double rel = fabs(spec[pi] - cases[k].want) / cases[k].want;
+        CHECK(rel < 1e-4, "%s pixel: device %.9g, closed form %.9g (rel %.2g)", cases[k].model,
+              spec[pi], cases[k].want, rel);
+        double pos[3] = {gbuffer_plane(&g, GB_PX)[pi], gbuffer_plane(&g, GB_PY)[pi],
+                         gbuffer_plane(&g, GB_PZ)[pi]};
+        double nrm[3] = {gbuffer_plane(&g, GB_NX)[pi], gbuffer_plane(&g, GB_NY)[pi],
+                         gbuffer_plane(&g, GB_NZ)[pi]};
+        double ref_spec, ref_rad;
+        render_shade_ref(&m, mode, &lt, &o, pos, nrm, 64.0, &ref_spec, &ref_rad);
+        rel = fabs(ref_spec - cases[k].want) / cases[k].want;
+        CHECK(rel < 1e-4, "%s pixel: double reference %.9g, closed form %.9g", cases[k].model,
+              ref_spec, cases[k].want);
+        /* radiance = E (N.L) kd + ambient + spec; the device's colour within one code of
+           the exact display curve at that radiance */
+        double rad = nl * o.kd + o.ambient + cases[k].want;
+        unsigned char exact[3];
+        render_display_exact(&o, rad, exact);
+        int worst = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs((int)((rgba[pi] >> (8 * c)) & 255u) - (int)exact[c]);
+            worst = d > worst ? d : worst;
+        }
+        CHECK(worst <= 1, "%s pixel colour off the exact display curve by %d codes",
+              cases[k].model, worst);
+    }
+    /* a background pixel (corner) carries no specular radiance */
+    CHECK(spec[0] == 0.0f, "background specular %g, expected 0", spec[0]);
+
+    /* A model against itself: every pixel's error is exactly zero. */
+    struct model_spec cq2;
+    model_spec_parse("cq2", &cq2, err, sizeof err);
+    float *spec2 = malloc(g.npix * sizeof *spec2);
+    unsigned *rgba2 = malloc(g.npix * sizeof *rgba2);
+    render_device_shade(&dev, gbuf, g.stride, g.npix, orgba, ospec, &cq2, render_shading_mode(&cq2),
+                        &lt, &o, rgba, spec, NULL);
+    render_device_shade(&dev, gbuf, g.stride, g.npix, orgba, ospec, &cq2, render_shading_mode(&cq2),
+                        &lt, &o, rgba2, spec2, NULL);
+    size_t nonzero = 0, lit = 0;
+    for (size_t i = 0; i < g.npix; i++) {
+        nonzero += fabsf(spec[i] - spec2[i]) != 0.0f || rgba[i] != rgba2[i];
+        lit += spec[i] > 0;
+    }
+    CHECK(nonzero == 0 && lit > 0, "cq2 against itself: %zu non-zero error pixels (%zu lit)",
+          nonzero, lit);
+    free(spec2);
+    free(rgba2);
+
+    free(rgba);
+    free(spec);
+    clReleaseMemObject(ospec);
+    clReleaseMemObject(orgba);
+    clReleaseMemObject(gbuf);
+    render_device_close(&dev);
+    gbuffer_free(&g);
+}
+
+/* Finds scenes[i] with "scene" == name and its "models" entry for model. */
+static const struct jr_value *find_model(const struct jr_doc *d, const char *scene,
+                                         const char *model)
+{
+    const struct jr_value *scenes = jr_get(&d->root, "scenes");
+    for (size_t i = 0; scenes && i < scenes->count; i++) {
+        const struct jr_value *sc = &scenes->items[i], *name = jr_get(sc, "scene");
+        if (!name || name->type != JR_STR || strcmp(name->str, scene) != 0)
+            continue;
+        const struct jr_value *models = jr_get(sc, "models");
+        for (size_t k = 0; models && k < models->count; k++) {
+            const struct jr_value *m = jr_get(&models->items[k], "model");
+            if (m && m->type == JR_STR && strcmp(m->str, model) == 0)
+                return &models->items[k];
+        }
+    }
+    return NULL;
+}
+
+static double metric(const struct jr_value *model, const char *key)
+{
+    const struct jr_value *mt = model ? jr_get(model, "metrics") : NULL;
+    const struct jr_value *v = mt ? jr_get(mt, key) : NULL;
+    return v && v->type == JR_NUM ? v->num : NAN;
+}
+
+static int check_within(const struct jr_value *model)
+{
+    const struct jr_value *c = model ? jr_get(model, "double_reference_check") : NULL;
+    const struct jr_value *v = c ? jr_get(c, "within_bound") : NULL;
+    return v && v->type == JR_BOOL && v->num == 1;
+}
+
+static void test_render_run(struct cl_session *s)
+{
+    char err[1024] = "", out[512], path[700];
+    snprintf(out, sizeof out, "%s/run", tmpdir);
+    /* small scene files: one flat patch as the teapot, a cube as the bunny */
+    char teapot[600], cube[600], bad[600];
+    snprintf(teapot, sizeof teapot, "%s/flat.inc", tmpdir);
+    snprintf(cube, sizeof cube, "%s/cube.obj", tmpdir);
+    snprintf(bad, sizeof bad, "%s/bad.obj", tmpdir);
+    write_file(teapot, "bicubic_patch { type 1\n"
+                       " <0,0,0> <1,0,0> <2,0,0> <3,0,0>\n <0,1,0> <1,1,0.5> <2,1,0.5> <3,1,0>\n"
+                       " <0,2,0> <1,2,0.5> <2,2,0.5> <3,2,0>\n <0,3,0> <1,3,0> <2,3,0> <3,3,0>\n}\n");
+    write_file(cube, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\n"
+                     "v -1 1 1\nf 5 6 7 8\nf 1 4 3 2\nf 2 3 7 6\nf 1 5 8 4\nf 4 8 7 3\nf 1 2 6 5\n");
+    write_file(bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+
+    struct render_options o;
+    render_options_default(&o);
+    o.verbose = 0;
+    o.width = 240;
+    o.height = 144;
+    o.ntime_sizes = 0;
+    o.teapot_path = teapot;
+    o.bunny_path = cube;
+    o.tess = 4;
+    o.nmodels = model_spec_list_parse("phong,cq2,fq2", o.models, RENDER_MAX_MODELS, err,
+                                      sizeof err);
+    int rc = render_run(s, &o, out, NULL, err, sizeof err);
+    CHECK(rc == 0, "render_run: rc %d: %s", rc, err);
+    if (rc)
+        return;
+    snprintf(path, sizeof path, "%s/render.json", out);
+    struct jr_doc d;
+    rc = jr_parse_file(path, &d, err, sizeof err);
+    CHECK(rc == 0, "render.json: %s", err);
+    if (rc)
+        return;
+    const struct jr_value *phong = find_model(&d, "spheres", "phong");
+    const struct jr_value *cq2 = find_model(&d, "spheres", "cq2");
+    const struct jr_value *fq2 = find_model(&d, "spheres", "fq2");
+    CHECK(phong && cq2 && fq2, "spheres: models missing from render.json");
+    /* phong is its own reference: the same kernel on the same inputs */
+    CHECK(metric(phong, "max_abs") == 0.0 && metric(phong, "pixels") > 100,
+          "phong against itself: max error %g over %g pixels", metric(phong, "max_abs"),
+          metric(phong, "pixels"));
+    CHECK(isnan(metric(phong, "psnr_db")), "identical images: PSNR must be null (infinite)");
+    CHECK(metric(cq2, "max_abs") > 0.01, "cq2 max error %g, expected clearly non-zero",
+          metric(cq2, "max_abs"));
+    CHECK(metric(fq2, "mean_abs") < metric(cq2, "mean_abs"),
+          "fq2 mean error %g should be below cq2's %g", metric(fq2, "mean_abs"),
+          metric(cq2, "mean_abs"));
+    CHECK(check_within(phong) && check_within(cq2) && check_within(fq2),
+          "spheres: a model outside the double-reference bound");
+    CHECK(check_within(find_model(&d, "teapot", "cq2")) &&
+              check_within(find_model(&d, "bunny", "fq2")),
+          "mesh scenes: missing or outside the double-reference bound");
+    CHECK(metric(find_model(&d, "bunny", "phong"), "pixels") > 100,
+          "the cube covers %g pixels", metric(find_model(&d, "bunny", "phong"), "pixels"));
+    jr_free(&d);
+    struct stat st;
+    snprintf(path, sizeof path, "%s/render/spheres/contact.png", out);
+    CHECK(stat(path, &st) == 0 && st.st_size > 1000, "%s missing", path);
+    snprintf(path, sizeof path, "%s/render/teapot/cq2_error.png", out);
+    CHECK(stat(path, &st) == 0 && st.st_size > 100, "%s missing", path);
+
+    /* A malformed bunny file: exit 2 naming the file and line; the earlier results stay. */
+    size_t len0 = 0, len1 = 0;
+    snprintf(path, sizeof path, "%s/render.json", out);
+    char *before = read_all(path, &len0);
+    o.bunny_path = bad;
+    err[0] = '\0';
+    rc = render_run(s, &o, out, NULL, err, sizeof err);
+    char want[700];
+    snprintf(want, sizeof want, "%s:4:", bad);
+    CHECK(rc == 2 && strstr(err, want) != NULL, "malformed OBJ: rc %d, message '%s'", rc, err);
+    char *after = read_all(path, &len1);
+    CHECK(before && after && len0 == len1 && memcmp(before, after, len0) == 0,
+          "a failed run changed render.json");
+    free(before);
+    free(after);
+    snprintf(path, sizeof path, "%s/render/teapot/cq2.png", out);
+    CHECK(stat(path, &st) == 0, "a failed run removed the previous pictures");
+    char cmd[800];
+    snprintf(cmd, sizeof cmd, "ls -a '%s' | grep -c render- >/dev/null", out);
+    CHECK(system(cmd) != 0, "a staging folder was left behind in %s", out);
+
+    /* a missing scene file given by the user */
+    o.bunny_path = "/nonexistent/bunny.obj";
+    rc = render_run(s, &o, out, NULL, err, sizeof err);
+    CHECK(rc == 2 && strstr(err, "/nonexistent/bunny.obj"), "missing file: rc %d '%s'", rc, err);
+
+    /* sizes: zero, too small for the grid, larger than the device's memory */
+    CHECK(render_check_size(s, "--size", 0, 100, 0, err, sizeof err) == 2 &&
+              strstr(err, "[16, 16384]"),
+          "0x100 must be refused with the range: '%s'", err);
+    CHECK(render_check_size(s, "--size", 64, 20, 3, err, sizeof err) == 2 &&
+              strstr(err, "8 pixel rows per model"),
+          "64x20 with 3 sphere rows must be refused: '%s'", err);
+    CHECK(render_check_size(s, "--size", 16384, 16384, 0, err, sizeof err) == 2 &&
+              strstr(err, "MiB"),
+          "16384x16384 (7.5 GB of G-buffer) must exceed this device's limits: '%s'", err);
+    CHECK(render_check_size(s, "--size", 1920, 1080, 14, err, sizeof err) == 0,
+          "1920x1080 refused: %s", err);
+}
+
+int main(void)
+{
+    /* a writable kernel cache of this test's own */
+    char cache[600];
+    const char *base = getenv("POCL_CACHE_DIR");
+    snprintf(cache, sizeof cache, "%s/test_render", base ? base : "/tmp/brdfbench-pocl-cache");
+    mkdir(base ? base : "/tmp/brdfbench-pocl-cache", 0777);
+    mkdir(cache, 0777);
+    setenv("POCL_CACHE_DIR", cache, 1);
+    snprintf(tmpdir, sizeof tmpdir, "%s/test_render.XXXXXX",
+             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    if (!mkdtemp(tmpdir)) {
+        perror("mkdtemp");
+        return 3;
+    }
+    struct cl_session s;
+    char err[512];
+    int rc = clsession_open(&s, -1, -1, err, sizeof err);
+    if (rc) {
+        printf("no OpenCL device: %s\n0 passed, 0 failed\n", err);
+        return rc == 77 ? 77 : 1;
+    }
+    test_sphere_pixels(&s);
+    test_render_run(&s);
+    clsession_close(&s);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    if (system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", tmpdir);
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}
