@@ -453,8 +453,9 @@ static int scene_load(int kind, const struct render_options *o, struct scene_dat
         if (is_default)
             set_err(err, errlen,
                     "%s scene: %s is missing: it comes with Debian's %s package (apt-get install "
-                    "%s; where /usr/share/doc is excluded from installs: apt-get download %s && "
-                    "dpkg-deb -x %s_*.deb / ; scripts/setup.sh does this)",
+                    "%s; where an image excludes /usr/share/doc from installs, take the file out "
+                    "of the package: apt-get download %s && dpkg-deb -x %s_*.deb DIR; "
+                    "scripts/setup.sh does both)",
                     scene_names[kind], path, pkg, pkg, pkg, pkg);
         else
             set_err(err, errlen, "%s scene: cannot read %s: %s", scene_names[kind], path,
@@ -1493,6 +1494,22 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
             fflush(stdout);
         }
         rc = image_pass(&dev, &sd, o, stage, sr, err, errlen);
+        if (rc == 0 && o->verbose) {
+            double worst = 0;
+            int codes = 0, samples = 0, within = 1;
+            for (int mi = 0; mi < o->nmodels; mi++) {
+                const struct reference_check *c = &sr->models[mi].check;
+                worst = fmax(worst, c->relative_to_peak);
+                codes = c->max_code > codes ? c->max_code : codes;
+                samples += c->samples;
+                within &= c->within;
+            }
+            printf("  %s: device vs double reference on %d sampled pixels: max |difference| of "
+                   "the specular radiance %.2g of the peak (bound 1e-3), colours within %d "
+                   "code%s of the exact display curve: %s\n",
+                   scene_names[si], samples, worst, codes, codes == 1 ? "" : "s",
+                   within ? "within the bound" : "OUT OF BOUND");
+        }
         for (int ti = 0; rc == 0 && ti < o->ntime_sizes; ti++) {
             rc = time_pass(&dev, &sd, o, o->time_w[ti], o->time_h[ti], &sr->timings[ti], err,
                            errlen);
