@@ -634,7 +634,7 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
     memset(&actx, 0, sizeof actx);
     struct gate_sweep *sweeps = calloc((size_t)gs->count, sizeof *sweeps);
     int *plan = malloc((size_t)gs->count * sizeof *plan), *order = malloc((size_t)gs->count * sizeof *order);
-    int nsweeps = 0;
+    int nsweeps = 0, sweeps_done = 0;
     if (!sweeps || !plan || !order) {
         fprintf(stderr, "brdfbench gate: out of memory\n");
         rc = EXIT_RUNTIME;
@@ -685,9 +685,10 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
                 if ((rc = accuracy_run(&actx, &sw->model, &sw->grid, &sw->result)) != 0)
                     goto done;
                 sw->ran = 1;
+                ++sweeps_done;
                 if (progress)
                     fprintf(progress, "sweep %d/%d: %s n=[%g,%g] step %g, %ld samples per zone (%.2f s)\n",
-                            plan[i] + 1, nsweeps, sw->model.label, sw->grid.n_min, sw->grid.n_max, sw->grid.n_step,
+                            sweeps_done, nsweeps, sw->model.label, sw->grid.n_min, sw->grid.n_max, sw->grid.n_step,
                             sw->grid.samples, wall_seconds() - t0);
             }
             gate_from_sweep(g, &sw->result);

@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# test_usermodel.sh - user models end to end: model files and --model expressions through
+# the accuracy sweep and the gate command, their parameters, their double reference on the
+# device (and its float fallback), compile errors in the user's own line numbers, and
+# invalid model values reported with their count and first location.
+#
+# Expected values are closed forms of models chosen for them (f = k c^n has relative error
+# |k - 1| everywhere) or identities (a user model that writes out cq2's formula has cq2's
+# closed-form maximum), never the program's own output.
+set -u
+BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+SRC=${SRC_DIR:?}
+F=$SRC/tests/test_usermodel_files
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
+expect() {
+    local code=$1 pattern=$2
+    shift 2
+    "$BIN" "$@" >"$T/out" 2>"$T/err"
+    local rc=$?
+    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 400 "$T/err")"; return; fi
+    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 400 "$T/err")' lacks /$pattern/"; return; fi
+    ok
+}
+
+# check_json FILE PYTHON: runs PYTHON with `d` = the parsed JSON (strict: no NaN literals).
+check_json() {
+    local file=$1 what=$2 code=$3
+    python3 - "$file" "$code" <<'PY' && ok || bad "$what"
+import json, math, sys
+def no_const(x): raise ValueError("non-finite number in JSON: " + x)
+d = json.load(open(sys.argv[1]), parse_constant=no_const)
+exec(sys.argv[2])
+PY
+}
+
+# 1. A model file with a parameter and an expression, in one accuracy run.
+"$BIN" accuracy --model-file "$F/scaled.cl" --model 'half=0.5*pow(c, n)' \
+    --models scaled:k=3,half --n-min 2 --n-max 50 --samples 256 --out "$T/a1" --quiet 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "accuracy with user models: exit $rc: $(cat "$T/err")"
+# f = k c^n against c^n: delta = |k - 1| at every point; Delta = |k - 1| c^n, largest at x = 0
+# (c = 1) over the whole range and at the epicentre's end x_e (c^n = e^-0.511) in the
+# attenuation zone, which begins there.
+check_json "$T/a1/accuracy.json" "closed-form figures of k c^n (k = 3 and 0.5)" '
+r = {x["label"]: x for x in d["results"]}
+assert set(r) == {"scaled:k=3", "half"}, list(r)
+for label, k in (("scaled:k=3", 3.0), ("half", 0.5)):
+    x = r[label]
+    assert x["status"] == "ok", x
+    assert x["reference"] == "phong"
+    assert abs(x["epicentre"]["max_rel"] - abs(k - 1)) < 1e-12, x["epicentre"]
+    assert abs(x["whole"]["max_abs"] - abs(k - 1)) < 1e-12, x["whole"]
+    assert abs(x["whole"]["at_x"]) < 1e-9, x["whole"]
+    assert abs(x["attenuation"]["max_abs"] - abs(k - 1) * math.exp(-0.511)) < 1e-12, x["attenuation"]
+    # The double reference ran on the device: its check against the float sweep holds.
+    assert x["check"]["in_4th_digit_units"] < 0.05, x["check"]
+    assert x["check"]["probe_max_diff_of_peak"] < 1e-5, x["check"]
+    assert "reason" not in x, x
+assert r["scaled:k=3"]["params"] == {"k": 3}
+'
+
+# 2. Two parameters: myquad with a = 1/2, b = 0 is cq2's formula, whose maximum relative
+#    error over n in [2, 50] is at n = 50 at the epicentre's end: 1 - (1 - 50u/2)^2 / e^-0.511
+#    with u = 1 - exp(-0.511/50) (worked in test_cli_accuracy.sh as well).
+"$BIN" accuracy --model-file "$F/quad.cl" --models myquad:a=0.5,b=0 --n-min 2 --n-max 50 --samples 256 \
+    --out "$T/a2" --quiet 2>"$T/err" && ok || bad "accuracy myquad: $(cat "$T/err")"
+check_json "$T/a2/accuracy.json" "myquad:a=0.5,b=0 has cq2's closed-form maximum" '
+x = d["results"][0]
+assert x["label"] == "myquad:a=0.5,b=0" and x["params"] == {"a": 0.5, "b": 0}, x
+u = -math.expm1(-0.511 / 50)
+expect = 1 - (1 - 50 * u / 2) ** 2 / math.exp(-0.511)
+assert abs(x["epicentre"]["max_rel"] - expect) < 1e-12, (x["epicentre"], expect)
+assert x["epicentre"]["at_n"] == 50
+'
+
+# 3. Without --models, only the user models run.
+"$BIN" accuracy --model 'cube=c*c*c' --n-min 2 --n-max 10 --samples 64 --out "$T/a3" --quiet 2>"$T/err" \
+    && ok || bad "accuracy --model only: $(cat "$T/err")"
+check_json "$T/a3/accuracy.json" "only the user model runs when no --models is given" '
+assert [x["model"] for x in d["results"]] == ["cube"], d["results"]
+'
+
+# 4. The float fallback where the device lacks cl_khr_fp64 (forced): said so in the output;
+#    the figures keep float accuracy (|k - 1| = 0.5 to 1e-6).
+BRDFBENCH_NO_FP64=1 "$BIN" accuracy --model 'half=0.5*pow(c, n)' --n-min 2 --n-max 20 --samples 64 \
+    --out "$T/a4" >"$T/out" 2>"$T/err" && ok || bad "accuracy without fp64: $(cat "$T/err")"
+grep -q "no cl_khr_fp64" "$T/out" && ok || bad "the table does not say that the reference is float"
+check_json "$T/a4/accuracy.json" "float fallback is reported in accuracy.json" '
+x = d["results"][0]
+assert "no cl_khr_fp64" in x["reason"], x
+assert abs(x["epicentre"]["max_rel"] - 0.5) < 1e-6, x["epicentre"]
+'
+
+# 5. Invalid values: sqrt(c - 1/2) is NaN exactly where c < 1/2 (x > pi/3). The epicentre
+#    (x <= x_e(2) = 0.685 < pi/3) is clean; the attenuation zone's samples
+#    x_j = x_e + (pi/2 - x_e)(j/S)^2, j = 1..S, count those past pi/3 (a sample within
+#    1e-6 of pi/3 may fall either way in float: allowed per n).
+"$BIN" accuracy --model 'sq=sqrt(c - 0.5)' --n-min 2 --n-max 12 --samples 256 --out "$T/a5" --quiet 2>"$T/err" \
+    && ok || bad "accuracy of a NaN-producing model: $(cat "$T/err")"
+check_json "$T/a5/accuracy.json" "NaN values are counted, with the first location" '
+x = d["results"][0]
+S = 256
+expect, slack = 0, 0
+for n in range(2, 13):
+    xe = math.acos(math.exp(-0.511 / n))
+    w = math.pi / 2 - xe
+    for j in range(1, S + 1):
+        xj = xe + w * (j / S) ** 2
+        if abs(xj - math.pi / 3) < 1e-6: slack += 1
+        elif xj > math.pi / 3: expect += 1
+assert x["status"] == "invalid_values", x["status"]
+cnt = x["invalid"]["count"]
+assert expect <= cnt <= expect + slack, (cnt, expect, slack)
+assert x["invalid"]["at_n"] == 2 and x["invalid"]["at_x"] > math.pi / 3 - 1e-6, x["invalid"]
+assert str(cnt) in x["reason"] and "NaN, Inf or negative" in x["reason"], x["reason"]
+'
+
+# 6. A gate on a user model from a file named in the gates file (relative to it), and one on
+#    an expression: closed-form values |k - 1| with bounds just either side.
+mkdir -p "$T/g"
+cp "$F/scaled.cl" "$T/g/"
+cat >"$T/g/gates.json" <<'EOF'
+{"gates": [
+  {"model": "scaled:k=1.5", "model_file": "scaled.cl", "metric": "epicentre.max_rel",
+   "n_min": 2, "n_max": 40, "samples": 256, "min": 0.4999999, "max": 0.5000001},
+  {"model": "scaled:k=1.5", "model_file": "scaled.cl", "metric": "whole.max_abs",
+   "n_min": 2, "n_max": 40, "samples": 256, "max": 0.4999},
+  {"model": "quarter", "expression": "0.25 * pow(c, n)", "metric": "epicentre.max_rel",
+   "n_min": 2, "n_max": 40, "samples": 256, "max": 0.7500001, "min": 0.7499999}
+]}
+EOF
+"$BIN" gate "$T/g/gates.json" --json "$T/g/out.json" --quiet >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 1 ] && ok || bad "gate on user models: exit $rc (expected 1: one bound below 0.5): $(cat "$T/err")"
+check_json "$T/g/out.json" "user-model gates judged on closed forms" '
+g = d["gates"]
+assert [x["status"] for x in g] == ["pass", "fail", "pass"], [(x["status"], x.get("reason")) for x in g]
+assert all(x["user_model"] for x in g)
+assert abs(g[0]["measured"] - 0.5) < 1e-12 and abs(g[1]["measured"] - 0.5) < 1e-12
+assert abs(g[2]["measured"] - 0.75) < 1e-12
+assert d["summary"]["sweeps"] == 2, d["summary"]
+'
+
+# 7. Errors: the build log in the user's own line numbers, exit 2.
+expect 2 "bad_syntax.cl:6:[0-9]+: .*expected ';'" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out "$T/e1"
+[ ! -e "$T/e1/accuracy.json" ] && ok || bad "a failed build wrote results"
+# 'q' is the 13th character of the expression.
+expect 2 "--model e1:1:13: .*undeclared identifier 'q'" accuracy --model 'e1=pow(c, n) * q' --n-max 4 --out "$T/e2"
+cat >"$T/g/broken.json" <<EOF
+{"gates": [{"model": "broken", "model_file": "$F/bad_syntax.cl", "metric": "epicentre.max_rel", "max": 1}]}
+EOF
+expect 2 "bad_syntax.cl:6:" gate "$T/g/broken.json"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

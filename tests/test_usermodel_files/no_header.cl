@@ -1,0 +1,4 @@
+REAL lonely(REAL c, REAL n)
+{
+    return pow(c, n);
+}

@@ -1,0 +1,12 @@
+/* brdfbench-model
+ * name: scaled
+ * description: the Phong lobe times a constant k (a test model with closed-form errors)
+ * param: k 0 10 2
+ * reference: phong
+ */
+
+/* f = k c^n: relative error |k - 1| everywhere, absolute error |k - 1| c^n. */
+REAL scaled(REAL c, REAL n, RSCALAR k)
+{
+    return k * pow(c, n);
+}

@@ -1,0 +1,5 @@
+/* brdfbench-model
+ * name: unknownkey
+ * colour: red
+ */
+REAL unknownkey(REAL c, REAL n) { return pow(c, n); }
