@@ -3,6 +3,7 @@
 #include "report.h"
 
 #include "accuracy_report.h"
+#include "jsonr.h"
 #include "outdir.h"
 
 #include <math.h>
@@ -225,4 +226,123 @@ int report_write(const struct report_input *in, char *err, size_t errlen)
     else rc = write_file_atomic(path, text, strlen(text), err, errlen);
     free(text);
     return rc ? -1 : 0;
+}
+
+/* ---- image passes (render.json) ------------------------------------------------------ */
+
+static double num_or_nan(const struct jr_value *o, const char *key)
+{
+    const struct jr_value *v = jr_get(o, key);
+    return v && v->type == JR_NUM ? v->num : NAN;
+}
+
+static const char *str_or(const struct jr_value *o, const char *key, const char *dflt)
+{
+    const struct jr_value *v = jr_get(o, key);
+    return v && v->type == JR_STR ? v->str : dflt;
+}
+
+/* The timing entry of a selected model in a scene's first timing size, or NULL. */
+static const struct jr_value *timing_of(const struct jr_value *scene, const char *label, double *w, double *h)
+{
+    const struct jr_value *timings = jr_get(scene, "timings");
+    if (!timings || timings->type != JR_ARR || timings->count < 1) return NULL;
+    const struct jr_value *t = &timings->items[0];
+    *w = num_or_nan(t, "width");
+    *h = num_or_nan(t, "height");
+    const struct jr_value *entries = jr_get(t, "entries");
+    if (!entries || entries->type != JR_ARR) return NULL;
+    for (size_t i = 0; i < entries->count; i++) {
+        const struct jr_value *e = &entries->items[i];
+        const struct jr_value *sel = jr_get(e, "selected_model");
+        if (strcmp(str_or(e, "model", ""), label) == 0 && sel && sel->type == JR_BOOL && sel->num) return e;
+    }
+    return NULL;
+}
+
+int report_render_summary(const char *run_dir, struct md_buf *md,
+                          void (*add)(void *ctx, const char *file, const char *caption), void *ctx, char *err,
+                          size_t errlen)
+{
+    char path[4096];
+    struct jr_doc d;
+    if (path_join(path, sizeof path, run_dir, "render.json")) {
+        snprintf(err, errlen, "%s/render.json: path too long", run_dir);
+        return 2;
+    }
+    if (jr_parse_file(path, &d, err, errlen)) return 2;
+    const struct jr_value *scenes;
+    if (jr_need(&d, &d.root, "scenes", JR_ARR, &scenes, err, errlen)) {
+        jr_free(&d);
+        return 2;
+    }
+    const struct jr_value *opt = jr_get(&d.root, "options");
+    const struct jr_value *size = opt ? jr_get(opt, "image_size") : NULL;
+    md_printf(md, "Each model shades full images on the device; its error image is |model - reference| of the "
+                  "specular radiance (inferno, colour bar in the picture), the reference being the model's own "
+                  "(phong, blinn, or the normalised lobes). Metrics over the foreground pixels; PSNR on the 8-bit "
+                  "colours; timing: median kernel time at the timed size, as Mpixel/s and as a fraction of a copy "
+                  "kernel moving the same bytes. Files: `render.json`, `render/<scene>/`.");
+    if (size && size->type == JR_OBJ)
+        md_printf(md, " Images %.0f x %.0f.", num_or_nan(size, "width"), num_or_nan(size, "height"));
+    md_printf(md, "\n\n");
+    for (size_t si = 0; si < scenes->count; si++) {
+        const struct jr_value *sc = &scenes->items[si];
+        const char *name = str_or(sc, "scene", "?");
+        const struct jr_value *models = jr_get(sc, "models"), *image = jr_get(sc, "image");
+        md_printf(md, "### Scene: %s\n\n", name);
+        const char *src = str_or(sc, "source", NULL);
+        if (src) md_printf(md, "Source: `%s`.\n\n", src);
+        if (!models || models->type != JR_ARR) continue;
+        const char *grid = image ? str_or(image, "contact_sheet", NULL) : NULL;
+        if (grid && add) {
+            char caption[200];
+            snprintf(caption, sizeof caption, "%s: every model (rows) at each shininess (columns), with its error image",
+                     name);
+            add(ctx, grid, caption);
+        }
+        double tw = NAN, th = NAN;
+        md_printf(md, "| model | reference | max abs error | RMSE | PSNR (dB) | share above threshold | double check | "
+                      "Mpixel/s | of copy | speed-up vs reference | files |\n");
+        md_printf(md, "|---|---|---:|---:|---:|---:|---|---:|---:|---:|---|\n");
+        for (size_t mi = 0; mi < models->count; mi++) {
+            const struct jr_value *m = &models->items[mi], *mt = jr_get(m, "metrics");
+            const struct jr_value *chk = jr_get(m, "double_reference_check"), *files = jr_get(m, "files");
+            const char *label = str_or(m, "model", "?");
+            md_printf(md, "| `");
+            md_cell(md, label);
+            md_printf(md, "` | `");
+            md_cell(md, str_or(m, "reference", "?"));
+            md_printf(md, "` |");
+            md_num(md, mt ? num_or_nan(mt, "max_abs") : NAN, "%.4g");
+            md_num(md, mt ? num_or_nan(mt, "rmse") : NAN, "%.4g");
+            md_num(md, mt ? num_or_nan(mt, "psnr_db") : NAN, "%.1f");
+            md_pct(md, mt ? num_or_nan(mt, "share_above_threshold") : NAN);
+            const struct jr_value *within = chk ? jr_get(chk, "within_bound") : NULL;
+            md_printf(md, " %s |", within && within->type == JR_BOOL ? (within->num ? "within bound" : "**outside bound**")
+                                                                   : "n/a");
+            const struct jr_value *te = timing_of(sc, label, &tw, &th);
+            md_num(md, te ? num_or_nan(te, "mpixel_per_s") : NAN, "%.0f");
+            md_num(md, te ? num_or_nan(te, "fraction_of_copy") : NAN, "%.2f");
+            md_num(md, te ? num_or_nan(te, "speedup_vs_reference") : NAN, "%.2f");
+            const char *img = files ? str_or(files, "image", NULL) : NULL;
+            const char *errimg = files ? str_or(files, "error_image", NULL) : NULL;
+            const char *contact = files ? str_or(files, "contact_sheet", NULL) : NULL;
+            if (img && file_exists(run_dir, img)) md_printf(md, " [image](%s)", img);
+            if (errimg && file_exists(run_dir, errimg)) md_printf(md, " [error](%s)", errimg);
+            md_printf(md, " |\n");
+            /* a model against itself has a black error image: its contact sheet shows nothing new */
+            if (contact && strcmp(label, str_or(m, "reference", "")) != 0 && add) {
+                char caption[400];
+                snprintf(caption, sizeof caption, "%s, %s against %s: reference, model, |error| (max %.3g, PSNR %.1f dB)",
+                         name, label, str_or(m, "reference", "?"), mt ? num_or_nan(mt, "max_abs") : NAN,
+                         mt ? num_or_nan(mt, "psnr_db") : NAN);
+                add(ctx, contact, caption);
+            }
+        }
+        if (isfinite(tw)) md_printf(md, "\nTimed at %.0f x %.0f.\n", tw, th);
+        md_printf(md, "\n");
+    }
+    jr_free(&d);
+    return 0;
 }

@@ -52,6 +52,15 @@ char *report_markdown(const struct report_input *in);
 /* Writes run_dir/report.md atomically. Returns 0 or -1 with a message. */
 int report_write(const struct report_input *in, char *err, size_t errlen);
 
+struct md_buf;
+/* Summarises run_dir/render.json (written by render_run) for the report: per scene a table of
+ * the image metrics and timings into md, and each picture that exists through add(ctx, file,
+ * caption) (contact sheets inline; the separate image and error PNGs linked from the table).
+ * Returns 0, or 2 with a message naming the file when it is missing or malformed. */
+int report_render_summary(const char *run_dir, struct md_buf *md,
+                          void (*add)(void *ctx, const char *file, const char *caption), void *ctx, char *err,
+                          size_t errlen);
+
 /* Markdown helpers shared with the code that fills report blocks: a growable string. */
 struct md_buf {
     char *s;

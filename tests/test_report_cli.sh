@@ -59,6 +59,9 @@ for p in curves_n16_paper1_fig2 curves_n20_paper2_fig5 max_rel_error_epicentre_v
 done
 for f in accuracy.json accuracy.csv plots.json; do [ -s "$RUN/$f" ] && ok || bad "$f missing"; done
 grep -q '| `fvol` | `phong` |' "$RUN/report.md" && ok || bad "accuracy table lacks fvol"
+# image passes: the sphere grid's contact sheet and a model's contact sheet are shown
+grep -q '(render/spheres/contact.png)' "$RUN/report.md" && grep -q '(render/spheres/fvol_contact.png)' "$RUN/report.md" &&
+    ok || bad "report lacks the image passes' contact sheets"
 
 # redraw without a device: the same pictures come back
 rm -f "$RUN/heatmap_fvol.png" "$RUN/max_abs_error_vs_n.png"
