@@ -9,6 +9,8 @@ int cmd_plot(int argc, char **argv);
 int cmd_heatmap(int argc, char **argv);
 int cmd_gate(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_fit(int argc, char **argv);
+int cmd_reproduce(int argc, char **argv);
 /* more commands below, one per line */
 
 #endif

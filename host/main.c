@@ -20,6 +20,8 @@ static const struct command commands[] = {
     { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)" },
     { "gate", cmd_gate, "accuracy gates for CI: checks figures of a gates file against bounds (JUnit, JSON)" },
     { "render", cmd_render, "full-image shading passes (spheres, teapot, bunny): error images, metrics, Mpixel/s" },
+    { "reproduce", cmd_reproduce, "re-derive every claim of both papers: claims.json, claims.md and a table" },
+    { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
     /* more commands below, one per line */
 };
 

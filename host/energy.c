@@ -1,0 +1,736 @@
+/* energy.c - device quadrature (eq. 11 terms, directional albedo), closed forms at normal
+ * incidence, the reciprocity check, and energy.json. See energy.h. */
+#include "energy.h"
+#include "accuracy.h"
+#include "context.h"
+#include "exitcodes.h"
+#include "jsonw.h"
+#include "outdir.h"
+
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double half_pi = 1.57079632679489661923;
+static const double two_pi = 6.28318530717958647692;
+#define BRDF_PI_D 3.14159265358979323846
+
+#define EQ11_PANELS 8          /* geometric panels of n for the outer sum */
+#define EQ11_OUTER_ORDER 32
+#define EQ11_INNER_ORDER 32
+#define RECIP_PAIRS 8192
+
+/* The configurations of the albedo tables. */
+static const double energy_n[] = { 2, 4, 10, 100, 1000 };
+#define ENERGY_N_COUNT ((int)(sizeof energy_n / sizeof energy_n[0]))
+#define ENERGY_THETA_COUNT 18  /* 0, 5, ..., 85 degrees */
+
+int integrate_open(struct integrate_ctx *c, struct cl_session *s)
+{
+    memset(c, 0, sizeof *c);
+    c->s = s;
+    int rc = clsession_build(s, "integrate.cl", NULL, "", &c->program);
+    if (rc)
+        return rc;
+    cl_int e;
+    c->eq11 = clCreateKernel(c->program, "eq11_terms", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(eq11_terms)", fail);
+    c->albedo = clCreateKernel(c->program, "albedo_partial", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(albedo_partial)", fail);
+    c->recip = clCreateKernel(c->program, "reciprocity_pairs", &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(reciprocity_pairs)", fail);
+    return 0;
+fail:
+    integrate_close(c);
+    return rc;
+}
+
+void integrate_close(struct integrate_ctx *c)
+{
+    if (c->recip) clReleaseKernel(c->recip);
+    if (c->albedo) clReleaseKernel(c->albedo);
+    if (c->eq11) clReleaseKernel(c->eq11);
+    if (c->program) clReleaseProgram(c->program);
+    c->recip = c->albedo = c->eq11 = NULL;
+    c->program = NULL;
+}
+
+/* Gauss-Legendre node i of order `order` on [a, b] (GSL's fixed tables). */
+static int gl_nodes(int order, double a, double b, double *x, double *w)
+{
+    gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc((size_t)order);
+    if (!t)
+        return -1;
+    for (int i = 0; i < order; ++i)
+        gsl_integration_glfixed_point(a, b, (size_t)i, &x[i], &w[i], t);
+    gsl_integration_glfixed_table_free(t);
+    return 0;
+}
+
+int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, double n_hi, double out[4])
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bn = NULL, bt = NULL, bw = NULL, bo = NULL;
+    enum { NN = EQ11_PANELS * EQ11_OUTER_ORDER };
+    double nx[NN], nw[NN], tx[EQ11_INNER_ORDER], tw[EQ11_INNER_ORDER];
+    float fn[NN], ft[EQ11_INNER_ORDER], fw[EQ11_INNER_ORDER], fo[4 * NN];
+    /* The terms fall like 1/n: panels equal in log n keep each one equally smooth. */
+    double r = pow(n_hi / n_lo, 1.0 / EQ11_PANELS);
+    for (int p = 0; p < EQ11_PANELS; ++p) {
+        double a = n_lo * pow(r, p), b = (p == EQ11_PANELS - 1) ? n_hi : n_lo * pow(r, p + 1);
+        if (gl_nodes(EQ11_OUTER_ORDER, a, b, nx + p * EQ11_OUTER_ORDER, nw + p * EQ11_OUTER_ORDER))
+            return EXIT_RUNTIME;
+    }
+    if (gl_nodes(EQ11_INNER_ORDER, 0.0, 1.0, tx, tw))
+        return EXIT_RUNTIME;
+    for (int i = 0; i < NN; ++i)
+        fn[i] = (float)nx[i];
+    for (int i = 0; i < EQ11_INNER_ORDER; ++i) {
+        ft[i] = (float)tx[i];
+        fw[i] = (float)tw[i];
+    }
+    bn = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof fn, fn, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(eq11 n)", done);
+    bt = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ft, ft, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(eq11 t)", done);
+    bw = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof fw, fw, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(eq11 w)", done);
+    bo = clCreateBuffer(c->s->ctx, CL_MEM_WRITE_ONLY, sizeof fo, NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(eq11 out)", done);
+    float k = (float)zone_k;
+    cl_int count = NN, tcount = EQ11_INNER_ORDER;
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 0, sizeof k, &k), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 1, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 2, sizeof count, &count), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 3, sizeof bt, &bt), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 4, sizeof bw, &bw), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 5, sizeof tcount, &tcount), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 6, sizeof bo, &bo), done);
+    size_t global = NN;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->eq11, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, sizeof fo, fo, 0, NULL, NULL), done);
+    for (int j = 0; j < 4; ++j) {
+        double sum = 0;
+        for (int i = 0; i < NN; ++i)
+            sum += nw[i] * (double)fo[4 * i + j];
+        out[j] = sum;
+    }
+done:
+    if (bo) clReleaseMemObject(bo);
+    if (bw) clReleaseMemObject(bw);
+    if (bt) clReleaseMemObject(bt);
+    if (bn) clReleaseMemObject(bn);
+    return rc;
+}
+
+int albedo_mode_of(const struct model_info *m)
+{
+    if (strcmp(m->family, "microfacet") == 0)
+        return ALBEDO_MICRO;
+    if (strcmp(m->family, "normalised") == 0)
+        return m->lobe == LOBE_PSI ? ALBEDO_PSI : ALBEDO_HALF;
+    return -1;
+}
+
+/* The first polar angle where the lobe is exactly 0 (a quadratic past its root), or NAN. */
+static double lobe_zero(const struct model_spec *m, double n)
+{
+    enum { SCAN = 4096 };
+    double prev = 0;
+    for (int j = 1; j <= SCAN; ++j) {
+        double x = half_pi * j / SCAN;
+        if (model_eval_host(m, cos(x), n) == 0.0) {
+            double lo = prev, hi = x;
+            for (int it = 0; it < 80; ++it) {
+                double mid = 0.5 * (lo + hi);
+                if (model_eval_host(m, cos(mid), n) == 0.0) hi = mid; else lo = mid;
+            }
+            return hi;
+        }
+        prev = x;
+    }
+    return NAN;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Panels of the polar angle for one configuration: graded from the lobe's width (the
+ * epicentre end x_e(n)) by doublings to pi/2, plus the kinks of the integrand. Writes
+ * ENERGY_MAX_NODES nodes and weights (unused ones with weight 0). refine splits every panel. */
+static int polar_nodes(const struct model_spec *m, int mode, double n, double theta_i, int refine, double *x,
+                       double *w)
+{
+    double edges[2 * ENERGY_MAX_PANELS + 8];
+    int ne = 0;
+    double s = zone_epicentre_end(n);
+    edges[ne++] = 0.0;
+    edges[ne++] = half_pi;
+    for (double e = s / 4; e < half_pi && ne < ENERGY_MAX_PANELS - 6; e *= 2)
+        edges[ne++] = e;
+    if (mode == ALBEDO_PSI) {
+        if (theta_i > 0) edges[ne++] = half_pi - theta_i;   /* the lobe's hemisphere meets the horizon */
+    } else if (mode == ALBEDO_HALF || mode == ALBEDO_MICRO) {
+        edges[ne++] = 0.5 * (half_pi - theta_i);             /* V on the horizon in L's plane */
+        edges[ne++] = 0.5 * (half_pi + theta_i);
+    }
+    double z = lobe_zero(m, n);
+    if (isfinite(z)) edges[ne++] = z;
+    qsort(edges, (size_t)ne, sizeof edges[0], cmp_double);
+    int kept = 0;
+    for (int i = 0; i < ne; ++i)
+        if (edges[i] >= 0 && edges[i] <= half_pi && (kept == 0 || edges[i] - edges[kept - 1] > 1e-9))
+            edges[kept++] = edges[i];
+    if (refine) {
+        double fine[2 * ENERGY_MAX_PANELS + 8];
+        int nf = 0;
+        for (int i = 0; i + 1 < kept; ++i) {
+            fine[nf++] = edges[i];
+            fine[nf++] = 0.5 * (edges[i] + edges[i + 1]);
+        }
+        fine[nf++] = edges[kept - 1];
+        memcpy(edges, fine, (size_t)nf * sizeof edges[0]);
+        kept = nf;
+    }
+    int panels = kept - 1;
+    if (panels > ENERGY_MAX_PANELS)
+        return -1;
+    for (int i = 0; i < ENERGY_MAX_NODES; ++i)
+        x[i] = w[i] = 0.0;
+    for (int p = 0; p < panels; ++p)
+        if (gl_nodes(ENERGY_GL_ORDER, edges[p], edges[p + 1], x + p * ENERGY_GL_ORDER, w + p * ENERGY_GL_ORDER))
+            return -1;
+    return 0;
+}
+
+static int albedo_device_ex(struct integrate_ctx *c, const struct model_spec *m, int mode, const double *n,
+                            const double *theta_i, int count, int refine, double *out)
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bn = NULL, bt = NULL, bx = NULL, bw = NULL, bo = NULL;
+    size_t total = (size_t)count * ENERGY_MAX_NODES;
+    float *fn = malloc((size_t)count * sizeof *fn), *ft = malloc((size_t)count * sizeof *ft);
+    float *fx = malloc(total * sizeof *fx), *fw = malloc(total * sizeof *fw), *fo = malloc(total * sizeof *fo);
+    double x[ENERGY_MAX_NODES], w[ENERGY_MAX_NODES];
+    if (!fn || !ft || !fx || !fw || !fo) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    for (int i = 0; i < count; ++i) {
+        fn[i] = (float)n[i];
+        ft[i] = (float)theta_i[i];
+        if (polar_nodes(m, mode, n[i], theta_i[i], refine, x, w)) {
+            fprintf(stderr, "brdfbench: albedo quadrature: too many panels for %s at n = %g\n", m->label, n[i]);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+        for (int p = 0; p < ENERGY_MAX_NODES; ++p) {
+            fx[(size_t)i * ENERGY_MAX_NODES + p] = (float)x[p];
+            fw[(size_t)i * ENERGY_MAX_NODES + p] = (float)w[p];
+        }
+    }
+    bn = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), fn, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(albedo n)", done);
+    bt = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), ft, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(albedo theta_i)", done);
+    bx = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, total * sizeof(float), fx, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(albedo nodes)", done);
+    bw = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, total * sizeof(float), fw, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(albedo weights)", done);
+    bo = clCreateBuffer(c->s->ctx, CL_MEM_WRITE_ONLY, total * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(albedo out)", done);
+    cl_int id = m->info->kernel_id, md = mode, nodes = ENERGY_MAX_NODES;
+    cl_int phi = refine ? 2 * ENERGY_PHI_COUNT : ENERGY_PHI_COUNT;
+    float p0 = (float)m->params[0], p1 = (float)m->params[1];
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 3, sizeof md, &md), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 4, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 5, sizeof bt, &bt), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 6, sizeof bx, &bx), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 7, sizeof bw, &bw), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 8, sizeof nodes, &nodes), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 9, sizeof phi, &phi), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 10, sizeof bo, &bo), done);
+    size_t global[2] = { ENERGY_MAX_NODES, (size_t)count };
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->albedo, 2, NULL, global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, total * sizeof(float), fo, 0, NULL, NULL), done);
+    for (int i = 0; i < count; ++i) {
+        double sum = 0;
+        for (int p = 0; p < ENERGY_MAX_NODES; ++p)
+            sum += (double)fo[(size_t)i * ENERGY_MAX_NODES + p];
+        out[i] = sum;
+    }
+done:
+    if (bo) clReleaseMemObject(bo);
+    if (bw) clReleaseMemObject(bw);
+    if (bx) clReleaseMemObject(bx);
+    if (bt) clReleaseMemObject(bt);
+    if (bn) clReleaseMemObject(bn);
+    free(fo);
+    free(fw);
+    free(fx);
+    free(ft);
+    free(fn);
+    return rc;
+}
+
+int albedo_device(struct integrate_ctx *c, const struct model_spec *m, int mode, const double *n,
+                  const double *theta_i, int count, double *out)
+{
+    return albedo_device_ex(c, m, mode, n, theta_i, count, 0, out);
+}
+
+/* int_0^1 (k(u-1) + 1)^2 u du with the quadratic zeroed past u0 = 1 - 1/k: with t = 1 - u,
+ * int_0^T (1 - k t)^2 (1 - t) dt, T = min(1, 1/k):
+ *   k <= 1: 1/2 - k/3 + k^2/12;   k >= 1: 1/(3k) - 1/(12 k^2). */
+static double quadratic_moment(double k)
+{
+    return k <= 1.0 ? 0.5 - k / 3.0 + k * k / 12.0 : 1.0 / (3.0 * k) - 1.0 / (12.0 * k * k);
+}
+
+int albedo_closed_form_normal(const struct model_spec *m, int mode, double n, double *value, const char **derivation)
+{
+    const char *id = m->info->id;
+    if (mode == ALBEDO_DCOS) {
+        *value = 1.0;
+        *derivation = "int D cos(theta_h) dw_h = 1: the normalisation of a microfacet distribution";
+        return 1;
+    }
+    if (strcmp(id, "phongn") == 0) {
+        *value = 1.0;
+        *derivation = "(n+2)/(2 pi) 2 pi int_0^1 u^(n+1) du = 1 (R = N, the lobe fits in the hemisphere)";
+        return 1;
+    }
+    if (strcmp(id, "blinnn") == 0) {
+        *value = 1.0;
+        *derivation = "Giesen: 2 pi int_0^(pi/2) cos^n(theta_o/2) cos(theta_o) sin(theta_o) dtheta_o = "
+                      "8 pi (2^(-n/2) + n)/((n+2)(n+4)), the normalisation's inverse";
+        return 1;
+    }
+    if (strcmp(id, "fq2n") == 0) {
+        /* Paper 2's coefficients (SPEC.md): coef(n) = 0.214 (0.807 + n), k(n) = 0.448 n + 0.099. */
+        *value = 0.214 * (0.807 + n) * two_pi * quadratic_moment(0.448 * n + 0.099);
+        *derivation = "0.214 (0.807 + n) 2 pi int_0^1 ((0.448n + 0.099)(u-1) + 1)^2 u du, the quadratic "
+                      "zeroed past its root: a polynomial integral";
+        return 1;
+    }
+    if (strcmp(id, "beckmann") == 0) {
+        /* int_{theta_h < pi/4} D cos dw = 1 - exp(-tan^2(pi/4)/alpha^2), alpha^2 = 2/(n+2). */
+        *value = -expm1(-(n + 2.0) / 2.0);
+        *derivation = "int over theta_h < pi/4 (V above the horizon) of D cos(theta_h) dw_h = "
+                      "1 - exp(-1/alpha^2) = 1 - exp(-(n+2)/2)";
+        return 1;
+    }
+    if (strcmp(id, "ggx") == 0) {
+        *value = (n + 2.0) / (n + 4.0);
+        *derivation = "int over theta_h < pi/4 of D cos(theta_h) dw_h = tan^2(pi/4)/(alpha^2 + tan^2(pi/4)) "
+                      "= (n+2)/(n+4)";
+        return 1;
+    }
+    return 0;
+}
+
+/* ---- reciprocity -------------------------------------------------------------------------- */
+
+static double rnd(uint64_t *state)
+{
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*state >> 11) / 9007199254740992.0;
+}
+
+static void unit_sphere(uint64_t *st, double v[3])
+{
+    double z = 2 * rnd(st) - 1, phi = two_pi * rnd(st), r = sqrt(fmax(0, 1 - z * z));
+    v[0] = r * cos(phi);
+    v[1] = r * sin(phi);
+    v[2] = z;
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* A direction in N's hemisphere: uniform, or (near) within `spread` of the direction `around`. */
+static void hemisphere_dir(uint64_t *st, const double nrm[3], const double *around, double spread, double v[3])
+{
+    for (int tries = 0; tries < 1000; ++tries) {
+        if (around) {
+            double u[3];
+            unit_sphere(st, u);
+            double s = spread * rnd(st);
+            for (int i = 0; i < 3; ++i)
+                v[i] = around[i] + s * u[i];
+        } else {
+            unit_sphere(st, v);
+        }
+        double len = sqrt(dot3(v, v));
+        for (int i = 0; i < 3; ++i)
+            v[i] /= len;
+        if (dot3(v, nrm) > 1e-3)
+            return;
+    }
+    memcpy(v, nrm, 3 * sizeof(double));
+}
+
+static double lobe_cosine_host(int lobe, const double nrm[3], const double l[3], const double v[3])
+{
+    if (lobe == LOBE_PSI) {
+        double r[3], nl = dot3(nrm, l);
+        for (int i = 0; i < 3; ++i)
+            r[i] = 2 * nl * nrm[i] - l[i];
+        return dot3(r, v);
+    }
+    double h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] };
+    double len = sqrt(dot3(h, h));
+    for (int i = 0; i < 3; ++i)
+        h[i] /= len;
+    return dot3(nrm, h);
+}
+
+static void keep_worst(struct recip_worst *w, double diff, double n, const double *dirs, double a, double b)
+{
+    if (!(diff <= w->diff)) {
+        w->diff = diff;
+        w->n = n;
+        memcpy(w->nrm, dirs, 3 * sizeof(double));
+        memcpy(w->l, dirs + 3, 3 * sizeof(double));
+        memcpy(w->v, dirs + 6, 3 * sizeof(double));
+        w->f_lv = a;
+        w->f_vl = b;
+    }
+}
+
+int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long pairs, struct recip_worst *device,
+                      struct recip_worst *host)
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bd = NULL, bn = NULL, bo = NULL;
+    double *dirs = malloc((size_t)pairs * 9 * sizeof *dirs), *nv = malloc((size_t)pairs * sizeof *nv);
+    float *fd = malloc((size_t)pairs * 9 * sizeof *fd), *fn = malloc((size_t)pairs * sizeof *fn);
+    float *fo = malloc((size_t)pairs * 2 * sizeof *fo);
+    memset(device, 0, sizeof *device);
+    memset(host, 0, sizeof *host);
+    device->diff = host->diff = -1;   /* the first pair is always kept */
+    if (!dirs || !nv || !fd || !fn || !fo) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    uint64_t st = 0x2545f4914f6cdd1dULL;
+    for (long i = 0; i < pairs; ++i) {
+        double *d = dirs + 9 * i;
+        /* n log-uniform over [2, 1000]; half the pairs with V near the mirror direction of L,
+           where the lobe is not 0, the other half uniform over the hemisphere. */
+        nv[i] = 2.0 * pow(500.0, rnd(&st));
+        unit_sphere(&st, d);
+        hemisphere_dir(&st, d, NULL, 0, d + 3);
+        double r[3], nl = dot3(d, d + 3);
+        for (int k = 0; k < 3; ++k)
+            r[k] = 2 * nl * d[k] - d[3 + k];
+        hemisphere_dir(&st, d, (i % 2) ? r : NULL, 3.0 * zone_epicentre_end(nv[i]), d + 6);
+        for (int k = 0; k < 9; ++k)
+            fd[9 * i + k] = (float)d[k];
+        fn[i] = (float)nv[i];
+        nv[i] = fn[i];   /* the host sees the n the device sees */
+    }
+    bd = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)pairs * 9 * sizeof(float), fd, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity dirs)", done);
+    bn = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)pairs * sizeof(float), fn, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity n)", done);
+    bo = clCreateBuffer(c->s->ctx, CL_MEM_WRITE_ONLY, (size_t)pairs * 2 * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity out)", done);
+    cl_int id = m->info->kernel_id, lobe = m->info->lobe == LOBE_PSI ? 0 : 1, count = (cl_int)pairs;
+    float p0 = (float)m->params[0], p1 = (float)m->params[1];
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 3, sizeof lobe, &lobe), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 4, sizeof bd, &bd), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 5, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 6, sizeof count, &count), done);
+    CL_CHECK_GOTO(clSetKernelArg(c->recip, 7, sizeof bo, &bo), done);
+    size_t global = (size_t)pairs;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->recip, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, (size_t)pairs * 2 * sizeof(float), fo, 0, NULL,
+                                      NULL), done);
+    for (long i = 0; i < pairs; ++i) {
+        double dd[9];
+        for (int k = 0; k < 9; ++k)
+            dd[k] = fd[9 * i + k];   /* the float directions both sides used */
+        double peak = fabs(model_eval_host(m, 1.0, nv[i]));
+        if (!(peak > 0))
+            peak = 1.0;
+        keep_worst(device, fabs((double)fo[2 * i] - (double)fo[2 * i + 1]) / peak, nv[i], dd, fo[2 * i], fo[2 * i + 1]);
+        int lb = m->info->lobe;
+        double a = model_eval_host(m, lobe_cosine_host(lb, dd, dd + 3, dd + 6), nv[i]);
+        double b = model_eval_host(m, lobe_cosine_host(lb, dd, dd + 6, dd + 3), nv[i]);
+        keep_worst(host, fabs(a - b) / peak, nv[i], dd, a, b);
+        device->eval_error = fmax(device->eval_error, fmax(fabs(fo[2 * i] - a), fabs(fo[2 * i + 1] - b)) / peak);
+    }
+done:
+    if (bo) clReleaseMemObject(bo);
+    if (bn) clReleaseMemObject(bn);
+    if (bd) clReleaseMemObject(bd);
+    free(fo);
+    free(fn);
+    free(fd);
+    free(nv);
+    free(dirs);
+    return rc;
+}
+
+/* ---- energy_run: tables, checks, energy.json ----------------------------------------------- */
+
+/* Agreement expected between the float device quadrature and a closed form, and between a
+ * quadrature and its refinement (panels split, twice the azimuth points). */
+#define ENERGY_TOLERANCE 2e-5
+
+static void jw_vec3(struct jw *w, const char *key, const double v[3])
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int i = 0; i < 3; ++i)
+        jw_num(w, v[i]);
+    jw_arr_end(w);
+}
+
+static void jw_recip(struct jw *w, const char *key, const struct recip_worst *r)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, "max_diff_of_peak", r->diff);
+    if (r->eval_error > 0)
+        jw_kv_num(w, "max_eval_error_of_peak", r->eval_error);
+    jw_kv_num(w, "n", r->n);
+    jw_vec3(w, "N", r->nrm);
+    jw_vec3(w, "L", r->l);
+    jw_vec3(w, "V", r->v);
+    jw_kv_num(w, "f_LV", r->f_lv);
+    jw_kv_num(w, "f_VL", r->f_vl);
+    jw_obj_end(w);
+}
+
+static const char *mode_name(int mode)
+{
+    switch (mode) {
+    case ALBEDO_PSI: return "lobe f(cos psi) around R";
+    case ALBEDO_HALF: return "lobe f(cos theta_h) as the BRDF";
+    case ALBEDO_MICRO: return "D / (4 cos theta_i cos theta_o), F = G = 1";
+    case ALBEDO_DCOS: return "D cos theta_h over the whole half-vector hemisphere";
+    }
+    return "?";
+}
+
+int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct energy_summary *summary)
+{
+    struct energy_summary local;
+    struct energy_summary *sum = summary ? summary : &local;
+    memset(sum, 0, sizeof *sum);
+    double t0 = wall_seconds();
+    struct integrate_ctx ic;
+    int rc = integrate_open(&ic, s);
+    if (rc)
+        return rc;
+    enum { CFG = ENERGY_N_COUNT * ENERGY_THETA_COUNT };
+    double cn[CFG], cti[CFG], val[CFG], fine[CFG];
+    for (int i = 0; i < ENERGY_N_COUNT; ++i)
+        for (int j = 0; j < ENERGY_THETA_COUNT; ++j) {
+            cn[i * ENERGY_THETA_COUNT + j] = (double)(float)energy_n[i];
+            cti[i * ENERGY_THETA_COUNT + j] = 5.0 * j * BRDF_PI_D / 180.0;
+        }
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", ENERGY_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_obj_end(&w);
+    jw_key(&w, "albedo");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "definition", "a(theta_i) = int over the upper hemisphere of f(L, V) cos(theta_o) dw_o, "
+                                "N = z, L = (sin theta_i, 0, cos theta_i)");
+    jw_kv_str(&w, "quadrature", "device (float): composite Gauss-Legendre, 16 nodes per panel, in the lobe's polar "
+                                "angle (psi around R, or theta_h around N), panels from x_e(n)/4 doubling to pi/2 "
+                                "plus the integrand's kinks; azimuth exact (psi) or 1024-point trapezoid (theta_h); "
+                                "polar sum in double on the host");
+    jw_kv_num(&w, "tolerance", ENERGY_TOLERANCE);
+    jw_key(&w, "n");
+    jw_arr_begin(&w);
+    for (int i = 0; i < ENERGY_N_COUNT; ++i)
+        jw_num(&w, energy_n[i]);
+    jw_arr_end(&w);
+    jw_key(&w, "theta_i_deg");
+    jw_arr_begin(&w);
+    for (int j = 0; j < ENERGY_THETA_COUNT; ++j)
+        jw_num(&w, 5.0 * j);
+    jw_arr_end(&w);
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    sum->all_closed_forms_agree = 1;
+    sum->quadrature_tolerance = ENERGY_TOLERANCE;
+    /* Every normalised or microfacet model of the registry; microfacet ones twice (their
+       albedo, and their normalisation D cos theta_h). */
+    for (int mi = 0; mi < models_count() && sum->count < ENERGY_MAX_MODELS; ++mi) {
+        const struct model_info *info = models_at(mi);
+        int base_mode = albedo_mode_of(info);
+        if (base_mode < 0)
+            continue;
+        for (int pass = 0; pass < (base_mode == ALBEDO_MICRO ? 2 : 1); ++pass) {
+            int mode = pass ? ALBEDO_DCOS : base_mode;
+            struct energy_model_summary *ms = &sum->models[sum->count];
+            model_spec_default(info, &ms->spec);
+            ms->mode = mode;
+            ms->normal_max_diff = ms->dcos_max_diff = NAN;
+            int count = mode == ALBEDO_DCOS ? ENERGY_N_COUNT : CFG;
+            double *nn = cn, *tt = cti;
+            double dn[ENERGY_N_COUNT], dt[ENERGY_N_COUNT];
+            if (mode == ALBEDO_DCOS) {   /* independent of theta_i */
+                for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+                    dn[i] = (double)(float)energy_n[i];
+                    dt[i] = 0;
+                }
+                nn = dn;
+                tt = dt;
+            }
+            if ((rc = albedo_device_ex(&ic, &ms->spec, mode, nn, tt, count, 0, val)) != 0 ||
+                (rc = albedo_device_ex(&ic, &ms->spec, mode, nn, tt, count, 1, fine)) != 0)
+                goto done;
+            ms->max_albedo = -1;
+            ms->refine_change = 0;
+            for (int i = 0; i < count; ++i) {
+                ms->refine_change = fmax(ms->refine_change, fabs(fine[i] - val[i]));
+                if (val[i] > ms->max_albedo) {
+                    ms->max_albedo = val[i];
+                    ms->max_at_n = nn[i];
+                    ms->max_at_theta_deg = tt[i] * 180.0 / BRDF_PI_D;
+                }
+            }
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "model", ms->spec.label);
+            jw_kv_str(&w, "integrand", mode_name(mode));
+            jw_key(&w, "albedo");
+            jw_arr_begin(&w);
+            int rows = mode == ALBEDO_DCOS ? ENERGY_N_COUNT : ENERGY_N_COUNT;
+            int cols = mode == ALBEDO_DCOS ? 1 : ENERGY_THETA_COUNT;
+            for (int i = 0; i < rows; ++i) {
+                jw_arr_begin(&w);
+                for (int j = 0; j < cols; ++j)
+                    jw_num(&w, val[i * cols + j]);
+                jw_arr_end(&w);
+            }
+            jw_arr_end(&w);
+            jw_kv_num(&w, "max_albedo", ms->max_albedo);
+            jw_kv_num(&w, "max_at_n", ms->max_at_n);
+            jw_kv_num(&w, "max_at_theta_i_deg", ms->max_at_theta_deg);
+            jw_kv_num(&w, "refine_change", ms->refine_change);
+            jw_key(&w, "normal_incidence");
+            jw_arr_begin(&w);
+            double worst = -1;
+            for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+                double cf;
+                const char *why;
+                double dev = val[i * cols];
+                jw_obj_begin(&w);
+                jw_kv_num(&w, "n", nn[i * cols]);
+                jw_kv_num(&w, "device", dev);
+                if (albedo_closed_form_normal(&ms->spec, mode, nn[i * cols], &cf, &why)) {
+                    double d = fabs(dev - cf);
+                    jw_kv_num(&w, "closed_form", cf);
+                    jw_kv_num(&w, "diff", d);
+                    jw_kv_str(&w, "derivation", why);
+                    if (d > worst) {
+                        worst = d;
+                        ms->normal_diff_at_n = nn[i * cols];
+                    }
+                } else {
+                    jw_kv_num(&w, "closed_form", NAN);
+                    jw_kv_str(&w, "reason", "no closed form derived");
+                }
+                jw_obj_end(&w);
+            }
+            jw_arr_end(&w);
+            if (worst >= 0) {
+                ms->normal_max_diff = worst;
+                if (mode == ALBEDO_DCOS)
+                    ms->dcos_max_diff = worst;
+                if (worst > ENERGY_TOLERANCE)
+                    sum->all_closed_forms_agree = 0;
+            }
+            jw_kv_num(&w, "normal_incidence_max_diff", ms->normal_max_diff);
+            jw_kv_bool(&w, "energy_conserving", ms->max_albedo <= 1.0 + ENERGY_TOLERANCE);
+            if (mode == ALBEDO_MICRO)
+                jw_kv_str(&w, "note", "D alone, without the masking term G: the albedo grows towards grazing "
+                                      "incidence; the distribution's own check is its normalisation (D cos)");
+            jw_obj_end(&w);
+            sum->count++;
+        }
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+
+    jw_key(&w, "reciprocity");
+    jw_obj_begin(&w);
+    sum->recip_pairs = RECIP_PAIRS;
+    jw_kv_int(&w, "pairs", RECIP_PAIRS);
+    jw_kv_str(&w, "what", "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
+                          "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
+                          "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
+                          "difference relative to the lobe's peak f(c = 1, n)");
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int mi = 0; mi < models_count() && sum->recip_count < ENERGY_MAX_MODELS; ++mi) {
+        struct recip_summary *rs = &sum->recip[sum->recip_count];
+        model_spec_default(models_at(mi), &rs->spec);
+        if ((rc = reciprocity_check(&ic, &rs->spec, RECIP_PAIRS, &rs->device, &rs->host)) != 0)
+            goto done;
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", rs->spec.label);
+        jw_kv_str(&w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
+        jw_recip(&w, "device_worst", &rs->device);
+        jw_recip(&w, "host_worst", &rs->host);
+        jw_obj_end(&w);
+        sum->recip_count++;
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    sum->seconds = wall_seconds() - t0;
+    jw_kv_num(&w, "seconds", sum->seconds);
+    jw_obj_end(&w);
+    if (out_dir) {
+        char path[4200], err[512];
+        path_join(path, sizeof path, out_dir, "energy.json");
+        if (jw_write_file(&w, path, err, sizeof err)) {
+            fprintf(stderr, "brdfbench: %s\n", err);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+    }
+    if (!quiet) {
+        printf("energy: directional albedo on the device, n in {2, 4, 10, 100, 1000}, theta_i 0..85 deg step 5\n");
+        printf("  %-10s %-48s %10s %7s %6s  %12s  %10s\n", "model", "integrand", "max albedo", "at n", "at deg",
+               "normal: |dev-closed|", "refine chg");
+        for (int i = 0; i < sum->count; ++i) {
+            const struct energy_model_summary *m = &sum->models[i];
+            printf("  %-10s %-48s %10.6f %7g %6g  %12.3g  %10.3g\n", m->spec.label, mode_name(m->mode), m->max_albedo,
+                   m->max_at_n, m->max_at_theta_deg, m->normal_max_diff, m->refine_change);
+        }
+        printf("reciprocity: %ld random (N, L, V) per model; worst |f(L,V) - f(V,L)| / peak\n", sum->recip_pairs);
+        for (int i = 0; i < sum->recip_count; ++i) {
+            const struct recip_summary *r = &sum->recip[i];
+            printf("  %-22s device (float) %9.3g at n = %-8.4g (its evaluation error %9.3g)  host (double) %9.3g\n",
+                   r->spec.label, r->device.diff, r->device.n, r->device.eval_error, r->host.diff);
+        }
+    }
+done:
+    jw_free(&w);
+    integrate_close(&ic);
+    return rc;
+}

@@ -1,0 +1,741 @@
+/* fit.c - the accuracy limit of the cosine-quadratic family and its best affine k(n)
+ * (see fit.h for the method). Everything here is double precision on the host; the device
+ * sweep of accuracy.c then measures the fitted model beside fq2, fvol and cq2. */
+#include "fit.h"
+#include "context.h"
+#include "exitcodes.h"
+#include "jsonw.h"
+#include "outdir.h"
+#include "refine.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fit.h>
+#include <gsl/gsl_roots.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double half_pi = 1.57079632679489661923;
+
+#define FIT_ATT_SAMPLES 256     /* host grid of the attenuation zone before the Brent polish */
+#define FIT_ROOT_ITER 200
+#define FIT_BISECT_ITER 200
+#define FIT_FEAS_SAMPLES 64     /* grid over the slope a before the Brent polish */
+
+void fit_options_default(struct fit_options *o)
+{
+    o->n_min = 2.0;
+    o->n_max = 1000.0;
+    o->n_step = 1.0;
+    o->max_abs_cap = NAN;
+    o->samples = ACC_DEFAULT_SAMPLES;
+}
+
+int fit_options_check(const struct fit_options *o, char *err, size_t errlen)
+{
+    struct accuracy_grid g = { o->n_min, o->n_max, o->n_step, o->samples };
+    int rc = accuracy_grid_check(&g, NULL, err, errlen);
+    if (rc)
+        return rc;
+    if (!isnan(o->max_abs_cap) && !(o->max_abs_cap > 0 && o->max_abs_cap <= 1)) {
+        snprintf(err, errlen, "--max-abs: %g is out of range (accepted: 0 < cap <= 1)", o->max_abs_cap);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* ---- the family at one n ------------------------------------------------------------- */
+
+/* f = (k(c-1)+1)^2 zeroed past its root is the registry's quad model with a = 0, b = k, so
+ * the formula is the header's (kernels/brdf_models.h), evaluated in double. */
+static const struct model_spec *family_base(void)
+{
+    static struct model_spec quad;
+    static int ready;
+    if (!ready) {
+        model_spec_default(models_find("quad"), &quad);
+        ready = 1;
+    }
+    return &quad;
+}
+
+static const struct model_spec *reference_base(void)
+{
+    static struct model_spec phong;
+    static int ready;
+    if (!ready) {
+        model_spec_default(models_find("phong"), &phong);
+        ready = 1;
+    }
+    return &phong;
+}
+
+static double family_eval(double c, double n, double k)
+{
+    struct model_spec m = *family_base();
+    m.params[0] = 0.0;
+    m.params[1] = k;
+    return model_eval_host(&m, c, n);
+}
+
+static double reference_eval(double c, double n) { return model_eval_host(reference_base(), c, n); }
+
+struct fit_sides fit_epicentre_sides(double n, double k)
+{
+    /* g(c) = f/c^n - 1 has one stationary point where base > 0 (d ln g / dc = 2k/base - n/c),
+       so its extremes over [c_e, 1] are at c_e, at 1 (g = 0) and at c*. */
+    double ce = cos(zone_epicentre_end(n));
+    double cand[2] = { ce, n * (k - 1.0) / (k * (n - 2.0)) };
+    struct fit_sides s = { 0.0, 0.0 };
+    for (int i = 0; i < 2; ++i) {
+        double c = cand[i];
+        if (!(c >= ce && c <= 1.0))
+            continue;   /* NaN (n = 2, k = 1) or outside the zone */
+        double g = family_eval(c, n, k) / reference_eval(c, n) - 1.0;
+        if (g > s.over) s.over = g;
+        if (-g > s.under) s.under = -g;
+    }
+    return s;
+}
+
+double fit_epicentre_max_rel(double n, double k)
+{
+    struct fit_sides s = fit_epicentre_sides(n, k);
+    return fmax(s.over, s.under);
+}
+
+struct att_ctx {
+    double n, k, sign;
+};
+
+static double att_signed(double x, void *p)
+{
+    const struct att_ctx *a = p;
+    double c = fmax(cos(x), 0.0);
+    return a->sign * (family_eval(c, a->n, a->k) - reference_eval(c, a->n));
+}
+
+struct fit_sides fit_attenuation_sides(double n, double k)
+{
+    /* The zone (x_e, pi/2] sampled as the device sweep samples it (x_e + w t^2), then each
+       side's best sample polished with Brent in double. */
+    double xe = zone_epicentre_end(n), w = half_pi - xe;
+    double best_v[2] = { -INFINITY, -INFINITY };
+    int best_j[2] = { 1, 1 };
+    for (int j = 1; j <= FIT_ATT_SAMPLES; ++j) {
+        double t = (double)j / FIT_ATT_SAMPLES;
+        double c = fmax(cos(xe + w * t * t), 0.0);
+        double h = family_eval(c, n, k) - reference_eval(c, n);
+        if (h > best_v[0]) { best_v[0] = h; best_j[0] = j; }
+        if (-h > best_v[1]) { best_v[1] = -h; best_j[1] = j; }
+    }
+    double out[2];
+    for (int side = 0; side < 2; ++side) {
+        int j = best_j[side];
+        double tl = (double)(j - 1) / FIT_ATT_SAMPLES, tm = (double)j / FIT_ATT_SAMPLES,
+               th = (double)(j < FIT_ATT_SAMPLES ? j + 1 : j) / FIT_ATT_SAMPLES;
+        struct att_ctx ctx = { n, k, side == 0 ? 1.0 : -1.0 };
+        double x, v;
+        refine_maximum(att_signed, &ctx, xe + w * tl * tl, xe + w * tm * tm, xe + w * th * th, &x, &v);
+        out[side] = fmax(v, best_v[side]);
+    }
+    struct fit_sides s = { fmax(out[0], 0.0), fmax(out[1], 0.0) };
+    return s;
+}
+
+double fit_attenuation_max_abs(double n, double k)
+{
+    struct fit_sides s = fit_attenuation_sides(n, k);
+    return fmax(s.over, s.under);
+}
+
+/* ---- monotone root finding in k ---------------------------------------------------------- */
+
+enum side_fn { EPI_OVER, EPI_UNDER, EPI_BALANCE, ATT_OVER, ATT_UNDER };
+
+struct side_ctx {
+    double n, target;
+    enum side_fn which;
+};
+
+static double side_value(double k, void *p)
+{
+    const struct side_ctx *s = p;
+    switch (s->which) {
+    case EPI_OVER: return fit_epicentre_sides(s->n, k).over - s->target;
+    case EPI_UNDER: return fit_epicentre_sides(s->n, k).under - s->target;
+    case EPI_BALANCE: {
+        struct fit_sides e = fit_epicentre_sides(s->n, k);
+        return e.over - e.under;
+    }
+    case ATT_OVER: return fit_attenuation_sides(s->n, k).over - s->target;
+    case ATT_UNDER: return fit_attenuation_sides(s->n, k).under - s->target;
+    }
+    return NAN;
+}
+
+/* A root of side_value over [lo, hi] where it changes sign (GSL Brent). Returns 0 or -1. */
+static int root_in(struct side_ctx *ctx, double lo, double hi, double *root)
+{
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    gsl_function fn = { side_value, ctx };
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    int rc = -1;
+    if (s && gsl_root_fsolver_set(s, &fn, lo, hi) == GSL_SUCCESS) {
+        int status = GSL_CONTINUE;
+        for (int i = 0; i < FIT_ROOT_ITER && status == GSL_CONTINUE; ++i) {
+            if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS)
+                break;
+            status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-15,
+                                            4e-16);
+        }
+        *root = gsl_root_fsolver_root(s);
+        rc = 0;
+    }
+    if (s)
+        gsl_root_fsolver_free(s);
+    gsl_set_error_handler(old);
+    return rc;
+}
+
+/* The largest useful k at n: beyond it the quadratic reaches zero inside the epicentre. */
+static double k_domain_max(double n) { return 1.0 / (1.0 - cos(zone_epicentre_end(n))); }
+
+int fit_minimax_k(double n, double *k_out, double *max_rel_out)
+{
+    /* over falls and under grows with k: the minimax is where they meet. */
+    struct side_ctx ctx = { n, 0.0, EPI_BALANCE };
+    double k;
+    if (root_in(&ctx, 0.0, k_domain_max(n), &k))
+        return -1;
+    *k_out = k;
+    *max_rel_out = fit_epicentre_max_rel(n, k);
+    return 0;
+}
+
+/* {k in [k_min, k_max]: side <= target} for a falling side (over) or a rising one (under):
+   one end of the interval. */
+static double level_bound(double n, enum side_fn which, double target, double k_lo, double k_hi, int falling)
+{
+    struct side_ctx ctx = { n, target, which };
+    double v_lo = side_value(k_lo, &ctx), v_hi = side_value(k_hi, &ctx);
+    if (falling) {
+        if (v_lo <= 0) return k_lo;
+        if (v_hi > 0) return INFINITY;   /* never low enough: empty */
+    } else {
+        if (v_hi <= 0) return k_hi;
+        if (v_lo > 0) return -INFINITY;  /* empty */
+    }
+    double r;
+    if (root_in(&ctx, k_lo, k_hi, &r))
+        return falling ? INFINITY : -INFINITY;
+    return r;
+}
+
+/* ---- the affine minimax ------------------------------------------------------------------ */
+
+struct feas_ctx {
+    const double *n, *lo, *hi;
+    long count;
+};
+
+/* g(a) = min_i (hi_i - a n_i) - max_i (lo_i - a n_i): concave; a feasible b exists iff g >= 0. */
+static double feas_gap(double a, void *p)
+{
+    const struct feas_ctx *f = p;
+    double up = INFINITY, down = -INFINITY;
+    for (long i = 0; i < f->count; ++i) {
+        up = fmin(up, f->hi[i] - a * f->n[i]);
+        down = fmax(down, f->lo[i] - a * f->n[i]);
+    }
+    return up - down;
+}
+
+/* Largest gap over a and the (a, b) there (b in the middle of its feasible range). */
+static double feas_best(const struct feas_ctx *f, double *a_out, double *b_out)
+{
+    long last = f->count - 1;
+    double span = f->n[last] - f->n[0];
+    double a1 = (f->lo[last] - f->hi[0]) / span, a2 = (f->hi[last] - f->lo[0]) / span;
+    if (!(a2 >= a1))
+        return -INFINITY;
+    double best = -INFINITY;
+    int bj = 0;
+    double grid[FIT_FEAS_SAMPLES + 1];
+    for (int j = 0; j <= FIT_FEAS_SAMPLES; ++j) {
+        double a = a1 + (a2 - a1) * j / FIT_FEAS_SAMPLES;
+        grid[j] = a;
+        double g = feas_gap(a, (void *)f);
+        if (g > best) { best = g; bj = j; }
+    }
+    double a = grid[bj], g = best;
+    refine_maximum(feas_gap, (void *)f, grid[bj > 0 ? bj - 1 : 0], grid[bj],
+                   grid[bj < FIT_FEAS_SAMPLES ? bj + 1 : bj], &a, &g);
+    double up = INFINITY, down = -INFINITY;
+    for (long i = 0; i < f->count; ++i) {
+        up = fmin(up, f->hi[i] - a * f->n[i]);
+        down = fmax(down, f->lo[i] - a * f->n[i]);
+    }
+    *a_out = a;
+    *b_out = 0.5 * (up + down);
+    return g;
+}
+
+static void affine_figures(const double *n, long count, double a, double b, struct fit_affine *out)
+{
+    out->a = a;
+    out->b = b;
+    out->max_rel = out->max_abs = -1;
+    for (long i = 0; i < count; ++i) {
+        double k = a * n[i] + b;
+        double e = fit_epicentre_max_rel(n[i], k), d = fit_attenuation_max_abs(n[i], k);
+        if (e > out->max_rel) { out->max_rel = e; out->max_rel_n = n[i]; }
+        if (d > out->max_abs) { out->max_abs = d; out->max_abs_n = n[i]; }
+    }
+}
+
+/* Per-n intervals of k at level t: {k: max delta <= t} intersected with the cap's interval. */
+struct level_ctx {
+    const double *n;
+    long count;
+    const double *kstar, *kmax, *cap_lo, *cap_hi;
+    double *lo, *hi;
+    const struct feas_ctx *feas;
+};
+
+static int feasible_at(const struct level_ctx *L, double t, double *a, double *b)
+{
+    for (long i = 0; i < L->count; ++i) {
+        double l = level_bound(L->n[i], EPI_OVER, t, 0.0, L->kstar[i], 1);
+        double h = level_bound(L->n[i], EPI_UNDER, t, L->kstar[i], L->kmax[i], 0);
+        L->lo[i] = fmax(l, L->cap_lo[i]);
+        L->hi[i] = fmin(h, L->cap_hi[i]);
+        if (!(L->lo[i] <= L->hi[i]))
+            return 0;
+    }
+    return feas_best(L->feas, a, b) >= 0;
+}
+
+int fit_affine_minimax(const double *n, long count, const struct fit_limit *limit, double cap,
+                       struct fit_affine *out)
+{
+    memset(out, 0, sizeof *out);
+    out->cap = cap;
+    out->a = out->b = out->max_rel = out->max_abs = NAN;
+    if (count < 2) {
+        snprintf(out->reason, sizeof out->reason, "at least two values of n are needed");
+        return -1;
+    }
+    double *kmax = malloc((size_t)count * sizeof *kmax), *cap_lo = malloc((size_t)count * sizeof *cap_lo),
+           *cap_hi = malloc((size_t)count * sizeof *cap_hi), *lo = malloc((size_t)count * sizeof *lo),
+           *hi = malloc((size_t)count * sizeof *hi), *kstar = malloc((size_t)count * sizeof *kstar);
+    int rc = -1;
+    if (!kmax || !cap_lo || !cap_hi || !lo || !hi || !kstar) {
+        snprintf(out->reason, sizeof out->reason, "out of memory");
+        goto done;
+    }
+    double floor_t = 0;
+    for (long i = 0; i < count; ++i) {
+        kmax[i] = k_domain_max(n[i]);
+        kstar[i] = limit[i].k;
+        floor_t = fmax(floor_t, limit[i].max_rel);
+        cap_lo[i] = 0.0;
+        cap_hi[i] = kmax[i];
+        if (isfinite(cap)) {
+            /* The attenuation's f - r falls with k and r - f grows: the cap is an interval. */
+            cap_lo[i] = level_bound(n[i], ATT_OVER, cap, 0.0, kmax[i], 1);
+            cap_hi[i] = level_bound(n[i], ATT_UNDER, cap, 0.0, kmax[i], 0);
+            if (!(cap_lo[i] <= cap_hi[i])) {
+                snprintf(out->reason, sizeof out->reason,
+                         "no k meets the cap %.6g on the attenuation's max Delta at n = %g", cap, n[i]);
+                goto done;
+            }
+        }
+    }
+    struct feas_ctx f = { n, lo, hi, count };
+    struct level_ctx L = { n, count, kstar, kmax, cap_lo, cap_hi, lo, hi, &f };
+    /* Start from the least-squares line through the per-n minimax k: feasible at its own
+       objective when there is no cap. */
+    double c0, c1, cov00, cov01, cov11, sumsq;
+    gsl_fit_linear(n, 1, kstar, 1, (size_t)count, &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
+    struct fit_affine start;
+    affine_figures(n, count, c1, c0, &start);
+    double t_hi = start.max_rel * (1 + 1e-12) + 1e-15, t_lo = floor_t;
+    double a, b, ta, tb;
+    /* With a cap the start may break it: widen until feasible (delta <= 1 holds for any k in
+       the domain, so t = 1 leaves only the cap). */
+    while (!feasible_at(&L, t_hi, &ta, &tb)) {
+        if (t_hi >= 1.0) {
+            snprintf(out->reason, sizeof out->reason,
+                     "no affine k(n) keeps the attenuation's max Delta <= %.6g over the whole range", cap);
+            goto done;
+        }
+        t_hi = fmin(1.0, 2.0 * t_hi);
+    }
+    a = ta;
+    b = tb;
+    for (int it = 0; it < FIT_BISECT_ITER && t_hi - t_lo > 1e-13 * t_hi; ++it) {
+        double t = 0.5 * (t_lo + t_hi);
+        if (feasible_at(&L, t, &ta, &tb)) {
+            t_hi = t;
+            a = ta;
+            b = tb;
+        } else {
+            t_lo = t;
+        }
+    }
+    affine_figures(n, count, a, b, out);
+    out->cap = cap;
+    out->feasible = 1;
+    rc = 0;
+done:
+    free(kmax);
+    free(cap_lo);
+    free(cap_hi);
+    free(lo);
+    free(hi);
+    free(kstar);
+    return rc;
+}
+
+/* ---- the run: fit, device sweeps, fit.json ---------------------------------------------- */
+
+static const char *const compare_ids[FIT_COMPARE_COUNT] = { "fq2", "fvol", "cq2" };
+
+/* Turns a fitted (a, b) into the registry model text and spec, and sweeps it on the device. */
+static int fit_model_finish(struct accuracy_ctx *actx, const struct accuracy_grid *g, struct fit_model *m,
+                            const double *n, long count)
+{
+    char err[512];
+    if (!m->fit.feasible)
+        return 0;
+    snprintf(m->spec_text, sizeof m->spec_text, "quad:a=%.10g,b=%.10g", m->fit.a, m->fit.b);
+    if (model_spec_parse(m->spec_text, &m->spec, err, sizeof err)) {
+        /* Outside the registry's parameter domain: report, do not sweep. */
+        m->fit.feasible = 0;
+        snprintf(m->fit.reason, sizeof m->fit.reason, "fitted model is outside the registry's domain: %.200s", err);
+        return 0;
+    }
+    /* The figures belong to the parameters as written (10 significant digits). */
+    double cap = m->fit.cap;
+    char reason[256];
+    memcpy(reason, m->fit.reason, sizeof reason);
+    affine_figures(n, count, m->spec.params[0], m->spec.params[1], &m->fit);
+    m->fit.cap = cap;
+    m->fit.feasible = 1;
+    memcpy(m->fit.reason, reason, sizeof reason);
+    int rc = accuracy_run(actx, &m->spec, g, &m->sweep);
+    if (rc)
+        return rc;
+    m->have_sweep = 1;
+    return 0;
+}
+
+void fit_report_free(struct fit_report *r)
+{
+    free(r->limit);
+    r->limit = NULL;
+    if (r->main.have_sweep)
+        accuracy_result_free(&r->main.sweep);
+    if (r->at_fq2_cap.have_sweep)
+        accuracy_result_free(&r->at_fq2_cap.sweep);
+    for (int i = 0; i < r->compare_count; ++i)
+        accuracy_result_free(&r->compare[i]);
+    r->main.have_sweep = r->at_fq2_cap.have_sweep = 0;
+    r->compare_count = 0;
+}
+
+static void jw_extreme_obj(struct jw *w, const char *key, const char *metric, const struct acc_extreme *e)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, metric, e->value);
+    jw_kv_num(w, "at_n", e->n);
+    jw_kv_num(w, "at_x", e->x);
+    if (!isfinite(e->value))
+        jw_kv_str(w, "reason", "no finite values");
+    jw_obj_end(w);
+}
+
+static void jw_sweep_summary(struct jw *w, const struct accuracy_result *r)
+{
+    jw_obj_begin(w);
+    jw_kv_str(w, "model", r->model.label);
+    jw_kv_str(w, "reference", r->reference.label);
+    jw_kv_num(w, "max_rel", r->epicentre.value);
+    jw_kv_num(w, "max_rel_at_n", r->epicentre.n);
+    jw_kv_num(w, "max_abs", r->attenuation.value);
+    jw_kv_num(w, "max_abs_at_n", r->attenuation.n);
+    jw_kv_num(w, "max_abs_whole", r->whole.value);
+    jw_extreme_obj(w, "epicentre", "max_rel", &r->epicentre);
+    jw_extreme_obj(w, "attenuation", "max_abs", &r->attenuation);
+    jw_obj_end(w);
+}
+
+/* The fitted model's block: parameters, device figures, host figures, cap. */
+static void jw_fit_model(struct jw *w, const struct fit_model *m)
+{
+    jw_kv_str(w, "status", m->fit.feasible ? "ok" : "infeasible");
+    if (!m->fit.feasible)
+        jw_kv_str(w, "reason", m->fit.reason[0] ? m->fit.reason : "no fit");
+    jw_kv_str(w, "model", m->fit.feasible ? m->spec_text : "");
+    jw_kv_num(w, "a", m->fit.feasible ? m->spec.params[0] : NAN);
+    jw_kv_num(w, "b", m->fit.feasible ? m->spec.params[1] : NAN);
+    const struct accuracy_result *r = m->have_sweep ? &m->sweep : NULL;
+    jw_kv_num(w, "max_rel", r ? r->epicentre.value : NAN);
+    jw_kv_num(w, "max_rel_at_n", r ? r->epicentre.n : NAN);
+    jw_kv_num(w, "max_abs", r ? r->attenuation.value : NAN);
+    jw_kv_num(w, "max_abs_at_n", r ? r->attenuation.n : NAN);
+    jw_kv_num(w, "max_abs_whole", r ? r->whole.value : NAN);
+    jw_kv_num(w, "max_abs_cap", m->fit.cap);
+    if (!isfinite(m->fit.cap))
+        jw_kv_str(w, "max_abs_cap_reason", "no cap");
+    jw_key(w, "host_check");
+    jw_obj_begin(w);
+    jw_kv_num(w, "max_rel", m->fit.max_rel);
+    jw_kv_num(w, "max_rel_at_n", m->fit.max_rel_n);
+    jw_kv_num(w, "max_abs", m->fit.max_abs);
+    jw_kv_num(w, "max_abs_at_n", m->fit.max_abs_n);
+    jw_kv_str(w, "what", "the same figures from the fit's own double-precision evaluation (exact stationary point "
+                         "in the epicentre; 256-sample grid + Brent in the attenuation zone)");
+    jw_obj_end(w);
+}
+
+static int fit_write_json(const char *path, const struct fit_report *r, const struct cl_session *s,
+                          const char *build_options, char *err, size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", FIT_SCHEMA);
+    jw_context_begin(&w, s, build_options);
+    jw_key(&w, "grid");
+    jw_obj_begin(&w);
+    jw_kv_num(&w, "n_min", r->grid.n_min);
+    jw_kv_num(&w, "n_max", r->grid.n_max);
+    jw_kv_num(&w, "n_step", r->grid.n_step);
+    jw_kv_int(&w, "n_count", r->n_count);
+    jw_kv_int(&w, "samples_per_zone", r->grid.samples);
+    jw_kv_str(&w, "figures", "max_rel / max_abs: the device sweep (brdfbench accuracy) polished in double");
+    jw_obj_end(&w);
+    jw_obj_end(&w);   /* context */
+    jw_kv_str(&w, "family", "f = (k(n) (c - 1) + 1)^2, zeroed past its root; reference c^n (phong)");
+    jw_kv_str(&w, "objective", "minimise over (a, b) the largest epicentre max delta over the n grid, "
+                               "k(n) = a n + b; optional cap on the attenuation zone's max Delta");
+    jw_fit_model(&w, &r->main);
+    jw_key(&w, "limit_overall");
+    jw_obj_begin(&w);
+    jw_kv_num(&w, "max_rel", r->limit_max);
+    jw_kv_num(&w, "at_n", r->limit_max_n);
+    jw_kv_str(&w, "what", "largest over the grid of the per-n minimax: no k(n) of the family does better "
+                          "over this range");
+    jw_obj_end(&w);
+    jw_key(&w, "limit");
+    jw_arr_begin(&w);
+    for (long i = 0; i < r->n_count; ++i) {
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "n", r->limit[i].n);
+        jw_kv_num(&w, "k", r->limit[i].k);
+        jw_kv_num(&w, "max_rel", r->limit[i].max_rel);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_key(&w, "capped_at_fq2");
+    jw_obj_begin(&w);
+    jw_fit_model(&w, &r->at_fq2_cap);
+    jw_obj_end(&w);
+    jw_key(&w, "tradeoff");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "what", "best affine fit for caps on the attenuation's max Delta between fq2's and the uncapped "
+                          "fit's (host double figures)");
+    jw_key(&w, "points");
+    jw_arr_begin(&w);
+    for (int j = 0; j < r->tradeoff_count; ++j) {
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "max_abs_cap", r->tradeoff[j].cap);
+        jw_kv_num(&w, "a", r->tradeoff[j].a);
+        jw_kv_num(&w, "b", r->tradeoff[j].b);
+        jw_kv_num(&w, "max_rel", r->tradeoff[j].max_rel);
+        jw_kv_num(&w, "max_abs", r->tradeoff[j].max_abs);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    jw_key(&w, "compare");
+    jw_arr_begin(&w);
+    if (r->main.have_sweep)
+        jw_sweep_summary(&w, &r->main.sweep);
+    if (r->at_fq2_cap.have_sweep)
+        jw_sweep_summary(&w, &r->at_fq2_cap.sweep);
+    for (int i = 0; i < r->compare_count; ++i)
+        jw_sweep_summary(&w, &r->compare[i]);
+    jw_arr_end(&w);
+    jw_key(&w, "verdict");
+    jw_obj_begin(&w);
+    jw_kv_bool(&w, "beats_fq2_max_rel", r->beats_fq2_rel);
+    jw_kv_bool(&w, "max_abs_not_worse_than_fq2", r->not_worse_abs);
+    jw_kv_str(&w, "text", r->verdict);
+    jw_obj_end(&w);
+    jw_kv_num(&w, "seconds", r->seconds);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+static void print_row(FILE *f, const char *label, const char *note, const struct accuracy_result *r)
+{
+    fprintf(f, "  %-36s %9.4f%% %7g  %9.5f %7g  %s\n", label, 100.0 * r->epicentre.value, r->epicentre.n,
+            r->attenuation.value, r->attenuation.n, note);
+}
+
+static void fit_print(FILE *f, const struct fit_report *r)
+{
+    fprintf(f, "fit: f = (k(n)(c-1) + 1)^2, k(n) = a n + b, minimax of the epicentre's max delta over n in "
+               "[%g, %g] step %g (%ld values); device sweep %ld samples per zone\n",
+            r->grid.n_min, r->grid.n_max, r->grid.n_step, r->n_count, r->grid.samples);
+    fprintf(f, "family limit (per-n minimax k): max delta %.4f%% at n = %g\n", 100.0 * r->limit_max, r->limit_max_n);
+    fprintf(f, "  %-36s %10s %7s  %9s %7s\n", "model", "max delta", "at n", "max Delta", "at n");
+    if (r->main.have_sweep)
+        print_row(f, r->main.spec_text, isfinite(r->main.fit.cap) ? "fit (capped)" : "fit", &r->main.sweep);
+    else
+        fprintf(f, "  fit: %s\n", r->main.fit.reason);
+    if (r->at_fq2_cap.have_sweep)
+        print_row(f, r->at_fq2_cap.spec_text, "fit, max Delta capped at fq2's", &r->at_fq2_cap.sweep);
+    else
+        fprintf(f, "  fit capped at fq2's max Delta: %s\n", r->at_fq2_cap.fit.reason);
+    for (int i = 0; i < r->compare_count; ++i)
+        print_row(f, r->compare[i].model.label, "", &r->compare[i]);
+    if (r->tradeoff_count > 0) {
+        fprintf(f, "trade-off (host figures): cap on max Delta -> best max delta:");
+        for (int j = 0; j < r->tradeoff_count; ++j)
+            fprintf(f, "%s %.5f -> %.4f%%", j ? "," : "", r->tradeoff[j].cap, 100 * r->tradeoff[j].max_rel);
+        fprintf(f, "\n");
+    }
+    fprintf(f, "verdict: %s\n", r->verdict);
+    if (r->main.have_sweep)
+        fprintf(f, "use it: --models %s\n", r->main.spec_text);
+}
+
+static void fit_verdict(struct fit_report *r)
+{
+    const struct accuracy_result *fq2 = NULL;
+    for (int i = 0; i < r->compare_count; ++i)
+        if (strcmp(r->compare[i].model.info->id, "fq2") == 0)
+            fq2 = &r->compare[i];
+    if (!fq2 || !r->main.have_sweep) {
+        snprintf(r->verdict, sizeof r->verdict, "no fitted model to compare (%s)", r->main.fit.reason);
+        return;
+    }
+    const struct accuracy_result *m = &r->main.sweep;
+    /* "Not worse" allows the last bits of a tie: both maxima are polished in double. */
+    r->beats_fq2_rel = m->epicentre.value < fq2->epicentre.value * (1 - 1e-9);
+    r->not_worse_abs = m->attenuation.value <= fq2->attenuation.value * (1 + 1e-9);
+    int n = snprintf(r->verdict, sizeof r->verdict,
+                     "fit max delta %.4f%% vs fq2 %.4f%% (%s), max Delta %.5f vs fq2 %.5f (%s)",
+                     100 * m->epicentre.value, 100 * fq2->epicentre.value,
+                     r->beats_fq2_rel ? "better" : "not better", m->attenuation.value, fq2->attenuation.value,
+                     r->not_worse_abs ? "not worse" : "worse");
+    if (n > 0 && (size_t)n < sizeof r->verdict && r->at_fq2_cap.have_sweep) {
+        const struct accuracy_result *c = &r->at_fq2_cap.sweep;
+        int beats = c->epicentre.value < fq2->epicentre.value * (1 - 1e-9);
+        snprintf(r->verdict + n, sizeof r->verdict - (size_t)n,
+                 "; with max Delta capped at fq2's the family's best is %.4f%% (%s fq2); "
+                 "the family's limit over the range is %.4f%%",
+                 100 * c->epicentre.value, beats ? "better than" : "no better than", 100 * r->limit_max);
+    }
+}
+
+int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
+            struct fit_report *report)
+{
+    char err[1024];
+    struct fit_report local;
+    struct fit_report *r = report ? report : &local;
+    memset(r, 0, sizeof *r);
+    r->opt = *o;
+    double t0 = wall_seconds();
+    if (fit_options_check(o, err, sizeof err)) {
+        fprintf(stderr, "brdfbench fit: %s\n", err);
+        return EXIT_USAGE;
+    }
+    struct accuracy_grid g = { o->n_min, o->n_max, o->n_step, o->samples };
+    if (accuracy_grid_check(&g, s, err, sizeof err)) {
+        fprintf(stderr, "brdfbench fit: %s\n", err);
+        return EXIT_USAGE;
+    }
+    r->grid = g;
+    r->n_count = accuracy_grid_count(&g);
+    int rc = 0;
+    double *n = malloc((size_t)r->n_count * sizeof *n);
+    r->limit = malloc((size_t)r->n_count * sizeof *r->limit);
+    struct accuracy_ctx actx;
+    memset(&actx, 0, sizeof actx);
+    if (!n || !r->limit) {
+        fprintf(stderr, "brdfbench fit: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    r->limit_max = -1;
+    for (long i = 0; i < r->n_count; ++i) {
+        n[i] = accuracy_grid_n(&g, i);   /* the n the device sees */
+        r->limit[i].n = n[i];
+        if (fit_minimax_k(n[i], &r->limit[i].k, &r->limit[i].max_rel)) {
+            fprintf(stderr, "brdfbench fit: the per-n minimax failed at n = %g\n", n[i]);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+        if (r->limit[i].max_rel > r->limit_max) {
+            r->limit_max = r->limit[i].max_rel;
+            r->limit_max_n = n[i];
+        }
+    }
+    fit_affine_minimax(n, r->n_count, r->limit, o->max_abs_cap, &r->main.fit);
+
+    rc = accuracy_open(&actx, s, "");
+    if (rc)
+        goto done;
+    for (int i = 0; i < FIT_COMPARE_COUNT; ++i) {
+        struct model_spec spec;
+        model_spec_default(models_find(compare_ids[i]), &spec);
+        rc = accuracy_run(&actx, &spec, &g, &r->compare[i]);
+        if (rc)
+            goto done;
+        r->compare_count = i + 1;
+    }
+    /* fq2's own attenuation max Delta (compare[0]) as the cap of the second fit. */
+    fit_affine_minimax(n, r->n_count, r->limit, r->compare[0].attenuation.value, &r->at_fq2_cap.fit);
+    rc = fit_model_finish(&actx, &g, &r->main, n, r->n_count);
+    if (!rc)
+        rc = fit_model_finish(&actx, &g, &r->at_fq2_cap, n, r->n_count);
+    if (rc)
+        goto done;
+    if (r->main.have_sweep && r->at_fq2_cap.have_sweep && !isfinite(o->max_abs_cap)) {
+        double lo = r->compare[0].attenuation.value, hi = r->main.sweep.attenuation.value;
+        for (int j = 0; j < FIT_TRADEOFF_POINTS && hi > lo; ++j) {
+            double cap = lo + (hi - lo) * j / (FIT_TRADEOFF_POINTS - 1);
+            if (fit_affine_minimax(n, r->n_count, r->limit, cap, &r->tradeoff[r->tradeoff_count]) == 0)
+                r->tradeoff_count++;
+        }
+    }
+    fit_verdict(r);
+    r->seconds = wall_seconds() - t0;
+    if (out_dir) {
+        char path[4200];
+        path_join(path, sizeof path, out_dir, "fit.json");
+        if (fit_write_json(path, r, s, actx.build_options, err, sizeof err)) {
+            fprintf(stderr, "brdfbench fit: %s\n", err);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+    }
+    if (!quiet)
+        fit_print(stdout, r);
+done:
+    accuracy_close(&actx);
+    free(n);
+    if (!report)
+        fit_report_free(r);
+    return rc;
+}

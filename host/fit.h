@@ -1,0 +1,105 @@
+/* fit.h - the cosine-quadratic family f = (k(n)(c - 1) + 1)^2, zeroed past its root:
+ * its accuracy limit per n (the minimax k(n) of the epicentre's max delta) and the best
+ * affine k(n) = a n + b over a range of n (minimax of max delta over the whole range,
+ * optionally with a cap on the attenuation zone's max Delta). The fitted model is the
+ * registry's `quad:a=...,b=...`, so every command can use it.
+ *
+ * Per n, f/c^n - 1 is unimodal over the epicentre (its derivative in c vanishes once, at
+ * c* = n(k-1)/(k(n-2))), so the epicentre's max delta is exact from three points; the
+ * attenuation zone's max Delta is found on a grid and polished with GSL Brent. f falls
+ * pointwise as k grows, so each error side is monotone in k and every "error <= t" set of k
+ * is an interval: the affine minimax is a bisection on t over a two-variable feasibility
+ * problem, solved exactly. The fitted model's figures are then measured by the device sweep
+ * (accuracy.h) beside fq2, fvol and cq2. */
+#ifndef BRDF_FIT_H
+#define BRDF_FIT_H
+
+#include <stddef.h>
+
+#include "accuracy.h"
+#include "clsession.h"
+
+#define FIT_SCHEMA "brdfbench.fit/1"
+#define FIT_COMPARE_COUNT 3          /* fq2, fvol, cq2 */
+#define FIT_TRADEOFF_POINTS 5
+
+struct fit_options {
+    double n_min, n_max, n_step;     /* the n grid, as the accuracy sweep's */
+    double max_abs_cap;              /* cap on the attenuation zone's max Delta; NAN: none */
+    long samples;                    /* samples per zone of the device sweeps */
+};
+
+void fit_options_default(struct fit_options *o);
+
+/* Errors of f = (k(c-1)+1)^2 (zeroed past its root) against c^n at one n, in double.
+ * over = max (f/r - 1), under = max (1 - f/r) over the epicentre (both >= 0); the max delta
+ * is the larger. The abs_ pair is the same for f - r and r - f over the attenuation zone. */
+struct fit_sides {
+    double over, under;
+};
+struct fit_sides fit_epicentre_sides(double n, double k);
+struct fit_sides fit_attenuation_sides(double n, double k);
+double fit_epicentre_max_rel(double n, double k);
+double fit_attenuation_max_abs(double n, double k);
+
+/* The per-n minimax: the k that minimises the epicentre's max delta, and that minimum
+ * (the family's accuracy limit at n). Returns 0, or -1 if GSL failed. */
+int fit_minimax_k(double n, double *k_out, double *max_rel_out);
+
+struct fit_limit {
+    double n, k, max_rel;
+};
+
+struct fit_affine {
+    double a, b;
+    int feasible;                     /* 0: no affine k(n) meets the cap (see reason) */
+    double cap;                       /* NAN: none */
+    double max_rel, max_rel_n;        /* host (double) objective at (a, b) */
+    double max_abs, max_abs_n;        /* host attenuation max Delta at (a, b) */
+    char reason[256];
+};
+
+/* Best affine k(n) over the n values given (count >= 2, increasing): minimises the largest
+ * epicentre max delta, with every attenuation max Delta <= cap when cap is finite.
+ * limit[] holds fit_minimax_k at the same n (a lower bound of the objective). */
+int fit_affine_minimax(const double *n, long count, const struct fit_limit *limit, double cap,
+                       struct fit_affine *out);
+
+/* One fitted model with its device-measured figures. */
+struct fit_model {
+    struct fit_affine fit;
+    char spec_text[128];              /* quad:a=...,b=... */
+    struct model_spec spec;
+    struct accuracy_result sweep;     /* the device sweep of the fitted model */
+    int have_sweep;
+};
+
+struct fit_report {
+    struct fit_options opt;
+    struct accuracy_grid grid;
+    long n_count;
+    struct fit_limit *limit;          /* per n of the grid */
+    double limit_max, limit_max_n;    /* the family's limit over the range */
+    struct fit_model main;            /* with opt.max_abs_cap (none by default) */
+    struct fit_model at_fq2_cap;      /* capped at fq2's own attenuation max Delta */
+    struct accuracy_result compare[FIT_COMPARE_COUNT];
+    int compare_count;
+    /* The delta-Delta trade-off between the two fits: the best max delta for caps spaced
+       from fq2's max Delta to the uncapped fit's (host figures). */
+    struct fit_affine tradeoff[FIT_TRADEOFF_POINTS];
+    int tradeoff_count;
+    int beats_fq2_rel, not_worse_abs; /* the main fit against fq2 */
+    char verdict[512];
+    double seconds;
+};
+
+/* Runs the fit and the device sweeps; writes out_dir/fit.json when out_dir is not NULL and
+ * prints a summary unless quiet. The report is filled when `report` is not NULL (free it with
+ * fit_report_free). Returns 0 or an exit code. */
+int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
+            struct fit_report *report);
+void fit_report_free(struct fit_report *r);
+/* Checks the options (range, step, cap, samples). Returns 0 or EXIT_USAGE with a message. */
+int fit_options_check(const struct fit_options *o, char *err, size_t errlen);
+
+#endif

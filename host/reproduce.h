@@ -1,0 +1,74 @@
+/* reproduce.h - re-derives every claim of both papers (SPEC.md, "What the papers claim") and
+ * gives each a verdict: claims.json, claims.md, q_sweep.json, energy.json and a table.
+ *
+ * Every figure is measured, never assumed: max delta / max Delta by the device sweep
+ * (accuracy.h, polished in double), the integrals of paper 1's eq. 11 by nested adaptive
+ * quadrature on the host (GSL) and independently on the device (kernels/integrate.cl),
+ * paper 2's coef(n) by adaptive quadrature of f_Q2 itself, the fits by least squares (GSL).
+ * A claim is "reproduced" when the measured value is within the stated tolerance of the
+ * claimed one (for a printed number: one unit in its last printed digit, which accepts the
+ * paper's rounding or truncation); otherwise "not reproduced", with the measured value and,
+ * where it can be found, why. */
+#ifndef BRDF_REPRODUCE_H
+#define BRDF_REPRODUCE_H
+
+#include <stddef.h>
+
+#include "clsession.h"
+
+#define CLAIMS_SCHEMA "brdfbench.claims/1"
+#define Q_SWEEP_SCHEMA "brdfbench.q_sweep/1"
+
+struct reproduce_options {
+    long samples;            /* samples per zone of the claim sweeps (default 4096) */
+    int grid_check;          /* re-run each claim sweep at twice the samples (default 1) */
+    double q_min, q_max, q_step;   /* the Q sweep behind paper 2's figs. 2-3 */
+    long q_samples;          /* samples per zone of the Q sweep (default 1024) */
+    double q_n_step;         /* n step of the Q sweep (default 1) */
+    int energy;              /* run the albedo and reciprocity checks (default 1) */
+};
+void reproduce_options_default(struct reproduce_options *o);
+/* Checks the options. Returns 0 or EXIT_USAGE with a one-line message. */
+int reproduce_options_check(const struct reproduce_options *o, char *err, size_t errlen);
+
+struct claim {
+    char id[32];
+    char kind[8];            /* "claim" (a paper's) or "check" (a closed form the harness must meet) */
+    char source[96];         /* paper, equation or figure */
+    char text[320];          /* what is claimed */
+    char claimed_text[64];
+    double claimed;          /* NAN when the claim is not a number */
+    char measured_text[192];
+    double measured;
+    char tolerance[160];
+    int reproduced;
+    char note[768];          /* where it was measured, and why it differs */
+    char method[192];
+};
+
+struct reproduce_report {
+    struct claim *rows;
+    int count, cap;
+    int reproduced, not_reproduced;
+    char *markdown;          /* claims.md's text (malloc'd) */
+    double seconds;
+};
+
+/* Runs everything with the default options; writes the files into out_dir (not NULL) and the
+ * table on stdout unless quiet. Returns 0 or an exit code. */
+int reproduce_run(struct cl_session *s, const char *out_dir, int quiet);
+/* Same with options; fills `report` when not NULL (free with reproduce_report_free): the
+ * rows and claims.md's markdown, for the main job's report. */
+int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct reproduce_options *o, int quiet,
+                     struct reproduce_report *report);
+void reproduce_report_free(struct reproduce_report *r);
+
+/* Paper 1's eq. 11 on the host (nested adaptive GSL quadrature in x and n):
+ * term 0: c^n, 1: n^2 (c-1)^2, 2: 2n (c-1), 3: 1, each times cos x sin x, over
+ * x in [0, acos(exp(-zone_k/n))], n in [n_lo, n_hi]. Returns 0 or -1 (GSL failed). */
+int eq11_host(double zone_k, double n_lo, double n_hi, int term, double *out);
+/* coef(n) = 1/(2 pi int_0^gran(n) f_Q2 cos g sin g dg), gran(n) = acos((448n - 901)/(448n + 99))
+ * capped at pi/2, by adaptive quadrature of the registry's fq2 (paper 2). */
+double paper2_coef(double n);
+
+#endif
