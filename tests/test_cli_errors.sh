@@ -1,0 +1,197 @@
+#!/usr/bin/env bash
+# test_cli_errors.sh - the bad-input table: every command refuses bad input with one line
+# that names the argument (or the file, line and column) and what it accepts, and the exit
+# code of DESIGN.md (2 bad input, 3 runtime/output error). Each row below asserts both.
+#
+# BAD_INPUTS_MD=FILE writes the table with each row's result as Markdown (docs/bad-inputs.md
+# is made this way).
+set -u
+BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+SRC=${SRC_DIR:?}
+F=$SRC/tests/test_usermodel_files
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+case "${BAD_INPUTS_MD:-}" in ""|/*) ;; *) BAD_INPUTS_MD=$PWD/$BAD_INPUTS_MD ;; esac
+cd "$T" || exit 1
+pass=0 fail=0 row=0
+md=""
+
+# t CODE REGEX [VAR=VALUE ...] ARGS...: runs brdfbench ARGS (with the environment variables
+# given first); the exit code must be CODE and stderr must hold exactly one line matching
+# REGEX, prefixed "brdfbench COMMAND: " (or "brdfbench: " for the dispatcher). Where REGEX
+# starts with "multi:" more lines may follow (a compile error's build log, the usage text).
+t() {
+    local code=$1 pattern=$2
+    shift 2
+    local envs=()
+    while [ $# -gt 0 ] && [[ "$1" =~ ^[A-Z_]+= ]]; do envs+=("$1"); shift; done
+    row=$((row + 1))
+    env "${envs[@]}" "$BIN" "$@" >"$T/out" 2>"$T/err"
+    local rc=$? verdict=ok first
+    local lines
+    lines=$(wc -l <"$T/err")
+    first=$(grep -m1 -E -- "${pattern#multi:}" "$T/err")
+    if [ "$rc" -ne "$code" ]; then
+        verdict="exit $rc, expected $code"
+    elif [ -z "$first" ]; then
+        verdict="no stderr line matches /${pattern#multi:}/"
+    elif [[ "$pattern" != multi:* ]] && [ "$lines" -ne 1 ]; then
+        verdict="$lines lines on stderr, expected 1"
+    fi
+    if [ "$verdict" = ok ]; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1))
+        echo "FAIL row $row: brdfbench $* -> $verdict: $(head -c 400 "$T/err")" >&2
+    fi
+    local shown="${envs[*]:+${envs[*]} }brdfbench $*"
+    shown=${shown//$T\//}
+    shown=${shown//$SRC\//}
+    first=${first//$T\//}
+    first=${first//$SRC\//}
+    md+="| $row | \`${shown//|/\\|}\` | $rc | ${first//|/\\|} | $verdict |"$'\n'
+}
+
+# Fixtures: gates files with one fault each.
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.0126},]}' >trailing_comma.json
+printf '{"gates":[\n  {"model":"fq2","metric":"epicentre.max_err","max":0.0126}\n]}\n' >bad_metric.json
+printf '{"gates":[\n  {"model":"fq2","metric":"epicentre.max_rel"}\n]}\n' >no_bound.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","min":0.2,"max":0.1}]}' >min_above_max.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_min":0,"max":0.1}]}' >n_min_zero.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","mx":0.1}]}' >typo_key.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":"0.1"}]}' >string_bound.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","samples":100,"max":0.1}]}' >bad_samples.json
+printf '{"gates":[{"model":"fq9","metric":"epicentre.max_rel","max":0.1}]}' >unknown_model.json
+printf '{"gates":[{"model":"fq:Q=2","metric":"epicentre.max_rel","max":0.1}]}' >param_range.json
+printf '{"gates":[]}' >no_gates.json
+printf '[{"model":"fq2"}]' >array_root.json
+: >empty.json
+printf '{"gates":[{"model":"mine","model_file":"missing.cl","metric":"whole.max_abs","max":1}]}' >missing_model_file.json
+printf '{"gates":[{"model":"e","expression":"c; return 0","metric":"whole.max_abs","max":1}]}' >bad_expression.json
+printf '{"gates":[{"model":"fq2","metric":"whole.max_abs","n_min":1,"n_max":1000,"n_step":0.0001,"samples":16,"max":1}]}' >huge_grid.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.0126}]}' >good.json
+printf '{"schema": "brdfbench.accuracy/1", "results": [' >truncated_baseline.json
+mkdir -p folder
+
+# The dispatcher.
+t 2 "^brdfbench: unknown command 'frobnicate' \(accepted: list accuracy " frobnicate
+t 2 'multi:^usage: brdfbench COMMAND'
+t 2 "^brdfbench: unknown command '--bogus'" --bogus
+# list
+t 2 "^brdfbench list: unknown option '--bogus' \(accepted: --help\)" list --bogus
+# accuracy: numbers
+t 2 "^brdfbench accuracy: --n-min: 'abc' is not a finite number in \[" accuracy --n-min abc
+t 2 "^brdfbench accuracy: --n-min: 'nan' is not a finite number" accuracy --n-min nan
+t 2 "^brdfbench accuracy: --n-max: 'inf' is not a finite number" accuracy --n-max inf
+t 2 "^brdfbench accuracy: --n-min: '1e999' is not a finite number" accuracy --n-min 1e999
+t 2 "^brdfbench accuracy: --n-min: '-5' is not a finite number in \[1e-300, 1e\+06\]" accuracy --n-min -5
+t 2 "^brdfbench accuracy: --n-max: '0' is not a finite number" accuracy --n-max 0
+t 2 "^brdfbench accuracy: --n-min: '2x' is not a finite number" accuracy --n-min 2x
+t 2 "^brdfbench accuracy: --n-min: '' is not a finite number" accuracy --n-min=
+t 2 "^brdfbench accuracy: --n-min \(50\) must be below --n-max \(10\)" accuracy --n-min 50 --n-max 10
+t 2 "^brdfbench accuracy: --n-step: '0' is not a finite number" accuracy --n-step 0
+t 2 "^brdfbench accuracy: --n-step: 1e-09 gives [0-9]+ values of n \(accepted: 2 to 10000000\)" accuracy --n-step 1e-9
+t 2 "^brdfbench accuracy: --samples: 100 is not a multiple of 16" accuracy --samples 100
+t 2 "^brdfbench accuracy: --samples: '0' is not an integer in \[16, " accuracy --samples 0
+t 2 "^brdfbench accuracy: --samples: '12x' is not an integer" accuracy --samples 12x
+t 2 "^brdfbench accuracy: --samples: '99999999999999999999' is not an integer" accuracy --samples 99999999999999999999
+t 2 "^brdfbench accuracy: --n-min: missing value" accuracy --n-min
+# accuracy: models and parameters
+t 2 "^brdfbench accuracy: unknown model 'nosuch' \(accepted: phong, blinn, " accuracy --models nosuch
+t 2 "^brdfbench accuracy: model 'fq': parameter Q='1.5' must be a number in \[1e-06, 0.999999\]" accuracy --models fq:Q=1.5
+t 2 "^brdfbench accuracy: model 'fq': parameter Q='nan' must be a number" accuracy --models fq:Q=nan
+t 2 "^brdfbench accuracy: model 'lyon': parameter k='2.5' must be an integer in \[1, 16\]" accuracy --models lyon:k=2.5
+t 2 "^brdfbench accuracy: model 'cq2' takes no parameters \(got 'k'\)" accuracy --models cq2:k=2
+t 2 "^brdfbench accuracy: --models: empty entry in list 'cq2,,fq2'" accuracy --models cq2,,fq2
+t 2 "^brdfbench accuracy: unknown option '--frobnicate' \(see brdfbench accuracy --help\)" accuracy --frobnicate
+# accuracy: device selection and limits
+t 2 "^brdfbench accuracy: --platform: '99' is not an integer in \[0, 63\]" accuracy --platform 99
+t 2 "^brdfbench accuracy: --device: '-1' is not an integer in \[0, 63\]" accuracy --device -1
+t 2 "^brdfbench accuracy: --platform: 9 is out of range \(accepted: 0 to " accuracy --platform 9 --n-max 4 --samples 16
+t 2 "^brdfbench accuracy: --kernel-dir: /nonexistent does not hold brdf_models.h" accuracy --kernel-dir /nonexistent
+# POCL_MEMORY_LIMIT=1 caps PoCL's device at 1 GiB (256 MiB per buffer): 9990001 values of n need
+# 9990001 x 32 bytes = 3.2e8, more than one buffer may hold.
+t 2 "^brdfbench accuracy: --n-step: 9990001 values of n need 3.2e\+08 bytes, more than the device allows" \
+    POCL_MEMORY_LIMIT=1 accuracy --n-min 1 --n-max 1000 --n-step 0.0001 --samples 16
+# accuracy: output folders
+t 3 "^brdfbench accuracy: --out: /dev/full is not a folder" accuracy --n-max 4 --samples 16 --out /dev/full
+t 3 "^brdfbench accuracy: --out: cannot create folder /proc/brdf: " accuracy --n-max 4 --samples 16 --out /proc/brdf
+t 3 "^brdfbench accuracy: --out: cannot create folder good.json/run: Not a directory" accuracy --n-max 4 --samples 16 --out good.json/run
+# user models: files and expressions (accepted by every command that evaluates models)
+t 2 "^brdfbench accuracy: --model-file: cannot read /nonexistent.cl: No such file" accuracy --model-file /nonexistent.cl
+t 2 "^brdfbench accuracy: --model-file: cannot read $T: Is a directory" accuracy --model-file "$T"
+t 2 "^brdfbench accuracy: .*no_header.cl:1: a model file begins with a header comment" accuracy --model-file "$F/no_header.cl"
+t 2 "^brdfbench accuracy: .*bad_param.cl:3: parameter 'k': MIN 5 must be below MAX 1" accuracy --model-file "$F/bad_param.cl"
+t 2 "^brdfbench accuracy: .*unknown_key.cl:3: unknown key 'colour' \(accepted: name, param, " accuracy --model-file "$F/unknown_key.cl"
+t 2 "^brdfbench accuracy: .*no_function.cl: no function 'nofunction' after the header" accuracy --model-file "$F/no_function.cl"
+t 2 "^brdfbench accuracy: --model scaled: user model 'scaled' is already defined by .*scaled.cl" accuracy --model-file "$F/scaled.cl" --model 'scaled=c'
+t 2 "^brdfbench accuracy: model 'scaled': parameter k='20' must be a number in \[0, 10\]" accuracy --model-file "$F/scaled.cl" --models scaled:k=20
+t 2 "multi:bad_syntax.cl:6:[0-9]+: .*expected ';'" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out run
+t 2 "^brdfbench accuracy: --model: 'sq' is not NAME=EXPR" accuracy --model sq
+t 2 "^brdfbench accuracy: --model: name '1abc' is not an identifier" accuracy --model '1abc=c'
+t 2 "^brdfbench accuracy: --model fq2: 'fq2' is the name of a built-in model" accuracy --model 'fq2=c*c'
+t 2 "^brdfbench accuracy: --model a: character 2 of the expression is not allowed" accuracy --model 'a=c; return 0'
+t 2 "^brdfbench accuracy: --model a: the expression must have 1 to 1000 characters" accuracy --model 'a='
+t 2 "multi:--model e1:1:13: .*undeclared identifier 'q'" accuracy --model 'e1=pow(c, n) * q' --n-max 4 --samples 16 --out run
+# gate: the command line
+t 2 "^brdfbench gate: a gates file is missing" gate
+t 2 "^brdfbench gate: one gates file expected, got 'good.json' and 'other.json'" gate good.json other.json
+t 2 "^brdfbench gate: /nonexistent.json: cannot read the gates file: No such file" gate /nonexistent.json
+t 2 "^brdfbench gate: folder: is a folder, not a gates file" gate folder
+t 2 "^brdfbench gate: --tolerance: '2' is not a finite number in \[0, 1\]" gate good.json --baseline good.json --tolerance 2
+t 2 "^brdfbench gate: --tolerance: only with --baseline" gate good.json --tolerance 0.01
+t 2 "^brdfbench gate: --baseline: cannot read /nonexistent: No such file" gate good.json --baseline /nonexistent
+t 2 "^brdfbench gate: --baseline: truncated_baseline.json:1:[0-9]+: unexpected end of file" gate good.json --baseline truncated_baseline.json
+t 2 "^brdfbench gate: --baseline: good.json:1:1: not an accuracy.json" gate good.json --baseline good.json
+t 3 "^brdfbench gate: --junit: folder /nonexistent/dir does not exist" gate good.json --junit /nonexistent/dir/x.xml
+t 3 "^brdfbench gate: --json: folder is a folder \(a file name is expected\)" gate good.json --json folder
+t 2 "^brdfbench gate: unknown option '--junit-file' \(see brdfbench gate --help\)" gate good.json --junit-file x
+# gate: the gates file (file:line:column: problem)
+t 2 "^brdfbench gate: trailing_comma.json:1:[0-9]+: trailing comma" gate trailing_comma.json
+t 2 "^brdfbench gate: bad_metric.json:2:27: gate 1: unknown metric 'epicentre.max_err' \(accepted: epicentre.max_rel, " gate bad_metric.json
+t 2 "^brdfbench gate: no_bound.json:2:3: gate 1: a bound is missing" gate no_bound.json
+t 2 "^brdfbench gate: min_above_max.json:1:[0-9]+: gate 1: \"min\" \(0.2\) is above \"max\" \(0.1\)" gate min_above_max.json
+t 2 "^brdfbench gate: n_min_zero.json:1:[0-9]+: gate 1: \"n_min\" 0 is out of range" gate n_min_zero.json
+t 2 "^brdfbench gate: typo_key.json:1:[0-9]+: gate 1: unknown member \"mx\" \(accepted: model, " gate typo_key.json
+t 2 "^brdfbench gate: string_bound.json:1:[0-9]+: gate 1: \"max\" is a string, a number expected" gate string_bound.json
+t 2 "^brdfbench gate: bad_samples.json:1:[0-9]+: gate 1: \"samples\" 100 is out of range \(accepted: a multiple of 16" gate bad_samples.json
+t 2 "^brdfbench gate: unknown_model.json:1:[0-9]+: gate 1: unknown model 'fq9'" gate unknown_model.json
+t 2 "^brdfbench gate: param_range.json:1:[0-9]+: gate 1: model 'fq': parameter Q='2' must be a number" gate param_range.json
+t 2 "^brdfbench gate: no_gates.json:1:[0-9]+: \"gates\" has 0 gates \(accepted: 1 to 1000\)" gate no_gates.json
+t 2 "^brdfbench gate: array_root.json:1:1: the gates file is an object" gate array_root.json
+t 2 "^brdfbench gate: empty.json: empty file" gate empty.json
+t 2 "^brdfbench gate: missing_model_file.json:1:[0-9]+: gate 1: --model-file: cannot read ./missing.cl" gate missing_model_file.json
+t 2 "^brdfbench gate: bad_expression.json:1:[0-9]+: gate 1: --model e: character 2 of the expression is not allowed" gate bad_expression.json
+t 2 "^brdfbench gate: huge_grid.json:1:11: gate 1: grid: --n-step: 9990001 values of n need 3.2e\+08 bytes, more than the device allows" \
+    POCL_MEMORY_LIMIT=1 gate huge_grid.json
+# all, plot, heatmap, render
+t 2 "^brdfbench all: unknown option '--bogus' \(see brdfbench all --help\)" all --bogus
+t 2 "^brdfbench all: unknown model 'nosuch'" all --models nosuch
+t 2 "^brdfbench plot: RUN_DIR '/nonexistent' is not a folder" plot /nonexistent
+t 2 "^brdfbench plot: unexpected argument 'b'" plot folder b
+t 2 "^brdfbench heatmap: --model: missing value" heatmap --model
+t 2 "^brdfbench render: --size: '0x10' is not WxH with W and H integers in \[16, 16384\]" render --size 0x10
+t 2 "^brdfbench render: --size: 4096x4096 is outside the accepted range: .*device" POCL_MEMORY_LIMIT=1 render --size 4096x4096
+t 2 "^brdfbench render: --scene: 'moon' is not a list of spheres, teapot, bunny" render --scene moon
+t 2 "^brdfbench render: --exposure: 'nan' is not a finite number in \[0.01, 100\]" render --exposure nan
+t 2 "^brdfbench render: --light: 'laser' is not directional or point" render --light laser
+t 2 "^brdfbench render: --reps: '0' is not an integer in \[1, 1000\]" render --reps 0
+
+[ ! -e "$T/run" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: a refused run wrote $T/run" >&2; }
+
+if [ -n "${BAD_INPUTS_MD:-}" ]; then
+    {
+        echo "# Bad inputs"
+        echo
+        echo "Every row is a case of tests/test_cli_errors.sh: the command, the exit code it gave and the first"
+        echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
+        echo "or output error (DESIGN.md). Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
+        echo "(BRDFBENCH and SRC_DIR set as ctest sets them); $row cases, $pass passed, $fail failed."
+        echo
+        echo "| # | command | exit | message | result |"
+        echo "|---|---|---|---|---|"
+        printf '%s' "$md"
+    } >"$BAD_INPUTS_MD.tmp" && mv "$BAD_INPUTS_MD.tmp" "$BAD_INPUTS_MD"
+fi
+echo "$row cases; $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
