@@ -114,21 +114,6 @@ int cmd_accuracy(int argc, char **argv)
         clsession_close(&s);
         goto usage_error;
     }
-    /* Check the output folder before the sweep, so a bad --out fails fast. */
-    char run_dir[4096];
-    if (out_dir) {
-        if (outdir_prepare(out_dir, err, sizeof err)) {
-            fprintf(stderr, "brdfbench accuracy: %s\n", err);
-            clsession_close(&s);
-            return EXIT_RUNTIME;
-        }
-        snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", err, sizeof err)) {
-        fprintf(stderr, "brdfbench accuracy: %s\n", err);
-        clsession_close(&s);
-        return EXIT_RUNTIME;
-    }
-
     struct accuracy_ctx actx;
     struct accuracy_result *res = calloc((size_t)nmodels, sizeof *res);
     int done = 0;
@@ -143,6 +128,21 @@ int cmd_accuracy(int argc, char **argv)
         rc = accuracy_prepare(&actx, &models[m]);   /* a user model's compile error before any sweep */
     if (rc)
         goto cleanup;
+    /* Check the output folder before the sweep, so a bad --out fails fast (and after the
+       builds, so a user model that does not compile leaves no folder behind). */
+    char run_dir[4096];
+    if (out_dir) {
+        if (outdir_prepare(out_dir, err, sizeof err)) {
+            fprintf(stderr, "brdfbench accuracy: %s\n", err);
+            rc = EXIT_RUNTIME;
+            goto cleanup;
+        }
+        snprintf(run_dir, sizeof run_dir, "%s", out_dir);
+    } else if (outdir_prepare("results", err, sizeof err)) {
+        fprintf(stderr, "brdfbench accuracy: %s\n", err);
+        rc = EXIT_RUNTIME;
+        goto cleanup;
+    }
     if (!quiet)
         fprintf(stderr, "device: %s (%s); kernel build %.2f s\n", s.device_name, s.platform_version,
                 s.last_build_seconds);
