@@ -61,6 +61,18 @@ static int parse_size(const char *arg, const char *text, int *w, int *h, char *e
     return 0;
 }
 
+/* An integer flag's value in [lo, hi]. Returns 0 or EXIT_USAGE with a message. */
+static int parse_int_flag(int argc, char **argv, int *i, const char *flag, long lo, long hi,
+                          int *out, char *err, size_t errlen)
+{
+    long v;
+    const char *text = cli_flag_value(argc, argv, i, flag, err, errlen);
+    if (!text || cli_parse_long(flag, text, lo, hi, &v, err, errlen))
+        return EXIT_USAGE;
+    *out = (int)v;
+    return 0;
+}
+
 /* Splits a comma-separated list in place; returns the number of items or -1 if more than max. */
 static int split_list(char *text, char **items, int max)
 {
@@ -152,29 +164,19 @@ int cmd_render(int argc, char **argv)
                                sizeof err))
                     goto usage_error;
             o.ntime_sizes = n;
-        } else if (cli_flag_is(a, "--reps") || cli_flag_is(a, "--warmup") ||
-                   cli_flag_is(a, "--tess") || cli_flag_is(a, "--samples")) {
-            const char *flag = cli_flag_is(a, "--reps")     ? "--reps"
-                               : cli_flag_is(a, "--warmup") ? "--warmup"
-                               : cli_flag_is(a, "--tess")   ? "--tess"
-                                                            : "--samples";
-            long lo = 1, hi = 1000, val;
-            int *dst = &o.reps;
-            if (strcmp(flag, "--warmup") == 0) {
-                lo = 0;
-                hi = 100;
-                dst = &o.warmup;
-            } else if (strcmp(flag, "--tess") == 0) {
-                hi = 128;
-                dst = &o.tess;
-            } else if (strcmp(flag, "--samples") == 0) {
-                hi = 1000000;
-                dst = &o.ref_samples;
-            }
-            if (!(v = cli_flag_value(argc, argv, &i, flag, err, sizeof err)) ||
-                cli_parse_long(flag, v, lo, hi, &val, err, sizeof err))
+        } else if (cli_flag_is(a, "--reps")) {
+            if (parse_int_flag(argc, argv, &i, "--reps", 1, 1000, &o.reps, err, sizeof err))
                 goto usage_error;
-            *dst = (int)val;
+        } else if (cli_flag_is(a, "--warmup")) {
+            if (parse_int_flag(argc, argv, &i, "--warmup", 0, 100, &o.warmup, err, sizeof err))
+                goto usage_error;
+        } else if (cli_flag_is(a, "--tess")) {
+            if (parse_int_flag(argc, argv, &i, "--tess", 1, 128, &o.tess, err, sizeof err))
+                goto usage_error;
+        } else if (cli_flag_is(a, "--samples")) {
+            if (parse_int_flag(argc, argv, &i, "--samples", 1, 1000000, &o.ref_samples, err,
+                               sizeof err))
+                goto usage_error;
         } else if (cli_flag_is(a, "--shininess")) {
             if (!(v = cli_flag_value(argc, argv, &i, "--shininess", err, sizeof err)))
                 goto usage_error;

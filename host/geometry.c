@@ -374,25 +374,18 @@ int obj_read(const char *path, struct mesh *out, char *err, size_t errlen)
 
 /* ---------------------------------------------------------------- normals */
 
-static void sub3(const double *a, const double *b, double *o)
+double vec3_normalize(double *a)
 {
-    o[0] = a[0] - b[0];
-    o[1] = a[1] - b[1];
-    o[2] = a[2] - b[2];
+    double l = sqrt(vec3_dot(a, a));
+    if (l > 0)
+        for (int c = 0; c < 3; c++)
+            a[c] /= l;
+    return l;
 }
-static void cross3(const double *a, const double *b, double *o)
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+
 static double len3(const double *a)
 {
-    return sqrt(dot3(a, a));
+    return sqrt(vec3_dot(a, a));
 }
 
 int mesh_smooth_normals(struct mesh *m, char *err, size_t errlen)
@@ -409,9 +402,9 @@ int mesh_smooth_normals(struct mesh *m, char *err, size_t errlen)
             for (int c = 0; c < 3; c++)
                 p[k][c] = m->pos[3 * (size_t)ix[k] + c];
         double e1[3], e2[3], fn[3];
-        sub3(p[1], p[0], e1);
-        sub3(p[2], p[0], e2);
-        cross3(e1, e2, fn);
+        vec3_sub(p[1], p[0], e1);
+        vec3_sub(p[2], p[0], e2);
+        vec3_cross(e1, e2, fn);
         double fl = len3(fn);
         if (!(fl > 0))
             continue; /* degenerate: no direction to contribute */
@@ -419,11 +412,11 @@ int mesh_smooth_normals(struct mesh *m, char *err, size_t errlen)
             fn[c] /= fl;
         for (int k = 0; k < 3; k++) {
             double a[3], b[3], ab[3];
-            sub3(p[(k + 1) % 3], p[k], a);
-            sub3(p[(k + 2) % 3], p[k], b);
-            cross3(a, b, ab);
+            vec3_sub(p[(k + 1) % 3], p[k], a);
+            vec3_sub(p[(k + 2) % 3], p[k], b);
+            vec3_cross(a, b, ab);
             /* atan2 keeps the corner angle accurate near 0 and pi, unlike acos(dot) */
-            double angle = atan2(len3(ab), dot3(a, b));
+            double angle = atan2(len3(ab), vec3_dot(a, b));
             for (int c = 0; c < 3; c++)
                 acc[3 * (size_t)ix[k] + c] += angle * fn[c];
         }
@@ -745,7 +738,7 @@ static void patch_eval_raw(const struct bezier_patch *p, double u, double v, dou
                 dv[c] += bu[j] * dbv[i] * q[c];
             }
         }
-    cross3(du, dv, n);
+    vec3_cross(du, dv, n);
 }
 
 void patch_eval(const struct bezier_patch *p, double u, double v, double pos[3], double nrm[3])
@@ -753,7 +746,7 @@ void patch_eval(const struct bezier_patch *p, double u, double v, double pos[3],
     double n[3], scale = 0.0;
     for (int k = 1; k < 16; k++) {
         double d[3];
-        sub3(p->cp[k], p->cp[0], d);
+        vec3_sub(p->cp[k], p->cp[0], d);
         double l = len3(d);
         if (l > scale)
             scale = l;

@@ -10,6 +10,27 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* Small double 3-vector helpers shared by the geometry, the rasteriser and the shading
+ * reference. */
+static inline void vec3_sub(const double *a, const double *b, double *o)
+{
+    o[0] = a[0] - b[0];
+    o[1] = a[1] - b[1];
+    o[2] = a[2] - b[2];
+}
+static inline void vec3_cross(const double *a, const double *b, double *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+static inline double vec3_dot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+/* Scales a to unit length (a zero vector stays zero); returns the former length. */
+double vec3_normalize(double *a);
+
 struct mesh {
     size_t nverts;
     size_t ntris;

@@ -21,29 +21,6 @@ static void set_err(char *err, size_t errlen, const char *fmt, ...)
     va_end(ap);
 }
 
-static void sub3(const double *a, const double *b, double *o)
-{
-    for (int c = 0; c < 3; c++)
-        o[c] = a[c] - b[c];
-}
-static void cross3(const double *a, const double *b, double *o)
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static void normalize3(double *a)
-{
-    double l = sqrt(dot3(a, a));
-    if (l > 0)
-        for (int c = 0; c < 3; c++)
-            a[c] /= l;
-}
-
 size_t gbuffer_bytes(long width, long height)
 {
     if (width <= 0 || height <= 0)
@@ -88,11 +65,11 @@ void gbuffer_free(struct gbuffer *g)
 /* Orthonormal camera basis: forward, right, up. */
 static void camera_basis(const struct camera *cam, double f[3], double r[3], double u[3])
 {
-    sub3(cam->target, cam->eye, f);
-    normalize3(f);
-    cross3(f, cam->up, r);
-    normalize3(r);
-    cross3(r, f, u);
+    vec3_sub(cam->target, cam->eye, f);
+    vec3_normalize(f);
+    vec3_cross(f, cam->up, r);
+    vec3_normalize(r);
+    vec3_cross(r, f, u);
 }
 
 void camera_ray(const struct camera *cam, int width, int height, double x, double y,
@@ -106,7 +83,7 @@ void camera_ray(const struct camera *cam, int width, int height, double x, doubl
     double sy = (1.0 - 2.0 * (y + 0.5) / height) * t;
     for (int c = 0; c < 3; c++)
         dir[c] = f[c] + sx * r[c] + sy * u[c];
-    normalize3(dir);
+    vec3_normalize(dir);
 }
 
 void camera_fit_mesh(struct camera *cam, const struct mesh *m, const double from[3],
@@ -114,7 +91,7 @@ void camera_fit_mesh(struct camera *cam, const struct mesh *m, const double from
 {
     double lo[3], hi[3], dir[3] = {from[0], from[1], from[2]};
     mesh_bounds(m, lo, hi);
-    normalize3(dir);
+    vec3_normalize(dir);
     for (int c = 0; c < 3; c++) {
         cam->target[c] = 0.5 * (lo[c] + hi[c]);
         cam->eye[c] = cam->target[c] + dir[c]; /* orientation only; distance below */
@@ -131,9 +108,9 @@ void camera_fit_mesh(struct camera *cam, const struct mesh *m, const double from
         double q[3];
         for (int c = 0; c < 3; c++)
             q[c] = m->pos[3 * v + c] - cam->target[c];
-        double need_x = fabs(dot3(q, r)) / tan_x - dot3(q, f);
-        double need_y = fabs(dot3(q, u)) / tan_y - dot3(q, f);
-        double need_front = 1e-3 - dot3(q, f); /* stay in front of the camera */
+        double need_x = fabs(vec3_dot(q, r)) / tan_x - vec3_dot(q, f);
+        double need_y = fabs(vec3_dot(q, u)) / tan_y - vec3_dot(q, f);
+        double need_front = 1e-3 - vec3_dot(q, f); /* stay in front of the camera */
         dist = fmax(dist, fmax(need_front, fmax(need_x, need_y)));
     }
     for (int c = 0; c < 3; c++)
@@ -172,8 +149,8 @@ int raster_mesh(struct gbuffer *g, const struct mesh *m, const struct camera *ca
     double lo[3], hi[3];
     mesh_bounds(m, lo, hi);
     double d[3];
-    sub3(hi, lo, d);
-    double near_z = 1e-6 * sqrt(dot3(d, d));
+    vec3_sub(hi, lo, d);
+    double near_z = 1e-6 * sqrt(vec3_dot(d, d));
 
     float *px = gbuffer_plane(g, GB_PX), *py = gbuffer_plane(g, GB_PY);
     float *pz = gbuffer_plane(g, GB_PZ), *nx = gbuffer_plane(g, GB_NX);
@@ -190,14 +167,14 @@ int raster_mesh(struct gbuffer *g, const struct mesh *m, const struct camera *ca
                 P[k][c] = m->pos[3 * vi + c];
                 N[k][c] = m->nrm[3 * vi + c];
             }
-            sub3(P[k], cam->eye, rel);
-            Z[k] = dot3(rel, f);
+            vec3_sub(P[k], cam->eye, rel);
+            Z[k] = vec3_dot(rel, f);
             if (!(Z[k] > near_z)) {
                 behind = 1;
                 break;
             }
-            S[k][0] = (dot3(rel, r) / (Z[k] * t * aspect) + 1.0) * 0.5 * W;
-            S[k][1] = (1.0 - dot3(rel, u) / (Z[k] * t)) * 0.5 * H;
+            S[k][0] = (vec3_dot(rel, r) / (Z[k] * t * aspect) + 1.0) * 0.5 * W;
+            S[k][1] = (1.0 - vec3_dot(rel, u) / (Z[k] * t)) * 0.5 * H;
         }
         if (behind)
             continue;
@@ -205,12 +182,12 @@ int raster_mesh(struct gbuffer *g, const struct mesh *m, const struct camera *ca
         if (!(fabs(area) > 1e-12))
             continue; /* degenerate or edge-on: covers no pixel centre reliably */
         double e1[3], e2[3], gn[3], toeye[3];
-        sub3(P[1], P[0], e1);
-        sub3(P[2], P[0], e2);
-        cross3(e1, e2, gn);
-        sub3(cam->eye, P[0], toeye);
-        double flip = dot3(gn, toeye) < 0 ? -1.0 : 1.0;
-        normalize3(gn);
+        vec3_sub(P[1], P[0], e1);
+        vec3_sub(P[2], P[0], e2);
+        vec3_cross(e1, e2, gn);
+        vec3_sub(cam->eye, P[0], toeye);
+        double flip = vec3_dot(gn, toeye) < 0 ? -1.0 : 1.0;
+        vec3_normalize(gn);
 
         double minx = fmin(S[0][0], fmin(S[1][0], S[2][0]));
         double maxx = fmax(S[0][0], fmax(S[1][0], S[2][0]));
@@ -253,7 +230,7 @@ int raster_mesh(struct gbuffer *g, const struct mesh *m, const struct camera *ca
                     pos[c] = w0 * P[0][c] + w1 * P[1][c] + w2 * P[2][c];
                     nrm[c] = flip * (w0 * N[0][c] + w1 * N[1][c] + w2 * N[2][c]);
                 }
-                double nl = sqrt(dot3(nrm, nrm));
+                double nl = sqrt(vec3_dot(nrm, nrm));
                 if (nl > 1e-12) {
                     for (int c = 0; c < 3; c++)
                         nrm[c] /= nl;
@@ -329,9 +306,9 @@ int raster_spheres(struct gbuffer *g, int rows, int cols, const double *col_shin
             camera_ray(cam, g->width, g->height, x, y, dir);
             double c[3], oc[3];
             sphere_grid_centre(&sg, row, col, c);
-            sub3(c, cam->eye, oc);
-            double b = dot3(oc, dir);
-            double disc = b * b - (dot3(oc, oc) - r2);
+            vec3_sub(c, cam->eye, oc);
+            double b = vec3_dot(oc, dir);
+            double disc = b * b - (vec3_dot(oc, oc) - r2);
             if (disc < 0)
                 continue;
             double tt = b - sqrt(disc); /* nearer root: the visible side */
@@ -340,7 +317,7 @@ int raster_spheres(struct gbuffer *g, int rows, int cols, const double *col_shin
                 pos[k] = cam->eye[k] + tt * dir[k];
                 nrm[k] = (pos[k] - c[k]) / sg.radius;
             }
-            normalize3(nrm);
+            vec3_normalize(nrm);
             size_t pi = (size_t)y * g->width + (size_t)x;
             px[pi] = (float)pos[0];
             py[pi] = (float)pos[1];

@@ -42,7 +42,6 @@
 #define DISPLAY_MAX_EXP 8
 #define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
 #define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
-#define BACKGROUND_RGB {32, 38, 42}
 
 /* Work-items of one launch: each walks a contiguous run of pixels, so a few per core
    balance the load without barriers; the same count for every size keeps one launch
@@ -67,18 +66,6 @@ static void set_err(char *err, size_t errlen, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(err, errlen, fmt, ap);
     va_end(ap);
-}
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static void normalize3(double *a)
-{
-    double l = sqrt(dot3(a, a));
-    if (l > 0)
-        for (int c = 0; c < 3; c++)
-            a[c] /= l;
 }
 
 /* ------------------------------------------------------------------ options */
@@ -190,34 +177,34 @@ void render_shade_ref(const struct model_spec *m, int mode, const struct render_
     double v[3], l[3], e;
     for (int c = 0; c < 3; c++)
         v[c] = lt->eye[c] - pos[c];
-    normalize3(v);
+    vec3_normalize(v);
     if (lt->point) {
         for (int c = 0; c < 3; c++)
             l[c] = lt->light[c] - pos[c];
-        double d2 = dot3(l, l);
-        normalize3(l);
+        double d2 = vec3_dot(l, l);
+        vec3_normalize(l);
         e = lt->intensity / d2;
     } else {
         for (int c = 0; c < 3; c++)
             l[c] = lt->light[c];
         e = lt->intensity;
     }
-    double ndotl = dot3(nrm, l), ndotv = dot3(nrm, v), cosine, s;
+    double ndotl = vec3_dot(nrm, l), ndotv = vec3_dot(nrm, v), cosine, s;
     if (mode == SHADE_LOBE_PSI) {
         double r[3];
         for (int c = 0; c < 3; c++)
             r[c] = 2.0 * ndotl * nrm[c] - l[c];
-        cosine = dot3(r, v);
+        cosine = vec3_dot(r, v);
         s = model_eval_host(m, cosine, n);
     } else {
         double h[3];
         for (int c = 0; c < 3; c++)
             h[c] = l[c] + v[c];
-        normalize3(h);
-        cosine = dot3(nrm, h);
+        vec3_normalize(h);
+        cosine = vec3_dot(nrm, h);
         s = model_eval_host(m, cosine, n);
         if (mode != SHADE_LOBE_THETA_H) {
-            double vdoth = fmax(dot3(v, h), 0.0);
+            double vdoth = fmax(vec3_dot(v, h), 0.0);
             double fresnel = o->f0 + (1.0 - o->f0) * pow(1.0 - vdoth, 5.0);
             double alpha = brdf_alpha_from_n(n);
             double nl = fmax(ndotl, 1e-6), nv = fmax(ndotv, 1e-6);
@@ -280,8 +267,7 @@ static void display_table_build(const struct render_options *o, uint32_t *table,
         }
         table[i] = (uint32_t)c[0] | ((uint32_t)c[1] << 8) | ((uint32_t)c[2] << 16) | 0xff000000u;
     }
-    if (max_code_error)
-        *max_code_error = worst;
+    *max_code_error = worst;
 }
 
 /* ------------------------------------------------------------------ device */
@@ -299,7 +285,7 @@ int render_device_open(struct render_device *d, struct cl_session *s,
         set_err(err, errlen, "out of memory");
         return EXIT_RUNTIME;
     }
-    display_table_build(o, table, NULL);
+    display_table_build(o, table, &d->display_code_error);
     rc = clsession_build(s, "shade.cl", NULL, "", &d->program);
     if (rc) {
         set_err(err, errlen, "building kernels/shade.cl failed (build log above)");
@@ -512,10 +498,10 @@ static int scene_gbuffer(const struct scene_data *sd, const struct render_option
         return rc;
     }
     double dir[3] = {light_dir_world[0], light_dir_world[1], light_dir_world[2]};
-    normalize3(dir);
+    vec3_normalize(dir);
     double d[3] = {cam.eye[0] - cam.target[0], cam.eye[1] - cam.target[1],
                    cam.eye[2] - cam.target[2]};
-    double dist = sqrt(dot3(d, d));
+    double dist = sqrt(vec3_dot(d, d));
     for (int c = 0; c < 3; c++)
         lt->eye[c] = cam.eye[c];
     lt->point = o->point_light;
@@ -628,56 +614,58 @@ static void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsig
     }
 }
 
+/* One pixel of the device's output against the double reference. */
+static void check_pixel(const struct gbuffer *g, size_t pi, const struct model_spec *m, int mode,
+                        const struct render_light *lt, const struct render_options *o,
+                        const unsigned *rgba, const float *spec, struct reference_check *rc)
+{
+    double pos[3] = {gbuffer_plane(g, GB_PX)[pi], gbuffer_plane(g, GB_PY)[pi],
+                     gbuffer_plane(g, GB_PZ)[pi]};
+    double nrm[3] = {gbuffer_plane(g, GB_NX)[pi], gbuffer_plane(g, GB_NY)[pi],
+                     gbuffer_plane(g, GB_NZ)[pi]};
+    double s_ref, rad_ref;
+    render_shade_ref(m, mode, lt, o, pos, nrm, gbuffer_plane(g, GB_SHIN)[pi], &s_ref, &rad_ref);
+    double d = fabs((double)spec[pi] - s_ref);
+    if (d > rc->max_abs || rc->samples == 0) {
+        rc->max_abs = d;
+        rc->value_at_max = s_ref;
+    }
+    rc->peak = fmax(rc->peak, s_ref);
+    unsigned char exact[3];
+    render_display_exact(o, rad_ref, exact);
+    for (int c = 0; c < 3; c++) {
+        int dc = abs((int)((rgba[pi] >> (8 * c)) & 255u) - (int)exact[c]);
+        if (dc > rc->max_code)
+            rc->max_code = dc;
+    }
+    rc->samples++;
+}
+
 /* The device's specular radiance and colours against the double reference on up to
-   o->ref_samples foreground pixels of rows [y0, y1), spread evenly, plus the brightest. */
+   o->ref_samples foreground pixels of rows [y0, y1), spread evenly, plus the brightest
+   (the highlight's peak, where the lobe matters most). */
 static void check_reference(const struct gbuffer *g, int y0, int y1, const struct model_spec *m,
                             int mode, const struct render_light *lt, const struct render_options *o,
                             const unsigned *rgba, const float *spec, struct reference_check *rc)
 {
-    const float *pl[GB_NPLANES];
-    for (int k = 0; k < GB_NPLANES; k++)
-        pl[k] = gbuffer_plane(g, k);
+    const float *sh = gbuffer_plane(g, GB_SHIN);
     memset(rc, 0, sizeof *rc);
-    size_t first = (size_t)y0 * g->width, last = (size_t)y1 * g->width, fg = 0, brightest = first;
+    size_t first = (size_t)y0 * g->width, last = (size_t)y1 * g->width, fg = 0;
+    size_t brightest = last;
     for (size_t i = first; i < last; i++)
-        if (pl[GB_SHIN][i] > 0) {
+        if (sh[i] > 0) {
             fg++;
-            if (spec[i] > spec[brightest] || !(pl[GB_SHIN][brightest] > 0))
+            if (brightest == last || spec[i] > spec[brightest])
                 brightest = i;
         }
     if (fg == 0)
         return;
     size_t want = o->ref_samples > 0 ? (size_t)o->ref_samples : 1;
     size_t step = fg > want ? fg / want : 1, k = 0;
-    for (size_t i = first; i <= last; i++) {
-        size_t pi;
-        if (i == last) {
-            pi = brightest; /* the highlight's peak, where the lobe matters most */
-        } else {
-            if (!(pl[GB_SHIN][i] > 0) || (k++ % step) != 0)
-                continue;
-            pi = i;
-        }
-        double pos[3] = {pl[GB_PX][pi], pl[GB_PY][pi], pl[GB_PZ][pi]};
-        double nrm[3] = {pl[GB_NX][pi], pl[GB_NY][pi], pl[GB_NZ][pi]};
-        double s_ref, rad_ref;
-        render_shade_ref(m, mode, lt, o, pos, nrm, pl[GB_SHIN][pi], &s_ref, &rad_ref);
-        double d = fabs((double)spec[pi] - s_ref);
-        if (d > rc->max_abs || rc->samples == 0) {
-            rc->max_abs = d;
-            rc->value_at_max = s_ref;
-        }
-        if (s_ref > rc->peak)
-            rc->peak = s_ref;
-        unsigned char exact[3];
-        render_display_exact(o, rad_ref, exact);
-        for (int c = 0; c < 3; c++) {
-            int dc = abs((int)((rgba[pi] >> (8 * c)) & 255u) - (int)exact[c]);
-            if (dc > rc->max_code)
-                rc->max_code = dc;
-        }
-        rc->samples++;
-    }
+    for (size_t i = first; i < last; i++)
+        if (sh[i] > 0 && k++ % step == 0)
+            check_pixel(g, i, m, mode, lt, o, rgba, spec, rc);
+    check_pixel(g, brightest, m, mode, lt, o, rgba, spec, rc);
     rc->relative_to_peak = rc->max_abs / fmax(rc->peak, 1e-30);
     /* Float shading carries the lobe cosine to a few float ulps (1 ulp = 6e-8 near 1); a
        lobe's relative change per unit of cosine is about n for c^n and the quadratics and
@@ -726,6 +714,7 @@ static void remove_tree(const char *dir)
 
 struct model_result {
     int mode;
+    int y0, y1;                /* frame rows its figures cover */
     struct model_spec ref;
     struct image_metrics metrics;
     struct reference_check check;
@@ -874,8 +863,8 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
         }
         const unsigned *rgba_r = cache.e[ci].rgba;
         const float *spec_r = cache.e[ci].spec;
-        int y0, y1;
-        model_region(sd, o, h, mi, &y0, &y1);
+        model_region(sd, o, h, mi, &mr->y0, &mr->y1);
+        const int y0 = mr->y0, y1 = mr->y1;
         compute_metrics(&g, y0, y1, rgba_m, spec_m, rgba_r, spec_r, o->threshold, errimg,
                         &mr->metrics);
         check_reference(&g, y0, y1, m, mr->mode, &res->light, o, rgba_m, spec_m, &mr->check);
@@ -1254,13 +1243,10 @@ static int write_json(const char *path, const struct cl_session *s, const struct
             jw_kv_str(&w, "reference", mr->ref.label);
             jw_kv_str(&w, "shading", mode_names[mr->mode]);
             if (si == RENDER_SPHERES) {
-                int y0, y1;
-                struct scene_data dummy = {.kind = RENDER_SPHERES};
-                model_region(&dummy, o, o->height, mi, &y0, &y1);
                 jw_key(&w, "grid_rows");
                 jw_arr_begin(&w);
-                jw_int(&w, y0);
-                jw_int(&w, y1);
+                jw_int(&w, mr->y0);
+                jw_int(&w, mr->y1);
                 jw_arr_end(&w);
             }
             if (mr->image[0]) {
@@ -1467,12 +1453,6 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
     }
     if ((rc = render_device_open(&dev, s, o, err, errlen)))
         goto done;
-    uint32_t *table = malloc(DISPLAY_BINS * sizeof *table);
-    int display_code_error = -1;
-    if (table) {
-        display_table_build(o, table, &display_code_error);
-        free(table);
-    }
 
     for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
         if (!o->scene_on[si])
@@ -1550,7 +1530,7 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
     stage[0] = '\0';
     char json_path[4300];
     path_join(json_path, sizeof json_path, out_dir, "render.json");
-    if (write_json(json_path, s, o, res, display_code_error, err, errlen) != 0) {
+    if (write_json(json_path, s, o, res, dev.display_code_error, err, errlen) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }

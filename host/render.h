@@ -97,6 +97,7 @@ struct render_device {
     cl_program program;
     cl_kernel shade, copy;
     cl_mem display_table;
+    int display_code_error;   /* largest table entry's distance to the exact curve, codes */
     size_t global_size;
 };
 int render_device_open(struct render_device *d, struct cl_session *s,
