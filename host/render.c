@@ -1106,6 +1106,25 @@ static int is_lobe_entry(const struct timed_entry *te)
 
 #define SPEED_TARGET_FRACTION 0.5
 
+/* "key": [a, b] and "key": [x, y, z] */
+static void jw_kv_int_pair(struct jw *w, const char *key, long long a, long long b)
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    jw_int(w, a);
+    jw_int(w, b);
+    jw_arr_end(w);
+}
+
+static void jw_kv_vec3(struct jw *w, const char *key, const double *v)
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int c = 0; c < 3; c++)
+        jw_num(w, v[c]);
+    jw_arr_end(w);
+}
+
 static void write_metrics_json(struct jw *w, const struct image_metrics *mt, double threshold)
 {
     jw_key(w, "metrics");
@@ -1113,11 +1132,7 @@ static void write_metrics_json(struct jw *w, const struct image_metrics *mt, dou
     jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
     jw_kv_int(w, "pixels", (long long)mt->pixels);
     jw_kv_num(w, "max_abs", mt->max_abs);
-    jw_key(w, "max_at_pixel");
-    jw_arr_begin(w);
-    jw_int(w, mt->max_x);
-    jw_int(w, mt->max_y);
-    jw_arr_end(w);
+    jw_kv_int_pair(w, "max_at_pixel", mt->max_x, mt->max_y);
     jw_kv_num(w, "mean_abs", mt->mean_abs);
     jw_kv_num(w, "rmse", mt->rmse);
     jw_kv_num(w, "psnr_db", mt->psnr_db);
@@ -1147,11 +1162,7 @@ static int write_json(const char *path, const struct cl_session *s, const struct
 
     jw_key(&w, "options");
     jw_obj_begin(&w);
-    jw_key(&w, "image_size");
-    jw_arr_begin(&w);
-    jw_int(&w, o->width);
-    jw_int(&w, o->height);
-    jw_arr_end(&w);
+    jw_kv_int_pair(&w, "image_size", o->width, o->height);
     jw_key(&w, "timing_sizes");
     jw_arr_begin(&w);
     for (int i = 0; i < o->ntime_sizes; i++) {
@@ -1176,11 +1187,7 @@ static int write_json(const char *path, const struct cl_session *s, const struct
     jw_kv_num(&w, "ks", o->ks);
     jw_kv_num(&w, "ambient", o->ambient);
     jw_kv_num(&w, "schlick_f0", o->f0);
-    jw_key(&w, "tint");
-    jw_arr_begin(&w);
-    for (int k = 0; k < 3; k++)
-        jw_num(&w, o->tint[k]);
-    jw_arr_end(&w);
+    jw_kv_vec3(&w, "tint", o->tint);
     jw_kv_int(&w, "reference_samples_per_model", o->ref_samples);
     jw_obj_end(&w);
 
@@ -1211,17 +1218,9 @@ static int write_json(const char *path, const struct cl_session *s, const struct
         jw_key(&w, "light");
         jw_obj_begin(&w);
         jw_kv_str(&w, "kind", sr->light.point ? "point" : "directional");
-        jw_key(&w, sr->light.point ? "position" : "direction");
-        jw_arr_begin(&w);
-        for (int c = 0; c < 3; c++)
-            jw_num(&w, sr->light.light[c]);
-        jw_arr_end(&w);
+        jw_kv_vec3(&w, sr->light.point ? "position" : "direction", sr->light.light);
         jw_kv_num(&w, "intensity", sr->light.intensity);
-        jw_key(&w, "eye");
-        jw_arr_begin(&w);
-        for (int c = 0; c < 3; c++)
-            jw_num(&w, sr->light.eye[c]);
-        jw_arr_end(&w);
+        jw_kv_vec3(&w, "eye", sr->light.eye);
         jw_obj_end(&w);
         jw_key(&w, "image");
         jw_obj_begin(&w);
@@ -1243,11 +1242,7 @@ static int write_json(const char *path, const struct cl_session *s, const struct
             jw_kv_str(&w, "reference", mr->ref.label);
             jw_kv_str(&w, "shading", mode_names[mr->mode]);
             if (si == RENDER_SPHERES) {
-                jw_key(&w, "grid_rows");
-                jw_arr_begin(&w);
-                jw_int(&w, mr->y0);
-                jw_int(&w, mr->y1);
-                jw_arr_end(&w);
+                jw_kv_int_pair(&w, "grid_rows", mr->y0, mr->y1);
             }
             if (mr->image[0]) {
                 jw_key(&w, "files");
