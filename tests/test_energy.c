@@ -1,0 +1,127 @@
+/* test_energy.c - the device albedo quadrature and the reciprocity check against closed forms:
+ *   - normalised Phong at normal incidence: R = N, (n+2)/(2 pi) 2 pi int_0^1 u^(n+1) du = 1;
+ *   - normalised Blinn-Phong at normal incidence: 1 (Giesen's derivation: theta_o = 2 theta_h);
+ *   - Beckmann D / (4 cos cos) at normal incidence: only theta_h < pi/4 reflects above the
+ *     horizon, int D cos dw over it = 1 - exp(-tan^2(pi/4)/alpha^2) = 1 - exp(-(n+2)/2)
+ *     (substitute u = tan^2); GGX: tan^2/(alpha^2 + tan^2) at pi/4 = (n+2)/(n+4);
+ *   - D cos over the whole half-vector hemisphere: 1 for both (normalisation);
+ *   - fq2n at normal incidence: 0.214 (0.807 + n) 2 pi int_0^1 (k(u-1)+1)^2 u du, k = 0.448n + 0.099,
+ *     the quadratic zeroed past u0 = 1 - 1/k: with t = 1 - u, int_0^min(1,1/k) (1-kt)^2 (1-t) dt =
+ *     1/2 - k/3 + k^2/12 (k <= 1) or 1/(3k) - 1/(12k^2) (k >= 1), worked by hand;
+ *   - normalised Phong at 30 degrees, n = 1000: the lobe is far from the horizon, the azimuthal
+ *     part of N.V integrates to 0, so the albedo is N.R = cos 30 deg;
+ *   - reciprocity: cos psi = 2(N.L)(N.V) - L.V and N.H are symmetric in L and V, so in double
+ *     f(L,V) = f(V,L) up to rounding for every registry model. */
+#include "check.h"
+#include "energy.h"
+#include "exitcodes.h"
+#include "models.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const double pi = 3.14159265358979323846;
+
+static struct model_spec spec(const char *id)
+{
+    struct model_spec m;
+    model_spec_default(models_find(id), &m);
+    return m;
+}
+
+static double moment(double k) { return k <= 1 ? 0.5 - k / 3 + k * k / 12 : 1 / (3 * k) - 1 / (12 * k * k); }
+
+int main(void)
+{
+    struct cl_session s;
+    char err[512];
+    int rc = clsession_open(&s, -1, -1, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "%s\n", err);
+        printf("0 passed, 0 failed, skipped: no OpenCL device\n");
+        return rc == EXIT_NO_DEVICE ? 77 : rc;
+    }
+    struct integrate_ctx ic;
+    CHECK(integrate_open(&ic, &s) == 0, "integrate.cl builds");
+
+    enum { K = 5 };
+    const double ns[K] = { 2, 7, 50, 300, 1000 }, zero[K] = { 0, 0, 0, 0, 0 };
+    double out[K];
+    const double tol = 2e-5;   /* float quadrature on the device */
+
+    struct model_spec m = spec("phongn");
+    CHECK(albedo_device(&ic, &m, ALBEDO_PSI, ns, zero, K, out) == 0, "phongn albedo runs");
+    for (int i = 0; i < K; ++i)
+        CHECK_NEAR(out[i], 1.0, tol, "phongn albedo at normal incidence");
+
+    m = spec("blinnn");
+    CHECK(albedo_device(&ic, &m, ALBEDO_HALF, ns, zero, K, out) == 0, "blinnn albedo runs");
+    for (int i = 0; i < K; ++i)
+        CHECK_NEAR(out[i], 1.0, tol, "blinnn albedo at normal incidence (Giesen)");
+
+    m = spec("beckmann");
+    CHECK(albedo_device(&ic, &m, ALBEDO_MICRO, ns, zero, K, out) == 0, "beckmann albedo runs");
+    for (int i = 0; i < K; ++i)
+        CHECK_NEAR(out[i], 1.0 - exp(-(ns[i] + 2) / 2), tol, "beckmann albedo at normal incidence");
+    CHECK(albedo_device(&ic, &m, ALBEDO_DCOS, ns, zero, K, out) == 0, "beckmann normalisation runs");
+    for (int i = 0; i < K; ++i)
+        CHECK_NEAR(out[i], 1.0, tol, "beckmann: int D cos = 1");
+
+    m = spec("ggx");
+    CHECK(albedo_device(&ic, &m, ALBEDO_MICRO, ns, zero, K, out) == 0, "ggx albedo runs");
+    for (int i = 0; i < K; ++i)
+        CHECK_NEAR(out[i], (ns[i] + 2) / (ns[i] + 4), tol, "ggx albedo at normal incidence");
+    CHECK(albedo_device(&ic, &m, ALBEDO_DCOS, ns, zero, K, out) == 0, "ggx normalisation runs");
+    for (int i = 0; i < K; ++i)
+        CHECK_NEAR(out[i], 1.0, tol, "ggx: int D cos = 1");
+
+    m = spec("fq2n");
+    CHECK(albedo_device(&ic, &m, ALBEDO_PSI, ns, zero, K, out) == 0, "fq2n albedo runs");
+    for (int i = 0; i < K; ++i) {
+        double n = ns[i];
+        CHECK_NEAR(out[i], 0.214 * (0.807 + n) * 2 * pi * moment(0.448 * n + 0.099), tol,
+                   "fq2n albedo at normal incidence (polynomial integral)");
+    }
+
+    double n1000 = 1000, t30 = 30 * pi / 180;
+    m = spec("phongn");
+    CHECK(albedo_device(&ic, &m, ALBEDO_PSI, &n1000, &t30, 1, out) == 0, "phongn at 30 degrees runs");
+    CHECK_NEAR(out[0], cos(t30), tol, "phongn albedo at 30 degrees, n = 1000: N.R");
+    m = spec("blinnn");
+    double tilt[3] = { 20 * pi / 180, 45 * pi / 180, 70 * pi / 180 }, nn[3] = { 100, 100, 100 };
+    CHECK(albedo_device(&ic, &m, ALBEDO_HALF, nn, tilt, 3, out) == 0, "blinnn oblique runs");
+    CHECK(out[0] < 1 + tol && out[1] < out[0] && out[2] < out[1], "blinnn albedo falls with incidence (%g %g %g)",
+          out[0], out[1], out[2]);
+
+    /* Every closed form the albedo module itself states agrees with the device at n = 2. */
+    double two = 2, z = 0;
+    for (int i = 0; i < models_count(); ++i) {
+        const struct model_info *info = models_at(i);
+        int mode = albedo_mode_of(info);
+        if (mode < 0)
+            continue;
+        struct model_spec ms;
+        model_spec_default(info, &ms);
+        double cf;
+        const char *why;
+        if (!albedo_closed_form_normal(&ms, mode, 2.0, &cf, &why))
+            continue;
+        CHECK(albedo_device(&ic, &ms, mode, &two, &z, 1, out) == 0, "%s albedo runs", info->id);
+        CHECK_NEAR(out[0], cf, tol, info->id);
+    }
+
+    /* Reciprocity for every registry model. */
+    for (int i = 0; i < models_count(); ++i) {
+        struct model_spec ms;
+        model_spec_default(models_at(i), &ms);
+        struct recip_worst dev, host;
+        CHECK(reciprocity_check(&ic, &ms, 2048, &dev, &host) == 0, "reciprocity runs for %s", ms.label);
+        CHECK(host.diff <= 1e-9, "%s: double f(L,V) - f(V,L) = %.3g of peak", ms.label, host.diff);
+        /* the float difference is rounding: no larger than twice a single value's float error */
+        CHECK(dev.diff <= 2 * dev.eval_error + 1e-7, "%s: float asymmetry %.3g vs evaluation error %.3g", ms.label,
+              dev.diff, dev.eval_error);
+    }
+    integrate_close(&ic);
+    clsession_close(&s);
+    return check_summary();
+}
