@@ -14,6 +14,8 @@
 #include "outdir.h"
 #include "plots.h"
 #include "render.h"
+#include "reproduce.h"
+#include "jsonr.h"
 #include "report.h"
 
 #include <math.h>
@@ -164,11 +166,57 @@ fail:
 
 /* max delta (epicentre) and max Delta (whole range) of f_Q for Q on a grid, and of f2
  * (cq2), which does not depend on Q, on the same n grid: paper 2 figs. 2-3. */
+/* The Q sweep the claims check wrote (q_sweep.json), so the plots show the figures its
+ * verdicts use. Returns 0, or 2 when the file is missing or malformed (message in err). */
+static int read_q_sweep(struct all_run *r, char *err, size_t errlen)
+{
+    char path[4200];
+    struct jr_doc d;
+    path_join(path, sizeof path, r->run_dir, "q_sweep.json");
+    if (jr_parse_file(path, &d, err, errlen)) return 2;
+    double *q = NULL, *rel = NULL, *abs_ = NULL;
+    size_t nq = 0, nr = 0, na = 0;
+    const struct jr_value *f2;
+    int rc = 2;
+    if (jr_need_num_array(&d, &d.root, "Q", &q, &nq, err, errlen) ||
+        jr_need_num_array(&d, &d.root, "max_rel", &rel, &nr, err, errlen) ||
+        jr_need_num_array(&d, &d.root, "max_abs", &abs_, &na, err, errlen) ||
+        jr_need(&d, &d.root, "f2", JR_OBJ, &f2, err, errlen) ||
+        jr_need_num(&d, f2, "max_rel", &r->f2_delta, err, errlen) ||
+        jr_need_num(&d, f2, "max_abs", &r->f2_Delta, err, errlen))
+        goto done;
+    if (nq != nr || nq != na || nq < 1 || nq > ALL_MAX_Q) {
+        jr_fail(&d, &d.root, err, errlen, "\"Q\", \"max_rel\", \"max_abs\" must hold 1 to %d values each", ALL_MAX_Q);
+        goto done;
+    }
+    for (size_t i = 0; i < nq; i++) {
+        r->q[i] = q[i];
+        r->q_delta[i] = rel[i];
+        r->q_Delta[i] = abs_[i];
+    }
+    r->nq = (int)nq;
+    rc = 0;
+done:
+    free(q);
+    free(rel);
+    free(abs_);
+    jr_free(&d);
+    return rc;
+}
+
 static int step_q_sweep(struct all_run *r)
 {
     double t = wall_seconds();
-    char err[512];
+    char err[1024];
     int rc;
+    if (r->claims.markdown) { /* the claims check ran its own Q sweep: use it */
+        if (read_q_sweep(r, err, sizeof err) == 0) {
+            step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], read from q_sweep.json", r->nq, r->q[0],
+                      r->q[r->nq - 1]);
+            return 0;
+        }
+        fprintf(stderr, "brdfbench all: %s; running the Q sweep here\n", err);
+    }
     const struct accuracy_grid *g = &r->set.q_grid;
     if (accuracy_grid_check(g, &r->s, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: Q sweep: %s\n", err);
@@ -337,11 +385,58 @@ static int step_plots(struct all_run *r)
 /* The parts below belong to other commands of brdfbench. Each one fills its report block
  * (markdown, or why it is missing) and adds its pictures; wiring a part in is its library
  * call in place of the `missing` line. */
+/* Appends markdown written as a page of its own under one of the report's sections: its
+ * title line (# ...) is dropped and every other heading goes one level down. */
+static void md_embed(struct md_buf *b, const char *text)
+{
+    const char *p = text;
+    if (p[0] == '#' && p[1] == ' ') { /* the page's own title */
+        const char *nl = strchr(p, '\n');
+        p = nl ? nl + 1 : p + strlen(p);
+    }
+    while (*p) {
+        const char *nl = strchr(p, '\n');
+        size_t len = nl ? (size_t)(nl - p) : strlen(p);
+        if (p[0] == '#') md_printf(b, "#");
+        md_printf(b, "%.*s\n", (int)len, p);
+        p += len + (nl ? 1 : 0);
+    }
+}
+
+/* The claims of both papers (reproduce.h): claims.json, claims.md, q_sweep.json, energy.json. */
 static int step_claims(struct all_run *r)
 {
     double t = wall_seconds();
-    r->claims.missing = "the claims check (`brdfbench reproduce`) is not part of this build.";
-    step_done(r, "claims", t, "not available in this build");
+    struct reproduce_options o;
+    reproduce_options_default(&o);
+    if (r->set.quick) {
+        o.samples = 256;
+        o.grid_check = 0;
+        o.q_min = 0.30;
+        o.q_max = 0.90;
+        o.q_step = 0.05;
+        o.q_samples = 128;
+        o.q_n_step = 25;
+        o.energy = 0;
+    }
+    struct reproduce_report rep;
+    memset(&rep, 0, sizeof rep);
+    progress(r, "claims", 0, 1, "reproduce");
+    int rc = reproduce_run_ex(&r->s, r->run_dir, &o, 1, &rep);
+    if (rc) {
+        reproduce_report_free(&rep);
+        fprintf(stderr, "brdfbench all: the claims check failed (exit %d)\n", rc);
+        return rc;
+    }
+    if (rep.markdown) {
+        md_embed(&r->claims_md, rep.markdown);
+        r->claims.markdown = r->claims_md.s;
+    } else {
+        r->claims.missing = "the claims check ran but gave no table.";
+    }
+    step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced -> claims.json, claims.md, q_sweep.json%s",
+              rep.count, rep.reproduced, rep.not_reproduced, o.energy ? ", energy.json" : "");
+    reproduce_report_free(&rep);
     return 0;
 }
 
@@ -554,8 +649,8 @@ int cmd_all(int argc, char **argv)
     r->actx_open = 1;
 
     if ((rc = step_accuracy(r)) != 0) goto done;
-    if ((rc = step_q_sweep(r)) != 0) goto done;
     if ((rc = step_claims(r)) != 0) goto done;
+    if ((rc = step_q_sweep(r)) != 0) goto done;
     if ((rc = step_throughput(r)) != 0) goto done;
     if ((rc = step_heatmaps(r)) != 0) goto done;
     if ((rc = step_plots(r)) != 0) goto done;

@@ -183,9 +183,20 @@ char *report_markdown(const struct report_input *in)
     }
     if (in->git_revision) md_printf(&b, "| git revision | `%s` |\n", in->git_revision);
     if (in->wall_seconds >= 0) md_printf(&b, "| wall time | %.1f s |\n", in->wall_seconds);
-    md_printf(&b, "\nData files beside this page: `accuracy.json`/`accuracy.csv` (the sweep), `plots.json` (every "
-                  "plot's data), `field_<model>.json` (every heatmap's grid). `brdfbench plot %s` redraws the "
-                  "pictures from them without recomputing.\n\n",
+    static const struct { const char *file, *what; } data[] = {
+        {"accuracy.json", "the accuracy sweep (and `accuracy.csv`, per model per n)"},
+        {"claims.json", "the claims with verdicts (and `claims.md`)"},
+        {"q_sweep.json", "f_Q against Q"},
+        {"energy.json", "albedo and reciprocity checks"},
+        {"throughput.json", "throughput (and `throughput.csv`)"},
+        {"render.json", "the image passes (pictures in `render/<scene>/`)"},
+        {"plots.json", "every plot's data"},
+    };
+    md_printf(&b, "\nData files beside this page:");
+    for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
+        if (file_exists(in->run_dir, data[i].file)) md_printf(&b, " `%s`: %s;", data[i].file, data[i].what);
+    md_printf(&b, " `field_<model>.json`: every heatmap's grid. `brdfbench plot %s` redraws the plots and heatmaps "
+                  "from them without recomputing.\n\n",
               in->run_dir);
     if (in->steps_md) md_printf(&b, "Steps:\n\n%s\n", in->steps_md);
 
