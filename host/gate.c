@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "gate.h"
 #include "context.h"
+#include "energy.h"
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "jsonw.h"
@@ -27,13 +28,18 @@ static const struct {
     { "attenuation.max_abs", "max absolute error |f - f_ref| over the attenuation zone" },
     { "whole.max_abs", "max absolute error |f - f_ref| over x in [0, pi/2]" },
     { "energy.max_abs_dev", "max over n of |2 pi int_0^(pi/2) f(cos x, n) cos x sin x dx - 1|" },
+    { "albedo.max", "max directional albedo over n and theta_i = 0, 5, ..., 85 degrees (normalised and "
+                    "microfacet models; device quadrature of host/energy.h)" },
     { "invalid.count", "model values that were NaN, Inf or negative in the sweep" },
 };
 
 const char *gate_metric_name(enum gate_metric m) { return metrics[m].name; }
 const char *gate_metric_meaning(enum gate_metric m) { return metrics[m].meaning; }
 
-static int metric_needs_sweep(enum gate_metric m) { return m != GATE_ENERGY_MAX_DEV; }
+static int metric_needs_sweep(enum gate_metric m) { return m != GATE_ENERGY_MAX_DEV && m != GATE_ALBEDO_MAX; }
+
+#define GATE_ALBEDO_THETA_COUNT 18   /* theta_i = 0, 5, ..., 85 degrees, as energy.json */
+#define GATE_ALBEDO_MAX_N 1000       /* values of n of an albedo gate (each costs 18 quadratures) */
 
 /* ---- parsing the gates file ------------------------------------------------------------ */
 
@@ -160,6 +166,9 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
         return jr_fail(d, metric_v, err, errlen, "%sunknown metric '%.60s' (accepted: %s)", where, metric_v->str, msg);
     }
     g->metric = (enum gate_metric)metric;
+    if (g->metric == GATE_ALBEDO_MAX && albedo_mode_of(g->model.info) < 0)
+        return jr_fail(d, metric_v, err, errlen, "%salbedo.max needs a normalised or microfacet model (%s is %s)",
+                       where, g->model.info->id, g->model.info->family);
 
     /* The grid: the accuracy command's defaults. */
     g->grid.n_min = 2.0;
@@ -193,6 +202,9 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
                        "%s\"n_min\" (%g) must be below \"n_max\" (%g)", where, g->grid.n_min, g->grid.n_max);
     if (accuracy_grid_check(&g->grid, NULL, msg, sizeof msg))
         return jr_fail(d, gv, err, errlen, "%sgrid: %s", where, msg);
+    if (g->metric == GATE_ALBEDO_MAX && accuracy_grid_count(&g->grid) > GATE_ALBEDO_MAX_N)
+        return jr_fail(d, gv, err, errlen, "%salbedo.max over %ld values of n (accepted: at most %d; raise \"n_step\")",
+                       where, accuracy_grid_count(&g->grid), GATE_ALBEDO_MAX_N);
     if (!nv[4] && !nv[5])
         return jr_fail(d, gv, err, errlen, "%sa bound is missing: give \"max\" (and optionally \"min\")", where);
     if (nv[4]) { g->has_min = 1; g->min = nv[4]->num; }
@@ -579,6 +591,45 @@ static void gate_energy(struct gate *g)
     gsl_set_error_handler(old);
 }
 
+/* The largest directional albedo over the gate's n values and theta_i = 0, 5, ..., 85
+   degrees: at_n, and at_x = theta_i in radians. */
+static int gate_albedo(struct gate *g, struct integrate_ctx *ic)
+{
+    long count = accuracy_grid_count(&g->grid) * GATE_ALBEDO_THETA_COUNT;
+    double *n = malloc((size_t)count * sizeof *n), *th = malloc((size_t)count * sizeof *th);
+    double *out = malloc((size_t)count * sizeof *out);
+    int rc = 0;
+    g->measured = g->at_n = g->at_x = NAN;
+    if (!n || !th || !out) {
+        fprintf(stderr, "brdfbench gate: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    for (long i = 0; i < count; ++i) {
+        n[i] = accuracy_grid_n(&g->grid, i / GATE_ALBEDO_THETA_COUNT);
+        th[i] = (double)(i % GATE_ALBEDO_THETA_COUNT) * 5.0 * 3.14159265358979323846 / 180.0;
+    }
+    if ((rc = albedo_device(ic, &g->model, albedo_mode_of(g->model.info), n, th, (int)count, out)) != 0)
+        goto done;
+    for (long i = 0; i < count; ++i) {
+        if (!isfinite(out[i])) {
+            snprintf(g->reason, sizeof g->reason, "the albedo quadrature was not finite at n = %g", n[i]);
+            g->measured = NAN;
+            break;
+        }
+        if (isnan(g->measured) || out[i] > g->measured) {
+            g->measured = out[i];
+            g->at_n = n[i];
+            g->at_x = th[i];
+        }
+    }
+done:
+    free(n);
+    free(th);
+    free(out);
+    return rc;
+}
+
 /* PASS/FAIL against the bounds and the baseline. */
 static void gate_judge(struct gate *g, double tolerance)
 {
@@ -632,6 +683,8 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
     int rc = 0;
     struct accuracy_ctx actx;
     memset(&actx, 0, sizeof actx);
+    struct integrate_ctx ic;
+    int ic_open = 0;
     struct gate_sweep *sweeps = calloc((size_t)gs->count, sizeof *sweeps);
     int *plan = malloc((size_t)gs->count * sizeof *plan), *order = malloc((size_t)gs->count * sizeof *order);
     int nsweeps = 0, sweeps_done = 0;
@@ -694,6 +747,17 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
             gate_from_sweep(g, &sw->result);
             if (sw->result.reason[0] && sw->result.invalid_count == 0)
                 snprintf(g->reason, sizeof g->reason, "%s", sw->result.reason);
+        } else if (g->metric == GATE_ALBEDO_MAX) {
+            if (!ic_open) {
+                if ((rc = integrate_open(&ic, s)) != 0)
+                    goto done;
+                ic_open = 1;
+            }
+            if ((rc = gate_albedo(g, &ic)) != 0)
+                goto done;
+            if (progress)
+                fprintf(progress, "albedo: %s n=[%g,%g] step %g (%.2f s)\n", g->model.label, g->grid.n_min,
+                        g->grid.n_max, g->grid.n_step, wall_seconds() - t0);
         } else {
             if ((rc = accuracy_prepare(&actx, &g->model)) != 0)   /* the reference of a user model */
                 goto done;
@@ -706,6 +770,8 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
         gate_judge(g, gs->tolerance);
     }
 done:
+    if (ic_open)
+        integrate_close(&ic);
     accuracy_close(&actx);
     if (sweeps)
         for (int j = 0; j < nsweeps; ++j)

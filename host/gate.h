@@ -22,6 +22,7 @@ enum gate_metric {
     GATE_ATTENUATION_MAX_ABS, /* max absolute error over the attenuation zone (SPEC.md Delta) */
     GATE_WHOLE_MAX_ABS,       /* max absolute error over x in [0, pi/2] */
     GATE_ENERGY_MAX_DEV,      /* max over n of |2 pi int_0^(pi/2) f cos x sin x dx - 1| */
+    GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/energy.h) */
     GATE_INVALID_COUNT,       /* model values that were NaN, Inf or negative in the sweep */
     GATE_METRIC_COUNT
 };

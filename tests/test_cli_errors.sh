@@ -71,6 +71,8 @@ printf '{"gates":[{"model":"e","expression":"c; return 0","metric":"whole.max_ab
 printf '{"gates":[{"model":"fq2","metric":"whole.max_abs","n_min":1,"n_max":1000,"n_step":0.0001,"samples":16,"max":1}]}' >huge_grid.json
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.0126}]}' >good.json
 printf '{"schema": "brdfbench.accuracy/1", "results": [' >truncated_baseline.json
+printf '{"gates":[{"model":"cq2","metric":"albedo.max","max":1}]}' >albedo_cq2.json
+printf '{"gates":[{"model":"phongn","metric":"albedo.max","n_step":0.1,"max":1}]}' >albedo_many.json
 mkdir -p folder
 
 # The dispatcher.
@@ -164,7 +166,9 @@ t 2 "^brdfbench gate: missing_model_file.json:1:[0-9]+: gate 1: --model-file: ca
 t 2 "^brdfbench gate: bad_expression.json:1:[0-9]+: gate 1: --model e: character 2 of the expression is not allowed" gate bad_expression.json
 t 2 "^brdfbench gate: huge_grid.json:1:11: gate 1: grid: --n-step: 9990001 values of n need 3.2e\+08 bytes, more than the device allows" \
     POCL_MEMORY_LIMIT=1 gate huge_grid.json
-# all, plot, heatmap, render
+t 2 "^brdfbench gate: albedo_cq2.json:1:[0-9]+: gate 1: albedo.max needs a normalised or microfacet model \(cq2 is quadratic\)" gate albedo_cq2.json
+t 2 "^brdfbench gate: albedo_many.json:1:1[0-9]: gate 1: albedo.max over 9981 values of n \(accepted: at most 1000" gate albedo_many.json
+# all, plot, heatmap, render, fit, reproduce
 t 2 "^brdfbench all: unknown option '--bogus' \(see brdfbench all --help\)" all --bogus
 t 2 "^brdfbench all: unknown model 'nosuch'" all --models nosuch
 t 2 "^brdfbench plot: RUN_DIR '/nonexistent' is not a folder" plot /nonexistent
@@ -176,6 +180,13 @@ t 2 "^brdfbench render: --scene: 'moon' is not a list of spheres, teapot, bunny"
 t 2 "^brdfbench render: --exposure: 'nan' is not a finite number in \[0.01, 100\]" render --exposure nan
 t 2 "^brdfbench render: --light: 'laser' is not directional or point" render --light laser
 t 2 "^brdfbench render: --reps: '0' is not an integer in \[1, 1000\]" render --reps 0
+t 2 "^brdfbench fit: --n-min: 'x' is not a finite number" fit --n-min x
+t 2 "^brdfbench fit: --max-abs: '-1' is not a finite number in \[1e-300, 1\]" fit --max-abs -1
+t 2 "^brdfbench fit: --samples: '7' is not an integer in \[16, " fit --samples 7
+t 2 "^brdfbench fit: unknown option '--bogus' \(see brdfbench fit --help\)" fit --bogus
+t 2 "^brdfbench reproduce: --samples: '0' is not an integer in \[16, " reproduce --samples 0
+t 2 "^brdfbench reproduce: --q-step: 'nan' is not a finite number in \[0.0001, 0.5\]" reproduce --q-step nan
+t 2 "^brdfbench reproduce: unknown option '--bogus' \(see brdfbench reproduce --help\)" reproduce --bogus
 
 [ ! -e "$T/run" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: a refused run wrote $T/run" >&2; }
 

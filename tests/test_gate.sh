@@ -129,6 +129,35 @@ assert d["description"].startswith("bounds either side")
     || bad "printed PASS/FAIL lines: $(cat "$T/out")"
 grep -qE '^10 gates: 7 passed, 3 failed' "$T/out" && ok || bad "summary line: $(tail -1 "$T/out")"
 
+# 2b. albedo.max (the device quadrature of host/energy.h, stated tolerance 2e-5): for a lobe
+#    around the mirror direction the albedo is largest at normal incidence (the horizon clips
+#    the lobe elsewhere), where it is 2 pi int_0^1 f c dc: exactly 1 for phongn, and for fq2n
+#    the closed form above. n = 2, 113, ..., 893, 1000.
+python3 - >"$T/albedo_expected" <<'PY'
+import math
+def F(u, k): return u*u/2 + u + 2*k*u**3/3 + k*u*u + k*k*u**4/4 + k*k*u**3/3
+ns = [2 + 111 * i for i in range(9)] + [1000]
+def E(n):
+    k = 0.448 * n + 0.099
+    return 2 * math.pi * 0.214 * (0.807 + n) * (F(0, k) - F(max(-1.0, -1.0 / k), k))
+print(repr(max(E(n) for n in ns)))
+PY
+A=$(cat "$T/albedo_expected")
+cat >"$T/albedo.json" <<EOF
+{"gates": [
+  {"model": "phongn", "metric": "albedo.max", "n_step": 111, "min": $(lo 1 2e-5), "max": $(hi 1 2e-5)},
+  {"model": "fq2n", "metric": "albedo.max", "n_step": 111, "min": $(lo "$A" 2e-5), "max": $(hi "$A" 2e-5)}
+]}
+EOF
+"$BIN" gate "$T/albedo.json" --json "$T/albedo.out.json" --quiet >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "albedo gates: exit $rc: $(cat "$T/out" "$T/err")"
+py "albedo.max at normal incidence" '
+import json, sys
+for g in json.load(open(sys.argv[1]))["gates"]:
+    assert g["status"] == "pass" and g["at_x"] == 0, g
+' "$T/albedo.out.json"
+
 # 3. JUnit XML that a CI system can render: well-formed, one testcase per gate, <failure>
 #    exactly on the failing ones.
 py "JUnit XML" '
