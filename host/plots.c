@@ -247,6 +247,58 @@ int plots_add_bars(struct plot_set *set, const char *file, const char *caption, 
     return 0;
 }
 
+int plots_add_throughput(struct plot_set *set, const char *json_path, const char *n_mode, const char *file,
+                         const char *caption, char *err, size_t errlen)
+{
+    struct jr_doc d;
+    if (jr_parse_file(json_path, &d, err, errlen)) return 2;
+    const struct jr_value *results;
+    const char *schema;
+    int rc = 2;
+    if (jr_need_str(&d, &d.root, "schema", &schema, err, errlen)) goto done;
+    if (strcmp(schema, "brdfbench.throughput/1") != 0) {
+        jr_fail(&d, jr_get(&d.root, "schema"), err, errlen, "schema \"%s\", expected \"brdfbench.throughput/1\"",
+                schema);
+        goto done;
+    }
+    if (jr_need(&d, &d.root, "results", JR_ARR, &results, err, errlen)) goto done;
+    const char *labels[PLOT_MAX_BARS];
+    double med[PLOT_MAX_BARS], lo[PLOT_MAX_BARS], hi[PLOT_MAX_BARS];
+    int count = 0, highlight = -1;
+    for (size_t i = 0; i < results->count && count < PLOT_MAX_BARS; i++) {
+        const struct jr_value *row = &results->items[i], *rate;
+        const char *variant, *mode, *label, *kind;
+        if (jr_need_str(&d, row, "variant", &variant, err, errlen) || jr_need_str(&d, row, "n_mode", &mode, err, errlen) ||
+            jr_need_str(&d, row, "label", &label, err, errlen) || jr_need_str(&d, row, "kind", &kind, err, errlen))
+            goto done;
+        if (strcmp(variant, "default") != 0 || strcmp(mode, n_mode) != 0) continue;
+        if (jr_need(&d, row, "evals_per_s", JR_OBJ, &rate, err, errlen) ||
+            jr_need_num(&d, rate, "median", &med[count], err, errlen) ||
+            jr_need_num(&d, rate, "min", &lo[count], err, errlen) || jr_need_num(&d, rate, "max", &hi[count], err, errlen))
+            goto done;
+        /* in G evaluations per second; a failed row stays as "n/a" */
+        med[count] *= 1e-9;
+        lo[count] *= 1e-9;
+        hi[count] *= 1e-9;
+        labels[count] = label;
+        if (strcmp(kind, "builtin") == 0) highlight = count;
+        count++;
+    }
+    if (count == 0) {
+        snprintf(err, errlen, "%s: no rows of the default build options with n %s", json_path, n_mode);
+        rc = 1;
+        goto done;
+    }
+    char title[160];
+    snprintf(title, sizeof title, "Throughput per model, n %s (default build options)", n_mode);
+    rc = plots_add_bars(set, file, caption, title, "G evaluations per second (median; whisker: min..max of the repeats)",
+                        labels, med, lo, hi, count, highlight) ? 2 : 0;
+    if (rc) snprintf(err, errlen, "%s: out of memory", json_path);
+done:
+    jr_free(&d);
+    return rc;
+}
+
 /* ---- drawing ---------------------------------------------------------------------- */
 
 int plot_figure_draw(const struct plot_figure *f, const char *path, char *err, size_t errlen)

@@ -85,6 +85,13 @@ int plots_add_bars(struct plot_set *set, const char *file, const char *caption, 
                    const char *x_label, const char *const *labels, const double *values, const double *lo,
                    const double *hi, int count, int highlight);
 
+/* Throughput bars from a throughput.json (schema brdfbench.throughput/1): the rows of the
+ * default build options in one n mode ("uniform" or "varying"), median evaluations per
+ * second with a min..max whisker, the pow() built-in drawn dark. Returns 0, 1 when the
+ * file holds no such row, or 2 with a message naming the file when it is malformed. */
+int plots_add_throughput(struct plot_set *set, const char *json_path, const char *n_mode, const char *file,
+                         const char *caption, char *err, size_t errlen);
+
 /* Draws every figure into dir. Keeps going after a failure; returns the number of
  * pictures that could not be written (0 = all written), the first message in err. */
 int plots_draw(const struct plot_set *set, const char *dir, char *err, size_t errlen);

@@ -271,6 +271,32 @@ static void test_plots_and_report(struct cl_session *s)
     CHECK(plots_read_json(path, &back, err, sizeof err) == 2 && strstr(err, "plain file name"),
           "a path outside the run folder is refused: %s", err);
 
+    /* throughput bars from a hand-written throughput.json: rows of other build options or
+     * n modes are left out; medians in G evaluations per second; the built-in is highlighted */
+    path_in(path, sizeof path, "throughput.json");
+    write_text(path, "{\"schema\": \"brdfbench.throughput/1\", \"results\": [\n"
+                     " {\"label\": \"pow\", \"kind\": \"builtin\", \"variant\": \"default\", \"n_mode\": \"uniform\","
+                     "  \"evals_per_s\": {\"min\": 1e8, \"median\": 2e8, \"max\": 3e8}},\n"
+                     " {\"label\": \"fq2\", \"kind\": \"model\", \"variant\": \"default\", \"n_mode\": \"uniform\","
+                     "  \"evals_per_s\": {\"min\": 4e10, \"median\": 5e10, \"max\": 5.5e10}},\n"
+                     " {\"label\": \"fq2\", \"kind\": \"model\", \"variant\": \"fast-relaxed-math\", \"n_mode\": \"uniform\","
+                     "  \"evals_per_s\": {\"min\": 1, \"median\": 1, \"max\": 1}},\n"
+                     " {\"label\": \"fq2\", \"kind\": \"model\", \"variant\": \"default\", \"n_mode\": \"varying\","
+                     "  \"evals_per_s\": {\"min\": null, \"median\": null, \"max\": null}}]}\n");
+    CHECK(plots_add_throughput(&set, path, "uniform", "tp.png", "bars", err, sizeof err) == 0, "throughput bars: %s", err);
+    {
+        const struct plot_figure *tf = &set.figs[set.count - 1];
+        CHECK(tf->kind == PLOT_BARS && tf->nbars == 2 && tf->highlight == 0, "two bars, the built-in first and dark");
+        CHECK(tf->nbars == 2 && fabs(tf->series[0].y[1] - 50.0) < 1e-12 && fabs(tf->series[2].y[1] - 55.0) < 1e-12,
+              "fq2's median and max in G evaluations per second");
+    }
+    CHECK(plots_add_throughput(&set, path, "varying", "tp2.png", "bars", err, sizeof err) == 0, "a failed row: %s", err);
+    CHECK(isnan(set.figs[set.count - 1].series[0].y[0]), "a null rate stays missing (n/a), not 0");
+    write_text(path, "{\"schema\": \"brdfbench.throughput/1\", \"results\": [{\"label\": \"x\"}]}");
+    CHECK(plots_add_throughput(&set, path, "uniform", "tp3.png", "bars", err, sizeof err) == 2 && strstr(err, path),
+          "malformed throughput.json named: %s", err);
+    CHECK(plots_draw(&set, dir, err, sizeof err) == 0, "draw bars: %s", err);
+
     /* report: three pictures exist, one does not; only the three are linked */
     struct report_picture pics[4] = {
         {"max_rel.png", "caption one", REPORT_PLOTS},
