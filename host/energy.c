@@ -701,6 +701,36 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
+
+    jw_key(&w, "reciprocity_image_pass");
+    jw_obj_begin(&w);
+    if ((rc = reciprocity_image_pass(s, RECIP_PAIRS, sum->pass, ENERGY_MAX_MODELS, &sum->pass_count)) != 0)
+        goto done;
+    jw_kv_int(&w, "pairs", RECIP_PAIRS);
+    jw_kv_str(&w, "what", "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
+                          "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
+                          "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
+                          "reference (render_shade_ref)");
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int i = 0; i < sum->pass_count; ++i) {
+        const struct recip_pass_summary *q = &sum->pass[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", q->spec.label);
+        jw_kv_int(&w, "shading_mode", q->mode);
+        jw_kv_int(&w, "pairs_lit_both_ways", q->lit);
+        jw_kv_num(&w, "device_max_rel_diff", q->device_worst);
+        jw_kv_num(&w, "host_max_rel_diff", q->host_worst);
+        jw_kv_num(&w, "worst_n", q->n);
+        jw_vec3(&w, "worst_N", q->nrm);
+        jw_vec3(&w, "worst_L", q->l);
+        jw_vec3(&w, "worst_V", q->v);
+        jw_kv_num(&w, "worst_S_LV", q->s_lv);
+        jw_kv_num(&w, "worst_S_VL", q->s_vl);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
     sum->seconds = wall_seconds() - t0;
     jw_kv_num(&w, "seconds", sum->seconds);
     jw_obj_end(&w);
@@ -728,9 +758,149 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
             printf("  %-22s device (float) %9.3g at n = %-8.4g (its evaluation error %9.3g)  host (double) %9.3g\n",
                    r->spec.label, r->device.diff, r->device.n, r->device.eval_error, r->host.diff);
         }
+        printf("reciprocity of the image pass (kernels/shade.cl, eye and light swapped): worst relative difference\n");
+        for (int i = 0; i < sum->pass_count; ++i)
+            printf("  %-22s mode %d  device %9.3g  host %9.3g  (%ld pairs lit both ways)\n", sum->pass[i].spec.label,
+                   sum->pass[i].mode, sum->pass[i].device_worst, sum->pass[i].host_worst, sum->pass[i].lit);
     }
 done:
     jw_free(&w);
     integrate_close(&ic);
+    return rc;
+}
+
+/* ---- reciprocity of the image pass ---------------------------------------------------------- */
+#include "raster.h"
+#include "render.h"
+
+int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_summary *out, int max, int *count)
+{
+    char err[512];
+    int rc = 0;
+    *count = 0;
+    struct render_options o;
+    render_options_default(&o);
+    struct render_device d;
+    memset(&d, 0, sizeof d);
+    struct gbuffer g;
+    memset(&g, 0, sizeof g);
+    cl_mem gbuf = NULL, orgba = NULL, ospec = NULL;
+    float *spec_a = malloc((size_t)pairs * sizeof *spec_a), *spec_b = malloc((size_t)pairs * sizeof *spec_b);
+    if (!spec_a || !spec_b || gbuffer_alloc(&g, (int)pairs, 1, err, sizeof err)) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if ((rc = render_device_open(&d, s, &o, err, sizeof err)) != 0) {
+        fprintf(stderr, "brdfbench: %s\n", err);
+        goto done;
+    }
+    /* The eye at the origin and a point light at P (launch A), then swapped (launch B): at
+       each pixel, V of one launch is L of the other, computed by the same float operations. */
+    const double eye[3] = { 0, 0, 0 }, lamp[3] = { 0.7, 0.4, 0.2 };
+    uint64_t st = 0x9e3779b97f4a7c15ULL;
+    float *px = gbuffer_plane(&g, GB_PX), *py = gbuffer_plane(&g, GB_PY), *pz = gbuffer_plane(&g, GB_PZ);
+    float *nx = gbuffer_plane(&g, GB_NX), *ny = gbuffer_plane(&g, GB_NY), *nz = gbuffer_plane(&g, GB_NZ);
+    float *sh = gbuffer_plane(&g, GB_SHIN);
+    for (long i = 0; i < pairs; ++i) {
+        double pos[3] = { 2 * rnd(&st) - 1, 2 * rnd(&st) - 1, -1 - 2 * rnd(&st) }, v[3], l[3], h[3], nrm[3];
+        double n = 2.0 * pow(500.0, rnd(&st));
+        for (int k = 0; k < 3; ++k) {
+            v[k] = eye[k] - pos[k];
+            l[k] = lamp[k] - pos[k];
+        }
+        double lv = sqrt(dot3(v, v)), ll = sqrt(dot3(l, l));
+        for (int k = 0; k < 3; ++k) {
+            v[k] /= lv;
+            l[k] /= ll;
+            h[k] = v[k] + l[k];
+        }
+        double lh = sqrt(dot3(h, h));
+        for (int k = 0; k < 3; ++k)
+            h[k] /= lh;
+        /* The normal near the half vector (the lobe's peak) for half the pixels, anywhere in
+           the cone of directions facing both L and V for the others. */
+        for (int tries = 0;; ++tries) {
+            double u[3];
+            unit_sphere(&st, u);
+            double spread = (i % 2) ? 3.0 * zone_epicentre_end(n) * rnd(&st) : 1.5 * rnd(&st);
+            for (int k = 0; k < 3; ++k)
+                nrm[k] = h[k] + spread * u[k];
+            double len = sqrt(dot3(nrm, nrm));
+            for (int k = 0; k < 3; ++k)
+                nrm[k] /= len;
+            if ((dot3(nrm, l) > 0.02 && dot3(nrm, v) > 0.02) || tries > 100)
+                break;
+        }
+        px[i] = (float)pos[0]; py[i] = (float)pos[1]; pz[i] = (float)pos[2];
+        nx[i] = (float)nrm[0]; ny[i] = (float)nrm[1]; nz[i] = (float)nrm[2];
+        sh[i] = (float)n;
+    }
+    cl_int e;
+    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, g.stride * GB_NPLANES * sizeof(float),
+                          g.data, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity G-buffer)", done);
+    orgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity rgba)", done);
+    ospec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity spec)", done);
+    struct render_light la = { { eye[0], eye[1], eye[2] }, { lamp[0], lamp[1], lamp[2] }, 1, 1.0 };
+    struct render_light lb = { { lamp[0], lamp[1], lamp[2] }, { eye[0], eye[1], eye[2] }, 1, 1.0 };
+    for (int m = 0; m < o.nmodels && *count < max; ++m) {
+        struct recip_pass_summary *r = &out[*count];
+        memset(r, 0, sizeof *r);
+        r->spec = o.models[m];
+        r->mode = render_shading_mode(&r->spec);
+        r->device_worst = r->host_worst = -1;
+        double t;
+        if ((rc = render_device_shade(&d, gbuf, g.stride, g.npix, orgba, ospec, &r->spec, r->mode, &la, &o, NULL,
+                                      spec_a, &t)) != 0 ||
+            (rc = render_device_shade(&d, gbuf, g.stride, g.npix, orgba, ospec, &r->spec, r->mode, &lb, &o, NULL,
+                                      spec_b, &t)) != 0)
+            goto done;
+        for (long i = 0; i < pairs; ++i) {
+            double pos[3] = { px[i], py[i], pz[i] }, nrm[3] = { nx[i], ny[i], nz[i] }, v[3], l[3];
+            for (int k = 0; k < 3; ++k) {
+                v[k] = eye[k] - pos[k];
+                l[k] = lamp[k] - pos[k];
+            }
+            double ea = 1.0 / dot3(l, l), eb = 1.0 / dot3(v, v);
+            double lv = sqrt(dot3(v, v)), ll = sqrt(dot3(l, l));
+            for (int k = 0; k < 3; ++k) {
+                v[k] /= lv;
+                l[k] /= ll;
+            }
+            double nl = dot3(nrm, l), nv = dot3(nrm, v);
+            if (!(nl > 0.01 && nv > 0.01))
+                continue;
+            double n = sh[i], floor_v = 1e-6 * fabs(model_eval_host(&r->spec, 1.0, n));
+            double sa = spec_a[i] / (ea * nl * o.ks), sb = spec_b[i] / (eb * nv * o.ks);
+            double dd = fabs(sa - sb) / fmax(fmax(fabs(sa), fabs(sb)), floor_v);
+            r->lit++;
+            if (dd > r->device_worst) {
+                r->device_worst = dd;
+                r->n = n;
+                memcpy(r->nrm, nrm, sizeof nrm);
+                memcpy(r->l, l, sizeof l);
+                memcpy(r->v, v, sizeof v);
+                r->s_lv = sa;
+                r->s_vl = sb;
+            }
+            double ha, hb, rad;
+            render_shade_ref(&r->spec, r->mode, &la, &o, pos, nrm, n, &ha, &rad);
+            render_shade_ref(&r->spec, r->mode, &lb, &o, pos, nrm, n, &hb, &rad);
+            ha /= ea * nl * o.ks;
+            hb /= eb * nv * o.ks;
+            r->host_worst = fmax(r->host_worst, fabs(ha - hb) / fmax(fmax(fabs(ha), fabs(hb)), floor_v));
+        }
+        (*count)++;
+    }
+done:
+    if (ospec) clReleaseMemObject(ospec);
+    if (orgba) clReleaseMemObject(orgba);
+    if (gbuf) clReleaseMemObject(gbuf);
+    if (d.program) render_device_close(&d);
+    gbuffer_free(&g);
+    free(spec_b);
+    free(spec_a);
     return rc;
 }

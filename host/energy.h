@@ -65,6 +65,20 @@ struct recip_worst {
 int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long pairs, struct recip_worst *device,
                       struct recip_worst *host);
 
+/* Reciprocity of the image pass itself (kernels/shade.cl through host/render.h), for every
+ * model the image passes shade, Cook-Torrance included: each pair (L, V) is one pixel shaded
+ * twice, with eye and point light swapped; S = specular / (E (N.L) ks) must agree. diff is
+ * |S(L,V) - S(V,L)| / max(|S(L,V)|, |S(V,L)|, 1e-6 f(c = 1, n)). */
+struct recip_pass_summary {
+    struct model_spec spec;
+    int mode;                                   /* render_shading_mode */
+    double device_worst, host_worst;
+    double n, nrm[3], l[3], v[3], s_lv, s_vl;   /* the device's worst pixel */
+    long lit;                                   /* pairs lit both ways */
+};
+/* Fills out[0..*count-1] for the image passes' default models. Returns 0 or an exit code. */
+int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_summary *out, int max, int *count);
+
 /* What energy_run found, per model, for the claims table. */
 struct energy_model_summary {
     struct model_spec spec;
@@ -84,6 +98,8 @@ struct energy_summary {
     int recip_count;
     struct recip_summary recip[ENERGY_MAX_MODELS];
     long recip_pairs;
+    int pass_count;
+    struct recip_pass_summary pass[ENERGY_MAX_MODELS];
     double quadrature_tolerance;                /* agreement bound used for the checks */
     int all_closed_forms_agree;
     double seconds;

@@ -63,6 +63,10 @@ int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct rep
                      struct reproduce_report *report);
 void reproduce_report_free(struct reproduce_report *r);
 
+/* `brdfbench fit` with its defaults (n in [2, 1000] step 1, no cap): writes out_dir/fit.json
+ * and prints its summary unless quiet (fit.h has the options and the report). */
+int reproduce_fit_run(struct cl_session *s, const char *out_dir, int quiet);
+
 /* Paper 1's eq. 11 on the host (nested adaptive GSL quadrature in x and n):
  * term 0: c^n, 1: n^2 (c-1)^2, 2: 2n (c-1), 3: 1, each times cos x sin x, over
  * x in [0, acos(exp(-zone_k/n))], n in [n_lo, n_hi]. Returns 0 or -1 (GSL failed). */

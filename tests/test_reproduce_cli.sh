@@ -93,6 +93,7 @@ assert q["best"]["max_rel"] <= min(q["max_rel"]) + 1e-9
 
 e = json.load(open(d + "/energy.json"), parse_constant=no_const)
 assert e["schema"] == "brdfbench.energy/1"
+assert len(e["reciprocity_image_pass"]["models"]) > 0 and len(e["albedo"]["models"]) > 0
 md = open(d + "/claims.md").read()
 assert "| id | source | claim | claimed | measured | tolerance | verdict | where / why |" in md
 PY
