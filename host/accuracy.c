@@ -513,3 +513,59 @@ done:
     free(nv);
     return rc;
 }
+
+int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                          float *raw, double *device_seconds)
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bn = NULL, bo = NULL;
+    cl_event ev = NULL;
+    cl_kernel sweep, probe_unused;
+    float *nv = NULL;
+    *device_seconds = NAN;
+    if ((rc = kernels_for(a, m, &sweep, &probe_unused)) != 0)
+        return rc;
+    struct model_spec ref;
+    model_reference_spec(m, &ref);
+    long count = accuracy_grid_count(g);
+    nv = malloc((size_t)count * sizeof *nv);
+    if (!nv) {
+        fprintf(stderr, "brdfbench: out of memory for %ld values of n\n", count);
+        return EXIT_RUNTIME;
+    }
+    for (long i = 0; i < count; ++i)
+        nv[i] = (float)accuracy_grid_n(g, i);
+    bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), nv, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(n values)", done);
+    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, (size_t)count * ACC_OUT_STRIDE * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sweep out)", done);
+    cl_int id = m->info->kernel_id, ref_id = ref.info->kernel_id;
+    float p0 = (float)m->params[0], p1 = (float)m->params[1];
+    float rp0 = (float)ref.params[0], rp1 = (float)ref.params[1];
+    cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 3, sizeof ref_id, &ref_id), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 4, sizeof rp0, &rp0), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 5, sizeof rp1, &rp1), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
+    size_t local = sweep_local_size(count, a->s->compute_units);
+    size_t global = ((size_t)count + local - 1) / local * local;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clFinish(a->s->queue), done);
+    *device_seconds = cl_event_seconds(ev);
+    if (raw)
+        CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
+                                          raw, 0, NULL, NULL), done);
+done:
+    if (ev) clReleaseEvent(ev);
+    if (bo) clReleaseMemObject(bo);
+    if (bn) clReleaseMemObject(bn);
+    free(nv);
+    return rc;
+}

@@ -92,6 +92,12 @@ int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m);
 int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                  struct accuracy_result *out);
 void accuracy_result_free(struct accuracy_result *r);
+/* Only the device part of a sweep, for timing it: runs the kernel of model m over grid g and
+ * returns its raw per-n output (n_count x 8 floats as kernels/accuracy.cl lays them out; raw may
+ * be NULL) and the kernel's time from its profiling event (NAN if the timer failed).
+ * Returns 0 or an exit code. */
+int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                          float *raw, double *device_seconds);
 /* Evaluates a model on the device at count points (c[i], n[i]); out has count values. */
 int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const float *c, const float *n,
                    size_t count, float *out);

@@ -22,6 +22,7 @@ static const struct command commands[] = {
     { "render", cmd_render, "full-image shading passes (spheres, teapot, bunny): error images, metrics, Mpixel/s" },
     { "reproduce", cmd_reproduce, "re-derive every claim of both papers: claims.json, claims.md and a table" },
     { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
+    { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants" },
     /* more commands below, one per line */
 };
 

@@ -1,0 +1,1436 @@
+/* throughput.c - measures every model's cost on the device against pow(), tuned C and the
+ * device's peak (see throughput.h for the protocol), and writes throughput.json/.csv. */
+#define _POSIX_C_SOURCE 200809L
+#include "throughput.h"
+#include "context.h"
+#include "exitcodes.h"
+#include "hostc_baseline.h"
+#include "jsonw.h"
+#include "outdir.h"
+#include "usermodel.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PEAK_CHAINS 16           /* kernels/peak.cl */
+#define PEAK_UNROLL 4
+#define TP_ACC_POINTS 4096       /* probe points per model and variant */
+#define TP_REASON 240
+
+static const char *const variant_names[TP_VARIANT_COUNT] = { "default", "fast-relaxed-math", "denorms-are-zero" };
+static const char *const variant_opts[TP_VARIANT_COUNT] = { "", "-cl-fast-relaxed-math", "-cl-denorms-are-zero" };
+static const char *const nmode_names[TP_NMODE_COUNT] = { "uniform", "varying" };
+
+const char *tp_variant_name(int v) { return v >= 0 && v < TP_VARIANT_COUNT ? variant_names[v] : "?"; }
+const char *tp_variant_options(int v) { return v >= 0 && v < TP_VARIANT_COUNT ? variant_opts[v] : ""; }
+const char *tp_nmode_name(int m) { return m >= 0 && m < TP_NMODE_COUNT ? nmode_names[m] : "?"; }
+
+void throughput_options_default(struct throughput_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->model_count = 0;
+    o->reps = 5;
+    o->min_time = 0.02;
+    o->variants = (1u << TP_VARIANT_COUNT) - 1;
+    o->n_modes = (1u << TP_NMODE_COUNT) - 1;
+    o->variant_n_modes = 1u << TP_N_UNIFORM;
+    o->host_c = 1;
+    o->threads = 0;
+    o->work_items = 0;
+    o->n_uniform = 100;
+    o->n_lo = 2;
+    o->n_hi = 1000;
+    o->sweep = 1;
+    o->sweep_grid = (struct accuracy_grid){ 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
+    o->sweep_reps = 3;
+    o->base_options = NULL;
+}
+
+int throughput_options_check(const struct throughput_options *o, char *err, size_t errlen)
+{
+    if (o->model_count < 0 || o->model_count > TP_MAX_MODELS) {
+        snprintf(err, errlen, "--models: %d models (accepted: 1 to %d)", o->model_count, TP_MAX_MODELS);
+        return EXIT_USAGE;
+    }
+    if (o->reps < 1 || o->reps > TP_MAX_REPS) {
+        snprintf(err, errlen, "--reps: %d is out of range (accepted: 1 to %d)", o->reps, TP_MAX_REPS);
+        return EXIT_USAGE;
+    }
+    if (!(o->min_time >= TP_MIN_TIME_MIN && o->min_time <= TP_MIN_TIME_MAX)) {
+        snprintf(err, errlen, "--min-time: %g is out of range (accepted: %g to %g seconds)", o->min_time,
+                 TP_MIN_TIME_MIN, TP_MIN_TIME_MAX);
+        return EXIT_USAGE;
+    }
+    if (o->variants == 0 || o->variants >= (1u << TP_VARIANT_COUNT)) {
+        snprintf(err, errlen, "--variants: none selected (accepted: default, fast-relaxed-math, denorms-are-zero)");
+        return EXIT_USAGE;
+    }
+    if (o->n_modes == 0 || o->n_modes >= (1u << TP_NMODE_COUNT) || o->variant_n_modes >= (1u << TP_NMODE_COUNT)) {
+        snprintf(err, errlen, "--n-modes: none selected (accepted: uniform, varying)");
+        return EXIT_USAGE;
+    }
+    if (o->threads < 0 || o->threads > 256) {
+        snprintf(err, errlen, "--threads: %d is out of range (accepted: 1 to 256, 0 for the online CPUs)", o->threads);
+        return EXIT_USAGE;
+    }
+    if (o->work_items < 0 || o->work_items > TP_MAX_WORK_ITEMS) {
+        snprintf(err, errlen, "--work-items: %ld is out of range (accepted: 1 to %d)", o->work_items,
+                 TP_MAX_WORK_ITEMS);
+        return EXIT_USAGE;
+    }
+    if (!(o->n_uniform > 0 && o->n_uniform <= ACC_MAX_N)) {
+        snprintf(err, errlen, "--n: %g is out of range (accepted: 0 < n <= %g)", o->n_uniform, ACC_MAX_N);
+        return EXIT_USAGE;
+    }
+    if (!(o->n_lo > 0 && o->n_hi <= ACC_MAX_N && o->n_lo < o->n_hi)) {
+        snprintf(err, errlen, "--n-range: [%g, %g] is out of range (accepted: 0 < lo < hi <= %g)", o->n_lo, o->n_hi,
+                 ACC_MAX_N);
+        return EXIT_USAGE;
+    }
+    if (o->sweep) {
+        if (o->sweep_reps < 1 || o->sweep_reps > TP_MAX_REPS) {
+            snprintf(err, errlen, "--sweep-reps: %d is out of range (accepted: 1 to %d)", o->sweep_reps, TP_MAX_REPS);
+            return EXIT_USAGE;
+        }
+        int rc = accuracy_grid_check(&o->sweep_grid, NULL, err, errlen);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* ---- figures ---------------------------------------------------------------------------- */
+
+struct tp_stats {
+    double min, median, max;
+};
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static struct tp_stats stats_of(const double *v, int n)
+{
+    struct tp_stats s = { NAN, NAN, NAN };
+    double sorted[TP_MAX_REPS];
+    int k = 0;
+    for (int i = 0; i < n; ++i)
+        if (isfinite(v[i]))
+            sorted[k++] = v[i];
+    if (k == 0)
+        return s;
+    qsort(sorted, (size_t)k, sizeof *sorted, cmp_double);
+    s.min = sorted[0];
+    s.max = sorted[k - 1];
+    s.median = (k % 2) ? sorted[k / 2] : 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]);
+    return s;
+}
+
+/* Rates from times: the fastest launch gives the largest rate. */
+static struct tp_stats rates_of(struct tp_stats seconds, double work)
+{
+    struct tp_stats r = { work / seconds.max, work / seconds.median, work / seconds.min };
+    return r;
+}
+
+/* One timed thing: a device kernel or the C loop. */
+struct tp_figure {
+    int ok;
+    char reason[TP_REASON];
+    struct tp_stats sec, sec_wall;     /* per launch */
+    struct tp_stats rate, rate_wall;   /* work per second */
+    long iters;
+    double per_launch;                 /* work per launch: evaluations (flops for the peak) */
+    double checksum;                   /* sum of the last launch's outputs */
+    int finite;                        /* 0: some values were NaN or Inf (timed all the same) */
+};
+
+static void fig_fail(struct tp_figure *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void fig_fail(struct tp_figure *f, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(f->reason, sizeof f->reason, fmt, ap);
+    va_end(ap);
+    f->ok = 0;
+}
+
+static double sum_floats(const float *v, size_t n)
+{
+    double s = 0;
+    for (size_t i = 0; i < n; ++i)
+        s += v[i];
+    return s;
+}
+
+/* ---- the throughput program --------------------------------------------------------------- */
+
+int tp_program_build(struct tp_program *p, struct cl_session *s, const struct model_spec *models, int count,
+                     int variant, const char *base_options)
+{
+    memset(p, 0, sizeof *p);
+    p->s = s;
+    p->variant = variant;
+    snprintf(p->options, sizeof p->options, "%s%s%s", base_options ? base_options : "",
+             base_options && *base_options && *tp_variant_options(variant) ? " " : "", tp_variant_options(variant));
+    char extra[TP_MAX_MODELS * 32 + 64];
+    size_t used = 0;
+    extra[0] = '\0';
+    for (int i = 0; i < count && p->id_count < TP_MAX_MODELS; ++i) {
+        int id = models[i].info->kernel_id;
+        if (usermodel_of(&models[i]))
+            continue;
+        int seen = 0;
+        for (int k = 0; k < p->id_count; ++k)
+            seen |= p->ids[k] == id;
+        if (seen)
+            continue;
+        p->ids[p->id_count++] = id;
+        used += (size_t)snprintf(extra + used, sizeof extra - used, "TP_MODEL_KERNELS(%d)\n", id);
+    }
+    int rc = clsession_build(s, "throughput.cl", extra, p->options, &p->program);
+    p->build_seconds = s->last_build_seconds;
+    return rc;
+}
+
+void tp_program_release(struct tp_program *p)
+{
+    if (p->program)
+        clReleaseProgram(p->program);
+    p->program = NULL;
+}
+
+static int tp_has(const struct tp_program *p, const struct model_spec *m)
+{
+    if (!m)
+        return 1;
+    for (int k = 0; k < p->id_count; ++k)
+        if (p->ids[k] == m->info->kernel_id)
+            return 1;
+    return 0;
+}
+
+static cl_kernel tp_kernel(struct tp_program *p, const char *kind, const struct model_spec *m, cl_int *e)
+{
+    char name[64];
+    if (m)
+        snprintf(name, sizeof name, "tp_%s_%d", kind, m->info->kernel_id);
+    else
+        snprintf(name, sizeof name, "tp_%s_pow", kind);
+    return clCreateKernel(p->program, name, e);
+}
+
+void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in)
+{
+    memset(in, 0, sizeof *in);
+    in->varying = nmode == TP_N_VARYING;
+    in->n_uniform = (float)o->n_uniform;
+    in->n_lo = (float)o->n_lo;
+    in->dn_lane = (float)((o->n_hi - o->n_lo) / (double)TP_EVALS_PER_ITER);
+    in->dn_step = (float)((double)in->dn_lane / (double)iters);
+    in->dc = (float)(1.0 / ((double)TP_EVALS_PER_ITER * (double)iters));
+    in->iters = iters;
+    in->work_items = work_items;
+}
+
+/* A kernel ready to launch, with the arguments that depend on the iteration count. */
+struct tp_kernel_run {
+    struct cl_session *s;
+    cl_kernel k;
+    int kind;                     /* 0: uniform, 1: varying, 2: peak */
+    const struct throughput_options *o;
+    size_t global, local;
+    cl_mem out;
+    double work_per_iter;         /* work of one iteration over the whole launch */
+};
+
+static cl_int tp_set_iters(struct tp_kernel_run *r, long iters)
+{
+    cl_int e, it = (cl_int)iters;
+    if (r->kind == 2)
+        return clSetKernelArg(r->k, 2, sizeof it, &it);
+    struct tp_inputs in;
+    tp_inputs_for(r->o, r->kind == 1 ? TP_N_VARYING : TP_N_UNIFORM, (long)r->global, iters, &in);
+    if (r->kind == 0) {
+        if ((e = clSetKernelArg(r->k, 3, sizeof in.dc, &in.dc)) != CL_SUCCESS)
+            return e;
+        return clSetKernelArg(r->k, 4, sizeof it, &it);
+    }
+    if ((e = clSetKernelArg(r->k, 2, sizeof in.dn_step, &in.dn_step)) != CL_SUCCESS)
+        return e;
+    if ((e = clSetKernelArg(r->k, 5, sizeof in.dc, &in.dc)) != CL_SUCCESS)
+        return e;
+    return clSetKernelArg(r->k, 6, sizeof it, &it);
+}
+
+/* Sets the arguments that stay fixed: n, parameters, output. */
+static cl_int tp_set_fixed(struct tp_kernel_run *r, const struct model_spec *m)
+{
+    cl_int e;
+    float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
+    struct tp_inputs in;
+    tp_inputs_for(r->o, r->kind == 1 ? TP_N_VARYING : TP_N_UNIFORM, (long)r->global, 1, &in);
+    if (r->kind == 2) {
+        float a = 0.999f, b = 0.001f;   /* x <- a x + b converges to 1 */
+        if ((e = clSetKernelArg(r->k, 0, sizeof a, &a)) != CL_SUCCESS) return e;
+        if ((e = clSetKernelArg(r->k, 1, sizeof b, &b)) != CL_SUCCESS) return e;
+        return clSetKernelArg(r->k, 3, sizeof r->out, &r->out);
+    }
+    if (r->kind == 0) {
+        if ((e = clSetKernelArg(r->k, 0, sizeof in.n_uniform, &in.n_uniform)) != CL_SUCCESS) return e;
+        if ((e = clSetKernelArg(r->k, 1, sizeof p0, &p0)) != CL_SUCCESS) return e;
+        if ((e = clSetKernelArg(r->k, 2, sizeof p1, &p1)) != CL_SUCCESS) return e;
+        return clSetKernelArg(r->k, 5, sizeof r->out, &r->out);
+    }
+    if ((e = clSetKernelArg(r->k, 0, sizeof in.n_lo, &in.n_lo)) != CL_SUCCESS) return e;
+    if ((e = clSetKernelArg(r->k, 1, sizeof in.dn_lane, &in.dn_lane)) != CL_SUCCESS) return e;
+    if ((e = clSetKernelArg(r->k, 3, sizeof p0, &p0)) != CL_SUCCESS) return e;
+    if ((e = clSetKernelArg(r->k, 4, sizeof p1, &p1)) != CL_SUCCESS) return e;
+    return clSetKernelArg(r->k, 7, sizeof r->out, &r->out);
+}
+
+/* One launch: event time and wall time (enqueue to finish). Returns an OpenCL error or 0. */
+static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_s, double *wall_s, const char **call)
+{
+    cl_event ev = NULL;
+    cl_int e = tp_set_iters(r, iters);
+    *call = "clSetKernelArg";
+    if (e != CL_SUCCESS)
+        return e;
+    double t0 = wall_seconds();
+    *call = "clEnqueueNDRangeKernel";
+    e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, &r->local, 0, NULL, &ev);
+    if (e == CL_SUCCESS) {
+        *call = "clFinish";
+        e = clFinish(r->s->queue);
+    }
+    *wall_s = wall_seconds() - t0;
+    *event_s = (e == CL_SUCCESS) ? cl_event_seconds(ev) : NAN;
+    if (ev)
+        clReleaseEvent(ev);
+    return e;
+}
+
+/* Calibrates the iterations so that one launch takes o->min_time, then times o->reps launches. */
+static void tp_time_device(struct tp_kernel_run *r, float *host_out, struct tp_figure *f)
+{
+    const struct throughput_options *o = r->o;
+    memset(f, 0, sizeof *f);
+    double ev, wall;
+    const char *call = "";
+    cl_int e = tp_launch_once(r, 1, &ev, &wall, &call);   /* warm-up: the exact NDRange, compiled here */
+    if (e != CL_SUCCESS) {
+        fig_fail(f, "warm-up launch: %s failed with %s", call, cl_error_name(e));
+        return;
+    }
+    long iters = 4;
+    for (;;) {
+        if ((e = tp_launch_once(r, iters, &ev, &wall, &call)) != CL_SUCCESS) {
+            fig_fail(f, "calibration launch: %s failed with %s", call, cl_error_name(e));
+            return;
+        }
+        if (!(ev > 0)) {
+            fig_fail(f, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
+            return;
+        }
+        if (ev >= 0.25 * o->min_time || iters >= TP_MAX_ITERS)
+            break;
+        double grow = fmin(fmax(0.5 * o->min_time / ev, 2.0), 1000.0);
+        iters = (long)fmin((double)TP_MAX_ITERS, ceil((double)iters * grow));
+    }
+    iters = (long)fmin((double)TP_MAX_ITERS, fmax(1.0, ceil((double)iters * o->min_time / ev)));
+    double secs[TP_MAX_REPS], walls[TP_MAX_REPS];
+    for (int k = 0; k < o->reps; ++k) {
+        if ((e = tp_launch_once(r, iters, &secs[k], &walls[k], &call)) != CL_SUCCESS) {
+            fig_fail(f, "timed launch: %s failed with %s", call, cl_error_name(e));
+            return;
+        }
+        if (!(secs[k] > 0)) {
+            fig_fail(f, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
+            return;
+        }
+    }
+    size_t nout = r->global * 16;
+    e = clEnqueueReadBuffer(r->s->queue, r->out, CL_TRUE, 0, nout * sizeof(float), host_out, 0, NULL, NULL);
+    if (e != CL_SUCCESS) {
+        fig_fail(f, "reading the sums: clEnqueueReadBuffer failed with %s", cl_error_name(e));
+        return;
+    }
+    f->iters = iters;
+    f->per_launch = r->work_per_iter * (double)iters;
+    f->sec = stats_of(secs, o->reps);
+    f->sec_wall = stats_of(walls, o->reps);
+    f->rate = rates_of(f->sec, f->per_launch);
+    f->rate_wall = rates_of(f->sec_wall, f->per_launch);
+    f->checksum = sum_floats(host_out, nout);
+    f->ok = 1;
+    f->finite = isfinite(f->checksum);
+}
+
+/* The C baseline with the same protocol: calibrated iterations, o->reps timed runs. */
+static void tp_time_hostc(const struct throughput_options *o, const struct model_spec *m, int nmode,
+                          long work_items, int threads, float *sums, struct tp_figure *f)
+{
+    memset(f, 0, sizeof *f);
+    int id = m ? m->info->kernel_id : -1;
+    float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
+    char err[256];
+    if (m && !hostc_supports(id)) {
+        fig_fail(f, "no C loop for this model (user models run on the device only)");
+        return;
+    }
+    struct tp_inputs in;
+    double t = 0;
+    long iters = 1;
+    for (;;) {
+        tp_inputs_for(o, nmode, work_items, iters, &in);
+        if (hostc_throughput(id, p0, p1, &in, threads, sums, &t, err, sizeof err)) {
+            fig_fail(f, "%s", err);
+            return;
+        }
+        if (t >= 0.25 * o->min_time || iters >= TP_MAX_ITERS)
+            break;
+        double grow = fmin(fmax(0.5 * o->min_time / fmax(t, 1e-7), 2.0), 1000.0);
+        iters = (long)fmin((double)TP_MAX_ITERS, ceil((double)iters * grow));
+    }
+    iters = (long)fmin((double)TP_MAX_ITERS, fmax(1.0, ceil((double)iters * o->min_time / t)));
+    tp_inputs_for(o, nmode, work_items, iters, &in);
+    double secs[TP_MAX_REPS];
+    for (int k = 0; k < o->reps; ++k)
+        if (hostc_throughput(id, p0, p1, &in, threads, sums, &secs[k], err, sizeof err)) {
+            fig_fail(f, "%s", err);
+            return;
+        }
+    f->iters = iters;
+    f->per_launch = (double)work_items * (double)iters * TP_EVALS_PER_ITER;
+    f->sec = f->sec_wall = stats_of(secs, o->reps);
+    f->rate = f->rate_wall = rates_of(f->sec, f->per_launch);
+    f->checksum = sum_floats(sums, (size_t)work_items * 16);
+    f->ok = 1;
+    f->finite = isfinite(f->checksum);
+}
+
+int tp_program_points(struct tp_program *p, const struct model_spec *m, const float *c, const float *n, size_t count,
+                      float *out)
+{
+    int rc = 0;
+    cl_int e;
+    cl_kernel k = NULL;
+    cl_mem bc = NULL, bn = NULL, bo = NULL;
+    size_t padded = (count + 15) / 16 * 16;
+    float *pc = calloc(padded, sizeof *pc), *pn = calloc(padded, sizeof *pn), *po = calloc(padded, sizeof *po);
+    if (!pc || !pn || !po) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if (!tp_has(p, m)) {
+        fprintf(stderr, "brdfbench: model %s is not in the throughput program\n", m->label);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    memcpy(pc, c, count * sizeof *pc);
+    memcpy(pn, n, count * sizeof *pn);
+    for (size_t i = count; i < padded; ++i)
+        pn[i] = 1.0f;
+    k = tp_kernel(p, "points", m, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_points)", done);
+    bc = clCreateBuffer(p->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pc, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points c)", done);
+    bn = clCreateBuffer(p->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pn, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points n)", done);
+    bo = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points out)", done);
+    float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
+    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof bc, &bc), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof bo, &bo), done);
+    size_t global = padded / 16;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(p->s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(p->s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
+    memcpy(out, po, count * sizeof *out);
+done:
+    if (bo) clReleaseMemObject(bo);
+    if (bn) clReleaseMemObject(bn);
+    if (bc) clReleaseMemObject(bc);
+    if (k) clReleaseKernel(k);
+    free(po);
+    free(pn);
+    free(pc);
+    return rc;
+}
+
+int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                      long work_items, long iters, float *sums, double *event_seconds)
+{
+    int rc = 0;
+    cl_int e;
+    struct tp_kernel_run r;
+    memset(&r, 0, sizeof r);
+    r.s = p->s;
+    r.o = o;
+    r.kind = nmode == TP_N_VARYING ? 1 : 0;
+    r.global = (size_t)work_items;
+    r.local = 1;
+    if (!tp_has(p, m)) {
+        fprintf(stderr, "brdfbench: model %s is not in the throughput program\n", m->label);
+        return EXIT_RUNTIME;
+    }
+    r.k = tp_kernel(p, nmode_names[nmode], m, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_uniform/tp_varying)", done);
+    r.out = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sums)", done);
+    CL_CHECK_GOTO(tp_set_fixed(&r, m), done);
+    double wall;
+    const char *call;
+    e = tp_launch_once(&r, iters, event_seconds, &wall, &call);
+    if (e != CL_SUCCESS) {
+        cl_report(call, e, __FILE__, __LINE__);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    CL_CHECK_GOTO(clEnqueueReadBuffer(p->s->queue, r.out, CL_TRUE, 0, (size_t)work_items * 16 * sizeof(float), sums, 0,
+                                      NULL, NULL), done);
+done:
+    if (r.out) clReleaseMemObject(r.out);
+    if (r.k) clReleaseKernel(r.k);
+    return rc;
+}
+
+/* ---- a whole run -------------------------------------------------------------------------- */
+
+/* A measured thing: a model of the run, or the pow() built-in (m = NULL). */
+struct tp_entry {
+    const struct model_spec *m;
+    char label[MODEL_LABEL_MAX];
+    int ref_entry;                               /* entry of its registry reference, or -1 */
+    int skipped;                                 /* user model: not measured */
+    struct tp_figure hostc[TP_NMODE_COUNT];
+    struct tp_figure dev[TP_VARIANT_COUNT][TP_NMODE_COUNT];
+    int measured[TP_VARIANT_COUNT][TP_NMODE_COUNT];
+    /* accuracy of the variant against the double reference at probe points */
+    int acc_ok[TP_VARIANT_COUNT];
+    char acc_reason[TP_VARIANT_COUNT][TP_REASON];
+    double acc_max_diff[TP_VARIANT_COUNT];
+    long acc_nonfinite[TP_VARIANT_COUNT];
+};
+
+struct tp_sweep_model {
+    char label[MODEL_LABEL_MAX];
+    int ok;
+    char reason[TP_REASON];
+    struct tp_stats dev_s, hostc_s;
+    double points;
+    double agree;                                /* largest relative difference of per-n maxima */
+};
+
+struct tp_run {
+    struct cl_session *s;
+    const struct throughput_options *o;
+    struct model_spec models[TP_MAX_MODELS];
+    int nmodels;
+    struct tp_entry *e;                          /* [0] is pow() */
+    int nentries;
+    long work_items;
+    int threads;
+    int built[TP_VARIANT_COUNT];
+    char build_reason[TP_VARIANT_COUNT][TP_REASON];
+    char options[TP_VARIANT_COUNT][256];
+    double build_seconds[TP_VARIANT_COUNT];
+    struct tp_figure peak;
+    double peak_build_seconds;
+    char peak_options[256];
+    /* sweep */
+    int sweep_ran;
+    char sweep_reason[TP_REASON];
+    long sweep_n_count;
+    struct tp_sweep_model *sw;
+    int nsw;
+    double sweep_build_seconds;
+    char load_start[64], load_end[64];           /* /proc/loadavg: other work on the machine */
+};
+
+/* The load average, where the system has one: timing on a shared machine is read with it. */
+static void tp_read_load(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (!f)
+        return;
+    if (fgets(buf, (int)len, f))
+        buf[strcspn(buf, "\n")] = '\0';
+    fclose(f);
+}
+
+static int variant_on(const struct tp_run *r, int v) { return (r->o->variants >> v) & 1u; }
+
+static int nmode_on(const struct tp_run *r, int v, int m)
+{
+    unsigned modes = v == TP_VARIANT_DEFAULT ? r->o->n_modes : r->o->variant_n_modes;
+    return (modes >> m) & 1u;
+}
+
+/* Probe points as in the accuracy check: half in the epicentre, half over the fall-off (out to
+   4 x_e), n spread over the varying range. */
+static void tp_probe_points(const struct throughput_options *o, float *c, float *n, int count)
+{
+    uint64_t state = 0x2545f4914f6cdd1dULL;
+    for (int i = 0; i < count; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        double u = (double)(state >> 11) / 9007199254740992.0;
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        double v = (double)(state >> 11) / 9007199254740992.0;
+        double nv = (double)(float)(o->n_lo + u * (o->n_hi - o->n_lo));
+        double x_e = zone_epicentre_end(nv);
+        double x = (i % 2 == 0) ? v * x_e : fmin(1.57079632679489662, x_e + v * 3.0 * x_e);
+        c[i] = (float)cos(x);
+        n[i] = (float)nv;
+    }
+}
+
+static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const float *c, const float *n, float *out)
+{
+    for (int i = 0; i < r->nentries; ++i) {
+        struct tp_entry *e = &r->e[i];
+        e->acc_ok[v] = 0;
+        e->acc_max_diff[v] = NAN;
+        if (e->skipped) {
+            snprintf(e->acc_reason[v], TP_REASON, "not measured");
+            continue;
+        }
+        if (tp_program_points(p, e->m, c, n, TP_ACC_POINTS, out)) {
+            snprintf(e->acc_reason[v], TP_REASON, "the points kernel failed (see stderr)");
+            continue;
+        }
+        struct model_spec ref;
+        if (e->m)
+            model_reference_spec(e->m, &ref);
+        double worst = 0;
+        long bad = 0;
+        for (int k = 0; k < TP_ACC_POINTS; ++k) {
+            double host = e->m ? model_eval_host(e->m, c[k], n[k]) : pow((double)c[k], (double)n[k]);
+            double peak = e->m ? fabs(model_eval_host(&ref, 1.0, n[k])) : 1.0;
+            if (!isfinite(out[k])) {
+                ++bad;
+                continue;
+            }
+            double d = fabs((double)out[k] - host) / (peak > 0 ? peak : 1.0);
+            if (!(d <= worst))
+                worst = d;
+        }
+        e->acc_ok[v] = 1;
+        e->acc_max_diff[v] = worst;
+        e->acc_nonfinite[v] = bad;
+    }
+}
+
+static void tp_measure_variant(struct tp_run *r, int v, float *sums, int quiet)
+{
+    struct tp_program p;
+    int rc = tp_program_build(&p, r->s, r->models, r->nmodels, v, r->o->base_options);
+    snprintf(r->options[v], sizeof r->options[v], "%s", p.options);
+    r->build_seconds[v] = p.build_seconds;
+    if (rc) {
+        snprintf(r->build_reason[v], TP_REASON, "building kernels/throughput.cl with \"%.150s\" failed (build log on stderr)",
+                 p.options);
+        for (int i = 0; i < r->nentries; ++i)
+            for (int m = 0; m < TP_NMODE_COUNT; ++m)
+                if (nmode_on(r, v, m)) {
+                    r->e[i].measured[v][m] = 1;
+                    fig_fail(&r->e[i].dev[v][m], "%s", r->build_reason[v]);
+                }
+        return;
+    }
+    r->built[v] = 1;
+    if (!quiet)
+        fprintf(stderr, "throughput: %s build %.2f s\n", tp_variant_name(v), p.build_seconds);
+    cl_int e;
+    cl_mem out = clCreateBuffer(r->s->ctx, CL_MEM_WRITE_ONLY, (size_t)r->work_items * 16 * sizeof(float), NULL, &e);
+    for (int i = 0; i < r->nentries; ++i) {
+        struct tp_entry *en = &r->e[i];
+        for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+            if (!nmode_on(r, v, m))
+                continue;
+            struct tp_figure *f = &en->dev[v][m];
+            en->measured[v][m] = 1;
+            if (en->skipped) {
+                fig_fail(f, "user models are not compiled into the throughput kernels");
+                continue;
+            }
+            if (e != CL_SUCCESS) {
+                fig_fail(f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
+                continue;
+            }
+            struct tp_kernel_run kr;
+            memset(&kr, 0, sizeof kr);
+            kr.s = r->s;
+            kr.o = r->o;
+            kr.kind = m == TP_N_VARYING ? 1 : 0;
+            kr.global = (size_t)r->work_items;
+            kr.local = 1;   /* one float16 work-item per group: each is a long loop already */
+            kr.out = out;
+            kr.work_per_iter = (double)r->work_items * TP_EVALS_PER_ITER;
+            cl_int ke;
+            kr.k = tp_kernel(&p, nmode_names[m], en->m, &ke);
+            if (ke != CL_SUCCESS) {
+                fig_fail(f, "clCreateKernel failed with %s", cl_error_name(ke));
+                continue;
+            }
+            if ((ke = tp_set_fixed(&kr, en->m)) != CL_SUCCESS)
+                fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(ke));
+            else
+                tp_time_device(&kr, sums, f);
+            clReleaseKernel(kr.k);
+            /* The C baseline right after its device figure, so that the pair sees the same
+               machine load: the ratio is what counts. */
+            if (v == TP_VARIANT_DEFAULT && r->o->host_c)
+                tp_time_hostc(r->o, en->m, m, r->work_items, r->threads, sums, &en->hostc[m]);
+            if (!quiet)
+                fprintf(stderr, "throughput: %-18s %-8s %-17s %8.3g G/s%s%s\n", en->label, nmode_names[m],
+                        tp_variant_name(v), f->ok ? f->rate.median * 1e-9 : NAN,
+                        f->ok ? "" : "  ", f->ok ? "" : f->reason);
+        }
+    }
+    if (out)
+        clReleaseMemObject(out);
+    float *c = malloc(TP_ACC_POINTS * sizeof *c), *n = malloc(TP_ACC_POINTS * sizeof *n);
+    float *vals = malloc(TP_ACC_POINTS * sizeof *vals);
+    if (c && n && vals) {
+        tp_probe_points(r->o, c, n, TP_ACC_POINTS);
+        tp_accuracy(r, &p, v, c, n, vals);
+    }
+    free(vals);
+    free(n);
+    free(c);
+    tp_program_release(&p);
+}
+
+static void tp_measure_peak(struct tp_run *r, float *sums)
+{
+    struct tp_figure *f = &r->peak;
+    memset(f, 0, sizeof *f);
+    cl_program prog = NULL;
+    snprintf(r->peak_options, sizeof r->peak_options, "%s", r->o->base_options ? r->o->base_options : "");
+    if (clsession_build(r->s, "peak.cl", NULL, r->peak_options, &prog)) {
+        fig_fail(f, "building kernels/peak.cl failed (build log on stderr)");
+        return;
+    }
+    r->peak_build_seconds = r->s->last_build_seconds;
+    cl_int e;
+    struct tp_kernel_run kr;
+    memset(&kr, 0, sizeof kr);
+    kr.s = r->s;
+    kr.o = r->o;
+    kr.kind = 2;
+    kr.global = (size_t)r->work_items;
+    kr.local = 1;
+    kr.work_per_iter = (double)r->work_items * PEAK_UNROLL * PEAK_CHAINS * 16 * 2;
+    kr.k = clCreateKernel(prog, "peak_fma", &e);
+    if (e != CL_SUCCESS) {
+        fig_fail(f, "clCreateKernel(peak_fma) failed with %s", cl_error_name(e));
+    } else {
+        kr.out = clCreateBuffer(r->s->ctx, CL_MEM_WRITE_ONLY, (size_t)r->work_items * 16 * sizeof(float), NULL, &e);
+        if (e != CL_SUCCESS)
+            fig_fail(f, "clCreateBuffer failed with %s", cl_error_name(e));
+        else if ((e = tp_set_fixed(&kr, NULL)) != CL_SUCCESS)
+            fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(e));
+        else
+            tp_time_device(&kr, sums, f);
+        if (kr.out)
+            clReleaseMemObject(kr.out);
+        clReleaseKernel(kr.k);
+    }
+    clReleaseProgram(prog);
+}
+
+/* Relative difference of two per-n figures (0 when both are 0). */
+static double rel_diff(float a, float b)
+{
+    double s = fmax(fabs((double)a), fabs((double)b));
+    return s > 0 ? fabs((double)a - (double)b) / s : 0.0;
+}
+
+/* The accuracy sweep on the device (its own kernel, as `brdfbench accuracy` runs it) against
+   the same sweep in C, model by model, with the same protocol: a warm-up, then timed runs. */
+static void tp_measure_sweep(struct tp_run *r, int quiet)
+{
+    const struct throughput_options *o = r->o;
+    const struct accuracy_grid *g = &o->sweep_grid;
+    struct accuracy_ctx actx;
+    r->sweep_ran = 1;
+    r->sweep_n_count = accuracy_grid_count(g);
+    r->sw = calloc((size_t)r->nmodels, sizeof *r->sw);
+    float *nv = malloc((size_t)r->sweep_n_count * sizeof *nv);
+    float *dev = malloc((size_t)r->sweep_n_count * 8 * sizeof *dev);
+    float *hc = malloc((size_t)r->sweep_n_count * 8 * sizeof *hc);
+    if (!r->sw || !nv || !dev || !hc) {
+        snprintf(r->sweep_reason, TP_REASON, "out of memory for %ld values of n", r->sweep_n_count);
+        goto done;
+    }
+    if (accuracy_grid_check(g, r->s, r->sweep_reason, TP_REASON))
+        goto done;
+    if (accuracy_open(&actx, r->s, o->base_options ? o->base_options : "")) {
+        snprintf(r->sweep_reason, TP_REASON, "building kernels/accuracy.cl failed (build log on stderr)");
+        goto done;
+    }
+    r->sweep_build_seconds = r->s->last_build_seconds;
+    for (long i = 0; i < r->sweep_n_count; ++i)
+        nv[i] = (float)accuracy_grid_n(g, i);
+    r->nsw = r->nmodels;
+    for (int k = 0; k < r->nmodels; ++k) {
+        const struct model_spec *m = &r->models[k];
+        struct tp_sweep_model *w = &r->sw[k];
+        snprintf(w->label, sizeof w->label, "%s", m->label);
+        w->points = (double)r->sweep_n_count * 2.0 * (double)g->samples;
+        struct model_spec ref;
+        model_reference_spec(m, &ref);
+        if (!hostc_supports(m->info->kernel_id) || !hostc_supports(ref.info->kernel_id)) {
+            snprintf(w->reason, TP_REASON, "user models have no C loop; not compared");
+            continue;
+        }
+        double ds[TP_MAX_REPS], hs[TP_MAX_REPS], t;
+        int failed = 0;
+        for (int rep = -1; rep < o->sweep_reps && !failed; ++rep) {   /* rep -1: the warm-up */
+            if (accuracy_sweep_device(&actx, m, g, dev, &t)) {
+                snprintf(w->reason, TP_REASON, "the device sweep failed (see stderr)");
+                failed = 1;
+            } else if (!(t > 0)) {
+                snprintf(w->reason, TP_REASON, "the profiling timer gave no time for the sweep");
+                failed = 1;
+            } else if (rep >= 0) {
+                ds[rep] = t;
+            }
+        }
+        char err[256];
+        for (int rep = 0; rep < o->sweep_reps && !failed; ++rep) {
+            if (hostc_sweep(m->info->kernel_id, (float)m->params[0], (float)m->params[1], ref.info->kernel_id,
+                            (float)ref.params[0], (float)ref.params[1], nv, r->sweep_n_count, g->samples, r->threads,
+                            hc, &hs[rep], err, sizeof err)) {
+                snprintf(w->reason, TP_REASON, "%.200s", err);
+                failed = 1;
+            }
+        }
+        if (failed)
+            continue;
+        w->dev_s = stats_of(ds, o->sweep_reps);
+        w->hostc_s = stats_of(hs, o->sweep_reps);
+        w->agree = 0;
+        for (long i = 0; i < r->sweep_n_count; ++i)
+            for (int q = 0; q < 6; q += 2) {
+                double d = rel_diff(dev[i * 8 + q], hc[i * 8 + q]);
+                if (!(d <= w->agree))
+                    w->agree = d;
+            }
+        w->ok = 1;
+        if (!quiet)
+            fprintf(stderr, "throughput: sweep %-18s device %.3f s, C %.3f s\n", w->label, w->dev_s.median,
+                    w->hostc_s.median);
+    }
+    accuracy_close(&actx);
+done:
+    free(hc);
+    free(dev);
+    free(nv);
+}
+
+/* ---- output ------------------------------------------------------------------------------ */
+
+static double ratio(double a, double b) { return (a > 0 && b > 0 && isfinite(a) && isfinite(b)) ? a / b : NAN; }
+
+static double peak_fma_per_s(const struct tp_run *r)
+{
+    return r->peak.ok ? r->peak.rate.median / 2.0 : NAN;
+}
+
+/* Ratios of entry i under variant v and mode m (NAN when a side is missing). */
+struct tp_ratios {
+    double to_reference, to_model_reference, to_host_c, of_peak;
+};
+
+static struct tp_ratios ratios_of(const struct tp_run *r, int i, int v, int m)
+{
+    const struct tp_entry *e = &r->e[i];
+    const struct tp_figure *f = &e->dev[v][m];
+    struct tp_ratios q = { NAN, NAN, NAN, NAN };
+    if (!f->ok)
+        return q;
+    const struct tp_figure *pw = &r->e[0].dev[v][m];
+    q.to_reference = pw->ok ? ratio(f->rate.median, pw->rate.median) : NAN;
+    if (e->ref_entry >= 0 && r->e[e->ref_entry].dev[v][m].ok)
+        q.to_model_reference = ratio(f->rate.median, r->e[e->ref_entry].dev[v][m].rate.median);
+    if (e->hostc[m].ok)
+        q.to_host_c = ratio(f->rate.median, e->hostc[m].rate.median);
+    q.of_peak = ratio(f->rate.median, peak_fma_per_s(r));
+    return q;
+}
+
+static void jw_stats(struct jw *w, const char *key, struct tp_stats s)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, "min", s.min);
+    jw_kv_num(w, "median", s.median);
+    jw_kv_num(w, "max", s.max);
+    jw_obj_end(w);
+}
+
+static void jw_ratio(struct jw *w, const char *key, double v, const char *why_missing)
+{
+    jw_kv_num(w, key, v);
+    if (!isfinite(v)) {
+        char k[96];
+        snprintf(k, sizeof k, "%s_reason", key);
+        jw_kv_str(w, k, why_missing);
+    }
+}
+
+static const char *tp_definitions[][2] = {
+    { "evals_per_s", "model evaluations per second: work-items x iterations x 64 over the launch time (profiling events); min/median/max over the timed launches" },
+    { "evals_per_s_wall", "the same over wall time, enqueue to clFinish" },
+    { "ratio_to_reference", "evals_per_s / evals_per_s of the pow(c, n) built-in, same build options and n mode, same run" },
+    { "ratio_to_model_reference", "evals_per_s / evals_per_s of the model's own reference (phong, phongn, blinnn) as brdf_models.h evaluates it" },
+    { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/hostc_baseline.c: -O3 -march=native, pthreads over the online CPUs, powf for c^n)" },
+    { "fraction_of_peak", "evals_per_s / the device's measured peak in FMA per second (peak_fma float16 chains; flops / 2): the inverse is the model's cost in FMA slots" },
+    { "inputs", "c sweeps [0, 1) per work-item in steps of 1/(64 iters), made in registers; n uniform = a kernel argument, n varying = a different n in [n_lo, n_hi] for every evaluation" },
+    { "accuracy.max_diff_of_peak", "largest |device value - double reference value| / |reference lobe at c = 1| over 4096 probe points, half in the epicentre, half out to 4 x_e, n over [n_lo, n_hi]" },
+};
+
+static int write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
+{
+    const struct throughput_options *o = r->o;
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", THROUGHPUT_SCHEMA);
+    jw_context_begin(&w, r->s, r->options[TP_VARIANT_DEFAULT]);
+    const char *aff = getenv("POCL_AFFINITY");
+    jw_kv_str(&w, "pocl_affinity", aff ? aff : "(unset)");
+    jw_key(&w, "throughput");
+    jw_obj_begin(&w);
+    jw_kv_int(&w, "reps", o->reps);
+    jw_kv_num(&w, "min_time_s", o->min_time);
+    jw_kv_int(&w, "work_items", r->work_items);
+    jw_kv_int(&w, "local_size", 1);
+    jw_kv_int(&w, "evaluations_per_iteration", TP_EVALS_PER_ITER);
+    jw_kv_num(&w, "n_uniform", (float)o->n_uniform);
+    jw_kv_num(&w, "n_lo", o->n_lo);
+    jw_kv_num(&w, "n_hi", o->n_hi);
+    jw_kv_int(&w, "host_c_threads", o->host_c ? r->threads : 0);
+    jw_kv_str(&w, "host_c_flags", "-O3 -march=native -fno-math-errno");
+    jw_kv_str(&w, "loadavg_start", r->load_start);
+    jw_kv_str(&w, "loadavg_end", r->load_end);
+    jw_obj_end(&w);
+    jw_obj_end(&w);   /* context */
+
+    jw_key(&w, "definitions");
+    jw_obj_begin(&w);
+    for (size_t i = 0; i < sizeof tp_definitions / sizeof tp_definitions[0]; ++i)
+        jw_kv_str(&w, tp_definitions[i][0], tp_definitions[i][1]);
+    jw_obj_end(&w);
+
+    jw_key(&w, "builds");
+    jw_arr_begin(&w);
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
+        if (!variant_on(r, v))
+            continue;
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "variant", tp_variant_name(v));
+        jw_kv_str(&w, "build_options", r->options[v]);
+        jw_kv_str(&w, "status", r->built[v] ? "ok" : "failed");
+        jw_kv_num(&w, "build_seconds", r->build_seconds[v]);
+        if (!r->built[v])
+            jw_kv_str(&w, "reason", r->build_reason[v]);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+
+    jw_key(&w, "peak");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "status", r->peak.ok ? "ok" : "failed");
+    if (!r->peak.ok)
+        jw_kv_str(&w, "reason", r->peak.reason);
+    jw_kv_str(&w, "kernel", "kernels/peak.cl: 16 independent float16 FMA chains per work-item, 2 flops per lane and step");
+    jw_kv_str(&w, "build_options", r->peak_options);
+    jw_kv_num(&w, "build_seconds", r->peak_build_seconds);
+    jw_stats(&w, "flops_per_s", r->peak.rate);
+    jw_stats(&w, "flops_per_s_wall", r->peak.rate_wall);
+    jw_kv_num(&w, "fma_per_s", peak_fma_per_s(r));
+    jw_obj_end(&w);
+
+    jw_key(&w, "results");
+    jw_arr_begin(&w);
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
+        for (int i = 0; i < r->nentries; ++i)
+            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+                const struct tp_entry *e = &r->e[i];
+                if (!variant_on(r, v) || !e->measured[v][m])
+                    continue;
+                const struct tp_figure *f = &e->dev[v][m];
+                struct tp_ratios q = ratios_of(r, i, v, m);
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
+                jw_kv_str(&w, "label", e->label);
+                jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
+                jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
+                jw_kv_str(&w, "variant", tp_variant_name(v));
+                jw_kv_str(&w, "build_options", r->options[v]);
+                jw_kv_str(&w, "n_mode", nmode_names[m]);
+                jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
+                if (!f->ok)
+                    jw_kv_str(&w, "reason", f->reason);
+                jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+                jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
+                jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
+                jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
+                jw_kv_int(&w, "iterations_per_work_item", f->iters);
+                jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
+                jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
+                jw_kv_bool(&w, "values_finite", f->ok && f->finite);
+                if (f->ok && !f->finite)
+                    jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
+                                          "finite); the rate is the rate of that code");
+                jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
+                jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
+                         f->ok ? "the model's reference is not part of this run" : f->reason);
+                jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
+                         !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
+                                  : e->hostc[m].reason);
+                jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
+                jw_key(&w, "host_c");
+                jw_obj_begin(&w);
+                if (!o->host_c) {
+                    jw_kv_str(&w, "status", "not run");
+                } else {
+                    jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
+                    if (!e->hostc[m].ok)
+                        jw_kv_str(&w, "reason", e->hostc[m].reason);
+                    jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
+                    jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
+                    jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
+                    jw_kv_int(&w, "threads", r->threads);
+                }
+                jw_obj_end(&w);
+                jw_key(&w, "accuracy");
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
+                if (!e->acc_ok[v])
+                    jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
+                jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
+                jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
+                jw_kv_int(&w, "points", TP_ACC_POINTS);
+                jw_obj_end(&w);
+                jw_obj_end(&w);
+            }
+    jw_arr_end(&w);
+
+    jw_key(&w, "sweep");
+    jw_obj_begin(&w);
+    if (!r->sweep_ran) {
+        jw_kv_str(&w, "status", "not run");
+    } else {
+        double dsum = 0, hsum = 0, pts = 0, agree = 0;
+        int all_ok = r->nsw > 0 && !r->sweep_reason[0];
+        for (int k = 0; k < r->nsw; ++k) {
+            if (!r->sw[k].ok) {
+                all_ok = 0;
+                continue;
+            }
+            dsum += r->sw[k].dev_s.median;
+            hsum += r->sw[k].hostc_s.median;
+            pts += r->sw[k].points;
+            agree = fmax(agree, r->sw[k].agree);
+        }
+        jw_kv_str(&w, "status", all_ok ? "ok" : "partial");
+        if (r->sweep_reason[0])
+            jw_kv_str(&w, "reason", r->sweep_reason);
+        jw_kv_str(&w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
+                              "(cosf for the sample cosines, powf for c^n), per model: median of the timed runs");
+        jw_kv_num(&w, "n_min", o->sweep_grid.n_min);
+        jw_kv_num(&w, "n_max", o->sweep_grid.n_max);
+        jw_kv_num(&w, "n_step", o->sweep_grid.n_step);
+        jw_kv_int(&w, "n_count", r->sweep_n_count);
+        jw_kv_int(&w, "samples_per_zone", o->sweep_grid.samples);
+        jw_kv_int(&w, "reps", o->sweep_reps);
+        jw_kv_num(&w, "build_seconds", r->sweep_build_seconds);
+        jw_kv_num(&w, "device_seconds", dsum > 0 ? dsum : NAN);
+        jw_kv_num(&w, "host_c_seconds", hsum > 0 ? hsum : NAN);
+        jw_kv_num(&w, "points", pts);
+        jw_kv_num(&w, "device_points_per_s", dsum > 0 ? pts / dsum : NAN);
+        jw_kv_num(&w, "host_c_points_per_s", hsum > 0 ? pts / hsum : NAN);
+        jw_ratio(&w, "speedup_vs_host_c", ratio(hsum, dsum), "no model was timed on both sides");
+        jw_kv_num(&w, "agreement_max_rel_diff", agree);
+        jw_kv_str(&w, "agreement_what", "largest relative difference between the device's and C's per-n maxima "
+                                        "(their sample cosines differ by float rounding)");
+        jw_key(&w, "models");
+        jw_arr_begin(&w);
+        for (int k = 0; k < r->nsw; ++k) {
+            const struct tp_sweep_model *s = &r->sw[k];
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "label", s->label);
+            jw_kv_str(&w, "status", s->ok ? "ok" : "failed");
+            if (!s->ok)
+                jw_kv_str(&w, "reason", s->reason);
+            jw_stats(&w, "device_seconds", s->ok ? s->dev_s : (struct tp_stats){ NAN, NAN, NAN });
+            jw_stats(&w, "host_c_seconds", s->ok ? s->hostc_s : (struct tp_stats){ NAN, NAN, NAN });
+            jw_kv_num(&w, "points", s->points);
+            jw_ratio(&w, "speedup_vs_host_c", s->ok ? ratio(s->hostc_s.median, s->dev_s.median) : NAN, s->reason);
+            jw_kv_num(&w, "agreement_max_rel_diff", s->ok ? s->agree : NAN);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+    }
+    jw_obj_end(&w);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+/* A growable text buffer for the CSV and the markdown. */
+struct tp_text {
+    char *s;
+    size_t len, cap;
+    int failed;
+};
+
+static void tx_printf(struct tp_text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void tx_printf(struct tp_text *t, const char *fmt, ...)
+{
+    if (t->failed)
+        return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        if (n < 0) {
+            t->failed = 1;
+            return;
+        }
+        if (t->s && t->len + (size_t)n < t->cap) {
+            t->len += (size_t)n;
+            return;
+        }
+        size_t cap = t->cap ? t->cap : 4096;
+        while (cap <= t->len + (size_t)n)
+            cap *= 2;
+        char *ns = realloc(t->s, cap);
+        if (!ns) {
+            t->failed = 1;
+            return;
+        }
+        t->s = ns;
+        t->cap = cap;
+    }
+}
+
+/* A number for CSV: empty when missing. */
+static void tx_num(struct tp_text *t, double v)
+{
+    if (isfinite(v))
+        tx_printf(t, ",%.6g", v);
+    else
+        tx_printf(t, ",");
+}
+
+static int write_csv(const struct tp_run *r, const char *path, char *err, size_t errlen)
+{
+    struct tp_text t = { 0 };
+    tx_printf(&t, "model,label,variant,build_options,n_mode,status,evals_per_s_min,evals_per_s_median,"
+                  "evals_per_s_max,evals_per_s_wall_median,ratio_to_reference,ratio_to_model_reference,"
+                  "ratio_to_host_c,fraction_of_peak,host_c_evals_per_s_median,max_diff_of_peak,reason\n");
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
+        for (int i = 0; i < r->nentries; ++i)
+            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+                const struct tp_entry *e = &r->e[i];
+                if (!variant_on(r, v) || !e->measured[v][m])
+                    continue;
+                const struct tp_figure *f = &e->dev[v][m];
+                struct tp_ratios q = ratios_of(r, i, v, m);
+                tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
+                          tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
+                tx_num(&t, f->ok ? f->rate.min : NAN);
+                tx_num(&t, f->ok ? f->rate.median : NAN);
+                tx_num(&t, f->ok ? f->rate.max : NAN);
+                tx_num(&t, f->ok ? f->rate_wall.median : NAN);
+                tx_num(&t, q.to_reference);
+                tx_num(&t, q.to_model_reference);
+                tx_num(&t, q.to_host_c);
+                tx_num(&t, q.of_peak);
+                tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
+                tx_num(&t, e->acc_max_diff[v]);
+                /* reasons never hold a double quote: they are written by this program */
+                tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
+            }
+    int rc = t.failed ? -1 : write_file_atomic(path, t.s, t.len, err, errlen);
+    if (t.failed)
+        snprintf(err, errlen, "out of memory writing %.900s", path);
+    free(t.s);
+    return rc;
+}
+
+/* A figure in G/s with 3 significant digits, or a dash. */
+static const char *gfmt(char *buf, size_t len, double v)
+{
+    if (isfinite(v))
+        snprintf(buf, len, "%.3g", v * 1e-9);
+    else
+        snprintf(buf, len, "-");
+    return buf;
+}
+
+static const char *xfmt(char *buf, size_t len, double v, const char *suffix)
+{
+    if (isfinite(v))
+        snprintf(buf, len, "%.3g%s", v, suffix);
+    else
+        snprintf(buf, len, "-");
+    return buf;
+}
+
+/* The summary tables, as text (md = 0) or markdown (md = 1). */
+static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+{
+    const struct throughput_options *o = r->o;
+    char a[32], b[32], c[32], d[32], e2[32], f2[32], g2[32], h2[32];
+    if (r->peak.ok)
+        tx_printf(t, "%sdevice peak: %.4g GFLOP/s (float16 FMA chains) = %.4g G FMA/s; fraction of peak = evaluations/s "
+                     "per FMA/s\n\n", md ? "" : "", r->peak.rate.median * 1e-9, peak_fma_per_s(r) * 1e-9);
+    else
+        tx_printf(t, "device peak: not measured (%s)\n\n", r->peak.reason);
+    int v = TP_VARIANT_DEFAULT;
+    if (variant_on(r, v)) {
+        tx_printf(t, "%sG evaluations/s, default build options (median of %d launches, profiling events; "
+                     "tuned C: %d threads)%s\n\n", md ? "**" : "", o->reps, r->threads, md ? "**" : "");
+        if (md)
+            tx_printf(t, "| model | n | G evals/s | min - max | x pow() | x model ref | x tuned C | of peak | C G evals/s |\n"
+                         "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        else
+            tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", "model", "n", "G evals/s", "min - max",
+                      "x pow()", "x ref", "x tuned C", "of peak", "C G/s");
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int i = 0; i < r->nentries; ++i) {
+                const struct tp_entry *e = &r->e[i];
+                if (!e->measured[v][m])
+                    continue;
+                const struct tp_figure *f = &e->dev[v][m];
+                struct tp_ratios q = ratios_of(r, i, v, m);
+                char range[80];
+                if (f->ok)
+                    snprintf(range, sizeof range, "%s - %s", gfmt(a, sizeof a, f->rate.min), gfmt(b, sizeof b, f->rate.max));
+                else
+                    snprintf(range, sizeof range, "failed");
+                const char *label = e->m ? e->label : "pow() built-in";
+                if (md)
+                    tx_printf(t, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", label, nmode_names[m],
+                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
+                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
+                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
+                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
+                else
+                    tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
+                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
+                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
+                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
+                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
+            }
+        tx_printf(t, "\n");
+    }
+    /* build options: speed beside accuracy */
+    int nvar = 0;
+    for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+        nvar += variant_on(r, vv);
+    if (nvar > 1 || !variant_on(r, TP_VARIANT_DEFAULT)) {
+        tx_printf(t, "%sbuild options: G evaluations/s (x default) | max |device - double| / reference peak%s\n\n",
+                  md ? "**" : "", md ? "**" : "");
+        if (md) {
+            tx_printf(t, "| model | n |");
+            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                if (variant_on(r, vv))
+                    tx_printf(t, " %s | accuracy |", tp_variant_name(vv));
+            tx_printf(t, "\n|---|---|");
+            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                if (variant_on(r, vv))
+                    tx_printf(t, "---:|---:|");
+            tx_printf(t, "\n");
+        } else {
+            tx_printf(t, "%-18s %-8s", "model", "n");
+            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                if (variant_on(r, vv))
+                    tx_printf(t, " %17s %9s", tp_variant_name(vv), "accuracy");
+            tx_printf(t, "\n");
+        }
+        int nonfinite = 0;
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int i = 0; i < r->nentries; ++i) {
+                const struct tp_entry *e = &r->e[i];
+                int any = 0;
+                for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                    any |= variant_on(r, vv) && vv != TP_VARIANT_DEFAULT && e->measured[vv][m];
+                if (!any)
+                    continue;
+                const char *label = e->m ? e->label : "pow() built-in";
+                tx_printf(t, md ? "| %s | %s |" : "%-18s %-8s", label, nmode_names[m]);
+                for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv) {
+                    if (!variant_on(r, vv))
+                        continue;
+                    const struct tp_figure *f = &e->dev[vv][m];
+                    char cell[64];
+                    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
+                    if (!e->measured[vv][m] || !f->ok)
+                        snprintf(cell, sizeof cell, "%s", e->measured[vv][m] ? "failed" : "-");
+                    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
+                        snprintf(cell, sizeof cell, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
+                                 f->rate.median / f0->rate.median);
+                    else
+                        snprintf(cell, sizeof cell, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
+                    nonfinite |= !f->finite && f->ok;
+                    char accs[32];
+                    if (e->acc_ok[vv])
+                        snprintf(accs, sizeof accs, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
+                    else
+                        snprintf(accs, sizeof accs, "-");
+                    tx_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
+                }
+                tx_printf(t, "\n");
+            }
+        if (nonfinite)
+            tx_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
+        tx_printf(t, "\n");
+    }
+    if (r->sweep_ran) {
+        double dsum = 0, hsum = 0, pts = 0;
+        int ok = 0;
+        for (int k = 0; k < r->nsw; ++k)
+            if (r->sw[k].ok) {
+                dsum += r->sw[k].dev_s.median;
+                hsum += r->sw[k].hostc_s.median;
+                pts += r->sw[k].points;
+                ++ok;
+            }
+        if (ok > 0)
+            tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d models, %.3g points): device %.3f s "
+                         "(%.3g G points/s), tuned C with powf %.3f s (%.3g G points/s): %.2fx\n",
+                      o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, pts,
+                      dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
+        else
+            tx_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
+    }
+}
+
+static int tp_run_all(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet,
+                      char **markdown)
+{
+    char err[1024];
+    if (markdown)
+        *markdown = NULL;
+    if (throughput_options_check(o, err, sizeof err)) {
+        fprintf(stderr, "brdfbench throughput: %s\n", err);
+        return EXIT_USAGE;
+    }
+    struct tp_run *r = calloc(1, sizeof *r);
+    if (!r)
+        return EXIT_RUNTIME;
+    int rc = 0;
+    float *sums = NULL;
+    r->s = s;
+    r->o = o;
+    if (o->model_count > 0) {
+        memcpy(r->models, o->models, (size_t)o->model_count * sizeof o->models[0]);
+        r->nmodels = o->model_count;
+    } else {
+        r->nmodels = model_spec_list_default(r->models, TP_MAX_MODELS);
+    }
+    r->work_items = o->work_items > 0 ? o->work_items : 32L * (long)(s->compute_units ? s->compute_units : 1);
+    if (r->work_items > TP_MAX_WORK_ITEMS)
+        r->work_items = TP_MAX_WORK_ITEMS;
+    r->threads = o->threads > 0 ? o->threads : hostc_default_threads();
+    r->nentries = r->nmodels + 1;
+    r->e = calloc((size_t)r->nentries, sizeof *r->e);
+    sums = malloc((size_t)r->work_items * 16 * sizeof *sums);
+    if (!r->e || !sums) {
+        fprintf(stderr, "brdfbench throughput: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    snprintf(r->e[0].label, sizeof r->e[0].label, "pow");
+    r->e[0].ref_entry = -1;
+    for (int i = 1; i < r->nentries; ++i) {
+        struct tp_entry *e = &r->e[i];
+        e->m = &r->models[i - 1];
+        snprintf(e->label, sizeof e->label, "%s", e->m->label);
+        e->skipped = usermodel_of(e->m) != NULL;
+        e->ref_entry = -1;
+        struct model_spec ref;
+        model_reference_spec(e->m, &ref);
+        for (int k = 1; k < r->nentries; ++k)
+            if (strcmp(r->models[k - 1].label, ref.label) == 0)
+                e->ref_entry = k;
+    }
+    if (!quiet)
+        fprintf(stderr, "throughput: %s, %ld work-items, %d models, min time %.3g s x %d reps\n", s->device_name,
+                r->work_items, r->nmodels, o->min_time, o->reps);
+    for (int i = 0; i < r->nentries; ++i)
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            fig_fail(&r->e[i].hostc[m], !o->host_c ? "the C baseline was not run (--no-host-c)"
+                                        : !variant_on(r, TP_VARIANT_DEFAULT) ? "the C baseline runs with the default variant"
+                                        : "not measured");
+    tp_read_load(r->load_start, sizeof r->load_start);
+    tp_measure_peak(r, sums);
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
+        if (variant_on(r, v))
+            tp_measure_variant(r, v, sums, quiet);
+    if (o->sweep)
+        tp_measure_sweep(r, quiet);
+    tp_read_load(r->load_end, sizeof r->load_end);
+
+    char path[4200];
+    if (path_join(path, sizeof path, out_dir, "throughput.json") || write_json(r, path, err, sizeof err) ||
+        path_join(path, sizeof path, out_dir, "throughput.csv") || write_csv(r, path, err, sizeof err)) {
+        fprintf(stderr, "brdfbench throughput: %s\n", err);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    struct tp_text t = { 0 };
+    if (!quiet) {
+        render_tables(r, &t, 0);
+        if (t.s)
+            fputs(t.s, stdout);
+        printf("written: %s/throughput.json, %s/throughput.csv\n", out_dir, out_dir);
+        free(t.s);
+    }
+    if (markdown) {
+        struct tp_text md = { 0 };
+        render_tables(r, &md, 1);
+        *markdown = md.failed ? NULL : md.s;
+        if (md.failed)
+            free(md.s);
+    }
+done:
+    free(sums);
+    if (r) {
+        free(r->sw);
+        free(r->e);
+        free(r);
+    }
+    return rc;
+}
+
+int throughput_run(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet)
+{
+    return tp_run_all(s, o, out_dir, quiet, NULL);
+}
+
+int throughput_run_md(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet,
+                      char **markdown)
+{
+    return tp_run_all(s, o, out_dir, quiet, markdown);
+}

@@ -1,0 +1,101 @@
+/* throughput.h - every model's cost on the OpenCL device (SPEC.md, Throughput), side by side
+ * with the pow() built-in, a tuned C loop doing the same work, and the device's measured peak;
+ * under three sets of build options, each with what it does to accuracy. Optionally the
+ * accuracy sweep itself against the same sweep in tuned C.
+ *
+ * Timing protocol (DESIGN.md, habit 7): every program build is timed on its own; each kernel
+ * is first launched with the exact NDRange it is timed with (PoCL compiles per launch shape);
+ * the iterations per launch are calibrated until one launch takes --min-time; then --reps
+ * launches give min / median / max from the OpenCL profiling events and from wall time. All
+ * ratios are between figures measured in the same run. */
+#ifndef BRDF_THROUGHPUT_H
+#define BRDF_THROUGHPUT_H
+
+#include "accuracy.h"
+#include "clsession.h"
+#include "models.h"
+
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/1"
+#define TP_STREAMS 4            /* kernels/throughput.cl */
+#define TP_EVALS_PER_ITER (16 * TP_STREAMS)
+#define TP_MAX_MODELS 64
+#define TP_MAX_REPS 1000
+#define TP_MIN_TIME_MIN 1e-4
+#define TP_MIN_TIME_MAX 10.0
+#define TP_MAX_WORK_ITEMS 65536
+#define TP_MAX_ITERS (1L << 24)
+
+/* Build-option variants: what each does to speed, and to accuracy against the double reference. */
+enum tp_variant { TP_VARIANT_DEFAULT = 0, TP_VARIANT_FAST_RELAXED, TP_VARIANT_DENORMS_ZERO, TP_VARIANT_COUNT };
+/* How n reaches the model: one value per launch (a material), or one per evaluation (a map). */
+enum tp_nmode { TP_N_UNIFORM = 0, TP_N_VARYING, TP_NMODE_COUNT };
+
+const char *tp_variant_name(int v);      /* "default", "fast-relaxed-math", "denorms-are-zero" */
+const char *tp_variant_options(int v);   /* "", "-cl-fast-relaxed-math", "-cl-denorms-are-zero" */
+const char *tp_nmode_name(int m);        /* "uniform", "varying" */
+
+struct throughput_options {
+    struct model_spec models[TP_MAX_MODELS];
+    int model_count;             /* 0: every model of the default set */
+    int reps;                    /* timed launches per figure, 1..TP_MAX_REPS */
+    double min_time;             /* seconds one timed launch takes at least */
+    unsigned variants;           /* bit (1 << enum tp_variant) per variant to measure */
+    unsigned n_modes;            /* bit (1 << enum tp_nmode) per mode to measure */
+    unsigned variant_n_modes;    /* n modes measured under the non-default variants */
+    int host_c;                  /* time the C baseline too */
+    int threads;                 /* C baseline threads; 0: the online CPUs */
+    long work_items;             /* device work-items per launch (0: 32 per compute unit) */
+    double n_uniform;            /* n of the uniform mode */
+    double n_lo, n_hi;           /* range of n in the varying mode */
+    int sweep;                   /* also time the accuracy sweep against the same sweep in C */
+    struct accuracy_grid sweep_grid;
+    int sweep_reps;
+    const char *base_options;    /* build options added to every variant (NULL: none) */
+};
+
+/* The configuration `brdfbench throughput` starts from, and the one `brdfbench all` runs
+ * (about 20 s on a 2-core machine): every model, 3 variants, both n modes, C baseline, sweep. */
+void throughput_options_default(struct throughput_options *o);
+/* Checks every field against its domain. Returns 0 or EXIT_USAGE with a one-line message. */
+int throughput_options_check(const struct throughput_options *o, char *err, size_t errlen);
+
+/* Measures, prints a table on stdout unless quiet, and writes out_dir/throughput.json and
+ * out_dir/throughput.csv. A figure that cannot be measured (build failure, timer error) is a
+ * row with status and reason, not a failure of the run. Returns 0 or an exit code (EXIT_RUNTIME
+ * when the results cannot be written or the device fails outright). */
+int throughput_run(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet);
+/* The same, and *markdown (malloc'd, caller frees; NULL on failure) receives the summary
+ * tables as markdown, for report.md. */
+int throughput_run_md(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet,
+                      char **markdown);
+
+/* ---- lower level, for tests ------------------------------------------------------------ */
+
+/* The throughput program of one variant: a kernel set per model plus the pow() built-in. */
+struct tp_program {
+    struct cl_session *s;
+    cl_program program;
+    int variant;
+    char options[256];
+    double build_seconds;
+    int ids[TP_MAX_MODELS];       /* kernel ids compiled in */
+    int id_count;
+};
+
+/* Builds kernels/throughput.cl with one kernel set per distinct model id of models (user
+ * models are left out). Returns 0 or an exit code; the build log is printed on failure. */
+int tp_program_build(struct tp_program *p, struct cl_session *s, const struct model_spec *models, int count,
+                     int variant, const char *base_options);
+void tp_program_release(struct tp_program *p);
+/* Evaluates model m (NULL: the pow() built-in) at count points with the tp_points kernel. */
+int tp_program_points(struct tp_program *p, const struct model_spec *m, const float *c, const float *n,
+                      size_t count, float *out);
+/* One launch of tp_uniform/tp_varying for m (NULL: pow) over work_items work-items and iters
+ * iterations; sums receives work_items x 16 partial sums. Uses the n of o. */
+int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                      long work_items, long iters, float *sums, double *event_seconds);
+/* The inputs of such a launch, for tp_input_at (host/hostc_baseline.h). */
+struct tp_inputs;
+void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in);
+
+#endif

@@ -1,0 +1,39 @@
+/*
+ * peak.cl - the device's measured peak of float arithmetic, as clpeak measures it: chains of
+ * fused multiply-adds on float16, with enough independent chains per work-item (16) to cover
+ * the FMA latency on every pipe. x <- x a + b with 0 < a < 1 converges to b / (1 - a), so the
+ * values stay normal and finite for any number of iterations.
+ *
+ * One iteration is PEAK_UNROLL steps of PEAK_CHAINS chains of 16 lanes: 2 flops per lane and
+ * step. The host counts flops as work-items x iters x PEAK_UNROLL x PEAK_CHAINS x 16 x 2.
+ */
+#define PEAK_CHAINS 16   /* host/throughput.c PEAK_CHAINS and PEAK_UNROLL must match */
+#define PEAK_UNROLL 4
+
+#define PEAK_STEP(x) x = fma(x, a, b)
+#define PEAK_STEP_ALL                                                                  \
+    PEAK_STEP(x0); PEAK_STEP(x1); PEAK_STEP(x2); PEAK_STEP(x3);                       \
+    PEAK_STEP(x4); PEAK_STEP(x5); PEAK_STEP(x6); PEAK_STEP(x7);                       \
+    PEAK_STEP(x8); PEAK_STEP(x9); PEAK_STEP(x10); PEAK_STEP(x11);                     \
+    PEAK_STEP(x12); PEAK_STEP(x13); PEAK_STEP(x14); PEAK_STEP(x15)
+
+__kernel void peak_fma(const float a_in, const float b_in, const int iters, __global float *out)
+{
+    const int gid = (int)get_global_id(0);
+    const float16 a = (float16)(a_in), b = (float16)(b_in);
+    const float16 s = (float16)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f,
+                                8.0f, 9.0f, 10.0f, 11.0f, 12.0f, 13.0f, 14.0f, 15.0f) * 1e-3f
+                      + (float)(gid % 64) * 1e-4f;
+    float16 x0 = s, x1 = s + 0.01f, x2 = s + 0.02f, x3 = s + 0.03f;
+    float16 x4 = s + 0.04f, x5 = s + 0.05f, x6 = s + 0.06f, x7 = s + 0.07f;
+    float16 x8 = s + 0.08f, x9 = s + 0.09f, x10 = s + 0.10f, x11 = s + 0.11f;
+    float16 x12 = s + 0.12f, x13 = s + 0.13f, x14 = s + 0.14f, x15 = s + 0.15f;
+    for (int i = 0; i < iters; ++i) {
+        PEAK_STEP_ALL;
+        PEAK_STEP_ALL;
+        PEAK_STEP_ALL;
+        PEAK_STEP_ALL;
+    }
+    vstore16(((x0 + x1) + (x2 + x3)) + ((x4 + x5) + (x6 + x7)) +
+             ((x8 + x9) + (x10 + x11)) + ((x12 + x13) + (x14 + x15)), gid, out);
+}

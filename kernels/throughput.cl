@@ -1,0 +1,133 @@
+/*
+ * throughput.cl - the cost of each model where shading pays it (SPEC.md, Throughput).
+ *
+ * A work-item evaluates TP_STREAMS independent float16 streams of inputs made in registers
+ * from the work-item id and the loop counter, and sums the values, so that neither loads nor
+ * stores hide the arithmetic. Explicit float16 is used because PoCL vectorises it to 512
+ * bits and calls the vector forms of exp/log/pow, where a scalar kernel is vectorised to 256
+ * bits at most and its scalar pow/exp calls are not vectorised at all. Several independent
+ * streams keep the sums' add latency off the critical path.
+ *
+ * Inputs (the same in host/hostc_baseline.c, which times the same work in C):
+ *   cosine   c = ((16 u + lane) + phase) * dc, then c += 64 dc per iteration, so one work-item
+ *            sweeps c over [0, 1) (the cosine comes from a dot product in shading; every value
+ *            of it occurs); phase = (gid mod 64) / 64 gives each work-item its own points;
+ *   n        uniform: one value for the launch, as for one material; or
+ *            varying: n = n_lo + (16 u + lane) dn_lane, then n += dn_step per iteration, a
+ *            different shininess for every evaluation (per-pixel n), within [n_lo, n_hi].
+ *
+ * The host appends one line TP_MODEL_KERNELS(id) per model of a run: each model gets its own
+ * kernels with the model id known at compile time, so brdf_eval's switch folds away as it
+ * would in a shader specialised for its material. The pow() built-in gets the same kernels
+ * (tp_*_pow): the reference cost each model is compared with.
+ *
+ * Kernels, for a model id or pow:
+ *   tp_uniform_X (n, p0, p1, dc, iters, out)        sums of f over the generated inputs
+ *   tp_varying_X (n_lo, dn_lane, dn_step, p0, p1, dc, iters, out)
+ *   tp_points_X  (p0, p1, c[], n[], out[])           f at given points (accuracy checks)
+ * out receives 16 partial sums per work-item.
+ */
+#define REAL float16
+#define RSCALAR float
+#include "brdf_models.h"
+
+#define TP_STREAMS 4   /* host/throughput.h TP_STREAMS must match */
+
+static float16 tp_lanes(void)
+{
+    return (float16)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f,
+                     8.0f, 9.0f, 10.0f, 11.0f, 12.0f, 13.0f, 14.0f, 15.0f);
+}
+
+/* The starting cosines of stream u: ((16 u + lane) + phase) * dc. The sum is exact (small
+   integers plus a multiple of 1/64), so the host reproduces every input bit for bit. */
+#define TP_COS_START(u, phase, dc) (((tp_lanes() + (float)(16 * (u))) + (phase)) * (dc))
+#define TP_PHASE(gid) ((float)((gid) % 64) * (1.0f / 64.0f))
+
+#define TP_UNIFORM_KERNEL(name, F)                                                              \
+    __kernel void name(const float n_uniform, const float p0, const float p1, const float dc, \
+                       const int iters, __global float *out)                                  \
+    {                                                                                         \
+        const int gid = (int)get_global_id(0);                                                \
+        const float16 n = (float16)(n_uniform);                                               \
+        const float dc_step = dc * (float)(16 * TP_STREAMS);                                  \
+        const float phase = TP_PHASE(gid);                                                    \
+        float16 c0 = TP_COS_START(0, phase, dc), c1 = TP_COS_START(1, phase, dc);             \
+        float16 c2 = TP_COS_START(2, phase, dc), c3 = TP_COS_START(3, phase, dc);             \
+        float16 a0 = (float16)(0.0f), a1 = a0, a2 = a0, a3 = a0;                              \
+        for (int i = 0; i < iters; ++i) {                                                     \
+            a0 += F(c0, n, p0, p1);                                                           \
+            a1 += F(c1, n, p0, p1);                                                           \
+            a2 += F(c2, n, p0, p1);                                                           \
+            a3 += F(c3, n, p0, p1);                                                           \
+            c0 += dc_step;                                                                    \
+            c1 += dc_step;                                                                    \
+            c2 += dc_step;                                                                    \
+            c3 += dc_step;                                                                    \
+        }                                                                                     \
+        vstore16((a0 + a1) + (a2 + a3), gid, out);                                            \
+    }
+
+#define TP_VARYING_KERNEL(name, F)                                                              \
+    __kernel void name(const float n_lo, const float dn_lane, const float dn_step,             \
+                       const float p0, const float p1, const float dc, const int iters,        \
+                       __global float *out)                                                   \
+    {                                                                                         \
+        const int gid = (int)get_global_id(0);                                                \
+        const float dc_step = dc * (float)(16 * TP_STREAMS);                                  \
+        const float phase = TP_PHASE(gid);                                                    \
+        float16 c0 = TP_COS_START(0, phase, dc), c1 = TP_COS_START(1, phase, dc);             \
+        float16 c2 = TP_COS_START(2, phase, dc), c3 = TP_COS_START(3, phase, dc);             \
+        /* fma: one rounding, which the host reproduces with fmaf */                          \
+        float16 n0 = fma(tp_lanes(), (float16)(dn_lane), (float16)(n_lo));                    \
+        float16 n1 = fma(tp_lanes() + 16.0f, (float16)(dn_lane), (float16)(n_lo));            \
+        float16 n2 = fma(tp_lanes() + 32.0f, (float16)(dn_lane), (float16)(n_lo));            \
+        float16 n3 = fma(tp_lanes() + 48.0f, (float16)(dn_lane), (float16)(n_lo));            \
+        float16 a0 = (float16)(0.0f), a1 = a0, a2 = a0, a3 = a0;                              \
+        for (int i = 0; i < iters; ++i) {                                                     \
+            a0 += F(c0, n0, p0, p1);                                                          \
+            a1 += F(c1, n1, p0, p1);                                                          \
+            a2 += F(c2, n2, p0, p1);                                                          \
+            a3 += F(c3, n3, p0, p1);                                                          \
+            c0 += dc_step;                                                                    \
+            c1 += dc_step;                                                                    \
+            c2 += dc_step;                                                                    \
+            c3 += dc_step;                                                                    \
+            n0 += dn_step;                                                                    \
+            n1 += dn_step;                                                                    \
+            n2 += dn_step;                                                                    \
+            n3 += dn_step;                                                                    \
+        }                                                                                     \
+        vstore16((a0 + a1) + (a2 + a3), gid, out);                                            \
+    }
+
+#define TP_POINTS_KERNEL(name, F)                                                               \
+    __kernel void name(const float p0, const float p1, __global const float *c,                \
+                       __global const float *n, __global float *out)                          \
+    {                                                                                         \
+        const size_t i = get_global_id(0);                                                    \
+        vstore16(F(vload16(i, c), vload16(i, n), p0, p1), i, out);                            \
+    }
+
+/* The three kernels of one model, its id a compile-time constant. */
+#define TP_MODEL_KERNELS(id)                                                                   \
+    static float16 tp_model_##id(float16 c, float16 n, float p0, float p1)                    \
+    {                                                                                         \
+        return brdf_eval(id, c, n, p0, p1);                                                   \
+    }                                                                                         \
+    TP_UNIFORM_KERNEL(tp_uniform_##id, tp_model_##id)                                         \
+    TP_VARYING_KERNEL(tp_varying_##id, tp_model_##id)                                         \
+    TP_POINTS_KERNEL(tp_points_##id, tp_model_##id)
+
+/* The pow() built-in, the reference cost: c^n as a shader would write it. */
+static float16 tp_pow_builtin(float16 c, float16 n, float p0, float p1)
+{
+    (void)p0;
+    (void)p1;
+    return pow(c, n);
+}
+TP_UNIFORM_KERNEL(tp_uniform_pow, tp_pow_builtin)
+TP_VARYING_KERNEL(tp_varying_pow, tp_pow_builtin)
+TP_POINTS_KERNEL(tp_points_pow, tp_pow_builtin)
+
+/* TP_MODEL_KERNELS lines follow, appended by the host. */

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# test_throughput_cli.sh - `brdfbench throughput` end to end on a tiny configuration: the JSON
+# contract (strict, no NaN), the CSV, the printed table, and each bad flag (exit 2, a message
+# naming the flag and its accepted range, nothing written). No time is asserted.
+set -u
+BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
+expect() {
+    local code=$1 pattern=$2
+    shift 2
+    "$BIN" "$@" >"$T/out" 2>"$T/err"
+    local rc=$?
+    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 300 "$T/err")"; return; fi
+    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 300 "$T/err")' lacks /$pattern/"; return; fi
+    ok
+}
+
+"$BIN" throughput --models cq2,fq:Q=0.7 --reps 2 --min-time 0.002 --work-items 4 --variants default,denorms-are-zero \
+    --sweep-samples 32 --sweep-n-step 100 --sweep-reps 1 --out "$T/run" >"$T/table" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "tiny run exit $rc: $(cat "$T/err")"
+python3 - "$T/run/throughput.json" <<'PY' && ok || bad "throughput.json contract"
+import json, math, sys
+def no_const(x): raise ValueError("non-finite number in JSON: " + x)
+d = json.load(open(sys.argv[1]), parse_constant=no_const)
+assert d["schema"] == "brdfbench.throughput/1"
+ctx = d["context"]
+for k in ("date", "device", "platform_version", "build_options", "git_revision", "throughput"):
+    assert k in ctx, k
+assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
+assert [b["variant"] for b in d["builds"]] == ["default", "denorms-are-zero"]
+assert d["peak"]["status"] == "ok" and d["peak"]["fma_per_s"] > 0
+rows = d["results"]
+# pow + 2 models; default: uniform and varying; denorms-are-zero: uniform
+assert len(rows) == 3 * 2 + 3, len(rows)
+assert [r["label"] for r in rows[:6:2]] == ["pow", "cq2", "fq:Q=0.7"], [r["label"] for r in rows]
+for r in rows:
+    assert r["status"] == "ok", r
+    e = r["evals_per_s"]
+    assert 0 < e["min"] <= e["median"] <= e["max"], e
+    assert r["ratio_to_reference"] > 0 and r["fraction_of_peak"] > 0
+    assert r["build_options"] == ("" if r["variant"] == "default" else "-cl-denorms-are-zero")
+    assert r["accuracy"]["status"] == "ok" and r["accuracy"]["max_diff_of_peak"] < 1e-5
+    if r["variant"] == "default":
+        assert r["host_c"]["status"] == "ok" and r["ratio_to_host_c"] > 0, r
+# the pow() row is its own reference
+assert rows[0]["ratio_to_reference"] == 1
+sw = d["sweep"]
+assert sw["status"] == "ok" and sw["speedup_vs_host_c"] > 0 and sw["n_count"] == 11, sw
+PY
+head -1 "$T/run/throughput.csv" | grep -q '^model,label,variant,build_options,n_mode,status,evals_per_s_min' && ok || bad "csv header"
+[ "$(wc -l <"$T/run/throughput.csv")" -eq 10 ] && ok || bad "csv rows: $(wc -l <"$T/run/throughput.csv")"
+grep -qE '^cq2 +uniform' "$T/table" && grep -q 'accuracy sweep' "$T/table" && ok || bad "table: $(head -c 400 "$T/table")"
+
+# bad flags: exit 2, the flag and its accepted range named, no output folder made
+expect 2 '--reps: .*in \[1, 1000\]' throughput --reps 0 --out "$T/x1"
+expect 2 '--min-time: .*in \[0.0001, 10\]' throughput --min-time 1e9 --out "$T/x2"
+expect 2 '--min-time' throughput --min-time abc --out "$T/x3"
+expect 2 "--variants: unknown 'fast' \(accepted: default, fast-relaxed-math, denorms-are-zero\)" throughput --variants fast --out "$T/x4"
+expect 2 '--n-modes: .*accepted: uniform, varying' throughput --n-modes none --out "$T/x5"
+expect 2 '--n-range: .*LO:HI' throughput --n-range 5 --out "$T/x6"
+expect 2 '--n-range: LO \(9\) must be below HI \(3\)' throughput --n-range 9:3 --out "$T/x7"
+expect 2 '--work-items: .*in \[1, 65536\]' throughput --work-items 0 --out "$T/x8"
+expect 2 '--sweep-samples: .*multiple of 16' throughput --sweep-samples 20 --out "$T/x9"
+expect 2 'unknown model' throughput --models nosuch --out "$T/x10"
+expect 2 "unknown option '--bogus'" throughput --bogus
+for k in 1 2 3 4 5 6 7 8 9 10; do [ -e "$T/x$k" ] && bad "bad flag $k made its output folder"; done
+"$BIN" throughput --help >"$T/help" 2>&1 && grep -q -- '--min-time' "$T/help" && ok || bad "--help"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
