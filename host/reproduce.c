@@ -124,6 +124,14 @@ static void claim_number(struct claim *c, const char *claimed_text, double claim
     c->measured = measured;
     snprintf(c->tolerance, sizeof c->tolerance, "%s", tol_text);
     c->reproduced = isfinite(measured) && fabs(measured - claimed) <= tol * (1 + 1e-9) + 1e-15;
+    /* For a printed number, say whether the paper rounded or truncated the measured value. */
+    if (c->reproduced && strstr(tol_text, "last printed digit")) {
+        double rounded = round(measured / tol) * tol, cut = trunc(measured / tol) * tol;
+        if (fabs(rounded - claimed) < 1e-3 * tol)
+            note_add(c, "The measured value rounds to the printed one.");
+        else if (fabs(cut - claimed) < 1e-3 * tol)
+            note_add(c, "The printed value is the measured one truncated, not rounded.");
+    }
 }
 
 static void claim_bool(struct claim *c, const char *claimed_text, int holds, const char *tol_text)
@@ -796,7 +804,6 @@ static int add_paper2(struct repro *p)
     claim_number(c, "1.256%", 0.01256, fq2->epicentre.value, 1e-5, "+-0.001% (one unit in the last printed digit)");
     setf(c->measured_text, sizeof c->measured_text, "%.4f%% at n = %g, x = %.5f", 100 * fq2->epicentre.value,
          fq2->epicentre.n, fq2->epicentre.x);
-    note_add(c, "The printed figure is the measured one truncated to 4 digits.");
     grid_note(p, c, SW_FQ2);
     setf(c->method, sizeof c->method, "%s", sweep_method);
 
