@@ -15,6 +15,7 @@
 #include "plots.h"
 #include "render.h"
 #include "reproduce.h"
+#include "throughput.h"
 #include "jsonr.h"
 #include "report.h"
 
@@ -61,6 +62,7 @@ struct all_run {
     int npics, cappics;
     struct md_buf steps;
     int picture_failures;
+    int part_failures, part_rc;
     char picture_error[1024];
     struct report_block claims, throughput, images;
     struct md_buf claims_md, throughput_md, images_md;
@@ -117,6 +119,23 @@ static void add_picture(struct all_run *r, const char *file, int section, const 
     vsnprintf(p->caption, sizeof p->caption, fmt, ap);
     va_end(ap);
     p->section = section;
+}
+
+/* Records the outcome of another command's part: on failure its section says so. */
+static void part(struct all_run *r, const char *name, struct report_block *blk, int rc)
+{
+    if (rc == 0) return;
+    static char why[3][160];
+    int k = r->part_failures < 3 ? r->part_failures : 2;
+    snprintf(why[k], sizeof why[k], "this part failed (exit %d); its message is in the run's error output.", rc);
+    blk->markdown = NULL;
+    blk->missing = why[k];
+    r->part_failures++;
+    if (!r->part_rc || rc == EXIT_RUNTIME) r->part_rc = rc == EXIT_NO_DEVICE ? EXIT_RUNTIME : rc;
+    r->step++;
+    if (r->tty) fprintf(stderr, "\r\033[K");
+    fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", elapsed(r), r->step, ALL_STEPS, name, rc);
+    md_printf(&r->steps, "%d. **%s**: failed (exit %d)\n", r->step, name, rc);
 }
 
 static void picture_failed(struct all_run *r, const char *msg)
@@ -364,6 +383,22 @@ static int step_plots(struct all_run *r)
                             "f_Q: max absolute error Delta against Q (paper 2, fig. 3)", "max Delta over [0, pi/2]", 0,
                             r->q, r->q_Delta, r->nq, "fq (f_Q)", r->f2_Delta, "cq2 (f2), independent of Q", 0.64);
     }
+    /* throughput bars, when the throughput step wrote its results */
+    path_join(path, sizeof path, r->run_dir, "throughput.json");
+    if (access(path, R_OK) == 0) {
+        static const char *const modes[2] = {"uniform", "varying"};
+        for (int k = 0; k < 2; k++) {
+            char file[64], caption[200];
+            snprintf(file, sizeof file, "throughput_%s_n.png", modes[k]);
+            snprintf(caption, sizeof caption,
+                     "evaluations per second per model with n %s, default build options; the pow() built-in dark",
+                     modes[k]);
+            if (plots_add_throughput(&r->plots, path, modes[k], file, caption, err, sizeof err) == 2) {
+                fprintf(stderr, "brdfbench all: %s\n", err);
+                return EXIT_RUNTIME;
+            }
+        }
+    }
     path_join(path, sizeof path, r->run_dir, "plots.json");
     if (plots_write_json(&r->plots, path, &r->s, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
@@ -440,11 +475,43 @@ static int step_claims(struct all_run *r)
     return 0;
 }
 
+/* Throughput (throughput.h) with the configuration made for the main job: every model, three
+ * sets of build options, both n modes, the C baseline and the sweep timing. Bars of the
+ * default build options per n mode go with the plots. */
 static int step_throughput(struct all_run *r)
 {
     double t = wall_seconds();
-    r->throughput.missing = "the throughput measurement (`brdfbench throughput`) is not part of this build.";
-    step_done(r, "throughput", t, "not available in this build");
+    struct throughput_options o;
+    throughput_options_default(&o);
+    o.model_count = 0;
+    for (int m = 0; m < r->nmodels && o.model_count < TP_MAX_MODELS; m++) o.models[o.model_count++] = r->models[m];
+    if (r->set.quick) {
+        o.reps = 2;
+        o.min_time = 1e-3;
+        o.variants = 1u << TP_VARIANT_DEFAULT;
+        o.host_c = 0;
+        o.sweep = 0;
+    }
+    char err[1024], *md = NULL;
+    if (throughput_options_check(&o, err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: throughput: %s\n", err);
+        return EXIT_USAGE;
+    }
+    progress(r, "throughput", 0, 1, "measuring");
+    int rc = throughput_run_md(&r->s, &o, r->run_dir, 1, &md);
+    if (rc) {
+        free(md);
+        fprintf(stderr, "brdfbench all: the throughput measurement failed (exit %d)\n", rc);
+        return rc;
+    }
+    if (md) {
+        md_embed(&r->throughput_md, md);
+        r->throughput.markdown = r->throughput_md.s;
+        free(md);
+    } else {
+        r->throughput.missing = "the throughput measurement ran but gave no table.";
+    }
+    step_done(r, "throughput", t, "%d models -> throughput.json, throughput.csv", o.model_count);
     return 0;
 }
 
@@ -648,14 +715,22 @@ int cmd_all(int argc, char **argv)
     if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) goto done;
     r->actx_open = 1;
 
+    /* The sweep, the heatmaps and the plots are this command's own: a failure there stops the
+     * run. The claims, throughput and image passes are other commands' parts: a failure there
+     * is recorded in its report section and the run goes on, then exits non-zero. */
     if ((rc = step_accuracy(r)) != 0) goto done;
-    if ((rc = step_claims(r)) != 0) goto done;
+    part(r, "claims", &r->claims, step_claims(r));
     if ((rc = step_q_sweep(r)) != 0) goto done;
-    if ((rc = step_throughput(r)) != 0) goto done;
+    part(r, "throughput", &r->throughput, step_throughput(r));
     if ((rc = step_heatmaps(r)) != 0) goto done;
     if ((rc = step_plots(r)) != 0) goto done;
-    if ((rc = step_images(r)) != 0) goto done;
+    part(r, "images", &r->images, step_images(r));
     if ((rc = step_report(r, elapsed(r))) != 0) goto done;
+    if (r->part_failures) {
+        fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);
+        rc = r->part_rc;
+        goto done;
+    }
     if (r->picture_failures) {
         fprintf(stderr, "brdfbench all: %d picture(s) could not be written; first: %s\n", r->picture_failures,
                 r->picture_error);
