@@ -734,6 +734,14 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
     sum->seconds = wall_seconds() - t0;
     jw_kv_num(&w, "seconds", sum->seconds);
     jw_obj_end(&w);
+    if (summary && !w.failed) {
+        /* the caller may write the text later, beside its own files */
+        sum->json = malloc(w.len + 2);
+        if (sum->json) {
+            memcpy(sum->json, w.buf, w.len);
+            memcpy(sum->json + w.len, "\n", 2);
+        }
+    }
     if (out_dir) {
         char path[4200], err[512];
         path_join(path, sizeof path, out_dir, "energy.json");
@@ -903,4 +911,10 @@ done:
     free(spec_b);
     free(spec_a);
     return rc;
+}
+
+void energy_summary_free(struct energy_summary *summary)
+{
+    free(summary->json);
+    summary->json = NULL;
 }

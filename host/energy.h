@@ -103,10 +103,12 @@ struct energy_summary {
     double quadrature_tolerance;                /* agreement bound used for the checks */
     int all_closed_forms_agree;
     double seconds;
+    char *json;                                 /* energy.json's text (malloc'd; energy_summary_free) */
 };
 
 /* The albedo tables and the reciprocity check for the registry's models; writes
  * out_dir/energy.json when out_dir is not NULL. Returns 0 or an exit code. */
 int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct energy_summary *summary);
+void energy_summary_free(struct energy_summary *summary);
 
 #endif

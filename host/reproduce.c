@@ -1392,6 +1392,7 @@ static void repro_free(struct repro *p)
     free(p->q_att);
     accuracy_close(&p->actx);
     integrate_close(&p->ic);
+    energy_summary_free(&p->energy);
 }
 
 int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct reproduce_options *o, int quiet,
@@ -1425,7 +1426,7 @@ int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct rep
     if (!rc && o->energy) {
         if (!quiet)
             fprintf(stderr, "reproduce: albedo and reciprocity...\n");
-        rc = energy_run(s, out_dir, 1, &p.energy);
+        rc = energy_run(s, NULL, 1, &p.energy);   /* energy.json is written with the other files */
         p.have_energy = rc == 0;
     }
     if (!rc)
@@ -1455,8 +1456,13 @@ int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct rep
             path_join(path, sizeof path, out_dir, "claims.md");
             if (write_file_atomic(path, r->markdown, strlen(r->markdown), err, sizeof err) == 0) {
                 path_join(path, sizeof path, out_dir, "q_sweep.json");
-                if (write_q_sweep_json(&p, path, err, sizeof err) == 0)
+                if (write_q_sweep_json(&p, path, err, sizeof err) == 0) {
                     err[0] = '\0';
+                    if (p.have_energy && p.energy.json) {
+                        path_join(path, sizeof path, out_dir, "energy.json");
+                        write_file_atomic(path, p.energy.json, strlen(p.energy.json), err, sizeof err);
+                    }
+                }
             }
         }
         if (err[0]) {
