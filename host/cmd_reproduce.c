@@ -123,7 +123,7 @@ int cmd_reproduce(int argc, char **argv)
         rc = EXIT_RUNTIME;
     }
     if (!rc && !quiet)
-        printf("written: %s/claims.json, claims.md, q_sweep.json, energy.json\n", run_dir);
+        printf("written: %s/claims.json, claims.md, q_sweep.json%s\n", run_dir, opt.energy ? ", energy.json" : "");
     clsession_close(&s);
     return rc;
 
