@@ -789,8 +789,10 @@ static int add_paper2(struct repro *p)
             nv[i] = 2.0 + (double)i;
         struct fq_ctx fc = { nv, nc, 0.01255, 0 };
         double q_at = root_brent(fq_max_rel_minus_target, &fc, 0.60, 0.6499);
-        note_add(c, "The per-n max delta rises with n towards %.4f%% (n = 1e6, host double), so 1.255%% is reached at "
-                    "no n.", 100 * host_max_rel_at(&fq_spec, 1e6));
+        note_add(c, "The maximum lies inside the zone (x = %.5f < x_e = %.5f), so the zone's end does not enter; the "
+                    "per-n max delta rises with n towards %.4f%% (n = 1e6, host double), so 1.255%% is reached at no "
+                    "n, and the grid does not move it (below).", fq->epicentre.x, zone_epicentre_end(fq->epicentre.n),
+                 100 * host_max_rel_at(&fq_spec, 1e6));
         if (isfinite(q_at))
             note_add(c, "1.255%% is f_Q's max delta over [2, 1000] at Q = %.5f.", q_at);
     }
