@@ -218,5 +218,11 @@ assert f is not None and f.get("type") == "regression"
 rc=$?
 [ $rc -eq 0 ] && ok || bad "a 1% change within a 2% tolerance must pass, got $rc: $(cat "$T/out")"
 
+# 5. The documented example (tests/gates/example.json, every kind of gate; its bounds are
+#    loose or closed forms: f = 0.9 c^n has relative error 0.1) runs and passes.
+"$BIN" gate "$SRC/tests/gates/example.json" --quiet >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && [ "$(grep -c '^PASS  ' "$T/out")" -eq 8 ] && ok || bad "example.json: exit $rc: $(cat "$T/out" "$T/err")"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
