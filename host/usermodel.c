@@ -647,17 +647,92 @@ int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen)
 int usermodel_build(struct cl_session *s, const char *kernel_file, const struct model_spec *m,
                     const char *options, cl_program *out)
 {
+    return usermodel_build_ex(s, kernel_file, NULL, m, options, out);
+}
+
+int usermodel_build_ex(struct cl_session *s, const char *kernel_file, const char *extra_before,
+                       const struct model_spec *m, const char *options, cl_program *out)
+{
     const struct user_model *um = usermodel_of(m);
     if (!um)
-        return clsession_build(s, kernel_file, NULL, options, out);
+        return clsession_build(s, kernel_file, extra_before, options, out);
     char opts[1024];
     snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", options && *options ? " " : "",
              USERMODEL_FLOAT_OPTIONS);
-    int rc = clsession_build_user(s, kernel_file, um->device_source, opts, out, 0);
+    char *source = NULL;
+    if (extra_before && *extra_before) {
+        size_t a = strlen(extra_before), b = strlen(um->device_source);
+        if (!(source = malloc(a + b + 2))) {
+            fprintf(stderr, "brdfbench: out of memory\n");
+            return EXIT_RUNTIME;
+        }
+        memcpy(source, extra_before, a);
+        source[a] = '\n';
+        memcpy(source + a + 1, um->device_source, b + 1);
+    }
+    int rc = clsession_build_user(s, kernel_file, source ? source : um->device_source, opts, out, 0);
+    free(source);
     if (rc == EXIT_USAGE)
         fprintf(stderr, "brdfbench: user model '%s' (%s) does not compile; the build log above names the "
                         "lines of %s\n", um->name, um->origin, um->from_file ? um->origin : "the expression");
     return rc;
+}
+
+void usermodel_builds_init(struct usermodel_builds *b, struct cl_session *s, const char *kernel_file,
+                           const char *kernel_name, const char *options)
+{
+    memset(b, 0, sizeof *b);
+    b->s = s;
+    snprintf(b->kernel_file, sizeof b->kernel_file, "%s", kernel_file);
+    snprintf(b->kernel_name, sizeof b->kernel_name, "%s", kernel_name);
+    snprintf(b->options, sizeof b->options, "%s", options ? options : "");
+}
+
+int usermodel_builds_kernel(struct usermodel_builds *b, const struct model_spec *m, cl_kernel shared,
+                            cl_kernel *out)
+{
+    const struct user_model *um = usermodel_of(m);
+    *out = shared;
+    if (!um)
+        return 0;
+    for (int i = 0; i < b->count; ++i)
+        if (b->item[i].model == m->info) {
+            *out = b->item[i].kernel;
+            return usermodel_reference_open(um, b->s);   /* idempotent */
+        }
+    if (b->count >= USERMODEL_MAX) {
+        fprintf(stderr, "brdfbench: at most %d user models per run\n", USERMODEL_MAX);
+        return EXIT_RUNTIME;
+    }
+    cl_program prog = NULL;
+    int rc = usermodel_build(b->s, b->kernel_file, m, b->options, &prog);
+    if (rc)
+        return rc;
+    cl_int e;
+    cl_kernel k = clCreateKernel(prog, b->kernel_name, &e);
+    if (e != CL_SUCCESS) {
+        cl_report("clCreateKernel(user model)", e, __FILE__, __LINE__);
+        clReleaseProgram(prog);
+        return EXIT_RUNTIME;
+    }
+    b->item[b->count].model = m->info;
+    b->item[b->count].program = prog;
+    b->item[b->count].kernel = k;
+    b->count++;
+    *out = k;
+    return usermodel_reference_open(um, b->s);
+}
+
+void usermodel_builds_close(struct usermodel_builds *b)
+{
+    for (int i = 0; i < b->count; ++i) {
+        if (b->item[i].kernel)
+            clReleaseKernel(b->item[i].kernel);
+        if (b->item[i].program)
+            clReleaseProgram(b->item[i].program);
+        usermodel_reference_close(usermodel_of_info(b->item[i].model));
+    }
+    b->count = 0;
 }
 
 int usermodel_reference_open(const struct user_model *cum, struct cl_session *s)

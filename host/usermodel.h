@@ -88,6 +88,32 @@ int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen);
  * EXIT_USAGE), for a built-in model as clsession_build does. */
 int usermodel_build(struct cl_session *s, const char *kernel_file, const struct model_spec *m,
                     const char *options, cl_program *out);
+/* The same with extra text placed between the kernel file and the user model's text (a
+ * library that generates kernels per model id, such as throughput's TP_MODEL_KERNELS). */
+int usermodel_build_ex(struct cl_session *s, const char *kernel_file, const char *extra_before,
+                       const struct model_spec *m, const char *options, cl_program *out);
+
+/* Kernels for user models, for a library that builds one program for all the built-in models
+ * (render.c's shade.cl, field.c's field.cl): a user model gets its own build of the same
+ * kernel file on first use, and its reference on the device is opened with it. */
+struct usermodel_builds {
+    struct cl_session *s;
+    char kernel_file[64], kernel_name[64], options[512];
+    int count;
+    struct {
+        const struct model_info *model;
+        cl_program program;
+        cl_kernel kernel;
+    } item[USERMODEL_MAX];
+};
+void usermodel_builds_init(struct usermodel_builds *b, struct cl_session *s, const char *kernel_file,
+                           const char *kernel_name, const char *options);
+/* The kernel that evaluates model m: `shared` for a built-in model, else the kernel of the
+ * user model's own build. Returns 0 or an exit code (EXIT_USAGE: the model does not compile). */
+int usermodel_builds_kernel(struct usermodel_builds *b, const struct model_spec *m, cl_kernel shared,
+                            cl_kernel *out);
+void usermodel_builds_close(struct usermodel_builds *b);
+
 /* The options that usermodel_build adds for a user model's float builds. */
 #define USERMODEL_FLOAT_OPTIONS "-DBRDF_HAVE_USER_MODEL -cl-single-precision-constant"
 
