@@ -5,6 +5,7 @@
 #include "exitcodes.h"
 #include "outdir.h"
 #include "render.h"
+#include "usermodel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,6 +41,7 @@ static void render_usage(FILE *f)
             "  --out DIR          output folder (default: a new folder results/<date-time>/, with\n"
             "                     results/latest)\n"
             "  --quiet            no progress or tables on stdout\n"
+            USERMODEL_OPTIONS_HELP
             DEVICE_OPTIONS_HELP,
             RENDER_MIN_SIDE, RENDER_MAX_SIDE, RENDER_MAX_COLS, RENDER_TEAPOT_PATH,
             RENDER_BUNNY_PATH);
@@ -108,6 +110,11 @@ int cmd_render(int argc, char **argv)
         if (d < 0)
             goto usage_error;
         if (d > 0)
+            continue;
+        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
+        if (u < 0)
+            goto usage_error;
+        if (u > 0)
             continue;
         if (strcmp(a, "--help") == 0) {
             render_usage(stdout);
@@ -229,6 +236,8 @@ int cmd_render(int argc, char **argv)
             goto usage_error;
         }
     }
+    if (!models_text && usermodel_count() > 0)
+        models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
         int n = model_spec_list_parse(models_text, o.models, RENDER_MAX_MODELS, err, sizeof err);
         if (n < 0)

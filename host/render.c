@@ -292,6 +292,7 @@ int render_device_open(struct render_device *d, struct cl_session *s,
         free(table);
         return rc;
     }
+    usermodel_builds_init(&d->user, s, "shade.cl", "shade", "");
     d->shade = clCreateKernel(d->program, "shade", &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(shade)", fail);
     d->copy = clCreateKernel(d->program, "copy_gbuffer", &e);
@@ -310,6 +311,7 @@ fail:
 
 void render_device_close(struct render_device *d)
 {
+    usermodel_builds_close(&d->user);
     if (d->display_table)
         clReleaseMemObject(d->display_table);
     if (d->copy)
@@ -374,21 +376,25 @@ int render_device_shade(struct render_device *d, cl_mem gbuf, size_t stride, siz
                         const struct render_light *lt, const struct render_options *o,
                         unsigned *rgba, float *spec, double *seconds)
 {
-    int rc = set_common_args(d->shade, gbuf, stride, npix, out_rgba, out_spec);
+    cl_kernel shade;   /* a user model's own build of shade.cl, or the shared one */
+    int rc = usermodel_builds_kernel(&d->user, m, d->shade, &shade);
+    if (rc)
+        return rc;
+    rc = set_common_args(shade, gbuf, stride, npix, out_rgba, out_spec);
     if (rc)
         return rc;
     cl_int kmode = mode, kmodel = m->info->kernel_id;
     cl_float p0 = (cl_float)m->params[0], p1 = (cl_float)m->params[1];
     cl_float16 params;
     shade_params(lt, o, &params);
-    CL_CHECK_GOTO(clSetKernelArg(d->shade, 5, sizeof kmode, &kmode), done);
-    CL_CHECK_GOTO(clSetKernelArg(d->shade, 6, sizeof kmodel, &kmodel), done);
-    CL_CHECK_GOTO(clSetKernelArg(d->shade, 7, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(d->shade, 8, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(d->shade, 9, sizeof params, &params), done);
-    CL_CHECK_GOTO(clSetKernelArg(d->shade, 10, sizeof d->display_table, &d->display_table),
+    CL_CHECK_GOTO(clSetKernelArg(shade, 5, sizeof kmode, &kmode), done);
+    CL_CHECK_GOTO(clSetKernelArg(shade, 6, sizeof kmodel, &kmodel), done);
+    CL_CHECK_GOTO(clSetKernelArg(shade, 7, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(shade, 8, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(shade, 9, sizeof params, &params), done);
+    CL_CHECK_GOTO(clSetKernelArg(shade, 10, sizeof d->display_table, &d->display_table),
                   done);
-    rc = launch(d, d->shade, seconds);
+    rc = launch(d, shade, seconds);
     if (rc)
         return rc;
     if (rgba)

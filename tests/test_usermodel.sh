@@ -148,7 +148,22 @@ assert abs(g[2]["measured"] - 0.75) < 1e-12
 assert d["summary"]["sweeps"] == 2, d["summary"]
 '
 
-# 7. Errors: the build log in the user's own line numbers, exit 2.
+# 7. Render: shade.cl built with the user model. f = k c^n against c^n: with k = 1 the images are
+#    identical (max 0), with k = 2 the difference is the reference itself, so its largest
+#    value is the reference's peak; the double reference (on the device) checks out.
+"$BIN" render --model-file "$F/scaled.cl" --models scaled:k=1,scaled:k=2 --scene spheres --size 96x64 \
+    --time-sizes none --no-images --quiet --out "$T/r1" >"$T/out" 2>"$T/err" && ok || bad "render with a user model: $(cat "$T/err")"
+check_json "$T/r1/render.json" "render of k c^n: identity figures" '
+ms = {m["model"]: m for m in d["scenes"][0]["models"]}
+one, two = ms["scaled:k=1"], ms["scaled:k=2"]
+assert one["family"] == "user" and one["reference"] == "phong"
+assert one["metrics"]["max_abs"] == 0, one["metrics"]
+p = two["metrics"]["peak_reference"]
+assert p > 0 and abs(two["metrics"]["max_abs"] - p) <= 1e-6 * p, two["metrics"]
+assert one["double_reference_check"]["within_bound"] and two["double_reference_check"]["within_bound"]
+'
+
+# 8. Errors: the build log in the user's own line numbers, exit 2.
 expect 2 "bad_syntax.cl:6:[0-9]+: .*expected ';'" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out "$T/e1"
 [ ! -e "$T/e1/accuracy.json" ] && ok || bad "a failed build wrote results"
 # 'q' is the 13th character of the expression.
@@ -157,6 +172,7 @@ cat >"$T/g/broken.json" <<EOF
 {"gates": [{"model": "broken", "model_file": "$F/bad_syntax.cl", "metric": "epicentre.max_rel", "max": 1}]}
 EOF
 expect 2 "bad_syntax.cl:6:" gate "$T/g/broken.json"
+expect 2 "bad_syntax.cl:6:" render --model-file "$F/bad_syntax.cl" --scene spheres --size 32x32 --time-sizes none --out "$T/e3"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
