@@ -11,6 +11,7 @@
 #include "context.h"
 #include "exitcodes.h"
 #include "field.h"
+#include "fit.h"
 #include "outdir.h"
 #include "plots.h"
 #include "render.h"
@@ -28,7 +29,7 @@
 
 #define ALL_MAX_MODELS 64
 #define ALL_MAX_Q 256
-#define ALL_STEPS 8
+#define ALL_STEPS 9
 
 struct all_settings {
     int quick;
@@ -64,8 +65,8 @@ struct all_run {
     int picture_failures;
     int part_failures, part_rc;
     char picture_error[1024];
-    struct report_block claims, throughput, images;
-    struct md_buf claims_md, throughput_md, images_md;
+    struct report_block claims, fit, throughput, images;
+    struct md_buf claims_md, fit_md, throughput_md, images_md;
 };
 
 /* ---- progress ------------------------------------------------------------------- */
@@ -125,8 +126,8 @@ static void add_picture(struct all_run *r, const char *file, int section, const 
 static void part(struct all_run *r, const char *name, struct report_block *blk, int rc)
 {
     if (rc == 0) return;
-    static char why[3][160];
-    int k = r->part_failures < 3 ? r->part_failures : 2;
+    static char why[4][160];
+    int k = r->part_failures < 4 ? r->part_failures : 3;
     snprintf(why[k], sizeof why[k], "this part failed (exit %d); its message is in the run's error output.", rc);
     blk->markdown = NULL;
     blk->missing = why[k];
@@ -475,6 +476,48 @@ static int step_claims(struct all_run *r)
     return 0;
 }
 
+/* Beyond the papers (fit.h): the family's per-n limit and the best affine k(n) = a n + b,
+ * beside fq2, fvol and cq2 over the same range -> fit.json and a short table. */
+static int step_fit(struct all_run *r)
+{
+    double t = wall_seconds();
+    struct fit_options o;
+    fit_options_default(&o);
+    if (r->set.quick) {
+        o.n_step = 25;
+        o.samples = 256;
+    }
+    struct fit_report rep;
+    memset(&rep, 0, sizeof rep);
+    progress(r, "fit", 0, 1, "fitting");
+    int rc = fit_run(&r->s, r->run_dir, &o, 1, &rep);
+    if (rc) {
+        fit_report_free(&rep);
+        fprintf(stderr, "brdfbench all: the fit failed (exit %d)\n", rc);
+        return rc;
+    }
+    struct md_buf *b = &r->fit_md;
+    md_printf(b, "For f = (k(n)(c - 1) + 1)^2 zeroed past its root, over n in [%g, %g] (`brdfbench fit`, `fit.json`):\n\n",
+              o.n_min, o.n_max);
+    md_printf(b, "| model | max δ (epicentre) | max Δ (attenuation) |\n|---|---|---|\n");
+    md_printf(b, "| per-n minimax k(n): the family's limit | %.4f%% (n = %g) | |\n", 100 * rep.limit_max, rep.limit_max_n);
+    const struct fit_model *fm[2] = { &rep.main, &rep.at_fq2_cap };
+    for (int i = 0; i < 2; ++i)
+        if (fm[i]->have_sweep)
+            md_printf(b, "| `%s`%s | %.4f%% | %.5f |\n", fm[i]->spec_text,
+                      i ? " (max Δ capped at fq2's)" : " (best affine, uncapped)",
+                      100 * fm[i]->sweep.epicentre.value, fm[i]->sweep.attenuation.value);
+    for (int i = 0; i < rep.compare_count; ++i)
+        md_printf(b, "| %s | %.4f%% | %.5f |\n", rep.compare[i].model.label, 100 * rep.compare[i].epicentre.value,
+                  rep.compare[i].attenuation.value);
+    if (rep.verdict[0])
+        md_printf(b, "\n%s\n", rep.verdict);
+    r->fit.markdown = b->s;
+    step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
+    fit_report_free(&rep);
+    return 0;
+}
+
 /* Throughput (throughput.h) with the configuration made for the main job: every model, three
  * sets of build options, both n modes, the C baseline and the sweep timing. Bars of the
  * default build options per n mode go with the plots. */
@@ -587,6 +630,7 @@ static int step_report(struct all_run *r, double wall)
     in.nacc = r->nacc;
     in.acc_grid = &r->set.grid;
     in.claims = r->claims;
+    in.fit = r->fit;
     in.throughput = r->throughput;
     in.images = r->images;
     in.pictures = r->pics;
@@ -642,6 +686,7 @@ static void run_free(struct all_run *r)
     free(r->pics);
     md_free(&r->steps);
     md_free(&r->claims_md);
+    md_free(&r->fit_md);
     md_free(&r->throughput_md);
     md_free(&r->images_md);
     if (r->actx_open) accuracy_close(&r->actx);
@@ -720,6 +765,7 @@ int cmd_all(int argc, char **argv)
      * is recorded in its report section and the run goes on, then exits non-zero. */
     if ((rc = step_accuracy(r)) != 0) goto done;
     part(r, "claims", &r->claims, step_claims(r));
+    part(r, "fit", &r->fit, step_fit(r));
     if ((rc = step_q_sweep(r)) != 0) goto done;
     part(r, "throughput", &r->throughput, step_throughput(r));
     if ((rc = step_heatmaps(r)) != 0) goto done;

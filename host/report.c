@@ -186,6 +186,7 @@ char *report_markdown(const struct report_input *in)
     static const struct { const char *file, *what; } data[] = {
         {"accuracy.json", "the accuracy sweep (and `accuracy.csv`, per model per n)"},
         {"claims.json", "the claims with verdicts (and `claims.md`)"},
+        {"fit.json", "the best affine cosine-quadratic model and the family's per-n limit"},
         {"q_sweep.json", "f_Q against Q"},
         {"energy.json", "albedo and reciprocity checks"},
         {"throughput.json", "throughput (and `throughput.csv`)"},
@@ -201,6 +202,7 @@ char *report_markdown(const struct report_input *in)
     if (in->steps_md) md_printf(&b, "Steps:\n\n%s\n", in->steps_md);
 
     block(&b, "Claims of the papers", &in->claims);
+    block(&b, "Beyond the papers: the best affine cosine-quadratic model", &in->fit);
     accuracy_table(&b, in);
     block(&b, "Throughput", &in->throughput);
     pictures(&b, in, REPORT_THROUGHPUT);

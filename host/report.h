@@ -41,7 +41,7 @@ struct report_input {
     const struct accuracy_result *acc;
     int nacc;
     const struct accuracy_grid *acc_grid;
-    struct report_block claims, throughput, images;
+    struct report_block claims, fit, throughput, images;
     const struct report_picture *pictures;
     int npictures;
     const char *notes_md;         /* optional closing notes */
