@@ -19,6 +19,7 @@
 #include "throughput.h"
 #include "jsonr.h"
 #include "report.h"
+#include "usermodel.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -662,6 +663,8 @@ static void all_usage(FILE *f)
             "  --results-root DIR   where run folders are made (default: results)\n"
             "  --out DIR            write into DIR instead of a new run folder (results/latest unchanged)\n"
             "  --quick              coarse grids (seconds; for tests and trials, not for figures)\n"
+            USERMODEL_OPTIONS_HELP
+            "                       (user models join the default set of models)\n"
             DEVICE_OPTIONS_HELP);
 }
 
@@ -714,6 +717,9 @@ int cmd_all(int argc, char **argv)
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
         if (d < 0) goto usage_error;
         if (d > 0) continue;
+        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
+        if (u < 0) goto usage_error;
+        if (u > 0) continue;
         if (strcmp(a, "--help") == 0) {
             all_usage(stdout);
             return EXIT_OK;
@@ -733,6 +739,9 @@ int cmd_all(int argc, char **argv)
     settings_default(&r->set, quick);
     r->nmodels = model_spec_list_parse(models_text, r->models, ALL_MAX_MODELS, err, sizeof err);
     if (r->nmodels < 0) goto usage_error;
+    /* User models join the default set (with --models they are named there). */
+    if (strcmp(models_text, "all") == 0 && usermodel_append_all(r->models, &r->nmodels, ALL_MAX_MODELS, err, sizeof err))
+        goto usage_error;
     if (accuracy_grid_check(&r->set.grid, NULL, err, sizeof err)) goto usage_error;
 
     int rc = clsession_open(&r->s, dev.platform, dev.device, err, sizeof err);

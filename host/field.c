@@ -57,6 +57,7 @@ int field_open(struct field_ctx *f, struct cl_session *s, const char *build_opti
     int rc = clsession_build(s, "field.cl", NULL, build_options ? build_options : "", &f->program);
     if (rc) return rc;
     cl_int e;
+    usermodel_builds_init(&f->user, s, "field.cl", "field_grid", build_options);
     f->kernel = clCreateKernel(f->program, "field_grid", &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(field_grid)", fail);
     return 0;
@@ -67,6 +68,7 @@ fail:
 
 void field_close(struct field_ctx *f)
 {
+    usermodel_builds_close(&f->user);
     if (f->kernel) clReleaseKernel(f->kernel);
     if (f->program) clReleaseProgram(f->program);
     f->kernel = NULL;
@@ -149,6 +151,9 @@ int field_run(struct field_ctx *f, const struct model_spec *m, const struct fiel
         fprintf(stderr, "brdfbench: %s\n", err);
         return rc;
     }
+    cl_kernel kernel;   /* a user model's own build of field.cl, or the shared one */
+    if ((rc = usermodel_builds_kernel(&f->user, m, f->kernel, &kernel)) != 0)
+        return rc;
     out->model = *m;
     model_reference_spec(m, &out->reference);
     out->grid = *g;
@@ -180,20 +185,20 @@ int field_run(struct field_ctx *f, const struct model_spec *m, const struct fiel
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)out->reference.params[0], rp1 = (float)out->reference.params[1];
     float log_u = (float)log(out->u_max);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 3, sizeof rid, &rid), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 4, sizeof rp0, &rp0), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 5, sizeof rp1, &rp1), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 6, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 7, sizeof rows, &rows), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 8, sizeof cols, &cols), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 9, sizeof log_u, &log_u), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 10, sizeof be, &be), done);
-    CL_CHECK_GOTO(clSetKernelArg(f->kernel, 11, sizeof ba, &ba), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 0, sizeof id, &id), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 3, sizeof rid, &rid), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 4, sizeof rp0, &rp0), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 5, sizeof rp1, &rp1), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 6, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 7, sizeof rows, &rows), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 8, sizeof cols, &cols), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 9, sizeof log_u, &log_u), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 10, sizeof be, &be), done);
+    CL_CHECK_GOTO(clSetKernelArg(kernel, 11, sizeof ba, &ba), done);
     size_t global[2] = {(size_t)cols, (size_t)rows};
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(f->s->queue, f->kernel, 2, NULL, global, NULL, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(f->s->queue, kernel, 2, NULL, global, NULL, 0, NULL, &ev), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(f->s->queue, be, CL_TRUE, 0, cells * sizeof(float), out->epi_rel, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(f->s->queue, ba, CL_TRUE, 0, cells * sizeof(float), out->att_abs, 0, NULL, NULL), done);
     out->device_seconds = cl_event_seconds(ev);

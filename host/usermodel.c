@@ -567,6 +567,18 @@ const char *usermodel_names(void)
     return names;
 }
 
+int usermodel_append_all(struct model_spec *models, int *count, int max, char *err, size_t errlen)
+{
+    for (int i = 0; i < registry_count; ++i) {
+        if (*count >= max) {
+            snprintf(err, errlen, "at most %d models per run (with the user models)", max);
+            return EXIT_USAGE;
+        }
+        model_spec_default(&registry[i]->info, &models[(*count)++]);
+    }
+    return 0;
+}
+
 const struct user_model *usermodel_of_info(const struct model_info *info)
 {
     return (info && info->kernel_id == BRDF_USER) ? (const struct user_model *)info : NULL;

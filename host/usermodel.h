@@ -71,6 +71,9 @@ int usermodel_count(void);
 const struct user_model *usermodel_at(int i);
 /* The names of the registered user models, comma-separated ("" when none). */
 const char *usermodel_names(void);
+/* Appends every registered user model, with its default parameters, to a list of *count
+ * models (at most max). Returns 0, or EXIT_USAGE with a message when the list is full. */
+int usermodel_append_all(struct model_spec *models, int *count, int max, char *err, size_t errlen);
 /* The user model behind a spec or a registry entry, or NULL for a built-in model. */
 const struct user_model *usermodel_of(const struct model_spec *m);
 const struct user_model *usermodel_of_info(const struct model_info *info);

@@ -163,7 +163,17 @@ assert p > 0 and abs(two["metrics"]["max_abs"] - p) <= 1e-6 * p, two["metrics"]
 assert one["double_reference_check"]["within_bound"] and two["double_reference_check"]["within_bound"]
 '
 
-# 8. Errors: the build log in the user's own line numbers, exit 2.
+# 8. The main job with a user model (quick grids): it joins the sweep, the heatmaps (field.cl
+#    built with it) and the images. f = 2 c^n: relative error exactly 1 in every cell.
+"$BIN" all --quick --model-file "$F/scaled.cl" --models fq2,scaled:k=2 --out "$T/all" >"$T/out" 2>"$T/err" \
+    && ok || bad "all with a user model: $(tail -5 "$T/err")"
+[ -s "$T/all/heatmap_scaled_k2.png" ] && ok || bad "all: no heatmap of the user model"
+check_json "$T/all/field_scaled_k2.json" "the user model's error field" '
+assert d["model"] == "scaled:k=2" and d["reference"] == "phong"
+assert d["check"]["max_rel_diff"] < 1e-6, d["check"]
+'
+
+# 9. Errors: the build log in the user's own line numbers, exit 2.
 expect 2 "bad_syntax.cl:6:[0-9]+: .*expected ';'" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out "$T/e1"
 [ ! -e "$T/e1/accuracy.json" ] && ok || bad "a failed build wrote results"
 # 'q' is the 13th character of the expression.
