@@ -48,36 +48,45 @@ static void jw_rawf(struct jw *w, const char *fmt, ...)
         jw_raw(w, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
 }
 
-/* Comma and indentation before a value or key. */
-static void jw_sep(struct jw *w)
+/* Comma and indentation before a value or key. A plain value inside an array stays on the
+ * array's line; keys and containers start a new, indented line. */
+static void jw_sep_kind(struct jw *w, int plain)
 {
     if (w->after_key) {
         w->after_key = 0;
         return;
     }
-    if (w->depth > 0 && w->count[w->depth]++ > 0)
-        jw_raw(w, ",", 1);
-    if (w->depth > 0) {
+    int d = w->depth;
+    if (d > 0 && w->count[d]++ > 0)
+        jw_raw(w, plain && w->is_array[d] ? ", " : ",", plain && w->is_array[d] ? 2 : 1);
+    if (d > 0 && !(plain && w->is_array[d])) {
+        w->broken[d] = 1;
         jw_raw(w, "\n", 1);
-        for (int i = 0; i < w->depth; ++i)
+        for (int i = 0; i < d; ++i)
             jw_raw(w, "  ", 2);
     }
 }
 
+static void jw_sep(struct jw *w) { jw_sep_kind(w, 1); }
+
 static void jw_open(struct jw *w, char c)
 {
-    jw_sep(w);
+    jw_sep_kind(w, 0);
     jw_raw(w, &c, 1);
-    if (w->depth + 1 < JW_MAX_DEPTH)
-        w->count[++w->depth] = 0;
+    if (w->depth + 1 < JW_MAX_DEPTH) {
+        ++w->depth;
+        w->count[w->depth] = 0;
+        w->is_array[w->depth] = c == '[';
+        w->broken[w->depth] = 0;
+    }
 }
 
 static void jw_close(struct jw *w, char c)
 {
-    int had = w->count[w->depth] > 0;
+    int had_lines = w->broken[w->depth];
     if (w->depth > 0)
         --w->depth;
-    if (had) {
+    if (had_lines) {
         jw_raw(w, "\n", 1);
         for (int i = 0; i < w->depth; ++i)
             jw_raw(w, "  ", 2);
@@ -112,7 +121,7 @@ static void jw_quoted(struct jw *w, const char *s)
 
 void jw_key(struct jw *w, const char *key)
 {
-    jw_sep(w);
+    jw_sep_kind(w, 0);
     jw_quoted(w, key);
     jw_raw(w, ": ", 2);
     w->after_key = 1;

@@ -1,6 +1,7 @@
 /* jsonw.h - a small streaming JSON writer into a growable buffer.
  * Non-finite numbers are written as null (DESIGN.md, habit 6): callers add a status and a
- * reason beside such a value with jw_null_reason(). */
+ * reason beside such a value. Arrays of plain values are written on one line, so large
+ * numeric arrays stay compact; objects and nested containers get a line per item. */
 #ifndef BRDF_JSONW_H
 #define BRDF_JSONW_H
 
@@ -13,6 +14,8 @@ struct jw {
     size_t len, cap;
     int depth;
     int count[JW_MAX_DEPTH];  /* items written at each depth, for commas */
+    char is_array[JW_MAX_DEPTH];   /* the container at each depth is an array */
+    char broken[JW_MAX_DEPTH];     /* it holds a line break (an object, or a nested container) */
     int after_key;
     int failed;               /* out of memory */
 };

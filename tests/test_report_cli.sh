@@ -44,7 +44,7 @@ RUN="$T/results/latest"
 [ -L "$RUN" ] && [ -d "$RUN/" ] && ok || bad "results/latest is not a link to a run folder"
 [ -f "$RUN/report.md" ] && ok || bad "no report.md"
 # progress: one line per step with the elapsed time, then the report's path on stdout
-[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]/8 ' "$T/err")" -eq 8 ] && ok || bad "want 8 step lines: $(cat "$T/err")"
+[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]/9 ' "$T/err")" -eq 9 ] && ok || bad "want 9 step lines: $(cat "$T/err")"
 grep -q "report.md" "$T/out" && ok || bad "stdout lacks the report path"
 links_exist "$RUN" && ok || bad "report.md links a missing file"
 # every model but the self-referenced phong has a heatmap and its field; phong has none
