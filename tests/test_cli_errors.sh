@@ -187,7 +187,15 @@ t 2 "^brdfbench fit: unknown option '--bogus' \(see brdfbench fit --help\)" fit 
 t 2 "^brdfbench reproduce: --samples: '0' is not an integer in \[16, " reproduce --samples 0
 t 2 "^brdfbench reproduce: --q-step: 'nan' is not a finite number in \[0.0001, 0.5\]" reproduce --q-step nan
 t 2 "^brdfbench reproduce: unknown option '--bogus' \(see brdfbench reproduce --help\)" reproduce --bogus
+t 2 "^brdfbench throughput: unknown option '--bogus' \(see brdfbench throughput --help\)" throughput --bogus
+t 2 "^brdfbench throughput: --min-time: '0' is not a finite number in \[0.0001, 10\]" throughput --min-time 0
+t 2 "^brdfbench throughput: --work-items: '-1' is not an integer in \[1, 65536\]" throughput --work-items -1
+t 2 "^brdfbench throughput: --n: 'nan' is not a finite number" throughput --n nan
+t 2 "^brdfbench throughput: --n-range: LO \(5\) must be below HI \(2\)" throughput --n-range 5:2
+t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " throughput --variants turbo
+t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
 
+# One more check: no refused run above wrote its output folder.
 [ ! -e "$T/run" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: a refused run wrote $T/run" >&2; }
 
 if [ -n "${BAD_INPUTS_MD:-}" ]; then
@@ -197,12 +205,13 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
         echo "Every row is a case of tests/test_cli_errors.sh: the command, the exit code it gave and the first"
         echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
         echo "or output error (DESIGN.md). Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
-        echo "(BRDFBENCH and SRC_DIR set as ctest sets them); $row cases, $pass passed, $fail failed."
+        echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases and one check that no refused run"
+        echo "wrote an output folder; $pass passed, $fail failed."
         echo
         echo "| # | command | exit | message | result |"
         echo "|---|---|---|---|---|"
         printf '%s' "$md"
     } >"$BAD_INPUTS_MD.tmp" && mv "$BAD_INPUTS_MD.tmp" "$BAD_INPUTS_MD"
 fi
-echo "$row cases; $pass passed, $fail failed"
+echo "$row cases + 1 check: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
