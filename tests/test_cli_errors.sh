@@ -121,7 +121,7 @@ t 3 "^brdfbench accuracy: --out: cannot create folder /proc/brdf: " accuracy --n
 t 3 "^brdfbench accuracy: --out: cannot create folder good.json/run: Not a directory" accuracy --n-max 4 --samples 16 --out good.json/run
 # user models: files and expressions (accepted by every command that evaluates models)
 t 2 "^brdfbench accuracy: --model-file: cannot read /nonexistent.cl: No such file" accuracy --model-file /nonexistent.cl
-t 2 "^brdfbench accuracy: --model-file: cannot read $T: Is a directory" accuracy --model-file "$T"
+t 2 "^brdfbench accuracy: --model-file: cannot read folder: Is a directory" accuracy --model-file folder
 t 2 "^brdfbench accuracy: .*no_header.cl:1: a model file begins with a header comment" accuracy --model-file "$F/no_header.cl"
 t 2 "^brdfbench accuracy: .*bad_param.cl:3: parameter 'k': MIN 5 must be below MAX 1" accuracy --model-file "$F/bad_param.cl"
 t 2 "^brdfbench accuracy: .*unknown_key.cl:3: unknown key 'colour' \(accepted: name, param, " accuracy --model-file "$F/unknown_key.cl"
