@@ -7,6 +7,7 @@
 #include "exitcodes.h"
 #include "outdir.h"
 #include "throughput.h"
+#include "usermodel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,6 +42,7 @@ static void throughput_usage(FILE *f)
             "  --out DIR            write throughput.json and throughput.csv into DIR\n"
             "                       (default: a new folder results/<date-time>/, with results/latest)\n"
             "  --quiet              no table on stdout, no progress on stderr\n"
+            USERMODEL_OPTIONS_HELP
             DEVICE_OPTIONS_HELP
             "  POCL_AFFINITY=1 is set unless the environment sets it: it pins PoCL's threads to CPUs,\n"
             "  so that a run does not land on one thread.\n",
@@ -91,7 +93,7 @@ int cmd_throughput(int argc, char **argv)
     struct device_options dev;
     device_options_init(&dev);
     const char *models_text = "all", *out_dir = NULL;
-    int quiet = 0;
+    int quiet = 0, models_given = 0;
     long lv;
 
     for (int i = 1; i < argc; ++i) {
@@ -100,6 +102,11 @@ int cmd_throughput(int argc, char **argv)
         if (d < 0)
             goto usage_error;
         if (d > 0)
+            continue;
+        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
+        if (u < 0)
+            goto usage_error;
+        if (u > 0)
             continue;
         if (strcmp(a, "--help") == 0) {
             throughput_usage(stdout);
@@ -115,6 +122,7 @@ int cmd_throughput(int argc, char **argv)
         } else if (cli_flag_is(a, "--models")) {
             if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err)))
                 goto usage_error;
+            models_given = 1;
         } else if (cli_flag_is(a, "--out")) {
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
@@ -196,6 +204,8 @@ int cmd_throughput(int argc, char **argv)
             goto usage_error;
         }
     }
+    if (!models_given && usermodel_count() > 0)
+        models_text = usermodel_names();   /* with a user model and no --models: the user models */
     int n = model_spec_list_parse(models_text, o.models, TP_MAX_MODELS, err, sizeof err);
     if (n < 0)
         goto usage_error;

@@ -14,6 +14,7 @@
 #include "accuracy.h"
 #include "clsession.h"
 #include "models.h"
+#include "usermodel.h"
 
 #define THROUGHPUT_SCHEMA "brdfbench.throughput/1"
 #define TP_STREAMS 4            /* kernels/throughput.cl */
@@ -80,10 +81,17 @@ struct tp_program {
     double build_seconds;
     int ids[TP_MAX_MODELS];       /* kernel ids compiled in */
     int id_count;
+    /* Each user model's own build of throughput.cl (its kernels named by BRDF_USER). */
+    struct {
+        const struct model_info *model;
+        cl_program program;
+    } user[USERMODEL_MAX];
+    int user_count;
 };
 
-/* Builds kernels/throughput.cl with one kernel set per distinct model id of models (user
- * models are left out). Returns 0 or an exit code; the build log is printed on failure. */
+/* Builds kernels/throughput.cl with one kernel set per distinct model id of models, and a
+ * build of its own for each user model. Returns 0 or an exit code; the build log is printed
+ * on failure (EXIT_USAGE: a user model does not compile). */
 int tp_program_build(struct tp_program *p, struct cl_session *s, const struct model_spec *models, int count,
                      int variant, const char *base_options);
 void tp_program_release(struct tp_program *p);

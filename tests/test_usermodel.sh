@@ -173,7 +173,19 @@ assert d["model"] == "scaled:k=2" and d["reference"] == "phong"
 assert d["check"]["max_rel_diff"] < 1e-6, d["check"]
 '
 
-# 9. Errors: the build log in the user's own line numbers, exit 2.
+# 9. Throughput: throughput.cl built with the user model; its rate is measured and its values
+#    agree with its double reference (the model is fq2's formula at a = 0.448, b = 0.099).
+"$BIN" throughput --model-file "$F/quad.cl" --models myquad --reps 1 --min-time 0.002 --variants default \
+    --n-modes uniform --no-sweep --no-host-c --quiet --out "$T/tp" 2>"$T/err" && ok || bad "throughput with a user model: $(tail -3 "$T/err")"
+check_json "$T/tp/throughput.json" "the user model measured by throughput" '
+r = [x for x in d["results"] if x["model"] == "myquad"]
+assert len(r) == 1, [x["model"] for x in d["results"]]
+r = r[0]
+assert r["status"] == "ok" and r["evals_per_s"]["median"] > 0, r
+assert r["accuracy"]["status"] == "ok" and r["accuracy"]["max_diff_of_peak"] < 1e-5, r["accuracy"]
+'
+
+# 10. Errors: the build log in the user's own line numbers, exit 2.
 expect 2 "bad_syntax.cl:6:[0-9]+: .*expected ';'" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out "$T/e1"
 [ ! -e "$T/e1/accuracy.json" ] && ok || bad "a failed build wrote results"
 # 'q' is the 13th character of the expression.
