@@ -135,6 +135,10 @@ t 2 "^brdfbench accuracy: --model fq2: 'fq2' is the name of a built-in model" ac
 t 2 "^brdfbench accuracy: --model a: character 2 of the expression is not allowed" accuracy --model 'a=c; return 0'
 t 2 "^brdfbench accuracy: --model a: the expression must have 1 to 1000 characters" accuracy --model 'a='
 t 2 "multi:--model e1:1:13: .*undeclared identifier 'q'" accuracy --model 'e1=pow(c, n) * q' --n-max 4 --samples 16 --out run
+t 2 "^brdfbench render: --model: 'x' is not NAME=EXPR" render --model x
+t 2 "^brdfbench throughput: .*no_header.cl:1: a model file begins with a header comment" throughput --model-file "$F/no_header.cl"
+t 2 "^brdfbench all: --model fq2: 'fq2' is the name of a built-in model" all --model 'fq2=c'
+t 2 "^brdfbench gate: --model-file: cannot read /nonexistent.cl: No such file" gate good.json --model-file /nonexistent.cl
 # gate: the command line
 t 2 "^brdfbench gate: a gates file is missing" gate
 t 2 "^brdfbench gate: one gates file expected, got 'good.json' and 'other.json'" gate good.json other.json
