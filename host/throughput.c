@@ -451,20 +451,43 @@ static void tp_time_pair(struct tp_kernel_run *r, float *host_out, struct tp_fig
     int dev_ok = r && tp_dev_calibrate(r, &dev_iters, fd) == 0;
     int c_ok = j && tp_hostc_calibrate(j, &c_iters, fc) == 0;
     double ds[TP_MAX_REPS], dw[TP_MAX_REPS], cs[TP_MAX_REPS];
-    for (int k = 0; k < reps; ++k) {
+    const double min_time = r ? r->o->min_time : j->o->min_time;
+    /* A calibration run that was slowed down (a busy moment on a shared machine) leaves too few
+       iterations, and the timed runs then measure overheads: a side whose median run is short
+       of min_time / 2 is scaled up from that median and the repetitions are taken again. */
+    for (int round = 0; round < 3; ++round) {
+        for (int k = 0; k < reps; ++k) {
+            if (dev_ok) {
+                const char *call = "";
+                cl_int e = tp_launch_once(r, dev_iters, &ds[k], &dw[k], &call);
+                if (e != CL_SUCCESS) {
+                    fig_fail(fd, "timed launch: %s failed with %s", call, cl_error_name(e));
+                    dev_ok = 0;
+                } else if (!(ds[k] > 0)) {
+                    fig_fail(fd, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
+                    dev_ok = 0;
+                }
+            }
+            if (c_ok && tp_hostc_once(j, c_iters, &cs[k], fc))
+                c_ok = 0;
+        }
+        int again = 0;
         if (dev_ok) {
-            const char *call = "";
-            cl_int e = tp_launch_once(r, dev_iters, &ds[k], &dw[k], &call);
-            if (e != CL_SUCCESS) {
-                fig_fail(fd, "timed launch: %s failed with %s", call, cl_error_name(e));
-                dev_ok = 0;
-            } else if (!(ds[k] > 0)) {
-                fig_fail(fd, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
-                dev_ok = 0;
+            double med = stats_of(ds, reps).median;
+            if (med < 0.5 * min_time && dev_iters < TP_MAX_ITERS) {
+                dev_iters = tp_scaled_iters(dev_iters, med, min_time);
+                again = 1;
             }
         }
-        if (c_ok && tp_hostc_once(j, c_iters, &cs[k], fc))
-            c_ok = 0;
+        if (c_ok) {
+            double med = stats_of(cs, reps).median;
+            if (med < 0.5 * min_time && c_iters < TP_MAX_ITERS) {
+                c_iters = tp_scaled_iters(c_iters, fmax(med, 1e-7), min_time);
+                again = 1;
+            }
+        }
+        if (!again)
+            break;
     }
     if (dev_ok) {
         size_t nout = r->global * 16;

@@ -59,6 +59,29 @@ head -1 "$T/run/throughput.csv" | grep -q '^model,label,variant,build_options,n_
 [ "$(wc -l <"$T/run/throughput.csv")" -eq 10 ] && ok || bad "csv rows: $(wc -l <"$T/run/throughput.csv")"
 grep -qE '^cq2 +uniform' "$T/table" && grep -q 'accuracy sweep' "$T/table" && ok || bad "table: $(head -c 400 "$T/table")"
 
+# A variant whose program does not build: its rows say so (status and reason), the others are
+# measured, the run succeeds. The kernels come from a copy where fast-relaxed-math fails to compile.
+SRC=${SRC_DIR:?}
+mkdir -p "$T/kern"
+cp "$SRC"/kernels/*.cl "$SRC"/kernels/*.h "$T/kern/"
+printf '#ifdef __FAST_RELAXED_MATH__\n#error this copy does not build with -cl-fast-relaxed-math\n#endif\n' >>"$T/kern/throughput.cl"
+"$BIN" throughput --kernel-dir "$T/kern" --models fvol --reps 1 --min-time 0.002 --work-items 2 --no-sweep \
+    --variants default,fast-relaxed-math --out "$T/broken" >"$T/table2" 2>"$T/err2"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "run with a failing variant exit $rc: $(head -c 300 "$T/err2")"
+grep -q 'does not build with -cl-fast-relaxed-math' "$T/err2" && ok || bad "build log shown on stderr"
+python3 - "$T/broken/throughput.json" <<'PY' && ok || bad "failed variant rows"
+import json, sys
+d = json.load(open(sys.argv[1]))
+b = {x["variant"]: x for x in d["builds"]}
+assert b["default"]["status"] == "ok" and b["fast-relaxed-math"]["status"] == "failed", b
+for r in d["results"]:
+    if r["variant"] == "fast-relaxed-math":
+        assert r["status"] == "failed" and "build" in r["reason"] and r["evals_per_s"]["median"] is None, r
+    else:
+        assert r["status"] == "ok", r
+PY
+
 # bad flags: exit 2, the flag and its accepted range named, no output folder made
 expect 2 '--reps: .*in \[1, 1000\]' throughput --reps 0 --out "$T/x1"
 expect 2 '--min-time: .*in \[0.0001, 10\]' throughput --min-time 1e9 --out "$T/x2"
