@@ -403,13 +403,9 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
                  struct accuracy_result *out)
 {
     int rc = 0;
-    cl_int e;
-    cl_mem bn = NULL, bo = NULL;
-    cl_event ev = NULL;
     float *nv = NULL, *raw = NULL;
-    cl_kernel sweep, probe_unused;
     memset(out, 0, sizeof *out);
-    if ((rc = kernels_for(a, m, &sweep, &probe_unused)) != 0)
+    if ((rc = accuracy_prepare(a, m)) != 0)   /* a user model's compile error before any allocation */
         return rc;
     out->model = *m;
     model_reference_spec(m, &out->reference);
@@ -427,30 +423,8 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     for (long i = 0; i < count; ++i)
         nv[i] = (float)accuracy_grid_n(g, i);
 
-    bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), nv, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(n values)", done);
-    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, (size_t)count * ACC_OUT_STRIDE * sizeof(float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sweep out)", done);
-    cl_int id = m->info->kernel_id, ref_id = out->reference.info->kernel_id;
-    float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    float rp0 = (float)out->reference.params[0], rp1 = (float)out->reference.params[1];
-    cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 3, sizeof ref_id, &ref_id), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 4, sizeof rp0, &rp0), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 5, sizeof rp1, &rp1), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
-    size_t local = sweep_local_size(count, a->s->compute_units);
-    size_t global = ((size_t)count + local - 1) / local * local;   /* the kernel skips the padding */
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
-    CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
-                                      raw, 0, NULL, NULL), done);
-    out->device_seconds = cl_event_seconds(ev);
+    if ((rc = accuracy_sweep_device(a, m, g, raw, &out->device_seconds)) != 0)
+        goto done;
     out->points = (double)count * 2.0 * (double)g->samples;
 
     out->invalid_n = out->invalid_x = NAN;
@@ -506,9 +480,6 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     if (note && !out->reason[0])
         snprintf(out->reason, sizeof out->reason, "%s", note);
 done:
-    if (ev) clReleaseEvent(ev);
-    if (bo) clReleaseMemObject(bo);
-    if (bn) clReleaseMemObject(bn);
     free(raw);
     free(nv);
     return rc;
