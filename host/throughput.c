@@ -351,37 +351,6 @@ static long tp_scaled_iters(long iters, double t, double min_time)
     return (long)fmin((double)TP_MAX_ITERS, fmax(1.0, ceil((double)iters * min_time / t)));
 }
 
-/* A warm-up launch with the exact NDRange (PoCL compiles per launch shape), then iterations
-   calibrated until one launch takes o->min_time. Returns 0, or -1 with f failed. */
-static int tp_dev_calibrate(struct tp_kernel_run *r, long *iters_out, struct tp_figure *f)
-{
-    const struct throughput_options *o = r->o;
-    double ev, wall;
-    const char *call = "";
-    cl_int e = tp_launch_once(r, 1, &ev, &wall, &call);
-    if (e != CL_SUCCESS) {
-        fig_fail(f, "warm-up launch: %s failed with %s", call, cl_error_name(e));
-        return -1;
-    }
-    long iters = 4;
-    for (;;) {
-        if ((e = tp_launch_once(r, iters, &ev, &wall, &call)) != CL_SUCCESS) {
-            fig_fail(f, "calibration launch: %s failed with %s", call, cl_error_name(e));
-            return -1;
-        }
-        if (!(ev > 0)) {
-            fig_fail(f, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
-            return -1;
-        }
-        if (ev >= 0.25 * o->min_time || iters >= TP_MAX_ITERS)
-            break;
-        double grow = fmin(fmax(0.5 * o->min_time / ev, 2.0), 1000.0);
-        iters = (long)fmin((double)TP_MAX_ITERS, ceil((double)iters * grow));
-    }
-    *iters_out = tp_scaled_iters(iters, ev, o->min_time);
-    return 0;
-}
-
 /* What the C side of a pair evaluates: the same model, n mode and work-items. */
 struct tp_hostc_job {
     const struct throughput_options *o;
@@ -392,36 +361,62 @@ struct tp_hostc_job {
     float *sums;
 };
 
-static int tp_hostc_once(const struct tp_hostc_job *j, long iters, double *seconds, struct tp_figure *f)
+/* One timed run of either side: 0, or -1 with the figure failed and why. */
+struct tp_side {
+    int (*once)(struct tp_side *side, long iters, double *seconds, double *wall);
+    struct tp_figure *f;
+    const char *phase;                /* device: named in a failure message */
+    struct tp_kernel_run *r;          /* device */
+    const struct tp_hostc_job *j;     /* C */
+};
+
+static int tp_dev_once(struct tp_side *side, long iters, double *seconds, double *wall)
 {
-    struct tp_inputs in;
-    char err[256];
-    tp_inputs_for(j->o, j->nmode, j->work_items, iters, &in);
-    if (hostc_throughput(j->m ? j->m->info->kernel_id : -1, j->m ? (float)j->m->params[0] : 0.0f,
-                         j->m ? (float)j->m->params[1] : 0.0f, &in, j->threads, j->sums, seconds, err, sizeof err)) {
-        fig_fail(f, "%s", err);
+    const char *call = "";
+    cl_int e = tp_launch_once(side->r, iters, seconds, wall, &call);
+    if (e != CL_SUCCESS) {
+        fig_fail(side->f, "%s launch: %s failed with %s", side->phase, call, cl_error_name(e));
+        return -1;
+    }
+    if (!(*seconds > 0)) {
+        fig_fail(side->f, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
         return -1;
     }
     return 0;
 }
 
-static int tp_hostc_calibrate(const struct tp_hostc_job *j, long *iters_out, struct tp_figure *f)
+static int tp_hostc_once(struct tp_side *side, long iters, double *seconds, double *wall)
 {
-    if (j->m && !hostc_supports(j->m->info->kernel_id)) {
-        fig_fail(f, "no C loop for this model (user models run on the device only)");
+    const struct tp_hostc_job *j = side->j;
+    struct tp_inputs in;
+    char err[256];
+    tp_inputs_for(j->o, j->nmode, j->work_items, iters, &in);
+    if (hostc_throughput(j->m ? j->m->info->kernel_id : -1, j->m ? (float)j->m->params[0] : 0.0f,
+                         j->m ? (float)j->m->params[1] : 0.0f, &in, j->threads, j->sums, seconds, err, sizeof err)) {
+        fig_fail(side->f, "%s", err);
         return -1;
     }
-    double t = 0;
+    *seconds = fmax(*seconds, 1e-9);
+    *wall = *seconds;
+    return 0;
+}
+
+/* Iterations grown until one run takes a quarter of min_time, then scaled to min_time. */
+static int tp_calibrate(struct tp_side *side, double min_time, long *iters_out)
+{
+    double t, wall;
     long iters = 1;
+    side->phase = "calibration";
     for (;;) {
-        if (tp_hostc_once(j, iters, &t, f))
+        if (side->once(side, iters, &t, &wall))
             return -1;
-        if (t >= 0.25 * j->o->min_time || iters >= TP_MAX_ITERS)
+        if (t >= 0.25 * min_time || iters >= TP_MAX_ITERS)
             break;
-        double grow = fmin(fmax(0.5 * j->o->min_time / fmax(t, 1e-7), 2.0), 1000.0);
+        double grow = fmin(fmax(0.5 * min_time / t, 2.0), 1000.0);
         iters = (long)fmin((double)TP_MAX_ITERS, ceil((double)iters * grow));
     }
-    *iters_out = tp_scaled_iters(iters, fmax(t, 1e-7), j->o->min_time);
+    *iters_out = tp_scaled_iters(iters, t, min_time);
+    side->phase = "timed";
     return 0;
 }
 
@@ -446,60 +441,53 @@ static void tp_time_pair(struct tp_kernel_run *r, float *host_out, struct tp_fig
 {
     if (!r && !j)
         return;
-    int reps = r ? r->o->reps : j->o->reps;
-    long dev_iters = 0, c_iters = 0;
-    int dev_ok = r && tp_dev_calibrate(r, &dev_iters, fd) == 0;
-    int c_ok = j && tp_hostc_calibrate(j, &c_iters, fc) == 0;
-    double ds[TP_MAX_REPS], dw[TP_MAX_REPS], cs[TP_MAX_REPS];
-    const double min_time = r ? r->o->min_time : j->o->min_time;
+    const struct throughput_options *o = r ? r->o : j->o;
+    struct tp_side side[2] = { { tp_dev_once, fd, "warm-up", r, NULL }, { tp_hostc_once, fc, "", NULL, j } };
+    int ok[2] = { r != NULL, j != NULL };
+    long iters[2] = { 0, 0 };
+    double secs[2][TP_MAX_REPS], walls[2][TP_MAX_REPS], t, w;
+    /* the device's warm-up: its exact NDRange, compiled by PoCL here */
+    if (ok[0])
+        ok[0] = tp_dev_once(&side[0], 1, &t, &w) == 0;
+    if (ok[1] && j->m && !hostc_supports(j->m->info->kernel_id)) {
+        fig_fail(fc, "no C loop for this model (user models run on the device only)");
+        ok[1] = 0;
+    }
+    for (int k = 0; k < 2; ++k)
+        if (ok[k])
+            ok[k] = tp_calibrate(&side[k], o->min_time, &iters[k]) == 0;
     /* A calibration run that was slowed down (a busy moment on a shared machine) leaves too few
        iterations, and the timed runs then measure overheads: a side whose median run is short
        of min_time / 2 is scaled up from that median and the repetitions are taken again. */
     for (int round = 0; round < 3; ++round) {
-        for (int k = 0; k < reps; ++k) {
-            if (dev_ok) {
-                const char *call = "";
-                cl_int e = tp_launch_once(r, dev_iters, &ds[k], &dw[k], &call);
-                if (e != CL_SUCCESS) {
-                    fig_fail(fd, "timed launch: %s failed with %s", call, cl_error_name(e));
-                    dev_ok = 0;
-                } else if (!(ds[k] > 0)) {
-                    fig_fail(fd, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
-                    dev_ok = 0;
-                }
-            }
-            if (c_ok && tp_hostc_once(j, c_iters, &cs[k], fc))
-                c_ok = 0;
-        }
+        for (int rep = 0; rep < o->reps; ++rep)
+            for (int k = 0; k < 2; ++k)
+                if (ok[k])
+                    ok[k] = side[k].once(&side[k], iters[k], &secs[k][rep], &walls[k][rep]) == 0;
+        if (round == 2)
+            break;   /* the times above belong to iters[] as it stands */
         int again = 0;
-        if (dev_ok) {
-            double med = stats_of(ds, reps).median;
-            if (med < 0.5 * min_time && dev_iters < TP_MAX_ITERS) {
-                dev_iters = tp_scaled_iters(dev_iters, med, min_time);
-                again = 1;
-            }
-        }
-        if (c_ok) {
-            double med = stats_of(cs, reps).median;
-            if (med < 0.5 * min_time && c_iters < TP_MAX_ITERS) {
-                c_iters = tp_scaled_iters(c_iters, fmax(med, 1e-7), min_time);
+        for (int k = 0; k < 2; ++k) {
+            double med = ok[k] ? stats_of(secs[k], o->reps).median : 0;
+            if (ok[k] && med < 0.5 * o->min_time && iters[k] < TP_MAX_ITERS) {
+                iters[k] = tp_scaled_iters(iters[k], med, o->min_time);
                 again = 1;
             }
         }
         if (!again)
             break;
     }
-    if (dev_ok) {
+    if (ok[0]) {
         size_t nout = r->global * 16;
         cl_int e = clEnqueueReadBuffer(r->s->queue, r->out, CL_TRUE, 0, nout * sizeof(float), host_out, 0, NULL, NULL);
         if (e != CL_SUCCESS)
             fig_fail(fd, "reading the sums: clEnqueueReadBuffer failed with %s", cl_error_name(e));
         else
-            tp_fill(fd, dev_iters, r->work_per_iter * (double)dev_iters, ds, dw, reps, host_out, nout);
+            tp_fill(fd, iters[0], r->work_per_iter * (double)iters[0], secs[0], walls[0], o->reps, host_out, nout);
     }
-    if (c_ok)
-        tp_fill(fc, c_iters, (double)j->work_items * (double)c_iters * TP_EVALS_PER_ITER, cs, cs, reps, j->sums,
-                (size_t)j->work_items * 16);
+    if (ok[1])
+        tp_fill(fc, iters[1], (double)j->work_items * (double)iters[1] * TP_EVALS_PER_ITER, secs[1], walls[1], o->reps,
+                j->sums, (size_t)j->work_items * 16);
 }
 
 int tp_program_points(struct tp_program *p, const struct model_spec *m, const float *c, const float *n, size_t count,
