@@ -243,6 +243,11 @@ static double refine_error(double x, void *p)
 {
     const struct refine_ctx *r = p;
     double c = cos(x);
+    /* Where the model is invalid (NaN, Inf, negative) the point is counted elsewhere and
+       never becomes a maximum, as on the device. */
+    double f = model_eval_host(r->m, c, r->n);
+    if (!(f >= 0) || !isfinite(f))
+        return -INFINITY;
     return r->relative ? error_rel_host(r->m, r->ref, c, r->n) : error_abs_host(r->m, r->ref, c, r->n);
 }
 

@@ -8,10 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Size of one unit in the 4th significant digit of v (0 for v = 0). */
+/* Size of one unit in the 4th significant digit of v; 0 for figures at float resolution
+ * (below 1e-6: a model equal to its reference), whose digits the float device cannot
+ * resolve and the double host alone gives. */
 static double fourth_digit_unit(double v)
 {
-    return (v > 0 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
+    return (v >= 1e-6 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
 }
 
 double accuracy_check_in_digits(const struct accuracy_result *r)

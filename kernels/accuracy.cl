@@ -87,12 +87,14 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         float16 c = fmax(native_cos(x_e * (j * inv_last)), 0.0f);
         float16 f = brdf_eval(model, c, nv, p0, p1);
         float16 r = brdf_eval(ref_model, c, nv, rp0, rp1);
-        float16 d = fabs(f - r);
-        KEEP_MAX(epi_rel, epi_rel_c, d / r, c);
-        KEEP_MAX(epi_abs, epi_abs_c, d, c);
+        /* An invalid model value (NaN, Inf, negative) is counted, not folded into a maximum:
+           its error becomes NaN, which never wins. */
         int16 invalid = isless(f, 0.0f) | !isfinite(f);
         bad_c = select(bad_c, c, invalid & isnan(bad_c));
         bad -= invalid;                           /* a true comparison is -1 per lane */
+        float16 d = select(fabs(f - r), (float16)(NAN), invalid);
+        KEEP_MAX(epi_rel, epi_rel_c, d / r, c);
+        KEEP_MAX(epi_abs, epi_abs_c, d, c);
 
         /* Attenuation: x = x_e + width t^2, t in (0, 1]; t^2 crowds samples near x_e,
            where the lobe falls off, while still reaching pi/2. */
@@ -100,11 +102,11 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         c = fmax(native_cos(x_e + width * (t * t)), 0.0f);
         f = brdf_eval(model, c, nv, p0, p1);
         r = brdf_eval(ref_model, c, nv, rp0, rp1);
-        d = fabs(f - r);
-        KEEP_MAX(att_abs, att_abs_c, d, c);
         invalid = isless(f, 0.0f) | !isfinite(f);
         bad_c = select(bad_c, c, invalid & isnan(bad_c));
         bad -= invalid;
+        d = select(fabs(f - r), (float16)(NAN), invalid);
+        KEEP_MAX(att_abs, att_abs_c, d, c);
     }
 
     __global float *o = out + (size_t)gid * ACC_OUT_STRIDE;

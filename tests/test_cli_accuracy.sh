@@ -61,6 +61,19 @@ rows=$(($(wc -l <"$T/run/accuracy.csv") - 1))
 head -1 "$T/run/accuracy.csv" | grep -q '^model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs' && ok || bad "csv header"
 grep -q 'G points/s' "$T/table" && grep -q 'largest difference' "$T/table" && ok || bad "table lacks speed or check line"
 
+# A model with invalid values (negative past c = 0.5, equal to the reference elsewhere): the
+# invalid values are counted and located, not folded into a maximum (which is then 0 up to
+# rounding, since the model equals c^n wherever it is valid).
+"$BIN" accuracy --model 'negpart=c > 0.5 ? pow(c, n) : -1.0' --models negpart --n-max 20 --samples 256 --out "$T/neg" >/dev/null 2>"$T/err" && ok || bad "negpart sweep: $(cat "$T/err")"
+python3 - "$T/neg/accuracy.json" <<'PY' && ok || bad "invalid values folded into maxima"
+import json, math, sys
+r = json.load(open(sys.argv[1]))["results"][0]
+assert r["status"] == "invalid_values" and r["invalid"]["count"] > 0, r
+# the first invalid point lies past c = 0.5, i.e. x > pi/3
+assert r["invalid"]["at_x"] > math.pi / 3 - 1e-6, r["invalid"]
+assert r["attenuation"]["max_abs"] < 1e-6 and r["whole"]["max_abs"] < 1e-6, r
+PY
+
 # Error paths: one line naming the argument and the accepted range, exit 2, nothing written.
 sum_before=$(md5sum "$T/run/accuracy.json")
 expect 2 "unknown model 'nosuch'" accuracy --models nosuch --out "$T/run"
