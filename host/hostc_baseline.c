@@ -129,18 +129,25 @@ static inline __attribute__((always_inline)) void hostc_sweep_n(const int id, fl
         /* Epicentre: x uniform over [0, x_e]. Comparisons with > keep NaN out, as isgreater. */
         float c = fmax(cos(x_e * ((float)j * inv_last)), 0.0f);
         float f = brdf_eval(id, c, n, p0, p1), r = brdf_eval(ref, c, n, rp0, rp1);
-        float d = fabs(f - r), rel = d / r;
-        if (rel > epi_rel) { epi_rel = rel; epi_rel_c = c; }
-        if (d > epi_abs) { epi_abs = d; epi_abs_c = c; }
-        if (f < 0.0f || !isfinite(f)) { if (bad == 0) bad_c = c; ++bad; }
+        /* An invalid model value (NaN, Inf, negative) is counted and kept out of the maxima. */
+        if (f < 0.0f || !isfinite(f)) {
+            if (bad++ == 0) bad_c = c;
+        } else {
+            float d = fabs(f - r), rel = d / r;
+            if (rel > epi_rel) { epi_rel = rel; epi_rel_c = c; }
+            if (d > epi_abs) { epi_abs = d; epi_abs_c = c; }
+        }
         /* Attenuation: x = x_e + width t^2, t in (0, 1]. */
         float t = (float)(j + 1) * inv_count;
         c = fmax(cos(x_e + width * (t * t)), 0.0f);
         f = brdf_eval(id, c, n, p0, p1);
         r = brdf_eval(ref, c, n, rp0, rp1);
-        d = fabs(f - r);
-        if (d > att_abs) { att_abs = d; att_abs_c = c; }
-        if (f < 0.0f || !isfinite(f)) { if (bad == 0) bad_c = c; ++bad; }
+        if (f < 0.0f || !isfinite(f)) {
+            if (bad++ == 0) bad_c = c;
+        } else if (fabs(f - r) > att_abs) {
+            att_abs = fabs(f - r);
+            att_abs_c = c;
+        }
     }
     o[0] = epi_rel; o[1] = epi_rel_c;
     o[2] = att_abs; o[3] = att_abs_c;
