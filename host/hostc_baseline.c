@@ -39,7 +39,7 @@ static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a
 #define ACC_OUT_STRIDE 8 /* kernels/accuracy.cl */
 #define HOSTC_MAX_THREADS 256
 
-_Static_assert(BRDF_MODEL_COUNT <= 16, "hostc_dispatch covers model ids 0..15");
+_Static_assert(BRDF_MODEL_COUNT <= 17, "hostc_dispatch covers model ids 0..16");
 
 static double hostc_now(void)
 {
@@ -156,7 +156,7 @@ static inline __attribute__((always_inline)) void hostc_sweep_n(const int id, fl
 }
 
 /* Per-id instances with the id a constant (the model's switch folds away inside). */
-#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15)
+#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
 
 static void hostc_work_item_any(int id, float p0, float p1, const struct tp_inputs *in, long gid, float *sum16)
 {

@@ -59,6 +59,9 @@ static const struct model_info registry[] = {
         { "b", -10, 10, 0.099, 0, "offset of k(n) = a n + b" } }, "phong",
       "((a n + b)(c-1) + 1)^2", "c = 1 - 1/(a n + b)",
       "the affine cosine-quadratic family (brdfbench fit)", 0 },
+    { "phongpow", BRDF_PHONGPOW, "reference", LOBE_PSI, 0, NOP, "phong",
+      "cos(psi)^n through OpenCL's pow()", NULL,
+      "the Phong lobe through the pow() built-in: the literal pow()-based reference, for cost", 1 },
 };
 
 _Static_assert(sizeof registry / sizeof registry[0] == BRDF_MODEL_COUNT - 1,

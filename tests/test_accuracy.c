@@ -132,8 +132,11 @@ static int test_device(void)
             double unit = pow(10, floor(log10(v2[q])) - 3);
             CHECK(fabs(v1[q] - v2[q]) < 0.5 * unit, "%s figure %d: %.8g vs %.8g", models[k], q, v1[q], v2[q]);
         }
-        /* The device's float figures agree with the double recomputation far (20x) below that digit. */
-        CHECK(r2.check_rel_diff < 0.05 * pow(10, floor(log10(r2.epicentre.value)) - 3), "%s check %.3g", models[k],
+        /* The device's float figures agree with the double recomputation far (10x) below that
+           digit. Float resolution sets the scale: a few ulp (6e-8 each) of a model value,
+           amplified by the 2^k of Lyon's squarings (8 for k = 3), is about 5e-7 of a figure of
+           about 3.5e-2, whose 4th-digit unit is 1e-5. */
+        CHECK(r2.check_rel_diff < 0.1 * pow(10, floor(log10(r2.epicentre.value)) - 3), "%s check %.3g", models[k],
               r2.check_rel_diff);
         accuracy_result_free(&r1);
         accuracy_result_free(&r2);
