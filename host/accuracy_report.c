@@ -2,6 +2,7 @@
 #include "accuracy_report.h"
 #include "context.h"
 #include "jsonw.h"
+#include "mdbuf.h"
 #include "outdir.h"
 
 #include <math.h>
@@ -115,61 +116,31 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
     return rc;
 }
 
-/* Appends formatted text to a growable buffer; returns -1 when out of memory. */
-static int buf_printf(char **buf, size_t *len, size_t *cap, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-
-#include <stdarg.h>
-static int buf_printf(char **buf, size_t *len, size_t *cap, const char *fmt, ...)
-{
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int n = vsnprintf(*buf ? *buf + *len : NULL, *buf ? *cap - *len : 0, fmt, ap);
-        va_end(ap);
-        if (n < 0)
-            return -1;
-        if (*buf && *len + (size_t)n < *cap) {
-            *len += (size_t)n;
-            return 0;
-        }
-        size_t ncap = *cap ? *cap * 2 : 65536;
-        while (ncap < *len + (size_t)n + 1)
-            ncap *= 2;
-        char *nb = realloc(*buf, ncap);
-        if (!nb)
-            return -1;
-        *buf = nb;
-        *cap = ncap;
-    }
-}
-
 int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen)
 {
-    char *buf = NULL;
-    size_t len = 0, cap = 0;
-    int bad = buf_printf(&buf, &len, &cap,
-                         "model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs,attenuation_at_x,"
-                         "whole_max_abs,whole_at_x,invalid_count\n");
-    for (int i = 0; i < count && !bad; ++i) {
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs,attenuation_at_x,"
+                  "whole_max_abs,whole_at_x,invalid_count\n");
+    for (int i = 0; i < count && !b.failed; ++i) {
         const struct accuracy_result *r = &res[i];
-        for (long k = 0; k < r->n_count && !bad; ++k) {
+        for (long k = 0; k < r->n_count && !b.failed; ++k) {
             const struct acc_per_n *p = &r->per_n[k];
             const struct acc_extreme *whole = p->att_abs_d.value >= p->epi_abs_d.value ? &p->att_abs_d : &p->epi_abs_d;
             /* The label may hold commas (quad:a=..,b=..): quote it. */
-            bad = buf_printf(&buf, &len, &cap, "\"%s\",%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.0f\n", r->model.label,
-                             p->n, p->epi_rel_d.value, p->epi_rel_d.x, p->att_abs_d.value, p->att_abs_d.x,
-                             whole->value, whole->x, p->invalid_count);
+            md_printf(&b, "\"%s\",%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.0f\n", r->model.label, p->n,
+                      p->epi_rel_d.value, p->epi_rel_d.x, p->att_abs_d.value, p->att_abs_d.x, whole->value, whole->x,
+                      p->invalid_count);
         }
     }
     int rc;
-    if (bad) {
+    if (b.failed) {
         snprintf(err, errlen, "%s: out of memory", path);
         rc = -1;
     } else {
-        rc = write_file_atomic(path, buf, len, err, errlen);
+        rc = write_file_atomic(path, b.s, b.len, err, errlen);
     }
-    free(buf);
+    md_free(&b);
     return rc;
 }
 

@@ -6,6 +6,7 @@
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "jsonw.h"
+#include "mdbuf.h"
 #include "outdir.h"
 #include "usermodel.h"
 
@@ -14,7 +15,6 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -912,62 +912,22 @@ int gate_output_check(const char *flag, const char *path, char *err, size_t errl
     return 0;
 }
 
-/* Text growing in a buffer, with XML escaping. */
-struct xbuf {
-    char *s;
-    size_t len, cap;
-    int failed;
-};
-
-static void xb_raw(struct xbuf *b, const char *t, size_t n)
-{
-    if (b->failed)
-        return;
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 8192;
-        while (cap < b->len + n + 1)
-            cap *= 2;
-        char *ns = realloc(b->s, cap);
-        if (!ns) {
-            b->failed = 1;
-            return;
-        }
-        b->s = ns;
-        b->cap = cap;
-    }
-    memcpy(b->s + b->len, t, n);
-    b->len += n;
-    b->s[b->len] = '\0';
-}
-
-static void xb_printf(struct xbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void xb_printf(struct xbuf *b, const char *fmt, ...)
-{
-    char tmp[512];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    if (n > 0)
-        xb_raw(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
-}
-
 /* Escaped text for an XML attribute or element; control characters (not allowed in XML 1.0)
    become spaces. */
-static void xb_text(struct xbuf *b, const char *t)
+static void xml_text(struct md_buf *b, const char *t)
 {
     for (; *t; ++t) {
         switch (*t) {
-        case '&': xb_raw(b, "&amp;", 5); break;
-        case '<': xb_raw(b, "&lt;", 4); break;
-        case '>': xb_raw(b, "&gt;", 4); break;
-        case '"': xb_raw(b, "&quot;", 6); break;
-        case '\'': xb_raw(b, "&apos;", 6); break;
+        case '&': md_append(b, "&amp;", 5); break;
+        case '<': md_append(b, "&lt;", 4); break;
+        case '>': md_append(b, "&gt;", 4); break;
+        case '"': md_append(b, "&quot;", 6); break;
+        case '\'': md_append(b, "&apos;", 6); break;
         default:
             if ((unsigned char)*t < 0x20 && *t != '\n' && *t != '\t')
-                xb_raw(b, " ", 1);
+                md_append(b, " ", 1);
             else
-                xb_raw(b, t, 1);
+                md_append(b, t, 1);
         }
     }
 }
@@ -975,58 +935,59 @@ static void xb_text(struct xbuf *b, const char *t)
 int gate_set_write_junit(const struct gate_set *gs, const char *path, const struct cl_session *s, char *err,
                          size_t errlen)
 {
-    struct xbuf b = { 0 };
+    struct md_buf b;
+    md_init(&b);
     int failed = gate_set_failures(gs);
     double total = 0;
     for (int i = 0; i < gs->count; ++i)
         total += gs->gates[i].seconds;
     char stamp[64];
     utc_now_iso(stamp, sizeof stamp);
-    xb_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    xb_printf(&b, "<testsuites name=\"brdfbench gate\" tests=\"%d\" failures=\"%d\" errors=\"0\" time=\"%.3f\">\n",
+    md_printf(&b, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    md_printf(&b, "<testsuites name=\"brdfbench gate\" tests=\"%d\" failures=\"%d\" errors=\"0\" time=\"%.3f\">\n",
               gs->count, failed, total);
-    xb_printf(&b, "  <testsuite name=\"");
-    xb_text(&b, gs->path);
-    xb_printf(&b, "\" tests=\"%d\" failures=\"%d\" errors=\"0\" skipped=\"0\" time=\"%.3f\" timestamp=\"", gs->count,
+    md_printf(&b, "  <testsuite name=\"");
+    xml_text(&b, gs->path);
+    md_printf(&b, "\" tests=\"%d\" failures=\"%d\" errors=\"0\" skipped=\"0\" time=\"%.3f\" timestamp=\"", gs->count,
               failed, total);
-    xb_text(&b, stamp);
-    xb_printf(&b, "\">\n    <properties>\n");
+    xml_text(&b, stamp);
+    md_printf(&b, "\">\n    <properties>\n");
     const char *props[][2] = { { "device", s ? s->device_name : "" }, { "platform_version", s ? s->platform_version : "" },
                                { "brdfbench_version", BRDF_VERSION }, { "git_revision", brdf_git_revision },
                                { "baseline", gs->baseline_path } };
     for (size_t k = 0; k < sizeof props / sizeof props[0]; ++k) {
         if (!props[k][1][0])
             continue;
-        xb_printf(&b, "      <property name=\"%s\" value=\"", props[k][0]);
-        xb_text(&b, props[k][1]);
-        xb_printf(&b, "\"/>\n");
+        md_printf(&b, "      <property name=\"%s\" value=\"", props[k][0]);
+        xml_text(&b, props[k][1]);
+        md_printf(&b, "\"/>\n");
     }
-    xb_printf(&b, "    </properties>\n");
+    md_printf(&b, "    </properties>\n");
     char line[1400];
     for (int i = 0; i < gs->count; ++i) {
         const struct gate *g = &gs->gates[i];
         gate_line(g, line, sizeof line);
-        xb_printf(&b, "    <testcase classname=\"brdfbench.gate.");
-        xb_text(&b, g->model.info->id);
-        xb_printf(&b, "\" name=\"");
-        xb_text(&b, g->name);
-        xb_printf(&b, "\" time=\"%.3f\">\n", g->seconds);
+        md_printf(&b, "    <testcase classname=\"brdfbench.gate.");
+        xml_text(&b, g->model.info->id);
+        md_printf(&b, "\" name=\"");
+        xml_text(&b, g->name);
+        md_printf(&b, "\" time=\"%.3f\">\n", g->seconds);
         if (g->status == GATE_FAIL) {
             const char *type = g->baseline_status == GATE_BASELINE_REGRESSION ? "regression"
                                : !isfinite(g->measured)                        ? "no_value"
                                : g->invalid_count > 0 && g->metric != GATE_INVALID_COUNT ? "invalid_values"
                                                                                : "bound";
-            xb_printf(&b, "      <failure type=\"%s\" message=\"", type);
-            xb_text(&b, g->reason);
-            xb_printf(&b, "\">");
-            xb_text(&b, line);
-            xb_printf(&b, "</failure>\n");
+            md_printf(&b, "      <failure type=\"%s\" message=\"", type);
+            xml_text(&b, g->reason);
+            md_printf(&b, "\">");
+            xml_text(&b, line);
+            md_printf(&b, "</failure>\n");
         }
-        xb_printf(&b, "      <system-out>");
-        xb_text(&b, line);
-        xb_printf(&b, "</system-out>\n    </testcase>\n");
+        md_printf(&b, "      <system-out>");
+        xml_text(&b, line);
+        md_printf(&b, "</system-out>\n    </testcase>\n");
     }
-    xb_printf(&b, "  </testsuite>\n</testsuites>\n");
+    md_printf(&b, "  </testsuite>\n</testsuites>\n");
     int rc;
     if (b.failed) {
         snprintf(err, errlen, "%s: out of memory", path);
@@ -1034,7 +995,7 @@ int gate_set_write_junit(const struct gate_set *gs, const char *path, const stru
     } else {
         rc = write_output(path, b.s, b.len, err, errlen);
     }
-    free(b.s);
+    md_free(&b);
     return rc;
 }
 

@@ -7,49 +7,10 @@
 #include "outdir.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-
-void md_init(struct md_buf *b) { memset(b, 0, sizeof *b); }
-
-void md_free(struct md_buf *b)
-{
-    free(b->s);
-    memset(b, 0, sizeof *b);
-}
-
-void md_printf(struct md_buf *b, const char *fmt, ...)
-{
-    if (b->failed) return;
-    for (;;) {
-        size_t room = b->cap - b->len;
-        va_list ap;
-        va_start(ap, fmt);
-        int n = b->s ? vsnprintf(b->s + b->len, room, fmt, ap) : -2;
-        va_end(ap);
-        if (n >= 0 && (size_t)n < room) {
-            b->len += (size_t)n;
-            return;
-        }
-        if (n == -1) {
-            b->failed = 1;
-            return;
-        }
-        size_t need = b->len + (n > 0 ? (size_t)n : 0) + 1;
-        size_t nc = b->cap ? b->cap : 4096;
-        while (nc < need) nc *= 2;
-        char *ns = realloc(b->s, nc);
-        if (!ns) {
-            b->failed = 1;
-            return;
-        }
-        b->s = ns;
-        b->cap = nc;
-    }
-}
 
 static int file_exists(const char *dir, const char *name)
 {
@@ -57,16 +18,6 @@ static int file_exists(const char *dir, const char *name)
     struct stat st;
     if (path_join(path, sizeof path, dir, name)) return 0;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
-
-/* Markdown table cells must not contain '|' or line breaks. */
-static void md_cell(struct md_buf *b, const char *s)
-{
-    for (; s && *s; s++) {
-        if (*s == '|') md_printf(b, "\\|");
-        else if (*s == '\n') md_printf(b, " ");
-        else md_printf(b, "%c", *s);
-    }
 }
 
 static void md_pct(struct md_buf *b, double v)
@@ -107,9 +58,9 @@ static void accuracy_table(struct md_buf *b, const struct report_input *in)
     for (int i = 0; i < in->nacc; i++) {
         const struct accuracy_result *r = &in->acc[i];
         md_printf(b, "| `");
-        md_cell(b, r->model.label);
+        md_cell_text(b, r->model.label);
         md_printf(b, "` | `");
-        md_cell(b, r->reference.label);
+        md_cell_text(b, r->reference.label);
         md_printf(b, "` |");
         md_pct(b, r->epicentre.value);
         md_num(b, r->epicentre.n, "%.6g");
@@ -121,7 +72,7 @@ static void accuracy_table(struct md_buf *b, const struct report_input *in)
         md_num(b, accuracy_check_in_digits(r), "%.2g");
         if (!r->ok) {
             md_printf(b, " failed: ");
-            md_cell(b, r->reason);
+            md_cell_text(b, r->reason);
             md_printf(b, " |\n");
         } else if (r->invalid_count) {
             md_printf(b, " %lld invalid values (first at n = %g, x = %g) |\n", r->invalid_count, r->invalid_n, r->invalid_x);
@@ -150,11 +101,11 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
         any = 1;
         if (file_exists(in->run_dir, p->file)) {
             md_printf(b, "![%s](%s)\n\n*", p->file, p->file);
-            md_cell(b, p->caption);
+            md_cell_text(b, p->caption);
             md_printf(b, "*\n\n");
         } else {
             md_printf(b, "Picture `%s` was not written (see the run's error output): ", p->file);
-            md_cell(b, p->caption);
+            md_cell_text(b, p->caption);
             md_printf(b, "\n\n");
         }
     }
@@ -171,14 +122,14 @@ char *report_markdown(const struct report_input *in)
     if (in->date) md_printf(&b, "| date (UTC) | %s |\n", in->date);
     if (in->device) {
         md_printf(&b, "| OpenCL device | ");
-        md_cell(&b, in->device);
+        md_cell_text(&b, in->device);
         md_printf(&b, " |\n| platform | ");
-        md_cell(&b, in->platform_version);
+        md_cell_text(&b, in->platform_version);
         md_printf(&b, " |\n");
     }
     if (in->host_cpu) {
         md_printf(&b, "| host CPU | ");
-        md_cell(&b, in->host_cpu);
+        md_cell_text(&b, in->host_cpu);
         md_printf(&b, " |\n");
     }
     if (in->git_revision) md_printf(&b, "| git revision | `%s` |\n", in->git_revision);
@@ -323,9 +274,9 @@ int report_render_summary(const char *run_dir, struct md_buf *md,
             const struct jr_value *chk = jr_get(m, "double_reference_check"), *files = jr_get(m, "files");
             const char *label = str_or(m, "model", "?");
             md_printf(md, "| `");
-            md_cell(md, label);
+            md_cell_text(md, label);
             md_printf(md, "` | `");
-            md_cell(md, str_or(m, "reference", "?"));
+            md_cell_text(md, str_or(m, "reference", "?"));
             md_printf(md, "` |");
             md_num(md, mt ? num_or_nan(mt, "max_abs") : NAN, "%.4g");
             md_num(md, mt ? num_or_nan(mt, "rmse") : NAN, "%.4g");

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "accuracy.h"
+#include "mdbuf.h"
 
 enum report_section {
     REPORT_HEATMAPS = 0,
@@ -52,7 +53,6 @@ char *report_markdown(const struct report_input *in);
 /* Writes run_dir/report.md atomically. Returns 0 or -1 with a message. */
 int report_write(const struct report_input *in, char *err, size_t errlen);
 
-struct md_buf;
 /* Summarises run_dir/render.json (written by render_run) for the report: per scene a table of
  * the image metrics and timings into md, and each picture that exists through add(ctx, file,
  * caption) (contact sheets inline; the separate image and error PNGs linked from the table).
@@ -60,15 +60,5 @@ struct md_buf;
 int report_render_summary(const char *run_dir, struct md_buf *md,
                           void (*add)(void *ctx, const char *file, const char *caption), void *ctx, char *err,
                           size_t errlen);
-
-/* Markdown helpers shared with the code that fills report blocks: a growable string. */
-struct md_buf {
-    char *s;
-    size_t len, cap;
-    int failed;
-};
-void md_init(struct md_buf *b);
-void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-void md_free(struct md_buf *b);
 
 #endif

@@ -6,6 +6,7 @@
 #include "exitcodes.h"
 #include "fit.h"
 #include "jsonw.h"
+#include "mdbuf.h"
 #include "models.h"
 #include "outdir.h"
 
@@ -1156,46 +1157,12 @@ static int add_checks(struct repro *p)
 
 /* ---- output: claims.json, claims.md, q_sweep.json, the table ------------------------------ */
 
-static void md_cell(char **buf, size_t *len, size_t *cap, const char *s);
-
-static int buf_append(char **buf, size_t *len, size_t *cap, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static int buf_append(char **buf, size_t *len, size_t *cap, const char *fmt, ...)
+/* A markdown table cell between its separators. */
+static void md_cell(struct md_buf *b, const char *s)
 {
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int n = vsnprintf(*buf ? *buf + *len : NULL, *buf ? *cap - *len : 0, fmt, ap);
-        va_end(ap);
-        if (n < 0)
-            return -1;
-        if (*buf && *len + (size_t)n < *cap) {
-            *len += (size_t)n;
-            return 0;
-        }
-        size_t ncap = *cap ? *cap * 2 : 16384;
-        while (ncap < *len + (size_t)n + 1)
-            ncap *= 2;
-        char *nb = realloc(*buf, ncap);
-        if (!nb)
-            return -1;
-        *buf = nb;
-        *cap = ncap;
-    }
-}
-
-/* A markdown table cell: '|' escaped, newlines as spaces. */
-static void md_cell(char **buf, size_t *len, size_t *cap, const char *s)
-{
-    buf_append(buf, len, cap, " ");
-    for (const char *q = s; *q; ++q) {
-        if (*q == '|')
-            buf_append(buf, len, cap, "\\|");
-        else if (*q == '\n')
-            buf_append(buf, len, cap, " ");
-        else
-            buf_append(buf, len, cap, "%c", *q);
-    }
-    buf_append(buf, len, cap, " |");
+    md_printf(b, " ");
+    md_cell_text(b, s);
+    md_printf(b, " |");
 }
 
 static const char *verdict_text(const struct claim *c) { return c->reproduced ? "reproduced" : "not reproduced"; }
@@ -1203,43 +1170,47 @@ static const char *verdict_text(const struct claim *c) { return c->reproduced ? 
 static char *claims_markdown(const struct repro *p)
 {
     const struct reproduce_report *r = p->r;
-    char *buf = NULL;
-    size_t len = 0, cap = 0;
-    buf_append(&buf, &len, &cap,
-               "# Claims of the papers, re-derived\n\n"
-               "%d rows: %d reproduced, %d not reproduced. A printed number is reproduced when the measured value is "
-               "within one unit of its last printed digit (which accepts rounding or truncation); every other "
-               "tolerance is stated in its row. Rows of kind `check` are closed forms the harness itself must meet.\n\n",
-               r->count, r->reproduced, r->not_reproduced);
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b,
+              "# Claims of the papers, re-derived\n\n"
+              "%d rows: %d reproduced, %d not reproduced. A printed number is reproduced when the measured value is "
+              "within one unit of its last printed digit (which accepts rounding or truncation); every other "
+              "tolerance is stated in its row. Rows of kind `check` are closed forms the harness itself must meet.\n\n",
+              r->count, r->reproduced, r->not_reproduced);
     for (int pass = 0; pass < 2; ++pass) {
-        buf_append(&buf, &len, &cap, pass == 0 ? "## Claims\n\n" : "\n## Harness checks\n\n");
-        buf_append(&buf, &len, &cap,
-                   "| id | source | claim | claimed | measured | tolerance | verdict | where / why |\n"
-                   "|---|---|---|---|---|---|---|---|\n");
+        md_printf(&b, pass == 0 ? "## Claims\n\n" : "\n## Harness checks\n\n");
+        md_printf(&b,
+                  "| id | source | claim | claimed | measured | tolerance | verdict | where / why |\n"
+                  "|---|---|---|---|---|---|---|---|\n");
         for (int i = 0; i < r->count; ++i) {
             const struct claim *c = &r->rows[i];
             if ((strcmp(c->kind, "claim") == 0) != (pass == 0))
                 continue;
-            buf_append(&buf, &len, &cap, "|");
-            md_cell(&buf, &len, &cap, c->id);
-            md_cell(&buf, &len, &cap, c->source);
-            md_cell(&buf, &len, &cap, c->text);
-            md_cell(&buf, &len, &cap, c->claimed_text);
-            md_cell(&buf, &len, &cap, c->measured_text);
-            md_cell(&buf, &len, &cap, c->tolerance);
-            md_cell(&buf, &len, &cap, c->reproduced ? "**reproduced**" : "**not reproduced**");
+            md_printf(&b, "|");
+            md_cell(&b, c->id);
+            md_cell(&b, c->source);
+            md_cell(&b, c->text);
+            md_cell(&b, c->claimed_text);
+            md_cell(&b, c->measured_text);
+            md_cell(&b, c->tolerance);
+            md_cell(&b, c->reproduced ? "**reproduced**" : "**not reproduced**");
             char why[1024];
             snprintf(why, sizeof why, "%s%s(%s)", c->note, c->note[0] ? " " : "", c->method);
-            md_cell(&buf, &len, &cap, why);
-            buf_append(&buf, &len, &cap, "\n");
+            md_cell(&b, why);
+            md_printf(&b, "\n");
         }
     }
-    buf_append(&buf, &len, &cap,
-               "\nGrids: claim sweeps n step 1, %ld samples per zone (both zones), maxima polished in double; Q sweep "
-               "Q = %g..%g step %g, n in [2, 1000] step %g, %ld samples per zone (q_sweep.json).\n",
-               p->o->samples, p->o->q_min, p->nq > 0 ? p->q[p->nq - 1] : p->o->q_max, p->o->q_step, p->o->q_n_step,
-               p->o->q_samples);
-    return buf;
+    md_printf(&b,
+              "\nGrids: claim sweeps n step 1, %ld samples per zone (both zones), maxima polished in double; Q sweep "
+              "Q = %g..%g step %g, n in [2, 1000] step %g, %ld samples per zone (q_sweep.json).\n",
+              p->o->samples, p->o->q_min, p->nq > 0 ? p->q[p->nq - 1] : p->o->q_max, p->o->q_step, p->o->q_n_step,
+              p->o->q_samples);
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;
 }
 
 static void jw_claim(struct jw *w, const struct claim *c)

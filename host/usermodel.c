@@ -4,6 +4,7 @@
 #include "usermodel.h"
 #include "cli.h"
 #include "exitcodes.h"
+#include "mdbuf.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -76,59 +77,16 @@ static int parse_number(const char *t, double *out)
     return 0;
 }
 
-/* Appends text to a growable string. */
-struct sbuf {
-    char *s;
-    size_t len, cap;
-    int failed;
-};
-
-static void sb_add(struct sbuf *b, const char *text, size_t n)
-{
-    if (b->failed)
-        return;
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 1024;
-        while (cap < b->len + n + 1)
-            cap *= 2;
-        char *ns = realloc(b->s, cap);
-        if (!ns) {
-            b->failed = 1;
-            return;
-        }
-        b->s = ns;
-        b->cap = cap;
-    }
-    memcpy(b->s + b->len, text, n);
-    b->len += n;
-    b->s[b->len] = '\0';
-}
-
-static void sb_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void sb_printf(struct sbuf *b, const char *fmt, ...)
-{
-    char tmp[2048];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    if (n < 0 || (size_t)n >= sizeof tmp) {
-        b->failed = 1;
-        return;
-    }
-    sb_add(b, tmp, (size_t)n);
-}
-
 /* A file name as the string of a #line directive: quotes and backslashes escaped. */
-static void sb_line_directive(struct sbuf *b, int line, const char *name)
+static void line_directive(struct md_buf *b, int line, const char *name)
 {
-    sb_printf(b, "\n#line %d \"", line);
+    md_printf(b, "\n#line %d \"", line);
     for (const char *p = name; *p; ++p) {
         if (*p == '"' || *p == '\\')
-            sb_add(b, "\\", 1);
-        sb_add(b, p, 1);
+            md_append(b, "\\", 1);
+        md_append(b, p, 1);
     }
-    sb_add(b, "\"\n", 2);
+    md_append(b, "\"\n", 2);
 }
 
 /* ---- the model_info of a user model --------------------------------------------------- */
@@ -261,17 +219,18 @@ static int has_call_or_definition(const char *text, const char *name)
  * compiler's line numbers are the file's own), then the wrapper that brdf_eval calls. */
 static int make_file_source(struct user_model *um, const char *text, size_t len)
 {
-    struct sbuf b = { 0 };
-    sb_line_directive(&b, 1, um->origin);
-    sb_add(&b, text, len);
+    struct md_buf b;
+    md_init(&b);
+    line_directive(&b, 1, um->origin);
+    md_append(&b, text, len);
     char wrapper_name[600];
     snprintf(wrapper_name, sizeof wrapper_name, "brdfbench wrapper of %s", um->origin);
-    sb_line_directive(&b, 1, wrapper_name);
-    sb_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n");
-    sb_printf(&b, "    (void)p0;\n    (void)p1;\n    return %s(c, n%s%s);\n}\n", um->function,
+    line_directive(&b, 1, wrapper_name);
+    md_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n");
+    md_printf(&b, "    (void)p0;\n    (void)p1;\n    return %s(c, n%s%s);\n}\n", um->function,
               um->info.nparams > 0 ? ", p0" : "", um->info.nparams > 1 ? ", p1" : "");
     if (b.failed) {
-        free(b.s);
+        md_free(&b);
         return -1;
     }
     um->device_source = b.s;
@@ -500,18 +459,19 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
 
     /* The expression stands alone on line 1 of its own #line name, so the compiler's
        line:column point into the expression as the user typed it. */
-    struct sbuf b = { 0 };
+    struct md_buf b;
+    md_init(&b);
     char wrapper_name[600];
     snprintf(wrapper_name, sizeof wrapper_name, "brdfbench wrapper of %s", um->origin);
-    sb_line_directive(&b, 1, wrapper_name);
-    sb_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n"
+    line_directive(&b, 1, wrapper_name);
+    md_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n"
                   "    (void)p0;\n    (void)p1;\n    return RSPLAT(0.0) + (");
-    sb_line_directive(&b, 1, um->origin);
-    sb_add(&b, expr, elen);
-    sb_line_directive(&b, 6, wrapper_name);
-    sb_printf(&b, "    );\n}\n");
+    line_directive(&b, 1, um->origin);
+    md_append(&b, expr, elen);
+    line_directive(&b, 6, wrapper_name);
+    md_printf(&b, "    );\n}\n");
     if (b.failed) {
-        free(b.s);
+        md_free(&b);
         usermodel_free(um);
         snprintf(err, errlen, "--model: out of memory");
         return EXIT_RUNTIME;

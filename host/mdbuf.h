@@ -1,0 +1,23 @@
+/* mdbuf.h - a growable NUL-terminated text buffer: markdown blocks, CSV and XML files, and
+ * kernel source are built in it before being written in one piece. An allocation failure sets
+ * `failed`; later calls do nothing, so a caller checks once at the end. */
+#ifndef BRDF_MDBUF_H
+#define BRDF_MDBUF_H
+
+#include <stddef.h>
+
+struct md_buf {
+    char *s;        /* NULL until the first text; NUL-terminated after it */
+    size_t len, cap;
+    int failed;
+};
+void md_init(struct md_buf *b);
+/* Appends formatted text, whatever its length. */
+void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Appends n bytes of text as they are. */
+void md_append(struct md_buf *b, const char *text, size_t n);
+/* Text for a markdown table cell: '|' escaped, line breaks as spaces (NULL: nothing). */
+void md_cell_text(struct md_buf *b, const char *s);
+void md_free(struct md_buf *b);
+
+#endif
