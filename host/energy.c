@@ -734,12 +734,12 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
     sum->seconds = wall_seconds() - t0;
     jw_kv_num(&w, "seconds", sum->seconds);
     jw_obj_end(&w);
-    if (summary && !w.failed) {
+    if (summary && !w.out.failed) {
         /* the caller may write the text later, beside its own files */
-        sum->json = malloc(w.len + 2);
+        sum->json = malloc(w.out.len + 2);
         if (sum->json) {
-            memcpy(sum->json, w.buf, w.len);
-            memcpy(sum->json + w.len, "\n", 2);
+            memcpy(sum->json, w.out.s, w.out.len);
+            memcpy(sum->json + w.out.len, "\n", 2);
         }
     }
     if (out_dir) {

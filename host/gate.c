@@ -1079,12 +1079,12 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
     jw_arr_end(&w);
     jw_obj_end(&w);
     int rc;
-    if (w.failed) {
+    if (w.out.failed) {
         snprintf(err, errlen, "%s: out of memory", path);
         rc = -1;
     } else {
-        char *text = w.buf;
-        size_t len = w.len;
+        char *text = w.out.s;
+        size_t len = w.out.len;
         /* jw_write_file adds a newline and writes atomically; a device file gets the same text. */
         char *with_nl = malloc(len + 2);
         if (!with_nl) {

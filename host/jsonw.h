@@ -7,17 +7,17 @@
 
 #include <stddef.h>
 
+#include "mdbuf.h"
+
 #define JW_MAX_DEPTH 32
 
 struct jw {
-    char *buf;
-    size_t len, cap;
+    struct md_buf out;        /* the document so far; out.failed: out of memory */
     int depth;
     int count[JW_MAX_DEPTH];  /* items written at each depth, for commas */
     char is_array[JW_MAX_DEPTH];   /* the container at each depth is an array */
     char broken[JW_MAX_DEPTH];     /* it holds a line break (an object, or a nested container) */
     int after_key;
-    int failed;               /* out of memory */
 };
 
 void jw_init(struct jw *w);
