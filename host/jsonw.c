@@ -139,11 +139,12 @@ void jw_kv_bool(struct jw *w, const char *key, int v) { jw_key(w, key); jw_bool(
 
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
 {
+    md_append(&w->out, "\n", 1);
+    /* Checked after the newline: its own append may be the one that runs out of memory. */
     if (w->out.failed) {
         snprintf(err, errlen, "%s: out of memory while formatting JSON", path);
         return -1;
     }
-    md_append(&w->out, "\n", 1);
     int rc = write_file_atomic(path, w->out.s, w->out.len, err, errlen);
     w->out.len--; /* the newline is not part of the document */
     w->out.s[w->out.len] = '\0';
