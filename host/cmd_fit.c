@@ -87,15 +87,7 @@ int cmd_fit(int argc, char **argv)
         return rc;
     }
     char run_dir[4096];
-    if (out_dir) {
-        if (outdir_prepare(out_dir, err, sizeof err)) {
-            fprintf(stderr, "brdfbench fit: %s\n", err);
-            clsession_close(&s);
-            return EXIT_RUNTIME;
-        }
-        snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", err, sizeof err) ||
-               outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
+    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
         clsession_close(&s);
         return EXIT_RUNTIME;

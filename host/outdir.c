@@ -133,6 +133,16 @@ int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err
     return -1;
 }
 
+int outdir_for_command(const char *out_dir, char *run_dir, size_t run_dir_len, char *err, size_t errlen)
+{
+    if (!out_dir)
+        return outdir_new_run("results", run_dir, run_dir_len, err, errlen);
+    if (outdir_prepare(out_dir, err, errlen) != 0)
+        return -1;
+    snprintf(run_dir, run_dir_len, "%s", out_dir);
+    return 0;
+}
+
 int outdir_set_latest(const char *results_root, const char *run_dir, char *err, size_t errlen)
 {
     char link_path[4096], tmp[4096], target[4096];
