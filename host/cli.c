@@ -83,6 +83,33 @@ const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char
     return argv[++*i];
 }
 
+int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
+                     double *out, char *err, size_t errlen)
+{
+    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
+    return v ? cli_parse_double(name, v, min, max, out, err, errlen) : EXIT_USAGE;
+}
+
+int cli_long_value(int argc, char **argv, int *i, const char *name, long min, long max,
+                   long *out, char *err, size_t errlen)
+{
+    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
+    return v ? cli_parse_long(name, v, min, max, out, err, errlen) : EXIT_USAGE;
+}
+
+int cli_long_multiple_value(int argc, char **argv, int *i, const char *name, long min, long max, long multiple,
+                            long *out, char *err, size_t errlen)
+{
+    if (cli_long_value(argc, argv, i, name, min, max, out, err, errlen))
+        return EXIT_USAGE;
+    if (*out % multiple != 0) {
+        snprintf(err, errlen, "%s: %ld is not a multiple of %ld (accepted: a multiple of %ld in [%ld, %ld])", name,
+                 *out, multiple, multiple, min, max);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
 int cli_mul_size(size_t a, size_t b, size_t *out)
 {
     if (a != 0 && b > SIZE_MAX / a)

@@ -15,6 +15,15 @@ int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
 /* The value of flag argv[*i] (either "--flag=value" or "--flag value"); advances *i.
  * Returns NULL and writes a message when the value is missing. `name` is the flag. */
 const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
+/* The value of flag argv[*i] parsed as cli_parse_double / cli_parse_long do; advances *i.
+ * Returns 0 or EXIT_USAGE with a message (a missing value, or one out of [min, max]). */
+int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
+                     double *out, char *err, size_t errlen);
+int cli_long_value(int argc, char **argv, int *i, const char *name, long min, long max,
+                   long *out, char *err, size_t errlen);
+/* As cli_long_value, and the value must be a multiple of `multiple`. */
+int cli_long_multiple_value(int argc, char **argv, int *i, const char *name, long min, long max, long multiple,
+                            long *out, char *err, size_t errlen);
 /* 1 when argv[i] is `name` or starts with `name=`. */
 int cli_flag_is(const char *argv_i, const char *name);
 /* size_t multiplication with overflow detection: returns 0 on overflow. */

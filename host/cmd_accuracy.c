@@ -47,16 +47,15 @@ int cmd_accuracy(int argc, char **argv)
     struct model_spec models[MAX_MODELS];
 
     for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i], *v = NULL;
+        const char *a = argv[i];
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0)
+            d = accuracy_grid_flag(argc, argv, &i, &grid.n_min, &grid.n_max, &grid.n_step, err, sizeof err);
+        if (d == 0)
+            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
-            continue;
-        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (u < 0)
-            goto usage_error;
-        if (u > 0)
             continue;
         if (strcmp(a, "--help") == 0) {
             accuracy_usage(stdout);
@@ -70,27 +69,10 @@ int cmd_accuracy(int argc, char **argv)
         } else if (cli_flag_is(a, "--out")) {
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
-        } else if (cli_flag_is(a, "--n-min")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-min", err, sizeof err)) ||
-                cli_parse_double("--n-min", v, 1e-300, ACC_MAX_N, &grid.n_min, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n-max")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-max", err, sizeof err)) ||
-                cli_parse_double("--n-max", v, 1e-300, ACC_MAX_N, &grid.n_max, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n-step")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-step", err, sizeof err)) ||
-                cli_parse_double("--n-step", v, 1e-300, ACC_MAX_N, &grid.n_step, err, sizeof err))
-                goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--samples", err, sizeof err)) ||
-                cli_parse_long("--samples", v, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &grid.samples, err, sizeof err))
+            if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
+                                        &grid.samples, err, sizeof err))
                 goto usage_error;
-            if (grid.samples % 16 != 0) {
-                snprintf(err, sizeof err, "--samples: %ld is not a multiple of 16 (accepted: a multiple of 16 in [%d, %ld])",
-                         grid.samples, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES);
-                goto usage_error;
-            }
         } else {
             snprintf(err, sizeof err, "unknown option '%s' (see brdfbench accuracy --help)", a);
             goto usage_error;

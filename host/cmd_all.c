@@ -717,11 +717,9 @@ int cmd_all(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0) d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0) goto usage_error;
         if (d > 0) continue;
-        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (u < 0) goto usage_error;
-        if (u > 0) continue;
         if (strcmp(a, "--help") == 0) {
             all_usage(stdout);
             return EXIT_OK;

@@ -35,11 +35,13 @@ int cmd_fit(int argc, char **argv)
     fit_options_default(&opt);
     struct device_options dev;
     device_options_init(&dev);
-    const char *out_dir = NULL, *v = NULL;
+    const char *out_dir = NULL;
     int quiet = 0;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0)
+            d = accuracy_grid_flag(argc, argv, &i, &opt.n_min, &opt.n_max, &opt.n_step, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
@@ -52,25 +54,12 @@ int cmd_fit(int argc, char **argv)
         } else if (cli_flag_is(a, "--out")) {
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
-        } else if (cli_flag_is(a, "--n-min")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-min", err, sizeof err)) ||
-                cli_parse_double("--n-min", v, 1e-300, ACC_MAX_N, &opt.n_min, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n-max")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-max", err, sizeof err)) ||
-                cli_parse_double("--n-max", v, 1e-300, ACC_MAX_N, &opt.n_max, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n-step")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-step", err, sizeof err)) ||
-                cli_parse_double("--n-step", v, 1e-300, ACC_MAX_N, &opt.n_step, err, sizeof err))
-                goto usage_error;
         } else if (cli_flag_is(a, "--max-abs")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--max-abs", err, sizeof err)) ||
-                cli_parse_double("--max-abs", v, 1e-300, 1.0, &opt.max_abs_cap, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--max-abs", 1e-300, 1.0, &opt.max_abs_cap, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--samples", err, sizeof err)) ||
-                cli_parse_long("--samples", v, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &opt.samples, err, sizeof err))
+            if (cli_long_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &opt.samples, err,
+                               sizeof err))
                 goto usage_error;
         } else {
             snprintf(err, sizeof err, "unknown option '%s' (see brdfbench fit --help)", a);

@@ -38,16 +38,13 @@ int cmd_gate(int argc, char **argv)
     int quiet = 0, tolerance_given = 0;
 
     for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i], *v = NULL;
+        const char *a = argv[i];
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0)
+            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
-            continue;
-        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (u < 0)
-            goto usage_error;
-        if (u > 0)
             continue;
         if (strcmp(a, "--help") == 0) {
             gate_usage(stdout);
@@ -68,8 +65,7 @@ int cmd_gate(int argc, char **argv)
                 goto usage_error;
             }
         } else if (cli_flag_is(a, "--tolerance")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--tolerance", err, sizeof err)) ||
-                cli_parse_double("--tolerance", v, 0.0, 1.0, &tolerance, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--tolerance", 0.0, 1.0, &tolerance, err, sizeof err))
                 goto usage_error;
             tolerance_given = 1;
         } else if (a[0] == '-' && a[1] != '\0') {

@@ -68,8 +68,7 @@ static int parse_int_flag(int argc, char **argv, int *i, const char *flag, long 
                           int *out, char *err, size_t errlen)
 {
     long v;
-    const char *text = cli_flag_value(argc, argv, i, flag, err, errlen);
-    if (!text || cli_parse_long(flag, text, lo, hi, &v, err, errlen))
+    if (cli_long_value(argc, argv, i, flag, lo, hi, &v, err, errlen))
         return EXIT_USAGE;
     *out = (int)v;
     return 0;
@@ -107,14 +106,11 @@ int cmd_render(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = NULL;
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0)
+            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
-            continue;
-        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (u < 0)
-            goto usage_error;
-        if (u > 0)
             continue;
         if (strcmp(a, "--help") == 0) {
             render_usage(stdout);
@@ -200,16 +196,13 @@ int cmd_render(int argc, char **argv)
                     goto usage_error;
             o.ncols = n;
         } else if (cli_flag_is(a, "--n")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n", err, sizeof err)) ||
-                cli_parse_double("--n", v, 1, 10000, &o.mesh_n, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--n", 1, 10000, &o.mesh_n, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--exposure")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--exposure", err, sizeof err)) ||
-                cli_parse_double("--exposure", v, 0.01, 100, &o.exposure, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--exposure", 0.01, 100, &o.exposure, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--threshold")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--threshold", err, sizeof err)) ||
-                cli_parse_double("--threshold", v, 0, 1e6, &o.threshold, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--threshold", 0, 1e6, &o.threshold, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--light")) {
             if (!(v = cli_flag_value(argc, argv, &i, "--light", err, sizeof err)))

@@ -37,7 +37,7 @@ int cmd_reproduce(int argc, char **argv)
     reproduce_options_default(&opt);
     struct device_options dev;
     device_options_init(&dev);
-    const char *out_dir = NULL, *v = NULL;
+    const char *out_dir = NULL;
     int quiet = 0;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -59,30 +59,18 @@ int cmd_reproduce(int argc, char **argv)
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--samples", err, sizeof err)) ||
-                cli_parse_long("--samples", v, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES / 2, &opt.samples, err, sizeof err))
+            if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES / 2, 16,
+                                        &opt.samples, err, sizeof err))
                 goto usage_error;
-            if (opt.samples % 16 != 0) {
-                snprintf(err, sizeof err, "--samples: %ld is not a multiple of 16 (accepted: a multiple of 16 in "
-                                          "[%d, %ld])", opt.samples, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES / 2);
-                goto usage_error;
-            }
         } else if (cli_flag_is(a, "--q-step")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--q-step", err, sizeof err)) ||
-                cli_parse_double("--q-step", v, 1e-4, 0.5, &opt.q_step, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--q-step", 1e-4, 0.5, &opt.q_step, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--q-samples")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--q-samples", err, sizeof err)) ||
-                cli_parse_long("--q-samples", v, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &opt.q_samples, err, sizeof err))
+            if (cli_long_multiple_value(argc, argv, &i, "--q-samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
+                                        &opt.q_samples, err, sizeof err))
                 goto usage_error;
-            if (opt.q_samples % 16 != 0) {
-                snprintf(err, sizeof err, "--q-samples: %ld is not a multiple of 16 (accepted: a multiple of 16 in "
-                                          "[%d, %ld])", opt.q_samples, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES);
-                goto usage_error;
-            }
         } else if (cli_flag_is(a, "--q-n-step")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--q-n-step", err, sizeof err)) ||
-                cli_parse_double("--q-n-step", v, 0.01, 499, &opt.q_n_step, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--q-n-step", 0.01, 499, &opt.q_n_step, err, sizeof err))
                 goto usage_error;
         } else {
             snprintf(err, sizeof err, "unknown option '%s' (see brdfbench reproduce --help)", a);

@@ -99,14 +99,11 @@ int cmd_throughput(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = NULL;
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0)
+            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
-            continue;
-        int u = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (u < 0)
-            goto usage_error;
-        if (u > 0)
             continue;
         if (strcmp(a, "--help") == 0) {
             throughput_usage(stdout);
@@ -127,13 +124,12 @@ int cmd_throughput(int argc, char **argv)
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--reps")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--reps", err, sizeof err)) ||
-                cli_parse_long("--reps", v, 1, TP_MAX_REPS, &lv, err, sizeof err))
+            if (cli_long_value(argc, argv, &i, "--reps", 1, TP_MAX_REPS, &lv, err, sizeof err))
                 goto usage_error;
             o.reps = (int)lv;
         } else if (cli_flag_is(a, "--min-time")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--min-time", err, sizeof err)) ||
-                cli_parse_double("--min-time", v, TP_MIN_TIME_MIN, TP_MIN_TIME_MAX, &o.min_time, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--min-time", TP_MIN_TIME_MIN, TP_MIN_TIME_MAX, &o.min_time, err,
+                                 sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--variants")) {
             if (!(v = cli_flag_value(argc, argv, &i, "--variants", err, sizeof err)) ||
@@ -149,8 +145,7 @@ int cmd_throughput(int argc, char **argv)
                                sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--n")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n", err, sizeof err)) ||
-                cli_parse_double("--n", v, 1e-300, ACC_MAX_N, &o.n_uniform, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--n", 1e-300, ACC_MAX_N, &o.n_uniform, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--n-range")) {
             if (!(v = cli_flag_value(argc, argv, &i, "--n-range", err, sizeof err)))
@@ -172,31 +167,21 @@ int cmd_throughput(int argc, char **argv)
                 goto usage_error;
             }
         } else if (cli_flag_is(a, "--work-items")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--work-items", err, sizeof err)) ||
-                cli_parse_long("--work-items", v, 1, TP_MAX_WORK_ITEMS, &o.work_items, err, sizeof err))
+            if (cli_long_value(argc, argv, &i, "--work-items", 1, TP_MAX_WORK_ITEMS, &o.work_items, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--threads")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--threads", err, sizeof err)) ||
-                cli_parse_long("--threads", v, 1, 256, &lv, err, sizeof err))
+            if (cli_long_value(argc, argv, &i, "--threads", 1, 256, &lv, err, sizeof err))
                 goto usage_error;
             o.threads = (int)lv;
         } else if (cli_flag_is(a, "--sweep-samples")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--sweep-samples", err, sizeof err)) ||
-                cli_parse_long("--sweep-samples", v, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &o.sweep_grid.samples, err,
-                               sizeof err))
+            if (cli_long_multiple_value(argc, argv, &i, "--sweep-samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
+                                        &o.sweep_grid.samples, err, sizeof err))
                 goto usage_error;
-            if (o.sweep_grid.samples % 16 != 0) {
-                snprintf(err, sizeof err, "--sweep-samples: %ld is not a multiple of 16 (accepted: a multiple of 16 in [%d, %ld])",
-                         o.sweep_grid.samples, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES);
-                goto usage_error;
-            }
         } else if (cli_flag_is(a, "--sweep-n-step")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--sweep-n-step", err, sizeof err)) ||
-                cli_parse_double("--sweep-n-step", v, 1e-3, 998, &o.sweep_grid.n_step, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--sweep-n-step", 1e-3, 998, &o.sweep_grid.n_step, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--sweep-reps")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--sweep-reps", err, sizeof err)) ||
-                cli_parse_long("--sweep-reps", v, 1, TP_MAX_REPS, &lv, err, sizeof err))
+            if (cli_long_value(argc, argv, &i, "--sweep-reps", 1, TP_MAX_REPS, &lv, err, sizeof err))
                 goto usage_error;
             o.sweep_reps = (int)lv;
         } else {
