@@ -29,8 +29,6 @@ int cli_flag_is(const char *argv_i, const char *name);
 /* size_t multiplication with overflow detection: returns 0 on overflow. */
 int cli_mul_size(size_t a, size_t b, size_t *out);
 
-#endif
-
 /* Device selection flags shared by every command that runs kernels. */
 struct device_options {
     int platform;            /* -1: the first platform with a device */
@@ -45,3 +43,5 @@ void device_options_init(struct device_options *o);
 /* Consumes argv[*i] if it is a device flag: returns 1 (consumed), 0 (not a device flag) or
  * EXIT_USAGE negated (-2) with a message. Applies --kernel-dir at once. */
 int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen);
+
+#endif
