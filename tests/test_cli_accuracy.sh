@@ -6,20 +6,7 @@ BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 SRC=${SRC_DIR:?}
 T=$(mktemp -d)
 trap 'chmod -R u+w "$T"; rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-
-# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
-expect() {
-    local code=$1 pattern=$2
-    shift 2
-    "$BIN" "$@" >"$T/out" 2>"$T/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 300 "$T/err")"; return; fi
-    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 300 "$T/err")' lacks /$pattern/"; return; fi
-    ok
-}
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
 # A small sweep into a folder; the JSON contract is checked with python's strict parser.
 "$BIN" accuracy --models cq2,fq:Q=0.64,lyon:k=3 --n-min 2 --n-max 50 --samples 256 --out "$T/run" >"$T/table" 2>"$T/err"

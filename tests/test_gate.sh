@@ -8,9 +8,7 @@ BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 SRC=${SRC_DIR:?}
 T=$(mktemp -d)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
 # py WHAT CODE ARGS...: runs python CODE with sys.argv[1:] = ARGS; counts its success.
 py() {

@@ -8,9 +8,7 @@ BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 SRC=${SRC_DIR:?}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
 "$BIN" gate "$SRC/tests/gates/papers.json" --junit "$T/papers.xml" --json "$T/papers.json" >"$T/out" 2>"$T/err"
 rc=$?

@@ -9,9 +9,7 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 mkdir -p "$T/vendors"
 export OCL_ICD_VENDORS=$T/vendors
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 HINT='no OpenCL platform found; install the CPU OpenCL driver: apt-get install pocl-opencl-icd'
 
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.0126}]}' >"$T/gates.json"

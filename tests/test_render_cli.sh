@@ -8,11 +8,9 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T}/test_render_cli"
 mkdir -p "$POCL_CACHE_DIR"
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
-# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
+# expect CODE PATTERN ARGS... : as testlib.sh's, and the whole test is skipped (77) without a device
 expect() {
     local code=$1 pattern=$2
     shift 2

@@ -7,20 +7,8 @@ set -u
 BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
-# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
-expect() {
-    local code=$1 pattern=$2
-    shift 2
-    "$BIN" "$@" >"$T/out" 2>"$T/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 400 "$T/err")"; return; fi
-    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 400 "$T/err")' lacks /$pattern/"; return; fi
-    ok
-}
 
 # is_png FILE: the 8-byte PNG signature (89 50 4E 47 0D 0A 1A 0A, RFC 2083)
 is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }

@@ -6,19 +6,7 @@ set -u
 BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-
-expect() {
-    local code=$1 pattern=$2
-    shift 2
-    "$BIN" "$@" >"$T/out" 2>"$T/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 300 "$T/err")"; return; fi
-    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 300 "$T/err")' lacks /$pattern/"; return; fi
-    ok
-}
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
 # A lighter reproduce (coarser Q sweep, no grid re-run): every claim row is still there.
 "$BIN" reproduce --out "$T/rep" --q-step 0.05 --q-samples 256 --no-grid-check >"$T/table" 2>"$T/err"

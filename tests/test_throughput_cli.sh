@@ -6,20 +6,7 @@ set -u
 BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-
-# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
-expect() {
-    local code=$1 pattern=$2
-    shift 2
-    "$BIN" "$@" >"$T/out" 2>"$T/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 300 "$T/err")"; return; fi
-    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 300 "$T/err")' lacks /$pattern/"; return; fi
-    ok
-}
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
 "$BIN" throughput --models cq2,fq:Q=0.7 --reps 2 --min-time 0.002 --work-items 4 --variants default,denorms-are-zero \
     --sweep-samples 32 --sweep-n-step 100 --sweep-reps 1 --out "$T/run" >"$T/table" 2>"$T/err"

@@ -13,20 +13,8 @@ SRC=${SRC_DIR:?}
 F=$SRC/tests/test_usermodel_files
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
-# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
-expect() {
-    local code=$1 pattern=$2
-    shift 2
-    "$BIN" "$@" >"$T/out" 2>"$T/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 400 "$T/err")"; return; fi
-    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 400 "$T/err")' lacks /$pattern/"; return; fi
-    ok
-}
 
 # check_json FILE PYTHON: runs PYTHON with `d` = the parsed JSON (strict: no NaN literals).
 check_json() {

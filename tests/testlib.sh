@@ -1,0 +1,17 @@
+# testlib.sh - the counters and the exit-code-and-message check that the shell tests share.
+# Sourced by a test after it sets BIN (the brdfbench binary) and T (its temporary folder); the
+# test prints "$pass passed, $fail failed" at its end and exits non-zero when fail > 0.
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN ARGS... : exit code and a stderr line matching PATTERN
+expect() {
+    local code=$1 pattern=$2
+    shift 2
+    "$BIN" "$@" >"$T/out" 2>"$T/err"
+    local rc=$?
+    if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 400 "$T/err")"; return; fi
+    if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 400 "$T/err")' lacks /$pattern/"; return; fi
+    ok
+}
