@@ -114,13 +114,13 @@ int cmd_accuracy(int argc, char **argv)
        builds, so a user model that does not compile leaves no folder behind). */
     char run_dir[4096];
     if (out_dir) {
-        if (outdir_prepare(out_dir, err, sizeof err)) {
+        if (outdir_prepare(out_dir, "--out", err, sizeof err)) {
             fprintf(stderr, "brdfbench accuracy: %s\n", err);
             rc = EXIT_RUNTIME;
             goto cleanup;
         }
         snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", err, sizeof err)) {
+    } else if (outdir_prepare("results", NULL, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
         goto cleanup;

@@ -751,7 +751,7 @@ int cmd_all(int argc, char **argv)
     }
     /* the run folder exists before any work, so a bad location fails fast */
     if (out_dir) {
-        if (outdir_prepare(out_dir, err, sizeof err)) {
+        if (outdir_prepare(out_dir, "--out", err, sizeof err)) {
             fprintf(stderr, "brdfbench all: %s\n", err);
             clsession_close(&r->s);
             return EXIT_RUNTIME;

@@ -257,7 +257,7 @@ int cmd_render(int argc, char **argv)
     char run_dir[4096];
     if (out_dir) {
         snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", err, sizeof err) != 0 ||
+    } else if (outdir_prepare("results", NULL, err, sizeof err) != 0 ||
                outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err) != 0) {
         fprintf(stderr, "brdfbench render: %s\n", err);
         clsession_close(&s);

@@ -84,23 +84,26 @@ static int mkdir_p(const char *dir)
     return 0;
 }
 
-int outdir_prepare(const char *dir, char *err, size_t errlen)
+int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
 {
     struct stat st;
+    const char *sep = arg ? ": " : "";
+    if (!arg)
+        arg = "";
     if (!dir || !*dir) {
-        snprintf(err, errlen, "--out: empty folder name");
+        snprintf(err, errlen, "%s%sempty folder name", arg, sep);
         return -1;
     }
     if (mkdir_p(dir) != 0) {
-        snprintf(err, errlen, "--out: cannot create folder %s: %s", dir, strerror(errno));
+        snprintf(err, errlen, "%s%scannot create folder %s: %s", arg, sep, dir, strerror(errno));
         return -1;
     }
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "--out: %s is not a folder", dir);
+        snprintf(err, errlen, "%s%s%s is not a folder", arg, sep, dir);
         return -1;
     }
     if (access(dir, W_OK | X_OK) != 0) {
-        snprintf(err, errlen, "--out: folder %s is not writable: %s", dir, strerror(errno));
+        snprintf(err, errlen, "%s%sfolder %s is not writable: %s", arg, sep, dir, strerror(errno));
         return -1;
     }
     return 0;
@@ -108,7 +111,7 @@ int outdir_prepare(const char *dir, char *err, size_t errlen)
 
 int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err, size_t errlen)
 {
-    if (outdir_prepare(results_root, err, errlen) != 0)
+    if (outdir_prepare(results_root, NULL, err, errlen) != 0)
         return -1;
     time_t now = time(NULL);
     struct tm tmv;
@@ -137,7 +140,7 @@ int outdir_for_command(const char *out_dir, char *run_dir, size_t run_dir_len, c
 {
     if (!out_dir)
         return outdir_new_run("results", run_dir, run_dir_len, err, errlen);
-    if (outdir_prepare(out_dir, err, errlen) != 0)
+    if (outdir_prepare(out_dir, "--out", err, errlen) != 0)
         return -1;
     snprintf(run_dir, run_dir_len, "%s", out_dir);
     return 0;

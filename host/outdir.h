@@ -7,8 +7,10 @@
 /* Writes data to path through a temporary file in the same folder, fsync and rename, so a
  * reader sees the old file or the new one, never a part. Returns 0, or -1 with a message. */
 int write_file_atomic(const char *path, const void *data, size_t len, char *err, size_t errlen);
-/* Creates dir (and parents) if needed and checks it can be written. Returns 0 or -1. */
-int outdir_prepare(const char *dir, char *err, size_t errlen);
+/* Creates dir (and parents) if needed and checks it can be written. Returns 0 or -1; the
+ * message starts with "ARG: " when the folder came from a flag (arg = "--out"), and with
+ * nothing when the program chose it (arg = NULL). */
+int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen);
 /* Joins dir and name into out. Returns 0, or -1 when it does not fit. */
 int path_join(char *out, size_t outlen, const char *dir, const char *name);
 /* Creates a new run folder results_root/<YYYY-MM-DD_HHMMSS>[-k] and writes its path to out. */

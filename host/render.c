@@ -833,7 +833,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
     }
     char scene_dir[4200];
     path_join(scene_dir, sizeof scene_dir, stage_dir, scene_names[sd->kind]);
-    if (o->write_images && outdir_prepare(scene_dir, err, errlen) != 0) {
+    if (o->write_images && outdir_prepare(scene_dir, NULL, err, errlen) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }
@@ -1438,7 +1438,7 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
         set_err(err, errlen, "out of memory");
         return EXIT_RUNTIME;
     }
-    if (outdir_prepare(out_dir, err, errlen) != 0) {
+    if (outdir_prepare(out_dir, NULL, err, errlen) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }
@@ -1447,7 +1447,7 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
     snprintf(name, sizeof name, ".render-staging-%ld", (long)getpid());
     path_join(stage, sizeof stage, out_dir, name);
     remove_tree(stage);
-    if (outdir_prepare(stage, err, errlen) != 0) {
+    if (outdir_prepare(stage, NULL, err, errlen) != 0) {
         stage[0] = '\0';
         rc = EXIT_RUNTIME;
         goto done;

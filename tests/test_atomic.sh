@@ -84,7 +84,7 @@ else
     [ ${#runas[@]} -gt 0 ] && cache=$T/pocl-nobody
     POCL_CACHE_DIR=$cache "${runas[@]}" "$BIN" "${ARGS[@]}" 2>"$T/err"
     rc=$?
-    fails "read-only results folder" 3 "^brdfbench accuracy: --out: folder results is not writable: Permission denied"
+    fails "read-only results folder" 3 "^brdfbench accuracy: folder results is not writable: Permission denied"
     chmod -R u+w "$T/results"
     intact "read-only results folder"
 fi
