@@ -26,6 +26,13 @@ static int passed, failed;
 
 static char tmpdir[256];
 
+/* The larger of a running worst error and a new one, where a NaN stays the worst (fmax drops
+   a NaN, so a NaN normal or position would pass every "worst < tol" check). */
+static double worse(double worst, double d)
+{
+    return isnan(worst) || isnan(d) ? NAN : fmax(worst, d);
+}
+
 static const char *write_tmp(const char *name, const char *text)
 {
     static char path[512];
@@ -78,7 +85,7 @@ static void test_obj_cube(void)
     for (size_t v = 0; v < m.nverts; v++)
         for (int c = 0; c < 3; c++) {
             double want = (m.pos[3 * v + c] > 0 ? 1.0 : -1.0) / sqrt(3.0);
-            worst = fmax(worst, fabs(m.nrm[3 * v + c] - want));
+            worst = worse(worst, fabs(m.nrm[3 * v + c] - want));
         }
     CHECK(worst < 1e-6, "cube corner normals off by %g from sign(p)/sqrt(3)", worst);
     /* Every face wound counter-clockwise from outside: (p1-p0) x (p2-p0) points away from
@@ -115,7 +122,7 @@ static void test_obj_cube(void)
         for (size_t v = 0; v < m.nverts; v++)
             for (int c = 0; c < 3; c++) {
                 double want = (m.pos[3 * v + c] > 0 ? 1.0 : -1.0) / sqrt(3.0);
-                worst = fmax(worst, fabs(m.nrm[3 * v + c] - want));
+                worst = worse(worst, fabs(m.nrm[3 * v + c] - want));
             }
         CHECK(worst < 1e-6, "other-diagonal cube normals off by %g", worst);
         mesh_free(&m);
@@ -199,9 +206,9 @@ static void test_patch_flat(void)
         for (size_t v = 0; v < m.nverts; v++) {
             /* vertex a * 5 + b is (u, v) = (a/4, b/4), so at (a/4, b/4, 0) */
             size_t a = v / 5, b = v % 5;
-            worst = fmax(worst, fabs(m.pos[3 * v + 0] - a / 4.0));
-            worst = fmax(worst, fabs(m.pos[3 * v + 1] - b / 4.0));
-            worst = fmax(worst, fabs(m.nrm[3 * v + 2] - 1.0));
+            worst = worse(worst, fabs(m.pos[3 * v + 0] - a / 4.0));
+            worst = worse(worst, fabs(m.pos[3 * v + 1] - b / 4.0));
+            worst = worse(worst, fabs(m.nrm[3 * v + 2] - 1.0));
         }
         CHECK(worst < 1e-6, "flat tessellation off by %g from the (u, v, 0) grid", worst);
         /* each triangle winds along the analytic +z: (b-a) x (c-a) has z = 2 * area = 1/16 */
@@ -335,11 +342,11 @@ static void test_raster_square(void)
             double dir[3];
             camera_ray(&cam, W, H, x, y, dir);
             double t = 5.0 / -dir[2];
-            worst_p = fmax(worst_p, fabs(gbuffer_plane(&g, GB_PX)[i] - t * dir[0]));
-            worst_p = fmax(worst_p, fabs(gbuffer_plane(&g, GB_PY)[i] - t * dir[1]));
-            worst_p = fmax(worst_p, fabs(gbuffer_plane(&g, GB_PZ)[i]));
-            worst_n = fmax(worst_n, fabs(gbuffer_plane(&g, GB_NZ)[i] - 1.0));
-            worst_n = fmax(worst_n, fabs(gbuffer_plane(&g, GB_SHIN)[i] - 32.0));
+            worst_p = worse(worst_p, fabs(gbuffer_plane(&g, GB_PX)[i] - t * dir[0]));
+            worst_p = worse(worst_p, fabs(gbuffer_plane(&g, GB_PY)[i] - t * dir[1]));
+            worst_p = worse(worst_p, fabs(gbuffer_plane(&g, GB_PZ)[i]));
+            worst_n = worse(worst_n, fabs(gbuffer_plane(&g, GB_NZ)[i] - 1.0));
+            worst_n = worse(worst_n, fabs(gbuffer_plane(&g, GB_SHIN)[i] - 32.0));
         }
     CHECK(worst_p < 1e-5, "square positions off the ray/plane intersection by %g", worst_p);
     CHECK(worst_n < 1e-6, "square normals/shininess off by %g", worst_n);
@@ -400,10 +407,10 @@ static void test_raster_spheres(void)
             sphere_grid_centre(&sg, row, col, c);
             double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
             double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            worst_r = fmax(worst_r, fabs(r - sg.radius));
-            worst_n = fmax(worst_n, fabs(gbuffer_plane(&g, GB_NX)[i] - d[0] / sg.radius));
-            worst_n = fmax(worst_n, fabs(gbuffer_plane(&g, GB_NY)[i] - d[1] / sg.radius));
-            worst_n = fmax(worst_n, fabs(gbuffer_plane(&g, GB_NZ)[i] - d[2] / sg.radius));
+            worst_r = worse(worst_r, fabs(r - sg.radius));
+            worst_n = worse(worst_n, fabs(gbuffer_plane(&g, GB_NX)[i] - d[0] / sg.radius));
+            worst_n = worse(worst_n, fabs(gbuffer_plane(&g, GB_NY)[i] - d[1] / sg.radius));
+            worst_n = worse(worst_n, fabs(gbuffer_plane(&g, GB_NZ)[i] - d[2] / sg.radius));
         }
     CHECK(count == g.foreground && count > 0, "foreground count %zu vs %zu", count,
           g.foreground);

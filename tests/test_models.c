@@ -199,7 +199,8 @@ static int test_device(void)
             double host = model_eval_host(&m, c[k], n[k]);
             double peak = model_eval_host(&ref, 1.0, n[k]);
             double d = fabs(out[k] - host) / peak;
-            if (!(d <= worst)) {
+            /* a NaN stays the worst value: a later finite d must not replace it */
+            if (!isnan(worst) && !(d <= worst)) {
                 worst = d;
                 worst_k = k;
             }
