@@ -342,7 +342,8 @@ int main(void)
     if (rc) {
         fprintf(stderr, "%s\n", err);
         check_summary();
-        return rc == EXIT_NO_DEVICE ? 77 : rc;
+        /* test_inputs ran on the host: its failure is not hidden by the skip */
+        return check_failed ? 1 : rc == EXIT_NO_DEVICE ? 77 : rc;
     }
     struct model_spec models[TP_MAX_MODELS];
     int count = test_models(models, TP_MAX_MODELS);
