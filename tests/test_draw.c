@@ -192,7 +192,10 @@ static void test_heatmap_dense_peak(void)
 {
     enum { C = 2000, R = 900 };
     float *v = calloc((size_t)C * R, sizeof *v);
-    if (!v) return;
+    if (!v) {
+        CHECK(0, "cannot allocate the dense field");
+        return;
+    }
     v[(size_t)517 * C + 1234] = 0.5f; /* one isolated peak */
     for (int c = 0; c < 10; c++) v[c] = NAN; /* some no-data cells */
     struct draw_heatmap_panel p;
@@ -209,6 +212,8 @@ static void test_heatmap_dense_peak(void)
         CHECK(L.max_col == 1234 && L.max_row == 517, "dense max at %d,%d", L.max_col, L.max_row);
         CHECK(L.max_px >= 0 && near(px(img, w, L.max_px, L.max_py), VIRIDIS_TOP, 3), "dense peak not drawn at its marker");
         free(img);
+    } else {
+        CHECK(0, "read dense.png: %s", err);
     }
     free(v);
 }
@@ -260,6 +265,8 @@ static void test_error_image_and_sheet(void)
          * colour map nor the grey text contains them) */
         CHECK(nred == W * H && nblue == W * H, "red %ld blue %ld, want %d each", nred, nblue, W * H);
         free(img);
+    } else {
+        CHECK(0, "read contact_sheet.png: %s", err);
     }
     /* missing inputs are refused with a message */
     CHECK(draw_contact_sheet(path, W, H, NULL, blue, e, 1.0f, "x", err, sizeof err) == -1 && err[0], "NULL image accepted");
@@ -295,6 +302,8 @@ static void test_line_plot_and_bars(void)
         for (int i = 0; i < w * h; i++) n += near(img + 3 * i, BLUE, 0);
         CHECK(n > 100, "only %ld pixels of the first series' colour", n);
         free(img);
+    } else {
+        CHECK(0, "read line_plot.png: %s", err);
     }
     const char *labels[3] = {"phong", "fvol", "schlick"};
     double v[3] = {1.0, 2.5, NAN};
@@ -308,6 +317,8 @@ static void test_line_plot_and_bars(void)
     if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
         CHECK(w == 700, "bar chart width %d, asked 700", w);
         free(img);
+    } else {
+        CHECK(0, "read bars.png: %s", err);
     }
 }
 

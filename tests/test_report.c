@@ -116,6 +116,8 @@ static void test_self_field(struct field_ctx *fc)
               "attenuation of a zero field: %ld bottom + %ld no-data of %d", bottom, grey, L[1].plot_w * L[1].plot_h);
         CHECK(L[0].max_px == -1 && L[1].max_px == -1, "a zero field has no maximum marker");
         free(img);
+    } else {
+        CHECK(0, "read heatmap_phong.png: %s", err);
     }
     field_result_free(&fr);
 }
@@ -156,6 +158,8 @@ static void test_fvol_field(struct field_ctx *fc)
         }
         CHECK(L[0].max_row == fr.epi_peak.row && L[0].max_col == fr.epi_peak.col, "marker on the field's peak");
         free(img);
+    } else {
+        CHECK(0, "read heatmap_fvol.png: %s", err);
     }
 
     /* JSON round trip: 4 significant digits */
