@@ -159,6 +159,9 @@ assert one["double_reference_check"]["within_bound"] and two["double_reference_c
 check_json "$T/all/field_scaled_k2.json" "the user model's error field" '
 assert d["model"] == "scaled:k=2" and d["reference"] == "phong"
 assert d["check"]["max_rel_diff"] < 1e-6, d["check"]
+# (2r - r) / r = 1 in every cell, and exactly so in float (2r and 2r - r are exact)
+cells = d["grid"]["rows"] * d["grid"]["cols"]
+assert len(d["epicentre_rel"]) == cells and all(v == 1 for v in d["epicentre_rel"]), d["epicentre_rel"][:8]
 '
 
 # 9. Throughput: throughput.cl built with the user model; its rate is measured and its values
