@@ -181,17 +181,17 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
         if (member(d, gv, num_keys[k], JR_NUM, where, &nv[k], err, errlen))
             return EXIT_USAGE;
     if (nv[0] && !(nv[0]->num > 0 && nv[0]->num <= ACC_MAX_N))
-        return jr_fail(d, nv[0], err, errlen, "%s\"n_min\" %g is out of range (accepted: 0 < n_min <= %g)", where,
+        return jr_fail(d, nv[0], err, errlen, "%s\"n_min\" %.10g is out of range (accepted: 0 < n_min <= %g)", where,
                        nv[0]->num, ACC_MAX_N);
     if (nv[1] && !(nv[1]->num > 0 && nv[1]->num <= ACC_MAX_N))
-        return jr_fail(d, nv[1], err, errlen, "%s\"n_max\" %g is out of range (accepted: 0 < n_max <= %g)", where,
+        return jr_fail(d, nv[1], err, errlen, "%s\"n_max\" %.10g is out of range (accepted: 0 < n_max <= %g)", where,
                        nv[1]->num, ACC_MAX_N);
     if (nv[2] && !(nv[2]->num > 0 && nv[2]->num <= ACC_MAX_N))
-        return jr_fail(d, nv[2], err, errlen, "%s\"n_step\" %g is out of range (accepted: 0 < n_step <= %g)", where,
+        return jr_fail(d, nv[2], err, errlen, "%s\"n_step\" %.10g is out of range (accepted: 0 < n_step <= %g)", where,
                        nv[2]->num, ACC_MAX_N);
     if (nv[3] && !(nv[3]->num >= ACC_MIN_SAMPLES && nv[3]->num <= (double)ACC_MAX_SAMPLES &&
                    nv[3]->num == floor(nv[3]->num) && fmod(nv[3]->num, 16.0) == 0))
-        return jr_fail(d, nv[3], err, errlen, "%s\"samples\" %g is out of range (accepted: a multiple of 16 in "
+        return jr_fail(d, nv[3], err, errlen, "%s\"samples\" %.10g is out of range (accepted: a multiple of 16 in "
                        "[%d, %ld])", where, nv[3]->num, ACC_MIN_SAMPLES, ACC_MAX_SAMPLES);
     if (nv[0]) g->grid.n_min = nv[0]->num;
     if (nv[1]) g->grid.n_max = nv[1]->num;
@@ -199,7 +199,7 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     if (nv[3]) g->grid.samples = (long)nv[3]->num;
     if (!(g->grid.n_min < g->grid.n_max))
         return jr_fail(d, nv[0] ? nv[0] : (nv[1] ? nv[1] : gv), err, errlen,
-                       "%s\"n_min\" (%g) must be below \"n_max\" (%g)", where, g->grid.n_min, g->grid.n_max);
+                       "%s\"n_min\" (%.10g) must be below \"n_max\" (%.10g)", where, g->grid.n_min, g->grid.n_max);
     if (accuracy_grid_check(&g->grid, NULL, msg, sizeof msg))
         return jr_fail(d, gv, err, errlen, "%sgrid: %s", where, msg);
     if (g->metric == GATE_ALBEDO_MAX && accuracy_grid_count(&g->grid) > GATE_ALBEDO_MAX_N)
@@ -210,7 +210,7 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     if (nv[4]) { g->has_min = 1; g->min = nv[4]->num; }
     if (nv[5]) { g->has_max = 1; g->max = nv[5]->num; }
     if (g->has_min && g->has_max && !(g->min <= g->max))
-        return jr_fail(d, nv[4], err, errlen, "%s\"min\" (%g) is above \"max\" (%g)", where, g->min, g->max);
+        return jr_fail(d, nv[4], err, errlen, "%s\"min\" (%.10g) is above \"max\" (%.10g)", where, g->min, g->max);
     if (nv[6]) { g->has_claimed = 1; g->claimed = nv[6]->num; }
 
     if (member(d, gv, "name", JR_STR, where, &v, err, errlen))
