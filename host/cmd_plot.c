@@ -30,17 +30,20 @@ static void redraw_usage(FILE *f, const char *name)
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-/* Redraws one field file; returns 0, 2 (input) or 3 (picture). */
-static int redraw_field(const char *dir, const char *json_name, int *drawn)
+/* Redraws one field file; returns 0, 2 (input) or 3 (picture). Messages start with
+   "brdfbench CMD: " and, for a model the user named, "--model LABEL: ". */
+static int redraw_field(const char *cmd, const char *model, const char *dir, const char *json_name, int *drawn)
 {
-    char path[4096], png[4096], name[512], err[1024];
+    char path[4096], png[4096], name[512], err[1024], what[320] = "";
     struct field_result fr;
+    if (model)
+        snprintf(what, sizeof what, "--model %s: ", model);
     if (path_join(path, sizeof path, dir, json_name)) {
-        fprintf(stderr, "brdfbench: %s/%s: path too long\n", dir, json_name);
+        fprintf(stderr, "brdfbench %s: %s%s/%s: path too long\n", cmd, what, dir, json_name);
         return EXIT_USAGE;
     }
     if (field_read_json(path, &fr, err, sizeof err)) {
-        fprintf(stderr, "brdfbench: %s\n", err);
+        fprintf(stderr, "brdfbench %s: %s%s\n", cmd, what, err);
         return EXIT_USAGE;
     }
     /* field_<stem>.json -> heatmap_<stem>.png */
@@ -49,7 +52,7 @@ static int redraw_field(const char *dir, const char *json_name, int *drawn)
              json_name + strlen("field_"));
     int rc = 0;
     if (path_join(png, sizeof png, dir, name) || field_draw_heatmap(png, &fr, NULL, err, sizeof err)) {
-        fprintf(stderr, "brdfbench: %s\n", err);
+        fprintf(stderr, "brdfbench %s: %s\n", cmd, err);
         rc = EXIT_RUNTIME;
     } else {
         printf("%s\n", png);
@@ -66,19 +69,19 @@ static int is_field_file(const char *name)
 }
 
 /* Every field_*.json of dir in name order (or only the one of `model`). */
-static int redraw_heatmaps(const char *dir, const char *model, int *drawn, int *worst)
+static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, int *drawn, int *worst)
 {
     if (model) {
         char stem[256], name[320];
         field_safe_label(model, stem, sizeof stem);
         snprintf(name, sizeof name, "field_%s.json", stem);
-        int rc = redraw_field(dir, name, drawn);
+        int rc = redraw_field(cmd, model, dir, name, drawn);
         if (rc > *worst) *worst = rc;
         return 0;
     }
     DIR *d = opendir(dir);
     if (!d) {
-        fprintf(stderr, "brdfbench: %s: cannot open the run folder\n", dir);
+        fprintf(stderr, "brdfbench %s: %s: cannot open the run folder\n", cmd, dir);
         *worst = EXIT_USAGE;
         return -1;
     }
@@ -99,7 +102,7 @@ static int redraw_heatmaps(const char *dir, const char *model, int *drawn, int *
     closedir(d);
     qsort(names, count, sizeof *names, cmp_str);
     for (size_t i = 0; i < count; i++) {
-        int rc = redraw_field(dir, names[i], drawn);
+        int rc = redraw_field(cmd, NULL, dir, names[i], drawn);
         if (rc == EXIT_USAGE || (rc && *worst != EXIT_USAGE)) *worst = rc;
         free(names[i]);
     }
@@ -161,7 +164,9 @@ static int redraw(int argc, char **argv, int heatmaps_only)
         }
         plots_free(&set);
     }
-    int nfields = redraw_heatmaps(dir, model, &drawn, &worst);
+    int nfields = redraw_heatmaps(name, dir, model, &drawn, &worst);
+    if (model && worst == EXIT_USAGE)
+        return worst;   /* the one line above says what is wrong with --model */
     if (heatmaps_only && !model && nfields == 0) {
         fprintf(stderr, "brdfbench %s: %s holds no field_<model>.json to draw from\n", name, dir);
         return EXIT_USAGE;
