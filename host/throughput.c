@@ -1408,9 +1408,9 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
                 ++ok;
             }
         if (ok > 0)
-            tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d models, %.3g points): device %.3f s "
+            tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
                          "(%.3g G points/s), tuned C with powf %.3f s (%.3g G points/s): %.2fx\n",
-                      o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, pts,
+                      o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, ok == 1 ? "" : "s", pts,
                       dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
         else
             tx_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
@@ -1468,8 +1468,8 @@ static int tp_run_all(struct cl_session *s, const struct throughput_options *o, 
                 e->ref_entry = k;
     }
     if (!quiet)
-        fprintf(stderr, "throughput: %s, %ld work-items, %d models, min time %.3g s x %d reps\n", s->device_name,
-                r->work_items, r->nmodels, o->min_time, o->reps);
+        fprintf(stderr, "throughput: %s, %ld work-items, %d model%s, min time %.3g s x %d reps\n", s->device_name,
+                r->work_items, r->nmodels, r->nmodels == 1 ? "" : "s", o->min_time, o->reps);
     for (int i = 0; i < r->nentries; ++i)
         for (int m = 0; m < TP_NMODE_COUNT; ++m)
             fig_fail(&r->e[i].hostc[m], !o->host_c ? "the C baseline was not run (--no-host-c)"
