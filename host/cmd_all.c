@@ -666,7 +666,7 @@ static void all_usage(FILE *f)
             "  --out DIR            write into DIR instead of a new run folder (results/latest unchanged)\n"
             "  --quick              coarse grids (seconds; for tests and trials, not for figures)\n"
             USERMODEL_OPTIONS_HELP
-            "                       (user models join the default set of models)\n"
+            "                     (user models join the default set of models)\n"
             DEVICE_OPTIONS_HELP);
 }
 

@@ -22,7 +22,8 @@ static void fit_usage(FILE *f)
             "  --n-step X         step of n (default 1; n-max is always included)\n"
             "  --max-abs X        cap on the attenuation zone's max Delta, 0 < X <= 1 (default: none)\n"
             "  --samples N        samples per zone of the device sweeps, a multiple of 16 (default %d)\n"
-            "  --out DIR          write fit.json into DIR (default: a new folder results/<date-time>/)\n"
+            "  --out DIR          write fit.json into DIR\n"
+            "                     (default: a new folder results/<date-time>/, with results/latest)\n"
             "  --quiet            no summary on stdout\n"
             DEVICE_OPTIONS_HELP,
             ACC_DEFAULT_SAMPLES);
