@@ -718,9 +718,10 @@ static int add_paper1(struct repro *p)
         int in_att = a->whole.x > zone_epicentre_end(a->whole.n) && epi_wins == 0;
         all_att &= in_att;
         used += (size_t)snprintf(where + used, used < sizeof where ? sizeof where - used : 0,
-                                 "%s%s %.4f at n = %g, x = %.4f (x_e = %.4f), epicentre larger at %ld n", k ? "; " : "",
+                                 "%s%s %.4f at n = %g, x = %.4f (x_e = %.4f); the epicentre's max Delta is the larger "
+                                 "at %ld of %ld n", k ? "; " : "",
                                  names[k], a->whole.value, a->whole.n, a->whole.x, zone_epicentre_end(a->whole.n),
-                                 epi_wins);
+                                 epi_wins, a->n_count);
     }
     if (!(c = claim_add(r, "claim", "P1-fig5-zone", "paper 1, figs. 5-6",
                         "the max Delta of F_VOL, F_S and F2 against F_B lies in the attenuation zone")))
