@@ -200,47 +200,16 @@ int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const flo
                    size_t count, float *out)
 {
     int rc = 0;
-    cl_int e;
-    cl_mem bc = NULL, bn = NULL, bo = NULL;
     cl_kernel sweep_unused, probe;
     if ((rc = kernels_for(a, m, &sweep_unused, &probe)) != 0)
         return rc;
-    size_t padded = (count + 15) / 16 * 16;
-    float *pc = calloc(padded, sizeof *pc), *pn = calloc(padded, sizeof *pn), *po = calloc(padded, sizeof *po);
-    if (!pc || !pn || !po) {
-        fprintf(stderr, "brdfbench: out of memory\n");
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    memcpy(pc, c, count * sizeof *pc);
-    memcpy(pn, n, count * sizeof *pn);
-    for (size_t i = count; i < padded; ++i)
-        pn[i] = 1.0f;
-    bc = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pc, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe c)", done);
-    bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pn, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe n)", done);
-    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe out)", done);
     cl_int id = m->info->kernel_id;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     CL_CHECK_GOTO(clSetKernelArg(probe, 0, sizeof id, &id), done);
     CL_CHECK_GOTO(clSetKernelArg(probe, 1, sizeof p0, &p0), done);
     CL_CHECK_GOTO(clSetKernelArg(probe, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 3, sizeof bc, &bc), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 4, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 5, sizeof bo, &bo), done);
-    size_t global = padded / 16;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, probe, 1, NULL, &global, NULL, 0, NULL, NULL), done);
-    CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
-    memcpy(out, po, count * sizeof *out);
+    rc = cl_run_points16(a->s, probe, 3, c, n, count, out);
 done:
-    if (bo) clReleaseMemObject(bo);
-    if (bn) clReleaseMemObject(bn);
-    if (bc) clReleaseMemObject(bc);
-    free(po);
-    free(pn);
-    free(pc);
     return rc;
 }
 

@@ -62,6 +62,46 @@ double cl_event_seconds(cl_event ev)
     return 1e-9 * (double)(t1 - t0);
 }
 
+int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const float *c, const float *n,
+                    size_t count, float *out)
+{
+    int rc = 0;
+    cl_int e;
+    cl_mem bc = NULL, bn = NULL, bo = NULL;
+    size_t padded = (count + 15) / 16 * 16;
+    float *pc = calloc(padded, sizeof *pc), *pn = calloc(padded, sizeof *pn), *po = calloc(padded, sizeof *po);
+    if (!pc || !pn || !po) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    memcpy(pc, c, count * sizeof *pc);
+    memcpy(pn, n, count * sizeof *pn);
+    for (size_t i = count; i < padded; ++i)
+        pn[i] = 1.0f;
+    bc = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pc, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points c)", done);
+    bn = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pn, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points n)", done);
+    bo = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points out)", done);
+    CL_CHECK_GOTO(clSetKernelArg(k, first_arg, sizeof bc, &bc), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 1, sizeof bn, &bn), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 2, sizeof bo, &bo), done);
+    size_t global = padded / 16;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
+    memcpy(out, po, count * sizeof *out);
+done:
+    if (bo) clReleaseMemObject(bo);
+    if (bn) clReleaseMemObject(bn);
+    if (bc) clReleaseMemObject(bc);
+    free(po);
+    free(pn);
+    free(pc);
+    return rc;
+}
+
 static const char *no_device_hint =
     "install the CPU OpenCL driver: apt-get install pocl-opencl-icd (and ocl-icd-libopencl1)";
 

@@ -70,6 +70,13 @@ int clsession_build(struct cl_session *s, const char *kernel_file, const char *e
 int clsession_build_user(struct cl_session *s, const char *kernel_file, const char *extra_source,
                          const char *options, cl_program *out, int user_line_offset);
 
+/* Runs a point kernel whose arguments first_arg, first_arg + 1, first_arg + 2 are the float
+ * buffers c, n and out, 16 values per work-item (vload16/vstore16); the caller has set the
+ * arguments before them. count values are padded to a multiple of 16 (n = 1 in the padding)
+ * and count results are written to out. Returns 0 or EXIT_RUNTIME. */
+int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const float *c, const float *n,
+                    size_t count, float *out);
+
 /* Seconds between a profiling event's start and end; NAN if the timer failed. */
 double cl_event_seconds(cl_event ev);
 /* Monotonic wall clock in seconds. */

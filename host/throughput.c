@@ -496,49 +496,18 @@ int tp_program_points(struct tp_program *p, const struct model_spec *m, const fl
     int rc = 0;
     cl_int e;
     cl_kernel k = NULL;
-    cl_mem bc = NULL, bn = NULL, bo = NULL;
-    size_t padded = (count + 15) / 16 * 16;
-    float *pc = calloc(padded, sizeof *pc), *pn = calloc(padded, sizeof *pn), *po = calloc(padded, sizeof *po);
-    if (!pc || !pn || !po) {
-        fprintf(stderr, "brdfbench: out of memory\n");
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
     if (!tp_has(p, m)) {
         fprintf(stderr, "brdfbench: model %s is not in the throughput program\n", m->label);
-        rc = EXIT_RUNTIME;
-        goto done;
+        return EXIT_RUNTIME;
     }
-    memcpy(pc, c, count * sizeof *pc);
-    memcpy(pn, n, count * sizeof *pn);
-    for (size_t i = count; i < padded; ++i)
-        pn[i] = 1.0f;
     k = tp_kernel(p, "points", m, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_points)", done);
-    bc = clCreateBuffer(p->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pc, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points c)", done);
-    bn = clCreateBuffer(p->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, padded * sizeof(float), pn, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points n)", done);
-    bo = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points out)", done);
     float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
     CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
     CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof bc, &bc), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof bo, &bo), done);
-    size_t global = padded / 16;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(p->s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
-    CL_CHECK_GOTO(clEnqueueReadBuffer(p->s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
-    memcpy(out, po, count * sizeof *out);
+    rc = cl_run_points16(p->s, k, 2, c, n, count, out);
 done:
-    if (bo) clReleaseMemObject(bo);
-    if (bn) clReleaseMemObject(bn);
-    if (bc) clReleaseMemObject(bc);
     if (k) clReleaseKernel(k);
-    free(po);
-    free(pn);
-    free(pc);
     return rc;
 }
 
