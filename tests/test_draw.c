@@ -2,6 +2,7 @@
  * sizes, the colour under the maximum marker, colour-bar monotonicity, a zero field drawn
  * as the colour map's bottom colour, exact pixels of RGB round trips and contact sheets,
  * and a failed write reported with the file's name. No OpenCL device needed. */
+#include "check.h"
 #include "draw.h"
 
 #include <math.h>
@@ -10,20 +11,6 @@
 #include <string.h>
 #include <dirent.h>
 #include <unistd.h>
-
-static int passed, failed;
-
-#define CHECK(cond, ...)                                                     \
-    do {                                                                     \
-        if (cond) {                                                          \
-            passed++;                                                        \
-        } else {                                                             \
-            failed++;                                                        \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                      \
-            printf(__VA_ARGS__);                                             \
-            printf("\n");                                                    \
-        }                                                                    \
-    } while (0)
 
 /* matplotlib's viridis and inferno tables (_cm_listed.py), first and last entries times
  * 255, rounded: viridis (0.267004, 0.004874, 0.329415) and (0.993248, 0.906157, 0.143936);
@@ -353,8 +340,7 @@ int main(void)
     test_error_image_and_sheet();
     test_line_plot_and_bars();
     test_errors();
-    if (failed) printf("pictures kept in %s\n", dir);
+    if (check_failed) printf("pictures kept in %s\n", dir);
     else remove_dir(dir);
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return check_summary();
 }

@@ -1,6 +1,7 @@
 /* test_geometry.c - the OBJ and POV-Ray patch readers, the tessellator, smooth normals and
  * the rasteriser, on small inputs written by the test itself. Every expected value is
  * derived by hand in the comment beside it. */
+#include "check.h"
 #include "geometry.h"
 #include "raster.h"
 
@@ -9,20 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-static int passed, failed;
-
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        if (cond) {                                                                        \
-            passed++;                                                                      \
-        } else {                                                                           \
-            failed++;                                                                      \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                    \
-            printf(__VA_ARGS__);                                                           \
-            printf("\n");                                                                  \
-        }                                                                                  \
-    } while (0)
 
 static char tmpdir[256];
 
@@ -445,6 +432,5 @@ int main(void)
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
     if (system(cmd) != 0)
         fprintf(stderr, "could not remove %s\n", tmpdir);
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return check_summary();
 }

@@ -4,6 +4,7 @@
  * reference's zero error, cq2's non-zero error and fq2's smaller mean error (SPEC.md: fq2's max delta 1.256%
  * and max Delta 0.128 against cq2's 7.924% and 0.162); bad scene files fail with their
  * file and line and leave the previous results as they were. */
+#include "check.h"
 #include "clsession.h"
 #include "jsonr.h"
 #include "raster.h"
@@ -15,20 +16,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-static int passed, failed;
-
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        if (cond) {                                                                        \
-            passed++;                                                                      \
-        } else {                                                                           \
-            failed++;                                                                      \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                    \
-            printf(__VA_ARGS__);                                                           \
-            printf("\n");                                                                  \
-        }                                                                                  \
-    } while (0)
 
 #define PI 3.14159265358979323846
 
@@ -425,6 +412,5 @@ int main(void)
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
     if (system(cmd) != 0)
         fprintf(stderr, "could not remove %s\n", tmpdir);
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return check_summary();
 }
