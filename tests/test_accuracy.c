@@ -10,21 +10,11 @@
 #include "check.h"
 #include "exitcodes.h"
 #include "models.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-static struct model_spec spec(const char *text)
-{
-    struct model_spec s;
-    char err[256];
-    if (model_spec_parse(text, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        exit(3);
-    }
-    return s;
-}
 
 static void test_grid_helpers(void)
 {

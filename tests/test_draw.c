@@ -4,13 +4,12 @@
  * and a failed write reported with the file's name. No OpenCL device needed. */
 #include "check.h"
 #include "draw.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <dirent.h>
-#include <unistd.h>
 
 /* matplotlib's viridis and inferno tables (_cm_listed.py), first and last entries times
  * 255, rounded: viridis (0.267004, 0.004874, 0.329415) and (0.993248, 0.906157, 0.143936);
@@ -19,23 +18,6 @@ static const int VIRIDIS_BOTTOM[3] = {68, 1, 84}, VIRIDIS_TOP[3] = {253, 231, 37
 static const int INFERNO_TOP[3] = {252, 255, 164};
 
 static char dir[256];
-
-/* Removes the flat output folder of a passing run (BRDF_KEEP_TEST_OUTPUT keeps it). */
-static void remove_dir(const char *path)
-{
-    if (getenv("BRDF_KEEP_TEST_OUTPUT")) return;
-    DIR *d = opendir(path);
-    if (!d) return;
-    struct dirent *e;
-    char full[1024];
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
-        snprintf(full, sizeof full, "%s/%s", path, e->d_name);
-        unlink(full);
-    }
-    closedir(d);
-    rmdir(path);
-}
 
 static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
 
@@ -327,12 +309,8 @@ static void test_errors(void)
 
 int main(void)
 {
-    const char *base = getenv("TEST_TMPDIR");
-    snprintf(dir, sizeof dir, "%s/test_draw_XXXXXX", base && *base ? base : "/tmp");
-    if (!mkdtemp(dir)) {
-        perror("mkdtemp");
+    if (test_tmpdir_make(dir, sizeof dir, "test_draw") != 0)
         return 1;
-    }
     test_colormap_ends();
     test_png_round_trip();
     test_heatmap();
@@ -340,7 +318,6 @@ int main(void)
     test_error_image_and_sheet();
     test_line_plot_and_bars();
     test_errors();
-    if (check_failed) printf("pictures kept in %s\n", dir);
-    else remove_dir(dir);
+    test_tmpdir_done(dir);
     return check_summary();
 }

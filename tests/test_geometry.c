@@ -4,12 +4,12 @@
 #include "check.h"
 #include "geometry.h"
 #include "raster.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 static char tmpdir[256];
 
@@ -24,13 +24,7 @@ static const char *write_tmp(const char *name, const char *text)
 {
     static char path[512];
     snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        perror(path);
-        exit(3);
-    }
-    fputs(text, f);
-    fclose(f);
+    test_write_file(path, text);
     return path;
 }
 
@@ -415,12 +409,8 @@ static void test_raster_spheres(void)
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "%s/test_geometry.XXXXXX",
-             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
-    if (!mkdtemp(tmpdir)) {
-        perror("mkdtemp");
+    if (test_tmpdir_make(tmpdir, sizeof tmpdir, "test_geometry") != 0)
         return 3;
-    }
     test_obj_cube();
     test_obj_errors();
     test_patch_flat();
@@ -428,9 +418,6 @@ int main(void)
     test_patch_errors();
     test_raster_square();
     test_raster_spheres();
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-    if (system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", tmpdir);
+    test_tmpdir_done(tmpdir);
     return check_summary();
 }

@@ -5,23 +5,13 @@
 #include "check.h"
 #include "exitcodes.h"
 #include "models.h"
+#include "testutil.h"
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static struct model_spec spec(const char *text)
-{
-    struct model_spec s;
-    char err[256];
-    if (model_spec_parse(text, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "cannot parse %s: %s\n", text, err);
-        exit(3);
-    }
-    return s;
-}
 
 /* 2 pi * integral over [0, pi/2] of g(x) cos x sin x dx, by GSL adaptive quadrature. */
 struct hemi { const struct model_spec *m; double n; int half_angle; };

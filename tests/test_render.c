@@ -9,13 +9,13 @@
 #include "jsonr.h"
 #include "raster.h"
 #include "render.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #define PI 3.14159265358979323846
 
@@ -31,17 +31,6 @@ static void unit(double *a)
 }
 
 static char tmpdir[256];
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        perror(path);
-        exit(3);
-    }
-    fputs(text, f);
-    fclose(f);
-}
 
 static char *read_all(const char *path, size_t *len)
 {
@@ -282,12 +271,12 @@ static void test_render_run(struct cl_session *s)
     snprintf(teapot, sizeof teapot, "%s/flat.inc", tmpdir);
     snprintf(cube, sizeof cube, "%s/cube.obj", tmpdir);
     snprintf(bad, sizeof bad, "%s/bad.obj", tmpdir);
-    write_file(teapot, "bicubic_patch { type 1\n"
+    test_write_file(teapot, "bicubic_patch { type 1\n"
                        " <0,0,0> <1,0,0> <2,0,0> <3,0,0>\n <0,1,0> <1,1,0.5> <2,1,0.5> <3,1,0>\n"
                        " <0,2,0> <1,2,0.5> <2,2,0.5> <3,2,0>\n <0,3,0> <1,3,0> <2,3,0> <3,3,0>\n}\n");
-    write_file(cube, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\n"
+    test_write_file(cube, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\n"
                      "v -1 1 1\nf 5 6 7 8\nf 1 4 3 2\nf 2 3 7 6\nf 1 5 8 4\nf 4 8 7 3\nf 1 2 6 5\n");
-    write_file(bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    test_write_file(bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
 
     struct render_options o;
     render_options_default(&o);
@@ -392,12 +381,8 @@ int main(void)
     mkdir(base ? base : "/tmp/brdfbench-pocl-cache", 0777);
     mkdir(cache, 0777);
     setenv("POCL_CACHE_DIR", cache, 1);
-    snprintf(tmpdir, sizeof tmpdir, "%s/test_render.XXXXXX",
-             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
-    if (!mkdtemp(tmpdir)) {
-        perror("mkdtemp");
+    if (test_tmpdir_make(tmpdir, sizeof tmpdir, "test_render") != 0)
         return 3;
-    }
     struct cl_session s;
     char err[512];
     int rc = clsession_open(&s, -1, -1, err, sizeof err);
@@ -408,9 +393,6 @@ int main(void)
     test_sphere_pixels(&s);
     test_render_run(&s);
     clsession_close(&s);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-    if (system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", tmpdir);
+    test_tmpdir_done(tmpdir);
     return check_summary();
 }

@@ -17,13 +17,12 @@
 #include "outdir.h"
 #include "plots.h"
 #include "report.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <dirent.h>
-#include <unistd.h>
 #include <sys/stat.h>
 
 /* matplotlib's viridis, first and last entries x 255 (see test_draw.c) */
@@ -32,23 +31,6 @@ static const int NODATA[3] = {90, 90, 100}; /* draw.h: NaN cells */
 
 static char dir[256];
 
-/* Removes the flat output folder of a passing run (BRDF_KEEP_TEST_OUTPUT keeps it). */
-static void remove_dir(const char *path)
-{
-    if (getenv("BRDF_KEEP_TEST_OUTPUT")) return;
-    DIR *d = opendir(path);
-    if (!d) return;
-    struct dirent *e;
-    char full[1024];
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
-        snprintf(full, sizeof full, "%s/%s", path, e->d_name);
-        unlink(full);
-    }
-    closedir(d);
-    rmdir(path);
-}
-
 static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
 
 static int near(const unsigned char *p, const int want[3], int tol)
@@ -56,26 +38,6 @@ static int near(const unsigned char *p, const int want[3], int tol)
     for (int k = 0; k < 3; k++)
         if (abs((int)p[k] - want[k]) > tol) return 0;
     return 1;
-}
-
-static struct model_spec spec(const char *text)
-{
-    struct model_spec s;
-    char err[256];
-    if (model_spec_parse(text, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        exit(3);
-    }
-    return s;
-}
-
-static void write_text(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    if (f) {
-        fputs(text, f);
-        fclose(f);
-    }
 }
 
 static const struct field_grid small = {21, 31, 2.0, 1000.0};
@@ -184,15 +146,15 @@ static void test_fvol_field(struct field_ctx *fc)
     path_in(path, sizeof path, "missing.json");
     CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path), "missing file: %s", err);
     path_in(path, sizeof path, "broken.json");
-    write_text(path, "{\"schema\": \"brdfbench.field/1\",\n \"model\": \"fvol\",\n \"grid\": {\"rows\": 2,,}}\n");
+    test_write_file(path, "{\"schema\": \"brdfbench.field/1\",\n \"model\": \"fvol\",\n \"grid\": {\"rows\": 2,,}}\n");
     CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path) && strstr(err, ":3:"),
           "malformed file names file and line 3: %s", err);
-    write_text(path, "{\"schema\": \"brdfbench.field/1\", \"model\": \"fvol\", \"reference\": \"phong\",\n"
+    test_write_file(path, "{\"schema\": \"brdfbench.field/1\", \"model\": \"fvol\", \"reference\": \"phong\",\n"
                      "\"grid\": {\"rows\": 2, \"cols\": 2, \"n_min\": 2, \"n_max\": 10, \"u_max\": 3, \"n\": [2, 10]},\n"
                      "\"epicentre_rel\": [0, 0, 0], \"attenuation_abs\": [0, 0, 0, 0]}\n");
     CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, "epicentre_rel") && strstr(err, ":3:"),
           "short array named: %s", err);
-    write_text(path, "{\"schema\": \"brdfbench.field/1\", \"model\": \"nosuch\", \"reference\": \"phong\"}");
+    test_write_file(path, "{\"schema\": \"brdfbench.field/1\", \"model\": \"nosuch\", \"reference\": \"phong\"}");
     CHECK(field_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path), "bad model: %s", err);
     field_result_free(&fr);
 }
@@ -264,11 +226,11 @@ static void test_plots_and_report(struct cl_session *s)
     }
     /* malformed plots.json */
     path_in(path, sizeof path, "bad_plots.json");
-    write_text(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": [\n  {\"file\": \"x.png\"}\n]}\n");
+    test_write_file(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": [\n  {\"file\": \"x.png\"}\n]}\n");
     CHECK(plots_read_json(path, &back, err, sizeof err) == 2 && strstr(err, path) && strstr(err, ":2:") &&
               strstr(err, "caption"),
           "missing member named with file and line: %s", err);
-    write_text(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": [{\"file\": \"../x.png\", \"caption\": \"\","
+    test_write_file(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": [{\"file\": \"../x.png\", \"caption\": \"\","
                      "\"kind\": \"lines\", \"title\": \"\", \"x_label\": \"\", \"y_label\": \"\", \"x_log\": false,"
                      "\"y_log\": false, \"y_format\": \"plain\", \"x_range\": [0, 0], \"y_range\": [0, 0],"
                      "\"vlines\": [], \"series\": []}]}");
@@ -278,7 +240,7 @@ static void test_plots_and_report(struct cl_session *s)
     /* throughput bars from a hand-written throughput.json: rows of other build options or
      * n modes are left out; medians in G evaluations per second; the built-in is highlighted */
     path_in(path, sizeof path, "throughput.json");
-    write_text(path, "{\"schema\": \"brdfbench.throughput/1\", \"results\": [\n"
+    test_write_file(path, "{\"schema\": \"brdfbench.throughput/1\", \"results\": [\n"
                      " {\"label\": \"pow\", \"kind\": \"builtin\", \"variant\": \"default\", \"n_mode\": \"uniform\","
                      "  \"evals_per_s\": {\"min\": 1e8, \"median\": 2e8, \"max\": 3e8}},\n"
                      " {\"label\": \"fq2\", \"kind\": \"model\", \"variant\": \"default\", \"n_mode\": \"uniform\","
@@ -296,7 +258,7 @@ static void test_plots_and_report(struct cl_session *s)
     }
     CHECK(plots_add_throughput(&set, path, "varying", "tp2.png", "bars", err, sizeof err) == 0, "a failed row: %s", err);
     CHECK(isnan(set.figs[set.count - 1].series[0].y[0]), "a null rate stays missing (n/a), not 0");
-    write_text(path, "{\"schema\": \"brdfbench.throughput/1\", \"results\": [{\"label\": \"x\"}]}");
+    test_write_file(path, "{\"schema\": \"brdfbench.throughput/1\", \"results\": [{\"label\": \"x\"}]}");
     CHECK(plots_add_throughput(&set, path, "uniform", "tp3.png", "bars", err, sizeof err) == 2 && strstr(err, path),
           "malformed throughput.json named: %s", err);
     CHECK(plots_draw(&set, dir, err, sizeof err) == 0, "draw bars: %s", err);
@@ -362,12 +324,8 @@ static void test_plots_and_report(struct cl_session *s)
 
 int main(void)
 {
-    const char *base = getenv("TEST_TMPDIR");
-    snprintf(dir, sizeof dir, "%s/test_report_XXXXXX", base && *base ? base : "/tmp");
-    if (!mkdtemp(dir)) {
-        perror("mkdtemp");
+    if (test_tmpdir_make(dir, sizeof dir, "test_report") != 0)
         return 1;
-    }
     struct cl_session s;
     char err[1024];
     int rc = clsession_open(&s, -1, -1, err, sizeof err);
@@ -388,7 +346,6 @@ int main(void)
     }
     test_plots_and_report(&s);
     clsession_close(&s);
-    if (check_failed) printf("pictures kept in %s\n", dir);
-    else remove_dir(dir);
+    test_tmpdir_done(dir);
     return check_summary();
 }

@@ -16,6 +16,7 @@
 #include "jsonr.h"
 #include "models.h"
 #include "throughput.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,17 +24,6 @@
 #include <string.h>
 
 #define POINTS 512
-
-static struct model_spec spec(const char *text)
-{
-    struct model_spec s;
-    char err[256];
-    if (model_spec_parse(text, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
-        exit(3);
-    }
-    return s;
-}
 
 /* Probe points: half in the epicentre, half out to 4 x_e, n in [2, 1000]. */
 static void points(float *c, float *n, int count)
@@ -227,8 +217,8 @@ static void test_run(struct cl_session *s)
     o.work_items = 4;
     o.sweep_grid = (struct accuracy_grid){ 2, 50, 16, 64 };
     o.sweep_reps = 1;
-    char dir[] = "/tmp/test_throughput_XXXXXX";
-    if (!mkdtemp(dir)) {
+    char dir[512];
+    if (test_tmpdir_make(dir, sizeof dir, "test_throughput") != 0) {
         CHECK(0, "mkdtemp");
         return;
     }
@@ -242,6 +232,7 @@ static void test_run(struct cl_session *s)
     struct jr_doc d;
     if (jr_parse_file(path, &d, err, sizeof err)) {
         CHECK(0, "throughput.json parses strictly: %s", err);
+        test_tmpdir_done(dir);
         return;
     }
     const char *schema = NULL;
@@ -306,9 +297,7 @@ static void test_run(struct cl_session *s)
         fclose(f);
     }
     CHECK(lines == 1 + 16, "csv has a header and 16 rows (%d lines)", lines);
-    snprintf(path, sizeof path, "rm -rf '%s'", dir);
-    if (system(path) != 0)
-        fprintf(stderr, "could not remove %s\n", dir);
+    test_tmpdir_done(dir);
 }
 
 /* The generator's inputs, worked by hand for the first evaluations of a launch. */

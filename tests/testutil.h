@@ -1,0 +1,96 @@
+/* testutil.h - what the C tests share besides check.h: a temporary folder of the test's own,
+ * made with mkdtemp and removed with everything in it at the end (kept when a check failed or
+ * BRDF_KEEP_TEST_OUTPUT is set), a small input file written there, and spec() for a model
+ * text the test needs parsed. */
+#ifndef BRDF_TEST_TESTUTIL_H
+#define BRDF_TEST_TESTUTIL_H
+
+#include "check.h"
+#include "models.h"
+
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* Makes dir = $TEST_TMPDIR (or $TMPDIR, or /tmp) / name_XXXXXX; -1 with a message on failure. */
+static inline int test_tmpdir_make(char *dir, size_t len, const char *name)
+{
+    const char *base = getenv("TEST_TMPDIR");
+    if (!base || !*base)
+        base = getenv("TMPDIR");
+    if (!base || !*base)
+        base = "/tmp";
+    if (snprintf(dir, len, "%s/%s_XXXXXX", base, name) >= (int)len || !mkdtemp(dir)) {
+        perror("mkdtemp");
+        return -1;
+    }
+    return 0;
+}
+
+/* Removes path and, for a folder, everything under it (links are removed, not followed). */
+static inline int test_remove_tree(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return -1;
+    if (!S_ISDIR(st.st_mode))
+        return unlink(path);
+    DIR *d = opendir(path);
+    if (!d)
+        return -1;
+    int rc = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        size_t n = strlen(path) + strlen(e->d_name) + 2;
+        char *full = malloc(n);
+        if (!full) {
+            rc = -1;
+            continue;
+        }
+        snprintf(full, n, "%s/%s", path, e->d_name);
+        if (test_remove_tree(full) != 0)
+            rc = -1;
+        free(full);
+    }
+    closedir(d);
+    return rmdir(path) != 0 ? -1 : rc;
+}
+
+/* The end of a test's folder: kept (and named) after a failed check or with
+ * BRDF_KEEP_TEST_OUTPUT set, so that its files can be looked at; removed otherwise. */
+static inline void test_tmpdir_done(const char *dir)
+{
+    if (check_failed || getenv("BRDF_KEEP_TEST_OUTPUT"))
+        printf("test output kept in %s\n", dir);
+    else if (test_remove_tree(dir) != 0)
+        fprintf(stderr, "could not remove %s\n", dir);
+}
+
+/* Writes text to path; a test input that cannot be written ends the test (exit 3). */
+static inline void test_write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f || fputs(text, f) == EOF || fclose(f) != 0) {
+        perror(path);
+        exit(3);
+    }
+}
+
+/* A model spec such as "fq:Q=0.64"; a text the parser refuses ends the test (exit 3). */
+static inline struct model_spec spec(const char *text)
+{
+    struct model_spec s;
+    char err[256];
+    if (model_spec_parse(text, &s, err, sizeof err) != 0) {
+        fprintf(stderr, "cannot parse %s: %s\n", text, err);
+        exit(3);
+    }
+    return s;
+}
+
+#endif
