@@ -381,8 +381,6 @@ int main(void)
     mkdir(base ? base : "/tmp/brdfbench-pocl-cache", 0777);
     mkdir(cache, 0777);
     setenv("POCL_CACHE_DIR", cache, 1);
-    if (test_tmpdir_make(tmpdir, sizeof tmpdir, "test_render") != 0)
-        return 3;
     struct cl_session s;
     char err[512];
     int rc = clsession_open(&s, -1, -1, err, sizeof err);
@@ -390,6 +388,9 @@ int main(void)
         printf("no OpenCL device: %s\n0 passed, 0 failed\n", err);
         return rc == 77 ? 77 : 1;
     }
+    /* made after the device check, so that a skipped run leaves nothing behind */
+    if (test_tmpdir_make(tmpdir, sizeof tmpdir, "test_render") != 0)
+        return 3;
     test_sphere_pixels(&s);
     test_render_run(&s);
     clsession_close(&s);
