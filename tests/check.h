@@ -31,4 +31,13 @@ static inline int check_summary(void)
     return check_failed ? 1 : 0;
 }
 
+/* The closing line of a test whose device checks could not run (no OpenCL device): 77, the
+ * skip code of EXIT_NO_DEVICE and of ctest's SKIP_RETURN_CODE, unless a host check failed,
+ * which the skip must not hide (1). */
+static inline int check_summary_skipped(void)
+{
+    check_summary();
+    return check_failed ? 1 : 77;
+}
+
 #endif
