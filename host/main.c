@@ -47,6 +47,11 @@ int main(int argc, char **argv)
         printf("brdfbench %s (%s)\n", BRDF_VERSION, brdf_git_revision);
         return EXIT_OK;
     }
+    /* -h is --help for every command (no command takes -h otherwise). */
+    static char help_flag[] = "--help";
+    for (int i = 2; i < argc; ++i)
+        if (strcmp(argv[i], "-h") == 0)
+            argv[i] = help_flag;
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         if (strcmp(argv[1], commands[i].name) == 0)
             return commands[i].run(argc - 1, argv + 1);

@@ -61,6 +61,9 @@ assert r["invalid"]["at_x"] > math.pi / 3 - 1e-6, r["invalid"]
 assert r["attenuation"]["max_abs"] < 1e-6 and r["whole"]["max_abs"] < 1e-6, r
 PY
 
+# -h is --help after a command name too.
+"$BIN" accuracy -h >"$T/help" 2>&1 && grep -q '^usage: brdfbench accuracy' "$T/help" && ok || bad "accuracy -h"
+
 # Error paths: one line naming the argument and the accepted range, exit 2, nothing written.
 sum_before=$(md5sum "$T/run/accuracy.json")
 expect 2 "unknown model 'nosuch'" accuracy --models nosuch --out "$T/run"
