@@ -10,7 +10,6 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,25 +177,7 @@ static double side_value(double k, void *p)
 /* A root of side_value over [lo, hi] where it changes sign (GSL Brent). Returns 0 or -1. */
 static int root_in(struct side_ctx *ctx, double lo, double hi, double *root)
 {
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    gsl_function fn = { side_value, ctx };
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    int rc = -1;
-    if (s && gsl_root_fsolver_set(s, &fn, lo, hi) == GSL_SUCCESS) {
-        int status = GSL_CONTINUE;
-        for (int i = 0; i < FIT_ROOT_ITER && status == GSL_CONTINUE; ++i) {
-            if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS)
-                break;
-            status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-15,
-                                            4e-16);
-        }
-        *root = gsl_root_fsolver_root(s);
-        rc = 0;
-    }
-    if (s)
-        gsl_root_fsolver_free(s);
-    gsl_set_error_handler(old);
-    return rc;
+    return brent_root(side_value, ctx, lo, hi, 1e-15, 4e-16, FIT_ROOT_ITER, root);
 }
 
 /* The largest useful k at n: beyond it the quadratic reaches zero inside the epicentre. */

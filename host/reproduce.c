@@ -9,13 +9,12 @@
 #include "mdbuf.h"
 #include "models.h"
 #include "outdir.h"
+#include "refine.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_integration.h>
-#include <gsl/gsl_min.h>
 #include <gsl/gsl_poly.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -242,21 +241,8 @@ static double root_brent(double (*f)(double, void *), void *ctx, double lo, doub
     double flo = f(lo, ctx), fhi = f(hi, ctx);
     if (!(flo * fhi <= 0))
         return NAN;
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    gsl_function fn = { f, ctx };
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     double r = NAN;
-    if (s && gsl_root_fsolver_set(s, &fn, lo, hi) == GSL_SUCCESS) {
-        int status = GSL_CONTINUE;
-        for (int i = 0; i < 200 && status == GSL_CONTINUE; ++i) {
-            if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS)
-                break;
-            status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 1e-14, 1e-12);
-        }
-        r = gsl_root_fsolver_root(s);
-    }
-    if (s) gsl_root_fsolver_free(s);
-    gsl_set_error_handler(old);
+    brent_root(f, ctx, lo, hi, 1e-14, 1e-12, 200, &r);
     return r;
 }
 
@@ -292,21 +278,8 @@ static double fq_max_rel_minus_target(double q, void *p)
 /* GSL Brent minimisation over [lo, hi] from m (f(m) below both ends required). */
 static double minimise_brent(double (*f)(double, void *), void *ctx, double lo, double m, double hi)
 {
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    gsl_function fn = { f, ctx };
-    gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
     double x = m;
-    if (s && gsl_min_fminimizer_set(s, &fn, m, lo, hi) == GSL_SUCCESS) {
-        int status = GSL_CONTINUE;
-        for (int i = 0; i < 200 && status == GSL_CONTINUE; ++i) {
-            if (gsl_min_fminimizer_iterate(s) != GSL_SUCCESS)
-                break;
-            status = gsl_min_test_interval(gsl_min_fminimizer_x_lower(s), gsl_min_fminimizer_x_upper(s), 1e-12, 1e-10);
-        }
-        x = gsl_min_fminimizer_x_minimum(s);
-    }
-    if (s) gsl_min_fminimizer_free(s);
-    gsl_set_error_handler(old);
+    brent_minimum(f, ctx, lo, m, hi, 1e-12, 1e-10, 200, &x);
     return x;
 }
 
@@ -326,7 +299,6 @@ static double rel_at(double x, void *p)
     return error_rel_host(r->m, r->ref, cos(x), r->n);
 }
 
-#include "refine.h"
 
 static double host_max_rel_at(const struct model_spec *m, double n)
 {
