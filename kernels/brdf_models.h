@@ -9,7 +9,7 @@
  * type) before including this file. Nothing else in the project writes a model's formula.
  *
  * Conventions: c = cos x of the lobe angle (x = psi for the Phong family, theta_h for the Blinn
- * family), n = shininess, p0/p1 = the model's parameters (see host/models.c for their names and
+ * family), n = shininess, p0/p1 = the model's parameters (see host/core/models.c for their names and
  * ranges). Lobe models are defined for c in [0, 1]; a negative cosine is treated as 0.
  * Formulas are written for accuracy in float: (c - 1) is exact for c >= 0.5 (Sterbenz), and
  * Q^(1/n) - 1 is computed as expm1(log(Q)/n) to avoid cancellation at large n.
@@ -35,7 +35,7 @@
 
 #define BRDF_PI 3.14159265358979323846
 
-/* Model ids shared by the kernels and the host registry (host/models.c). */
+/* Model ids shared by the kernels and the host registry (host/core/models.c). */
 enum brdf_model_id {
     BRDF_PHONG = 0,   /* c^n, reference of the Phong family (x = psi)               */
     BRDF_BLINN,       /* c^n, reference of the Blinn family (x = theta_h)           */

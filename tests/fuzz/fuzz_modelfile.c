@@ -1,4 +1,4 @@
-/* fuzz_modelfile.c - libFuzzer target of the user-model parsers (host/usermodel.c): the model
+/* fuzz_modelfile.c - libFuzzer target of the user-model parsers (host/core/usermodel.c): the model
  * file's header and the one-line --model NAME=EXPR form. Any input must be accepted or
  * refused with a message, never crash, leak or read out of bounds. Built and run by
  * scripts/fuzz.sh. */

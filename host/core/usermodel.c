@@ -2,7 +2,6 @@
  * (see usermodel.h and docs/user-models.md). */
 #define _POSIX_C_SOURCE 200809L
 #include "usermodel.h"
-#include "cli.h"
 #include "exitcodes.h"
 #include "mdbuf.h"
 
@@ -586,31 +585,6 @@ int usermodel_load_file(const char *path, const struct user_model **out, char *e
         return rc;
     if (out)
         *out = um;
-    return 0;
-}
-
-int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen)
-{
-    const char *a = argv[*i];
-    if (cli_flag_is(a, "--model-file")) {
-        const char *v = cli_flag_value(argc, argv, i, "--model-file", err, errlen);
-        if (!v)
-            return -2;
-        if (*v == '\0') {
-            snprintf(err, errlen, "--model-file: empty file name");
-            return -2;
-        }
-        return usermodel_load_file(v, NULL, err, errlen) ? -2 : 1;
-    }
-    if (cli_flag_is(a, "--model")) {
-        const char *v = cli_flag_value(argc, argv, i, "--model", err, errlen);
-        if (!v)
-            return -2;
-        struct user_model *um = NULL;
-        if (usermodel_parse_expression(v, &um, err, errlen) || usermodel_register(um, err, errlen))
-            return -2;
-        return 1;
-    }
     return 0;
 }
 

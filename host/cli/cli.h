@@ -44,4 +44,14 @@ void device_options_init(struct device_options *o);
  * EXIT_USAGE negated (-2) with a message. Applies --kernel-dir at once. */
 int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen);
 
+/* The grid flags --n-min, --n-max and --n-step, each in (0, ACC_MAX_N], as the accuracy and fit
+ * commands take them: consumes argv[*i] if it is one of them and returns 1, returns 0 when it is
+ * not, or -2 with a message. Ranges against each other are accuracy_grid_check's. */
+int accuracy_grid_flag(int argc, char **argv, int *i, double *n_min, double *n_max, double *n_step, char *err,
+                       size_t errlen);
+
+/* The flags every command that evaluates models takes; call it in the flag loop like
+ * cli_device_flag: returns 1 (consumed), 0 (not one of them) or -2 with a message. */
+int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen);
+
 #endif

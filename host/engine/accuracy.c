@@ -1,6 +1,5 @@
 /* accuracy.c - the dense-grid sweep on the device and its double-precision check. */
 #include "accuracy.h"
-#include "cli.h"
 #include "exitcodes.h"
 #include "refine.h"
 #include "usermodel.h"
@@ -46,17 +45,6 @@ double accuracy_grid_n(const struct accuracy_grid *g, long i)
     long count = accuracy_grid_count(g);
     double v = (i >= count - 1) ? g->n_max : g->n_min + (double)i * g->n_step;
     return (double)(float)v;   /* the device sees n as a float */
-}
-
-int accuracy_grid_flag(int argc, char **argv, int *i, double *n_min, double *n_max, double *n_step, char *err,
-                       size_t errlen)
-{
-    static const char *const names[3] = { "--n-min", "--n-max", "--n-step" };
-    double *const values[3] = { n_min, n_max, n_step };
-    for (int k = 0; k < 3; ++k)
-        if (cli_flag_is(argv[*i], names[k]))
-            return cli_double_value(argc, argv, i, names[k], 1e-300, ACC_MAX_N, values[k], err, errlen) ? -2 : 1;
-    return 0;
 }
 
 int accuracy_grid_check(const struct accuracy_grid *g, const struct cl_session *s, char *err, size_t errlen)

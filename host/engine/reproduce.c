@@ -24,7 +24,7 @@
 /* k_Q(n) of f_Q, from the model header itself (its single definition), in double. */
 #define REAL double
 #define RSCALAR double
-#include "../kernels/brdf_models.h"
+#include "brdf_models.h"
 #undef REAL
 #undef RSCALAR
 

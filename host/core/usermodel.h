@@ -78,9 +78,6 @@ int usermodel_append_all(struct model_spec *models, int *count, int max, char *e
 const struct user_model *usermodel_of(const struct model_spec *m);
 const struct user_model *usermodel_of_info(const struct model_info *info);
 
-/* The flags every command that evaluates models takes; call it in the flag loop like
- * cli_device_flag: returns 1 (consumed), 0 (not one of them) or -2 with a message. */
-int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen);
 #define USERMODEL_OPTIONS_HELP \
     "  --model-file FILE  add the user model of FILE.cl (see docs/user-models.md); repeatable\n" \
     "  --model NAME=EXPR  add a user model given by an OpenCL C expression of c and n,\n" \

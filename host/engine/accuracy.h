@@ -74,11 +74,6 @@ struct accuracy_ctx {
     int user_count;
 };
 
-/* The grid flags --n-min, --n-max and --n-step, each in (0, ACC_MAX_N], as the accuracy and fit
- * commands take them: consumes argv[*i] if it is one of them and returns 1, returns 0 when it is
- * not, or -2 with a message. Ranges against each other are accuracy_grid_check's. */
-int accuracy_grid_flag(int argc, char **argv, int *i, double *n_min, double *n_max, double *n_step, char *err,
-                       size_t errlen);
 
 /* Validates a grid against its domains and the device's limits before any allocation.
  * Returns 0 or EXIT_USAGE with a one-line message naming the argument. */

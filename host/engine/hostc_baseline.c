@@ -23,7 +23,7 @@ static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a
 
 #define REAL float
 #define RSCALAR float
-#include "../kernels/brdf_models.h"
+#include "brdf_models.h"
 
 #include "hostc_baseline.h"
 

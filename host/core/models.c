@@ -12,7 +12,7 @@
 
 #define REAL double
 #define RSCALAR double
-#include "../kernels/brdf_models.h"
+#include "brdf_models.h"
 #undef REAL
 #undef RSCALAR
 
