@@ -23,7 +23,7 @@ static void accuracy_usage(FILE *f)
             "  error in the attenuation zone and over the whole range, each with where it occurs.\n"
             "  --models LIST      comma-separated models with parameters, e.g. cq2,fq:Q=0.7,lyon:k=4\n"
             "                     (default: all; see brdfbench list)\n"
-            "  --n-min X          smallest shininess (default 2; > 0)\n"
+            "  --n-min X          smallest shininess (default 2; >= 0.001)\n"
             "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
             "  --n-step X         step of n (default 1; real values allowed; n-max is always included)\n"
             "  --samples N        samples per zone per n, a multiple of 16 in [16, %ld] (default %d)\n"
@@ -155,13 +155,16 @@ int cmd_accuracy(int argc, char **argv)
     if (!quiet) {
         accuracy_print_table(stdout, res, nmodels);
         double worst = 0, dev_s = 0, pts = 0;
+        int beyond = 0;
         for (int m = 0; m < nmodels; ++m) {
             worst = fmax(worst, accuracy_check_in_digits(&res[m]));
+            beyond += res[m].device_disagrees;
             dev_s += res[m].device_seconds;
             pts += res[m].points;
         }
         printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
-               "largest difference = %.3g of one unit in the 4th significant digit of its figure\n", worst);
+               "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
+               "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
         printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)\n",
                dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples);
         printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);

@@ -124,7 +124,8 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
                       struct gate *g, char *err, size_t errlen)
 {
     static const char *keys[] = { "model", "model_file", "expression", "metric", "n_min", "n_max", "n_step",
-                                  "samples", "min", "max", "name", "claimed", "note", NULL };
+                                  "samples", "min", "max", "name", "claimed", "note", "accept_device_disagreement",
+                                  NULL };
     char where[32], msg[1024];
     snprintf(where, sizeof where, "gate %d: ", index + 1);
     memset(g, 0, sizeof *g);
@@ -139,7 +140,8 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
         if (!known)
             return jr_fail(d, &gv->items[k], err, errlen,
                            "%sunknown member \"%.40s\" (accepted: model, model_file, expression, metric, n_min, "
-                           "n_max, n_step, samples, min, max, name, claimed, note)", where, gv->keys[k]);
+                           "n_max, n_step, samples, min, max, name, claimed, note, accept_device_disagreement)", where,
+                           gv->keys[k]);
     }
     const struct jr_value *model_v, *file_v, *expr_v, *metric_v, *v;
     if (member(d, gv, "model", JR_STR, where, &model_v, err, errlen) ||
@@ -180,12 +182,12 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     for (int k = 0; k < 7; ++k)
         if (member(d, gv, num_keys[k], JR_NUM, where, &nv[k], err, errlen))
             return EXIT_USAGE;
-    if (nv[0] && !(nv[0]->num > 0 && nv[0]->num <= ACC_MAX_N))
-        return jr_fail(d, nv[0], err, errlen, "%s\"n_min\" %.10g is out of range (accepted: 0 < n_min <= %g)", where,
-                       nv[0]->num, ACC_MAX_N);
-    if (nv[1] && !(nv[1]->num > 0 && nv[1]->num <= ACC_MAX_N))
-        return jr_fail(d, nv[1], err, errlen, "%s\"n_max\" %.10g is out of range (accepted: 0 < n_max <= %g)", where,
-                       nv[1]->num, ACC_MAX_N);
+    if (nv[0] && !(nv[0]->num >= ACC_MIN_N && nv[0]->num <= ACC_MAX_N))
+        return jr_fail(d, nv[0], err, errlen, "%s\"n_min\" %.10g is out of range (accepted: %g <= n_min <= %g)", where,
+                       nv[0]->num, ACC_MIN_N, ACC_MAX_N);
+    if (nv[1] && !(nv[1]->num >= ACC_MIN_N && nv[1]->num <= ACC_MAX_N))
+        return jr_fail(d, nv[1], err, errlen, "%s\"n_max\" %.10g is out of range (accepted: %g <= n_max <= %g)", where,
+                       nv[1]->num, ACC_MIN_N, ACC_MAX_N);
     if (nv[2] && !(nv[2]->num > 0 && nv[2]->num <= ACC_MAX_N))
         return jr_fail(d, nv[2], err, errlen, "%s\"n_step\" %.10g is out of range (accepted: 0 < n_step <= %g)", where,
                        nv[2]->num, ACC_MAX_N);
@@ -227,6 +229,9 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
         return EXIT_USAGE;
     if (v)
         snprintf(g->note, sizeof g->note, "%s", v->str);
+    if (member(d, gv, "accept_device_disagreement", JR_BOOL, where, &v, err, errlen))
+        return EXIT_USAGE;
+    g->accept_device_disagreement = v && v->num != 0;
     g->measured = g->at_n = g->at_x = NAN;
     g->invalid_n = g->invalid_x = NAN;
     g->baseline = g->baseline_change = NAN;
@@ -502,7 +507,7 @@ static void gate_from_sweep(struct gate *g, const struct accuracy_result *r)
         if (p->invalid_count > 0) {
             if (invalid == 0) {
                 g->invalid_n = p->n;
-                g->invalid_x = acos((double)p->invalid_c);
+                g->invalid_x = angle_of_s((double)p->invalid_s);
             }
             invalid += (long long)p->invalid_count;
         }
@@ -515,6 +520,12 @@ static void gate_from_sweep(struct gate *g, const struct accuracy_result *r)
         }
     }
     g->invalid_count = invalid;
+    /* The device-vs-double check over the gate's own n values, against its own figure. */
+    accuracy_check_figures(r, g->grid.n_min, g->grid.n_max,
+                           g->metric == GATE_EPICENTRE_MAX_REL ? best.value : NAN,
+                           g->metric == GATE_ATTENUATION_MAX_ABS ? best.value : NAN,
+                           g->metric == GATE_WHOLE_MAX_ABS || g->metric == GATE_EPICENTRE_MAX_ABS ? best.value : NAN,
+                           &g->check);
     if (g->metric == GATE_INVALID_COUNT) {
         g->measured = (double)invalid;
         g->at_n = g->invalid_n;
@@ -633,7 +644,7 @@ done:
 /* PASS/FAIL against the bounds and the baseline. */
 static void gate_judge(struct gate *g, double tolerance)
 {
-    char why[400] = "";
+    char why[720] = "";
     int fail = 0;
     if (!isfinite(g->measured)) {
         fail = 1;
@@ -651,6 +662,15 @@ static void gate_judge(struct gate *g, double tolerance)
                 snprintf(why, sizeof why, "measured %.6g is above max %.6g", g->measured, g->max);
             else
                 snprintf(why, sizeof why, "measured %.6g is below min %.6g", g->measured, g->min);
+        }
+        if (g->check.exceeded) {
+            size_t used = strlen(why);
+            snprintf(why + used, sizeof why - used,
+                     "%sdevice and double disagree on %s at n = %.9g by %.4g units of its 4th significant digit "
+                     "(bound %g)%s", used ? "; " : "", g->check.figure, g->check.n, g->check.units,
+                     ACC_CHECK_BOUND_UNITS, g->accept_device_disagreement ? ", accepted by the gate" : "");
+            if (!g->accept_device_disagreement)
+                fail = 1;
         }
         if (g->metric != GATE_INVALID_COUNT && g->invalid_count > 0) {
             fail = 1;
@@ -674,7 +694,7 @@ static void gate_judge(struct gate *g, double tolerance)
         }
     }
     g->status = fail ? GATE_FAIL : GATE_PASS;
-    if (fail)
+    if (fail || g->check.exceeded)
         snprintf(g->reason, sizeof g->reason, "%s", why);
 }
 
@@ -975,6 +995,7 @@ int gate_set_write_junit(const struct gate_set *gs, const char *path, const stru
         if (g->status == GATE_FAIL) {
             const char *type = g->baseline_status == GATE_BASELINE_REGRESSION ? "regression"
                                : !isfinite(g->measured)                        ? "no_value"
+                               : g->check.exceeded && !g->accept_device_disagreement ? "device_disagrees"
                                : g->invalid_count > 0 && g->metric != GATE_INVALID_COUNT ? "invalid_values"
                                                                                : "bound";
             md_printf(&b, "      <failure type=\"%s\" message=\"", type);
@@ -1055,6 +1076,17 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
         jw_kv_num(&w, "margin", g->margin);
         jw_kv_num(&w, "margin_rel", g->margin_rel);
         jw_kv_int(&w, "invalid_count", g->invalid_count);
+        if (metric_needs_sweep(g->metric) && g->check.figure) {
+            jw_key(&w, "device_check");
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "status", g->check.exceeded ? "exceeded" : "ok");
+            jw_kv_num(&w, "in_4th_digit_units", g->check.units);
+            jw_kv_num(&w, "bound_4th_digit_units", ACC_CHECK_BOUND_UNITS);
+            jw_kv_str(&w, "worst_figure", g->check.figure);
+            jw_kv_num(&w, "worst_at_n", g->check.n);
+            jw_kv_bool(&w, "accepted", g->accept_device_disagreement);
+            jw_obj_end(&w);
+        }
         if (g->reason[0])
             jw_kv_str(&w, "reason", g->reason);
         else if (!isfinite(g->measured))

@@ -47,6 +47,7 @@ struct gate {
     double claimed;            /* a paper's figure, reported beside the measured one */
     char note[256];
     int line, col;             /* where the gate is in the gates file */
+    int accept_device_disagreement; /* "accept_device_disagreement": true: judged on the figure alone */
 
     /* Measured. */
     enum gate_status status;
@@ -54,7 +55,8 @@ struct gate {
     double margin, margin_rel; /* distance to the nearer bound: > 0 inside, < 0 outside */
     long long invalid_count;   /* invalid model values in the gate's n range */
     double invalid_n, invalid_x;
-    char reason[400];          /* why it failed, or a note */
+    struct acc_check check;    /* device vs double over the gate's n values (accuracy.h) */
+    char reason[700];          /* why it failed, or a note */
     double seconds;            /* wall time of the work first done for this gate */
 
     /* Against a baseline (--baseline). */
