@@ -412,6 +412,8 @@ static void tp_fill(struct tp_figure *f, long iters, double per_launch, const do
     f->rate = rates_of(f->sec, f->per_launch);
     f->rate_wall = rates_of(f->sec_wall, f->per_launch);
     f->checksum = sum_floats(out, nout);
+    f->nreps = reps;
+    memcpy(f->rep_seconds, secs, (size_t)reps * sizeof *secs);
     f->ok = 1;
     f->finite = isfinite(f->checksum);
 }

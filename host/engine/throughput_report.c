@@ -63,9 +63,20 @@ static void jw_ratio(struct jw *w, const char *key, double v, const char *why_mi
     }
 }
 
+/* Every timed launch's rate, in the order they ran: what a comparison of two runs tests. */
+static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int k = 0; f->ok && k < f->nreps; ++k)
+        jw_num(w, f->rep_seconds[k] > 0 ? f->per_launch / f->rep_seconds[k] : NAN);
+    jw_arr_end(w);
+}
+
 static const char *tp_definitions[][2] = {
     { "evals_per_s", "model evaluations per second: work-items x iterations x 64 over the launch time (profiling events); min/median/max over the timed launches" },
     { "evals_per_s_wall", "the same over wall time, enqueue to clFinish" },
+    { "evals_per_s_reps", "evals_per_s of every timed launch, in the order they ran (empty when the figure failed); brdfbench compare tests two runs' repetitions against each other" },
     { "ratio_to_reference", "evals_per_s / evals_per_s of the pow(c, n) built-in, same build options and n mode, same run" },
     { "ratio_to_model_reference", "evals_per_s / evals_per_s of the model's own reference (phong, phongn, blinnn) as brdf_models.h evaluates it" },
     { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/hostc_baseline.c: -O3 -march=native, pthreads over the online CPUs, powf for c^n)" },
@@ -161,6 +172,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
                 if (!f->ok)
                     jw_kv_str(&w, "reason", f->reason);
                 jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+                jw_reps(&w, "evals_per_s_reps", f);
                 jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
                 jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
                 jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
@@ -187,6 +199,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
                     if (!e->hostc[m].ok)
                         jw_kv_str(&w, "reason", e->hostc[m].reason);
                     jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
+                    jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
                     jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
                     jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
                     jw_kv_int(&w, "threads", r->threads);

@@ -26,6 +26,8 @@ struct tp_figure {
     double per_launch;                 /* work per launch: evaluations (flops for the peak) */
     double checksum;                   /* sum of the last launch's outputs */
     int finite;                        /* 0: some values were NaN or Inf (timed all the same) */
+    int nreps;                         /* timed launches, in the order they ran */
+    double rep_seconds[TP_MAX_REPS];   /* each one's time (profiling events; C: wall) */
 };
 
 /* A measured thing: a model of the run, or the pow() built-in (m = NULL). */
