@@ -232,7 +232,9 @@ static void jw_field(struct jw *w, const char *key, const float *v, size_t count
 {
     jw_key(w, key);
     jw_arr_begin(w);
-    for (size_t i = 0; i < count; i++) jw_numf(w, v[i], 4);
+    /* 9 significant digits give back every float exactly, so a redraw finds the same peaks
+       (with 4, cells near the maximum tie and the first one wins) and draws the same picture. */
+    for (size_t i = 0; i < count; i++) jw_numf(w, v[i], 9);
     jw_arr_end(w);
 }
 

@@ -71,7 +71,7 @@ void field_result_free(struct field_result *r);
 void field_find_peaks(struct field_result *r);
 
 /* field JSON: schema, context (s: the session that computed it, may be NULL), model,
- * reference, grid, both fields (4 significant digits, null for NaN), peaks, check. Returns 0 or -1 with a message. */
+ * reference, grid, both fields (9 significant digits: every float exactly; null for NaN), peaks, check. Returns 0 or -1 with a message. */
 int field_write_json(const char *path, const struct field_result *r, const struct cl_session *s, char *err,
                      size_t errlen);
 /* Reads a field JSON back. Returns 0, or 2 when missing or malformed (file:line: problem). */
