@@ -349,8 +349,12 @@ static void check_fold(struct acc_check *out, double d, double figure, double sc
         return;
     double unit = fourth_digit_unit(figure);
     /* A NaN difference (the double finds no value where the device did) is a disagreement. */
-    double units = isnan(d) ? INFINITY : unit > 0 ? d / unit : (d > 0 ? INFINITY : 0.0);
     int exceeded = (isnan(d) || d > ACC_CHECK_BOUND_UNITS * unit) && !(d <= ACC_CHECK_FLOAT_FLOOR * scale);
+    /* A figure below the float floor (a model equal to its reference, ~1e-16 in double) has no
+       4th digit a float device could give: its units are not counted unless it is exceeded. */
+    double units = isnan(d) ? INFINITY : unit > 0 ? d / unit : (d > 0 ? INFINITY : 0.0);
+    if (!exceeded && !(figure >= ACC_CHECK_FLOAT_FLOOR * scale))
+        units = 0;
     /* The worst is the one that exceeds, then the most units. */
     if ((exceeded && !out->exceeded) || (exceeded == out->exceeded && !(units <= out->units))) {
         out->units = units;
