@@ -239,7 +239,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
         if (r->sweep_reason[0])
             jw_kv_str(&w, "reason", r->sweep_reason);
         jw_kv_str(&w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
-                              "(cosf for the sample cosines, powf for c^n), per model: median of the timed runs");
+                              "(the same samples in s = 1 - cos x, expf(n log1pf(-s)) for c^n), per model: median of the timed runs");
         jw_kv_num(&w, "n_min", o->sweep_grid.n_min);
         jw_kv_num(&w, "n_max", o->sweep_grid.n_max);
         jw_kv_num(&w, "n_step", o->sweep_grid.n_step);
@@ -505,7 +505,7 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
             }
         if (ok > 0)
             tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
-                         "(%.3g G points/s), tuned C with powf %.3f s (%.3g G points/s): %.2fx\n",
+                         "(%.3g G points/s), tuned C %.3f s (%.3g G points/s): %.2fx\n",
                       o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, ok == 1 ? "" : "s", pts,
                       dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
         else
