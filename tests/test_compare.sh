@@ -247,6 +247,59 @@ assert by[("fq2", "max_abs")]["verdict"] == "unchanged"
 assert by[("cq2", "evals_per_s")]["verdict"] == "same"              # no reps: ranges overlap (equal)
 PY
 
+# ---- several devices in one run: the same PoCL device twice --------------------------------
+"$BIN" "${TP[@]}" --device 0,0 --out "$T/dev" 2>"$T/err" && ok || bad "--device 0,0: $(cat "$T/err")"
+python3 - "$T/dev/throughput.json" <<'PY' && ok || bad "--device 0,0: rows tagged"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == "brdfbench.throughput/2"
+devs = d["context"]["devices"]
+assert [x["index"] for x in devs] == ["0:0", "0:0"], devs
+name = devs[0]["device"]
+# the second mention of the same device is told apart by its place in the list
+assert [x["tag"] for x in devs] == [name, name + " #2"], devs
+tags = [r["device"] for r in d["results"]]
+assert tags == [name] * 8 + [name + " #2"] * 8, tags
+PY
+for k in 1 2; do [ -s "$T/dev/devices/$k/throughput.json" ] && [ -s "$T/dev/devices/$k/throughput.csv" ] && ok ||
+    bad "devices/$k lacks its own outputs"; done
+"$BIN" compare "$T/dev" --out "$T/devc" >"$T/table" 2>"$T/err" && ok || bad "compare one run of 2 devices: $(cat "$T/err")"
+python3 - "$T/devc/compare.json" "$T/dev/throughput.json" <<'PY' && ok || bad "devices side by side"
+import json, math, sys
+d, t = (json.load(open(p)) for p in sys.argv[1:3])
+assert d["layout"] == "devices of one run"
+name = t["context"]["devices"][0]["device"]
+assert [r["name"] for r in d["runs"]] == [name, name + " #2"]
+assert len(d["rows"]) == 8 and all(r["in_all_runs"] and r["device"] == "" for r in d["rows"])
+med = {(r["device"], r["label"], r["variant"], r["n_mode"]): r["evals_per_s"]["median"] for r in t["results"]}
+for r in d["rows"]:
+    label, variant, mode = [s.strip() for s in r["key"].split("|")]
+    a = med[(name, label, variant, mode[2:])]
+    b = med[(name + " #2", label, variant, mode[2:])]
+    assert math.isclose(r["cells"][1]["ratio"], b / a, rel_tol=1e-12)
+PY
+# two runs of two devices each match row by row, device by device
+"$BIN" compare "$T/dev" "$T/dev" --out "$T/devc2" --quiet 2>"$T/err" && ok || bad "dev against dev: $(cat "$T/err")"
+python3 - "$T/devc2/compare.json" <<'PY' && ok || bad "dev against dev: rows keyed by device"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert len(d["rows"]) == 16 and len({r["device"] for r in d["rows"]}) == 2
+assert all(r["cells"][1]["verdict"] == "same" and r["cells"][1]["ratio"] == 1.0 for r in d["rows"])
+PY
+"$BIN" accuracy --models cq2 --n-max 20 --samples 64 --device 0,0 --out "$T/accdev" --quiet 2>"$T/err" && ok ||
+    bad "accuracy --device 0,0: $(cat "$T/err")"
+python3 - "$T/accdev/accuracy.json" <<'PY' && ok || bad "accuracy rows tagged"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == "brdfbench.accuracy/1" and len(d["results"]) == 2
+assert d["results"][1]["device"] == d["results"][0]["device"] + " #2"
+PY
+expect 2 "--device: device 7 is out of range for platform 0 \(accepted: 0 to" "${TP[@]}" --device 0:7 --out "$T/x8"
+expect 2 "--device: 'x' is not N or P:D" "${TP[@]}" --device 0,x --out "$T/x9"
+expect 2 "all and lists are taken by throughput, accuracy and render" fit --device all
+expect 2 "--min-time" "${TP[@]}" --device 0,0 --min-time 99 --out "$T/x10"
+for i in 8 9 10; do [ ! -e "$T/x$i" ] && ok || bad "exit 2 left $T/x$i behind"; done
+
 # ---- exit 2: one line, nothing written ----------------------------------------------------
 expect 2 "nothere: No such file" compare "$T/nothere" "$T/a" --out "$T/x1"
 mkdir -p "$T/empty"

@@ -272,13 +272,13 @@ static int read_render(struct cmp_reader *rd, const struct jr_doc *d, char *err,
     const struct jr_value *scenes;
     if (jr_need(d, &d->root, "scenes", JR_ARR, &scenes, err, errlen))
         return 2;
-    const char *dev = str_member(&d->root, "device", "");   /* a --device all run tags its scenes */
+    int tagged = distinct_devices(scenes, "device") > 1;     /* a --device all run tags its scenes */
     for (size_t i = 0; i < scenes->count; ++i) {
         const struct jr_value *sc = &scenes->items[i];
         const char *scene;
         if (jr_need_str(d, sc, "scene", &scene, err, errlen))
             return 2;
-        const char *sdev = str_member(sc, "device", dev);
+        const char *sdev = tagged ? str_member(sc, "device", "") : "";
         const struct jr_value *img = jr_get(sc, "image"), *models = jr_get(sc, "models"), *timings = jr_get(sc, "timings");
         char key[CMP_TEXT];
         for (size_t m = 0; models && m < models->count; ++m) {
@@ -470,9 +470,19 @@ static int read_file(struct compare_set *set, int run, const char *path, char *e
     const struct jr_value *devices = jr_get(ctx, "devices");
     if (devices && devices->type == JR_ARR && devices->count > 1) {
         char all[CMP_TEXT] = "";
-        for (size_t i = 0; i < devices->count; ++i)
-            snprintf(all + strlen(all), sizeof all - strlen(all), "%s%s", i ? "; " : "",
-                     str_member(&devices->items[i], "tag", str_member(&devices->items[i], "device", "?")));
+        for (size_t i = 0; i < devices->count; ++i) {
+            const struct jr_value *dv = &devices->items[i];
+            const char *tag = str_member(dv, "tag", str_member(dv, "device", "?"));
+            snprintf(all + strlen(all), sizeof all - strlen(all), "%s%s", i ? "; " : "", tag);
+            int known = 0;
+            for (int j = 0; j < set->ndevices; ++j)
+                known |= strcmp(set->devices[j].name, tag) == 0;
+            if (!known && set->ndevices < CMP_MAX_RUNS) {
+                struct cmp_run *dr = &set->devices[set->ndevices++];
+                snprintf(dr->name, sizeof dr->name, "%s", tag);
+                read_context(dr, dv);
+            }
+        }
         ctx_put(r, "devices", all);
     }
     snprintf(r->files + strlen(r->files), sizeof r->files - strlen(r->files), "%s%s", r->files[0] ? ", " : "",
@@ -550,10 +560,20 @@ static void split_devices(struct compare_set *set)
         snprintf(set->run[k].name, sizeof set->run[k].name, "%s", devs[k]);
     }
     set->nruns = ndev;
+    /* each column's device context from the file's list of devices */
     for (int k = 0; k < ndev; ++k)
-        for (int c = 0; c < set->run[k].nctx; ++c)
+        for (int c = 0; c < set->run[k].nctx; ++c) {
+            const char *v = NULL;
+            for (int j = 0; j < set->ndevices && !v; ++j)
+                if (strcmp(set->devices[j].name, devs[k]) == 0)
+                    for (int m = 0; m < set->devices[j].nctx && !v; ++m)
+                        if (strcmp(set->devices[j].ctx_key[m], set->run[k].ctx_key[c]) == 0)
+                            v = set->devices[j].ctx_value[m];
             if (strcmp(set->run[k].ctx_key[c], "device") == 0)
-                snprintf(set->run[k].ctx_value[c], sizeof set->run[k].ctx_value[c], "%.250s", devs[k]);
+                v = devs[k];
+            if (v)
+                snprintf(set->run[k].ctx_value[c], sizeof set->run[k].ctx_value[c], "%.250s", v);
+        }
     /* rows of device k move to column k of the row with the same key and no device */
     int n = set->nrows;
     for (int i = 0; i < n; ++i) {

@@ -100,6 +100,9 @@ struct compare_set {
     struct cmp_row *rows;
     int nrows, cap;
     double alpha;
+    /* the devices a --device all file lists (context.devices): name = tag, with their context */
+    struct cmp_run devices[CMP_MAX_RUNS];
+    int ndevices;
     /* counts after compare_evaluate */
     int rows_in_all, rows_in_some;
 };
