@@ -247,6 +247,31 @@ assert by[("fq2", "max_abs")]["verdict"] == "unchanged"
 assert by[("cq2", "evals_per_s")]["verdict"] == "same"              # no reps: ranges overlap (equal)
 PY
 
+# ---- fit.json: the fitted coefficients and figures, the other models by name ------------------
+"$BIN" fit --n-min 2 --n-max 30 --out "$T/fit" --quiet >/dev/null 2>"$T/err" && ok || bad "fit run: $(cat "$T/err")"
+python3 - "$T/fit/fit.json" "$T/fit2" <<'PY' || bad "making the changed fit"
+import json, os, sys
+d = json.load(open(sys.argv[1]))
+d["a"] *= 1.001          # a coefficient moved in its 4th digit: changed (no better or worse)
+d["max_rel"] *= 0.99     # the fit's max delta 1% lower: changed, better
+os.makedirs(sys.argv[2])
+json.dump(d, open(os.path.join(sys.argv[2], "fit.json"), "w"))
+PY
+"$BIN" compare "$T/fit" "$T/fit2" --out "$T/cfit" --quiet --fail-if-less-accurate 2>"$T/err" && ok ||
+    bad "fit: a better figure must not fail: $(cat "$T/err")"
+python3 - "$T/cfit/compare.json" "$T/fit/fit.json" <<'PY' && ok || bad "fit rows"
+import json, sys
+d, f = (json.load(open(p)) for p in sys.argv[1:3])
+rows = [r for r in d["rows"] if r["kind"] == "fit"]
+best = {r["metric"]: r["cells"][1]["verdict"] for r in rows if r["key"].startswith("best affine")}
+assert best == {"a": "changed", "b": "unchanged", "max_rel": "changed, better", "max_abs": "unchanged"}, best
+# every model fit.json compares with, except the fitted quad: itself, by its moving label
+others = sorted(r["key"].split(" | ")[0] for r in rows if r["metric"] == "max_rel" and " | n " in r["key"]
+                and not r["key"].startswith(("best", "capped")))
+want = sorted(m["model"] for m in f["compare"] if not m["model"].startswith("quad:"))
+assert others == want and len(want) > 0, (others, want)
+PY
+
 # ---- several devices in one run: the same PoCL device twice --------------------------------
 "$BIN" "${TP[@]}" --device 0,0 --out "$T/dev" 2>"$T/err" && ok || bad "--device 0,0: $(cat "$T/err")"
 python3 - "$T/dev/throughput.json" <<'PY' && ok || bad "--device 0,0: rows tagged"
