@@ -78,7 +78,7 @@ assert all(r["verdict"] == "slower" for r in rows if r["run"] == "slow")
 PY
 
 # --fail-if-slower: the factor is far below 0.5, so 40% fails and names the rows; 100% cannot
-expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.0" compare "$T/a" "$T/slow" --out "$T/c2" --fail-if-slower 40
+expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.[0-9]+x the baseline" compare "$T/a" "$T/slow" --out "$T/c2" --fail-if-slower 40
 "$BIN" compare "$T/a" "$T/slow" --out "$T/c3" --fail-if-slower 100 --quiet 2>"$T/err" && ok ||
     bad "--fail-if-slower 100 failed: $(cat "$T/err")"
 # the other way round every row is faster and nothing fails
@@ -245,6 +245,20 @@ assert math.isclose(by[("fq2", "evals_per_s")]["p"], 2 / 252)
 assert by[("fq2", "max_rel")]["verdict"] == "changed, worse"         # 1.257e-2 -> 1.260e-2
 assert by[("fq2", "max_abs")]["verdict"] == "unchanged"
 assert by[("cq2", "evals_per_s")]["verdict"] == "same"              # no reps: ranges overlap (equal)
+PY
+
+# ---- the kernel sources' fingerprints: a kernel changed without a commit shows in the context
+SRC=${SRC_DIR:?SRC_DIR must name the source tree}
+cp -r "$SRC/kernels" "$T/k_same" && cp -r "$SRC/kernels" "$T/k_edit" && echo "/* edited */" >>"$T/k_edit/brdf_models.h"
+"$BIN" "${TP[@]}" --models cq2 --kernel-dir "$T/k_same" --out "$T/ks" 2>"$T/err" && ok || bad "kernel-dir run: $(cat "$T/err")"
+"$BIN" "${TP[@]}" --models cq2 --kernel-dir "$T/k_edit" --out "$T/ke" 2>"$T/err" && ok || bad "kernel-dir run: $(cat "$T/err")"
+"$BIN" compare "$T/a" "$T/ks" "$T/ke" --out "$T/ck" --quiet 2>"$T/err" && ok || bad "compare kernel runs: $(cat "$T/err")"
+python3 - "$T/ck/compare.json" <<'PY' && ok || bad "kernel fingerprints in the context"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert "kernel sources" not in d["runs"][1]["context_differs"], d["runs"][1]   # the same files
+assert "kernel sources" in d["runs"][2]["context_differs"], d["runs"][2]       # one comment added
+assert "brdf_models.h" in d["runs"][2]["context"]["kernel sources"]
 PY
 
 # ---- fit.json: the fitted coefficients and figures, the other models by name ------------------

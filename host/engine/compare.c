@@ -207,6 +207,14 @@ static int read_throughput(struct cmp_reader *rd, const struct jr_doc *d, char *
                  num_member(tp, "reps"), num_member(tp, "min_time_s"), num_member(tp, "work_items"),
                  num_member(tp, "n_uniform"), num_member(tp, "n_lo"), num_member(tp, "n_hi"));
         ctx_put(&rd->set->run[rd->run], "throughput settings", buf);
+        const struct jr_value *fp = jr_get(tp, "kernel_sources_fnv1a64");
+        buf[0] = '\0';
+        for (size_t i = 0; fp && fp->type == JR_OBJ && i < fp->count; ++i)
+            if (fp->items[i].type == JR_STR)
+                snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s %.8s", i ? ", " : "", fp->keys[i],
+                         fp->items[i].str);
+        if (buf[0])
+            ctx_put(&rd->set->run[rd->run], "kernel sources", buf);
     }
     int tagged = distinct_devices(rows, "device") > 1;
     for (size_t i = 0; i < rows->count; ++i) {

@@ -97,7 +97,7 @@ static const char *kind_heading(int kind)
 /* The context rows worth showing side by side, in this order; others follow as read. */
 static const char *const ctx_order[] = { "files", "device", "devices", "platform", "platform_version", "device_version",
                                          "driver_version", "compute_units", "host_cpu", "host_cores", "git_revision",
-                                         "brdfbench_version", "build_options", "pocl_affinity", "throughput settings", "accuracy grid",
+                                         "brdfbench_version", "build_options", "pocl_affinity", "kernel sources", "throughput settings", "accuracy grid",
                                          "fit grid", "date" };
 
 static const char *ctx_value(const struct compare_set *set, int k, const char *key)
@@ -188,7 +188,7 @@ char *compare_text(const struct compare_set *set, int md)
         for (int i = 0; i < nk; ++i) {
             const char *v = ctx_value(set, k, keys[i]);
             if (v && (k == 0 || ctx_differs(set, k, keys[i])))
-                w = (int)fmax(w, fmin(60, strlen(v)));
+                w = (int)fmax(w, fmin(72, strlen(v)));
         }
     }
     if (md) {
@@ -225,7 +225,7 @@ char *compare_text(const struct compare_set *set, int md)
                 md_cell_text(&b, cell);
                 md_printf(&b, "%s |", differs && k > 0 && strcmp(cell, "=") != 0 ? " (differs)" : "");
             } else {
-                md_printf(&b, " %-*.*s", w, 60, cell);
+                md_printf(&b, " %-*.*s", w, 72, cell);
             }
         }
         md_printf(&b, "\n");
