@@ -104,6 +104,27 @@ for r in d["rows"]:
 assert d["runs"][1]["context_differs"] == [], d["runs"][1]["context_differs"]
 PY
 
+# ---- too few repetitions: with 3 per side the smallest two-sided p is 2/20 = 0.1 > 0.05 ---------
+python3 - "$T/a/throughput.json" "$T/slow/throughput.json" "$T/few_a" "$T/few_slow" <<'PY' || bad "making 3-rep runs"
+import json, os, sys
+for src, dst in ((sys.argv[1], sys.argv[3]), (sys.argv[2], sys.argv[4])):
+    d = json.load(open(src))
+    for r in d["results"]:
+        r["evals_per_s_reps"] = r["evals_per_s_reps"][:3]
+    os.makedirs(dst)
+    json.dump(d, open(os.path.join(dst, "throughput.json"), "w"))
+PY
+"$BIN" compare "$T/few_a" "$T/few_slow" --out "$T/few" --quiet --fail-if-slower 0 2>"$T/err" && ok ||
+    bad "undecided rows must not fail --fail-if-slower: $(cat "$T/err")"
+python3 - "$T/few/compare.json" <<'PY' && ok || bad "3 repetitions: undecided"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+for r in d["rows"]:
+    c = r["cells"][1]
+    # fully separated, yet p = 2/20: the test cannot reach 0.05 with these sizes
+    assert c["verdict"] == "undecided" and math.isclose(c["p"], 0.1), (r["key"], c)
+PY
+
 # ---- two real runs: matched, ratio of medians; the share of "same" is reported -----------
 "$BIN" compare "$T/a" "$T/a2" --out "$T/real" --quiet 2>"$T/err" && ok || bad "a against a2: $(cat "$T/err")"
 python3 - "$T/real/compare.json" "$T/a/throughput.json" "$T/a2/throughput.json" <<'PY' && ok || bad "two real runs"
