@@ -198,6 +198,12 @@ t 2 "^brdfbench throughput: --n: 'nan' is not a finite number" throughput --n na
 t 2 "^brdfbench throughput: --n-range: LO \(5\) must be below HI \(2\)" throughput --n-range 5:2
 t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " throughput --variants turbo
 t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
+t 2 "^brdfbench compare: expected BASELINE RUN \[RUN \.\.\.\]" compare
+t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help\)" compare --bogus
+t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-12, 1\]" compare a b --alpha 2
+t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
+t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
+t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
 
 # accuracy and gate: the n range (float n; below 0.001 the attenuation zone is empty) and the
 # device-vs-double key of a gate

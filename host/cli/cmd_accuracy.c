@@ -32,12 +32,17 @@ static void accuracy_usage(FILE *f)
             "  --quiet            no table on stdout\n"
             USERMODEL_OPTIONS_HELP
             "                     (with a user model and no --models, only the user models run)\n"
-            DEVICE_OPTIONS_HELP,
+            DEVICE_OPTIONS_HELP
+            DEVICE_LIST_HELP,
             ACC_MAX_SAMPLES, ACC_DEFAULT_SAMPLES);
 }
 
 int cmd_accuracy(int argc, char **argv)
 {
+    /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
+    int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results");
+    if (per_device >= 0)
+        return per_device;
     char err[1024];
     struct accuracy_grid grid = { 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
     struct device_options dev;
