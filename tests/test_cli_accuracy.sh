@@ -14,7 +14,7 @@ rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "small sweep exit $rc: $(cat "$T/err")"
 python3 - "$T/run/accuracy.json" "${INDEP:?INDEP must name the tests/indep binary}" <<'PY' && ok || bad "accuracy.json contract"
-import json, subprocess, sys
+import json, math, subprocess, sys
 def no_const(x): raise ValueError("non-finite number in JSON: " + x)
 d = json.load(open(sys.argv[1]), parse_constant=no_const)
 assert d["schema"] == "brdfbench.accuracy/1"
@@ -38,9 +38,23 @@ for r, b in zip(res, json.loads(out)):
         assert abs(z[metric] - want) <= 1e-7 * want, (r["model"], zone, z, want)
         assert 2 <= z["at_n"] <= 50 and 0 <= z["at_x"] <= 1.5707963267948966 + 1e-12
     assert r["epicentre"]["at_n"] == b["max_rel_n"] and r["attenuation"]["at_n"] == b["att_n"], (r, b)
+    # The device's grid samples the same function: never above the polished maximum beyond
+    # float rounding (1e-5 relative).
+    for zone, metric in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+        assert r[zone]["grid_" + metric] <= r[zone][metric] * (1 + 1e-5), (r["model"], zone, r[zone])
     # The whole range's max |error| is the larger of the two zones' (zones partition [0, pi/2]).
     assert r["whole"]["max_abs"] >= r["attenuation"]["max_abs"]
     assert r["check"]["in_4th_digit_units"] < 0.05
+# Both ends of the epicentre are grid points (README: x uniform over [0, x_e(n)], both ends
+# included). cq2's and lyon:k=3's delta grows up to the zone's end (the brute force puts their
+# maxima at x_e(n)), so there the grid holds the maximum itself, to float rounding.
+for r, b in zip(res, json.loads(out)):
+    xe = math.acos(math.exp(-0.511 / b["max_rel_n"]))
+    if abs(b["max_rel_x"] - xe) < 1e-9 * xe:
+        e = r["epicentre"]
+        assert abs(e["grid_max_rel"] - e["max_rel"]) <= 1e-5 * e["max_rel"], (r["model"], e)
+        assert abs(e["at_x"] - xe) <= 1e-9, (r["model"], e, xe)
+assert sum(1 for b in json.loads(out) if abs(b["max_rel_x"] - math.acos(math.exp(-0.511 / b["max_rel_n"]))) < 1e-9) == 2
 # cq2 at n = 50: its epicentre maximum is at the zone end (closed form: see test_accuracy.c);
 # the range maximum is at the largest n, where x_e = acos(exp(-0.511/50)).
 import math
