@@ -53,7 +53,8 @@ mutant negative-cos      "$H" '    c = fmax(c, RC(0.0));
 # ---- zone ends, on the host and on the device; sample placement
 mutant zone-end-host     'host/engine/accuracy*.c' 'return acos(exp(-0.511 / n));' 'return acos(exp(-0.512 / n));' "$T_ACC"
 mutant zone-end-device   'kernels/accuracy.cl' 'acos(exp(-0.511f / n));' 'acos(exp(-0.512f / n));' "$T_ACC"
-mutant zone-end-header   "$H" 'return exp(RC(-0.511) / n);' 'return exp(RC(-0.512) / n);' "$T_MODEL|$T_ACC"
+mutant zone-end-field    'kernels/field.cl' 'acos(exp(-0.511f / n));' 'acos(exp(-0.512f / n));' '^test_report$'
+mutant zone-end-field-host 'host/engine/field*.c' 'return acos(exp(-0.511 / n));' 'return acos(exp(-0.512 / n));' '^test_report$'
 mutant samples-att-t4 'kernels/accuracy.cl' 'c = fmax(native_cos(x_e + width * (t * t)), 0.0f);' \
                               'c = fmax(native_cos(x_e + width * (t * t * t * t)), 0.0f);' "$T_ACC"
 mutant samples-epi-short 'kernels/accuracy.cl' 'native_cos(x_e * (j * inv_last))' 'native_cos(0.9f * x_e * (j * inv_last))' "$T_ACC"
