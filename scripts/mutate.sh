@@ -12,7 +12,8 @@
 # that moves from throughput.c to throughput_report.c): the text must occur exactly once among
 # them. Text found nowhere makes the mutant "stale", text found more than once "ambiguous":
 # neither counts as caught, and the list must then be brought up to date. A mutant that does
-# not compile is "no build" and does not count either. The build is a separate folder
+# not compile is "no build", and one whose tests ended without a result (ctest killed twice) is
+# "no result": neither counts. The build is a separate folder
 # (build-mutate/, or $MUTATE_BUILD); the working tree is left as it was found.
 set -u
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -185,20 +186,28 @@ for i in "${!names[@]}"; do
         verdict="no build"
         other=$((other + 1))
     else
-        (cd "$BUILD" && ctest -j"$JOBS" -R "${tests[$i]}" --stop-on-failure >"$backup/ctest.log" 2>&1)
-        trc=$?
-        if [ $trc -ne 0 ]; then
-            verdict=caught
-            caught=$((caught + 1))
-            failed=$(sed -n 's/^.*[0-9]* - \(test_[a-z_]*\) (Failed).*$/\1/p' "$backup/ctest.log" | tr '\n' ' ')
-        else
+        # Caught means a test reported a failure; ctest itself ending on a signal (another
+        # process killing it, a timeout) proves nothing, so that run is repeated once.
+        for attempt in 1 2; do
+            (cd "$BUILD" && ctest -j"$JOBS" -R "${tests[$i]}" --stop-on-failure >"$backup/ctest.log" 2>&1)
+            trc=$?
+            failed=$(sed -n 's/^.*[0-9]* - \(test_[a-z_0-9]*\) (Failed).*$/\1/p' "$backup/ctest.log" | tr '\n' ' ')
+            [ $trc -eq 0 ] || [ -n "$failed" ] && break
+        done
+        if [ $trc -eq 0 ]; then
             verdict=SURVIVED
             survived=$((survived + 1))
-            failed=""
+        elif [ -n "$failed" ]; then
+            verdict=caught
+            caught=$((caught + 1))
+        else
+            verdict="no result"
+            other=$((other + 1))
+            failed="(ctest exit $trc without a failed test)"
         fi
     fi
     restore
-    report+=("$(printf '%-10s %-20s %s (%ss)%s' "$verdict" "$name" "$file" "$(($(date +%s) - t0))" "${failed:+ by $failed}")")
+    report+=("$(printf '%-10s %-20s %s (%ss)%s' "$verdict" "$name" "$file" "$(($(date +%s) - t0))" "${failed:+ $failed}")")
     echo "${report[-1]}"
 done
 # leave the mutation build matching the restored tree
@@ -206,7 +215,7 @@ cmake --build "$BUILD" -j"$JOBS" >"$backup/build.log" 2>&1
 
 total=$((caught + survived))
 echo
-echo "mutants: $((total + other)) ($caught caught, $survived survived, $other stale/ambiguous/no build) in $(($(date +%s) - start_all)) s"
+echo "mutants: $((total + other)) ($caught caught, $survived survived, $other stale/ambiguous/no build/no result) in $(($(date +%s) - start_all)) s"
 if [ $total -gt 0 ]; then
     echo "score: $caught/$total = $((100 * caught / total))%"
 fi
