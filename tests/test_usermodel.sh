@@ -75,11 +75,13 @@ check_json "$T/a3/accuracy.json" "only the user model runs when no --models is g
 assert [x["model"] for x in d["results"]] == ["cube"], d["results"]
 '
 
-# 4. The float fallback where the device lacks cl_khr_fp64 (forced): said so in the output;
-#    the figures keep float accuracy (|k - 1| = 0.5 to 1e-6).
-BRDFBENCH_NO_FP64=1 "$BIN" accuracy --model 'half=0.5*pow(c, n)' --n-min 2 --n-max 20 --samples 64 \
+# 4. A text that is OpenCL C but not C (mul24, an OpenCL integer built-in) has its reference
+#    on the device, and says so; where the device lacks cl_khr_fp64 (forced) that reference is
+#    float, said so in the output; the figures keep float accuracy (|k - 1| = 0.5 to 1e-6).
+BRDFBENCH_NO_FP64=1 "$BIN" accuracy --model 'half=0.5*pow(c, n)*mul24(1, 1)' --n-min 2 --n-max 20 --samples 64 \
     --out "$T/a4" >"$T/out" 2>"$T/err" && ok || bad "accuracy without fp64: $(cat "$T/err")"
 grep -q "no cl_khr_fp64" "$T/out" && ok || bad "the table does not say that the reference is float"
+grep -q "is not C.*mul24.*runs on the device" "$T/err" && ok || bad "the device fallback is not announced: $(cat "$T/err")"
 check_json "$T/a4/accuracy.json" "float fallback is reported in accuracy.json" '
 x = d["results"][0]
 assert "no cl_khr_fp64" in x["reason"], x

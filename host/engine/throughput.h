@@ -14,7 +14,6 @@
 #include "accuracy.h"
 #include "clsession.h"
 #include "models.h"
-#include "usermodel.h"
 
 #define THROUGHPUT_SCHEMA "brdfbench.throughput/1"
 #define TP_STREAMS 4            /* kernels/throughput.cl */
@@ -85,7 +84,7 @@ struct tp_program {
     struct {
         const struct model_info *model;
         cl_program program;
-    } user[USERMODEL_MAX];
+    } user[MODELS_MAX_USER];
     int user_count;
 };
 
