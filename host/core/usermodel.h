@@ -97,7 +97,8 @@ const struct user_model *usermodel_of_info(const struct model_info *info);
 #define USERMODEL_OPTIONS_HELP \
     "  --model-file FILE  add the user model of FILE.cl (see docs/user-models.md); repeatable\n" \
     "  --model NAME=EXPR  add a user model given by an OpenCL C expression of c and n,\n" \
-    "                     e.g. --model 'sq=(0.45*n*(c-1)+1)*(0.45*n*(c-1)+1)'; repeatable\n"
+    "                     e.g. --model 'sq=fmax(0.45*n*(c-1)+1,0)*fmax(0.45*n*(c-1)+1,0)';\n" \
+    "                     repeatable\n"
 
 /* The options that a user model's float builds add to a kernel file's (programs.c). */
 #define USERMODEL_FLOAT_OPTIONS "-DBRDF_HAVE_USER_MODEL -cl-single-precision-constant"
