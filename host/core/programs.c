@@ -32,6 +32,22 @@ static int entry_count, entry_cap;
 static struct host_entry *hosts;
 static int host_count, host_cap;
 
+/* The table with room for one more element (doubling *cap), or NULL when memory is out
+ * (the table is then unchanged). */
+static void *make_room(void *table, int count, int *cap, size_t size)
+{
+    if (count < *cap)
+        return table;
+    int grown_cap = *cap ? 2 * *cap : 8;
+    void *grown = realloc(table, (size_t)grown_cap * size);
+    if (!grown) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        return NULL;
+    }
+    *cap = grown_cap;
+    return grown;
+}
+
 static int same_text(const char *a, const char *b) { return strcmp(a ? a : "", b ? b : "") == 0; }
 
 static char *dup_text(const char *t)
@@ -52,16 +68,10 @@ int programs_host(struct cl_session *s, const struct model_spec *m)
     for (int i = 0; i < host_count; ++i)
         if (hosts[i].s == s && hosts[i].rt == rt)
             return rt->open_host(rt, s);   /* idempotent */
-    if (host_count == host_cap) {
-        int cap = host_cap ? 2 * host_cap : 8;
-        struct host_entry *h = realloc(hosts, (size_t)cap * sizeof *h);
-        if (!h) {
-            fprintf(stderr, "brdfbench: out of memory\n");
-            return EXIT_RUNTIME;
-        }
-        hosts = h;
-        host_cap = cap;
-    }
+    struct host_entry *room = make_room(hosts, host_count, &host_cap, sizeof *hosts);
+    if (!room)
+        return EXIT_RUNTIME;
+    hosts = room;
     int rc = rt->open_host(rt, s);
     if (rc)
         return rc;
@@ -84,16 +94,10 @@ static int entry_for(struct cl_session *s, const char *kernel_file, const char *
             return 0;
         }
     }
-    if (entry_count == entry_cap) {
-        int cap = entry_cap ? 2 * entry_cap : 8;
-        struct program_entry *grown = realloc(entries, (size_t)cap * sizeof *grown);
-        if (!grown) {
-            fprintf(stderr, "brdfbench: out of memory\n");
-            return EXIT_RUNTIME;
-        }
-        entries = grown;
-        entry_cap = cap;
-    }
+    struct program_entry *room = make_room(entries, entry_count, &entry_cap, sizeof *entries);
+    if (!room)
+        return EXIT_RUNTIME;
+    entries = room;
     /* The model's text after the kernel file (and the extra text), with its own options. */
     size_t a = extra_before ? strlen(extra_before) : 0, b = strlen(rt->device_source);
     char *source = malloc(a + b + 2);
