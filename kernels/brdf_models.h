@@ -24,7 +24,9 @@
 #ifdef __OPENCL_VERSION__
 #define BRDF_FN static inline
 #else
+#ifndef BRDF_HOST_JIT   /* a user model's host evaluator (host/core/hostjit.c) declares its own */
 #include <math.h>
+#endif
 #define BRDF_FN static inline
 #endif
 

@@ -75,11 +75,13 @@ check_json "$T/a3/accuracy.json" "only the user model runs when no --models is g
 assert [x["model"] for x in d["results"]] == ["cube"], d["results"]
 '
 
-# 4. The float fallback where the device lacks cl_khr_fp64 (forced): said so in the output;
-#    the figures keep float accuracy (|k - 1| = 0.5 to 1e-6).
-BRDFBENCH_NO_FP64=1 "$BIN" accuracy --model 'half=0.5*pow(c, n)' --n-min 2 --n-max 20 --samples 64 \
+# 4. A text that is OpenCL C but not C (mul24, an OpenCL integer built-in) has its reference
+#    on the device, and says so; where the device lacks cl_khr_fp64 (forced) that reference is
+#    float, said so in the output; the figures keep float accuracy (|k - 1| = 0.5 to 1e-6).
+BRDFBENCH_NO_FP64=1 "$BIN" accuracy --model 'half=0.5*pow(c, n)*mul24(1, 1)' --n-min 2 --n-max 20 --samples 64 \
     --out "$T/a4" >"$T/out" 2>"$T/err" && ok || bad "accuracy without fp64: $(cat "$T/err")"
 grep -q "no cl_khr_fp64" "$T/out" && ok || bad "the table does not say that the reference is float"
+grep -q "is not C.*mul24.*runs on the device" "$T/err" && ok || bad "the device fallback is not announced: $(cat "$T/err")"
 check_json "$T/a4/accuracy.json" "float fallback is reported in accuracy.json" '
 x = d["results"][0]
 assert "no cl_khr_fp64" in x["reason"], x
@@ -188,6 +190,64 @@ cat >"$T/g/broken.json" <<EOF
 EOF
 expect 2 "bad_syntax.cl:6:" gate "$T/g/broken.json"
 expect 2 "bad_syntax.cl:6:" render --model-file "$F/bad_syntax.cl" --scene spheres --size 32x32 --time-sizes none --out "$T/e3"
+
+# 11. docs/user-models.md's one-line example: the command it shows gives the figures it states.
+#     The expression is quad:a=0.45,b=0 written out, so both rows agree; the figures are also
+#     worked here in double (a grid search refined by golden sections, per n).
+DOC=$SRC/docs/user-models.md
+EXPR='fmax(0.45*n*(c-1)+1,0)*fmax(0.45*n*(c-1)+1,0)'
+grep -qF "brdfbench accuracy --model 'sq=$EXPR' --n-min 16" "$DOC" && ok || bad "the doc's example is not the command tested here"
+"$BIN" accuracy --model "sq=$EXPR" --models sq,quad:a=0.45,b=0 --n-min 16 --out "$T/doc" --quiet 2>"$T/err" \
+    && ok || bad "the doc's example: $(cat "$T/err")"
+python3 - "$T/doc/accuracy.json" "$DOC" <<'PY' && ok || bad "the doc's example gives other figures than the doc states"
+import json, math, re, sys
+d = json.load(open(sys.argv[1]))
+doc = open(sys.argv[2]).read()
+sq, quad = d["results"]
+for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+    a, b = sq[zone], quad[zone]
+    assert abs(a[key] - b[key]) <= 1e-12 * b[key] and a["at_n"] == b["at_n"], (zone, a, b)
+def f(c, n):
+    b = max(0.45 * n * (c - 1) + 1, 0.0)
+    return b * b
+def xe(n): return math.acos(math.exp(-0.511 / n))
+def maximum(g, lo, hi, steps=4000):
+    xs = [lo + (hi - lo) * i / steps for i in range(steps + 1)]
+    i = max(range(len(xs)), key=lambda k: g(xs[k]))
+    a, b = xs[max(i - 1, 0)], xs[min(i + 1, steps)]
+    r = (math.sqrt(5) - 1) / 2
+    for _ in range(100):
+        x1, x2 = b - r * (b - a), a + r * (b - a)
+        if g(x1) > g(x2): b = x2
+        else: a = x1
+    return max(g(xs[i]), g((a + b) / 2))
+rel = lambda n: maximum(lambda x: abs(f(math.cos(x), n) / math.cos(x) ** n - 1), 0.0, xe(n))
+ab = lambda n: maximum(lambda x: abs(f(math.cos(x), n) - math.cos(x) ** n), xe(n), math.pi / 2, 40000)
+e, t = sq["epicentre"], sq["attenuation"]
+assert e["at_n"] == 16 and t["at_n"] == 1000, (e, t)
+assert abs(e["max_rel"] - rel(16)) < 1e-9, (e, rel(16))
+assert abs(t["max_abs"] - ab(1000)) < 1e-9, (t, ab(1000))
+# the maxima over n are where the run puts them (a sample of the grid)
+for n in (17, 20, 32, 64, 100, 250, 500, 999):
+    assert rel(n) <= e["max_rel"] + 1e-12 and ab(n) <= t["max_abs"] + 1e-12, n
+# the doc states them to 4 significant digits
+m = re.search(r"max δ of ([0-9.]+)% in the epicentre \(at n = (\d+), x = ([0-9.]+) rad\) and a max Δ of\s+([0-9.]+) in the attenuation zone \(at n = (\d+), x = ([0-9.]+) rad\)", doc)
+assert m, "no figures in the doc"
+assert m.group(1) == "%.4g" % (100 * e["max_rel"]) and int(m.group(2)) == 16, (m.groups(), e)
+assert float(m.group(3)) == round(e["at_x"], 4), (m.groups(), e)
+assert m.group(4) == "%.4f" % t["max_abs"] and int(m.group(5)) == 1000, (m.groups(), t)
+assert float(m.group(6)) == round(t["at_x"], 4), (m.groups(), t)
+PY
+
+# 12. native_* functions compile in every build; in the reference they are exact, so a model
+#     that is the Phong lobe through native_powr has the Phong lobe's figures (0, to rounding).
+"$BIN" accuracy --model 'np=native_powr(c, n)' --n-max 50 --samples 256 --out "$T/np" --quiet 2>"$T/err" \
+    && ok || bad "a model with native_powr: $(cat "$T/err")"
+check_json "$T/np/accuracy.json" "native_powr is exact in the reference" '
+x = d["results"][0]
+assert x["status"] == "ok", x
+assert x["epicentre"]["max_rel"] < 1e-13 and x["whole"]["max_abs"] < 1e-13, x
+'
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

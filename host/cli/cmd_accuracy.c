@@ -133,10 +133,14 @@ int cmd_accuracy(int argc, char **argv)
     if (!quiet)
         fprintf(stderr, "device: %s (%s); kernel build %.2f s\n", s.device_name, s.platform_version,
                 s.last_build_seconds);
+    double started = wall_seconds();
     for (int m = 0; m < nmodels; ++m, ++done) {
         rc = accuracy_run(&actx, &models[m], &grid, &res[m]);
         if (rc)
             goto cleanup;
+        if (!quiet && wall_seconds() - started > 1.0)   /* a progress line once a run takes a while */
+            fprintf(stderr, "accuracy: %d/%d %s done (%.1f s)\n", m + 1, nmodels, models[m].label,
+                    wall_seconds() - started);
     }
     if (!out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);

@@ -185,6 +185,9 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
 
 void clsession_close(struct cl_session *s)
 {
+    if (s->release_cache)
+        s->release_cache(s);
+    s->release_cache = NULL;
     if (s->queue)
         clReleaseCommandQueue(s->queue);
     if (s->ctx)

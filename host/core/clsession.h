@@ -22,6 +22,9 @@ struct cl_session {
     cl_ulong global_mem, max_alloc;
     int has_fp64;
     double last_build_seconds;    /* wall time of the latest clsession_build */
+    /* Objects cached for the session's life (host/core/programs.c): clsession_close calls
+       release_cache first, while the context still exists. */
+    void (*release_cache)(struct cl_session *s);
 };
 
 /* Name of an OpenCL error code ("CL_BUILD_PROGRAM_FAILURE"). */

@@ -1,8 +1,8 @@
 /* accuracy.c - the dense-grid sweep on the device and its double-precision check. */
 #include "accuracy.h"
 #include "exitcodes.h"
+#include "programs.h"
 #include "refine.h"
-#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -117,14 +117,6 @@ fail:
 
 void accuracy_close(struct accuracy_ctx *a)
 {
-    for (int i = 0; i < a->user_count; ++i) {
-        struct acc_user_program *u = &a->user[i];
-        if (u->probe) clReleaseKernel(u->probe);
-        if (u->sweep) clReleaseKernel(u->sweep);
-        if (u->program) clReleaseProgram(u->program);
-        usermodel_reference_close((const struct user_model *)u->model);
-    }
-    a->user_count = 0;
     if (a->probe)
         clReleaseKernel(a->probe);
     if (a->sweep)
@@ -135,51 +127,20 @@ void accuracy_close(struct accuracy_ctx *a)
     a->program = NULL;
 }
 
-int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m)
+/* The sweep and probe kernels that evaluate model m (host/core/programs.h: the shared ones,
+ * or those of a build with the model's text, cached for the session). */
+static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
 {
-    const struct user_model *um = usermodel_of(m);
-    if (!um)
-        return 0;
-    for (int i = 0; i < a->user_count; ++i)
-        if (a->user[i].model == m->info)
-            return usermodel_reference_open(um, a->s);   /* idempotent; another context may have closed it */
-    if (a->user_count >= ACC_MAX_USER_PROGRAMS) {
-        fprintf(stderr, "brdfbench: at most %d user models per sweep context\n", ACC_MAX_USER_PROGRAMS);
-        return EXIT_RUNTIME;
-    }
-    struct acc_user_program *u = &a->user[a->user_count];
-    memset(u, 0, sizeof *u);
-    int rc = usermodel_build(a->s, "accuracy.cl", m, a->build_options, &u->program);
-    if (rc)
-        return rc;
-    cl_int e;
-    u->model = m->info;
-    ++a->user_count;   /* from here accuracy_close releases it */
-    u->sweep = clCreateKernel(u->program, "accuracy_sweep", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(accuracy_sweep, user model)", fail);
-    u->probe = clCreateKernel(u->program, "models_probe", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(models_probe, user model)", fail);
-    rc = usermodel_reference_open(um, a->s);
-fail:
+    int rc = programs_kernel(a->s, "accuracy.cl", a->build_options, m, "accuracy_sweep", a->sweep, sweep);
+    if (rc == 0)
+        rc = programs_kernel(a->s, "accuracy.cl", a->build_options, m, "models_probe", a->probe, probe);
     return rc;
 }
 
-/* The sweep and probe kernels that evaluate model m. */
-static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
+int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m)
 {
-    *sweep = a->sweep;
-    *probe = a->probe;
-    if (!usermodel_of(m))
-        return 0;
-    int rc = accuracy_prepare(a, m);
-    if (rc)
-        return rc;
-    for (int i = 0; i < a->user_count; ++i)
-        if (a->user[i].model == m->info) {
-            *sweep = a->user[i].sweep;
-            *probe = a->user[i].probe;
-        }
-    return 0;
+    cl_kernel sweep, probe;
+    return kernels_for(a, m, &sweep, &probe);
 }
 
 void accuracy_result_free(struct accuracy_result *r)
@@ -538,7 +499,7 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
                                  out->invalid_count, out->invalid_n, out->invalid_x);
     if (used >= 2 && used < sizeof out->reason)
         out->reason[used - 2] = '\0';   /* the last "; " */
-    const char *note = usermodel_reference_note(usermodel_of(m));
+    const char *note = model_eval_note(m);
     if (note && !out->reason[0])
         snprintf(out->reason, sizeof out->reason, "%s", note);
 done:

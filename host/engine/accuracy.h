@@ -79,21 +79,11 @@ struct accuracy_result {
     char reason[640];
 };
 
-/* A user model (host/usermodel.h) gets its own build of the sweep program. */
-#define ACC_MAX_USER_PROGRAMS 8
-struct acc_user_program {
-    const struct model_info *model;
-    cl_program program;
-    cl_kernel sweep, probe;
-};
-
 struct accuracy_ctx {
     struct cl_session *s;
     cl_program program;
     cl_kernel sweep, probe;
     char build_options[256];
-    struct acc_user_program user[ACC_MAX_USER_PROGRAMS];
-    int user_count;
 };
 
 
@@ -107,8 +97,8 @@ double accuracy_grid_n(const struct accuracy_grid *g, long i);
 /* Builds the sweep program once. Returns 0 or an exit code. */
 int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *build_options);
 void accuracy_close(struct accuracy_ctx *a);
-/* Builds what model m needs beyond the shared program: for a user model its own sweep program
- * and its reference; nothing for a built-in model. accuracy_run calls it too; calling it
+/* Builds what model m needs beyond the shared program (host/core/programs.h): for a user model
+ * its own sweep program and its host reference; nothing for a built-in model. accuracy_run calls it too; calling it
  * first reports a user model's compile error (EXIT_USAGE) before any sweep runs. */
 int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m);
 /* Runs the sweep of one model over a checked grid. Returns 0 or an exit code. */

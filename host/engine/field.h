@@ -14,7 +14,6 @@
 
 #include "clsession.h"
 #include "models.h"
-#include "usermodel.h"
 
 #define FIELD_SCHEMA "brdfbench.field/1"
 #define FIELD_DEFAULT_ROWS 121
@@ -50,7 +49,7 @@ struct field_ctx {
     struct cl_session *s;
     cl_program program;
     cl_kernel kernel;
-    struct usermodel_builds user;   /* field.cl built with each user model, on first use */
+    char build_options[256];        /* a user model's build of field.cl uses them too (programs.h) */
 };
 
 /* Checks rows/cols (2..10000, product <= FIELD_MAX_CELLS) and 0 < n_min < n_max <= 1e6.
