@@ -23,7 +23,7 @@ static void accuracy_usage(FILE *f)
             "  error in the attenuation zone and over the whole range, each with where it occurs.\n"
             "  --models LIST      comma-separated models with parameters, e.g. cq2,fq:Q=0.7,lyon:k=4\n"
             "                     (default: all; see brdfbench list)\n"
-            "  --n-min X          smallest shininess (default 2; >= 0.001)\n"
+            "  --n-min X          smallest shininess (default 2; >= 0.1)\n"
             "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
             "  --n-step X         step of n (default 1; real values allowed; n-max is always included)\n"
             "  --samples N        samples per zone per n, a multiple of 16 in [16, %ld] (default %d)\n"

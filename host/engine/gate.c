@@ -661,9 +661,11 @@ static void gate_judge(struct gate *g, double tolerance)
         }
         if (g->check.exceeded) {
             size_t used = strlen(why);
+            char nt[32];
+            accuracy_format_n(g->check.n, nt, sizeof nt);
             snprintf(why + used, sizeof why - used,
-                     "%sdevice and double disagree on %s at n = %.9g by %.4g units of its 4th significant digit "
-                     "(bound %g)%s", used ? "; " : "", g->check.figure, g->check.n, g->check.units,
+                     "%sdevice and double disagree on %s at n = %s by %.4g units of its 4th significant digit "
+                     "(bound %g)%s", used ? "; " : "", g->check.figure, nt, g->check.units,
                      ACC_CHECK_BOUND_UNITS, g->accept_device_disagreement ? ", accepted by the gate" : "");
             if (!g->accept_device_disagreement)
                 fail = 1;
@@ -671,9 +673,11 @@ static void gate_judge(struct gate *g, double tolerance)
         if (g->metric != GATE_INVALID_COUNT && g->invalid_count > 0) {
             fail = 1;
             size_t used = strlen(why);
+            char nt[32];
+            accuracy_format_n(g->invalid_n, nt, sizeof nt);
             snprintf(why + used, sizeof why - used,
-                     "%s%lld model values were NaN, Inf or negative (first at n = %g, x = %.6g)",
-                     used ? "; " : "", g->invalid_count, g->invalid_n, g->invalid_x);
+                     "%s%lld model values were NaN, Inf or negative (first at n = %s, x = %.6g)",
+                     used ? "; " : "", g->invalid_count, nt, g->invalid_x);
         }
     }
     if (g->baseline_status == GATE_BASELINE_OK || g->baseline_status == GATE_BASELINE_REGRESSION) {
