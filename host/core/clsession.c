@@ -3,12 +3,16 @@
 #include "clsession.h"
 #include "exitcodes.h"
 #include "kernels_embedded.h"
+#include "outdir.h"
 
+#include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 const char *cl_error_name(cl_int err)
 {
@@ -62,6 +66,134 @@ double cl_event_seconds(cl_event ev)
     return 1e-9 * (double)(t1 - t0);
 }
 
+/* The launch watchdog: one thread, started at the first launch, sleeping until the armed
+ * deadline. The main thread is blocked in the OpenCL wait while it is armed, so what the
+ * watchdog does on firing (write(2), unlink, rmdir, _exit) needs no lock it could hold. */
+static pthread_mutex_t wd_lock = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t wd_cond;
+static int wd_started, wd_armed;
+static struct timespec wd_deadline;
+static char wd_message[768];
+static double wd_timeout = CLSESSION_DEFAULT_TIMEOUT;
+static enum clsession_timeout_source wd_timeout_source = TIMEOUT_DEFAULT;
+
+void clsession_set_timeout(double seconds, enum clsession_timeout_source source)
+{
+    if (!(seconds > 0.0) || source < wd_timeout_source)
+        return;
+    wd_timeout = seconds;
+    wd_timeout_source = source;
+}
+
+double clsession_timeout(void) { return wd_timeout; }
+
+static void *watchdog_main(void *unused)
+{
+    (void)unused;
+    pthread_mutex_lock(&wd_lock);
+    for (;;) {
+        while (!wd_armed)
+            pthread_cond_wait(&wd_cond, &wd_lock);
+        int r = pthread_cond_timedwait(&wd_cond, &wd_lock, &wd_deadline);
+        if (r == ETIMEDOUT && wd_armed) {
+            struct timespec now;
+            clock_gettime(CLOCK_MONOTONIC, &now);
+            if (now.tv_sec > wd_deadline.tv_sec ||
+                (now.tv_sec == wd_deadline.tv_sec && now.tv_nsec >= wd_deadline.tv_nsec)) {
+                ssize_t unused_w = write(2, wd_message, strlen(wd_message));
+                (void)unused_w;
+                outdir_remove_own();
+                _exit(EXIT_RUNTIME);
+            }
+        }
+    }
+    return NULL;
+}
+
+static int watchdog_start(void)
+{
+    pthread_condattr_t attr;
+    pthread_attr_t tattr;
+    pthread_t thread;
+    if (pthread_condattr_init(&attr) || pthread_condattr_setclock(&attr, CLOCK_MONOTONIC) ||
+        pthread_cond_init(&wd_cond, &attr))
+        return -1;
+    pthread_condattr_destroy(&attr);
+    if (pthread_attr_init(&tattr) || pthread_attr_setdetachstate(&tattr, PTHREAD_CREATE_DETACHED))
+        return -1;
+    int r = pthread_create(&thread, &tattr, watchdog_main, NULL);
+    pthread_attr_destroy(&tattr);
+    return r ? -1 : 0;
+}
+
+void clsession_deadline_arm(cl_kernel kernel, const char *model)
+{
+    char name[128] = "?";
+    if (kernel && clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
+        snprintf(name, sizeof name, "?");
+    pthread_mutex_lock(&wd_lock);
+    if (!wd_started) {
+        if (watchdog_start() != 0) {
+            /* Without the thread the run goes on unwatched; say so once. */
+            fprintf(stderr, "brdfbench: warning: the launch deadline cannot be watched (no thread)\n");
+            wd_started = -1;
+        } else {
+            wd_started = 1;
+        }
+    }
+    if (wd_started == 1) {
+        snprintf(wd_message, sizeof wd_message,
+                 "brdfbench: kernel %s%s%.200s%s ran past its deadline of %g s (accepted: --timeout SECONDS, or "
+                 "\"timeout\" in a gates file, up to %g); the run is stopped and its unfinished outputs removed\n",
+                 name, model ? " of model '" : "", model ? model : "", model ? "'" : "", wd_timeout,
+                 CLSESSION_MAX_TIMEOUT);
+        clock_gettime(CLOCK_MONOTONIC, &wd_deadline);
+        double whole = floor(wd_timeout);
+        wd_deadline.tv_sec += (time_t)whole;
+        wd_deadline.tv_nsec += (long)((wd_timeout - whole) * 1e9);
+        if (wd_deadline.tv_nsec >= 1000000000L) {
+            wd_deadline.tv_sec += 1;
+            wd_deadline.tv_nsec -= 1000000000L;
+        }
+        wd_armed = 1;
+        pthread_cond_signal(&wd_cond);
+    }
+    pthread_mutex_unlock(&wd_lock);
+}
+
+void clsession_deadline_disarm(void)
+{
+    pthread_mutex_lock(&wd_lock);
+    if (wd_armed) {
+        wd_armed = 0;
+        pthread_cond_signal(&wd_cond);
+    }
+    pthread_mutex_unlock(&wd_lock);
+}
+
+cl_int clsession_finish(struct cl_session *s, cl_kernel kernel, const char *model)
+{
+    clsession_deadline_arm(kernel, model);
+    cl_int e = clFinish(s->queue);
+    clsession_deadline_disarm();
+    return e;
+}
+
+int clsession_launch(struct cl_session *s, cl_kernel kernel, cl_uint dims, const size_t *global, const size_t *local,
+                     const char *model, cl_event *ev)
+{
+    int rc = 0;
+    cl_event own = NULL;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, kernel, dims, NULL, global, local, 0, NULL, &own), done);
+    CL_CHECK_GOTO(clsession_finish(s, kernel, model), done);
+done:
+    if (ev && rc == 0)
+        *ev = own;
+    else if (own)
+        clReleaseEvent(own);
+    return rc;
+}
+
 int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const float *c, const float *n,
                     size_t count, float *out)
 {
@@ -89,7 +221,8 @@ int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const 
     CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 1, sizeof bn, &bn), done);
     CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 2, sizeof bo, &bo), done);
     size_t global = padded / 16;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    if ((rc = clsession_launch(s, k, 1, &global, NULL, NULL, NULL)) != 0)
+        goto done;
     CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
     memcpy(out, po, count * sizeof *out);
 done:
