@@ -83,6 +83,16 @@ const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char
     return argv[++*i];
 }
 
+const char *cli_path_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen)
+{
+    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
+    if (v && !*v) {
+        snprintf(err, errlen, "%s: empty path (accepted: a folder or file name)", name);
+        return NULL;
+    }
+    return v;
+}
+
 int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
                      double *out, char *err, size_t errlen)
 {

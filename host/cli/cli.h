@@ -15,6 +15,8 @@ int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
 /* The value of flag argv[*i] (either "--flag=value" or "--flag value"); advances *i.
  * Returns NULL and writes a message when the value is missing. `name` is the flag. */
 const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
+/* As cli_flag_value, for a path: an empty value is refused too. */
+const char *cli_path_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
 /* The value of flag argv[*i] parsed as cli_parse_double / cli_parse_long do; advances *i.
  * Returns 0 or EXIT_USAGE with a message (a missing value, or one out of [min, max]). */
 int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,

@@ -406,6 +406,75 @@ static char *resolve_model_include(const char *src, const char *file)
     return out;
 }
 
+/* The OpenCL compiler of PoCL prints its own summary ("1 error generated.") on the process's
+ * stderr while it builds; the build log holds the diagnostics themselves. So stderr is
+ * caught in a temporary file during the build, and replayed after what brdfbench says. */
+static int stderr_catch_begin(FILE **caught)
+{
+    *caught = tmpfile();
+    if (!*caught)
+        return -1;
+    fflush(stderr);
+    int saved = dup(2);
+    if (saved < 0 || dup2(fileno(*caught), 2) < 0) {
+        if (saved >= 0)
+            close(saved);
+        fclose(*caught);
+        *caught = NULL;
+        return -1;
+    }
+    return saved;
+}
+
+static void stderr_catch_end(int saved, FILE *caught)
+{
+    if (saved < 0)
+        return;
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    if (caught) {
+        char buf[4096];
+        size_t n;
+        rewind(caught);
+        while ((n = fread(buf, 1, sizeof buf, caught)) > 0)
+            fwrite(buf, 1, n, stderr);
+        fclose(caught);
+    }
+}
+
+/* Writes the first diagnostic of a build log as its first line, the way compilers do
+ * ("file:line:col: error: text"): PoCL writes it as "error: file:line:col: text". */
+static void print_first_diagnostic(const char *log)
+{
+    for (const char *p = log; p && *p;) {
+        const char *eol = strchr(p, '\n');
+        int n = (int)(eol ? (size_t)(eol - p) : strlen(p));
+        if (n > 7 && strncmp(p, "error: ", 7) == 0) {
+            /* The location ends at the first ":LINE:COL: " (a file name may hold colons). */
+            const char *loc = p + 7, *end = p + n;
+            for (const char *q = loc; q < end; ++q) {
+                const char *r = q;
+                if (*r++ != ':' || r >= end || *r < '0' || *r > '9')
+                    continue;
+                while (r < end && *r >= '0' && *r <= '9')
+                    ++r;
+                if (r >= end || *r++ != ':' || r >= end || *r < '0' || *r > '9')
+                    continue;
+                while (r < end && *r >= '0' && *r <= '9')
+                    ++r;
+                if (r + 1 < end && r[0] == ':' && r[1] == ' ') {
+                    fprintf(stderr, "%.*s: error: %.*s\n", (int)(r - loc), loc, (int)(end - r - 2), r + 2);
+                    return;
+                }
+            }
+            fprintf(stderr, "%.*s\n", n, p);
+            return;
+        }
+        p = eol ? eol + 1 : NULL;
+    }
+}
+
 static int build_common(struct cl_session *s, const char *kernel_file, const char *extra_source,
                         const char *options, cl_program *out, int fail_code)
 {
@@ -429,6 +498,8 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
     cl_program prog = clCreateProgramWithSource(s->ctx, 2, parts, NULL, &e);
     free(src);
     CL_CHECK_ERR_GOTO(e, "clCreateProgramWithSource", done);
+    FILE *caught = NULL;
+    int saved_stderr = stderr_catch_begin(&caught);
     e = clBuildProgram(prog, 1, &s->device, options ? options : "", NULL, NULL);
     s->last_build_seconds = wall_seconds() - t0;
     if (e != CL_SUCCESS) {
@@ -440,12 +511,21 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
             clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, loglen, log, NULL);
             log[loglen] = '\0';
         }
+        /* What the compiler said on stderr comes after the first diagnostic and the log. */
+        int saved_again = saved_stderr;
+        saved_stderr = -1;
+        fflush(stderr);
+        if (saved_again >= 0)
+            dup2(saved_again, 2);
+        print_first_diagnostic(log);
         fprintf(stderr, "brdfbench: building %s failed with %s\noptions: %s\nbuild log:\n%s\n", kernel_file,
                 cl_error_name(e), options && *options ? options : "(none)", log ? log : "(unavailable)");
+        stderr_catch_end(saved_again, caught);
         free(log);
         clReleaseProgram(prog);
         return fail_code;
     }
+    stderr_catch_end(saved_stderr, caught);
     *out = prog;
 done:
     return rc;
