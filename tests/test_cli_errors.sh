@@ -214,7 +214,7 @@ t 2 "multi:bad_syntax.cl:6:[0-9]+: error: expected ';'" all --quick --model-file
 t 2 "^brdfbench gate: --json: 'same.json' is the file --junit names \('./same.json'\)" gate good.json --junit ./same.json --json same.json
 ln -s same.json link.json
 t 2 "^brdfbench gate: --json: 'link.json' is the file --junit names \('same.json'\)" gate good.json --junit same.json --json link.json
-t 2 "^brdfbench gate: --json: '-' is the file --junit names \('/dev/stdout'\)" gate good.json --junit /dev/stdout --json -
+t 2 "^brdfbench gate: --json: '-' is the file --junit names \('/dev/fd/1'\)" gate good.json --junit /dev/fd/1 --json -
 t 2 "^brdfbench accuracy: --timeout: 'inf' is not a finite number in \[0.01, 604800\]" accuracy --timeout inf
 # A compile error's first line is the compiler's own FILE:LINE:COL line.
 "$BIN" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out run >/dev/null 2>"$T/err"
