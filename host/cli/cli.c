@@ -145,6 +145,11 @@ int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, cha
     if (cli_flag_is(a, "--platform") || cli_flag_is(a, "--device")) {
         const char *name = cli_flag_is(a, "--platform") ? "--platform" : "--device";
         const char *val = cli_flag_value(argc, argv, i, name, err, errlen);
+        if (val && name[2] == 'd' && cli_is_device_list(val)) {
+            snprintf(err, errlen, "--device: '%s': all and lists are taken by throughput, accuracy and render "
+                     "(accepted here: 0 to 63)", val);
+            return -2;
+        }
         if (!val || cli_parse_long(name, val, 0, 63, &v, err, errlen))
             return -2;
         if (name[2] == 'p')

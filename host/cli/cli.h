@@ -49,6 +49,17 @@ void device_options_init(struct device_options *o);
  * EXIT_USAGE negated (-2) with a message. Applies --kernel-dir at once. */
 int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen);
 
+/* --device all, or a list (0,1 or P:D pairs), on throughput, accuracy and render: when argv's
+ * --device is one, runs cmd once per device (cli_devices.c) and gathers the rows of `file`
+ * (its array `rows_key`) tagged with their device; returns that exit code. Returns -1 when
+ * --device names one device (the command goes on as usual). */
+int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, char **), const char *file,
+                   const char *rows_key);
+int cli_is_device_list(const char *value);
+#define DEVICE_LIST_HELP \
+    "  --device all|LIST  every OpenCL device of every platform, or a list: 0,1 or P:D pairs (0:0,1:0);\n" \
+    "                     one run per device in OUT/devices/<k>/, rows tagged with their device\n"
+
 /* The grid flags --n-min, --n-max and --n-step, each in (0, ACC_MAX_N], as the accuracy and fit
  * commands take them: consumes argv[*i] if it is one of them and returns 1, returns 0 when it is
  * not, or -2 with a message. Ranges against each other are accuracy_grid_check's. */

@@ -5,6 +5,7 @@
 #include "exitcodes.h"
 #include "gate.h"
 #include "outdir.h"
+#include "gate_report.h"
 #include "usermodel.h"
 
 #include <stdio.h>

@@ -44,6 +44,7 @@ static void throughput_usage(FILE *f)
             "  --quiet              no table on stdout, no progress on stderr\n"
             USERMODEL_OPTIONS_HELP
             DEVICE_OPTIONS_HELP
+            DEVICE_LIST_HELP
             "  POCL_AFFINITY=1 is set unless the environment sets it: it pins PoCL's threads to CPUs,\n"
             "  so that a run does not land on one thread.\n",
             TP_MAX_REPS, TP_MIN_TIME_MIN, TP_MIN_TIME_MAX, ACC_MAX_N, TP_MAX_WORK_ITEMS, ACC_DEFAULT_SAMPLES,
@@ -87,6 +88,10 @@ static int parse_name_set(const char *arg, const char *text, const char *(*name_
 
 int cmd_throughput(int argc, char **argv)
 {
+    /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
+    int per_device = cli_per_device(argc, argv, "throughput", cmd_throughput, "throughput.json", "results");
+    if (per_device >= 0)
+        return per_device;
     char err[1024];
     struct throughput_options o;
     throughput_options_default(&o);

@@ -24,6 +24,7 @@ static const struct command commands[] = {
     { "reproduce", cmd_reproduce, "re-derive every claim of both papers: claims.json, claims.md and a table" },
     { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
     { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants" },
+    { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)" },
     /* more commands below, one per line */
 };
 

@@ -14,9 +14,10 @@
 #include "accuracy.h"
 #include "clsession.h"
 #include "models.h"
-#include "usermodel.h"
 
-#define THROUGHPUT_SCHEMA "brdfbench.throughput/1"
+/* Version 2 adds evals_per_s_reps (every timed launch's rate) to each row and its host_c;
+ * version 1 files are otherwise the same and are still read by `plot` (not by `compare`). */
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/2"
 #define TP_STREAMS 4            /* kernels/throughput.cl */
 #define TP_EVALS_PER_ITER (16 * TP_STREAMS)
 #define TP_MAX_MODELS 64
@@ -85,7 +86,7 @@ struct tp_program {
     struct {
         const struct model_info *model;
         cl_program program;
-    } user[USERMODEL_MAX];
+    } user[MODELS_MAX_USER];
     int user_count;
 };
 
