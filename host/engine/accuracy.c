@@ -563,8 +563,8 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
     size_t local = sweep_local_size(count, a->s->compute_units);
     size_t global = ((size_t)count + local - 1) / local * local;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
-    CL_CHECK_GOTO(clFinish(a->s->queue), done);
+    if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
+        goto done;
     *device_seconds = cl_event_seconds(ev);
     if (raw)
         CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),

@@ -256,11 +256,21 @@ int gate_set_parse_text(const char *text, size_t len, const char *name, const ch
     }
     for (size_t k = 0; k < root->count; ++k)
         if (strcmp(root->keys[k], "gates") != 0 && strcmp(root->keys[k], "description") != 0 &&
-            strcmp(root->keys[k], "schema") != 0) {
+            strcmp(root->keys[k], "schema") != 0 && strcmp(root->keys[k], "timeout") != 0) {
             rc = jr_fail(&doc, &root->items[k], err, errlen,
-                         "unknown member \"%.40s\" (accepted: gates, description, schema)", root->keys[k]);
+                         "unknown member \"%.40s\" (accepted: gates, description, schema, timeout)", root->keys[k]);
             goto done;
         }
+    /* "timeout": the deadline of each launch, as --timeout (which wins when both are given). */
+    if ((rc = member(&doc, root, "timeout", JR_NUM, "", &v, err, errlen)) != 0)
+        goto done;
+    if (v && !(v->num >= 0.01 && v->num <= CLSESSION_MAX_TIMEOUT)) {
+        rc = jr_fail(&doc, v, err, errlen, "\"timeout\" %g is out of range (accepted: seconds in [0.01, %g])", v->num,
+                     CLSESSION_MAX_TIMEOUT);
+        goto done;
+    }
+    if (v)
+        clsession_set_timeout(v->num, TIMEOUT_FILE);
     if ((rc = member(&doc, root, "schema", JR_STR, "", &v, err, errlen)) != 0)
         goto done;
     if (v && strcmp(v->str, GATES_SCHEMA) != 0) {
