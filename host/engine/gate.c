@@ -6,6 +6,7 @@
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "outdir.h"
+#include "programs.h"
 #include "usermodel.h"
 
 #include <errno.h>
@@ -789,7 +790,7 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
                 fprintf(progress, "albedo: %s n=[%g,%g] step %g (%.2f s)\n", g->model.label, g->grid.n_min,
                         g->grid.n_max, g->grid.n_step, wall_seconds() - t0);
         } else {
-            if ((rc = accuracy_prepare(&actx, &g->model)) != 0)   /* the reference of a user model */
+            if ((rc = programs_host(s, &g->model)) != 0)   /* the model's double evaluation (programs.h) */
                 goto done;
             gate_energy(g);
             if (progress)
