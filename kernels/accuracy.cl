@@ -99,8 +99,10 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
     for (int i = 0; i < samples; i += 16) {
         /* Epicentre (the last sample is s_e itself, up to rounding). */
         float16 s = fmin(((float)i + lane) * epi_step, s_e);
-        if (c_only)
-            s = 1.0f - (1.0f - s);
+        if (c_only) {   /* onto the float cosines, never past the zone's end */
+            const float16 c = 1.0f - s;
+            s = select(1.0f - c, 1.0f - nextafter(c, (float16)(2.0f)), isgreater(1.0f - c, s_e));
+        }
         float16 f = brdf_eval_s(model, s, nv, p0, p1);
         float16 r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         /* An invalid model value (NaN, Inf, negative) is counted, not folded into a maximum:
@@ -114,8 +116,10 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
 
         /* Attenuation; s never passes 1 (x = pi/2). */
         s = fmin(att_lane * exp2((float)i * log2_r), 1.0f);
-        if (c_only)
-            s = 1.0f - (1.0f - s);
+        if (c_only) {   /* onto the float cosines, never before the zone's start */
+            const float16 c = 1.0f - s;
+            s = select(1.0f - c, 1.0f - nextafter(c, (float16)(0.0f)), isless(1.0f - c, s_e));
+        }
         f = brdf_eval_s(model, s, nv, p0, p1);
         r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         invalid = isless(f, 0.0f) | !isfinite(f);

@@ -3,6 +3,7 @@
 #include "exitcodes.h"
 #include "programs.h"
 #include "refine.h"
+#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -188,12 +189,12 @@ static double refine_error(double s, void *p)
 enum zone { ZONE_EPICENTRE, ZONE_ATTENUATION };
 
 /* The grid bracket [lo, hi] around s: one sample either side, as the kernel spaces them
-   (kernels/accuracy.cl), within the zone. */
-static void grid_bracket(enum zone z, double n, long samples, double s, double *lo, double *hi)
+   (kernels/accuracy.cl), and at least `lattice` either side, within the zone. */
+static void grid_bracket(enum zone z, double n, long samples, double s, double lattice, double *lo, double *hi)
 {
     double s_e = zone_epicentre_end_s(n);
     if (z == ZONE_EPICENTRE) {
-        double h = s_e / (double)(samples - 1);
+        double h = fmax(s_e / (double)(samples - 1), lattice);
         *lo = fmax(0.0, s - h);
         *hi = fmin(s_e, s + h);
         return;
@@ -201,8 +202,18 @@ static void grid_bracket(enum zone z, double n, long samples, double s, double *
     /* s = s_e r^j, r = (1/s_e)^(1/samples). */
     double log_r = -log(s_e) / (double)samples;
     double j = log_r > 0 ? log(fmax(s, s_e) / s_e) / log_r : 0.0;
-    *lo = fmax(s_e, s_e * exp((j - 1.0) * log_r));
-    *hi = fmin(1.0, s_e * exp((j + 1.0) * log_r));
+    *lo = fmax(s_e, fmin(s_e * exp((j - 1.0) * log_r), s - lattice));
+    *hi = fmin(1.0, fmax(s_e * exp((j + 1.0) * log_r), s + lattice));
+}
+
+/* The step of the float cosines that a model seeing only c was evaluated on (kernels/accuracy.cl
+   moves its samples onto them): 2^-24 below 1. At large n it is coarser than the grid, so
+   the polish searches one such step either side of the device's best point. 0 for the models
+   that take s. */
+static double c_lattice(const struct model_spec *m)
+{
+    int c_only = strcmp(m->info->id, "phongpow") == 0 || usermodel_of(m) != NULL;
+    return c_only ? 0x1p-24 : 0.0;
 }
 
 /* Polishes one per-n maximum in double: from the device's grid maximum at s = 1 - c,
@@ -221,7 +232,7 @@ static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone 
        not an end of the zone means the error still rises beyond it, so the bracket walks on.
        Each step raises the value, so the walk ends at a local maximum. */
     for (int walk = 0; walk < 64; ++walk) {
-        grid_bracket(z, n, r->grid.samples, x0, &lo, &hi);
+        grid_bracket(z, n, r->grid.samples, x0, c_lattice(&r->model), &lo, &hi);
         x0 = fmin(fmax(x0, lo), hi);
         refine_maximum(refine_error, &rc, lo, x0, hi, &e.x, &e.value);
         int rises_on = (e.x == lo && lo > ends[0]) || (e.x == hi && hi < ends[1]);
