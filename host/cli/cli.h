@@ -15,15 +15,6 @@ int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
 /* The value of flag argv[*i] (either "--flag=value" or "--flag value"); advances *i.
  * Returns NULL and writes a message when the value is missing. `name` is the flag. */
 const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
-/* The value of flag argv[*i] parsed as cli_parse_double / cli_parse_long do; advances *i.
- * Returns 0 or EXIT_USAGE with a message (a missing value, or one out of [min, max]). */
-int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
-                     double *out, char *err, size_t errlen);
-int cli_long_value(int argc, char **argv, int *i, const char *name, long min, long max,
-                   long *out, char *err, size_t errlen);
-/* As cli_long_value, and the value must be a multiple of `multiple`. */
-int cli_long_multiple_value(int argc, char **argv, int *i, const char *name, long min, long max, long multiple,
-                            long *out, char *err, size_t errlen);
 /* 1 when argv[i] is `name` or starts with `name=`. */
 int cli_flag_is(const char *argv_i, const char *name);
 /* size_t multiplication with overflow detection: returns 0 on overflow. */
@@ -35,23 +26,7 @@ struct device_options {
     int device;              /* -1: its first device */
     const char *kernel_dir;  /* NULL: the kernels embedded in the binary */
 };
-#define DEVICE_OPTIONS_HELP \
-    "  --platform N       OpenCL platform index (default: the first with a device; see brdfbench list)\n" \
-    "  --device N         device index on that platform (default 0)\n" \
-    "  --kernel-dir DIR   read kernels/*.cl from DIR instead of the embedded copies\n"
 void device_options_init(struct device_options *o);
-/* Consumes argv[*i] if it is a device flag: returns 1 (consumed), 0 (not a device flag) or
- * EXIT_USAGE negated (-2) with a message. Applies --kernel-dir at once. */
-int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen);
-
-/* The grid flags --n-min, --n-max and --n-step, each in (0, ACC_MAX_N], as the accuracy and fit
- * commands take them: consumes argv[*i] if it is one of them and returns 1, returns 0 when it is
- * not, or -2 with a message. Ranges against each other are accuracy_grid_check's. */
-int accuracy_grid_flag(int argc, char **argv, int *i, double *n_min, double *n_max, double *n_step, char *err,
-                       size_t errlen);
-
-/* The flags every command that evaluates models takes; call it in the flag loop like
- * cli_device_flag: returns 1 (consumed), 0 (not one of them) or -2 with a message. */
-int usermodel_cli_flag(int argc, char **argv, int *i, char *err, size_t errlen);
+/* The device flags themselves are in cli_table.h (CLI_FLAGS_DEVICE). */
 
 #endif

@@ -80,10 +80,10 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 #define CLI_FLAG_N_MIN(DEST)                                                                                       \
     { .name = "--n-min", .value = "X", .kind = CLI_DOUBLE, .dest = (DEST), .min = 1e-300, .max = ACC_MAX_N,         \
-      .help = "smallest shininess n of the grid" }
+      .help = "smallest shininess n measured" }
 #define CLI_FLAG_N_MAX(DEST)                                                                                       \
     { .name = "--n-max", .value = "X", .kind = CLI_DOUBLE, .dest = (DEST), .min = 1e-300, .max = ACC_MAX_N,         \
-      .help = "largest shininess n of the grid" }
+      .help = "largest shininess n measured" }
 #define CLI_FLAG_N_STEP(DEST)                                                                                      \
     { .name = "--n-step", .value = "X", .kind = CLI_DOUBLE, .dest = (DEST), .min = 1e-300, .max = ACC_MAX_N,        \
       .help = "step of n over the grid; real values allowed, n-max always included" }

@@ -154,7 +154,7 @@ int cmd_render(int argc, char **argv)
         { .name = "--time-sizes", .value = "LIST", .kind = CLI_CALL, .call = call_time_sizes, .dest = &o,
           .help = "sizes timed, e.g. 1920x1080,3840x2160, or none", .def = "1920x1080,3840x2160" },
         { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = &o.reps, .min = 1, .max = 1000,
-          .help = "timed launches per model and size" },
+          .help = "timed launches per figure" },
         { .name = "--warmup", .value = "N", .kind = CLI_INT, .dest = &o.warmup, .min = 0, .max = 100,
           .help = "untimed launches before them" },
         { .name = "--shininess", .value = "LIST", .kind = CLI_CALL, .call = call_shininess, .dest = &o,
