@@ -78,37 +78,46 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* ---- flags shared by several commands: one definition each -------------------------------- */
 
+/* A destination pointer checked against the type its kind stores (a mismatch is a compiler
+   warning: pointer type mismatch in a conditional expression). */
+#define CLI_DEST(TYPE, P) ((void *)(1 ? (P) : (TYPE *)0))
+
 #define CLI_FLAG_N_MIN(DEST)                                                                                       \
-    { .name = "--n-min", .value = "X", .kind = CLI_DOUBLE, .dest = (DEST), .min = 1e-300, .max = ACC_MAX_N,         \
+    { .name = "--n-min", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
+      .min = 1e-300, .max = ACC_MAX_N, \
       .help = "smallest shininess n measured" }
 #define CLI_FLAG_N_MAX(DEST)                                                                                       \
-    { .name = "--n-max", .value = "X", .kind = CLI_DOUBLE, .dest = (DEST), .min = 1e-300, .max = ACC_MAX_N,         \
+    { .name = "--n-max", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
+      .min = 1e-300, .max = ACC_MAX_N, \
       .help = "largest shininess n measured" }
 #define CLI_FLAG_N_STEP(DEST)                                                                                      \
-    { .name = "--n-step", .value = "X", .kind = CLI_DOUBLE, .dest = (DEST), .min = 1e-300, .max = ACC_MAX_N,        \
+    { .name = "--n-step", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
+      .min = 1e-300, .max = ACC_MAX_N, \
       .help = "step of n over the grid; real values allowed, n-max always included" }
 /* samples per zone per n, a multiple of 16 up to MAX */
 #define CLI_FLAG_SAMPLES(DEST, MAX)                                                                                \
-    { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = (DEST), .min = ACC_MIN_SAMPLES, .max = (MAX),    \
+    { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, DEST), \
+      .min = ACC_MIN_SAMPLES, .max = (MAX), \
       .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" }
 #define CLI_FLAG_MODELS(DEST, GIVEN, DEF)                                                                          \
-    { .name = "--models", .value = "LIST", .kind = CLI_TEXT, .dest = (DEST), .given = (GIVEN),                    \
+    { .name = "--models", .value = "LIST", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), .given = (GIVEN), \
       .help = "models with parameters, comma-separated, e.g. cq2,fq:Q=0.7,lyon:k=4 (see brdfbench list); "        \
               "the same model given twice is measured once",                                                      \
       .def = (DEF) }
 #define CLI_DEF_OUT "a new folder results/<date-time>/, and results/latest pointing at it"
 #define CLI_FLAG_OUT(DEST, DEF)                                                                                    \
-    { .name = "--out", .value = "DIR", .kind = CLI_TEXT, .dest = (DEST), .help = "write the results into folder DIR", \
+    { .name = "--out", .value = "DIR", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), \
+      .help = "write the results into folder DIR", \
       .def = (DEF) }
 #define CLI_FLAG_QUIET(DEST)                                                                                       \
-    { .name = "--quiet", .kind = CLI_SWITCH, .dest = (DEST), .set = 1,                                            \
+    { .name = "--quiet", .kind = CLI_SWITCH, .dest = CLI_DEST(int, DEST), .set = 1, \
       .help = "no progress lines, tables or summaries (files are written as without it; warnings "              \
               "and errors are still shown)" }
 #define CLI_FLAG_JSON(DEST)                                                                                  \
-    { .name = "--json", .value = "FILE|-", .kind = CLI_TEXT, .dest = (DEST),                                        \
+    { .name = "--json", .value = "FILE|-", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results as JSON to FILE ('-': standard output)", .def = "" }
 #define CLI_FLAG_CSV(DEST)                                                                                   \
-    { .name = "--csv", .value = "FILE|-", .kind = CLI_TEXT, .dest = (DEST),                                         \
+    { .name = "--csv", .value = "FILE|-", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results as CSV to FILE ('-': standard output)", .def = "" }
 
 /* Device selection (struct device_options, cli.h). */
