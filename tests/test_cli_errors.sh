@@ -214,6 +214,7 @@ t 2 "^brdfbench accuracy: --model z: user model 'z' is already defined by --mode
 # Conventional output: one document on standard output, --json needs its value.
 t 2 "^brdfbench accuracy: --json - and --csv -: one document at a time on standard output" accuracy --json - --csv -
 t 2 "^brdfbench gate: --junit - and --json -: one document at a time on standard output" gate good.json --junit - --json -
+t 2 "^brdfbench throughput: --json - and --csv -: one document at a time on standard output" throughput --json - --csv -
 t 2 "^brdfbench list: --json: missing value \(expected --json FILE\|-\)" list --json
 t 2 "^brdfbench version: unexpected argument 'now'" version now
 # heatmap names the labels a run has when asked for one it does not have.

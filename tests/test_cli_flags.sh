@@ -115,6 +115,17 @@ PY
 "$BIN" accuracy --models fq2 "${GRID[@]}" --json "$T/f.json" --out "$T/both" >/dev/null 2>"$T/err" \
     && [ -s "$T/f.json" ] && [ -s "$T/both/accuracy.json" ] && [ -s "$T/both/accuracy.csv" ] && ok \
     || bad "accuracy --json FILE --out DIR must write both: $(cat "$T/err")"
+"$BIN" fit "${GRID[@]}" --json - >"$T/fit.json" 2>"$T/err" && [ ! -e results ] \
+    && python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["schema"].startswith("brdfbench.fit/"), d["schema"]' "$T/fit.json" \
+    && ok || bad "fit --json -: the document alone, no folder: $(cat "$T/err")"
+"$BIN" throughput --models fq2 --variants default --n-modes uniform --no-sweep --no-host-c --reps 1 --min-time 0.001 \
+    --csv - >"$T/tp.csv" 2>"$T/err" && [ ! -e results ] && ok || bad "throughput --csv -: $(cat "$T/err")"
+# the CSV alone: a header and one row per model, pow() (every run's reference row) and fq2
+python3 - "$T/tp.csv" <<'PY' && ok || bad "throughput --csv - is not the CSV alone: $(cat "$T/tp.csv")"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["model"] for r in rows] == ["pow", "fq2"], rows
+PY
 printf '{"gates":[{"model":"fq2","metric":"whole.max_abs","n_min":2,"n_max":6,"samples":16,"max":1}]}' >gates.json
 "$BIN" gate gates.json --json - >"$T/gate.json" 2>"$T/err" && ok || bad "gate --json -: $(cat "$T/err")"
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["gates"][0]["status"] == "pass", d' "$T/gate.json" \

@@ -65,7 +65,7 @@ int cmd_throughput(int argc, char **argv)
     throughput_options_default(&o);
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = "all", *out_dir = NULL;
+    const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
     int quiet = 0, models_given = 0;
 
     const struct cli_flag flags[] = {
@@ -100,7 +100,9 @@ int cmd_throughput(int argc, char **argv)
           .max = 998, .help = "step of n of the timed sweep over [2, 1000]" },
         { .name = "--sweep-reps", .value = "N", .kind = CLI_INT, .dest = &o.sweep_reps, .min = 1, .max = TP_MAX_REPS,
           .help = "timed runs per model of the sweep" },
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json or --csv and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
+        CLI_FLAG_CSV(&csv_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
@@ -126,6 +128,10 @@ int cmd_throughput(int argc, char **argv)
         return EXIT_OK;
     if (prc)
         goto usage_error;
+    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
+        snprintf(err, sizeof err, "--json - and --csv -: one document at a time on standard output");
+        goto usage_error;
+    }
     if (!(o.n_lo < o.n_hi)) {
         snprintf(err, sizeof err, "--n-min (%g) must be below --n-max (%g)", o.n_lo, o.n_hi);
         goto usage_error;
@@ -147,17 +153,38 @@ int cmd_throughput(int argc, char **argv)
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         return rc;
     }
-    char run_dir[4096];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
+    /* --json or --csv without --out: those documents only, made in a temporary folder */
+    char run_dir[4096], tmp_dir[512] = "";
+    if ((json_path || csv_path) && !out_dir) {
+        if (cli_temp_dir(tmp_dir, sizeof tmp_dir, err, sizeof err)) {
+            fprintf(stderr, "brdfbench throughput: %s\n", err);
+            clsession_close(&s);
+            return EXIT_RUNTIME;
+        }
+        snprintf(run_dir, sizeof run_dir, "%s", tmp_dir);
+    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
-    rc = throughput_run(&s, &o, run_dir, quiet);
-    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
+    /* a document on standard output: the engine's table (and its progress) stay off */
+    rc = throughput_run(&s, &o, run_dir, quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path));
+    if (!rc && !out_dir && !tmp_dir[0] && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         rc = EXIT_RUNTIME;
     }
+    for (int k = 0; k < 2 && !rc; ++k) {
+        const char *dest = k == 0 ? json_path : csv_path;
+        char src[4200];
+        if (!dest)
+            continue;
+        path_join(src, sizeof src, run_dir, k == 0 ? "throughput.json" : "throughput.csv");
+        if (cli_deliver(src, k == 0 ? "--json" : "--csv", dest, err, sizeof err)) {
+            fprintf(stderr, "brdfbench throughput: %s\n", err);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    cli_temp_dir_remove(tmp_dir);
     clsession_close(&s);
     return rc;
 
