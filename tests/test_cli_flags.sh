@@ -17,12 +17,17 @@ COMMANDS="list accuracy all plot heatmap gate render reproduce fit throughput ve
 #    "--flag=V" followed by an unknown flag: when the first is a flag of the command, the
 #    parser gets past it (or refuses its value) and the message is never "unknown option
 #    '--flag'". --model-file=V and --kernel-dir=V fail on reading V before anything runs.
+#    (Each flag name is tried with the first command that shows it, to keep this quick; a
+#    shared flag comes from one definition in host/cli/cli_table.h.)
+seen=" "
 for c in $COMMANDS; do
     "$BIN" "$c" --help >"$T/help_$c" 2>&1 || bad "$c --help exits non-zero"
     grep -qE '^  --help, -h ' "$T/help_$c" && grep -qE '^  --version ' "$T/help_$c" && ok \
         || bad "$c --help lacks --help or --version"
     for f in $(grep -oE '^  --[a-z0-9-]+' "$T/help_$c" | sort -u); do
-        [ "$f" = --help ] || [ "$f" = --version ] && continue
+        case "$f" in --help|--version) continue ;; esac
+        case "$seen" in *" $f "*) continue ;; esac
+        seen="$seen$f "
         "$BIN" "$c" "$f=V" --no-such-flag-at-all >/dev/null 2>"$T/err"
         if grep -q "unknown option '$f" "$T/err"; then bad "$c --help shows $f but the parser refuses it"; else ok; fi
     done
@@ -161,6 +166,19 @@ printf '{"gates":[{"model":"fq2","metric":"whole.max_abs","n_min":2,"n_max":6,"s
 rc=$?
 [ $rc -eq 1 ] && [ "$(grep -c '^FAIL  ' "$T/out")" -eq 1 ] && [ "$(wc -l <"$T/out")" -eq 1 ] && ok \
     || bad "gate --quiet on a failing gate: exit $rc, stdout: $(cat "$T/out")"
+
+# 8. all takes the grid flags: they set the main sweep and the heatmaps' range of n (over the
+#    --quick defaults), and --quiet leaves the terminal empty.
+"$BIN" all --quick --models fq2 --n-min 3 --n-max 40 --n-step 1 --samples 32 --out "$T/all" --quiet >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && [ ! -s "$T/out" ] && [ ! -s "$T/err" ] && ok || bad "all --quiet with grid flags: exit $rc: $(cat "$T/out" "$T/err")"
+python3 - "$T/all" <<'PY' && ok || bad "all did not apply the grid flags"
+import json, sys
+a = json.load(open(sys.argv[1] + "/accuracy.json"))["results"][0]
+assert (a["n_min"], a["n_max"]) == (3, 40), (a["n_min"], a["n_max"])
+f = json.load(open(sys.argv[1] + "/field_fq2.json"))["grid"]
+assert (f["n_min"], f["n_max"]) == (3, 40), f
+PY
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

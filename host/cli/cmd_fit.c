@@ -81,8 +81,12 @@ int cmd_fit(int argc, char **argv)
         }
     }
     cli_temp_dir_remove(tmp_dir);
-    if (!rc && !quiet && !cli_is_stdout(json_path))
-        printf("written: %s\n", tmp_dir[0] ? json_path : strcat(run_dir, "/fit.json"));
+    if (!rc && !quiet && !cli_is_stdout(json_path)) {
+        if (!tmp_dir[0])
+            printf("written: %s/fit.json\n", run_dir);
+        if (json_path)
+            printf("written: %s\n", json_path);
+    }
     clsession_close(&s);
     return rc;
 
