@@ -11,6 +11,7 @@ packages=(
   libopencv-dev libgsl-dev
   glmark2-data povray-examples
   clang libclang-rt-14-dev
+  libtcc-dev
 )
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 

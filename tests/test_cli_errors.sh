@@ -86,7 +86,7 @@ t 2 "^brdfbench accuracy: --n-min: 'abc' is not a finite number in \[" accuracy 
 t 2 "^brdfbench accuracy: --n-min: 'nan' is not a finite number" accuracy --n-min nan
 t 2 "^brdfbench accuracy: --n-max: 'inf' is not a finite number" accuracy --n-max inf
 t 2 "^brdfbench accuracy: --n-min: '1e999' is not a finite number" accuracy --n-min 1e999
-t 2 "^brdfbench accuracy: --n-min: '-5' is not a finite number in \[1e-300, 1e\+06\]" accuracy --n-min -5
+t 2 "^brdfbench accuracy: --n-min: '-5' is not a finite number in \[0.001, 1e\+06\]" accuracy --n-min -5
 t 2 "^brdfbench accuracy: --n-max: '0' is not a finite number" accuracy --n-max 0
 t 2 "^brdfbench accuracy: --n-min: '2x' is not a finite number" accuracy --n-min 2x
 t 2 "^brdfbench accuracy: --n-min: '' is not a finite number" accuracy --n-min=
@@ -198,6 +198,21 @@ t 2 "^brdfbench throughput: --uniform-n: 'nan' is not a finite number" throughpu
 t 2 "^brdfbench throughput: --n-min \(5\) must be below --n-max \(2\)" throughput --n-min 5 --n-max 2
 t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " throughput --variants turbo
 t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
+t 2 "^brdfbench compare: expected BASELINE RUN \[RUN \.\.\.\]" compare
+t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help\)" compare --bogus
+t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-12, 1\]" compare a b --alpha 2
+t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
+t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
+t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
+
+# accuracy and gate: the n range (float n; below 0.001 the attenuation zone is empty) and the
+# device-vs-double key of a gate
+t 2 "^brdfbench accuracy: --n-min: '1e-300' is not a finite number in \[0.001, 1e\+06\]" accuracy --n-min 1e-300
+t 2 "^brdfbench accuracy: --n-max: '0.0009' is not a finite number in \[0.001, 1e\+06\]" accuracy --n-min 0.001 --n-max 0.0009
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_min":1e-300,"max":0.1}]}' >n_min_tiny.json
+t 2 "^brdfbench gate: n_min_tiny.json:1:[0-9]+: gate 1: \"n_min\" 1e-300 is out of range \(accepted: 0.001 <= n_min <= 1e\+06\)" gate n_min_tiny.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.1,"accept_device_disagreement":"yes"}]}' >accept_string.json
+t 2 "^brdfbench gate: accept_string.json:1:[0-9]+: gate 1: \"accept_device_disagreement\" is a string, a boolean expected" gate accept_string.json
 # One meaning per flag: a flag another command uses otherwise is refused with the right name.
 t 2 "^brdfbench heatmap: --model: not a flag of brdfbench heatmap: .*--label LABEL" heatmap --model fvol
 t 2 "^brdfbench render: --n: not a flag of brdfbench render: .*--mesh-n X" render --n 64

@@ -29,4 +29,12 @@ struct device_options {
 void device_options_init(struct device_options *o);
 /* The device flags themselves are in cli_table.h (CLI_FLAGS_DEVICE). */
 
+/* --device all, or a list (0,1 or P:D pairs), on throughput, accuracy and render: when argv's
+ * --device is one, runs cmd once per device (cli_devices.c) and gathers the rows of `file`
+ * (its array `rows_key`) tagged with their device; returns that exit code. Returns -1 when
+ * --device names one device (the command goes on as usual). */
+int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, char **), const char *file,
+                   const char *rows_key);
+int cli_is_device_list(const char *value);
+
 #endif

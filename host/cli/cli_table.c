@@ -240,6 +240,12 @@ int cli_call_platform(const char *flag, const char *value, void *dest, char *err
 int cli_call_device(const char *flag, const char *value, void *dest, char *err, size_t errlen)
 {
     long v;
+    /* all and lists reach here only in the commands that do not take them (cli_devices.c) */
+    if (cli_is_device_list(value)) {
+        snprintf(err, errlen, "%s: '%s': all and lists are taken by throughput, accuracy and render "
+                 "(accepted here: 0 to 63)", flag, value);
+        return EXIT_USAGE;
+    }
     if (cli_parse_long(flag, value, 0, 63, &v, err, errlen))
         return EXIT_USAGE;
     ((struct device_options *)dest)->device = (int)v;

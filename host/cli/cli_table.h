@@ -52,7 +52,7 @@ struct cli_command {
     int max_positional;      /* bare arguments accepted (collected in positional[]) */
 };
 
-#define CLI_MAX_POSITIONAL 8
+#define CLI_MAX_POSITIONAL 64
 struct cli_args {
     const char *positional[CLI_MAX_POSITIONAL];
     int npositional;
@@ -84,11 +84,11 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 #define CLI_FLAG_N_MIN(DEST)                                                                                       \
     { .name = "--n-min", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
-      .min = 1e-300, .max = ACC_MAX_N, \
+      .min = ACC_MIN_N, .max = ACC_MAX_N, \
       .help = "smallest shininess n measured" }
 #define CLI_FLAG_N_MAX(DEST)                                                                                       \
     { .name = "--n-max", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
-      .min = 1e-300, .max = ACC_MAX_N, \
+      .min = ACC_MIN_N, .max = ACC_MAX_N, \
       .help = "largest shininess n measured" }
 #define CLI_FLAG_N_STEP(DEST)                                                                                      \
     { .name = "--n-step", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
@@ -129,7 +129,9 @@ int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *e
       .help = "OpenCL platform index (see brdfbench list)", .range = "in [0, 63]",                                 \
       .def = "the first with a device" },                                                                         \
     { .name = "--device", .value = "N", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_device,                  \
-      .help = "device index on that platform", .range = "in [0, 63]", .def = "0" },                                \
+      .help = "device index on that platform; throughput, accuracy and render also take all (every device of " \
+              "every platform) or a list (0,1 or P:D pairs such as 0:0,1:0): one run per device in " \
+              "OUT/devices/<k>/, rows tagged with their device", .range = "in [0, 63]", .def = "0" },                                \
     { .name = "--kernel-dir", .value = "DIR", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_kernel_dir,        \
       .help = "read kernels/*.cl from DIR instead of the copies built into the program", .def = "" }
 

@@ -17,6 +17,10 @@
 
 int cmd_accuracy(int argc, char **argv)
 {
+    /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
+    int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results");
+    if (per_device >= 0)
+        return per_device;
     char err[1024];
     struct accuracy_grid grid = { 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
     struct device_options dev;
@@ -110,10 +114,14 @@ int cmd_accuracy(int argc, char **argv)
     if (!quiet)
         fprintf(stderr, "device: %s (%s); kernel build %.2f s\n", s.device_name, s.platform_version,
                 s.last_build_seconds);
+    double started = wall_seconds();
     for (int m = 0; m < nmodels; ++m, ++done) {
         rc = accuracy_run(&actx, &models[m], &grid, &res[m]);
         if (rc)
             goto cleanup;
+        if (!quiet && wall_seconds() - started > 1.0)   /* a progress line once a run takes a while */
+            fprintf(stderr, "accuracy: %d/%d %s done (%.1f s)\n", m + 1, nmodels, models[m].label,
+                    wall_seconds() - started);
     }
     if (to_folder && !out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
@@ -158,13 +166,16 @@ int cmd_accuracy(int argc, char **argv)
     if (!quiet && !doc_on_stdout) {
         accuracy_print_table(stdout, res, nmodels);
         double worst = 0, dev_s = 0, pts = 0;
+        int beyond = 0;
         for (int m = 0; m < nmodels; ++m) {
             worst = fmax(worst, accuracy_check_in_digits(&res[m]));
+            beyond += res[m].device_disagrees;
             dev_s += res[m].device_seconds;
             pts += res[m].points;
         }
         printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
-               "largest difference = %.3g of one unit in the 4th significant digit of its figure\n", worst);
+               "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
+               "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
         printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)\n",
                dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples);
         if (to_folder)

@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "gate.h"
+#include "gate_report.h"
 #include "usermodel.h"
 
 #include <stdio.h>

@@ -25,6 +25,7 @@ static const struct command commands[] = {
     { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
     { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants" },
     { "version", cmd_version, "the program's version and git revision (also --version after any command)" },
+    { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)" },
     /* more commands below, one per line */
 };
 

@@ -4,6 +4,7 @@
 #include "exitcodes.h"
 #include "kernels_embedded.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -184,6 +185,9 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
 
 void clsession_close(struct cl_session *s)
 {
+    if (s->release_cache)
+        s->release_cache(s);
+    s->release_cache = NULL;
     if (s->queue)
         clReleaseCommandQueue(s->queue);
     if (s->ctx)
@@ -329,4 +333,100 @@ int clsession_build_user(struct cl_session *s, const char *kernel_file, const ch
 {
     (void)user_line_offset;
     return build_common(s, kernel_file, extra_source, options, out, EXIT_USAGE);
+}
+
+/* ---- device lists (--device all, --device 0,1, --device 0:0,1:0) ------------------------- */
+
+/* The number of devices of every platform (at most 16 platforms, 16 devices each). */
+static int device_counts(cl_uint *nplat, cl_uint ndev[16])
+{
+    cl_platform_id plats[16];
+    cl_int e = clGetPlatformIDs(0, NULL, nplat);
+    if (e != CL_SUCCESS || *nplat == 0)
+        return -1;
+    if (*nplat > 16)
+        *nplat = 16;
+    clGetPlatformIDs(*nplat, plats, NULL);
+    for (cl_uint p = 0; p < *nplat; ++p) {
+        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 0, NULL, &ndev[p]) != CL_SUCCESS)
+            ndev[p] = 0;
+        if (ndev[p] > 16)
+            ndev[p] = 16;
+    }
+    return 0;
+}
+
+int clsession_device_list(const char *text, int platform, struct cl_device_ref *out, int max, char *err,
+                          size_t errlen)
+{
+    cl_uint nplat = 0, ndev[16] = { 0 };
+    if (device_counts(&nplat, ndev)) {
+        snprintf(err, errlen, "no OpenCL platform found; %s", no_device_hint);
+        return -EXIT_NO_DEVICE;
+    }
+    int n = 0;
+    if (strcmp(text, "all") == 0) {
+        for (cl_uint p = 0; p < nplat; ++p)
+            for (cl_uint d = 0; d < ndev[p] && n < max; ++d)
+                out[n++] = (struct cl_device_ref){ (int)p, (int)d };
+        if (n == 0) {
+            snprintf(err, errlen, "no OpenCL device found; %s", no_device_hint);
+            return -EXIT_NO_DEVICE;
+        }
+        return n;
+    }
+    if (platform < 0) {   /* plain entries name devices of the first platform with one */
+        for (cl_uint p = 0; p < nplat && platform < 0; ++p)
+            if (ndev[p] > 0)
+                platform = (int)p;
+        if (platform < 0) {
+            snprintf(err, errlen, "no OpenCL device found; %s", no_device_hint);
+            return -EXIT_NO_DEVICE;
+        }
+    }
+    char buf[256];
+    if (strlen(text) >= sizeof buf || !*text) {
+        snprintf(err, errlen, "--device: expected N, P:D, a comma-separated list of them, or all");
+        return -EXIT_USAGE;
+    }
+    strcpy(buf, text);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        char *colon = strchr(tok, ':'), *end = NULL;
+        long p = platform, d;
+        errno = 0;
+        if (colon) {
+            p = strtol(tok, &end, 10);
+            if (end != colon || end == tok) {
+                snprintf(err, errlen, "--device: '%.64s' is not N or P:D", tok);
+                return -EXIT_USAGE;
+            }
+            tok = colon + 1;
+        }
+        d = strtol(tok, &end, 10);
+        if (end == tok || *end || errno) {
+            snprintf(err, errlen, "--device: '%.64s' is not N or P:D", tok);
+            return -EXIT_USAGE;
+        }
+        if (p < 0 || p >= (long)nplat) {
+            snprintf(err, errlen, "--device: platform %ld is out of range (accepted: 0 to %u; see brdfbench list)", p,
+                     nplat - 1);
+            return -EXIT_USAGE;
+        }
+        if (d < 0 || d >= (long)ndev[p]) {
+            snprintf(err, errlen, "--device: device %ld is out of range for platform %ld (accepted: 0 to %d)", d, p,
+                     (int)ndev[p] - 1);
+            return -EXIT_USAGE;
+        }
+        if (n == max) {
+            snprintf(err, errlen, "--device: at most %d devices in a list", max);
+            return -EXIT_USAGE;
+        }
+        out[n++] = (struct cl_device_ref){ (int)p, (int)d };
+    }
+    if (n == 0) {
+        snprintf(err, errlen, "--device: expected N, P:D, a comma-separated list of them, or all");
+        return -EXIT_USAGE;
+    }
+    return n;
 }

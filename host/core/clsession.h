@@ -22,6 +22,9 @@ struct cl_session {
     cl_ulong global_mem, max_alloc;
     int has_fp64;
     double last_build_seconds;    /* wall time of the latest clsession_build */
+    /* Objects cached for the session's life (host/core/programs.c): clsession_close calls
+       release_cache first, while the context still exists. */
+    void (*release_cache)(struct cl_session *s);
 };
 
 /* Name of an OpenCL error code ("CL_BUILD_PROGRAM_FAILURE"). */
@@ -54,6 +57,19 @@ void cl_report(const char *call, cl_int err, const char *file, int line);
  * index out of range, EXIT_RUNTIME, or EXIT_NO_DEVICE with a hint in err. */
 int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen);
 void clsession_close(struct cl_session *s);
+
+/* A device of a device list: platform and device indices as clsession_open takes them. */
+struct cl_device_ref {
+    int platform, device;
+};
+#define CL_MAX_DEVICE_REFS 16
+/* Resolves `--device all` (every device of every platform the ICD loader finds, platform by
+ * platform) or a comma-separated list whose entries are D (device D of `platform`, or of the
+ * first platform with a device when platform < 0) or P:D; an entry may repeat. Returns the
+ * number of devices (1..max), or -EXIT_USAGE (an entry out of range, named with the accepted
+ * range) or -EXIT_NO_DEVICE with a message in err. */
+int clsession_device_list(const char *text, int platform, struct cl_device_ref *out, int max, char *err,
+                          size_t errlen);
 
 /* Kernel sources: embedded copies by default; --kernel-dir reads them from a folder. */
 void clsession_set_kernel_dir(const char *dir);

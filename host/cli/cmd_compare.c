@@ -1,0 +1,111 @@
+/* cmd_compare.c - `brdfbench compare A B [C ...]`: runs (folders or result files) side by side
+ * against the first; the table on stdout, compare.md/.csv/.json/.png, and the CI conditions
+ * --fail-if-slower and --fail-if-less-accurate (exit 1). No device is used. */
+#define _POSIX_C_SOURCE 200809L
+#include "cli_table.h"
+#include "commands.h"
+#include "compare.h"
+#include "compare_report.h"
+#include "exitcodes.h"
+#include "outdir.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int cmd_compare(int argc, char **argv)
+{
+    char err[1200];
+    int quiet = 0, less_accurate = 0;
+    const char *out_dir = NULL;
+    double alpha = CMP_DEFAULT_ALPHA, slower_pct = -1;
+    const struct cli_flag flags[] = {
+        CLI_FLAG_OUT(&out_dir, "a new folder results/<date-time>/; results/latest stays"),
+        { .name = "--alpha", .value = "P", .kind = CLI_DOUBLE, .dest = &alpha, .min = 1e-12, .max = 1 - 1e-12,
+          .help = "the rank test's level", .range = "0 < P < 1" },
+        { .name = "--fail-if-slower", .value = "PCT", .kind = CLI_DOUBLE, .dest = &slower_pct, .min = 0, .max = 100,
+          .help = "exit 1 naming every rate that is slower than the baseline (by the test) by more than PCT percent",
+          .def = "" },
+        { .name = "--fail-if-less-accurate", .kind = CLI_SWITCH, .dest = &less_accurate, .set = 1,
+          .help = "exit 1 naming every accuracy figure worse at its 4th digit" },
+        CLI_FLAG_QUIET(&quiet),
+    };
+    const struct cli_command cmd = {
+        .name = "compare",
+        .synopsis = "BASELINE RUN [RUN ...] [OPTIONS]",
+        .about = "  The results of several runs side by side, the first one the baseline. A run is a run\n"
+                 "  folder or one result file of any command: throughput.json, accuracy.json, render.json,\n"
+                 "  fit.json, frontier.json. Rows are matched by their keys (throughput: model, build\n"
+                 "  options, n mode; accuracy: model, figure, grid; render: scene, model; frontier: model);\n"
+                 "  rows found in only some runs are listed as such. One run of --device all alone lays\n"
+                 "  its devices side by side. Writes compare.md, compare.csv, compare.json, compare.png.\n"
+                 "  Verdicts: a rate is faster / slower / same by the Mann-Whitney test of the two runs'\n"
+                 "  repetitions (undecided when there are too few to reach --alpha); an accuracy figure is\n"
+                 "  unchanged or changed (better / worse) at its 4th significant digit.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        .epilog = "  Exit codes: 0 done, 1 a --fail-if condition holds, 2 a missing path, a file of another\n"
+                  "  schema or version, runs with nothing in common, or a bad flag, 3 an output not written.\n",
+        .max_positional = CLI_MAX_POSITIONAL,
+    };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
+    const char **paths = args.positional;
+    int npaths = args.npositional;
+    if (npaths > CMP_MAX_RUNS) {
+        snprintf(err, sizeof err, "at most %d runs (accepted: 1 to %d)", CMP_MAX_RUNS, CMP_MAX_RUNS);
+        goto usage_error;
+    }
+    if (npaths == 0) {
+        snprintf(err, sizeof err, "expected BASELINE RUN [RUN ...] (run folders or result files; see --help)");
+        goto usage_error;
+    }
+
+    struct compare_set *set = calloc(1, sizeof *set);
+    if (!set) {
+        fprintf(stderr, "brdfbench compare: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    int rc = compare_load(set, paths, npaths, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench compare: %s\n", err);
+        goto done;
+    }
+    compare_evaluate(set, alpha);
+    if (!quiet) {
+        char *t = compare_text(set, 0);
+        if (t)
+            fputs(t, stdout);
+        free(t);
+    }
+    char run_dir[4096];
+    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err) ||
+        compare_write(set, run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench compare: %s\n", err);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if (!quiet)
+        printf("written: %s/compare.md, compare.csv, compare.json, compare.png\n", run_dir);
+    char *why = NULL;
+    int failing = compare_failures(set, slower_pct, less_accurate, &why);
+    if (failing) {
+        fprintf(stderr, "brdfbench compare: %d row%s fail%s the %s:\n%s", failing, failing == 1 ? "" : "s",
+                failing == 1 ? "s" : "", slower_pct >= 0 && less_accurate ? "conditions" : "condition",
+                why ? why : "");
+        rc = EXIT_GATE_FAIL;
+    }
+    free(why);
+done:
+    compare_free(set);
+    free(set);
+    return rc;
+
+usage_error:
+    fprintf(stderr, "brdfbench compare: %s\n", err);
+    return EXIT_USAGE;
+}
