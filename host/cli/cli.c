@@ -98,4 +98,5 @@ void device_options_init(struct device_options *o)
     o->platform = -1;
     o->device = -1;
     o->kernel_dir = NULL;
+    o->timeout = 0.0;
 }

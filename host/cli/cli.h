@@ -25,6 +25,7 @@ struct device_options {
     int platform;            /* -1: the first platform with a device */
     int device;              /* -1: its first device */
     const char *kernel_dir;  /* NULL: the kernels embedded in the binary */
+    double timeout;          /* --timeout: seconds per launch; 0: not given (applied at once) */
 };
 void device_options_init(struct device_options *o);
 /* The device flags themselves are in cli_table.h (CLI_FLAGS_DEVICE). */

@@ -46,6 +46,12 @@ static int store_value(const struct cli_flag *f, const char *v, char *err, size_
 {
     long lv;
     switch (f->kind) {
+    case CLI_PATH:
+        if (!*v) {
+            snprintf(err, errlen, "%s: empty path (accepted: a folder or file name)", f->name);
+            return EXIT_USAGE;
+        }
+        /* fall through */
     case CLI_TEXT:
         *(const char **)f->dest = v;
         return 0;
@@ -163,6 +169,7 @@ static void default_text(const struct cli_flag *f, char *buf, size_t len)
     case CLI_LONG: snprintf(buf, len, "%ld", *(const long *)f->dest); break;
     case CLI_DOUBLE: snprintf(buf, len, "%g", *(const double *)f->dest); break;
     case CLI_TEXT:
+    case CLI_PATH:
         if (*(const char *const *)f->dest)
             snprintf(buf, len, "%s", *(const char *const *)f->dest);
         break;
@@ -264,6 +271,15 @@ int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *e
     fclose(f);
     ((struct device_options *)dest)->kernel_dir = value;
     clsession_set_kernel_dir(value);
+    return 0;
+}
+
+int cli_call_timeout(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    struct device_options *o = dest;
+    if (cli_parse_double(flag, value, 0.01, CLSESSION_MAX_TIMEOUT, &o->timeout, err, errlen))
+        return EXIT_USAGE;
+    clsession_set_timeout(o->timeout, TIMEOUT_FLAG);
     return 0;
 }
 

@@ -16,6 +16,7 @@
 enum cli_kind {
     CLI_SWITCH,   /* no value: stores .set into the int at .dest */
     CLI_TEXT,     /* a string: stores the argument into the const char * at .dest */
+    CLI_PATH,     /* as CLI_TEXT, and an empty value is refused */
     CLI_INT,      /* an integer in [min, max] (a multiple of .multiple when set) into an int */
     CLI_LONG,     /* the same into a long */
     CLI_DOUBLE,   /* a finite number in [min, max] into a double */
@@ -106,7 +107,7 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
       .def = (DEF) }
 #define CLI_DEF_OUT "a new folder results/<date-time>/, and results/latest pointing at it"
 #define CLI_FLAG_OUT(DEST, DEF)                                                                                    \
-    { .name = "--out", .value = "DIR", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), \
+    { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results into folder DIR", \
       .def = (DEF) }
 #define CLI_FLAG_QUIET(DEST)                                                                                       \
@@ -114,16 +115,17 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
       .help = "no progress lines, tables or summaries (files are written as without it; warnings "              \
               "and errors are still shown)" }
 #define CLI_FLAG_JSON(DEST)                                                                                  \
-    { .name = "--json", .value = "FILE|-", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), \
+    { .name = "--json", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results as JSON to FILE ('-': standard output)", .def = "" }
 #define CLI_FLAG_CSV(DEST)                                                                                   \
-    { .name = "--csv", .value = "FILE|-", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), \
+    { .name = "--csv", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results as CSV to FILE ('-': standard output)", .def = "" }
 
 /* Device selection (struct device_options, cli.h). */
 int cli_call_platform(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_device(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_timeout(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 #define CLI_FLAGS_DEVICE(DEV)                                                                                      \
     { .name = "--platform", .value = "N", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_platform,              \
       .help = "OpenCL platform index (see brdfbench list)", .range = "in [0, 63]",                                 \
@@ -133,7 +135,10 @@ int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *e
               "every platform) or a list (0,1 or P:D pairs such as 0:0,1:0): one run per device in " \
               "OUT/devices/<k>/, rows tagged with their device", .range = "in [0, 63]", .def = "0" },                                \
     { .name = "--kernel-dir", .value = "DIR", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_kernel_dir,        \
-      .help = "read kernels/*.cl from DIR instead of the copies built into the program", .def = "" }
+      .help = "read kernels/*.cl from DIR instead of the copies built into the program", .def = "" }, \
+    { .name = "--timeout", .value = "SECONDS", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_timeout, \
+      .help = "deadline of each kernel launch; past it the run stops with exit 3 and its unfinished outputs " \
+              "removed", .range = "in [0.01, 604800]", .def = "300" }
 
 /* User models (host/core/usermodel.h): registered as they are read. */
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);

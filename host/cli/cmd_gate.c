@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "gate.h"
+#include "outdir.h"
 #include "gate_report.h"
 #include "usermodel.h"
 
@@ -54,7 +55,7 @@ int cmd_gate(int argc, char **argv)
              "tolerance x |baseline| + %g fails as a regression", GATE_BASELINE_FLOOR);
 
     const struct cli_flag flags[] = {
-        { .name = "--junit", .value = "FILE", .kind = CLI_TEXT, .dest = &junit, .def = "",
+        { .name = "--junit", .value = "FILE|-", .kind = CLI_PATH, .dest = &junit, .def = "",
           .help = "write JUnit XML, one testcase per gate, to FILE ('-': standard output)" },
         CLI_FLAG_JSON(&json),
         { .name = "--baseline", .value = "PATH", .kind = CLI_TEXT, .dest = &baseline, .def = "",
@@ -98,6 +99,11 @@ int cmd_gate(int argc, char **argv)
     }
     if (!gates_path) {
         snprintf(err, sizeof err, "a gates file is missing (usage: brdfbench gate GATES.json [OPTIONS])");
+        goto usage_error;
+    }
+    if (junit && json && output_paths_same(junit, json)) {
+        snprintf(err, sizeof err, "--json: '%s' is the file --junit names ('%s'); each report needs its own file",
+                 json, junit);
         goto usage_error;
     }
     if (tolerance_given && !baseline) {
