@@ -56,8 +56,8 @@ rm -f "$RUN/heatmap_fvol.png" "$RUN/max_abs_error_vs_n.png"
 expect 0 "redrawn" plot "$RUN"
 is_png "$RUN/heatmap_fvol.png" && is_png "$RUN/max_abs_error_vs_n.png" && ok || bad "plot did not redraw"
 rm -f "$RUN/heatmap_cq2.png"
-expect 0 "1 picture" heatmap "$RUN" --model cq2
-is_png "$RUN/heatmap_cq2.png" && ok || bad "heatmap --model cq2 did not redraw"
+expect 0 "1 picture" heatmap "$RUN" --label cq2
+is_png "$RUN/heatmap_cq2.png" && ok || bad "heatmap --label cq2 did not redraw"
 
 # input errors: exit 2, the file named
 cp -r "$RUN/" "$T/broken"
@@ -67,7 +67,7 @@ rm "$T/broken/plots.json"
 expect 2 "plots.json: cannot open" plot "$T/broken"
 printf '{"schema": "brdfbench.field/1"}' >"$T/broken/field_fvol.json"
 expect 2 "field_fvol.json:1:1: member \"model\" is missing" heatmap "$T/broken"
-expect 2 "field_nosuch.json: cannot open" heatmap "$RUN" --model nosuch
+expect 2 "--label nosuch: .* has no model of that label \(accepted: .*cq2" heatmap "$RUN" --label nosuch
 expect 2 "not a folder" plot "$T/none"
 expect 2 "unknown option" all --frobnicate
 expect 2 "unknown model" all --models nosuch

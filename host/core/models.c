@@ -137,8 +137,10 @@ static void list_model_ids(char *buf, size_t len)
         used += (size_t)snprintf(buf + used, len - used, ", %s", user_models[i].info->id);
 }
 
-/* Parses one "name=value" assignment into spec. */
-static int model_param_assign(struct model_spec *spec, const char *assign, char *err, size_t errlen)
+/* Parses one "name=value" assignment into spec; *assigned has a bit per parameter already
+   given, and a parameter given twice is refused. */
+static int model_param_assign(struct model_spec *spec, const char *assign, unsigned *assigned, char *err,
+                              size_t errlen)
 {
     const struct model_info *info = spec->info;
     const char *eq = strchr(assign, '=');
@@ -164,6 +166,12 @@ static int model_param_assign(struct model_spec *spec, const char *assign, char 
     }
     const struct model_param *mp = &info->params[which];
     const char *text = eq + 1;
+    if (*assigned & (1u << which)) {
+        snprintf(err, errlen, "model '%s': parameter %s given twice (at '%s'; accepted: each parameter once)",
+                 info->id, mp->name, assign);
+        return 2;
+    }
+    *assigned |= 1u << which;
     char *end = NULL;
     errno = 0;
     double v = strtod(text, &end);
@@ -206,8 +214,9 @@ int model_spec_parse(const char *text, struct model_spec *out, char *err, size_t
             snprintf(err, errlen, "model '%s': empty parameter list after ':'", info->id);
             return 2;
         }
+        unsigned assigned = 0;
         for (char *tok = strtok_r(colon + 1, ",", &save); tok; tok = strtok_r(NULL, ",", &save))
-            if (model_param_assign(out, tok, err, errlen))
+            if (model_param_assign(out, tok, &assigned, err, errlen))
                 return 2;
     }
     model_spec_make_label(out);
