@@ -28,7 +28,7 @@ static void compare_usage(FILE *f)
             "  unchanged or changed (better / worse) at its 4th significant digit.\n"
             "  --out DIR                write compare.md, compare.csv, compare.json, compare.png into DIR\n"
             "                           (default: a new folder results/<date-time>/; results/latest stays)\n"
-            "  --alpha P                the rank test's level, 0 < P < 1 (default %g)\n"
+            "  --alpha P                the rank test's level, 1e-6 to 0.5 (default %g)\n"
             "  --fail-if-slower PCT     exit 1 naming every rate that is slower than the baseline (by the\n"
             "                           test) by more than PCT percent, 0 to 100\n"
             "  --fail-if-less-accurate  exit 1 naming every accuracy figure worse at its 4th digit\n"
@@ -59,7 +59,7 @@ int cmd_compare(int argc, char **argv)
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--alpha")) {
-            if (cli_double_value(argc, argv, &i, "--alpha", 1e-12, 1 - 1e-12, &alpha, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--alpha", 1e-6, 0.5, &alpha, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--fail-if-slower")) {
             if (cli_double_value(argc, argv, &i, "--fail-if-slower", 0, 100, &slower_pct, err, sizeof err))
