@@ -9,7 +9,7 @@
  * Samples are placed and evaluated in s = 1 - c = 1 - cos x, never in c: a float cosine has
  * only 6e-8 of room below 1, so at n = 1e6 the whole epicentre (s <= 5.1e-7) is eight float
  * cosines, while a float s keeps 24 bits there. The models take s through brdf_eval_s (their
- * formulas are written in c - 1 = -s) and the reference lobe is exp(n log1p(-s)) (acc_lobe_s).
+ * formulas are written in c - 1 = -s) and the reference lobe is exp(n log1p(-s)) (brdf_pow_lobe_s).
  *   epicentre:   s uniform over [0, s_e], s_e = 1 - exp(-0.511/n) = -expm1(-0.511/n), both
  *                ends included;
  *   attenuation: s = s_e (1/s_e)^t, t = j/samples, j = 1..samples: geometric from s_e to 1
@@ -28,19 +28,8 @@
  */
 #define REAL float16
 #define RSCALAR float
-/* The reference lobe in s: exp(n ln(1 - s)). ln(1 - s) = log1p(-s), but PoCL's vector log1p
-   costs about as much as the rest of a sample, so it is written as ln u + e/u with u = 1 - s
-   rounded to float and e = (1 - u) - s its rounding error, which float gives exactly (both
-   differences are of close numbers, Sterbenz): ln(1 - s) = ln(u + e) = ln u + ln(1 + e/u),
-   and |e/u| <= 2^-24 leaves ln(1 + e/u) = e/u to 2^-49. As s -> 0, u = 1 and it is -s, as
-   log1p. At s = 1 (c = 0) it is ln 0 = -inf, and the lobe 0. The division needs no more than
-   a few bits (e/u is a 2^-24 correction): native_divide. */
-static float16 acc_lobe_s(float16 s, float16 n)
-{
-    const float16 u = 1.0f - s;
-    return exp(n * (log(u) + native_divide((1.0f - u) - s, fmax(u, FLT_MIN))));
-}
-#define BRDF_POW_LOBE_CS(c, s, n) acc_lobe_s((s), (n))
+/* The reference lobe in s: exp(n ln(1 - s)), brdf_models.h's brdf_pow_lobe_s. */
+#define BRDF_POW_LOBE_CS(c, s, n) brdf_pow_lobe_s((s), (n))
 #include "brdf_models.h"
 
 #define ACC_OUT_STRIDE 8

@@ -72,9 +72,27 @@ BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-0.511) / n); }
 #define BRDF_POW_LOBE(c, n) exp((n) * log(c))
 #endif
 BRDF_FN REAL brdf_pow_lobe(REAL c, REAL n) { return BRDF_POW_LOBE(c, n); }
-/* The lobe given both c and s = 1 - c. By default it is brdf_pow_lobe(c); the accuracy sweep,
- * which samples s itself because a float cosine has only 6e-8 of room below 1 (at n = 1e6 the
- * whole epicentre is eight float cosines), defines BRDF_POW_LOBE_CS as exp(n log1p(-s)). */
+/* The lobe in s = 1 - c, exp(n ln(1 - s)), for the kernels that place their samples in s (a
+ * float cosine has only 6e-8 of room below 1: at n = 1e6 the whole epicentre is eight float
+ * cosines). ln(1 - s) = log1p(-s), but PoCL's vector log1p costs about as much as the rest of
+ * a sweep's sample, so it is written as ln u + e/u with u = 1 - s rounded and e = (1 - u) - s
+ * its rounding error, which the arithmetic gives exactly (both differences are of close
+ * numbers, Sterbenz): ln(1 - s) = ln u + ln(1 + e/u), and |e/u| <= 2^-24 in float leaves
+ * ln(1 + e/u) = e/u to 2^-49. As s -> 0, u = 1 and it is -s; at s = 1 (c = 0) it is
+ * ln 0 = -inf and the lobe 0 (the divisor is kept off 0). e/u is a correction of 2^-24, so
+ * the device may divide approximately. */
+#ifdef __OPENCL_VERSION__
+#define BRDF_SMALL_DIVIDE(a, b) native_divide((a), (b))
+#else
+#define BRDF_SMALL_DIVIDE(a, b) ((a) / (b))
+#endif
+BRDF_FN REAL brdf_pow_lobe_s(REAL s, REAL n)
+{
+    REAL u = RC(1.0) - s;
+    return exp(n * (log(u) + BRDF_SMALL_DIVIDE((RC(1.0) - u) - s, fmax(u, RC(1e-30)))));
+}
+/* The lobe given both c and s = 1 - c. By default it is brdf_pow_lobe(c); a kernel that
+ * samples s defines BRDF_POW_LOBE_CS(c, s, n) as brdf_pow_lobe_s(s, n). */
 #ifndef BRDF_POW_LOBE_CS
 #define BRDF_POW_LOBE_CS(c, s, n) BRDF_POW_LOBE(c, n)
 #endif

@@ -34,31 +34,31 @@ T_TP='^(test_throughput|test_throughput_cli)$'
 T_GATE='^(test_gate|test_gate_papers)$'
 
 # ---- model constants and clamps (the header: device and host reference alike)
-mutant fvol-0.464        "$H" 'return brdf_quadratic(c, n * RC(0.463));' 'return brdf_quadratic(c, n * RC(0.464));' "$T_MODEL"
-mutant fq2-intercept     "$H" 'case BRDF_FQ2:      return brdf_quadratic(c, n * RC(0.448) + RC(0.099));' \
-                              'case BRDF_FQ2:      return brdf_quadratic(c, n * RC(0.448) + RC(0.0991));' "$T_MODEL"
+mutant fvol-0.464        "$H" 'n * RC(0.463));' 'n * RC(0.464));' "$T_MODEL"
+mutant fq2-intercept     "$H" 'case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));' \
+                              'case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.0991));' "$T_MODEL"
 mutant fq2n-offset       "$H" 'RC(0.214) * (RC(0.807) + n)' 'RC(0.214) * (RC(0.808) + n)' "$T_MODEL"
 mutant fvol64-xi         "$H" 'n * RC(29.0 / 64.0)' 'n * RC(30.0 / 64.0)' "$T_MODEL"
-mutant cq2-half          "$H" 'brdf_quadratic(c, n * RC(0.5))' 'brdf_quadratic(c, n * RC(0.5) + RC(0.001))' "$T_MODEL"
-mutant quad-clamp        "$H" 'REAL base = fmax(k * (c - RC(1.0)) + RC(1.0), RC(0.0));' \
-                              'REAL base = k * (c - RC(1.0)) + RC(1.0);' "$T_MODEL"
-mutant lyon-clamp        "$H" 'REAL base = fmax(RC(1.0) - n * (RC(1.0) - c) * RC(exp2(-(RSCALAR)k)), RC(0.0));' \
-                              'REAL base = RC(1.0) - n * (RC(1.0) - c) * RC(exp2(-(RSCALAR)k));' "$T_MODEL"
+mutant cq2-half          "$H" 'brdf_quadratic_s(s, n * RC(0.5))' 'brdf_quadratic_s(s, n * RC(0.5) + RC(0.001))' "$T_MODEL"
+mutant quad-clamp        "$H" 'REAL base = fmax(RC(1.0) - k * s, RC(0.0));' 'REAL base = RC(1.0) - k * s;' "$T_MODEL"
+mutant lyon-clamp        "$H" 'REAL base = fmax(RC(1.0) - n * s * RC(exp2(-(RSCALAR)k)), RC(0.0));' \
+                              'REAL base = RC(1.0) - n * s * RC(exp2(-(RSCALAR)k));' "$T_MODEL"
 mutant alpha-of-n        "$H" 'sqrt(RC(2.0) / (n + RC(2.0)))' 'sqrt(RC(2.0) / (n + RC(1.0)))' "$T_MODEL"
 mutant blinnn-norm       "$H" '(exp2(-n * RC(0.5)) + n)' '(exp2(-n * RC(0.25)) + n)' "$T_MODEL"
-mutant schlick-denom     "$H" 'return c / (n * (RC(1.0) - c) + c);' 'return c / (n * (RC(1.0) - c) + RC(1.0));' "$T_MODEL"
+mutant schlick-denom     "$H" 'case BRDF_SCHLICK:  return c / (n * s + c);' 'case BRDF_SCHLICK:  return c / (n * s + RC(1.0));' "$T_MODEL"
 mutant k_q-exponent      "$H" 'expm1(RSPLAT(log(q)) / n)' 'expm1(RSPLAT(log(q)) / (n + RC(0.01)))' "$T_MODEL"
 mutant negative-cos      "$H" '    c = fmax(c, RC(0.0));
-    switch (id) {' '    switch (id) {' "$T_MODEL"
+    return brdf_eval_cs(' '    return brdf_eval_cs(' "$T_MODEL"
 
 # ---- zone ends, on the host and on the device; sample placement
 mutant zone-end-host     'host/engine/accuracy*.c' 'return acos(exp(-0.511 / n));' 'return acos(exp(-0.512 / n));' "$T_ACC"
-mutant zone-end-device   'kernels/accuracy.cl' 'acos(exp(-0.511f / n));' 'acos(exp(-0.512f / n));' "$T_ACC"
+mutant zone-end-device   'kernels/accuracy.cl' 'const float s_e = -expm1(-0.511f / n);' 'const float s_e = -expm1(-0.512f / n);' "$T_ACC"
 mutant zone-end-field    'kernels/field.cl' 'acos(exp(-0.511f / n));' 'acos(exp(-0.512f / n));' '^test_report$'
 mutant zone-end-field-host 'host/engine/field*.c' 'return acos(exp(-0.511 / n));' 'return acos(exp(-0.512 / n));' '^test_report$'
-mutant samples-att-t4 'kernels/accuracy.cl' 'c = fmax(native_cos(x_e + width * (t * t)), 0.0f);' \
-                              'c = fmax(native_cos(x_e + width * (t * t * t * t)), 0.0f);' "$T_ACC"
-mutant samples-epi-short 'kernels/accuracy.cl' 'native_cos(x_e * (j * inv_last))' 'native_cos(0.9f * x_e * (j * inv_last))' "$T_ACC"
+mutant samples-att-ratio 'kernels/accuracy.cl' 'const float log2_r = -log2(s_e) / (float)samples;' \
+                              'const float log2_r = -log2(s_e) / (float)(2 * samples);' "$T_ACC"
+mutant samples-epi-short 'kernels/accuracy.cl' 'const float epi_step = s_e / (float)(samples - 1);' \
+                              'const float epi_step = 0.9f * s_e / (float)(samples - 1);' "$T_ACC"
 
 # ---- comparison directions: the range maxima and the gates
 mutant range-max-dir     'host/engine/accuracy*.c' 'if (e->value > out->value || (isnan(out->value) && isfinite(e->value)))' \

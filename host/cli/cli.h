@@ -15,6 +15,8 @@ int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
 /* The value of flag argv[*i] (either "--flag=value" or "--flag value"); advances *i.
  * Returns NULL and writes a message when the value is missing. `name` is the flag. */
 const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
+/* As cli_flag_value, for a path: an empty value is refused too. */
+const char *cli_path_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
 /* The value of flag argv[*i] parsed as cli_parse_double / cli_parse_long do; advances *i.
  * Returns 0 or EXIT_USAGE with a message (a missing value, or one out of [min, max]). */
 int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
@@ -34,11 +36,14 @@ struct device_options {
     int platform;            /* -1: the first platform with a device */
     int device;              /* -1: its first device */
     const char *kernel_dir;  /* NULL: the kernels embedded in the binary */
+    double timeout;          /* --timeout: seconds per launch; 0: not given (applied at once) */
 };
 #define DEVICE_OPTIONS_HELP \
     "  --platform N       OpenCL platform index (default: the first with a device; see brdfbench list)\n" \
     "  --device N         device index on that platform (default 0)\n" \
-    "  --kernel-dir DIR   read kernels/*.cl from DIR instead of the embedded copies\n"
+    "  --kernel-dir DIR   read kernels/*.cl from DIR instead of the embedded copies\n" \
+    "  --timeout SECONDS  deadline of each kernel launch, in [0.01, 604800] (default 300); past it the\n" \
+    "                     run stops with exit 3 and its unfinished outputs removed\n"
 void device_options_init(struct device_options *o);
 /* Consumes argv[*i] if it is a device flag: returns 1 (consumed), 0 (not a device flag) or
  * EXIT_USAGE negated (-2) with a message. Applies --kernel-dir at once. */

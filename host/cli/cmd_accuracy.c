@@ -23,7 +23,7 @@ static void accuracy_usage(FILE *f)
             "  error in the attenuation zone and over the whole range, each with where it occurs.\n"
             "  --models LIST      comma-separated models with parameters, e.g. cq2,fq:Q=0.7,lyon:k=4\n"
             "                     (default: all; see brdfbench list)\n"
-            "  --n-min X          smallest shininess (default 2; >= 0.001)\n"
+            "  --n-min X          smallest shininess (default 2; >= 0.1)\n"
             "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
             "  --n-step X         step of n (default 1; real values allowed; n-max is always included)\n"
             "  --samples N        samples per zone per n, a multiple of 16 in [16, %ld] (default %d)\n"
@@ -72,7 +72,7 @@ int cmd_accuracy(int argc, char **argv)
                 goto usage_error;
             models_given = 1;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
             if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,

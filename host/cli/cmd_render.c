@@ -227,7 +227,7 @@ int cmd_render(int argc, char **argv)
             if (!(o.bunny_path = cli_flag_value(argc, argv, &i, "--bunny-file", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else {
             snprintf(err, sizeof err, "unknown option '%s' (see brdfbench render --help)", a);

@@ -126,7 +126,7 @@ int cmd_throughput(int argc, char **argv)
                 goto usage_error;
             models_given = 1;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--reps")) {
             if (cli_long_value(argc, argv, &i, "--reps", 1, TP_MAX_REPS, &lv, err, sizeof err))

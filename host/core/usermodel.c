@@ -747,6 +747,8 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
     size_t one = 1;
     if (e == CL_SUCCESS)
         e = clEnqueueNDRangeKernel(s->queue, um->ref_point, 1, NULL, &one, NULL, 0, NULL, NULL);
+    if (e == CL_SUCCESS)
+        e = clsession_finish(s, um->ref_point, um->name);
     if (e == CL_SUCCESS) {
         if (um->ref_is_double) {
             e = clEnqueueReadBuffer(s->queue, out, CL_TRUE, 0, sizeof(double), &result, 0, NULL, NULL);

@@ -347,6 +347,15 @@ void accuracy_check_figures(const struct accuracy_result *r, double n_lo, double
     }
 }
 
+void accuracy_format_n(double n, char *buf, size_t len)
+{
+    for (int digits = 6; digits <= 9; ++digits) {
+        snprintf(buf, len, "%.*g", digits, n);
+        if (strtof(buf, NULL) == (float)n)
+            return;
+    }
+}
+
 const char *accuracy_status(const struct accuracy_result *r)
 {
     return !r->ok ? "failed" : r->device_disagrees ? "device_disagrees" : r->invalid_count ? "invalid_values" : "ok";
@@ -483,20 +492,24 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     if (!out->ok)
         used += (size_t)snprintf(out->reason + used, sizeof out->reason - used, "no finite error values; ");
     if (out->device_disagrees && used < sizeof out->reason) {
+        char nt[32];
+        accuracy_format_n(out->check.n, nt, sizeof nt);
         used += (size_t)snprintf(out->reason + used, sizeof out->reason - used,
-                                 "device and double disagree on %s at n = %.9g by %.3g (%.4g units of its 4th "
+                                 "device and double disagree on %s at n = %s by %.3g (%.4g units of its 4th "
                                  "significant digit; bound %g): the device may have missed the maximum; ",
-                                 out->check.figure, out->check.n, out->check.diff, out->check.units,
-                                 ACC_CHECK_BOUND_UNITS);
-        fprintf(stderr, "brdfbench: warning: %s: device and double disagree on %s at n = %.9g by %.4g units of its "
-                        "4th significant digit (bound %g)\n", m->label, out->check.figure, out->check.n,
-                out->check.units, ACC_CHECK_BOUND_UNITS);
+                                 out->check.figure, nt, out->check.diff, out->check.units, ACC_CHECK_BOUND_UNITS);
+        fprintf(stderr, "brdfbench: warning: %s: device and double disagree on %s at n = %s by %.4g units of its "
+                        "4th significant digit (bound %g)\n", m->label, out->check.figure, nt, out->check.units,
+                ACC_CHECK_BOUND_UNITS);
     }
-    if (out->invalid_count > 0 && used < sizeof out->reason)
+    if (out->invalid_count > 0 && used < sizeof out->reason) {
+        char nt[32];
+        accuracy_format_n(out->invalid_n, nt, sizeof nt);
         used += (size_t)snprintf(out->reason + used, sizeof out->reason - used,
-                                 "%lld model values were NaN, Inf or negative (first at n = %.9g, x = %.6g); they are "
+                                 "%lld model values were NaN, Inf or negative (first at n = %s, x = %.6g); they are "
                                  "excluded from the maxima; ",
-                                 out->invalid_count, out->invalid_n, out->invalid_x);
+                                 out->invalid_count, nt, out->invalid_x);
+    }
     if (used >= 2 && used < sizeof out->reason)
         out->reason[used - 2] = '\0';   /* the last "; " */
     const char *note = model_eval_note(m);
@@ -550,8 +563,8 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
     size_t local = sweep_local_size(count, a->s->compute_units);
     size_t global = ((size_t)count + local - 1) / local * local;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
-    CL_CHECK_GOTO(clFinish(a->s->queue), done);
+    if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
+        goto done;
     *device_seconds = cl_event_seconds(ev);
     if (raw)
         CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),

@@ -10,7 +10,10 @@
 #define ACC_DEFAULT_SAMPLES 4096
 #define ACC_MIN_SAMPLES 16
 #define ACC_MAX_SAMPLES (1L << 22)
-#define ACC_MIN_N 1e-3      /* below it exp(-0.511/n) underflows and the attenuation zone is empty */
+/* Below 0.1 the epicentre ends within e^(-5.11) of c = 0 and the lobe falls from e^-0.511 to 0
+ * inside the last few float steps of s = 1 - c (below n = 0.03 the zone end itself rounds to
+ * s = 1, where the lobe is 0): no float grid resolves it. */
+#define ACC_MIN_N 0.1
 #define ACC_MAX_N 1e6
 /* The device-vs-double check (accuracy_run): a figure is trusted when every per-n device value
  * behind it, recomputed in double at the device's own input, differs by at most half a unit in
@@ -119,6 +122,9 @@ int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const flo
  * max_abs over the attenuation zone and over the whole range (each NAN when not wanted). */
 void accuracy_check_figures(const struct accuracy_result *r, double n_lo, double n_hi, double epi_rel,
                             double att_abs, double whole_abs, struct acc_check *out);
+/* n as the device sees it (a float), in the fewest digits that give that float back
+ * (0.1, 999000.5, 1e+06; up to 9). */
+void accuracy_format_n(double n, char *buf, size_t len);
 /* The JSON status word of a result: ok, invalid_values, device_disagrees or failed. */
 const char *accuracy_status(const struct accuracy_result *r);
 

@@ -152,14 +152,17 @@ void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count)
         else snprintf(att, sizeof att, "%9s", "-");
         if (isfinite(r->whole.value)) snprintf(whole, sizeof whole, "%9.4g", r->whole.value);
         else snprintf(whole, sizeof whole, "%9s", "-");
-        /* n as the device sees it (a float): 9 significant digits show every one. */
+        /* n as the device sees it (a float), in as many digits as it takes (up to 9). */
         char en[24] = "       -", ex[24] = "       -", an[24] = "       -", ax[24] = "       -";
+        char nt[24];
         if (isfinite(r->epicentre.value)) {
-            snprintf(en, sizeof en, "%8.9g", r->epicentre.n);
+            accuracy_format_n(r->epicentre.n, nt, sizeof nt);
+            snprintf(en, sizeof en, "%8s", nt);
             snprintf(ex, sizeof ex, "%8.4g", r->epicentre.x);
         }
         if (isfinite(r->attenuation.value)) {
-            snprintf(an, sizeof an, "%8.9g", r->attenuation.n);
+            accuracy_format_n(r->attenuation.n, nt, sizeof nt);
+            snprintf(an, sizeof an, "%8s", nt);
             snprintf(ax, sizeof ax, "%8.4g", r->attenuation.x);
         }
         fprintf(f, "%-22s %-8s %s %s %s  %s %s %s  %s  %8.3g\n", r->model.label, r->reference.info->id, epi, en, ex,

@@ -199,6 +199,7 @@ int field_run(struct field_ctx *f, const struct model_spec *m, const struct fiel
     CL_CHECK_GOTO(clSetKernelArg(kernel, 11, sizeof ba, &ba), done);
     size_t global[2] = {(size_t)cols, (size_t)rows};
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(f->s->queue, kernel, 2, NULL, global, NULL, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clsession_finish(f->s, kernel, m->label), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(f->s->queue, be, CL_TRUE, 0, cells * sizeof(float), out->epi_rel, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(f->s->queue, ba, CL_TRUE, 0, cells * sizeof(float), out->att_abs, 0, NULL, NULL), done);
     out->device_seconds = cl_event_seconds(ev);

@@ -6,6 +6,7 @@
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "outdir.h"
+#include "programs.h"
 #include "usermodel.h"
 
 #include <errno.h>
@@ -256,11 +257,21 @@ int gate_set_parse_text(const char *text, size_t len, const char *name, const ch
     }
     for (size_t k = 0; k < root->count; ++k)
         if (strcmp(root->keys[k], "gates") != 0 && strcmp(root->keys[k], "description") != 0 &&
-            strcmp(root->keys[k], "schema") != 0) {
+            strcmp(root->keys[k], "schema") != 0 && strcmp(root->keys[k], "timeout") != 0) {
             rc = jr_fail(&doc, &root->items[k], err, errlen,
-                         "unknown member \"%.40s\" (accepted: gates, description, schema)", root->keys[k]);
+                         "unknown member \"%.40s\" (accepted: gates, description, schema, timeout)", root->keys[k]);
             goto done;
         }
+    /* "timeout": the deadline of each launch, as --timeout (which wins when both are given). */
+    if ((rc = member(&doc, root, "timeout", JR_NUM, "", &v, err, errlen)) != 0)
+        goto done;
+    if (v && !(v->num >= 0.01 && v->num <= CLSESSION_MAX_TIMEOUT)) {
+        rc = jr_fail(&doc, v, err, errlen, "\"timeout\" %g is out of range (accepted: seconds in [0.01, %g])", v->num,
+                     CLSESSION_MAX_TIMEOUT);
+        goto done;
+    }
+    if (v)
+        clsession_set_timeout(v->num, TIMEOUT_FILE);
     if ((rc = member(&doc, root, "schema", JR_STR, "", &v, err, errlen)) != 0)
         goto done;
     if (v && strcmp(v->str, GATES_SCHEMA) != 0) {
@@ -661,9 +672,11 @@ static void gate_judge(struct gate *g, double tolerance)
         }
         if (g->check.exceeded) {
             size_t used = strlen(why);
+            char nt[32];
+            accuracy_format_n(g->check.n, nt, sizeof nt);
             snprintf(why + used, sizeof why - used,
-                     "%sdevice and double disagree on %s at n = %.9g by %.4g units of its 4th significant digit "
-                     "(bound %g)%s", used ? "; " : "", g->check.figure, g->check.n, g->check.units,
+                     "%sdevice and double disagree on %s at n = %s by %.4g units of its 4th significant digit "
+                     "(bound %g)%s", used ? "; " : "", g->check.figure, nt, g->check.units,
                      ACC_CHECK_BOUND_UNITS, g->accept_device_disagreement ? ", accepted by the gate" : "");
             if (!g->accept_device_disagreement)
                 fail = 1;
@@ -671,9 +684,11 @@ static void gate_judge(struct gate *g, double tolerance)
         if (g->metric != GATE_INVALID_COUNT && g->invalid_count > 0) {
             fail = 1;
             size_t used = strlen(why);
+            char nt[32];
+            accuracy_format_n(g->invalid_n, nt, sizeof nt);
             snprintf(why + used, sizeof why - used,
-                     "%s%lld model values were NaN, Inf or negative (first at n = %g, x = %.6g)",
-                     used ? "; " : "", g->invalid_count, g->invalid_n, g->invalid_x);
+                     "%s%lld model values were NaN, Inf or negative (first at n = %s, x = %.6g)",
+                     used ? "; " : "", g->invalid_count, nt, g->invalid_x);
         }
     }
     if (g->baseline_status == GATE_BASELINE_OK || g->baseline_status == GATE_BASELINE_REGRESSION) {
@@ -775,7 +790,7 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
                 fprintf(progress, "albedo: %s n=[%g,%g] step %g (%.2f s)\n", g->model.label, g->grid.n_min,
                         g->grid.n_max, g->grid.n_step, wall_seconds() - t0);
         } else {
-            if ((rc = accuracy_prepare(&actx, &g->model)) != 0)   /* the reference of a user model */
+            if ((rc = programs_host(s, &g->model)) != 0)   /* the model's double evaluation (programs.h) */
                 goto done;
             gate_energy(g);
             if (progress)

@@ -33,10 +33,12 @@ static void gate_line(const struct gate *g, char *buf, size_t len)
 {
     char bound[96], where[96] = "", margin[64] = "", base[128] = "", claimed[64] = "";
     bound_text(g, bound, sizeof bound);
+    char nt[32];
+    accuracy_format_n(g->at_n, nt, sizeof nt);   /* as many digits as the float n needs */
     if (isfinite(g->at_n) && isfinite(g->at_x))
-        snprintf(where, sizeof where, " at n=%g x=%.4g", g->at_n, g->at_x);
+        snprintf(where, sizeof where, " at n=%s x=%.4g", nt, g->at_x);
     else if (isfinite(g->at_n))
-        snprintf(where, sizeof where, " at n=%g", g->at_n);
+        snprintf(where, sizeof where, " at n=%s", nt);
     if (isfinite(g->margin) && isfinite(g->margin_rel))
         snprintf(margin, sizeof margin, "; margin %+.3g (%+.3g%%)", g->margin, 100.0 * g->margin_rel);
     else if (isfinite(g->margin))

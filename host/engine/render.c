@@ -314,7 +314,7 @@ static int launch(struct render_device *d, cl_kernel k, double *seconds)
     size_t global = d->global_size, local = 1;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(d->s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev),
                   done);
-    CL_CHECK_GOTO(clWaitForEvents(1, &ev), done);
+    CL_CHECK_GOTO(clsession_finish(d->s, k, NULL), done);
     if (seconds)
         *seconds = cl_event_seconds(ev);
 done:

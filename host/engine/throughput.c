@@ -321,7 +321,7 @@ static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_
     e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, &r->local, 0, NULL, &ev);
     if (e == CL_SUCCESS) {
         *call = "clFinish";
-        e = clFinish(r->s->queue);
+        e = clsession_finish(r->s, r->k, NULL);
     }
     *wall_s = wall_seconds() - t0;
     *event_s = (e == CL_SUCCESS) ? cl_event_seconds(ev) : NAN;
