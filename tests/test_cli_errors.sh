@@ -200,7 +200,7 @@ t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " t
 t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
 t 2 "^brdfbench compare: expected BASELINE RUN \[RUN \.\.\.\]" compare
 t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help\)" compare --bogus
-t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-12, 1\]" compare a b --alpha 2
+t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-06, 0.5\]" compare a b --alpha 2
 t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
 t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
 t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
