@@ -548,3 +548,75 @@ done:
         fit_report_free(r);
     return rc;
 }
+
+/* ---- Beaudoin and Guardado's A, by their own criterion -------------------------------------- */
+
+#define BG_GRID 2048
+#define BG_BISECT_ITER 100
+
+struct bg_ctx {
+    double n, a, sign;
+    int m;
+};
+
+/* sign (f - c^n) at c, f = max(0, A c + 1 - A)^m (the header's power family, in double). */
+static double bg_signed(double c, void *p)
+{
+    const struct bg_ctx *b = p;
+    double base = fmax(b->a * (c - 1.0) + 1.0, 0.0), f = 1.0;
+    for (int i = 0; i < b->m; ++i)
+        f *= base;
+    return b->sign * (f - reference_eval(c, b->n));
+}
+
+/* The largest f - c^n and c^n - f over c in [0, 1]: a grid dense near c = 1 (where the lobe
+   lives at large n), each side's best sample polished with Brent. */
+static void bg_sides(double n, double a, int m, double *over, double *under)
+{
+    double best[2] = { 0.0, 0.0 };
+    int bj[2] = { 0, 0 };
+    struct bg_ctx ctx = { n, a, 1.0, m };
+    for (int j = 0; j <= BG_GRID; ++j) {
+        double t = 1.0 - (double)j / BG_GRID, c = 1.0 - t * t * t;
+        double h = bg_signed(c, &ctx);
+        if (h > best[0]) { best[0] = h; bj[0] = j; }
+        if (-h > best[1]) { best[1] = -h; bj[1] = j; }
+    }
+    for (int side = 0; side < 2; ++side) {
+        int j = bj[side];
+        if (best[side] <= 0)
+            continue;
+        double t0 = 1.0 - (double)(j > 0 ? j - 1 : 0) / BG_GRID, t1 = 1.0 - (double)j / BG_GRID,
+               t2 = 1.0 - (double)(j < BG_GRID ? j + 1 : j) / BG_GRID;
+        ctx.sign = side == 0 ? 1.0 : -1.0;
+        double x, v;
+        if (refine_maximum(bg_signed, &ctx, 1.0 - t0 * t0 * t0, 1.0 - t1 * t1 * t1, 1.0 - t2 * t2 * t2, &x, &v) == 0)
+            best[side] = fmax(best[side], v);
+    }
+    *over = best[0];
+    *under = best[1];
+}
+
+int fit_bg_exact_a(double n, int m, double *a_out, double *max_abs_out)
+{
+    /* A larger A lowers f everywhere on [0, 1): the over side falls and the under side grows,
+       so their balance is a bisection on A (equivalent to one on their k, which A grows with). */
+    if (!(n > 0) || m < 1)
+        return -1;
+    double lo = 0.0, hi = fmax(n, 1.0), over, under;
+    bg_sides(n, hi, m, &over, &under);
+    if (over > under)
+        return -1;
+    for (int it = 0; it < BG_BISECT_ITER && hi - lo > 1e-14 * hi; ++it) {
+        double a = 0.5 * (lo + hi);
+        bg_sides(n, a, m, &over, &under);
+        if (over > under)
+            lo = a;
+        else
+            hi = a;
+    }
+    *a_out = 0.5 * (lo + hi);
+    bg_sides(n, *a_out, m, &over, &under);
+    *max_abs_out = fmax(over, under);
+    return 0;
+}

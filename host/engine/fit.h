@@ -102,4 +102,9 @@ void fit_report_free(struct fit_report *r);
 /* Checks the options (range, step, cap, samples). Returns 0 or EXIT_USAGE with a message. */
 int fit_options_check(const struct fit_options *o, char *err, size_t errlen);
 
+/* Beaudoin and Guardado 2002: for f = max(0, A c + 1 - A)^m against c^n, the A that makes the
+ * largest positive and negative errors of f - c^n over c in [0, 1] equal (bisection on A), and
+ * that largest |f - c^n|. Returns 0, or -1 when no A in (0, max(n, 1)] balances them. */
+int fit_bg_exact_a(double n, int m, double *a_out, double *max_abs_out);
+
 #endif
