@@ -228,14 +228,16 @@ BRDF_FN REAL brdf_bitpow(REAL c, REAL n)
 }
 #endif
 
-/* Frozen minimax members of the families above, fitted by `brdfbench fit` over n in [2, 1000]
- * (docs/frontier.md gives the commands and their figures). */
-#define BRDF_CUBEFIT_A 0.3
-#define BRDF_CUBEFIT_B 0.1
-#define BRDF_QUARTFIT_A 0.23
-#define BRDF_QUARTFIT_B 0.1
-#define BRDF_GAUSSFIT_A 1.0
-#define BRDF_GAUSSFIT_B 0.5
+/* Frozen minimax members of the families above: the least largest epicentre max delta over
+ * n in [2, 1000] step 1, as found by `brdfbench fit --model pow3|pow4|gauss` (docs/frontier.md
+ * gives the commands and their figures: pow4fit 0.567% / 0.0723, pow3fit 0.760% / 0.0809,
+ * gaussfit 1.100% / 0.1299 for max delta / max Delta). */
+#define BRDF_CUBEFIT_A 0.3106866803
+#define BRDF_CUBEFIT_B 0.07545118726
+#define BRDF_QUARTFIT_A 0.2371428753
+#define BRDF_QUARTFIT_B 0.05221691603
+#define BRDF_GAUSSFIT_A 1.020199565
+#define BRDF_GAUSSFIT_B 0.1774327237
 
 #ifdef BRDF_HAVE_USER_MODEL
 /* Supplied by a user model file compiled at run time. */

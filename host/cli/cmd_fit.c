@@ -20,7 +20,14 @@ static void fit_usage(FILE *f)
             "  --n-min X          smallest shininess (default 2; > 0)\n"
             "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
             "  --n-step X         step of n (default 1; n-max is always included)\n"
-            "  --max-abs X        cap on the attenuation zone's max Delta, 0 < X <= 1 (default: none)\n"
+            "  --max-abs X        cap on the attenuation zone's max Delta, 1e-6 <= X <= 1 (default: none)\n"
+            "  --model ID         fit another family instead: a registry or user model with one or two\n"
+            "                     continuous parameters (gauss, pow3, pow4, fq, quad, a user model)\n"
+            "  --power M          fit the power family ((a n + b)(c-1) + 1)^M, 1 <= M <= 16\n"
+            "  --objective WHAT   max_rel (epicentre max delta, default) or max_abs (attenuation max Delta)\n"
+            "  --max-rel X        with --objective max_abs: cap on the epicentre's max delta, 1e-6 <= X <= 1\n"
+            "                     A family fit prints the trade-off between the two figures. Exit 1 when no\n"
+            "                     member of the family meets the cap (fit.json says why).\n"
             "  --samples N        samples per zone of the device sweeps, a multiple of 16 (default %d)\n"
             "  --out DIR          write fit.json into DIR\n"
             "                     (default: a new folder results/<date-time>/, with results/latest)\n"
@@ -56,7 +63,30 @@ int cmd_fit(int argc, char **argv)
             if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--max-abs")) {
-            if (cli_double_value(argc, argv, &i, "--max-abs", 1e-300, 1.0, &opt.max_abs_cap, err, sizeof err))
+            if (cli_double_value(argc, argv, &i, "--max-abs", FIT_CAP_MIN, 1.0, &opt.max_abs_cap, err, sizeof err))
+                goto usage_error;
+        } else if (cli_flag_is(a, "--model")) {
+            if (!(opt.model = cli_flag_value(argc, argv, &i, "--model", err, sizeof err)))
+                goto usage_error;
+        } else if (cli_flag_is(a, "--power")) {
+            long m;
+            if (cli_long_value(argc, argv, &i, "--power", 1, FIT_POWER_M_MAX, &m, err, sizeof err))
+                goto usage_error;
+            opt.power_m = (int)m;
+        } else if (cli_flag_is(a, "--objective")) {
+            const char *v = cli_flag_value(argc, argv, &i, "--objective", err, sizeof err);
+            if (!v)
+                goto usage_error;
+            if (strcmp(v, "max_rel") == 0)
+                opt.objective = FIT_MAX_REL;
+            else if (strcmp(v, "max_abs") == 0)
+                opt.objective = FIT_MAX_ABS;
+            else {
+                snprintf(err, sizeof err, "--objective: '%s' is not an objective (accepted: max_rel, max_abs)", v);
+                goto usage_error;
+            }
+        } else if (cli_flag_is(a, "--max-rel")) {
+            if (cli_double_value(argc, argv, &i, "--max-rel", FIT_CAP_MIN, 1.0, &opt.max_rel_cap, err, sizeof err))
                 goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
             if (cli_long_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &opt.samples, err,
@@ -82,12 +112,15 @@ int cmd_fit(int argc, char **argv)
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
-    rc = fit_run(&s, run_dir, &opt, quiet, NULL);
-    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
+    if (fit_wants_family(&opt))
+        rc = fit_family_run(&s, run_dir, &opt, quiet, NULL);
+    else
+        rc = fit_run(&s, run_dir, &opt, quiet, NULL);
+    if ((!rc || rc == EXIT_GATE_FAIL) && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
         rc = EXIT_RUNTIME;
     }
-    if (!rc && !quiet)
+    if ((!rc || rc == EXIT_GATE_FAIL) && !quiet)
         printf("written: %s/fit.json\n", run_dir);
     clsession_close(&s);
     return rc;
