@@ -24,6 +24,7 @@ static const struct command commands[] = {
     { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
     { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants" },
     /* more commands below, one per line */
+    { "frontier", cmd_frontier, "cost against accuracy of every lobe approximation: the Pareto front, plots, which to ship" },
 };
 
 static void usage(FILE *f)
