@@ -191,7 +191,6 @@ char *frontier_markdown(const struct frontier_report *r)
 {
     struct md_buf b;
     md_init(&b);
-    md_printf(&b, "## Which lobe to ship\n\n");
     md_printf(&b, "Cost is the device's evaluations/s with n uniform (median of %d launches; min-max spreads that "
                   "overlap count as equal), accuracy the largest epicentre delta and attenuation Delta "
                   "(frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png).\n\n", r->opt.reps);

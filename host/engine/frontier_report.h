@@ -14,7 +14,8 @@ int frontier_write_csv(const char *path, const struct frontier_report *r, char *
 int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen);
 /* The table on f. */
 void frontier_print(FILE *f, const struct frontier_report *r);
-/* "Which lobe to ship": the front and the most accurate model per budget (malloc'd). */
+/* The body of "Which lobe to ship" (no heading): the table, the front and the most accurate
+ * model per budget (malloc'd; NULL when out of memory). */
 char *frontier_markdown(const struct frontier_report *r);
 
 #endif
