@@ -130,7 +130,8 @@ int frontier_write_plots(const char *dir, const struct frontier_report *r, char 
         int n = 0;
         for (int i = 0; i < r->count; ++i) {
             const struct frontier_row *row = &r->rows[i];
-            x[n] = fig == 0 ? row->max_rel[0] : row->max_abs[0];
+            /* a reference is exact up to rounding: drawn at the axis floor, not at 1e-16 */
+            x[n] = row->kind == FR_REFERENCE ? 0.0 : fig == 0 ? row->max_rel[0] : row->max_abs[0];
             y[n] = row->rate[0][1];
             labels[n] = row->spec.label;
             kinds[n] = row->kind == FR_REFERENCE ? DRAW_MARK_REFERENCE

@@ -1124,6 +1124,11 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
         std::sort(fr.begin(), fr.end(), [&](int a, int b) { return px(a).x < px(b).x; });
         for (size_t k = 1; k < fr.size(); k++)
             cv::line(img, px(fr[k - 1]), px(fr[k]), palette(3), 2, cv::LINE_AA);
+        /* labels placed greedily: the first of a few spots beside the point that overlaps no
+           label or mark placed before it */
+        std::vector<cv::Rect> taken;
+        for (int i = 0; i < plot->count; i++)
+            if (std::isfinite(plot->y[i]) && plot->y[i] > 0) taken.push_back(cv::Rect(px(i) - cv::Point(6, 6), cv::Size(13, 13)));
         for (int i = 0; i < plot->count; i++) {
             if (!(std::isfinite(plot->y[i]) && plot->y[i] > 0)) continue;
             cv::Point p = px(i);
@@ -1139,7 +1144,21 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
                 cv::circle(img, p, 5, col, cv::FILLED, cv::LINE_AA);
             }
             if (plot->front[i]) cv::circle(img, p, 9, palette(3), 2, cv::LINE_AA);
-            put(img, plot->labels[i], p.x + 10, p.y - 8 - 10 * (i % 2), S_TICK, -1, 0);
+            cv::Size ts = text_size(plot->labels[i], S_TICK);
+            static const int dx[] = { 10, 10, -10, -10, 10, -10, 10, -10, 0, 0 };
+            static const int dy[] = { -8, 8, -8, 8, -22, -22, 22, 22, -34, 34 };
+            int best = 0;
+            for (int k = 0; k < 10; k++) {
+                int x0 = dx[k] > 0 ? p.x + dx[k] : dx[k] < 0 ? p.x + dx[k] - ts.width : p.x - ts.width / 2;
+                cv::Rect box(x0, p.y + dy[k] - ts.height / 2 - 1, ts.width, ts.height + 2);
+                bool clear = box.x >= left && box.x + box.width <= W - right && box.y >= top && box.y + box.height <= H - bottom;
+                for (const cv::Rect &o : taken)
+                    if (clear && (box & o).area() > 0) clear = false;
+                if (clear) { best = k; break; }
+            }
+            int x0 = dx[best] > 0 ? p.x + dx[best] : dx[best] < 0 ? p.x + dx[best] - ts.width : p.x - ts.width / 2;
+            taken.push_back(cv::Rect(x0, p.y + dy[best] - ts.height / 2 - 1, ts.width, ts.height + 2));
+            put(img, plot->labels[i], x0, p.y + dy[best], S_TICK, -1, 0);
         }
         /* legend */
         int lx = left + 12, ly = top + 14;
