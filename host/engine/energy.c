@@ -1,10 +1,10 @@
 /* energy.c - device quadrature (eq. 11 terms, directional albedo), closed forms at normal
  * incidence, the reciprocity check, and energy.json. See energy.h. */
 #include "energy.h"
+#include "energy_report.h"
 #include "accuracy.h"
 #include "context.h"
 #include "exitcodes.h"
-#include "jsonw.h"
 #include "outdir.h"
 
 #include <gsl/gsl_integration.h>
@@ -22,11 +22,12 @@ static const double two_pi = 6.28318530717958647692;
 #define EQ11_OUTER_ORDER 32
 #define EQ11_INNER_ORDER 32
 #define RECIP_PAIRS 8192
+/* Agreement expected between the float device quadrature and a closed form, and between a
+ * quadrature and its refinement (panels split, twice the azimuth points). */
+#define ENERGY_TOLERANCE 2e-5
 
 /* The configurations of the albedo tables. */
-static const double energy_n[] = { 2, 4, 10, 100, 1000 };
-#define ENERGY_N_COUNT ((int)(sizeof energy_n / sizeof energy_n[0]))
-#define ENERGY_THETA_COUNT 18  /* 0, 5, ..., 85 degrees */
+static const double energy_n[ENERGY_N_COUNT] = { 2, 4, 10, 100, 1000 };
 
 int integrate_open(struct integrate_ctx *c, struct cl_session *s)
 {
@@ -488,92 +489,35 @@ done:
     return rc;
 }
 
-/* ---- energy_run: tables, checks, energy.json ----------------------------------------------- */
-
-/* Agreement expected between the float device quadrature and a closed form, and between a
- * quadrature and its refinement (panels split, twice the azimuth points). */
-#define ENERGY_TOLERANCE 2e-5
-
-static void jw_vec3(struct jw *w, const char *key, const double v[3])
-{
-    jw_key(w, key);
-    jw_arr_begin(w);
-    for (int i = 0; i < 3; ++i)
-        jw_num(w, v[i]);
-    jw_arr_end(w);
-}
-
-static void jw_recip(struct jw *w, const char *key, const struct recip_worst *r)
-{
-    jw_key(w, key);
-    jw_obj_begin(w);
-    jw_kv_num(w, "max_diff_of_peak", r->diff);
-    if (r->eval_error > 0)
-        jw_kv_num(w, "max_eval_error_of_peak", r->eval_error);
-    jw_kv_num(w, "n", r->n);
-    jw_vec3(w, "N", r->nrm);
-    jw_vec3(w, "L", r->l);
-    jw_vec3(w, "V", r->v);
-    jw_kv_num(w, "f_LV", r->f_lv);
-    jw_kv_num(w, "f_VL", r->f_vl);
-    jw_obj_end(w);
-}
-
-static const char *mode_name(int mode)
-{
-    switch (mode) {
-    case ALBEDO_PSI: return "lobe f(cos psi) around R";
-    case ALBEDO_HALF: return "lobe f(cos theta_h) as the BRDF";
-    case ALBEDO_MICRO: return "D / (4 cos theta_i cos theta_o), F = G = 1";
-    case ALBEDO_DCOS: return "D cos theta_h over the whole half-vector hemisphere";
-    }
-    return "?";
-}
+/* ---- energy_run: tables and checks (energy_report.c writes them) -------------------------- */
 
 int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct energy_summary *summary)
 {
-    struct energy_summary local;
-    struct energy_summary *sum = summary ? summary : &local;
+    struct energy_summary *local = NULL;
+    struct energy_summary *sum = summary;
+    if (!sum) {
+        local = calloc(1, sizeof *local);
+        if (!local)
+            return EXIT_RUNTIME;
+        sum = local;
+    }
     memset(sum, 0, sizeof *sum);
     double t0 = wall_seconds();
     struct integrate_ctx ic;
     int rc = integrate_open(&ic, s);
-    if (rc)
+    if (rc) {
+        free(local);
         return rc;
+    }
     enum { CFG = ENERGY_N_COUNT * ENERGY_THETA_COUNT };
-    double cn[CFG], cti[CFG], val[CFG], fine[CFG];
-    for (int i = 0; i < ENERGY_N_COUNT; ++i)
+    double cn[CFG], cti[CFG], fine[CFG];
+    for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+        sum->table_n[i] = energy_n[i];
         for (int j = 0; j < ENERGY_THETA_COUNT; ++j) {
             cn[i * ENERGY_THETA_COUNT + j] = (double)(float)energy_n[i];
             cti[i * ENERGY_THETA_COUNT + j] = 5.0 * j * BRDF_PI_D / 180.0;
         }
-    struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", ENERGY_SCHEMA);
-    jw_context_begin(&w, s, "");
-    jw_obj_end(&w);
-    jw_key(&w, "albedo");
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "definition", "a(theta_i) = int over the upper hemisphere of f(L, V) cos(theta_o) dw_o, "
-                                "N = z, L = (sin theta_i, 0, cos theta_i)");
-    jw_kv_str(&w, "quadrature", "device (float): composite Gauss-Legendre, 16 nodes per panel, in the lobe's polar "
-                                "angle (psi around R, or theta_h around N), panels from x_e(n)/4 doubling to pi/2 "
-                                "plus the integrand's kinks; azimuth exact (psi) or 1024-point trapezoid (theta_h); "
-                                "polar sum in double on the host");
-    jw_kv_num(&w, "tolerance", ENERGY_TOLERANCE);
-    jw_key(&w, "n");
-    jw_arr_begin(&w);
-    for (int i = 0; i < ENERGY_N_COUNT; ++i)
-        jw_num(&w, energy_n[i]);
-    jw_arr_end(&w);
-    jw_key(&w, "theta_i_deg");
-    jw_arr_begin(&w);
-    for (int j = 0; j < ENERGY_THETA_COUNT; ++j)
-        jw_num(&w, 5.0 * j);
-    jw_arr_end(&w);
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
+    }
     sum->all_closed_forms_agree = 1;
     sum->quadrature_tolerance = ENERGY_TOLERANCE;
     /* Every normalised or microfacet model of the registry; microfacet ones twice (their
@@ -600,6 +544,7 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
                 nn = dn;
                 tt = dt;
             }
+            double *val = ms->albedo;
             if ((rc = albedo_device_ex(&ic, &ms->spec, mode, nn, tt, count, 0, val)) != 0 ||
                 (rc = albedo_device_ex(&ic, &ms->spec, mode, nn, tt, count, 1, fine)) != 0)
                 goto done;
@@ -613,50 +558,26 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
                     ms->max_at_theta_deg = tt[i] * 180.0 / BRDF_PI_D;
                 }
             }
-            jw_obj_begin(&w);
-            jw_kv_str(&w, "model", ms->spec.label);
-            jw_kv_str(&w, "integrand", mode_name(mode));
-            jw_key(&w, "albedo");
-            jw_arr_begin(&w);
-            int rows = mode == ALBEDO_DCOS ? ENERGY_N_COUNT : ENERGY_N_COUNT;
             int cols = mode == ALBEDO_DCOS ? 1 : ENERGY_THETA_COUNT;
-            for (int i = 0; i < rows; ++i) {
-                jw_arr_begin(&w);
-                for (int j = 0; j < cols; ++j)
-                    jw_num(&w, val[i * cols + j]);
-                jw_arr_end(&w);
-            }
-            jw_arr_end(&w);
-            jw_kv_num(&w, "max_albedo", ms->max_albedo);
-            jw_kv_num(&w, "max_at_n", ms->max_at_n);
-            jw_kv_num(&w, "max_at_theta_i_deg", ms->max_at_theta_deg);
-            jw_kv_num(&w, "refine_change", ms->refine_change);
-            jw_key(&w, "normal_incidence");
-            jw_arr_begin(&w);
+            ms->cols = cols;
             double worst = -1;
             for (int i = 0; i < ENERGY_N_COUNT; ++i) {
                 double cf;
                 const char *why;
                 double dev = val[i * cols];
-                jw_obj_begin(&w);
-                jw_kv_num(&w, "n", nn[i * cols]);
-                jw_kv_num(&w, "device", dev);
+                ms->normal_n[i] = nn[i * cols];
+                ms->normal_closed[i] = NAN;
+                ms->normal_derivation[i] = NULL;
                 if (albedo_closed_form_normal(&ms->spec, mode, nn[i * cols], &cf, &why)) {
                     double d = fabs(dev - cf);
-                    jw_kv_num(&w, "closed_form", cf);
-                    jw_kv_num(&w, "diff", d);
-                    jw_kv_str(&w, "derivation", why);
+                    ms->normal_closed[i] = cf;
+                    ms->normal_derivation[i] = why;
                     if (d > worst) {
                         worst = d;
                         ms->normal_diff_at_n = nn[i * cols];
                     }
-                } else {
-                    jw_kv_num(&w, "closed_form", NAN);
-                    jw_kv_str(&w, "reason", "no closed form derived");
                 }
-                jw_obj_end(&w);
             }
-            jw_arr_end(&w);
             if (worst >= 0) {
                 ms->normal_max_diff = worst;
                 if (mode == ALBEDO_DCOS)
@@ -664,116 +585,28 @@ int energy_run(struct cl_session *s, const char *out_dir, int quiet, struct ener
                 if (worst > ENERGY_TOLERANCE)
                     sum->all_closed_forms_agree = 0;
             }
-            jw_kv_num(&w, "normal_incidence_max_diff", ms->normal_max_diff);
-            jw_kv_bool(&w, "energy_conserving", ms->max_albedo <= 1.0 + ENERGY_TOLERANCE);
-            if (mode == ALBEDO_MICRO)
-                jw_kv_str(&w, "note", "D alone, without the masking term G: the albedo grows towards grazing "
-                                      "incidence; the distribution's own check is its normalisation (D cos)");
-            jw_obj_end(&w);
             sum->count++;
         }
     }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
 
-    jw_key(&w, "reciprocity");
-    jw_obj_begin(&w);
     sum->recip_pairs = RECIP_PAIRS;
-    jw_kv_int(&w, "pairs", RECIP_PAIRS);
-    jw_kv_str(&w, "what", "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
-                          "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
-                          "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
-                          "difference relative to the lobe's peak f(c = 1, n)");
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
     for (int mi = 0; mi < models_count() && sum->recip_count < ENERGY_MAX_MODELS; ++mi) {
         struct recip_summary *rs = &sum->recip[sum->recip_count];
         model_spec_default(models_at(mi), &rs->spec);
         if ((rc = reciprocity_check(&ic, &rs->spec, RECIP_PAIRS, &rs->device, &rs->host)) != 0)
             goto done;
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "model", rs->spec.label);
-        jw_kv_str(&w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
-        jw_recip(&w, "device_worst", &rs->device);
-        jw_recip(&w, "host_worst", &rs->host);
-        jw_obj_end(&w);
         sum->recip_count++;
     }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
 
-    jw_key(&w, "reciprocity_image_pass");
-    jw_obj_begin(&w);
     if ((rc = reciprocity_image_pass(s, RECIP_PAIRS, sum->pass, ENERGY_MAX_MODELS, &sum->pass_count)) != 0)
         goto done;
-    jw_kv_int(&w, "pairs", RECIP_PAIRS);
-    jw_kv_str(&w, "what", "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
-                          "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
-                          "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
-                          "reference (render_shade_ref)");
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
-    for (int i = 0; i < sum->pass_count; ++i) {
-        const struct recip_pass_summary *q = &sum->pass[i];
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "model", q->spec.label);
-        jw_kv_int(&w, "shading_mode", q->mode);
-        jw_kv_int(&w, "pairs_lit_both_ways", q->lit);
-        jw_kv_num(&w, "device_max_rel_diff", q->device_worst);
-        jw_kv_num(&w, "host_max_rel_diff", q->host_worst);
-        jw_kv_num(&w, "worst_n", q->n);
-        jw_vec3(&w, "worst_N", q->nrm);
-        jw_vec3(&w, "worst_L", q->l);
-        jw_vec3(&w, "worst_V", q->v);
-        jw_kv_num(&w, "worst_S_LV", q->s_lv);
-        jw_kv_num(&w, "worst_S_VL", q->s_vl);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
     sum->seconds = wall_seconds() - t0;
-    jw_kv_num(&w, "seconds", sum->seconds);
-    jw_obj_end(&w);
-    if (summary && !w.out.failed) {
-        /* the caller may write the text later, beside its own files */
-        sum->json = malloc(w.out.len + 2);
-        if (sum->json) {
-            memcpy(sum->json, w.out.s, w.out.len);
-            memcpy(sum->json + w.out.len, "\n", 2);
-        }
-    }
-    if (out_dir) {
-        char path[4200], err[512];
-        path_join(path, sizeof path, out_dir, "energy.json");
-        if (jw_write_file(&w, path, err, sizeof err)) {
-            fprintf(stderr, "brdfbench: %s\n", err);
-            rc = EXIT_RUNTIME;
-            goto done;
-        }
-    }
-    if (!quiet) {
-        printf("energy: directional albedo on the device, n in {2, 4, 10, 100, 1000}, theta_i 0..85 deg step 5\n");
-        printf("  %-10s %-48s %10s %7s %6s  %12s  %10s\n", "model", "integrand", "max albedo", "at n", "at deg",
-               "normal: |dev-closed|", "refine chg");
-        for (int i = 0; i < sum->count; ++i) {
-            const struct energy_model_summary *m = &sum->models[i];
-            printf("  %-10s %-48s %10.6f %7g %6g  %12.3g  %10.3g\n", m->spec.label, mode_name(m->mode), m->max_albedo,
-                   m->max_at_n, m->max_at_theta_deg, m->normal_max_diff, m->refine_change);
-        }
-        printf("reciprocity: %ld random (N, L, V) per model; worst |f(L,V) - f(V,L)| / peak\n", sum->recip_pairs);
-        for (int i = 0; i < sum->recip_count; ++i) {
-            const struct recip_summary *r = &sum->recip[i];
-            printf("  %-22s device (float) %9.3g at n = %-8.4g (its evaluation error %9.3g)  host (double) %9.3g\n",
-                   r->spec.label, r->device.diff, r->device.n, r->device.eval_error, r->host.diff);
-        }
-        printf("reciprocity of the image pass (kernels/shade.cl, eye and light swapped): worst relative difference\n");
-        for (int i = 0; i < sum->pass_count; ++i)
-            printf("  %-22s mode %d  device %9.3g  host %9.3g  (%ld pairs lit both ways)\n", sum->pass[i].spec.label,
-                   sum->pass[i].mode, sum->pass[i].device_worst, sum->pass[i].host_worst, sum->pass[i].lit);
-    }
+    rc = energy_write(s, sum, summary != NULL, out_dir);
+    if (rc == 0 && !quiet)
+        energy_print_table(stdout, sum);
 done:
-    jw_free(&w);
     integrate_close(&ic);
+    free(local);
     return rc;
 }
 

@@ -29,6 +29,8 @@ enum albedo_mode { ALBEDO_PSI = 0, ALBEDO_HALF = 1, ALBEDO_MICRO = 2, ALBEDO_DCO
 #define ENERGY_MAX_NODES (ENERGY_GL_ORDER * ENERGY_MAX_PANELS)
 #define ENERGY_PHI_COUNT 1024     /* azimuth points of the half-vector modes */
 #define ENERGY_MAX_MODELS 24
+#define ENERGY_N_COUNT 5          /* albedo tables: n in {2, 4, 10, 100, 1000} */
+#define ENERGY_THETA_COUNT 18     /* and theta_i = 0, 5, ..., 85 degrees */
 
 /* The program of kernels/integrate.cl, built once. */
 struct integrate_ctx {
@@ -87,12 +89,18 @@ struct energy_model_summary {
     double normal_max_diff, normal_diff_at_n;   /* device vs closed form at normal incidence; NAN: none */
     double dcos_max_diff;                       /* microfacet normalisation vs 1; NAN: not microfacet */
     double refine_change;                       /* largest change when the quadrature is refined */
+    int cols;                                   /* ENERGY_THETA_COUNT, or 1 (ALBEDO_DCOS) */
+    double albedo[ENERGY_N_COUNT * ENERGY_THETA_COUNT];  /* rows: n, columns: theta_i */
+    double normal_n[ENERGY_N_COUNT];            /* normal incidence: n as the device took it */
+    double normal_closed[ENERGY_N_COUNT];       /* the closed form there; NAN: none derived */
+    const char *normal_derivation[ENERGY_N_COUNT];
 };
 struct recip_summary {
     struct model_spec spec;
     struct recip_worst device, host;
 };
 struct energy_summary {
+    double table_n[ENERGY_N_COUNT];
     int count;
     struct energy_model_summary models[ENERGY_MAX_MODELS];
     int recip_count;

@@ -11,6 +11,7 @@
 #include "jsonw.h"
 #include "outdir.h"
 #include "raster.h"
+#include "render_report.h"
 #include "report.h"
 
 #include <errno.h>
@@ -32,22 +33,6 @@
 #undef REAL
 #undef RSCALAR
 
-/* Host copies of the kernel's constants (kernels/shade.cl); the tests compare the device's
-   output with the host's exact curves, so a mismatch shows there. */
-#define SHADE_LOBE_PSI 0
-#define SHADE_LOBE_THETA_H 1
-#define SHADE_CT_BECKMANN 2
-#define SHADE_CT_GGX 3
-#define DISPLAY_MIN_EXP (-16)
-#define DISPLAY_MAX_EXP 8
-#define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
-#define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
-
-/* Work-items of one launch: each walks a contiguous run of pixels, so a few per core
-   balance the load without barriers; the same count for every size keeps one launch
-   shape (PoCL compiles per shape). */
-#define RENDER_WORK_ITEMS 256
-
 /* World direction towards the light (upper left, in front), for every scene. */
 static const double light_dir_world[3] = {-0.45, 0.6, 0.66};
 /* Where the mesh cameras look from (right, above, in front), and their field of view. */
@@ -56,9 +41,9 @@ static const double world_up[3] = {0.0, 1.0, 0.0};
 #define MESH_FOV_DEG 30.0
 #define MESH_FILL 0.92
 
-static const char *const scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
-static const char *const mode_names[4] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
-                                          "cook-torrance-ggx"};
+const char *const render_scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
+const char *const render_mode_names[RENDER_MODE_COUNT] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
+                                                          "cook-torrance-ggx"};
 
 static void set_err(char *err, size_t errlen, const char *fmt, ...)
 {
@@ -448,9 +433,9 @@ static int scene_load(int kind, const struct render_options *o, struct scene_dat
                     "%s; where an image excludes /usr/share/doc from installs, take the file out "
                     "of the package: apt-get download %s && dpkg-deb -x %s_*.deb DIR; "
                     "scripts/setup.sh does both)",
-                    scene_names[kind], path, pkg, pkg, pkg, pkg);
+                    render_scene_names[kind], path, pkg, pkg, pkg, pkg);
         else
-            set_err(err, errlen, "%s scene: cannot read %s: %s", scene_names[kind], path,
+            set_err(err, errlen, "%s scene: cannot read %s: %s", render_scene_names[kind], path,
                     strerror(errno));
         return is_default ? EXIT_RUNTIME : EXIT_USAGE;
     }
@@ -549,27 +534,6 @@ static void model_region(const struct scene_data *sd, const struct render_option
 }
 
 /* ------------------------------------------------------------------ metrics */
-
-struct image_metrics {
-    size_t pixels;             /* foreground pixels in the region */
-    double max_abs;
-    int max_x, max_y;          /* frame coordinates of the largest error */
-    double mean_abs, rmse;
-    double psnr_db;            /* 8-bit RGB; NAN when the images are identical */
-    double share_above;        /* share of pixels with error above the threshold */
-    double peak_reference;     /* largest reference specular radiance in the region */
-};
-
-struct reference_check {
-    int samples;
-    double max_abs;            /* |device - double| of the specular radiance */
-    double value_at_max;       /* the double value there */
-    double peak;               /* largest double specular radiance among the samples */
-    double relative_to_peak;   /* max_abs / max(peak, 1e-30) */
-    int max_code;              /* largest 8-bit difference to the exact display colour */
-    double bound;              /* stated bound on max_abs */
-    int within;
-};
 
 /* Error, metrics and the error picture for rows [y0, y1). errimg: (y1-y0) x w floats. */
 static void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsigned *rgba_m,
@@ -718,45 +682,6 @@ static void remove_tree(const char *dir)
 
 /* ------------------------------------------------------------------ the run */
 
-struct model_result {
-    int mode;
-    int y0, y1;                /* frame rows its figures cover */
-    struct model_spec ref;
-    struct image_metrics metrics;
-    struct reference_check check;
-    char image[256], error[256], contact[256];  /* paths relative to out_dir */
-};
-
-struct timed_entry {
-    struct model_spec spec;
-    int mode;
-    int is_model;              /* in the user's list (not only a reference) */
-    char name[MODEL_LABEL_MAX + 32];
-    double med, min, max;      /* seconds */
-    double copy_med;           /* the copy kernel's median, interleaved with these reps */
-};
-
-struct size_timing {
-    int w, h;
-    size_t foreground;
-    double copy_med;           /* median over every copy launch at this size */
-    int nentries;
-    struct timed_entry entries[2 * RENDER_MAX_MODELS];
-};
-
-struct scene_result {
-    int kind;
-    int done;
-    char source[600];
-    size_t triangles, patches, foreground;
-    double raster_seconds;
-    struct render_light light;
-    struct model_result models[RENDER_MAX_MODELS];
-    char grid_contact[256];
-    int ntimings;
-    struct size_timing timings[RENDER_MAX_TIME_SIZES];
-};
-
 struct shaded_cache {
     int n;
     struct {
@@ -832,7 +757,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
             goto oom;
     }
     char scene_dir[4200];
-    path_join(scene_dir, sizeof scene_dir, stage_dir, scene_names[sd->kind]);
+    path_join(scene_dir, sizeof scene_dir, stage_dir, render_scene_names[sd->kind]);
     if (o->write_images && outdir_prepare(scene_dir, NULL, err, errlen) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
@@ -889,7 +814,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
         if (o->write_images) {
             char base[MODEL_LABEL_MAX + 8], name[300], path[4600], title[400];
             label_to_file(m->label, base, sizeof base);
-            const char *sc = scene_names[sd->kind];
+            const char *sc = render_scene_names[sd->kind];
             snprintf(mr->image, sizeof mr->image, "render/%s/%s.png", sc, base);
             snprintf(mr->error, sizeof mr->error, "render/%s/%s_error.png", sc, base);
             snprintf(mr->contact, sizeof mr->contact, "render/%s/%s_contact.png", sc, base);
@@ -899,7 +824,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
                 goto io_fail;
             snprintf(title, sizeof title,
                      "%s: |%s - %s| specular radiance (%s), max %.3g mean %.3g", sc, m->label,
-                     mr->ref.label, mode_names[mr->mode], mr->metrics.max_abs,
+                     mr->ref.label, render_mode_names[mr->mode], mr->metrics.max_abs,
                      mr->metrics.mean_abs);
             snprintf(name, sizeof name, "%s_error.png", base);
             path_join(path, sizeof path, scene_dir, name);
@@ -916,7 +841,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
         }
         if (o->verbose) {
             printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB  ref-check %s (%.2g of peak)\n",
-                   scene_names[sd->kind], m->label, mr->metrics.max_abs, mr->metrics.mean_abs,
+                   render_scene_names[sd->kind], m->label, mr->metrics.max_abs, mr->metrics.mean_abs,
                    isfinite(mr->metrics.psnr_db) ? mr->metrics.psnr_db : INFINITY,
                    mr->check.within ? "ok" : "OUT OF BOUND", mr->check.relative_to_peak);
             fflush(stdout);
@@ -942,7 +867,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
     }
     goto done;
 oom:
-    set_err(err, errlen, "%s: out of memory for %dx%d images", scene_names[sd->kind], w, h);
+    set_err(err, errlen, "%s: out of memory for %dx%d images", render_scene_names[sd->kind], w, h);
     rc = EXIT_RUNTIME;
     goto done;
 io_fail:
@@ -951,7 +876,7 @@ io_fail:
 fail:
     if (!err[0])
         set_err(err, errlen, "%s: OpenCL error in the image pass (see above)",
-                scene_names[sd->kind]);
+                render_scene_names[sd->kind]);
     rc = rc ? rc : EXIT_RUNTIME;
 done:
     cache_free(&cache);
@@ -999,7 +924,7 @@ static void timed_entries(const struct render_options *o, struct size_timing *st
             if (mode == render_shading_mode(sp))
                 snprintf(te->name, sizeof te->name, "%s", sp->label);
             else
-                snprintf(te->name, sizeof te->name, "%s@%s", sp->label, mode_names[mode]);
+                snprintf(te->name, sizeof te->name, "%s@%s", sp->label, render_mode_names[mode]);
         }
 }
 
@@ -1060,7 +985,7 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
         te->max = tm[reps - 1];
         te->copy_med = median(tc, reps);
         if (!(te->med > 0) || !(te->copy_med > 0)) {
-            set_err(err, errlen, "%s: the profiling timer gave no time for %s", scene_names[sd->kind],
+            set_err(err, errlen, "%s: the profiling timer gave no time for %s", render_scene_names[sd->kind],
                     te->name);
             rc = EXIT_RUNTIME;
             goto done;
@@ -1071,7 +996,7 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
 fail:
     if (!err[0])
         set_err(err, errlen, "%s: OpenCL error in the timing pass at %dx%d (see above)",
-                scene_names[sd->kind], w, h);
+                render_scene_names[sd->kind], w, h);
     rc = rc ? rc : EXIT_RUNTIME;
 done:
     free(tm);
@@ -1085,328 +1010,6 @@ done:
         clReleaseMemObject(gbuf);
     gbuffer_free(&g);
     return rc;
-}
-
-static double mpix(const struct size_timing *st, double seconds)
-{
-    return (double)st->w * st->h / seconds * 1e-6;
-}
-
-/* The entry of a model's reference in the same shading mode. */
-static const struct timed_entry *reference_entry(const struct size_timing *st,
-                                                 const struct timed_entry *te)
-{
-    struct model_spec ref;
-    model_reference_spec(&te->spec, &ref);
-    for (int k = 0; k < st->nentries; k++)
-        if (st->entries[k].mode == te->mode && strcmp(st->entries[k].spec.label, ref.label) == 0)
-            return &st->entries[k];
-    return NULL;
-}
-
-/* A lobe model (not Cook-Torrance): the speed target applies to these. */
-static int is_lobe_entry(const struct timed_entry *te)
-{
-    return te->mode == SHADE_LOBE_PSI || te->mode == SHADE_LOBE_THETA_H;
-}
-
-#define SPEED_TARGET_FRACTION 0.5
-
-/* "key": [a, b] and "key": [x, y, z] */
-static void jw_kv_int_pair(struct jw *w, const char *key, long long a, long long b)
-{
-    jw_key(w, key);
-    jw_arr_begin(w);
-    jw_int(w, a);
-    jw_int(w, b);
-    jw_arr_end(w);
-}
-
-static void jw_kv_vec3(struct jw *w, const char *key, const double *v)
-{
-    jw_key(w, key);
-    jw_arr_begin(w);
-    for (int c = 0; c < 3; c++)
-        jw_num(w, v[c]);
-    jw_arr_end(w);
-}
-
-static void write_metrics_json(struct jw *w, const struct image_metrics *mt, double threshold)
-{
-    jw_key(w, "metrics");
-    jw_obj_begin(w);
-    jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
-    jw_kv_int(w, "pixels", (long long)mt->pixels);
-    jw_kv_num(w, "max_abs", mt->max_abs);
-    jw_kv_int_pair(w, "max_at_pixel", mt->max_x, mt->max_y);
-    jw_kv_num(w, "mean_abs", mt->mean_abs);
-    jw_kv_num(w, "rmse", mt->rmse);
-    jw_kv_num(w, "psnr_db", mt->psnr_db);
-    jw_kv_str(w, "psnr_basis", "8-bit sRGB colours of the foreground, peak 255");
-    if (!isfinite(mt->psnr_db))
-        jw_kv_str(w, "psnr_status", mt->pixels ? "identical images: PSNR is infinite"
-                                               : "no foreground pixels");
-    jw_kv_num(w, "threshold", threshold);
-    jw_kv_num(w, "share_above_threshold", mt->share_above);
-    jw_kv_num(w, "peak_reference", mt->peak_reference);
-    jw_obj_end(w);
-}
-
-static int write_json(const char *path, const struct cl_session *s, const struct render_options *o,
-                      const struct scene_result *res, int display_code_error, char *err,
-                      size_t errlen)
-{
-    struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", "brdfbench.render/1");
-    jw_context_begin(&w, s, "");
-    jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
-    jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
-              "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
-    jw_obj_end(&w);
-
-    jw_key(&w, "options");
-    jw_obj_begin(&w);
-    jw_kv_int_pair(&w, "image_size", o->width, o->height);
-    jw_key(&w, "timing_sizes");
-    jw_arr_begin(&w);
-    for (int i = 0; i < o->ntime_sizes; i++) {
-        jw_arr_begin(&w);
-        jw_int(&w, o->time_w[i]);
-        jw_int(&w, o->time_h[i]);
-        jw_arr_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_kv_int(&w, "reps", o->reps);
-    jw_kv_int(&w, "warmup", o->warmup);
-    jw_key(&w, "sphere_shininess");
-    jw_arr_begin(&w);
-    for (int i = 0; i < o->ncols; i++)
-        jw_num(&w, o->sphere_n[i]);
-    jw_arr_end(&w);
-    jw_kv_num(&w, "mesh_shininess", o->mesh_n);
-    jw_kv_int(&w, "teapot_tessellation", o->tess);
-    jw_kv_str(&w, "light", o->point_light ? "point" : "directional");
-    jw_kv_num(&w, "exposure", o->exposure);
-    jw_kv_num(&w, "kd", o->kd);
-    jw_kv_num(&w, "ks", o->ks);
-    jw_kv_num(&w, "ambient", o->ambient);
-    jw_kv_num(&w, "schlick_f0", o->f0);
-    jw_kv_vec3(&w, "tint", o->tint);
-    jw_kv_int(&w, "reference_samples_per_model", o->ref_samples);
-    jw_obj_end(&w);
-
-    jw_key(&w, "display");
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "curve", "channel k: sRGB8(1 - exp(-exposure tint_k radiance))");
-    jw_kv_int(&w, "table_bins", DISPLAY_BINS);
-    jw_kv_int(&w, "table_max_code_error", display_code_error);
-    jw_obj_end(&w);
-
-    jw_key(&w, "scenes");
-    jw_arr_begin(&w);
-    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
-        const struct scene_result *sr = &res[si];
-        if (!sr->done)
-            continue;
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "scene", scene_names[si]);
-        jw_kv_str(&w, "source", sr->source);
-        if (si == RENDER_TEAPOT) {
-            jw_kv_str(&w, "package", RENDER_TEAPOT_PACKAGE);
-            jw_kv_int(&w, "patches", (long long)sr->patches);
-        } else if (si == RENDER_BUNNY) {
-            jw_kv_str(&w, "package", RENDER_BUNNY_PACKAGE);
-        }
-        if (si != RENDER_SPHERES)
-            jw_kv_int(&w, "triangles", (long long)sr->triangles);
-        jw_key(&w, "light");
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "kind", sr->light.point ? "point" : "directional");
-        jw_kv_vec3(&w, sr->light.point ? "position" : "direction", sr->light.light);
-        jw_kv_num(&w, "intensity", sr->light.intensity);
-        jw_kv_vec3(&w, "eye", sr->light.eye);
-        jw_obj_end(&w);
-        jw_key(&w, "image");
-        jw_obj_begin(&w);
-        jw_kv_int(&w, "width", o->width);
-        jw_kv_int(&w, "height", o->height);
-        jw_kv_int(&w, "foreground_pixels", (long long)sr->foreground);
-        jw_kv_num(&w, "gbuffer_seconds", sr->raster_seconds);
-        if (sr->grid_contact[0])
-            jw_kv_str(&w, "contact_sheet", sr->grid_contact);
-        jw_obj_end(&w);
-        jw_key(&w, "models");
-        jw_arr_begin(&w);
-        for (int mi = 0; mi < o->nmodels; mi++) {
-            const struct model_result *mr = &sr->models[mi];
-            const struct model_spec *m = &o->models[mi];
-            jw_obj_begin(&w);
-            jw_kv_str(&w, "model", m->label);
-            jw_kv_str(&w, "family", m->info->family);
-            jw_kv_str(&w, "reference", mr->ref.label);
-            jw_kv_str(&w, "shading", mode_names[mr->mode]);
-            if (si == RENDER_SPHERES) {
-                jw_kv_int_pair(&w, "grid_rows", mr->y0, mr->y1);
-            }
-            if (mr->image[0]) {
-                jw_key(&w, "files");
-                jw_obj_begin(&w);
-                jw_kv_str(&w, "image", mr->image);
-                jw_kv_str(&w, "error_image", mr->error);
-                jw_kv_str(&w, "contact_sheet", mr->contact);
-                jw_obj_end(&w);
-            }
-            write_metrics_json(&w, &mr->metrics, o->threshold);
-            jw_key(&w, "double_reference_check");
-            jw_obj_begin(&w);
-            jw_kv_int(&w, "samples", mr->check.samples);
-            jw_kv_num(&w, "max_abs_specular_difference", mr->check.max_abs);
-            jw_kv_num(&w, "double_value_there", mr->check.value_at_max);
-            jw_kv_num(&w, "peak_specular", mr->check.peak);
-            jw_kv_num(&w, "relative_to_peak", mr->check.relative_to_peak);
-            jw_kv_num(&w, "bound", mr->check.bound);
-            jw_kv_str(&w, "bound_rule", "1e-3 of the sampled peak specular radiance; 8-bit "
-                      "colours within 2 codes of the exact curve");
-            jw_kv_int(&w, "max_code_difference", mr->check.max_code);
-            jw_kv_bool(&w, "within_bound", mr->check.within);
-            jw_obj_end(&w);
-            jw_obj_end(&w);
-        }
-        jw_arr_end(&w);
-        jw_key(&w, "timings");
-        jw_arr_begin(&w);
-        for (int ti = 0; ti < sr->ntimings; ti++) {
-            const struct size_timing *st = &sr->timings[ti];
-            jw_obj_begin(&w);
-            jw_kv_int(&w, "width", st->w);
-            jw_kv_int(&w, "height", st->h);
-            jw_kv_int(&w, "foreground_pixels", (long long)st->foreground);
-            jw_key(&w, "copy");
-            jw_obj_begin(&w);
-            jw_kv_int(&w, "bytes_per_pixel", RENDER_DEVICE_BYTES_PER_PIXEL);
-            jw_kv_num(&w, "median_ms", st->copy_med * 1e3);
-            jw_kv_num(&w, "mpixel_per_s", mpix(st, st->copy_med));
-            jw_kv_num(&w, "gbyte_per_s",
-                      (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
-            jw_obj_end(&w);
-            jw_key(&w, "entries");
-            jw_arr_begin(&w);
-            for (int k = 0; k < st->nentries; k++) {
-                const struct timed_entry *te = &st->entries[k];
-                const struct timed_entry *re = reference_entry(st, te);
-                double frac = te->copy_med / te->med;
-                jw_obj_begin(&w);
-                jw_kv_str(&w, "name", te->name);
-                jw_kv_str(&w, "model", te->spec.label);
-                jw_kv_str(&w, "shading", mode_names[te->mode]);
-                jw_kv_bool(&w, "selected_model", te->is_model);
-                jw_kv_num(&w, "median_ms", te->med * 1e3);
-                jw_kv_num(&w, "min_ms", te->min * 1e3);
-                jw_kv_num(&w, "max_ms", te->max * 1e3);
-                jw_kv_num(&w, "mpixel_per_s", mpix(st, te->med));
-                jw_kv_num(&w, "copy_median_ms_interleaved", te->copy_med * 1e3);
-                jw_kv_num(&w, "fraction_of_copy", frac);
-                if (is_lobe_entry(te)) {
-                    jw_kv_num(&w, "target_fraction", SPEED_TARGET_FRACTION);
-                    jw_kv_bool(&w, "target_met", frac >= SPEED_TARGET_FRACTION);
-                }
-                if (re) {
-                    jw_kv_str(&w, "reference", re->name);
-                    jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);
-                }
-                jw_obj_end(&w);
-            }
-            jw_arr_end(&w);
-            jw_obj_end(&w);
-        }
-        jw_arr_end(&w);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
-}
-
-/* The markdown summary: per scene a table of the models' figures. */
-static char *summary_markdown(const struct render_options *o, const struct scene_result *res,
-                              const struct cl_session *s)
-{
-    struct md_buf b;
-    md_init(&b);
-    md_printf(&b, "Device: %s (%s). Images %dx%d; timings: median of %d launches after %d "
-              "warm-up, each after a copy-kernel launch over the same %d bytes per pixel.\n\n",
-              s->device_name, s->platform_version, o->width, o->height, o->reps, o->warmup,
-              RENDER_DEVICE_BYTES_PER_PIXEL);
-    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
-        const struct scene_result *sr = &res[si];
-        if (!sr->done)
-            continue;
-        md_printf(&b, "### %s\n\n", scene_names[si]);
-        if (sr->grid_contact[0])
-            md_printf(&b, "![%s contact sheet](%s)\n\n", scene_names[si], sr->grid_contact);
-        const struct size_timing *big = sr->ntimings ? &sr->timings[sr->ntimings - 1] : NULL;
-        md_printf(&b, "| model | reference | max abs error | mean abs error | PSNR (dB) | > %g | "
-                  "ref check |", o->threshold);
-        if (big)
-            md_printf(&b, " Mpixel/s at %dx%d | of copy | vs reference |", big->w, big->h);
-        md_printf(&b, "\n|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
-        for (int mi = 0; mi < o->nmodels; mi++) {
-            const struct model_result *mr = &sr->models[mi];
-            char psnr[32];
-            if (isfinite(mr->metrics.psnr_db))
-                snprintf(psnr, sizeof psnr, "%.1f", mr->metrics.psnr_db);
-            else
-                snprintf(psnr, sizeof psnr, "identical");
-            md_printf(&b, "| %s | %s | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
-                      mr->ref.label, mr->metrics.max_abs, mr->metrics.mean_abs, psnr,
-                      100.0 * mr->metrics.share_above, mr->check.within ? "ok" : "out of bound");
-            if (big) {
-                const struct timed_entry *te = NULL;
-                for (int k = 0; k < big->nentries; k++)
-                    if (big->entries[k].is_model &&
-                        strcmp(big->entries[k].spec.label, o->models[mi].label) == 0)
-                        te = &big->entries[k];
-                const struct timed_entry *re = te ? reference_entry(big, te) : NULL;
-                if (te)
-                    md_printf(&b, " %.0f | %.0f%% | %.2fx |", mpix(big, te->med),
-                              100.0 * te->copy_med / te->med, re ? re->med / te->med : NAN);
-            }
-            md_printf(&b, "\n");
-        }
-        if (big)
-            md_printf(&b, "\nCopy kernel at %dx%d: %.0f Mpixel/s (%.1f GB/s).\n", big->w, big->h,
-                      mpix(big, big->copy_med),
-                      (double)big->w * big->h * RENDER_DEVICE_BYTES_PER_PIXEL / big->copy_med *
-                          1e-9);
-        md_printf(&b, "\n");
-    }
-    if (b.failed) {
-        md_free(&b);
-        return NULL;
-    }
-    return b.s;
-}
-
-static void print_timings(const struct scene_result *sr)
-{
-    for (int ti = 0; ti < sr->ntimings; ti++) {
-        const struct size_timing *st = &sr->timings[ti];
-        printf("  %s %dx%d: copy %.0f Mpixel/s (%.1f GB/s)\n", scene_names[sr->kind], st->w, st->h,
-               mpix(st, st->copy_med),
-               (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
-        for (int k = 0; k < st->nentries; k++) {
-            const struct timed_entry *te = &st->entries[k];
-            const struct timed_entry *re = reference_entry(st, te);
-            printf("    %-34s %8.1f Mpixel/s  %5.1f%% of copy  %5.2fx vs %s\n", te->name,
-                   mpix(st, te->med), 100.0 * te->copy_med / te->med,
-                   re ? re->med / te->med : NAN, re ? re->name : "-");
-        }
-    }
-    fflush(stdout);
 }
 
 int render_run(struct cl_session *s, const struct render_options *o, const char *out_dir,
@@ -1468,7 +1071,7 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
         sr->triangles = sd.mesh.ntris;
         sr->patches = sd.patches;
         if (o->verbose) {
-            printf("%s: %s", scene_names[si], sd.source);
+            printf("%s: %s", render_scene_names[si], sd.source);
             if (si != RENDER_SPHERES)
                 printf(" (%zu triangles)", sd.mesh.ntris);
             printf("\n");
@@ -1488,7 +1091,7 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
             printf("  %s: device vs double reference on %d sampled pixels: max |difference| of "
                    "the specular radiance %.2g of the peak (bound 1e-3), colours within %d "
                    "code%s of the exact display curve: %s\n",
-                   scene_names[si], samples, worst, codes, codes == 1 ? "" : "s",
+                   render_scene_names[si], samples, worst, codes, codes == 1 ? "" : "s",
                    within ? "within the bound" : "OUT OF BOUND");
         }
         for (int ti = 0; rc == 0 && ti < o->ntime_sizes; ti++) {
@@ -1501,8 +1104,8 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
             goto done;
         sr->done = 1;
         if (o->verbose) {
-            print_timings(sr);
-            printf("  (%s: %.1f s)\n", scene_names[si], wall_seconds() - t0);
+            render_print_timings(sr);
+            printf("  (%s: %.1f s)\n", render_scene_names[si], wall_seconds() - t0);
         }
     }
 
@@ -1531,12 +1134,12 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
     stage[0] = '\0';
     char json_path[4300];
     path_join(json_path, sizeof json_path, out_dir, "render.json");
-    if (write_json(json_path, s, o, res, dev.display_code_error, err, errlen) != 0) {
+    if (render_write_json(json_path, s, o, res, dev.display_code_error, err, errlen) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }
     if (summary_md)
-        *summary_md = summary_markdown(o, res, s);
+        *summary_md = render_summary_markdown(o, res, s);
 done:
     if (stage[0])
         remove_tree(stage);

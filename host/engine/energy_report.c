@@ -1,0 +1,218 @@
+/* energy_report.c - energy.json and the printed tables of the energy checks (energy.c
+ * measures them into struct energy_summary; this file writes them). */
+#include "energy_report.h"
+
+#include "context.h"
+#include "exitcodes.h"
+#include "jsonw.h"
+#include "outdir.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void jw_vec3(struct jw *w, const char *key, const double v[3])
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int i = 0; i < 3; ++i)
+        jw_num(w, v[i]);
+    jw_arr_end(w);
+}
+
+static void jw_recip(struct jw *w, const char *key, const struct recip_worst *r)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, "max_diff_of_peak", r->diff);
+    if (r->eval_error > 0)
+        jw_kv_num(w, "max_eval_error_of_peak", r->eval_error);
+    jw_kv_num(w, "n", r->n);
+    jw_vec3(w, "N", r->nrm);
+    jw_vec3(w, "L", r->l);
+    jw_vec3(w, "V", r->v);
+    jw_kv_num(w, "f_LV", r->f_lv);
+    jw_kv_num(w, "f_VL", r->f_vl);
+    jw_obj_end(w);
+}
+
+static const char *mode_name(int mode)
+{
+    switch (mode) {
+    case ALBEDO_PSI: return "lobe f(cos psi) around R";
+    case ALBEDO_HALF: return "lobe f(cos theta_h) as the BRDF";
+    case ALBEDO_MICRO: return "D / (4 cos theta_i cos theta_o), F = G = 1";
+    case ALBEDO_DCOS: return "D cos theta_h over the whole half-vector hemisphere";
+    }
+    return "?";
+}
+
+int energy_write(const struct cl_session *s, struct energy_summary *sum, int keep_json, const char *out_dir)
+{
+    int rc = 0;
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", ENERGY_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_obj_end(&w);
+    jw_key(&w, "albedo");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "definition", "a(theta_i) = int over the upper hemisphere of f(L, V) cos(theta_o) dw_o, "
+                                "N = z, L = (sin theta_i, 0, cos theta_i)");
+    jw_kv_str(&w, "quadrature", "device (float): composite Gauss-Legendre, 16 nodes per panel, in the lobe's polar "
+                                "angle (psi around R, or theta_h around N), panels from x_e(n)/4 doubling to pi/2 "
+                                "plus the integrand's kinks; azimuth exact (psi) or 1024-point trapezoid (theta_h); "
+                                "polar sum in double on the host");
+    jw_kv_num(&w, "tolerance", sum->quadrature_tolerance);
+    jw_key(&w, "n");
+    jw_arr_begin(&w);
+    for (int i = 0; i < ENERGY_N_COUNT; ++i)
+        jw_num(&w, sum->table_n[i]);
+    jw_arr_end(&w);
+    jw_key(&w, "theta_i_deg");
+    jw_arr_begin(&w);
+    for (int j = 0; j < ENERGY_THETA_COUNT; ++j)
+        jw_num(&w, 5.0 * j);
+    jw_arr_end(&w);
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int mi = 0; mi < sum->count; ++mi) {
+        const struct energy_model_summary *ms = &sum->models[mi];
+        int cols = ms->cols;
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", ms->spec.label);
+        jw_kv_str(&w, "integrand", mode_name(ms->mode));
+        jw_key(&w, "albedo");
+        jw_arr_begin(&w);
+        for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+            jw_arr_begin(&w);
+            for (int j = 0; j < cols; ++j)
+                jw_num(&w, ms->albedo[i * cols + j]);
+            jw_arr_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_kv_num(&w, "max_albedo", ms->max_albedo);
+        jw_kv_num(&w, "max_at_n", ms->max_at_n);
+        jw_kv_num(&w, "max_at_theta_i_deg", ms->max_at_theta_deg);
+        jw_kv_num(&w, "refine_change", ms->refine_change);
+        jw_key(&w, "normal_incidence");
+        jw_arr_begin(&w);
+        for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+            double dev = ms->albedo[i * cols];
+            jw_obj_begin(&w);
+            jw_kv_num(&w, "n", ms->normal_n[i]);
+            jw_kv_num(&w, "device", dev);
+            if (ms->normal_derivation[i]) {
+                jw_kv_num(&w, "closed_form", ms->normal_closed[i]);
+                jw_kv_num(&w, "diff", fabs(dev - ms->normal_closed[i]));
+                jw_kv_str(&w, "derivation", ms->normal_derivation[i]);
+            } else {
+                jw_kv_num(&w, "closed_form", NAN);
+                jw_kv_str(&w, "reason", "no closed form derived");
+            }
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_kv_num(&w, "normal_incidence_max_diff", ms->normal_max_diff);
+        jw_kv_bool(&w, "energy_conserving", ms->max_albedo <= 1.0 + sum->quadrature_tolerance);
+        if (ms->mode == ALBEDO_MICRO)
+            jw_kv_str(&w, "note", "D alone, without the masking term G: the albedo grows towards grazing "
+                                  "incidence; the distribution's own check is its normalisation (D cos)");
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+
+    jw_key(&w, "reciprocity");
+    jw_obj_begin(&w);
+    jw_kv_int(&w, "pairs", sum->recip_pairs);
+    jw_kv_str(&w, "what", "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
+                          "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
+                          "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
+                          "difference relative to the lobe's peak f(c = 1, n)");
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int i = 0; i < sum->recip_count; ++i) {
+        const struct recip_summary *rs = &sum->recip[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", rs->spec.label);
+        jw_kv_str(&w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
+        jw_recip(&w, "device_worst", &rs->device);
+        jw_recip(&w, "host_worst", &rs->host);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+
+    jw_key(&w, "reciprocity_image_pass");
+    jw_obj_begin(&w);
+    jw_kv_int(&w, "pairs", sum->recip_pairs);
+    jw_kv_str(&w, "what", "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
+                          "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
+                          "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
+                          "reference (render_shade_ref)");
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int i = 0; i < sum->pass_count; ++i) {
+        const struct recip_pass_summary *q = &sum->pass[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", q->spec.label);
+        jw_kv_int(&w, "shading_mode", q->mode);
+        jw_kv_int(&w, "pairs_lit_both_ways", q->lit);
+        jw_kv_num(&w, "device_max_rel_diff", q->device_worst);
+        jw_kv_num(&w, "host_max_rel_diff", q->host_worst);
+        jw_kv_num(&w, "worst_n", q->n);
+        jw_vec3(&w, "worst_N", q->nrm);
+        jw_vec3(&w, "worst_L", q->l);
+        jw_vec3(&w, "worst_V", q->v);
+        jw_kv_num(&w, "worst_S_LV", q->s_lv);
+        jw_kv_num(&w, "worst_S_VL", q->s_vl);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    jw_kv_num(&w, "seconds", sum->seconds);
+    jw_obj_end(&w);
+    if (keep_json && !w.out.failed) {
+        /* the caller may write the text later, beside its own files */
+        sum->json = malloc(w.out.len + 2);
+        if (sum->json) {
+            memcpy(sum->json, w.out.s, w.out.len);
+            memcpy(sum->json + w.out.len, "\n", 2);
+        }
+    }
+    if (out_dir) {
+        char path[4200], err[512];
+        path_join(path, sizeof path, out_dir, "energy.json");
+        if (jw_write_file(&w, path, err, sizeof err)) {
+            fprintf(stderr, "brdfbench: %s\n", err);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    jw_free(&w);
+    return rc;
+}
+
+void energy_print_table(FILE *f, const struct energy_summary *sum)
+{
+    fprintf(f, "energy: directional albedo on the device, n in {2, 4, 10, 100, 1000}, theta_i 0..85 deg step 5\n");
+    fprintf(f, "  %-10s %-48s %10s %7s %6s  %12s  %10s\n", "model", "integrand", "max albedo", "at n", "at deg",
+            "normal: |dev-closed|", "refine chg");
+    for (int i = 0; i < sum->count; ++i) {
+        const struct energy_model_summary *m = &sum->models[i];
+        fprintf(f, "  %-10s %-48s %10.6f %7g %6g  %12.3g  %10.3g\n", m->spec.label, mode_name(m->mode), m->max_albedo,
+                m->max_at_n, m->max_at_theta_deg, m->normal_max_diff, m->refine_change);
+    }
+    fprintf(f, "reciprocity: %ld random (N, L, V) per model; worst |f(L,V) - f(V,L)| / peak\n", sum->recip_pairs);
+    for (int i = 0; i < sum->recip_count; ++i) {
+        const struct recip_summary *r = &sum->recip[i];
+        fprintf(f, "  %-22s device (float) %9.3g at n = %-8.4g (its evaluation error %9.3g)  host (double) %9.3g\n",
+                r->spec.label, r->device.diff, r->device.n, r->device.eval_error, r->host.diff);
+    }
+    fprintf(f, "reciprocity of the image pass (kernels/shade.cl, eye and light swapped): worst relative difference\n");
+    for (int i = 0; i < sum->pass_count; ++i)
+        fprintf(f, "  %-22s mode %d  device %9.3g  host %9.3g  (%ld pairs lit both ways)\n", sum->pass[i].spec.label,
+                sum->pass[i].mode, sum->pass[i].device_worst, sum->pass[i].host_worst, sum->pass[i].lit);
+}

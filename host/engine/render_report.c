@@ -1,0 +1,335 @@
+/* render_report.c - the writers of the image passes: render.json, the markdown summary for
+ * the report and the timings printed per scene (render.c measures, this file writes). */
+#include "render_report.h"
+
+#include "context.h"
+#include "jsonw.h"
+#include "mdbuf.h"
+#include "report.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double mpix(const struct size_timing *st, double seconds)
+{
+    return (double)st->w * st->h / seconds * 1e-6;
+}
+
+/* The entry of a model's reference in the same shading mode. */
+static const struct timed_entry *reference_entry(const struct size_timing *st,
+                                                 const struct timed_entry *te)
+{
+    struct model_spec ref;
+    model_reference_spec(&te->spec, &ref);
+    for (int k = 0; k < st->nentries; k++)
+        if (st->entries[k].mode == te->mode && strcmp(st->entries[k].spec.label, ref.label) == 0)
+            return &st->entries[k];
+    return NULL;
+}
+
+/* A lobe model (not Cook-Torrance): the speed target applies to these. */
+static int is_lobe_entry(const struct timed_entry *te)
+{
+    return te->mode == SHADE_LOBE_PSI || te->mode == SHADE_LOBE_THETA_H;
+}
+
+#define SPEED_TARGET_FRACTION 0.5
+
+/* "key": [a, b] and "key": [x, y, z] */
+static void jw_kv_int_pair(struct jw *w, const char *key, long long a, long long b)
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    jw_int(w, a);
+    jw_int(w, b);
+    jw_arr_end(w);
+}
+
+static void jw_kv_vec3(struct jw *w, const char *key, const double *v)
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int c = 0; c < 3; c++)
+        jw_num(w, v[c]);
+    jw_arr_end(w);
+}
+
+static void write_metrics_json(struct jw *w, const struct image_metrics *mt, double threshold)
+{
+    jw_key(w, "metrics");
+    jw_obj_begin(w);
+    jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
+    jw_kv_int(w, "pixels", (long long)mt->pixels);
+    jw_kv_num(w, "max_abs", mt->max_abs);
+    jw_kv_int_pair(w, "max_at_pixel", mt->max_x, mt->max_y);
+    jw_kv_num(w, "mean_abs", mt->mean_abs);
+    jw_kv_num(w, "rmse", mt->rmse);
+    jw_kv_num(w, "psnr_db", mt->psnr_db);
+    jw_kv_str(w, "psnr_basis", "8-bit sRGB colours of the foreground, peak 255");
+    if (!isfinite(mt->psnr_db))
+        jw_kv_str(w, "psnr_status", mt->pixels ? "identical images: PSNR is infinite"
+                                               : "no foreground pixels");
+    jw_kv_num(w, "threshold", threshold);
+    jw_kv_num(w, "share_above_threshold", mt->share_above);
+    jw_kv_num(w, "peak_reference", mt->peak_reference);
+    jw_obj_end(w);
+}
+
+int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
+                      const struct scene_result *res, int display_code_error, char *err,
+                      size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", "brdfbench.render/1");
+    jw_context_begin(&w, s, "");
+    jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
+    jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
+              "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
+    jw_obj_end(&w);
+
+    jw_key(&w, "options");
+    jw_obj_begin(&w);
+    jw_kv_int_pair(&w, "image_size", o->width, o->height);
+    jw_key(&w, "timing_sizes");
+    jw_arr_begin(&w);
+    for (int i = 0; i < o->ntime_sizes; i++) {
+        jw_arr_begin(&w);
+        jw_int(&w, o->time_w[i]);
+        jw_int(&w, o->time_h[i]);
+        jw_arr_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_kv_int(&w, "reps", o->reps);
+    jw_kv_int(&w, "warmup", o->warmup);
+    jw_key(&w, "sphere_shininess");
+    jw_arr_begin(&w);
+    for (int i = 0; i < o->ncols; i++)
+        jw_num(&w, o->sphere_n[i]);
+    jw_arr_end(&w);
+    jw_kv_num(&w, "mesh_shininess", o->mesh_n);
+    jw_kv_int(&w, "teapot_tessellation", o->tess);
+    jw_kv_str(&w, "light", o->point_light ? "point" : "directional");
+    jw_kv_num(&w, "exposure", o->exposure);
+    jw_kv_num(&w, "kd", o->kd);
+    jw_kv_num(&w, "ks", o->ks);
+    jw_kv_num(&w, "ambient", o->ambient);
+    jw_kv_num(&w, "schlick_f0", o->f0);
+    jw_kv_vec3(&w, "tint", o->tint);
+    jw_kv_int(&w, "reference_samples_per_model", o->ref_samples);
+    jw_obj_end(&w);
+
+    jw_key(&w, "display");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "curve", "channel k: sRGB8(1 - exp(-exposure tint_k radiance))");
+    jw_kv_int(&w, "table_bins", DISPLAY_BINS);
+    jw_kv_int(&w, "table_max_code_error", display_code_error);
+    jw_obj_end(&w);
+
+    jw_key(&w, "scenes");
+    jw_arr_begin(&w);
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
+        const struct scene_result *sr = &res[si];
+        if (!sr->done)
+            continue;
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "scene", render_scene_names[si]);
+        jw_kv_str(&w, "source", sr->source);
+        if (si == RENDER_TEAPOT) {
+            jw_kv_str(&w, "package", RENDER_TEAPOT_PACKAGE);
+            jw_kv_int(&w, "patches", (long long)sr->patches);
+        } else if (si == RENDER_BUNNY) {
+            jw_kv_str(&w, "package", RENDER_BUNNY_PACKAGE);
+        }
+        if (si != RENDER_SPHERES)
+            jw_kv_int(&w, "triangles", (long long)sr->triangles);
+        jw_key(&w, "light");
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "kind", sr->light.point ? "point" : "directional");
+        jw_kv_vec3(&w, sr->light.point ? "position" : "direction", sr->light.light);
+        jw_kv_num(&w, "intensity", sr->light.intensity);
+        jw_kv_vec3(&w, "eye", sr->light.eye);
+        jw_obj_end(&w);
+        jw_key(&w, "image");
+        jw_obj_begin(&w);
+        jw_kv_int(&w, "width", o->width);
+        jw_kv_int(&w, "height", o->height);
+        jw_kv_int(&w, "foreground_pixels", (long long)sr->foreground);
+        jw_kv_num(&w, "gbuffer_seconds", sr->raster_seconds);
+        if (sr->grid_contact[0])
+            jw_kv_str(&w, "contact_sheet", sr->grid_contact);
+        jw_obj_end(&w);
+        jw_key(&w, "models");
+        jw_arr_begin(&w);
+        for (int mi = 0; mi < o->nmodels; mi++) {
+            const struct model_result *mr = &sr->models[mi];
+            const struct model_spec *m = &o->models[mi];
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "model", m->label);
+            jw_kv_str(&w, "family", m->info->family);
+            jw_kv_str(&w, "reference", mr->ref.label);
+            jw_kv_str(&w, "shading", render_mode_names[mr->mode]);
+            if (si == RENDER_SPHERES) {
+                jw_kv_int_pair(&w, "grid_rows", mr->y0, mr->y1);
+            }
+            if (mr->image[0]) {
+                jw_key(&w, "files");
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "image", mr->image);
+                jw_kv_str(&w, "error_image", mr->error);
+                jw_kv_str(&w, "contact_sheet", mr->contact);
+                jw_obj_end(&w);
+            }
+            write_metrics_json(&w, &mr->metrics, o->threshold);
+            jw_key(&w, "double_reference_check");
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "samples", mr->check.samples);
+            jw_kv_num(&w, "max_abs_specular_difference", mr->check.max_abs);
+            jw_kv_num(&w, "double_value_there", mr->check.value_at_max);
+            jw_kv_num(&w, "peak_specular", mr->check.peak);
+            jw_kv_num(&w, "relative_to_peak", mr->check.relative_to_peak);
+            jw_kv_num(&w, "bound", mr->check.bound);
+            jw_kv_str(&w, "bound_rule", "1e-3 of the sampled peak specular radiance; 8-bit "
+                      "colours within 2 codes of the exact curve");
+            jw_kv_int(&w, "max_code_difference", mr->check.max_code);
+            jw_kv_bool(&w, "within_bound", mr->check.within);
+            jw_obj_end(&w);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_key(&w, "timings");
+        jw_arr_begin(&w);
+        for (int ti = 0; ti < sr->ntimings; ti++) {
+            const struct size_timing *st = &sr->timings[ti];
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "width", st->w);
+            jw_kv_int(&w, "height", st->h);
+            jw_kv_int(&w, "foreground_pixels", (long long)st->foreground);
+            jw_key(&w, "copy");
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "bytes_per_pixel", RENDER_DEVICE_BYTES_PER_PIXEL);
+            jw_kv_num(&w, "median_ms", st->copy_med * 1e3);
+            jw_kv_num(&w, "mpixel_per_s", mpix(st, st->copy_med));
+            jw_kv_num(&w, "gbyte_per_s",
+                      (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
+            jw_obj_end(&w);
+            jw_key(&w, "entries");
+            jw_arr_begin(&w);
+            for (int k = 0; k < st->nentries; k++) {
+                const struct timed_entry *te = &st->entries[k];
+                const struct timed_entry *re = reference_entry(st, te);
+                double frac = te->copy_med / te->med;
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "name", te->name);
+                jw_kv_str(&w, "model", te->spec.label);
+                jw_kv_str(&w, "shading", render_mode_names[te->mode]);
+                jw_kv_bool(&w, "selected_model", te->is_model);
+                jw_kv_num(&w, "median_ms", te->med * 1e3);
+                jw_kv_num(&w, "min_ms", te->min * 1e3);
+                jw_kv_num(&w, "max_ms", te->max * 1e3);
+                jw_kv_num(&w, "mpixel_per_s", mpix(st, te->med));
+                jw_kv_num(&w, "copy_median_ms_interleaved", te->copy_med * 1e3);
+                jw_kv_num(&w, "fraction_of_copy", frac);
+                if (is_lobe_entry(te)) {
+                    jw_kv_num(&w, "target_fraction", SPEED_TARGET_FRACTION);
+                    jw_kv_bool(&w, "target_met", frac >= SPEED_TARGET_FRACTION);
+                }
+                if (re) {
+                    jw_kv_str(&w, "reference", re->name);
+                    jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);
+                }
+                jw_obj_end(&w);
+            }
+            jw_arr_end(&w);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+/* The markdown summary: per scene a table of the models' figures. */
+char *render_summary_markdown(const struct render_options *o, const struct scene_result *res,
+                              const struct cl_session *s)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "Device: %s (%s). Images %dx%d; timings: median of %d launches after %d "
+              "warm-up, each after a copy-kernel launch over the same %d bytes per pixel.\n\n",
+              s->device_name, s->platform_version, o->width, o->height, o->reps, o->warmup,
+              RENDER_DEVICE_BYTES_PER_PIXEL);
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
+        const struct scene_result *sr = &res[si];
+        if (!sr->done)
+            continue;
+        md_printf(&b, "### %s\n\n", render_scene_names[si]);
+        if (sr->grid_contact[0])
+            md_printf(&b, "![%s contact sheet](%s)\n\n", render_scene_names[si], sr->grid_contact);
+        const struct size_timing *big = sr->ntimings ? &sr->timings[sr->ntimings - 1] : NULL;
+        md_printf(&b, "| model | reference | max abs error | mean abs error | PSNR (dB) | > %g | "
+                  "ref check |", o->threshold);
+        if (big)
+            md_printf(&b, " Mpixel/s at %dx%d | of copy | vs reference |", big->w, big->h);
+        md_printf(&b, "\n|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
+        for (int mi = 0; mi < o->nmodels; mi++) {
+            const struct model_result *mr = &sr->models[mi];
+            char psnr[32];
+            if (isfinite(mr->metrics.psnr_db))
+                snprintf(psnr, sizeof psnr, "%.1f", mr->metrics.psnr_db);
+            else
+                snprintf(psnr, sizeof psnr, "identical");
+            md_printf(&b, "| %s | %s | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
+                      mr->ref.label, mr->metrics.max_abs, mr->metrics.mean_abs, psnr,
+                      100.0 * mr->metrics.share_above, mr->check.within ? "ok" : "out of bound");
+            if (big) {
+                const struct timed_entry *te = NULL;
+                for (int k = 0; k < big->nentries; k++)
+                    if (big->entries[k].is_model &&
+                        strcmp(big->entries[k].spec.label, o->models[mi].label) == 0)
+                        te = &big->entries[k];
+                const struct timed_entry *re = te ? reference_entry(big, te) : NULL;
+                if (te)
+                    md_printf(&b, " %.0f | %.0f%% | %.2fx |", mpix(big, te->med),
+                              100.0 * te->copy_med / te->med, re ? re->med / te->med : NAN);
+            }
+            md_printf(&b, "\n");
+        }
+        if (big)
+            md_printf(&b, "\nCopy kernel at %dx%d: %.0f Mpixel/s (%.1f GB/s).\n", big->w, big->h,
+                      mpix(big, big->copy_med),
+                      (double)big->w * big->h * RENDER_DEVICE_BYTES_PER_PIXEL / big->copy_med *
+                          1e-9);
+        md_printf(&b, "\n");
+    }
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;
+}
+
+void render_print_timings(const struct scene_result *sr)
+{
+    for (int ti = 0; ti < sr->ntimings; ti++) {
+        const struct size_timing *st = &sr->timings[ti];
+        printf("  %s %dx%d: copy %.0f Mpixel/s (%.1f GB/s)\n", render_scene_names[sr->kind], st->w, st->h,
+               mpix(st, st->copy_med),
+               (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
+        for (int k = 0; k < st->nentries; k++) {
+            const struct timed_entry *te = &st->entries[k];
+            const struct timed_entry *re = reference_entry(st, te);
+            printf("    %-34s %8.1f Mpixel/s  %5.1f%% of copy  %5.2fx vs %s\n", te->name,
+                   mpix(st, te->med), 100.0 * te->copy_med / te->med,
+                   re ? re->med / te->med : NAN, re ? re->name : "-");
+        }
+    }
+    fflush(stdout);
+}

@@ -1,0 +1,101 @@
+/* render_report.h - the results of the image passes (render.c measures them) and their
+ * writers (render_report.c: render.json, the markdown summary, the printed timings). */
+#ifndef BRDFBENCH_RENDER_REPORT_H
+#define BRDFBENCH_RENDER_REPORT_H
+
+#include <stddef.h>
+
+#include "clsession.h"
+#include "render.h"
+
+/* Host copies of kernels/shade.cl's constants (shading modes, display table); the tests
+   compare the device's output with the host's exact curves, so a mismatch shows there. */
+#define SHADE_LOBE_PSI 0
+#define SHADE_LOBE_THETA_H 1
+#define SHADE_CT_BECKMANN 2
+#define SHADE_CT_GGX 3
+#define DISPLAY_MIN_EXP (-16)
+#define DISPLAY_MAX_EXP 8
+#define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
+#define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
+
+/* Work-items of one launch: each walks a contiguous run of pixels, so a few per core
+   balance the load without barriers; the same count for every size keeps one launch
+   shape (PoCL compiles per shape). */
+#define RENDER_WORK_ITEMS 256
+
+struct image_metrics {
+    size_t pixels;             /* foreground pixels in the region */
+    double max_abs;
+    int max_x, max_y;          /* frame coordinates of the largest error */
+    double mean_abs, rmse;
+    double psnr_db;            /* 8-bit RGB; NAN when the images are identical */
+    double share_above;        /* share of pixels with error above the threshold */
+    double peak_reference;     /* largest reference specular radiance in the region */
+};
+
+struct reference_check {
+    int samples;
+    double max_abs;            /* |device - double| of the specular radiance */
+    double value_at_max;       /* the double value there */
+    double peak;               /* largest double specular radiance among the samples */
+    double relative_to_peak;   /* max_abs / max(peak, 1e-30) */
+    int max_code;              /* largest 8-bit difference to the exact display colour */
+    double bound;              /* stated bound on max_abs */
+    int within;
+};
+
+struct model_result {
+    int mode;
+    int y0, y1;                /* frame rows its figures cover */
+    struct model_spec ref;
+    struct image_metrics metrics;
+    struct reference_check check;
+    char image[256], error[256], contact[256];  /* paths relative to out_dir */
+};
+
+struct timed_entry {
+    struct model_spec spec;
+    int mode;
+    int is_model;              /* in the user's list (not only a reference) */
+    char name[MODEL_LABEL_MAX + 32];
+    double med, min, max;      /* seconds */
+    double copy_med;           /* the copy kernel's median, interleaved with these reps */
+};
+
+struct size_timing {
+    int w, h;
+    size_t foreground;
+    double copy_med;           /* median over every copy launch at this size */
+    int nentries;
+    struct timed_entry entries[2 * RENDER_MAX_MODELS];
+};
+
+struct scene_result {
+    int kind;
+    int done;
+    char source[600];
+    size_t triangles, patches, foreground;
+    double raster_seconds;
+    struct render_light light;
+    struct model_result models[RENDER_MAX_MODELS];
+    char grid_contact[256];
+    int ntimings;
+    struct size_timing timings[RENDER_MAX_TIME_SIZES];
+};
+
+#define RENDER_MODE_COUNT 4
+extern const char *const render_scene_names[RENDER_SCENE_COUNT];
+extern const char *const render_mode_names[RENDER_MODE_COUNT];
+
+/* render.json of a run. Returns 0, or non-zero with a message in err. */
+int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
+                      const struct scene_result *res, int display_code_error, char *err,
+                      size_t errlen);
+/* The markdown summary for the report (malloc'd; NULL when out of memory). */
+char *render_summary_markdown(const struct render_options *o, const struct scene_result *res,
+                              const struct cl_session *s);
+/* One scene's timings on stdout. */
+void render_print_timings(const struct scene_result *sr);
+
+#endif
