@@ -171,6 +171,28 @@ BRDF_FN REAL brdf_power(REAL c, REAL k, int m)
 #define BRDF_BG_BETA_8 0.085811949
 #define BRDF_BG_ALPHA_16 0.059933489
 #define BRDF_BG_BETA_16 0.044726082
+/* The power family's base, zeroed past its root, and its cube and fourth power written out
+ * (what the device runs: no loop to unroll), and 2^j by j squarings as Lyon's. */
+BRDF_FN REAL brdf_power_base(REAL c, REAL k) { return fmax(k * (c - RC(1.0)) + RC(1.0), RC(0.0)); }
+BRDF_FN REAL brdf_cube(REAL c, REAL k)
+{
+    REAL b = brdf_power_base(c, k);
+    return b * b * b;
+}
+BRDF_FN REAL brdf_fourth(REAL c, REAL k)
+{
+    REAL b = brdf_power_base(c, k);
+    REAL b2 = b * b;
+    return b2 * b2;
+}
+BRDF_FN REAL brdf_squarings(REAL c, REAL k, int j)
+{
+    REAL b = brdf_power_base(c, k);
+    for (int i = 0; i < j; ++i)
+        b = b * b;
+    return b;
+}
+
 BRDF_FN REAL brdf_bg_a(REAL n, int m)
 {
     if (m <= 2) return n * RC(BRDF_BG_ALPHA_2) + RC(BRDF_BG_BETA_2);
@@ -195,21 +217,22 @@ BRDF_FN REAL brdf_kuijk_blake(REAL c, REAL a, REAL b)
 
 /* The integer-bit pow (Schraudolph 1999 style): the float whose bits are
  * n (bits(c) - bits(1)) + bits(1), with bits(1.0f) = 0x3f800000; a negative result is 0.
- * On the device it is written as shaders write it, on the float's bits (scalar and float16).
+ * On the device it is written as shaders write it, on the float's bits (scalar and float16):
+ * the product n (bits(c) - bits(1)) in float, truncated to an integer (saturating), then the
+ * integer add, so the only float rounding is the product's (about 1e-7 of the value).
  * The host reference reproduces the same arithmetic in double: bits(c) - bits(1) is
  * 2^23 (e + m - 1) for c = m 2^e (m in [1, 2)), and a bit pattern t >= 0 is read back the same
  * way, so the host figure is the trick's own error, not float rounding. */
-#define BRDF_BITS_ONE 1065353216.0
 #ifdef __OPENCL_VERSION__
 __attribute__((overloadable)) static inline float brdf_bitpow(float c, float n)
 {
-    float t = fmax(n * convert_float(as_int(c) - 0x3f800000) + 1065353216.0f, 0.0f);
-    return as_float(convert_int_rtz(t));
+    int t = convert_int_sat_rtz(n * convert_float(as_int(c) - 0x3f800000)) + 0x3f800000;
+    return as_float(max(t, 0));
 }
 __attribute__((overloadable)) static inline float16 brdf_bitpow(float16 c, float16 n)
 {
-    float16 t = fmax(n * convert_float16(as_int16(c) - 0x3f800000) + 1065353216.0f, 0.0f);
-    return as_float16(convert_int16_rtz(t));
+    int16 t = convert_int16_sat_rtz(n * convert_float16(as_int16(c) - 0x3f800000)) + 0x3f800000;
+    return as_float16(max(t, 0));
 }
 #else
 BRDF_FN REAL brdf_bitpow(REAL c, REAL n)
@@ -267,15 +290,15 @@ BRDF_FN REAL brdf_eval(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
     case BRDF_QUAD:     return brdf_quadratic(c, n * p0 + p1);
     case BRDF_SG:       return brdf_gauss_lobe(c, n);
     case BRDF_UE4PHONG: return brdf_gauss_lobe(c, n + RC(0.775));
-    case BRDF_BG:       return brdf_power(c, brdf_bg_a(n, 1 << (int)p0), 1 << (int)p0);
+    case BRDF_BG:       return brdf_squarings(c, brdf_bg_a(n, 1 << (int)p0), (int)p0);
     case BRDF_KB:       return brdf_kuijk_blake(c, brdf_kb_a(n), brdf_kb_b(n));
     case BRDF_KBSWAP:   return brdf_kuijk_blake(c, brdf_kb_b(n), brdf_kb_a(n));
     case BRDF_BITPOW:   return brdf_bitpow(c, n);
     case BRDF_GAUSS:    return brdf_gauss_lobe(c, n * p0 + p1);
-    case BRDF_CUBE:     return brdf_power(c, n * p0 + p1, 3);
-    case BRDF_QUART:    return brdf_power(c, n * p0 + p1, 4);
-    case BRDF_CUBEFIT:  return brdf_power(c, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B), 3);
-    case BRDF_QUARTFIT: return brdf_power(c, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B), 4);
+    case BRDF_CUBE:     return brdf_cube(c, n * p0 + p1);
+    case BRDF_QUART:    return brdf_fourth(c, n * p0 + p1);
+    case BRDF_CUBEFIT:  return brdf_cube(c, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B));
+    case BRDF_QUARTFIT: return brdf_fourth(c, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B));
     case BRDF_GAUSSFIT: return brdf_gauss_lobe(c, n * RC(BRDF_GAUSSFIT_A) + RC(BRDF_GAUSSFIT_B));
 #ifdef BRDF_HAVE_USER_MODEL
     case BRDF_USER:     return brdf_user_eval(c, n, p0, p1);

@@ -618,13 +618,14 @@ static int step_images(struct all_run *r)
 }
 
 /* Which lobe to ship (frontier.h): every lobe approximation's cost against its accuracy, with
- * shorter timings than `brdfbench frontier` (3 launches of 10 ms) to keep the main job short. */
+ * shorter timings than `brdfbench frontier` (2 rounds of 3 launches of 10 ms) to keep the main job short. */
 static int step_frontier(struct all_run *r)
 {
     double t = wall_seconds();
     struct frontier_options o;
     frontier_options_default(&o);
     o.reps = 3;
+    o.rounds = 2;
     o.min_time = 0.01;
     o.samples = r->set.quick ? 256 : 512;
     progress(r, "frontier", 0, 1, "measuring");

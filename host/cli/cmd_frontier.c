@@ -18,7 +18,9 @@ static void frontier_usage(FILE *f)
             "  --models LIST      models to compare (default: references, the papers' models, the engines'\n"
             "                     approximations and the frozen fits; see brdfbench list)\n"
             "  --samples N        accuracy samples per zone, a multiple of 16 in [16, 65536] (default 1024)\n"
-            "  --reps N           timed launches per rate, 1..100 (default 5)\n"
+            "  --reps N           timed launches per model per round, 1..100 (default 3)\n"
+            "  --rounds N         rounds over every model, 1..16 (default 3); a rate is the median of the\n"
+            "                     rounds' medians, its spread their min..max\n"
             "  --no-image         no teapot pass (no PSNR)\n"
             "  --out DIR          write frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png\n"
             "                     (default: a new folder results/<date-time>/, with results/latest)\n"
@@ -63,6 +65,11 @@ int cmd_frontier(int argc, char **argv)
                          opt.samples);
                 goto usage_error;
             }
+        } else if (cli_flag_is(a, "--rounds")) {
+            long rounds;
+            if (cli_long_value(argc, argv, &i, "--rounds", 1, FRONTIER_MAX_ROUNDS, &rounds, err, sizeof err))
+                goto usage_error;
+            opt.rounds = (int)rounds;
         } else if (cli_flag_is(a, "--reps")) {
             long reps;
             if (cli_long_value(argc, argv, &i, "--reps", 1, 100, &reps, err, sizeof err))

@@ -79,7 +79,8 @@ void frontier_options_default(struct frontier_options *o)
 {
     memset(o, 0, sizeof *o);
     o->samples = 1024;
-    o->reps = 5;
+    o->reps = 3;
+    o->rounds = 3;
     o->min_time = 0.02;
     o->image_w = 480;
     o->image_h = 270;
@@ -172,13 +173,43 @@ static int frontier_cost(struct cl_session *s, struct frontier_report *r, int qu
     int rc = tp_program_build(&prog, s, specs, r->count, TP_VARIANT_DEFAULT, NULL);
     if (rc)
         return rc;
+    /* Rounds over every model, each round starting one model further on, so that a busy spell
+       on a shared machine falls on every model alike rather than on the few measured during
+       it. A round's figure is the median of its launches; the rate is the median of the
+       rounds' figures and its spread their min..max. */
+    int rounds = r->opt.rounds > 0 ? r->opt.rounds : 1;
+    double med[FRONTIER_MAX_MODELS][2][FRONTIER_MAX_ROUNDS];
+    int got[FRONTIER_MAX_MODELS][2] = { { 0 } };
+    for (int round = 0; round < rounds; ++round)
+        for (int k = 0; k < r->count; ++k) {
+            int i = (k + round) % r->count;
+            struct frontier_row *row = &r->rows[i];
+            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+                double rate[3];
+                if (tp_program_rate(&prog, &row->spec, m, &to, work_items, rate, row->rate_reason,
+                                    sizeof row->rate_reason) == 0)
+                    med[i][m][got[i][m]++] = rate[1];
+            }
+        }
     for (int i = 0; i < r->count; ++i)
         for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+            int n = got[i][m];
+            if (n == 0)
+                continue;
+            double *v = med[i][m];
+            for (int a = 1; a < n; ++a)   /* insertion sort: a handful of values */
+                for (int b = a; b > 0 && v[b - 1] > v[b]; --b) {
+                    double t = v[b];
+                    v[b] = v[b - 1];
+                    v[b - 1] = t;
+                }
             struct frontier_row *row = &r->rows[i];
-            if (tp_program_rate(&prog, &row->spec, m, &to, work_items, row->rate[m], row->rate_reason,
-                                sizeof row->rate_reason) == 0 && !quiet)
-                fprintf(stderr, "frontier: %-18s %-8s %8.3g G/s\n", row->spec.label, tp_nmode_name(m),
-                        row->rate[m][1] * 1e-9);
+            row->rate[m][0] = v[0];
+            row->rate[m][1] = (n % 2) ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+            row->rate[m][2] = v[n - 1];
+            if (!quiet)
+                fprintf(stderr, "frontier: %-18s %-8s %8.3g G/s (%d rounds)\n", row->spec.label, tp_nmode_name(m),
+                        row->rate[m][1] * 1e-9, n);
         }
     tp_program_release(&prog);
     return 0;

@@ -16,6 +16,7 @@
 
 #define FRONTIER_SCHEMA "brdfbench.frontier/1"
 #define FRONTIER_MAX_MODELS 32
+#define FRONTIER_MAX_ROUNDS 16
 
 /* What a point is, for the plots' marks. */
 enum frontier_kind { FR_REFERENCE = 0, FR_PAPER, FR_ENGINE, FR_TUNED, FR_OTHER };
@@ -33,7 +34,8 @@ struct frontier_row {
     struct model_spec spec;
     int kind;                         /* enum frontier_kind */
     struct frontier_ops ops;
-    double rate[2][3];                /* [uniform, varying][min, median, max] evaluations/s; NAN: missing */
+    double rate[2][3];                /* [uniform, varying][min, median, max] evaluations/s over the
+                                         rounds' medians; NAN: missing */
     char rate_reason[160];
     double max_rel[2], max_rel_n[2];  /* [n from 2, n from 16]; host-polished device sweep */
     double max_abs[2], max_abs_n[2];
@@ -46,7 +48,8 @@ struct frontier_options {
     struct model_spec models[FRONTIER_MAX_MODELS];
     int model_count;                  /* 0: frontier_default_models */
     long samples;                     /* accuracy sweep samples per zone */
-    int reps;                         /* timed launches per rate */
+    int reps;                         /* timed launches per model per round */
+    int rounds;                       /* rounds over every model (1..FRONTIER_MAX_ROUNDS) */
     double min_time;                  /* seconds a timed launch lasts at least */
     int image_w, image_h;             /* teapot pass; 0: no image pass */
 };

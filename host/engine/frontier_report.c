@@ -25,14 +25,16 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_context_begin(&w, s, "");
     jw_kv_int(&w, "samples_per_zone", r->opt.samples);
     jw_kv_int(&w, "reps", r->opt.reps);
+    jw_kv_int(&w, "rounds", r->opt.rounds);
     jw_kv_num(&w, "min_time_s", r->opt.min_time);
     jw_kv_int(&w, "image_width", r->opt.image_w);
     jw_kv_int(&w, "image_height", r->opt.image_h);
     jw_obj_end(&w);
     jw_key(&w, "definitions");
     jw_obj_begin(&w);
-    jw_kv_str(&w, "rate", "device evaluations per second (min, median, max of the timed launches), throughput "
-                          "kernels with the default build options; uniform: one n per launch, varying: n per evaluation");
+    jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options; per "
+                          "round over every model the median of its launches; median, min and max over the rounds; "
+                          "uniform: one n per launch, varying: n per evaluation");
     jw_kv_str(&w, "max_rel", "largest epicentre delta over the n range (device sweep polished in double)");
     jw_kv_str(&w, "max_abs", "largest attenuation-zone Delta over the n range");
     jw_kv_str(&w, "psnr_db", "teapot image pass against the model's reference, 8-bit sRGB, peak 255");
@@ -192,9 +194,10 @@ char *frontier_markdown(const struct frontier_report *r)
 {
     struct md_buf b;
     md_init(&b);
-    md_printf(&b, "Cost is the device's evaluations/s with n uniform (median of %d launches; min-max spreads that "
-                  "overlap count as equal), accuracy the largest epicentre delta and attenuation Delta "
-                  "(frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png).\n\n", r->opt.reps);
+    md_printf(&b, "Cost is the device's evaluations/s with n uniform (the median over %d rounds over every model of "
+                  "each round's median of %d launches; spreads over the rounds that overlap count as equal), "
+                  "accuracy the largest epicentre delta and attenuation Delta (frontier.json, frontier.csv, "
+                  "frontier_max_rel.png, frontier_max_abs.png).\n\n", r->opt.rounds, r->opt.reps);
     md_printf(&b, "| model | kind | front | evals/s (uniform) | evals/s (varying) | max delta, n >= 2 | max Delta, n >= 2 "
                   "| max delta, n >= 16 | max Delta, n >= 16 | teapot PSNR (dB) |\n");
     md_printf(&b, "|---|---|---|---|---|---|---|---|---|---|\n");
