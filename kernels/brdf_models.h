@@ -252,7 +252,7 @@ BRDF_FN REAL brdf_bitpow(REAL c, REAL n)
 #endif
 
 /* Frozen minimax members of the families above: the least largest epicentre max delta over
- * n in [2, 1000] step 1, as found by `brdfbench fit --model pow3|pow4|gauss` (docs/frontier.md
+ * n in [2, 1000] step 1, as found by `brdfbench fit --family pow3|pow4|gauss` (docs/frontier.md
  * gives the commands and their figures: pow4fit 0.567% / 0.0723, pow3fit 0.760% / 0.0809,
  * gaussfit 1.100% / 0.1299 for max delta / max Delta). */
 #define BRDF_CUBEFIT_A 0.3106866803

@@ -14,10 +14,10 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
-"$BIN" fit --model pow4 --n-max 40 --samples 64 --out "$T/fit" --quiet 2>"$T/err"
+"$BIN" fit --family pow4 --n-max 40 --samples 64 --out "$T/fit" --quiet 2>"$T/err"
 rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
-[ $rc -eq 0 ] && ok || bad "fit --model pow4 exit $rc: $(tail -c 400 "$T/err")"
+[ $rc -eq 0 ] && ok || bad "fit --family pow4 exit $rc: $(tail -c 400 "$T/err")"
 "$BIN" accuracy --models pow4fit --n-max 40 --samples 64 --out "$T/acc" --quiet 2>"$T/err" && ok || bad "accuracy pow4fit"
 python3 - "$T" <<'PY' && ok || bad "fit.json contract, or the fit is worse than pow4fit"
 import json, sys
@@ -36,7 +36,7 @@ assert f["device"]["max_rel"] <= frozen * (1 + 1e-3), (f["device"]["max_rel"], f
 assert f["min_max_abs"]["max_abs"] <= f["min_max_rel"]["max_abs"]
 assert f["min_max_rel"]["max_rel"] <= f["min_max_abs"]["max_rel"]
 PY
-expect 1 "^brdfbench fit: infeasible: " fit --model pow4 --max-abs 0.001 --n-max 10 --samples 64 --out "$T/fit2" --quiet
+expect 1 "^brdfbench fit: infeasible: " fit --family pow4 --max-abs 0.001 --n-max 10 --samples 64 --out "$T/fit2" --quiet
 [ -s "$T/fit2/fit.json" ] && ok || bad "an infeasible fit still writes fit.json with the reason"
 
 "$BIN" frontier --models phong,fq2,pow4fit --samples 256 --reps 3 --no-image --out "$T/fr" --quiet 2>"$T/err"

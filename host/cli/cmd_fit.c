@@ -21,8 +21,9 @@ static void fit_usage(FILE *f)
             "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
             "  --n-step X         step of n (default 1; n-max is always included)\n"
             "  --max-abs X        cap on the attenuation zone's max Delta, 1e-6 <= X <= 1 (default: none)\n"
-            "  --model ID         fit another family instead: a registry or user model with one or two\n"
-            "                     continuous parameters (gauss, pow3, pow4, fq, quad, a user model)\n"
+            "  --family ID        fit another family instead: a registry or user model with one or two\n"
+            "                     continuous parameters (gauss, pow3, pow4, fq, quad, or a user model\n"
+            "                     of --model-file with param: lines, e.g. --model-file my.cl --family my)\n"
             "  --power M          fit the power family ((a n + b)(c-1) + 1)^M, 1 <= M <= 16\n"
             "  --objective WHAT   max_rel (epicentre max delta, default) or max_abs (attenuation max Delta)\n"
             "  --max-rel X        with --objective max_abs: cap on the epicentre's max delta, 1e-6 <= X <= 1\n"
@@ -32,6 +33,8 @@ static void fit_usage(FILE *f)
             "  --out DIR          write fit.json into DIR\n"
             "                     (default: a new folder results/<date-time>/, with results/latest)\n"
             "  --quiet            no summary on stdout\n"
+            "  --model-file FILE  add the user model of FILE.cl (see docs/user-models.md); repeatable\n"
+            "  --model NAME=EXPR  add a user model given by an OpenCL C expression of c and n\n"
             DEVICE_OPTIONS_HELP,
             ACC_DEFAULT_SAMPLES);
 }
@@ -50,6 +53,8 @@ int cmd_fit(int argc, char **argv)
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
         if (d == 0)
             d = accuracy_grid_flag(argc, argv, &i, &opt.n_min, &opt.n_max, &opt.n_step, err, sizeof err);
+        if (d == 0)
+            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
@@ -65,8 +70,8 @@ int cmd_fit(int argc, char **argv)
         } else if (cli_flag_is(a, "--max-abs")) {
             if (cli_double_value(argc, argv, &i, "--max-abs", FIT_CAP_MIN, 1.0, &opt.max_abs_cap, err, sizeof err))
                 goto usage_error;
-        } else if (cli_flag_is(a, "--model")) {
-            if (!(opt.model = cli_flag_value(argc, argv, &i, "--model", err, sizeof err)))
+        } else if (cli_flag_is(a, "--family")) {
+            if (!(opt.model = cli_flag_value(argc, argv, &i, "--family", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--power")) {
             long m;

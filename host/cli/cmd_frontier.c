@@ -4,6 +4,7 @@
 #include "exitcodes.h"
 #include "frontier.h"
 #include "outdir.h"
+#include "usermodel.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -25,6 +26,9 @@ static void frontier_usage(FILE *f)
             "  --out DIR          write frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png\n"
             "                     (default: a new folder results/<date-time>/, with results/latest)\n"
             "  --quiet            no table on stdout\n"
+            "  --model-file FILE  add the user model of FILE.cl (see docs/user-models.md); repeatable\n"
+            "  --model NAME=EXPR  add a user model given by an OpenCL C expression of c and n; repeatable\n"
+            "                     (without --models: the default set and the user models)\n"
             DEVICE_OPTIONS_HELP);
 }
 
@@ -40,6 +44,8 @@ int cmd_frontier(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
+        if (d == 0)
+            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
         if (d < 0)
             goto usage_error;
         if (d > 0)
@@ -85,6 +91,11 @@ int cmd_frontier(int argc, char **argv)
         if (n < 0)
             goto usage_error;
         opt.model_count = n;
+    } else if (usermodel_count() > 0) {
+        /* the default set and the user models */
+        opt.model_count = frontier_default_models(opt.models, FRONTIER_MAX_MODELS);
+        if (usermodel_append_all(opt.models, &opt.model_count, FRONTIER_MAX_MODELS, err, sizeof err))
+            goto usage_error;
     }
     struct cl_session s;
     int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);

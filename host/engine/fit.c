@@ -63,7 +63,7 @@ int fit_options_check(const struct fit_options *o, char *err, size_t errlen)
         return EXIT_USAGE;
     }
     if (o->power_m && o->model) {
-        snprintf(err, errlen, "--power and --model name two families (accepted: one of them)");
+        snprintf(err, errlen, "--power and --family name two families (accepted: one of them)");
         return EXIT_USAGE;
     }
     if (o->objective == FIT_MAX_ABS && !isnan(o->max_abs_cap)) {
@@ -670,6 +670,13 @@ int fit_bg_exact_a(double n, int m, double *a_out, double *max_abs_out)
 #define FAM_ATT_SAMPLES 96      /* per n, attenuation grid before the Brent polish */
 #define FAM_SEARCH_N 48         /* n values the search sees (the figures use the whole grid) */
 #define FAM_NM_ITER 400
+/* A user model's double reference runs on the device one point per launch (usermodel.h),
+   about a thousand times slower than a built-in's: its search uses coarser sizes, and no
+   trade-off curve. */
+#define FAM_USER_EPI 12
+#define FAM_USER_ATT 24
+#define FAM_USER_SEARCH_N 12
+#define FAM_USER_NM_ITER 120
 #define FAM_NM_STARTS 3
 #define FAM_PENALTY 100.0       /* exact penalty on a cap's excess */
 
@@ -677,6 +684,8 @@ double fit_power_eval(double c, double n, double a, double b, int m)
 {
     return brdf_power(fmax(c, 0.0), a * n + b, m);
 }
+
+static int fam_epi_samples = FAM_EPI_SAMPLES, fam_att_samples = FAM_ATT_SAMPLES, fam_nm_iter = FAM_NM_ITER;
 
 struct fam_eval {
     struct model_spec spec;       /* registry or user model; unused with power_m */
@@ -726,9 +735,9 @@ static void fam_at_n(struct fam_eval *e, double n, double *max_rel, double *max_
     double xe = zone_epicentre_end(n);
     e->n = n;
     e->abs_mode = 0;
-    *max_rel = fam_zone_max(e, 0.0, xe, FAM_EPI_SAMPLES, 1);
+    *max_rel = fam_zone_max(e, 0.0, xe, fam_epi_samples, 1);
     e->abs_mode = 1;
-    *max_abs = fam_zone_max(e, xe, half_pi - xe, FAM_ATT_SAMPLES, 2);
+    *max_abs = fam_zone_max(e, xe, half_pi - xe, fam_att_samples, 2);
 }
 
 void fit_family_figures(const struct model_spec *family, int power_m, const double *params, const double *n,
@@ -797,7 +806,7 @@ static void fam_minimise(const struct fam_search *S, const double *start, double
             gsl_vector_set(step, k, fmax(0.05 * fabs(cur[k]), 0.01) / (1 << (2 * run)));
         }
         gsl_multimin_fminimizer_set(m, &fn, x, step);
-        for (int it = 0; it < FAM_NM_ITER; ++it) {
+        for (int it = 0; it < fam_nm_iter; ++it) {
             if (gsl_multimin_fminimizer_iterate(m))
                 break;
             if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(m), 1e-10) == GSL_SUCCESS)
@@ -872,7 +881,7 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
         snprintf(r->param_names[1], sizeof r->param_names[1], "b");
     } else {
         if (model_spec_parse(o->model, &family, err, sizeof err)) {
-            fprintf(stderr, "brdfbench fit: --model: %s\n", err);
+            fprintf(stderr, "brdfbench fit: --family: %s\n", err);
             return EXIT_USAGE;
         }
         for (int k = 0; k < family.info->nparams; ++k) {
@@ -888,7 +897,7 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
             S.nparams++;
         }
         if (S.nparams == 0 || (family.info->nparams == 2 && family.info->params[0].integer)) {
-            fprintf(stderr, "brdfbench fit: --model %s: the model has no continuous parameter to fit "
+            fprintf(stderr, "brdfbench fit: --family %s: the model has no continuous parameter to fit "
                             "(accepted: a model with one or two continuous parameters, e.g. gauss, pow3, pow4, fq)\n",
                     family.info->id);
             return EXIT_USAGE;
@@ -897,13 +906,29 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
         snprintf(r->family, sizeof r->family, "%s", family.info->id);
     }
     r->nparams = S.nparams;
+    int user = !o->power_m && family.info->kernel_id == BRDF_USER;
+    fam_epi_samples = user ? FAM_USER_EPI : FAM_EPI_SAMPLES;
+    fam_att_samples = user ? FAM_USER_ATT : FAM_ATT_SAMPLES;
+    fam_nm_iter = user ? FAM_USER_NM_ITER : FAM_NM_ITER;
+    int search_n = user ? FAM_USER_SEARCH_N : FAM_SEARCH_N;
+    /* The device programs (a user model's own, and its double reference) before the search. */
+    struct accuracy_ctx actx;
+    memset(&actx, 0, sizeof actx);
+    int rc = accuracy_open(&actx, s, "");
+    if (!rc && !o->power_m)
+        rc = accuracy_prepare(&actx, &family);
+    if (rc) {
+        accuracy_close(&actx);
+        return rc;
+    }
     S.fixed[0] = family.params[0];
     S.fixed[1] = family.params[1];
     long count = accuracy_grid_count(&g);
     double *n = malloc((size_t)count * sizeof *n);
-    double ns[FAM_SEARCH_N + 8];
+    double ns[FAM_SEARCH_N + 8];   /* FAM_USER_SEARCH_N is smaller */
     if (!n) {
         fprintf(stderr, "brdfbench fit: out of memory\n");
+        accuracy_close(&actx);
         return EXIT_RUNTIME;
     }
     for (long i = 0; i < count; ++i)
@@ -913,9 +938,9 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
     long nsn = 0;
     for (long i = 0; i < count && i < 6; ++i)
         ns[nsn++] = n[i];
-    for (int j = 1; j <= FAM_SEARCH_N && count > 6; ++j) {
-        double v = n[5] * pow(n[count - 1] / n[5], (double)j / FAM_SEARCH_N);
-        ns[nsn++] = j == FAM_SEARCH_N ? n[count - 1] : v;
+    for (int j = 1; j <= search_n && count > 6; ++j) {
+        double v = n[5] * pow(n[count - 1] / n[5], (double)j / search_n);
+        ns[nsn++] = j == search_n ? n[count - 1] : v;
     }
     S.n = ns;
     S.count = nsn;
@@ -931,13 +956,12 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
         r->best = *from;
     /* The trade-off: the best max delta for caps on max Delta between the two ends. */
     double lo = r->min_abs.max_abs, hi = r->min_rel.max_abs;
-    for (int j = 1; j + 1 < FIT_TRADEOFF_POINTS && hi > lo; ++j) {
+    for (int j = 1; j + 1 < FIT_TRADEOFF_POINTS && hi > lo && !user; ++j) {
         double c = lo + (hi - lo) * j / (FIT_TRADEOFF_POINTS - 1);
         fam_fit_point(&S, r->min_rel.params, FIT_MAX_REL, c, n, count, &r->tradeoff[r->tradeoff_count]);
         if (r->tradeoff[r->tradeoff_count].ok)
             r->tradeoff_count++;
     }
-    int rc = 0;
     /* The fitted model as --models text, and its device sweep. */
     struct model_spec fitted;
     int have_spec = 0;
@@ -964,15 +988,11 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
             have_spec = 1;
     }
     if (have_spec) {
-        struct accuracy_ctx actx;
-        memset(&actx, 0, sizeof actx);
-        rc = accuracy_open(&actx, s, "");
-        if (!rc)
-            rc = accuracy_run(&actx, &fitted, &g, &r->sweep);
+        rc = accuracy_run(&actx, &fitted, &g, &r->sweep);
         if (!rc)
             r->have_sweep = 1;
-        accuracy_close(&actx);
     }
+    accuracy_close(&actx);
     r->seconds = wall_seconds() - t0;
     if (!rc && out_dir) {
         char path[4200];

@@ -211,6 +211,13 @@ char *frontier_markdown(const struct frontier_report *r)
         else
             md_printf(&b, "%s |\n", row->psnr_reason);
     }
+    md_printf(&b, "\nSources (brdfbench list; docs/frontier.md has the formulas and the operation counts):\n\n");
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        md_printf(&b, "- `%s`: ", row->spec.label);
+        md_cell_text(&b, row->spec.info->description);
+        md_printf(&b, "\n");
+    }
     md_printf(&b, "\nThe front: ");
     for (int i = 0, k = 0; i < r->count; ++i)
         if (r->rows[i].on_front)
