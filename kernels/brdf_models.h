@@ -55,6 +55,18 @@ enum brdf_model_id {
     BRDF_GGX,         /* GGX D(theta_h; alpha(n))                                   */
     BRDF_QUAD,        /* ((a n + b)(c-1) + 1)^2, p0 = a, p1 = b: the fitted family  */
     BRDF_PHONGPOW,    /* c^n through the pow() built-in: the literal pow() reference */
+    BRDF_SG,          /* exp(n (c-1)), spherical Gaussian (Lagarde 2012)            */
+    BRDF_UE4PHONG,    /* exp((n + 0.775)(c-1)), UE4 mobile PhongApprox (Karis 2014) */
+    BRDF_BG,          /* max(0, A c + 1 - A)^m, Beaudoin-Guardado 2002, m = 2^p0    */
+    BRDF_KB,          /* Kuijk-Blake 1989 piecewise quadratic in the angle          */
+    BRDF_KBSWAP,      /* the same with a and b exchanged                            */
+    BRDF_BITPOW,      /* c^n by integer arithmetic on the float's bits              */
+    BRDF_GAUSS,       /* exp((a n + b)(c-1)), p0 = a, p1 = b: the Gaussian family   */
+    BRDF_CUBE,        /* ((a n + b)(c-1) + 1)^3, p0 = a, p1 = b                     */
+    BRDF_QUART,       /* ((a n + b)(c-1) + 1)^4, p0 = a, p1 = b                     */
+    BRDF_CUBEFIT,     /* pow3 with the frozen minimax constants below               */
+    BRDF_QUARTFIT,    /* pow4 with the frozen minimax constants below              */
+    BRDF_GAUSSFIT,    /* gauss with the frozen minimax constants below              */
     BRDF_USER,        /* a user model compiled at run time (brdf_user_eval)         */
     BRDF_MODEL_COUNT
 };
@@ -166,6 +178,130 @@ BRDF_FN REAL brdf_blinn_norm(REAL n)
     return (n + RC(2.0)) * (n + RC(4.0)) / (RC(8.0 * BRDF_PI) * (exp2(-n * RC(0.5)) + n));
 }
 
+/* ---- the approximations engines use (SPEC.md, "The approximations engines use") ---------- */
+
+/* The Gaussian lobe exp(k (c - 1)) = exp(-k s); engines write exp2(k/ln 2 (c - 1)), the same
+ * function. */
+BRDF_FN REAL brdf_gauss_lobe_s(REAL s, REAL k) { return exp(-k * s); }
+
+/* The power family (k (c - 1) + 1)^m zeroed past its root, m an integer in [1, 16], by
+ * squarings and multiplies (binary exponentiation; a constant m unrolls). */
+BRDF_FN REAL brdf_power(REAL c, REAL k, int m)
+{
+    REAL base = fmax(k * (c - RC(1.0)) + RC(1.0), RC(0.0));
+    REAL result = RSPLAT(1.0);
+    for (; m > 0; m >>= 1) {
+        if (m & 1)
+            result = result * base;
+        base = base * base;
+    }
+    return result;
+}
+
+/* Beaudoin and Guardado 2002: max(0, A c + B)^m with B = 1 - A, i.e. the power family with
+ * k = A. Their A comes from a per-n bisection (host/engine/fit.c, bg_exact_a, for the claim);
+ * the device gets it from the affine fit A(n) = alpha_m n + beta_m of those bisection values
+ * over n in [2, 1000] (least squares in relative terms), within 2.4% of the bisection A
+ * (at n = 2) for every m. m = 2^j, j = 1..4 (the registry's parameter j). */
+#define BRDF_BG_ALPHA_2 0.355728074
+#define BRDF_BG_BETA_2 0.264367919
+#define BRDF_BG_ALPHA_4 0.211256260
+#define BRDF_BG_BETA_4 0.157725393
+#define BRDF_BG_ALPHA_8 0.114952593
+#define BRDF_BG_BETA_8 0.085811949
+#define BRDF_BG_ALPHA_16 0.059933489
+#define BRDF_BG_BETA_16 0.044726082
+/* The power family's base, zeroed past its root, and its cube and fourth power written out
+ * (what the device runs: no loop to unroll), and 2^j by j squarings as Lyon's. */
+BRDF_FN REAL brdf_power_base_s(REAL s, REAL k) { return fmax(RC(1.0) - k * s, RC(0.0)); }
+BRDF_FN REAL brdf_cube_s(REAL s, REAL k)
+{
+    REAL b = brdf_power_base_s(s, k);
+    return b * b * b;
+}
+BRDF_FN REAL brdf_fourth_s(REAL s, REAL k)
+{
+    REAL b = brdf_power_base_s(s, k);
+    REAL b2 = b * b;
+    return b2 * b2;
+}
+BRDF_FN REAL brdf_squarings_s(REAL s, REAL k, int j)
+{
+    REAL b = brdf_power_base_s(s, k);
+    for (int i = 0; i < j; ++i)
+        b = b * b;
+    return b;
+}
+
+BRDF_FN REAL brdf_bg_a(REAL n, int m)
+{
+    if (m <= 2) return n * RC(BRDF_BG_ALPHA_2) + RC(BRDF_BG_BETA_2);
+    if (m <= 4) return n * RC(BRDF_BG_ALPHA_4) + RC(BRDF_BG_BETA_4);
+    if (m <= 8) return n * RC(BRDF_BG_ALPHA_8) + RC(BRDF_BG_BETA_8);
+    return n * RC(BRDF_BG_ALPHA_16) + RC(BRDF_BG_BETA_16);
+}
+
+/* Kuijk and Blake 1989, in the angle alpha = acos c: 1 - alpha^2/(ab) below a,
+ * (alpha - b)^2 / (b (b - a)) from a to b, 0 beyond; zeroed where negative (the exchanged
+ * a and b give a > b, and the first piece then falls below 0). */
+BRDF_FN REAL brdf_kb_a(REAL n) { return (n + RC(5.6)) / (n * (RC(0.09) * n + RC(5.2))); }
+BRDF_FN REAL brdf_kb_b(REAL n) { return (n + RC(65.0)) / (RC(5.0) * n + RC(31.7)); }
+BRDF_FN REAL brdf_kuijk_blake(REAL c, REAL a, REAL b)
+{
+    REAL alpha = acos(fmin(c, RC(1.0)));
+    REAL inner = RC(1.0) - alpha * alpha / (a * b);
+    REAL outer = (alpha - b) * (alpha - b) / (b * (b - a));
+    REAL f = alpha < a ? inner : (alpha < b ? outer : RSPLAT(0.0));
+    return fmax(f, RC(0.0));
+}
+
+/* The integer-bit pow (Schraudolph 1999 style): the float whose bits are
+ * n (bits(c) - bits(1)) + bits(1), with bits(1.0f) = 0x3f800000; a negative result is 0.
+ * On the device it is written as shaders write it, on the float's bits (scalar and float16):
+ * the product n (bits(c) - bits(1)) in float, truncated to an integer (saturating), then the
+ * integer add, so the only float rounding is the product's (about 1e-7 of the value).
+ * The host reference reproduces the same arithmetic in double: bits(c) - bits(1) is
+ * 2^23 (e + m - 1) for c = m 2^e (m in [1, 2)), and a bit pattern t >= 0 is read back the same
+ * way, so the host figure is the trick's own error, not float rounding. */
+#ifdef __OPENCL_VERSION__
+__attribute__((overloadable)) static inline float brdf_bitpow(float c, float n)
+{
+    int t = convert_int_sat_rtz(n * convert_float(as_int(c) - 0x3f800000)) + 0x3f800000;
+    return as_float(max(t, 0));
+}
+__attribute__((overloadable)) static inline float16 brdf_bitpow(float16 c, float16 n)
+{
+    int16 t = convert_int16_sat_rtz(n * convert_float16(as_int16(c) - 0x3f800000)) + 0x3f800000;
+    return as_float16(max(t, 0));
+}
+#else
+BRDF_FN REAL brdf_bitpow(REAL c, REAL n)
+{
+    /* log2 as the bit pattern reads it: e + (m - 1), with c = m 2^e, m in [1, 2) */
+    int e;
+    double mant = frexp((double)c, &e);   /* c = mant 2^e, mant in [0.5, 1) */
+    double l2 = (c > 0) ? (double)(e - 1) + (2.0 * mant - 1.0) : -HUGE_VAL;
+    double t = (double)n * l2 + 127.0;   /* the result's bits / 2^23 */
+    if (!(t > 0))
+        return (REAL)0.0;
+    if (t < 1.0)                          /* a subnormal bit pattern: t 2^23 units of 2^-149 */
+        return (REAL)ldexp(t, -126);
+    double te = floor(t);
+    return (REAL)ldexp(1.0 + (t - te), (int)te - 127);
+}
+#endif
+
+/* Frozen minimax members of the families above: the least largest epicentre max delta over
+ * n in [2, 1000] step 1, as found by `brdfbench fit --family pow3|pow4|gauss` (docs/frontier.md
+ * gives the commands and their figures: pow4fit 0.567% / 0.0723, pow3fit 0.760% / 0.0809,
+ * gaussfit 1.100% / 0.1299 for max delta / max Delta). */
+#define BRDF_CUBEFIT_A 0.3106866803
+#define BRDF_CUBEFIT_B 0.07545118726
+#define BRDF_QUARTFIT_A 0.2371428753
+#define BRDF_QUARTFIT_B 0.05221691603
+#define BRDF_GAUSSFIT_A 1.020199565
+#define BRDF_GAUSSFIT_B 0.1774327237
+
 #ifdef BRDF_HAVE_USER_MODEL
 /* Supplied by a user model file compiled at run time. */
 BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1);
@@ -194,6 +330,18 @@ BRDF_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1
     case BRDF_BECKMANN: return brdf_d_beckmann_cs(c, s, brdf_alpha_from_n(n));
     case BRDF_GGX:      return brdf_d_ggx_cs(c, s, brdf_alpha_from_n(n));
     case BRDF_QUAD:     return brdf_quadratic_s(s, n * p0 + p1);
+    case BRDF_SG:       return brdf_gauss_lobe_s(s, n);
+    case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));
+    case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);
+    case BRDF_KB:       return brdf_kuijk_blake(c, brdf_kb_a(n), brdf_kb_b(n));
+    case BRDF_KBSWAP:   return brdf_kuijk_blake(c, brdf_kb_b(n), brdf_kb_a(n));
+    case BRDF_BITPOW:   return brdf_bitpow(c, n);
+    case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);
+    case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);
+    case BRDF_QUART:    return brdf_fourth_s(s, n * p0 + p1);
+    case BRDF_CUBEFIT:  return brdf_cube_s(s, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B));
+    case BRDF_QUARTFIT: return brdf_fourth_s(s, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B));
+    case BRDF_GAUSSFIT: return brdf_gauss_lobe_s(s, n * RC(BRDF_GAUSSFIT_A) + RC(BRDF_GAUSSFIT_B));
 #ifdef BRDF_HAVE_USER_MODEL
     case BRDF_USER:     return brdf_user_eval(c, n, p0, p1);
 #endif

@@ -81,6 +81,56 @@ static inline double lf_eval(const char *id, double c, double s, double n, doubl
     }
     if (!strcmp(id, "quad"))
         return lf_quad(s, p0 * n + p1);
+    /* SPEC.md, "The approximations engines use"; the frozen constants as docs/frontier.md
+       prints them. */
+    if (!strcmp(id, "sg"))
+        return exp(-n * s);                                    /* exp(n (c - 1)) */
+    if (!strcmp(id, "ue4phong"))
+        return exp(-(n + 0.775) * s);
+    if (!strcmp(id, "gauss"))
+        return exp(-(p0 * n + p1) * s);
+    if (!strcmp(id, "gaussfit"))
+        return exp(-(1.020199565 * n + 0.1774327237) * s);
+    if (!strcmp(id, "pow3") || !strcmp(id, "pow4") || !strcmp(id, "pow3fit") || !strcmp(id, "pow4fit")) {
+        int m = id[3] == '3' ? 3 : 4;
+        int frozen = strlen(id) > 4;
+        double k = frozen ? (m == 3 ? 0.3106866803 * n + 0.07545118726 : 0.2371428753 * n + 0.05221691603)
+                          : p0 * n + p1;
+        double base = 1 - k * s;
+        return base > 0 ? pow(base, m) : 0.0;
+    }
+    if (!strcmp(id, "bg")) {                                   /* m = 2^j, A(n) = alpha_m n + beta_m */
+        static const double alpha[5] = { 0, 0.355728074, 0.211256260, 0.114952593, 0.059933489 };
+        static const double beta[5] = { 0, 0.264367919, 0.157725393, 0.085811949, 0.044726082 };
+        int j = (int)p0;
+        double base = 1 - (alpha[j] * n + beta[j]) * s;       /* A c + 1 - A */
+        return base > 0 ? pow(base, pow(2, j)) : 0.0;
+    }
+    if (!strcmp(id, "kb") || !strcmp(id, "kbswap")) {
+        double a = (n + 5.6) / (n * (0.09 * n + 5.2)), b = (n + 65) / (5 * n + 31.7);
+        if (!strcmp(id, "kbswap")) {
+            double t = a;
+            a = b;
+            b = t;
+        }
+        double al = 2 * asin(sqrt(s / 2));                     /* the angle from s = 1 - cos */
+        double f = al < a ? 1 - al * al / (a * b) : al < b ? (al - b) * (al - b) / (b * (b - a)) : 0.0;
+        return f > 0 ? f : 0.0;
+    }
+    if (!strcmp(id, "bitpow")) {
+        /* bits(c) - bits(1) = 2^23 (e + m - 1) for c = m 2^e, m in [1, 2); the pattern
+           t = 2^23 (n (e + m - 1) + 127) read back as 2^(floor t' - 127) (1 + frac t'). */
+        if (c <= 0)
+            return 0.0;
+        int e = ilogb(c);
+        double l2 = e + (scalbn(c, -e) - 1), t = n * l2 + 127;
+        if (t <= 0)
+            return 0.0;
+        if (t < 1)
+            return t * pow(2, -126);
+        double fl = floor(t);
+        return pow(2, fl - 127) * (1 + (t - fl));
+    }
     return NAN;
 }
 

@@ -80,7 +80,7 @@ t 2 "^brdfbench: unknown command 'frobnicate' \(accepted: list accuracy " frobni
 t 2 'multi:^usage: brdfbench COMMAND'
 t 2 "^brdfbench: unknown command '--bogus'" --bogus
 # list
-t 2 "^brdfbench list: unknown option '--bogus' \(accepted: --help\)" list --bogus
+t 2 "^brdfbench list: unknown option '--bogus' \(see brdfbench list --help\)" list --bogus
 # accuracy: numbers
 t 2 "^brdfbench accuracy: --n-min: 'abc' is not a finite number in \[" accuracy --n-min abc
 t 2 "^brdfbench accuracy: --n-min: 'nan' is not a finite number" accuracy --n-min nan
@@ -177,7 +177,7 @@ t 2 "^brdfbench all: unknown option '--bogus' \(see brdfbench all --help\)" all 
 t 2 "^brdfbench all: unknown model 'nosuch'" all --models nosuch
 t 2 "^brdfbench plot: RUN_DIR '/nonexistent' is not a folder" plot /nonexistent
 t 2 "^brdfbench plot: unexpected argument 'b'" plot folder b
-t 2 "^brdfbench heatmap: --model: missing value" heatmap --model
+t 2 "^brdfbench heatmap: --label: missing value" heatmap --label
 t 2 "^brdfbench render: --size: '0x10' is not WxH with W and H integers in \[16, 16384\]" render --size 0x10
 t 2 "^brdfbench render: --size: 4096x4096 is outside the accepted range: .*device" POCL_MEMORY_LIMIT=1 render --size 4096x4096
 t 2 "^brdfbench render: --scene: 'moon' is not a list of spheres, teapot, bunny" render --scene moon
@@ -185,7 +185,14 @@ t 2 "^brdfbench render: --exposure: 'nan' is not a finite number in \[0.01, 100\
 t 2 "^brdfbench render: --light: 'laser' is not directional or point" render --light laser
 t 2 "^brdfbench render: --reps: '0' is not an integer in \[1, 1000\]" render --reps 0
 t 2 "^brdfbench fit: --n-min: 'x' is not a finite number" fit --n-min x
-t 2 "^brdfbench fit: --max-abs: '-1' is not a finite number in \[1e-300, 1\]" fit --max-abs -1
+t 2 "^brdfbench fit: --max-abs: '-1' is not a finite number in \[1e-06, 1\]" fit --max-abs -1
+t 2 "^brdfbench fit: --max-abs: '1e-300' is not a finite number in \[1e-06, 1\]" fit --max-abs 1e-300
+t 2 "^brdfbench fit: --max-rel: '0' is not a finite number in \[1e-06, 1\]" fit --objective max_abs --max-rel 0
+t 2 "^brdfbench fit: --power: '17' is not an integer in \[1, 16\]" fit --power 17
+t 2 "^brdfbench fit: --objective: 'bogus' is not an objective \(accepted: max_rel, max_abs\)" fit --objective bogus
+t 2 "^brdfbench fit: --max-rel caps the figure --objective max_rel minimises" fit --family gauss --max-rel 0.01
+t 2 "^brdfbench frontier: --samples: 17 is not a multiple of 16" frontier --samples 17
+t 2 "^brdfbench frontier: unknown option '--bogus' \(see brdfbench frontier --help\)" frontier --bogus
 t 2 "^brdfbench fit: --samples: '7' is not an integer in \[16, " fit --samples 7
 t 2 "^brdfbench fit: unknown option '--bogus' \(see brdfbench fit --help\)" fit --bogus
 t 2 "^brdfbench reproduce: --samples: '0' is not an integer in \[16, " reproduce --samples 0
@@ -194,13 +201,13 @@ t 2 "^brdfbench reproduce: unknown option '--bogus' \(see brdfbench reproduce --
 t 2 "^brdfbench throughput: unknown option '--bogus' \(see brdfbench throughput --help\)" throughput --bogus
 t 2 "^brdfbench throughput: --min-time: '0' is not a finite number in \[0.0001, 10\]" throughput --min-time 0
 t 2 "^brdfbench throughput: --work-items: '-1' is not an integer in \[1, 65536\]" throughput --work-items -1
-t 2 "^brdfbench throughput: --n: 'nan' is not a finite number" throughput --n nan
-t 2 "^brdfbench throughput: --n-range: LO \(5\) must be below HI \(2\)" throughput --n-range 5:2
+t 2 "^brdfbench throughput: --uniform-n: 'nan' is not a finite number" throughput --uniform-n nan
+t 2 "^brdfbench throughput: --n-min \(5\) must be below --n-max \(2\)" throughput --n-min 5 --n-max 2
 t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " throughput --variants turbo
 t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
 t 2 "^brdfbench compare: expected BASELINE RUN \[RUN \.\.\.\]" compare
 t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help\)" compare --bogus
-t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-12, 1\]" compare a b --alpha 2
+t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-06, 0.5\]" compare a b --alpha 2
 t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
 t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
 t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
@@ -213,6 +220,28 @@ printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_min":1e-300,"ma
 t 2 "^brdfbench gate: n_min_tiny.json:1:[0-9]+: gate 1: \"n_min\" 1e-300 is out of range \(accepted: 0.1 <= n_min <= 1e\+06\)" gate n_min_tiny.json
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.1,"accept_device_disagreement":"yes"}]}' >accept_string.json
 t 2 "^brdfbench gate: accept_string.json:1:[0-9]+: gate 1: \"accept_device_disagreement\" is a string, a boolean expected" gate accept_string.json
+# One meaning per flag: a flag another command uses otherwise is refused with the right name.
+t 2 "^brdfbench heatmap: --model: not a flag of brdfbench heatmap: .*--label LABEL" heatmap --model fvol
+t 2 "^brdfbench render: --n: not a flag of brdfbench render: .*--mesh-n X" render --n 64
+t 2 "^brdfbench render: --samples: not a flag of brdfbench render: .*--check-pixels N" render --samples 100
+t 2 "^brdfbench throughput: --n: not a flag of brdfbench throughput: .*--uniform-n X" throughput --n 100
+t 2 "^brdfbench throughput: --n-range: not a flag of brdfbench throughput: .*--n-min LO --n-max HI" throughput --n-range 2:1000
+t 2 "^brdfbench all: --n-min \(50\) must be below --n-max \(10\)" all --n-min 50 --n-max 10
+t 2 "^brdfbench all: --samples: 100 is not a multiple of 16" all --samples 100
+t 2 "^brdfbench accuracy: --quiet: takes no value \(got '--quiet=1'\)" accuracy --quiet=1
+# Model lists: a parameter given twice is refused; NAME with two expressions is refused.
+t 2 "^brdfbench accuracy: model 'fq': parameter Q given twice \(at 'Q=0.6'" accuracy --models fq:Q=0.5,Q=0.6
+t 2 "^brdfbench accuracy: model 'quad': parameter a given twice" accuracy --models quad:a=0.4,b=0.2,a=0.5
+t 2 "^brdfbench accuracy: --model z: user model 'z' is already defined by --model z" accuracy --model 'z=c' --model 'z=c*c'
+# Conventional output: one document on standard output, --json needs its value.
+t 2 "^brdfbench accuracy: --json - and --csv -: one document at a time on standard output" accuracy --json - --csv -
+t 2 "^brdfbench gate: --junit - and --json -: one document at a time on standard output" gate good.json --junit - --json -
+t 2 "^brdfbench throughput: --json - and --csv -: one document at a time on standard output" throughput --json - --csv -
+t 2 "^brdfbench list: --json: missing value \(expected --json FILE\|-\)" list --json
+t 2 "^brdfbench version: unexpected argument 'now'" version now
+# heatmap names the labels a run has when asked for one it does not have.
+mkdir -p run1 && printf '{"model": "fq:Q=0.64"}' >run1/field_fq_Q_0.64.json && printf '{"model": "fvol"}' >run1/field_fvol.json
+t 2 "^brdfbench heatmap: --label cq2: run1 has no model of that label \(accepted: fq:Q=0.64, fvol\)" heatmap run1 --label cq2
 
 # Output paths, folders and input formats: a refused run makes no folder (the check below
 # covers `run`), two reports never share a file, and a file of the wrong format is named as such.

@@ -101,7 +101,7 @@ cat >"$T/sides.json" <<EOF
   {"name": "cq2 invalid values", "model": "cq2", "metric": "invalid.count", "max": 0}
  ]}
 EOF
-"$BIN" gate "$T/sides.json" --json "$T/sides.out.json" --junit "$T/sides.xml" --quiet >"$T/out" 2>"$T/err"
+"$BIN" gate "$T/sides.json" --json "$T/sides.out.json" --junit "$T/sides.xml" >"$T/out" 2>"$T/err"
 rc=$?
 [ $rc -eq 1 ] && ok || bad "a failing gate must exit 1, got $rc: $(cat "$T/err")"
 py "each gate judged on the independent values" '
@@ -218,7 +218,7 @@ rc=$?
 
 # 5. The documented example (tests/gates/example.json, every kind of gate; its bounds are
 #    loose or closed forms: f = 0.9 c^n has relative error 0.1) runs and passes.
-"$BIN" gate "$SRC/tests/gates/example.json" --quiet >"$T/out" 2>"$T/err"
+"$BIN" gate "$SRC/tests/gates/example.json" >"$T/out" 2>"$T/err"
 rc=$?
 [ $rc -eq 0 ] && [ "$(grep -c '^PASS  ' "$T/out")" -eq 8 ] && ok || bad "example.json: exit $rc: $(cat "$T/out" "$T/err")"
 

@@ -15,7 +15,7 @@ printf '{"gates": [{"model": "fq2", "metric": "epicentre.max_rel", "n_max": 20, 
 
 # /dev/stdout redirected to a file: the JSON lands in the file, after the gate lines, and
 # /dev/stdout is still the link it was.
-"$BIN" gate g.json --quiet --json /dev/stdout >log 2>err
+"$BIN" gate g.json --json /dev/stdout >log 2>err
 rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "--json /dev/stdout: exit $rc: $(head -c 400 err)"

@@ -32,7 +32,12 @@ RUN="$T/results/latest"
 [ -L "$RUN" ] && [ -d "$RUN/" ] && ok || bad "results/latest is not a link to a run folder"
 [ -f "$RUN/report.md" ] && ok || bad "no report.md"
 # progress: one line per step with the elapsed time, then the report's path on stdout
-[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]/9 ' "$T/err")" -eq 9 ] && ok || bad "want 9 step lines: $(cat "$T/err")"
+[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]+/10 ' "$T/err")" -eq 10 ] && ok || bad "want 10 step lines: $(cat "$T/err")"
+# the frontier step: its files, and report.md's section naming the front
+[ -s "$RUN/frontier.json" ] && is_png "$RUN/frontier_max_rel.png" && is_png "$RUN/frontier_max_abs.png" && ok \
+    || bad "the frontier step's files are missing"
+grep -q "^## Which lobe to ship" "$RUN/report.md" && grep -q "^The front: " "$RUN/report.md" && ok \
+    || bad "report.md lacks the 'Which lobe to ship' section"
 grep -q "report.md" "$T/out" && ok || bad "stdout lacks the report path"
 links_exist "$RUN" && ok || bad "report.md links a missing file"
 # every model but the self-referenced phong has a heatmap and its field; phong has none
@@ -56,8 +61,8 @@ rm -f "$RUN/heatmap_fvol.png" "$RUN/max_abs_error_vs_n.png"
 expect 0 "redrawn" plot "$RUN"
 is_png "$RUN/heatmap_fvol.png" && is_png "$RUN/max_abs_error_vs_n.png" && ok || bad "plot did not redraw"
 rm -f "$RUN/heatmap_cq2.png"
-expect 0 "1 picture" heatmap "$RUN" --model cq2
-is_png "$RUN/heatmap_cq2.png" && ok || bad "heatmap --model cq2 did not redraw"
+expect 0 "1 picture" heatmap "$RUN" --label cq2
+is_png "$RUN/heatmap_cq2.png" && ok || bad "heatmap --label cq2 did not redraw"
 
 # input errors: exit 2, the file named
 cp -r "$RUN/" "$T/broken"
@@ -67,7 +72,7 @@ rm "$T/broken/plots.json"
 expect 2 "plots.json: cannot open" plot "$T/broken"
 printf '{"schema": "brdfbench.field/1"}' >"$T/broken/field_fvol.json"
 expect 2 "field_fvol.json:1:1: member \"model\" is missing" heatmap "$T/broken"
-expect 2 "field_nosuch.json: cannot open" heatmap "$RUN" --model nosuch
+expect 2 "--label nosuch: .* has no model of that label \(accepted: .*cq2" heatmap "$RUN" --label nosuch
 expect 2 "not a folder" plot "$T/none"
 expect 2 "unknown option" all --frobnicate
 expect 2 "unknown model" all --models nosuch

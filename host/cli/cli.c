@@ -83,43 +83,6 @@ const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char
     return argv[++*i];
 }
 
-const char *cli_path_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen)
-{
-    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
-    if (v && !*v) {
-        snprintf(err, errlen, "%s: empty path (accepted: a folder or file name)", name);
-        return NULL;
-    }
-    return v;
-}
-
-int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
-                     double *out, char *err, size_t errlen)
-{
-    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
-    return v ? cli_parse_double(name, v, min, max, out, err, errlen) : EXIT_USAGE;
-}
-
-int cli_long_value(int argc, char **argv, int *i, const char *name, long min, long max,
-                   long *out, char *err, size_t errlen)
-{
-    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
-    return v ? cli_parse_long(name, v, min, max, out, err, errlen) : EXIT_USAGE;
-}
-
-int cli_long_multiple_value(int argc, char **argv, int *i, const char *name, long min, long max, long multiple,
-                            long *out, char *err, size_t errlen)
-{
-    if (cli_long_value(argc, argv, i, name, min, max, out, err, errlen))
-        return EXIT_USAGE;
-    if (*out % multiple != 0) {
-        snprintf(err, errlen, "%s: %ld is not a multiple of %ld (accepted: a multiple of %ld in [%ld, %ld])", name,
-                 *out, multiple, multiple, min, max);
-        return EXIT_USAGE;
-    }
-    return 0;
-}
-
 int cli_mul_size(size_t a, size_t b, size_t *out)
 {
     if (a != 0 && b > SIZE_MAX / a)
@@ -136,49 +99,4 @@ void device_options_init(struct device_options *o)
     o->device = -1;
     o->kernel_dir = NULL;
     o->timeout = 0.0;
-}
-
-int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen)
-{
-    const char *a = argv[*i];
-    long v;
-    if (cli_flag_is(a, "--platform") || cli_flag_is(a, "--device")) {
-        const char *name = cli_flag_is(a, "--platform") ? "--platform" : "--device";
-        const char *val = cli_flag_value(argc, argv, i, name, err, errlen);
-        if (val && name[2] == 'd' && cli_is_device_list(val)) {
-            snprintf(err, errlen, "--device: '%s': all and lists are taken by throughput, accuracy and render "
-                     "(accepted here: 0 to 63)", val);
-            return -2;
-        }
-        if (!val || cli_parse_long(name, val, 0, 63, &v, err, errlen))
-            return -2;
-        if (name[2] == 'p')
-            o->platform = (int)v;
-        else
-            o->device = (int)v;
-        return 1;
-    }
-    if (cli_flag_is(a, "--kernel-dir")) {
-        const char *val = cli_flag_value(argc, argv, i, "--kernel-dir", err, errlen);
-        if (!val)
-            return -2;
-        char probe[4096];
-        snprintf(probe, sizeof probe, "%s/brdf_models.h", val);
-        FILE *f = fopen(probe, "r");
-        if (!f) {
-            snprintf(err, errlen, "--kernel-dir: %s does not hold brdf_models.h (accepted: a kernels/ folder)", val);
-            return -2;
-        }
-        fclose(f);
-        o->kernel_dir = val;
-        clsession_set_kernel_dir(val);
-        return 1;
-    }
-    if (cli_flag_is(a, "--timeout")) {
-        if (cli_double_value(argc, argv, i, "--timeout", 0.01, CLSESSION_MAX_TIMEOUT, &o->timeout, err, errlen))
-            return -2;
-        clsession_set_timeout(o->timeout, TIMEOUT_FLAG);
-        return 1;
-    }
-    return 0;
 }

@@ -2,7 +2,7 @@
  * written as accuracy.json, accuracy.csv and a table. */
 #include "accuracy.h"
 #include "accuracy_report.h"
-#include "cli.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
@@ -15,28 +15,6 @@
 
 #define MAX_MODELS 64
 
-static void accuracy_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: brdfbench accuracy [OPTIONS]\n"
-            "  Sweeps every model over (angle, n): max relative error in the epicentre zone, max absolute\n"
-            "  error in the attenuation zone and over the whole range, each with where it occurs.\n"
-            "  --models LIST      comma-separated models with parameters, e.g. cq2,fq:Q=0.7,lyon:k=4\n"
-            "                     (default: all; see brdfbench list)\n"
-            "  --n-min X          smallest shininess (default 2; >= 0.1)\n"
-            "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
-            "  --n-step X         step of n (default 1; real values allowed; n-max is always included)\n"
-            "  --samples N        samples per zone per n, a multiple of 16 in [16, %ld] (default %d)\n"
-            "  --out DIR          write accuracy.json and accuracy.csv into DIR\n"
-            "                     (default: a new folder results/<date-time>/, with results/latest)\n"
-            "  --quiet            no table on stdout\n"
-            USERMODEL_OPTIONS_HELP
-            "                     (with a user model and no --models, only the user models run)\n"
-            DEVICE_OPTIONS_HELP
-            DEVICE_LIST_HELP,
-            ACC_MAX_SAMPLES, ACC_DEFAULT_SAMPLES);
-}
-
 int cmd_accuracy(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
@@ -47,49 +25,50 @@ int cmd_accuracy(int argc, char **argv)
     struct accuracy_grid grid = { 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = "all", *out_dir = NULL;
+    const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
     int quiet = 0, models_given = 0;
     struct model_spec models[MAX_MODELS];
 
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d == 0)
-            d = accuracy_grid_flag(argc, argv, &i, &grid.n_min, &grid.n_max, &grid.n_step, err, sizeof err);
-        if (d == 0)
-            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (d < 0)
-            goto usage_error;
-        if (d > 0)
-            continue;
-        if (strcmp(a, "--help") == 0) {
-            accuracy_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-        } else if (cli_flag_is(a, "--models")) {
-            if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err)))
-                goto usage_error;
-            models_given = 1;
-        } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--samples")) {
-            if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
-                                        &grid.samples, err, sizeof err))
-                goto usage_error;
-        } else {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench accuracy --help)", a);
-            goto usage_error;
-        }
-    }
+    const struct cli_flag flags[] = {
+        CLI_FLAG_MODELS(&models_text, &models_given, "all; with --model or --model-file, only the user models"),
+        CLI_FLAG_N_MIN(&grid.n_min),
+        CLI_FLAG_N_MAX(&grid.n_max),
+        CLI_FLAG_N_STEP(&grid.n_step),
+        CLI_FLAG_SAMPLES(&grid.samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json or --csv and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
+        CLI_FLAG_CSV(&csv_path),
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_USERMODEL,
+        CLI_FLAGS_DEVICE(&dev),
+    };
+    const struct cli_command cmd = {
+        .name = "accuracy",
+        .about = "  Sweeps every model over (angle, n): max relative error in the epicentre zone, max absolute\n"
+                 "  error in the attenuation zone and over the whole range, each with where it occurs.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
     if (!models_given && usermodel_count() > 0)
         models_text = usermodel_names();
-    int nmodels = model_spec_list_parse(models_text, models, MAX_MODELS, err, sizeof err);
+    int nmodels = cli_model_list(models_text, models, MAX_MODELS, err, sizeof err);
     if (nmodels < 0)
         goto usage_error;
     if (accuracy_grid_check(&grid, NULL, err, sizeof err))
         goto usage_error;
+    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
+        snprintf(err, sizeof err, "--json - and --csv -: one document at a time on standard output");
+        goto usage_error;
+    }
+    /* --json or --csv without --out: those files only, no run folder. A document on
+       standard output leaves the table out. */
+    int to_folder = out_dir || (!json_path && !csv_path);
+    int doc_on_stdout = cli_is_stdout(json_path) || cli_is_stdout(csv_path);
 
     struct cl_session s;
     int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
@@ -117,8 +96,10 @@ int cmd_accuracy(int argc, char **argv)
         goto cleanup;
     /* Check the output folder before the sweep, so a bad --out fails fast (and after the
        builds, so a user model that does not compile leaves no folder behind). */
-    char run_dir[4096];
-    if (out_dir) {
+    char run_dir[4096] = "";
+    if (!to_folder) {
+        /* no folder */
+    } else if (out_dir) {
         if (outdir_prepare(out_dir, "--out", err, sizeof err)) {
             fprintf(stderr, "brdfbench accuracy: %s\n", err);
             rc = EXIT_RUNTIME;
@@ -142,26 +123,47 @@ int cmd_accuracy(int argc, char **argv)
             fprintf(stderr, "accuracy: %d/%d %s done (%.1f s)\n", m + 1, nmodels, models[m].label,
                     wall_seconds() - started);
     }
-    if (!out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
+    if (to_folder && !out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
         goto cleanup;
     }
     char path[4200];
-    path_join(path, sizeof path, run_dir, "accuracy.json");
-    int wrc = accuracy_write_json(path, res, nmodels, &s, actx.build_options, err, sizeof err);
-    if (!wrc) {
-        path_join(path, sizeof path, run_dir, "accuracy.csv");
-        wrc = accuracy_write_csv(path, res, nmodels, err, sizeof err);
+    int wrc = 0;
+    if (to_folder) {
+        path_join(path, sizeof path, run_dir, "accuracy.json");
+        wrc = accuracy_write_json(path, res, nmodels, &s, actx.build_options, err, sizeof err);
+        if (!wrc) {
+            path_join(path, sizeof path, run_dir, "accuracy.csv");
+            wrc = accuracy_write_csv(path, res, nmodels, err, sizeof err);
+        }
+        if (!wrc && !out_dir)
+            wrc = outdir_set_latest("results", run_dir, err, sizeof err);
     }
-    if (!wrc && !out_dir)
-        wrc = outdir_set_latest("results", run_dir, err, sizeof err);
+    if (!wrc && json_path) {
+        struct cli_output o;
+        const char *wp;
+        wrc = cli_output_path(&o, json_path, "accuracy.json", &wp, err, sizeof err);
+        if (!wrc)
+            wrc = accuracy_write_json(wp, res, nmodels, &s, actx.build_options, err, sizeof err);
+        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
+        wrc = wrc ? wrc : frc;
+    }
+    if (!wrc && csv_path) {
+        struct cli_output o;
+        const char *wp;
+        wrc = cli_output_path(&o, csv_path, "accuracy.csv", &wp, err, sizeof err);
+        if (!wrc)
+            wrc = accuracy_write_csv(wp, res, nmodels, err, sizeof err);
+        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
+        wrc = wrc ? wrc : frc;
+    }
     if (wrc) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
         goto cleanup;
     }
-    if (!quiet) {
+    if (!quiet && !doc_on_stdout) {
         accuracy_print_table(stdout, res, nmodels);
         double worst = 0, dev_s = 0, pts = 0;
         int beyond = 0;
@@ -176,7 +178,12 @@ int cmd_accuracy(int argc, char **argv)
                "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
         printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)\n",
                dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples);
-        printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
+        if (to_folder)
+            printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
+        if (json_path)
+            printf("written: %s\n", json_path);
+        if (csv_path)
+            printf("written: %s\n", csv_path);
     }
 cleanup:
     for (int m = 0; m < done; ++m)

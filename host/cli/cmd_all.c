@@ -6,12 +6,13 @@
 #define _POSIX_C_SOURCE 200809L
 #include "accuracy.h"
 #include "accuracy_report.h"
-#include "cli.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "context.h"
 #include "exitcodes.h"
 #include "field.h"
 #include "fit.h"
+#include "frontier.h"
 #include "outdir.h"
 #include "plots.h"
 #include "render.h"
@@ -30,7 +31,7 @@
 
 #define ALL_MAX_MODELS 64
 #define ALL_MAX_Q 256
-#define ALL_STEPS 9
+#define ALL_STEPS 10
 
 struct all_settings {
     int quick;
@@ -51,6 +52,7 @@ struct all_run {
     double t0;
     int step;
     int tty;
+    int quiet;                     /* no progress or step lines, no closing path */
     struct model_spec models[ALL_MAX_MODELS];
     int nmodels;
     struct accuracy_result *acc;
@@ -68,6 +70,8 @@ struct all_run {
     char picture_error[1024];
     struct report_block claims, fit, throughput, images;
     struct md_buf claims_md, fit_md, throughput_md, images_md;
+    struct report_block frontier;
+    char *frontier_md;
 };
 
 /* ---- progress ------------------------------------------------------------------- */
@@ -77,7 +81,7 @@ static double elapsed(const struct all_run *r) { return wall_seconds() - r->t0; 
 /* A live bar on a terminal: [#####.....] 7/14 fvol */
 static void progress(const struct all_run *r, const char *what, int done, int total, const char *item)
 {
-    if (!r->tty || total <= 0) return;
+    if (!r->tty || r->quiet || total <= 0) return;
     int width = 30, fill = done * width / total;
     char bar[64];
     for (int i = 0; i < width; i++) bar[i] = i < fill ? '#' : '.';
@@ -97,9 +101,11 @@ static void step_done(struct all_run *r, const char *name, double started, const
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     r->step++;
-    if (r->tty) fprintf(stderr, "\r\033[K");
-    fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, ALL_STEPS, name, msg,
-            wall_seconds() - started);
+    if (!r->quiet) {
+        if (r->tty) fprintf(stderr, "\r\033[K");
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, ALL_STEPS, name, msg,
+                wall_seconds() - started);
+    }
     md_printf(&r->steps, "%d. **%s**: %s (%.1f s)\n", r->step, name, msg, wall_seconds() - started);
 }
 
@@ -614,6 +620,28 @@ static int step_images(struct all_run *r)
     return 0;
 }
 
+/* Which lobe to ship (frontier.h): every lobe approximation's cost against its accuracy, with
+ * shorter timings than `brdfbench frontier` (2 rounds of 3 launches of 10 ms) to keep the main job short. */
+static int step_frontier(struct all_run *r)
+{
+    double t = wall_seconds();
+    struct frontier_options o;
+    frontier_options_default(&o);
+    o.reps = 3;
+    o.rounds = 2;
+    o.min_time = 0.01;
+    o.samples = r->set.quick ? 256 : 512;
+    progress(r, "frontier", 0, 1, "measuring");
+    int rc = frontier_run(&r->s, &o, r->run_dir, 1, &r->frontier_md);
+    if (rc) {
+        fprintf(stderr, "brdfbench all: the frontier failed (exit %d)\n", rc);
+        return rc;
+    }
+    r->frontier.markdown = r->frontier_md;
+    step_done(r, "frontier", t, "cost against accuracy -> frontier.json, frontier.csv, frontier_*.png");
+    return 0;
+}
+
 static int step_report(struct all_run *r, double wall)
 {
     double t = wall_seconds();
@@ -636,6 +664,7 @@ static int step_report(struct all_run *r, double wall)
     in.fit = r->fit;
     in.throughput = r->throughput;
     in.images = r->images;
+    in.frontier = r->frontier;
     in.pictures = r->pics;
     in.npictures = r->npics;
     /* the step list closes with this step's own line, written before the page */
@@ -647,28 +676,13 @@ static int step_report(struct all_run *r, double wall)
         return EXIT_RUNTIME;
     }
     r->step++;
-    fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, ALL_STEPS, "report",
-            r->run_dir, wall_seconds() - t);
+    if (!r->quiet)
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, ALL_STEPS,
+                "report", r->run_dir, wall_seconds() - t);
     return 0;
 }
 
 /* ---- command ---------------------------------------------------------------------- */
-
-static void all_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: brdfbench all [OPTIONS]\n"
-            "  The main job: the accuracy sweep of every model, the f_Q sweep over Q, error heatmaps,\n"
-            "  plots, and the claims, throughput and image passes where they exist, into a new run\n"
-            "  folder results/<date-time>/ (results/latest points at it) with report.md there.\n"
-            "  --models LIST        models of the sweep and the heatmaps (default: all; see brdfbench list)\n"
-            "  --results-root DIR   where run folders are made (default: results)\n"
-            "  --out DIR            write into DIR instead of a new run folder (results/latest unchanged)\n"
-            "  --quick              coarse grids (seconds; for tests and trials, not for figures)\n"
-            USERMODEL_OPTIONS_HELP
-            "                     (user models join the default set of models)\n"
-            DEVICE_OPTIONS_HELP);
-}
 
 static void settings_default(struct all_settings *s, int quick)
 {
@@ -694,6 +708,7 @@ static void run_free(struct all_run *r)
     md_free(&r->fit_md);
     md_free(&r->throughput_md);
     md_free(&r->images_md);
+    free(r->frontier_md);
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
@@ -714,30 +729,49 @@ int cmd_all(int argc, char **argv)
     for (int i = 1; i < argc && used < sizeof r->command; i++)
         used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
 
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d == 0) d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (d < 0) goto usage_error;
-        if (d > 0) continue;
-        if (strcmp(a, "--help") == 0) {
-            all_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quick") == 0) {
-            quick = 1;
-        } else if (cli_flag_is(a, "--models")) {
-            if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err))) goto usage_error;
-        } else if (cli_flag_is(a, "--results-root")) {
-            if (!(r->results_root = cli_flag_value(argc, argv, &i, "--results-root", err, sizeof err))) goto usage_error;
-        } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err))) goto usage_error;
-        } else {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench all --help)", a);
-            goto usage_error;
-        }
-    }
+    /* The grid flags: given ones replace the (quick or full) defaults of the main sweep and
+       the heatmaps' range of n. */
+    struct accuracy_grid g = { 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
+    int n_min_given = 0, n_max_given = 0, n_step_given = 0, samples_given = 0;
+    struct cli_flag flags[] = {
+        CLI_FLAG_MODELS(&models_text, NULL, "all, and the user models of --model and --model-file"),
+        CLI_FLAG_N_MIN(&g.n_min),
+        CLI_FLAG_N_MAX(&g.n_max),
+        CLI_FLAG_N_STEP(&g.n_step),
+        CLI_FLAG_SAMPLES(&g.samples, ACC_MAX_SAMPLES),
+        { .name = "--results-root", .value = "DIR", .kind = CLI_PATH, .dest = &r->results_root,
+          .help = "where run folders are made" },
+        CLI_FLAG_OUT(&out_dir, "a new folder under --results-root, and its latest pointing at it"),
+        { .name = "--quick", .kind = CLI_SWITCH, .dest = &quick, .set = 1,
+          .help = "coarse grids (seconds; for tests and trials, not for figures): n step 10, 256 samples" },
+        CLI_FLAG_QUIET(&r->quiet),
+        CLI_FLAGS_USERMODEL,
+        CLI_FLAGS_DEVICE(&dev),
+    };
+    flags[1].given = &n_min_given;
+    flags[2].given = &n_max_given;
+    flags[3].given = &n_step_given;
+    flags[4].given = &samples_given;
+    const struct cli_command cmd = {
+        .name = "all",
+        .about = "  The main job: the accuracy sweep of every model, the f_Q sweep over Q, error heatmaps,\n"
+                 "  plots, and the claims, throughput and image passes where they exist, into a new run\n"
+                 "  folder results/<date-time>/ (results/latest points at it) with report.md there.\n"
+                 "  The grid flags set the main sweep and the heatmaps' range of n; the claims, the fit and\n"
+                 "  the Q sweep keep the papers' grids.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc) goto usage_error;
     settings_default(&r->set, quick);
-    r->nmodels = model_spec_list_parse(models_text, r->models, ALL_MAX_MODELS, err, sizeof err);
+    if (n_min_given) r->set.grid.n_min = r->set.field.n_min = g.n_min;
+    if (n_max_given) r->set.grid.n_max = r->set.field.n_max = g.n_max;
+    if (n_step_given) r->set.grid.n_step = g.n_step;
+    if (samples_given) r->set.grid.samples = g.samples;
+    r->nmodels = cli_model_list(models_text, r->models, ALL_MAX_MODELS, err, sizeof err);
     if (r->nmodels < 0) goto usage_error;
     /* User models join the default set (with --models they are named there). */
     if (strcmp(models_text, "all") == 0 && usermodel_append_all(r->models, &r->nmodels, ALL_MAX_MODELS, err, sizeof err))
@@ -762,8 +796,9 @@ int cmd_all(int argc, char **argv)
         clsession_close(&r->s);
         return EXIT_RUNTIME;
     }
-    fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->run_dir,
-            quick ? " (quick grids)" : "");
+    if (!r->quiet)
+        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->run_dir,
+                quick ? " (quick grids)" : "");
     md_init(&r->steps);
     plots_init(&r->plots);
     if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) goto done;
@@ -780,6 +815,7 @@ int cmd_all(int argc, char **argv)
     if ((rc = step_heatmaps(r)) != 0) goto done;
     if ((rc = step_plots(r)) != 0) goto done;
     part(r, "images", &r->images, step_images(r));
+    part(r, "frontier", &r->frontier, step_frontier(r));
     if ((rc = step_report(r, elapsed(r))) != 0) goto done;
     if (r->part_failures) {
         fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);
@@ -797,8 +833,10 @@ int cmd_all(int argc, char **argv)
         rc = EXIT_RUNTIME;
         goto done;
     }
-    fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->run_dir);
-    printf("%s/report.md\n", r->run_dir);
+    if (!r->quiet) {
+        fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->run_dir);
+        printf("%s/report.md\n", r->run_dir);
+    }
 done:
     run_free(r);
     clsession_close(&r->s);

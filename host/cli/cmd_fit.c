@@ -1,6 +1,6 @@
 /* cmd_fit.c - `brdfbench fit`: the cosine-quadratic family's accuracy limit per n and its best
  * affine k(n) = a n + b, written as fit.json and usable everywhere as quad:a=...,b=... */
-#include "cli.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
 #include "fit.h"
@@ -10,23 +10,18 @@
 #include <stdio.h>
 #include <string.h>
 
-static void fit_usage(FILE *f)
+static int fit_call_objective(const char *flag, const char *value, void *dest, char *err, size_t errlen)
 {
-    fprintf(f,
-            "usage: brdfbench fit [OPTIONS]\n"
-            "  For f = (k(n)(c-1) + 1)^2 (zeroed past its root): the per-n k that minimises the epicentre's\n"
-            "  max delta (the family's limit), and the affine k(n) = a n + b that minimises the largest max\n"
-            "  delta over the n range; measured on the device beside fq2, fvol and cq2.\n"
-            "  --n-min X          smallest shininess (default 2; > 0)\n"
-            "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
-            "  --n-step X         step of n (default 1; n-max is always included)\n"
-            "  --max-abs X        cap on the attenuation zone's max Delta, 0 < X <= 1 (default: none)\n"
-            "  --samples N        samples per zone of the device sweeps, a multiple of 16 (default %d)\n"
-            "  --out DIR          write fit.json into DIR\n"
-            "                     (default: a new folder results/<date-time>/, with results/latest)\n"
-            "  --quiet            no summary on stdout\n"
-            DEVICE_OPTIONS_HELP,
-            ACC_DEFAULT_SAMPLES);
+    int *objective = dest;
+    if (strcmp(value, "max_rel") == 0)
+        *objective = FIT_MAX_REL;
+    else if (strcmp(value, "max_abs") == 0)
+        *objective = FIT_MAX_ABS;
+    else {
+        snprintf(err, errlen, "%s: '%s' is not an objective (accepted: max_rel, max_abs)", flag, value);
+        return EXIT_USAGE;
+    }
+    return 0;
 }
 
 int cmd_fit(int argc, char **argv)
@@ -36,37 +31,49 @@ int cmd_fit(int argc, char **argv)
     fit_options_default(&opt);
     struct device_options dev;
     device_options_init(&dev);
-    const char *out_dir = NULL;
+    const char *out_dir = NULL, *json_path = NULL;
     int quiet = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d == 0)
-            d = accuracy_grid_flag(argc, argv, &i, &opt.n_min, &opt.n_max, &opt.n_step, err, sizeof err);
-        if (d < 0)
-            goto usage_error;
-        if (d > 0)
-            continue;
-        if (strcmp(a, "--help") == 0) {
-            fit_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-        } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--max-abs")) {
-            if (cli_double_value(argc, argv, &i, "--max-abs", 1e-300, 1.0, &opt.max_abs_cap, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--samples")) {
-            if (cli_long_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, &opt.samples, err,
-                               sizeof err))
-                goto usage_error;
-        } else {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench fit --help)", a);
-            goto usage_error;
-        }
-    }
+    const struct cli_flag flags[] = {
+        CLI_FLAG_N_MIN(&opt.n_min),
+        CLI_FLAG_N_MAX(&opt.n_max),
+        CLI_FLAG_N_STEP(&opt.n_step),
+        { .name = "--max-abs", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_abs_cap, .min = FIT_CAP_MIN,
+          .max = 1.0, .help = "cap on the attenuation zone's max Delta", .def = "none" },
+        { .name = "--family", .value = "ID", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, &opt.model), .def = "",
+          .help = "fit another family instead: a registry or user model with one or two continuous parameters "
+                  "(gauss, pow3, pow4, fq, quad, or a user model of --model-file with param: lines, e.g. "
+                  "--model-file my.cl --family my)" },
+        { .name = "--power", .value = "M", .kind = CLI_INT, .dest = CLI_DEST(int, &opt.power_m), .min = 1,
+          .max = FIT_POWER_M_MAX, .def = "", .help = "fit the power family ((a n + b)(c-1) + 1)^M" },
+        { .name = "--objective", .value = "WHAT", .kind = CLI_CALL, .dest = &opt.objective,
+          .call = fit_call_objective, .range = "max_rel or max_abs", .def = "max_rel",
+          .help = "what a family fit minimises: the epicentre's max delta or the attenuation's max Delta" },
+        { .name = "--max-rel", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_rel_cap, .min = FIT_CAP_MIN,
+          .max = 1.0, .def = "none", .help = "with --objective max_abs: cap on the epicentre's max delta" },
+        CLI_FLAG_SAMPLES(&opt.samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_USERMODEL,
+    };
+    const struct cli_command cmd = {
+        .name = "fit",
+        .about = "  For f = (k(n)(c-1) + 1)^2 (zeroed past its root): the per-n k that minimises the epicentre's\n"
+                 "  max delta (the family's limit), and the affine k(n) = a n + b that minimises the largest max\n"
+                 "  delta over the n range; measured on the device beside fq2, fvol and cq2.\n"
+                 "  With --family or --power, the minimax fit of that family's one or two continuous\n"
+                 "  parameters, and the trade-off between the two figures.\n",
+        .epilog = "  Exit codes: 0 done, 1 no member of the family meets the cap (fit.json says why),\n"
+                  "  2 bad input, 3 a runtime error.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
     if (fit_options_check(&opt, err, sizeof err))
         goto usage_error;
 
@@ -76,19 +83,46 @@ int cmd_fit(int argc, char **argv)
         fprintf(stderr, "brdfbench fit: %s\n", err);
         return rc;
     }
-    char run_dir[4096];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
+    char run_dir[4096], tmp_dir[512] = "";
+    if (json_path && !out_dir) {
+        if (cli_temp_dir(tmp_dir, sizeof tmp_dir, err, sizeof err)) {
+            fprintf(stderr, "brdfbench fit: %s\n", err);
+            clsession_close(&s);
+            return EXIT_RUNTIME;
+        }
+        snprintf(run_dir, sizeof run_dir, "%s", tmp_dir);
+    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
-    rc = fit_run(&s, run_dir, &opt, quiet, NULL);
-    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
+    /* the summary stays off standard output when the document goes there */
+    int fit_quiet = quiet || cli_is_stdout(json_path);
+    if (fit_wants_family(&opt))
+        rc = fit_family_run(&s, run_dir, &opt, fit_quiet, NULL);
+    else
+        rc = fit_run(&s, run_dir, &opt, fit_quiet, NULL);
+    /* exit 1 (no member meets the cap) still has a fit.json that says why */
+    int written = !rc || rc == EXIT_GATE_FAIL;
+    if (written && !out_dir && !json_path && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
         rc = EXIT_RUNTIME;
     }
-    if (!rc && !quiet)
-        printf("written: %s/fit.json\n", run_dir);
+    if (written && json_path) {
+        char src[4200];
+        path_join(src, sizeof src, run_dir, "fit.json");
+        if (cli_deliver(src, "--json", json_path, err, sizeof err)) {
+            fprintf(stderr, "brdfbench fit: %s\n", err);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    cli_temp_dir_remove(tmp_dir);
+    if (written && !quiet && !cli_is_stdout(json_path)) {
+        if (!tmp_dir[0])
+            printf("written: %s/fit.json\n", run_dir);
+        if (json_path)
+            printf("written: %s\n", json_path);
+    }
     clsession_close(&s);
     return rc;
 

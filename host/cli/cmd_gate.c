@@ -1,5 +1,6 @@
 /* cmd_gate.c - `brdfbench gate GATES.json`: accuracy gates for CI (docs/gates.md). */
-#include "cli.h"
+#define _POSIX_C_SOURCE 200809L
+#include "cli_table.h"
 #include "clsession.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -9,25 +10,35 @@
 #include "usermodel.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-static void gate_usage(FILE *f)
+/* With --quiet, only the gates that did not pass (the verdict's errors). */
+static void print_gates(FILE *f, const struct gate_set *gs, int quiet)
 {
-    fprintf(f,
-            "usage: brdfbench gate GATES.json [OPTIONS]\n"
-            "  Runs the accuracy sweeps that the gates of GATES.json need (docs/gates.md) and checks each\n"
-            "  gate's figure against its bounds: one line per gate (PASS/FAIL, measured, bound, margin).\n"
-            "  Exit 0: every gate passed; 1: a gate failed; 2: bad gates file or option; 3: runtime error;\n"
-            "  77: no OpenCL device.\n"
-            "  --junit FILE       write JUnit XML, one testcase per gate\n"
-            "  --json FILE        write the results as JSON (schema %s)\n"
-            "  --baseline PATH    compare with an earlier accuracy.json (a run folder or the file itself): a\n"
-            "                     figure above baseline + tolerance x |baseline| + %g fails as a regression\n"
-            "  --tolerance REL    relative tolerance of --baseline, in [0, 1] (default %g)\n"
-            "  --quiet            no progress lines on stderr\n"
-            USERMODEL_OPTIONS_HELP
-            DEVICE_OPTIONS_HELP,
-            GATE_RESULT_SCHEMA, GATE_BASELINE_FLOOR, GATE_DEFAULT_TOLERANCE);
+    if (!quiet) {
+        gate_set_print(f, gs);
+        return;
+    }
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    if (!m) {
+        gate_set_print(f, gs);
+        return;
+    }
+    gate_set_print(m, gs);
+    fclose(m);
+    for (char *line = text; line && *line;) {
+        char *nl = strchr(line, '\n');
+        size_t n = nl ? (size_t)(nl - line + 1) : strlen(line);
+        if (strncmp(line, "PASS  ", 6) != 0 && strncmp(line, "FAIL  ", 6) != 0 && strncmp(line, "----  ", 6) != 0)
+            ; /* the summary line */
+        else if (strncmp(line, "PASS  ", 6) != 0)
+            fwrite(line, 1, n, f);
+        line += n;
+    }
+    free(text);
 }
 
 int cmd_gate(int argc, char **argv)
@@ -38,47 +49,53 @@ int cmd_gate(int argc, char **argv)
     const char *gates_path = NULL, *junit = NULL, *json = NULL, *baseline = NULL;
     double tolerance = GATE_DEFAULT_TOLERANCE;
     int quiet = 0, tolerance_given = 0;
+    char baseline_help[256];
+    snprintf(baseline_help, sizeof baseline_help,
+             "compare with an earlier accuracy.json (a run folder or the file itself): a figure above baseline + "
+             "tolerance x |baseline| + %g fails as a regression", GATE_BASELINE_FLOOR);
 
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d == 0)
-            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (d < 0)
-            goto usage_error;
-        if (d > 0)
-            continue;
-        if (strcmp(a, "--help") == 0) {
-            gate_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-        } else if (cli_flag_is(a, "--junit")) {
-            if (!(junit = cli_flag_value(argc, argv, &i, "--junit", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--json")) {
-            if (!(json = cli_flag_value(argc, argv, &i, "--json", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--baseline")) {
-            if (!(baseline = cli_flag_value(argc, argv, &i, "--baseline", err, sizeof err)))
-                goto usage_error;
-            if (!*baseline) {
-                snprintf(err, sizeof err, "--baseline: empty path (accepted: a run folder or an accuracy.json)");
-                goto usage_error;
-            }
-        } else if (cli_flag_is(a, "--tolerance")) {
-            if (cli_double_value(argc, argv, &i, "--tolerance", 0.0, 1.0, &tolerance, err, sizeof err))
-                goto usage_error;
-            tolerance_given = 1;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench gate --help)", a);
-            goto usage_error;
-        } else if (gates_path) {
-            snprintf(err, sizeof err, "one gates file expected, got '%s' and '%s'", gates_path, a);
-            goto usage_error;
-        } else {
-            gates_path = a;
-        }
+    const struct cli_flag flags[] = {
+        { .name = "--junit", .value = "FILE|-", .kind = CLI_PATH, .dest = &junit, .def = "",
+          .help = "write JUnit XML, one testcase per gate, to FILE ('-': standard output)" },
+        CLI_FLAG_JSON(&json),
+        { .name = "--baseline", .value = "PATH", .kind = CLI_TEXT, .dest = &baseline, .def = "",
+          .help = baseline_help },
+        { .name = "--tolerance", .value = "REL", .kind = CLI_DOUBLE, .dest = &tolerance, .min = 0.0, .max = 1.0,
+          .given = &tolerance_given, .help = "relative tolerance of --baseline" },
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_USERMODEL,
+        CLI_FLAGS_DEVICE(&dev),
+    };
+    const struct cli_command cmd = {
+        .name = "gate",
+        .synopsis = "GATES.json [OPTIONS]",
+        .about = "  Runs the accuracy sweeps that the gates of GATES.json need (docs/gates.md) and checks each\n"
+                 "  gate's figure against its bounds: one line per gate (PASS/FAIL, measured, bound, margin);\n"
+                 "  with --quiet only the gates that did not pass. --json writes schema " GATE_RESULT_SCHEMA ".\n"
+                 "  Exit 0: every gate passed; 1: a gate failed; 2: bad gates file or option; 3: runtime error;\n"
+                 "  77: no OpenCL device.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        .max_positional = 2,
+    };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
+    if (args.npositional > 1) {
+        snprintf(err, sizeof err, "one gates file expected, got '%s' and '%s'", args.positional[0], args.positional[1]);
+        goto usage_error;
+    }
+    gates_path = args.npositional ? args.positional[0] : NULL;
+    if (baseline && !*baseline) {
+        snprintf(err, sizeof err, "--baseline: empty path (accepted: a run folder or an accuracy.json)");
+        goto usage_error;
+    }
+    if (cli_is_stdout(junit) && cli_is_stdout(json)) {
+        snprintf(err, sizeof err, "--junit - and --json -: one document at a time on standard output");
+        goto usage_error;
     }
     if (!gates_path) {
         snprintf(err, sizeof err, "a gates file is missing (usage: brdfbench gate GATES.json [OPTIONS])");
@@ -106,8 +123,8 @@ int cmd_gate(int argc, char **argv)
         return rc;
     }
     /* The outputs can be written: found out before any sweep runs. */
-    if ((junit && gate_output_check("--junit", junit, err, sizeof err)) ||
-        (json && gate_output_check("--json", json, err, sizeof err))) {
+    if ((junit && !cli_is_stdout(junit) && gate_output_check("--junit", junit, err, sizeof err)) ||
+        (json && !cli_is_stdout(json) && gate_output_check("--json", json, err, sizeof err))) {
         fprintf(stderr, "brdfbench gate: %s\n", err);
         gate_set_free(&gs);
         return EXIT_RUNTIME;
@@ -128,13 +145,25 @@ int cmd_gate(int argc, char **argv)
         fprintf(stderr, "device: %s (%s)\n", s.device_name, s.platform_version);
     if ((rc = gate_set_run(&gs, &s, quiet ? NULL : stderr)) != 0)
         goto done;
-    gate_set_print(stdout, &gs);
+    /* a document on standard output: the gate lines go to stderr */
+    print_gates(cli_is_stdout(junit) || cli_is_stdout(json) ? stderr : stdout, &gs, quiet);
     fflush(stdout);
-    if ((junit && gate_set_write_junit(&gs, junit, &s, err, sizeof err)) ||
-        (json && gate_set_write_json(&gs, json, &s, err, sizeof err))) {
-        fprintf(stderr, "brdfbench gate: %s\n", err);
-        rc = EXIT_RUNTIME;
-        goto done;
+    for (int k = 0; k < 2; ++k) {
+        const char *path = k == 0 ? junit : json;
+        if (!path)
+            continue;
+        struct cli_output o;
+        const char *wp;
+        int wrc = cli_output_path(&o, path, k == 0 ? "junit.xml" : "gate.json", &wp, err, sizeof err);
+        if (!wrc)
+            wrc = k == 0 ? gate_set_write_junit(&gs, wp, &s, err, sizeof err)
+                         : gate_set_write_json(&gs, wp, &s, err, sizeof err);
+        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
+        if (wrc || frc) {
+            fprintf(stderr, "brdfbench gate: %s\n", err);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
     }
     rc = gate_set_failures(&gs) > 0 ? EXIT_GATE_FAIL : EXIT_OK;
 done:

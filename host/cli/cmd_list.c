@@ -1,59 +1,62 @@
-/* cmd_list.c - `brdfbench list`: the model registry and the OpenCL platforms and devices. */
-#include "cli.h"
+/* cmd_list.c - `brdfbench list`: the model registry and the OpenCL platforms and devices, as
+ * text or (--json) as a JSON document. */
+#include "cli_table.h"
 #include "clsession.h"
 #include "commands.h"
+#include "context.h"
 #include "exitcodes.h"
+#include "jsonw.h"
 #include "models.h"
 
 #include <stdio.h>
 #include <string.h>
 
-static void list_devices(void)
+#define LIST_SCHEMA "brdfbench.list/1"
+
+struct device_entry {
+    char name[256];
+    cl_uint compute_units;
+    cl_ulong global_mem;
+};
+struct platform_entry {
+    char name[256], version[256];
+    cl_uint ndev;
+    struct device_entry dev[16];
+};
+
+/* At most 16 platforms of 16 devices each; returns how many platforms were found. */
+static int find_devices(struct platform_entry *plat, int max)
 {
     cl_uint nplat = 0;
-    cl_int e = clGetPlatformIDs(0, NULL, &nplat);
-    printf("\nOpenCL platforms and devices:\n");
-    if (e != CL_SUCCESS || nplat == 0) {
-        printf("  none found (install pocl-opencl-icd for the CPU driver)\n");
-        return;
-    }
-    cl_platform_id plats[16];
-    if (nplat > 16)
-        nplat = 16;
-    clGetPlatformIDs(nplat, plats, NULL);
+    if (clGetPlatformIDs(0, NULL, &nplat) != CL_SUCCESS || nplat == 0)
+        return 0;
+    cl_platform_id ids[16];
+    if (nplat > (cl_uint)max)
+        nplat = (cl_uint)max;
+    clGetPlatformIDs(nplat, ids, NULL);
     for (cl_uint p = 0; p < nplat; ++p) {
-        char name[256] = "", version[256] = "";
-        clGetPlatformInfo(plats[p], CL_PLATFORM_NAME, sizeof name, name, NULL);
-        clGetPlatformInfo(plats[p], CL_PLATFORM_VERSION, sizeof version, version, NULL);
-        printf("  platform %u: %s (%s)\n", p, name, version);
-        cl_uint ndev = 0;
+        struct platform_entry *e = &plat[p];
+        memset(e, 0, sizeof *e);
+        clGetPlatformInfo(ids[p], CL_PLATFORM_NAME, sizeof e->name, e->name, NULL);
+        clGetPlatformInfo(ids[p], CL_PLATFORM_VERSION, sizeof e->version, e->version, NULL);
         cl_device_id devs[16];
-        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 16, devs, &ndev) != CL_SUCCESS)
-            ndev = 0;
-        if (ndev > 16)
-            ndev = 16;
-        for (cl_uint d = 0; d < ndev; ++d) {
-            char dname[256] = "";
-            cl_uint cu = 0;
-            cl_ulong mem = 0;
-            clGetDeviceInfo(devs[d], CL_DEVICE_NAME, sizeof dname, dname, NULL);
-            clGetDeviceInfo(devs[d], CL_DEVICE_MAX_COMPUTE_UNITS, sizeof cu, &cu, NULL);
-            clGetDeviceInfo(devs[d], CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL);
-            printf("    device %u: %s, %u compute units, %.1f GiB\n", d, dname, cu, (double)mem / 1073741824.0);
+        if (clGetDeviceIDs(ids[p], CL_DEVICE_TYPE_ALL, 16, devs, &e->ndev) != CL_SUCCESS)
+            e->ndev = 0;
+        if (e->ndev > 16)
+            e->ndev = 16;
+        for (cl_uint d = 0; d < e->ndev; ++d) {
+            clGetDeviceInfo(devs[d], CL_DEVICE_NAME, sizeof e->dev[d].name, e->dev[d].name, NULL);
+            clGetDeviceInfo(devs[d], CL_DEVICE_MAX_COMPUTE_UNITS, sizeof e->dev[d].compute_units,
+                            &e->dev[d].compute_units, NULL);
+            clGetDeviceInfo(devs[d], CL_DEVICE_GLOBAL_MEM_SIZE, sizeof e->dev[d].global_mem, &e->dev[d].global_mem,
+                            NULL);
         }
     }
+    return (int)nplat;
 }
 
-int cmd_list(int argc, char **argv)
+static void print_text(const struct platform_entry *plat, int nplat)
 {
-    for (int i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: brdfbench list\n  Lists the models (formula, parameters, reference) and the OpenCL devices.\n");
-            return EXIT_OK;
-        }
-        fprintf(stderr, "brdfbench list: unknown option '%s' (accepted: --help)\n", argv[i]);
-        return EXIT_USAGE;
-    }
     printf("Models (f(c, n), c = cos x; x = psi for the Phong family, theta_h for the Blinn family):\n");
     for (int i = 0; i < models_count(); ++i) {
         const struct model_info *m = models_at(i);
@@ -69,6 +72,120 @@ int cmd_list(int argc, char **argv)
                    m->params[p].min, m->params[p].max, m->params[p].integer ? " integer" : "", m->params[p].def,
                    m->params[p].meaning, m->id, m->params[p].name, m->params[p].def);
     }
-    list_devices();
+    printf("\nOpenCL platforms and devices:\n");
+    if (nplat == 0)
+        printf("  none found (install pocl-opencl-icd for the CPU driver)\n");
+    for (int p = 0; p < nplat; ++p) {
+        printf("  platform %d: %s (%s)\n", p, plat[p].name, plat[p].version);
+        for (cl_uint d = 0; d < plat[p].ndev; ++d)
+            printf("    device %u: %s, %u compute units, %.1f GiB\n", d, plat[p].dev[d].name,
+                   plat[p].dev[d].compute_units, (double)plat[p].dev[d].global_mem / 1073741824.0);
+    }
+}
+
+static int write_json(const char *path, const struct platform_entry *plat, int nplat, char *err, size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", LIST_SCHEMA);
+    jw_kv_str(&w, "brdfbench_version", BRDF_VERSION);
+    jw_kv_str(&w, "git_revision", brdf_git_revision);
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int i = 0; i < models_count(); ++i) {
+        const struct model_info *m = models_at(i);
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "id", m->id);
+        jw_kv_str(&w, "description", m->description);
+        jw_kv_str(&w, "formula", m->formula);
+        jw_kv_str(&w, "reference", m->reference_id);
+        jw_kv_str(&w, "lobe", m->lobe == LOBE_PSI ? "psi" : "theta_h");
+        jw_kv_str(&w, "family", m->family);
+        jw_kv_bool(&w, "in_default_set", m->in_default_set);
+        jw_key(&w, "root");
+        if (m->root)
+            jw_str(&w, m->root);
+        else
+            jw_null(&w);
+        jw_key(&w, "parameters");
+        jw_arr_begin(&w);
+        for (int p = 0; p < m->nparams; ++p) {
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "name", m->params[p].name);
+            jw_kv_num(&w, "min", m->params[p].min);
+            jw_kv_num(&w, "max", m->params[p].max);
+            jw_kv_num(&w, "default", m->params[p].def);
+            jw_kv_bool(&w, "integer", m->params[p].integer);
+            jw_kv_str(&w, "meaning", m->params[p].meaning);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_key(&w, "platforms");
+    jw_arr_begin(&w);
+    for (int p = 0; p < nplat; ++p) {
+        jw_obj_begin(&w);
+        jw_kv_int(&w, "index", p);
+        jw_kv_str(&w, "name", plat[p].name);
+        jw_kv_str(&w, "version", plat[p].version);
+        jw_key(&w, "devices");
+        jw_arr_begin(&w);
+        for (cl_uint d = 0; d < plat[p].ndev; ++d) {
+            jw_obj_begin(&w);
+            jw_kv_int(&w, "index", d);
+            jw_kv_str(&w, "name", plat[p].dev[d].name);
+            jw_kv_int(&w, "compute_units", plat[p].dev[d].compute_units);
+            jw_kv_int(&w, "global_mem_bytes", (long long)plat[p].dev[d].global_mem);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    struct cli_output o;
+    const char *wp;
+    int rc = cli_output_path(&o, path, "list.json", &wp, err, errlen);
+    if (!rc && jw_write_file(&w, wp, err, errlen))
+        rc = EXIT_RUNTIME;
+    int frc = cli_output_finish(&o, !rc, err, errlen);
+    jw_free(&w);
+    return rc ? rc : frc;
+}
+
+int cmd_list(int argc, char **argv)
+{
+    char err[1024];
+    const char *json_path = NULL;
+    const struct cli_flag flags[] = {
+        CLI_FLAG_JSON(&json_path),
+    };
+    const struct cli_command cmd = {
+        .name = "list",
+        .about = "  Lists the models (formula, parameters, reference) and the OpenCL platforms and devices;\n"
+                 "  with --json as a JSON document (schema " LIST_SCHEMA ").\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc) {
+        fprintf(stderr, "brdfbench list: %s\n", err);
+        return EXIT_USAGE;
+    }
+    struct platform_entry plat[16];
+    int nplat = find_devices(plat, 16);
+    if (!json_path) {
+        print_text(plat, nplat);
+        return EXIT_OK;
+    }
+    if (write_json(json_path, plat, nplat, err, sizeof err)) {
+        fprintf(stderr, "brdfbench list: %s\n", err);
+        return EXIT_RUNTIME;
+    }
     return EXIT_OK;
 }

@@ -3,7 +3,8 @@
  * an OpenCL device. A missing or malformed JSON file is named with the problem (exit 2); a
  * picture that cannot be written is reported (exit 3) and the other pictures are still drawn. */
 #define _POSIX_C_SOURCE 200809L
-#include "cli.h"
+#include "cli_table.h"
+#include "jsonr.h"
 #include "commands.h"
 #include "exitcodes.h"
 #include "field.h"
@@ -16,28 +17,16 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static void redraw_usage(FILE *f, const char *name)
-{
-    if (strcmp(name, "heatmap") == 0)
-        fprintf(f, "usage: brdfbench heatmap [RUN_DIR] [--model LABEL]\n"
-                   "  Redraws heatmap_<model>.png from field_<model>.json in RUN_DIR (default: results/latest),\n"
-                   "  every model or only LABEL (as in the run, e.g. fvol or fq:Q=0.64). No device is used.\n");
-    else
-        fprintf(f, "usage: brdfbench plot [RUN_DIR]\n"
-                   "  Redraws every picture of a run folder (default: results/latest) from its JSON: the plots\n"
-                   "  from plots.json and the heatmaps from field_<model>.json. No device is used.\n");
-}
-
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 /* Redraws one field file; returns 0, 2 (input) or 3 (picture). Messages start with
-   "brdfbench CMD: " and, for a model the user named, "--model LABEL: ". */
+   "brdfbench CMD: " and, for a model the user named, "--label LABEL: ". */
 static int redraw_field(const char *cmd, const char *model, const char *dir, const char *json_name, int *drawn)
 {
     char path[4096], png[4096], name[512], err[1024], what[320] = "";
     struct field_result fr;
     if (model)
-        snprintf(what, sizeof what, "--model %s: ", model);
+        snprintf(what, sizeof what, "--label %s: ", model);
     if (path_join(path, sizeof path, dir, json_name)) {
         fprintf(stderr, "brdfbench %s: %s%s/%s: path too long\n", cmd, what, dir, json_name);
         return EXIT_USAGE;
@@ -68,39 +57,86 @@ static int is_field_file(const char *name)
     return n > strlen("field_.json") && strncmp(name, "field_", 6) == 0 && strcmp(name + n - 5, ".json") == 0;
 }
 
-/* Every field_*.json of dir in name order (or only the one of `model`). */
-static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, int *drawn, int *worst)
+/* The field_*.json files of dir in name order (NULL on a folder that cannot be read). */
+static char **field_files(const char *dir, size_t *count)
 {
-    if (model) {
-        char stem[256], name[320];
-        field_safe_label(model, stem, sizeof stem);
-        snprintf(name, sizeof name, "field_%s.json", stem);
-        int rc = redraw_field(cmd, model, dir, name, drawn);
-        if (rc > *worst) *worst = rc;
-        return 0;
-    }
     DIR *d = opendir(dir);
-    if (!d) {
-        fprintf(stderr, "brdfbench %s: %s: cannot open the run folder\n", cmd, dir);
-        *worst = EXIT_USAGE;
-        return -1;
-    }
+    if (!d)
+        return NULL;
     char **names = NULL;
-    size_t count = 0, cap = 0;
+    size_t cap = 0;
+    *count = 0;
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
         if (!is_field_file(e->d_name)) continue;
-        if (count == cap) {
+        if (*count == cap) {
             cap = cap ? cap * 2 : 32;
             char **nn = realloc(names, cap * sizeof *nn);
             if (!nn) break;
             names = nn;
         }
-        if (!(names[count] = strdup(e->d_name))) break;
-        count++;
+        if (!(names[*count] = strdup(e->d_name))) break;
+        ++*count;
     }
     closedir(d);
-    qsort(names, count, sizeof *names, cmp_str);
+    if (names)
+        qsort(names, *count, sizeof *names, cmp_str);
+    return names;
+}
+
+/* The labels of the models of a run (each field file's "model"), comma-separated. */
+static void run_labels(const char *dir, char *out, size_t len)
+{
+    size_t count = 0, used = 0;
+    char **names = field_files(dir, &count);
+    out[0] = '\0';
+    for (size_t i = 0; i < count; i++) {
+        char path[4096], err[256];
+        struct jr_doc doc;
+        const char *label = NULL;
+        int parsed = path_join(path, sizeof path, dir, names[i]) == 0 && jr_parse_file(path, &doc, err, sizeof err) == 0;
+        if (parsed && jr_need_str(&doc, &doc.root, "model", &label, err, sizeof err) != 0)
+            label = NULL;
+        if (used < len)
+            used += (size_t)snprintf(out + used, len - used, "%s%s", i ? ", " : "", label ? label : names[i]);
+        if (parsed)
+            jr_free(&doc);
+        free(names[i]);
+    }
+    free(names);
+}
+
+/* Every field_*.json of dir in name order (or only the one of `model`). */
+static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, int *drawn, int *worst)
+{
+    if (model) {
+        char stem[256], name[320], path[4096];
+        struct stat st;
+        field_safe_label(model, stem, sizeof stem);
+        snprintf(name, sizeof name, "field_%s.json", stem);
+        if (path_join(path, sizeof path, dir, name) == 0 && stat(path, &st) != 0) {
+            char labels[2048];
+            run_labels(dir, labels, sizeof labels);
+            fprintf(stderr, "brdfbench %s: --label %s: %s has no model of that label (accepted: %s)\n", cmd, model,
+                    dir, labels[0] ? labels : "none: the run holds no field_<model>.json");
+            *worst = EXIT_USAGE;
+            return 0;
+        }
+        int rc = redraw_field(cmd, model, dir, name, drawn);
+        if (rc > *worst) *worst = rc;
+        return 0;
+    }
+    size_t count = 0;
+    char **names = field_files(dir, &count);
+    if (!names && count == 0) {
+        DIR *probe = opendir(dir);
+        if (!probe) {
+            fprintf(stderr, "brdfbench %s: %s: cannot open the run folder\n", cmd, dir);
+            *worst = EXIT_USAGE;
+            return -1;
+        }
+        closedir(probe);
+    }
     for (size_t i = 0; i < count; i++) {
         int rc = redraw_field(cmd, NULL, dir, names[i], drawn);
         if (rc == EXIT_USAGE || (rc && *worst != EXIT_USAGE)) *worst = rc;
@@ -115,23 +151,36 @@ static int redraw(int argc, char **argv, int heatmaps_only)
     const char *name = heatmaps_only ? "heatmap" : "plot";
     const char *dir = NULL, *model = NULL;
     char err[1024];
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--help") == 0) {
-            redraw_usage(stdout, name);
-            return EXIT_OK;
-        } else if (heatmaps_only && cli_flag_is(a, "--model")) {
-            if (!(model = cli_flag_value(argc, argv, &i, "--model", err, sizeof err))) {
-                fprintf(stderr, "brdfbench %s: %s\n", name, err);
-                return EXIT_USAGE;
-            }
-        } else if (a[0] == '-' || dir) {
-            fprintf(stderr, "brdfbench %s: unexpected argument '%s' (see brdfbench %s --help)\n", name, a, name);
-            return EXIT_USAGE;
-        } else {
-            dir = a;
-        }
+    const struct cli_flag heatmap_flags[] = {
+        { .name = "--label", .value = "LABEL", .kind = CLI_TEXT, .dest = &model,
+          .help = "redraw only the model of this label, as the run names it (e.g. fvol or fq:Q=0.64)",
+          .def = "every model of the run" },
+        { .name = "--model", .kind = CLI_RENAMED,
+          .help = "the model to redraw is chosen with --label LABEL (--model NAME=EXPR defines a user model in "
+                  "the commands that evaluate models)" },
+    };
+    const struct cli_command cmd = {
+        .name = name,
+        .synopsis = heatmaps_only ? "[RUN_DIR] [--label LABEL]" : "[RUN_DIR]",
+        .about = heatmaps_only
+                     ? "  Redraws heatmap_<model>.png from field_<model>.json in RUN_DIR (default: results/latest),\n"
+                       "  every model or only one. No device is used.\n"
+                     : "  Redraws every picture of a run folder (default: results/latest) from its JSON: the plots\n"
+                       "  from plots.json and the heatmaps from field_<model>.json. No device is used.\n",
+        .flags = heatmaps_only ? heatmap_flags : NULL,
+        .nflags = heatmaps_only ? (int)(sizeof heatmap_flags / sizeof heatmap_flags[0]) : 0,
+        .max_positional = 1,
+    };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc) {
+        fprintf(stderr, "brdfbench %s: %s\n", name, err);
+        return EXIT_USAGE;
     }
+    if (args.npositional)
+        dir = args.positional[0];
     if (!dir) dir = "results/latest";
     struct stat st;
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {

@@ -1,6 +1,6 @@
 /* cmd_render.c - `brdfbench render`: the full-image shading passes (sphere grid, Utah
  * teapot, Stanford bunny) with error images, metrics and Mpixel/s; see render.h. */
-#include "cli.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
@@ -10,43 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void render_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: brdfbench render [OPTIONS]\n"
-            "  Shades full images with every model on the device: a sphere grid (one row per model,\n"
-            "  one column per shininess), the Utah teapot (povray-examples) and the Stanford bunny\n"
-            "  (glmark2-data). Writes per scene and model the image, an error image against the\n"
-            "  model's reference, metrics, a check against the double host reference, and Mpixel/s\n"
-            "  beside a copy kernel moving the same bytes: DIR/render.json and DIR/render/<scene>/.\n"
-            "  --scene LIST       spheres,teapot,bunny or all (default all)\n"
-            "  --models LIST      models with parameters, e.g. phong,cq2,fq:Q=0.7 (default: all)\n"
-            "  --size WxH         image size, W and H in [%d, %d] (default 1920x1080)\n"
-            "  --time-sizes LIST  sizes timed, e.g. 1920x1080,3840x2160 (the default), or none\n"
-            "  --reps N           timed launches per model and size, in [1, 1000] (default 7)\n"
-            "  --warmup N         untimed launches before them, in [0, 100] (default 2)\n"
-            "  --shininess LIST   sphere grid columns, each in [1, 10000], at most %d\n"
-            "                     (default 4,16,64,256,1000)\n"
-            "  --n X              shininess of the teapot and the bunny, in [1, 10000] (default 64)\n"
-            "  --tess N           teapot quads per patch side, in [1, 128] (default 16)\n"
-            "  --light KIND       directional (default) or point\n"
-            "  --exposure X       display exposure, in [0.01, 100] (default 1.2)\n"
-            "  --threshold X      error counted as visible above X, in [0, 1e6] (default 0.01)\n"
-            "  --samples N        pixels per model checked against the double reference, in\n"
-            "                     [1, 1000000] (default 4096)\n"
-            "  --teapot-file PATH POV-Ray file with bicubic_patch blocks (default %s)\n"
-            "  --bunny-file PATH  OBJ file (default %s)\n"
-            "  --no-images        metrics and timings only, no PNGs\n"
-            "  --out DIR          output folder (default: a new folder results/<date-time>/, with\n"
-            "                     results/latest)\n"
-            "  --quiet            no progress or tables on stdout\n"
-            USERMODEL_OPTIONS_HELP
-            DEVICE_OPTIONS_HELP
-            DEVICE_LIST_HELP,
-            RENDER_MIN_SIDE, RENDER_MAX_SIDE, RENDER_MAX_COLS, RENDER_TEAPOT_PATH,
-            RENDER_BUNNY_PATH);
-}
 
 static int parse_size(const char *arg, const char *text, int *w, int *h, char *err, size_t errlen)
 {
@@ -61,17 +24,6 @@ static int parse_size(const char *arg, const char *text, int *w, int *h, char *e
     }
     *w = (int)lw;
     *h = (int)lh;
-    return 0;
-}
-
-/* An integer flag's value in [lo, hi]. Returns 0 or EXIT_USAGE with a message. */
-static int parse_int_flag(int argc, char **argv, int *i, const char *flag, long lo, long hi,
-                          int *out, char *err, size_t errlen)
-{
-    long v;
-    if (cli_long_value(argc, argv, i, flag, lo, hi, &v, err, errlen))
-        return EXIT_USAGE;
-    *out = (int)v;
     return 0;
 }
 
@@ -93,6 +45,93 @@ static int split_list(char *text, char **items, int max)
     return n;
 }
 
+static int call_scene(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    struct render_options *o = dest;
+    char buf[1024], *items[32];
+    snprintf(buf, sizeof buf, "%s", v);
+    int n = strcmp(buf, "all") == 0 ? 0 : split_list(buf, items, 8);
+    int on[RENDER_SCENE_COUNT] = { 0 };
+    for (int k = 0; k < n; k++) {
+        if (strcmp(items[k], "spheres") == 0)
+            on[RENDER_SPHERES] = 1;
+        else if (strcmp(items[k], "teapot") == 0)
+            on[RENDER_TEAPOT] = 1;
+        else if (strcmp(items[k], "bunny") == 0)
+            on[RENDER_BUNNY] = 1;
+        else
+            n = -1;
+    }
+    if (n < 0) {
+        snprintf(err, errlen, "%s: '%s' is not a list of spheres, teapot, bunny (or all)", flag, v);
+        return EXIT_USAGE;
+    }
+    if (n != 0)
+        memcpy(o->scene_on, on, sizeof on);
+    else
+        for (int k = 0; k < RENDER_SCENE_COUNT; k++)
+            o->scene_on[k] = 1;
+    return 0;
+}
+
+static int call_size(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    struct render_options *o = dest;
+    return parse_size(flag, v, &o->width, &o->height, err, errlen);
+}
+
+static int call_time_sizes(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    struct render_options *o = dest;
+    char buf[1024], *items[32];
+    if (strcmp(v, "none") == 0) {
+        o->ntime_sizes = 0;
+        return 0;
+    }
+    snprintf(buf, sizeof buf, "%s", v);
+    int n = split_list(buf, items, RENDER_MAX_TIME_SIZES);
+    if (n < 0) {
+        snprintf(err, errlen, "%s: at most %d sizes (got '%s')", flag, RENDER_MAX_TIME_SIZES, v);
+        return EXIT_USAGE;
+    }
+    for (int k = 0; k < n; k++)
+        if (parse_size(flag, items[k], &o->time_w[k], &o->time_h[k], err, errlen))
+            return EXIT_USAGE;
+    o->ntime_sizes = n;
+    return 0;
+}
+
+static int call_shininess(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    struct render_options *o = dest;
+    char buf[1024], *items[RENDER_MAX_COLS + 1];
+    snprintf(buf, sizeof buf, "%s", v);
+    int n = split_list(buf, items, RENDER_MAX_COLS);
+    if (n < 0) {
+        snprintf(err, errlen, "%s: at most %d values (got '%s')", flag, RENDER_MAX_COLS, v);
+        return EXIT_USAGE;
+    }
+    for (int k = 0; k < n; k++)
+        if (cli_parse_double(flag, items[k], 1, 10000, &o->sphere_n[k], err, errlen))
+            return EXIT_USAGE;
+    o->ncols = n;
+    return 0;
+}
+
+static int call_light(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    struct render_options *o = dest;
+    if (strcmp(v, "directional") == 0) {
+        o->point_light = 0;
+    } else if (strcmp(v, "point") == 0) {
+        o->point_light = 1;
+    } else {
+        snprintf(err, errlen, "%s: '%s' is not directional or point", flag, v);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
 int cmd_render(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
@@ -105,139 +144,73 @@ int cmd_render(int argc, char **argv)
     struct device_options dev;
     device_options_init(&dev);
     const char *models_text = NULL, *out_dir = NULL;
-    char buf[1024];
-    char *items[32];
+    int quiet = 0, models_given = 0;
+    char size_range[64], shininess_range[64];
+    snprintf(size_range, sizeof size_range, "W and H in [%d, %d]", RENDER_MIN_SIDE, RENDER_MAX_SIDE);
+    snprintf(shininess_range, sizeof shininess_range, "each in [1, 10000], at most %d", RENDER_MAX_COLS);
 
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i], *v = NULL;
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d == 0)
-            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (d < 0)
-            goto usage_error;
-        if (d > 0)
-            continue;
-        if (strcmp(a, "--help") == 0) {
-            render_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quiet") == 0) {
-            o.verbose = 0;
-        } else if (strcmp(a, "--no-images") == 0) {
-            o.write_images = 0;
-        } else if (cli_flag_is(a, "--scene")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--scene", err, sizeof err)))
-                goto usage_error;
-            snprintf(buf, sizeof buf, "%s", v);
-            int n = strcmp(buf, "all") == 0 ? 0 : split_list(buf, items, 8);
-            if (n != 0)
-                memset(o.scene_on, 0, sizeof o.scene_on);
-            for (int k = 0; k < n; k++) {
-                if (strcmp(items[k], "spheres") == 0)
-                    o.scene_on[RENDER_SPHERES] = 1;
-                else if (strcmp(items[k], "teapot") == 0)
-                    o.scene_on[RENDER_TEAPOT] = 1;
-                else if (strcmp(items[k], "bunny") == 0)
-                    o.scene_on[RENDER_BUNNY] = 1;
-                else
-                    n = -1;
-            }
-            if (n < 0) {
-                snprintf(err, sizeof err,
-                         "--scene: '%s' is not a list of spheres, teapot, bunny (or all)", v);
-                goto usage_error;
-            }
-        } else if (cli_flag_is(a, "--models")) {
-            if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--size")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--size", err, sizeof err)) ||
-                parse_size("--size", v, &o.width, &o.height, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--time-sizes")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--time-sizes", err, sizeof err)))
-                goto usage_error;
-            if (strcmp(v, "none") == 0) {
-                o.ntime_sizes = 0;
-                continue;
-            }
-            snprintf(buf, sizeof buf, "%s", v);
-            int n = split_list(buf, items, RENDER_MAX_TIME_SIZES);
-            if (n < 0) {
-                snprintf(err, sizeof err, "--time-sizes: at most %d sizes (got '%s')",
-                         RENDER_MAX_TIME_SIZES, v);
-                goto usage_error;
-            }
-            for (int k = 0; k < n; k++)
-                if (parse_size("--time-sizes", items[k], &o.time_w[k], &o.time_h[k], err,
-                               sizeof err))
-                    goto usage_error;
-            o.ntime_sizes = n;
-        } else if (cli_flag_is(a, "--reps")) {
-            if (parse_int_flag(argc, argv, &i, "--reps", 1, 1000, &o.reps, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--warmup")) {
-            if (parse_int_flag(argc, argv, &i, "--warmup", 0, 100, &o.warmup, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--tess")) {
-            if (parse_int_flag(argc, argv, &i, "--tess", 1, 128, &o.tess, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--samples")) {
-            if (parse_int_flag(argc, argv, &i, "--samples", 1, 1000000, &o.ref_samples, err,
-                               sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--shininess")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--shininess", err, sizeof err)))
-                goto usage_error;
-            snprintf(buf, sizeof buf, "%s", v);
-            int n = split_list(buf, items, RENDER_MAX_COLS);
-            if (n < 0) {
-                snprintf(err, sizeof err, "--shininess: at most %d values (got '%s')",
-                         RENDER_MAX_COLS, v);
-                goto usage_error;
-            }
-            for (int k = 0; k < n; k++)
-                if (cli_parse_double("--shininess", items[k], 1, 10000, &o.sphere_n[k], err,
-                                     sizeof err))
-                    goto usage_error;
-            o.ncols = n;
-        } else if (cli_flag_is(a, "--n")) {
-            if (cli_double_value(argc, argv, &i, "--n", 1, 10000, &o.mesh_n, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--exposure")) {
-            if (cli_double_value(argc, argv, &i, "--exposure", 0.01, 100, &o.exposure, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--threshold")) {
-            if (cli_double_value(argc, argv, &i, "--threshold", 0, 1e6, &o.threshold, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--light")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--light", err, sizeof err)))
-                goto usage_error;
-            if (strcmp(v, "directional") == 0) {
-                o.point_light = 0;
-            } else if (strcmp(v, "point") == 0) {
-                o.point_light = 1;
-            } else {
-                snprintf(err, sizeof err, "--light: '%s' is not directional or point", v);
-                goto usage_error;
-            }
-        } else if (cli_flag_is(a, "--teapot-file")) {
-            if (!(o.teapot_path = cli_flag_value(argc, argv, &i, "--teapot-file", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--bunny-file")) {
-            if (!(o.bunny_path = cli_flag_value(argc, argv, &i, "--bunny-file", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
-                goto usage_error;
-        } else {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench render --help)", a);
-            goto usage_error;
-        }
-    }
+    const struct cli_flag flags[] = {
+        { .name = "--scene", .value = "LIST", .kind = CLI_CALL, .call = call_scene, .dest = &o,
+          .help = "scenes to render: spheres,teapot,bunny or all", .def = "all" },
+        CLI_FLAG_MODELS(&models_text, &models_given, "all; with --model or --model-file, only the user models"),
+        { .name = "--size", .value = "WxH", .kind = CLI_CALL, .call = call_size, .dest = &o,
+          .help = "image size", .range = size_range, .def = "1920x1080" },
+        { .name = "--time-sizes", .value = "LIST", .kind = CLI_CALL, .call = call_time_sizes, .dest = &o,
+          .help = "sizes timed, e.g. 1920x1080,3840x2160, or none", .def = "1920x1080,3840x2160" },
+        { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = &o.reps, .min = 1, .max = 1000,
+          .help = "timed launches per figure" },
+        { .name = "--warmup", .value = "N", .kind = CLI_INT, .dest = &o.warmup, .min = 0, .max = 100,
+          .help = "untimed launches before them" },
+        { .name = "--shininess", .value = "LIST", .kind = CLI_CALL, .call = call_shininess, .dest = &o,
+          .help = "the sphere grid's columns, one shininess n each", .range = shininess_range,
+          .def = "4,16,64,256,1000" },
+        { .name = "--mesh-n", .value = "X", .kind = CLI_DOUBLE, .dest = &o.mesh_n, .min = 1, .max = 10000,
+          .help = "shininess n of the teapot and the bunny" },
+        { .name = "--tess", .value = "N", .kind = CLI_INT, .dest = &o.tess, .min = 1, .max = 128,
+          .help = "teapot quads per patch side" },
+        { .name = "--light", .value = "KIND", .kind = CLI_CALL, .call = call_light, .dest = &o,
+          .help = "directional or point", .def = "directional" },
+        { .name = "--exposure", .value = "X", .kind = CLI_DOUBLE, .dest = &o.exposure, .min = 0.01, .max = 100,
+          .help = "display exposure" },
+        { .name = "--threshold", .value = "X", .kind = CLI_DOUBLE, .dest = &o.threshold, .min = 0, .max = 1e6,
+          .help = "error counted as visible above X" },
+        { .name = "--check-pixels", .value = "N", .kind = CLI_INT, .dest = &o.ref_samples, .min = 1, .max = 1000000,
+          .help = "pixels per model checked against the double reference" },
+        { .name = "--teapot-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.teapot_path,
+          .help = "POV-Ray file with bicubic_patch blocks" },
+        { .name = "--bunny-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.bunny_path, .help = "OBJ file" },
+        { .name = "--no-images", .kind = CLI_SWITCH, .dest = &o.write_images, .set = 0,
+          .help = "metrics and timings only, no PNGs" },
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_USERMODEL,
+        CLI_FLAGS_DEVICE(&dev),
+        { .name = "--n", .kind = CLI_RENAMED,
+          .help = "the shininess of the teapot and the bunny is --mesh-n X (the sphere grid's is --shininess LIST)" },
+        { .name = "--samples", .kind = CLI_RENAMED,
+          .help = "the pixels checked against the double reference are --check-pixels N (--samples is the "
+                  "accuracy sweeps' samples per zone)" },
+    };
+    const struct cli_command cmd = {
+        .name = "render",
+        .about = "  Shades full images with every model on the device: a sphere grid (one row per model,\n"
+                 "  one column per shininess), the Utah teapot (povray-examples) and the Stanford bunny\n"
+                 "  (glmark2-data). Writes per scene and model the image, an error image against the\n"
+                 "  model's reference, metrics, a check against the double host reference, and Mpixel/s\n"
+                 "  beside a copy kernel moving the same bytes: DIR/render.json and DIR/render/<scene>/.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
+    o.verbose = !quiet;
     if (!models_text && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
-        int n = model_spec_list_parse(models_text, o.models, RENDER_MAX_MODELS, err, sizeof err);
+        int n = cli_model_list(models_text, o.models, RENDER_MAX_MODELS, err, sizeof err);
         if (n < 0)
             goto usage_error;
         o.nmodels = n;

@@ -1,7 +1,7 @@
 /* cmd_reproduce.c - `brdfbench reproduce`: every claim of both papers re-derived and given a
  * verdict; claims.json, claims.md, q_sweep.json, energy.json and the table on stdout. */
 #include "accuracy.h"
-#include "cli.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
@@ -9,26 +9,6 @@
 
 #include <stdio.h>
 #include <string.h>
-
-static void reproduce_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: brdfbench reproduce [OPTIONS]\n"
-            "  Re-derives the claims of both papers (SPEC.md) and gives each a verdict: eq. 11-12 by host (GSL)\n"
-            "  and device quadrature, the max delta / max Delta figures by the device sweep, the Q sweep of\n"
-            "  paper 2's figs. 2-3, coef(n) and its fits, energy and reciprocity.\n"
-            "  --out DIR          write claims.json, claims.md, q_sweep.json, energy.json into DIR\n"
-            "                     (default: a new folder results/<date-time>/, with results/latest)\n"
-            "  --samples N        samples per zone of the claim sweeps, a multiple of 16 (default %d)\n"
-            "  --no-grid-check    skip re-running each claim sweep at twice the samples\n"
-            "  --q-step X         step of the Q sweep over (0, 1) (default 0.01; 0 < X < 1)\n"
-            "  --q-samples N      samples per zone of the Q sweep, a multiple of 16 (default 1024)\n"
-            "  --q-n-step X       n step of the Q sweep (default 1)\n"
-            "  --no-energy        skip the albedo and reciprocity checks\n"
-            "  --quiet            no table on stdout\n"
-            DEVICE_OPTIONS_HELP,
-            ACC_DEFAULT_SAMPLES);
-}
 
 int cmd_reproduce(int argc, char **argv)
 {
@@ -39,44 +19,36 @@ int cmd_reproduce(int argc, char **argv)
     device_options_init(&dev);
     const char *out_dir = NULL;
     int quiet = 0;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d < 0)
-            goto usage_error;
-        if (d > 0)
-            continue;
-        if (strcmp(a, "--help") == 0) {
-            reproduce_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-        } else if (strcmp(a, "--no-grid-check") == 0) {
-            opt.grid_check = 0;
-        } else if (strcmp(a, "--no-energy") == 0) {
-            opt.energy = 0;
-        } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--samples")) {
-            if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES / 2, 16,
-                                        &opt.samples, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--q-step")) {
-            if (cli_double_value(argc, argv, &i, "--q-step", 1e-4, 0.5, &opt.q_step, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--q-samples")) {
-            if (cli_long_multiple_value(argc, argv, &i, "--q-samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
-                                        &opt.q_samples, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--q-n-step")) {
-            if (cli_double_value(argc, argv, &i, "--q-n-step", 0.01, 499, &opt.q_n_step, err, sizeof err))
-                goto usage_error;
-        } else {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench reproduce --help)", a);
-            goto usage_error;
-        }
-    }
+    const struct cli_flag flags[] = {
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_SAMPLES(&opt.samples, ACC_MAX_SAMPLES / 2),
+        { .name = "--no-grid-check", .kind = CLI_SWITCH, .dest = &opt.grid_check, .set = 0,
+          .help = "skip re-running each claim sweep at twice the samples" },
+        { .name = "--q-step", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.q_step, .min = 1e-4, .max = 0.5,
+          .help = "step of the Q sweep over (0, 1)" },
+        { .name = "--q-samples", .value = "N", .kind = CLI_LONG, .dest = &opt.q_samples, .min = ACC_MIN_SAMPLES,
+          .max = ACC_MAX_SAMPLES, .multiple = 16, .help = "samples per zone and per n of the Q sweep" },
+        { .name = "--q-n-step", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.q_n_step, .min = 0.01, .max = 499,
+          .help = "n step of the Q sweep" },
+        { .name = "--no-energy", .kind = CLI_SWITCH, .dest = &opt.energy, .set = 0,
+          .help = "skip the albedo and reciprocity checks" },
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_DEVICE(&dev),
+    };
+    const struct cli_command cmd = {
+        .name = "reproduce",
+        .about = "  Re-derives the claims of both papers and gives each a verdict: eq. 11-12 by host (GSL)\n"
+                 "  and device quadrature, the max delta / max Delta figures by the device sweep, the Q sweep of\n"
+                 "  paper 2's figs. 2-3, coef(n) and its fits, energy and reciprocity. Writes claims.json,\n"
+                 "  claims.md, q_sweep.json and energy.json.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
     /* The Q grid keeps clear of 0 and 1, where f_Q is not defined. */
     opt.q_min = opt.q_step;
     opt.q_max = 1.0 - opt.q_step * 0.5;

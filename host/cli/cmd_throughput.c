@@ -2,7 +2,7 @@
  * device, against the pow() built-in, tuned C and the device's peak, under three sets of build
  * options; written as throughput.json, throughput.csv and a table. */
 #define _POSIX_C_SOURCE 200809L
-#include "cli.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
@@ -12,44 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void throughput_usage(FILE *f)
-{
-    fprintf(f,
-            "usage: brdfbench throughput [OPTIONS]\n"
-            "  Evaluations per second of every model on the OpenCL device, with inputs made in registers\n"
-            "  and outputs summed, beside the pow() built-in, a tuned C loop doing the same work\n"
-            "  (-O3 -march=native, one thread per CPU) and the device's measured FMA peak; under the\n"
-            "  build options default, -cl-fast-relaxed-math and -cl-denorms-are-zero, each with what it\n"
-            "  does to accuracy against the double reference.\n"
-            "  --models LIST        comma-separated models with parameters (default: all; see brdfbench list)\n"
-            "  --reps N             timed launches per figure, 1 to %d (default 5)\n"
-            "  --min-time S         seconds one timed launch lasts at least, %g to %g (default 0.02)\n"
-            "  --variants LIST      build options to measure: default,fast-relaxed-math,denorms-are-zero\n"
-            "                       (default: all three)\n"
-            "  --n-modes LIST       uniform (one n per launch), varying (one n per evaluation) (default: both)\n"
-            "  --variant-n-modes LIST  n modes for the non-default variants (default: uniform)\n"
-            "  --n X                the uniform n (default 100; 0 < n <= %g)\n"
-            "  --n-range LO:HI      the range of the varying n (default 2:1000)\n"
-            "  --work-items N       device work-items per launch, 1 to %d (default: 32 per compute unit)\n"
-            "  --threads N          threads of the C baseline, 1 to 256 (default: the online CPUs)\n"
-            "  --no-host-c          skip the C baseline\n"
-            "  --sweep              also time the accuracy sweep (kernels/accuracy.cl) against the same\n"
-            "                       sweep in tuned C with powf (on by default; --no-sweep skips it)\n"
-            "  --sweep-samples N    samples per zone of that sweep (default %d; a multiple of 16)\n"
-            "  --sweep-n-step X     its step of n over [2, 1000] (default 1)\n"
-            "  --sweep-reps N       its timed runs per model, 1 to %d (default 3)\n"
-            "  --out DIR            write throughput.json and throughput.csv into DIR\n"
-            "                       (default: a new folder results/<date-time>/, with results/latest)\n"
-            "  --quiet              no table on stdout, no progress on stderr\n"
-            USERMODEL_OPTIONS_HELP
-            DEVICE_OPTIONS_HELP
-            DEVICE_LIST_HELP
-            "  POCL_AFFINITY=1 is set unless the environment sets it: it pins PoCL's threads to CPUs,\n"
-            "  so that a run does not land on one thread.\n",
-            TP_MAX_REPS, TP_MIN_TIME_MIN, TP_MIN_TIME_MAX, ACC_MAX_N, TP_MAX_WORK_ITEMS, ACC_DEFAULT_SAMPLES,
-            TP_MAX_REPS);
-}
 
 /* A comma-separated list of names into a bit set; names[i] sets bit i. */
 static int parse_name_set(const char *arg, const char *text, const char *(*name_of)(int), int count, unsigned *out,
@@ -86,6 +48,16 @@ static int parse_name_set(const char *arg, const char *text, const char *(*name_
     return 0;
 }
 
+static int call_variants(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    return parse_name_set(flag, v, tp_variant_name, TP_VARIANT_COUNT, dest, err, errlen);
+}
+
+static int call_n_modes(const char *flag, const char *v, void *dest, char *err, size_t errlen)
+{
+    return parse_name_set(flag, v, tp_nmode_name, TP_NMODE_COUNT, dest, err, errlen);
+}
+
 int cmd_throughput(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
@@ -97,106 +69,80 @@ int cmd_throughput(int argc, char **argv)
     throughput_options_default(&o);
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = "all", *out_dir = NULL;
+    const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
     int quiet = 0, models_given = 0;
-    long lv;
 
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i], *v = NULL;
-        int d = cli_device_flag(argc, argv, &i, &dev, err, sizeof err);
-        if (d == 0)
-            d = usermodel_cli_flag(argc, argv, &i, err, sizeof err);
-        if (d < 0)
-            goto usage_error;
-        if (d > 0)
-            continue;
-        if (strcmp(a, "--help") == 0) {
-            throughput_usage(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-        } else if (strcmp(a, "--no-host-c") == 0) {
-            o.host_c = 0;
-        } else if (strcmp(a, "--sweep") == 0) {
-            o.sweep = 1;
-        } else if (strcmp(a, "--no-sweep") == 0) {
-            o.sweep = 0;
-        } else if (cli_flag_is(a, "--models")) {
-            if (!(models_text = cli_flag_value(argc, argv, &i, "--models", err, sizeof err)))
-                goto usage_error;
-            models_given = 1;
-        } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--reps")) {
-            if (cli_long_value(argc, argv, &i, "--reps", 1, TP_MAX_REPS, &lv, err, sizeof err))
-                goto usage_error;
-            o.reps = (int)lv;
-        } else if (cli_flag_is(a, "--min-time")) {
-            if (cli_double_value(argc, argv, &i, "--min-time", TP_MIN_TIME_MIN, TP_MIN_TIME_MAX, &o.min_time, err,
-                                 sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--variants")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--variants", err, sizeof err)) ||
-                parse_name_set("--variants", v, tp_variant_name, TP_VARIANT_COUNT, &o.variants, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n-modes")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-modes", err, sizeof err)) ||
-                parse_name_set("--n-modes", v, tp_nmode_name, TP_NMODE_COUNT, &o.n_modes, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--variant-n-modes")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--variant-n-modes", err, sizeof err)) ||
-                parse_name_set("--variant-n-modes", v, tp_nmode_name, TP_NMODE_COUNT, &o.variant_n_modes, err,
-                               sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n")) {
-            if (cli_double_value(argc, argv, &i, "--n", 1e-300, ACC_MAX_N, &o.n_uniform, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--n-range")) {
-            if (!(v = cli_flag_value(argc, argv, &i, "--n-range", err, sizeof err)))
-                goto usage_error;
-            char lo[64], hi[64];
-            const char *colon = strchr(v, ':');
-            if (!colon || (size_t)(colon - v) >= sizeof lo || strlen(colon + 1) >= sizeof hi) {
-                snprintf(err, sizeof err, "--n-range: '%s' is not LO:HI (accepted: 0 < LO < HI <= %g)", v, ACC_MAX_N);
-                goto usage_error;
-            }
-            memcpy(lo, v, (size_t)(colon - v));
-            lo[colon - v] = '\0';
-            strcpy(hi, colon + 1);
-            if (cli_parse_double("--n-range LO", lo, 1e-300, ACC_MAX_N, &o.n_lo, err, sizeof err) ||
-                cli_parse_double("--n-range HI", hi, 1e-300, ACC_MAX_N, &o.n_hi, err, sizeof err))
-                goto usage_error;
-            if (!(o.n_lo < o.n_hi)) {
-                snprintf(err, sizeof err, "--n-range: LO (%g) must be below HI (%g)", o.n_lo, o.n_hi);
-                goto usage_error;
-            }
-        } else if (cli_flag_is(a, "--work-items")) {
-            if (cli_long_value(argc, argv, &i, "--work-items", 1, TP_MAX_WORK_ITEMS, &o.work_items, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--threads")) {
-            if (cli_long_value(argc, argv, &i, "--threads", 1, 256, &lv, err, sizeof err))
-                goto usage_error;
-            o.threads = (int)lv;
-        } else if (cli_flag_is(a, "--sweep-samples")) {
-            if (cli_long_multiple_value(argc, argv, &i, "--sweep-samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
-                                        &o.sweep_grid.samples, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--sweep-n-step")) {
-            if (cli_double_value(argc, argv, &i, "--sweep-n-step", 1e-3, 998, &o.sweep_grid.n_step, err, sizeof err))
-                goto usage_error;
-        } else if (cli_flag_is(a, "--sweep-reps")) {
-            if (cli_long_value(argc, argv, &i, "--sweep-reps", 1, TP_MAX_REPS, &lv, err, sizeof err))
-                goto usage_error;
-            o.sweep_reps = (int)lv;
-        } else {
-            snprintf(err, sizeof err, "unknown option '%s' (see brdfbench throughput --help)", a);
-            goto usage_error;
-        }
+    const struct cli_flag flags[] = {
+        CLI_FLAG_MODELS(&models_text, &models_given, "all; with --model or --model-file, only the user models"),
+        { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = &o.reps, .min = 1, .max = TP_MAX_REPS,
+          .help = "timed launches per figure" },
+        { .name = "--min-time", .value = "S", .kind = CLI_DOUBLE, .dest = &o.min_time, .min = TP_MIN_TIME_MIN,
+          .max = TP_MIN_TIME_MAX, .help = "seconds one timed launch lasts at least" },
+        { .name = "--variants", .value = "LIST", .kind = CLI_CALL, .call = call_variants, .dest = &o.variants,
+          .help = "build options to measure: default,fast-relaxed-math,denorms-are-zero", .def = "all three" },
+        { .name = "--n-modes", .value = "LIST", .kind = CLI_CALL, .call = call_n_modes, .dest = &o.n_modes,
+          .help = "uniform (one n per launch), varying (one n per evaluation)", .def = "both" },
+        { .name = "--variant-n-modes", .value = "LIST", .kind = CLI_CALL, .call = call_n_modes,
+          .dest = &o.variant_n_modes, .help = "n modes for the non-default variants", .def = "uniform" },
+        { .name = "--uniform-n", .value = "X", .kind = CLI_DOUBLE, .dest = &o.n_uniform, .min = 1e-300,
+          .max = ACC_MAX_N, .help = "the shininess n of the uniform mode" },
+        CLI_FLAG_N_MIN(&o.n_lo),
+        CLI_FLAG_N_MAX(&o.n_hi),
+        { .name = "--work-items", .value = "N", .kind = CLI_LONG, .dest = &o.work_items, .min = 1,
+          .max = TP_MAX_WORK_ITEMS, .help = "device work-items per launch", .def = "32 per compute unit" },
+        { .name = "--threads", .value = "N", .kind = CLI_INT, .dest = &o.threads, .min = 1, .max = 256,
+          .help = "threads of the C baseline", .def = "the online CPUs" },
+        { .name = "--no-host-c", .kind = CLI_SWITCH, .dest = &o.host_c, .set = 0, .help = "skip the C baseline" },
+        { .name = "--sweep", .kind = CLI_SWITCH, .dest = &o.sweep, .set = 1,
+          .help = "also time the accuracy sweep (kernels/accuracy.cl) against the same sweep in tuned C with "
+                  "powf (on by default)" },
+        { .name = "--no-sweep", .kind = CLI_SWITCH, .dest = &o.sweep, .set = 0, .help = "skip the sweep timing" },
+        { .name = "--sweep-samples", .value = "N", .kind = CLI_LONG, .dest = &o.sweep_grid.samples,
+          .min = ACC_MIN_SAMPLES, .max = ACC_MAX_SAMPLES, .multiple = 16,
+          .help = "samples per zone and per n of the timed sweep" },
+        { .name = "--sweep-n-step", .value = "X", .kind = CLI_DOUBLE, .dest = &o.sweep_grid.n_step, .min = 1e-3,
+          .max = 998, .help = "step of n of the timed sweep over [2, 1000]" },
+        { .name = "--sweep-reps", .value = "N", .kind = CLI_INT, .dest = &o.sweep_reps, .min = 1, .max = TP_MAX_REPS,
+          .help = "timed runs per model of the sweep" },
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json or --csv and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
+        CLI_FLAG_CSV(&csv_path),
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_USERMODEL,
+        CLI_FLAGS_DEVICE(&dev),
+        { .name = "--n", .kind = CLI_RENAMED, .help = "the uniform mode's shininess is --uniform-n X" },
+        { .name = "--n-range", .kind = CLI_RENAMED,
+          .help = "the varying mode's range of n is --n-min LO --n-max HI, as in the other commands" },
+    };
+    const struct cli_command cmd = {
+        .name = "throughput",
+        .about = "  Evaluations per second of every model on the OpenCL device, with inputs made in registers\n"
+                 "  and outputs summed, beside the pow() built-in, a tuned C loop doing the same work\n"
+                 "  (-O3 -march=native, one thread per CPU) and the device's measured FMA peak; under the\n"
+                 "  build options default, -cl-fast-relaxed-math and -cl-denorms-are-zero, each with what it\n"
+                 "  does to accuracy against the double reference. The varying mode draws n from\n"
+                 "  [--n-min, --n-max]. Writes throughput.json and throughput.csv.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        .epilog = "  POCL_AFFINITY=1 is set unless the environment sets it: it pins PoCL's threads to CPUs,\n"
+                  "  so that a run does not land on one thread.\n",
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
+    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
+        snprintf(err, sizeof err, "--json - and --csv -: one document at a time on standard output");
+        goto usage_error;
+    }
+    if (!(o.n_lo < o.n_hi)) {
+        snprintf(err, sizeof err, "--n-min (%g) must be below --n-max (%g)", o.n_lo, o.n_hi);
+        goto usage_error;
     }
     if (!models_given && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
-    int n = model_spec_list_parse(models_text, o.models, TP_MAX_MODELS, err, sizeof err);
+    int n = cli_model_list(models_text, o.models, TP_MAX_MODELS, err, sizeof err);
     if (n < 0)
         goto usage_error;
     o.model_count = n;
@@ -211,17 +157,38 @@ int cmd_throughput(int argc, char **argv)
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         return rc;
     }
-    char run_dir[4096];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
+    /* --json or --csv without --out: those documents only, made in a temporary folder */
+    char run_dir[4096], tmp_dir[512] = "";
+    if ((json_path || csv_path) && !out_dir) {
+        if (cli_temp_dir(tmp_dir, sizeof tmp_dir, err, sizeof err)) {
+            fprintf(stderr, "brdfbench throughput: %s\n", err);
+            clsession_close(&s);
+            return EXIT_RUNTIME;
+        }
+        snprintf(run_dir, sizeof run_dir, "%s", tmp_dir);
+    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
-    rc = throughput_run(&s, &o, run_dir, quiet);
-    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
+    /* a document on standard output: the engine's table (and its progress) stay off */
+    rc = throughput_run(&s, &o, run_dir, quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path));
+    if (!rc && !out_dir && !tmp_dir[0] && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         rc = EXIT_RUNTIME;
     }
+    for (int k = 0; k < 2 && !rc; ++k) {
+        const char *dest = k == 0 ? json_path : csv_path;
+        char src[4200];
+        if (!dest)
+            continue;
+        path_join(src, sizeof src, run_dir, k == 0 ? "throughput.json" : "throughput.csv");
+        if (cli_deliver(src, k == 0 ? "--json" : "--csv", dest, err, sizeof err)) {
+            fprintf(stderr, "brdfbench throughput: %s\n", err);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    cli_temp_dir_remove(tmp_dir);
     clsession_close(&s);
     return rc;
 

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_table.h"
 #include "commands.h"
 #include "context.h"
 #include "exitcodes.h"
@@ -24,8 +25,10 @@ static const struct command commands[] = {
     { "reproduce", cmd_reproduce, "re-derive every claim of both papers: claims.json, claims.md and a table" },
     { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
     { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants" },
+    { "version", cmd_version, "the program's version and git revision (also --version after any command)" },
     { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)" },
     /* more commands below, one per line */
+    { "frontier", cmd_frontier, "cost against accuracy of every lobe approximation: the Pareto front, plots, which to ship" },
 };
 
 static void usage(FILE *f)
@@ -46,7 +49,7 @@ int main(int argc, char **argv)
         return EXIT_OK;
     }
     if (strcmp(argv[1], "--version") == 0) {
-        printf("brdfbench %s (%s)\n", BRDF_VERSION, brdf_git_revision);
+        cli_print_version(stdout);
         return EXIT_OK;
     }
     /* -h is --help for every command (no command takes -h otherwise). */

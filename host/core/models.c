@@ -61,6 +61,49 @@ static const struct model_info registry[] = {
     { "phongpow", BRDF_PHONGPOW, "reference", LOBE_PSI, 0, NOP, "phong",
       "cos(psi)^n through OpenCL's pow()", NULL,
       "the Phong lobe through the pow() built-in: the literal pow()-based reference, for cost", 1 },
+    { "sg", BRDF_SG, "gaussian", LOBE_PSI, 0, NOP, "phong",
+      "exp(n (c-1))", NULL,
+      "spherical Gaussian (Lagarde 2012, 'Spherical Gaussian approximation for Blinn-Phong, Phong and Fresnel'; "
+      "engines write exp2(n/ln2 (c-1)))", 0 },
+    { "ue4phong", BRDF_UE4PHONG, "gaussian", LOBE_PSI, 0, NOP, "phong",
+      "exp((n + 0.775)(c-1))", NULL,
+      "UE4 mobile PhongApprox (Karis 2014, 'Physically Based Shading on Mobile')", 0 },
+    { "bg", BRDF_BG, "power", LOBE_PSI, 1,
+      { { "j", 1, 4, 1, 1, "squarings: the exponent is m = 2^j" } }, "phong",
+      "max(0, A c + 1 - A)^m, m = 2^j, A(n) = alpha_m n + beta_m", "c = 1 - 1/A",
+      "Beaudoin and Guardado 2002 (ShaderX, 'A non-integer power function on the pixel shader'); A from the "
+      "affine fit of their per-n bisection (kernels/brdf_models.h)", 0 },
+    { "kb", BRDF_KB, "angular", LOBE_PSI, 0, NOP, "phong",
+      "alpha = acos c: 1 - alpha^2/(ab) below a, (alpha-b)^2/(b(b-a)) to b, 0 beyond; "
+      "a = (n+5.6)/(n(0.09n+5.2)), b = (n+65)/(5n+31.7)", "alpha = b",
+      "Kuijk and Blake 1989 (Computer Graphics Forum 8(4)), a and b as SPEC.md writes them", 0 },
+    { "kbswap", BRDF_KBSWAP, "angular", LOBE_PSI, 0, NOP, "phong",
+      "kb with a and b exchanged, zeroed where negative", "alpha = sqrt(ab)",
+      "Kuijk and Blake 1989 with a and b exchanged (Kuijk's later note on the print)", 0 },
+    { "bitpow", BRDF_BITPOW, "bits", LOBE_PSI, 0, NOP, "phong",
+      "the float whose bits are n (bits(c) - bits(1)) + bits(1)", "c^n < 2^-149",
+      "integer-bit pow (Schraudolph 1999 style); the host reproduces the bit arithmetic in double", 0 },
+    { "gauss", BRDF_GAUSS, "gaussian", LOBE_PSI, 2,
+      { { "a", 0, 10, 1, 0, "slope of k(n) = a n + b" },
+        { "b", -10, 10, 0, 0, "offset of k(n) = a n + b" } }, "phong",
+      "exp((a n + b)(c-1))", NULL, "the Gaussian family (brdfbench fit; sg is a=1,b=0, ue4phong a=1,b=0.775)", 0 },
+    { "pow3", BRDF_CUBE, "power", LOBE_PSI, 2,
+      { { "a", 0, 10, 0.31, 0, "slope of k(n) = a n + b" },
+        { "b", -10, 10, 0.1, 0, "offset of k(n) = a n + b" } }, "phong",
+      "((a n + b)(c-1) + 1)^3", "c = 1 - 1/(a n + b)", "the power family at m = 3 (brdfbench fit)", 0 },
+    { "pow4", BRDF_QUART, "power", LOBE_PSI, 2,
+      { { "a", 0, 10, 0.237, 0, "slope of k(n) = a n + b" },
+        { "b", -10, 10, 0.1, 0, "offset of k(n) = a n + b" } }, "phong",
+      "((a n + b)(c-1) + 1)^4", "c = 1 - 1/(a n + b)", "the power family at m = 4 (brdfbench fit)", 0 },
+    { "pow3fit", BRDF_CUBEFIT, "power", LOBE_PSI, 0, NOP, "phong",
+      "((A3 n + B3)(c-1) + 1)^3, constants in kernels/brdf_models.h", "c = 1 - 1/(A3 n + B3)",
+      "cube fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
+    { "pow4fit", BRDF_QUARTFIT, "power", LOBE_PSI, 0, NOP, "phong",
+      "((A4 n + B4)(c-1) + 1)^4, constants in kernels/brdf_models.h", "c = 1 - 1/(A4 n + B4)",
+      "quart fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
+    { "gaussfit", BRDF_GAUSSFIT, "gaussian", LOBE_PSI, 0, NOP, "phong",
+      "exp((AG n + BG)(c-1)), constants in kernels/brdf_models.h", NULL,
+      "gauss fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
 };
 
 _Static_assert(sizeof registry / sizeof registry[0] == BRDF_MODEL_COUNT - 1,
@@ -137,8 +180,10 @@ static void list_model_ids(char *buf, size_t len)
         used += (size_t)snprintf(buf + used, len - used, ", %s", user_models[i].info->id);
 }
 
-/* Parses one "name=value" assignment into spec. */
-static int model_param_assign(struct model_spec *spec, const char *assign, char *err, size_t errlen)
+/* Parses one "name=value" assignment into spec; *assigned has a bit per parameter already
+   given, and a parameter given twice is refused. */
+static int model_param_assign(struct model_spec *spec, const char *assign, unsigned *assigned, char *err,
+                              size_t errlen)
 {
     const struct model_info *info = spec->info;
     const char *eq = strchr(assign, '=');
@@ -164,6 +209,12 @@ static int model_param_assign(struct model_spec *spec, const char *assign, char 
     }
     const struct model_param *mp = &info->params[which];
     const char *text = eq + 1;
+    if (*assigned & (1u << which)) {
+        snprintf(err, errlen, "model '%s': parameter %s given twice (at '%s'; accepted: each parameter once)",
+                 info->id, mp->name, assign);
+        return 2;
+    }
+    *assigned |= 1u << which;
     char *end = NULL;
     errno = 0;
     double v = strtod(text, &end);
@@ -206,8 +257,9 @@ int model_spec_parse(const char *text, struct model_spec *out, char *err, size_t
             snprintf(err, errlen, "model '%s': empty parameter list after ':'", info->id);
             return 2;
         }
+        unsigned assigned = 0;
         for (char *tok = strtok_r(colon + 1, ",", &save); tok; tok = strtok_r(NULL, ",", &save))
-            if (model_param_assign(out, tok, err, errlen))
+            if (model_param_assign(out, tok, &assigned, err, errlen))
                 return 2;
     }
     model_spec_make_label(out);

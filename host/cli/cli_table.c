@@ -1,0 +1,475 @@
+/* cli_table.c - the parser and the --help writer of the declarative flag tables (cli_table.h),
+ * the shared flags' value readers, and "-" as an output path. */
+#define _XOPEN_SOURCE 700
+#include "cli_table.h"
+
+#include "clsession.h"
+#include "context.h"
+#include "exitcodes.h"
+#include "outdir.h"
+#include "usermodel.h"
+
+#include <dirent.h>
+
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *current_command = "";
+
+const char *cli_command_name(void) { return current_command; }
+
+void cli_print_version(FILE *f) { fprintf(f, "brdfbench %s (%s)\n", BRDF_VERSION, brdf_git_revision); }
+
+void cli_note(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "brdfbench %s: note: ", current_command);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+static const struct cli_flag *find_flag(const struct cli_command *c, const char *arg)
+{
+    for (int k = 0; k < c->nflags; ++k)
+        if (cli_flag_is(arg, c->flags[k].name))
+            return &c->flags[k];
+    return NULL;
+}
+
+static int store_value(const struct cli_flag *f, const char *v, char *err, size_t errlen)
+{
+    long lv;
+    switch (f->kind) {
+    case CLI_PATH:
+        if (!*v) {
+            snprintf(err, errlen, "%s: empty path (accepted: a folder or file name)", f->name);
+            return EXIT_USAGE;
+        }
+        /* fall through */
+    case CLI_TEXT:
+        *(const char **)f->dest = v;
+        return 0;
+    case CLI_INT:
+    case CLI_LONG:
+        if (cli_parse_long(f->name, v, (long)f->min, (long)f->max, &lv, err, errlen))
+            return EXIT_USAGE;
+        if (f->multiple > 0 && lv % f->multiple != 0) {
+            snprintf(err, errlen, "%s: %ld is not a multiple of %ld (accepted: a multiple of %ld in [%ld, %ld])",
+                     f->name, lv, f->multiple, f->multiple, (long)f->min, (long)f->max);
+            return EXIT_USAGE;
+        }
+        if (f->kind == CLI_INT)
+            *(int *)f->dest = (int)lv;
+        else
+            *(long *)f->dest = lv;
+        return 0;
+    case CLI_DOUBLE:
+        return cli_parse_double(f->name, v, f->min, f->max, (double *)f->dest, err, errlen);
+    case CLI_CALL:
+        return f->call(f->name, v, f->dest, err, errlen);
+    default:
+        return 0;
+    }
+}
+
+int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_args *args, char *err, size_t errlen)
+{
+    current_command = c->name;
+    if (args)
+        args->npositional = 0;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0) {
+            cli_print_help(stdout, c);
+            return CLI_ANSWERED;
+        }
+        if (strcmp(a, "--version") == 0) {
+            cli_print_version(stdout);
+            return CLI_ANSWERED;
+        }
+        if (a[0] != '-' || a[1] == '\0') {   /* a bare argument ("-" included) */
+            if (!args || args->npositional >= c->max_positional || args->npositional >= CLI_MAX_POSITIONAL) {
+                snprintf(err, errlen, "unexpected argument '%s' (see brdfbench %s --help)", a, c->name);
+                return EXIT_USAGE;
+            }
+            args->positional[args->npositional++] = a;
+            continue;
+        }
+        const struct cli_flag *f = find_flag(c, a);
+        if (!f) {
+            snprintf(err, errlen, "unknown option '%s' (see brdfbench %s --help)", a, c->name);
+            return EXIT_USAGE;
+        }
+        if (f->kind == CLI_RENAMED) {
+            snprintf(err, errlen, "%s: not a flag of brdfbench %s: %s", f->name, c->name, f->help);
+            return EXIT_USAGE;
+        }
+        if (f->given)
+            *f->given = 1;
+        if (f->kind == CLI_SWITCH) {
+            if (a[strlen(f->name)] == '=') {
+                snprintf(err, errlen, "%s: takes no value (got '%s')", f->name, a);
+                return EXIT_USAGE;
+            }
+            *(int *)f->dest = f->set;
+            continue;
+        }
+        if (a[strlen(f->name)] != '=' && i + 1 >= argc) {
+            snprintf(err, errlen, "%s: missing value (expected %s %s)", f->name, f->name, f->value);
+            return EXIT_USAGE;
+        }
+        const char *v = cli_flag_value(argc, argv, &i, f->name, err, errlen);
+        if (!v || store_value(f, v, err, errlen))
+            return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* ---- --help ---------------------------------------------------------------------------- */
+
+#define HELP_COLUMN 21
+#define HELP_WIDTH 100
+
+/* The accepted values of a number as --help shows them. */
+static void range_text(const struct cli_flag *f, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (f->range) {
+        snprintf(buf, len, "%s", f->range);
+    } else if (f->kind == CLI_INT || f->kind == CLI_LONG) {
+        if (f->multiple > 0)
+            snprintf(buf, len, "a multiple of %ld in [%ld, %ld]", f->multiple, (long)f->min, (long)f->max);
+        else
+            snprintf(buf, len, "in [%ld, %ld]", (long)f->min, (long)f->max);
+    } else if (f->kind == CLI_DOUBLE) {
+        if (f->min == 1e-300)
+            snprintf(buf, len, "in (0, %g]", f->max);
+        else
+            snprintf(buf, len, "in [%g, %g]", f->min, f->max);
+    }
+}
+
+static void default_text(const struct cli_flag *f, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (f->def) {
+        snprintf(buf, len, "%s", f->def);
+        return;
+    }
+    if (!f->dest)
+        return;
+    switch (f->kind) {
+    case CLI_INT: snprintf(buf, len, "%d", *(const int *)f->dest); break;
+    case CLI_LONG: snprintf(buf, len, "%ld", *(const long *)f->dest); break;
+    case CLI_DOUBLE: snprintf(buf, len, "%g", *(const double *)f->dest); break;
+    case CLI_TEXT:
+    case CLI_PATH:
+        if (*(const char *const *)f->dest)
+            snprintf(buf, len, "%s", *(const char *const *)f->dest);
+        break;
+    default: break;
+    }
+}
+
+/* Writes text from column `col`, breaking at spaces before HELP_WIDTH; every
+ * further line starts at HELP_COLUMN. */
+static void write_wrapped(FILE *out, const char *text, int col)
+{
+    const char *p = text;
+    while (*p) {
+        size_t len = strlen(p);
+        size_t room = (size_t)(HELP_WIDTH - col);
+        if (len > room) {
+            size_t cut = room;
+            while (cut > 0 && p[cut] != ' ')
+                --cut;
+            if (cut > 0)
+                len = cut;
+        }
+        fprintf(out, "%.*s\n", (int)len, p);
+        p += len;
+        while (*p == ' ')
+            ++p;
+        if (*p)
+            fprintf(out, "%*s", HELP_COLUMN, "");
+        col = HELP_COLUMN;
+    }
+}
+
+void cli_print_help(FILE *out, const struct cli_command *c)
+{
+    fprintf(out, "usage: brdfbench %s %s\n", c->name, c->synopsis ? c->synopsis : "[OPTIONS]");
+    if (c->about)
+        fputs(c->about, out);
+    for (int k = 0; k < c->nflags; ++k) {
+        const struct cli_flag *f = &c->flags[k];
+        if (f->kind == CLI_RENAMED)
+            continue;
+        char head[64], range[128], def[256], text[1200];
+        snprintf(head, sizeof head, "%s%s%s", f->name, f->value ? " " : "", f->value ? f->value : "");
+        range_text(f, range, sizeof range);
+        default_text(f, def, sizeof def);
+        size_t used = (size_t)snprintf(text, sizeof text, "%s", f->help);
+        if (range[0] || def[0])
+            snprintf(text + used, sizeof text - used, " (%s%s%s%s)", range, range[0] && def[0] ? "; " : "",
+                     def[0] ? "default: " : "", def);
+        int col = fprintf(out, "  %-*s", HELP_COLUMN - 3, head) + 0;
+        if (col >= HELP_COLUMN) {   /* a long flag: the text starts on the next line */
+            fprintf(out, "\n%*s", HELP_COLUMN, "");
+        } else {
+            fputc(' ', out);
+        }
+        write_wrapped(out, text, HELP_COLUMN);
+    }
+    fprintf(out, "  %-*s %s\n", HELP_COLUMN - 3, "--help, -h", "this help");
+    fprintf(out, "  %-*s %s\n", HELP_COLUMN - 3, "--version", "the program's version and revision");
+    if (c->epilog)
+        fputs(c->epilog, out);
+}
+
+/* ---- shared flags ---------------------------------------------------------------------- */
+
+int cli_call_platform(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    long v;
+    if (cli_parse_long(flag, value, 0, 63, &v, err, errlen))
+        return EXIT_USAGE;
+    ((struct device_options *)dest)->platform = (int)v;
+    return 0;
+}
+
+int cli_call_device(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    long v;
+    /* all and lists reach here only in the commands that do not take them (cli_devices.c) */
+    if (cli_is_device_list(value)) {
+        snprintf(err, errlen, "%s: '%s': all and lists are taken by throughput, accuracy and render "
+                 "(accepted here: 0 to 63)", flag, value);
+        return EXIT_USAGE;
+    }
+    if (cli_parse_long(flag, value, 0, 63, &v, err, errlen))
+        return EXIT_USAGE;
+    ((struct device_options *)dest)->device = (int)v;
+    return 0;
+}
+
+int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    char probe[4096];
+    snprintf(probe, sizeof probe, "%s/brdf_models.h", value);
+    FILE *f = fopen(probe, "r");
+    if (!f) {
+        snprintf(err, errlen, "%s: %s does not hold brdf_models.h (accepted: a kernels/ folder)", flag, value);
+        return EXIT_USAGE;
+    }
+    fclose(f);
+    ((struct device_options *)dest)->kernel_dir = value;
+    clsession_set_kernel_dir(value);
+    return 0;
+}
+
+int cli_call_timeout(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    struct device_options *o = dest;
+    if (cli_parse_double(flag, value, 0.01, CLSESSION_MAX_TIMEOUT, &o->timeout, err, errlen))
+        return EXIT_USAGE;
+    clsession_set_timeout(o->timeout, TIMEOUT_FLAG);
+    return 0;
+}
+
+/* The files read by --model-file, by their real path: the same file named twice (by the same
+ * or another path) is read once. */
+#define CLI_MAX_MODEL_FILES 16
+static struct {
+    char real[PATH_MAX];
+    const char *as_given;
+} model_files[CLI_MAX_MODEL_FILES];
+static int model_file_count;
+
+int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    (void)dest;
+    if (*value == '\0') {
+        snprintf(err, errlen, "%s: empty file name", flag);
+        return EXIT_USAGE;
+    }
+    char real[PATH_MAX];
+    int have_real = realpath(value, real) != NULL;
+    for (int i = 0; have_real && i < model_file_count; ++i)
+        if (strcmp(model_files[i].real, real) == 0) {
+            cli_note("%s %s: the same file as %s, read once", flag, value, model_files[i].as_given);
+            return 0;
+        }
+    if (usermodel_load_file(value, NULL, err, errlen))
+        return EXIT_USAGE;
+    if (have_real && model_file_count < CLI_MAX_MODEL_FILES) {
+        snprintf(model_files[model_file_count].real, sizeof model_files[model_file_count].real, "%s", real);
+        model_files[model_file_count++].as_given = value;
+    }
+    return 0;
+}
+
+int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    (void)flag;
+    (void)dest;
+    struct user_model *um = NULL;
+    if (usermodel_parse_expression(value, &um, err, errlen))
+        return EXIT_USAGE;
+    /* NAME=EXPR given again with the same EXPR: one model. Another EXPR under the same name
+       is refused by usermodel_register. */
+    const struct user_model *had = usermodel_of_info(models_find(um->name));
+    if (had && !had->from_file && strcmp(had->formula, um->formula) == 0) {
+        cli_note("--model %s: given twice with the same expression, read once", um->name);
+        usermodel_free(um);
+        return 0;
+    }
+    return usermodel_register(um, err, errlen) ? EXIT_USAGE : 0;
+}
+
+int cli_model_list(const char *text, struct model_spec *out, int max, char *err, size_t errlen)
+{
+    int n = model_spec_list_parse(text, out, max, err, errlen);
+    if (n < 0)
+        return n;
+    /* The same model with the same parameters (the same canonical label) twice: once. */
+    int kept = 0;
+    for (int i = 0; i < n; ++i) {
+        int seen = 0;
+        for (int j = 0; j < kept && !seen; ++j)
+            seen = strcmp(out[j].label, out[i].label) == 0;
+        if (seen)
+            cli_note("--models: %s given twice, measured once", out[i].label);
+        else
+            out[kept++] = out[i];
+    }
+    return kept;
+}
+
+/* ---- "-" as an output path ------------------------------------------------------------- */
+
+int cli_is_stdout(const char *path) { return path && strcmp(path, "-") == 0; }
+
+int cli_output_path(struct cli_output *o, const char *path, const char *name, const char **writer_path, char *err,
+                    size_t errlen)
+{
+    memset(o, 0, sizeof *o);
+    o->path = path;
+    *writer_path = path;
+    if (!cli_is_stdout(path))
+        return 0;
+    const char *tmp = getenv("TMPDIR");
+    snprintf(o->tmp_dir, sizeof o->tmp_dir, "%s/brdfbench-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(o->tmp_dir)) {
+        snprintf(err, errlen, "standard output: cannot make a temporary folder %s: %s", o->tmp_dir, strerror(errno));
+        o->tmp_dir[0] = '\0';
+        return EXIT_RUNTIME;
+    }
+    snprintf(o->tmp_path, sizeof o->tmp_path, "%s/%s", o->tmp_dir, name);
+    *writer_path = o->tmp_path;
+    return 0;
+}
+
+int cli_output_finish(struct cli_output *o, int ok, char *err, size_t errlen)
+{
+    if (!o->tmp_dir[0])
+        return 0;
+    int rc = 0;
+    if (ok) {
+        FILE *f = fopen(o->tmp_path, "rb");
+        char buf[65536];
+        size_t got;
+        if (!f) {
+            snprintf(err, errlen, "standard output: cannot read %s: %s", o->tmp_path, strerror(errno));
+            rc = EXIT_RUNTIME;
+        } else {
+            while ((got = fread(buf, 1, sizeof buf, f)) > 0)
+                if (fwrite(buf, 1, got, stdout) != got)
+                    break;
+            if (ferror(f) || fflush(stdout) != 0 || ferror(stdout)) {
+                snprintf(err, errlen, "standard output: write failed: %s", strerror(errno));
+                rc = EXIT_RUNTIME;
+            }
+            fclose(f);
+        }
+    }
+    unlink(o->tmp_path);
+    rmdir(o->tmp_dir);
+    o->tmp_dir[0] = '\0';
+    return rc;
+}
+
+int cli_temp_dir(char *dir, size_t len, char *err, size_t errlen)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, len, "%s/brdfbench-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(dir)) {
+        snprintf(err, errlen, "cannot make a temporary folder %s: %s", dir, strerror(errno));
+        dir[0] = '\0';
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+void cli_temp_dir_remove(const char *dir)
+{
+    if (!dir || !dir[0])
+        return;
+    DIR *d = opendir(dir);
+    if (d) {
+        struct dirent *e;
+        char path[4096];
+        while ((e = readdir(d)) != NULL)
+            if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0 &&
+                path_join(path, sizeof path, dir, e->d_name) == 0)
+                unlink(path);
+        closedir(d);
+    }
+    rmdir(dir);
+}
+
+int cli_deliver(const char *src, const char *flag, const char *dest, char *err, size_t errlen)
+{
+    FILE *f = fopen(src, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot read %s: %s", flag, src, strerror(errno));
+        return EXIT_RUNTIME;
+    }
+    char *data = NULL;
+    size_t len = 0, cap = 0, got;
+    char buf[65536];
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0) {
+        if (len + got > cap) {
+            size_t nc = (len + got) * 2;
+            char *nd = realloc(data, nc);
+            if (!nd) {
+                free(data);
+                fclose(f);
+                snprintf(err, errlen, "%s: out of memory", flag);
+                return EXIT_RUNTIME;
+            }
+            data = nd;
+            cap = nc;
+        }
+        memcpy(data + len, buf, got);
+        len += got;
+    }
+    fclose(f);
+    int rc = 0;
+    if (cli_is_stdout(dest)) {
+        if ((len && fwrite(data, 1, len, stdout) != len) || fflush(stdout) != 0) {
+            snprintf(err, errlen, "%s: writing standard output failed: %s", flag, strerror(errno));
+            rc = EXIT_RUNTIME;
+        }
+    } else if (write_file_atomic(dest, data ? data : "", len, err, errlen) != 0) {
+        rc = EXIT_RUNTIME;
+    }
+    free(data);
+    return rc;
+}

@@ -1,0 +1,181 @@
+/* cli_table.h - declarative flag tables: each command lists its flags once (name, value
+ * name, type, accepted range, where the value goes, help text, default), and both the parser
+ * and `brdfbench COMMAND --help` are made from that list. A flag that several commands take
+ * is defined once below (CLI_FLAG_*), so it has one name, one meaning and one help line
+ * everywhere. Parsing returns a status and never calls exit(). */
+#ifndef BRDF_CLI_TABLE_H
+#define BRDF_CLI_TABLE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "accuracy.h"
+#include "cli.h"
+#include "models.h"
+
+enum cli_kind {
+    CLI_SWITCH,   /* no value: stores .set into the int at .dest */
+    CLI_TEXT,     /* a string: stores the argument into the const char * at .dest */
+    CLI_PATH,     /* as CLI_TEXT, and an empty value is refused */
+    CLI_INT,      /* an integer in [min, max] (a multiple of .multiple when set) into an int */
+    CLI_LONG,     /* the same into a long */
+    CLI_DOUBLE,   /* a finite number in [min, max] into a double */
+    CLI_CALL,     /* the value is handed to .call, which checks and stores it */
+    CLI_RENAMED   /* not a flag of this command: refused with .help, which names the right one */
+};
+
+/* .call: returns 0 or EXIT_USAGE with a one-line message in err. */
+typedef int (*cli_call_fn)(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+
+struct cli_flag {
+    const char *name;        /* "--n-min" */
+    const char *value;       /* the value's name in --help ("X", "N", "DIR"); NULL for a switch */
+    enum cli_kind kind;
+    void *dest;
+    double min, max;         /* accepted range of a number (min 1e-300 reads as "> 0") */
+    long multiple;           /* an integer must be a multiple of it (0: any) */
+    const char *help;        /* the meaning (--help wraps it) */
+    const char *def;         /* the default as --help shows it; NULL: the value at .dest before
+                                parsing; "" shows none */
+    const char *range;       /* the accepted values as --help shows them; NULL: made from min, max */
+    cli_call_fn call;
+    int *given;              /* set to 1 when the flag is on the command line (may be NULL) */
+    int set;                 /* CLI_SWITCH: the value stored */
+};
+
+struct cli_command {
+    const char *name;        /* "accuracy" */
+    const char *synopsis;    /* after "usage: brdfbench NAME ", e.g. "[OPTIONS]" */
+    const char *about;       /* lines that say what the command does, each starting "  " */
+    const struct cli_flag *flags;
+    int nflags;
+    const char *epilog;      /* printed after the flags (may be NULL) */
+    int max_positional;      /* bare arguments accepted (collected in positional[]) */
+};
+
+#define CLI_MAX_POSITIONAL 64
+struct cli_args {
+    const char *positional[CLI_MAX_POSITIONAL];
+    int npositional;
+};
+
+/* cli_parse's outcome besides 0 and EXIT_USAGE: --help or --version was answered on stdout
+ * and the command returns EXIT_OK. */
+#define CLI_ANSWERED (-1)
+
+/* Parses argv[1..argc-1] against the command's table: "--flag value" or "--flag=value",
+ * --help (and -h, which main turns into --help) and --version anywhere. Returns 0,
+ * CLI_ANSWERED, or EXIT_USAGE with a one-line message in err (without the command's name). */
+int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_args *args, char *err, size_t errlen);
+/* Writes the command's --help from its table. */
+void cli_print_help(FILE *f, const struct cli_command *c);
+/* The name of the command being parsed ("accuracy"), for notes printed while parsing. */
+const char *cli_command_name(void);
+/* "brdfbench VERSION (REVISION)": what `brdfbench version` and every --version print. */
+void cli_print_version(FILE *f);
+/* Prints "brdfbench COMMAND: note: ..." on stderr: a harmless oddity of the command line that
+ * was resolved (a model given twice). */
+void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* ---- flags shared by several commands: one definition each -------------------------------- */
+
+/* A destination pointer checked against the type its kind stores (a mismatch is a compiler
+   warning: pointer type mismatch in a conditional expression). */
+#define CLI_DEST(TYPE, P) ((void *)(1 ? (P) : (TYPE *)0))
+
+#define CLI_FLAG_N_MIN(DEST)                                                                                       \
+    { .name = "--n-min", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
+      .min = ACC_MIN_N, .max = ACC_MAX_N, \
+      .help = "smallest shininess n measured" }
+#define CLI_FLAG_N_MAX(DEST)                                                                                       \
+    { .name = "--n-max", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
+      .min = ACC_MIN_N, .max = ACC_MAX_N, \
+      .help = "largest shininess n measured" }
+#define CLI_FLAG_N_STEP(DEST)                                                                                      \
+    { .name = "--n-step", .value = "X", .kind = CLI_DOUBLE, .dest = CLI_DEST(double, DEST), \
+      .min = 1e-300, .max = ACC_MAX_N, \
+      .help = "step of n over the grid; real values allowed, n-max always included" }
+/* samples per zone per n, a multiple of 16 up to MAX */
+#define CLI_FLAG_SAMPLES(DEST, MAX)                                                                                \
+    { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, DEST), \
+      .min = ACC_MIN_SAMPLES, .max = (MAX), \
+      .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" }
+#define CLI_FLAG_MODELS(DEST, GIVEN, DEF)                                                                          \
+    { .name = "--models", .value = "LIST", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), .given = (GIVEN), \
+      .help = "models with parameters, comma-separated, e.g. cq2,fq:Q=0.7,lyon:k=4 (see brdfbench list); "        \
+              "the same model given twice is measured once",                                                      \
+      .def = (DEF) }
+#define CLI_DEF_OUT "a new folder results/<date-time>/, and results/latest pointing at it"
+#define CLI_FLAG_OUT(DEST, DEF)                                                                                    \
+    { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
+      .help = "write the results into folder DIR", \
+      .def = (DEF) }
+#define CLI_FLAG_QUIET(DEST)                                                                                       \
+    { .name = "--quiet", .kind = CLI_SWITCH, .dest = CLI_DEST(int, DEST), .set = 1, \
+      .help = "no progress lines, tables or summaries (files are written as without it; warnings "              \
+              "and errors are still shown)" }
+#define CLI_FLAG_JSON(DEST)                                                                                  \
+    { .name = "--json", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
+      .help = "write the results as JSON to FILE ('-': standard output)", .def = "" }
+#define CLI_FLAG_CSV(DEST)                                                                                   \
+    { .name = "--csv", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
+      .help = "write the results as CSV to FILE ('-': standard output)", .def = "" }
+
+/* Device selection (struct device_options, cli.h). */
+int cli_call_platform(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_device(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_timeout(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+#define CLI_FLAGS_DEVICE(DEV)                                                                                      \
+    { .name = "--platform", .value = "N", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_platform,              \
+      .help = "OpenCL platform index (see brdfbench list)", .range = "in [0, 63]",                                 \
+      .def = "the first with a device" },                                                                         \
+    { .name = "--device", .value = "N", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_device,                  \
+      .help = "device index on that platform; throughput, accuracy and render also take all (every device of " \
+              "every platform) or a list (0,1 or P:D pairs such as 0:0,1:0): one run per device in " \
+              "OUT/devices/<k>/, rows tagged with their device", .range = "in [0, 63]", .def = "0" },                                \
+    { .name = "--kernel-dir", .value = "DIR", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_kernel_dir,        \
+      .help = "read kernels/*.cl from DIR instead of the copies built into the program", .def = "" }, \
+    { .name = "--timeout", .value = "SECONDS", .kind = CLI_CALL, .dest = (DEV), .call = cli_call_timeout, \
+      .help = "deadline of each kernel launch; past it the run stops with exit 3 and its unfinished outputs " \
+              "removed", .range = "in [0.01, 604800]", .def = "300" }
+
+/* User models (host/core/usermodel.h): registered as they are read. */
+int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+#define CLI_FLAGS_USERMODEL                                                                                        \
+    { .name = "--model-file", .value = "FILE", .kind = CLI_CALL, .call = cli_call_model_file, .def = "",           \
+      .help = "add the user model of FILE.cl (see docs/user-models.md); repeatable; the same file "               \
+              "twice is read once" },                                                                             \
+    { .name = "--model", .value = "NAME=EXPR", .kind = CLI_CALL, .call = cli_call_model_expr, .def = "",           \
+      .help = "add a user model given by an OpenCL C expression of c and n, e.g. "                                \
+              "--model 'sq=pow(fmax(0.45*n*(c-1)+1,0),2)'; repeatable; the same NAME=EXPR twice "                 \
+              "is read once, NAME with another EXPR is refused" }
+
+/* Parses --models text (or the default) into models, merging a model given twice (same label)
+ * with a note. Returns the count, or -2 with a message. */
+int cli_model_list(const char *text, struct model_spec *out, int max, char *err, size_t errlen);
+
+/* "-" as an output path: the writer writes into a temporary folder and the document is then
+ * copied to standard output. cli_output_path gives the path to hand the writer (path itself
+ * unless it is "-"); cli_output_finish copies and removes the temporary file (ok = 0: only
+ * removes). Both return 0 or EXIT_RUNTIME with a message. */
+struct cli_output {
+    const char *path;        /* as given */
+    char tmp_dir[256];
+    char tmp_path[512];
+};
+int cli_output_path(struct cli_output *o, const char *path, const char *name, const char **writer_path, char *err,
+                    size_t errlen);
+int cli_output_finish(struct cli_output *o, int ok, char *err, size_t errlen);
+/* A command that writes a folder and takes --json FILE for one of its documents: the folder may
+ * be a temporary one (cli_temp_dir, removed with cli_temp_dir_remove, which removes its plain
+ * files), and the document is then copied to FILE, or to standard output for "-"
+ * (cli_deliver; a regular FILE is replaced atomically). Return 0 or EXIT_RUNTIME with a message. */
+int cli_temp_dir(char *dir, size_t len, char *err, size_t errlen);
+void cli_temp_dir_remove(const char *dir);
+int cli_deliver(const char *src, const char *flag, const char *dest, char *err, size_t errlen);
+/* 1 when path means standard output. */
+int cli_is_stdout(const char *path);
+
+#endif
