@@ -4,7 +4,9 @@
  * from closed forms, limits and the formulas written a second time here, each named beside
  * its check; GSL supplies the independent pieces (Lambert W, a root finder). */
 #include "check.h"
+#include "exitcodes.h"
 #include "models.h"
+#include "pbcost.h"
 
 #include <complex.h>
 #include <gsl/gsl_errno.h>
@@ -275,6 +277,42 @@ int main(void)
         double c = cos(0.2), nv = 2 * c * c - 1;
         CHECK_NEAR(model_eval_host(&m, c, 10), brdf_pb_eval(BRDF_HE, 1, nv, nv, 10, 2, 0), 0, "lobe form of he");
         CHECK(model_spec_parse("he:material=4", &m, err, sizeof err) == 2, "material 4 is out of range");
+    }
+    /* He's terms per evaluation grow with the roughness (g = (k sigma (cos + cos))^2): at
+       normal incidence in the mirror direction the sum's peak sits at m ~ g = (4 pi ratio)^2. */
+    {
+        int t_smooth = pbcost_he_terms(1, 1, 1, 0.01 * 0.55), t_rough = pbcost_he_terms(1, 1, 1, 1.0 * 0.55);
+        double g_rough = pow(4 * M_PI * 1.0, 2);
+        CHECK(t_smooth < t_rough, "terms grow with sigma0/lambda (%d, %d)", t_smooth, t_rough);
+        CHECK(t_rough > g_rough && t_rough < g_rough + 10 * sqrt(g_rough) + 20,
+              "terms past the peak g = %g but within ~10 sqrt(g) of it (%d)", g_rough, t_rough);
+    }
+
+    /* On the device: every cost row's float kernel against the double reference at random
+       (N, L, V), and the ratios of a row to itself. No time is asserted. */
+    struct cl_session s;
+    char err[512];
+    int rc = clsession_open(&s, -1, -1, err, sizeof err);
+    if (rc == EXIT_NO_DEVICE) {
+        fprintf(stderr, "%s\n", err);
+        return check_summary_skipped();
+    }
+    CHECK(rc == 0, "OpenCL session (%s)", err);
+    if (rc == 0) {
+        struct pbcost_options o;
+        pbcost_options_default(&o);
+        o.reps = 1;
+        o.min_time = 0.001;
+        static struct pbcost_result r;
+        CHECK(pbcost_run(&s, &o, &r, 1) == 0, "pbcost_run");
+        CHECK(r.count == 11, "rows: pow, phong, blinn, fq2, 2 x Cook-Torrance, Brady, 4 He presets (%d)", r.count);
+        for (int i = 0; i < r.count; ++i) {
+            CHECK(r.rows[i].check_max_abs_of_peak <= 1e-4, "%s: device vs double %.3g of the peak", r.rows[i].name,
+                  r.rows[i].check_max_abs_of_peak);
+            CHECK(r.rows[i].evals_per_s > 0 && isfinite(r.rows[i].evals_per_s), "%s: a rate", r.rows[i].name);
+        }
+        CHECK(r.rows[r.fq2].ratio_to_fq2 == 1 && r.rows[r.phong].ratio_to_phong == 1, "a row against itself is 1");
+        clsession_close(&s);
     }
     return check_summary();
 }

@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
+#include "pbcost.h"
 #include "throughput.h"
 #include "usermodel.h"
 
@@ -39,7 +40,8 @@ static void throughput_usage(FILE *f)
             "  --sweep-samples N    samples per zone of that sweep (default %d; a multiple of 16)\n"
             "  --sweep-n-step X     its step of n over [2, 1000] (default 1)\n"
             "  --sweep-reps N       its timed runs per model, 1 to %d (default 3)\n"
-            "  --out DIR            write throughput.json and throughput.csv into DIR\n"
+            "  --out DIR            write throughput.json and throughput.csv into DIR (and, without\n"
+            "                       --models, physical.json: the physically based models' cost)\n"
             "                       (default: a new folder results/<date-time>/, with results/latest)\n"
             "  --quiet              no table on stdout, no progress on stderr\n"
             USERMODEL_OPTIONS_HELP
@@ -213,6 +215,8 @@ int cmd_throughput(int argc, char **argv)
         return EXIT_RUNTIME;
     }
     rc = throughput_run(&s, &o, run_dir, quiet);
+    if (!rc && !models_given)   /* the physically based models from full vectors (pbcost.h) */
+        rc = pbcost_run_write(&s, run_dir, quiet);
     if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         rc = EXIT_RUNTIME;
