@@ -17,7 +17,7 @@ python3 - "$T/run/throughput.json" <<'PY' && ok || bad "throughput.json contract
 import json, math, sys
 def no_const(x): raise ValueError("non-finite number in JSON: " + x)
 d = json.load(open(sys.argv[1]), parse_constant=no_const)
-assert d["schema"] == "brdfbench.throughput/1"
+assert d["schema"] == "brdfbench.throughput/2"
 ctx = d["context"]
 for k in ("date", "device", "platform_version", "build_options", "git_revision", "throughput"):
     assert k in ctx, k
@@ -32,6 +32,14 @@ for r in rows:
     assert r["status"] == "ok", r
     e = r["evals_per_s"]
     assert 0 < e["min"] <= e["median"] <= e["max"], e
+    # every repetition is kept (--reps 2), and min/median/max are taken over them
+    reps = sorted(r["evals_per_s_reps"])
+    assert len(reps) == 2, reps
+    assert math.isclose(reps[0], e["min"], rel_tol=1e-12) and math.isclose(reps[-1], e["max"], rel_tol=1e-12), (reps, e)
+    # the median of rates is the rate of the median time: with 2 reps, work over the mean time (harmonic mean)
+    assert math.isclose(e["median"], 2 / (1 / reps[0] + 1 / reps[1]), rel_tol=1e-9), (reps, e)
+    if r["variant"] == "default":
+        assert len(r["host_c"]["evals_per_s_reps"]) == 2, r["host_c"]
     assert r["ratio_to_reference"] > 0 and r["fraction_of_peak"] > 0
     assert r["build_options"] == ("" if r["variant"] == "default" else "-cl-denorms-are-zero")
     assert r["accuracy"]["status"] == "ok" and r["accuracy"]["max_diff_of_peak"] < 1e-5

@@ -256,9 +256,10 @@ int plots_add_throughput(struct plot_set *set, const char *json_path, const char
     const char *schema;
     int rc = 2;
     if (jr_need_str(&d, &d.root, "schema", &schema, err, errlen)) goto done;
-    if (strcmp(schema, "brdfbench.throughput/1") != 0) {
-        jr_fail(&d, jr_get(&d.root, "schema"), err, errlen, "schema \"%s\", expected \"brdfbench.throughput/1\"",
-                schema);
+    /* version 2 only adds each row's repetitions */
+    if (strcmp(schema, "brdfbench.throughput/1") != 0 && strcmp(schema, "brdfbench.throughput/2") != 0) {
+        jr_fail(&d, jr_get(&d.root, "schema"), err, errlen,
+                "schema \"%s\", expected \"brdfbench.throughput/2\" (or /1)", schema);
         goto done;
     }
     if (jr_need(&d, &d.root, "results", JR_ARR, &results, err, errlen)) goto done;

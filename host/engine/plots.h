@@ -85,7 +85,7 @@ int plots_add_bars(struct plot_set *set, const char *file, const char *caption, 
                    const char *x_label, const char *const *labels, const double *values, const double *lo,
                    const double *hi, int count, int highlight);
 
-/* Throughput bars from a throughput.json (schema brdfbench.throughput/1): the rows of the
+/* Throughput bars from a throughput.json (schema brdfbench.throughput/2 or /1): the rows of the
  * default build options in one n mode ("uniform" or "varying"), median evaluations per
  * second with a min..max whisker, the pow() built-in drawn dark. Returns 0, 1 when the
  * file holds no such row, or 2 with a message naming the file when it is malformed. */

@@ -16,7 +16,9 @@
 #include "models.h"
 #include "usermodel.h"
 
-#define THROUGHPUT_SCHEMA "brdfbench.throughput/1"
+/* Version 2 adds evals_per_s_reps (every timed launch's rate) to each row and its host_c;
+ * version 1 files are otherwise the same and are still read by `plot` (not by `compare`). */
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/2"
 #define TP_STREAMS 4            /* kernels/throughput.cl */
 #define TP_EVALS_PER_ITER (16 * TP_STREAMS)
 #define TP_MAX_MODELS 64

@@ -1,0 +1,181 @@
+/* fit_report.c - the writing side of `brdfbench fit`: fit.json and the printed summary.
+ * fit.c measures; this file only turns a filled struct fit_report into text. */
+#include "fit_report.h"
+#include "context.h"
+#include "jsonw.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static void jw_extreme_obj(struct jw *w, const char *key, const char *metric, const struct acc_extreme *e)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, metric, e->value);
+    jw_kv_num(w, "at_n", e->n);
+    jw_kv_num(w, "at_x", e->x);
+    if (!isfinite(e->value))
+        jw_kv_str(w, "reason", "no finite values");
+    jw_obj_end(w);
+}
+
+static void jw_sweep_summary(struct jw *w, const struct accuracy_result *r)
+{
+    jw_obj_begin(w);
+    jw_kv_str(w, "model", r->model.label);
+    jw_kv_str(w, "reference", r->reference.label);
+    jw_kv_num(w, "max_rel", r->epicentre.value);
+    jw_kv_num(w, "max_rel_at_n", r->epicentre.n);
+    jw_kv_num(w, "max_abs", r->attenuation.value);
+    jw_kv_num(w, "max_abs_at_n", r->attenuation.n);
+    jw_kv_num(w, "max_abs_whole", r->whole.value);
+    jw_extreme_obj(w, "epicentre", "max_rel", &r->epicentre);
+    jw_extreme_obj(w, "attenuation", "max_abs", &r->attenuation);
+    jw_obj_end(w);
+}
+
+/* The fitted model's block: parameters, device figures, host figures, cap. */
+static void jw_fit_model(struct jw *w, const struct fit_model *m)
+{
+    jw_kv_str(w, "status", m->fit.feasible ? "ok" : "infeasible");
+    if (!m->fit.feasible)
+        jw_kv_str(w, "reason", m->fit.reason[0] ? m->fit.reason : "no fit");
+    jw_kv_str(w, "model", m->fit.feasible ? m->spec_text : "");
+    jw_kv_num(w, "a", m->fit.feasible ? m->spec.params[0] : NAN);
+    jw_kv_num(w, "b", m->fit.feasible ? m->spec.params[1] : NAN);
+    const struct accuracy_result *r = m->have_sweep ? &m->sweep : NULL;
+    jw_kv_num(w, "max_rel", r ? r->epicentre.value : NAN);
+    jw_kv_num(w, "max_rel_at_n", r ? r->epicentre.n : NAN);
+    jw_kv_num(w, "max_abs", r ? r->attenuation.value : NAN);
+    jw_kv_num(w, "max_abs_at_n", r ? r->attenuation.n : NAN);
+    jw_kv_num(w, "max_abs_whole", r ? r->whole.value : NAN);
+    jw_kv_num(w, "max_abs_cap", m->fit.cap);
+    if (!isfinite(m->fit.cap))
+        jw_kv_str(w, "max_abs_cap_reason", "no cap");
+    jw_key(w, "host_check");
+    jw_obj_begin(w);
+    jw_kv_num(w, "max_rel", m->fit.max_rel);
+    jw_kv_num(w, "max_rel_at_n", m->fit.max_rel_n);
+    jw_kv_num(w, "max_abs", m->fit.max_abs);
+    jw_kv_num(w, "max_abs_at_n", m->fit.max_abs_n);
+    jw_kv_str(w, "what", "the same figures from the fit's own double-precision evaluation (exact stationary point "
+                         "in the epicentre; 256-sample grid + Brent in the attenuation zone)");
+    jw_obj_end(w);
+}
+
+int fit_write_json(const char *path, const struct fit_report *r, const struct cl_session *s,
+                          const char *build_options, char *err, size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", FIT_SCHEMA);
+    jw_context_begin(&w, s, build_options);
+    jw_key(&w, "grid");
+    jw_obj_begin(&w);
+    jw_kv_num(&w, "n_min", r->grid.n_min);
+    jw_kv_num(&w, "n_max", r->grid.n_max);
+    jw_kv_num(&w, "n_step", r->grid.n_step);
+    jw_kv_int(&w, "n_count", r->n_count);
+    jw_kv_int(&w, "samples_per_zone", r->grid.samples);
+    jw_kv_str(&w, "figures", "max_rel / max_abs: the device sweep (brdfbench accuracy) polished in double");
+    jw_obj_end(&w);
+    jw_obj_end(&w);   /* context */
+    jw_kv_str(&w, "family", "f = (k(n) (c - 1) + 1)^2, zeroed past its root; reference c^n (phong)");
+    jw_kv_str(&w, "objective", "minimise over (a, b) the largest epicentre max delta over the n grid, "
+                               "k(n) = a n + b; optional cap on the attenuation zone's max Delta");
+    jw_fit_model(&w, &r->main);
+    jw_key(&w, "limit_overall");
+    jw_obj_begin(&w);
+    jw_kv_num(&w, "max_rel", r->limit_max);
+    jw_kv_num(&w, "at_n", r->limit_max_n);
+    jw_kv_str(&w, "what", "largest over the grid of the per-n minimax: no k(n) of the family does better "
+                          "over this range");
+    jw_obj_end(&w);
+    jw_key(&w, "limit");
+    jw_arr_begin(&w);
+    for (long i = 0; i < r->n_count; ++i) {
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "n", r->limit[i].n);
+        jw_kv_num(&w, "k", r->limit[i].k);
+        jw_kv_num(&w, "max_rel", r->limit[i].max_rel);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_key(&w, "capped_at_fq2");
+    jw_obj_begin(&w);
+    jw_fit_model(&w, &r->at_fq2_cap);
+    jw_obj_end(&w);
+    jw_key(&w, "tradeoff");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "what", "best affine fit for caps on the attenuation's max Delta between fq2's and the uncapped "
+                          "fit's (host double figures)");
+    jw_key(&w, "points");
+    jw_arr_begin(&w);
+    for (int j = 0; j < r->tradeoff_count; ++j) {
+        jw_obj_begin(&w);
+        jw_kv_num(&w, "max_abs_cap", r->tradeoff[j].cap);
+        jw_kv_num(&w, "a", r->tradeoff[j].a);
+        jw_kv_num(&w, "b", r->tradeoff[j].b);
+        jw_kv_num(&w, "max_rel", r->tradeoff[j].max_rel);
+        jw_kv_num(&w, "max_abs", r->tradeoff[j].max_abs);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    jw_key(&w, "compare");
+    jw_arr_begin(&w);
+    if (r->main.have_sweep)
+        jw_sweep_summary(&w, &r->main.sweep);
+    if (r->at_fq2_cap.have_sweep)
+        jw_sweep_summary(&w, &r->at_fq2_cap.sweep);
+    for (int i = 0; i < r->compare_count; ++i)
+        jw_sweep_summary(&w, &r->compare[i]);
+    jw_arr_end(&w);
+    jw_key(&w, "verdict");
+    jw_obj_begin(&w);
+    jw_kv_bool(&w, "beats_fq2_max_rel", r->beats_fq2_rel);
+    jw_kv_bool(&w, "max_abs_not_worse_than_fq2", r->not_worse_abs);
+    jw_kv_str(&w, "text", r->verdict);
+    jw_obj_end(&w);
+    jw_kv_num(&w, "seconds", r->seconds);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+static void print_row(FILE *f, const char *label, const char *note, const struct accuracy_result *r)
+{
+    fprintf(f, "  %-36s %9.4f%% %7g  %9.5f %7g  %s\n", label, 100.0 * r->epicentre.value, r->epicentre.n,
+            r->attenuation.value, r->attenuation.n, note);
+}
+
+void fit_print(FILE *f, const struct fit_report *r)
+{
+    fprintf(f, "fit: f = (k(n)(c-1) + 1)^2, k(n) = a n + b, minimax of the epicentre's max delta over n in "
+               "[%g, %g] step %g (%ld values); device sweep %ld samples per zone\n",
+            r->grid.n_min, r->grid.n_max, r->grid.n_step, r->n_count, r->grid.samples);
+    fprintf(f, "family limit (per-n minimax k): max delta %.4f%% at n = %g\n", 100.0 * r->limit_max, r->limit_max_n);
+    fprintf(f, "  %-36s %10s %7s  %9s %7s\n", "model", "max delta", "at n", "max Delta", "at n");
+    if (r->main.have_sweep)
+        print_row(f, r->main.spec_text, isfinite(r->main.fit.cap) ? "fit (capped)" : "fit", &r->main.sweep);
+    else
+        fprintf(f, "  fit: %s\n", r->main.fit.reason);
+    if (r->at_fq2_cap.have_sweep)
+        print_row(f, r->at_fq2_cap.spec_text, "fit, max Delta capped at fq2's", &r->at_fq2_cap.sweep);
+    else
+        fprintf(f, "  fit capped at fq2's max Delta: %s\n", r->at_fq2_cap.fit.reason);
+    for (int i = 0; i < r->compare_count; ++i)
+        print_row(f, r->compare[i].model.label, "", &r->compare[i]);
+    if (r->tradeoff_count > 0) {
+        fprintf(f, "trade-off (host figures): cap on max Delta -> best max delta:");
+        for (int j = 0; j < r->tradeoff_count; ++j)
+            fprintf(f, "%s %.5f -> %.4f%%", j ? "," : "", r->tradeoff[j].cap, 100 * r->tradeoff[j].max_rel);
+        fprintf(f, "\n");
+    }
+    fprintf(f, "verdict: %s\n", r->verdict);
+    if (r->main.have_sweep)
+        fprintf(f, "use it: --models %s\n", r->main.spec_text);
+}

@@ -1,0 +1,525 @@
+/* throughput_report.c - writes what a throughput run measured: throughput.json (schema in
+ * throughput.h), throughput.csv (one line per row) and the summary tables for stdout and
+ * report.md. Nothing here measures. */
+#include "throughput_report.h"
+#include "context.h"
+#include "jsonw.h"
+#include "outdir.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const nmode_names[TP_NMODE_COUNT] = { "uniform", "varying" };
+
+static double ratio(double a, double b) { return (a > 0 && b > 0 && isfinite(a) && isfinite(b)) ? a / b : NAN; }
+
+static double peak_fma_per_s(const struct tp_run *r)
+{
+    return r->peak.ok ? r->peak.rate.median / 2.0 : NAN;
+}
+
+/* Ratios of entry i under variant v and mode m (NAN when a side is missing). */
+struct tp_ratios {
+    double to_reference, to_model_reference, to_host_c, of_peak;
+};
+
+static struct tp_ratios ratios_of(const struct tp_run *r, int i, int v, int m)
+{
+    const struct tp_entry *e = &r->e[i];
+    const struct tp_figure *f = &e->dev[v][m];
+    struct tp_ratios q = { NAN, NAN, NAN, NAN };
+    if (!f->ok)
+        return q;
+    const struct tp_figure *pw = &r->e[0].dev[v][m];
+    q.to_reference = pw->ok ? ratio(f->rate.median, pw->rate.median) : NAN;
+    if (e->ref_entry >= 0 && r->e[e->ref_entry].dev[v][m].ok)
+        q.to_model_reference = ratio(f->rate.median, r->e[e->ref_entry].dev[v][m].rate.median);
+    if (e->hostc[m].ok)
+        q.to_host_c = ratio(f->rate.median, e->hostc[m].rate.median);
+    q.of_peak = ratio(f->rate.median, peak_fma_per_s(r));
+    return q;
+}
+
+static void jw_stats(struct jw *w, const char *key, struct tp_stats s)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_num(w, "min", s.min);
+    jw_kv_num(w, "median", s.median);
+    jw_kv_num(w, "max", s.max);
+    jw_obj_end(w);
+}
+
+static void jw_ratio(struct jw *w, const char *key, double v, const char *why_missing)
+{
+    jw_kv_num(w, key, v);
+    if (!isfinite(v)) {
+        char k[96];
+        snprintf(k, sizeof k, "%s_reason", key);
+        jw_kv_str(w, k, why_missing);
+    }
+}
+
+/* Every timed launch's rate, in the order they ran: what a comparison of two runs tests. */
+static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int k = 0; f->ok && k < f->nreps; ++k)
+        jw_num(w, f->rep_seconds[k] > 0 ? f->per_launch / f->rep_seconds[k] : NAN);
+    jw_arr_end(w);
+}
+
+static const char *tp_definitions[][2] = {
+    { "evals_per_s", "model evaluations per second: work-items x iterations x 64 over the launch time (profiling events); min/median/max over the timed launches" },
+    { "evals_per_s_wall", "the same over wall time, enqueue to clFinish" },
+    { "evals_per_s_reps", "evals_per_s of every timed launch, in the order they ran (empty when the figure failed); brdfbench compare tests two runs' repetitions against each other" },
+    { "ratio_to_reference", "evals_per_s / evals_per_s of the pow(c, n) built-in, same build options and n mode, same run" },
+    { "ratio_to_model_reference", "evals_per_s / evals_per_s of the model's own reference (phong, phongn, blinnn) as brdf_models.h evaluates it" },
+    { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/hostc_baseline.c: -O3 -march=native, pthreads over the online CPUs, powf for c^n)" },
+    { "fraction_of_peak", "evals_per_s / the device's measured peak in FMA per second (peak_fma float16 chains; flops / 2): the inverse is the model's cost in FMA slots" },
+    { "inputs", "c sweeps [0, 1) per work-item in steps of 1/(64 iters), made in registers; n uniform = a kernel argument, n varying = a different n in [n_lo, n_hi] for every evaluation" },
+    { "accuracy.max_diff_of_peak", "largest |device value - double reference value| / |reference lobe at c = 1| over 4096 probe points, half in the epicentre, half out to 4 x_e, n over [n_lo, n_hi]" },
+};
+
+int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
+{
+    const struct throughput_options *o = r->o;
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", THROUGHPUT_SCHEMA);
+    jw_context_begin(&w, r->s, r->options[TP_VARIANT_DEFAULT]);
+    const char *aff = getenv("POCL_AFFINITY");
+    jw_kv_str(&w, "pocl_affinity", aff ? aff : "(unset)");
+    jw_key(&w, "throughput");
+    jw_obj_begin(&w);
+    jw_kv_int(&w, "reps", o->reps);
+    jw_kv_num(&w, "min_time_s", o->min_time);
+    jw_kv_int(&w, "work_items", r->work_items);
+    jw_kv_int(&w, "local_size", 1);
+    jw_kv_int(&w, "evaluations_per_iteration", TP_EVALS_PER_ITER);
+    jw_kv_num(&w, "n_uniform", (float)o->n_uniform);
+    jw_kv_num(&w, "n_lo", o->n_lo);
+    jw_kv_num(&w, "n_hi", o->n_hi);
+    jw_kv_int(&w, "host_c_threads", o->host_c ? r->threads : 0);
+    jw_kv_str(&w, "host_c_flags", "-O3 -march=native -fno-math-errno");
+    jw_kv_str(&w, "loadavg_start", r->load_start);
+    jw_kv_str(&w, "loadavg_end", r->load_end);
+    jw_obj_end(&w);
+    jw_obj_end(&w);   /* context */
+
+    jw_key(&w, "definitions");
+    jw_obj_begin(&w);
+    for (size_t i = 0; i < sizeof tp_definitions / sizeof tp_definitions[0]; ++i)
+        jw_kv_str(&w, tp_definitions[i][0], tp_definitions[i][1]);
+    jw_obj_end(&w);
+
+    jw_key(&w, "builds");
+    jw_arr_begin(&w);
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
+        if (!variant_on(r, v))
+            continue;
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "variant", tp_variant_name(v));
+        jw_kv_str(&w, "build_options", r->options[v]);
+        jw_kv_str(&w, "status", r->built[v] ? "ok" : "failed");
+        jw_kv_num(&w, "build_seconds", r->build_seconds[v]);
+        if (!r->built[v])
+            jw_kv_str(&w, "reason", r->build_reason[v]);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+
+    jw_key(&w, "peak");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "status", r->peak.ok ? "ok" : "failed");
+    if (!r->peak.ok)
+        jw_kv_str(&w, "reason", r->peak.reason);
+    jw_kv_str(&w, "kernel", "kernels/peak.cl: 16 independent float16 FMA chains per work-item, 2 flops per lane and step");
+    jw_kv_str(&w, "build_options", r->peak_options);
+    jw_kv_num(&w, "build_seconds", r->peak_build_seconds);
+    jw_stats(&w, "flops_per_s", r->peak.rate);
+    jw_stats(&w, "flops_per_s_wall", r->peak.rate_wall);
+    jw_kv_num(&w, "fma_per_s", peak_fma_per_s(r));
+    jw_kv_num(&w, "flops_per_s_first", r->peak_first.ok ? r->peak_first.rate.median : NAN);
+    jw_kv_num(&w, "flops_per_s_last", r->peak_last.ok ? r->peak_last.rate.median : NAN);
+    jw_kv_str(&w, "which", "measured before and after the models; the higher median is the peak");
+    jw_obj_end(&w);
+
+    jw_key(&w, "results");
+    jw_arr_begin(&w);
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
+        for (int i = 0; i < r->nentries; ++i)
+            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+                const struct tp_entry *e = &r->e[i];
+                if (!variant_on(r, v) || !e->measured[v][m])
+                    continue;
+                const struct tp_figure *f = &e->dev[v][m];
+                struct tp_ratios q = ratios_of(r, i, v, m);
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
+                jw_kv_str(&w, "label", e->label);
+                jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
+                jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
+                jw_kv_str(&w, "variant", tp_variant_name(v));
+                jw_kv_str(&w, "build_options", r->options[v]);
+                jw_kv_str(&w, "n_mode", nmode_names[m]);
+                jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
+                if (!f->ok)
+                    jw_kv_str(&w, "reason", f->reason);
+                jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+                jw_reps(&w, "evals_per_s_reps", f);
+                jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
+                jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
+                jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
+                jw_kv_int(&w, "iterations_per_work_item", f->iters);
+                jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
+                jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
+                jw_kv_bool(&w, "values_finite", f->ok && f->finite);
+                if (f->ok && !f->finite)
+                    jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
+                                          "finite); the rate is the rate of that code");
+                jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
+                jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
+                         f->ok ? "the model's reference is not part of this run" : f->reason);
+                jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
+                         !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
+                                  : e->hostc[m].reason);
+                jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
+                jw_key(&w, "host_c");
+                jw_obj_begin(&w);
+                if (!o->host_c) {
+                    jw_kv_str(&w, "status", "not run");
+                } else {
+                    jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
+                    if (!e->hostc[m].ok)
+                        jw_kv_str(&w, "reason", e->hostc[m].reason);
+                    jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
+                    jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
+                    jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
+                    jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
+                    jw_kv_int(&w, "threads", r->threads);
+                }
+                jw_obj_end(&w);
+                jw_key(&w, "accuracy");
+                jw_obj_begin(&w);
+                jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
+                if (!e->acc_ok[v])
+                    jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
+                jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
+                jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
+                jw_kv_int(&w, "points", TP_ACC_POINTS);
+                jw_obj_end(&w);
+                jw_obj_end(&w);
+            }
+    jw_arr_end(&w);
+
+    jw_key(&w, "sweep");
+    jw_obj_begin(&w);
+    if (!r->sweep_ran) {
+        jw_kv_str(&w, "status", "not run");
+    } else {
+        double dsum = 0, hsum = 0, pts = 0, agree = 0;
+        int all_ok = r->nsw > 0 && !r->sweep_reason[0];
+        for (int k = 0; k < r->nsw; ++k) {
+            if (!r->sw[k].ok) {
+                all_ok = 0;
+                continue;
+            }
+            dsum += r->sw[k].dev_s.median;
+            hsum += r->sw[k].hostc_s.median;
+            pts += r->sw[k].points;
+            agree = fmax(agree, r->sw[k].agree);
+        }
+        jw_kv_str(&w, "status", all_ok ? "ok" : "partial");
+        if (r->sweep_reason[0])
+            jw_kv_str(&w, "reason", r->sweep_reason);
+        jw_kv_str(&w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
+                              "(cosf for the sample cosines, powf for c^n), per model: median of the timed runs");
+        jw_kv_num(&w, "n_min", o->sweep_grid.n_min);
+        jw_kv_num(&w, "n_max", o->sweep_grid.n_max);
+        jw_kv_num(&w, "n_step", o->sweep_grid.n_step);
+        jw_kv_int(&w, "n_count", r->sweep_n_count);
+        jw_kv_int(&w, "samples_per_zone", o->sweep_grid.samples);
+        jw_kv_int(&w, "reps", o->sweep_reps);
+        jw_kv_num(&w, "build_seconds", r->sweep_build_seconds);
+        jw_kv_num(&w, "device_seconds", dsum > 0 ? dsum : NAN);
+        jw_kv_num(&w, "host_c_seconds", hsum > 0 ? hsum : NAN);
+        jw_kv_num(&w, "points", pts);
+        jw_kv_num(&w, "device_points_per_s", dsum > 0 ? pts / dsum : NAN);
+        jw_kv_num(&w, "host_c_points_per_s", hsum > 0 ? pts / hsum : NAN);
+        jw_ratio(&w, "speedup_vs_host_c", ratio(hsum, dsum), "no model was timed on both sides");
+        jw_kv_num(&w, "agreement_max_rel_diff", agree);
+        jw_kv_str(&w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
+                                        "relative to at least 1e-4 (their sample cosines differ by float rounding)");
+        jw_key(&w, "models");
+        jw_arr_begin(&w);
+        for (int k = 0; k < r->nsw; ++k) {
+            const struct tp_sweep_model *s = &r->sw[k];
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "label", s->label);
+            jw_kv_str(&w, "status", s->ok ? "ok" : "failed");
+            if (!s->ok)
+                jw_kv_str(&w, "reason", s->reason);
+            jw_stats(&w, "device_seconds", s->ok ? s->dev_s : (struct tp_stats){ NAN, NAN, NAN });
+            jw_stats(&w, "host_c_seconds", s->ok ? s->hostc_s : (struct tp_stats){ NAN, NAN, NAN });
+            jw_kv_num(&w, "points", s->points);
+            jw_ratio(&w, "speedup_vs_host_c", s->ok ? ratio(s->hostc_s.median, s->dev_s.median) : NAN, s->reason);
+            jw_kv_num(&w, "agreement_max_rel_diff", s->ok ? s->agree : NAN);
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+    }
+    jw_obj_end(&w);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+/* A growable text buffer for the CSV and the markdown. */
+struct tp_text {
+    char *s;
+    size_t len, cap;
+    int failed;
+};
+
+static void tx_printf(struct tp_text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void tx_printf(struct tp_text *t, const char *fmt, ...)
+{
+    if (t->failed)
+        return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        if (n < 0) {
+            t->failed = 1;
+            return;
+        }
+        if (t->s && t->len + (size_t)n < t->cap) {
+            t->len += (size_t)n;
+            return;
+        }
+        size_t cap = t->cap ? t->cap : 4096;
+        while (cap <= t->len + (size_t)n)
+            cap *= 2;
+        char *ns = realloc(t->s, cap);
+        if (!ns) {
+            t->failed = 1;
+            return;
+        }
+        t->s = ns;
+        t->cap = cap;
+    }
+}
+
+/* A number for CSV: empty when missing. */
+static void tx_num(struct tp_text *t, double v)
+{
+    if (isfinite(v))
+        tx_printf(t, ",%.6g", v);
+    else
+        tx_printf(t, ",");
+}
+
+int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t errlen)
+{
+    struct tp_text t = { 0 };
+    tx_printf(&t, "model,label,variant,build_options,n_mode,status,evals_per_s_min,evals_per_s_median,"
+                  "evals_per_s_max,evals_per_s_wall_median,ratio_to_reference,ratio_to_model_reference,"
+                  "ratio_to_host_c,fraction_of_peak,host_c_evals_per_s_median,max_diff_of_peak,reason\n");
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
+        for (int i = 0; i < r->nentries; ++i)
+            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+                const struct tp_entry *e = &r->e[i];
+                if (!variant_on(r, v) || !e->measured[v][m])
+                    continue;
+                const struct tp_figure *f = &e->dev[v][m];
+                struct tp_ratios q = ratios_of(r, i, v, m);
+                tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
+                          tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
+                tx_num(&t, f->ok ? f->rate.min : NAN);
+                tx_num(&t, f->ok ? f->rate.median : NAN);
+                tx_num(&t, f->ok ? f->rate.max : NAN);
+                tx_num(&t, f->ok ? f->rate_wall.median : NAN);
+                tx_num(&t, q.to_reference);
+                tx_num(&t, q.to_model_reference);
+                tx_num(&t, q.to_host_c);
+                tx_num(&t, q.of_peak);
+                tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
+                tx_num(&t, e->acc_max_diff[v]);
+                /* reasons never hold a double quote: they are written by this program */
+                tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
+            }
+    int rc = t.failed ? -1 : write_file_atomic(path, t.s, t.len, err, errlen);
+    if (t.failed)
+        snprintf(err, errlen, "out of memory writing %.900s", path);
+    free(t.s);
+    return rc;
+}
+
+/* A figure in G/s with 3 significant digits, or a dash. */
+static const char *gfmt(char *buf, size_t len, double v)
+{
+    if (isfinite(v))
+        snprintf(buf, len, "%.3g", v * 1e-9);
+    else
+        snprintf(buf, len, "-");
+    return buf;
+}
+
+static const char *xfmt(char *buf, size_t len, double v, const char *suffix)
+{
+    if (isfinite(v))
+        snprintf(buf, len, "%.3g%s", v, suffix);
+    else
+        snprintf(buf, len, "-");
+    return buf;
+}
+
+/* The summary tables, as text (md = 0) or markdown (md = 1). */
+static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+{
+    const struct throughput_options *o = r->o;
+    char a[32], b[32], c[32], d[32], e2[32], f2[32], g2[32], h2[32];
+    if (r->peak.ok)
+        tx_printf(t, "%sdevice peak: %.4g GFLOP/s (float16 FMA chains) = %.4g G FMA/s; fraction of peak = evaluations/s "
+                     "per FMA/s\n\n", md ? "" : "", r->peak.rate.median * 1e-9, peak_fma_per_s(r) * 1e-9);
+    else
+        tx_printf(t, "device peak: not measured (%s)\n\n", r->peak.reason);
+    int v = TP_VARIANT_DEFAULT;
+    if (variant_on(r, v)) {
+        tx_printf(t, "%sG evaluations/s, default build options (median of %d launches, profiling events; "
+                     "tuned C: %d threads)%s\n\n", md ? "**" : "", o->reps, r->threads, md ? "**" : "");
+        if (md)
+            tx_printf(t, "| model | n | G evals/s | min - max | x pow() | x model ref | x tuned C | of peak | C G evals/s |\n"
+                         "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        else
+            tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", "model", "n", "G evals/s", "min - max",
+                      "x pow()", "x ref", "x tuned C", "of peak", "C G/s");
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int i = 0; i < r->nentries; ++i) {
+                const struct tp_entry *e = &r->e[i];
+                if (!e->measured[v][m])
+                    continue;
+                const struct tp_figure *f = &e->dev[v][m];
+                struct tp_ratios q = ratios_of(r, i, v, m);
+                char range[80];
+                if (f->ok)
+                    snprintf(range, sizeof range, "%s - %s", gfmt(a, sizeof a, f->rate.min), gfmt(b, sizeof b, f->rate.max));
+                else
+                    snprintf(range, sizeof range, "failed");
+                const char *label = e->m ? e->label : "pow() built-in";
+                if (md)
+                    tx_printf(t, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", label, nmode_names[m],
+                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
+                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
+                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
+                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
+                else
+                    tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
+                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
+                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
+                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
+                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
+            }
+        tx_printf(t, "\n");
+    }
+    /* build options: speed beside accuracy */
+    int nvar = 0;
+    for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+        nvar += variant_on(r, vv);
+    if (nvar > 1 || !variant_on(r, TP_VARIANT_DEFAULT)) {
+        tx_printf(t, "%sbuild options: G evaluations/s (x default) | max |device - double| / reference peak%s\n\n",
+                  md ? "**" : "", md ? "**" : "");
+        if (md) {
+            tx_printf(t, "| model | n |");
+            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                if (variant_on(r, vv))
+                    tx_printf(t, " %s | accuracy |", tp_variant_name(vv));
+            tx_printf(t, "\n|---|---|");
+            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                if (variant_on(r, vv))
+                    tx_printf(t, "---:|---:|");
+            tx_printf(t, "\n");
+        } else {
+            tx_printf(t, "%-18s %-8s", "model", "n");
+            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                if (variant_on(r, vv))
+                    tx_printf(t, " %17s %9s", tp_variant_name(vv), "accuracy");
+            tx_printf(t, "\n");
+        }
+        int nonfinite = 0;
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int i = 0; i < r->nentries; ++i) {
+                const struct tp_entry *e = &r->e[i];
+                int any = 0;
+                for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
+                    any |= variant_on(r, vv) && vv != TP_VARIANT_DEFAULT && e->measured[vv][m];
+                if (!any)
+                    continue;
+                const char *label = e->m ? e->label : "pow() built-in";
+                tx_printf(t, md ? "| %s | %s |" : "%-18s %-8s", label, nmode_names[m]);
+                for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv) {
+                    if (!variant_on(r, vv))
+                        continue;
+                    const struct tp_figure *f = &e->dev[vv][m];
+                    char cell[64];
+                    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
+                    if (!e->measured[vv][m] || !f->ok)
+                        snprintf(cell, sizeof cell, "%s", e->measured[vv][m] ? "failed" : "-");
+                    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
+                        snprintf(cell, sizeof cell, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
+                                 f->rate.median / f0->rate.median);
+                    else
+                        snprintf(cell, sizeof cell, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
+                    nonfinite |= !f->finite && f->ok;
+                    char accs[32];
+                    if (e->acc_ok[vv])
+                        snprintf(accs, sizeof accs, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
+                    else
+                        snprintf(accs, sizeof accs, "-");
+                    tx_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
+                }
+                tx_printf(t, "\n");
+            }
+        if (nonfinite)
+            tx_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
+        tx_printf(t, "\n");
+    }
+    if (r->sweep_ran) {
+        double dsum = 0, hsum = 0, pts = 0;
+        int ok = 0;
+        for (int k = 0; k < r->nsw; ++k)
+            if (r->sw[k].ok) {
+                dsum += r->sw[k].dev_s.median;
+                hsum += r->sw[k].hostc_s.median;
+                pts += r->sw[k].points;
+                ++ok;
+            }
+        if (ok > 0)
+            tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
+                         "(%.3g G points/s), tuned C with powf %.3f s (%.3g G points/s): %.2fx\n",
+                      o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, ok == 1 ? "" : "s", pts,
+                      dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
+        else
+            tx_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
+    }
+}
+
+char *tp_tables_text(const struct tp_run *r, int md)
+{
+    struct tp_text t = { 0 };
+    render_tables(r, &t, md);
+    if (t.failed) {
+        free(t.s);
+        return NULL;
+    }
+    return t.s;
+}
