@@ -284,7 +284,10 @@ BRDF_FN RSCALAR brdf_he_preset(int preset, int field)
 #define BRDF_HE_SOURCE_SOLID_ANGLE (2.0 * BRDF_PI * (1.0 - BRDF_HE_SOURCE_COS))
 
 /* He et al. 1991, rho = rho_sp + rho_dd + rho_ud for unit N, L, V given as their cosines:
- *   rho_sp = F(theta_i) e^-g S / (cos theta_i dw)   inside the source's cone around R, else 0
+ *   rho_sp = F(b) e^-g S / (sqrt(cos theta_i cos theta_r) dw)   inside the source's cone around R,
+ *            else 0: He's F(theta_i) e^-g S / (cos theta_i dw) at the mirror direction itself,
+ *            where the delta sits (b = theta_i = theta_r there), written symmetrically so that
+ *            the finite cone keeps the BRDF reciprocal
  *   rho_dd = F(b) G S / (pi cos theta_i cos theta_r) * pi^2 tau^2 / (4 lambda^2) * sum(g, x)
  *   rho_ud = a
  * with v = k (V + L) (k = 2 pi / lambda), g = (k sigma (cos theta_i + cos theta_r))^2 the
@@ -314,8 +317,8 @@ BRDF_FN REAL brdf_he_terms(REAL nl, REAL nv, REAL lv, RSCALAR lambda, RSCALAR si
     REAL rho_dd = brdf_fresnel_complex(RC(0.5) * sqrt(vv), n_re, n_im) * geo * geo * shadow /
                   (RC(BRDF_PI) * ci * cr) * RC(k * k * tau * tau / 16.0) * dd.sum;
     REAL rv = RC(2.0) * nl * nv - lv;   /* R.V */
-    REAL rho_sp = brdf_fresnel_complex(ci, n_re, n_im) * exp(-g) * shadow /
-                  (ci * RC(BRDF_HE_SOURCE_SOLID_ANGLE));
+    REAL rho_sp = brdf_fresnel_complex(RC(0.5) * sqrt(vv), n_re, n_im) * exp(-g) * shadow /
+                  (sqrt(ci * cr) * RC(BRDF_HE_SOURCE_SOLID_ANGLE));
     rho_sp = BRDF_SELECT(RSPLAT(0.0), rho_sp, rv >= RC(BRDF_HE_SOURCE_COS));
     REAL f = rho_sp + rho_dd + ud;
     return BRDF_SELECT(RSPLAT(0.0), f, (nl > RC(0.0)) & (nv > RC(0.0)));

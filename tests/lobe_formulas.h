@@ -101,7 +101,9 @@ static inline double lf_he(double c, double nv, int preset)
     /* G = (v.v / v_z)^2 = (4c^2 / 2c^2)^2 = 4; the bisector's cosine is c */
     double dd = lf_fresnel(c, p[3], p[4]) * 4 * S / (lf_pi * nv) * kw * kw * tau * tau / 16 * sum;
     double cone = 0.99984769515639123916;                            /* cos 1 degree */
-    double sp = nv >= cone ? lf_fresnel(1, p[3], p[4]) * exp(-g) * S / (2 * lf_pi * (1 - cone)) : 0;
+    /* the mirror term over the 1-degree source, written symmetrically: F at the bisector,
+       1 / sqrt(cos theta_i cos theta_r) (He's F(theta_i) / cos theta_i at the mirror itself) */
+    double sp = nv >= cone ? lf_fresnel(c, p[3], p[4]) * exp(-g) * S / (sqrt(nv) * 2 * lf_pi * (1 - cone)) : 0;
     return sp + dd + p[5];
 }
 

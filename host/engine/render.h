@@ -46,13 +46,16 @@ struct render_options {
     double threshold;                  /* error above this counts as a visible error */
     int ref_samples;                   /* pixels per model checked against the double reference */
     const char *teapot_path, *bunny_path;
+    int he_material;                   /* He comparison on the meshes: a preset of the model he, -1: none */
     int write_images;                  /* PNGs (image, error image, contact sheet) */
     int verbose;                       /* progress and the table on stdout */
 };
 
 /* Defaults: all three scenes at 1920x1080, timing at 1920x1080 and 3840x2160 (7 reps after
- * 2 warm-ups), every model of the default set, sphere columns 4 16 64 256 1000, n = 64 on
- * the meshes, teapot at 16 quads per patch side, a directional light. */
+ * 2 warm-ups), every model of the default set and the physically based models, sphere columns
+ * 4 16 64 256 1000, n = 64 on the meshes, teapot at 16 quads per patch side, a directional
+ * light; the teapot and the bunny also shaded by He's model (rough aluminium) beside
+ * Blinn-Phong at its best-matching n and the cheap lobes at that n. */
 void render_options_default(struct render_options *o);
 
 /* Checks a size against the accepted range and the device's memory (global memory and
