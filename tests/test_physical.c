@@ -7,6 +7,7 @@
 #include "exitcodes.h"
 #include "models.h"
 #include "pbcost.h"
+#include "render.h"
 
 #include <complex.h>
 #include <gsl/gsl_errno.h>
@@ -286,6 +287,23 @@ int main(void)
         CHECK(t_smooth < t_rough, "terms grow with sigma0/lambda (%d, %d)", t_smooth, t_rough);
         CHECK(t_rough > g_rough && t_rough < g_rough + 10 * sqrt(g_rough) + 20,
               "terms past the peak g = %g but within ~10 sqrt(g) of it (%d)", g_rough, t_rough);
+    }
+
+    /* The image passes' fit of Blinn-Phong to He's image, on data made exactly of one lobe,
+       h_i = 3 a_i c_i^40: it must give back n = 40 and the scale 3 with no residual. */
+    {
+        enum { P = 2000 };
+        static double a[P], c[P], h[P];
+        for (int i = 0; i < P; ++i) {
+            c[i] = 0.5 + 0.5 * (i + 0.5) / P;
+            a[i] = 0.2 + (i % 7) * 0.1;
+            h[i] = 3 * a[i] * pow(c[i], 40);
+        }
+        double n, k, rel;
+        render_he_fit(a, c, h, P, &n, &k, &rel);
+        CHECK_NEAR(n, 40, 1e-4, "fitted n");
+        CHECK_NEAR(k, 3, 1e-4, "fitted scale");
+        CHECK(rel < 1e-5, "no residual (%g)", rel);
     }
 
     /* On the device: every cost row's float kernel against the double reference at random

@@ -926,26 +926,55 @@ static double he_fit_scale(const struct he_fit *f, double n)
     return bb > 0 ? bh / bb : 0;
 }
 
-/* Writes an entry's three pictures (image, error against He, contact sheet He | entry | error). */
+void render_he_fit(const double *a, const double *c, const double *h, size_t count, double *n, double *k,
+                   double *rel_rms)
+{
+    struct he_fit fit = { count, (double *)a, (double *)c, (double *)h, 0 };
+    for (size_t i = 0; i < count; i++)
+        fit.hh += h[i] * h[i];
+    double u = log(64.0);
+    if (count == 0 || brent_minimum(he_fit_residual, &fit, log(1.0), log(64.0), log(20000.0), 1e-9, 1e-9, 200, &u) != 0) {
+        /* a scan when Brent's bracket does not hold (the minimum near an end of [1, 20000]) */
+        double best = INFINITY;
+        for (double t = log(1.0); t <= log(20000.0); t += 0.002) {
+            double r = he_fit_residual(t, &fit);
+            if (r < best) {
+                best = r;
+                u = t;
+            }
+        }
+    }
+    *n = exp(u);
+    *k = he_fit_scale(&fit, *n);
+    *rel_rms = fit.hh > 0 ? sqrt(fmax(he_fit_residual(u, &fit), 0.0) / fit.hh) : NAN;
+}
+
+/* Writes an entry's error image against He's and, when `all_pictures`, its image and the
+   contact sheet He | entry | error (PNG writing is most of this pass's time, so the other
+   cheap lobes get the error image only). */
 static int he_pictures(const char *scene_dir, const char *sc, const char *base, int w, int h, const unsigned *rgba,
                        const unsigned char *rgb_he, unsigned char *rgb, const float *errimg, struct he_entry *en,
-                       const char *he_label, char *err, size_t errlen)
+                       const char *he_label, int all_pictures, char *err, size_t errlen)
 {
     char name[300], path[4600], title[400];
-    rgba_to_rgb(rgba, (size_t)w * h, rgb);
-    snprintf(en->image, sizeof en->image, "render/%s/he_%s.png", sc, base);
     snprintf(en->error, sizeof en->error, "render/%s/he_%s_error.png", sc, base);
-    snprintf(en->contact, sizeof en->contact, "render/%s/he_%s_contact.png", sc, base);
-    snprintf(name, sizeof name, "he_%s.png", base);
-    path_join(path, sizeof path, scene_dir, name);
-    if (draw_png_rgb8(path, w, h, rgb, err, errlen) != 0)
-        return EXIT_RUNTIME;
+    if (all_pictures) {
+        rgba_to_rgb(rgba, (size_t)w * h, rgb);
+        snprintf(en->image, sizeof en->image, "render/%s/he_%s.png", sc, base);
+        snprintf(en->contact, sizeof en->contact, "render/%s/he_%s_contact.png", sc, base);
+        snprintf(name, sizeof name, "he_%s.png", base);
+        path_join(path, sizeof path, scene_dir, name);
+        if (draw_png_rgb8(path, w, h, rgb, err, errlen) != 0)
+            return EXIT_RUNTIME;
+    }
     snprintf(title, sizeof title, "%s: |%s - %s| specular radiance, max %.3g mean %.3g", sc, en->label, he_label,
              en->metrics.max_abs, en->metrics.mean_abs);
     snprintf(name, sizeof name, "he_%s_error.png", base);
     path_join(path, sizeof path, scene_dir, name);
     if (draw_error_image(path, w, h, errimg, (float)en->metrics.max_abs, title, err, errlen) != 0)
         return EXIT_RUNTIME;
+    if (!all_pictures)
+        return 0;
     snprintf(title, sizeof title, "%s: %s | %s | error (max %.3g)", sc, he_label, en->label, en->metrics.max_abs);
     snprintf(name, sizeof name, "he_%s_contact.png", base);
     path_join(path, sizeof path, scene_dir, name);
@@ -1041,22 +1070,7 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
         fit.count++;
     }
     hc->fit_pixels = fit.count;
-    double u = log(64.0);
-    if (fit.count == 0 || brent_minimum(he_fit_residual, &fit, log(1.0), log(64.0), log(20000.0), 1e-6, 1e-6, 200,
-                                        &u) != 0) {
-        /* a coarse scan when Brent's bracket does not hold (the minimum at an end) */
-        double best = INFINITY;
-        for (double t = log(1.0); t <= log(20000.0); t += 0.01) {
-            double r = he_fit_residual(t, &fit);
-            if (r < best) {
-                best = r;
-                u = t;
-            }
-        }
-    }
-    hc->n_fit = exp(u);
-    hc->k_fit = he_fit_scale(&fit, hc->n_fit);
-    hc->rel_rms = fit.hh > 0 ? sqrt(fmax(he_fit_residual(u, &fit), 0.0) / fit.hh) : NAN;
+    render_he_fit(fit.a, fit.c, fit.h, fit.count, &hc->n_fit, &hc->k_fit, &hc->rel_rms);
     /* the fitted n in the G-buffer's shininess plane, ks scaled by k */
     for (size_t i = 0; i < npix; i++)
         if (sh[i] > 0)
@@ -1106,8 +1120,9 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
         if (o->write_images) {
             char base[MODEL_LABEL_MAX + 8];
             label_to_file(m->label, base, sizeof base);
-            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, rgb_he, rgb, errimg, en, hc->he.label, err,
-                                  errlen)) != 0)
+            int all_pictures = mi < 0 || m->info->kernel_id == BRDF_FQ2;
+            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, rgb_he, rgb, errimg, en, hc->he.label, all_pictures,
+                                  err, errlen)) != 0)
                 goto done;
         }
         hc->count++;

@@ -91,6 +91,10 @@ struct render_light {
 void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
                       const struct render_options *o, const double pos[3], const double nrm[3],
                       double n, double *spec, double *radiance);
+/* The least-squares fit of Blinn-Phong to He's image: minimises sum (k a_i c_i^n - h_i)^2 over
+ * k (closed form for each n) and n in [1, 20000] (Brent's method in log n). */
+void render_he_fit(const double *a, const double *c, const double *h, size_t count, double *n, double *k,
+                   double *rel_rms);
 /* The exact 8-bit display colour of a radiance (the curve the display table samples). */
 void render_display_exact(const struct render_options *o, double radiance, unsigned char rgb[3]);
 

@@ -100,12 +100,14 @@ static void write_he_json(struct jw *w, const struct he_comparison *hc, double t
         jw_kv_str(w, "name", en->label);
         write_metrics_json(w, &en->metrics, threshold);
         jw_kv_num(w, "max_abs_vs_blinn_fit", en->max_abs_vs_blinn);
-        if (en->image[0]) {
+        if (en->error[0]) {
             jw_key(w, "files");
             jw_obj_begin(w);
-            jw_kv_str(w, "image", en->image);
+            if (en->image[0])
+                jw_kv_str(w, "image", en->image);
             jw_kv_str(w, "error", en->error);
-            jw_kv_str(w, "contact_sheet", en->contact);
+            if (en->contact[0])
+                jw_kv_str(w, "contact_sheet", en->contact);
             jw_obj_end(w);
         }
         jw_obj_end(w);
