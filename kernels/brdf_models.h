@@ -136,14 +136,28 @@ BRDF_FN REAL brdf_blinn_norm(REAL n)
 /* ---- physically based BRDFs: f(N, L, V) from the three cosines N.L, N.V, L.V -------------- */
 
 #ifdef __OPENCL_VERSION__
-#define BRDF_SELECT(a, b, cond) select((a), (b), (cond))
+/* b where cond holds, else a, for every REAL: a scalar comparison gives an int (1 or 0), a
+   vector one an int or long vector (-1 or 0), which select() takes only for vectors. */
+#define BRDF_SELECT(a, b, cond) brdf_sel((a), (b), (cond))
 #define BRDF_RSQRT(x) rsqrt(x)
-/* Whether any lane of a comparison holds (a scalar comparison gives 1, a vector one -1). */
+#define BRDF_SEL_VEC(T, I)                                                                     \
+    static inline T __attribute__((overloadable)) brdf_sel(T a, T b, I c) { return select(a, b, c); } \
+    static inline int __attribute__((overloadable)) brdf_any_lane(I x) { return any(x); }
+static inline float __attribute__((overloadable)) brdf_sel(float a, float b, int c) { return c ? b : a; }
+/* Whether any lane of a comparison holds. */
 static inline int __attribute__((overloadable)) brdf_any_lane(int x) { return x != 0; }
-static inline int __attribute__((overloadable)) brdf_any_lane(int2 x) { return any(x); }
-static inline int __attribute__((overloadable)) brdf_any_lane(int4 x) { return any(x); }
-static inline int __attribute__((overloadable)) brdf_any_lane(int8 x) { return any(x); }
-static inline int __attribute__((overloadable)) brdf_any_lane(int16 x) { return any(x); }
+BRDF_SEL_VEC(float2, int2)
+BRDF_SEL_VEC(float4, int4)
+BRDF_SEL_VEC(float8, int8)
+BRDF_SEL_VEC(float16, int16)
+#ifdef cl_khr_fp64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+static inline double __attribute__((overloadable)) brdf_sel(double a, double b, int c) { return c ? b : a; }
+BRDF_SEL_VEC(double2, long2)
+BRDF_SEL_VEC(double4, long4)
+BRDF_SEL_VEC(double8, long8)
+BRDF_SEL_VEC(double16, long16)
+#endif
 #else
 #define BRDF_SELECT(a, b, cond) ((cond) ? (b) : (a))
 #define BRDF_RSQRT(x) (1.0 / sqrt(x))
