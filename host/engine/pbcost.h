@@ -21,7 +21,7 @@
 
 struct pbcost_options {
     double n;                    /* shininess of the lobes and of alpha(n) (default 100) */
-    int reps;                    /* timed launches per row (default 5) */
+    int reps;                    /* timed launches per row (default 9) */
     double min_time;             /* seconds one timed launch lasts at least (default 0.02) */
     long work_items;             /* 0: 32 per compute unit */
 };
@@ -35,7 +35,8 @@ struct pbcost_row {
     long iters;
     double evals_per_launch;
     double med_s, min_s, max_s;  /* per launch, profiling events */
-    double evals_per_s;          /* evals_per_launch / med_s */
+    double evals_per_s;          /* evals_per_launch / min_s: the fastest launch */
+    double evals_per_s_median;   /* evals_per_launch / med_s */
     double ratio_to_fq2, ratio_to_phong, ratio_to_pow;   /* this row's evaluations/s over theirs */
     double check_max_abs_of_peak;   /* |device - double| / largest double value of the sample */
     double terms_mean, terms_max;    /* He: terms of the directional-diffuse sum (double host) */

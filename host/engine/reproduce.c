@@ -1161,7 +1161,7 @@ static int add_physical(struct repro *p)
         if (hi_ph >= 1)
             note_add(c, "At least one physically based model is as fast as Phong or faster here: the cost argument "
                         "holds against the cosine-quadratic lobes, not against the Phong lobe.");
-        setf(c->method, sizeof c->method, "physical.json: tp_vec_* kernels, median of %d launches, n = %g",
+        setf(c->method, sizeof c->method, "physical.json: tp_vec_* kernels, fastest of %d launches, n = %g",
              ph->o.reps, ph->o.n);
     }
     return 0;
