@@ -3,27 +3,36 @@
  *
  * One work-item owns one shininess n and loops over both zones of SPEC.md sixteen samples
  * at a time (float16: PoCL vectorises explicit vectors to 512 bits and evaluates the vector
- * forms of pow/cos/exp, while its scalar forms are not vectorised). Each work-item reduces
- * its own samples, so no barrier is needed.
+ * forms of exp/log, while its scalar forms are not vectorised). Each work-item reduces its
+ * own samples, so no barrier is needed.
  *
- * Sample cosines come from native_cos: on PoCL 3.1 it is 4x cheaper than cos over [0, pi/2]
- * (measured 1.9 ulp against 1.4 ulp for cos there). The cosine only places a sample: every
- * figure is taken at the exact float cosine the model saw, which the kernel reports.
+ * Samples are placed and evaluated in s = 1 - c = 1 - cos x, never in c: a float cosine has
+ * only 6e-8 of room below 1, so at n = 1e6 the whole epicentre (s <= 5.1e-7) is eight float
+ * cosines, while a float s keeps 24 bits there. The models take s through brdf_eval_s (their
+ * formulas are written in c - 1 = -s) and the reference lobe is exp(n log1p(-s)) (brdf_pow_lobe_s).
+ *   epicentre:   s uniform over [0, s_e], s_e = 1 - exp(-0.511/n) = -expm1(-0.511/n), both
+ *                ends included;
+ *   attenuation: s = s_e (1/s_e)^t, t = j/samples, j = 1..samples: geometric from s_e to 1
+ *                (x = pi/2), so the lobe's fall-off, about s_e..20 s_e at every n, gets a
+ *                fixed share of the samples whatever n is.
+ * No sample needs a cosine: the epicentre's are multiples of a step, the attenuation's a
+ * per-lane factor times one scalar exp2 per 16 samples.
  *
  * Per n it writes ACC_OUT_STRIDE floats:
- *   [0] max relative error in the epicentre   [1] the cosine where it occurs
- *   [2] max absolute error in the attenuation [3] the cosine where it occurs
- *   [4] max absolute error in the epicentre   [5] the cosine where it occurs
- *   [6] number of invalid model values (NaN, Inf or negative) [7] the first such cosine
- * The cosines are the exact float inputs the model saw, so the host can recompute every
+ *   [0] max relative error in the epicentre   [1] the s where it occurs
+ *   [2] max absolute error in the attenuation [3] the s where it occurs
+ *   [4] max absolute error in the epicentre   [5] the s where it occurs
+ *   [6] number of invalid model values (NaN, Inf or negative) [7] the first such s
+ * The s values are the exact float inputs the models saw, so the host can recompute every
  * reduced figure in double at the same input.
  */
 #define REAL float16
 #define RSCALAR float
+/* The reference lobe in s: exp(n ln(1 - s)), brdf_models.h's brdf_pow_lobe_s. */
+#define BRDF_POW_LOBE_CS(c, s, n) brdf_pow_lobe_s((s), (n))
 #include "brdf_models.h"
 
 #define ACC_OUT_STRIDE 8
-#define HALF_PI_F 1.57079632679489662f
 
 /* Keeps the larger of (best, value) and the cosine that produced it; NaN never wins. */
 #define KEEP_MAX(best, best_c, value, c)                    \
@@ -68,63 +77,70 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         return;
     const float n = n_values[gid];
     const float16 nv = (float16)(n);
-    const float x_e = acos(exp(-0.511f / n));    /* epicentre end (SPEC.md) */
-    const float width = HALF_PI_F - x_e;         /* attenuation zone width */
-    const float inv_last = 1.0f / (float)(samples - 1);
-    const float inv_count = 1.0f / (float)samples;
+    const float s_e = -expm1(-0.511f / n);               /* epicentre end in s (SPEC.md) */
     const float16 lane = lanes16();
+    /* Epicentre: s = s_e j / (samples - 1), j = i + lane. */
+    const float epi_step = s_e / (float)(samples - 1);
+    /* Attenuation: s = s_e r^j, r = (1/s_e)^(1/samples), j = i + lane + 1: a scalar exp2 per
+       16 samples times a per-lane factor r^(lane + 1), so no rounding accumulates. */
+    const float log2_r = -log2(s_e) / (float)samples;
+    const float16 att_lane = s_e * exp2((lane + 1.0f) * log2_r);
+    /* A model that sees only c (phongpow's pow(c, n), a user model) gets c = 1 - s rounded to
+       float: s is moved onto that lattice first, so that the model, its reference and the
+       host's double recomputation all work at the one input the model really saw. */
+    const int c_only = model == BRDF_PHONGPOW || model == BRDF_USER;
 
-    float16 epi_rel = (float16)(-1.0f), epi_rel_c = (float16)(0.0f);
-    float16 epi_abs = (float16)(-1.0f), epi_abs_c = (float16)(0.0f);
-    float16 att_abs = (float16)(-1.0f), att_abs_c = (float16)(0.0f);
+    float16 epi_rel = (float16)(-1.0f), epi_rel_s = (float16)(0.0f);
+    float16 epi_abs = (float16)(-1.0f), epi_abs_s = (float16)(0.0f);
+    float16 att_abs = (float16)(-1.0f), att_abs_s = (float16)(0.0f);
     int16 bad = (int16)(0);
-    float16 bad_c = (float16)(NAN);
+    float16 bad_s = (float16)(NAN);
 
     for (int i = 0; i < samples; i += 16) {
-        const float16 j = (float16)((float)i) + lane;
-
-        /* Epicentre: x uniform over [0, x_e], both ends included. */
-        float16 c = fmax(native_cos(x_e * (j * inv_last)), 0.0f);
-        float16 f = brdf_eval(model, c, nv, p0, p1);
-        float16 r = brdf_eval(ref_model, c, nv, rp0, rp1);
+        /* Epicentre (the last sample is s_e itself, up to rounding). */
+        float16 s = fmin(((float)i + lane) * epi_step, s_e);
+        if (c_only)
+            s = 1.0f - (1.0f - s);
+        float16 f = brdf_eval_s(model, s, nv, p0, p1);
+        float16 r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         /* An invalid model value (NaN, Inf, negative) is counted, not folded into a maximum:
            its error becomes NaN, which never wins. */
         int16 invalid = isless(f, 0.0f) | !isfinite(f);
-        bad_c = select(bad_c, c, invalid & isnan(bad_c));
+        bad_s = select(bad_s, s, invalid & isnan(bad_s));
         bad -= invalid;                           /* a true comparison is -1 per lane */
         float16 d = select(fabs(f - r), (float16)(NAN), invalid);
-        KEEP_MAX(epi_rel, epi_rel_c, d / r, c);
-        KEEP_MAX(epi_abs, epi_abs_c, d, c);
+        KEEP_MAX(epi_rel, epi_rel_s, d / r, s);
+        KEEP_MAX(epi_abs, epi_abs_s, d, s);
 
-        /* Attenuation: x = x_e + width t^2, t in (0, 1]; t^2 crowds samples near x_e,
-           where the lobe falls off, while still reaching pi/2. */
-        float16 t = (j + 1.0f) * inv_count;
-        c = fmax(native_cos(x_e + width * (t * t)), 0.0f);
-        f = brdf_eval(model, c, nv, p0, p1);
-        r = brdf_eval(ref_model, c, nv, rp0, rp1);
+        /* Attenuation; s never passes 1 (x = pi/2). */
+        s = fmin(att_lane * exp2((float)i * log2_r), 1.0f);
+        if (c_only)
+            s = 1.0f - (1.0f - s);
+        f = brdf_eval_s(model, s, nv, p0, p1);
+        r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         invalid = isless(f, 0.0f) | !isfinite(f);
-        bad_c = select(bad_c, c, invalid & isnan(bad_c));
+        bad_s = select(bad_s, s, invalid & isnan(bad_s));
         bad -= invalid;
         d = select(fabs(f - r), (float16)(NAN), invalid);
-        KEEP_MAX(att_abs, att_abs_c, d, c);
+        KEEP_MAX(att_abs, att_abs_s, d, s);
     }
 
     __global float *o = out + (size_t)gid * ACC_OUT_STRIDE;
     int k = argmax16(epi_rel);
     o[0] = lane_of(epi_rel, k);
-    o[1] = lane_of(epi_rel_c, k);
+    o[1] = lane_of(epi_rel_s, k);
     k = argmax16(att_abs);
     o[2] = lane_of(att_abs, k);
-    o[3] = lane_of(att_abs_c, k);
+    o[3] = lane_of(att_abs_s, k);
     k = argmax16(epi_abs);
     o[4] = lane_of(epi_abs, k);
-    o[5] = lane_of(epi_abs_c, k);
+    o[5] = lane_of(epi_abs_s, k);
     int bad_total = 0;
     float first_bad = NAN;
     int ba[16];
     float bc[16];
     vstore16(bad, 0, ba);
-    vstore16(bad_c, 0, bc);
+    vstore16(bad_s, 0, bc);
     for (int q = 0; q < 16; ++q) {
         bad_total += ba[q];
         if (isnan(first_bad) && !isnan(bc[q]))

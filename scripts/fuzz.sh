@@ -19,7 +19,7 @@ CC=clang CXX=clang++ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_FLAGS="$san -fsanitize=fuzzer-no-link" -DCMAKE_CXX_FLAGS="$san -fsanitize=fuzzer-no-link" >/dev/null
 cmake --build "$B" -j2 --target brdfcore
 
-libs="$(pkg-config --libs opencv4 gsl) -lOpenCL -lm -lpthread"
+libs="$(pkg-config --libs opencv4 gsl jansson) -lOpenCL -ltcc -ldl -lm -lpthread"
 export ASAN_OPTIONS="detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 status=0

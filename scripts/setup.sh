@@ -8,9 +8,10 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config git python3
   pocl-opencl-icd ocl-icd-opencl-dev ocl-icd-libopencl1 opencl-headers clinfo
-  libopencv-dev libgsl-dev
+  libopencv-dev libgsl-dev libjansson-dev
   glmark2-data povray-examples
   clang libclang-rt-14-dev
+  libtcc-dev
 )
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 

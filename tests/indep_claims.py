@@ -45,7 +45,7 @@ def verdict(ok):
     return "reproduced" if ok else "not reproduced"
 
 
-def number_row(rid, value, claimed, tol, rel=1e-9, absolute=None, within=None):
+def number_row(rid, value, claimed, tol, rel=1e-9, absolute=None, within=None, worded=False):
     """A row whose measured value is `value` (derived here): measured within rel (or absolute)
     of it, claimed as printed, verdict = |value - claimed| <= tol (or within(value))."""
     r = row(rid)
@@ -57,6 +57,15 @@ def number_row(rid, value, claimed, tol, rel=1e-9, absolute=None, within=None):
         fail(rid, "measured %r, derived here %r (tolerance %g)" % (m, value, lim))
     if claimed is not None and (r["claimed"] is None or abs(r["claimed"] - claimed) > 1e-12 * max(1, abs(claimed))):
         fail(rid, "claimed %r, the paper prints %r" % (r["claimed"], claimed))
+    # the tolerance the row prints (what a reader checks the verdict against) is the one used here
+    t = r["tolerance"]
+    if within is None and t.startswith("+-"):
+        word = t[2:].split()[0]
+        printed = float(word[:-1]) / 100 if word.endswith("%") else float(word)
+        if abs(printed - tol) > 1e-9 * tol:
+            fail(rid, "prints the tolerance %r, one unit in the claim's last printed digit is %g" % (t, tol))
+    elif within is None and not worded:
+        fail(rid, "tolerance %r is not of the form +-X" % t)
     ok = within(value) if within else abs(value - claimed) <= tol * (1 + 1e-12)
     if r["verdict"] != verdict(ok):
         fail(rid, "verdict %r, expected %r (derived %r against %r +- %g)" % (r["verdict"], verdict(ok), value,
@@ -96,11 +105,11 @@ a, b, c = eq[1], eq[2], eq[3] - eq[0]
 xi = (-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)
 number_row("P1-xi", xi, 0.463, 0.001)
 # 29/64 is the nearest 64th of 0.463 only if it is within 1/128 of it (it is 0.009875 away).
-number_row("P1-xi64", 29 / 64, 0.463, 1 / 128, rel=0)
+number_row("P1-xi64", 29 / 64, 0.463, 1 / 128, rel=0, worded=True)
 # eq. 14: the paper's zero acos((29n - 64)/(29n)) at n = 16 against F_VOL's own zero, where
 # 0.463 n (c - 1) + 1 = 0: acos(1 - 1/(0.463 n)); an identity, so +-1e-9 rad.
 eq14_claimed = math.acos((29 * 16 - 64) / (29 * 16))
-number_row("P1-eq14", math.acos(1 - 1 / (0.463 * 16)), eq14_claimed, 1e-9, rel=1e-12)
+number_row("P1-eq14", math.acos(1 - 1 / (0.463 * 16)), eq14_claimed, 1e-9, rel=1e-12, worded=True)
 
 
 # ---- the brute-force maxima (tests/indep.c) over paper 1's and paper 2's ranges.

@@ -86,7 +86,7 @@ t 2 "^brdfbench accuracy: --n-min: 'abc' is not a finite number in \[" accuracy 
 t 2 "^brdfbench accuracy: --n-min: 'nan' is not a finite number" accuracy --n-min nan
 t 2 "^brdfbench accuracy: --n-max: 'inf' is not a finite number" accuracy --n-max inf
 t 2 "^brdfbench accuracy: --n-min: '1e999' is not a finite number" accuracy --n-min 1e999
-t 2 "^brdfbench accuracy: --n-min: '-5' is not a finite number in \[1e-300, 1e\+06\]" accuracy --n-min -5
+t 2 "^brdfbench accuracy: --n-min: '-5' is not a finite number in \[0.1, 1e\+06\]" accuracy --n-min -5
 t 2 "^brdfbench accuracy: --n-max: '0' is not a finite number" accuracy --n-max 0
 t 2 "^brdfbench accuracy: --n-min: '2x' is not a finite number" accuracy --n-min 2x
 t 2 "^brdfbench accuracy: --n-min: '' is not a finite number" accuracy --n-min=
@@ -198,6 +198,43 @@ t 2 "^brdfbench throughput: --n: 'nan' is not a finite number" throughput --n na
 t 2 "^brdfbench throughput: --n-range: LO \(5\) must be below HI \(2\)" throughput --n-range 5:2
 t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " throughput --variants turbo
 t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
+t 2 "^brdfbench compare: expected BASELINE RUN \[RUN \.\.\.\]" compare
+t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help\)" compare --bogus
+t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-12, 1\]" compare a b --alpha 2
+t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
+t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
+t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
+
+# accuracy and gate: the n range (float n; below 0.1 no float grid resolves the lobe) and the
+# device-vs-double key of a gate
+t 2 "^brdfbench accuracy: --n-min: '1e-300' is not a finite number in \[0.1, 1e\+06\]" accuracy --n-min 1e-300
+t 2 "^brdfbench accuracy: --n-max: '0.09' is not a finite number in \[0.1, 1e\+06\]" accuracy --n-min 0.1 --n-max 0.09
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_min":1e-300,"max":0.1}]}' >n_min_tiny.json
+t 2 "^brdfbench gate: n_min_tiny.json:1:[0-9]+: gate 1: \"n_min\" 1e-300 is out of range \(accepted: 0.1 <= n_min <= 1e\+06\)" gate n_min_tiny.json
+printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.1,"accept_device_disagreement":"yes"}]}' >accept_string.json
+t 2 "^brdfbench gate: accept_string.json:1:[0-9]+: gate 1: \"accept_device_disagreement\" is a string, a boolean expected" gate accept_string.json
+
+# Output paths, folders and input formats: a refused run makes no folder (the check below
+# covers `run`), two reports never share a file, and a file of the wrong format is named as such.
+printf 'bunny\\\001\002\000\003' >some.bin   # binary: a backslash, control bytes, a NUL
+printf 'ply\nformat ascii 1.0\nend_header\n' >mesh.ply
+t 2 "^brdfbench accuracy: --out: empty path \(accepted: a folder or file name\)" accuracy --out ''
+t 2 "^brdfbench render: /dev/null:1: no bicubic_patch found \(expected a POV-Ray file with bicubic_patch blocks" \
+    render --scene teapot --teapot-file /dev/null --out run
+t 2 "^brdfbench render: some.bin:1: not a Wavefront OBJ file \(expected text lines of v, vt, vn and f statements\); found binary data" \
+    render --scene bunny --bunny-file some.bin --out run
+t 2 "^brdfbench render: mesh.ply:1: not a Wavefront OBJ file \(expected text lines of v, vt, vn and f statements\); found 'ply'" \
+    render --scene bunny --bunny-file mesh.ply --out run
+t 2 "multi:bad_syntax.cl:6:[0-9]+: error: expected ';'" all --quick --model-file "$F/bad_syntax.cl" --out run
+t 2 "^brdfbench gate: --json: 'same.json' is the file --junit names \('./same.json'\)" gate good.json --junit ./same.json --json same.json
+ln -s same.json link.json
+t 2 "^brdfbench gate: --json: 'link.json' is the file --junit names \('same.json'\)" gate good.json --junit same.json --json link.json
+t 2 "^brdfbench gate: --json: '-' is the file --junit names \('/dev/fd/1'\)" gate good.json --junit /dev/fd/1 --json -
+t 2 "^brdfbench accuracy: --timeout: 'inf' is not a finite number in \[0.01, 604800\]" accuracy --timeout inf
+# A compile error's first line is the compiler's own FILE:LINE:COL line.
+"$BIN" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out run >/dev/null 2>"$T/err"
+head -n 1 "$T/err" | grep -qE "^[^ ]*bad_syntax.cl:6:[0-9]+: error: expected ';'" && pass=$((pass + 1)) ||
+    { fail=$((fail + 1)); echo "FAIL: a compile error starts with: $(head -n 1 "$T/err")" >&2; }
 
 # One more check: no refused run above wrote its output folder.
 [ ! -e "$T/run" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: a refused run wrote $T/run" >&2; }
@@ -209,13 +246,13 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
         echo "Every row is a case of tests/test_cli_errors.sh: the command, the exit code it gave and the first"
         echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
         echo "or output error (DESIGN.md). Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
-        echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases and one check that no refused run"
-        echo "wrote an output folder; $pass passed, $fail failed."
+        echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases, one check that no refused run"
+        echo "wrote an output folder and one that a compile error's first line is FILE:LINE:COL; $pass passed, $fail failed."
         echo
         echo "| # | command | exit | message | result |"
         echo "|---|---|---|---|---|"
         printf '%s' "$md"
     } >"$BAD_INPUTS_MD.tmp" && mv "$BAD_INPUTS_MD.tmp" "$BAD_INPUTS_MD"
 fi
-echo "$row cases + 1 check: $pass passed, $fail failed"
+echo "$row cases + 2 checks: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

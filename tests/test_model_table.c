@@ -21,20 +21,21 @@ static const char *const extra_specs[] = { "lyon:k=1", "lyon:k=3", "lyon:k=5", "
                                            "quad:a=0.45,b=0.1", "quad:a=0.3,b=1.5", "he:material=1",
                                            "he:material=2", "he:material=3", "ct-ggx:F0=0.04", "brady:a=0.5,b=2" };
 
-enum { NS = 7, US = 12, POINTS = NS * US };
+enum { NS = 7, US = 13, POINTS = NS * US };
 static const double ns[NS] = { 2, 3.5, 16, 57, 256, 1000, 20000 };
 
 /* The points: c = 1 - s with n s = u spread over the lobe and the quadratics' roots (u about
- * 2), plus c = 0, mid-range and 1; built as float values so that host and device agree on
- * the input. */
+ * 2), plus c = 0, 0.5, 0.93 and a negative cosine (treated as 0: brdf_models.h's convention,
+ * which the image passes rely on past the terminator); built as float values so that host and
+ * device agree on the input. */
 static void points(float *c, float *n)
 {
     static const double us[US] = { 0, 0.01, 0.2, 0.511, 1, 1.5, 2.1, 3, 4.5 };
     int k = 0;
     for (int i = 0; i < NS; ++i)
         for (int j = 0; j < US; ++j, ++k) {
-            double cv = j < 9 ? 1 - us[j] / ns[i] : (j == 9 ? 0.0 : (j == 10 ? 0.5 : 0.93));
-            c[k] = (float)fmax(cv, 0.0);
+            double cv = j < 9 ? 1 - us[j] / ns[i] : (j == 9 ? 0.0 : (j == 10 ? 0.5 : (j == 11 ? 0.93 : -0.25)));
+            c[k] = (float)(j < 9 ? fmax(cv, 0.0) : cv);
             n[k] = (float)ns[i];
         }
 }

@@ -8,7 +8,7 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
-"$BIN" throughput --models cq2,fq:Q=0.7 --reps 2 --min-time 0.002 --work-items 4 --variants default,denorms-are-zero \
+"$BIN" throughput --models phong,cq2,fq:Q=0.7 --reps 2 --min-time 0.002 --work-items 4 --variants default,denorms-are-zero \
     --sweep-samples 32 --sweep-n-step 100 --sweep-reps 1 --out "$T/run" >"$T/table" 2>"$T/err"
 rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
@@ -23,11 +23,19 @@ for k in ("date", "device", "platform_version", "build_options", "git_revision",
     assert k in ctx, k
 assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
 assert [b["variant"] for b in d["builds"]] == ["default", "denorms-are-zero"]
-assert d["peak"]["status"] == "ok" and d["peak"]["fma_per_s"] > 0
+pk = d["peak"]
+# an FMA is 2 flops (kernels/peak.cl counts 2 flops per lane and step)
+assert pk["status"] == "ok" and abs(pk["fma_per_s"] - pk["flops_per_s"]["median"] / 2) <= 1e-9 * pk["fma_per_s"], pk
 rows = d["results"]
-# pow + 2 models; default: uniform and varying; denorms-are-zero: uniform
-assert len(rows) == 3 * 2 + 3, len(rows)
-assert [r["label"] for r in rows[:6:2]] == ["pow", "cq2", "fq:Q=0.7"], [r["label"] for r in rows]
+# pow + 3 models; default: uniform and varying; denorms-are-zero: uniform
+assert len(rows) == 4 * 2 + 4, len(rows)
+assert [r["label"] for r in rows[:8:2]] == ["pow", "phong", "cq2", "fq:Q=0.7"], [r["label"] for r in rows]
+def med(r): return r["evals_per_s"]["median"]
+def same(r, label): return [x for x in rows if x["label"] == label and x["variant"] == r["variant"] and x["n_mode"] == r["n_mode"]][0]
+def close(x, y, what): assert x is not None and abs(x - y) <= 1e-9 * abs(y), "%s: %r vs %r recomputed" % (what, x, y)
+# The derived columns, recomputed from the medians (README's definitions): the ratio to pow() in
+# the same variant and n mode, to the model's own reference (SPEC.md: the Phong lobe c^n for
+# every model here), to the tuned C loop's median, and the fraction of the FMA peak.
 for r in rows:
     assert r["status"] == "ok", r
     e = r["evals_per_s"]
@@ -40,18 +48,26 @@ for r in rows:
     assert math.isclose(e["median"], 2 / (1 / reps[0] + 1 / reps[1]), rel_tol=1e-9), (reps, e)
     if r["variant"] == "default":
         assert len(r["host_c"]["evals_per_s_reps"]) == 2, r["host_c"]
-    assert r["ratio_to_reference"] > 0 and r["fraction_of_peak"] > 0
+    close(r["ratio_to_reference"], med(r) / med(same(r, "pow")), r["label"] + " ratio_to_reference")
+    close(r["fraction_of_peak"], med(r) / pk["fma_per_s"], r["label"] + " fraction_of_peak")
+    if r["label"] != "pow":
+        close(r["ratio_to_model_reference"], med(r) / med(same(r, "phong")), r["label"] + " ratio_to_model_reference")
     assert r["build_options"] == ("" if r["variant"] == "default" else "-cl-denorms-are-zero")
     assert r["accuracy"]["status"] == "ok" and r["accuracy"]["max_diff_of_peak"] < 1e-5
     if r["variant"] == "default":
-        assert r["host_c"]["status"] == "ok" and r["ratio_to_host_c"] > 0, r
-# the pow() row is its own reference
-assert rows[0]["ratio_to_reference"] == 1
+        assert r["host_c"]["status"] == "ok", r
+        close(r["ratio_to_host_c"], med(r) / r["host_c"]["evals_per_s"]["median"], r["label"] + " ratio_to_host_c")
 sw = d["sweep"]
-assert sw["status"] == "ok" and sw["speedup_vs_host_c"] > 0 and sw["n_count"] == 11, sw
+assert sw["status"] == "ok" and sw["n_count"] == 11, sw
+# the sweep's speed-up: tuned C's time over the device's, in total and per model
+close(sw["speedup_vs_host_c"], sw["host_c_seconds"] / sw["device_seconds"], "sweep speedup_vs_host_c")
+assert abs(sw["device_seconds"] - sum(m["device_seconds"]["median"] for m in sw["models"])) <= 1e-9 * sw["device_seconds"]
+assert abs(sw["host_c_seconds"] - sum(m["host_c_seconds"]["median"] for m in sw["models"])) <= 1e-9 * sw["host_c_seconds"]
+for m in sw["models"]:
+    close(m["speedup_vs_host_c"], m["host_c_seconds"]["median"] / m["device_seconds"]["median"], m["label"] + " sweep speed-up")
 PY
 head -1 "$T/run/throughput.csv" | grep -q '^model,label,variant,build_options,n_mode,status,evals_per_s_min' && ok || bad "csv header"
-[ "$(wc -l <"$T/run/throughput.csv")" -eq 10 ] && ok || bad "csv rows: $(wc -l <"$T/run/throughput.csv")"
+[ "$(wc -l <"$T/run/throughput.csv")" -eq 13 ] && ok || bad "csv rows: $(wc -l <"$T/run/throughput.csv")"
 grep -qE '^cq2 +uniform' "$T/table" && grep -q 'accuracy sweep' "$T/table" && ok || bad "table: $(head -c 400 "$T/table")"
 
 # A variant whose program does not build: its rows say so (status and reason), the others are

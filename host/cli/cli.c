@@ -83,6 +83,16 @@ const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char
     return argv[++*i];
 }
 
+const char *cli_path_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen)
+{
+    const char *v = cli_flag_value(argc, argv, i, name, err, errlen);
+    if (v && !*v) {
+        snprintf(err, errlen, "%s: empty path (accepted: a folder or file name)", name);
+        return NULL;
+    }
+    return v;
+}
+
 int cli_double_value(int argc, char **argv, int *i, const char *name, double min, double max,
                      double *out, char *err, size_t errlen)
 {
@@ -125,6 +135,7 @@ void device_options_init(struct device_options *o)
     o->platform = -1;
     o->device = -1;
     o->kernel_dir = NULL;
+    o->timeout = 0.0;
 }
 
 int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, char *err, size_t errlen)
@@ -134,6 +145,11 @@ int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, cha
     if (cli_flag_is(a, "--platform") || cli_flag_is(a, "--device")) {
         const char *name = cli_flag_is(a, "--platform") ? "--platform" : "--device";
         const char *val = cli_flag_value(argc, argv, i, name, err, errlen);
+        if (val && name[2] == 'd' && cli_is_device_list(val)) {
+            snprintf(err, errlen, "--device: '%s': all and lists are taken by throughput, accuracy and render "
+                     "(accepted here: 0 to 63)", val);
+            return -2;
+        }
         if (!val || cli_parse_long(name, val, 0, 63, &v, err, errlen))
             return -2;
         if (name[2] == 'p')
@@ -156,6 +172,12 @@ int cli_device_flag(int argc, char **argv, int *i, struct device_options *o, cha
         fclose(f);
         o->kernel_dir = val;
         clsession_set_kernel_dir(val);
+        return 1;
+    }
+    if (cli_flag_is(a, "--timeout")) {
+        if (cli_double_value(argc, argv, i, "--timeout", 0.01, CLSESSION_MAX_TIMEOUT, &o->timeout, err, errlen))
+            return -2;
+        clsession_set_timeout(o->timeout, TIMEOUT_FLAG);
         return 1;
     }
     return 0;

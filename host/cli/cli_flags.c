@@ -15,7 +15,8 @@ int accuracy_grid_flag(int argc, char **argv, int *i, double *n_min, double *n_m
     double *const values[3] = { n_min, n_max, n_step };
     for (int k = 0; k < 3; ++k)
         if (cli_flag_is(argv[*i], names[k]))
-            return cli_double_value(argc, argv, i, names[k], 1e-300, ACC_MAX_N, values[k], err, errlen) ? -2 : 1;
+            return cli_double_value(argc, argv, i, names[k], k < 2 ? ACC_MIN_N : 1e-300, ACC_MAX_N, values[k], err,
+                                    errlen) ? -2 : 1;
     return 0;
 }
 

@@ -23,7 +23,7 @@ static void accuracy_usage(FILE *f)
             "  error in the attenuation zone and over the whole range, each with where it occurs.\n"
             "  --models LIST      comma-separated models with parameters, e.g. cq2,fq:Q=0.7,lyon:k=4\n"
             "                     (default: all; see brdfbench list)\n"
-            "  --n-min X          smallest shininess (default 2; > 0)\n"
+            "  --n-min X          smallest shininess (default 2; >= 0.1)\n"
             "  --n-max X          largest shininess (default 1000; <= 1e6)\n"
             "  --n-step X         step of n (default 1; real values allowed; n-max is always included)\n"
             "  --samples N        samples per zone per n, a multiple of 16 in [16, %ld] (default %d)\n"
@@ -32,12 +32,17 @@ static void accuracy_usage(FILE *f)
             "  --quiet            no table on stdout\n"
             USERMODEL_OPTIONS_HELP
             "                     (with a user model and no --models, only the user models run)\n"
-            DEVICE_OPTIONS_HELP,
+            DEVICE_OPTIONS_HELP
+            DEVICE_LIST_HELP,
             ACC_MAX_SAMPLES, ACC_DEFAULT_SAMPLES);
 }
 
 int cmd_accuracy(int argc, char **argv)
 {
+    /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
+    int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results");
+    if (per_device >= 0)
+        return per_device;
     char err[1024];
     struct accuracy_grid grid = { 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
     struct device_options dev;
@@ -67,7 +72,7 @@ int cmd_accuracy(int argc, char **argv)
                 goto usage_error;
             models_given = 1;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
             if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES, 16,
@@ -128,10 +133,14 @@ int cmd_accuracy(int argc, char **argv)
     if (!quiet)
         fprintf(stderr, "device: %s (%s); kernel build %.2f s\n", s.device_name, s.platform_version,
                 s.last_build_seconds);
+    double started = wall_seconds();
     for (int m = 0; m < nmodels; ++m, ++done) {
         rc = accuracy_run(&actx, &models[m], &grid, &res[m]);
         if (rc)
             goto cleanup;
+        if (!quiet && wall_seconds() - started > 1.0)   /* a progress line once a run takes a while */
+            fprintf(stderr, "accuracy: %d/%d %s done (%.1f s)\n", m + 1, nmodels, models[m].label,
+                    wall_seconds() - started);
     }
     if (!out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
@@ -155,13 +164,16 @@ int cmd_accuracy(int argc, char **argv)
     if (!quiet) {
         accuracy_print_table(stdout, res, nmodels);
         double worst = 0, dev_s = 0, pts = 0;
+        int beyond = 0;
         for (int m = 0; m < nmodels; ++m) {
             worst = fmax(worst, accuracy_check_in_digits(&res[m]));
+            beyond += res[m].device_disagrees;
             dev_s += res[m].device_seconds;
             pts += res[m].points;
         }
         printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
-               "largest difference = %.3g of one unit in the 4th significant digit of its figure\n", worst);
+               "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
+               "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
         printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)\n",
                dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples);
         printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);

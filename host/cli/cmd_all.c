@@ -730,7 +730,7 @@ int cmd_all(int argc, char **argv)
         } else if (cli_flag_is(a, "--results-root")) {
             if (!(r->results_root = cli_flag_value(argc, argv, &i, "--results-root", err, sizeof err))) goto usage_error;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err))) goto usage_error;
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err))) goto usage_error;
         } else {
             snprintf(err, sizeof err, "unknown option '%s' (see brdfbench all --help)", a);
             goto usage_error;

@@ -53,7 +53,7 @@ int cmd_fit(int argc, char **argv)
         } else if (strcmp(a, "--quiet") == 0) {
             quiet = 1;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--max-abs")) {
             if (cli_double_value(argc, argv, &i, "--max-abs", 1e-300, 1.0, &opt.max_abs_cap, err, sizeof err))

@@ -4,6 +4,8 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "gate.h"
+#include "outdir.h"
+#include "gate_report.h"
 #include "usermodel.h"
 
 #include <stdio.h>
@@ -80,6 +82,11 @@ int cmd_gate(int argc, char **argv)
     }
     if (!gates_path) {
         snprintf(err, sizeof err, "a gates file is missing (usage: brdfbench gate GATES.json [OPTIONS])");
+        goto usage_error;
+    }
+    if (junit && json && output_paths_same(junit, json)) {
+        snprintf(err, sizeof err, "--json: '%s' is the file --junit names ('%s'); each report needs its own file",
+                 json, junit);
         goto usage_error;
     }
     if (tolerance_given && !baseline) {

@@ -42,7 +42,8 @@ static void render_usage(FILE *f)
             "                     results/latest)\n"
             "  --quiet            no progress or tables on stdout\n"
             USERMODEL_OPTIONS_HELP
-            DEVICE_OPTIONS_HELP,
+            DEVICE_OPTIONS_HELP
+            DEVICE_LIST_HELP,
             RENDER_MIN_SIDE, RENDER_MAX_SIDE, RENDER_MAX_COLS, RENDER_TEAPOT_PATH,
             RENDER_BUNNY_PATH);
 }
@@ -94,6 +95,10 @@ static int split_list(char *text, char **items, int max)
 
 int cmd_render(int argc, char **argv)
 {
+    /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
+    int per_device = cli_per_device(argc, argv, "render", cmd_render, "render.json", "scenes");
+    if (per_device >= 0)
+        return per_device;
     char err[1024];
     struct render_options o;
     render_options_default(&o);
@@ -222,7 +227,7 @@ int cmd_render(int argc, char **argv)
             if (!(o.bunny_path = cli_flag_value(argc, argv, &i, "--bunny-file", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else {
             snprintf(err, sizeof err, "unknown option '%s' (see brdfbench render --help)", a);

@@ -56,7 +56,7 @@ int cmd_reproduce(int argc, char **argv)
         } else if (strcmp(a, "--no-energy") == 0) {
             opt.energy = 0;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--samples")) {
             if (cli_long_multiple_value(argc, argv, &i, "--samples", ACC_MIN_SAMPLES, ACC_MAX_SAMPLES / 2, 16,

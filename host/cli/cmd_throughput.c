@@ -46,6 +46,7 @@ static void throughput_usage(FILE *f)
             "  --quiet              no table on stdout, no progress on stderr\n"
             USERMODEL_OPTIONS_HELP
             DEVICE_OPTIONS_HELP
+            DEVICE_LIST_HELP
             "  POCL_AFFINITY=1 is set unless the environment sets it: it pins PoCL's threads to CPUs,\n"
             "  so that a run does not land on one thread.\n",
             TP_MAX_REPS, TP_MIN_TIME_MIN, TP_MIN_TIME_MAX, ACC_MAX_N, TP_MAX_WORK_ITEMS, ACC_DEFAULT_SAMPLES,
@@ -89,6 +90,10 @@ static int parse_name_set(const char *arg, const char *text, const char *(*name_
 
 int cmd_throughput(int argc, char **argv)
 {
+    /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
+    int per_device = cli_per_device(argc, argv, "throughput", cmd_throughput, "throughput.json", "results");
+    if (per_device >= 0)
+        return per_device;
     char err[1024];
     struct throughput_options o;
     throughput_options_default(&o);
@@ -123,7 +128,7 @@ int cmd_throughput(int argc, char **argv)
                 goto usage_error;
             models_given = 1;
         } else if (cli_flag_is(a, "--out")) {
-            if (!(out_dir = cli_flag_value(argc, argv, &i, "--out", err, sizeof err)))
+            if (!(out_dir = cli_path_value(argc, argv, &i, "--out", err, sizeof err)))
                 goto usage_error;
         } else if (cli_flag_is(a, "--reps")) {
             if (cli_long_value(argc, argv, &i, "--reps", 1, TP_MAX_REPS, &lv, err, sizeof err))

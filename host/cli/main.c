@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "context.h"
 #include "exitcodes.h"
+#include "outdir.h"
 
 struct command {
     const char *name;
@@ -23,6 +24,7 @@ static const struct command commands[] = {
     { "reproduce", cmd_reproduce, "re-derive every claim of both papers: claims.json, claims.md and a table" },
     { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)" },
     { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants" },
+    { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)" },
     /* more commands below, one per line */
 };
 
@@ -53,8 +55,13 @@ int main(int argc, char **argv)
         if (strcmp(argv[i], "-h") == 0)
             argv[i] = help_flag;
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 1, argv + 1);
+        if (strcmp(argv[1], commands[i].name) == 0) {
+            int rc = commands[i].run(argc - 1, argv + 1);
+            /* A run that failed leaves no empty folder it made (a folder that existed stays). */
+            if (rc != EXIT_OK && rc != EXIT_GATE_FAIL)
+                outdir_remove_own_empty();
+            return rc;
+        }
     fprintf(stderr, "brdfbench: unknown command '%s' (accepted:", argv[1]);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         fprintf(stderr, " %s", commands[i].name);

@@ -3,12 +3,16 @@
 #include "clsession.h"
 #include "exitcodes.h"
 #include "kernels_embedded.h"
+#include "outdir.h"
 
+#include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 const char *cl_error_name(cl_int err)
 {
@@ -62,6 +66,134 @@ double cl_event_seconds(cl_event ev)
     return 1e-9 * (double)(t1 - t0);
 }
 
+/* The launch watchdog: one thread, started at the first launch, sleeping until the armed
+ * deadline. The main thread is blocked in the OpenCL wait while it is armed, so what the
+ * watchdog does on firing (write(2), unlink, rmdir, _exit) needs no lock it could hold. */
+static pthread_mutex_t wd_lock = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t wd_cond;
+static int wd_started, wd_armed;
+static struct timespec wd_deadline;
+static char wd_message[768];
+static double wd_timeout = CLSESSION_DEFAULT_TIMEOUT;
+static enum clsession_timeout_source wd_timeout_source = TIMEOUT_DEFAULT;
+
+void clsession_set_timeout(double seconds, enum clsession_timeout_source source)
+{
+    if (!(seconds > 0.0) || source < wd_timeout_source)
+        return;
+    wd_timeout = seconds;
+    wd_timeout_source = source;
+}
+
+double clsession_timeout(void) { return wd_timeout; }
+
+static void *watchdog_main(void *unused)
+{
+    (void)unused;
+    pthread_mutex_lock(&wd_lock);
+    for (;;) {
+        while (!wd_armed)
+            pthread_cond_wait(&wd_cond, &wd_lock);
+        int r = pthread_cond_timedwait(&wd_cond, &wd_lock, &wd_deadline);
+        if (r == ETIMEDOUT && wd_armed) {
+            struct timespec now;
+            clock_gettime(CLOCK_MONOTONIC, &now);
+            if (now.tv_sec > wd_deadline.tv_sec ||
+                (now.tv_sec == wd_deadline.tv_sec && now.tv_nsec >= wd_deadline.tv_nsec)) {
+                ssize_t unused_w = write(2, wd_message, strlen(wd_message));
+                (void)unused_w;
+                outdir_remove_own();
+                _exit(EXIT_RUNTIME);
+            }
+        }
+    }
+    return NULL;
+}
+
+static int watchdog_start(void)
+{
+    pthread_condattr_t attr;
+    pthread_attr_t tattr;
+    pthread_t thread;
+    if (pthread_condattr_init(&attr) || pthread_condattr_setclock(&attr, CLOCK_MONOTONIC) ||
+        pthread_cond_init(&wd_cond, &attr))
+        return -1;
+    pthread_condattr_destroy(&attr);
+    if (pthread_attr_init(&tattr) || pthread_attr_setdetachstate(&tattr, PTHREAD_CREATE_DETACHED))
+        return -1;
+    int r = pthread_create(&thread, &tattr, watchdog_main, NULL);
+    pthread_attr_destroy(&tattr);
+    return r ? -1 : 0;
+}
+
+void clsession_deadline_arm(cl_kernel kernel, const char *model)
+{
+    char name[128] = "?";
+    if (kernel && clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
+        snprintf(name, sizeof name, "?");
+    pthread_mutex_lock(&wd_lock);
+    if (!wd_started) {
+        if (watchdog_start() != 0) {
+            /* Without the thread the run goes on unwatched; say so once. */
+            fprintf(stderr, "brdfbench: warning: the launch deadline cannot be watched (no thread)\n");
+            wd_started = -1;
+        } else {
+            wd_started = 1;
+        }
+    }
+    if (wd_started == 1) {
+        snprintf(wd_message, sizeof wd_message,
+                 "brdfbench: kernel %s%s%.200s%s ran past its deadline of %g s (accepted: --timeout SECONDS, or "
+                 "\"timeout\" in a gates file, up to %g); the run is stopped and its unfinished outputs removed\n",
+                 name, model ? " of model '" : "", model ? model : "", model ? "'" : "", wd_timeout,
+                 CLSESSION_MAX_TIMEOUT);
+        clock_gettime(CLOCK_MONOTONIC, &wd_deadline);
+        double whole = floor(wd_timeout);
+        wd_deadline.tv_sec += (time_t)whole;
+        wd_deadline.tv_nsec += (long)((wd_timeout - whole) * 1e9);
+        if (wd_deadline.tv_nsec >= 1000000000L) {
+            wd_deadline.tv_sec += 1;
+            wd_deadline.tv_nsec -= 1000000000L;
+        }
+        wd_armed = 1;
+        pthread_cond_signal(&wd_cond);
+    }
+    pthread_mutex_unlock(&wd_lock);
+}
+
+void clsession_deadline_disarm(void)
+{
+    pthread_mutex_lock(&wd_lock);
+    if (wd_armed) {
+        wd_armed = 0;
+        pthread_cond_signal(&wd_cond);
+    }
+    pthread_mutex_unlock(&wd_lock);
+}
+
+cl_int clsession_finish(struct cl_session *s, cl_kernel kernel, const char *model)
+{
+    clsession_deadline_arm(kernel, model);
+    cl_int e = clFinish(s->queue);
+    clsession_deadline_disarm();
+    return e;
+}
+
+int clsession_launch(struct cl_session *s, cl_kernel kernel, cl_uint dims, const size_t *global, const size_t *local,
+                     const char *model, cl_event *ev)
+{
+    int rc = 0;
+    cl_event own = NULL;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, kernel, dims, NULL, global, local, 0, NULL, &own), done);
+    CL_CHECK_GOTO(clsession_finish(s, kernel, model), done);
+done:
+    if (ev && rc == 0)
+        *ev = own;
+    else if (own)
+        clReleaseEvent(own);
+    return rc;
+}
+
 int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const float *c, const float *n,
                     size_t count, float *out)
 {
@@ -89,7 +221,8 @@ int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const 
     CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 1, sizeof bn, &bn), done);
     CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 2, sizeof bo, &bo), done);
     size_t global = padded / 16;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    if ((rc = clsession_launch(s, k, 1, &global, NULL, NULL, NULL)) != 0)
+        goto done;
     CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, bo, CL_TRUE, 0, padded * sizeof(float), po, 0, NULL, NULL), done);
     memcpy(out, po, count * sizeof *out);
 done:
@@ -184,6 +317,9 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
 
 void clsession_close(struct cl_session *s)
 {
+    if (s->release_cache)
+        s->release_cache(s);
+    s->release_cache = NULL;
     if (s->queue)
         clReleaseCommandQueue(s->queue);
     if (s->ctx)
@@ -273,6 +409,75 @@ static char *resolve_model_include(const char *src, const char *file)
     return out;
 }
 
+/* The OpenCL compiler of PoCL prints its own summary ("1 error generated.") on the process's
+ * stderr while it builds; the build log holds the diagnostics themselves. So stderr is
+ * caught in a temporary file during the build, and replayed after what brdfbench says. */
+static int stderr_catch_begin(FILE **caught)
+{
+    *caught = tmpfile();
+    if (!*caught)
+        return -1;
+    fflush(stderr);
+    int saved = dup(2);
+    if (saved < 0 || dup2(fileno(*caught), 2) < 0) {
+        if (saved >= 0)
+            close(saved);
+        fclose(*caught);
+        *caught = NULL;
+        return -1;
+    }
+    return saved;
+}
+
+static void stderr_catch_end(int saved, FILE *caught)
+{
+    if (saved < 0)
+        return;
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    if (caught) {
+        char buf[4096];
+        size_t n;
+        rewind(caught);
+        while ((n = fread(buf, 1, sizeof buf, caught)) > 0)
+            fwrite(buf, 1, n, stderr);
+        fclose(caught);
+    }
+}
+
+/* Writes the first diagnostic of a build log as its first line, the way compilers do
+ * ("file:line:col: error: text"): PoCL writes it as "error: file:line:col: text". */
+static void print_first_diagnostic(const char *log)
+{
+    for (const char *p = log; p && *p;) {
+        const char *eol = strchr(p, '\n');
+        int n = (int)(eol ? (size_t)(eol - p) : strlen(p));
+        if (n > 7 && strncmp(p, "error: ", 7) == 0) {
+            /* The location ends at the first ":LINE:COL: " (a file name may hold colons). */
+            const char *loc = p + 7, *end = p + n;
+            for (const char *q = loc; q < end; ++q) {
+                const char *r = q;
+                if (*r++ != ':' || r >= end || *r < '0' || *r > '9')
+                    continue;
+                while (r < end && *r >= '0' && *r <= '9')
+                    ++r;
+                if (r >= end || *r++ != ':' || r >= end || *r < '0' || *r > '9')
+                    continue;
+                while (r < end && *r >= '0' && *r <= '9')
+                    ++r;
+                if (r + 1 < end && r[0] == ':' && r[1] == ' ') {
+                    fprintf(stderr, "%.*s: error: %.*s\n", (int)(r - loc), loc, (int)(end - r - 2), r + 2);
+                    return;
+                }
+            }
+            fprintf(stderr, "%.*s\n", n, p);
+            return;
+        }
+        p = eol ? eol + 1 : NULL;
+    }
+}
+
 static int build_common(struct cl_session *s, const char *kernel_file, const char *extra_source,
                         const char *options, cl_program *out, int fail_code)
 {
@@ -296,6 +501,8 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
     cl_program prog = clCreateProgramWithSource(s->ctx, 2, parts, NULL, &e);
     free(src);
     CL_CHECK_ERR_GOTO(e, "clCreateProgramWithSource", done);
+    FILE *caught = NULL;
+    int saved_stderr = stderr_catch_begin(&caught);
     e = clBuildProgram(prog, 1, &s->device, options ? options : "", NULL, NULL);
     s->last_build_seconds = wall_seconds() - t0;
     if (e != CL_SUCCESS) {
@@ -307,12 +514,21 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
             clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, loglen, log, NULL);
             log[loglen] = '\0';
         }
+        /* What the compiler said on stderr comes after the first diagnostic and the log. */
+        int saved_again = saved_stderr;
+        saved_stderr = -1;
+        fflush(stderr);
+        if (saved_again >= 0)
+            dup2(saved_again, 2);
+        print_first_diagnostic(log);
         fprintf(stderr, "brdfbench: building %s failed with %s\noptions: %s\nbuild log:\n%s\n", kernel_file,
                 cl_error_name(e), options && *options ? options : "(none)", log ? log : "(unavailable)");
+        stderr_catch_end(saved_again, caught);
         free(log);
         clReleaseProgram(prog);
         return fail_code;
     }
+    stderr_catch_end(saved_stderr, caught);
     *out = prog;
 done:
     return rc;
@@ -329,4 +545,100 @@ int clsession_build_user(struct cl_session *s, const char *kernel_file, const ch
 {
     (void)user_line_offset;
     return build_common(s, kernel_file, extra_source, options, out, EXIT_USAGE);
+}
+
+/* ---- device lists (--device all, --device 0,1, --device 0:0,1:0) ------------------------- */
+
+/* The number of devices of every platform (at most 16 platforms, 16 devices each). */
+static int device_counts(cl_uint *nplat, cl_uint ndev[16])
+{
+    cl_platform_id plats[16];
+    cl_int e = clGetPlatformIDs(0, NULL, nplat);
+    if (e != CL_SUCCESS || *nplat == 0)
+        return -1;
+    if (*nplat > 16)
+        *nplat = 16;
+    clGetPlatformIDs(*nplat, plats, NULL);
+    for (cl_uint p = 0; p < *nplat; ++p) {
+        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 0, NULL, &ndev[p]) != CL_SUCCESS)
+            ndev[p] = 0;
+        if (ndev[p] > 16)
+            ndev[p] = 16;
+    }
+    return 0;
+}
+
+int clsession_device_list(const char *text, int platform, struct cl_device_ref *out, int max, char *err,
+                          size_t errlen)
+{
+    cl_uint nplat = 0, ndev[16] = { 0 };
+    if (device_counts(&nplat, ndev)) {
+        snprintf(err, errlen, "no OpenCL platform found; %s", no_device_hint);
+        return -EXIT_NO_DEVICE;
+    }
+    int n = 0;
+    if (strcmp(text, "all") == 0) {
+        for (cl_uint p = 0; p < nplat; ++p)
+            for (cl_uint d = 0; d < ndev[p] && n < max; ++d)
+                out[n++] = (struct cl_device_ref){ (int)p, (int)d };
+        if (n == 0) {
+            snprintf(err, errlen, "no OpenCL device found; %s", no_device_hint);
+            return -EXIT_NO_DEVICE;
+        }
+        return n;
+    }
+    if (platform < 0) {   /* plain entries name devices of the first platform with one */
+        for (cl_uint p = 0; p < nplat && platform < 0; ++p)
+            if (ndev[p] > 0)
+                platform = (int)p;
+        if (platform < 0) {
+            snprintf(err, errlen, "no OpenCL device found; %s", no_device_hint);
+            return -EXIT_NO_DEVICE;
+        }
+    }
+    char buf[256];
+    if (strlen(text) >= sizeof buf || !*text) {
+        snprintf(err, errlen, "--device: expected N, P:D, a comma-separated list of them, or all");
+        return -EXIT_USAGE;
+    }
+    strcpy(buf, text);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        char *colon = strchr(tok, ':'), *end = NULL;
+        long p = platform, d;
+        errno = 0;
+        if (colon) {
+            p = strtol(tok, &end, 10);
+            if (end != colon || end == tok) {
+                snprintf(err, errlen, "--device: '%.64s' is not N or P:D", tok);
+                return -EXIT_USAGE;
+            }
+            tok = colon + 1;
+        }
+        d = strtol(tok, &end, 10);
+        if (end == tok || *end || errno) {
+            snprintf(err, errlen, "--device: '%.64s' is not N or P:D", tok);
+            return -EXIT_USAGE;
+        }
+        if (p < 0 || p >= (long)nplat) {
+            snprintf(err, errlen, "--device: platform %ld is out of range (accepted: 0 to %u; see brdfbench list)", p,
+                     nplat - 1);
+            return -EXIT_USAGE;
+        }
+        if (d < 0 || d >= (long)ndev[p]) {
+            snprintf(err, errlen, "--device: device %ld is out of range for platform %ld (accepted: 0 to %d)", d, p,
+                     (int)ndev[p] - 1);
+            return -EXIT_USAGE;
+        }
+        if (n == max) {
+            snprintf(err, errlen, "--device: at most %d devices in a list", max);
+            return -EXIT_USAGE;
+        }
+        out[n++] = (struct cl_device_ref){ (int)p, (int)d };
+    }
+    if (n == 0) {
+        snprintf(err, errlen, "--device: expected N, P:D, a comma-separated list of them, or all");
+        return -EXIT_USAGE;
+    }
+    return n;
 }

@@ -22,6 +22,9 @@ struct cl_session {
     cl_ulong global_mem, max_alloc;
     int has_fp64;
     double last_build_seconds;    /* wall time of the latest clsession_build */
+    /* Objects cached for the session's life (host/core/programs.c): clsession_close calls
+       release_cache first, while the context still exists. */
+    void (*release_cache)(struct cl_session *s);
 };
 
 /* Name of an OpenCL error code ("CL_BUILD_PROGRAM_FAILURE"). */
@@ -55,6 +58,19 @@ void cl_report(const char *call, cl_int err, const char *file, int line);
 int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen);
 void clsession_close(struct cl_session *s);
 
+/* A device of a device list: platform and device indices as clsession_open takes them. */
+struct cl_device_ref {
+    int platform, device;
+};
+#define CL_MAX_DEVICE_REFS 16
+/* Resolves `--device all` (every device of every platform the ICD loader finds, platform by
+ * platform) or a comma-separated list whose entries are D (device D of `platform`, or of the
+ * first platform with a device when platform < 0) or P:D; an entry may repeat. Returns the
+ * number of devices (1..max), or -EXIT_USAGE (an entry out of range, named with the accepted
+ * range) or -EXIT_NO_DEVICE with a message in err. */
+int clsession_device_list(const char *text, int platform, struct cl_device_ref *out, int max, char *err,
+                          size_t errlen);
+
 /* Kernel sources: embedded copies by default; --kernel-dir reads them from a folder. */
 void clsession_set_kernel_dir(const char *dir);
 /* The text of kernels/<name> (embedded or from the kernel dir); NULL if unknown.
@@ -76,6 +92,30 @@ int clsession_build_user(struct cl_session *s, const char *kernel_file, const ch
  * and count results are written to out. Returns 0 or EXIT_RUNTIME. */
 int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const float *c, const float *n,
                     size_t count, float *out);
+
+/* Launch deadlines (DESIGN.md, habit 13). OpenCL cannot cancel a running kernel, so every wait
+ * for a launch is watched by a thread: past the deadline it prints one line naming the kernel
+ * and the model, removes the run's unfinished outputs (outdir_remove_own) and ends the process
+ * with exit code 3. The deadline is per launch, in seconds. */
+#define CLSESSION_DEFAULT_TIMEOUT 300.0
+#define CLSESSION_MAX_TIMEOUT 604800.0
+/* Where a deadline came from; a later setting replaces an earlier one of the same or a lower
+ * rank, so --timeout wins over a gates file's "timeout", which wins over the default. */
+enum clsession_timeout_source { TIMEOUT_DEFAULT = 0, TIMEOUT_FILE = 1, TIMEOUT_FLAG = 2 };
+void clsession_set_timeout(double seconds, enum clsession_timeout_source source);
+double clsession_timeout(void);
+/* clFinish on s's queue under the deadline: `kernel` is the launch waited for (its function
+ * name goes into the message), `model` the model it evaluates (NULL when none). Returns
+ * clFinish's result. */
+cl_int clsession_finish(struct cl_session *s, cl_kernel kernel, const char *model);
+/* Enqueues kernel over global (and local, or NULL) in `dims` dimensions and waits for it under
+ * the deadline. ev (or NULL) receives the launch's event, for its profiling times; the caller
+ * releases it. Returns 0, or EXIT_RUNTIME with the failed call reported. */
+int clsession_launch(struct cl_session *s, cl_kernel kernel, cl_uint dims, const size_t *global, const size_t *local,
+                     const char *model, cl_event *ev);
+/* The watchdog by hand: arm before a blocking OpenCL call, disarm after it. */
+void clsession_deadline_arm(cl_kernel kernel, const char *model);
+void clsession_deadline_disarm(void);
 
 /* Seconds between a profiling event's start and end; NAN if the timer failed. */
 double cl_event_seconds(cl_event ev);

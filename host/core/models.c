@@ -2,7 +2,6 @@
  * The host reference compiles kernels/brdf_models.h with REAL = double, so each formula
  * exists once; this file adds only names, parameter domains and descriptions. */
 #include "models.h"
-#include "usermodel.h"
 
 #include <errno.h>
 #include <math.h>
@@ -96,18 +95,31 @@ const struct model_info *models_at(int i)
     return (i >= 0 && i < models_count()) ? &registry[i] : NULL;
 }
 
-static const struct model_info *user_models[MODELS_MAX_USER];
+static struct {
+    const struct model_info *info;
+    const struct model_runtime *rt;
+} user_models[MODELS_MAX_USER];
 static int user_model_count;
 
-int models_register_user(const struct model_info *info)
+int models_register(const struct model_info *info, const struct model_runtime *rt)
 {
-    if (user_model_count >= MODELS_MAX_USER)
+    if (user_model_count >= MODELS_MAX_USER || !rt || !rt->eval_host)
         return -1;
-    user_models[user_model_count++] = info;
+    user_models[user_model_count].info = info;
+    user_models[user_model_count].rt = rt;
+    ++user_model_count;
     return 0;
 }
 
-void models_unregister_users(void) { user_model_count = 0; }
+void models_unregister_all(void) { user_model_count = 0; }
+
+const struct model_runtime *models_runtime(const struct model_info *info)
+{
+    for (int i = 0; i < user_model_count; ++i)
+        if (user_models[i].info == info)
+            return user_models[i].rt;
+    return NULL;
+}
 
 const struct model_info *models_find(const char *id)
 {
@@ -115,8 +127,8 @@ const struct model_info *models_find(const char *id)
         if (strcmp(registry[i].id, id) == 0)
             return &registry[i];
     for (int i = 0; i < user_model_count; ++i)
-        if (strcmp(user_models[i]->id, id) == 0)
-            return user_models[i];
+        if (strcmp(user_models[i].info->id, id) == 0)
+            return user_models[i].info;
     return NULL;
 }
 
@@ -144,7 +156,7 @@ static void list_model_ids(char *buf, size_t len)
     for (int i = 0; i < models_count() && used < len; ++i)
         used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", registry[i].id);
     for (int i = 0; i < user_model_count && used < len; ++i)
-        used += (size_t)snprintf(buf + used, len - used, ", %s", user_models[i]->id);
+        used += (size_t)snprintf(buf + used, len - used, ", %s", user_models[i].info->id);
 }
 
 /* Parses one "name=value" assignment into spec. */
@@ -296,7 +308,16 @@ void model_reference_spec(const struct model_spec *spec, struct model_spec *ref)
 
 double model_eval_host(const struct model_spec *spec, double c, double n)
 {
+    const struct model_runtime *rt = spec->info->kernel_id == BRDF_USER ? models_runtime(spec->info) : NULL;
+    if (rt)
+        return rt->eval_host(rt, spec, c, n);
     if (spec->info->kernel_id == BRDF_USER)
-        return usermodel_eval_host(spec, c, n);
+        return NAN;   /* a run-time model no longer registered */
     return brdf_eval(spec->info->kernel_id, c, n, spec->params[0], spec->params[1]);
+}
+
+const char *model_eval_note(const struct model_spec *spec)
+{
+    const struct model_runtime *rt = spec ? models_runtime(spec->info) : NULL;
+    return rt && rt->note ? rt->note(rt) : NULL;
 }

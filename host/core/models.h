@@ -54,15 +54,37 @@ int model_spec_list_parse(const char *text, struct model_spec *out, int max, cha
 int model_spec_list_default(struct model_spec *out, int max);
 /* The reference model of a spec, with default parameters. */
 void model_reference_spec(const struct model_spec *spec, struct model_spec *ref);
-/* Double-precision host evaluation of the model (the reference implementation). A user
- * model (kernel_id BRDF_USER, host/usermodel.h) is evaluated by its reference on the device. */
+/* Double-precision host evaluation of the model (the reference implementation); a model
+ * registered at run time is evaluated by its own model_runtime. */
 double model_eval_host(const struct model_spec *spec, double c, double n);
 
-/* User models compiled at run time (host/usermodel.h) are found by models_find like the
- * built-in ones; they are not part of models_count/models_at (the registry proper).
- * Returns 0, or -1 when the table is full. */
+/* Models added at run time (user models, host/core/usermodel.h) join the registry through
+ * this interface, with what the registry cannot know about them: their OpenCL C text for the
+ * device builds and their double-precision host evaluation. models_find finds them like the
+ * built-in ones; they are not part of models_count/models_at (the registry proper). The
+ * registry knows nothing else of where they come from. */
+struct cl_session;
+struct model_runtime {
+    const char *device_source;    /* placed after a kernel file: defines brdf_user_eval */
+    const char *device_options;   /* options its float builds add to the kernel file's */
+    const char *what;             /* names the model in messages: "user model 'sq' (--model sq)" */
+    /* The value at (c, n) with spec's parameters, in double. */
+    double (*eval_host)(const struct model_runtime *rt, const struct model_spec *spec, double c, double n);
+    /* Makes eval_host ready where it needs a device (NULL: it never does); idempotent.
+       Returns 0 or an exit code. */
+    int (*open_host)(const struct model_runtime *rt, struct cl_session *s);
+    /* Releases what open_host made on the device of s (NULL with open_host). */
+    void (*close_host)(const struct model_runtime *rt, struct cl_session *s);
+    /* NULL, or a one-line note for the output when eval_host is not a double evaluation. */
+    const char *(*note)(const struct model_runtime *rt);
+};
 #define MODELS_MAX_USER 8
-int models_register_user(const struct model_info *info);
-void models_unregister_users(void);
+/* Returns 0, or -1 when the table is full. */
+int models_register(const struct model_info *info, const struct model_runtime *rt);
+void models_unregister_all(void);
+/* The runtime of a model registered with models_register, or NULL for a built-in model. */
+const struct model_runtime *models_runtime(const struct model_info *info);
+/* The note of spec's runtime (NULL for a built-in model or a double evaluation). */
+const char *model_eval_note(const struct model_spec *spec);
 
 #endif

@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -117,11 +118,69 @@ static void usermodel_fill_info(struct user_model *um)
     }
 }
 
+/* ---- the runtime that the registry sees ----------------------------------------------- */
+
+#define UM_OF_RUNTIME(rt) ((struct user_model *)((char *)(rt) - offsetof(struct user_model, runtime)))
+
+static double runtime_eval(const struct model_runtime *rt, const struct model_spec *spec, double c, double n)
+{
+    (void)rt;
+    return usermodel_eval_host(spec, c, n);
+}
+
+static int runtime_open(const struct model_runtime *rt, struct cl_session *s)
+{
+    struct user_model *um = UM_OF_RUNTIME(rt);
+    if (usermodel_host_ready(um))
+        return 0;
+    return usermodel_reference_open(um, s);
+}
+
+static void runtime_close(const struct model_runtime *rt, struct cl_session *s)
+{
+    struct user_model *um = UM_OF_RUNTIME(rt);
+    if (um->ref_session == s)
+        usermodel_reference_close(um);
+}
+
+static const char *runtime_note(const struct model_runtime *rt) { return usermodel_reference_note(UM_OF_RUNTIME(rt)); }
+
+/* Called once the model's text (device_source) and origin are known. */
+static void usermodel_fill_runtime(struct user_model *um)
+{
+    snprintf(um->what, sizeof um->what, "user model '%s' (%s)", um->name, um->origin);
+    um->runtime.device_source = um->device_source;
+    um->runtime.device_options = USERMODEL_FLOAT_OPTIONS;
+    um->runtime.what = um->what;
+    um->runtime.eval_host = runtime_eval;
+    um->runtime.open_host = runtime_open;
+    um->runtime.close_host = runtime_close;
+    um->runtime.note = runtime_note;
+}
+
+int usermodel_host_ready(const struct user_model *cum)
+{
+    /* Every user model is allocated by this file: its host state may change. */
+    struct user_model *um = (struct user_model *)cum;
+    if (!um->host_tried) {
+        um->host_tried = 1;
+        char *header = clsession_kernel_source("brdf_models.h", NULL);
+        if (!header) {
+            snprintf(um->host_error, sizeof um->host_error, "kernel header brdf_models.h not found");
+            return 0;
+        }
+        um->host = hostjit_compile(header, um->device_source, um->host_error, sizeof um->host_error);
+        free(header);
+    }
+    return um->host != NULL;
+}
+
 void usermodel_free(struct user_model *um)
 {
     if (!um)
         return;
     usermodel_reference_close(um);
+    hostjit_free(um->host);
     free(um->device_source);
     free(um);
 }
@@ -233,6 +292,7 @@ static int make_file_source(struct user_model *um, const char *text, size_t len)
         return -1;
     }
     um->device_source = b.s;
+    usermodel_fill_runtime(um);
     return 0;
 }
 
@@ -476,6 +536,7 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
         return EXIT_RUNTIME;
     }
     um->device_source = b.s;
+    usermodel_fill_runtime(um);
     *out = um;
     return 0;
 }
@@ -495,7 +556,7 @@ int usermodel_register(struct user_model *um, char *err, size_t errlen)
         usermodel_free(um);
         return EXIT_USAGE;
     }
-    if (registry_count >= USERMODEL_MAX || models_register_user(&um->info) != 0) {
+    if (registry_count >= USERMODEL_MAX || models_register(&um->info, &um->runtime) != 0) {
         snprintf(err, errlen, "%s: at most %d user models per run", um->origin, USERMODEL_MAX);
         usermodel_free(um);
         return EXIT_USAGE;
@@ -506,7 +567,7 @@ int usermodel_register(struct user_model *um, char *err, size_t errlen)
 
 void usermodel_clear_all(void)
 {
-    models_unregister_users();
+    models_unregister_all();
     for (int i = 0; i < registry_count; ++i)
         usermodel_free(registry[i]);
     registry_count = 0;
@@ -588,98 +649,7 @@ int usermodel_load_file(const char *path, const struct user_model **out, char *e
     return 0;
 }
 
-/* ---- building ------------------------------------------------------------------------- */
-
-int usermodel_build(struct cl_session *s, const char *kernel_file, const struct model_spec *m,
-                    const char *options, cl_program *out)
-{
-    return usermodel_build_ex(s, kernel_file, NULL, m, options, out);
-}
-
-int usermodel_build_ex(struct cl_session *s, const char *kernel_file, const char *extra_before,
-                       const struct model_spec *m, const char *options, cl_program *out)
-{
-    const struct user_model *um = usermodel_of(m);
-    if (!um)
-        return clsession_build(s, kernel_file, extra_before, options, out);
-    char opts[1024];
-    snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", options && *options ? " " : "",
-             USERMODEL_FLOAT_OPTIONS);
-    char *source = NULL;
-    if (extra_before && *extra_before) {
-        size_t a = strlen(extra_before), b = strlen(um->device_source);
-        if (!(source = malloc(a + b + 2))) {
-            fprintf(stderr, "brdfbench: out of memory\n");
-            return EXIT_RUNTIME;
-        }
-        memcpy(source, extra_before, a);
-        source[a] = '\n';
-        memcpy(source + a + 1, um->device_source, b + 1);
-    }
-    int rc = clsession_build_user(s, kernel_file, source ? source : um->device_source, opts, out, 0);
-    free(source);
-    if (rc == EXIT_USAGE)
-        fprintf(stderr, "brdfbench: user model '%s' (%s) does not compile; the build log above names the "
-                        "lines of %s\n", um->name, um->origin, um->from_file ? um->origin : "the expression");
-    return rc;
-}
-
-void usermodel_builds_init(struct usermodel_builds *b, struct cl_session *s, const char *kernel_file,
-                           const char *kernel_name, const char *options)
-{
-    memset(b, 0, sizeof *b);
-    b->s = s;
-    snprintf(b->kernel_file, sizeof b->kernel_file, "%s", kernel_file);
-    snprintf(b->kernel_name, sizeof b->kernel_name, "%s", kernel_name);
-    snprintf(b->options, sizeof b->options, "%s", options ? options : "");
-}
-
-int usermodel_builds_kernel(struct usermodel_builds *b, const struct model_spec *m, cl_kernel shared,
-                            cl_kernel *out)
-{
-    const struct user_model *um = usermodel_of(m);
-    *out = shared;
-    if (!um)
-        return 0;
-    for (int i = 0; i < b->count; ++i)
-        if (b->item[i].model == m->info) {
-            *out = b->item[i].kernel;
-            return usermodel_reference_open(um, b->s);   /* idempotent */
-        }
-    if (b->count >= USERMODEL_MAX) {
-        fprintf(stderr, "brdfbench: at most %d user models per run\n", USERMODEL_MAX);
-        return EXIT_RUNTIME;
-    }
-    cl_program prog = NULL;
-    int rc = usermodel_build(b->s, b->kernel_file, m, b->options, &prog);
-    if (rc)
-        return rc;
-    cl_int e;
-    cl_kernel k = clCreateKernel(prog, b->kernel_name, &e);
-    if (e != CL_SUCCESS) {
-        cl_report("clCreateKernel(user model)", e, __FILE__, __LINE__);
-        clReleaseProgram(prog);
-        return EXIT_RUNTIME;
-    }
-    b->item[b->count].model = m->info;
-    b->item[b->count].program = prog;
-    b->item[b->count].kernel = k;
-    b->count++;
-    *out = k;
-    return usermodel_reference_open(um, b->s);
-}
-
-void usermodel_builds_close(struct usermodel_builds *b)
-{
-    for (int i = 0; i < b->count; ++i) {
-        if (b->item[i].kernel)
-            clReleaseKernel(b->item[i].kernel);
-        if (b->item[i].program)
-            clReleaseProgram(b->item[i].program);
-        usermodel_reference_close(usermodel_of_info(b->item[i].model));
-    }
-    b->count = 0;
-}
+/* ---- the reference on the device (fallback) -------------------------------------------- */
 
 int usermodel_reference_open(const struct user_model *cum, struct cl_session *s)
 {
@@ -718,6 +688,10 @@ int usermodel_reference_open(const struct user_model *cum, struct cl_session *s)
     um->ref_session = s;
     um->ref_is_double = use_double;
     um->ref_warned = 0;
+    if (!um->ref_noted++)
+        fprintf(stderr, "brdfbench: note: %s is not C (%s), so its double reference runs on the device, one "
+                        "launch per value: expect the accuracy sweep to take minutes (docs/user-models.md)\n",
+                um->what, um->host_error);
     return 0;
 }
 
@@ -748,7 +722,11 @@ const char *usermodel_reference_note(const struct user_model *um)
 double usermodel_eval_host(const struct model_spec *m, double c, double n)
 {
     struct user_model *um = (struct user_model *)usermodel_of(m);
-    if (!um || !um->ref_point)
+    if (!um)
+        return NAN;
+    if (usermodel_host_ready(um))
+        return hostjit_function(um->host)(c, n, m->params[0], m->params[1]);
+    if (!um->ref_point)
         return NAN;
     struct cl_session *s = um->ref_session;
     cl_int e = CL_SUCCESS;
@@ -769,6 +747,8 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
     size_t one = 1;
     if (e == CL_SUCCESS)
         e = clEnqueueNDRangeKernel(s->queue, um->ref_point, 1, NULL, &one, NULL, 0, NULL, NULL);
+    if (e == CL_SUCCESS)
+        e = clsession_finish(s, um->ref_point, um->name);
     if (e == CL_SUCCESS) {
         if (um->ref_is_double) {
             e = clEnqueueReadBuffer(s->queue, out, CL_TRUE, 0, sizeof(double), &result, 0, NULL, NULL);

@@ -13,8 +13,15 @@
  * such as 0.5 is a float there and a double in the reference.
  *
  * How the rest of the program finds it: struct user_model begins with a struct model_info
- * whose kernel_id is BRDF_USER; the registry (host/models.c) finds it by name, and
- * model_eval_host() sends BRDF_USER to usermodel_eval_host(), the device double reference.
+ * whose kernel_id is BRDF_USER and carries a struct model_runtime; usermodel_register hands
+ * both to the registry (models_register, host/core/models.h), which then finds the model by
+ * name and evaluates it through the runtime without knowing this file. Device programs are
+ * built from the runtime's text by host/core/programs.c.
+ *
+ * Its double reference: the same text compiled as C for the host by host/core/hostjit.c
+ * (a function call per value, as for a built-in model). A text that is OpenCL C but not C
+ * falls back to a double build on the device (kernels/usermodel_ref.cl), one launch per
+ * value, and says so on stderr.
  */
 #ifndef BRDF_USERMODEL_H
 #define BRDF_USERMODEL_H
@@ -22,6 +29,7 @@
 #include <stddef.h>
 
 #include "clsession.h"
+#include "hostjit.h"
 #include "models.h"
 
 #define USERMODEL_MAX 8                    /* user models per run */
@@ -40,14 +48,22 @@ struct user_model {
     char origin[512];              /* the file's path, or "--model NAME" */
     int from_file;
     char *device_source;           /* appended after a kernel file: #line, the user's text, a wrapper */
+    char what[600];                /* "user model 'NAME' (ORIGIN)", for messages */
+    struct model_runtime runtime;  /* what the registry and host/core/programs.c use */
 
-    /* The reference on the device (usermodel_reference_open). */
+    /* The reference on the host (hostjit.h), compiled on first use. */
+    struct hostjit *host;
+    int host_tried;
+    char host_error[512];          /* why the text does not compile as C */
+
+    /* The fallback reference on the device (usermodel_reference_open). */
     struct cl_session *ref_session;
     cl_program ref_program;
     cl_kernel ref_point;
     cl_mem ref_out;
     int ref_is_double;             /* 0: the device has no cl_khr_fp64 and the reference is float */
     int ref_warned;
+    int ref_noted;                 /* the fallback has been announced */
     long long ref_calls;
 };
 
@@ -81,51 +97,28 @@ const struct user_model *usermodel_of_info(const struct model_info *info);
 #define USERMODEL_OPTIONS_HELP \
     "  --model-file FILE  add the user model of FILE.cl (see docs/user-models.md); repeatable\n" \
     "  --model NAME=EXPR  add a user model given by an OpenCL C expression of c and n,\n" \
-    "                     e.g. --model 'sq=(0.45*n*(c-1)+1)*(0.45*n*(c-1)+1)'; repeatable\n"
+    "                     e.g. --model 'sq=fmax(0.45*n*(c-1)+1,0)*fmax(0.45*n*(c-1)+1,0)';\n" \
+    "                     repeatable\n"
 
-/* Builds kernels/<kernel_file> for model m: for a user model with its text appended and
- * its build options (a failed build shows the log with the user's line numbers and returns
- * EXIT_USAGE), for a built-in model as clsession_build does. */
-int usermodel_build(struct cl_session *s, const char *kernel_file, const struct model_spec *m,
-                    const char *options, cl_program *out);
-/* The same with extra text placed between the kernel file and the user model's text (a
- * library that generates kernels per model id, such as throughput's TP_MODEL_KERNELS). */
-int usermodel_build_ex(struct cl_session *s, const char *kernel_file, const char *extra_before,
-                       const struct model_spec *m, const char *options, cl_program *out);
-
-/* Kernels for user models, for a library that builds one program for all the built-in models
- * (render.c's shade.cl, field.c's field.cl): a user model gets its own build of the same
- * kernel file on first use, and its reference on the device is opened with it. */
-struct usermodel_builds {
-    struct cl_session *s;
-    char kernel_file[64], kernel_name[64], options[512];
-    int count;
-    struct {
-        const struct model_info *model;
-        cl_program program;
-        cl_kernel kernel;
-    } item[USERMODEL_MAX];
-};
-void usermodel_builds_init(struct usermodel_builds *b, struct cl_session *s, const char *kernel_file,
-                           const char *kernel_name, const char *options);
-/* The kernel that evaluates model m: `shared` for a built-in model, else the kernel of the
- * user model's own build. Returns 0 or an exit code (EXIT_USAGE: the model does not compile). */
-int usermodel_builds_kernel(struct usermodel_builds *b, const struct model_spec *m, cl_kernel shared,
-                            cl_kernel *out);
-void usermodel_builds_close(struct usermodel_builds *b);
-
-/* The options that usermodel_build adds for a user model's float builds. */
+/* The options that a user model's float builds add to a kernel file's (programs.c). */
 #define USERMODEL_FLOAT_OPTIONS "-DBRDF_HAVE_USER_MODEL -cl-single-precision-constant"
+
+/* Compiles the model's host reference now (it is compiled on first use otherwise). Returns 1
+ * when the model is evaluated on the host, 0 when its text is not C (the reason is in
+ * um->host_error) and its reference needs the device. */
+int usermodel_host_ready(const struct user_model *um);
 
 /* Builds the user model's reference on the device of s (double where the device has
  * cl_khr_fp64; the environment variable BRDFBENCH_NO_FP64=1 forces the float fallback, to
- * test it). Idempotent. Returns 0 or an exit code. */
+ * test it), for a model whose text does not compile on the host. Idempotent. Returns 0 or an
+ * exit code. The registry reaches it through the model's runtime (open_host). */
 int usermodel_reference_open(const struct user_model *um, struct cl_session *s);
 void usermodel_reference_close(const struct user_model *um);
 /* NULL when the reference is double, else a one-line note for the output. */
 const char *usermodel_reference_note(const struct user_model *um);
-/* The reference value of a user model at (c, n) with spec's parameters; NAN when its
- * reference is not open (or the device failed: reported once on stderr). */
+/* The reference value of a user model at (c, n) with spec's parameters: on the host, or on
+ * the device where the text is not C; NAN when that reference is not open (or the device
+ * failed: reported once on stderr). */
 double usermodel_eval_host(const struct model_spec *m, double c, double n);
 
 #endif

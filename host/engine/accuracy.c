@@ -1,8 +1,8 @@
 /* accuracy.c - the dense-grid sweep on the device and its double-precision check. */
 #include "accuracy.h"
 #include "exitcodes.h"
+#include "programs.h"
 #include "refine.h"
-#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -17,6 +17,8 @@
 static const double half_pi = 1.57079632679489661923;
 
 double zone_epicentre_end(double n) { return acos(exp(-0.511 / n)); }
+double zone_epicentre_end_s(double n) { return -expm1(-0.511 / n); }
+double angle_of_s(double s) { return 2.0 * asin(sqrt(0.5 * s)); }
 
 double error_abs_host(const struct model_spec *m, const struct model_spec *ref, double c, double n)
 {
@@ -49,12 +51,14 @@ double accuracy_grid_n(const struct accuracy_grid *g, long i)
 
 int accuracy_grid_check(const struct accuracy_grid *g, const struct cl_session *s, char *err, size_t errlen)
 {
-    if (!isfinite(g->n_min) || g->n_min <= 0 || g->n_min > ACC_MAX_N) {
-        snprintf(err, errlen, "--n-min: %g is out of range (accepted: 0 < n-min <= %g)", g->n_min, ACC_MAX_N);
+    if (!isfinite(g->n_min) || g->n_min < ACC_MIN_N || g->n_min > ACC_MAX_N) {
+        snprintf(err, errlen, "--n-min: %.9g is out of range (accepted: %g <= n-min <= %g)", g->n_min, ACC_MIN_N,
+                 ACC_MAX_N);
         return EXIT_USAGE;
     }
-    if (!isfinite(g->n_max) || g->n_max <= 0 || g->n_max > ACC_MAX_N) {
-        snprintf(err, errlen, "--n-max: %g is out of range (accepted: 0 < n-max <= %g)", g->n_max, ACC_MAX_N);
+    if (!isfinite(g->n_max) || g->n_max < ACC_MIN_N || g->n_max > ACC_MAX_N) {
+        snprintf(err, errlen, "--n-max: %.9g is out of range (accepted: %g <= n-max <= %g)", g->n_max, ACC_MIN_N,
+                 ACC_MAX_N);
         return EXIT_USAGE;
     }
     if (g->n_min >= g->n_max) {
@@ -113,14 +117,6 @@ fail:
 
 void accuracy_close(struct accuracy_ctx *a)
 {
-    for (int i = 0; i < a->user_count; ++i) {
-        struct acc_user_program *u = &a->user[i];
-        if (u->probe) clReleaseKernel(u->probe);
-        if (u->sweep) clReleaseKernel(u->sweep);
-        if (u->program) clReleaseProgram(u->program);
-        usermodel_reference_close((const struct user_model *)u->model);
-    }
-    a->user_count = 0;
     if (a->probe)
         clReleaseKernel(a->probe);
     if (a->sweep)
@@ -131,51 +127,20 @@ void accuracy_close(struct accuracy_ctx *a)
     a->program = NULL;
 }
 
-int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m)
+/* The sweep and probe kernels that evaluate model m (host/core/programs.h: the shared ones,
+ * or those of a build with the model's text, cached for the session). */
+static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
 {
-    const struct user_model *um = usermodel_of(m);
-    if (!um)
-        return 0;
-    for (int i = 0; i < a->user_count; ++i)
-        if (a->user[i].model == m->info)
-            return usermodel_reference_open(um, a->s);   /* idempotent; another context may have closed it */
-    if (a->user_count >= ACC_MAX_USER_PROGRAMS) {
-        fprintf(stderr, "brdfbench: at most %d user models per sweep context\n", ACC_MAX_USER_PROGRAMS);
-        return EXIT_RUNTIME;
-    }
-    struct acc_user_program *u = &a->user[a->user_count];
-    memset(u, 0, sizeof *u);
-    int rc = usermodel_build(a->s, "accuracy.cl", m, a->build_options, &u->program);
-    if (rc)
-        return rc;
-    cl_int e;
-    u->model = m->info;
-    ++a->user_count;   /* from here accuracy_close releases it */
-    u->sweep = clCreateKernel(u->program, "accuracy_sweep", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(accuracy_sweep, user model)", fail);
-    u->probe = clCreateKernel(u->program, "models_probe", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(models_probe, user model)", fail);
-    rc = usermodel_reference_open(um, a->s);
-fail:
+    int rc = programs_kernel(a->s, "accuracy.cl", a->build_options, m, "accuracy_sweep", a->sweep, sweep);
+    if (rc == 0)
+        rc = programs_kernel(a->s, "accuracy.cl", a->build_options, m, "models_probe", a->probe, probe);
     return rc;
 }
 
-/* The sweep and probe kernels that evaluate model m. */
-static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
+int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m)
 {
-    *sweep = a->sweep;
-    *probe = a->probe;
-    if (!usermodel_of(m))
-        return 0;
-    int rc = accuracy_prepare(a, m);
-    if (rc)
-        return rc;
-    for (int i = 0; i < a->user_count; ++i)
-        if (a->user[i].model == m->info) {
-            *sweep = a->user[i].sweep;
-            *probe = a->user[i].probe;
-        }
-    return 0;
+    cl_kernel sweep, probe;
+    return kernels_for(a, m, &sweep, &probe);
 }
 
 void accuracy_result_free(struct accuracy_result *r)
@@ -208,10 +173,10 @@ struct refine_ctx {
     int relative;
 };
 
-static double refine_error(double x, void *p)
+static double refine_error(double s, void *p)
 {
     const struct refine_ctx *r = p;
-    double c = cos(x);
+    double c = 1.0 - s;
     /* Where the model is invalid (NaN, Inf, negative) the point is counted elsewhere and
        never becomes a maximum, as on the device. */
     double f = model_eval_host(r->m, c, r->n);
@@ -222,34 +187,35 @@ static double refine_error(double x, void *p)
 
 enum zone { ZONE_EPICENTRE, ZONE_ATTENUATION };
 
-/* The grid bracket [lo, hi] around x: one sample either side, as the kernel spaces them. */
-static void grid_bracket(enum zone z, double n, long samples, double x, double *lo, double *hi)
+/* The grid bracket [lo, hi] around s: one sample either side, as the kernel spaces them
+   (kernels/accuracy.cl), within the zone. */
+static void grid_bracket(enum zone z, double n, long samples, double s, double *lo, double *hi)
 {
-    double x_e = zone_epicentre_end(n);
+    double s_e = zone_epicentre_end_s(n);
     if (z == ZONE_EPICENTRE) {
-        double h = x_e / (double)(samples - 1);
-        *lo = fmax(0.0, x - h);
-        *hi = fmin(x_e, x + h);
+        double h = s_e / (double)(samples - 1);
+        *lo = fmax(0.0, s - h);
+        *hi = fmin(s_e, s + h);
         return;
     }
-    double w = half_pi - x_e;
-    double j = sqrt(fmax(0.0, (x - x_e) / w)) * (double)samples;
-    double jl = fmax(0.0, j - 1.0) / (double)samples, jh = fmin((double)samples, j + 1.0) / (double)samples;
-    *lo = x_e + w * jl * jl;
-    *hi = fmin(half_pi, x_e + w * jh * jh);
+    /* s = s_e r^j, r = (1/s_e)^(1/samples). */
+    double log_r = -log(s_e) / (double)samples;
+    double j = log_r > 0 ? log(fmax(s, s_e) / s_e) / log_r : 0.0;
+    *lo = fmax(s_e, s_e * exp((j - 1.0) * log_r));
+    *hi = fmin(1.0, s_e * exp((j + 1.0) * log_r));
 }
 
-/* Polishes one per-n maximum in double: from the device's grid maximum at cosine c,
- * a Brent search over the grid bracket around it. */
-static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone z, int relative, double n, float c)
+/* Polishes one per-n maximum in double: from the device's grid maximum at s = 1 - c,
+ * a Brent search over the grid bracket around it, kept inside the zone. */
+static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone z, int relative, double n, float s_dev)
 {
     struct acc_extreme e = { NAN, n, NAN };
-    if (!(c >= 0))
+    if (!(s_dev >= 0))
         return e;
     struct refine_ctx rc = { &r->model, &r->reference, n, relative };
-    double x_e = zone_epicentre_end(n);
-    double ends[2] = { z == ZONE_EPICENTRE ? 0.0 : x_e, z == ZONE_EPICENTRE ? x_e : half_pi };
-    double x0 = acos((double)c), lo, hi;
+    double s_e = zone_epicentre_end_s(n);
+    double ends[2] = { z == ZONE_EPICENTRE ? 0.0 : s_e, z == ZONE_EPICENTRE ? s_e : 1.0 };
+    double x0 = fmin(fmax((double)s_dev, ends[0]), ends[1]), lo, hi;
     /* Where the error is flat near its maximum, float noise can put the device's best sample a
        few samples away from the true maximum; a maximum found at an end of the bracket that is
        not an end of the zone means the error still rises beyond it, so the bracket walks on.
@@ -272,6 +238,9 @@ static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone 
             e.x = ends[k];
         }
     }
+    if (!(e.value > -INFINITY))   /* every candidate invalid */
+        e.value = NAN;
+    e.x = angle_of_s(e.x);
     return e;
 }
 
@@ -286,19 +255,29 @@ static void range_max_double(const struct accuracy_result *r, size_t offset, str
     }
 }
 
-static void range_max_device(const struct accuracy_result *r, size_t value_offset, size_t cos_offset,
+static void range_max_device(const struct accuracy_result *r, size_t value_offset, size_t s_offset,
                              struct acc_extreme *out)
 {
     out->value = out->n = out->x = NAN;
     for (long i = 0; i < r->n_count; ++i) {
         float v = *(const float *)((const char *)&r->per_n[i] + value_offset);
-        float c = *(const float *)((const char *)&r->per_n[i] + cos_offset);
+        float s = *(const float *)((const char *)&r->per_n[i] + s_offset);
         if (v >= 0 && (v > out->value || isnan(out->value))) {
             out->value = v;
             out->n = r->per_n[i].n;
-            out->x = acos((double)c);
+            out->x = angle_of_s((double)s);
         }
     }
+}
+
+/* |device - double| of one device figure at its own s; NAN when the device had none. */
+static double check_one(const struct accuracy_result *r, float value, float s, double n, int relative)
+{
+    if (!(value >= 0))
+        return NAN;
+    double c = 1.0 - (double)s;
+    double d = relative ? error_rel_host(&r->model, &r->reference, c, n) : error_abs_host(&r->model, &r->reference, c, n);
+    return fabs((double)value - d);   /* NaN (the host finds no value) compares as a disagreement below */
 }
 
 /* Recomputes every per-n figure in double at the device's own inputs. */
@@ -306,20 +285,80 @@ static void check_per_n(struct accuracy_result *r)
 {
     r->check_rel_diff = r->check_abs_diff = 0;
     for (long i = 0; i < r->n_count; ++i) {
-        const struct acc_per_n *p = &r->per_n[i];
-        if (p->epi_rel >= 0) {
-            double d = fabs(p->epi_rel - error_rel_host(&r->model, &r->reference, p->epi_rel_c, p->n));
-            if (!(d <= r->check_rel_diff)) r->check_rel_diff = d;
-        }
-        if (p->att_abs >= 0) {
-            double d = fabs(p->att_abs - error_abs_host(&r->model, &r->reference, p->att_abs_c, p->n));
-            if (!(d <= r->check_abs_diff)) r->check_abs_diff = d;
-        }
-        if (p->epi_abs >= 0) {
-            double d = fabs(p->epi_abs - error_abs_host(&r->model, &r->reference, p->epi_abs_c, p->n));
-            if (!(d <= r->check_abs_diff)) r->check_abs_diff = d;
-        }
+        struct acc_per_n *p = &r->per_n[i];
+        p->ref_peak = fabs(model_eval_host(&r->reference, 1.0, p->n));
+        p->chk_epi_rel = check_one(r, p->epi_rel, p->epi_rel_s, p->n, 1);
+        p->chk_att_abs = check_one(r, p->att_abs, p->att_abs_s, p->n, 0);
+        p->chk_epi_abs = check_one(r, p->epi_abs, p->epi_abs_s, p->n, 0);
+        if (p->epi_rel >= 0 && !(p->chk_epi_rel <= r->check_rel_diff)) r->check_rel_diff = p->chk_epi_rel;
+        if (p->att_abs >= 0 && !(p->chk_att_abs <= r->check_abs_diff)) r->check_abs_diff = p->chk_att_abs;
+        if (p->epi_abs >= 0 && !(p->chk_epi_abs <= r->check_abs_diff)) r->check_abs_diff = p->chk_epi_abs;
     }
+}
+
+/* One unit in the 4th significant digit of v; 0 when v is not a positive finite number. */
+static double fourth_digit_unit(double v)
+{
+    return (v > 0 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
+}
+
+/* Folds one per-n difference d, against reported figure f, into the verdict. */
+static void check_fold(struct acc_check *out, double d, double figure, double scale, double n, const char *name,
+                       int device_had_value)
+{
+    if (!device_had_value || isnan(figure))
+        return;
+    double unit = fourth_digit_unit(figure);
+    /* A NaN difference (the double finds no value where the device did) is a disagreement. */
+    int exceeded = (isnan(d) || d > ACC_CHECK_BOUND_UNITS * unit) && !(d <= ACC_CHECK_FLOAT_FLOOR * scale);
+    /* A figure below the float floor (a model equal to its reference, ~1e-16 in double) has no
+       4th digit a float device could give: its units are not counted unless it is exceeded. */
+    double units = isnan(d) ? INFINITY : unit > 0 ? d / unit : (d > 0 ? INFINITY : 0.0);
+    if (!exceeded && !(figure >= ACC_CHECK_FLOAT_FLOOR * scale))
+        units = 0;
+    /* The worst is the one that exceeds, then the most units. */
+    if ((exceeded && !out->exceeded) || (exceeded == out->exceeded && !(units <= out->units))) {
+        out->units = units;
+        out->diff = d;
+        out->n = n;
+        out->figure = name;
+        out->exceeded = exceeded;
+    }
+}
+
+void accuracy_check_figures(const struct accuracy_result *r, double n_lo, double n_hi, double epi_rel,
+                            double att_abs, double whole_abs, struct acc_check *out)
+{
+    out->units = 0;
+    out->diff = out->n = NAN;
+    out->figure = "";
+    out->exceeded = 0;
+    float lo = (float)n_lo, hi = (float)n_hi;
+    for (long i = 0; i < r->n_count; ++i) {
+        const struct acc_per_n *p = &r->per_n[i];
+        if (p->n < lo || p->n > hi)
+            continue;
+        double scale = p->ref_peak > 0 && isfinite(p->ref_peak) ? p->ref_peak : 1.0;
+        check_fold(out, p->chk_epi_rel, epi_rel, 1.0, p->n, "epicentre.max_rel", p->epi_rel >= 0);
+        check_fold(out, p->chk_att_abs, att_abs, scale, p->n, "attenuation.max_abs", p->att_abs >= 0);
+        /* Both zones' absolute figures stand behind the whole range's maximum. */
+        check_fold(out, p->chk_att_abs, whole_abs, scale, p->n, "whole.max_abs", p->att_abs >= 0);
+        check_fold(out, p->chk_epi_abs, whole_abs, scale, p->n, "whole.max_abs", p->epi_abs >= 0);
+    }
+}
+
+void accuracy_format_n(double n, char *buf, size_t len)
+{
+    for (int digits = 6; digits <= 9; ++digits) {
+        snprintf(buf, len, "%.*g", digits, n);
+        if (strtof(buf, NULL) == (float)n)
+            return;
+    }
+}
+
+const char *accuracy_status(const struct accuracy_result *r)
+{
+    return !r->ok ? "failed" : r->device_disagrees ? "device_disagrees" : r->invalid_count ? "invalid_values" : "ok";
 }
 
 /* Compares single model values at pseudo-random points of both zones with the double
@@ -406,14 +445,14 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
         const float *o = raw + i * ACC_OUT_STRIDE;
         struct acc_per_n *p = &out->per_n[i];
         p->n = nv[i];
-        p->epi_rel = o[0]; p->epi_rel_c = o[1];
-        p->att_abs = o[2]; p->att_abs_c = o[3];
-        p->epi_abs = o[4]; p->epi_abs_c = o[5];
-        p->invalid_count = o[6]; p->invalid_c = o[7];
+        p->epi_rel = o[0]; p->epi_rel_s = o[1];
+        p->att_abs = o[2]; p->att_abs_s = o[3];
+        p->epi_abs = o[4]; p->epi_abs_s = o[5];
+        p->invalid_count = o[6]; p->invalid_s = o[7];
         if (o[6] > 0) {
             if (out->invalid_count == 0) {
                 out->invalid_n = p->n;
-                out->invalid_x = acos((double)o[7]);
+                out->invalid_x = angle_of_s((double)o[7]);
             }
             out->invalid_count += (long long)o[6];
         }
@@ -422,19 +461,21 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     check_per_n(out);
     for (long i = 0; i < count; ++i) {
         struct acc_per_n *p = &out->per_n[i];
-        p->epi_rel_d = refine_one(out, ZONE_EPICENTRE, 1, p->n, p->epi_rel_c);
-        p->att_abs_d = refine_one(out, ZONE_ATTENUATION, 0, p->n, p->att_abs_c);
-        p->epi_abs_d = refine_one(out, ZONE_EPICENTRE, 0, p->n, p->epi_abs_c);
+        /* A zone where the device met no valid model value has no figure: the double stage
+           does not search it on its own (a model can overflow in float and not in double). */
+        p->epi_rel_d = refine_one(out, ZONE_EPICENTRE, 1, p->n, p->epi_rel >= 0 ? p->epi_rel_s : NAN);
+        p->att_abs_d = refine_one(out, ZONE_ATTENUATION, 0, p->n, p->att_abs >= 0 ? p->att_abs_s : NAN);
+        p->epi_abs_d = refine_one(out, ZONE_EPICENTRE, 0, p->n, p->epi_abs >= 0 ? p->epi_abs_s : NAN);
     }
     struct acc_extreme epi_abs, grid_epi_abs;
     range_max_double(out, offsetof(struct acc_per_n, epi_rel_d), &out->epicentre);
     range_max_double(out, offsetof(struct acc_per_n, att_abs_d), &out->attenuation);
     range_max_double(out, offsetof(struct acc_per_n, epi_abs_d), &epi_abs);
-    range_max_device(out, offsetof(struct acc_per_n, epi_rel), offsetof(struct acc_per_n, epi_rel_c),
+    range_max_device(out, offsetof(struct acc_per_n, epi_rel), offsetof(struct acc_per_n, epi_rel_s),
                      &out->grid_epicentre);
-    range_max_device(out, offsetof(struct acc_per_n, att_abs), offsetof(struct acc_per_n, att_abs_c),
+    range_max_device(out, offsetof(struct acc_per_n, att_abs), offsetof(struct acc_per_n, att_abs_s),
                      &out->grid_attenuation);
-    range_max_device(out, offsetof(struct acc_per_n, epi_abs), offsetof(struct acc_per_n, epi_abs_c),
+    range_max_device(out, offsetof(struct acc_per_n, epi_abs), offsetof(struct acc_per_n, epi_abs_s),
                      &grid_epi_abs);
     out->whole = (epi_abs.value > out->attenuation.value || isnan(out->attenuation.value)) ? epi_abs : out->attenuation;
     out->grid_whole = (grid_epi_abs.value > out->grid_attenuation.value || isnan(out->grid_attenuation.value))
@@ -444,13 +485,34 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
         goto done;
 
     out->ok = isfinite(out->epicentre.value) && isfinite(out->attenuation.value);
-    if (out->invalid_count > 0)
-        snprintf(out->reason, sizeof out->reason,
-                 "%lld model values were NaN, Inf or negative (first at n = %g, x = %.6g); they are excluded from the maxima",
-                 out->invalid_count, out->invalid_n, out->invalid_x);
-    else if (!out->ok)
-        snprintf(out->reason, sizeof out->reason, "no finite error values");
-    const char *note = usermodel_reference_note(usermodel_of(m));
+    accuracy_check_figures(out, -INFINITY, INFINITY, out->epicentre.value, out->attenuation.value, out->whole.value,
+                           &out->check);
+    out->device_disagrees = out->check.exceeded;
+    size_t used = 0;
+    if (!out->ok)
+        used += (size_t)snprintf(out->reason + used, sizeof out->reason - used, "no finite error values; ");
+    if (out->device_disagrees && used < sizeof out->reason) {
+        char nt[32];
+        accuracy_format_n(out->check.n, nt, sizeof nt);
+        used += (size_t)snprintf(out->reason + used, sizeof out->reason - used,
+                                 "device and double disagree on %s at n = %s by %.3g (%.4g units of its 4th "
+                                 "significant digit; bound %g): the device may have missed the maximum; ",
+                                 out->check.figure, nt, out->check.diff, out->check.units, ACC_CHECK_BOUND_UNITS);
+        fprintf(stderr, "brdfbench: warning: %s: device and double disagree on %s at n = %s by %.4g units of its "
+                        "4th significant digit (bound %g)\n", m->label, out->check.figure, nt, out->check.units,
+                ACC_CHECK_BOUND_UNITS);
+    }
+    if (out->invalid_count > 0 && used < sizeof out->reason) {
+        char nt[32];
+        accuracy_format_n(out->invalid_n, nt, sizeof nt);
+        used += (size_t)snprintf(out->reason + used, sizeof out->reason - used,
+                                 "%lld model values were NaN, Inf or negative (first at n = %s, x = %.6g); they are "
+                                 "excluded from the maxima; ",
+                                 out->invalid_count, nt, out->invalid_x);
+    }
+    if (used >= 2 && used < sizeof out->reason)
+        out->reason[used - 2] = '\0';   /* the last "; " */
+    const char *note = model_eval_note(m);
     if (note && !out->reason[0])
         snprintf(out->reason, sizeof out->reason, "%s", note);
 done:
@@ -501,8 +563,8 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
     size_t local = sweep_local_size(count, a->s->compute_units);
     size_t global = ((size_t)count + local - 1) / local * local;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(a->s->queue, sweep, 1, NULL, &global, &local, 0, NULL, &ev), done);
-    CL_CHECK_GOTO(clFinish(a->s->queue), done);
+    if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
+        goto done;
     *device_seconds = cl_event_seconds(ev);
     if (raw)
         CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),

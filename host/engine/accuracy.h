@@ -10,7 +10,19 @@
 #define ACC_DEFAULT_SAMPLES 4096
 #define ACC_MIN_SAMPLES 16
 #define ACC_MAX_SAMPLES (1L << 22)
+/* Below 0.1 the epicentre ends within e^(-5.11) of c = 0 and the lobe falls from e^-0.511 to 0
+ * inside the last few float steps of s = 1 - c (below n = 0.03 the zone end itself rounds to
+ * s = 1, where the lobe is 0): no float grid resolves it. */
+#define ACC_MIN_N 0.1
 #define ACC_MAX_N 1e6
+/* The device-vs-double check (accuracy_run): a figure is trusted when every per-n device value
+ * behind it, recomputed in double at the device's own input, differs by at most half a unit in
+ * the 4th significant digit of the reported figure: the device then picks a grid point whose
+ * true value is within one unit of the grid's best, and the double polish only climbs from
+ * there. Differences below ACC_CHECK_FLOAT_FLOOR times the reference's peak (16 float ulps of
+ * 1) are float rounding, which no float device can do better than, and are never flagged. */
+#define ACC_CHECK_BOUND_UNITS 0.5
+#define ACC_CHECK_FLOAT_FLOOR 1.9073486328125e-06   /* 2^-19 */
 #define ACC_MAX_N_COUNT 10000000L
 #define ACC_MAX_WORK 1e12        /* n values x samples: beyond this a sweep would run for hours */
 
@@ -24,15 +36,26 @@ struct acc_extreme {
     double value, n, x;
 };
 
-/* Per-n figures: as the device reduced them (float, with the cosines where they occur), and
- * the same maxima polished in double on the host (value and x). */
+/* Per-n figures: as the device reduced them (float, with s = 1 - cos x where they occur),
+ * the same maxima polished in double on the host (value and x), and |device - double| of
+ * each device figure recomputed in double at the device's own s (NAN when there was none). */
 struct acc_per_n {
     double n;
-    float epi_rel, epi_rel_c;
-    float att_abs, att_abs_c;
-    float epi_abs, epi_abs_c;
-    float invalid_count, invalid_c;
+    float epi_rel, epi_rel_s;
+    float att_abs, att_abs_s;
+    float epi_abs, epi_abs_s;
+    float invalid_count, invalid_s;
     struct acc_extreme epi_rel_d, att_abs_d, epi_abs_d;
+    double chk_epi_rel, chk_att_abs, chk_epi_abs;
+    double ref_peak;               /* the reference's peak f_ref(1, n), the scale of Delta */
+};
+
+/* The verdict of the device-vs-double check over some n values, for given figures. */
+struct acc_check {
+    double units;                  /* worst |device - double| in units of the 4th digit of its figure */
+    double diff, n;                /* that difference and where (NAN when nothing was compared) */
+    const char *figure;            /* "epicentre.max_rel", "attenuation.max_abs" or "whole.max_abs" */
+    int exceeded;                  /* 1 when beyond ACC_CHECK_BOUND_UNITS and the float floor */
 };
 
 struct accuracy_result {
@@ -47,6 +70,7 @@ struct accuracy_result {
     /* Largest |device - double host| over every per-n reduced figure, recomputed at the
        device's own inputs: for relative figures (delta) and absolute figures (Delta). */
     double check_rel_diff, check_abs_diff;
+    struct acc_check check;        /* the verdict on the reported figures */
     /* Largest relative difference of single model values at random probe points. */
     double probe_rel_diff;
     long long invalid_count;       /* model values that were NaN, Inf or negative */
@@ -54,15 +78,8 @@ struct accuracy_result {
     double device_seconds;         /* sum of kernel times (profiling events) */
     double points;                 /* samples evaluated (each: the model and its reference) */
     int ok;                        /* 0 when figures are missing; reason says why */
-    char reason[256];
-};
-
-/* A user model (host/usermodel.h) gets its own build of the sweep program. */
-#define ACC_MAX_USER_PROGRAMS 8
-struct acc_user_program {
-    const struct model_info *model;
-    cl_program program;
-    cl_kernel sweep, probe;
+    int device_disagrees;          /* the check exceeded its bound: reason says where */
+    char reason[640];
 };
 
 struct accuracy_ctx {
@@ -70,8 +87,6 @@ struct accuracy_ctx {
     cl_program program;
     cl_kernel sweep, probe;
     char build_options[256];
-    struct acc_user_program user[ACC_MAX_USER_PROGRAMS];
-    int user_count;
 };
 
 
@@ -85,8 +100,8 @@ double accuracy_grid_n(const struct accuracy_grid *g, long i);
 /* Builds the sweep program once. Returns 0 or an exit code. */
 int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *build_options);
 void accuracy_close(struct accuracy_ctx *a);
-/* Builds what model m needs beyond the shared program: for a user model its own sweep program
- * and its reference; nothing for a built-in model. accuracy_run calls it too; calling it
+/* Builds what model m needs beyond the shared program (host/core/programs.h): for a user model
+ * its own sweep program and its host reference; nothing for a built-in model. accuracy_run calls it too; calling it
  * first reports a user model's compile error (EXIT_USAGE) before any sweep runs. */
 int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m);
 /* Runs the sweep of one model over a checked grid. Returns 0 or an exit code. */
@@ -103,8 +118,21 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
 int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const float *c, const float *n,
                    size_t count, float *out);
 
-/* Zone geometry in double (SPEC.md). */
+/* The check over the n values in [n_lo, n_hi] of figures measured as max_rel (epicentre),
+ * max_abs over the attenuation zone and over the whole range (each NAN when not wanted). */
+void accuracy_check_figures(const struct accuracy_result *r, double n_lo, double n_hi, double epi_rel,
+                            double att_abs, double whole_abs, struct acc_check *out);
+/* n as the device sees it (a float), in the fewest digits that give that float back
+ * (0.1, 999000.5, 1e+06; up to 9). */
+void accuracy_format_n(double n, char *buf, size_t len);
+/* The JSON status word of a result: ok, invalid_values, device_disagrees or failed. */
+const char *accuracy_status(const struct accuracy_result *r);
+
+/* Zone geometry in double (SPEC.md): x_e(n), and the same end as s = 1 - cos x_e = -expm1(-0.511/n). */
 double zone_epicentre_end(double n);
+double zone_epicentre_end_s(double n);
+/* x = acos(1 - s), without the cancellation: 2 asin(sqrt(s/2)). */
+double angle_of_s(double s);
 /* Double-precision errors at cosine c: relative |f - r| / r and absolute |f - r|. */
 double error_rel_host(const struct model_spec *m, const struct model_spec *ref, double c, double n);
 double error_abs_host(const struct model_spec *m, const struct model_spec *ref, double c, double n);

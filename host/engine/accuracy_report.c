@@ -9,24 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Size of one unit in the 4th significant digit of v; 0 for figures at float resolution
- * (below 1e-6: a model equal to its reference), whose digits the float device cannot
- * resolve and the double host alone gives. */
-static double fourth_digit_unit(double v)
-{
-    return (v >= 1e-6 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
-}
-
-double accuracy_check_in_digits(const struct accuracy_result *r)
-{
-    double worst = 0;
-    double ue = fourth_digit_unit(r->epicentre.value), ua = fourth_digit_unit(r->attenuation.value);
-    if (ue > 0)
-        worst = fmax(worst, r->check_rel_diff / ue);
-    if (ua > 0)
-        worst = fmax(worst, r->check_abs_diff / ua);
-    return worst;
-}
+double accuracy_check_in_digits(const struct accuracy_result *r) { return r->check.units; }
 
 static void jw_extreme(struct jw *w, const char *key, const char *metric, const char *grid_metric,
                        const struct acc_extreme *e, const struct acc_extreme *g, const char *reason)
@@ -59,8 +42,8 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_num(&w, "n_step", g->n_step);
         jw_kv_int(&w, "n_count", res[0].n_count);
         jw_kv_int(&w, "samples_per_zone", g->samples);
-        jw_kv_str(&w, "epicentre", "x uniform over [0, x_e(n)], x_e(n) = acos(exp(-0.511/n)), both ends included");
-        jw_kv_str(&w, "attenuation", "x = x_e + (pi/2 - x_e) t^2, t = j/samples, j = 1..samples");
+        jw_kv_str(&w, "epicentre", "s = 1 - cos x uniform over [0, s_e(n)], s_e(n) = 1 - exp(-0.511/n), both ends included");
+        jw_kv_str(&w, "attenuation", "s = s_e (1/s_e)^t, t = j/samples, j = 1..samples (geometric from s_e to 1, x = pi/2)");
         jw_kv_str(&w, "maxima", "located on the device grid (float), recomputed and polished in double on the host (GSL Brent)");
         jw_obj_end(&w);
     }
@@ -80,7 +63,7 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_str(&w, "reference", r->reference.label);
         jw_kv_num(&w, "n_min", r->grid.n_min);
         jw_kv_num(&w, "n_max", r->grid.n_max);
-        jw_kv_str(&w, "status", r->ok ? (r->invalid_count ? "invalid_values" : "ok") : "failed");
+        jw_kv_str(&w, "status", accuracy_status(r));
         if (r->reason[0])
             jw_kv_str(&w, "reason", r->reason);
         jw_extreme(&w, "epicentre", "max_rel", "grid_max_rel", &r->epicentre, &r->grid_epicentre, r->reason);
@@ -92,7 +75,16 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_num(&w, "max_abs_diff", r->check_abs_diff);
         jw_kv_num(&w, "probe_max_diff_of_peak", r->probe_rel_diff);
         jw_kv_num(&w, "in_4th_digit_units", accuracy_check_in_digits(r));
-        jw_kv_str(&w, "what", "every per-n device figure recomputed in double at the device's own input; "
+        jw_kv_num(&w, "bound_4th_digit_units", ACC_CHECK_BOUND_UNITS);
+        jw_kv_num(&w, "float_floor_of_peak", ACC_CHECK_FLOAT_FLOOR);
+        jw_kv_str(&w, "worst_figure", r->check.figure);
+        jw_kv_num(&w, "worst_at_n", r->check.n);
+        jw_kv_num(&w, "worst_diff", r->check.diff);
+        jw_kv_str(&w, "status", r->check.exceeded ? "exceeded" : "ok");
+        jw_kv_str(&w, "what", "every per-n device figure recomputed in double at the device's own input (s = 1 - cos x), "
+                              "in units of the 4th significant digit of the reported figure it stands behind; the bound "
+                              "is half a unit (then the device's choice of grid point costs at most one unit), and "
+                              "differences below float_floor_of_peak times the reference's peak are float rounding; "
                               "probe: model values at 4096 points against double, relative to the reference's peak");
         jw_obj_end(&w);
         jw_key(&w, "invalid");
@@ -152,10 +144,31 @@ void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count)
             "(atten.)", "", "(rad)", "max Delta", "");
     for (int i = 0; i < count; ++i) {
         const struct accuracy_result *r = &res[i];
-        fprintf(f, "%-22s %-8s %9.4g%% %8.6g %8.4g  %9.4g %8.6g %8.4g  %9.4g  %8.3g\n", r->model.label,
-                r->reference.info->id, 100.0 * r->epicentre.value, r->epicentre.n, r->epicentre.x,
-                r->attenuation.value, r->attenuation.n, r->attenuation.x, r->whole.value,
-                r->points / r->device_seconds * 1e-9);
+        char epi[32], att[32], whole[32];
+        /* A figure that does not exist (no finite value) is "-", never a number. */
+        if (isfinite(r->epicentre.value)) snprintf(epi, sizeof epi, "%9.4g%%", 100.0 * r->epicentre.value);
+        else snprintf(epi, sizeof epi, "%10s", "-");
+        if (isfinite(r->attenuation.value)) snprintf(att, sizeof att, "%9.4g", r->attenuation.value);
+        else snprintf(att, sizeof att, "%9s", "-");
+        if (isfinite(r->whole.value)) snprintf(whole, sizeof whole, "%9.4g", r->whole.value);
+        else snprintf(whole, sizeof whole, "%9s", "-");
+        /* n as the device sees it (a float), in as many digits as it takes (up to 9). */
+        char en[24] = "       -", ex[24] = "       -", an[24] = "       -", ax[24] = "       -";
+        char nt[24];
+        if (isfinite(r->epicentre.value)) {
+            accuracy_format_n(r->epicentre.n, nt, sizeof nt);
+            snprintf(en, sizeof en, "%8s", nt);
+            snprintf(ex, sizeof ex, "%8.4g", r->epicentre.x);
+        }
+        if (isfinite(r->attenuation.value)) {
+            accuracy_format_n(r->attenuation.n, nt, sizeof nt);
+            snprintf(an, sizeof an, "%8s", nt);
+            snprintf(ax, sizeof ax, "%8.4g", r->attenuation.x);
+        }
+        fprintf(f, "%-22s %-8s %s %s %s  %s %s %s  %s  %8.3g\n", r->model.label, r->reference.info->id, epi, en, ex,
+                att, an, ax, whole, r->points / r->device_seconds * 1e-9);
+        if (strcmp(accuracy_status(r), "ok") != 0)
+            fprintf(f, "  status: %s\n", accuracy_status(r));
         if (r->reason[0])
             fprintf(f, "  note: %s\n", r->reason);
     }

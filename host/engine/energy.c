@@ -113,6 +113,7 @@ int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, d
     CL_CHECK_GOTO(clSetKernelArg(c->eq11, 6, sizeof bo, &bo), done);
     size_t global = NN;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->eq11, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clsession_finish(c->s, c->eq11, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, sizeof fo, fo, 0, NULL, NULL), done);
     for (int j = 0; j < 4; ++j) {
         double sum = 0;
@@ -265,6 +266,7 @@ static int albedo_device_ex(struct integrate_ctx *c, const struct model_spec *m,
     CL_CHECK_GOTO(clSetKernelArg(c->albedo, 10, sizeof bo, &bo), done);
     size_t global[2] = { ENERGY_MAX_NODES, (size_t)count };
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->albedo, 2, NULL, global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clsession_finish(c->s, c->albedo, m->label), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, total * sizeof(float), fo, 0, NULL, NULL), done);
     for (int i = 0; i < count; ++i) {
         double sum = 0;
@@ -461,6 +463,7 @@ int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long 
     CL_CHECK_GOTO(clSetKernelArg(c->recip, 7, sizeof bo, &bo), done);
     size_t global = (size_t)pairs;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->recip, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clsession_finish(c->s, c->recip, m->label), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, (size_t)pairs * 2 * sizeof(float), fo, 0, NULL,
                                       NULL), done);
     for (long i = 0; i < pairs; ++i) {

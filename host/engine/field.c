@@ -7,6 +7,7 @@
 #include "jsonr.h"
 #include "context.h"
 #include "jsonw.h"
+#include "programs.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -57,7 +58,7 @@ int field_open(struct field_ctx *f, struct cl_session *s, const char *build_opti
     int rc = clsession_build(s, "field.cl", NULL, build_options ? build_options : "", &f->program);
     if (rc) return rc;
     cl_int e;
-    usermodel_builds_init(&f->user, s, "field.cl", "field_grid", build_options);
+    snprintf(f->build_options, sizeof f->build_options, "%s", build_options ? build_options : "");
     f->kernel = clCreateKernel(f->program, "field_grid", &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(field_grid)", fail);
     return 0;
@@ -68,7 +69,6 @@ fail:
 
 void field_close(struct field_ctx *f)
 {
-    usermodel_builds_close(&f->user);
     if (f->kernel) clReleaseKernel(f->kernel);
     if (f->program) clReleaseProgram(f->program);
     f->kernel = NULL;
@@ -152,7 +152,7 @@ int field_run(struct field_ctx *f, const struct model_spec *m, const struct fiel
         return rc;
     }
     cl_kernel kernel;   /* a user model's own build of field.cl, or the shared one */
-    if ((rc = usermodel_builds_kernel(&f->user, m, f->kernel, &kernel)) != 0)
+    if ((rc = programs_kernel(f->s, "field.cl", f->build_options, m, "field_grid", f->kernel, &kernel)) != 0)
         return rc;
     out->model = *m;
     model_reference_spec(m, &out->reference);
@@ -199,6 +199,7 @@ int field_run(struct field_ctx *f, const struct model_spec *m, const struct fiel
     CL_CHECK_GOTO(clSetKernelArg(kernel, 11, sizeof ba, &ba), done);
     size_t global[2] = {(size_t)cols, (size_t)rows};
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(f->s->queue, kernel, 2, NULL, global, NULL, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clsession_finish(f->s, kernel, m->label), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(f->s->queue, be, CL_TRUE, 0, cells * sizeof(float), out->epi_rel, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(f->s->queue, ba, CL_TRUE, 0, cells * sizeof(float), out->att_abs, 0, NULL, NULL), done);
     out->device_seconds = cl_event_seconds(ev);
@@ -232,7 +233,9 @@ static void jw_field(struct jw *w, const char *key, const float *v, size_t count
 {
     jw_key(w, key);
     jw_arr_begin(w);
-    for (size_t i = 0; i < count; i++) jw_numf(w, v[i], 4);
+    /* 9 significant digits give back every float exactly, so a redraw finds the same peaks
+       (with 4, cells near the maximum tie and the first one wins) and draws the same picture. */
+    for (size_t i = 0; i < count; i++) jw_numf(w, v[i], 9);
     jw_arr_end(w);
 }
 

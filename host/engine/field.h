@@ -14,7 +14,6 @@
 
 #include "clsession.h"
 #include "models.h"
-#include "usermodel.h"
 
 #define FIELD_SCHEMA "brdfbench.field/1"
 #define FIELD_DEFAULT_ROWS 121
@@ -50,7 +49,7 @@ struct field_ctx {
     struct cl_session *s;
     cl_program program;
     cl_kernel kernel;
-    struct usermodel_builds user;   /* field.cl built with each user model, on first use */
+    char build_options[256];        /* a user model's build of field.cl uses them too (programs.h) */
 };
 
 /* Checks rows/cols (2..10000, product <= FIELD_MAX_CELLS) and 0 < n_min < n_max <= 1e6.
@@ -71,7 +70,7 @@ void field_result_free(struct field_result *r);
 void field_find_peaks(struct field_result *r);
 
 /* field JSON: schema, context (s: the session that computed it, may be NULL), model,
- * reference, grid, both fields (4 significant digits, null for NaN), peaks, check. Returns 0 or -1 with a message. */
+ * reference, grid, both fields (9 significant digits: every float exactly; null for NaN), peaks, check. Returns 0 or -1 with a message. */
 int field_write_json(const char *path, const struct field_result *r, const struct cl_session *s, char *err,
                      size_t errlen);
 /* Reads a field JSON back. Returns 0, or 2 when missing or malformed (file:line: problem). */

@@ -1,6 +1,6 @@
 /* gate.h - accuracy gates for CI: a gates file (JSON, docs/gates.md) lists checks of a model's
  * figure over an n range against bounds; the gate command runs only the sweeps they need,
- * prints one line per gate, writes JUnit XML and JSON, and compares with a baseline. */
+ * prints one line per gate, writes JUnit XML and JSON (gate_report.h), and compares with a baseline. */
 #ifndef BRDF_GATE_H
 #define BRDF_GATE_H
 
@@ -47,6 +47,7 @@ struct gate {
     double claimed;            /* a paper's figure, reported beside the measured one */
     char note[256];
     int line, col;             /* where the gate is in the gates file */
+    int accept_device_disagreement; /* "accept_device_disagreement": true: judged on the figure alone */
 
     /* Measured. */
     enum gate_status status;
@@ -54,7 +55,8 @@ struct gate {
     double margin, margin_rel; /* distance to the nearer bound: > 0 inside, < 0 outside */
     long long invalid_count;   /* invalid model values in the gate's n range */
     double invalid_n, invalid_x;
-    char reason[400];          /* why it failed, or a note */
+    struct acc_check check;    /* device vs double over the gate's n values (accuracy.h) */
+    char reason[700];          /* why it failed, or a note */
     double seconds;            /* wall time of the work first done for this gate */
 
     /* Against a baseline (--baseline). */
@@ -92,17 +94,5 @@ int gate_set_check_device(const struct gate_set *g, const struct cl_session *s, 
 int gate_set_run(struct gate_set *g, struct cl_session *s, FILE *progress);
 /* Number of gates that failed (after gate_set_run). */
 int gate_set_failures(const struct gate_set *g);
-
-/* One line per gate and a summary. */
-void gate_set_print(FILE *f, const struct gate_set *g);
-/* JUnit XML (one testsuite, one testcase per gate) and the JSON result. Both are written
- * atomically; an existing device file (e.g. /dev/stdout) is written in place. 0 or -1. */
-int gate_set_write_junit(const struct gate_set *g, const char *path, const struct cl_session *s,
-                         char *err, size_t errlen);
-int gate_set_write_json(const struct gate_set *g, const char *path, const struct cl_session *s,
-                        char *err, size_t errlen);
-/* Checks before any sweep that path can be written: its folder exists and is writable, or it
- * is an existing device file. 0 or -1 with a message. */
-int gate_output_check(const char *flag, const char *path, char *err, size_t errlen);
 
 #endif

@@ -200,6 +200,21 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
     /* Face corners of one polygon; polygons larger than this are unusual enough to refuse. */
     enum { MAX_CORNERS = 256 };
     uint32_t corner[MAX_CORNERS];
+    /* Until a statement of the format is seen, a line that is not one means the file is
+     * something else (a binary mesh, a PLY): say which format is expected. */
+    int seen_obj = 0;
+    static const char *obj_expected = "not a Wavefront OBJ file (expected text lines of v, vt, vn and f statements)";
+    for (size_t k = 0; k < len; ++k) {
+        unsigned char ch = (unsigned char)text[k];
+        if (ch == 0 || (ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r' && ch != '\v' && ch != '\f') || ch == 0x7f) {
+            long at = 1;
+            for (size_t j = 0; j < k; ++j)
+                at += text[j] == '\n';
+            set_err(err, errlen, "%s:%ld: %s; found binary data", name, at, obj_expected);
+            free(copy);
+            return 2;
+        }
+    }
 
     char *line = copy;
     while (line && rc == 0) {
@@ -213,8 +228,11 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
         if (hash)
             *hash = '\0';
         if (strchr(line, '\\')) {
-            set_err(err, errlen, "%s:%ld: line continuation '\\' is not supported", name,
-                    line_no);
+            if (!seen_obj)
+                set_err(err, errlen, "%s:%ld: %s", name, line_no, obj_expected);
+            else
+                set_err(err, errlen, "%s:%ld: line continuation '\\' is not supported", name,
+                        line_no);
             rc = 2;
             break;
         }
@@ -223,6 +241,7 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
         if (!kw) {
             /* blank or comment line */
         } else if (strcmp(kw, "v") == 0 || strcmp(kw, "vn") == 0 || strcmp(kw, "vt") == 0) {
+            seen_obj = 1;
             int want_min = kw[1] == 't' ? 1 : 3;
             double val[3] = {0, 0, 0};
             int count = 0;
@@ -265,6 +284,7 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
                 ntex++;
             }
         } else if (strcmp(kw, "f") == 0) {
+            seen_obj = 1;
             size_t nv = pos.n / 3;
             int ncorner = 0;
             char *tok;
@@ -329,6 +349,10 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
                    strcmp(kw, "usemtl") == 0 || strcmp(kw, "mtllib") == 0 ||
                    strcmp(kw, "l") == 0 || strcmp(kw, "p") == 0 || strcmp(kw, "vp") == 0) {
             /* grouping, materials, points and lines: nothing to render from them */
+            seen_obj = 1;
+        } else if (!seen_obj) {
+            set_err(err, errlen, "%s:%ld: %s; found '%.40s'", name, line_no, obj_expected, kw);
+            rc = 2;
         } else {
             set_err(err, errlen, "%s:%ld: unknown or unsupported statement '%s'", name, line_no,
                     kw);
@@ -680,7 +704,8 @@ int patches_parse(const char *text, size_t len, const char *name, struct bezier_
         n++;
     }
     if (n == 0) {
-        set_err(err, errlen, "%s:%ld: no bicubic_patch found", name, lx.line);
+        set_err(err, errlen, "%s:%ld: no bicubic_patch found (expected a POV-Ray file with bicubic_patch blocks, "
+                "as the teapot of povray-examples)", name, lx.line);
         goto fail;
     }
     *out = arr;

@@ -113,48 +113,6 @@ static inline __attribute__((always_inline)) void hostc_work_item(const int id, 
         sum16[l] = (acc[0][l] + acc[1][l]) + (acc[2][l] + acc[3][l]);
 }
 
-/* One n of accuracy_sweep (kernels/accuracy.cl), sample by sample. */
-static inline __attribute__((always_inline)) void hostc_sweep_n(const int id, float p0, float p1, int ref,
-                                                                float rp0, float rp1, float n, long samples,
-                                                                float *o)
-{
-    const float half_pi = 1.57079632679489662f;
-    const float x_e = acos(exp(-0.511f / n));
-    const float width = half_pi - x_e;
-    const float inv_last = 1.0f / (float)(samples - 1), inv_count = 1.0f / (float)samples;
-    float epi_rel = -1.0f, epi_rel_c = 0.0f, epi_abs = -1.0f, epi_abs_c = 0.0f, att_abs = -1.0f, att_abs_c = 0.0f;
-    long bad = 0;
-    float bad_c = NAN;
-    for (long j = 0; j < samples; ++j) {
-        /* Epicentre: x uniform over [0, x_e]. Comparisons with > keep NaN out, as isgreater. */
-        float c = fmax(cos(x_e * ((float)j * inv_last)), 0.0f);
-        float f = brdf_eval(id, c, n, p0, p1), r = brdf_eval(ref, c, n, rp0, rp1);
-        /* An invalid model value (NaN, Inf, negative) is counted and kept out of the maxima. */
-        if (f < 0.0f || !isfinite(f)) {
-            if (bad++ == 0) bad_c = c;
-        } else {
-            float d = fabs(f - r), rel = d / r;
-            if (rel > epi_rel) { epi_rel = rel; epi_rel_c = c; }
-            if (d > epi_abs) { epi_abs = d; epi_abs_c = c; }
-        }
-        /* Attenuation: x = x_e + width t^2, t in (0, 1]. */
-        float t = (float)(j + 1) * inv_count;
-        c = fmax(cos(x_e + width * (t * t)), 0.0f);
-        f = brdf_eval(id, c, n, p0, p1);
-        r = brdf_eval(ref, c, n, rp0, rp1);
-        if (f < 0.0f || !isfinite(f)) {
-            if (bad++ == 0) bad_c = c;
-        } else if (fabs(f - r) > att_abs) {
-            att_abs = fabs(f - r);
-            att_abs_c = c;
-        }
-    }
-    o[0] = epi_rel; o[1] = epi_rel_c;
-    o[2] = att_abs; o[3] = att_abs_c;
-    o[4] = epi_abs; o[5] = epi_abs_c;
-    o[6] = (float)bad;  o[7] = bad_c;
-}
-
 /* Per-id instances with the id a constant (the model's switch folds away inside). */
 #define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
 
@@ -165,17 +123,6 @@ static void hostc_work_item_any(int id, float p0, float p1, const struct tp_inpu
     HOSTC_IDS(HOSTC_CASE)
 #undef HOSTC_CASE
     default: hostc_work_item(-1, p0, p1, in, gid, sum16); return;
-    }
-}
-
-static void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1, float n, long samples,
-                              float *o)
-{
-    switch (id) {
-#define HOSTC_CASE(k) case k: hostc_sweep_n(k, p0, p1, ref, rp0, rp1, n, samples, o); return;
-    HOSTC_IDS(HOSTC_CASE)
-#undef HOSTC_CASE
-    default: return;
     }
 }
 

@@ -376,7 +376,8 @@ static void jw_doubles(struct jw *w, const char *key, const double *v, size_t n)
 {
     jw_key(w, key);
     jw_arr_begin(w);
-    for (size_t i = 0; i < n; i++) jw_numf(w, v[i], 7);
+    /* 17 significant digits give back every double exactly: a redraw is the same picture. */
+    for (size_t i = 0; i < n; i++) jw_numf(w, v[i], 17);
     jw_arr_end(w);
 }
 

@@ -10,6 +10,7 @@
 #include "geometry.h"
 #include "jsonw.h"
 #include "outdir.h"
+#include "programs.h"
 #include "raster.h"
 #include "refine.h"
 #include "render_report.h"
@@ -273,7 +274,6 @@ int render_device_open(struct render_device *d, struct cl_session *s,
         free(table);
         return rc;
     }
-    usermodel_builds_init(&d->user, s, "shade.cl", "shade", "");
     d->shade = clCreateKernel(d->program, "shade", &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(shade)", fail);
     d->copy = clCreateKernel(d->program, "copy_gbuffer", &e);
@@ -292,7 +292,6 @@ fail:
 
 void render_device_close(struct render_device *d)
 {
-    usermodel_builds_close(&d->user);
     if (d->display_table)
         clReleaseMemObject(d->display_table);
     if (d->copy)
@@ -311,7 +310,7 @@ static int launch(struct render_device *d, cl_kernel k, double *seconds)
     size_t global = d->global_size, local = 1;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(d->s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev),
                   done);
-    CL_CHECK_GOTO(clWaitForEvents(1, &ev), done);
+    CL_CHECK_GOTO(clsession_finish(d->s, k, NULL), done);
     if (seconds)
         *seconds = cl_event_seconds(ev);
 done:
@@ -358,7 +357,7 @@ int render_device_shade(struct render_device *d, cl_mem gbuf, size_t stride, siz
                         unsigned *rgba, float *spec, double *seconds)
 {
     cl_kernel shade;   /* a user model's own build of shade.cl, or the shared one */
-    int rc = usermodel_builds_kernel(&d->user, m, d->shade, &shade);
+    int rc = programs_kernel(d->s, "shade.cl", "", m, "shade", d->shade, &shade);
     if (rc)
         return rc;
     rc = set_common_args(shade, gbuf, stride, npix, out_rgba, out_spec);

@@ -10,7 +10,6 @@
 
 #include "clsession.h"
 #include "models.h"
-#include "usermodel.h"
 
 #define RENDER_MAX_MODELS 32
 #define RENDER_MAX_COLS 16
@@ -104,7 +103,6 @@ struct render_device {
     struct cl_session *s;
     cl_program program;
     cl_kernel shade, copy;
-    struct usermodel_builds user;   /* shade.cl built with each user model, on first use */
     cl_mem display_table;
     int display_code_error;   /* largest table entry's distance to the exact curve, codes */
     size_t global_size;

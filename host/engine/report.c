@@ -74,6 +74,10 @@ static void accuracy_table(struct md_buf *b, const struct report_input *in)
             md_printf(b, " failed: ");
             md_cell_text(b, r->reason);
             md_printf(b, " |\n");
+        } else if (r->device_disagrees) {
+            md_printf(b, " device_disagrees: ");
+            md_cell_text(b, r->reason);
+            md_printf(b, " |\n");
         } else if (r->invalid_count) {
             md_printf(b, " %lld invalid values (first at n = %g, x = %g) |\n", r->invalid_count, r->invalid_n, r->invalid_x);
         } else if (strcmp(r->model.label, r->reference.label) == 0) {

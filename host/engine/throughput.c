@@ -7,7 +7,7 @@
 #include "exitcodes.h"
 #include "hostc_baseline.h"
 #include "outdir.h"
-#include "usermodel.h"
+#include "programs.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -164,9 +164,25 @@ int tp_program_build(struct tp_program *p, struct cl_session *s, const struct mo
     char extra[TP_MAX_MODELS * 32 + 64];
     size_t used = 0;
     extra[0] = '\0';
-    for (int i = 0; i < count && p->id_count < TP_MAX_MODELS; ++i) {
+    int rc = 0;
+    for (int i = 0; i < count && p->id_count < TP_MAX_MODELS && rc == 0; ++i) {
         int id = models[i].info->kernel_id;
-        if (usermodel_of(&models[i]))
+        /* A model that the shared build does not serve (a user model) gets throughput.cl with
+           its kernel set and its own text, from the run's cache (host/core/programs.h). */
+        char own_extra[64];
+        cl_program own = NULL;
+        snprintf(own_extra, sizeof own_extra, "TP_MODEL_KERNELS(%d)\n", id);
+        rc = programs_program(s, "throughput.cl", own_extra, p->options, &models[i], NULL, &own);
+        if (own) {
+            int known = 0;
+            for (int k = 0; k < p->user_count; ++k)
+                known |= p->user[k].model == models[i].info;
+            if (!known && p->user_count < MODELS_MAX_USER) {
+                p->user[p->user_count].model = models[i].info;
+                p->user[p->user_count++].program = own;
+            }
+        }
+        if (rc || own)
             continue;
         int seen = 0;
         for (int k = 0; k < p->id_count; ++k)
@@ -176,20 +192,9 @@ int tp_program_build(struct tp_program *p, struct cl_session *s, const struct mo
         p->ids[p->id_count++] = id;
         used += (size_t)snprintf(extra + used, sizeof extra - used, "TP_MODEL_KERNELS(%d)\n", id);
     }
-    int rc = clsession_build(s, "throughput.cl", extra, p->options, &p->program);
-    p->build_seconds = s->last_build_seconds;
-    /* A user model: throughput.cl with its kernel set and the model's text, built apart. */
-    for (int i = 0; i < count && rc == 0; ++i) {
-        int seen = 0;
-        for (int k = 0; k < p->user_count; ++k)
-            seen |= p->user[k].model == models[i].info;
-        if (!usermodel_of(&models[i]) || seen || p->user_count >= USERMODEL_MAX)
-            continue;
-        char user_extra[64];
-        snprintf(user_extra, sizeof user_extra, "TP_MODEL_KERNELS(%d)\n", models[i].info->kernel_id);
-        rc = usermodel_build_ex(s, "throughput.cl", user_extra, &models[i], p->options, &p->user[p->user_count].program);
-        if (rc == 0)
-            p->user[p->user_count++].model = models[i].info;
+    if (rc == 0) {
+        rc = clsession_build(s, "throughput.cl", extra, p->options, &p->program);
+        p->build_seconds = s->last_build_seconds;
     }
     return rc;
 }
@@ -199,9 +204,7 @@ void tp_program_release(struct tp_program *p)
     if (p->program)
         clReleaseProgram(p->program);
     p->program = NULL;
-    for (int k = 0; k < p->user_count; ++k)
-        clReleaseProgram(p->user[k].program);
-    p->user_count = 0;
+    p->user_count = 0;   /* the user models' builds belong to the run's cache */
 }
 
 /* The user model's own program, or NULL (a built-in model, or pow). */
@@ -217,8 +220,8 @@ static int tp_has(const struct tp_program *p, const struct model_spec *m)
 {
     if (!m)
         return 1;
-    if (usermodel_of(m))
-        return tp_user_program(p, m) != NULL;
+    if (tp_user_program(p, m))
+        return 1;
     for (int k = 0; k < p->id_count; ++k)
         if (p->ids[k] == m->info->kernel_id)
             return 1;
@@ -318,7 +321,7 @@ static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_
     e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, &r->local, 0, NULL, &ev);
     if (e == CL_SUCCESS) {
         *call = "clFinish";
-        e = clFinish(r->s->queue);
+        e = clsession_finish(r->s, r->k, NULL);
     }
     *wall_s = wall_seconds() - t0;
     *event_s = (e == CL_SUCCESS) ? cl_event_seconds(ev) : NAN;
@@ -578,9 +581,8 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
             snprintf(e->acc_reason[v], TP_REASON, "the points kernel failed (see stderr)");
             continue;
         }
-        /* A user model's double reference is its own text compiled for double on the device. */
-        const struct user_model *um = usermodel_of(e->m);
-        if (um && usermodel_reference_open(um, r->s)) {
+        /* The model's double reference (for a user model: host/core/programs.h). */
+        if (programs_host(r->s, e->m)) {
             snprintf(e->acc_reason[v], TP_REASON, "the user model's double reference failed (see stderr)");
             continue;
         }
@@ -600,8 +602,6 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
             if (!(d <= worst))
                 worst = d;
         }
-        if (um)
-            usermodel_reference_close(um);
         e->acc_ok[v] = 1;
         e->acc_max_diff[v] = worst;
         e->acc_nonfinite[v] = bad;

@@ -14,7 +14,6 @@
 #include "accuracy.h"
 #include "clsession.h"
 #include "models.h"
-#include "usermodel.h"
 
 /* Version 2 adds evals_per_s_reps (every timed launch's rate) to each row and its host_c;
  * version 1 files are otherwise the same and are still read by `plot` (not by `compare`). */
@@ -87,7 +86,7 @@ struct tp_program {
     struct {
         const struct model_info *model;
         cl_program program;
-    } user[USERMODEL_MAX];
+    } user[MODELS_MAX_USER];
     int user_count;
 };
 

@@ -73,6 +73,31 @@ static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
     jw_arr_end(w);
 }
 
+/* A fingerprint of the kernel sources the run compiled (embedded, or --kernel-dir's): a kernel
+   changed without a commit still shows in the context that compare lays side by side. */
+static void jw_kernel_fingerprints(struct jw *w)
+{
+    static const char *const files[] = { "brdf_models.h", "throughput.cl", "accuracy.cl", "peak.cl" };
+    jw_key(w, "kernel_sources_fnv1a64");
+    jw_obj_begin(w);
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        size_t len = 0;
+        char *src = clsession_kernel_source(files[i], &len);
+        if (!src) {
+            jw_kv_str(w, files[i], "unreadable");
+            continue;
+        }
+        unsigned long long h = 0xcbf29ce484222325ULL;   /* FNV-1a, 64 bits */
+        for (size_t k = 0; k < len; ++k)
+            h = (h ^ (unsigned char)src[k]) * 0x100000001b3ULL;
+        char hex[24];
+        snprintf(hex, sizeof hex, "%016llx", h);
+        jw_kv_str(w, files[i], hex);
+        free(src);
+    }
+    jw_obj_end(w);
+}
+
 static const char *tp_definitions[][2] = {
     { "evals_per_s", "model evaluations per second: work-items x iterations x 64 over the launch time (profiling events); min/median/max over the timed launches" },
     { "evals_per_s_wall", "the same over wall time, enqueue to clFinish" },
@@ -109,6 +134,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_kv_str(&w, "host_c_flags", "-O3 -march=native -fno-math-errno");
     jw_kv_str(&w, "loadavg_start", r->load_start);
     jw_kv_str(&w, "loadavg_end", r->load_end);
+    jw_kernel_fingerprints(&w);
     jw_obj_end(&w);
     jw_obj_end(&w);   /* context */
 
@@ -239,7 +265,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
         if (r->sweep_reason[0])
             jw_kv_str(&w, "reason", r->sweep_reason);
         jw_kv_str(&w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
-                              "(cosf for the sample cosines, powf for c^n), per model: median of the timed runs");
+                              "(the same samples in s = 1 - cos x, expf(n log1pf(-s)) for c^n), per model: median of the timed runs");
         jw_kv_num(&w, "n_min", o->sweep_grid.n_min);
         jw_kv_num(&w, "n_max", o->sweep_grid.n_max);
         jw_kv_num(&w, "n_step", o->sweep_grid.n_step);
@@ -505,7 +531,7 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
             }
         if (ok > 0)
             tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
-                         "(%.3g G points/s), tuned C with powf %.3f s (%.3g G points/s): %.2fx\n",
+                         "(%.3g G points/s), tuned C %.3f s (%.3g G points/s): %.2fx\n",
                       o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, ok == 1 ? "" : "s", pts,
                       dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
         else

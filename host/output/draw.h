@@ -140,6 +140,26 @@ struct draw_bar_chart {
 
 int draw_bar_chart(const char *path, const struct draw_bar_chart *chart, char *err, size_t errlen);
 
+/* ---- grouped ratio bars (brdfbench compare) ---------------------------------------------- */
+
+/* Horizontal bars in groups: per group (a model), one bar per series (a run) at values
+ * [g * nseries + s], as a ratio to the baseline; err_lo/err_hi (may be NULL) a whisker per bar
+ * (the run's min..max over the baseline's median); band_lo/band_hi (may be NULL) a grey band
+ * behind each group (the baseline's own min..max over its median: its noise). A dashed line
+ * marks 1. A non-finite value draws no bar and "n/a". */
+struct draw_ratio_chart {
+    const char *title, *x_label;
+    int ngroups, nseries;
+    const char *const *groups;
+    const char *const *series;
+    const double *values;
+    const double *err_lo, *err_hi;
+    const double *band_lo, *band_hi;
+    int width;                      /* 0: 1000 */
+};
+
+int draw_ratio_chart(const char *path, const struct draw_ratio_chart *chart, char *err, size_t errlen);
+
 /* ---- reading back ------------------------------------------------------------------------ */
 
 /* Decode a PNG (or any format OpenCV reads) into a malloc'd RGB row-major buffer. */

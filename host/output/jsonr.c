@@ -1,6 +1,9 @@
-/* jsonr.c - the strict JSON reader of jsonr.h: recursive descent over the whole text,
- * one tree of jr_value, every error with file:line:col. */
+/* jsonr.c - the strict JSON reader of jsonr.h on Debian's libjansson: jansson parses, and a
+ * pass over the accepted text gives every value its line and column; every error names
+ * file:line:col. */
 #include "jsonr.h"
+
+#include <jansson.h>
 
 #include <errno.h>
 #include <math.h>
@@ -12,49 +15,50 @@
 #define JR_MAX_DEPTH 64
 #define JR_MAX_FILE (256L * 1024 * 1024)
 
-struct parser {
+/* Jansson parses and decodes (strictly: RFC 8259, duplicate keys refused, UTF-8 checked); it
+ * keeps no positions, so a second pass over the text, which jansson has accepted and which is
+ * therefore well-formed, gives each value its line and column. Jansson keeps an object's
+ * members in the order of the text, so the two walks meet member by member. */
+struct walk {
     const char *s;
     size_t len, pos;
     int line, col;
-    const char *name;
-    char *err;
-    size_t errlen;
-    int depth;
 };
 
-static int perr(struct parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static int perr(struct parser *p, const char *fmt, ...)
+static void walk_advance(struct walk *w)
 {
-    char msg[256];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    snprintf(p->err, p->errlen, "%s:%d:%d: %s", p->name, p->line, p->col, msg);
-    return 2;
-}
-
-static int peek(const struct parser *p) { return p->pos < p->len ? (unsigned char)p->s[p->pos] : -1; }
-
-static void advance(struct parser *p)
-{
-    if (p->pos >= p->len) return;
-    if (p->s[p->pos] == '\n') {
-        p->line++;
-        p->col = 1;
+    if (w->pos >= w->len)
+        return;
+    if (w->s[w->pos] == '\n') {
+        w->line++;
+        w->col = 1;
     } else {
-        p->col++;
+        w->col++;
     }
-    p->pos++;
+    w->pos++;
 }
 
-static void skip_ws(struct parser *p)
+static void walk_ws(struct walk *w)
 {
-    for (;;) {
-        int c = peek(p);
-        if (c == ' ' || c == '\t' || c == '\n' || c == '\r') advance(p);
-        else break;
+    while (w->pos < w->len && strchr(" \t\r\n", w->s[w->pos]) && w->s[w->pos])
+        walk_advance(w);
+}
+
+/* Past a string (at its opening quote), a number or a literal. */
+static void walk_scalar(struct walk *w)
+{
+    if (w->pos < w->len && w->s[w->pos] == '"') {
+        walk_advance(w);
+        while (w->pos < w->len && w->s[w->pos] != '"') {
+            if (w->s[w->pos] == '\\')
+                walk_advance(w);
+            walk_advance(w);
+        }
+        walk_advance(w);
+        return;
     }
+    while (w->pos < w->len && !strchr(" \t\r\n,]}", w->s[w->pos]))
+        walk_advance(w);
 }
 
 static void free_value(struct jr_value *v)
@@ -71,303 +75,176 @@ static void free_value(struct jr_value *v)
     memset(v, 0, sizeof *v);
 }
 
-static int expect_word(struct parser *p, const char *word)
+/* Copies jansson's value j into v, with the position of its text. Returns 0 or -1 (memory). */
+static int build_value(struct walk *w, json_t *j, struct jr_value *v)
 {
-    size_t n = strlen(word);
-    if (p->len - p->pos < n || memcmp(p->s + p->pos, word, n) != 0) return perr(p, "unexpected character '%c'", peek(p) > 31 && peek(p) < 127 ? peek(p) : '?');
-    for (size_t i = 0; i < n; i++) advance(p);
-    int c = peek(p);
-    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'))
-        return perr(p, "unexpected character '%c' after %s", c, word);
-    return 0;
-}
-
-static int hex4(struct parser *p, unsigned *out)
-{
-    unsigned v = 0;
-    for (int i = 0; i < 4; i++) {
-        int c = peek(p);
-        unsigned d;
-        if (c >= '0' && c <= '9') d = (unsigned)(c - '0');
-        else if (c >= 'a' && c <= 'f') d = (unsigned)(c - 'a' + 10);
-        else if (c >= 'A' && c <= 'F') d = (unsigned)(c - 'A' + 10);
-        else return perr(p, "bad \\u escape: four hex digits expected");
-        v = v * 16 + d;
-        advance(p);
-    }
-    *out = v;
-    return 0;
-}
-
-static void put_utf8(char *buf, size_t *n, unsigned cp)
-{
-    if (cp < 0x80) buf[(*n)++] = (char)cp;
-    else if (cp < 0x800) {
-        buf[(*n)++] = (char)(0xC0 | (cp >> 6));
-        buf[(*n)++] = (char)(0x80 | (cp & 0x3F));
-    } else if (cp < 0x10000) {
-        buf[(*n)++] = (char)(0xE0 | (cp >> 12));
-        buf[(*n)++] = (char)(0x80 | ((cp >> 6) & 0x3F));
-        buf[(*n)++] = (char)(0x80 | (cp & 0x3F));
-    } else {
-        buf[(*n)++] = (char)(0xF0 | (cp >> 18));
-        buf[(*n)++] = (char)(0x80 | ((cp >> 12) & 0x3F));
-        buf[(*n)++] = (char)(0x80 | ((cp >> 6) & 0x3F));
-        buf[(*n)++] = (char)(0x80 | (cp & 0x3F));
-    }
-}
-
-/* A string at the opening quote; the result is malloc'd. Escapes never make the text
- * longer than its source, so the source length bounds the buffer. */
-static int parse_string(struct parser *p, char **out)
-{
-    int line = p->line, col = p->col; /* an unterminated string is reported where it opens */
-    advance(p); /* opening quote */
-    size_t start = p->pos, end = start;
-    while (end < p->len && p->s[end] != '"') end += (p->s[end] == '\\') ? 2 : 1;
-    char *buf = malloc(end - start + 1);
-    if (!buf) return perr(p, "out of memory");
-    size_t n = 0;
-    for (;;) {
-        int c = peek(p);
-        if (c < 0) {
-            free(buf);
-            p->line = line, p->col = col;
-            return perr(p, "unterminated string");
+    walk_ws(w);
+    v->line = w->line;
+    v->col = w->col;
+    switch (json_typeof(j)) {
+    case JSON_OBJECT:
+    case JSON_ARRAY: {
+        int object = json_is_object(j);
+        size_t n = object ? json_object_size(j) : json_array_size(j);
+        v->type = object ? JR_OBJ : JR_ARR;
+        walk_advance(w); /* { or [ */
+        if (n) {
+            v->items = calloc(n, sizeof *v->items);
+            if (!v->items || (object && !(v->keys = calloc(n, sizeof *v->keys))))
+                return -1;
         }
-        if (c == '"') {
-            advance(p);
-            break;
-        }
-        if (c < 0x20) {
-            free(buf);
-            return perr(p, "control character in a string");
-        }
-        if (c != '\\') {
-            buf[n++] = (char)c;
-            advance(p);
-            continue;
-        }
-        advance(p);
-        int e = peek(p);
-        const char *simple = "\"\\/bfnrt", *value = "\"\\/\b\f\n\r\t";
-        const char *k = e > 0 ? strchr(simple, e) : NULL;
-        if (k && *k) {
-            buf[n++] = value[k - simple];
-            advance(p);
-            continue;
-        }
-        if (e != 'u') {
-            free(buf);
-            return perr(p, "bad escape in a string");
-        }
-        advance(p);
-        unsigned cp;
-        if (hex4(p, &cp)) {
-            free(buf);
-            return 2;
-        }
-        if (cp >= 0xD800 && cp <= 0xDBFF) { /* a surrogate pair */
-            unsigned lo;
-            if (peek(p) != '\\') {
-                free(buf);
-                return perr(p, "lone high surrogate in a \\u escape");
+        void *it = object ? json_object_iter(j) : NULL;
+        for (size_t i = 0; i < n; ++i) {
+            json_t *item;
+            walk_ws(w);
+            if (object) {
+                walk_scalar(w); /* the member's name */
+                walk_ws(w);
+                walk_advance(w); /* : */
+                const char *key = json_object_iter_key(it);
+                size_t klen = json_object_iter_key_len(it);
+                item = json_object_iter_value(it);
+                it = json_object_iter_next(j, it);
+                if (!(v->keys[i] = malloc(klen + 1)))
+                    return -1;
+                memcpy(v->keys[i], key, klen + 1);
+            } else {
+                item = json_array_get(j, i);
             }
-            advance(p);
-            if (peek(p) != 'u') {
-                free(buf);
-                return perr(p, "lone high surrogate in a \\u escape");
-            }
-            advance(p);
-            if (hex4(p, &lo)) {
-                free(buf);
-                return 2;
-            }
-            if (lo < 0xDC00 || lo > 0xDFFF) {
-                free(buf);
-                return perr(p, "bad low surrogate in a \\u escape");
-            }
-            cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
-        } else if (cp >= 0xDC00 && cp <= 0xDFFF) {
-            free(buf);
-            return perr(p, "lone low surrogate in a \\u escape");
+            v->count = i + 1;
+            if (build_value(w, item, &v->items[i]))
+                return -1;
+            walk_ws(w);
+            walk_advance(w); /* , or the closing bracket */
         }
-        if (cp == 0) {
-            free(buf);
-            return perr(p, "\\u0000 in a string is not supported");
+        if (!n) {
+            walk_ws(w);
+            walk_advance(w);
         }
-        put_utf8(buf, &n, cp);
-    }
-    buf[n] = 0;
-    *out = buf;
-    return 0;
-}
-
-static int parse_number(struct parser *p, double *out)
-{
-    size_t start = p->pos;
-    int line = p->line, col = p->col;
-    if (peek(p) == '-') advance(p);
-    if (peek(p) == '0') {
-        advance(p);
-        if (peek(p) >= '0' && peek(p) <= '9') return perr(p, "leading zero in a number");
-    } else if (peek(p) >= '1' && peek(p) <= '9') {
-        while (peek(p) >= '0' && peek(p) <= '9') advance(p);
-    } else {
-        return perr(p, "digit expected");
-    }
-    if (peek(p) == '.') {
-        advance(p);
-        if (!(peek(p) >= '0' && peek(p) <= '9')) return perr(p, "digit expected after '.'");
-        while (peek(p) >= '0' && peek(p) <= '9') advance(p);
-    }
-    if (peek(p) == 'e' || peek(p) == 'E') {
-        advance(p);
-        if (peek(p) == '+' || peek(p) == '-') advance(p);
-        if (!(peek(p) >= '0' && peek(p) <= '9')) return perr(p, "digit expected in the exponent");
-        while (peek(p) >= '0' && peek(p) <= '9') advance(p);
-    }
-    char tmp[64];
-    size_t n = p->pos - start;
-    if (n >= sizeof tmp) {
-        p->line = line, p->col = col;
-        return perr(p, "number too long");
-    }
-    memcpy(tmp, p->s + start, n);
-    tmp[n] = 0;
-    errno = 0;
-    char *end;
-    double v = strtod(tmp, &end);
-    if (*end || !isfinite(v) || (errno == ERANGE && fabs(v) > 1.0)) {
-        p->line = line, p->col = col;
-        return perr(p, "number %s out of range", tmp);
-    }
-    *out = v;
-    return 0;
-}
-
-static int parse_value(struct parser *p, struct jr_value *v);
-
-/* Appends an item to a container, growing it geometrically. */
-static struct jr_value *push_item(struct parser *p, struct jr_value *v, size_t *cap, int with_key)
-{
-    if (v->count == *cap) {
-        size_t nc = *cap ? *cap * 2 : 8;
-        struct jr_value *items = realloc(v->items, nc * sizeof *items);
-        if (!items) return NULL;
-        v->items = items;
-        if (with_key) {
-            char **keys = realloc(v->keys, nc * sizeof *keys);
-            if (!keys) return NULL;
-            v->keys = keys;
-        }
-        *cap = nc;
-    }
-    (void)p;
-    struct jr_value *it = &v->items[v->count];
-    memset(it, 0, sizeof *it);
-    return it;
-}
-
-static int parse_container(struct parser *p, struct jr_value *v, int object)
-{
-    char close = object ? '}' : ']';
-    v->type = object ? JR_OBJ : JR_ARR;
-    if (++p->depth > JR_MAX_DEPTH) return perr(p, "nesting deeper than %d", JR_MAX_DEPTH);
-    advance(p);
-    skip_ws(p);
-    size_t cap = 0;
-    if (peek(p) == close) {
-        advance(p);
-        p->depth--;
         return 0;
     }
-    for (;;) {
-        skip_ws(p);
-        char *key = NULL;
-        if (object) {
-            if (peek(p) != '"') return perr(p, "member name (a string) expected");
-            int kl = p->line, kc = p->col;
-            if (parse_string(p, &key)) return 2;
-            for (size_t i = 0; i < v->count; i++)
-                if (strcmp(v->keys[i], key) == 0) {
-                    p->line = kl, p->col = kc;
-                    int rc = perr(p, "duplicate member \"%s\"", key);
-                    free(key);
-                    return rc;
-                }
-            skip_ws(p);
-            if (peek(p) != ':') {
-                free(key);
-                return perr(p, "':' expected after a member name");
-            }
-            advance(p);
-            skip_ws(p);
-        }
-        struct jr_value *it = push_item(p, v, &cap, object);
-        if (!it) {
-            free(key);
-            return perr(p, "out of memory");
-        }
-        if (object) v->keys[v->count] = key;
-        v->count++;
-        if (parse_value(p, it)) return 2;
-        skip_ws(p);
-        int c = peek(p);
-        if (c == ',') {
-            advance(p);
-            skip_ws(p);
-            if (peek(p) == close) return perr(p, "trailing comma");
-            continue;
-        }
-        if (c == close) {
-            advance(p);
-            break;
-        }
-        return perr(p, object ? "',' or '}' expected" : "',' or ']' expected");
+    case JSON_STRING: {
+        size_t n = json_string_length(j);
+        v->type = JR_STR;
+        walk_scalar(w);
+        if (!(v->str = malloc(n + 1)))
+            return -1;
+        memcpy(v->str, json_string_value(j), n + 1);
+        return 0;
     }
-    p->depth--;
-    return 0;
+    case JSON_INTEGER:
+    case JSON_REAL:
+        v->type = JR_NUM;
+        v->num = json_number_value(j);
+        walk_scalar(w);
+        return 0;
+    case JSON_TRUE:
+    case JSON_FALSE:
+        v->type = JR_BOOL;
+        v->num = json_is_true(j);
+        walk_scalar(w);
+        return 0;
+    case JSON_NULL:
+    default:
+        v->type = JR_NULL;
+        walk_scalar(w);
+        return 0;
+    }
 }
 
-static int parse_value(struct parser *p, struct jr_value *v)
+/* Nesting is bounded before jansson (whose own bound is 2048) sees the text, so that the
+ * walk above stays shallow. Returns the offset of the first bracket too deep, or -1. */
+static long too_deep(const char *s, size_t len)
 {
-    skip_ws(p);
-    v->line = p->line;
-    v->col = p->col;
-    int c = peek(p);
-    switch (c) {
-    case -1: return perr(p, "unexpected end of file");
-    case '{': return parse_container(p, v, 1);
-    case '[': return parse_container(p, v, 0);
-    case '"': v->type = JR_STR; return parse_string(p, &v->str);
-    case 't': v->type = JR_BOOL; v->num = 1; return expect_word(p, "true");
-    case 'f': v->type = JR_BOOL; v->num = 0; return expect_word(p, "false");
-    case 'n': v->type = JR_NULL; return expect_word(p, "null");
-    default:
-        if (c == '-' || (c >= '0' && c <= '9')) {
-            v->type = JR_NUM;
-            return parse_number(p, &v->num);
+    int depth = 0, in_string = 0;
+    for (size_t i = 0; i < len; ++i) {
+        char c = s[i];
+        if (in_string) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_string = 0;
+        } else if (c == '"') {
+            in_string = 1;
+        } else if (c == '[' || c == '{') {
+            if (++depth > JR_MAX_DEPTH)
+                return (long)i;
+        } else if (c == ']' || c == '}') {
+            --depth;
         }
-        return perr(p, "unexpected character '%c'", c > 31 && c < 127 ? c : '?');
     }
+    return -1;
+}
+
+static int where_fail(char *err, size_t errlen, const char *name, const char *text, size_t upto, const char *fmt,
+                      const char *what)
+{
+    int line = 1, col = 1;
+    for (size_t i = 0; i < upto; ++i) {
+        if (text[i] == '\n') {
+            line++;
+            col = 1;
+        } else {
+            col++;
+        }
+    }
+    snprintf(err, errlen, "%s:%d:%d: ", name, line, col);
+    size_t used = strlen(err);
+    snprintf(err + used, errlen - used, fmt, what);
+    return 2;
 }
 
 int jr_parse_text(const char *text, size_t len, const char *name, struct jr_doc *doc, char *err, size_t errlen)
 {
     memset(doc, 0, sizeof *doc);
     snprintf(doc->name, sizeof doc->name, "%s", name ? name : "(json)");
-    struct parser p = {text, len, 0, 1, 1, doc->name, err, errlen, 0};
-    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) return perr(&p, "byte order mark is not allowed");
-    if (memchr(text, 0, len)) return perr(&p, "NUL byte in the text");
-    if (parse_value(&p, &doc->root)) {
-        free_value(&doc->root);
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0)
+        return where_fail(err, errlen, doc->name, text, 0, "%s", "byte order mark is not allowed");
+    const char *nul = memchr(text, 0, len);
+    if (nul)
+        return where_fail(err, errlen, doc->name, text, (size_t)(nul - text), "%s", "NUL byte in the text");
+    long deep = too_deep(text, len);
+    if (deep >= 0) {
+        char what[64];
+        snprintf(what, sizeof what, "nesting deeper than %d", JR_MAX_DEPTH);
+        return where_fail(err, errlen, doc->name, text, (size_t)deep, "%s", what);
+    }
+    json_error_t je;
+    json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES | JSON_DECODE_ANY | JSON_DECODE_INT_AS_REAL, &je);
+    if (!root) {
+        /* Jansson's position is the end of the token it stopped at. A closing bracket right
+         * after a comma is the commonest slip: name it. */
+        size_t at = je.position > 0 ? (size_t)je.position - 1 : 0;
+        int trailing = 0;
+        if (at < len && (text[at] == '}' || text[at] == ']')) {
+            size_t k = at;
+            while (k > 0 && strchr(" \t\r\n", text[k - 1]))
+                --k;
+            trailing = k > 0 && text[k - 1] == ',';
+        }
+        /* The column of the token's start, as for every other message: jansson names the
+         * token it stopped at ("... near 'NaN'") and counts the column at its end. */
+        int col = je.column;
+        const char *near = strstr(je.text, " near '");
+        size_t tlen = near ? strlen(near + 7) : 0;
+        if (tlen > 0 && near[7 + tlen - 1] == '\'' && col - (int)(tlen - 1) + 1 >= 1)
+            col -= (int)(tlen - 1) - 1;
+        else if (strstr(je.text, "near end of file"))
+            col += 1;   /* the end itself, one past the last character read */
+        /* ... and a text cut short (a truncated file) too. */
+        int cut = !trailing && strncmp(je.text, "unexpected", 10) != 0 &&
+                  (strstr(je.text, "near end of file") || strstr(je.text, "premature end of input"));
+        snprintf(err, errlen, "%s:%d:%d: %s%s", doc->name, je.line > 0 ? je.line : 1, col > 0 ? col : 1,
+                 trailing ? "trailing comma: " : cut ? "unexpected end of file: " : "", je.text);
         return 2;
     }
-    skip_ws(&p);
-    if (p.pos != p.len) {
+    struct walk w = { text, len, 0, 1, 1 };
+    int bad = build_value(&w, root, &doc->root);
+    json_decref(root);
+    if (bad) {
         free_value(&doc->root);
-        return perr(&p, "text after the JSON value");
+        snprintf(err, errlen, "%s: out of memory", doc->name);
+        return 2;
     }
     return 0;
 }

@@ -4,9 +4,27 @@
 
 #include <stddef.h>
 
-/* Writes data to path through a temporary file in the same folder, fsync and rename, so a
- * reader sees the old file or the new one, never a part. Returns 0, or -1 with a message. */
+#define OUTDIR_PATH_MAX 4096
+
+/* Writes data to an output path (DESIGN.md, habits 5 and 12). A regular file (or a new one) is
+ * replaced atomically: a temporary file in its real folder (a symlink's final target's folder;
+ * the link stays a link), fsync, rename, so a reader sees the old file or the new one, never a
+ * part. Everything else is written through, never replaced: `-` and /dev/stdout (standard
+ * output, after what stdio holds), /dev/stderr, /dev/fd/N, /proc/self/fd/N, a FIFO, a device,
+ * or a symlink to one of these. Returns 0, or -1 with a message. */
 int write_file_atomic(const char *path, const void *data, size_t len, char *err, size_t errlen);
+/* 1 when two output paths lead to the same place (the same file, device or descriptor, however
+ * spelled: links, `-` and /dev/stdout, ./a and a), else 0. */
+int output_paths_same(const char *a, const char *b);
+
+/* What this process made, for a run that must stop: every folder created by outdir_prepare or
+ * outdir_new_run (and the temporary file of a write in progress) is recorded.
+ * outdir_remove_own removes them, the folders with all they hold, newest first; folders that
+ * existed before are never removed. It uses only system calls (no allocation, no stdio), so the
+ * launch watchdog can call it while the main thread is stopped anywhere. */
+void outdir_remove_own(void);
+/* Removes the folders this process made that are still empty (after a refused run). */
+void outdir_remove_own_empty(void);
 /* Creates dir (and parents) if needed and checks it can be written. Returns 0 or -1; the
  * message starts with "ARG: " when the folder came from a flag (arg = "--out"), and with
  * nothing when the program chose it (arg = NULL). */

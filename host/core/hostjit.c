@@ -1,0 +1,239 @@
+/* hostjit.c - a model's OpenCL C text compiled for the host in double (see hostjit.h). */
+#define _GNU_SOURCE   /* exp10 */
+#include "hostjit.h"
+
+#include <libtcc.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* OpenCL C's scalar built-in functions for double, as C. Those of C99 come from the host's
+ * libm (declared here, bound in bind_libm); the others follow the OpenCL C 1.2 specification
+ * (section 6.12) for a scalar argument. native_* and half_* have no double form in OpenCL C;
+ * in this reference they are their exact counterparts, so that the device-vs-double check
+ * shows what the approximate functions cost on the device. */
+static const char prelude[] =
+    "#define BRDF_HOST_JIT 1\n"
+    "#define REAL double\n"
+    "#define RSCALAR double\n"
+    "#define BRDF_HAVE_USER_MODEL 1\n"
+    "typedef unsigned char uchar;\ntypedef unsigned short ushort;\n"
+    "typedef unsigned int uint;\ntypedef unsigned long ulong;\n"
+    "#define __kernel\n#define kernel\n#define __global\n#define global\n#define __private\n"
+    "#define private\n#define __local\n#define local\n#define __constant const\n#define constant const\n"
+    "#define NAN (0.0 / 0.0)\n#define INFINITY (1.0 / 0.0)\n#define HUGE_VAL INFINITY\n"
+    "#define HUGE_VALF ((float)INFINITY)\n#define MAXFLOAT 3.402823466e+38F\n"
+    "#define FLT_MAX 3.402823466e+38F\n#define FLT_MIN 1.175494351e-38F\n#define FLT_EPSILON 1.1920928955e-7F\n"
+    "#define DBL_MAX 1.79769313486231570e+308\n#define DBL_MIN 2.225073858507201383e-308\n"
+    "#define DBL_EPSILON 2.220446049250313e-16\n"
+    "#define M_E 2.718281828459045235360\n#define M_LOG2E 1.442695040888963407360\n"
+    "#define M_LOG10E 0.434294481903251827651\n#define M_LN2 0.693147180559945309417\n"
+    "#define M_LN10 2.302585092994045684018\n#define M_PI 3.141592653589793238463\n"
+    "#define M_PI_2 1.570796326794896619231\n#define M_PI_4 0.785398163397448309616\n"
+    "#define M_1_PI 0.318309886183790671538\n#define M_2_PI 0.636619772367581343076\n"
+    "#define M_2_SQRTPI 1.128379167095512573896\n#define M_SQRT2 1.414213562373095048802\n"
+    "#define M_SQRT1_2 0.707106781186547524401\n"
+    "#define M_E_F ((float)M_E)\n#define M_LOG2E_F ((float)M_LOG2E)\n#define M_LOG10E_F ((float)M_LOG10E)\n"
+    "#define M_LN2_F ((float)M_LN2)\n#define M_LN10_F ((float)M_LN10)\n#define M_PI_F ((float)M_PI)\n"
+    "#define M_PI_2_F ((float)M_PI_2)\n#define M_PI_4_F ((float)M_PI_4)\n#define M_1_PI_F ((float)M_1_PI)\n"
+    "#define M_2_PI_F ((float)M_2_PI)\n#define M_2_SQRTPI_F ((float)M_2_SQRTPI)\n"
+    "#define M_SQRT2_F ((float)M_SQRT2)\n#define M_SQRT1_2_F ((float)M_SQRT1_2)\n"
+    /* C99, from libm */
+    "double acos(double);double acosh(double);double asin(double);double asinh(double);double atan(double);\n"
+    "double atanh(double);double cbrt(double);double ceil(double);double cos(double);double cosh(double);\n"
+    "double erf(double);double erfc(double);double exp(double);double exp2(double);double exp10(double);\n"
+    "double expm1(double);double fabs(double);double floor(double);double lgamma(double);double log(double);\n"
+    "double log10(double);double log1p(double);double log2(double);double logb(double);double rint(double);\n"
+    "double round(double);double sin(double);double sinh(double);double sqrt(double);double tan(double);\n"
+    "double tanh(double);double tgamma(double);double trunc(double);\n"
+    "double atan2(double,double);double copysign(double,double);double fdim(double,double);\n"
+    "double fmax(double,double);double fmin(double,double);double fmod(double,double);\n"
+    "double hypot(double,double);double nextafter(double,double);double pow(double,double);\n"
+    "double remainder(double,double);double fma(double,double,double);double ldexp(double,int);\n"
+    "int ilogb(double);double frexp(double,int*);double modf(double,double*);double remquo(double,double,int*);\n"
+    "double lgamma_r(double,int*);\n"
+    /* OpenCL C, written out */
+    "static double powr(double x, double y) { return x < 0 ? NAN : pow(x, y); }\n"
+    "static double pown(double x, int y) { return pow(x, (double)y); }\n"
+    "static double rootn(double x, int y) {\n"
+    "    if (y == 0) return NAN;\n"
+    "    if (x < 0) return (y % 2) ? -pow(-x, 1.0 / y) : NAN;\n"
+    "    return pow(x, 1.0 / y); }\n"
+    "static double rsqrt(double x) { return 1.0 / sqrt(x); }\n"
+    "static double cospi(double x) { return cos(M_PI * x); }\n"
+    "static double sinpi(double x) { return sin(M_PI * x); }\n"
+    "static double tanpi(double x) { return tan(M_PI * x); }\n"
+    "static double acospi(double x) { return acos(x) / M_PI; }\n"
+    "static double asinpi(double x) { return asin(x) / M_PI; }\n"
+    "static double atanpi(double x) { return atan(x) / M_PI; }\n"
+    "static double atan2pi(double y, double x) { return atan2(y, x) / M_PI; }\n"
+    "static double mad(double a, double b, double c) { return a * b + c; }\n"
+    "static double maxmag(double x, double y) {\n"
+    "    return fabs(x) > fabs(y) ? x : fabs(y) > fabs(x) ? y : fmax(x, y); }\n"
+    "static double minmag(double x, double y) {\n"
+    "    return fabs(x) < fabs(y) ? x : fabs(y) < fabs(x) ? y : fmin(x, y); }\n"
+    "static double fract(double x, double *ip) {\n"
+    "    double f = floor(x); *ip = f; return fmin(x - f, 0x1.fffffffffffffp-1); }\n"
+    "static double sincos(double x, double *c) { *c = cos(x); return sin(x); }\n"
+    "static double clamp(double x, double lo, double hi) { return fmin(fmax(x, lo), hi); }\n"
+    "static double degrees(double r) { return r * (180.0 / M_PI); }\n"
+    "static double radians(double d) { return d * (M_PI / 180.0); }\n"
+    "static double max(double x, double y) { return x < y ? y : x; }\n"
+    "static double min(double x, double y) { return y < x ? y : x; }\n"
+    "static double mix(double x, double y, double a) { return x + (y - x) * a; }\n"
+    "static double step(double edge, double x) { return x < edge ? 0.0 : 1.0; }\n"
+    "static double smoothstep(double e0, double e1, double x) {\n"
+    "    double t = clamp((x - e0) / (e1 - e0), 0.0, 1.0); return t * t * (3.0 - 2.0 * t); }\n"
+    "static double sign(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : x == x ? x : 0.0; }\n"
+    "static int isnan(double x) { return x != x; }\n"
+    "static int isinf(double x) { return x == INFINITY || x == -INFINITY; }\n"
+    "static int isfinite(double x) { return !isnan(x) && !isinf(x); }\n"
+    "static int isnormal(double x) { return isfinite(x) && fabs(x) >= DBL_MIN; }\n"
+    "static int signbit(double x) { return copysign(1.0, x) < 0; }\n"
+    "static int isequal(double x, double y) { return x == y; }\n"
+    "static int isnotequal(double x, double y) { return x != y; }\n"
+    "static int isgreater(double x, double y) { return x > y; }\n"
+    "static int isgreaterequal(double x, double y) { return x >= y; }\n"
+    "static int isless(double x, double y) { return x < y; }\n"
+    "static int islessequal(double x, double y) { return x <= y; }\n"
+    "static int islessgreater(double x, double y) { return x < y || x > y; }\n"
+    "static int isordered(double x, double y) { return x == x && y == y; }\n"
+    "static int isunordered(double x, double y) { return x != x || y != y; }\n"
+    /* scalar select takes b where c is non-zero; scalar any/all test the sign bit */
+    "static double select(double a, double b, long c) { return c ? b : a; }\n"
+    "static int any(long x) { return x < 0; }\n"
+    "static int all(long x) { return x < 0; }\n"
+    "#define BRDF_HOSTJIT_NATIVE(f) static double native_##f(double x) { return f(x); } \\\n"
+    "                              static double half_##f(double x) { return f(x); }\n"
+    "BRDF_HOSTJIT_NATIVE(cos) BRDF_HOSTJIT_NATIVE(sin) BRDF_HOSTJIT_NATIVE(tan) BRDF_HOSTJIT_NATIVE(exp)\n"
+    "BRDF_HOSTJIT_NATIVE(exp2) BRDF_HOSTJIT_NATIVE(exp10) BRDF_HOSTJIT_NATIVE(log) BRDF_HOSTJIT_NATIVE(log2)\n"
+    "BRDF_HOSTJIT_NATIVE(log10) BRDF_HOSTJIT_NATIVE(sqrt) BRDF_HOSTJIT_NATIVE(rsqrt)\n"
+    "#undef BRDF_HOSTJIT_NATIVE\n"
+    "static double native_recip(double x) { return 1.0 / x; }\n"
+    "static double half_recip(double x) { return 1.0 / x; }\n"
+    "static double native_divide(double x, double y) { return x / y; }\n"
+    "static double half_divide(double x, double y) { return x / y; }\n"
+    "static double native_powr(double x, double y) { return powr(x, y); }\n"
+    "static double half_powr(double x, double y) { return powr(x, y); }\n";
+
+static const char epilogue[] =
+    "\n#line 1 \"brdfbench host evaluator\"\n"
+    "double brdfbench_host_eval(double c, double n, double p0, double p1)\n"
+    "{\n    return brdf_eval(BRDF_USER, c, n, p0, p1);\n}\n";
+
+const char *hostjit_prelude(void) { return prelude; }
+
+struct hostjit {
+    TCCState *tcc;
+    hostjit_fn fn;
+};
+
+struct jit_errors {
+    char *buf;
+    size_t len;
+    int seen;
+};
+
+static void on_error(void *opaque, const char *msg)
+{
+    struct jit_errors *e = opaque;
+    /* The first message names the user's line. Only an implicitly declared function is
+       warned about, as an error: a model calls the functions declared here, nothing else. */
+    if (e->seen++ == 0 && e->buf && e->len)
+        snprintf(e->buf, e->len, "%s", msg);
+}
+
+/* tcc's run-time helpers for conversions between double and unsigned 64-bit integers (its
+ * libtcc1.a is not linked: -nostdlib keeps the model's code to what is bound here). */
+static unsigned long long jit_fixunsdfdi(double d) { return (unsigned long long)d; }
+static unsigned long long jit_fixunssfdi(float f) { return (unsigned long long)f; }
+static double jit_floatundidf(unsigned long long u) { return (double)u; }
+static float jit_floatundisf(unsigned long long u) { return (float)u; }
+static void *jit_memcpy(void *d, const void *s, size_t n) { return memcpy(d, s, n); }
+static void *jit_memmove(void *d, const void *s, size_t n) { return memmove(d, s, n); }
+static void *jit_memset(void *d, int c, size_t n) { return memset(d, c, n); }
+
+static void bind_libm(TCCState *s)
+{
+    static const struct { const char *name; const void *fn; } table[] = {
+#define D1(f) { #f, (const void *)(double (*)(double))f }
+#define D2(f) { #f, (const void *)(double (*)(double, double))f }
+        D1(acos), D1(acosh), D1(asin), D1(asinh), D1(atan), D1(atanh), D1(cbrt), D1(ceil), D1(cos),
+        D1(cosh), D1(erf), D1(erfc), D1(exp), D1(exp2), D1(exp10), D1(expm1), D1(fabs), D1(floor),
+        D1(lgamma), D1(log), D1(log10), D1(log1p), D1(log2), D1(logb), D1(rint), D1(round), D1(sin),
+        D1(sinh), D1(sqrt), D1(tan), D1(tanh), D1(tgamma), D1(trunc),
+        D2(atan2), D2(copysign), D2(fdim), D2(fmax), D2(fmin), D2(fmod), D2(hypot), D2(nextafter),
+        D2(pow), D2(remainder),
+#undef D1
+#undef D2
+        { "fma", (const void *)(double (*)(double, double, double))fma },
+        { "ldexp", (const void *)(double (*)(double, int))ldexp },
+        { "ilogb", (const void *)(int (*)(double))ilogb },
+        { "frexp", (const void *)(double (*)(double, int *))frexp },
+        { "modf", (const void *)(double (*)(double, double *))modf },
+        { "remquo", (const void *)(double (*)(double, double, int *))remquo },
+        { "lgamma_r", (const void *)(double (*)(double, int *))lgamma_r },
+        { "__fixunsdfdi", (const void *)jit_fixunsdfdi },
+        { "__fixunssfdi", (const void *)jit_fixunssfdi },
+        { "__floatundidf", (const void *)jit_floatundidf },
+        { "__floatundisf", (const void *)jit_floatundisf },
+        { "memcpy", (const void *)jit_memcpy },
+        { "memmove", (const void *)jit_memmove },
+        { "memset", (const void *)jit_memset },
+    };
+    for (size_t i = 0; i < sizeof table / sizeof table[0]; ++i)
+        tcc_add_symbol(s, table[i].name, table[i].fn);
+}
+
+struct hostjit *hostjit_compile(const char *models_header, const char *model_text, char *err, size_t errlen)
+{
+    struct jit_errors errors = { err, errlen, 0 };
+    if (err && errlen)
+        err[0] = '\0';
+    size_t len = strlen(prelude) + strlen(models_header) + strlen(model_text) + strlen(epilogue) + 64;
+    char *src = malloc(len);
+    struct hostjit *j = calloc(1, sizeof *j);
+    TCCState *s = tcc_new();
+    if (!src || !j || !s) {
+        if (err && errlen)
+            snprintf(err, errlen, "out of memory");
+        goto fail;
+    }
+    snprintf(src, len, "%s#line 1 \"brdf_models.h\"\n%s\n%s%s", prelude, models_header, model_text, epilogue);
+    tcc_set_error_func(s, &errors, on_error);
+    tcc_set_options(s, "-nostdinc -nostdlib -Wimplicit-function-declaration -Werror");
+    tcc_set_output_type(s, TCC_OUTPUT_MEMORY);
+    bind_libm(s);
+    if (tcc_compile_string(s, src) != 0 || tcc_relocate(s, TCC_RELOCATE_AUTO) < 0)
+        goto fail;
+    void *sym = tcc_get_symbol(s, "brdfbench_host_eval");
+    if (!sym) {
+        if (err && errlen && !errors.seen)
+            snprintf(err, errlen, "the host evaluator has no entry point");
+        goto fail;
+    }
+    /* An object pointer to a function pointer: what tcc_get_symbol returns is code. */
+    memcpy(&j->fn, &sym, sizeof j->fn);
+    j->tcc = s;
+    free(src);
+    return j;
+fail:
+    if (err && errlen && !err[0])
+        snprintf(err, errlen, "the text does not compile as C");
+    if (s)
+        tcc_delete(s);
+    free(j);
+    free(src);
+    return NULL;
+}
+
+hostjit_fn hostjit_function(const struct hostjit *j) { return j ? j->fn : NULL; }
+
+void hostjit_free(struct hostjit *j)
+{
+    if (!j)
+        return;
+    tcc_delete(j->tcc);
+    free(j);
+}

@@ -1,0 +1,36 @@
+/* hostjit.h - a model's OpenCL C text compiled for the host in double, at run time.
+ *
+ * A user model's text (docs/user-models.md) is written for REAL = float16, float and double.
+ * Its double form is its reference: every figure of the accuracy sweep is recomputed and
+ * polished with it, value by value. On the host that costs a function call, as for a
+ * built-in model (host/core/models.c compiles kernels/brdf_models.h as C); on an OpenCL
+ * device each value would be a kernel launch. So the same text is compiled here as C with
+ * REAL = double by libtcc (Debian's libtcc-dev), after a prelude that declares OpenCL C's
+ * scalar built-in functions for double (the C99 ones from the host's libm, the others such
+ * as clamp, step, select, mix, powr, pown, rsqrt written out).
+ *
+ * Not every OpenCL C text is C: vector literals, conversions (convert_*, as_*), address
+ * spaces in pointers... Such a text does not compile here; hostjit_compile says why and its
+ * caller falls back to the device (host/core/usermodel.c).
+ */
+#ifndef BRDF_HOSTJIT_H
+#define BRDF_HOSTJIT_H
+
+#include <stddef.h>
+
+struct hostjit;
+
+/* The evaluator: brdf_eval(BRDF_USER, c, n, p0, p1) of kernels/brdf_models.h in double. */
+typedef double (*hostjit_fn)(double c, double n, double p0, double p1);
+
+/* Compiles models_header (the text of kernels/brdf_models.h) followed by model_text (which
+ * defines brdf_user_eval, as appended to a kernel file for the device). Returns NULL with
+ * the compiler's first message in err (file:line: error ...) when the text is not C. */
+struct hostjit *hostjit_compile(const char *models_header, const char *model_text, char *err, size_t errlen);
+hostjit_fn hostjit_function(const struct hostjit *j);
+void hostjit_free(struct hostjit *j);
+
+/* The prelude placed before the model's text (for tests and docs/user-models.md). */
+const char *hostjit_prelude(void);
+
+#endif

@@ -1,0 +1,243 @@
+/* programs.c - the run's device programs and host evaluators, cached per session
+ * (see programs.h). */
+#include "programs.h"
+#include "exitcodes.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PROGRAMS_MAX_KERNELS 16
+
+struct program_entry {
+    const struct cl_session *s;
+    const struct model_runtime *rt;
+    char *kernel_file, *extra_before, *options;
+    cl_program program;
+    int kernel_count;
+    struct {
+        char *name;
+        cl_kernel kernel;
+    } kernels[PROGRAMS_MAX_KERNELS];
+};
+
+/* Host evaluators opened on a session's device. */
+struct host_entry {
+    const struct cl_session *s;
+    const struct model_runtime *rt;
+};
+
+static struct program_entry *entries;
+static int entry_count, entry_cap;
+static struct host_entry *hosts;
+static int host_count, host_cap;
+
+/* The table with room for one more element (doubling *cap), or NULL when memory is out
+ * (the table is then unchanged). */
+static void *make_room(void *table, int count, int *cap, size_t size)
+{
+    if (count < *cap)
+        return table;
+    int grown_cap = *cap ? 2 * *cap : 8;
+    void *grown = realloc(table, (size_t)grown_cap * size);
+    if (!grown) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        return NULL;
+    }
+    *cap = grown_cap;
+    return grown;
+}
+
+static int same_text(const char *a, const char *b) { return strcmp(a ? a : "", b ? b : "") == 0; }
+
+static char *dup_text(const char *t)
+{
+    t = t ? t : "";
+    size_t n = strlen(t) + 1;
+    char *d = malloc(n);
+    if (d)
+        memcpy(d, t, n);
+    return d;
+}
+
+int programs_host(struct cl_session *s, const struct model_spec *m)
+{
+    const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
+    if (!rt || !rt->open_host)
+        return 0;
+    for (int i = 0; i < host_count; ++i)
+        if (hosts[i].s == s && hosts[i].rt == rt)
+            return rt->open_host(rt, s);   /* idempotent */
+    struct host_entry *room = make_room(hosts, host_count, &host_cap, sizeof *hosts);
+    if (!room)
+        return EXIT_RUNTIME;
+    hosts = room;
+    int rc = rt->open_host(rt, s);
+    if (rc)
+        return rc;
+    hosts[host_count].s = s;
+    hosts[host_count].rt = rt;
+    ++host_count;
+    s->release_cache = programs_release;
+    return 0;
+}
+
+/* The cached build of kernel_file + extra_before + rt's text with options, made on first use. */
+static int entry_for(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
+                     const struct model_runtime *rt, struct program_entry **out)
+{
+    for (int i = 0; i < entry_count; ++i) {
+        struct program_entry *e = &entries[i];
+        if (e->s == s && e->rt == rt && strcmp(e->kernel_file, kernel_file) == 0 &&
+            same_text(e->extra_before, extra_before) && same_text(e->options, options)) {
+            *out = e;
+            return 0;
+        }
+    }
+    struct program_entry *room = make_room(entries, entry_count, &entry_cap, sizeof *entries);
+    if (!room)
+        return EXIT_RUNTIME;
+    entries = room;
+    /* The model's text after the kernel file (and the extra text), with its own options. */
+    size_t a = extra_before ? strlen(extra_before) : 0, b = strlen(rt->device_source);
+    char *source = malloc(a + b + 2);
+    char opts[1024];
+    snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", options && *options ? " " : "",
+             rt->device_options ? rt->device_options : "");
+    if (!source) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    if (a)
+        memcpy(source, extra_before, a);
+    source[a] = '\n';
+    memcpy(source + a + 1, rt->device_source, b + 1);
+    cl_program program = NULL;
+    int rc = clsession_build_user(s, kernel_file, source, opts, &program, 0);
+    free(source);
+    if (rc) {
+        if (rc == EXIT_USAGE)
+            fprintf(stderr, "brdfbench: %s does not compile; the build log above names its lines\n", rt->what);
+        return rc;
+    }
+    struct program_entry *e = &entries[entry_count];
+    memset(e, 0, sizeof *e);
+    e->s = s;
+    e->rt = rt;
+    e->kernel_file = dup_text(kernel_file);
+    e->extra_before = dup_text(extra_before);
+    e->options = dup_text(options);
+    e->program = program;
+    ++entry_count;
+    s->release_cache = programs_release;
+    if (!e->kernel_file || !e->extra_before || !e->options) {
+        fprintf(stderr, "brdfbench: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    *out = e;
+    return 0;
+}
+
+int programs_program(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
+                     const struct model_spec *m, cl_program shared, cl_program *out)
+{
+    const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
+    *out = shared;
+    if (!rt)
+        return 0;
+    struct program_entry *e = NULL;
+    int rc = entry_for(s, kernel_file, extra_before, options, rt, &e);
+    if (rc)
+        return rc;
+    *out = e->program;
+    return programs_host(s, m);
+}
+
+int programs_kernel(struct cl_session *s, const char *kernel_file, const char *options, const struct model_spec *m,
+                    const char *kernel_name, cl_kernel shared, cl_kernel *out)
+{
+    const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
+    *out = shared;
+    if (!rt)
+        return 0;
+    struct program_entry *e = NULL;
+    int rc = entry_for(s, kernel_file, NULL, options, rt, &e);
+    if (rc)
+        return rc;
+    for (int k = 0; k < e->kernel_count; ++k)
+        if (strcmp(e->kernels[k].name, kernel_name) == 0) {
+            *out = e->kernels[k].kernel;
+            return programs_host(s, m);
+        }
+    if (e->kernel_count >= PROGRAMS_MAX_KERNELS) {
+        fprintf(stderr, "brdfbench: more than %d kernels of %s asked for\n", PROGRAMS_MAX_KERNELS, kernel_file);
+        return EXIT_RUNTIME;
+    }
+    cl_int err;
+    cl_kernel k = clCreateKernel(e->program, kernel_name, &err);
+    if (err != CL_SUCCESS) {
+        cl_report("clCreateKernel", err, __FILE__, __LINE__);
+        return EXIT_RUNTIME;
+    }
+    char *name = dup_text(kernel_name);
+    if (!name) {
+        clReleaseKernel(k);
+        fprintf(stderr, "brdfbench: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    e->kernels[e->kernel_count].name = name;
+    e->kernels[e->kernel_count].kernel = k;
+    ++e->kernel_count;
+    *out = k;
+    return programs_host(s, m);
+}
+
+void programs_release(struct cl_session *s)
+{
+    int kept = 0;
+    for (int i = 0; i < entry_count; ++i) {
+        struct program_entry *e = &entries[i];
+        if (e->s != s) {
+            entries[kept++] = *e;
+            continue;
+        }
+        for (int k = 0; k < e->kernel_count; ++k) {
+            clReleaseKernel(e->kernels[k].kernel);
+            free(e->kernels[k].name);
+        }
+        if (e->program)
+            clReleaseProgram(e->program);
+        free(e->kernel_file);
+        free(e->extra_before);
+        free(e->options);
+    }
+    entry_count = kept;
+    kept = 0;
+    for (int i = 0; i < host_count; ++i) {
+        if (hosts[i].s != s) {
+            hosts[kept++] = hosts[i];
+            continue;
+        }
+        if (hosts[i].rt->close_host)
+            hosts[i].rt->close_host(hosts[i].rt, s);
+    }
+    host_count = kept;
+    if (entry_count == 0) {
+        free(entries);
+        entries = NULL;
+        entry_cap = 0;
+    }
+    if (host_count == 0) {
+        free(hosts);
+        hosts = NULL;
+        host_cap = 0;
+    }
+}
+
+int programs_build_count(const struct cl_session *s)
+{
+    int n = 0;
+    for (int i = 0; i < entry_count; ++i)
+        n += entries[i].s == s;
+    return n;
+}

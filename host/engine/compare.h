@@ -1,0 +1,130 @@
+/* compare.h - `brdfbench compare`: the results of several runs side by side, the first one the
+ * baseline. A run is a run folder or a single result file of any command: throughput.json,
+ * accuracy.json, render.json, fit.json, frontier.json.
+ *
+ * Every figure of every run becomes a cell of a row; rows are matched across runs by their
+ * keys (throughput: device, model with parameters, build-option variant, n mode; accuracy:
+ * device, model, figure, grid; render: device, scene, model; fit: the fitted role or model,
+ * grid; frontier: model). A row found in only some runs is kept, its missing cells marked.
+ * One run whose rows carry several devices (`--device all`) is laid out as one column per
+ * device, as if each device were a run.
+ *
+ * Verdicts against the baseline:
+ *   - a speed (evaluations/s, Mpixel/s): the Mann-Whitney test of the two runs' repetitions
+ *     (ranktest.h) at level alpha: "faster" or "slower" when it tells them apart, else "same";
+ *     "undecided" when the sample sizes cannot reach alpha at all (too few repetitions).
+ *     A file that keeps only min/median/max (render.json): "same" when the two min..max
+ *     ranges overlap.
+ *   - an accuracy figure (an error, lower is better; a PSNR, higher is better) or another
+ *     value: "unchanged" when both round to the same 4 significant digits, else "changed"
+ *     with the signed change, and whether that is better or worse. */
+#ifndef BRDF_COMPARE_H
+#define BRDF_COMPARE_H
+
+#include <stddef.h>
+
+#define COMPARE_SCHEMA "brdfbench.compare/1"
+#define CMP_MAX_RUNS 16
+#define CMP_MAX_CTX 32
+#define CMP_TEXT 256
+#define CMP_DEFAULT_ALPHA 0.05
+
+/* The result files compare reads, with the schema version it reads of each. */
+enum cmp_kind { CMP_THROUGHPUT = 0, CMP_ACCURACY, CMP_RENDER, CMP_FIT, CMP_FRONTIER, CMP_KIND_COUNT };
+const char *cmp_kind_name(int kind);      /* "throughput", ... */
+const char *cmp_kind_file(int kind);      /* "throughput.json", ... */
+const char *cmp_kind_schema(int kind);    /* "brdfbench.throughput/2", ... */
+
+/* What a figure means for a verdict. */
+enum cmp_sense {
+    CMP_SPEED = 0,   /* higher is better; decided by the repetitions */
+    CMP_ERROR,       /* lower is better; decided at the 4th significant digit */
+    CMP_SCORE,       /* higher is better (PSNR); 4th significant digit */
+    CMP_VALUE        /* neither (a fitted coefficient); 4th significant digit */
+};
+
+enum cmp_verdict {
+    CMP_V_NONE = 0,      /* the baseline's own cell, or a cell with nothing to compare */
+    CMP_V_MISSING,       /* the row is not in this run (or not in the baseline) */
+    CMP_V_FAILED,        /* the figure failed in this run or the baseline */
+    CMP_V_SAME,
+    CMP_V_FASTER,
+    CMP_V_SLOWER,
+    CMP_V_UNDECIDED,     /* too few repetitions for the test to reach alpha */
+    CMP_V_UNCHANGED,
+    CMP_V_BETTER,        /* changed at the 4th digit, for the better */
+    CMP_V_WORSE,         /* changed at the 4th digit, for the worse */
+    CMP_V_CHANGED        /* changed at the 4th digit (a value with no better or worse) */
+};
+const char *cmp_verdict_name(int v);      /* "same", "slower", "changed, worse", ... */
+
+struct cmp_cell {
+    int present;                 /* the row exists in this run */
+    int ok;                      /* its figure was measured */
+    char reason[CMP_TEXT];       /* why not, when present && !ok */
+    double value;                /* the figure (a speed: the median) */
+    double lo, hi;               /* a speed's min and max; NAN when unknown */
+    double *reps;                /* a speed's repetitions (malloc'd), or NULL */
+    int nreps;
+    /* against the baseline's cell of the same row */
+    double ratio;                /* value / baseline value (NAN when either is missing or 0) */
+    double change;               /* value - baseline value */
+    double p;                    /* the rank test's two-sided p (NAN when not tested) */
+    int verdict;                 /* enum cmp_verdict */
+};
+
+struct cmp_row {
+    int kind;                    /* enum cmp_kind */
+    char device[CMP_TEXT];       /* "" when the file names none per row (then the context's) */
+    char key[CMP_TEXT];          /* the rest of the key, e.g. "cq2 | default | n uniform" */
+    char model[CMP_TEXT];        /* the model (with parameters), for grouping */
+    char metric[64];             /* e.g. "evals_per_s", "epicentre.max_rel" */
+    int sense;                   /* enum cmp_sense */
+    int in_all;                  /* present in every run */
+    struct cmp_cell cell[CMP_MAX_RUNS];
+};
+
+struct cmp_run {
+    char path[1024];             /* as given */
+    char name[CMP_TEXT];         /* column heading: the folder's or file's name, or the device */
+    char files[CMP_TEXT];        /* the result files read, comma-separated */
+    int nctx;
+    char ctx_key[CMP_MAX_CTX][48];
+    char ctx_value[CMP_MAX_CTX][CMP_TEXT];
+};
+
+struct compare_set {
+    struct cmp_run run[CMP_MAX_RUNS];
+    int nruns;
+    int by_device;               /* one run's devices laid side by side */
+    struct cmp_row *rows;
+    int nrows, cap;
+    double alpha;
+    /* the devices a --device all file lists (context.devices): name = tag, with their context */
+    struct cmp_run devices[CMP_MAX_RUNS];
+    int ndevices;
+    /* counts after compare_evaluate */
+    int rows_in_all, rows_in_some;
+};
+
+/* Reads the runs at paths[0..npaths) (the first is the baseline). Returns 0, or 2 with a
+ * one-line reason: a missing path, a folder without result files, a file of another schema
+ * or version, or runs with no row in common. */
+int compare_load(struct compare_set *set, const char *const *paths, int npaths, char *err, size_t errlen);
+
+/* Fills every cell's ratio, change, p and verdict against the baseline (alpha: the rank
+ * test's level, in (0, 1)). */
+void compare_evaluate(struct compare_set *set, double alpha);
+
+/* The context entry `key` of run r, or NULL. */
+const char *compare_context(const struct compare_set *set, int r, const char *key);
+
+/* The rows that fail a CI condition, named one per line into out (NULL: counted only):
+ * slower_pct >= 0: a speed row with the verdict "slower" whose ratio is below
+ * 1 - slower_pct / 100; less_accurate: an accuracy row (error or PSNR) "changed, worse".
+ * Returns the number of such cells. */
+int compare_failures(const struct compare_set *set, double slower_pct, int less_accurate, char **out);
+
+void compare_free(struct compare_set *set);
+
+#endif

@@ -1,0 +1,583 @@
+/* compare_report.c - writes a comparison (compare.h): the table on stdout and compare.md,
+ * compare.csv, compare.json and compare.png. Nothing here reads a run or decides a verdict. */
+#include "compare_report.h"
+#include "context.h"
+#include "draw.h"
+#include "jsonw.h"
+#include "mdbuf.h"
+#include "outdir.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *sense_name(int s)
+{
+    static const char *const n[] = { "speed", "error", "score", "value" };
+    return s >= 0 && s <= CMP_VALUE ? n[s] : "?";
+}
+
+/* A value as the table shows it: rates in G/s or M/s, the rest with 4 significant digits. */
+static void fmt_value(char *buf, size_t len, const struct cmp_row *r, double v)
+{
+    if (!isfinite(v))
+        snprintf(buf, len, "-");
+    else if (r->sense == CMP_SPEED && strstr(r->metric, "evals_per_s"))
+        snprintf(buf, len, "%.4g G", v * 1e-9);
+    else
+        snprintf(buf, len, "%.4g", v);
+}
+
+/* The row's name in a table: device, key and (where a kind has several) the figure. */
+static void row_label(char *buf, size_t len, const struct cmp_row *r)
+{
+    if (r->kind == CMP_THROUGHPUT)
+        snprintf(buf, len, "%s%s%s", r->device, *r->device ? " | " : "", r->key);
+    else
+        snprintf(buf, len, "%s%s%s: %s", r->device, *r->device ? " | " : "", r->key, r->metric);
+}
+
+/* One cell as text: the value, and against the baseline the ratio or change and the verdict. */
+static void cell_text(char *buf, size_t len, const struct compare_set *set, const struct cmp_row *r, int k)
+{
+    const struct cmp_cell *c = &r->cell[k];
+    char v[48];
+    if (!c->present) {
+        snprintf(buf, len, "(not in this run)");
+        return;
+    }
+    if (!c->ok) {
+        snprintf(buf, len, "failed: %.60s", c->reason);
+        return;
+    }
+    fmt_value(v, sizeof v, r, c->value);
+    if (k == 0) {
+        snprintf(buf, len, "%10s", v);
+        return;
+    }
+    if (c->verdict == CMP_V_MISSING) {
+        snprintf(buf, len, "%s (baseline: none)", v);
+        return;
+    }
+    if (c->verdict == CMP_V_FAILED) {
+        snprintf(buf, len, "%s (baseline failed)", v);
+        return;
+    }
+    /* value, ratio or change, verdict: aligned within a column */
+    if (r->sense == CMP_SPEED) {
+        if (isfinite(c->p))
+            snprintf(buf, len, "%10s %7.3fx %-9s (p %.2g)", v, c->ratio, cmp_verdict_name(c->verdict), c->p);
+        else
+            snprintf(buf, len, "%10s %7.3fx %-9s", v, c->ratio, cmp_verdict_name(c->verdict));
+    } else if (c->verdict == CMP_V_UNCHANGED) {
+        snprintf(buf, len, "%10s %10s unchanged", v, "");
+    } else {
+        snprintf(buf, len, "%10s %+10.3g %s", v, c->change, cmp_verdict_name(c->verdict));
+    }
+    (void)set;
+}
+
+static const char *kind_heading(int kind)
+{
+    switch (kind) {
+    case CMP_THROUGHPUT: return "throughput: evaluations/s, median of the repetitions; against the baseline: ratio, and "
+                                "the Mann-Whitney test of the repetitions";
+    case CMP_ACCURACY: return "accuracy: max delta (epicentre), max Delta (attenuation, whole range); against the "
+                              "baseline: the signed change, at the 4th significant digit";
+    case CMP_RENDER: return "render: image error (max |error|, RMSE, PSNR: 4th significant digit) and Mpixel/s (the "
+                            "min..max ranges overlap: same)";
+    case CMP_FIT: return "fit: the fitted coefficients and their max delta and max Delta (4th significant digit)";
+    case CMP_FRONTIER: return "frontier: each model's rate (repetitions tested where the file keeps them) and "
+                              "accuracy (4th significant digit)";
+    }
+    return "?";
+}
+
+/* The context rows worth showing side by side, in this order; others follow as read. */
+static const char *const ctx_order[] = { "files", "device", "devices", "platform", "platform_version", "device_version",
+                                         "driver_version", "compute_units", "host_cpu", "host_cores", "git_revision",
+                                         "brdfbench_version", "build_options", "pocl_affinity", "kernel sources", "throughput settings", "accuracy grid",
+                                         "fit grid", "date" };
+
+static const char *ctx_value(const struct compare_set *set, int k, const char *key)
+{
+    if (strcmp(key, "files") == 0)
+        return set->run[k].files;
+    return compare_context(set, k, key);
+}
+
+/* 1 when run k's value differs from the baseline's. */
+static int ctx_differs(const struct compare_set *set, int k, const char *key)
+{
+    const char *a = ctx_value(set, 0, key), *b = ctx_value(set, k, key);
+    return !a || !b ? a != b : strcmp(a, b) != 0;
+}
+
+static int ctx_shown(const char *key)
+{
+    for (size_t i = 0; i < sizeof ctx_order / sizeof ctx_order[0]; ++i)
+        if (strcmp(ctx_order[i], key) == 0)
+            return 1;
+    return 0;
+}
+
+/* Every context key of every run, in ctx_order first. */
+static int ctx_keys(const struct compare_set *set, const char **keys, int max)
+{
+    int n = 0;
+    for (size_t i = 0; i < sizeof ctx_order / sizeof ctx_order[0] && n < max; ++i) {
+        int any = strcmp(ctx_order[i], "files") == 0;
+        for (int k = 0; k < set->nruns; ++k)
+            any |= compare_context(set, k, ctx_order[i]) != NULL;
+        if (any)
+            keys[n++] = ctx_order[i];
+    }
+    for (int k = 0; k < set->nruns; ++k)
+        for (int c = 0; c < set->run[k].nctx && n < max; ++c) {
+            const char *key = set->run[k].ctx_key[c];
+            int seen = ctx_shown(key);
+            for (int j = 0; j < n && !seen; ++j)
+                seen = strcmp(keys[j], key) == 0;
+            if (!seen)
+                keys[n++] = key;
+        }
+    return n;
+}
+
+static void counts_line(struct md_buf *b, const struct compare_set *set, int kind)
+{
+    for (int k = 1; k < set->nruns; ++k) {
+        int count[CMP_V_CHANGED + 1] = { 0 }, rows = 0;
+        for (int i = 0; i < set->nrows; ++i)
+            if (set->rows[i].kind == kind) {
+                ++rows;
+                count[set->rows[i].cell[k].verdict]++;
+            }
+        if (!rows)
+            return;
+        md_printf(b, "%s against %s: %d row%s", set->run[k].name, set->run[0].name, rows, rows == 1 ? "" : "s");
+        const char *sep = ": ";
+        for (int v = CMP_V_MISSING; v <= CMP_V_CHANGED; ++v)
+            if (count[v]) {
+                md_printf(b, "%s%d %s", sep, count[v], cmp_verdict_name(v));
+                sep = ", ";
+            }
+        md_printf(b, "\n");
+    }
+}
+
+char *compare_text(const struct compare_set *set, int md)
+{
+    struct md_buf b;
+    md_init(&b);
+    int R = set->nruns;
+    if (md)
+        md_printf(&b, "# Comparison of %d %s\n\n", R, set->by_device ? "devices of one run" : "runs");
+    for (int k = 0; k < R; ++k)
+        md_printf(&b, "%s%s = %s%s\n", md ? "- " : "", set->run[k].name, set->run[k].path,
+                  k == 0 ? (set->by_device ? " (baseline device)" : " (baseline)") : "");
+    md_printf(&b, "\n");
+
+    /* the context side by side */
+    const char *keys[CMP_MAX_CTX + 16];
+    int nk = ctx_keys(set, keys, (int)(sizeof keys / sizeof keys[0]));
+    int w0 = 20, w = 12;
+    for (int k = 0; k < R; ++k) {
+        w = (int)fmax(w, strlen(set->run[k].name));
+        for (int i = 0; i < nk; ++i) {
+            const char *v = ctx_value(set, k, keys[i]);
+            if (v && (k == 0 || ctx_differs(set, k, keys[i])))
+                w = (int)fmax(w, fmin(72, strlen(v)));
+        }
+    }
+    if (md) {
+        md_printf(&b, "## Context\n\n| | ");
+        for (int k = 0; k < R; ++k)
+            md_printf(&b, "%s | ", set->run[k].name);
+        md_printf(&b, "\n|---|");
+        for (int k = 0; k < R; ++k)
+            md_printf(&b, "---|");
+        md_printf(&b, "\n");
+    } else {
+        md_printf(&b, "  %-*s", w0, "context");
+        for (int k = 0; k < R; ++k)
+            md_printf(&b, " %-*s", w, set->run[k].name);
+        md_printf(&b, "\n");
+    }
+    for (int i = 0; i < nk; ++i) {
+        int differs = 0;
+        for (int k = 1; k < R; ++k)
+            differs |= ctx_differs(set, k, keys[i]);
+        if (md)
+            md_printf(&b, "| %s%s%s |", differs ? "**" : "", keys[i], differs ? "**" : "");
+        else
+            md_printf(&b, "%c %-*s", differs ? '*' : ' ', w0, keys[i]);
+        for (int k = 0; k < R; ++k) {
+            const char *v = ctx_value(set, k, keys[i]);
+            char cell[CMP_TEXT + 8];
+            if (k > 0 && !ctx_differs(set, k, keys[i]))
+                snprintf(cell, sizeof cell, "=");
+            else
+                snprintf(cell, sizeof cell, "%s", v ? v : "-");
+            if (md) {
+                md_printf(&b, " ");
+                md_cell_text(&b, cell);
+                md_printf(&b, "%s |", differs && k > 0 && strcmp(cell, "=") != 0 ? " (differs)" : "");
+            } else {
+                md_printf(&b, " %-*.*s", w, 72, cell);
+            }
+        }
+        md_printf(&b, "\n");
+    }
+    md_printf(&b, md ? "\n`=`: as the first column; **bold**: differs from it.\n\n"
+                     : "(* differs from the first column; = as the first column)\n\n");
+
+    /* the rows, kind by kind; rows in every run first, then the others */
+    for (int kind = 0; kind < CMP_KIND_COUNT; ++kind) {
+        int nrows = 0, wl = 10, wc[CMP_MAX_RUNS];
+        for (int k = 0; k < R; ++k)
+            wc[k] = (int)strlen(set->run[k].name);
+        for (int i = 0; i < set->nrows; ++i) {
+            const struct cmp_row *r = &set->rows[i];
+            if (r->kind != kind)
+                continue;
+            ++nrows;
+            char label[2 * CMP_TEXT + 80], cell[CMP_TEXT + 80];
+            row_label(label, sizeof label, r);
+            wl = (int)fmax(wl, fmin(70, strlen(label)));
+            for (int k = 0; k < R; ++k) {
+                cell_text(cell, sizeof cell, set, r, k);
+                wc[k] = (int)fmax(wc[k], fmin(70, strlen(cell)));
+            }
+        }
+        if (!nrows)
+            continue;
+        if (md)
+            md_printf(&b, "## %s\n\n", cmp_kind_name(kind));
+        md_printf(&b, md ? "%s (alpha %.3g).\n\n" : "%s (alpha %.3g)\n\n", kind_heading(kind), set->alpha);
+        if (md) {
+            md_printf(&b, "| row |");
+            for (int k = 0; k < R; ++k)
+                md_printf(&b, " %s |", set->run[k].name);
+            md_printf(&b, "\n|---|");
+            for (int k = 0; k < R; ++k)
+                md_printf(&b, "---:|");
+            md_printf(&b, "\n");
+        } else {
+            md_printf(&b, "  %-*s", wl, "row");
+            for (int k = 0; k < R; ++k)
+                md_printf(&b, "  %-*s", wc[k], set->run[k].name);
+            md_printf(&b, "\n");
+        }
+        for (int pass = 0; pass < 2; ++pass) {
+            if (pass == 1) {
+                int some = 0;
+                for (int i = 0; i < set->nrows; ++i)
+                    some |= set->rows[i].kind == kind && !set->rows[i].in_all;
+                if (!some)
+                    break;
+                if (!md)
+                    md_printf(&b, "  rows found in only some of the runs:\n");
+            }
+            for (int i = 0; i < set->nrows; ++i) {
+                const struct cmp_row *r = &set->rows[i];
+                if (r->kind != kind || r->in_all != (pass == 0))
+                    continue;
+                char label[2 * CMP_TEXT + 80], cell[CMP_TEXT + 80];
+                row_label(label, sizeof label, r);
+                if (md) {
+                    md_printf(&b, "| ");
+                    md_cell_text(&b, label);
+                    md_printf(&b, "%s |", pass ? " (only in some runs)" : "");
+                } else {
+                    md_printf(&b, "  %-*.*s", wl, 70, label);
+                }
+                for (int k = 0; k < R; ++k) {
+                    cell_text(cell, sizeof cell, set, r, k);
+                    if (md) {
+                        md_printf(&b, " ");
+                        md_cell_text(&b, cell);
+                        md_printf(&b, " |");
+                    } else {
+                        md_printf(&b, "  %-*.*s", wc[k], 70, cell);
+                    }
+                }
+                md_printf(&b, "\n");
+            }
+        }
+        md_printf(&b, "\n");
+        counts_line(&b, set, kind);
+        md_printf(&b, "\n");
+    }
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;
+}
+
+/* ---- files ------------------------------------------------------------------------------- */
+
+static void csv_text(struct md_buf *b, const char *s)
+{
+    md_printf(b, "\"");
+    for (; *s; ++s)
+        md_printf(b, *s == '"' ? "\"\"" : "%c", *s);
+    md_printf(b, "\"");
+}
+
+static void csv_num(struct md_buf *b, double v)
+{
+    if (isfinite(v))
+        md_printf(b, ",%.9g", v);
+    else
+        md_printf(b, ",");
+}
+
+static int write_csv(const struct compare_set *set, const char *path, char *err, size_t errlen)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "kind,device,key,metric,sense,run,present,status,value,min,max,reps,ratio,change,p,verdict,reason\n");
+    for (int i = 0; i < set->nrows; ++i) {
+        const struct cmp_row *r = &set->rows[i];
+        for (int k = 0; k < set->nruns; ++k) {
+            const struct cmp_cell *c = &r->cell[k];
+            md_printf(&b, "%s,", cmp_kind_name(r->kind));
+            csv_text(&b, r->device);
+            md_printf(&b, ",");
+            csv_text(&b, r->key);
+            md_printf(&b, ",%s,%s,", r->metric, sense_name(r->sense));
+            csv_text(&b, set->run[k].name);
+            md_printf(&b, ",%d,%s", c->present, !c->present ? "missing" : c->ok ? "ok" : "failed");
+            csv_num(&b, c->present && c->ok ? c->value : NAN);
+            csv_num(&b, c->lo);
+            csv_num(&b, c->hi);
+            md_printf(&b, ",%d", c->nreps);
+            csv_num(&b, c->ratio);
+            csv_num(&b, c->change);
+            csv_num(&b, c->p);
+            md_printf(&b, ",%s,", k == 0 ? "baseline" : cmp_verdict_name(c->verdict));
+            csv_text(&b, c->present && !c->ok ? c->reason : "");
+            md_printf(&b, "\n");
+        }
+    }
+    int rc = b.failed ? -1 : write_file_atomic(path, b.s, b.len, err, errlen);
+    if (b.failed)
+        snprintf(err, errlen, "out of memory writing %.900s", path);
+    md_free(&b);
+    return rc;
+}
+
+static int write_json(const struct compare_set *set, const char *path, char *err, size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", COMPARE_SCHEMA);
+    char date[64];
+    utc_now_iso(date, sizeof date);
+    jw_kv_str(&w, "date", date);
+    jw_kv_str(&w, "layout", set->by_device ? "devices of one run" : "runs");
+    jw_kv_num(&w, "alpha", set->alpha);
+    jw_key(&w, "definitions");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "speed", "a rate (higher is better): value = median of the repetitions; verdict from the two-sided "
+                           "Mann-Whitney test of this run's repetitions against the baseline's at level alpha: faster "
+                           "or slower when p < alpha, same otherwise, undecided when the sample sizes cannot reach "
+                           "alpha; without repetitions, same when the min..max ranges overlap");
+    jw_kv_str(&w, "error", "an error figure (lower is better): unchanged when both round to the same 4 significant "
+                           "digits, else changed, better or worse; change = value - baseline");
+    jw_kv_str(&w, "score", "as error, higher is better (PSNR)");
+    jw_kv_str(&w, "value", "as error, with no better or worse (a fitted coefficient)");
+    jw_kv_str(&w, "ratio", "value / the baseline's value of the same row");
+    jw_obj_end(&w);
+    jw_key(&w, "runs");
+    jw_arr_begin(&w);
+    const char *keys[CMP_MAX_CTX + 16];
+    int nk = ctx_keys(set, keys, (int)(sizeof keys / sizeof keys[0]));
+    for (int k = 0; k < set->nruns; ++k) {
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "name", set->run[k].name);
+        jw_kv_str(&w, "path", set->run[k].path);
+        jw_kv_bool(&w, "baseline", k == 0);
+        jw_kv_str(&w, "files", set->run[k].files);
+        jw_key(&w, "context");
+        jw_obj_begin(&w);
+        for (int c = 0; c < set->run[k].nctx; ++c)
+            jw_kv_str(&w, set->run[k].ctx_key[c], set->run[k].ctx_value[c]);
+        jw_obj_end(&w);
+        jw_key(&w, "context_differs");
+        jw_arr_begin(&w);
+        for (int i = 0; k > 0 && i < nk; ++i)
+            if (strcmp(keys[i], "files") != 0 && ctx_differs(set, k, keys[i]))
+                jw_str(&w, keys[i]);
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_key(&w, "rows");
+    jw_arr_begin(&w);
+    for (int i = 0; i < set->nrows; ++i) {
+        const struct cmp_row *r = &set->rows[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "kind", cmp_kind_name(r->kind));
+        jw_kv_str(&w, "device", r->device);
+        jw_kv_str(&w, "key", r->key);
+        jw_kv_str(&w, "model", r->model);
+        jw_kv_str(&w, "metric", r->metric);
+        jw_kv_str(&w, "sense", sense_name(r->sense));
+        jw_kv_bool(&w, "in_all_runs", r->in_all);
+        jw_key(&w, "cells");
+        jw_arr_begin(&w);
+        for (int k = 0; k < set->nruns; ++k) {
+            const struct cmp_cell *c = &r->cell[k];
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "run", set->run[k].name);
+            jw_kv_str(&w, "status", !c->present ? "missing" : c->ok ? "ok" : "failed");
+            if (c->present && !c->ok)
+                jw_kv_str(&w, "reason", c->reason);
+            jw_kv_num(&w, "value", c->present && c->ok ? c->value : NAN);
+            if (r->sense == CMP_SPEED) {
+                jw_kv_num(&w, "min", c->lo);
+                jw_kv_num(&w, "max", c->hi);
+                jw_key(&w, "reps");
+                jw_arr_begin(&w);
+                for (int j = 0; j < c->nreps; ++j)
+                    jw_num(&w, c->reps[j]);
+                jw_arr_end(&w);
+            }
+            jw_kv_num(&w, "ratio", c->ratio);
+            jw_kv_num(&w, "change", c->change);
+            if (r->sense == CMP_SPEED)
+                jw_kv_num(&w, "p", c->p);
+            jw_kv_str(&w, "verdict", k == 0 ? "baseline" : cmp_verdict_name(c->verdict));
+            jw_obj_end(&w);
+        }
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_key(&w, "summary");
+    jw_arr_begin(&w);
+    for (int k = 1; k < set->nruns; ++k)
+        for (int kind = 0; kind < CMP_KIND_COUNT; ++kind) {
+            int count[CMP_V_CHANGED + 1] = { 0 }, rows = 0;
+            for (int i = 0; i < set->nrows; ++i)
+                if (set->rows[i].kind == kind) {
+                    ++rows;
+                    count[set->rows[i].cell[k].verdict]++;
+                }
+            if (!rows)
+                continue;
+            jw_obj_begin(&w);
+            jw_kv_str(&w, "run", set->run[k].name);
+            jw_kv_str(&w, "kind", cmp_kind_name(kind));
+            jw_kv_int(&w, "rows", rows);
+            jw_key(&w, "verdicts");
+            jw_obj_begin(&w);
+            for (int v = CMP_V_MISSING; v <= CMP_V_CHANGED; ++v)
+                if (count[v])
+                    jw_kv_int(&w, cmp_verdict_name(v), count[v]);
+            jw_obj_end(&w);
+            jw_obj_end(&w);
+        }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+/* Per model one group, one bar per run: the throughput rows of the default build options with
+   n uniform where there are any, else every speed row. */
+static int chart_row(const struct cmp_row *r, int throughput_default)
+{
+    if (r->sense != CMP_SPEED)
+        return 0;
+    if (throughput_default)
+        return r->kind == CMP_THROUGHPUT && strstr(r->key, "| default | n uniform") != NULL;
+    return 1;
+}
+
+static int write_chart(const struct compare_set *set, const char *path, char *err, size_t errlen)
+{
+    int tpd = 0;
+    for (int i = 0; i < set->nrows; ++i)
+        tpd |= chart_row(&set->rows[i], 1);
+    int G = 0, S = set->nruns;
+    for (int i = 0; i < set->nrows; ++i)
+        G += chart_row(&set->rows[i], tpd) && G < 200;
+    if (G == 0)
+        return 0;   /* nothing measured as a rate: no chart */
+    const char **groups = calloc((size_t)G, sizeof *groups), **series = calloc((size_t)S, sizeof *series);
+    char (*labels)[2 * CMP_TEXT + 80] = calloc((size_t)G, sizeof *labels);
+    double *val = calloc((size_t)G * S, sizeof *val), *lo = calloc((size_t)G * S, sizeof *lo),
+           *hi = calloc((size_t)G * S, sizeof *hi), *blo = calloc((size_t)G, sizeof *blo),
+           *bhi = calloc((size_t)G, sizeof *bhi);
+    int rc = -1;
+    if (!groups || !series || !labels || !val || !lo || !hi || !blo || !bhi) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        goto done;
+    }
+    for (int k = 0; k < S; ++k)
+        series[k] = set->run[k].name;
+    int g = 0;
+    for (int i = 0; i < set->nrows && g < G; ++i) {
+        const struct cmp_row *r = &set->rows[i];
+        if (!chart_row(r, tpd))
+            continue;
+        if (tpd)
+            snprintf(labels[g], sizeof labels[g], "%s%s%s", r->device, *r->device ? " | " : "", r->model);
+        else
+            row_label(labels[g], sizeof labels[g], r);
+        groups[g] = labels[g];
+        const struct cmp_cell *b = &r->cell[0];
+        double base = b->present && b->ok ? b->value : NAN;
+        blo[g] = b->lo / base;
+        bhi[g] = b->hi / base;
+        for (int k = 0; k < S; ++k) {
+            const struct cmp_cell *c = &r->cell[k];
+            int ok = c->present && c->ok && isfinite(base) && base > 0;
+            val[g * S + k] = ok ? c->value / base : NAN;
+            lo[g * S + k] = ok ? c->lo / base : NAN;
+            hi[g * S + k] = ok ? c->hi / base : NAN;
+        }
+        ++g;
+    }
+    char title[512], xlabel[600];
+    snprintf(title, sizeof title, "%s as a ratio to %.200s", tpd ? "evaluations/s (default build options, n uniform)"
+                                                                 : "rates", set->run[0].name);
+    snprintf(xlabel, sizeof xlabel, "ratio to %.200s's median (whisker: min..max of the run; grey: %.200s's own "
+                                    "min..max)", set->run[0].name, set->run[0].name);
+    struct draw_ratio_chart ch = { title, xlabel, G, S, groups, series, val, lo, hi, blo, bhi, 0 };
+    rc = draw_ratio_chart(path, &ch, err, errlen);
+done:
+    free(groups);
+    free(series);
+    free(labels);
+    free(val);
+    free(lo);
+    free(hi);
+    free(blo);
+    free(bhi);
+    return rc;
+}
+
+int compare_write(const struct compare_set *set, const char *out_dir, char *err, size_t errlen)
+{
+    char path[4200];
+    char *md = compare_text(set, 1);
+    if (!md) {
+        snprintf(err, errlen, "out of memory writing compare.md");
+        return 3;
+    }
+    int rc = path_join(path, sizeof path, out_dir, "compare.md") ||
+             write_file_atomic(path, md, strlen(md), err, errlen) ||
+             path_join(path, sizeof path, out_dir, "compare.csv") || write_csv(set, path, err, errlen) ||
+             path_join(path, sizeof path, out_dir, "compare.json") || write_json(set, path, err, errlen) ||
+             path_join(path, sizeof path, out_dir, "compare.png") || write_chart(set, path, err, errlen);
+    free(md);
+    return rc ? 3 : 0;
+}

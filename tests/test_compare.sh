@@ -1,0 +1,395 @@
+#!/usr/bin/env bash
+# test_compare.sh - `brdfbench compare` end to end. Expected values are worked out here from the
+# input files (Python), never taken from compare's own output:
+#   - a real throughput.json with every rate scaled by a known factor: that factor as the ratio
+#     of every row, and "slower" wherever the scaled repetitions all fall below the original ones;
+#   - a run against itself: ratio 1, "same" (p = 1) everywhere;
+#   - two real runs: every row matched, ratio = median over median; the share of "same" is
+#     printed, not asserted (timing on a shared machine is no test);
+#   - rows in only some runs; accuracy changed/unchanged at the 4th significant digit with the
+#     signed change; render and frontier files (synthetic: frontier.json is read by its keys);
+#   - every exit code: 0, 1 (--fail-if-slower, --fail-if-less-accurate), 2 (missing path, no
+#     result file, another schema version, nothing in common, bad flags; nothing written), 3.
+set -u
+BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+
+TP=(throughput --models cq2,fq2,phong --reps 5 --min-time 0.002 --work-items 8 --variants default --no-host-c
+    --no-sweep --quiet)
+"$BIN" "${TP[@]}" --out "$T/a" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "throughput run a: exit $rc: $(cat "$T/err")"
+"$BIN" "${TP[@]}" --out "$T/a2" 2>"$T/err" && ok || bad "throughput run a2: $(cat "$T/err")"
+"$BIN" accuracy --models cq2,fq2 --n-max 60 --samples 256 --out "$T/acc" >/dev/null 2>"$T/err" && ok ||
+    bad "accuracy run: $(cat "$T/err")"
+
+# ---- a known slowdown: every rate times f, f below the smallest min/max of any row ------------
+python3 - "$T/a/throughput.json" "$T/slow" <<'PY' || bad "making the scaled run"
+import json, os, sys
+d = json.load(open(sys.argv[1]))
+rows = [r for r in d["results"] if r["status"] == "ok"]
+# half the smallest min/max ratio: every scaled repetition lies below every original one
+f = 0.5 * min(min(r["evals_per_s_reps"]) / max(r["evals_per_s_reps"]) for r in rows)
+for r in d["results"]:
+    for k in ("min", "median", "max"):
+        if r["evals_per_s"][k] is not None:
+            r["evals_per_s"][k] *= f
+    r["evals_per_s_reps"] = [x * f for x in r["evals_per_s_reps"]]
+os.makedirs(sys.argv[2])
+json.dump(d, open(os.path.join(sys.argv[2], "throughput.json"), "w"))
+open(os.path.join(sys.argv[2], "factor"), "w").write(repr(f))
+PY
+"$BIN" compare "$T/a" "$T/slow" --out "$T/c1" >"$T/table" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "compare a slow: exit $rc: $(cat "$T/err")"
+python3 - "$T/c1/compare.json" "$(cat "$T/slow/factor")" <<'PY' && ok || bad "scaled run: factor and verdicts"
+import json, math, sys
+def no_const(x): raise ValueError("non-finite number in JSON: " + x)
+d = json.load(open(sys.argv[1]), parse_constant=no_const)
+f = float(sys.argv[2])
+assert d["schema"] == "brdfbench.compare/1"
+assert [r["name"] for r in d["runs"]] == ["a", "slow"]
+rows = [r for r in d["rows"] if r["kind"] == "throughput"]
+assert len(rows) == 2 * 4, len(rows)   # pow, cq2, fq2, phong x uniform, varying
+for r in rows:
+    base, cand = r["cells"]
+    assert base["verdict"] == "baseline" and math.isclose(base["ratio"], 1.0)
+    assert math.isclose(cand["ratio"], f, rel_tol=1e-12), (r["key"], cand["ratio"], f)
+    # 5 repetitions each, fully separated: exact two-sided p = 2 / C(10, 5) = 2/252
+    assert cand["verdict"] == "slower", (r["key"], cand)
+    assert math.isclose(cand["p"], 2 / 252, rel_tol=1e-12), cand["p"]
+print("factor %.4g reported on %d rows" % (f, len(rows)))
+PY
+grep -q "slower" "$T/table" && grep -q "cq2 | default | n uniform" "$T/table" && ok || bad "table lacks the rows: $(head -30 "$T/table")"
+for f in compare.md compare.csv compare.json compare.png; do
+    [ -s "$T/c1/$f" ] && ok || bad "$f not written"
+done
+head -c 8 "$T/c1/compare.png" | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a" && ok || bad "compare.png is not a PNG"
+# CSV: one line per row and run, the ratio column as in the JSON
+python3 - "$T/c1/compare.csv" <<'PY' && ok || bad "compare.csv"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2 * 8, len(rows)
+assert {r["run"] for r in rows} == {"a", "slow"}
+assert all(r["verdict"] == "slower" for r in rows if r["run"] == "slow")
+PY
+
+# --fail-if-slower: the factor is far below 0.5, so 40% fails and names the rows; 100% cannot
+expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.[0-9]+x the baseline" compare "$T/a" "$T/slow" --out "$T/c2" --fail-if-slower 40
+"$BIN" compare "$T/a" "$T/slow" --out "$T/c3" --fail-if-slower 100 --quiet 2>"$T/err" && ok ||
+    bad "--fail-if-slower 100 failed: $(cat "$T/err")"
+# the other way round every row is faster and nothing fails
+"$BIN" compare "$T/slow" "$T/a" --out "$T/c4" --fail-if-slower 0 --quiet 2>"$T/err" && ok ||
+    bad "faster run failed --fail-if-slower 0: $(cat "$T/err")"
+python3 - "$T/c4/compare.json" <<'PY' && ok || bad "reversed: faster"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert all(r["cells"][1]["verdict"] == "faster" for r in d["rows"]), d["rows"]
+PY
+
+# ---- a run against itself --------------------------------------------------------------
+"$BIN" compare "$T/a" "$T/a" --out "$T/self" --quiet --fail-if-slower 0 2>"$T/err" && ok ||
+    bad "a against itself: $(cat "$T/err")"
+python3 - "$T/self/compare.json" <<'PY' && ok || bad "self: ratio 1 and same"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert len(d["rows"]) == 8
+for r in d["rows"]:
+    c = r["cells"][1]
+    # identical repetitions: every value tied with its copy, U = 12.5 = E U, p = 1
+    assert c["ratio"] == 1.0 and c["verdict"] == "same" and c["p"] == 1.0, (r["key"], c)
+assert d["runs"][1]["context_differs"] == [], d["runs"][1]["context_differs"]
+PY
+
+# ---- too few repetitions: with 3 per side the smallest two-sided p is 2/20 = 0.1 > 0.05 ---------
+python3 - "$T/a/throughput.json" "$T/slow/throughput.json" "$T/few_a" "$T/few_slow" <<'PY' || bad "making 3-rep runs"
+import json, os, sys
+for src, dst in ((sys.argv[1], sys.argv[3]), (sys.argv[2], sys.argv[4])):
+    d = json.load(open(src))
+    for r in d["results"]:
+        r["evals_per_s_reps"] = r["evals_per_s_reps"][:3]
+    os.makedirs(dst)
+    json.dump(d, open(os.path.join(dst, "throughput.json"), "w"))
+PY
+"$BIN" compare "$T/few_a" "$T/few_slow" --out "$T/few" --quiet --fail-if-slower 0 2>"$T/err" && ok ||
+    bad "undecided rows must not fail --fail-if-slower: $(cat "$T/err")"
+python3 - "$T/few/compare.json" <<'PY' && ok || bad "3 repetitions: undecided"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+for r in d["rows"]:
+    c = r["cells"][1]
+    # fully separated, yet p = 2/20: the test cannot reach 0.05 with these sizes
+    assert c["verdict"] == "undecided" and math.isclose(c["p"], 0.1), (r["key"], c)
+PY
+
+# ---- two real runs: matched, ratio of medians; the share of "same" is reported -----------
+"$BIN" compare "$T/a" "$T/a2" --out "$T/real" --quiet 2>"$T/err" && ok || bad "a against a2: $(cat "$T/err")"
+python3 - "$T/real/compare.json" "$T/a/throughput.json" "$T/a2/throughput.json" <<'PY' && ok || bad "two real runs"
+import json, math, sys
+d, a, b = (json.load(open(p)) for p in sys.argv[1:4])
+med = lambda doc: {(r["label"], r["variant"], r["n_mode"]): r["evals_per_s"]["median"] for r in doc["results"]}
+ma, mb = med(a), med(b)
+rows = d["rows"]
+assert len(rows) == len(ma) == len(mb) == 8
+verdicts = []
+for r in rows:
+    label, variant, mode = [s.strip() for s in r["key"].split("|")]
+    key = (label, variant, mode.replace("n ", ""))
+    c = r["cells"][1]
+    assert math.isclose(c["ratio"], mb[key] / ma[key], rel_tol=1e-12), (key, c["ratio"])
+    assert c["verdict"] in ("same", "faster", "slower"), c["verdict"]
+    assert 0 < c["p"] <= 1
+    verdicts.append(c["verdict"])
+print("two real runs: %d of %d rows same (%s)" % (verdicts.count("same"), len(verdicts),
+      ", ".join("%s %d" % (v, verdicts.count(v)) for v in sorted(set(verdicts)))))
+PY
+
+# ---- rows in only some runs ----------------------------------------------------------------
+python3 - "$T/a/throughput.json" "$T/mixed" <<'PY' || bad "making the mismatched run"
+import json, os, sys
+d = json.load(open(sys.argv[1]))
+d["results"] = [r for r in d["results"] if r["label"] != "phong"]   # phong only in a
+extra = json.loads(json.dumps(d["results"][-1]))
+extra["label"] = extra["model"] = "lyon:k=3"                       # lyon only in mixed
+d["results"].append(extra)
+os.makedirs(sys.argv[2])
+json.dump(d, open(os.path.join(sys.argv[2], "throughput.json"), "w"))
+PY
+"$BIN" compare "$T/a" "$T/mixed" --out "$T/mix" >"$T/table" 2>"$T/err" && ok || bad "mismatched: $(cat "$T/err")"
+python3 - "$T/mix/compare.json" <<'PY' && ok || bad "mismatched rows listed"
+import json, sys
+d = json.load(open(sys.argv[1]))
+by = {r["key"]: r for r in d["rows"]}
+assert len(d["rows"]) == 8 + 1, len(d["rows"])   # 6 shared, 2 phong, 1 lyon
+for k in ("phong | default | n uniform", "phong | default | n varying"):
+    assert not by[k]["in_all_runs"] and by[k]["cells"][1]["status"] == "missing" and by[k]["cells"][1]["verdict"] == "missing"
+lyon = by["lyon:k=3 | default | n varying"]   # a copy of the last row, fq2 with n varying
+assert lyon["cells"][0]["status"] == "missing" and lyon["cells"][1]["status"] == "ok"
+assert sum(r["in_all_runs"] for r in d["rows"]) == 6
+PY
+grep -q "rows found in only some of the runs" "$T/table" && grep -q "phong | default | n uniform .*(not in this run)" "$T/table" &&
+    ok || bad "table does not list the unmatched rows"
+
+# ---- accuracy: 4th significant digit, signed change, --fail-if-less-accurate -------------------
+python3 - "$T/acc/accuracy.json" "$T/acc2" <<'PY' || bad "making the changed accuracy run"
+import json, os, sys
+d = json.load(open(sys.argv[1]))
+for r in d["results"]:
+    if r["label"] == "cq2":
+        r["epicentre"]["max_rel"] *= 1.01          # moves the 3rd digit: changed, worse
+        r["attenuation"]["max_abs"] *= 0.99        # changed, better
+    if r["label"] == "fq2":
+        r["epicentre"]["max_rel"] *= 1 + 1e-9      # far below the 4th digit: unchanged
+os.makedirs(sys.argv[2])
+json.dump(d, open(os.path.join(sys.argv[2], "accuracy.json"), "w"))
+PY
+expect 1 "cq2 .*epicentre.max_rel" compare "$T/acc" "$T/acc2" --out "$T/c5" --fail-if-less-accurate
+python3 - "$T/c5/compare.json" "$T/acc/accuracy.json" "$T/acc2/accuracy.json" <<'PY' && ok || bad "accuracy verdicts"
+import json, math, sys
+d, a, b = (json.load(open(p)) for p in sys.argv[1:4])
+val = lambda doc, label, fig: [r for r in doc["results"] if r["label"] == label][0][fig.split(".")[0]][fig.split(".")[1]]
+seen = 0
+for r in d["rows"]:
+    label = r["key"].split(" | ")[0]
+    va, vb = val(a, label, r["metric"]), val(b, label, r["metric"])
+    c = r["cells"][1]
+    # the 4th significant digit, as printed with 4 digits
+    same = "%.3e" % va == "%.3e" % vb
+    want = "unchanged" if same else ("changed, better" if vb < va else "changed, worse")
+    assert c["verdict"] == want, (r["key"], r["metric"], c["verdict"], want)
+    assert math.isclose(c["change"], vb - va, rel_tol=1e-9, abs_tol=1e-300), (c["change"], vb - va)
+    seen += 1
+assert seen == 6, seen
+verd = {(r["key"].split(" | ")[0], r["metric"]): r["cells"][1]["verdict"] for r in d["rows"]}
+assert verd[("cq2", "epicentre.max_rel")] == "changed, worse"
+assert verd[("cq2", "attenuation.max_abs")] == "changed, better"
+assert verd[("fq2", "epicentre.max_rel")] == "unchanged"
+PY
+"$BIN" compare "$T/acc" "$T/acc2" --out "$T/c6" --quiet 2>"$T/err" && ok || bad "without the flag a change exits 0"
+# the better direction does not fail
+"$BIN" compare "$T/acc2" "$T/acc" --out "$T/c7" --quiet --fail-if-less-accurate 2>"$T/err"
+[ $? -eq 1 ] && grep -q "attenuation.max_abs" "$T/err" && ! grep -q "epicentre.max_rel" "$T/err" && ok ||
+    bad "reversed accuracy: only attenuation is worse: $(cat "$T/err")"
+
+# ---- render and frontier files (synthetic, keys as their writers use them) ------------------
+python3 - "$T" <<'PY' || bad "making render and frontier files"
+import json, os, sys
+t = sys.argv[1]
+def render(ms, psnr):
+    return {"schema": "brdfbench.render/1", "context": {"device": "dev"}, "scenes": [{
+        "scene": "spheres", "image": {"width": 96, "height": 54},
+        "models": [{"model": "cq2", "metrics": {"max_abs": 0.25, "rmse": 0.01, "psnr_db": psnr}},
+                   {"model": "phong", "metrics": {"max_abs": 0, "rmse": 0, "psnr_db": None}}],
+        "timings": [{"width": 96, "height": 54, "entries": [
+            {"name": "cq2", "model": "cq2", "median_ms": ms, "min_ms": ms * 0.9, "max_ms": ms * 1.1,
+             "mpixel_per_s": 5.184 / ms}]}]}]}
+for name, ms, psnr in (("r1", 1.0, 40.0), ("r2", 2.0, 39.0), ("r3", 1.05, 40.0)):
+    os.makedirs(os.path.join(t, name))
+    json.dump(render(ms, psnr), open(os.path.join(t, name, "render.json"), "w"))
+def frontier(scale, rel):
+    return {"schema": "brdfbench.frontier/1", "context": {"device": "dev"}, "results": [
+        {"model": "fq2", "evals_per_s": {"min": 9e9 * scale, "median": 1e10 * scale, "max": 1.1e10 * scale},
+         "evals_per_s_reps": [x * scale for x in (9e9, 9.5e9, 1e10, 1.05e10, 1.1e10)],
+         "max_rel": rel, "max_abs": 0.1278, "psnr_db": 41.5},
+        {"model": "cq2", "evals_per_s": {"min": 1e10, "median": 1.1e10, "max": 1.2e10}, "max_rel": 0.07588}]}
+json.dump(frontier(1.0, 0.012567), open(os.path.join(t, "f1.json"), "w"))
+json.dump(frontier(0.5, 0.012600), open(os.path.join(t, "f2.json"), "w"))
+PY
+"$BIN" compare "$T/r1" "$T/r2" "$T/r3" --out "$T/c8" --quiet 2>"$T/err" && ok || bad "render: $(cat "$T/err")"
+python3 - "$T/c8/compare.json" <<'PY' && ok || bad "render verdicts"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+by = {(r["key"], r["metric"]): r for r in d["rows"]}
+sp = by[("spheres | cq2", "mpixel_per_s@96x54")]["cells"]
+# r2 takes twice as long: ratio 1/2, ranges [1.8, 2.2] ms vs [0.9, 1.1] ms apart: slower;
+# r3 at 1.05 ms overlaps r1's range: same
+assert math.isclose(sp[1]["ratio"], 0.5) and sp[1]["verdict"] == "slower", sp[1]
+assert math.isclose(sp[2]["ratio"], 1 / 1.05) and sp[2]["verdict"] == "same", sp[2]
+ps = by[("spheres 96x54 | cq2", "psnr_db")]["cells"]
+assert ps[1]["verdict"] == "changed, worse" and math.isclose(ps[1]["change"], -1.0), ps[1]
+assert ps[2]["verdict"] == "unchanged"
+assert ("spheres 96x54 | phong", "psnr_db") not in by   # infinite PSNR of identical images: no row
+assert by[("spheres 96x54 | phong", "max_abs")]["cells"][1]["verdict"] == "unchanged"
+PY
+"$BIN" compare "$T/f1.json" "$T/f2.json" --out "$T/c9" --quiet --fail-if-slower 10 2>"$T/err"
+[ $? -eq 1 ] && grep -q "fq2" "$T/err" && ok || bad "frontier: fq2 at half the rate must fail: $(cat "$T/err")"
+python3 - "$T/c9/compare.json" <<'PY' && ok || bad "frontier rows"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+by = {(r["key"], r["metric"]): r["cells"][1] for r in d["rows"]}
+assert math.isclose(by[("fq2", "evals_per_s")]["ratio"], 0.5)
+assert by[("fq2", "evals_per_s")]["verdict"] == "slower"           # 5 reps each, apart: p = 2/252
+assert math.isclose(by[("fq2", "evals_per_s")]["p"], 2 / 252)
+assert by[("fq2", "max_rel")]["verdict"] == "changed, worse"         # 1.257e-2 -> 1.260e-2
+assert by[("fq2", "max_abs")]["verdict"] == "unchanged"
+assert by[("cq2", "evals_per_s")]["verdict"] == "same"              # no reps: ranges overlap (equal)
+PY
+
+# ---- the kernel sources' fingerprints: a kernel changed without a commit shows in the context
+SRC=${SRC_DIR:?SRC_DIR must name the source tree}
+cp -r "$SRC/kernels" "$T/k_same" && cp -r "$SRC/kernels" "$T/k_edit" && echo "/* edited */" >>"$T/k_edit/brdf_models.h"
+"$BIN" "${TP[@]}" --models cq2 --kernel-dir "$T/k_same" --out "$T/ks" 2>"$T/err" && ok || bad "kernel-dir run: $(cat "$T/err")"
+"$BIN" "${TP[@]}" --models cq2 --kernel-dir "$T/k_edit" --out "$T/ke" 2>"$T/err" && ok || bad "kernel-dir run: $(cat "$T/err")"
+"$BIN" compare "$T/a" "$T/ks" "$T/ke" --out "$T/ck" --quiet 2>"$T/err" && ok || bad "compare kernel runs: $(cat "$T/err")"
+python3 - "$T/ck/compare.json" <<'PY' && ok || bad "kernel fingerprints in the context"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert "kernel sources" not in d["runs"][1]["context_differs"], d["runs"][1]   # the same files
+assert "kernel sources" in d["runs"][2]["context_differs"], d["runs"][2]       # one comment added
+assert "brdf_models.h" in d["runs"][2]["context"]["kernel sources"]
+PY
+
+# ---- fit.json: the fitted coefficients and figures, the other models by name ------------------
+"$BIN" fit --n-min 2 --n-max 30 --out "$T/fit" --quiet >/dev/null 2>"$T/err" && ok || bad "fit run: $(cat "$T/err")"
+python3 - "$T/fit/fit.json" "$T/fit2" <<'PY' || bad "making the changed fit"
+import json, os, sys
+d = json.load(open(sys.argv[1]))
+d["a"] *= 1.001          # a coefficient moved in its 4th digit: changed (no better or worse)
+d["max_rel"] *= 0.99     # the fit's max delta 1% lower: changed, better
+os.makedirs(sys.argv[2])
+json.dump(d, open(os.path.join(sys.argv[2], "fit.json"), "w"))
+PY
+"$BIN" compare "$T/fit" "$T/fit2" --out "$T/cfit" --quiet --fail-if-less-accurate 2>"$T/err" && ok ||
+    bad "fit: a better figure must not fail: $(cat "$T/err")"
+python3 - "$T/cfit/compare.json" "$T/fit/fit.json" <<'PY' && ok || bad "fit rows"
+import json, sys
+d, f = (json.load(open(p)) for p in sys.argv[1:3])
+rows = [r for r in d["rows"] if r["kind"] == "fit"]
+best = {r["metric"]: r["cells"][1]["verdict"] for r in rows if r["key"].startswith("best affine")}
+assert best == {"a": "changed", "b": "unchanged", "max_rel": "changed, better", "max_abs": "unchanged"}, best
+# every model fit.json compares with, except the fitted quad: itself, by its moving label
+others = sorted(r["key"].split(" | ")[0] for r in rows if r["metric"] == "max_rel" and " | n " in r["key"]
+                and not r["key"].startswith(("best", "capped")))
+want = sorted(m["model"] for m in f["compare"] if not m["model"].startswith("quad:"))
+assert others == want and len(want) > 0, (others, want)
+PY
+
+# ---- several devices in one run: the same PoCL device twice --------------------------------
+"$BIN" "${TP[@]}" --device 0,0 --out "$T/dev" 2>"$T/err" && ok || bad "--device 0,0: $(cat "$T/err")"
+python3 - "$T/dev/throughput.json" <<'PY' && ok || bad "--device 0,0: rows tagged"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == "brdfbench.throughput/2"
+devs = d["context"]["devices"]
+assert [x["index"] for x in devs] == ["0:0", "0:0"], devs
+name = devs[0]["device"]
+# the second mention of the same device is told apart by its place in the list
+assert [x["tag"] for x in devs] == [name, name + " #2"], devs
+tags = [r["device"] for r in d["results"]]
+assert tags == [name] * 8 + [name + " #2"] * 8, tags
+PY
+for k in 1 2; do [ -s "$T/dev/devices/$k/throughput.json" ] && [ -s "$T/dev/devices/$k/throughput.csv" ] && ok ||
+    bad "devices/$k lacks its own outputs"; done
+"$BIN" compare "$T/dev" --out "$T/devc" >"$T/table" 2>"$T/err" && ok || bad "compare one run of 2 devices: $(cat "$T/err")"
+python3 - "$T/devc/compare.json" "$T/dev/throughput.json" <<'PY' && ok || bad "devices side by side"
+import json, math, sys
+d, t = (json.load(open(p)) for p in sys.argv[1:3])
+assert d["layout"] == "devices of one run"
+name = t["context"]["devices"][0]["device"]
+assert [r["name"] for r in d["runs"]] == [name, name + " #2"]
+assert len(d["rows"]) == 8 and all(r["in_all_runs"] and r["device"] == "" for r in d["rows"])
+med = {(r["device"], r["label"], r["variant"], r["n_mode"]): r["evals_per_s"]["median"] for r in t["results"]}
+for r in d["rows"]:
+    label, variant, mode = [s.strip() for s in r["key"].split("|")]
+    a = med[(name, label, variant, mode[2:])]
+    b = med[(name + " #2", label, variant, mode[2:])]
+    assert math.isclose(r["cells"][1]["ratio"], b / a, rel_tol=1e-12)
+PY
+# two runs of two devices each match row by row, device by device
+"$BIN" compare "$T/dev" "$T/dev" --out "$T/devc2" --quiet 2>"$T/err" && ok || bad "dev against dev: $(cat "$T/err")"
+python3 - "$T/devc2/compare.json" <<'PY' && ok || bad "dev against dev: rows keyed by device"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert len(d["rows"]) == 16 and len({r["device"] for r in d["rows"]}) == 2
+assert all(r["cells"][1]["verdict"] == "same" and r["cells"][1]["ratio"] == 1.0 for r in d["rows"])
+PY
+"$BIN" accuracy --models cq2 --n-max 20 --samples 64 --device 0,0 --out "$T/accdev" --quiet 2>"$T/err" && ok ||
+    bad "accuracy --device 0,0: $(cat "$T/err")"
+python3 - "$T/accdev/accuracy.json" <<'PY' && ok || bad "accuracy rows tagged"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == "brdfbench.accuracy/1" and len(d["results"]) == 2
+assert d["results"][1]["device"] == d["results"][0]["device"] + " #2"
+PY
+expect 2 "--device: device 7 is out of range for platform 0 \(accepted: 0 to" "${TP[@]}" --device 0:7 --out "$T/x8"
+expect 2 "--device: 'x' is not N or P:D" "${TP[@]}" --device 0,x --out "$T/x9"
+expect 2 "all and lists are taken by throughput, accuracy and render" fit --device all
+expect 2 "--min-time" "${TP[@]}" --device 0,0 --min-time 99 --out "$T/x10"
+for i in 8 9 10; do [ ! -e "$T/x$i" ] && ok || bad "exit 2 left $T/x$i behind"; done
+
+# ---- exit 2: one line, nothing written ----------------------------------------------------
+expect 2 "nothere: No such file" compare "$T/nothere" "$T/a" --out "$T/x1"
+mkdir -p "$T/empty"
+expect 2 "empty: no result file" compare "$T/a" "$T/empty" --out "$T/x2"
+python3 - "$T/a/throughput.json" "$T/old" <<'PY'
+import json, os, sys
+d = json.load(open(sys.argv[1]))
+d["schema"] = "brdfbench.throughput/1"
+os.makedirs(sys.argv[2])
+json.dump(d, open(os.path.join(sys.argv[2], "throughput.json"), "w"))
+PY
+expect 2 'schema "brdfbench.throughput/1", compare reads "brdfbench.throughput/2"' compare "$T/a" "$T/old" --out "$T/x3"
+expect 2 "no row in common" compare "$T/a" "$T/acc" --out "$T/x4"
+expect 2 "one run holds one device" compare "$T/a" --out "$T/x5"
+expect 2 "expected BASELINE RUN" compare
+expect 2 "unknown option '--bogus'" compare "$T/a" "$T/a2" --bogus
+expect 2 "--alpha" compare "$T/a" "$T/a2" --alpha 1.5
+expect 2 "--fail-if-slower" compare "$T/a" "$T/a2" --fail-if-slower 101
+echo '{"schema": "brdfbench.something/1"}' >"$T/other.json"
+expect 2 'schema "brdfbench.something/1" is not one compare reads' compare "$T/a" "$T/other.json" --out "$T/x6"
+printf '{"schema": ' >"$T/broken.json"
+expect 2 "broken.json:1" compare "$T/a" "$T/broken.json" --out "$T/x7"
+for i in 1 2 3 4 5 6 7; do
+    [ ! -e "$T/x$i" ] && ok || bad "exit 2 left $T/x$i behind"
+done
+[ "$(wc -l <"$T/err")" -eq 1 ] && ok || bad "exit 2 message is not one line: $(cat "$T/err")"
+
+# ---- exit 3: an output folder that cannot be made -------------------------------------------
+touch "$T/afile"
+expect 3 "afile" compare "$T/a" "$T/a2" --out "$T/afile/sub" --quiet
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

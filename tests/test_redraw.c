@@ -1,0 +1,129 @@
+/* test_redraw.c - `brdfbench plot RUN` and `heatmap RUN` redraw a run's own pictures: a
+ * picture drawn from the results in memory and the same picture drawn again from the JSON
+ * written for it are the same file, byte for byte (same pixels, so same maxima, rings,
+ * titles and size), and the peaks read back are the peaks that were found:
+ *   - the heatmap of fq2 on the default grid (121 x 181 cells over n in [2, 1000]), where
+ *     many cells near the maximum agree in their 4th digit;
+ *   - a plot of max delta against Q with values and a marked Q at full double precision,
+ *     and a plot of f against x. */
+#include "check.h"
+#include "exitcodes.h"
+#include "field.h"
+#include "models.h"
+#include "plots.h"
+#include "testutil.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* 1 when files a and b hold the same bytes. */
+static int same_file(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb;
+    while (same) {
+        int ca = fgetc(fa), cb = fgetc(fb);
+        if (ca != cb)
+            same = 0;
+        if (ca == EOF || cb == EOF)
+            break;
+    }
+    if (fa) fclose(fa);
+    if (fb) fclose(fb);
+    return same;
+}
+
+static void test_plots(const char *dir)
+{
+    struct plot_set set;
+    plots_init(&set);
+    double q[13], v[13];
+    for (int i = 0; i < 13; ++i) {
+        q[i] = 0.3 + 0.05 * i + 1e-9 * i;                            /* digits beyond the 7th */
+        v[i] = 0.0115312345678 + 0.2 * (q[i] - 0.651234567) * (q[i] - 0.651234567);
+    }
+    CHECK(plots_add_against_q(&set, "q.png", "caption", "max delta of f_Q against Q", "max delta", 1, q, v, 13,
+                              "f_Q", 0.0758812345678, "f2", 0.651234567) == 0, "Q plot built");
+    struct model_spec m[2] = { spec("fq2"), spec("cq2") };
+    CHECK(plots_add_curves(&set, "curves.png", "caption", "f at n = 16", 16.0, m, 2) == 0, "curves built");
+    char first[4200], json[4200], again[4200], err[1024];
+    snprintf(first, sizeof first, "%s/first", dir);
+    snprintf(again, sizeof again, "%s/again", dir);
+    snprintf(json, sizeof json, "%s/plots.json", dir);
+    CHECK(mkdir(first, 0755) == 0 && mkdir(again, 0755) == 0, "folders");
+    CHECK(plots_draw(&set, first, err, sizeof err) == 0, "drawn: %s", err);
+    CHECK(plots_write_json(&set, json, NULL, err, sizeof err) == 0, "plots.json written: %s", err);
+    struct plot_set back;
+    CHECK(plots_read_json(json, &back, err, sizeof err) == 0, "plots.json read: %s", err);
+    CHECK(plots_draw(&back, again, err, sizeof err) == 0, "redrawn: %s", err);
+    const char *files[] = { "q.png", "curves.png" };
+    for (int k = 0; k < 2; ++k) {
+        char a[8500], b[8500];
+        snprintf(a, sizeof a, "%s/%s", first, files[k]);
+        snprintf(b, sizeof b, "%s/%s", again, files[k]);
+        CHECK(same_file(a, b), "%s: the redraw differs from the picture of the run", files[k]);
+    }
+    plots_free(&back);
+    plots_free(&set);
+}
+
+static int test_heatmap(const char *dir)
+{
+    struct cl_session s;
+    char err[1024];
+    int rc = clsession_open(&s, -1, -1, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "%s\n", err);
+        return rc;
+    }
+    struct field_ctx f;
+    if ((rc = field_open(&f, &s, "")) != 0)
+        return rc;
+    struct model_spec m = spec("fq2");
+    struct field_grid g = { FIELD_DEFAULT_ROWS, FIELD_DEFAULT_COLS, 2, 1000 };
+    struct field_result r, back;
+    if ((rc = field_run(&f, &m, &g, &r)) != 0)
+        return rc;
+    char a[4200], b[4200], json[4200];
+    snprintf(a, sizeof a, "%s/heatmap_first.png", dir);
+    snprintf(b, sizeof b, "%s/heatmap_again.png", dir);
+    snprintf(json, sizeof json, "%s/field_fq2.json", dir);
+    CHECK(field_draw_heatmap(a, &r, NULL, err, sizeof err) == 0, "heatmap drawn: %s", err);
+    CHECK(field_write_json(json, &r, &s, err, sizeof err) == 0, "field JSON written: %s", err);
+    CHECK(field_read_json(json, &back, err, sizeof err) == 0, "field JSON read: %s", err);
+    CHECK(back.epi_peak.row == r.epi_peak.row && back.epi_peak.col == r.epi_peak.col &&
+              back.epi_peak.value == r.epi_peak.value,
+          "epicentre peak read back at row %d col %d (%.9g), found at row %d col %d (%.9g)", back.epi_peak.row,
+          back.epi_peak.col, back.epi_peak.value, r.epi_peak.row, r.epi_peak.col, r.epi_peak.value);
+    CHECK(back.att_peak.row == r.att_peak.row && back.att_peak.col == r.att_peak.col &&
+              back.att_peak.value == r.att_peak.value,
+          "attenuation peak read back at row %d col %d, found at row %d col %d", back.att_peak.row,
+          back.att_peak.col, r.att_peak.row, r.att_peak.col);
+    CHECK(field_draw_heatmap(b, &back, NULL, err, sizeof err) == 0, "heatmap redrawn: %s", err);
+    CHECK(same_file(a, b), "the redrawn heatmap differs from the picture of the run");
+    field_result_free(&back);
+    field_result_free(&r);
+    field_close(&f);
+    clsession_close(&s);
+    return 0;
+}
+
+int main(void)
+{
+    char dir[4096];
+    if (test_tmpdir_make(dir, sizeof dir, "redraw"))
+        return 1;
+    test_plots(dir);
+    int rc = test_heatmap(dir);
+    if (rc == EXIT_NO_DEVICE) {
+        printf("no OpenCL device: device checks skipped\n");
+        test_tmpdir_done(dir);
+        return check_summary_skipped();
+    }
+    CHECK(rc == 0, "device checks ran (rc %d)", rc);
+    test_tmpdir_done(dir);
+    return check_summary();
+}
