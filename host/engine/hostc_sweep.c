@@ -26,7 +26,7 @@ static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a
 #include "hostc_baseline.h"
 
 #define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
-_Static_assert(BRDF_MODEL_COUNT <= 17, "hostc_sweep_n_any covers model ids 0..16");
+_Static_assert(BRDF_USER <= 16, "hostc_sweep_n_any covers model ids 0..16 (hostc_supports: below BRDF_USER)");
 
 /* One n of accuracy_sweep (kernels/accuracy.cl), sample by sample, in s = 1 - cos x as the
  * kernel places and evaluates them. */
