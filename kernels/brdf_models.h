@@ -247,14 +247,16 @@ BRDF_FN REAL brdf_bg_a(REAL n, int m)
     return n * RC(BRDF_BG_ALPHA_16) + RC(BRDF_BG_BETA_16);
 }
 
-/* Kuijk and Blake 1989, in the angle alpha = acos c: 1 - alpha^2/(ab) below a,
+/* Kuijk and Blake 1989, in the angle alpha = acos c = 2 asin(sqrt(s/2)) (s = 1 - c: the
+ * form that keeps alpha's precision near c = 1, where acos of a float cosine has none):
+ * 1 - alpha^2/(ab) below a,
  * (alpha - b)^2 / (b (b - a)) from a to b, 0 beyond; zeroed where negative (the exchanged
  * a and b give a > b, and the first piece then falls below 0). */
 BRDF_FN REAL brdf_kb_a(REAL n) { return (n + RC(5.6)) / (n * (RC(0.09) * n + RC(5.2))); }
 BRDF_FN REAL brdf_kb_b(REAL n) { return (n + RC(65.0)) / (RC(5.0) * n + RC(31.7)); }
-BRDF_FN REAL brdf_kuijk_blake(REAL c, REAL a, REAL b)
+BRDF_FN REAL brdf_kuijk_blake_s(REAL s, REAL a, REAL b)
 {
-    REAL alpha = acos(fmin(c, RC(1.0)));
+    REAL alpha = RC(2.0) * asin(sqrt(fmax(s, RC(0.0)) * RC(0.5)));
     REAL inner = RC(1.0) - alpha * alpha / (a * b);
     REAL outer = (alpha - b) * (alpha - b) / (b * (b - a));
     REAL f = alpha < a ? inner : (alpha < b ? outer : RSPLAT(0.0));
@@ -604,8 +606,8 @@ BRDF_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1
     case BRDF_SG:       return brdf_gauss_lobe_s(s, n);
     case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));
     case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);
-    case BRDF_KB:       return brdf_kuijk_blake(c, brdf_kb_a(n), brdf_kb_b(n));
-    case BRDF_KBSWAP:   return brdf_kuijk_blake(c, brdf_kb_b(n), brdf_kb_a(n));
+    case BRDF_KB:       return brdf_kuijk_blake_s(s, brdf_kb_a(n), brdf_kb_b(n));
+    case BRDF_KBSWAP:   return brdf_kuijk_blake_s(s, brdf_kb_b(n), brdf_kb_a(n));
     case BRDF_BITPOW:   return brdf_bitpow(c, n);
     case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);
     case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);
