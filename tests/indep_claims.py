@@ -297,6 +297,29 @@ bg_a = 0.5 * (lo_a + hi_a)
 bg_err = max(bg_sides(bg_a))
 number_row("BG-A-18", bg_a, 6.645, 0.001, absolute=1e-5)
 number_row("BG-err-18", bg_err, 0.0631, 0.0001, absolute=1e-6)
+# The cost argument (P1/P2-physical-cost): the ratios recomputed from physical.json's
+# evaluations/s, and the verdict the row's rule gives them (every physically based model slower
+# than fq2 and than Phong in the same run).
+try:
+    phys = json.load(open(run + "/physical.json"), parse_constant=no_const)
+except OSError:
+    phys = None
+for rid in ("P1-physical-cost", "P2-physical-cost"):
+    r = row(rid)
+    if r is None:
+        continue
+    if phys is None:
+        fail(rid, "physical.json missing")
+        continue
+    prow = {x["model"]: x for x in phys["cost"]["rows"]}
+    fq2, phong = prow["fq2"]["evaluations_per_s"], prow["phong"]["evaluations_per_s"]
+    pb = [x for x in phys["cost"]["rows"] if x["physically_based"]]
+    worst_fq2 = max(x["evaluations_per_s"] / fq2 for x in pb)
+    worst_phong = max(x["evaluations_per_s"] / phong for x in pb)
+    if not pb or abs(worst_fq2 - r["measured"]) > 1e-9 * worst_fq2:
+        fail(rid, "measured %r, the fastest physically based model is %r x fq2" % (r["measured"], worst_fq2))
+    relation_row(rid, worst_fq2 < 1 and worst_phong < 1, "fastest physically based model %.3g x fq2, %.3g x Phong"
+                 % (worst_fq2, worst_phong))
 
 # ---- every row checked, the summary counts the verdicts.
 unchecked = sorted(set(rows) - checked)

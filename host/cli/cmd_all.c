@@ -463,6 +463,7 @@ static int step_claims(struct all_run *r)
         o.q_samples = 128;
         o.q_n_step = 25;
         o.energy = 0;
+        o.physical = 0;   /* the physically based models' cost: not for a trial run */
     }
     struct reproduce_report rep;
     memset(&rep, 0, sizeof rep);

@@ -104,6 +104,28 @@ static const struct model_info registry[] = {
     { "gaussfit", BRDF_GAUSSFIT, "gaussian", LOBE_PSI, 0, NOP, "phong",
       "exp((AG n + BG)(c-1)), constants in kernels/brdf_models.h", NULL,
       "gauss fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
+    /* Physically based BRDFs f(N, L, V) (kernels/brdf_models.h, brdf_pb_eval). As lobes of one
+       cosine they are the BRDF with the light at the normal and theta_h = acos(c); they are
+       their own references and not part of the default set of the lobe commands. */
+    { "ct-beckmann", BRDF_CT_BECKMANN, "physical", LOBE_THETA_H, 1,
+      { { "F0", 0, 1, 0.5, 0, "Schlick's Fresnel reflectance at normal incidence" } }, "ct-beckmann",
+      "D F G / (4 N.L N.V): Beckmann D, Schlick F, Smith G (Walter's rational form), a = sqrt(2/(n+2))", NULL,
+      "Cook-Torrance in full with the Beckmann distribution (paper 1, eq. 7)", 0 },
+    { "ct-ggx", BRDF_CT_GGX, "physical", LOBE_THETA_H, 1,
+      { { "F0", 0, 1, 0.5, 0, "Schlick's Fresnel reflectance at normal incidence" } }, "ct-ggx",
+      "D F G / (4 N.L N.V): GGX D, Schlick F, separable Smith G of GGX, a = sqrt(2/(n+2))", NULL,
+      "Cook-Torrance in full with GGX (Walter et al. 2007; paper 1, eq. 8)", 0 },
+    { "brady", BRDF_BRADY, "physical", LOBE_THETA_H, 2,
+      { { "a", 0.01, 100, 1, 0, "lobe-shape parameter a of the printed form" },
+        { "b", 0.01, 100, 1, 0, "lobe-shape parameter b of the printed form" } }, "brady",
+      "D G / (a^-2 b^-2 tan^2(theta_h) + 0.9994), Beckmann D and its Smith G at a(n)", NULL,
+      "Brady et al. 2014's metal BRDF as paper 2 prints it (the genBRDF original was not found; "
+      "D and G are taken as Cook-Torrance's Beckmann pair)", 0 },
+    { "he", BRDF_HE, "physical", LOBE_THETA_H, 1,
+      { { "material", 0, BRDF_HE_PRESETS - 1, 0, 1,
+          "preset: 0 rough aluminium, 1 polished aluminium, 2 gold, 3 plastic" } }, "he",
+      "rho_sp + rho_dd + rho_ud of He, Torrance, Sillion, Greenberg 1991 (lambda, sigma0, tau, n + ik)", NULL,
+      "He et al. 1991 (Kirchhoff diffraction; the directional-diffuse sum truncated at float resolution)", 0 },
 };
 
 _Static_assert(sizeof registry / sizeof registry[0] == BRDF_MODEL_COUNT - 1,

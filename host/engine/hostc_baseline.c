@@ -54,7 +54,7 @@ int hostc_default_threads(void)
     return n < 1 ? 1 : n > HOSTC_MAX_THREADS ? HOSTC_MAX_THREADS : (int)n;
 }
 
-int hostc_supports(int model_id) { return model_id >= 0 && model_id < BRDF_MODEL_COUNT && model_id != BRDF_USER; }
+int hostc_supports(int model_id) { return model_id >= 0 && model_id < BRDF_USER; }
 
 /* The model, or the powf built-in for id < 0. With id a constant the switch folds away. */
 static inline __attribute__((always_inline)) float hostc_eval(const int id, float c, float n, float p0, float p1)
