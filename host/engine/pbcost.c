@@ -159,6 +159,7 @@ static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *r
     CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof b[4], &b[4]), done);
     size_t global = P / PBCOST_LANES;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, b[4], CL_TRUE, 0, sizeof out, out, 0, NULL, NULL), done);
     double peak = 0, worst = 0;
     for (int i = 0; i < P; ++i)
@@ -208,7 +209,7 @@ static int launch(struct cl_session *s, cl_kernel k, long iters, double *seconds
        on one thread */
     size_t local = 1;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev), done);
-    CL_CHECK_GOTO(clWaitForEvents(1, &ev), done);
+    CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
     *seconds = cl_event_seconds(ev);
 done:
     if (ev)
