@@ -55,7 +55,25 @@ enum brdf_model_id {
     BRDF_GGX,         /* GGX D(theta_h; alpha(n))                                   */
     BRDF_QUAD,        /* ((a n + b)(c-1) + 1)^2, p0 = a, p1 = b: the fitted family  */
     BRDF_PHONGPOW,    /* c^n through the pow() built-in: the literal pow() reference */
+    BRDF_SG,          /* exp(n (c-1)), spherical Gaussian (Lagarde 2012)            */
+    BRDF_UE4PHONG,    /* exp((n + 0.775)(c-1)), UE4 mobile PhongApprox (Karis 2014) */
+    BRDF_BG,          /* max(0, A c + 1 - A)^m, Beaudoin-Guardado 2002, m = 2^p0    */
+    BRDF_KB,          /* Kuijk-Blake 1989 piecewise quadratic in the angle          */
+    BRDF_KBSWAP,      /* the same with a and b exchanged                            */
+    BRDF_BITPOW,      /* c^n by integer arithmetic on the float's bits              */
+    BRDF_GAUSS,       /* exp((a n + b)(c-1)), p0 = a, p1 = b: the Gaussian family   */
+    BRDF_CUBE,        /* ((a n + b)(c-1) + 1)^3, p0 = a, p1 = b                     */
+    BRDF_QUART,       /* ((a n + b)(c-1) + 1)^4, p0 = a, p1 = b                     */
+    BRDF_CUBEFIT,     /* pow3 with the frozen minimax constants below               */
+    BRDF_QUARTFIT,    /* pow4 with the frozen minimax constants below              */
+    BRDF_GAUSSFIT,    /* gauss with the frozen minimax constants below              */
     BRDF_USER,        /* a user model compiled at run time (brdf_user_eval)         */
+    /* Physically based BRDFs f(N, L, V) (brdf_pb_eval); as lobes f(c, n): the BRDF with the
+       light at the normal and theta_h = acos(c) (brdf_pb_lobe). */
+    BRDF_CT_BECKMANN, /* Cook-Torrance D F G / (4 N.L N.V), Beckmann D, its Smith G, p0 = F0 */
+    BRDF_CT_GGX,      /* Cook-Torrance with GGX D and its Smith G, p0 = F0            */
+    BRDF_BRADY,       /* D G / (a^-2 b^-2 tan^2 theta_h + 0.9994) as paper 2 prints it */
+    BRDF_HE,          /* He, Torrance, Sillion, Greenberg 1991, p0 = material preset  */
     BRDF_MODEL_COUNT
 };
 
@@ -166,6 +184,395 @@ BRDF_FN REAL brdf_blinn_norm(REAL n)
     return (n + RC(2.0)) * (n + RC(4.0)) / (RC(8.0 * BRDF_PI) * (exp2(-n * RC(0.5)) + n));
 }
 
+/* ---- the approximations engines use (SPEC.md, "The approximations engines use") ---------- */
+
+/* The Gaussian lobe exp(k (c - 1)) = exp(-k s); engines write exp2(k/ln 2 (c - 1)), the same
+ * function. */
+BRDF_FN REAL brdf_gauss_lobe_s(REAL s, REAL k) { return exp(-k * s); }
+
+/* The power family (k (c - 1) + 1)^m zeroed past its root, m an integer in [1, 16], by
+ * squarings and multiplies (binary exponentiation; a constant m unrolls). */
+BRDF_FN REAL brdf_power(REAL c, REAL k, int m)
+{
+    REAL base = fmax(k * (c - RC(1.0)) + RC(1.0), RC(0.0));
+    REAL result = RSPLAT(1.0);
+    for (; m > 0; m >>= 1) {
+        if (m & 1)
+            result = result * base;
+        base = base * base;
+    }
+    return result;
+}
+
+/* Beaudoin and Guardado 2002: max(0, A c + B)^m with B = 1 - A, i.e. the power family with
+ * k = A. Their A comes from a per-n bisection (host/engine/fit.c, bg_exact_a, for the claim);
+ * the device gets it from the affine fit A(n) = alpha_m n + beta_m of those bisection values
+ * over n in [2, 1000] (least squares in relative terms), within 2.4% of the bisection A
+ * (at n = 2) for every m. m = 2^j, j = 1..4 (the registry's parameter j). */
+#define BRDF_BG_ALPHA_2 0.355728074
+#define BRDF_BG_BETA_2 0.264367919
+#define BRDF_BG_ALPHA_4 0.211256260
+#define BRDF_BG_BETA_4 0.157725393
+#define BRDF_BG_ALPHA_8 0.114952593
+#define BRDF_BG_BETA_8 0.085811949
+#define BRDF_BG_ALPHA_16 0.059933489
+#define BRDF_BG_BETA_16 0.044726082
+/* The power family's base, zeroed past its root, and its cube and fourth power written out
+ * (what the device runs: no loop to unroll), and 2^j by j squarings as Lyon's. */
+BRDF_FN REAL brdf_power_base_s(REAL s, REAL k) { return fmax(RC(1.0) - k * s, RC(0.0)); }
+BRDF_FN REAL brdf_cube_s(REAL s, REAL k)
+{
+    REAL b = brdf_power_base_s(s, k);
+    return b * b * b;
+}
+BRDF_FN REAL brdf_fourth_s(REAL s, REAL k)
+{
+    REAL b = brdf_power_base_s(s, k);
+    REAL b2 = b * b;
+    return b2 * b2;
+}
+BRDF_FN REAL brdf_squarings_s(REAL s, REAL k, int j)
+{
+    REAL b = brdf_power_base_s(s, k);
+    for (int i = 0; i < j; ++i)
+        b = b * b;
+    return b;
+}
+
+BRDF_FN REAL brdf_bg_a(REAL n, int m)
+{
+    if (m <= 2) return n * RC(BRDF_BG_ALPHA_2) + RC(BRDF_BG_BETA_2);
+    if (m <= 4) return n * RC(BRDF_BG_ALPHA_4) + RC(BRDF_BG_BETA_4);
+    if (m <= 8) return n * RC(BRDF_BG_ALPHA_8) + RC(BRDF_BG_BETA_8);
+    return n * RC(BRDF_BG_ALPHA_16) + RC(BRDF_BG_BETA_16);
+}
+
+/* Kuijk and Blake 1989, in the angle alpha = acos c: 1 - alpha^2/(ab) below a,
+ * (alpha - b)^2 / (b (b - a)) from a to b, 0 beyond; zeroed where negative (the exchanged
+ * a and b give a > b, and the first piece then falls below 0). */
+BRDF_FN REAL brdf_kb_a(REAL n) { return (n + RC(5.6)) / (n * (RC(0.09) * n + RC(5.2))); }
+BRDF_FN REAL brdf_kb_b(REAL n) { return (n + RC(65.0)) / (RC(5.0) * n + RC(31.7)); }
+BRDF_FN REAL brdf_kuijk_blake(REAL c, REAL a, REAL b)
+{
+    REAL alpha = acos(fmin(c, RC(1.0)));
+    REAL inner = RC(1.0) - alpha * alpha / (a * b);
+    REAL outer = (alpha - b) * (alpha - b) / (b * (b - a));
+    REAL f = alpha < a ? inner : (alpha < b ? outer : RSPLAT(0.0));
+    return fmax(f, RC(0.0));
+}
+
+/* The integer-bit pow (Schraudolph 1999 style): the float whose bits are
+ * n (bits(c) - bits(1)) + bits(1), with bits(1.0f) = 0x3f800000; a negative result is 0.
+ * On the device it is written as shaders write it, on the float's bits (scalar and float16):
+ * the product n (bits(c) - bits(1)) in float, truncated to an integer (saturating), then the
+ * integer add, so the only float rounding is the product's (about 1e-7 of the value).
+ * The host reference reproduces the same arithmetic in double: bits(c) - bits(1) is
+ * 2^23 (e + m - 1) for c = m 2^e (m in [1, 2)), and a bit pattern t >= 0 is read back the same
+ * way, so the host figure is the trick's own error, not float rounding. */
+#ifdef __OPENCL_VERSION__
+__attribute__((overloadable)) static inline float brdf_bitpow(float c, float n)
+{
+    int t = convert_int_sat_rtz(n * convert_float(as_int(c) - 0x3f800000)) + 0x3f800000;
+    return as_float(max(t, 0));
+}
+__attribute__((overloadable)) static inline float16 brdf_bitpow(float16 c, float16 n)
+{
+    int16 t = convert_int16_sat_rtz(n * convert_float16(as_int16(c) - 0x3f800000)) + 0x3f800000;
+    return as_float16(max(t, 0));
+}
+#else
+BRDF_FN REAL brdf_bitpow(REAL c, REAL n)
+{
+    /* log2 as the bit pattern reads it: e + (m - 1), with c = m 2^e, m in [1, 2) */
+    int e;
+    double mant = frexp((double)c, &e);   /* c = mant 2^e, mant in [0.5, 1) */
+    double l2 = (c > 0) ? (double)(e - 1) + (2.0 * mant - 1.0) : -HUGE_VAL;
+    double t = (double)n * l2 + 127.0;   /* the result's bits / 2^23 */
+    if (!(t > 0))
+        return (REAL)0.0;
+    if (t < 1.0)                          /* a subnormal bit pattern: t 2^23 units of 2^-149 */
+        return (REAL)ldexp(t, -126);
+    double te = floor(t);
+    return (REAL)ldexp(1.0 + (t - te), (int)te - 127);
+}
+#endif
+
+/* Frozen minimax members of the families above: the least largest epicentre max delta over
+ * n in [2, 1000] step 1, as found by `brdfbench fit --family pow3|pow4|gauss` (docs/frontier.md
+ * gives the commands and their figures: pow4fit 0.567% / 0.0723, pow3fit 0.760% / 0.0809,
+ * gaussfit 1.100% / 0.1299 for max delta / max Delta). */
+#define BRDF_CUBEFIT_A 0.3106866803
+#define BRDF_CUBEFIT_B 0.07545118726
+#define BRDF_QUARTFIT_A 0.2371428753
+#define BRDF_QUARTFIT_B 0.05221691603
+#define BRDF_GAUSSFIT_A 1.020199565
+#define BRDF_GAUSSFIT_B 0.1774327237
+/* ---- physically based BRDFs: f(N, L, V) from the three cosines N.L, N.V, L.V -------------- */
+
+#ifdef __OPENCL_VERSION__
+/* b where cond holds, else a, for every REAL: a scalar comparison gives an int (1 or 0), a
+   vector one an int or long vector (-1 or 0), which select() takes only for vectors. */
+#define BRDF_SELECT(a, b, cond) brdf_sel((a), (b), (cond))
+#define BRDF_RSQRT(x) rsqrt(x)
+#define BRDF_SEL_VEC(T, I)                                                                     \
+    static inline T __attribute__((overloadable)) brdf_sel(T a, T b, I c) { return select(a, b, c); } \
+    static inline int __attribute__((overloadable)) brdf_any_lane(I x) { return any(x); }
+static inline float __attribute__((overloadable)) brdf_sel(float a, float b, int c) { return c ? b : a; }
+/* Whether any lane of a comparison holds. */
+static inline int __attribute__((overloadable)) brdf_any_lane(int x) { return x != 0; }
+BRDF_SEL_VEC(float2, int2)
+BRDF_SEL_VEC(float4, int4)
+BRDF_SEL_VEC(float8, int8)
+BRDF_SEL_VEC(float16, int16)
+#ifdef cl_khr_fp64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+static inline double __attribute__((overloadable)) brdf_sel(double a, double b, int c) { return c ? b : a; }
+BRDF_SEL_VEC(double2, long2)
+BRDF_SEL_VEC(double4, long4)
+BRDF_SEL_VEC(double8, long8)
+BRDF_SEL_VEC(double16, long16)
+#endif
+#else
+#define BRDF_SELECT(a, b, cond) ((cond) ? (b) : (a))
+#define BRDF_RSQRT(x) (1.0 / sqrt(x))
+#define brdf_any_lane(x) ((x) != 0)
+#endif
+
+/* Separable Smith masking G1 of GGX for a direction with cosine x to the normal. */
+BRDF_FN REAL brdf_smith_g1_ggx(REAL x, REAL alpha)
+{
+    REAL a2 = alpha * alpha;
+    return RC(2.0) * x / (x + sqrt(a2 + (RC(1.0) - a2) * x * x));
+}
+
+/* Smith G1 of Beckmann in the rational form of Walter et al. 2007. */
+BRDF_FN REAL brdf_smith_g1_beckmann(REAL x, REAL alpha)
+{
+    REAL a = x / (alpha * sqrt(fmax(RC(1.0) - x * x, RC(1e-12))));
+    REAL g = (RC(3.535) * a + RC(2.181) * a * a) / (RC(1.0) + RC(2.276) * a + RC(2.577) * a * a);
+    return BRDF_SELECT(g, RSPLAT(1.0), a >= RC(1.6));
+}
+
+/* Schlick's Fresnel from the cosine between V and H. */
+BRDF_FN REAL brdf_fresnel_schlick(REAL vdoth, RSCALAR f0)
+{
+    REAL m = RC(1.0) - vdoth;
+    REAL m2 = m * m;
+    return f0 + (RC(1.0) - f0) * (m2 * m2 * m);
+}
+
+/* Fresnel reflectance of unpolarised light, (F_s + F_p) / 2, at an interface with complex index
+ * n_re + i n_im, for the cosine c of the angle of incidence (Born & Wolf's a, b form:
+ * 2a^2 = sqrt(A^2 + 4 n^2 k^2) + A, 2b^2 = sqrt(A^2 + 4 n^2 k^2) - A, A = n^2 - k^2 - sin^2). */
+BRDF_FN REAL brdf_fresnel_complex(REAL c, RSCALAR n_re, RSCALAR n_im)
+{
+    c = fmin(fmax(c, RC(1e-6)), RC(1.0));
+    REAL s2 = brdf_sin2(c);
+    REAL big_a = RC(n_re * n_re - n_im * n_im) - s2;
+    REAL root = sqrt(big_a * big_a + RC(4.0 * n_re * n_re * n_im * n_im));
+    REAL a = sqrt(fmax(RC(0.5) * (root + big_a), RC(0.0)));
+    REAL b2 = fmax(RC(0.5) * (root - big_a), RC(0.0));
+    REAL fs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);
+    REAL st = s2 / c; /* sin * tan */
+    REAL fp = fs * ((a - st) * (a - st) + b2) / ((a + st) * (a + st) + b2);
+    return RC(0.5) * (fs + fp);
+}
+
+/* Lambert's W0(x) for x >= 0: Newton's method on w e^w = x from log1p(x), which lies above the
+ * root, where the function is convex: the iterates fall monotonically (8 steps reach double
+ * precision for x up to 1e6). */
+BRDF_FN REAL brdf_lambert_w0(REAL x)
+{
+    REAL w = log1p(x);
+    for (int i = 0; i < 8; ++i)
+        w = w - (w - x * exp(-w)) / (w + RC(1.0));
+    return w;
+}
+
+/* He et al. 1991: K(theta) = tan(theta) erfc(tau / (2 sigma0 tan(theta))), from the cosine. */
+BRDF_FN REAL brdf_he_k(REAL c, RSCALAR sigma0, RSCALAR tau)
+{
+    REAL s = sqrt(brdf_sin2(c));
+    REAL t = s / c;
+    return t * erfc(RC(tau / (2.0 * sigma0)) * c / fmax(s, RC(1e-30)));
+}
+
+/* He et al. 1991: the shadowing function S(theta) (Smith's, for a Gaussian surface of rms slope
+ * 2 sigma0 / tau): (1 - erfc(e)/2) / (Lambda + 1), Lambda = (exp(-e^2)/(sqrt(pi) e) - erfc(e))/2,
+ * e = tau cot(theta) / (2 sigma0). */
+BRDF_FN REAL brdf_he_shadow(REAL c, RSCALAR sigma0, RSCALAR tau)
+{
+    REAL s = fmax(sqrt(brdf_sin2(c)), RC(1e-30));
+    REAL e = fmax(RC(tau / (2.0 * sigma0)) * c / s, RC(1e-30));
+    REAL ec = erfc(e);
+    REAL lambda = RC(0.5) * (exp(-e * e) / (RC(1.7724538509055160273) * e) - ec);
+    return (RC(1.0) - RC(0.5) * ec) / (lambda + RC(1.0));
+}
+
+/* Where the directional-diffuse sum stops: a term below float resolution of the running sum,
+ * past the terms' peak (m >= g). BRDF_HE_MAX_TERMS bounds the loop. */
+#define BRDF_HE_EPS 5.9604644775390625e-8
+#define BRDF_HE_MAX_TERMS 2000
+
+/* The directional-diffuse sum of He et al. 1991,
+ *   sum_{m >= 1} g^m e^(-g) / (m! m) exp(-x / m),   x = v_xy^2 tau^2 / 4,
+ * each term formed in logarithms (g^m e^-g / m! underflows for g > 87 in float), and the number
+ * of terms each lane took. */
+struct brdf_he_sum_result {
+    REAL sum;
+    REAL terms;
+};
+BRDF_FN struct brdf_he_sum_result brdf_he_dd_sum(REAL g, REAL x)
+{
+    struct brdf_he_sum_result r;
+    REAL lng = log(fmax(g, RC(1e-30)));
+    REAL lt = -g;                       /* log(g^m e^-g / m!) at m = 0 */
+    REAL active = BRDF_SELECT(RSPLAT(0.0), RSPLAT(1.0), g > RC(0.0));
+    r.sum = RSPLAT(0.0);
+    r.terms = RSPLAT(0.0);
+    for (int m = 1; m <= BRDF_HE_MAX_TERMS && brdf_any_lane(active > RC(0.5)); ++m) {
+        RSCALAR rm = (RSCALAR)m;
+        lt = lt + lng - RC(log(rm));
+        REAL term = exp(lt - x / rm) / rm;
+        r.sum = r.sum + term * active;
+        r.terms = r.terms + active;
+        active = BRDF_SELECT(active, RSPLAT(0.0), (g <= rm) & (term <= RC(BRDF_HE_EPS) * r.sum));
+    }
+    return r;
+}
+
+/* The material presets of the He model (p0): wavelength and roughness in micrometres.
+ * field: 0 wavelength, 1 sigma0 (rms height), 2 tau (autocorrelation length), 3 n, 4 k
+ * (complex index n + ik at the wavelength), 5 uniform-diffuse BRDF a (1/sr). The indices are
+ * published values at 550 nm (host/core/models.c names the sources); the roughness pairs are
+ * chosen to span the model's regimes (see there). */
+#define BRDF_HE_PRESETS 4
+BRDF_FN RSCALAR brdf_he_preset(int preset, int field)
+{
+    switch (preset * 8 + field) {
+    /* 0: rough aluminium, sigma0/lambda = 0.18 */
+    case 0: return RC(0.55); case 1: return RC(0.10); case 2: return RC(1.00);
+    case 3: return RC(0.958); case 4: return RC(6.69); case 5: return RC(0.0);
+    /* 1: polished aluminium, sigma0/lambda = 0.036 (the specular term dominates) */
+    case 8: return RC(0.55); case 9: return RC(0.02); case 10: return RC(1.00);
+    case 11: return RC(0.958); case 12: return RC(6.69); case 13: return RC(0.0);
+    /* 2: gold, sigma0/lambda = 0.18 */
+    case 16: return RC(0.55); case 17: return RC(0.10); case 18: return RC(1.00);
+    case 19: return RC(0.43); case 20: return RC(2.455); case 21: return RC(0.0);
+    /* 3: a plastic (PMMA-like dielectric, n = 1.49) with a uniform-diffuse term */
+    case 24: return RC(0.55); case 25: return RC(0.10); case 26: return RC(1.00);
+    case 27: return RC(1.49); case 28: return RC(0.0); case 29: return RC(0.15);
+    default: return RC(0.0);
+    }
+}
+
+/* Angular radius of the light source the specular (mirror) term of the He model sees: the
+ * specular term is a delta in the mirror direction, spread here over a source of 1 degree. */
+#define BRDF_HE_SOURCE_COS 0.99984769515639123916
+#define BRDF_HE_SOURCE_SOLID_ANGLE (2.0 * BRDF_PI * (1.0 - BRDF_HE_SOURCE_COS))
+
+/* He et al. 1991, rho = rho_sp + rho_dd + rho_ud for unit N, L, V given as their cosines:
+ *   rho_sp = F(b) e^-g S / (sqrt(cos theta_i cos theta_r) dw)   inside the source's cone around R,
+ *            else 0: He's F(theta_i) e^-g S / (cos theta_i dw) at the mirror direction itself,
+ *            where the delta sits (b = theta_i = theta_r there), written symmetrically so that
+ *            the finite cone keeps the BRDF reciprocal
+ *   rho_dd = F(b) G S / (pi cos theta_i cos theta_r) * pi^2 tau^2 / (4 lambda^2) * sum(g, x)
+ *   rho_ud = a
+ * with v = k (V + L) (k = 2 pi / lambda), g = (k sigma (cos theta_i + cos theta_r))^2 the
+ * effective roughness, sigma = sigma0 / sqrt(1 + z0^2 / sigma0^2) where
+ * sqrt(pi/2) z0 = sigma0 (K_i + K_r) / 4 exp(-z0^2 / (2 sigma0^2)), i.e. (z0/sigma0)^2 =
+ * W0(((K_i + K_r) / (4 sqrt(pi/2)))^2); S = S(theta_i) S(theta_r); F(b) the Fresnel
+ * reflectance at the bisector, cos b = |V + L| / 2; G = (v.v / v_z)^2 (He's geometric factor
+ * for unpolarised light: the two polarisation brackets each equal |k_r x k_i|^2);
+ * x = v_xy^2 tau^2 / 4. terms (may be 0) receives the number of terms of the sum. */
+BRDF_FN REAL brdf_he_terms(REAL nl, REAL nv, REAL lv, RSCALAR lambda, RSCALAR sigma0, RSCALAR tau,
+                           RSCALAR n_re, RSCALAR n_im, RSCALAR ud, REAL *terms)
+{
+    REAL ci = fmax(nl, RC(1e-6)), cr = fmax(nv, RC(1e-6));
+    RSCALAR k = RC(2.0 * BRDF_PI) / lambda;
+    REAL amp = (brdf_he_k(ci, sigma0, tau) + brdf_he_k(cr, sigma0, tau)) * RC(0.19947114020071633897); /* /(4 sqrt(pi/2)) */
+    REAL sigma = sigma0 * BRDF_RSQRT(RC(1.0) + brdf_lambert_w0(amp * amp));
+    REAL vz = ci + cr;
+    REAL ksv = k * sigma * vz;
+    REAL g = ksv * ksv;
+    REAL vv = fmax(RC(2.0) + RC(2.0) * lv, RC(1e-12));
+    REAL vxy2 = fmax(vv - vz * vz, RC(0.0));
+    struct brdf_he_sum_result dd = brdf_he_dd_sum(g, vxy2 * RC(k * k * tau * tau * 0.25));
+    if (terms)
+        *terms = dd.terms;
+    REAL shadow = brdf_he_shadow(ci, sigma0, tau) * brdf_he_shadow(cr, sigma0, tau);
+    REAL geo = vv / vz;
+    REAL rho_dd = brdf_fresnel_complex(RC(0.5) * sqrt(vv), n_re, n_im) * geo * geo * shadow /
+                  (RC(BRDF_PI) * ci * cr) * RC(k * k * tau * tau / 16.0) * dd.sum;
+    REAL rv = RC(2.0) * nl * nv - lv;   /* R.V */
+    REAL rho_sp = brdf_fresnel_complex(RC(0.5) * sqrt(vv), n_re, n_im) * exp(-g) * shadow /
+                  (sqrt(ci * cr) * RC(BRDF_HE_SOURCE_SOLID_ANGLE));
+    rho_sp = BRDF_SELECT(RSPLAT(0.0), rho_sp, rv >= RC(BRDF_HE_SOURCE_COS));
+    REAL f = rho_sp + rho_dd + ud;
+    return BRDF_SELECT(RSPLAT(0.0), f, (nl > RC(0.0)) & (nv > RC(0.0)));
+}
+
+/* tan^2 theta_h from its cosine. */
+BRDF_FN REAL brdf_tan2(REAL c) { return brdf_sin2(c) / fmax(c * c, RC(1e-30)); }
+
+/* A physically based model's BRDF f(L, V) from nl = N.L, nv = N.V, lv = L.V (unit vectors),
+ * with ch = N.H and vh = V.H of the half vector H = (L + V) / |L + V| (brdf_pb_eval_ud forms
+ * them), shininess n (alpha(n) for the microfacet ones) and the model's parameters. 0 where L
+ * or V is below the surface. ud_scale multiplies He's uniform-diffuse term (0 in the image
+ * passes, which add their own diffuse term). */
+BRDF_FN REAL brdf_pb_eval_h(int id, REAL nl, REAL nv, REAL lv, REAL ch, REAL vh, REAL n, RSCALAR p0, RSCALAR p1,
+                            RSCALAR ud_scale)
+{
+    REAL cl = fmax(nl, RC(1e-6)), cv = fmax(nv, RC(1e-6));
+    REAL alpha = brdf_alpha_from_n(n);
+    REAL f;
+    switch (id) {
+    case BRDF_CT_BECKMANN:
+        f = brdf_d_beckmann(ch, alpha) * brdf_fresnel_schlick(vh, p0) *
+            brdf_smith_g1_beckmann(cl, alpha) * brdf_smith_g1_beckmann(cv, alpha) / (RC(4.0) * cl * cv);
+        break;
+    case BRDF_CT_GGX:
+        f = brdf_d_ggx(ch, alpha) * brdf_fresnel_schlick(vh, p0) *
+            brdf_smith_g1_ggx(cl, alpha) * brdf_smith_g1_ggx(cv, alpha) / (RC(4.0) * cl * cv);
+        break;
+    case BRDF_BRADY:
+        f = brdf_d_beckmann(ch, alpha) * brdf_smith_g1_beckmann(cl, alpha) * brdf_smith_g1_beckmann(cv, alpha) /
+            (brdf_tan2(ch) / RC(p0 * p0 * p1 * p1) + RC(0.9994));
+        break;
+    case BRDF_HE: {
+        int m = (int)p0;
+        return brdf_he_terms(nl, nv, lv, brdf_he_preset(m, 0), brdf_he_preset(m, 1), brdf_he_preset(m, 2),
+                             brdf_he_preset(m, 3), brdf_he_preset(m, 4), ud_scale * brdf_he_preset(m, 5), 0);
+    }
+    default:
+        return RSPLAT(NAN);
+    }
+    return BRDF_SELECT(RSPLAT(0.0), f, (nl > RC(0.0)) & (nv > RC(0.0)));
+}
+BRDF_FN REAL brdf_pb_eval_ud(int id, REAL nl, REAL nv, REAL lv, REAL n, RSCALAR p0, RSCALAR p1, RSCALAR ud_scale)
+{
+    REAL vv = fmax(RC(2.0) + RC(2.0) * lv, RC(1e-12));
+    REAL hinv = BRDF_RSQRT(vv);
+    REAL ch = fmax((nl + nv) * hinv, RC(0.0));   /* N.H */
+    REAL vh = RC(0.5) * vv * hinv;                /* V.H = |L + V| / 2 */
+    return brdf_pb_eval_h(id, nl, nv, lv, ch, vh, n, p0, p1, ud_scale);
+}
+BRDF_FN REAL brdf_pb_eval(int id, REAL nl, REAL nv, REAL lv, REAL n, RSCALAR p0, RSCALAR p1)
+{
+    return brdf_pb_eval_ud(id, nl, nv, lv, n, p0, p1, RC(1.0));
+}
+
+/* A physically based model as a lobe of one cosine c: the BRDF with the light at the normal
+ * (N.L = 1) and the viewer where theta_h = acos(c), i.e. N.V = L.V = 2c^2 - 1 (0 past
+ * theta_h = 45 degrees, where V goes below the horizon). N.H = V.H = c are passed as they are:
+ * rebuilt from 2c^2 - 1 in float they would lose the digits a sharp lobe needs. */
+BRDF_FN REAL brdf_pb_lobe(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
+{
+    REAL nv = RC(2.0) * c * c - RC(1.0);
+    return BRDF_SELECT(brdf_pb_eval_h(id, RSPLAT(1.0), nv, nv, c, c, n, p0, p1, RC(1.0)), RSPLAT(0.0),
+                       nv <= RC(0.0));
+}
+
 #ifdef BRDF_HAVE_USER_MODEL
 /* Supplied by a user model file compiled at run time. */
 BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1);
@@ -194,9 +601,25 @@ BRDF_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1
     case BRDF_BECKMANN: return brdf_d_beckmann_cs(c, s, brdf_alpha_from_n(n));
     case BRDF_GGX:      return brdf_d_ggx_cs(c, s, brdf_alpha_from_n(n));
     case BRDF_QUAD:     return brdf_quadratic_s(s, n * p0 + p1);
+    case BRDF_SG:       return brdf_gauss_lobe_s(s, n);
+    case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));
+    case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);
+    case BRDF_KB:       return brdf_kuijk_blake(c, brdf_kb_a(n), brdf_kb_b(n));
+    case BRDF_KBSWAP:   return brdf_kuijk_blake(c, brdf_kb_b(n), brdf_kb_a(n));
+    case BRDF_BITPOW:   return brdf_bitpow(c, n);
+    case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);
+    case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);
+    case BRDF_QUART:    return brdf_fourth_s(s, n * p0 + p1);
+    case BRDF_CUBEFIT:  return brdf_cube_s(s, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B));
+    case BRDF_QUARTFIT: return brdf_fourth_s(s, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B));
+    case BRDF_GAUSSFIT: return brdf_gauss_lobe_s(s, n * RC(BRDF_GAUSSFIT_A) + RC(BRDF_GAUSSFIT_B));
 #ifdef BRDF_HAVE_USER_MODEL
     case BRDF_USER:     return brdf_user_eval(c, n, p0, p1);
 #endif
+    case BRDF_CT_BECKMANN:
+    case BRDF_CT_GGX:
+    case BRDF_BRADY:
+    case BRDF_HE:       return brdf_pb_lobe(id, c, n, p0, p1);
     default:            return RSPLAT(NAN);
     }
 }

@@ -17,7 +17,9 @@
  *   specular radiance  L_s = E (N.L) ks S, with
  *       S = f(c, n), c = R.V (psi, Phong family) or N.H (theta_h, Blinn family), or
  *       S = D F G / (4 (N.L)(N.V)) for Cook-Torrance: D the model, Schlick F, the
- *           separable Smith G that belongs to D (Beckmann or GGX)
+ *           separable Smith G that belongs to D (Beckmann or GGX), or
+ *       S = the BRDF of a physically based model (brdf_pb_eval_ud, without He's
+ *           uniform-diffuse term: the pass adds its own diffuse term)
  *   radiance           L = E (N.L) kd + ambient + L_s              (white light)
  * The material is tinted: display colour channel k = sRGB8(1 - exp(-exposure tint_k L)),
  * i.e. diffuse and specular reflectance both scaled by the tint (a coloured metal). One
@@ -36,6 +38,7 @@
 #define SHADE_LOBE_THETA_H 1
 #define SHADE_CT_BECKMANN 2 /* Cook-Torrance with the Smith G of the Beckmann distribution */
 #define SHADE_CT_GGX 3      /* Cook-Torrance with the Smith G of GGX */
+#define SHADE_PHYSICAL 4    /* a physically based BRDF of (N, L, V): brdf_pb_eval_ud */
 
 /* Display table: bin of radiance x = (float bits >> 15) - DISPLAY_BIN0, clamped to
  * [0, DISPLAY_BINS - 1]; covers x in [2^-16, 2^8) (below: code 0, above: saturated). */
@@ -52,21 +55,6 @@
  *   s7        1 for a point light (E = I / d^2), 0 for a directional one (E = I)
  *   s8        light intensity I       s9  kd      sa  ks      sb  Schlick F0
  *   sc..sf    unused */
-
-/* Separable Smith masking G1 of GGX for a direction with cosine x to the normal. */
-static float16 smith_g1_ggx(float16 x, float16 alpha)
-{
-    float16 a2 = alpha * alpha;
-    return 2.0f * x / (x + sqrt(a2 + (1.0f - a2) * x * x));
-}
-
-/* Smith G1 of Beckmann in the rational form of Walter et al. 2007. */
-static float16 smith_g1_beckmann(float16 x, float16 alpha)
-{
-    float16 a = x / (alpha * sqrt(fmax(1.0f - x * x, 1e-12f)));
-    float16 g = (3.535f * a + 2.181f * a * a) / (1.0f + 2.276f * a + 2.577f * a * a);
-    return select(g, (float16)1.0f, isgreaterequal(a, 1.6f));
-}
 
 static uint16 display_lookup(__global const uint *table, float16 x)
 {
@@ -146,8 +134,11 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
             /* H = (L + V) / |L + V|, |L + V| = sqrt(2 + 2 L.V): c = N.H without forming H */
             float16 hinv = rsqrt(fmax(2.0f + 2.0f * ldotv, 1e-30f));
             c = (ndotl + ndotv) * hinv;
-            s = brdf_eval(model, c, n, p0, p1);
-            if (mode != SHADE_LOBE_THETA_H) {
+            if (mode == SHADE_PHYSICAL)
+                s = brdf_pb_eval_ud(model, ndotl, ndotv, ldotv, n, p0, p1, 0.0f);
+            else
+                s = brdf_eval(model, c, n, p0, p1);
+            if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {
                 /* V.H = (1 + L.V) / |L + V| */
                 float16 vdoth = fmax((1.0f + ldotv) * hinv, 0.0f);
                 float16 m = 1.0f - vdoth;
@@ -157,8 +148,8 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
                 float16 nl = fmax(ndotl, 1e-6f), nv = fmax(ndotv, 1e-6f);
                 float16 masking =
                     mode == SHADE_CT_GGX
-                        ? smith_g1_ggx(nl, alpha) * smith_g1_ggx(nv, alpha)
-                        : smith_g1_beckmann(nl, alpha) * smith_g1_beckmann(nv, alpha);
+                        ? brdf_smith_g1_ggx(nl, alpha) * brdf_smith_g1_ggx(nv, alpha)
+                        : brdf_smith_g1_beckmann(nl, alpha) * brdf_smith_g1_beckmann(nv, alpha);
                 s = s * fresnel * masking / (4.0f * nl * nv);
             }
         }

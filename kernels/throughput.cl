@@ -130,4 +130,92 @@ TP_UNIFORM_KERNEL(tp_uniform_pow, tp_pow_builtin)
 TP_VARYING_KERNEL(tp_varying_pow, tp_pow_builtin)
 TP_POINTS_KERNEL(tp_points_pow, tp_pow_builtin)
 
-/* TP_MODEL_KERNELS lines follow, appended by the host. */
+/* TP_MODEL_KERNELS lines are appended by the host at the end of this file. */
+
+/* ---- physically based models: the cost of an evaluation from the full vectors (N, L, V) ----
+ *
+ * A BRDF of N, L and V cannot be fed one cosine, so these kernels make three unit vectors per
+ * evaluation in registers and evaluate the model from them, as a shader does: per lane
+ *   N = normalize(x_N, y_N, 1), L = normalize(x_L, y_L, 1), V = normalize(x_V, y_V, 1)
+ * with x, y ramps over the lanes and the work-item id, stepped every iteration, so every
+ * evaluation sees new vectors. Each evaluation pays the three normalisations, the dot products
+ * N.L, N.V, L.V and the model. The lobe models run in the same kernels, fed the cosine their
+ * family uses (R.V = 2 (N.L)(N.V) - L.V, or N.H = (N.L + N.V) / |L + V|), so the rows compare
+ * what a shader pays for each model from the same vectors.
+ *
+ * Kernels, per model id and lobe kind (0 psi, 1 theta_h, 2 physically based), appended by the
+ * host as TP_VEC_MODEL_KERNELS(id, kind):
+ *   tp_vec_X (n, p0, p1, step, iters, out)          sums of f over the generated vectors
+ *   tp_vec_points_X (p0, p1, nl[], nv[], lv[], n[], out[])   f at given cosines (checks)
+ * The pow() built-in: tp_vec_pow and tp_vec_points_pow (kind 3: pow(R.V, n)). */
+
+static float16 tp_vec_eval(int id, int kind, float16 nl, float16 nv, float16 lv, float16 n, float p0, float p1)
+{
+    if (kind == 2)
+        return brdf_pb_eval(id, nl, nv, lv, n, p0, p1);
+    float16 c = kind == 1 ? (nl + nv) * rsqrt(fmax(2.0f + 2.0f * lv, 1e-12f)) : 2.0f * nl * nv - lv;
+    float16 f = kind == 3 ? pow(fmax(c, 0.0f), n) : brdf_eval(id, c, n, p0, p1);
+    /* the light and the viewer above the surface, as in shading */
+    return select((float16)(0.0f), f, isgreater(nl, 0.0f) & isgreater(nv, 0.0f));
+}
+
+static float16 tp_vec_dot_unit(float16 ax, float16 ay, float16 bx, float16 by, float16 ainv, float16 binv)
+{
+    return (ax * bx + ay * by + 1.0f) * ainv * binv;
+}
+
+#define TP_VEC_STREAM(a, xn, yn, xl, yl, xv, yv, n, id, kind, p0, p1)                           \
+    do {                                                                                        \
+        float16 in_ = rsqrt(xn * xn + yn * yn + 1.0f);                                          \
+        float16 il_ = rsqrt(xl * xl + yl * yl + 1.0f);                                          \
+        float16 iv_ = rsqrt(xv * xv + yv * yv + 1.0f);                                          \
+        float16 nl_ = tp_vec_dot_unit(xn, yn, xl, yl, in_, il_);                                \
+        float16 nv_ = tp_vec_dot_unit(xn, yn, xv, yv, in_, iv_);                                \
+        float16 lv_ = tp_vec_dot_unit(xl, yl, xv, yv, il_, iv_);                                \
+        a += tp_vec_eval(id, kind, nl_, nv_, lv_, n, p0, p1);                                   \
+    } while (0)
+
+/* Two independent streams per work-item (the physically based models are long enough that
+   two hide the sums' latency); the ramps: x_N in [-0.3, 0.3], x_L in [-1, 0.2], x_V in
+   [-0.2, 1], y small, so most pairs are lit and the highlight is crossed. */
+#define TP_VEC_KERNEL(name, id, kind)                                                            \
+    __kernel void name(const float n_uniform, const float p0, const float p1, const float step,  \
+                       const int iters, __global float *out)                                    \
+    {                                                                                           \
+        const int gid = (int)get_global_id(0);                                                  \
+        const float16 n = (float16)(n_uniform);                                                 \
+        const float phase = TP_PHASE(gid);                                                      \
+        float16 t0 = (tp_lanes() + phase) * (1.0f / 16.0f), t1 = t0 + (0.5f / 16.0f);           \
+        float16 a0 = (float16)(0.0f), a1 = a0;                                                  \
+        for (int i = 0; i < iters; ++i) {                                                       \
+            float16 xn0 = 0.6f * t0 - 0.3f, xl0 = -1.0f + 1.2f * t0, xv0 = 1.0f - 1.2f * t0;    \
+            float16 xn1 = 0.6f * t1 - 0.3f, xl1 = -1.0f + 1.2f * t1, xv1 = 1.0f - 1.2f * t1;    \
+            float16 y0 = 0.1f * t0 - 0.05f, y1 = 0.1f * t1 - 0.05f;                             \
+            TP_VEC_STREAM(a0, xn0, y0, xl0, -y0, xv0, 0.5f * y0, n, id, kind, p0, p1);          \
+            TP_VEC_STREAM(a1, xn1, y1, xl1, -y1, xv1, 0.5f * y1, n, id, kind, p0, p1);          \
+            t0 = t0 + step;                                                                     \
+            t1 = t1 + step;                                                                     \
+            t0 = t0 - floor(t0);                                                                \
+            t1 = t1 - floor(t1);                                                                \
+        }                                                                                       \
+        vstore16(a0 + a1, gid, out);                                                            \
+    }
+
+#define TP_VEC_POINTS_KERNEL(name, id, kind)                                                     \
+    __kernel void name(const float p0, const float p1, __global const float *nl,               \
+                       __global const float *nv, __global const float *lv,                     \
+                       __global const float *n, __global float *out)                           \
+    {                                                                                           \
+        const size_t i = get_global_id(0);                                                      \
+        vstore16(tp_vec_eval(id, kind, vload16(i, nl), vload16(i, nv), vload16(i, lv),          \
+                             vload16(i, n), p0, p1), i, out);                                   \
+    }
+
+#define TP_VEC_MODEL_KERNELS(id, kind)                                                           \
+    TP_VEC_KERNEL(tp_vec_##id, id, kind)                                                         \
+    TP_VEC_POINTS_KERNEL(tp_vec_points_##id, id, kind)
+
+TP_VEC_KERNEL(tp_vec_pow, 0, 3)
+TP_VEC_POINTS_KERNEL(tp_vec_points_pow, 0, 3)
+
+/* TP_MODEL_KERNELS and TP_VEC_MODEL_KERNELS lines follow, appended by the host. */

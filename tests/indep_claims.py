@@ -263,6 +263,64 @@ if r:
 # fit: the per-n minimax k at n = 2 is 1 (cq2 = c^2 = c^n there, delta 0): worked by hand.
 number_row("C-fit-k2", 1.0, 1, 1e-9, absolute=1e-9)
 
+# Beaudoin and Guardado's table (m = 2, n = 18): A balances the largest f - c^n and c^n - f over
+# c in [0, 1], f = max(0, A c + 1 - A)^2; bisection on A here over a grid of 4001 cosines dense
+# near c = 1 (c = 1 - t^3), refined by a golden-section search around each side's best sample.
+def bg_sides(a, n=18.0):
+    def g(c):
+        b = max(a * c + 1 - a, 0.0)
+        return b * b - c ** n
+    pts = [1 - (1 - i / 4000.0) ** 3 for i in range(4001)]
+    out = []
+    for sign in (1, -1):
+        j = max(range(4001), key=lambda i: sign * g(pts[i]))
+        lo, hi = pts[max(j - 1, 0)], pts[min(j + 1, 4000)]
+        for _ in range(80):
+            m1, m2 = lo + (hi - lo) * 0.382, lo + (hi - lo) * 0.618
+            if sign * g(m1) < sign * g(m2):
+                lo = m1
+            else:
+                hi = m2
+        out.append(max(sign * g(pts[j]), sign * g(0.5 * (lo + hi))))
+    return out
+
+
+lo_a, hi_a = 0.0, 18.0
+for _ in range(45):
+    mid = 0.5 * (lo_a + hi_a)
+    over, under = bg_sides(mid)
+    if over > under:
+        lo_a = mid
+    else:
+        hi_a = mid
+bg_a = 0.5 * (lo_a + hi_a)
+bg_err = max(bg_sides(bg_a))
+number_row("BG-A-18", bg_a, 6.645, 0.001, absolute=1e-5)
+number_row("BG-err-18", bg_err, 0.0631, 0.0001, absolute=1e-6)
+# The cost argument (P1/P2-physical-cost): the ratios recomputed from physical.json's
+# evaluations/s, and the verdict the row's rule gives them (every physically based model slower
+# than fq2 and than Phong in the same run).
+try:
+    phys = json.load(open(run + "/physical.json"), parse_constant=no_const)
+except OSError:
+    phys = None
+for rid in ("P1-physical-cost", "P2-physical-cost"):
+    r = row(rid)
+    if r is None:
+        continue
+    if phys is None:
+        fail(rid, "physical.json missing")
+        continue
+    prow = {x["model"]: x for x in phys["cost"]["rows"]}
+    fq2, phong = prow["fq2"]["evaluations_per_s"], prow["phong"]["evaluations_per_s"]
+    pb = [x for x in phys["cost"]["rows"] if x["physically_based"]]
+    worst_fq2 = max(x["evaluations_per_s"] / fq2 for x in pb)
+    worst_phong = max(x["evaluations_per_s"] / phong for x in pb)
+    if not pb or abs(worst_fq2 - r["measured"]) > 1e-9 * worst_fq2:
+        fail(rid, "measured %r, the fastest physically based model is %r x fq2" % (r["measured"], worst_fq2))
+    relation_row(rid, worst_fq2 < 1 and worst_phong < 1, "fastest physically based model %.3g x fq2, %.3g x Phong"
+                 % (worst_fq2, worst_phong))
+
 # ---- every row checked, the summary counts the verdicts.
 unchecked = sorted(set(rows) - checked)
 if unchecked:

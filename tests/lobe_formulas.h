@@ -9,6 +9,7 @@
 #ifndef BRDF_TEST_LOBE_FORMULAS_H
 #define BRDF_TEST_LOBE_FORMULAS_H
 
+#include <complex.h>
 #include <math.h>
 #include <string.h>
 
@@ -33,6 +34,97 @@ static inline double lf_k_q(double n, double q) { return (1 - sqrt(q)) / -expm1(
 
 /* SPEC.md: alpha(n) = sqrt(2/(n+2)), so alpha^2 = 2/(n+2). */
 static inline double lf_alpha2(double n) { return 2 / (n + 2); }
+
+/* ---- the physically based models as lobes (host/core/models.c): the BRDF with the light at
+ * the normal (L = N) and theta_h = acos(c), so N.V = L.V = 2c^2 - 1 = 1 - 4s + 2s^2 and
+ * V.H = N.H = c. */
+
+/* Smith G1 of Beckmann, Walter et al. 2007's rational form in a = cot(theta) / alpha; 1 from
+   a = 1.6 on. */
+static inline double lf_g1_beckmann(double x, double a2)
+{
+    double a = x / sqrt(a2 * (1 - x * x));
+    return a >= 1.6 ? 1.0 : (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
+}
+/* Smith G1 of GGX: 2 / (1 + sqrt(1 + alpha^2 tan^2)). */
+static inline double lf_g1_ggx(double x, double a2) { return 2 / (1 + sqrt(1 + a2 * (1 - x * x) / (x * x))); }
+
+/* He et al. 1991's presets (host/core/models.c): lambda, sigma0, tau (um), n, k, a. */
+static const double lf_he_presets[4][6] = {
+    { 0.55, 0.10, 1.00, 0.958, 6.69, 0.0 },    /* rough aluminium */
+    { 0.55, 0.02, 1.00, 0.958, 6.69, 0.0 },    /* polished aluminium */
+    { 0.55, 0.10, 1.00, 0.43, 2.455, 0.0 },    /* gold */
+    { 0.55, 0.10, 1.00, 1.49, 0.0, 0.15 },     /* plastic */
+};
+/* Unpolarised Fresnel reflectance by complex arithmetic (Snell with a complex index). */
+static inline double lf_fresnel(double c, double n, double k)
+{
+    double complex m = n + k * I, ct = csqrt(1 - (1 - c * c) / (m * m));
+    double complex rs = (c - m * ct) / (c + m * ct), rp = (m * c - ct) / (m * c + ct);
+    return 0.5 * (cabs(rs) * cabs(rs) + cabs(rp) * cabs(rp));
+}
+/* Smith shadowing of He's Gaussian surface at cosine c. */
+static inline double lf_he_shadow(double c, double s0, double tau)
+{
+    if (c >= 1)
+        return 1;
+    double e = tau * c / (2 * s0 * sqrt(1 - c * c));
+    return (1 - 0.5 * erfc(e)) / (1 + 0.5 * (exp(-e * e) / (sqrt(lf_pi) * e) - erfc(e)));
+}
+/* He's BRDF with L = N and V at cosine nv (> 0): z0 by bisection of
+   sqrt(pi/2) z = sigma0 K_r / 4 exp(-z^2 / (2 sigma0^2)) (K_i = 0 at normal incidence), the
+   sum with lgamma, stopped as the model stops it (past m = g, a term below 2^-24 of the sum). */
+static inline double lf_he(double c, double nv, int preset)
+{
+    const double *p = lf_he_presets[preset];
+    double lambda = p[0], s0 = p[1], tau = p[2], kw = 2 * lf_pi / lambda;
+    double tr = sqrt(1 - nv * nv) / nv, kr = tr * erfc(tau / (2 * s0 * tr));
+    double lo = 0, hi = s0 * kr + 1e-300;
+    for (int i = 0; i < 200; ++i) {
+        double z = 0.5 * (lo + hi);
+        if (sqrt(lf_pi / 2) * z - s0 / 4 * kr * exp(-z * z / (2 * s0 * s0)) > 0)
+            hi = z;
+        else
+            lo = z;
+    }
+    double z0 = 0.5 * (lo + hi), sigma = s0 / sqrt(1 + z0 * z0 / (s0 * s0));
+    double g = pow(kw * sigma * (1 + nv), 2);
+    double x = 4 * kw * kw * c * c * (1 - c * c) * tau * tau / 4;    /* v_xy^2 tau^2 / 4 */
+    double sum = 0;
+    for (int m = 1; m <= 2000; ++m) {
+        double term = exp(m * log(g) - g - lgamma(m + 1.0) - x / m) / m;
+        sum += term;
+        if (m >= g && term <= 5.9604644775390625e-8 * sum)
+            break;
+    }
+    double S = lf_he_shadow(nv, s0, tau);
+    /* G = (v.v / v_z)^2 = (4c^2 / 2c^2)^2 = 4; the bisector's cosine is c */
+    double dd = lf_fresnel(c, p[3], p[4]) * 4 * S / (lf_pi * nv) * kw * kw * tau * tau / 16 * sum;
+    double cone = 0.99984769515639123916;                            /* cos 1 degree */
+    /* the mirror term over the 1-degree source, written symmetrically: F at the bisector,
+       1 / sqrt(cos theta_i cos theta_r) (He's F(theta_i) / cos theta_i at the mirror itself) */
+    double sp = nv >= cone ? lf_fresnel(c, p[3], p[4]) * exp(-g) * S / (sqrt(nv) * 2 * lf_pi * (1 - cone)) : 0;
+    return sp + dd + p[5];
+}
+
+static inline double lf_physical(const char *id, double c, double s, double n, double p0, double p1)
+{
+    double nv = 1 - 4 * s + 2 * s * s;
+    if (!(nv > 0))
+        return 0.0;
+    double a2 = lf_alpha2(n), t2 = s * (2 - s) / (c * c);
+    double db = exp(-t2 / a2) / (lf_pi * a2 * c * c * c * c), dg = a2 / (lf_pi * c * c * c * c * (a2 + t2) * (a2 + t2));
+    double s5 = s * s * s * s * s;
+    if (!strcmp(id, "ct-beckmann"))   /* D F G1(1) G1(nv) / (4 nv), G1(1) = 1, Schlick F at V.H = c */
+        return db * (p0 + (1 - p0) * s5) * lf_g1_beckmann(nv, a2) / (4 * nv);
+    if (!strcmp(id, "ct-ggx"))
+        return dg * (p0 + (1 - p0) * s5) * lf_g1_ggx(nv, a2) / (4 * nv);
+    if (!strcmp(id, "brady"))        /* paper 2's print: D G / (a^-2 b^-2 tan^2 + 0.9994) */
+        return db * lf_g1_beckmann(nv, a2) / (t2 / (p0 * p0 * p1 * p1) + 0.9994);
+    if (!strcmp(id, "he"))
+        return lf_he(c, nv, (int)p0);
+    return NAN;
+}
 
 /* One model at cosine c (s = 1 - c, both given), shininess n, parameters p0, p1.
  * Returns NAN for an id this table does not know. */
@@ -81,6 +173,58 @@ static inline double lf_eval(const char *id, double c, double s, double n, doubl
     }
     if (!strcmp(id, "quad"))
         return lf_quad(s, p0 * n + p1);
+    /* SPEC.md, "The approximations engines use"; the frozen constants as docs/frontier.md
+       prints them. */
+    if (!strcmp(id, "sg"))
+        return exp(-n * s);                                    /* exp(n (c - 1)) */
+    if (!strcmp(id, "ue4phong"))
+        return exp(-(n + 0.775) * s);
+    if (!strcmp(id, "gauss"))
+        return exp(-(p0 * n + p1) * s);
+    if (!strcmp(id, "gaussfit"))
+        return exp(-(1.020199565 * n + 0.1774327237) * s);
+    if (!strcmp(id, "pow3") || !strcmp(id, "pow4") || !strcmp(id, "pow3fit") || !strcmp(id, "pow4fit")) {
+        int m = id[3] == '3' ? 3 : 4;
+        int frozen = strlen(id) > 4;
+        double k = frozen ? (m == 3 ? 0.3106866803 * n + 0.07545118726 : 0.2371428753 * n + 0.05221691603)
+                          : p0 * n + p1;
+        double base = 1 - k * s;
+        return base > 0 ? pow(base, m) : 0.0;
+    }
+    if (!strcmp(id, "bg")) {                                   /* m = 2^j, A(n) = alpha_m n + beta_m */
+        static const double alpha[5] = { 0, 0.355728074, 0.211256260, 0.114952593, 0.059933489 };
+        static const double beta[5] = { 0, 0.264367919, 0.157725393, 0.085811949, 0.044726082 };
+        int j = (int)p0;
+        double base = 1 - (alpha[j] * n + beta[j]) * s;       /* A c + 1 - A */
+        return base > 0 ? pow(base, pow(2, j)) : 0.0;
+    }
+    if (!strcmp(id, "kb") || !strcmp(id, "kbswap")) {
+        double a = (n + 5.6) / (n * (0.09 * n + 5.2)), b = (n + 65) / (5 * n + 31.7);
+        if (!strcmp(id, "kbswap")) {
+            double t = a;
+            a = b;
+            b = t;
+        }
+        double al = 2 * asin(sqrt(s / 2));                     /* the angle from s = 1 - cos */
+        double f = al < a ? 1 - al * al / (a * b) : al < b ? (al - b) * (al - b) / (b * (b - a)) : 0.0;
+        return f > 0 ? f : 0.0;
+    }
+    if (!strcmp(id, "bitpow")) {
+        /* bits(c) - bits(1) = 2^23 (e + m - 1) for c = m 2^e, m in [1, 2); the pattern
+           t = 2^23 (n (e + m - 1) + 127) read back as 2^(floor t' - 127) (1 + frac t'). */
+        if (c <= 0)
+            return 0.0;
+        int e = ilogb(c);
+        double l2 = e + (scalbn(c, -e) - 1), t = n * l2 + 127;
+        if (t <= 0)
+            return 0.0;
+        if (t < 1)
+            return t * pow(2, -126);
+        double fl = floor(t);
+        return pow(2, fl - 127) * (1 + (t - fl));
+    }
+    if (!strcmp(id, "ct-beckmann") || !strcmp(id, "ct-ggx") || !strcmp(id, "brady") || !strcmp(id, "he"))
+        return lf_physical(id, c, s, n, p0, p1);
     return NAN;
 }
 

@@ -185,7 +185,14 @@ t 2 "^brdfbench render: --exposure: 'nan' is not a finite number in \[0.01, 100\
 t 2 "^brdfbench render: --light: 'laser' is not directional or point" render --light laser
 t 2 "^brdfbench render: --reps: '0' is not an integer in \[1, 1000\]" render --reps 0
 t 2 "^brdfbench fit: --n-min: 'x' is not a finite number" fit --n-min x
-t 2 "^brdfbench fit: --max-abs: '-1' is not a finite number in \[1e-300, 1\]" fit --max-abs -1
+t 2 "^brdfbench fit: --max-abs: '-1' is not a finite number in \[1e-06, 1\]" fit --max-abs -1
+t 2 "^brdfbench fit: --max-abs: '1e-300' is not a finite number in \[1e-06, 1\]" fit --max-abs 1e-300
+t 2 "^brdfbench fit: --max-rel: '0' is not a finite number in \[1e-06, 1\]" fit --objective max_abs --max-rel 0
+t 2 "^brdfbench fit: --power: '17' is not an integer in \[1, 16\]" fit --power 17
+t 2 "^brdfbench fit: --objective: 'bogus' is not an objective \(accepted: max_rel, max_abs\)" fit --objective bogus
+t 2 "^brdfbench fit: --max-rel caps the figure --objective max_rel minimises" fit --family gauss --max-rel 0.01
+t 2 "^brdfbench frontier: --samples: 17 is not a multiple of 16" frontier --samples 17
+t 2 "^brdfbench frontier: unknown option '--bogus' \(see brdfbench frontier --help\)" frontier --bogus
 t 2 "^brdfbench fit: --samples: '7' is not an integer in \[16, " fit --samples 7
 t 2 "^brdfbench fit: unknown option '--bogus' \(see brdfbench fit --help\)" fit --bogus
 t 2 "^brdfbench reproduce: --samples: '0' is not an integer in \[16, " reproduce --samples 0
@@ -200,7 +207,7 @@ t 2 "^brdfbench throughput: --variants: unknown 'turbo' \(accepted: default, " t
 t 2 "^brdfbench throughput: --sweep-samples: 100 is not a multiple of 16" throughput --sweep-samples 100
 t 2 "^brdfbench compare: expected BASELINE RUN \[RUN \.\.\.\]" compare
 t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help\)" compare --bogus
-t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-12, 1\]" compare a b --alpha 2
+t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-06, 0.5\]" compare a b --alpha 2
 t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
 t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
 t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all

@@ -18,7 +18,8 @@
 
 /* Parameter sets beyond each model's defaults. */
 static const char *const extra_specs[] = { "lyon:k=1", "lyon:k=3", "lyon:k=5", "fq:Q=0.3", "fq:Q=0.9",
-                                           "quad:a=0.45,b=0.1", "quad:a=0.3,b=1.5" };
+                                           "quad:a=0.45,b=0.1", "quad:a=0.3,b=1.5", "he:material=1",
+                                           "he:material=2", "he:material=3", "ct-ggx:F0=0.04", "brady:a=0.5,b=2" };
 
 enum { NS = 7, US = 13, POINTS = NS * US };
 static const double ns[NS] = { 2, 3.5, 16, 57, 256, 1000, 20000 };

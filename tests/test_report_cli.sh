@@ -32,7 +32,12 @@ RUN="$T/results/latest"
 [ -L "$RUN" ] && [ -d "$RUN/" ] && ok || bad "results/latest is not a link to a run folder"
 [ -f "$RUN/report.md" ] && ok || bad "no report.md"
 # progress: one line per step with the elapsed time, then the report's path on stdout
-[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]/9 ' "$T/err")" -eq 9 ] && ok || bad "want 9 step lines: $(cat "$T/err")"
+[ "$(grep -cE '^\[ *[0-9]+\.[0-9] s\] step [0-9]+/10 ' "$T/err")" -eq 10 ] && ok || bad "want 10 step lines: $(cat "$T/err")"
+# the frontier step: its files, and report.md's section naming the front
+[ -s "$RUN/frontier.json" ] && is_png "$RUN/frontier_max_rel.png" && is_png "$RUN/frontier_max_abs.png" && ok \
+    || bad "the frontier step's files are missing"
+grep -q "^## Which lobe to ship" "$RUN/report.md" && grep -q "^The front: " "$RUN/report.md" && ok \
+    || bad "report.md lacks the 'Which lobe to ship' section"
 grep -q "report.md" "$T/out" && ok || bad "stdout lacks the report path"
 links_exist "$RUN" && ok || bad "report.md links a missing file"
 # every model but the self-referenced phong has a heatmap and its field; phong has none

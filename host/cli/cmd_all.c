@@ -12,6 +12,7 @@
 #include "exitcodes.h"
 #include "field.h"
 #include "fit.h"
+#include "frontier.h"
 #include "outdir.h"
 #include "plots.h"
 #include "render.h"
@@ -30,7 +31,7 @@
 
 #define ALL_MAX_MODELS 64
 #define ALL_MAX_Q 256
-#define ALL_STEPS 9
+#define ALL_STEPS 10
 
 struct all_settings {
     int quick;
@@ -69,6 +70,8 @@ struct all_run {
     char picture_error[1024];
     struct report_block claims, fit, throughput, images;
     struct md_buf claims_md, fit_md, throughput_md, images_md;
+    struct report_block frontier;
+    char *frontier_md;
 };
 
 /* ---- progress ------------------------------------------------------------------- */
@@ -460,6 +463,7 @@ static int step_claims(struct all_run *r)
         o.q_samples = 128;
         o.q_n_step = 25;
         o.energy = 0;
+        o.physical = 0;   /* the physically based models' cost: not for a trial run */
     }
     struct reproduce_report rep;
     memset(&rep, 0, sizeof rep);
@@ -617,6 +621,28 @@ static int step_images(struct all_run *r)
     return 0;
 }
 
+/* Which lobe to ship (frontier.h): every lobe approximation's cost against its accuracy, with
+ * shorter timings than `brdfbench frontier` (2 rounds of 3 launches of 10 ms) to keep the main job short. */
+static int step_frontier(struct all_run *r)
+{
+    double t = wall_seconds();
+    struct frontier_options o;
+    frontier_options_default(&o);
+    o.reps = 3;
+    o.rounds = 2;
+    o.min_time = 0.01;
+    o.samples = r->set.quick ? 256 : 512;
+    progress(r, "frontier", 0, 1, "measuring");
+    int rc = frontier_run(&r->s, &o, r->run_dir, 1, &r->frontier_md);
+    if (rc) {
+        fprintf(stderr, "brdfbench all: the frontier failed (exit %d)\n", rc);
+        return rc;
+    }
+    r->frontier.markdown = r->frontier_md;
+    step_done(r, "frontier", t, "cost against accuracy -> frontier.json, frontier.csv, frontier_*.png");
+    return 0;
+}
+
 static int step_report(struct all_run *r, double wall)
 {
     double t = wall_seconds();
@@ -639,6 +665,7 @@ static int step_report(struct all_run *r, double wall)
     in.fit = r->fit;
     in.throughput = r->throughput;
     in.images = r->images;
+    in.frontier = r->frontier;
     in.pictures = r->pics;
     in.npictures = r->npics;
     /* the step list closes with this step's own line, written before the page */
@@ -682,6 +709,7 @@ static void run_free(struct all_run *r)
     md_free(&r->fit_md);
     md_free(&r->throughput_md);
     md_free(&r->images_md);
+    free(r->frontier_md);
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
@@ -788,6 +816,7 @@ int cmd_all(int argc, char **argv)
     if ((rc = step_heatmaps(r)) != 0) goto done;
     if ((rc = step_plots(r)) != 0) goto done;
     part(r, "images", &r->images, step_images(r));
+    part(r, "frontier", &r->frontier, step_frontier(r));
     if ((rc = step_report(r, elapsed(r))) != 0) goto done;
     if (r->part_failures) {
         fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);

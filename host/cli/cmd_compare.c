@@ -21,8 +21,8 @@ int cmd_compare(int argc, char **argv)
     double alpha = CMP_DEFAULT_ALPHA, slower_pct = -1;
     const struct cli_flag flags[] = {
         CLI_FLAG_OUT(&out_dir, "a new folder results/<date-time>/; results/latest stays"),
-        { .name = "--alpha", .value = "P", .kind = CLI_DOUBLE, .dest = &alpha, .min = 1e-12, .max = 1 - 1e-12,
-          .help = "the rank test's level", .range = "0 < P < 1" },
+        { .name = "--alpha", .value = "P", .kind = CLI_DOUBLE, .dest = &alpha, .min = 1e-6, .max = 0.5,
+          .help = "the rank test's level", .range = "1e-6 to 0.5" },
         { .name = "--fail-if-slower", .value = "PCT", .kind = CLI_DOUBLE, .dest = &slower_pct, .min = 0, .max = 100,
           .help = "exit 1 naming every rate that is slower than the baseline (by the test) by more than PCT percent",
           .def = "" },

@@ -10,6 +10,20 @@
 #include <stdio.h>
 #include <string.h>
 
+static int fit_call_objective(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    int *objective = dest;
+    if (strcmp(value, "max_rel") == 0)
+        *objective = FIT_MAX_REL;
+    else if (strcmp(value, "max_abs") == 0)
+        *objective = FIT_MAX_ABS;
+    else {
+        snprintf(err, errlen, "%s: '%s' is not an objective (accepted: max_rel, max_abs)", flag, value);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
 int cmd_fit(int argc, char **argv)
 {
     char err[1024];
@@ -23,19 +37,35 @@ int cmd_fit(int argc, char **argv)
         CLI_FLAG_N_MIN(&opt.n_min),
         CLI_FLAG_N_MAX(&opt.n_max),
         CLI_FLAG_N_STEP(&opt.n_step),
-        { .name = "--max-abs", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_abs_cap, .min = 1e-300, .max = 1.0,
-          .help = "cap on the attenuation zone's max Delta", .range = "0 < X <= 1", .def = "none" },
+        { .name = "--max-abs", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_abs_cap, .min = FIT_CAP_MIN,
+          .max = 1.0, .help = "cap on the attenuation zone's max Delta", .def = "none" },
+        { .name = "--family", .value = "ID", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, &opt.model), .def = "",
+          .help = "fit another family instead: a registry or user model with one or two continuous parameters "
+                  "(gauss, pow3, pow4, fq, quad, or a user model of --model-file with param: lines, e.g. "
+                  "--model-file my.cl --family my)" },
+        { .name = "--power", .value = "M", .kind = CLI_INT, .dest = CLI_DEST(int, &opt.power_m), .min = 1,
+          .max = FIT_POWER_M_MAX, .def = "", .help = "fit the power family ((a n + b)(c-1) + 1)^M" },
+        { .name = "--objective", .value = "WHAT", .kind = CLI_CALL, .dest = &opt.objective,
+          .call = fit_call_objective, .range = "max_rel or max_abs", .def = "max_rel",
+          .help = "what a family fit minimises: the epicentre's max delta or the attenuation's max Delta" },
+        { .name = "--max-rel", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_rel_cap, .min = FIT_CAP_MIN,
+          .max = 1.0, .def = "none", .help = "with --objective max_abs: cap on the epicentre's max delta" },
         CLI_FLAG_SAMPLES(&opt.samples, ACC_MAX_SAMPLES),
         CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
         CLI_FLAG_JSON(&json_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_USERMODEL,
     };
     const struct cli_command cmd = {
         .name = "fit",
         .about = "  For f = (k(n)(c-1) + 1)^2 (zeroed past its root): the per-n k that minimises the epicentre's\n"
                  "  max delta (the family's limit), and the affine k(n) = a n + b that minimises the largest max\n"
-                 "  delta over the n range; measured on the device beside fq2, fvol and cq2.\n",
+                 "  delta over the n range; measured on the device beside fq2, fvol and cq2.\n"
+                 "  With --family or --power, the minimax fit of that family's one or two continuous\n"
+                 "  parameters, and the trade-off between the two figures.\n",
+        .epilog = "  Exit codes: 0 done, 1 no member of the family meets the cap (fit.json says why),\n"
+                  "  2 bad input, 3 a runtime error.\n",
         .flags = flags,
         .nflags = (int)(sizeof flags / sizeof flags[0]),
     };
@@ -67,12 +97,18 @@ int cmd_fit(int argc, char **argv)
         return EXIT_RUNTIME;
     }
     /* the summary stays off standard output when the document goes there */
-    rc = fit_run(&s, run_dir, &opt, quiet || cli_is_stdout(json_path), NULL);
-    if (!rc && !out_dir && !json_path && outdir_set_latest("results", run_dir, err, sizeof err)) {
+    int fit_quiet = quiet || cli_is_stdout(json_path);
+    if (fit_wants_family(&opt))
+        rc = fit_family_run(&s, run_dir, &opt, fit_quiet, NULL);
+    else
+        rc = fit_run(&s, run_dir, &opt, fit_quiet, NULL);
+    /* exit 1 (no member meets the cap) still has a fit.json that says why */
+    int written = !rc || rc == EXIT_GATE_FAIL;
+    if (written && !out_dir && !json_path && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
         rc = EXIT_RUNTIME;
     }
-    if (!rc && json_path) {
+    if (written && json_path) {
         char src[4200];
         path_join(src, sizeof src, run_dir, "fit.json");
         if (cli_deliver(src, "--json", json_path, err, sizeof err)) {
@@ -81,7 +117,7 @@ int cmd_fit(int argc, char **argv)
         }
     }
     cli_temp_dir_remove(tmp_dir);
-    if (!rc && !quiet && !cli_is_stdout(json_path)) {
+    if (written && !quiet && !cli_is_stdout(json_path)) {
         if (!tmp_dir[0])
             printf("written: %s/fit.json\n", run_dir);
         if (json_path)

@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
+#include "pbcost.h"
 #include "throughput.h"
 #include "usermodel.h"
 
@@ -172,7 +173,11 @@ int cmd_throughput(int argc, char **argv)
         return EXIT_RUNTIME;
     }
     /* a document on standard output: the engine's table (and its progress) stay off */
-    rc = throughput_run(&s, &o, run_dir, quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path));
+    int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
+    rc = throughput_run(&s, &o, run_dir, tp_quiet);
+    /* the physically based models from full vectors (pbcost.h), in a run of the default set */
+    if (!rc && !models_given && usermodel_count() == 0 && !tmp_dir[0])
+        rc = pbcost_run_write(&s, run_dir, tp_quiet);
     if (!rc && !out_dir && !tmp_dir[0] && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         rc = EXIT_RUNTIME;

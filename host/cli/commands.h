@@ -13,6 +13,7 @@ int cmd_fit(int argc, char **argv);
 int cmd_reproduce(int argc, char **argv);
 int cmd_throughput(int argc, char **argv);
 int cmd_version(int argc, char **argv);
+int cmd_frontier(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 /* more commands below, one per line */
 

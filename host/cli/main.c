@@ -28,6 +28,7 @@ static const struct command commands[] = {
     { "version", cmd_version, "the program's version and git revision (also --version after any command)" },
     { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)" },
     /* more commands below, one per line */
+    { "frontier", cmd_frontier, "cost against accuracy of every lobe approximation: the Pareto front, plots, which to ship" },
 };
 
 static void usage(FILE *f)

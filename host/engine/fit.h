@@ -22,11 +22,20 @@
 #define FIT_SCHEMA "brdfbench.fit/1"
 #define FIT_COMPARE_COUNT 3          /* fq2, fvol, cq2 */
 #define FIT_TRADEOFF_POINTS 5
+#define FIT_CAP_MIN 1e-6             /* smallest cap on max delta or max Delta accepted */
+
+enum fit_objective { FIT_MAX_REL = 0, FIT_MAX_ABS };
 
 struct fit_options {
     double n_min, n_max, n_step;     /* the n grid, as the accuracy sweep's */
     double max_abs_cap;              /* cap on the attenuation zone's max Delta; NAN: none */
     long samples;                    /* samples per zone of the device sweeps */
+    /* Any family (fit_family_run): a registry or user model with one or two continuous
+       parameters, or the power family ((a n + b)(c - 1) + 1)^m at a fixed m. */
+    const char *model;               /* NULL: the quadratic family's exact fit above */
+    int power_m;                     /* 0: none; 1..16: the power family at this m */
+    int objective;                   /* enum fit_objective: what is minimised */
+    double max_rel_cap;              /* cap on the epicentre's max delta; NAN: none */
 };
 
 void fit_options_default(struct fit_options *o);
@@ -98,8 +107,62 @@ struct fit_report {
  * fit_report_free). Returns 0 or an exit code. */
 int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
             struct fit_report *report);
+/* 1 when the options ask for more than the quadratic family's exact fit (another family, the
+ * max_abs objective, a cap on max delta): fit_family_run serves them. */
+int fit_wants_family(const struct fit_options *o);
 void fit_report_free(struct fit_report *r);
 /* Checks the options (range, step, cap, samples). Returns 0 or EXIT_USAGE with a message. */
 int fit_options_check(const struct fit_options *o, char *err, size_t errlen);
+
+/* ---- any family: minimax by Nelder-Mead (GSL) on host figures ------------------------------ */
+
+#define FIT_FAMILY_SCHEMA "brdfbench.fit_family/1"
+#define FIT_POWER_M_MAX 16
+
+/* One fitted point of a family: its parameters and its figures over the whole n grid. */
+struct fit_point {
+    int ok;                           /* 0: the search found no point meeting the cap (reason) */
+    double params[2];
+    double cap;                       /* NAN: none */
+    double max_rel, max_rel_n;        /* host double figures over every n of the grid */
+    double max_abs, max_abs_n;
+    char reason[160];
+};
+
+struct fit_family_report {
+    struct fit_options opt;
+    struct accuracy_grid grid;
+    char family[96];                  /* the model id, or "power:m=M" */
+    int nparams;
+    char param_names[2][16];
+    struct fit_point best;            /* the objective, with its cap */
+    struct fit_point min_rel, min_abs;/* the two ends of the trade-off, uncapped */
+    struct fit_point tradeoff[FIT_TRADEOFF_POINTS];
+    int tradeoff_count;
+    char spec_text[128];              /* the fitted model for --models, or "" (power m > 4) */
+    struct accuracy_result sweep;     /* the device sweep of the fitted model */
+    int have_sweep;
+    double seconds;
+};
+
+/* The power family ((a n + b)(c - 1) + 1)^m zeroed past its root, in double (the header's
+ * brdf_power), for the fit and the tests. */
+double fit_power_eval(double c, double n, double a, double b, int m);
+
+/* Host figures of a family point over the n values given: the epicentre's max delta and the
+ * attenuation's max Delta, each per n by a grid polished with Brent. family NULL: power m. */
+void fit_family_figures(const struct model_spec *family, int power_m, const double *params, const double *n,
+                        long count, struct fit_point *out);
+
+/* Runs a family fit (options with model or power_m set), the device sweep of the result when
+ * it is a registry or user model, writes out_dir/fit.json, prints unless quiet. */
+int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
+                   struct fit_family_report *report);
+void fit_family_report_free(struct fit_family_report *r);
+
+/* Beaudoin and Guardado 2002: for f = max(0, A c + 1 - A)^m against c^n, the A that makes the
+ * largest positive and negative errors of f - c^n over c in [0, 1] equal (bisection on A), and
+ * that largest |f - c^n|. Returns 0, or -1 when no A in (0, max(n, 1)] balances them. */
+int fit_bg_exact_a(double n, int m, double *a_out, double *max_abs_out);
 
 #endif

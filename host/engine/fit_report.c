@@ -179,3 +179,117 @@ void fit_print(FILE *f, const struct fit_report *r)
     if (r->main.have_sweep)
         fprintf(f, "use it: --models %s\n", r->main.spec_text);
 }
+
+/* ---- a family fit ------------------------------------------------------------------------- */
+
+static void jw_fit_point(struct jw *w, const struct fit_family_report *r, const char *key, const struct fit_point *p)
+{
+    jw_key(w, key);
+    jw_obj_begin(w);
+    jw_kv_str(w, "status", p->ok ? "ok" : "infeasible");
+    if (!p->ok)
+        jw_kv_str(w, "reason", p->reason);
+    for (int k = 0; k < r->nparams; ++k)
+        jw_kv_num(w, r->param_names[k], p->params[k]);
+    jw_kv_num(w, "cap", p->cap);
+    if (!isfinite(p->cap))
+        jw_kv_str(w, "cap_reason", "no cap");
+    jw_kv_num(w, "max_rel", p->max_rel);
+    jw_kv_num(w, "max_rel_at_n", p->max_rel_n);
+    jw_kv_num(w, "max_abs", p->max_abs);
+    jw_kv_num(w, "max_abs_at_n", p->max_abs_n);
+    jw_obj_end(w);
+}
+
+int fit_family_write_json(const char *path, const struct fit_family_report *r, const struct cl_session *s,
+                          char *err, size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", FIT_FAMILY_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_key(&w, "grid");
+    jw_obj_begin(&w);
+    jw_kv_num(&w, "n_min", r->grid.n_min);
+    jw_kv_num(&w, "n_max", r->grid.n_max);
+    jw_kv_num(&w, "n_step", r->grid.n_step);
+    jw_kv_int(&w, "samples_per_zone", r->grid.samples);
+    jw_kv_str(&w, "figures", "host: every n of the grid, each zone on a grid polished with Brent, in double; "
+                             "device: the accuracy sweep of the fitted model");
+    jw_obj_end(&w);
+    jw_obj_end(&w);   /* context */
+    jw_kv_str(&w, "family", r->family);
+    jw_kv_str(&w, "objective", r->opt.objective == FIT_MAX_ABS ? "max_abs" : "max_rel");
+    jw_kv_str(&w, "method", "Nelder-Mead (GSL nmsimplex2, restarted) on the largest figure over 54 n values of the "
+                            "range, a cap as an exact penalty; figures then over every n of the grid");
+    jw_kv_str(&w, "model", r->spec_text);
+    jw_fit_point(&w, r, "fit", &r->best);
+    jw_fit_point(&w, r, "min_max_rel", &r->min_rel);
+    jw_fit_point(&w, r, "min_max_abs", &r->min_abs);
+    jw_key(&w, "tradeoff");
+    jw_arr_begin(&w);
+    for (int j = 0; j < r->tradeoff_count; ++j) {
+        jw_obj_begin(&w);
+        for (int k = 0; k < r->nparams; ++k)
+            jw_kv_num(&w, r->param_names[k], r->tradeoff[j].params[k]);
+        jw_kv_num(&w, "max_abs_cap", r->tradeoff[j].cap);
+        jw_kv_num(&w, "max_rel", r->tradeoff[j].max_rel);
+        jw_kv_num(&w, "max_abs", r->tradeoff[j].max_abs);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_key(&w, "device");
+    if (r->have_sweep) {
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", r->sweep.model.label);
+        jw_kv_num(&w, "max_rel", r->sweep.epicentre.value);
+        jw_kv_num(&w, "max_rel_at_n", r->sweep.epicentre.n);
+        jw_kv_num(&w, "max_abs", r->sweep.attenuation.value);
+        jw_kv_num(&w, "max_abs_at_n", r->sweep.attenuation.n);
+        jw_obj_end(&w);
+    } else {
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "status", "not measured");
+        jw_kv_str(&w, "reason", r->best.ok ? "no device kernel for this family (power m other than 2, 3, 4)"
+                                           : "no fitted model");
+        jw_obj_end(&w);
+    }
+    jw_kv_num(&w, "seconds", r->seconds);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+static void print_point(FILE *f, const struct fit_family_report *r, const char *what, const struct fit_point *p)
+{
+    fprintf(f, "  %-34s", what);
+    for (int k = 0; k < r->nparams; ++k)
+        fprintf(f, " %s=%-14.10g", r->param_names[k], p->params[k]);
+    fprintf(f, " max delta %8.4f%% (n = %g)  max Delta %.5f (n = %g)%s\n", 100 * p->max_rel, p->max_rel_n,
+            p->max_abs, p->max_abs_n, p->ok ? "" : "  infeasible");
+}
+
+void fit_family_print(FILE *f, const struct fit_family_report *r)
+{
+    fprintf(f, "fit: family %s over n in [%g, %g] step %g; objective %s%s\n", r->family, r->grid.n_min,
+            r->grid.n_max, r->grid.n_step, r->opt.objective == FIT_MAX_ABS ? "max_abs" : "max_rel",
+            isfinite(r->best.cap) ? " with a cap" : "");
+    fprintf(f, "host figures (double, every n of the grid):\n");
+    print_point(f, r, "fit", &r->best);
+    print_point(f, r, "least max delta", &r->min_rel);
+    print_point(f, r, "least max Delta", &r->min_abs);
+    if (r->tradeoff_count) {
+        fprintf(f, "trade-off: cap on max Delta -> best max delta:");
+        for (int j = 0; j < r->tradeoff_count; ++j)
+            fprintf(f, "%s %.5f -> %.4f%%", j ? "," : "", r->tradeoff[j].cap, 100 * r->tradeoff[j].max_rel);
+        fprintf(f, "\n");
+    }
+    if (r->have_sweep)
+        fprintf(f, "device sweep of %s: max delta %.4f%% (n = %g), max Delta %.5f (n = %g)\n", r->sweep.model.label,
+                100 * r->sweep.epicentre.value, r->sweep.epicentre.n, r->sweep.attenuation.value,
+                r->sweep.attenuation.n);
+    if (r->spec_text[0])
+        fprintf(f, "use it: --models %s\n", r->spec_text);
+}

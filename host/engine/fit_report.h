@@ -12,4 +12,9 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
 /* The summary table, the trade-off and the verdict. */
 void fit_print(FILE *f, const struct fit_report *r);
 
+/* The same for a family fit (fit_family_run): schema FIT_FAMILY_SCHEMA. */
+int fit_family_write_json(const char *path, const struct fit_family_report *r, const struct cl_session *s,
+                          char *err, size_t errlen);
+void fit_family_print(FILE *f, const struct fit_family_report *r);
+
 #endif

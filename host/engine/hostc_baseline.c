@@ -39,7 +39,7 @@ static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a
 #define ACC_OUT_STRIDE 8 /* kernels/accuracy.cl */
 #define HOSTC_MAX_THREADS 256
 
-_Static_assert(BRDF_MODEL_COUNT <= 17, "hostc_dispatch covers model ids 0..16");
+_Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_dispatch covers model ids 0..39");
 
 static double hostc_now(void)
 {
@@ -54,7 +54,7 @@ int hostc_default_threads(void)
     return n < 1 ? 1 : n > HOSTC_MAX_THREADS ? HOSTC_MAX_THREADS : (int)n;
 }
 
-int hostc_supports(int model_id) { return model_id >= 0 && model_id < BRDF_MODEL_COUNT && model_id != BRDF_USER; }
+int hostc_supports(int model_id) { return model_id >= 0 && model_id < BRDF_USER; }
 
 /* The model, or the powf built-in for id < 0. With id a constant the switch folds away. */
 static inline __attribute__((always_inline)) float hostc_eval(const int id, float c, float n, float p0, float p1)
@@ -114,7 +114,9 @@ static inline __attribute__((always_inline)) void hostc_work_item(const int id, 
 }
 
 /* Per-id instances with the id a constant (the model's switch folds away inside). */
-#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
+#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) \
+    X(17) X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
+    X(34) X(35) X(36) X(37) X(38) X(39)
 
 static void hostc_work_item_any(int id, float p0, float p1, const struct tp_inputs *in, long gid, float *sum16)
 {

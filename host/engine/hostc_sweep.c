@@ -25,8 +25,10 @@ static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a
 
 #include "hostc_baseline.h"
 
-#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
-_Static_assert(BRDF_MODEL_COUNT <= 17, "hostc_sweep_n_any covers model ids 0..16");
+#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) \
+    X(17) X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
+    X(34) X(35) X(36) X(37) X(38) X(39)
+_Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_sweep_n_any covers model ids 0..39");
 
 /* One n of accuracy_sweep (kernels/accuracy.cl), sample by sample, in s = 1 - cos x as the
  * kernel places and evaluates them. */

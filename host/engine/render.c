@@ -12,6 +12,7 @@
 #include "outdir.h"
 #include "programs.h"
 #include "raster.h"
+#include "refine.h"
 #include "render_report.h"
 #include "report.h"
 
@@ -44,7 +45,7 @@ static const double world_up[3] = {0.0, 1.0, 0.0};
 
 const char *const render_scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
 const char *const render_mode_names[RENDER_MODE_COUNT] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
-                                                          "cook-torrance-ggx"};
+                                                          "cook-torrance-ggx", "physical"};
 
 static void set_err(char *err, size_t errlen, const char *fmt, ...)
 {
@@ -71,6 +72,10 @@ void render_options_default(struct render_options *o)
     o->reps = 7;
     o->warmup = 2;
     o->nmodels = model_spec_list_default(o->models, RENDER_MAX_MODELS);
+    for (int i = 0; i < models_count() && o->nmodels < RENDER_MAX_MODELS; i++)
+        if (strcmp(models_at(i)->family, "physical") == 0)
+            model_spec_default(models_at(i), &o->models[o->nmodels++]);
+    o->he_material = 0;
     static const double cols[] = {4, 16, 64, 256, 1000};
     o->ncols = 5;
     memcpy(o->sphere_n, cols, sizeof cols);
@@ -139,21 +144,9 @@ int render_shading_mode(const struct model_spec *m)
 {
     if (strcmp(m->info->family, "microfacet") == 0)
         return m->info->kernel_id == BRDF_GGX ? SHADE_CT_GGX : SHADE_CT_BECKMANN;
+    if (strcmp(m->info->family, "physical") == 0)
+        return SHADE_PHYSICAL;
     return m->info->lobe == LOBE_PSI ? SHADE_LOBE_PSI : SHADE_LOBE_THETA_H;
-}
-
-static double smith_g1_ggx_ref(double x, double alpha)
-{
-    double a2 = alpha * alpha;
-    return 2.0 * x / (x + sqrt(a2 + (1.0 - a2) * x * x));
-}
-
-static double smith_g1_beckmann_ref(double x, double alpha)
-{
-    double a = x / (alpha * sqrt(fmax(1.0 - x * x, 1e-12)));
-    if (a >= 1.6)
-        return 1.0;
-    return (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
 }
 
 void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
@@ -188,15 +181,18 @@ void render_shade_ref(const struct model_spec *m, int mode, const struct render_
             h[c] = l[c] + v[c];
         vec3_normalize(h);
         cosine = vec3_dot(nrm, h);
-        s = model_eval_host(m, cosine, n);
-        if (mode != SHADE_LOBE_THETA_H) {
+        if (mode == SHADE_PHYSICAL)
+            s = brdf_pb_eval_ud(m->info->kernel_id, ndotl, ndotv, vec3_dot(l, v), n, m->params[0], m->params[1], 0.0);
+        else
+            s = model_eval_host(m, cosine, n);
+        if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {
             double vdoth = fmax(vec3_dot(v, h), 0.0);
             double fresnel = o->f0 + (1.0 - o->f0) * pow(1.0 - vdoth, 5.0);
             double alpha = brdf_alpha_from_n(n);
             double nl = fmax(ndotl, 1e-6), nv = fmax(ndotv, 1e-6);
             double g = mode == SHADE_CT_GGX
-                           ? smith_g1_ggx_ref(nl, alpha) * smith_g1_ggx_ref(nv, alpha)
-                           : smith_g1_beckmann_ref(nl, alpha) * smith_g1_beckmann_ref(nv, alpha);
+                           ? brdf_smith_g1_ggx(nl, alpha) * brdf_smith_g1_ggx(nv, alpha)
+                           : brdf_smith_g1_beckmann(nl, alpha) * brdf_smith_g1_beckmann(nv, alpha);
             s = s * fresnel * g / (4.0 * nl * nv);
         }
     }
@@ -897,6 +893,276 @@ done:
     return rc;
 }
 
+/* ------------------------------------------------------------------ He against the lobes */
+
+/* The least-squares fit of Blinn-Phong k A_i c_i^n to He's specular radiance h_i over the
+   foreground: for each n the best k is sum(b h) / sum(b b) (b_i = A_i c_i^n), leaving the
+   residual sum(h h) - sum(b h)^2 / sum(b b); n minimises it. */
+struct he_fit {
+    size_t count;
+    double *a, *c, *h;     /* E (N.L) ks, N.H, He's specular radiance */
+    double hh;
+};
+static double he_fit_residual(double u, void *ctx)
+{
+    const struct he_fit *f = ctx;
+    double n = exp(u), bh = 0, bb = 0;
+    for (size_t i = 0; i < f->count; i++) {
+        double b = f->a[i] * exp(n * log(f->c[i]));
+        bh += b * f->h[i];
+        bb += b * b;
+    }
+    return bb > 0 ? f->hh - bh * bh / bb : f->hh;
+}
+static double he_fit_scale(const struct he_fit *f, double n)
+{
+    double bh = 0, bb = 0;
+    for (size_t i = 0; i < f->count; i++) {
+        double b = f->a[i] * exp(n * log(f->c[i]));
+        bh += b * f->h[i];
+        bb += b * b;
+    }
+    return bb > 0 ? bh / bb : 0;
+}
+
+void render_he_fit(const double *a, const double *c, const double *h, size_t count, double *n, double *k,
+                   double *rel_rms)
+{
+    struct he_fit fit = { count, (double *)a, (double *)c, (double *)h, 0 };
+    for (size_t i = 0; i < count; i++)
+        fit.hh += h[i] * h[i];
+    double u = log(64.0);
+    if (count == 0 || brent_minimum(he_fit_residual, &fit, log(1.0), log(64.0), log(20000.0), 1e-9, 1e-9, 200, &u) != 0) {
+        /* a scan when Brent's bracket does not hold (the minimum near an end of [1, 20000]) */
+        double best = INFINITY;
+        for (double t = log(1.0); t <= log(20000.0); t += 0.002) {
+            double r = he_fit_residual(t, &fit);
+            if (r < best) {
+                best = r;
+                u = t;
+            }
+        }
+    }
+    *n = exp(u);
+    *k = he_fit_scale(&fit, *n);
+    *rel_rms = fit.hh > 0 ? sqrt(fmax(he_fit_residual(u, &fit), 0.0) / fit.hh) : NAN;
+}
+
+/* Writes an entry's error image against He's and, when `all_pictures`, its image and the
+   contact sheet He | entry | error (PNG writing is most of this pass's time, so the other
+   cheap lobes get the error image only). */
+static int he_pictures(const char *scene_dir, const char *sc, const char *base, int w, int h, const unsigned *rgba,
+                       const unsigned char *rgb_he, unsigned char *rgb, const float *errimg, struct he_entry *en,
+                       const char *he_label, int all_pictures, char *err, size_t errlen)
+{
+    char name[300], path[4600], title[400];
+    snprintf(en->error, sizeof en->error, "render/%s/he_%s_error.png", sc, base);
+    if (all_pictures) {
+        rgba_to_rgb(rgba, (size_t)w * h, rgb);
+        snprintf(en->image, sizeof en->image, "render/%s/he_%s.png", sc, base);
+        snprintf(en->contact, sizeof en->contact, "render/%s/he_%s_contact.png", sc, base);
+        snprintf(name, sizeof name, "he_%s.png", base);
+        path_join(path, sizeof path, scene_dir, name);
+        if (draw_png_rgb8(path, w, h, rgb, err, errlen) != 0)
+            return EXIT_RUNTIME;
+    }
+    snprintf(title, sizeof title, "%s: |%s - %s| specular radiance, max %.3g mean %.3g", sc, en->label, he_label,
+             en->metrics.max_abs, en->metrics.mean_abs);
+    snprintf(name, sizeof name, "he_%s_error.png", base);
+    path_join(path, sizeof path, scene_dir, name);
+    if (draw_error_image(path, w, h, errimg, (float)en->metrics.max_abs, title, err, errlen) != 0)
+        return EXIT_RUNTIME;
+    if (!all_pictures)
+        return 0;
+    snprintf(title, sizeof title, "%s: %s | %s | error (max %.3g)", sc, he_label, en->label, en->metrics.max_abs);
+    snprintf(name, sizeof name, "he_%s_contact.png", base);
+    path_join(path, sizeof path, scene_dir, name);
+    if (draw_contact_sheet(path, w, h, rgb_he, rgb, errimg, (float)en->metrics.max_abs, title, err, errlen) != 0)
+        return EXIT_RUNTIME;
+    return 0;
+}
+
+/* A mesh shaded by He's model (o->he_material), then by Blinn-Phong at the n (and scale) that
+   fits He's specular radiance best, and by each cheap lobe of the run (quadratic and rational
+   families) at that n in the Blinn variable; error images against He's. */
+static int he_pass(struct render_device *dev, const struct scene_data *sd, const struct render_options *o,
+                   const char *stage_dir, struct scene_result *res, char *err, size_t errlen)
+{
+    struct cl_session *s = dev->s;
+    struct he_comparison *hc = &res->he;
+    const int w = o->width, h = o->height;
+    const char *sc = render_scene_names[sd->kind];
+    struct gbuffer g;
+    struct render_light lt;
+    struct he_fit fit = {0};
+    cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
+    unsigned *rgba_he = NULL, *rgba_b = NULL, *rgba_m = NULL;
+    float *spec_he = NULL, *spec_b = NULL, *spec_m = NULL, *errimg = NULL;
+    unsigned char *rgb_he = NULL, *rgb = NULL;
+    int rc = 0;
+    cl_int e;
+    char text[64];
+    memset(hc, 0, sizeof *hc);
+    snprintf(text, sizeof text, "he:material=%d", o->he_material);
+    if (model_spec_parse(text, &hc->he, err, errlen))
+        return EXIT_USAGE;
+    if ((rc = scene_gbuffer(sd, o, w, h, &g, &lt, err, errlen)) != 0)
+        return rc;
+    const size_t npix = g.npix;
+    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, g.stride * GB_NPLANES * sizeof(float),
+                          g.data, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(He G-buffer)", fail);
+    out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(He rgba)", fail);
+    out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(He spec)", fail);
+    rgba_he = malloc(npix * sizeof *rgba_he);
+    rgba_b = malloc(npix * sizeof *rgba_b);
+    rgba_m = malloc(npix * sizeof *rgba_m);
+    spec_he = malloc(npix * sizeof *spec_he);
+    spec_b = malloc(npix * sizeof *spec_b);
+    spec_m = malloc(npix * sizeof *spec_m);
+    errimg = malloc(npix * sizeof *errimg);
+    rgb_he = malloc(npix * 3);
+    rgb = malloc(npix * 3);
+    fit.a = malloc(npix * sizeof *fit.a);
+    fit.c = malloc(npix * sizeof *fit.c);
+    fit.h = malloc(npix * sizeof *fit.h);
+    if (!rgba_he || !rgba_b || !rgba_m || !spec_he || !spec_b || !spec_m || !errimg || !rgb_he || !rgb || !fit.a ||
+        !fit.c || !fit.h) {
+        set_err(err, errlen, "%s: out of memory for the He comparison", sc);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if ((rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, &hc->he, SHADE_PHYSICAL, &lt, o,
+                                  rgba_he, spec_he, NULL)) != 0)
+        goto fail;
+    /* the fit's inputs: every lit foreground pixel, in double from the G-buffer */
+    const float *px = gbuffer_plane(&g, GB_PX), *py = gbuffer_plane(&g, GB_PY), *pz = gbuffer_plane(&g, GB_PZ);
+    const float *nx = gbuffer_plane(&g, GB_NX), *ny = gbuffer_plane(&g, GB_NY), *nz = gbuffer_plane(&g, GB_NZ);
+    float *sh = gbuffer_plane(&g, GB_SHIN);
+    struct model_spec blinn;
+    model_spec_default(models_find("blinn"), &blinn);
+    for (size_t i = 0; i < npix; i++) {
+        if (!(sh[i] > 0))
+            continue;
+        double pos[3] = { px[i], py[i], pz[i] }, nrm[3] = { nx[i], ny[i], nz[i] }, spec1, rad;
+        /* Blinn-Phong at n = 1 gives E (N.L) ks c; with it and c the lobe at any n is A c^n */
+        render_shade_ref(&blinn, SHADE_LOBE_THETA_H, &lt, o, pos, nrm, 1.0, &spec1, &rad);
+        double v[3], l[3], hv[3];
+        for (int k = 0; k < 3; k++) {
+            v[k] = lt.eye[k] - pos[k];
+            l[k] = lt.point ? lt.light[k] - pos[k] : lt.light[k];
+        }
+        vec3_normalize(v);
+        vec3_normalize(l);
+        for (int k = 0; k < 3; k++)
+            hv[k] = l[k] + v[k];
+        vec3_normalize(hv);
+        double c = vec3_dot(nrm, hv);
+        if (!(spec1 > 0 && c > 0))
+            continue;
+        fit.a[fit.count] = spec1 / c;
+        fit.c[fit.count] = c;
+        fit.h[fit.count] = spec_he[i];
+        fit.hh += (double)spec_he[i] * spec_he[i];
+        fit.count++;
+    }
+    hc->fit_pixels = fit.count;
+    render_he_fit(fit.a, fit.c, fit.h, fit.count, &hc->n_fit, &hc->k_fit, &hc->rel_rms);
+    /* the fitted n in the G-buffer's shininess plane, ks scaled by k */
+    for (size_t i = 0; i < npix; i++)
+        if (sh[i] > 0)
+            sh[i] = (float)hc->n_fit;
+    CL_CHECK_GOTO(clEnqueueWriteBuffer(s->queue, gbuf, CL_TRUE, GB_SHIN * g.stride * sizeof(float),
+                                       g.stride * sizeof(float), sh, 0, NULL, NULL),
+                  fail);
+    struct render_options of = *o;
+    of.ks = o->ks * hc->k_fit;
+
+    char scene_dir[4200];
+    path_join(scene_dir, sizeof scene_dir, stage_dir, sc);
+    if (o->write_images && outdir_prepare(scene_dir, NULL, err, errlen) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    rgba_to_rgb(rgba_he, npix, rgb_he);
+    if (o->write_images) {
+        char base[MODEL_LABEL_MAX + 8], name[300], path[4600];
+        label_to_file(hc->he.label, base, sizeof base);
+        snprintf(name, sizeof name, "he_%s.png", base);
+        snprintf(hc->he_image, sizeof hc->he_image, "render/%s/he_%s.png", sc, base);
+        path_join(path, sizeof path, scene_dir, name);
+        if (draw_png_rgb8(path, w, h, rgb_he, err, errlen) != 0) {
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+    }
+    /* entry 0: Blinn-Phong at the fitted n; then the cheap lobes at that n */
+    hc->count = 0;
+    for (int mi = -1; mi < o->nmodels && hc->count < RENDER_MAX_MODELS + 1; mi++) {
+        const struct model_spec *m = mi < 0 ? &blinn : &o->models[mi];
+        if (mi >= 0 && strcmp(m->info->family, "quadratic") != 0 && strcmp(m->info->family, "rational") != 0)
+            continue;
+        struct he_entry *en = &hc->e[hc->count];
+        unsigned *rg = mi < 0 ? rgba_b : rgba_m;
+        float *sp = mi < 0 ? spec_b : spec_m;
+        if ((rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, m, SHADE_LOBE_THETA_H, &lt, &of,
+                                      rg, sp, NULL)) != 0)
+            goto fail;
+        snprintf(en->label, sizeof en->label, "%s@n=%.4g", m->label, hc->n_fit);
+        compute_metrics(&g, 0, h, rg, sp, rgba_he, spec_he, o->threshold, errimg, &en->metrics);
+        en->max_abs_vs_blinn = 0;
+        for (size_t i = 0; i < npix; i++)
+            if (sh[i] > 0)
+                en->max_abs_vs_blinn = fmax(en->max_abs_vs_blinn, fabs((double)sp[i] - (double)spec_b[i]));
+        if (o->write_images) {
+            char base[MODEL_LABEL_MAX + 8];
+            label_to_file(m->label, base, sizeof base);
+            int all_pictures = mi < 0 || m->info->kernel_id == BRDF_FQ2;
+            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, rgb_he, rgb, errimg, en, hc->he.label, all_pictures,
+                                  err, errlen)) != 0)
+                goto done;
+        }
+        hc->count++;
+    }
+    hc->done = 1;
+    if (o->verbose) {
+        printf("  %s: %s against Blinn-Phong fitted to it: n = %.4g, k = %.4g, relative rms residual %.3g (%zu "
+               "pixels)\n", sc, hc->he.label, hc->n_fit, hc->k_fit, hc->rel_rms, hc->fit_pixels);
+        for (int k = 0; k < hc->count; k++)
+            printf("    %-28s vs He: max %-9.3g mean %-9.3g  vs Blinn-Phong fit: max %.3g\n", hc->e[k].label,
+                   hc->e[k].metrics.max_abs, hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
+        fflush(stdout);
+    }
+    goto done;
+fail:
+    if (!err[0])
+        set_err(err, errlen, "%s: OpenCL error in the He comparison (see above)", sc);
+    rc = rc ? rc : EXIT_RUNTIME;
+done:
+    free(fit.a);
+    free(fit.c);
+    free(fit.h);
+    free(rgba_he);
+    free(rgba_b);
+    free(rgba_m);
+    free(spec_he);
+    free(spec_b);
+    free(spec_m);
+    free(errimg);
+    free(rgb_he);
+    free(rgb);
+    if (out_spec)
+        clReleaseMemObject(out_spec);
+    if (out_rgba)
+        clReleaseMemObject(out_rgba);
+    if (gbuf)
+        clReleaseMemObject(gbuf);
+    gbuffer_free(&g);
+    return rc;
+}
+
 /* The models and their references, each once per shading mode, in the order timed. */
 static void timed_entries(const struct render_options *o, struct size_timing *st)
 {
@@ -1093,6 +1359,8 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
                    render_scene_names[si], samples, worst, codes, codes == 1 ? "" : "s",
                    within ? "within the bound" : "OUT OF BOUND");
         }
+        if (rc == 0 && o->he_material >= 0 && si != RENDER_SPHERES)
+            rc = he_pass(&dev, &sd, o, stage, sr, err, errlen);
         for (int ti = 0; rc == 0 && ti < o->ntime_sizes; ti++) {
             rc = time_pass(&dev, &sd, o, o->time_w[ti], o->time_h[ti], &sr->timings[ti], err,
                            errlen);

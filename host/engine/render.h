@@ -45,13 +45,16 @@ struct render_options {
     double threshold;                  /* error above this counts as a visible error */
     int ref_samples;                   /* pixels per model checked against the double reference */
     const char *teapot_path, *bunny_path;
+    int he_material;                   /* He comparison on the meshes: a preset of the model he, -1: none */
     int write_images;                  /* PNGs (image, error image, contact sheet) */
     int verbose;                       /* progress and the table on stdout */
 };
 
 /* Defaults: all three scenes at 1920x1080, timing at 1920x1080 and 3840x2160 (7 reps after
- * 2 warm-ups), every model of the default set, sphere columns 4 16 64 256 1000, n = 64 on
- * the meshes, teapot at 16 quads per patch side, a directional light. */
+ * 2 warm-ups), every model of the default set and the physically based models, sphere columns
+ * 4 16 64 256 1000, n = 64 on the meshes, teapot at 16 quads per patch side, a directional
+ * light; the teapot and the bunny also shaded by He's model (rough aluminium) beside
+ * Blinn-Phong at its best-matching n and the cheap lobes at that n. */
 void render_options_default(struct render_options *o);
 
 /* Checks a size against the accepted range and the device's memory (global memory and
@@ -87,6 +90,10 @@ struct render_light {
 void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
                       const struct render_options *o, const double pos[3], const double nrm[3],
                       double n, double *spec, double *radiance);
+/* The least-squares fit of Blinn-Phong to He's image: minimises sum (k a_i c_i^n - h_i)^2 over
+ * k (closed form for each n) and n in [1, 20000] (Brent's method in log n). */
+void render_he_fit(const double *a, const double *c, const double *h, size_t count, double *n, double *k,
+                   double *rel_rms);
 /* The exact 8-bit display colour of a radiance (the curve the display table samples). */
 void render_display_exact(const struct render_options *o, double radiance, unsigned char rgb[3]);
 

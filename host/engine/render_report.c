@@ -77,6 +77,45 @@ static void write_metrics_json(struct jw *w, const struct image_metrics *mt, dou
     jw_obj_end(w);
 }
 
+/* The He comparison of a scene (render_report.h, struct he_comparison). */
+static void write_he_json(struct jw *w, const struct he_comparison *hc, double threshold)
+{
+    jw_key(w, "he_comparison");
+    jw_obj_begin(w);
+    jw_kv_str(w, "model", hc->he.label);
+    jw_kv_str(w, "method", "Blinn-Phong k E (N.L) ks c^n (c = N.H) fitted to He's specular radiance by least squares "
+                           "over the foreground: k in closed form for each n, n by Brent's method in log n; the "
+                           "cheap lobes (quadratic and rational families) shaded at that n and k in theta_h; errors "
+                           "against He's image");
+    jw_kv_num(w, "n_fit", hc->n_fit);
+    jw_kv_num(w, "k_fit", hc->k_fit);
+    jw_kv_num(w, "relative_rms_residual", hc->rel_rms);
+    jw_kv_int(w, "fit_pixels", (long long)hc->fit_pixels);
+    jw_kv_str(w, "he_image", hc->he_image);
+    jw_key(w, "entries");
+    jw_arr_begin(w);
+    for (int k = 0; k < hc->count; k++) {
+        const struct he_entry *en = &hc->e[k];
+        jw_obj_begin(w);
+        jw_kv_str(w, "name", en->label);
+        write_metrics_json(w, &en->metrics, threshold);
+        jw_kv_num(w, "max_abs_vs_blinn_fit", en->max_abs_vs_blinn);
+        if (en->error[0]) {
+            jw_key(w, "files");
+            jw_obj_begin(w);
+            if (en->image[0])
+                jw_kv_str(w, "image", en->image);
+            jw_kv_str(w, "error", en->error);
+            if (en->contact[0])
+                jw_kv_str(w, "contact_sheet", en->contact);
+            jw_obj_end(w);
+        }
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+    jw_obj_end(w);
+}
+
 int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
                       const struct scene_result *res, int display_code_error, char *err,
                       size_t errlen)
@@ -200,6 +239,8 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
             jw_obj_end(&w);
         }
         jw_arr_end(&w);
+        if (sr->he.done)
+            write_he_json(&w, &sr->he, o->threshold);
         jw_key(&w, "timings");
         jw_arr_begin(&w);
         for (int ti = 0; ti < sr->ntimings; ti++) {
@@ -301,6 +342,19 @@ char *render_summary_markdown(const struct render_options *o, const struct scene
                               100.0 * te->copy_med / te->med, re ? re->med / te->med : NAN);
             }
             md_printf(&b, "\n");
+        }
+        if (sr->he.done) {
+            const struct he_comparison *hc = &sr->he;
+            md_printf(&b, "\n%s shaded by He et al. 1991 (`%s`) beside Blinn-Phong fitted to its specular radiance "
+                          "(n = %.4g, scale %.4g, relative rms residual %.3g over %zu pixels) and the cheap lobes at "
+                          "that n (theta_h):\n\n| shaded by | max abs error vs He | mean abs error vs He | max abs "
+                          "vs the Blinn-Phong fit |\n|---|---|---|---|\n",
+                      render_scene_names[si], hc->he.label, hc->n_fit, hc->k_fit, hc->rel_rms, hc->fit_pixels);
+            for (int k = 0; k < hc->count; k++)
+                md_printf(&b, "| %s | %.4g | %.4g | %.4g |\n", hc->e[k].label, hc->e[k].metrics.max_abs,
+                          hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
+            if (hc->count > 0 && hc->e[0].contact[0])
+                md_printf(&b, "\n![%s: He | Blinn-Phong fit | error](%s)\n", render_scene_names[si], hc->e[0].contact);
         }
         if (big)
             md_printf(&b, "\nCopy kernel at %dx%d: %.0f Mpixel/s (%.1f GB/s).\n", big->w, big->h,

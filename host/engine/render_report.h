@@ -14,6 +14,7 @@
 #define SHADE_LOBE_THETA_H 1
 #define SHADE_CT_BECKMANN 2
 #define SHADE_CT_GGX 3
+#define SHADE_PHYSICAL 4
 #define DISPLAY_MIN_EXP (-16)
 #define DISPLAY_MAX_EXP 8
 #define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
@@ -71,6 +72,26 @@ struct size_timing {
     struct timed_entry entries[2 * RENDER_MAX_MODELS];
 };
 
+/* He's model against Blinn-Phong fitted to it (least squares over the image's specular
+ * radiance: n by Brent's method in log n, the scale k in closed form for each n) and the cheap
+ * lobes at that n, in the Blinn variable theta_h; every error against He's image. */
+struct he_entry {
+    char label[MODEL_LABEL_MAX + 16];
+    struct image_metrics metrics;           /* against He's image */
+    double max_abs_vs_blinn;                /* against the fitted Blinn-Phong image */
+    char image[256], error[256], contact[256];
+};
+struct he_comparison {
+    int done;
+    struct model_spec he;
+    double n_fit, k_fit;                    /* Blinn-Phong k c^n, ks scaled by k */
+    double rel_rms;                         /* sqrt(residual / sum of He's squares) */
+    size_t fit_pixels;
+    char he_image[256];
+    int count;                              /* entries: [0] Blinn-Phong, then the cheap lobes */
+    struct he_entry e[RENDER_MAX_MODELS + 1];
+};
+
 struct scene_result {
     int kind;
     int done;
@@ -82,9 +103,10 @@ struct scene_result {
     char grid_contact[256];
     int ntimings;
     struct size_timing timings[RENDER_MAX_TIME_SIZES];
+    struct he_comparison he;
 };
 
-#define RENDER_MODE_COUNT 4
+#define RENDER_MODE_COUNT 5
 extern const char *const render_scene_names[RENDER_SCENE_COUNT];
 extern const char *const render_mode_names[RENDER_MODE_COUNT];
 

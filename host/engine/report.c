@@ -147,6 +147,7 @@ char *report_markdown(const struct report_input *in)
         {"throughput.json", "throughput (and `throughput.csv`)"},
         {"render.json", "the image passes (pictures in `render/<scene>/`)"},
         {"plots.json", "every plot's data"},
+        {"frontier.json", "cost against accuracy of every lobe approximation (and `frontier.csv`)"},
     };
     md_printf(&b, "\nData files beside this page:");
     for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
@@ -173,6 +174,8 @@ char *report_markdown(const struct report_input *in)
     pictures(&b, in, REPORT_PLOTS);
     block(&b, "Image passes", &in->images);
     pictures(&b, in, REPORT_IMAGES);
+    if (in->frontier.markdown || in->frontier.missing)
+        block(&b, "Which lobe to ship", &in->frontier);
     if (in->notes_md) md_printf(&b, "## Notes\n\n%s\n", in->notes_md);
     if (b.failed) {
         md_free(&b);
@@ -226,6 +229,43 @@ static const struct jr_value *timing_of(const struct jr_value *scene, const char
         if (strcmp(str_or(e, "model", ""), label) == 0 && sel && sel->type == JR_BOOL && sel->num) return e;
     }
     return NULL;
+}
+
+/* A scene's He comparison (render.json, "he_comparison"): He's model beside Blinn-Phong fitted
+ * to it and the cheap lobes at that n, with the contact sheets. */
+static void report_he_comparison(const char *run_dir, struct md_buf *md, const struct jr_value *sc, const char *name,
+                                 void (*add)(void *ctx, const char *file, const char *caption), void *ctx)
+{
+    const struct jr_value *hc = jr_get(sc, "he_comparison");
+    const struct jr_value *entries = hc ? jr_get(hc, "entries") : NULL;
+    if (!entries || entries->type != JR_ARR)
+        return;
+    md_printf(md, "%s shaded by He et al. 1991 (`%s`) beside Blinn-Phong fitted to its specular radiance by least "
+                  "squares (n = %.4g, scale %.4g, relative rms residual %.3g) and the cheap lobes at that n, errors "
+                  "against He's image:\n\n| shaded by | max abs error | mean abs error | max abs vs the fit |\n"
+                  "|---|---:|---:|---:|\n",
+              name, str_or(hc, "model", "?"), num_or_nan(hc, "n_fit"), num_or_nan(hc, "k_fit"),
+              num_or_nan(hc, "relative_rms_residual"));
+    for (size_t k = 0; k < entries->count; k++) {
+        const struct jr_value *e = &entries->items[k], *mt = jr_get(e, "metrics"), *files = jr_get(e, "files");
+        md_printf(md, "| `");
+        md_cell_text(md, str_or(e, "name", "?"));
+        md_printf(md, "` |");
+        md_num(md, mt ? num_or_nan(mt, "max_abs") : NAN, "%.4g");
+        md_num(md, mt ? num_or_nan(mt, "mean_abs") : NAN, "%.4g");
+        md_num(md, num_or_nan(e, "max_abs_vs_blinn_fit"), "%.4g");
+        md_printf(md, "\n");
+        const char *contact = files ? str_or(files, "contact_sheet", NULL) : NULL;
+        /* the pictures of the fit and of fq2 (the others are in the run folder) */
+        if (contact && add && file_exists(run_dir, contact) &&
+            (k == 0 || strncmp(str_or(e, "name", ""), "fq2@", 4) == 0)) {
+            char caption[400];
+            snprintf(caption, sizeof caption, "%s: He's model, %s, |error| against He (max %.3g)", name,
+                     str_or(e, "name", "?"), mt ? num_or_nan(mt, "max_abs") : NAN);
+            add(ctx, contact, caption);
+        }
+    }
+    md_printf(md, "\n");
 }
 
 int report_render_summary(const char *run_dir, struct md_buf *md,
@@ -310,6 +350,7 @@ int report_render_summary(const char *run_dir, struct md_buf *md,
         }
         if (isfinite(tw)) md_printf(md, "\nTimed at %.0f x %.0f.\n", tw, th);
         md_printf(md, "\n");
+        report_he_comparison(run_dir, md, sc, name, add, ctx);
     }
     jr_free(&d);
     return 0;

@@ -46,6 +46,7 @@ struct report_input {
     const struct report_picture *pictures;
     int npictures;
     const char *notes_md;         /* optional closing notes */
+    struct report_block frontier; /* "Which lobe to ship" (frontier_markdown) */
 };
 
 /* Builds the markdown text (malloc'd, NUL-terminated) or NULL when out of memory. */

@@ -41,6 +41,7 @@ void reproduce_options_default(struct reproduce_options *o)
     o->q_samples = 1024;
     o->q_n_step = 1.0;
     o->energy = 1;
+    o->physical = 1;
 }
 
 int reproduce_options_check(const struct reproduce_options *o, char *err, size_t errlen)
@@ -999,6 +1000,30 @@ static int add_paper2(struct repro *p)
     return 0;
 }
 
+/* ---- the approximations engines use (SPEC.md) --------------------------------------------- */
+
+static int add_engines(struct repro *p)
+{
+    struct reproduce_report *r = p->r;
+    struct claim *c;
+    double a = NAN, err = NAN;
+    int rc = fit_bg_exact_a(18.0, 2, &a, &err);
+    if (!(c = claim_add(r, "claim", "BG-A-18", "Beaudoin and Guardado 2002 (ShaderX), table",
+                        "m = 2, n = 18: A = 6.645 balances the largest errors of max(0, A c + 1 - A)^2 - c^n")))
+        return EXIT_RUNTIME;
+    claim_number(c, "6.645", 6.645, rc ? NAN : a, 0.001, "+-0.001 (one unit in the last printed digit)");
+    setf(c->measured_text, sizeof c->measured_text, "%.5f", a);
+    setf(c->method, sizeof c->method, "bisection on A; each side's maximum over c in [0, 1] on a 2049-point grid "
+                                      "polished with Brent, in double (fit_bg_exact_a)");
+    if (!(c = claim_add(r, "claim", "BG-err-18", "Beaudoin and Guardado 2002 (ShaderX), table",
+                        "m = 2, n = 18: the largest |f - c^n| over c in [0, 1] is 0.0631")))
+        return EXIT_RUNTIME;
+    claim_number(c, "0.0631", 0.0631, rc ? NAN : err, 0.0001, "+-1e-4 (one unit in the last printed digit)");
+    setf(c->measured_text, sizeof c->measured_text, "%.5f", err);
+    setf(c->method, sizeof c->method, "at the balancing A above");
+    return 0;
+}
+
 /* ---- harness checks: energy, reciprocity, grid ------------------------------------------ */
 
 static int add_checks(struct repro *p)
@@ -1103,6 +1128,69 @@ static int add_checks(struct repro *p)
     return 0;
 }
 
+/* ---- the papers' cost argument, measured ----------------------------------------------------- */
+
+/* Paper 1: "physically accurate BRDFs do not always comply with the requirements of highly
+ * productive graphics systems"; paper 2: "physically based BRDFs are computationally complex,
+ * so their use in real-time systems is limited". Measured as every physically based model's
+ * evaluations/s over fq2's and over Phong's, from the same (N, L, V), in one run. */
+static int add_physical(struct repro *p)
+{
+    if (!p->have_physical)
+        return 0;
+    const struct pbcost_result *ph = &p->physical;
+    double lo_fq2 = INFINITY, hi_fq2 = 0, lo_ph = INFINITY, hi_ph = 0;
+    const char *lo_name = "", *hi_name = "";
+    char per_model[600] = "";
+    size_t used = 0;
+    for (int i = 0; i < ph->count; ++i) {
+        const struct pbcost_row *row = &ph->rows[i];
+        if (!row->physical)
+            continue;
+        if (row->ratio_to_fq2 < lo_fq2) {
+            lo_fq2 = row->ratio_to_fq2;
+            lo_name = row->name;
+        }
+        if (row->ratio_to_fq2 > hi_fq2) {
+            hi_fq2 = row->ratio_to_fq2;
+            hi_name = row->name;
+        }
+        lo_ph = fmin(lo_ph, row->ratio_to_phong);
+        hi_ph = fmax(hi_ph, row->ratio_to_phong);
+        if (used < sizeof per_model)
+            used += (size_t)snprintf(per_model + used, sizeof per_model - used, "%s%s %.3g/%.3g", used ? ", " : "",
+                                     row->name, row->ratio_to_fq2, row->ratio_to_phong);
+    }
+    static const struct {
+        const char *id, *source, *text;
+    } rows[2] = {
+        { "P1-physical-cost", "paper 1, sec. 2",
+          "physically accurate BRDFs do not always comply with the requirements of highly productive graphics "
+          "systems (the cost argument for empirical lobes)" },
+        { "P2-physical-cost", "paper 2, review of BRDFs",
+          "physically based BRDFs are computationally complex, so their use in real-time systems is limited" },
+    };
+    for (int k = 0; k < 2; ++k) {
+        struct claim *c = claim_add(p->r, "claim", rows[k].id, rows[k].source, rows[k].text);
+        if (!c)
+            return EXIT_RUNTIME;
+        claim_bool(c, "slower than the lobes", hi_fq2 < 1 && hi_ph < 1,
+                   "holds when every physically based model evaluates fewer times per second than fq2 and than "
+                   "Phong, from the same (N, L, V) in one run");
+        c->measured = hi_fq2;
+        setf(c->measured_text, sizeof c->measured_text, "%.3g-%.3gx fq2's rate, %.3g-%.3gx Phong's", lo_fq2, hi_fq2,
+             lo_ph, hi_ph);
+        note_add(c, "Evaluations/s relative to fq2 / to Phong (exp(n ln c)) on %s: %s. Slowest %s, fastest %s.",
+                 p->s->device_name, per_model, lo_name, hi_name);
+        if (hi_ph >= 1)
+            note_add(c, "At least one physically based model is as fast as Phong or faster here: the cost argument "
+                        "holds against the cosine-quadratic lobes, not against the Phong lobe.");
+        setf(c->method, sizeof c->method, "physical.json: tp_vec_* kernels, fastest of %d launches, n = %g",
+             ph->o.reps, ph->o.n);
+    }
+    return 0;
+}
+
 void reproduce_report_free(struct reproduce_report *r)
 {
     free(r->rows);
@@ -1161,12 +1249,24 @@ int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct rep
         rc = energy_run(s, NULL, 1, &p.energy);   /* energy.json is written with the other files */
         p.have_energy = rc == 0;
     }
+    if (!rc && o->physical) {
+        if (!quiet)
+            fprintf(stderr, "reproduce: cost of the physically based models...\n");
+        struct pbcost_options po;
+        pbcost_options_default(&po);
+        rc = pbcost_run(s, &po, &p.physical, quiet);
+        p.have_physical = rc == 0;
+    }
     if (!rc)
         rc = add_paper1(&p);
     if (!rc)
         rc = add_paper2(&p);
     if (!rc)
+        rc = add_engines(&p);
+    if (!rc)
         rc = add_checks(&p);
+    if (!rc)
+        rc = add_physical(&p);
     if (rc)
         goto done;
     for (int i = 0; i < r->count; ++i) {
@@ -1193,6 +1293,10 @@ int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct rep
                     if (p.have_energy && p.energy.json) {
                         path_join(path, sizeof path, out_dir, "energy.json");
                         write_file_atomic(path, p.energy.json, strlen(p.energy.json), err, sizeof err);
+                    }
+                    if (!err[0] && p.have_physical) {
+                        path_join(path, sizeof path, out_dir, "physical.json");
+                        pbcost_write_json(path, s, &p.physical, err, sizeof err);
                     }
                 }
             }

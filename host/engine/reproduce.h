@@ -26,6 +26,7 @@ struct reproduce_options {
     long q_samples;          /* samples per zone of the Q sweep (default 1024) */
     double q_n_step;         /* n step of the Q sweep (default 1) */
     int energy;              /* run the albedo and reciprocity checks (default 1) */
+    int physical;            /* measure the physically based models' cost (pbcost.h; default 1) */
 };
 void reproduce_options_default(struct reproduce_options *o);
 /* Checks the options. Returns 0 or EXIT_USAGE with a one-line message. */

@@ -60,6 +60,14 @@ char *reproduce_claims_markdown(const struct repro *p)
               "Q = %g..%g step %g, n in [2, 1000] step %g, %ld samples per zone (q_sweep.json).\n",
               p->o->samples, p->o->q_min, p->nq > 0 ? p->q[p->nq - 1] : p->o->q_max, p->o->q_step, p->o->q_n_step,
               p->o->q_samples);
+    if (p->have_physical) {
+        char *ph = pbcost_markdown(&p->physical);
+        if (ph)
+            md_printf(&b, "%s", ph);
+        else
+            b.failed = 1;
+        free(ph);
+    }
     if (b.failed) {
         md_free(&b);
         return NULL;

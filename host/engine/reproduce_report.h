@@ -8,6 +8,7 @@
 #include "accuracy.h"
 #include "clsession.h"
 #include "energy.h"
+#include "pbcost.h"
 #include "reproduce.h"
 
 enum sweep_id { SW_FVOL, SW_FVOL64, SW_CQ2_P1, SW_SCHLICK, SW_FQ, SW_FQ2, SW_CQ2_P2, SW_COUNT };
@@ -31,6 +32,9 @@ struct repro {
     /* energy */
     struct energy_summary energy;
     int have_energy;
+    /* the physically based models' cost, He's terms, their albedo (physical.json) */
+    struct pbcost_result physical;
+    int have_physical;
     int consistency_failed;
 };
 

@@ -535,6 +535,47 @@ done:
     return rc;
 }
 
+int tp_program_rate(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                    long work_items, double rate[3], char *reason, size_t reason_len)
+{
+    rate[0] = rate[1] = rate[2] = NAN;
+    struct tp_figure f;
+    memset(&f, 0, sizeof f);
+    float *sums = malloc((size_t)work_items * 16 * sizeof *sums);
+    struct tp_kernel_run r;
+    memset(&r, 0, sizeof r);
+    r.s = p->s;
+    r.o = o;
+    r.kind = nmode == TP_N_VARYING ? 1 : 0;
+    r.global = (size_t)work_items;
+    r.local = 1;
+    r.work_per_iter = (double)work_items * TP_EVALS_PER_ITER;
+    cl_int e = CL_SUCCESS;
+    if (!sums)
+        fig_fail(&f, "out of memory");
+    else if (!tp_has(p, m))
+        fig_fail(&f, "model %s is not in the throughput program", m ? m->label : "pow");
+    else if ((r.k = tp_kernel(p, nmode_names[nmode], m, &e)), e != CL_SUCCESS)
+        fig_fail(&f, "clCreateKernel failed with %s", cl_error_name(e));
+    else if (!(r.out = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e)))
+        fig_fail(&f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
+    else if ((e = tp_set_fixed(&r, m)) != CL_SUCCESS)
+        fig_fail(&f, "clSetKernelArg failed with %s", cl_error_name(e));
+    else
+        tp_time_pair(&r, sums, &f, NULL, NULL);
+    if (r.out) clReleaseMemObject(r.out);
+    if (r.k) clReleaseKernel(r.k);
+    free(sums);
+    if (!f.ok) {
+        snprintf(reason, reason_len, "%s", f.reason[0] ? f.reason : "not measured");
+        return -1;
+    }
+    rate[0] = f.rate.min;
+    rate[1] = f.rate.median;
+    rate[2] = f.rate.max;
+    return 0;
+}
+
 /* ---- a whole run -------------------------------------------------------------------------- */
 
 /* The load average, where the system has one: timing on a shared machine is read with it. */

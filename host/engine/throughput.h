@@ -103,6 +103,11 @@ int tp_program_points(struct tp_program *p, const struct model_spec *m, const fl
  * iterations; sums receives work_items x 16 partial sums. Uses the n of o. */
 int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
                       long work_items, long iters, float *sums, double *event_seconds);
+/* Device evaluations/s of m (NULL: pow) in one n mode, by the run's own protocol (warm-up with
+ * the exact NDRange, calibration to o->min_time, o->reps launches): rate[] = min, median, max.
+ * Returns 0, or -1 with the reason (the figure is then missing, not the run). */
+int tp_program_rate(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                    long work_items, double rate[3], char *reason, size_t reason_len);
 /* The inputs of such a launch, for tp_input_at (host/hostc_baseline.h). */
 struct tp_inputs;
 void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in);

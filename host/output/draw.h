@@ -140,6 +140,23 @@ struct draw_bar_chart {
 
 int draw_bar_chart(const char *path, const struct draw_bar_chart *chart, char *err, size_t errlen);
 
+/* ---- scatter plots ------------------------------------------------------------------------ */
+/* Points on log-log axes, each labelled beside it; points with front[i] set are joined in
+ * order of x and ringed. Marks: a filled square for a reference, a filled triangle for a
+ * paper's model, a filled circle otherwise. A point whose x is not > 0 (an exact reference)
+ * sits on the left edge of the plot at the axis floor, with its label. */
+enum draw_mark { DRAW_MARK_OTHER = 0, DRAW_MARK_PAPER, DRAW_MARK_REFERENCE };
+struct draw_scatter {
+    const char *title, *x_label, *y_label;
+    int x_format;                   /* enum draw_value_format */
+    int count;
+    const double *x, *y;
+    const char *const *labels;
+    const int *marks;               /* enum draw_mark */
+    const int *front;
+};
+int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *err, size_t errlen);
+
 /* ---- grouped ratio bars (brdfbench compare) ---------------------------------------------- */
 
 /* Horizontal bars in groups: per group (a model), one bar per series (a run) at values

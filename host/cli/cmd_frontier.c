@@ -1,0 +1,94 @@
+/* cmd_frontier.c - `brdfbench frontier`: flag parsing and orchestration of frontier_run. */
+#include "cli_table.h"
+#include "commands.h"
+#include "exitcodes.h"
+#include "frontier.h"
+#include "outdir.h"
+#include "usermodel.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int cmd_frontier(int argc, char **argv)
+{
+    char err[1024];
+    struct frontier_options opt;
+    frontier_options_default(&opt);
+    struct device_options dev;
+    device_options_init(&dev);
+    const char *out_dir = NULL, *models_text = NULL;
+    int quiet = 0;
+    int models_given = 0, no_image = 0, rounds = opt.rounds, reps = opt.reps;
+    const struct cli_flag flags[] = {
+        CLI_FLAG_MODELS(&models_text, &models_given,
+                        "the references, the papers' models, the engines' approximations and the frozen fits; "
+                        "with --model or --model-file, those and the user models"),
+        { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, &opt.samples), .min = 16,
+          .max = 65536, .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" },
+        { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &reps), .min = 1, .max = 100,
+          .help = "timed launches per model per round" },
+        { .name = "--rounds", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &rounds), .min = 1,
+          .max = FRONTIER_MAX_ROUNDS,
+          .help = "rounds over every model; a rate is the median of the rounds' medians, its spread their min..max" },
+        { .name = "--no-image", .kind = CLI_SWITCH, .dest = CLI_DEST(int, &no_image), .set = 1,
+          .help = "no teapot pass (no PSNR)" },
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_USERMODEL,
+        CLI_FLAGS_DEVICE(&dev),
+    };
+    const struct cli_command cmd = {
+        .name = "frontier",
+        .about = "  Every model's cost (device evaluations/s, n uniform and n varying, and its operation count)\n"
+                 "  against its accuracy (max delta, max Delta over n in [2, 1000] and [16, 1000]; teapot PSNR),\n"
+                 "  the Pareto front, two scatter plots and which lobe to ship for a budget. Writes\n"
+                 "  frontier.json, frontier.csv, frontier_max_rel.png and frontier_max_abs.png.\n",
+        .flags = flags,
+        .nflags = (int)(sizeof flags / sizeof flags[0]),
+    };
+    int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    if (prc)
+        goto usage_error;
+    opt.rounds = rounds;
+    opt.reps = reps;
+    if (no_image)
+        opt.image_w = opt.image_h = 0;
+    if (models_given) {
+        int n = cli_model_list(models_text, opt.models, FRONTIER_MAX_MODELS, err, sizeof err);
+        if (n < 0)
+            goto usage_error;
+        opt.model_count = n;
+    } else if (usermodel_count() > 0) {
+        /* the default set and the user models */
+        opt.model_count = frontier_default_models(opt.models, FRONTIER_MAX_MODELS);
+        if (usermodel_append_all(opt.models, &opt.model_count, FRONTIER_MAX_MODELS, err, sizeof err))
+            goto usage_error;
+    }
+    struct cl_session s;
+    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench frontier: %s\n", err);
+        return rc;
+    }
+    char run_dir[4096];
+    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench frontier: %s\n", err);
+        clsession_close(&s);
+        return EXIT_RUNTIME;
+    }
+    rc = frontier_run(&s, &opt, run_dir, quiet, NULL);
+    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench frontier: %s\n", err);
+        rc = EXIT_RUNTIME;
+    }
+    if (!rc && !quiet)
+        printf("written: %s/frontier.json\n", run_dir);
+    clsession_close(&s);
+    return rc;
+
+usage_error:
+    fprintf(stderr, "brdfbench frontier: %s\n", err);
+    return EXIT_USAGE;
+}

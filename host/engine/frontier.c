@@ -1,0 +1,349 @@
+/* frontier.c - the measuring side of `brdfbench frontier` (see frontier.h): cost from the
+ * throughput engine (tp_program_rate), accuracy from the accuracy engine (accuracy_run), the
+ * teapot's PSNR from the render engine (render_run, read back from its render.json), and the
+ * Pareto set. frontier_report.c writes the results. */
+#include "frontier.h"
+#include "frontier_report.h"
+#include "accuracy.h"
+#include "exitcodes.h"
+#include "jsonr.h"
+#include "outdir.h"
+#include "render.h"
+#include "throughput.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Per evaluation, as kernels/brdf_models.h writes the formula with n per evaluation (so k(n)
+ * is counted), beside the clamp of c every model shares. arith: FMA, multiply, add, subtract
+ * and int/float conversions; minmax: fmin/fmax/select; transc: exp, log, pow, acos, sqrt,
+ * expm1 calls. docs/frontier.md has the same table with the reasoning. */
+static const struct {
+    const char *id;
+    struct frontier_ops ops;
+} ops_table[] = {
+    { "phong",    { 1, 1, 0, 0, 2, "exp(n log c)" } },
+    { "blinn",    { 1, 1, 0, 0, 2, "exp(n log c)" } },
+    { "phongpow", { 1, 0, 0, 0, 1, "pow(c, n), the built-in" } },
+    { "cq2",      { 1, 4, 1, 0, 0, "k = n/2; fma; max; square" } },
+    { "fvol",     { 1, 4, 1, 0, 0, "k = 0.463 n; fma; max; square" } },
+    { "fvol64",   { 1, 4, 1, 0, 0, "k = 29/64 n; fma; max; square" } },
+    { "fq2",      { 1, 4, 1, 0, 0, "k = fma(n, 0.448, 0.099); fma; max; square" } },
+    { "quad",     { 1, 4, 1, 0, 0, "k = fma(n, a, b); fma; max; square" } },
+    { "schlick",  { 1, 2, 0, 1, 0, "c / (n (1 - c) + c)" } },
+    { "lyon",     { 1, 3, 1, 0, 0, "1 - n (1-c) 2^-k; max; plus k squarings" } },
+    { "fq",       { 1, 4, 1, 2, 3, "k_Q(n) = (sqrt Q - 1)/expm1(log Q / n); fma; max; square" } },
+    { "sg",       { 1, 2, 0, 0, 1, "exp(n (c - 1))" } },
+    { "ue4phong", { 1, 3, 0, 0, 1, "exp((n + 0.775)(c - 1))" } },
+    { "gauss",    { 1, 3, 0, 0, 1, "exp(fma(n, a, b)(c - 1))" } },
+    { "gaussfit", { 1, 3, 0, 0, 1, "exp(fma(n, a, b)(c - 1))" } },
+    { "bg",       { 1, 3, 1, 0, 0, "A = fma(n, alpha, beta); fma; max; plus j squarings" } },
+    { "kb",       { 1, 12, 4, 4, 1, "acos; a and b (2 divides); two pieces (2 divides); selects" } },
+    { "kbswap",   { 1, 12, 4, 4, 1, "acos; a and b (2 divides); two pieces (2 divides); selects" } },
+    { "bitpow",   { 1, 4, 1, 0, 0, "int subtract, convert, fma, max, convert" } },
+    { "pow3",     { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; square; multiply" } },
+    { "pow3fit",  { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; square; multiply" } },
+    { "pow4",     { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; two squarings" } },
+    { "pow4fit",  { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; two squarings" } },
+};
+
+struct frontier_ops frontier_ops_of(const char *id)
+{
+    for (size_t i = 0; i < sizeof ops_table / sizeof ops_table[0]; ++i)
+        if (strcmp(ops_table[i].id, id) == 0)
+            return ops_table[i].ops;
+    struct frontier_ops none = { 0, 0, 0, 0, 0, "no entry (a user model)" };
+    return none;
+}
+
+enum frontier_kind frontier_kind_of(const char *id)
+{
+    static const char *const refs[] = { "phong", "blinn", "phongpow" };
+    static const char *const papers[] = { "cq2", "fvol", "fvol64", "schlick", "lyon", "fq", "fq2" };
+    static const char *const engines[] = { "sg", "ue4phong", "bg", "kb", "kbswap", "bitpow" };
+    static const char *const tuned[] = { "quad", "gauss", "pow3", "pow4", "gaussfit", "pow3fit", "pow4fit" };
+    for (size_t i = 0; i < sizeof refs / sizeof *refs; ++i)
+        if (!strcmp(id, refs[i])) return FR_REFERENCE;
+    for (size_t i = 0; i < sizeof papers / sizeof *papers; ++i)
+        if (!strcmp(id, papers[i])) return FR_PAPER;
+    for (size_t i = 0; i < sizeof engines / sizeof *engines; ++i)
+        if (!strcmp(id, engines[i])) return FR_ENGINE;
+    for (size_t i = 0; i < sizeof tuned / sizeof *tuned; ++i)
+        if (!strcmp(id, tuned[i])) return FR_TUNED;
+    return FR_OTHER;
+}
+
+void frontier_options_default(struct frontier_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->samples = 1024;
+    o->reps = 3;
+    o->rounds = 3;
+    o->min_time = 0.02;
+    o->image_w = 480;
+    o->image_h = 270;
+}
+
+int frontier_default_models(struct model_spec *out, int max)
+{
+    static const char *const ids[] = { "phong", "phongpow", "cq2", "fvol", "fvol64", "schlick", "lyon", "fq", "fq2",
+                                       "sg", "ue4phong", "bg", "bg:j=2", "kb", "kbswap", "bitpow", "gaussfit",
+                                       "pow3fit", "pow4fit" };
+    int count = 0;
+    char err[256];
+    for (size_t i = 0; i < sizeof ids / sizeof *ids && count < max; ++i)
+        if (model_spec_parse(ids[i], &out[count], err, sizeof err) == 0)
+            count++;
+    return count;
+}
+
+/* a at least as good as b in cost: higher, or the spreads overlap (noise cannot order them) */
+static int cost_not_worse(double ahi, double blo) { return ahi >= blo; }
+/* a better in cost: its slowest launch beats b's fastest */
+static int cost_better(double alo, double bhi) { return alo > bhi; }
+
+void frontier_pareto(const double *rate_lo, const double *rate_hi, const double *max_rel, const double *max_abs,
+                     int count, int *on_front)
+{
+    for (int i = 0; i < count; ++i) {
+        on_front[i] = isfinite(rate_lo[i]) && isfinite(max_rel[i]) && isfinite(max_abs[i]);
+        for (int j = 0; j < count && on_front[i]; ++j) {
+            if (j == i || !isfinite(rate_lo[j]) || !isfinite(max_rel[j]) || !isfinite(max_abs[j]))
+                continue;
+            int not_worse = cost_not_worse(rate_hi[j], rate_lo[i]) &&
+                            max_rel[j] <= max_rel[i] && max_abs[j] <= max_abs[i];
+            int better = cost_better(rate_lo[j], rate_hi[i]) || max_rel[j] < max_rel[i] ||
+                         max_abs[j] < max_abs[i];
+            if (not_worse && better)
+                on_front[i] = 0;
+        }
+    }
+}
+
+/* Accuracy: one sweep over [2, 1000]; the [16, 1000] figures from its per-n maxima. */
+static int frontier_accuracy(struct cl_session *s, struct frontier_report *r)
+{
+    struct accuracy_ctx actx;
+    memset(&actx, 0, sizeof actx);
+    int rc = accuracy_open(&actx, s, "");
+    if (rc)
+        return rc;
+    struct accuracy_grid g = { 2.0, 1000.0, 1.0, r->opt.samples };
+    for (int i = 0; i < r->count && !rc; ++i) {
+        struct frontier_row *row = &r->rows[i];
+        struct accuracy_result res;
+        rc = accuracy_run(&actx, &row->spec, &g, &res);
+        if (rc)
+            break;
+        row->max_rel[0] = res.epicentre.value;
+        row->max_rel_n[0] = res.epicentre.n;
+        row->max_abs[0] = res.attenuation.value;
+        row->max_abs_n[0] = res.attenuation.n;
+        row->max_rel[1] = row->max_abs[1] = -1;
+        for (long k = 0; k < res.n_count; ++k) {
+            const struct acc_per_n *p = &res.per_n[k];
+            if (p->n < 16.0)
+                continue;
+            if (p->epi_rel_d.value > row->max_rel[1]) { row->max_rel[1] = p->epi_rel_d.value; row->max_rel_n[1] = p->n; }
+            if (p->att_abs_d.value > row->max_abs[1]) { row->max_abs[1] = p->att_abs_d.value; row->max_abs_n[1] = p->n; }
+        }
+        accuracy_result_free(&res);
+    }
+    accuracy_close(&actx);
+    return rc;
+}
+
+/* Cost: one throughput program (default build options), every model in both n modes. */
+static int frontier_cost(struct cl_session *s, struct frontier_report *r, int quiet)
+{
+    struct throughput_options to;
+    throughput_options_default(&to);
+    to.reps = r->opt.reps;
+    to.min_time = r->opt.min_time;
+    long work_items = 32L * (long)(s->compute_units ? s->compute_units : 1);
+    if (work_items > TP_MAX_WORK_ITEMS)
+        work_items = TP_MAX_WORK_ITEMS;
+    struct model_spec specs[FRONTIER_MAX_MODELS];
+    for (int i = 0; i < r->count; ++i)
+        specs[i] = r->rows[i].spec;
+    struct tp_program prog;
+    memset(&prog, 0, sizeof prog);
+    int rc = tp_program_build(&prog, s, specs, r->count, TP_VARIANT_DEFAULT, NULL);
+    if (rc)
+        return rc;
+    /* Rounds over every model, each round starting one model further on, so that a busy spell
+       on a shared machine falls on every model alike rather than on the few measured during
+       it. A round's figure is the median of its launches; the rate is the median of the
+       rounds' figures and its spread their min..max. */
+    int rounds = r->opt.rounds > 0 ? r->opt.rounds : 1;
+    double med[FRONTIER_MAX_MODELS][2][FRONTIER_MAX_ROUNDS];
+    int got[FRONTIER_MAX_MODELS][2] = { { 0 } };
+    for (int round = 0; round < rounds; ++round)
+        for (int k = 0; k < r->count; ++k) {
+            int i = (k + round) % r->count;
+            struct frontier_row *row = &r->rows[i];
+            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+                double rate[3];
+                if (tp_program_rate(&prog, &row->spec, m, &to, work_items, rate, row->rate_reason,
+                                    sizeof row->rate_reason) == 0)
+                    med[i][m][got[i][m]++] = rate[1];
+            }
+        }
+    for (int i = 0; i < r->count; ++i)
+        for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+            int n = got[i][m];
+            if (n == 0)
+                continue;
+            double *v = med[i][m];
+            for (int a = 1; a < n; ++a)   /* insertion sort: a handful of values */
+                for (int b = a; b > 0 && v[b - 1] > v[b]; --b) {
+                    double t = v[b];
+                    v[b] = v[b - 1];
+                    v[b - 1] = t;
+                }
+            struct frontier_row *row = &r->rows[i];
+            row->rate[m][0] = v[0];
+            row->rate[m][1] = (n % 2) ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+            row->rate[m][2] = v[n - 1];
+            if (!quiet)
+                fprintf(stderr, "frontier: %-18s %-8s %8.3g G/s (%d rounds)\n", row->spec.label, tp_nmode_name(m),
+                        row->rate[m][1] * 1e-9, n);
+        }
+    tp_program_release(&prog);
+    return 0;
+}
+
+/* PSNR of the teapot pass: the render engine writes its render.json into a folder of its own
+   under the run, read back here. */
+static int frontier_psnr(struct cl_session *s, struct frontier_report *r, const char *out_dir)
+{
+    for (int i = 0; i < r->count; ++i) {
+        r->rows[i].psnr_db = NAN;
+        snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason, "no image pass");
+    }
+    if (r->opt.image_w <= 0 || !out_dir)
+        return 0;
+    struct render_options ro;
+    render_options_default(&ro);
+    for (int k = 0; k < RENDER_SCENE_COUNT; ++k)
+        ro.scene_on[k] = k == RENDER_TEAPOT;
+    ro.width = r->opt.image_w;
+    ro.height = r->opt.image_h;
+    ro.ntime_sizes = 0;
+    ro.write_images = 0;
+    ro.verbose = 0;
+    ro.nmodels = 0;
+    for (int i = 0; i < r->count && ro.nmodels < RENDER_MAX_MODELS; ++i)
+        ro.models[ro.nmodels++] = r->rows[i].spec;
+    char dir[4200], err[1024], path[4300];
+    path_join(dir, sizeof dir, out_dir, "frontier_teapot");
+    int rc = render_run(s, &ro, dir, NULL, err, sizeof err);
+    if (rc) {
+        for (int i = 0; i < r->count; ++i)
+            snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason, "the teapot pass failed (exit %d)", rc);
+        fprintf(stderr, "brdfbench frontier: teapot pass: %s\n", err);
+        return rc == EXIT_USAGE ? 0 : (rc == EXIT_RUNTIME ? 0 : rc);   /* a missing scene file leaves the PSNR out */
+    }
+    path_join(path, sizeof path, dir, "render.json");
+    struct jr_doc doc;
+    if (jr_parse_file(path, &doc, err, sizeof err)) {
+        fprintf(stderr, "brdfbench frontier: %s\n", err);
+        return 0;
+    }
+    const struct jr_value *scenes = jr_get(&doc.root, "scenes");
+    for (size_t k = 0; scenes && scenes->type == JR_ARR && k < scenes->count; ++k) {
+        const struct jr_value *sc = &scenes->items[k], *name = jr_get(sc, "scene"), *models = jr_get(sc, "models");
+        if (!name || name->type != JR_STR || strcmp(name->str, "teapot") || !models || models->type != JR_ARR)
+            continue;
+        for (size_t j = 0; j < models->count; ++j) {
+            const struct jr_value *m = &models->items[j], *label = jr_get(m, "model"), *met = jr_get(m, "metrics");
+            const struct jr_value *psnr = met ? jr_get(met, "psnr_db") : NULL;
+            if (!label || label->type != JR_STR)
+                continue;
+            for (int i = 0; i < r->count; ++i)
+                if (strcmp(r->rows[i].spec.label, label->str) == 0) {
+                    if (psnr && psnr->type == JR_NUM) {
+                        r->rows[i].psnr_db = psnr->num;
+                        r->rows[i].psnr_reason[0] = '\0';
+                    } else {
+                        snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason,
+                                 "identical to its reference: PSNR is infinite");
+                    }
+                }
+        }
+    }
+    jr_free(&doc);
+    return 0;
+}
+
+int frontier_run(struct cl_session *s, const struct frontier_options *o, const char *out_dir, int quiet,
+                 char **markdown)
+{
+    char err[1024];
+    double t0 = wall_seconds();
+    struct frontier_report *r = calloc(1, sizeof *r);
+    if (!r)
+        return EXIT_RUNTIME;
+    r->opt = *o;
+    if (o->model_count > 0) {
+        memcpy(r->opt.models, o->models, sizeof o->models);
+        r->count = o->model_count;
+    } else {
+        r->count = frontier_default_models(r->opt.models, FRONTIER_MAX_MODELS);
+    }
+    r->fq2 = -1;
+    for (int i = 0; i < r->count; ++i) {
+        struct frontier_row *row = &r->rows[i];
+        row->spec = r->opt.models[i];
+        row->kind = frontier_kind_of(row->spec.info->id);
+        row->ops = frontier_ops_of(row->spec.info->id);
+        for (int m = 0; m < 2; ++m)
+            row->rate[m][0] = row->rate[m][1] = row->rate[m][2] = NAN;
+        if (strcmp(row->spec.label, "fq2") == 0)
+            r->fq2 = i;
+    }
+    int rc = frontier_accuracy(s, r);
+    if (!rc)
+        rc = frontier_cost(s, r, quiet);
+    if (!rc)
+        rc = frontier_psnr(s, r, out_dir);
+    if (rc)
+        goto done;
+    double lo[FRONTIER_MAX_MODELS] = { 0 }, hi[FRONTIER_MAX_MODELS] = { 0 }, rel[FRONTIER_MAX_MODELS] = { 0 },
+           ab[FRONTIER_MAX_MODELS] = { 0 };
+    int front[FRONTIER_MAX_MODELS] = { 0 };
+    for (int i = 0; i < r->count; ++i) {
+        lo[i] = r->rows[i].rate[0][0];
+        hi[i] = r->rows[i].rate[0][2];
+        rel[i] = r->rows[i].max_rel[0];
+        ab[i] = r->rows[i].max_abs[0];
+    }
+    frontier_pareto(lo, hi, rel, ab, r->count, front);
+    for (int i = 0; i < r->count; ++i)
+        r->rows[i].on_front = front[i];
+    r->seconds = wall_seconds() - t0;
+    if (out_dir) {
+        char path[4300];
+        path_join(path, sizeof path, out_dir, "frontier.json");
+        if (frontier_write_json(path, r, s, err, sizeof err) == 0) {
+            path_join(path, sizeof path, out_dir, "frontier.csv");
+            if (frontier_write_csv(path, r, err, sizeof err) == 0)
+                if (frontier_write_plots(out_dir, r, err, sizeof err) == 0)
+                    err[0] = '\0';
+        }
+        if (err[0]) {
+            fprintf(stderr, "brdfbench frontier: %s\n", err);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+    }
+    if (!quiet)
+        frontier_print(stdout, r);
+    if (markdown)
+        *markdown = frontier_markdown(r);
+done:
+    free(r);
+    return rc;
+}

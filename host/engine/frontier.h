@@ -1,0 +1,86 @@
+/* frontier.h - `brdfbench frontier`: for every model of a run, its cost (device evaluations/s,
+ * n uniform and n varying, measured in the same run by the throughput engine's protocol, and
+ * the operation count of its formula) beside its accuracy (max delta in the epicentre and max
+ * Delta in the attenuation zone over n in [2, 1000] and [16, 1000], from the accuracy engine's
+ * device sweep polished in double, and the PSNR of its teapot image pass from the render
+ * engine); the Pareto set over (cost, max delta, max Delta), where two costs whose measured
+ * min-max spreads overlap count as equal. frontier_report.c writes frontier.json,
+ * frontier.csv, the two scatter plots and the "Which lobe to ship" markdown. */
+#ifndef BRDF_FRONTIER_H
+#define BRDF_FRONTIER_H
+
+#include <stddef.h>
+
+#include "clsession.h"
+#include "models.h"
+
+#define FRONTIER_SCHEMA "brdfbench.frontier/1"
+#define FRONTIER_MAX_MODELS 32
+#define FRONTIER_MAX_ROUNDS 16
+
+/* What a point is, for the plots' marks. */
+enum frontier_kind { FR_REFERENCE = 0, FR_PAPER, FR_ENGINE, FR_TUNED, FR_OTHER };
+
+/* The operation count of a formula per evaluation (docs/frontier.md holds the table):
+ * fused multiply-adds, multiplies and adds (counted together), min/max/select, divides,
+ * transcendental calls. known = 0 for a model with no entry (a user model). */
+struct frontier_ops {
+    int known;
+    int arith, minmax, div, transc;
+    const char *note;
+};
+
+struct frontier_row {
+    struct model_spec spec;
+    int kind;                         /* enum frontier_kind */
+    struct frontier_ops ops;
+    double rate[2][3];                /* [uniform, varying][min, median, max] evaluations/s over the
+                                         rounds' medians; NAN: missing */
+    char rate_reason[160];
+    double max_rel[2], max_rel_n[2];  /* [n from 2, n from 16]; host-polished device sweep */
+    double max_abs[2], max_abs_n[2];
+    double psnr_db;                   /* teapot pass; NAN: identical images or missing */
+    char psnr_reason[96];
+    int on_front;
+};
+
+struct frontier_options {
+    struct model_spec models[FRONTIER_MAX_MODELS];
+    int model_count;                  /* 0: frontier_default_models */
+    long samples;                     /* accuracy sweep samples per zone */
+    int reps;                         /* timed launches per model per round */
+    int rounds;                       /* rounds over every model (1..FRONTIER_MAX_ROUNDS) */
+    double min_time;                  /* seconds a timed launch lasts at least */
+    int image_w, image_h;             /* teapot pass; 0: no image pass */
+};
+
+struct frontier_report {
+    struct frontier_options opt;
+    struct frontier_row rows[FRONTIER_MAX_MODELS];
+    int count;
+    int fq2;                          /* row of fq2, or -1 */
+    double seconds;
+};
+
+void frontier_options_default(struct frontier_options *o);
+/* The default set: the references, the papers' models, the engines' approximations and the
+ * frozen fits, every one against phong. Returns the count. */
+int frontier_default_models(struct model_spec *out, int max);
+/* The operation table entry of a model id. */
+struct frontier_ops frontier_ops_of(const char *id);
+enum frontier_kind frontier_kind_of(const char *id);
+
+/* The Pareto front: on_front[i] = 1 when no other point is at least as good in all three
+ * (cost higher or within overlapping spreads, max delta and max Delta not larger) and better
+ * in one (a cost is better only when the spreads do not overlap). rate_lo/rate_hi are each
+ * point's min and max rate. */
+void frontier_pareto(const double *rate_lo, const double *rate_hi, const double *max_rel, const double *max_abs,
+                     int count, int *on_front);
+
+/* Measures, writes out_dir/frontier.json, frontier.csv, frontier_max_rel.png,
+ * frontier_max_abs.png, prints the table unless quiet; *markdown (may be NULL) receives the
+ * "Which lobe to ship" section (malloc'd). Returns 0 or an exit code. */
+int frontier_run(struct cl_session *s, const struct frontier_options *o, const char *out_dir, int quiet,
+                 char **markdown);
+
+#endif

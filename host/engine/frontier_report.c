@@ -1,0 +1,254 @@
+/* frontier_report.c - frontier.json, frontier.csv, the two scatter plots, the printed table and
+ * the "Which lobe to ship" markdown, from a filled struct frontier_report (frontier.c). */
+#include "frontier_report.h"
+#include "context.h"
+#include "draw.h"
+#include "jsonw.h"
+#include "mdbuf.h"
+#include "outdir.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const kind_names[] = { "reference", "paper", "engine", "tuned", "other" };
+static const char *const range_names[2] = { "n_2_1000", "n_16_1000" };
+
+int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
+                        size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", FRONTIER_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_kv_int(&w, "samples_per_zone", r->opt.samples);
+    jw_kv_int(&w, "reps", r->opt.reps);
+    jw_kv_int(&w, "rounds", r->opt.rounds);
+    jw_kv_num(&w, "min_time_s", r->opt.min_time);
+    jw_kv_int(&w, "image_width", r->opt.image_w);
+    jw_kv_int(&w, "image_height", r->opt.image_h);
+    jw_obj_end(&w);
+    jw_key(&w, "definitions");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options; per "
+                          "round over every model the median of its launches; median, min and max over the rounds; "
+                          "uniform: one n per launch, varying: n per evaluation");
+    jw_kv_str(&w, "max_rel", "largest epicentre delta over the n range (device sweep polished in double)");
+    jw_kv_str(&w, "max_abs", "largest attenuation-zone Delta over the n range");
+    jw_kv_str(&w, "psnr_db", "teapot image pass against the model's reference, 8-bit sRGB, peak 255");
+    jw_kv_str(&w, "front", "Pareto set over (uniform rate, max_rel and max_abs over n in [2, 1000]); two rates whose "
+                           "min-max spreads overlap count as equal");
+    jw_kv_str(&w, "ops", "per evaluation: arith = FMA/mul/add/sub/conversions, minmax = min/max/select, div, "
+                         "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)");
+    jw_obj_end(&w);
+    jw_key(&w, "models");
+    jw_arr_begin(&w);
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", row->spec.label);
+        jw_kv_str(&w, "kind", kind_names[row->kind]);
+        jw_kv_str(&w, "source", row->spec.info->description);
+        jw_kv_bool(&w, "on_front", row->on_front);
+        for (int m = 0; m < 2; ++m) {
+            jw_key(&w, m ? "rate_varying" : "rate_uniform");
+            jw_obj_begin(&w);
+            jw_kv_num(&w, "min", row->rate[m][0]);
+            jw_kv_num(&w, "median", row->rate[m][1]);
+            jw_kv_num(&w, "max", row->rate[m][2]);
+            if (!isfinite(row->rate[m][1]))
+                jw_kv_str(&w, "reason", row->rate_reason[0] ? row->rate_reason : "not measured");
+            jw_obj_end(&w);
+        }
+        jw_key(&w, "ops");
+        jw_obj_begin(&w);
+        if (row->ops.known) {
+            jw_kv_int(&w, "arith", row->ops.arith);
+            jw_kv_int(&w, "minmax", row->ops.minmax);
+            jw_kv_int(&w, "div", row->ops.div);
+            jw_kv_int(&w, "transc", row->ops.transc);
+        } else {
+            jw_kv_str(&w, "status", "unknown");
+        }
+        jw_kv_str(&w, "note", row->ops.note);
+        jw_obj_end(&w);
+        for (int k = 0; k < 2; ++k) {
+            jw_key(&w, range_names[k]);
+            jw_obj_begin(&w);
+            jw_kv_num(&w, "max_rel", row->max_rel[k]);
+            jw_kv_num(&w, "max_rel_at_n", row->max_rel_n[k]);
+            jw_kv_num(&w, "max_abs", row->max_abs[k]);
+            jw_kv_num(&w, "max_abs_at_n", row->max_abs_n[k]);
+            jw_obj_end(&w);
+        }
+        jw_kv_num(&w, "psnr_db", row->psnr_db);
+        if (!isfinite(row->psnr_db))
+            jw_kv_str(&w, "psnr_reason", row->psnr_reason[0] ? row->psnr_reason : "not measured");
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_kv_num(&w, "seconds", r->seconds);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+int frontier_write_csv(const char *path, const struct frontier_report *r, char *err, size_t errlen)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "model,kind,on_front,rate_uniform_median,rate_uniform_min,rate_uniform_max,rate_varying_median,"
+                  "arith,minmax,div,transc,max_rel_2,max_abs_2,max_rel_16,max_abs_16,psnr_db\n");
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        md_printf(&b, "\"%s\",%s,%d,%.6g,%.6g,%.6g,%.6g,", row->spec.label, kind_names[row->kind], row->on_front,
+                  row->rate[0][1], row->rate[0][0], row->rate[0][2], row->rate[1][1]);
+        if (row->ops.known)
+            md_printf(&b, "%d,%d,%d,%d,", row->ops.arith, row->ops.minmax, row->ops.div, row->ops.transc);
+        else
+            md_printf(&b, ",,,,");
+        md_printf(&b, "%.6g,%.6g,%.6g,%.6g,", row->max_rel[0], row->max_abs[0], row->max_rel[1], row->max_abs[1]);
+        if (isfinite(row->psnr_db))
+            md_printf(&b, "%.4g\n", row->psnr_db);
+        else
+            md_printf(&b, "\n");
+    }
+    int rc = b.failed ? -1 : write_file_atomic(path, b.s ? b.s : "", b.len, err, errlen);
+    if (b.failed)
+        snprintf(err, errlen, "%s: out of memory", path);
+    md_free(&b);
+    return rc;
+}
+
+int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen)
+{
+    double x[FRONTIER_MAX_MODELS], y[FRONTIER_MAX_MODELS];
+    const char *labels[FRONTIER_MAX_MODELS];
+    int kinds[FRONTIER_MAX_MODELS], front[FRONTIER_MAX_MODELS];
+    for (int fig = 0; fig < 2; ++fig) {
+        int n = 0;
+        for (int i = 0; i < r->count; ++i) {
+            const struct frontier_row *row = &r->rows[i];
+            /* a reference is exact up to rounding: drawn at the axis floor, not at 1e-16 */
+            x[n] = row->kind == FR_REFERENCE ? 0.0 : fig == 0 ? row->max_rel[0] : row->max_abs[0];
+            y[n] = row->rate[0][1];
+            labels[n] = row->spec.label;
+            kinds[n] = row->kind == FR_REFERENCE ? DRAW_MARK_REFERENCE
+                       : row->kind == FR_PAPER   ? DRAW_MARK_PAPER
+                                                 : DRAW_MARK_OTHER;
+            front[n] = row->on_front;
+            n++;
+        }
+        struct draw_scatter sc = { fig == 0 ? "Cost and accuracy: evaluations/s against max delta (n in [2, 1000])"
+                                            : "Cost and accuracy: evaluations/s against max Delta (n in [2, 1000])",
+                                   fig == 0 ? "max delta in the epicentre (log)" : "max Delta in the attenuation zone (log)",
+                                   "device evaluations/s, n uniform (log)",
+                                   fig == 0 ? DRAW_FMT_PERCENT : DRAW_FMT_PLAIN,
+                                   n, x, y, labels, kinds, front };
+        char path[4300];
+        path_join(path, sizeof path, dir, fig == 0 ? "frontier_max_rel.png" : "frontier_max_abs.png");
+        if (draw_scatter_plot(path, &sc, err, errlen))
+            return -1;
+    }
+    return 0;
+}
+
+void frontier_print(FILE *f, const struct frontier_report *r)
+{
+    fprintf(f, "%-14s %-9s %5s %11s %11s %6s %10s %9s %10s %9s %7s\n", "model", "kind", "front", "uniform/s",
+            "varying/s", "ops", "delta 2..", "Delta 2..", "delta 16..", "Delta 16..", "PSNR");
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        char ops[16] = "?";
+        if (row->ops.known)
+            snprintf(ops, sizeof ops, "%d/%d/%d", row->ops.arith + row->ops.minmax, row->ops.div, row->ops.transc);
+        fprintf(f, "%-14s %-9s %5s %11.4g %11.4g %6s %9.4f%% %9.5f %9.4f%% %9.5f %7.1f\n", row->spec.label,
+                kind_names[row->kind], row->on_front ? "yes" : "", row->rate[0][1], row->rate[1][1], ops,
+                100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1], row->psnr_db);
+    }
+}
+
+/* The most accurate non-reference model (least max delta, then least max Delta) whose rate
+   is at least `budget` (its max rate >= budget: spreads again); -1 if none. */
+static int best_within(const struct frontier_report *r, double budget, int range)
+{
+    int best = -1;
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        if (row->kind == FR_REFERENCE || !isfinite(row->max_rel[range]) || !isfinite(row->rate[0][2]))
+            continue;
+        if (budget > 0 && row->rate[0][2] < budget)
+            continue;
+        if (best < 0 || row->max_rel[range] < r->rows[best].max_rel[range] ||
+            (row->max_rel[range] == r->rows[best].max_rel[range] &&
+             row->max_abs[range] < r->rows[best].max_abs[range]))
+            best = i;
+    }
+    return best;
+}
+
+char *frontier_markdown(const struct frontier_report *r)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "Cost is the device's evaluations/s with n uniform (the median over %d rounds over every model of "
+                  "each round's median of %d launches; spreads over the rounds that overlap count as equal), "
+                  "accuracy the largest epicentre delta and attenuation Delta (frontier.json, frontier.csv, "
+                  "frontier_max_rel.png, frontier_max_abs.png).\n\n", r->opt.rounds, r->opt.reps);
+    md_printf(&b, "| model | kind | front | evals/s (uniform) | evals/s (varying) | max delta, n >= 2 | max Delta, n >= 2 "
+                  "| max delta, n >= 16 | max Delta, n >= 16 | teapot PSNR (dB) |\n");
+    md_printf(&b, "|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        md_printf(&b, "| %s | %s | %s | %.3g | %.3g | %.4f%% | %.4f | %.4f%% | %.4f | ", row->spec.label,
+                  kind_names[row->kind], row->on_front ? "**yes**" : "", row->rate[0][1], row->rate[1][1],
+                  100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1]);
+        if (isfinite(row->psnr_db))
+            md_printf(&b, "%.1f |\n", row->psnr_db);
+        else
+            md_printf(&b, "%s |\n", row->psnr_reason);
+    }
+    md_printf(&b, "\nSources (brdfbench list; docs/frontier.md has the formulas and the operation counts):\n\n");
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        md_printf(&b, "- `%s`: ", row->spec.label);
+        md_cell_text(&b, row->spec.info->description);
+        md_printf(&b, "\n");
+    }
+    md_printf(&b, "\nThe front: ");
+    for (int i = 0, k = 0; i < r->count; ++i)
+        if (r->rows[i].on_front)
+            md_printf(&b, "%s%s", k++ ? ", " : "", r->rows[i].spec.label);
+    md_printf(&b, ".\n\n");
+    if (r->fq2 >= 0 && isfinite(r->rows[r->fq2].rate[0][0])) {
+        double fq2_lo = r->rows[r->fq2].rate[0][0];
+        double budgets[3] = { fq2_lo, 0.25 * fq2_lo, 0.0 };
+        const char *names[3] = { "at least fq2's rate", "at least a quarter of fq2's rate", "any cost" };
+        md_printf(&b, "The most accurate approximation (least max delta, then least max Delta; the references excluded) "
+                      "for a budget of evaluations/s:\n\n| budget | n from 2 | n from 16 |\n|---|---|---|\n");
+        for (int k = 0; k < 3; ++k) {
+            md_printf(&b, "| %s |", names[k]);
+            for (int range = 0; range < 2; ++range) {
+                int i = best_within(r, budgets[k], range);
+                if (i < 0)
+                    md_printf(&b, " none |");
+                else
+                    md_printf(&b, " %s (%.4f%%, %.4f; %.3g/s) |", r->rows[i].spec.label, 100 * r->rows[i].max_rel[range],
+                              r->rows[i].max_abs[range], r->rows[i].rate[0][1]);
+            }
+            md_printf(&b, "\n");
+        }
+    } else {
+        md_printf(&b, "fq2 is not in this run (or its rate is missing): no budgets relative to it.\n");
+    }
+    md_printf(&b, "\n![evaluations/s against max delta](frontier_max_rel.png)\n"
+                  "![evaluations/s against max Delta](frontier_max_abs.png)\n");
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;   /* the caller frees */
+}

@@ -1,0 +1,21 @@
+/* frontier_report.h - the writing side of frontier.c: frontier.json, frontier.csv, the two
+ * scatter plots and the "Which lobe to ship" markdown. */
+#ifndef BRDF_FRONTIER_REPORT_H
+#define BRDF_FRONTIER_REPORT_H
+
+#include <stdio.h>
+
+#include "frontier.h"
+
+int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
+                        size_t errlen);
+int frontier_write_csv(const char *path, const struct frontier_report *r, char *err, size_t errlen);
+/* Two pictures: evaluations/s against max delta and against max Delta (both log axes). */
+int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen);
+/* The table on f. */
+void frontier_print(FILE *f, const struct frontier_report *r);
+/* The body of "Which lobe to ship" (no heading): the table, the front and the most accurate
+ * model per budget (malloc'd; NULL when out of memory). */
+char *frontier_markdown(const struct frontier_report *r);
+
+#endif

@@ -1,0 +1,393 @@
+/* pbcost.c - the physically based models' cost beside the lobes, He's terms per evaluation
+ * and the white-furnace albedo at normal incidence (see pbcost.h); pbcost_report.c writes. */
+#include "pbcost.h"
+
+#include "exitcodes.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define REAL double
+#define RSCALAR double
+#include "brdf_models.h"
+#undef REAL
+#undef RSCALAR
+
+#define PBCOST_STREAMS 2       /* kernels/throughput.cl, TP_VEC_KERNEL */
+#define PBCOST_LANES 16
+#define PBCOST_MAX_ITERS 100000000L
+
+void pbcost_options_default(struct pbcost_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->n = 100;
+    o->reps = 9;
+    o->min_time = 0.02;
+}
+
+/* The rows: pow(), the lobes the papers compare with, then every physically based model of the
+   registry (He once per material preset, its cost depends on the roughness). */
+static int make_rows(struct pbcost_result *r)
+{
+    static const char *const lobes[] = { "phong", "blinn", "fq2" };
+    struct pbcost_row *row = &r->rows[r->count++];
+    model_spec_default(models_find("phong"), &row->spec);
+    snprintf(row->name, sizeof row->name, "pow()");
+    row->kind = 3;
+    r->pow_row = 0;
+    for (int i = 0; i < 3; ++i) {
+        row = &r->rows[r->count];
+        model_spec_default(models_find(lobes[i]), &row->spec);
+        strcpy(row->name, row->spec.label);   /* a label fits: MODEL_LABEL_MAX < sizeof name */
+        row->kind = row->spec.info->lobe == LOBE_PSI ? 0 : 1;
+        if (strcmp(lobes[i], "fq2") == 0)
+            r->fq2 = r->count;
+        if (strcmp(lobes[i], "phong") == 0)
+            r->phong = r->count;
+        r->count++;
+    }
+    for (int i = 0; i < models_count(); ++i) {
+        const struct model_info *info = models_at(i);
+        if (strcmp(info->family, "physical") != 0)
+            continue;
+        int variants = info->kernel_id == BRDF_HE ? BRDF_HE_PRESETS : 1;
+        for (int v = 0; v < variants && r->count < PBCOST_MAX_ROWS; ++v) {
+            row = &r->rows[r->count++];
+            model_spec_default(info, &row->spec);
+            if (info->kernel_id == BRDF_HE) {
+                char text[64], err[256];
+                snprintf(text, sizeof text, "he:material=%d", v);
+                if (model_spec_parse(text, &row->spec, err, sizeof err))
+                    return EXIT_RUNTIME;
+            }
+            strcpy(row->name, row->spec.label);   /* a label fits: MODEL_LABEL_MAX < sizeof name */
+            row->kind = 2;
+            row->physical = 1;
+        }
+    }
+    return 0;
+}
+
+/* The double reference of a row at given cosines, as tp_vec_eval computes it on the device. */
+static double row_eval_host(const struct pbcost_row *row, double nl, double nv, double lv, double n)
+{
+    if (row->kind == 2)
+        return brdf_pb_eval(row->spec.info->kernel_id, nl, nv, lv, n, row->spec.params[0], row->spec.params[1]);
+    if (!(nl > 0 && nv > 0))
+        return 0;
+    double c = row->kind == 1 ? (nl + nv) / sqrt(fmax(2 + 2 * lv, 1e-12)) : 2 * nl * nv - lv;
+    if (row->kind == 3)
+        return pow(fmax(c, 0.0), n);
+    return model_eval_host(&row->spec, c, n);
+}
+
+static double rnd(uint64_t *st)
+{
+    *st = *st * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*st >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Random unit vectors in the upper hemisphere (cosine >= 0.05 to z). */
+static void hemi(uint64_t *st, double v[3])
+{
+    for (;;) {
+        double x = 2 * rnd(st) - 1, y = 2 * rnd(st) - 1, z = rnd(st);
+        double l = sqrt(x * x + y * y + z * z);
+        if (l > 1e-3 && l <= 1 && z / l >= 0.05) {
+            v[0] = x / l;
+            v[1] = y / l;
+            v[2] = z / l;
+            return;
+        }
+    }
+}
+
+/* Device against double at random (N = z, L, V): half of the V near L's mirror direction, so
+   the highlights are sampled; the largest |difference| relative to the sample's peak. */
+static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *row, double n)
+{
+    enum { P = PBCOST_CHECK_POINTS };
+    static float nl[P], nv[P], lv[P], nn[P], out[P];
+    uint64_t st = 0x51ed2701a3b4c5d6ULL;
+    for (int i = 0; i < P; ++i) {
+        double l[3], v[3];
+        hemi(&st, l);
+        if (i % 2) {
+            double spread = 0.3 * rnd(&st);
+            double d[3];
+            hemi(&st, d);
+            v[0] = -l[0] + spread * (d[0] - 0.5);
+            v[1] = -l[1] + spread * (d[1] - 0.5);
+            v[2] = l[2];
+            double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            for (int k = 0; k < 3; ++k)
+                v[k] /= len;
+        } else {
+            hemi(&st, v);
+        }
+        nl[i] = (float)l[2];
+        nv[i] = (float)v[2];
+        lv[i] = (float)(l[0] * v[0] + l[1] * v[1] + l[2] * v[2]);
+        nn[i] = (float)n;
+    }
+    char name[128];
+    if (row->kind == 3)
+        snprintf(name, sizeof name, "tp_vec_points_pow");
+    else
+        snprintf(name, sizeof name, "tp_vec_points_%d", row->spec.info->kernel_id);
+    int rc = 0;
+    cl_int e;
+    cl_kernel k = clCreateKernel(prog, name, &e);
+    cl_mem b[5] = { NULL };
+    const float *src[4] = { nl, nv, lv, nn };
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec_points)", done);
+    float p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
+    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
+    for (int j = 0; j < 4; ++j) {
+        b[j] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof nl, (void *)src[j], &e);
+        CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_vec_points input)", done);
+        CL_CHECK_GOTO(clSetKernelArg(k, (cl_uint)(2 + j), sizeof b[j], &b[j]), done);
+    }
+    b[4] = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof out, NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_vec_points output)", done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof b[4], &b[4]), done);
+    size_t global = P / PBCOST_LANES;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, b[4], CL_TRUE, 0, sizeof out, out, 0, NULL, NULL), done);
+    double peak = 0, worst = 0;
+    for (int i = 0; i < P; ++i)
+        peak = fmax(peak, fabs(row_eval_host(row, nl[i], nv[i], lv[i], nn[i])));
+    row->terms_mean = row->terms_max = NAN;
+    double tsum = 0, tmax = 0;
+    for (int i = 0; i < P; ++i) {
+        double h = row_eval_host(row, nl[i], nv[i], lv[i], nn[i]);
+        double d = fabs(out[i] - h) / fmax(peak, 1e-300);
+        if (!(d <= worst))
+            worst = d;   /* a NaN stays the worst */
+        if (row->kind == 2 && row->spec.info->kernel_id == BRDF_HE && nl[i] > 0 && nv[i] > 0) {
+            int m = (int)row->spec.params[0];
+            double t = 0;
+            brdf_he_terms(nl[i], nv[i], lv[i], brdf_he_preset(m, 0), brdf_he_preset(m, 1), brdf_he_preset(m, 2),
+                          brdf_he_preset(m, 3), brdf_he_preset(m, 4), 0.0, &t);
+            tsum += t;
+            tmax = fmax(tmax, t);
+        }
+    }
+    row->check_max_abs_of_peak = worst;
+    if (row->kind == 2 && row->spec.info->kernel_id == BRDF_HE) {
+        row->terms_mean = tsum / P;
+        row->terms_max = tmax;
+    }
+done:
+    for (int j = 0; j < 5; ++j)
+        if (b[j])
+            clReleaseMemObject(b[j]);
+    if (k)
+        clReleaseKernel(k);
+    return rc;
+}
+
+/* One launch of a row's throughput kernel with `iters` iterations; *seconds from the profiling
+   events. */
+static int launch(struct cl_session *s, cl_kernel k, long iters, double *seconds, size_t global)
+{
+    int rc = 0;
+    cl_int it = (cl_int)iters;
+    float step = (float)(0.754877666 / (double)iters);
+    cl_event ev = NULL;
+    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof step, &step), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof it, &it), done);
+    /* one float16 work-item per group (each is a long loop already): PoCL spreads the groups
+       over its threads, where a size of its own choosing can put every work-item in one group
+       on one thread */
+    size_t local = 1;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clWaitForEvents(1, &ev), done);
+    *seconds = cl_event_seconds(ev);
+done:
+    if (ev)
+        clReleaseEvent(ev);
+    return rc;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* White-furnace albedo at normal incidence: 2 pi int_0^(pi/2) f(L = N, V(theta)) cos sin dtheta
+   (with L = N the BRDF depends on theta_o alone), GSL adaptive quadrature in double with a
+   break at the edge of He's 1-degree source cone. */
+struct albedo_ctx { const struct pbcost_row *row; double n; };
+static double albedo_integrand(double t, void *p)
+{
+    const struct albedo_ctx *a = p;
+    double c = cos(t);
+    return brdf_pb_eval(a->row->spec.info->kernel_id, 1.0, c, c, a->n, a->row->spec.params[0],
+                        a->row->spec.params[1]) * c * sin(t);
+}
+static void albedo_row(struct pbcost_row *row, double n)
+{
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(2000);
+    struct albedo_ctx a = { row, n };
+    gsl_function f = { albedo_integrand, &a };
+    double pts[3] = { 0, acos(BRDF_HE_SOURCE_COS), M_PI / 2 };
+    double v = NAN, err = NAN;
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    if (w && gsl_integration_qagp(&f, pts, 3, 1e-12, 1e-9, 2000, w, &v, &err) != 0 && !isfinite(v))
+        v = NAN;
+    gsl_set_error_handler(old);
+    if (w)
+        gsl_integration_workspace_free(w);
+    row->albedo_normal = 2 * M_PI * v;
+    row->albedo_normal_error = 2 * M_PI * err;
+}
+
+int pbcost_he_terms(double nl, double nv, double lv, double sigma0)
+{
+    double t = 0;
+    brdf_he_terms(nl, nv, lv, brdf_he_preset(0, 0), sigma0, brdf_he_preset(0, 2), brdf_he_preset(0, 3),
+                  brdf_he_preset(0, 4), 0.0, &t);
+    return (int)t;
+}
+
+static void terms_table(struct pbcost_result *r)
+{
+    static const double th[PBCOST_TERMS_THETA] = { 0, 30, 60, 75, 85 };
+    static const double ra[PBCOST_TERMS_RATIO] = { 0.01, 0.05, 0.1, 0.2, 0.5, 1.0 };
+    double lambda = brdf_he_preset(0, 0);
+    for (int i = 0; i < PBCOST_TERMS_THETA; ++i) {
+        r->terms_theta[i] = th[i];
+        double t = th[i] * M_PI / 180, to = fmin(th[i] + 20, 89) * M_PI / 180;
+        for (int j = 0; j < PBCOST_TERMS_RATIO; ++j) {
+            r->terms_ratio[j] = ra[j];
+            /* mirror: L = (sin t, 0, cos t), V = (-sin t, 0, cos t); off: V at to in the plane */
+            r->terms_mirror[i][j] = pbcost_he_terms(cos(t), cos(t), cos(2 * t), ra[j] * lambda);
+            r->terms_off[i][j] = pbcost_he_terms(cos(t), cos(to), cos(t) * cos(to) - sin(t) * sin(to), ra[j] * lambda);
+        }
+    }
+}
+
+int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r, int quiet)
+{
+    memset(r, 0, sizeof *r);
+    r->o = *o;
+    double t0 = wall_seconds();
+    int rc = make_rows(r);
+    if (rc)
+        return rc;
+    terms_table(r);
+    for (int i = 0; i < r->count; ++i)
+        r->rows[i].albedo_normal = r->rows[i].albedo_normal_error = NAN;
+    for (int i = 0; i < r->count; ++i)
+        if (r->rows[i].physical)
+            albedo_row(&r->rows[i], o->n);
+
+    /* one program: throughput.cl with a TP_VEC_MODEL_KERNELS line per model id */
+    char extra[2048] = "";
+    size_t used = 0;
+    for (int i = 0; i < r->count; ++i) {
+        const struct pbcost_row *row = &r->rows[i];
+        if (row->kind == 3)
+            continue;
+        int dup = 0;
+        for (int j = 0; j < i; ++j)
+            dup |= r->rows[j].kind != 3 && r->rows[j].spec.info->kernel_id == row->spec.info->kernel_id;
+        if (!dup)
+            used += (size_t)snprintf(extra + used, sizeof extra - used, "TP_VEC_MODEL_KERNELS(%d, %d)\n",
+                                     row->spec.info->kernel_id, row->kind);
+    }
+    cl_program prog = NULL;
+    cl_kernel kern[PBCOST_MAX_ROWS] = { NULL };
+    cl_mem out = NULL;
+    if (!quiet)
+        fprintf(stderr, "physical: building the full-vector kernels...\n");
+    if ((rc = clsession_build(s, "throughput.cl", extra, "", &prog)) != 0)
+        return rc;
+    r->work_items = o->work_items > 0 ? o->work_items : 32L * (long)(s->compute_units ? s->compute_units : 1);
+    size_t global = (size_t)r->work_items;
+    cl_int e;
+    out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, global * PBCOST_LANES * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(physical out)", done);
+    for (int i = 0; i < r->count; ++i) {
+        struct pbcost_row *row = &r->rows[i];
+        char name[64];
+        if (row->kind == 3)
+            snprintf(name, sizeof name, "tp_vec_pow");
+        else
+            snprintf(name, sizeof name, "tp_vec_%d", row->spec.info->kernel_id);
+        kern[i] = clCreateKernel(prog, name, &e);
+        CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec)", done);
+        float n = (float)o->n, p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
+        CL_CHECK_GOTO(clSetKernelArg(kern[i], 0, sizeof n, &n), done);
+        CL_CHECK_GOTO(clSetKernelArg(kern[i], 1, sizeof p0, &p0), done);
+        CL_CHECK_GOTO(clSetKernelArg(kern[i], 2, sizeof p1, &p1), done);
+        CL_CHECK_GOTO(clSetKernelArg(kern[i], 5, sizeof out, &out), done);
+        if ((rc = check_row(s, prog, row, o->n)) != 0)
+            goto done;
+        /* a warm-up launch first: PoCL compiles a kernel for its launch shape at its first
+           launch, which must not enter the calibration */
+        long iters = 4;
+        double t = 0;
+        if ((rc = launch(s, kern[i], 1, &t, global)) != 0)
+            goto done;
+        for (;;) {
+            if ((rc = launch(s, kern[i], iters, &t, global)) != 0)
+                goto done;
+            if (t >= 0.25 * o->min_time || iters >= PBCOST_MAX_ITERS)
+                break;
+            iters = (long)fmin((double)PBCOST_MAX_ITERS, ceil(iters * fmin(fmax(0.5 * o->min_time / fmax(t, 1e-9), 2.0), 1000.0)));
+        }
+        row->iters = (long)fmin((double)PBCOST_MAX_ITERS, fmax(1.0, ceil(iters * o->min_time / fmax(t, 1e-9))));
+        row->evals_per_launch = (double)global * (double)row->iters * PBCOST_STREAMS * PBCOST_LANES;
+    }
+    /* timed launches, the rows interleaved so that their ratios compare moments apart */
+    {
+        double *tm = calloc((size_t)r->count * (size_t)o->reps, sizeof *tm);
+        if (!tm) {
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+        for (int rep = 0; rep < o->reps && rc == 0; ++rep)
+            for (int i = 0; i < r->count && rc == 0; ++i)
+                rc = launch(s, kern[i], r->rows[i].iters, &tm[i * o->reps + rep], global);
+        for (int i = 0; i < r->count && rc == 0; ++i) {
+            struct pbcost_row *row = &r->rows[i];
+            double *v = &tm[i * o->reps];
+            qsort(v, (size_t)o->reps, sizeof *v, cmp_double);
+            row->min_s = v[0];
+            row->max_s = v[o->reps - 1];
+            row->med_s = o->reps % 2 ? v[o->reps / 2] : 0.5 * (v[o->reps / 2 - 1] + v[o->reps / 2]);
+            /* the rate of the fastest launch: on a shared machine other work only ever slows a
+               launch down, so the minimum time is the steadiest estimate of the cost */
+            row->evals_per_s = row->min_s > 0 ? row->evals_per_launch / row->min_s : NAN;
+            row->evals_per_s_median = row->med_s > 0 ? row->evals_per_launch / row->med_s : NAN;
+        }
+        free(tm);
+        if (rc)
+            goto done;
+    }
+    for (int i = 0; i < r->count; ++i) {
+        struct pbcost_row *row = &r->rows[i];
+        row->ratio_to_fq2 = row->evals_per_s / r->rows[r->fq2].evals_per_s;
+        row->ratio_to_phong = row->evals_per_s / r->rows[r->phong].evals_per_s;
+        row->ratio_to_pow = row->evals_per_s / r->rows[r->pow_row].evals_per_s;
+    }
+    r->seconds = wall_seconds() - t0;
+done:
+    for (int i = 0; i < PBCOST_MAX_ROWS; ++i)
+        if (kern[i])
+            clReleaseKernel(kern[i]);
+    if (out)
+        clReleaseMemObject(out);
+    if (prog)
+        clReleaseProgram(prog);
+    return rc;
+}

@@ -1,0 +1,199 @@
+/* pbcost_report.c - physical.json, the markdown section and the table of the physically based
+ * models' cost, He's terms per evaluation and their albedo at normal incidence (pbcost.c
+ * measures them). */
+#include "pbcost.h"
+
+#include "context.h"
+#include "exitcodes.h"
+#include "outdir.h"
+#include "jsonw.h"
+#include "mdbuf.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const kind_names[4] = { "lobe of R.V", "lobe of N.H", "BRDF of (N, L, V)", "pow(R.V, n)" };
+
+static void jw_terms(struct jw *w, const char *key, const struct pbcost_result *r,
+                     const int t[PBCOST_TERMS_THETA][PBCOST_TERMS_RATIO])
+{
+    jw_key(w, key);
+    jw_arr_begin(w);
+    for (int i = 0; i < PBCOST_TERMS_THETA; ++i) {
+        jw_arr_begin(w);
+        for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
+            jw_int(w, t[i][j]);
+        jw_arr_end(w);
+    }
+    jw_arr_end(w);
+    (void)r;
+}
+
+int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r, char *err,
+                      size_t errlen)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", PBCOST_SCHEMA);
+    jw_context_begin(&w, s, "");
+    jw_obj_end(&w);
+    jw_key(&w, "cost");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "what", "evaluations per second from full vectors made in registers (kernels/throughput.cl, "
+                          "tp_vec_*): per evaluation three normalisations, N.L, N.V, L.V and the model; float16, two "
+                          "streams per work-item, outputs summed; rows interleaved; evaluations_per_s and the "
+                          "ratios from each row's fastest launch (other work on the machine only slows a launch), "
+                          "evaluations_per_s_median beside it");
+    jw_kv_num(&w, "n", r->o.n);
+    jw_kv_int(&w, "reps", r->o.reps);
+    jw_kv_num(&w, "min_time", r->o.min_time);
+    jw_kv_int(&w, "work_items", r->work_items);
+    jw_key(&w, "rows");
+    jw_arr_begin(&w);
+    for (int i = 0; i < r->count; ++i) {
+        const struct pbcost_row *row = &r->rows[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", row->name);
+        jw_kv_str(&w, "evaluates", kind_names[row->kind]);
+        jw_kv_bool(&w, "physically_based", row->physical);
+        jw_kv_int(&w, "iterations", row->iters);
+        jw_kv_num(&w, "evaluations_per_launch", row->evals_per_launch);
+        jw_kv_num(&w, "median_s", row->med_s);
+        jw_kv_num(&w, "min_s", row->min_s);
+        jw_kv_num(&w, "max_s", row->max_s);
+        jw_kv_num(&w, "evaluations_per_s", row->evals_per_s);
+        jw_kv_num(&w, "evaluations_per_s_median", row->evals_per_s_median);
+        jw_kv_num(&w, "ratio_to_fq2", row->ratio_to_fq2);
+        jw_kv_num(&w, "ratio_to_phong", row->ratio_to_phong);
+        jw_kv_num(&w, "ratio_to_pow", row->ratio_to_pow);
+        jw_kv_num(&w, "check_max_abs_of_peak", row->check_max_abs_of_peak);
+        jw_kv_int(&w, "check_points", PBCOST_CHECK_POINTS);
+        if (row->physical) {
+            jw_kv_num(&w, "albedo_normal_incidence", row->albedo_normal);
+            jw_kv_num(&w, "albedo_quadrature_error", row->albedo_normal_error);
+        }
+        if (isfinite(row->terms_mean)) {
+            jw_kv_num(&w, "he_terms_mean", row->terms_mean);
+            jw_kv_num(&w, "he_terms_max", row->terms_max);
+        }
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    jw_key(&w, "he_terms");
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "what", "terms of He's directional-diffuse sum (stopped past the peak m >= g at the first term "
+                          "below 2^-24 of the running sum), double host, rough aluminium's lambda = 0.55 um, "
+                          "tau = 1 um, index 0.958 + 6.69i, for sigma0 = ratio x lambda; mirror: theta_i = theta_r = "
+                          "theta; off: theta_r = min(theta + 20, 89) degrees in the plane of incidence");
+    jw_key(&w, "theta_deg");
+    jw_arr_begin(&w);
+    for (int i = 0; i < PBCOST_TERMS_THETA; ++i)
+        jw_num(&w, r->terms_theta[i]);
+    jw_arr_end(&w);
+    jw_key(&w, "sigma0_over_lambda");
+    jw_arr_begin(&w);
+    for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
+        jw_num(&w, r->terms_ratio[j]);
+    jw_arr_end(&w);
+    jw_terms(&w, "mirror", r, r->terms_mirror);
+    jw_terms(&w, "off_mirror", r, r->terms_off);
+    jw_obj_end(&w);
+    jw_kv_str(&w, "albedo_what", "white-furnace albedo at normal incidence, 2 pi int f(N, V) cos(theta) sin(theta) "
+                                 "dtheta (L = N), GSL adaptive quadrature in double; n as in the cost rows for the "
+                                 "microfacet models; He with its uniform-diffuse term and the specular term over its "
+                                 "1-degree source");
+    jw_kv_num(&w, "seconds", r->seconds);
+    jw_obj_end(&w);
+    int rc = jw_write_file(&w, path, err, errlen);
+    jw_free(&w);
+    return rc;
+}
+
+char *pbcost_markdown(const struct pbcost_result *r)
+{
+    struct md_buf b;
+    md_init(&b);
+    md_printf(&b, "\n## Physically based models: cost, terms, albedo\n\n"
+                  "Evaluations per second from full vectors (N, L, V) made in registers, per evaluation three "
+                  "normalisations, three dot products and the model (float16, n = %g, the fastest of %d launches, rows "
+                  "interleaved); ratios are this row's evaluations/s over fq2's, Phong's and pow()'s in the same "
+                  "run. Check: largest |device - double| over %d random (N, L, V), relative to the sample's peak. "
+                  "Albedo: white-furnace albedo at normal incidence (double quadrature).\n\n",
+              r->o.n, r->o.reps, PBCOST_CHECK_POINTS);
+    md_printf(&b, "| model | evaluates | G evaluations/s | vs fq2 | vs Phong | vs pow() | check | He terms "
+                  "(mean, max) | albedo at normal incidence |\n|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < r->count; ++i) {
+        const struct pbcost_row *row = &r->rows[i];
+        char terms[64] = "", alb[64] = "";
+        if (isfinite(row->terms_mean))
+            snprintf(terms, sizeof terms, "%.1f, %.0f", row->terms_mean, row->terms_max);
+        if (row->physical)
+            snprintf(alb, sizeof alb, "%.4f", row->albedo_normal);
+        md_printf(&b, "| %s | %s | %.3g | %.3gx | %.3gx | %.3gx | %.2g | %s | %s |\n", row->name,
+                  kind_names[row->kind], row->evals_per_s * 1e-9, row->ratio_to_fq2, row->ratio_to_phong,
+                  row->ratio_to_pow, row->check_max_abs_of_peak, terms, alb);
+    }
+    md_printf(&b, "\nTerms of He's directional-diffuse sum per evaluation (stopped at float resolution), "
+                  "rough aluminium's lambda, tau and index, sigma0 = ratio x lambda; mirror direction / 20 "
+                  "degrees past it:\n\n| theta |");
+    for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
+        md_printf(&b, " sigma0/lambda = %g |", r->terms_ratio[j]);
+    md_printf(&b, "\n|---|");
+    for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
+        md_printf(&b, "---|");
+    md_printf(&b, "\n");
+    for (int i = 0; i < PBCOST_TERMS_THETA; ++i) {
+        md_printf(&b, "| %g deg |", r->terms_theta[i]);
+        for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
+            md_printf(&b, " %d / %d |", r->terms_mirror[i][j], r->terms_off[i][j]);
+        md_printf(&b, "\n");
+    }
+    if (b.failed) {
+        md_free(&b);
+        return NULL;
+    }
+    return b.s;
+}
+
+void pbcost_print_table(FILE *f, const struct pbcost_result *r)
+{
+    fprintf(f, "physically based models from full vectors (N, L, V), n = %g, fastest of %d launches:\n", r->o.n,
+            r->o.reps);
+    fprintf(f, "  %-22s %-18s %12s %9s %9s %9s %10s %12s\n", "model", "evaluates", "G evals/s", "vs fq2", "vs Phong",
+            "vs pow()", "check", "albedo(0)");
+    for (int i = 0; i < r->count; ++i) {
+        const struct pbcost_row *row = &r->rows[i];
+        fprintf(f, "  %-22s %-18s %12.4g %8.3gx %8.3gx %8.3gx %10.2g %12.6g", row->name, kind_names[row->kind],
+                row->evals_per_s * 1e-9, row->ratio_to_fq2, row->ratio_to_phong, row->ratio_to_pow,
+                row->check_max_abs_of_peak, row->albedo_normal);
+        if (isfinite(row->terms_mean))
+            fprintf(f, "  He terms mean %.1f max %.0f", row->terms_mean, row->terms_max);
+        fprintf(f, "\n");
+    }
+}
+
+int pbcost_run_write(struct cl_session *s, const char *out_dir, int quiet)
+{
+    struct pbcost_options o;
+    pbcost_options_default(&o);
+    struct pbcost_result *r = malloc(sizeof *r);
+    if (!r)
+        return EXIT_RUNTIME;
+    int rc = pbcost_run(s, &o, r, quiet);
+    if (rc == 0) {
+        char path[4200], err[512];
+        path_join(path, sizeof path, out_dir, "physical.json");
+        if (pbcost_write_json(path, s, r, err, sizeof err)) {
+            fprintf(stderr, "brdfbench: %s\n", err);
+            rc = EXIT_RUNTIME;
+        } else if (!quiet) {
+            pbcost_print_table(stdout, r);
+        }
+    }
+    free(r);
+    return rc;
+}
