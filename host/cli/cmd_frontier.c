@@ -26,7 +26,7 @@ int cmd_frontier(int argc, char **argv)
         { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, &opt.samples), .min = 16,
           .max = 65536, .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" },
         { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &reps), .min = 1, .max = 100,
-          .help = "timed launches per model per round" },
+          .help = "timed launches per figure" },
         { .name = "--rounds", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &rounds), .min = 1,
           .max = FRONTIER_MAX_ROUNDS,
           .help = "rounds over every model; a rate is the median of the rounds' medians, its spread their min..max" },
