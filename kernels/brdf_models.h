@@ -252,9 +252,11 @@ BRDF_FN REAL brdf_bg_a(REAL n, int m)
  * a and b give a > b, and the first piece then falls below 0). */
 BRDF_FN REAL brdf_kb_a(REAL n) { return (n + RC(5.6)) / (n * (RC(0.09) * n + RC(5.2))); }
 BRDF_FN REAL brdf_kb_b(REAL n) { return (n + RC(65.0)) / (RC(5.0) * n + RC(31.7)); }
-BRDF_FN REAL brdf_kuijk_blake(REAL c, REAL a, REAL b)
+BRDF_FN REAL brdf_kuijk_blake(REAL s, REAL a, REAL b)
 {
-    REAL alpha = acos(fmin(c, RC(1.0)));
+    /* the angle from s = 1 - c: acos(c) = 2 asin(sqrt(s/2)) keeps its digits near c = 1, where a
+       float acos(c) has few (the device then disagreed with the double reference at large n) */
+    REAL alpha = RC(2.0) * asin(sqrt(RC(0.5) * s));
     REAL inner = RC(1.0) - alpha * alpha / (a * b);
     REAL outer = (alpha - b) * (alpha - b) / (b * (b - a));
     REAL f = alpha < a ? inner : (alpha < b ? outer : RSPLAT(0.0));
@@ -604,8 +606,8 @@ BRDF_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1
     case BRDF_SG:       return brdf_gauss_lobe_s(s, n);
     case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));
     case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);
-    case BRDF_KB:       return brdf_kuijk_blake(c, brdf_kb_a(n), brdf_kb_b(n));
-    case BRDF_KBSWAP:   return brdf_kuijk_blake(c, brdf_kb_b(n), brdf_kb_a(n));
+    case BRDF_KB:       return brdf_kuijk_blake(s, brdf_kb_a(n), brdf_kb_b(n));
+    case BRDF_KBSWAP:   return brdf_kuijk_blake(s, brdf_kb_b(n), brdf_kb_a(n));
     case BRDF_BITPOW:   return brdf_bitpow(c, n);
     case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);
     case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);
