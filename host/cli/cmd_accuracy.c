@@ -2,6 +2,7 @@
  * written as accuracy.json, accuracy.csv and a table. */
 #include "accuracy.h"
 #include "accuracy_report.h"
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -71,11 +72,9 @@ int cmd_accuracy(int argc, char **argv)
     int doc_on_stdout = cli_is_stdout(json_path) || cli_is_stdout(csv_path);
 
     struct cl_session s;
-    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench accuracy: %s\n", err);
+    int rc = cli_run_session("accuracy", &s, &dev);
+    if (rc)
         return rc;
-    }
     if (accuracy_grid_check(&grid, &s, err, sizeof err)) {
         clsession_close(&s);
         goto usage_error;

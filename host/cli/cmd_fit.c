@@ -1,5 +1,6 @@
 /* cmd_fit.c - `brdfbench fit`: the cosine-quadratic family's accuracy limit per n and its best
  * affine k(n) = a n + b, written as fit.json and usable everywhere as quad:a=...,b=... */
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -78,21 +79,11 @@ int cmd_fit(int argc, char **argv)
         goto usage_error;
 
     struct cl_session s;
-    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
+    int rc = cli_run_session("fit", &s, &dev);
+    if (rc)
         return rc;
-    }
-    char run_dir[4096], tmp_dir[512] = "";
-    if (json_path && !out_dir) {
-        if (cli_temp_dir(tmp_dir, sizeof tmp_dir, err, sizeof err)) {
-            fprintf(stderr, "brdfbench fit: %s\n", err);
-            clsession_close(&s);
-            return EXIT_RUNTIME;
-        }
-        snprintf(run_dir, sizeof run_dir, "%s", tmp_dir);
-    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
+    char run_dir[4096], tmp_dir[512];
+    if (cli_run_folder("fit", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
@@ -104,18 +95,10 @@ int cmd_fit(int argc, char **argv)
         rc = fit_run(&s, run_dir, &opt, fit_quiet, NULL);
     /* exit 1 (no member meets the cap) still has a fit.json that says why */
     int written = !rc || rc == EXIT_GATE_FAIL;
-    if (written && !out_dir && !json_path && outdir_set_latest("results", run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
+    if (written && cli_run_latest("fit", out_dir, tmp_dir, run_dir))
         rc = EXIT_RUNTIME;
-    }
-    if (written && json_path) {
-        char src[4200];
-        path_join(src, sizeof src, run_dir, "fit.json");
-        if (cli_deliver(src, "--json", json_path, err, sizeof err)) {
-            fprintf(stderr, "brdfbench fit: %s\n", err);
-            rc = EXIT_RUNTIME;
-        }
-    }
+    if (written && json_path && cli_run_deliver("fit", run_dir, "fit.json", "--json", json_path))
+        rc = EXIT_RUNTIME;
     cli_temp_dir_remove(tmp_dir);
     if (written && !quiet && !cli_is_stdout(json_path)) {
         if (!tmp_dir[0])

@@ -1,4 +1,5 @@
 /* cmd_frontier.c - `brdfbench frontier`: flag parsing and orchestration of frontier_run. */
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -67,22 +68,17 @@ int cmd_frontier(int argc, char **argv)
             goto usage_error;
     }
     struct cl_session s;
-    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench frontier: %s\n", err);
+    int rc = cli_run_session("frontier", &s, &dev);
+    if (rc)
         return rc;
-    }
     char run_dir[4096];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench frontier: %s\n", err);
+    if (cli_run_folder("frontier", out_dir, 0, run_dir, sizeof run_dir, NULL, 0)) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
     rc = frontier_run(&s, &opt, run_dir, quiet, NULL);
-    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench frontier: %s\n", err);
-        rc = EXIT_RUNTIME;
-    }
+    if (!rc)
+        rc = cli_run_latest("frontier", out_dir, NULL, run_dir);
     if (!rc && !quiet)
         printf("written: %s/frontier.json\n", run_dir);
     clsession_close(&s);

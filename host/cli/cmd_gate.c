@@ -1,5 +1,6 @@
 /* cmd_gate.c - `brdfbench gate GATES.json`: accuracy gates for CI (docs/gates.md). */
 #define _POSIX_C_SOURCE 200809L
+#include "cli_run.h"
 #include "cli_table.h"
 #include "clsession.h"
 #include "commands.h"
@@ -131,9 +132,8 @@ int cmd_gate(int argc, char **argv)
     }
 
     struct cl_session s;
-    rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
+    rc = cli_run_session("gate", &s, &dev);
     if (rc) {
-        fprintf(stderr, "brdfbench gate: %s\n", err);
         gate_set_free(&gs);
         return rc;
     }

@@ -1,5 +1,6 @@
 /* cmd_render.c - `brdfbench render`: the full-image shading passes (sphere grid, Utah
  * teapot, Stanford bunny) with error images, metrics and Mpixel/s; see render.h. */
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -217,11 +218,9 @@ int cmd_render(int argc, char **argv)
     }
 
     struct cl_session s;
-    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench render: %s\n", err);
+    int rc = cli_run_session("render", &s, &dev);
+    if (rc)
         return rc;
-    }
     /* sizes against the device's memory before anything is allocated */
     int rows = o.scene_on[RENDER_SPHERES] ? o.nmodels : 0;
     rc = render_check_size(&s, "--size", o.width, o.height, rows, err, sizeof err);

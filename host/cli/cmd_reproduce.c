@@ -1,6 +1,7 @@
 /* cmd_reproduce.c - `brdfbench reproduce`: every claim of both papers re-derived and given a
  * verdict; claims.json, claims.md, q_sweep.json, energy.json and the table on stdout. */
 #include "accuracy.h"
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -58,22 +59,17 @@ int cmd_reproduce(int argc, char **argv)
         goto usage_error;
 
     struct cl_session s;
-    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench reproduce: %s\n", err);
+    int rc = cli_run_session("reproduce", &s, &dev);
+    if (rc)
         return rc;
-    }
     char run_dir[4096];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench reproduce: %s\n", err);
+    if (cli_run_folder("reproduce", out_dir, 0, run_dir, sizeof run_dir, NULL, 0)) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
     rc = reproduce_run_ex(&s, run_dir, &opt, quiet, NULL);
-    if (!rc && !out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench reproduce: %s\n", err);
-        rc = EXIT_RUNTIME;
-    }
+    if (!rc)
+        rc = cli_run_latest("reproduce", out_dir, NULL, run_dir);
     if (!rc && !quiet)
         printf("written: %s/claims.json, claims.md, q_sweep.json%s\n", run_dir, opt.energy ? ", energy.json" : "");
     clsession_close(&s);

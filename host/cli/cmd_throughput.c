@@ -2,6 +2,7 @@
  * device, against the pow() built-in, tuned C and the device's peak, under three sets of build
  * options; written as throughput.json, throughput.csv and a table. */
 #define _POSIX_C_SOURCE 200809L
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -153,22 +154,13 @@ int cmd_throughput(int argc, char **argv)
     /* PoCL reads this when the platform is first opened. */
     setenv("POCL_AFFINITY", "1", 0);
     struct cl_session s;
-    int rc = clsession_open(&s, dev.platform, dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench throughput: %s\n", err);
+    int rc = cli_run_session("throughput", &s, &dev);
+    if (rc)
         return rc;
-    }
     /* --json or --csv without --out: those documents only, made in a temporary folder */
-    char run_dir[4096], tmp_dir[512] = "";
-    if ((json_path || csv_path) && !out_dir) {
-        if (cli_temp_dir(tmp_dir, sizeof tmp_dir, err, sizeof err)) {
-            fprintf(stderr, "brdfbench throughput: %s\n", err);
-            clsession_close(&s);
-            return EXIT_RUNTIME;
-        }
-        snprintf(run_dir, sizeof run_dir, "%s", tmp_dir);
-    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench throughput: %s\n", err);
+    char run_dir[4096], tmp_dir[512];
+    if (cli_run_folder("throughput", out_dir, (json_path || csv_path) && !out_dir, run_dir, sizeof run_dir, tmp_dir,
+                       sizeof tmp_dir)) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
@@ -178,21 +170,12 @@ int cmd_throughput(int argc, char **argv)
     /* the physically based models from full vectors (pbcost.h), in a run of the default set */
     if (!rc && !models_given && usermodel_count() == 0 && !tmp_dir[0])
         rc = pbcost_run_write(&s, run_dir, tp_quiet);
-    if (!rc && !out_dir && !tmp_dir[0] && outdir_set_latest("results", run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench throughput: %s\n", err);
-        rc = EXIT_RUNTIME;
-    }
-    for (int k = 0; k < 2 && !rc; ++k) {
-        const char *dest = k == 0 ? json_path : csv_path;
-        char src[4200];
-        if (!dest)
-            continue;
-        path_join(src, sizeof src, run_dir, k == 0 ? "throughput.json" : "throughput.csv");
-        if (cli_deliver(src, k == 0 ? "--json" : "--csv", dest, err, sizeof err)) {
-            fprintf(stderr, "brdfbench throughput: %s\n", err);
-            rc = EXIT_RUNTIME;
-        }
-    }
+    if (!rc)
+        rc = cli_run_latest("throughput", out_dir, tmp_dir, run_dir);
+    if (!rc && json_path)
+        rc = cli_run_deliver("throughput", run_dir, "throughput.json", "--json", json_path);
+    if (!rc && csv_path)
+        rc = cli_run_deliver("throughput", run_dir, "throughput.csv", "--csv", csv_path);
     cli_temp_dir_remove(tmp_dir);
     clsession_close(&s);
     return rc;

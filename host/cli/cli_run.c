@@ -1,0 +1,65 @@
+/* cli_run.c - the session, run folder, results/latest and --json/--csv steps shared by the
+ * measuring commands (cli_run.h). */
+#include "cli_run.h"
+
+#include "cli_table.h"
+#include "exitcodes.h"
+#include "outdir.h"
+
+#include <stdio.h>
+
+static void cli_run_error(const char *cmd, const char *err)
+{
+    fprintf(stderr, "brdfbench %s: %s\n", cmd, err);
+}
+
+int cli_run_session(const char *cmd, struct cl_session *s, const struct device_options *dev)
+{
+    char err[1024];
+    int rc = clsession_open(s, dev->platform, dev->device, err, sizeof err);
+    if (rc)
+        cli_run_error(cmd, err);
+    return rc;
+}
+
+int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir, size_t run_dir_len, char *tmp_dir,
+                   size_t tmp_dir_len)
+{
+    char err[1024];
+    if (tmp_dir_len)
+        tmp_dir[0] = '\0';
+    if (temp) {
+        if (cli_temp_dir(tmp_dir, tmp_dir_len, err, sizeof err)) {
+            cli_run_error(cmd, err);
+            return EXIT_RUNTIME;
+        }
+        snprintf(run_dir, run_dir_len, "%s", tmp_dir);
+    } else if (outdir_for_command(out_dir, run_dir, run_dir_len, err, sizeof err)) {
+        cli_run_error(cmd, err);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir)
+{
+    char err[1024];
+    if (out_dir || (tmp_dir && tmp_dir[0]))
+        return 0;
+    if (outdir_set_latest("results", run_dir, err, sizeof err)) {
+        cli_run_error(cmd, err);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, const char *flag, const char *dest)
+{
+    char err[1024], src[4200];
+    path_join(src, sizeof src, run_dir, name);
+    if (cli_deliver(src, flag, dest, err, sizeof err)) {
+        cli_run_error(cmd, err);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}

@@ -1,0 +1,25 @@
+/* cli_run.h - the steps every measuring command takes around its engine's run, each reporting
+ * its own failure as "brdfbench CMD: message" on stderr:
+ *   cli_run_session   opens the OpenCL session of the device flags (its exit code, 0 when open);
+ *   cli_run_folder    makes the run folder: a temporary one when `temp` (a --json/--csv document
+ *                     without --out, cli_temp_dir), else --out or a new results/<date-time>
+ *                     (outdir_for_command); 0 or EXIT_RUNTIME;
+ *   cli_run_latest    points results/latest at the run folder when it is a new results/<date-time>
+ *                     (no --out, not temporary); 0 or EXIT_RUNTIME;
+ *   cli_run_deliver   copies the folder's document `name` to the path of `flag` (cli_deliver);
+ *                     0 or EXIT_RUNTIME. */
+#ifndef BRDFBENCH_CLI_RUN_H
+#define BRDFBENCH_CLI_RUN_H
+
+#include <stddef.h>
+
+#include "cli.h"
+#include "clsession.h"
+
+int cli_run_session(const char *cmd, struct cl_session *s, const struct device_options *dev);
+int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir, size_t run_dir_len, char *tmp_dir,
+                   size_t tmp_dir_len);
+int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir);
+int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, const char *flag, const char *dest);
+
+#endif
