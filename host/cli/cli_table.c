@@ -473,3 +473,11 @@ int cli_deliver(const char *src, const char *flag, const char *dest, char *err, 
     free(data);
     return rc;
 }
+
+int cli_parse_exit(const struct cli_command *c, int prc, const char *err)
+{
+    if (prc == CLI_ANSWERED)
+        return EXIT_OK;
+    fprintf(stderr, "brdfbench %s: %s\n", c->name, err);
+    return EXIT_USAGE;
+}

@@ -67,6 +67,11 @@ struct cli_args {
  * --help (and -h, which main turns into --help) and --version anywhere. Returns 0,
  * CLI_ANSWERED, or EXIT_USAGE with a one-line message in err (without the command's name). */
 int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_args *args, char *err, size_t errlen);
+/* A command's exit after cli_parse returned prc != 0: EXIT_OK for CLI_ANSWERED, else err as
+ * "brdfbench NAME: err" on stderr and EXIT_USAGE. */
+int cli_parse_exit(const struct cli_command *c, int prc, const char *err);
+/* A struct cli_command's table: CLI_TABLE(flags) for .flags and .nflags of the array flags. */
+#define CLI_TABLE(F) .flags = (F), .nflags = (int)(sizeof(F) / sizeof((F)[0]))
 /* Writes the command's --help from its table. */
 void cli_print_help(FILE *f, const struct cli_command *c);
 /* The name of the command being parsed ("accuracy"), for notes printed while parsing. */

@@ -47,14 +47,11 @@ int cmd_accuracy(int argc, char **argv)
         .name = "accuracy",
         .about = "  Sweeps every model over (angle, n): max relative error in the epicentre zone, max absolute\n"
                  "  error in the attenuation zone and over the whole range, each with where it occurs.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     if (!models_given && usermodel_count() > 0)
         models_text = usermodel_names();
     int nmodels = cli_model_list(models_text, models, MAX_MODELS, err, sizeof err);

@@ -42,18 +42,15 @@ int cmd_compare(int argc, char **argv)
                  "  Verdicts: a rate is faster / slower / same by the Mann-Whitney test of the two runs'\n"
                  "  repetitions (undecided when there are too few to reach --alpha); an accuracy figure is\n"
                  "  unchanged or changed (better / worse) at its 4th significant digit.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
         .epilog = "  Exit codes: 0 done, 1 a --fail-if condition holds, 2 a missing path, a file of another\n"
                   "  schema or version, runs with nothing in common, or a bad flag, 3 an output not written.\n",
         .max_positional = CLI_MAX_POSITIONAL,
     };
     struct cli_args args;
     int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     const char **paths = args.positional;
     int npaths = args.npositional;
     if (npaths > CMP_MAX_RUNS) {

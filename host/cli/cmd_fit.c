@@ -67,14 +67,11 @@ int cmd_fit(int argc, char **argv)
                  "  parameters, and the trade-off between the two figures.\n",
         .epilog = "  Exit codes: 0 done, 1 no member of the family meets the cap (fit.json says why),\n"
                   "  2 bad input, 3 a runtime error.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     if (fit_options_check(&opt, err, sizeof err))
         goto usage_error;
 

@@ -44,14 +44,11 @@ int cmd_frontier(int argc, char **argv)
                  "  against its accuracy (max delta, max Delta over n in [2, 1000] and [16, 1000]; teapot PSNR),\n"
                  "  the Pareto front, two scatter plots and which lobe to ship for a budget. Writes\n"
                  "  frontier.json, frontier.csv, frontier_max_rel.png and frontier_max_abs.png.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     opt.rounds = rounds;
     opt.reps = reps;
     if (no_image)

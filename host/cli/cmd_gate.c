@@ -75,16 +75,13 @@ int cmd_gate(int argc, char **argv)
                  "  with --quiet only the gates that did not pass. --json writes schema " GATE_RESULT_SCHEMA ".\n"
                  "  Exit 0: every gate passed; 1: a gate failed; 2: bad gates file or option; 3: runtime error;\n"
                  "  77: no OpenCL device.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
         .max_positional = 2,
     };
     struct cli_args args;
     int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     if (args.npositional > 1) {
         snprintf(err, sizeof err, "one gates file expected, got '%s' and '%s'", args.positional[0], args.positional[1]);
         goto usage_error;

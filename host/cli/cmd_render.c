@@ -199,14 +199,11 @@ int cmd_render(int argc, char **argv)
                  "  (glmark2-data). Writes per scene and model the image, an error image against the\n"
                  "  model's reference, metrics, a check against the double host reference, and Mpixel/s\n"
                  "  beside a copy kernel moving the same bytes: DIR/render.json and DIR/render/<scene>/.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     o.verbose = !quiet;
     if (!models_text && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */

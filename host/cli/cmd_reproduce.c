@@ -42,14 +42,11 @@ int cmd_reproduce(int argc, char **argv)
                  "  and device quadrature, the max delta / max Delta figures by the device sweep, the Q sweep of\n"
                  "  paper 2's figs. 2-3, coef(n) and its fits, energy and reciprocity. Writes claims.json,\n"
                  "  claims.md, q_sweep.json and energy.json.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     /* The Q grid keeps clear of 0 and 1, where f_Q is not defined. */
     opt.q_min = opt.q_step;
     opt.q_max = 1.0 - opt.q_step * 0.5;

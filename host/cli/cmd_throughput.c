@@ -124,16 +124,13 @@ int cmd_throughput(int argc, char **argv)
                  "  build options default, -cl-fast-relaxed-math and -cl-denorms-are-zero, each with what it\n"
                  "  does to accuracy against the double reference. The varying mode draws n from\n"
                  "  [--n-min, --n-max]. Writes throughput.json and throughput.csv.\n",
-        .flags = flags,
-        .nflags = (int)(sizeof flags / sizeof flags[0]),
+        CLI_TABLE(flags),
         .epilog = "  POCL_AFFINITY=1 is set unless the environment sets it: it pins PoCL's threads to CPUs,\n"
                   "  so that a run does not land on one thread.\n",
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
-    if (prc == CLI_ANSWERED)
-        return EXIT_OK;
     if (prc)
-        goto usage_error;
+        return cli_parse_exit(&cmd, prc, err);
     if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
         snprintf(err, sizeof err, "--json - and --csv -: one document at a time on standard output");
         goto usage_error;
