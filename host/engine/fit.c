@@ -494,6 +494,23 @@ int fit_wants_family(const struct fit_options *o)
     return o->model || o->power_m || o->objective != FIT_MAX_REL || !isnan(o->max_rel_cap);
 }
 
+/* The options and the sweep grid they give, checked against the device; 0, or EXIT_USAGE with
+ * the message on stderr. */
+static int fit_checked_grid(struct cl_session *s, const struct fit_options *o, struct accuracy_grid *g)
+{
+    char err[1024];
+    if (fit_options_check(o, err, sizeof err)) {
+        fprintf(stderr, "brdfbench fit: %s\n", err);
+        return EXIT_USAGE;
+    }
+    *g = (struct accuracy_grid){ o->n_min, o->n_max, o->n_step, o->samples };
+    if (accuracy_grid_check(g, s, err, sizeof err)) {
+        fprintf(stderr, "brdfbench fit: %s\n", err);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
 int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
             struct fit_report *report)
 {
@@ -503,15 +520,9 @@ int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options 
     memset(r, 0, sizeof *r);
     r->opt = *o;
     double t0 = wall_seconds();
-    if (fit_options_check(o, err, sizeof err)) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
+    struct accuracy_grid g;
+    if (fit_checked_grid(s, o, &g))
         return EXIT_USAGE;
-    }
-    struct accuracy_grid g = { o->n_min, o->n_max, o->n_step, o->samples };
-    if (accuracy_grid_check(&g, s, err, sizeof err)) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
-        return EXIT_USAGE;
-    }
     r->grid = g;
     r->n_count = accuracy_grid_count(&g);
     int rc = 0;
@@ -855,15 +866,9 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
     memset(r, 0, sizeof *r);
     r->opt = *o;
     double t0 = wall_seconds();
-    if (fit_options_check(o, err, sizeof err)) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
+    struct accuracy_grid g;
+    if (fit_checked_grid(s, o, &g))
         return EXIT_USAGE;
-    }
-    struct accuracy_grid g = { o->n_min, o->n_max, o->n_step, o->samples };
-    if (accuracy_grid_check(&g, s, err, sizeof err)) {
-        fprintf(stderr, "brdfbench fit: %s\n", err);
-        return EXIT_USAGE;
-    }
     r->grid = g;
     struct fam_search S;
     memset(&S, 0, sizeof S);
