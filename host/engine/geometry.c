@@ -95,16 +95,25 @@ struct uvec {
     size_t n, cap;
 };
 
+/* The array v (n elements of size elem used, *cap allocated) with room for three more: v itself,
+ * or v grown to twice its capacity (3 x 1024 at first); NULL when out of memory (v stays). */
+static void *vec_room3(void *v, size_t n, size_t *cap, size_t elem)
+{
+    if (n + 3 <= *cap)
+        return v;
+    size_t nc = *cap ? 2 * *cap : 3 * 1024;
+    void *nv = realloc(v, nc * elem);
+    if (nv)
+        *cap = nc;
+    return nv;
+}
+
 static int fvec_push3(struct fvec *a, float x, float y, float z)
 {
-    if (a->n + 3 > a->cap) {
-        size_t nc = a->cap ? 2 * a->cap : 3 * 1024;
-        float *nv = realloc(a->v, nc * sizeof *nv);
-        if (!nv)
-            return -1;
-        a->v = nv;
-        a->cap = nc;
-    }
+    float *nv = vec_room3(a->v, a->n, &a->cap, sizeof *nv);
+    if (!nv)
+        return -1;
+    a->v = nv;
     a->v[a->n++] = x;
     a->v[a->n++] = y;
     a->v[a->n++] = z;
@@ -113,14 +122,10 @@ static int fvec_push3(struct fvec *a, float x, float y, float z)
 
 static int uvec_push3(struct uvec *a, uint32_t x, uint32_t y, uint32_t z)
 {
-    if (a->n + 3 > a->cap) {
-        size_t nc = a->cap ? 2 * a->cap : 3 * 1024;
-        uint32_t *nv = realloc(a->v, nc * sizeof *nv);
-        if (!nv)
-            return -1;
-        a->v = nv;
-        a->cap = nc;
-    }
+    uint32_t *nv = vec_room3(a->v, a->n, &a->cap, sizeof *nv);
+    if (!nv)
+        return -1;
+    a->v = nv;
     a->v[a->n++] = x;
     a->v[a->n++] = y;
     a->v[a->n++] = z;
