@@ -103,9 +103,7 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen)

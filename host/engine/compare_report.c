@@ -485,9 +485,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
         }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 /* Per model one group, one bar per run: the throughput rows of the default build options with

@@ -279,9 +279,7 @@ int field_write_json(const char *path, const struct field_result *r, const struc
     jw_field(&w, "epicentre_rel", r->epi_rel, cells);
     jw_field(&w, "attenuation_abs", r->att_abs, cells);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 static int read_field_array(const struct jr_doc *d, const struct jr_value *root, const char *key, size_t cells,

@@ -141,9 +141,7 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     jw_obj_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 static void print_row(FILE *f, const char *label, const char *note, const struct accuracy_result *r)
@@ -257,9 +255,7 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
     }
     jw_kv_num(&w, "seconds", r->seconds);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 static void print_point(FILE *f, const struct fit_family_report *r, const char *what, const struct fit_point *p)

@@ -91,9 +91,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_arr_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 int frontier_write_csv(const char *path, const struct frontier_report *r, char *err, size_t errlen)

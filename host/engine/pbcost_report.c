@@ -108,9 +108,7 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
                                  "1-degree source");
     jw_kv_num(&w, "seconds", r->seconds);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 char *pbcost_markdown(const struct pbcost_result *r)

@@ -448,9 +448,7 @@ int plots_write_json(const struct plot_set *set, const char *path, const struct 
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 static int need_bool(const struct jr_doc *d, const struct jr_value *o, const char *key, int *out, char *err,

@@ -292,9 +292,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 /* The markdown summary: per scene a table of the models' figures. */

@@ -129,9 +129,7 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
     jw_arr_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 int reproduce_write_q_sweep_json(const struct repro *p, const char *path, char *err, size_t errlen)
@@ -185,9 +183,7 @@ int reproduce_write_q_sweep_json(const struct repro *p, const char *path, char *
                             "sweep's best Q; figures from the device sweep at that Q");
     jw_obj_end(&w);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 void reproduce_print_table(FILE *f, const struct repro *p)

@@ -302,9 +302,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     }
     jw_obj_end(&w);
     jw_obj_end(&w);
-    int rc = jw_write_file(&w, path, err, errlen);
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }
 
 /* A growable text buffer for the CSV and the markdown. */

@@ -150,3 +150,10 @@ int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
     w->out.s[w->out.len] = '\0';
     return rc;
 }
+
+int jw_write_file_free(struct jw *w, const char *path, char *err, size_t errlen)
+{
+    int rc = jw_write_file(w, path, err, errlen);
+    jw_free(w);
+    return rc;
+}

@@ -40,5 +40,7 @@ void jw_kv_int(struct jw *w, const char *key, long long v);
 void jw_kv_bool(struct jw *w, const char *key, int v);
 /* Writes the buffer (plus a newline) atomically to path. Returns 0 or -1. */
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen);
+/* jw_write_file, then jw_free: the end of every writer that builds one document. */
+int jw_write_file_free(struct jw *w, const char *path, char *err, size_t errlen);
 
 #endif
