@@ -708,6 +708,18 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+/* The end of a pass over a scene: its device buffers (each may be NULL) and its G-buffer. */
+static void pass_release(cl_mem out_spec, cl_mem out_rgba, cl_mem gbuf, struct gbuffer *g)
+{
+    if (out_spec)
+        clReleaseMemObject(out_spec);
+    if (out_rgba)
+        clReleaseMemObject(out_rgba);
+    if (gbuf)
+        clReleaseMemObject(gbuf);
+    gbuffer_free(g);
+}
+
 /* Image pass of one scene: every model and its reference shaded at o->width x o->height. */
 static int image_pass(struct render_device *dev, const struct scene_data *sd,
                       const struct render_options *o, const char *stage_dir,
@@ -883,13 +895,7 @@ done:
     free(grid_err);
     free(grid_m);
     free(grid_r);
-    if (out_spec)
-        clReleaseMemObject(out_spec);
-    if (out_rgba)
-        clReleaseMemObject(out_rgba);
-    if (gbuf)
-        clReleaseMemObject(gbuf);
-    gbuffer_free(&g);
+    pass_release(out_spec, out_rgba, gbuf, &g);
     return rc;
 }
 
@@ -1153,13 +1159,7 @@ done:
     free(errimg);
     free(rgb_he);
     free(rgb);
-    if (out_spec)
-        clReleaseMemObject(out_spec);
-    if (out_rgba)
-        clReleaseMemObject(out_rgba);
-    if (gbuf)
-        clReleaseMemObject(gbuf);
-    gbuffer_free(&g);
+    pass_release(out_spec, out_rgba, gbuf, &g);
     return rc;
 }
 
@@ -1267,13 +1267,7 @@ done:
     free(tm);
     free(tc);
     free(all_copy);
-    if (out_spec)
-        clReleaseMemObject(out_spec);
-    if (out_rgba)
-        clReleaseMemObject(out_rgba);
-    if (gbuf)
-        clReleaseMemObject(gbuf);
-    gbuffer_free(&g);
+    pass_release(out_spec, out_rgba, gbuf, &g);
     return rc;
 }
 
