@@ -1,7 +1,7 @@
 /*
  * accuracy.cl - the dense-grid accuracy sweep and a point probe.
  *
- * One work-item owns one shininess n and loops over both zones of SPEC.md sixteen samples
+ * One work-item owns one shininess n and loops over both zones of docs/definitions.md sixteen samples
  * at a time (float16: PoCL vectorises explicit vectors to 512 bits and evaluates the vector
  * forms of exp/log, while its scalar forms are not vectorised). Each work-item reduces its
  * own samples, so no barrier is needed.
@@ -77,7 +77,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         return;
     const float n = n_values[gid];
     const float16 nv = (float16)(n);
-    const float s_e = -expm1(-0.511f / n);               /* epicentre end in s (SPEC.md) */
+    const float s_e = -expm1(-0.511f / n);               /* epicentre end in s (docs/definitions.md) */
     const float16 lane = lanes16();
     /* Epicentre: s = s_e j / (samples - 1), j = i + lane. */
     const float epi_step = s_e / (float)(samples - 1);

@@ -1,5 +1,5 @@
 /*
- * brdf_models.h - every lobe model of SPEC.md, written once.
+ * brdf_models.h - every lobe model of docs/definitions.md, written once.
  *
  * This header is the single source of truth for the model formulas. It is written in the
  * common subset of C11 and OpenCL C so that the same text is compiled
@@ -77,7 +77,7 @@ enum brdf_model_id {
     BRDF_MODEL_COUNT
 };
 
-/* Epicentre zone end, as a cosine: the reference c^n equals e^(-0.511) there (SPEC.md). */
+/* Epicentre zone end, as a cosine: the reference c^n equals e^(-0.511) there (docs/definitions.md). */
 BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-0.511) / n); }
 
 /* The lobe c^n, written as exp(n ln c), the way a shader compiler lowers pow (GPUs: exp2
@@ -184,7 +184,7 @@ BRDF_FN REAL brdf_blinn_norm(REAL n)
     return (n + RC(2.0)) * (n + RC(4.0)) / (RC(8.0 * BRDF_PI) * (exp2(-n * RC(0.5)) + n));
 }
 
-/* ---- the approximations engines use (SPEC.md, "The approximations engines use") ---------- */
+/* ---- the approximations engines use (docs/definitions.md, "The approximations engines use") ---------- */
 
 /* The Gaussian lobe exp(k (c - 1)) = exp(-k s); engines write exp2(k/ln 2 (c - 1)), the same
  * function. */

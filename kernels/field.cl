@@ -1,6 +1,6 @@
 /*
  * field.cl - the error fields behind the heatmaps: delta(x, n) over the epicentre and
- * Delta(x, n) over the attenuation zone (SPEC.md), on a grid normalised per n.
+ * Delta(x, n) over the attenuation zone (docs/definitions.md), on a grid normalised per n.
  *
  * One work-item per grid cell (column, row); row = one shininess n, column = one position
  * along the normalised x axis of each zone:
@@ -38,7 +38,7 @@ __kernel void field_grid(const int model, const float p0, const float p1,
         return;
     const float n = n_values[row];
     const float s_e = -expm1(-0.511f / n);
-    const float x_e = 2.0f * asin(sqrt(0.5f * s_e));   /* epicentre end (SPEC.md), acos(1 - s_e) */
+    const float x_e = 2.0f * asin(sqrt(0.5f * s_e));   /* epicentre end (docs/definitions.md), acos(1 - s_e) */
     const float t = (float)col / (float)(cols - 1);
     const size_t at = (size_t)row * (size_t)cols + (size_t)col;
 

@@ -1,5 +1,5 @@
 /*
- * throughput.cl - the cost of each model where shading pays it (SPEC.md, Throughput).
+ * throughput.cl - the cost of each model where shading pays it (docs/definitions.md, Throughput).
  *
  * A work-item evaluates TP_STREAMS independent float16 streams of inputs made in registers
  * from the work-item id and the loop counter, and sums the values, so that neither loads nor

@@ -1,4 +1,4 @@
-/* lobe_formulas.h - every registry model's formula written a second time, from SPEC.md's
+/* lobe_formulas.h - every registry model's formula written a second time, from docs/definitions.md's
  * tables, for the tests' independent expected values. It deliberately does not include
  * kernels/brdf_models.h and is written differently where it can be: in s = 1 - c (given
  * separately so that it is exact near the peak),
@@ -15,13 +15,13 @@
 
 static const double lf_pi = 3.14159265358979323846;
 
-/* SPEC.md, "Zones and metrics": the epicentre ends where c^n = e^(-0.511). */
+/* docs/definitions.md, "Zones and metrics": the epicentre ends where c^n = e^(-0.511). */
 static inline double lf_epicentre_end_x(double n) { return acos(exp(-0.511 / n)); }
 
 /* c^n with s = 1 - c known exactly: exp(n log1p(-s)); 0 at c = 0. */
 static inline double lf_pow(double s, double n) { return s >= 1 ? 0.0 : exp(n * log1p(-s)); }
 
-/* (1 - k s)^2, zeroed past its root (SPEC.md: "zeroed where its base k(c-1)+1 <= 0"). */
+/* (1 - k s)^2, zeroed past its root (docs/definitions.md: "zeroed where its base k(c-1)+1 <= 0"). */
 static inline double lf_quad(double s, double k)
 {
     double base = 1 - k * s;
@@ -32,7 +32,7 @@ static inline double lf_quad(double s, double k)
    digits at large n (pow() would lose 5 of them at n = 20000). */
 static inline double lf_k_q(double n, double q) { return (1 - sqrt(q)) / -expm1(log(q) / n); }
 
-/* SPEC.md: alpha(n) = sqrt(2/(n+2)), so alpha^2 = 2/(n+2). */
+/* docs/definitions.md: alpha(n) = sqrt(2/(n+2)), so alpha^2 = 2/(n+2). */
 static inline double lf_alpha2(double n) { return 2 / (n + 2); }
 
 /* ---- the physically based models as lobes (host/core/models.c): the BRDF with the light at
@@ -173,7 +173,7 @@ static inline double lf_eval(const char *id, double c, double s, double n, doubl
     }
     if (!strcmp(id, "quad"))
         return lf_quad(s, p0 * n + p1);
-    /* SPEC.md, "The approximations engines use"; the frozen constants as docs/frontier.md
+    /* docs/definitions.md, "The approximations engines use"; the frozen constants as docs/frontier.md
        prints them. */
     if (!strcmp(id, "sg"))
         return exp(-n * s);                                    /* exp(n (c - 1)) */

@@ -1,5 +1,5 @@
 /* test_accuracy.c - the dense-grid sweep against independent derivations:
- *   - cq2 at n = 2 has no error at all (cq2 = c^2 there, SPEC.md);
+ *   - cq2 at n = 2 has no error at all (cq2 = c^2 there, docs/definitions.md);
  *   - cq2's epicentre maximum at large n sits at the zone end, where its value has a closed
  *     form: u = 1 - e^(-0.511/n), delta = 1 - (1 - n u / 2)^2 / e^(-0.511);
  *   - per-n maxima of several models match a brute-force maximum over 400001 points in

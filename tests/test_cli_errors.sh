@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # test_cli_errors.sh - the bad-input table: every command refuses bad input with one line
 # that names the argument (or the file, line and column) and what it accepts, and the exit
-# code of DESIGN.md (2 bad input, 3 runtime/output error). Each row below asserts both.
+# code of docs/architecture.md (2 bad input, 3 runtime/output error). Each row below asserts both.
 #
 # BAD_INPUTS_MD=FILE writes the table with each row's result as Markdown (docs/bad-inputs.md
 # is made this way).
@@ -274,7 +274,7 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
         echo
         echo "Every row is a case of tests/test_cli_errors.sh: the command, the exit code it gave and the first"
         echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
-        echo "or output error (DESIGN.md). Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
+        echo "or output error (docs/architecture.md). Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
         echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases, one check that no refused run"
         echo "wrote an output folder and one that a compile error's first line is FILE:LINE:COL; $pass passed, $fail failed."
         echo

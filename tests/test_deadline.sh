@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_deadline.sh - every kernel launch has a deadline (DESIGN.md, habit 13): a user model
+# test_deadline.sh - every kernel launch has a deadline (docs/architecture.md, habit 12): a user model
 # whose loop never ends stops `accuracy`, `gate` and `all` with exit 3 and one line naming
 # the kernel and the model, well within the deadline plus a margin, leaving no folder it
 # made and no file half-written; a folder or file that existed before stays as it was.

@@ -1,5 +1,5 @@
 /* test_model_table.c - every model's formula against a second writing of it (lobe_formulas.h,
- * from SPEC.md's tables, not from kernels/brdf_models.h), in double, at a spread of (c, n):
+ * from docs/definitions.md's tables, not from kernels/brdf_models.h), in double, at a spread of (c, n):
  * the host reference must agree to 1e-12 of the model's peak and the device (float16, through
  * accuracy_probe) to 1e-5 of it. The device-vs-host tests cannot see a constant changed in
  * the header, since both sides include it; this one can (0.463 -> 0.464 moves fvol by about
@@ -74,7 +74,7 @@ static int check_spec(const struct model_spec *m, struct accuracy_ctx *dev)
     return rc;
 }
 
-/* The epicentre's end as the host computes it (accuracy.h's zone geometry) against SPEC.md's
+/* The epicentre's end as the host computes it (accuracy.h's zone geometry) against docs/definitions.md's
  * x_e(n) = acos(exp(-0.511/n)) written here. */
 static void check_zone_end(void)
 {

@@ -54,10 +54,10 @@ static double d_projected_area(const struct model_spec *m, double n)
 static void test_host_identities(void)
 {
     struct model_spec cq2 = spec("cq2"), lyon1 = spec("lyon:k=1"), phong = spec("phong");
-    /* cq2 at n = 2 is (c - 1 + 1)^2 = c^2 = the Phong lobe at n = 2 (SPEC.md's formula). */
+    /* cq2 at n = 2 is (c - 1 + 1)^2 = c^2 = the Phong lobe at n = 2 (docs/definitions.md's formula). */
     for (double c = 0; c <= 1.0; c += 1.0 / 64)
         CHECK_NEAR(model_eval_host(&cq2, c, 2.0), c * c, 1e-15, "cq2(c, 2) = c^2");
-    /* Lyon with k = 1 is (1 - n(1-c)/2)^2 = cq2 (SPEC.md). */
+    /* Lyon with k = 1 is (1 - n(1-c)/2)^2 = cq2 (docs/definitions.md). */
     for (double n = 2; n <= 1000; n *= 1.7)
         for (double c = 0; c <= 1.0; c += 1.0 / 128)
             CHECK_NEAR(model_eval_host(&lyon1, c, n), model_eval_host(&cq2, c, n), 1e-14, "lyon:k=1 = cq2");
@@ -77,7 +77,7 @@ static void test_host_identities(void)
         }
     }
     /* Every quadratic model is 0 past its root and never rises again: the root of
-       (k(c-1)+1)^2 is c0 = 1 - 1/k (for fq2: (448n - 901)/(448n + 99), SPEC.md). */
+       (k(c-1)+1)^2 is c0 = 1 - 1/k (for fq2: (448n - 901)/(448n + 99), docs/definitions.md). */
     const char *quads[] = { "cq2", "fvol", "fvol64", "fq2", "fq:Q=0.64", "lyon:k=2", "lyon:k=4", "quad:a=0.45,b=0.1" };
     for (int i = 0; i < 8; ++i) {
         struct model_spec m = spec(quads[i]);

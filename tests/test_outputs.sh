@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # test_outputs.sh - an output path is written through, never replaced, when it is not a
-# regular file (DESIGN.md, habit 12): standard output as `-` or /dev/stdout, a FIFO, a
+# regular file (docs/architecture.md, habit 11): standard output as `-` or /dev/stdout, a FIFO, a
 # character device, a symlink to a file elsewhere (the link stays a link, its target gets the
 # text, replaced atomically in the target's own folder). The gate's reports are the outputs
 # named on the command line, so they are the ones tried here.

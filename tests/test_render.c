@@ -1,7 +1,7 @@
 /* test_render.c - the image passes: sphere pixels whose normal is known in closed form shade
  * on the device to the values worked out here and to the double reference; cq2 at n = 2,
  * which is the Phong lobe there, shades as Phong does; a small render_run writes the
- * reference's zero error, cq2's non-zero error and fq2's smaller mean error (SPEC.md: fq2's max delta 1.256%
+ * reference's zero error, cq2's non-zero error and fq2's smaller mean error (docs/definitions.md: fq2's max delta 1.256%
  * and max Delta 0.128 against cq2's 7.924% and 0.162); bad scene files fail with their
  * file and line and leave the previous results as they were. */
 #include "check.h"
@@ -123,7 +123,7 @@ static void test_sphere_pixels(struct cl_session *s)
     double want_phong = nl * o.ks * pow(dot(R, V), 64.0);
     /* Blinn: spec = E (N.L) ks (N.H)^n */
     double want_blinn = nl * o.ks * pow(dot(N, H2), 64.0);
-    /* Cook-Torrance with GGX (SPEC.md): alpha = sqrt(2 / (n + 2)),
+    /* Cook-Torrance with GGX (docs/definitions.md): alpha = sqrt(2 / (n + 2)),
        D = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2), F = F0 + (1 - F0)(1 - V.H)^5,
        G = G1(N.L) G1(N.V), G1(x) = 2x / (x + sqrt(alpha^2 + (1 - alpha^2) x^2));
        spec = E (N.L) ks D F G / (4 (N.L)(N.V)) */
@@ -177,7 +177,7 @@ static void test_sphere_pixels(struct cl_session *s)
     /* a background pixel (corner) carries no specular radiance */
     CHECK(spec[0] == 0.0f, "background specular %g, expected 0", spec[0]);
 
-    /* cq2 at n = 2 is (1 (c - 1) + 1)^2 = c^2, the Phong lobe at n = 2 (SPEC.md), and both
+    /* cq2 at n = 2 is (1 (c - 1) + 1)^2 = c^2, the Phong lobe at n = 2 (docs/definitions.md), and both
        read the same psi: on a G-buffer of shininess 2 the two shade every pixel alike, up to
        float rounding of c^2 against exp(2 ln c) (a few ulps of the peak). */
     struct model_spec cq2, phong;

@@ -82,7 +82,7 @@ for s in scenes.values():
         assert abs(e["mpixel_per_s"] - 128 * 64 / (e["median_ms"] * 1e3)) <= 1e-9 * e["mpixel_per_s"], e
         # the ratio is the interleaved copy's median over this entry's median
         assert abs(e["fraction_of_copy"] - e["copy_median_ms_interleaved"] / e["median_ms"]) < 1e-9
-        # the speed-up is the reference's median time over this entry's (SPEC.md: cq2 and fq2 against
+        # the speed-up is the reference's median time over this entry's (docs/definitions.md: cq2 and fq2 against
         # phong; a reference entry has none other than itself)
         r = names[e["reference"]]
         assert abs(e["speedup_vs_reference"] - r["median_ms"] / e["median_ms"]) <= 1e-9 * e["speedup_vs_reference"], e

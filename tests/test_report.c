@@ -1,6 +1,6 @@
 /* test_report.c - heatmap fields, plots and the report, from small sweeps made here:
  *   - a reference against itself gives a zero field, drawn uniformly in the bottom colour;
- *   - a field cell at the epicentre's end matches the closed form of SPEC.md there;
+ *   - a field cell at the epicentre's end matches the closed form of docs/definitions.md there;
  *   - the colour under the heatmap's maximum marker is the colour map's top;
  *   - field and plot JSON survive a round trip, and broken files are refused with the file,
  *     line and problem named;
@@ -90,7 +90,7 @@ static void test_fvol_field(struct field_ctx *fc)
     struct field_result fr;
     CHECK(field_run(fc, &fvol, &small, &fr) == 0, "field of fvol");
     if (!fr.epi_rel) return;
-    /* closed form at the epicentre's end (last column), SPEC.md: c = exp(-0.511/n),
+    /* closed form at the epicentre's end (last column), docs/definitions.md: c = exp(-0.511/n),
      * c^n = exp(-0.511), delta = |(0.463 n (c - 1) + 1)^2 - c^n| / c^n. Row 0 is n = 2. */
     double n = 2, c = exp(-0.511 / n), ref = exp(-0.511), q = 0.463 * n * (c - 1) + 1;
     double want = fabs(q * q - ref) / ref;

@@ -125,7 +125,7 @@ close(f["max_abs"], fit["att_max_abs"], 1e-7, "fit max Delta at the written (a, 
 # The minimax affine fit reaches the family's limit (no k(n) does better at n = 1000, and the
 # line through k*(1000) with slope near 0.45 keeps every other n below it): max delta equals
 # L's, k(1000) = a 1000 + b is the minimax k there, and a is near the asymptotic slope 0.45
-# (SPEC.md: the n -> infinity minimax slope a m = 0.900 for m = 2).
+# (docs/definitions.md: the n -> infinity minimax slope a m = 0.900 for m = 2).
 close(f["max_rel"], L["max_rel"], 1e-7, "fit max delta against the family's limit at n = 1000")
 close(f["a"] * 1000 + f["b"], L["k"], 1e-6, "k(1000) of the fit against the minimax k at n = 1000")
 assert abs(f["a"] - 0.45) < 2e-3, f["a"]

@@ -34,7 +34,7 @@ def med(r): return r["evals_per_s"]["median"]
 def same(r, label): return [x for x in rows if x["label"] == label and x["variant"] == r["variant"] and x["n_mode"] == r["n_mode"]][0]
 def close(x, y, what): assert x is not None and abs(x - y) <= 1e-9 * abs(y), "%s: %r vs %r recomputed" % (what, x, y)
 # The derived columns, recomputed from the medians (README's definitions): the ratio to pow() in
-# the same variant and n mode, to the model's own reference (SPEC.md: the Phong lobe c^n for
+# the same variant and n mode, to the model's own reference (docs/definitions.md: the Phong lobe c^n for
 # every model here), to the tuned C loop's median, and the fraction of the FMA peak.
 for r in rows:
     assert r["status"] == "ok", r

@@ -93,7 +93,7 @@ int clsession_build_user(struct cl_session *s, const char *kernel_file, const ch
 int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const float *c, const float *n,
                     size_t count, float *out);
 
-/* Launch deadlines (DESIGN.md, habit 13). OpenCL cannot cancel a running kernel, so every wait
+/* Launch deadlines (docs/architecture.md, habit 12). OpenCL cannot cancel a running kernel, so every wait
  * for a launch is watched by a thread: past the deadline it prints one line naming the kernel
  * and the model, removes the run's unfinished outputs (outdir_remove_own) and ends the process
  * with exit code 3. The deadline is per launch, in seconds. */

@@ -1,4 +1,4 @@
-/* context.h - the context block every result file carries (DESIGN.md, habit 6). */
+/* context.h - the context block every result file carries (docs/architecture.md, habit 6). */
 #ifndef BRDF_CONTEXT_H
 #define BRDF_CONTEXT_H
 

@@ -1,4 +1,4 @@
-/* exitcodes.h - the process exit codes every command uses (DESIGN.md, habit 4). */
+/* exitcodes.h - the process exit codes every command uses (docs/architecture.md, habit 4). */
 #ifndef BRDF_EXITCODES_H
 #define BRDF_EXITCODES_H
 

@@ -76,7 +76,7 @@ static const struct model_info registry[] = {
     { "kb", BRDF_KB, "angular", LOBE_PSI, 0, NOP, "phong",
       "alpha = acos c: 1 - alpha^2/(ab) below a, (alpha-b)^2/(b(b-a)) to b, 0 beyond; "
       "a = (n+5.6)/(n(0.09n+5.2)), b = (n+65)/(5n+31.7)", "alpha = b",
-      "Kuijk and Blake 1989 (Computer Graphics Forum 8(4)), a and b as SPEC.md writes them", 0 },
+      "Kuijk and Blake 1989 (Computer Graphics Forum 8(4)), a and b as docs/definitions.md writes them", 0 },
     { "kbswap", BRDF_KBSWAP, "angular", LOBE_PSI, 0, NOP, "phong",
       "kb with a and b exchanged, zeroed where negative", "alpha = sqrt(ab)",
       "Kuijk and Blake 1989 with a and b exchanged (Kuijk's later note on the print)", 0 },

@@ -1,5 +1,5 @@
 /* accuracy.h - the dense-grid accuracy sweep as a library: the device sweeps both zones of
- * SPEC.md for every n, the host recomputes every reduced figure in double at the device's
+ * docs/definitions.md for every n, the host recomputes every reduced figure in double at the device's
  * own inputs, and polishes the range maxima with a local maximisation in double. */
 #ifndef BRDF_ACCURACY_H
 #define BRDF_ACCURACY_H
@@ -128,7 +128,7 @@ void accuracy_format_n(double n, char *buf, size_t len);
 /* The JSON status word of a result: ok, invalid_values, device_disagrees or failed. */
 const char *accuracy_status(const struct accuracy_result *r);
 
-/* Zone geometry in double (SPEC.md): x_e(n), and the same end as s = 1 - cos x_e = -expm1(-0.511/n). */
+/* Zone geometry in double (docs/definitions.md): x_e(n), and the same end as s = 1 - cos x_e = -expm1(-0.511/n). */
 double zone_epicentre_end(double n);
 double zone_epicentre_end_s(double n);
 /* x = acos(1 - s), without the cancellation: 2 asin(sqrt(s/2)). */

@@ -322,7 +322,7 @@ int albedo_closed_form_normal(const struct model_spec *m, int mode, double n, do
         return 1;
     }
     if (strcmp(id, "fq2n") == 0) {
-        /* Paper 2's coefficients (SPEC.md): coef(n) = 0.214 (0.807 + n), k(n) = 0.448 n + 0.099. */
+        /* Paper 2's coefficients (docs/definitions.md): coef(n) = 0.214 (0.807 + n), k(n) = 0.448 n + 0.099. */
         *value = 0.214 * (0.807 + n) * two_pi * quadratic_moment(0.448 * n + 0.099);
         *derivation = "0.214 (0.807 + n) 2 pi int_0^1 ((0.448n + 0.099)(u-1) + 1)^2 u du, the quadratic "
                       "zeroed past its root: a polynomial integral";

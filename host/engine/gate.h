@@ -17,9 +17,9 @@
 #define GATE_BASELINE_FLOOR 1e-9               /* absolute slack of a baseline comparison */
 
 enum gate_metric {
-    GATE_EPICENTRE_MAX_REL,   /* max relative error over the epicentre zone (SPEC.md delta) */
+    GATE_EPICENTRE_MAX_REL,   /* max relative error over the epicentre zone (docs/definitions.md delta) */
     GATE_EPICENTRE_MAX_ABS,   /* max absolute error over the epicentre zone */
-    GATE_ATTENUATION_MAX_ABS, /* max absolute error over the attenuation zone (SPEC.md Delta) */
+    GATE_ATTENUATION_MAX_ABS, /* max absolute error over the attenuation zone (docs/definitions.md Delta) */
     GATE_WHOLE_MAX_ABS,       /* max absolute error over x in [0, pi/2] */
     GATE_ENERGY_MAX_DEV,      /* max over n of |2 pi int_0^(pi/2) f cos x sin x dx - 1| */
     GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/energy.h) */

@@ -29,7 +29,7 @@
 
 static const double half_pi = 1.57079632679489661923;
 static const double two_pi = 6.28318530717958647692;
-#define ZONE_K 0.511                 /* SPEC.md: the epicentre ends where c^n = exp(-0.511) */
+#define ZONE_K 0.511                 /* docs/definitions.md: the epicentre ends where c^n = exp(-0.511) */
 
 void reproduce_options_default(struct reproduce_options *o)
 {
@@ -220,7 +220,7 @@ double paper2_coef(double n)
         ready = 1;
     }
     double arg = (448.0 * n - 901.0) / (448.0 * n + 99.0);
-    double gran = arg <= 0 ? half_pi : acos(arg);   /* capped at pi/2 (SPEC.md) */
+    double gran = arg <= 0 ? half_pi : acos(arg);   /* capped at pi/2 (docs/definitions.md) */
     struct coef_ctx ctx = { &fq2, n };
     gsl_function fn = { coef_integrand, &ctx };
     gsl_error_handler_t *old = gsl_set_error_handler_off();
@@ -1000,7 +1000,7 @@ static int add_paper2(struct repro *p)
     return 0;
 }
 
-/* ---- the approximations engines use (SPEC.md) --------------------------------------------- */
+/* ---- the approximations engines use (docs/definitions.md) --------------------------------------------- */
 
 static int add_engines(struct repro *p)
 {
@@ -1107,7 +1107,7 @@ static int add_checks(struct repro *p)
             where = sweep_defs[i].model;
         }
     if (p->o->grid_check) {
-        if (!(c = claim_add(r, "check", "C-grid", "SPEC.md, zones and metrics",
+        if (!(c = claim_add(r, "check", "C-grid", "docs/definitions.md, zones and metrics",
                             "refining the sweep grid no longer moves a reported max delta or max Delta in its 4th "
                             "significant digit")))
             return EXIT_RUNTIME;

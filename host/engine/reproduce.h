@@ -1,4 +1,4 @@
-/* reproduce.h - re-derives every claim of both papers (SPEC.md, "What the papers claim") and
+/* reproduce.h - re-derives every claim of both papers (docs/definitions.md, "What the papers claim") and
  * gives each a verdict: claims.json, claims.md, q_sweep.json, energy.json and a table.
  *
  * Every figure is measured, never assumed: max delta / max Delta by the device sweep

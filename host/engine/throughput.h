@@ -1,9 +1,9 @@
-/* throughput.h - every model's cost on the OpenCL device (SPEC.md, Throughput), side by side
+/* throughput.h - every model's cost on the OpenCL device (docs/definitions.md, Throughput), side by side
  * with the pow() built-in, a tuned C loop doing the same work, and the device's measured peak;
  * under three sets of build options, each with what it does to accuracy. Optionally the
  * accuracy sweep itself against the same sweep in tuned C.
  *
- * Timing protocol (DESIGN.md, habit 7): every program build is timed on its own; each kernel
+ * Timing protocol (docs/architecture.md, habit 7): every program build is timed on its own; each kernel
  * is first launched with the exact NDRange it is timed with (PoCL compiles per launch shape);
  * the iterations per launch are calibrated until one launch takes --min-time; then --reps
  * launches give min / median / max from the OpenCL profiling events and from wall time. All

@@ -1,5 +1,5 @@
 /* jsonw.h - a small streaming JSON writer into a growable buffer.
- * Non-finite numbers are written as null (DESIGN.md, habit 6): callers add a status and a
+ * Non-finite numbers are written as null (docs/architecture.md, habit 6): callers add a status and a
  * reason beside such a value. Arrays of plain values are written on one line, so large
  * numeric arrays stay compact; objects and nested containers get a line per item. */
 #ifndef BRDF_JSONW_H

@@ -1,4 +1,4 @@
-/* outdir.h - atomic result files and run folders (DESIGN.md, habit 5). */
+/* outdir.h - atomic result files and run folders (docs/architecture.md, habit 5). */
 #ifndef BRDF_OUTDIR_H
 #define BRDF_OUTDIR_H
 
@@ -6,7 +6,7 @@
 
 #define OUTDIR_PATH_MAX 4096
 
-/* Writes data to an output path (DESIGN.md, habits 5 and 12). A regular file (or a new one) is
+/* Writes data to an output path (docs/architecture.md, habits 5 and 12). A regular file (or a new one) is
  * replaced atomically: a temporary file in its real folder (a symlink's final target's folder;
  * the link stays a link), fsync, rename, so a reader sees the old file or the new one, never a
  * part. Everything else is written through, never replaced: `-` and /dev/stdout (standard
