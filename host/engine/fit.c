@@ -878,7 +878,7 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
         S.power_m = o->power_m;
         S.nparams = 2;
         S.lo[0] = 0; S.hi[0] = 10; S.lo[1] = -10; S.hi[1] = 10;
-        /* start at the asymptotic minimax slope a m ~ 0.9 (SPEC.md) */
+        /* start at the asymptotic minimax slope a m ~ 0.9 (docs/definitions.md) */
         family.params[0] = 0.9 / o->power_m;
         family.params[1] = 0.1;
         snprintf(r->family, sizeof r->family, "power:m=%d", o->power_m);
