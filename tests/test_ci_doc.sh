@@ -7,11 +7,8 @@
 # folder holds what the page says in every case. The two build lines are checked to be in the
 # page (and in its workflow) but not run: the suite runs from that build already.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?SRC_DIR must name the source tree}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 DOC="$SRC/docs/ci.md"
 sed -n '/<!-- ci-commands:begin -->/,/<!-- ci-commands:end -->/p' "$DOC" | sed '1,2d;$d' | sed '$d' >"$T/block.sh"

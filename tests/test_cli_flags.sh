@@ -4,11 +4,8 @@
 # --help; --version after any command; --json - / --csv - put one document on standard
 # output; list --json; a model given twice is measured once; --quiet prints nothing.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-. "$SRC/tests/testlib.sh"
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 cd "$T" || exit 1
 
 # every command the dispatcher lists

@@ -11,10 +11,8 @@
 #   - every exit code: 0, 1 (--fail-if-slower, --fail-if-less-accurate), 2 (missing path, no
 #     result file, another schema version, nothing in common, bad flags; nothing written), 3.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 TP=(throughput --models cq2,fq2,phong --reps 5 --min-time 0.002 --work-items 8 --variants default --no-host-c
     --no-sweep --quiet)

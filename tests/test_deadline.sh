@@ -5,11 +5,8 @@
 # made and no file half-written; a folder or file that existed before stays as it was.
 # The deadline comes from --timeout or the gates file's "timeout" (the flag wins).
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 cd "$T" || exit 1
 cp "$SRC/tests/test_usermodel_files/spin.cl" .
 

@@ -9,10 +9,8 @@
 #     both below fq2's;
 #   - phong is exact (both figures 0), so nothing can dominate it: it is on the front.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 "$BIN" fit --family pow4 --n-max 40 --samples 64 --out "$T/fit" --quiet 2>"$T/err"
 rc=$?

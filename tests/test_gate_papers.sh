@@ -7,11 +7,8 @@
 # written a second time in tests/lobe_formulas.h; fq2n's figures in closed form), and the pinned
 # bounds must hold that value too.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 "$BIN" gate "$SRC/tests/gates/papers.json" --junit "$T/papers.xml" --json "$T/papers.json" >"$T/out" 2>"$T/err"
 rc=$?

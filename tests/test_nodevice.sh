@@ -3,13 +3,10 @@
 # folder through OCL_ICD_VENDORS), every command that needs a device prints a one-line hint
 # and exits 77, writing nothing; list still lists the models and says no device was found.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 mkdir -p "$T/vendors"
 export OCL_ICD_VENDORS=$T/vendors
-. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 HINT='no OpenCL platform found; install the CPU OpenCL driver: apt-get install pocl-opencl-icd'
 
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","max":0.0126}]}' >"$T/gates.json"

@@ -5,11 +5,8 @@
 # text, replaced atomically in the target's own folder). The gate's reports are the outputs
 # named on the command line, so they are the ones tried here.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 cd "$T" || exit 1
 printf '{"gates": [{"model": "fq2", "metric": "epicentre.max_rel", "n_max": 20, "samples": 64, "max": 1}]}\n' >g.json
 

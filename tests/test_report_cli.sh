@@ -4,10 +4,8 @@
 # PNG, redraw from JSON without a device, and the error paths (malformed or missing JSON:
 # exit 2 naming the file; a picture that cannot be written: exit 3, other outputs intact).
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 
 # is_png FILE: the 8-byte PNG signature (89 50 4E 47 0D 0A 1A 0A, RFC 2083)

@@ -3,10 +3,8 @@
 # contracts, a few measured values against closed forms worked here in python, the fitted
 # model used by another command, and the error paths (message and exit code).
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 INDEP=${INDEP:?INDEP must name the tests/indep binary}
 # A lighter reproduce (coarser Q sweep; the best Q is refined by Brent all the same): every

@@ -3,10 +3,8 @@
 # contract (strict, no NaN), the CSV, the printed table, and each bad flag (exit 2, a message
 # naming the flag and its accepted range, nothing written). No time is asserted.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 "$BIN" throughput --models phong,cq2,fq:Q=0.7 --reps 2 --min-time 0.002 --work-items 4 --variants default,denorms-are-zero \
     --sweep-samples 32 --sweep-n-step 100 --sweep-reps 1 --out "$T/run" >"$T/table" 2>"$T/err"

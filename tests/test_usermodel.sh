@@ -8,12 +8,9 @@
 # |k - 1| everywhere) or identities (a user model that writes out cq2's formula has cq2's
 # closed-form maximum), never the program's own output.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-F=$SRC/tests/test_usermodel_files
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+F=$SRC/tests/test_usermodel_files
 
 
 # check_json FILE PYTHON: runs PYTHON with `d` = the parsed JSON (strict: no NaN literals).

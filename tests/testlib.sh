@@ -2,6 +2,15 @@
 # Sourced by a test after it sets BIN (the brdfbench binary) and T (its temporary folder); the
 # test prints "$pass passed, $fail failed" at its end and exits non-zero when fail > 0.
 pass=0 fail=0
+
+# brdf_test_init: BIN (the brdfbench binary, from $BRDFBENCH), SRC (the source tree, from
+# $SRC_DIR) and T, a temporary folder removed when the test exits.
+brdf_test_init() {
+    BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
+    SRC=${SRC_DIR:?SRC_DIR must name the source tree}
+    T=$(mktemp -d)
+    trap 'rm -rf "$T"' EXIT
+}
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
 
