@@ -152,14 +152,9 @@ static void test_parsing(void)
 static int test_device(void)
 {
     struct cl_session s;
-    char err[512];
-    int rc = clsession_open(&s, -1, -1, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "%s\n", err);
-        return rc;
-    }
     struct accuracy_ctx a;
-    if ((rc = accuracy_open(&a, &s, "")) != 0)
+    int rc = test_accuracy_open(&s, &a);
+    if (rc)
         return rc;
     enum { N = 1024 };
     static float c[N], n[N], out[N];

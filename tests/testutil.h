@@ -5,6 +5,7 @@
 #ifndef BRDF_TEST_TESTUTIL_H
 #define BRDF_TEST_TESTUTIL_H
 
+#include "accuracy.h"
 #include "check.h"
 #include "models.h"
 
@@ -91,6 +92,19 @@ static inline struct model_spec spec(const char *text)
         exit(3);
     }
     return s;
+}
+
+/* Opens the first OpenCL device and the accuracy sweep on it. On failure prints the reason
+ * and returns its exit code (77 when there is no device, which ctest reports as a skip). */
+static inline int test_accuracy_open(struct cl_session *s, struct accuracy_ctx *a)
+{
+    char err[512];
+    int rc = clsession_open(s, -1, -1, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "%s\n", err);
+        return rc;
+    }
+    return accuracy_open(a, s, "");
 }
 
 #endif
