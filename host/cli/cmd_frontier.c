@@ -4,7 +4,6 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "frontier.h"
-#include "outdir.h"
 #include "usermodel.h"
 
 #include <stdio.h>

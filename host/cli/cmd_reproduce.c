@@ -5,7 +5,6 @@
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
-#include "outdir.h"
 #include "reproduce.h"
 
 #include <stdio.h>

@@ -96,8 +96,8 @@ int cmd_throughput(int argc, char **argv)
           .help = "threads of the C baseline", .def = "the online CPUs" },
         { .name = "--no-host-c", .kind = CLI_SWITCH, .dest = &o.host_c, .set = 0, .help = "skip the C baseline" },
         { .name = "--sweep", .kind = CLI_SWITCH, .dest = &o.sweep, .set = 1,
-          .help = "also time the accuracy sweep (kernels/accuracy.cl) against the same sweep in tuned C with "
-                  "powf (on by default)" },
+          .help = "also time the accuracy sweep (kernels/accuracy.cl) against the same sweep in tuned C "
+                  "(samples in s = 1 - c, the lobe as expf(n log1pf(-s))) (on by default)" },
         { .name = "--no-sweep", .kind = CLI_SWITCH, .dest = &o.sweep, .set = 0, .help = "skip the sweep timing" },
         { .name = "--sweep-samples", .value = "N", .kind = CLI_LONG, .dest = &o.sweep_grid.samples,
           .min = ACC_MIN_SAMPLES, .max = ACC_MAX_SAMPLES, .multiple = 16,
