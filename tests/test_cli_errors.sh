@@ -254,6 +254,10 @@ t 2 "^brdfbench render: some.bin:1: not a Wavefront OBJ file \(expected text lin
     render --scene bunny --bunny-file some.bin --out run
 t 2 "^brdfbench render: mesh.ply:1: not a Wavefront OBJ file \(expected text lines of v, vt, vn and f statements\); found 'ply'" \
     render --scene bunny --bunny-file mesh.ply --out run
+# every scene file is checked before any scene is shaded: with all three scenes and a launch
+# deadline far too short for a shading pass, the bad bunny file is named (exit 2), not a
+# deadline passed while shading the spheres (exit 3)
+t 2 "^brdfbench render: some.bin:1: not a Wavefront OBJ file" render --bunny-file some.bin --timeout 0.01 --out run
 t 2 "multi:bad_syntax.cl:6:[0-9]+: error: expected ';'" all --quick --model-file "$F/bad_syntax.cl" --out run
 t 2 "^brdfbench gate: --json: 'same.json' is the file --junit names \('./same.json'\)" gate good.json --junit ./same.json --json same.json
 ln -s same.json link.json

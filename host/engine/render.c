@@ -1300,6 +1300,13 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
         set_err(err, errlen, "out of memory");
         return EXIT_RUNTIME;
     }
+    /* every scene file is read and checked before anything is rendered or written: a bad
+       --teapot-file or --bunny-file is refused at once, not after the scenes before it */
+    struct scene_data scenes[RENDER_SCENE_COUNT];
+    memset(scenes, 0, sizeof scenes);
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++)
+        if (o->scene_on[si] && (rc = scene_load(si, o, &scenes[si], err, errlen)))
+            goto done;
     if (outdir_prepare(out_dir, NULL, err, errlen) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
@@ -1321,11 +1328,9 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
         if (!o->scene_on[si])
             continue;
         struct scene_result *sr = &res[si];
-        struct scene_data sd;
+        struct scene_data sd = scenes[si];
         double t0 = wall_seconds();
         sr->kind = si;
-        if ((rc = scene_load(si, o, &sd, err, errlen)))
-            goto done;
         snprintf(sr->source, sizeof sr->source, "%s", sd.source);
         sr->triangles = sd.mesh.ntris;
         sr->patches = sd.patches;
@@ -1360,7 +1365,6 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
                            errlen);
             sr->ntimings = ti + 1;
         }
-        mesh_free(&sd.mesh);
         if (rc)
             goto done;
         sr->done = 1;
@@ -1402,6 +1406,8 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
     if (summary_md)
         *summary_md = render_summary_markdown(o, res, s);
 done:
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++)
+        mesh_free(&scenes[si].mesh);
     if (stage[0])
         remove_tree(stage);
     if (old_dir[0])
