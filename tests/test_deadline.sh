@@ -28,7 +28,7 @@ runaway() {
     local n
     n=$(grep -c "ran past its deadline" "$T/err")
     [ "$n" -eq 1 ] && ok || bad "$label: $n deadline lines on stderr: $(head -c 600 "$T/err")"
-    grep -qE "^brdfbench: kernel accuracy_sweep of model 'spin' ran past its deadline of $deadline s \(accepted: --timeout SECONDS" "$T/err" \
+    grep -qE "^brdfbench: kernel ${KERNEL:-accuracy_sweep} of model 'spin' ran past its deadline of $deadline s \(accepted: --timeout SECONDS" "$T/err" \
         && ok || bad "$label: message does not name kernel, model and deadline: $(head -c 600 "$T/err")"
     [ $((t1 - t0)) -lt $((deadline + 15)) ] && ok || bad "$label: ended after $((t1 - t0)) s (deadline $deadline s)"
 }
@@ -54,6 +54,11 @@ runaway "gate (file timeout)" 2 gate g.json --json gates.json --junit gates.xml
 # --timeout wins over the file's.
 printf '{"timeout": 600, "gates": [{"model": "spin", "model_file": "spin.cl", "metric": "whole.max_abs", "n_max": 20, "max": 1}]}\n' >g600.json
 runaway "gate --timeout over the file" 3 gate g600.json --timeout 3
+
+# render: the shading kernel, named with the model it shades.
+KERNEL=shade runaway "render --out" 2 render --scene spheres --model-file spin.cl --models spin --size 320x200 \
+    --time-sizes none --out rrun --timeout 2
+[ ! -e rrun ] && ok || bad "render left $(find rrun | head -5 | tr '\n' ' ')"
 
 # all: its run folder is removed.
 runaway "all --out" 3 all --quick --model-file spin.cl --out allrun --timeout 3

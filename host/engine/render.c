@@ -303,14 +303,15 @@ void render_device_close(struct render_device *d)
     memset(d, 0, sizeof *d);
 }
 
-static int launch(struct render_device *d, cl_kernel k, double *seconds)
+/* `model`: the label the deadline's message names (NULL for the copy kernel). */
+static int launch(struct render_device *d, cl_kernel k, const char *model, double *seconds)
 {
     int rc = 0;
     cl_event ev = NULL;
     size_t global = d->global_size, local = 1;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(d->s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev),
                   done);
-    CL_CHECK_GOTO(clsession_finish(d->s, k, NULL), done);
+    CL_CHECK_GOTO(clsession_finish(d->s, k, model), done);
     if (seconds)
         *seconds = cl_event_seconds(ev);
 done:
@@ -374,7 +375,7 @@ int render_device_shade(struct render_device *d, cl_mem gbuf, size_t stride, siz
     CL_CHECK_GOTO(clSetKernelArg(shade, 9, sizeof params, &params), done);
     CL_CHECK_GOTO(clSetKernelArg(shade, 10, sizeof d->display_table, &d->display_table),
                   done);
-    rc = launch(d, shade, seconds);
+    rc = launch(d, shade, m->label, seconds);
     if (rc)
         return rc;
     if (rgba)
@@ -395,7 +396,7 @@ static int device_copy(struct render_device *d, cl_mem gbuf, size_t stride, size
     int rc = set_common_args(d->copy, gbuf, stride, npix, out_rgba, out_spec);
     if (rc)
         return rc;
-    return launch(d, d->copy, seconds);
+    return launch(d, d->copy, NULL, seconds);
 }
 
 /* ------------------------------------------------------------------ scenes */
