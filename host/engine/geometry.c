@@ -1,6 +1,7 @@
 /* geometry.c - OBJ reader, POV-Ray bicubic_patch reader, Bezier tessellation and smooth
  * normals for the image passes (see geometry.h). */
 #include "geometry.h"
+#include "errmsg.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -9,16 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 void mesh_free(struct mesh *m)
 {

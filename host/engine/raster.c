@@ -1,6 +1,7 @@
 /* raster.c - G-buffer allocation, perspective camera, triangle rasteriser and the analytic
  * sphere grid (see raster.h). */
 #include "raster.h"
+#include "errmsg.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -10,16 +11,6 @@
 #include <string.h>
 
 #define RASTER_PI 3.14159265358979323846
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || errlen == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 size_t gbuffer_bytes(long width, long height)
 {

@@ -3,6 +3,7 @@
  * on a sample, timings against the copy kernel, render.json and the PNGs. */
 #define _XOPEN_SOURCE 700
 #include "render.h"
+#include "errmsg.h"
 
 #include "context.h"
 #include "draw.h"
@@ -46,14 +47,6 @@ static const double world_up[3] = {0.0, 1.0, 0.0};
 const char *const render_scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
 const char *const render_mode_names[RENDER_MODE_COUNT] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
                                                           "cook-torrance-ggx", "physical"};
-
-static void set_err(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 /* ------------------------------------------------------------------ options */
 

@@ -498,11 +498,10 @@ done:
     return rc;
 }
 
-int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
-                      long work_items, long iters, float *sums, double *event_seconds)
+/* A launch of the shared throughput program over work_items work-items of one each. */
+static struct tp_kernel_run tp_program_run(const struct tp_program *p, int nmode, const struct throughput_options *o,
+                                           long work_items)
 {
-    int rc = 0;
-    cl_int e;
     struct tp_kernel_run r;
     memset(&r, 0, sizeof r);
     r.s = p->s;
@@ -510,6 +509,15 @@ int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmod
     r.kind = nmode == TP_N_VARYING ? 1 : 0;
     r.global = (size_t)work_items;
     r.local = 1;
+    return r;
+}
+
+int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                      long work_items, long iters, float *sums, double *event_seconds)
+{
+    int rc = 0;
+    cl_int e;
+    struct tp_kernel_run r = tp_program_run(p, nmode, o, work_items);
     if (!tp_has(p, m)) {
         fprintf(stderr, "brdfbench: model %s is not in the throughput program\n", m->label);
         return EXIT_RUNTIME;
@@ -542,13 +550,7 @@ int tp_program_rate(struct tp_program *p, const struct model_spec *m, int nmode,
     struct tp_figure f;
     memset(&f, 0, sizeof f);
     float *sums = malloc((size_t)work_items * 16 * sizeof *sums);
-    struct tp_kernel_run r;
-    memset(&r, 0, sizeof r);
-    r.s = p->s;
-    r.o = o;
-    r.kind = nmode == TP_N_VARYING ? 1 : 0;
-    r.global = (size_t)work_items;
-    r.local = 1;
+    struct tp_kernel_run r = tp_program_run(p, nmode, o, work_items);
     r.work_per_iter = (double)work_items * TP_EVALS_PER_ITER;
     cl_int e = CL_SUCCESS;
     if (!sums)
