@@ -714,6 +714,29 @@ static void pass_release(cl_mem out_spec, cl_mem out_rgba, cl_mem gbuf, struct g
     gbuffer_free(g);
 }
 
+/* A pass's device buffers: the G-buffer (copied from g, with gbuf_flags) and the two outputs.
+ * `which` ("" or "He ") starts the names in an OpenCL error's message. What was made before a
+ * failure is left in the pointers for pass_release. */
+static int pass_buffers(struct cl_session *s, const struct gbuffer *g, cl_mem_flags gbuf_flags, const char *which,
+                        cl_mem *gbuf, cl_mem *out_rgba, cl_mem *out_spec)
+{
+    int rc = 0;
+    cl_int e;
+    char what[64];
+    *gbuf = clCreateBuffer(s->ctx, gbuf_flags | CL_MEM_COPY_HOST_PTR, g->stride * GB_NPLANES * sizeof(float),
+                           g->data, &e);
+    snprintf(what, sizeof what, "clCreateBuffer(%sG-buffer)", which);
+    CL_CHECK_ERR_GOTO(e, what, done);
+    *out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g->stride * sizeof(cl_uint), NULL, &e);
+    snprintf(what, sizeof what, "clCreateBuffer(%srgba)", which);
+    CL_CHECK_ERR_GOTO(e, what, done);
+    *out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g->stride * sizeof(cl_float), NULL, &e);
+    snprintf(what, sizeof what, "clCreateBuffer(%sspec)", which);
+    CL_CHECK_ERR_GOTO(e, what, done);
+done:
+    return rc;
+}
+
 /* Image pass of one scene: every model and its reference shaded at o->width x o->height. */
 static int image_pass(struct render_device *dev, const struct scene_data *sd,
                       const struct render_options *o, const char *stage_dir,
@@ -728,7 +751,6 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
     float *spec_m = NULL, *errimg = NULL, *grid_err = NULL;
     unsigned char *rgb_m = NULL, *rgb_r = NULL, *grid_m = NULL, *grid_r = NULL;
     int rc = 0;
-    cl_int e;
     double t0 = wall_seconds();
     rc = scene_gbuffer(sd, o, w, h, &g, &res->light, err, errlen);
     if (rc)
@@ -736,13 +758,8 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
     res->raster_seconds = wall_seconds() - t0;
     res->foreground = g.foreground;
     const size_t npix = g.npix;
-    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                          g.stride * GB_NPLANES * sizeof(float), g.data, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(G-buffer)", fail);
-    out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(rgba)", fail);
-    out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(spec)", fail);
+    if ((rc = pass_buffers(s, &g, CL_MEM_READ_ONLY, "", &gbuf, &out_rgba, &out_spec)))
+        goto fail;
     rgba_m = malloc(npix * sizeof *rgba_m);
     spec_m = malloc(npix * sizeof *spec_m);
     errimg = malloc(npix * sizeof *errimg);
@@ -1000,7 +1017,6 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
     float *spec_he = NULL, *spec_b = NULL, *spec_m = NULL, *errimg = NULL;
     unsigned char *rgb_he = NULL, *rgb = NULL;
     int rc = 0;
-    cl_int e;
     char text[64];
     memset(hc, 0, sizeof *hc);
     snprintf(text, sizeof text, "he:material=%d", o->he_material);
@@ -1009,13 +1025,8 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
     if ((rc = scene_gbuffer(sd, o, w, h, &g, &lt, err, errlen)) != 0)
         return rc;
     const size_t npix = g.npix;
-    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, g.stride * GB_NPLANES * sizeof(float),
-                          g.data, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(He G-buffer)", fail);
-    out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(He rgba)", fail);
-    out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(He spec)", fail);
+    if ((rc = pass_buffers(s, &g, CL_MEM_READ_WRITE, "He ", &gbuf, &out_rgba, &out_spec)))
+        goto fail;
     rgba_he = malloc(npix * sizeof *rgba_he);
     rgba_b = malloc(npix * sizeof *rgba_b);
     rgba_m = malloc(npix * sizeof *rgba_m);
@@ -1202,7 +1213,6 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
     int rc = scene_gbuffer(sd, o, w, h, &g, &lt, err, errlen);
     if (rc)
         return rc;
-    cl_int e;
     st->w = w;
     st->h = h;
     st->foreground = g.foreground;
@@ -1216,13 +1226,8 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
         rc = EXIT_RUNTIME;
         goto done;
     }
-    gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                          g.stride * GB_NPLANES * sizeof(float), g.data, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(G-buffer)", fail);
-    out_rgba = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_uint), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(rgba)", fail);
-    out_spec = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, g.stride * sizeof(cl_float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(spec)", fail);
+    if ((rc = pass_buffers(s, &g, CL_MEM_READ_ONLY, "", &gbuf, &out_rgba, &out_spec)))
+        goto fail;
     int ncopy = 0;
     for (int k = 0; k < st->nentries; k++) {
         struct timed_entry *te = &st->entries[k];
