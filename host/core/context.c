@@ -62,3 +62,11 @@ void jw_context_begin(struct jw *w, const struct cl_session *s, const char *buil
     }
     jw_kv_str(w, "build_options", build_options ? build_options : "");
 }
+
+void jw_doc_begin(struct jw *w, const char *schema, const struct cl_session *s, const char *build_options)
+{
+    jw_init(w);
+    jw_obj_begin(w);
+    jw_kv_str(w, "schema", schema);
+    jw_context_begin(w, s, build_options);
+}

@@ -29,10 +29,7 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
                         const struct cl_session *s, const char *build_options, char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", ACCURACY_SCHEMA);
-    jw_context_begin(&w, s, build_options);
+    jw_doc_begin(&w, ACCURACY_SCHEMA, s, build_options);
     if (count > 0) {
         const struct accuracy_grid *g = &res[0].grid;
         jw_key(&w, "grid");

@@ -52,10 +52,7 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
 {
     int rc = 0;
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", ENERGY_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, ENERGY_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_key(&w, "albedo");
     jw_obj_begin(&w);

@@ -243,10 +243,7 @@ int field_write_json(const char *path, const struct field_result *r, const struc
                      size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FIELD_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, FIELD_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_kv_str(&w, "model", r->model.label);
     jw_kv_str(&w, "reference", r->reference.label);

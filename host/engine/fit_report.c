@@ -68,10 +68,7 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
                           const char *build_options, char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FIT_SCHEMA);
-    jw_context_begin(&w, s, build_options);
+    jw_doc_begin(&w, FIT_SCHEMA, s, build_options);
     jw_key(&w, "grid");
     jw_obj_begin(&w);
     jw_kv_num(&w, "n_min", r->grid.n_min);
@@ -203,10 +200,7 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
                           char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FIT_FAMILY_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, FIT_FAMILY_SCHEMA, s, "");
     jw_key(&w, "grid");
     jw_obj_begin(&w);
     jw_kv_num(&w, "n_min", r->grid.n_min);

@@ -19,10 +19,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
                         size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FRONTIER_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
     jw_kv_int(&w, "samples_per_zone", r->opt.samples);
     jw_kv_int(&w, "reps", r->opt.reps);
     jw_kv_int(&w, "rounds", r->opt.rounds);

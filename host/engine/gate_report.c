@@ -231,10 +231,7 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
                         size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", GATE_RESULT_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, GATE_RESULT_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_kv_str(&w, "gates_file", gs->path);
     if (gs->description[0])

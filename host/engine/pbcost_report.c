@@ -35,10 +35,7 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
                       size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", PBCOST_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, PBCOST_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_key(&w, "cost");
     jw_obj_begin(&w);

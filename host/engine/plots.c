@@ -385,10 +385,7 @@ int plots_write_json(const struct plot_set *set, const char *path, const struct 
                      size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", PLOTS_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, PLOTS_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_key(&w, "figures");
     jw_arr_begin(&w);

@@ -121,10 +121,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                       size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", "brdfbench.render/1");
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, "brdfbench.render/1", s, "");
     jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
     jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
               "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");

@@ -101,10 +101,7 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
 {
     const struct reproduce_report *r = p->r;
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", CLAIMS_SCHEMA);
-    jw_context_begin(&w, p->s, p->actx.build_options);
+    jw_doc_begin(&w, CLAIMS_SCHEMA, p->s, p->actx.build_options);
     jw_key(&w, "grid");
     jw_obj_begin(&w);
     jw_kv_int(&w, "samples_per_zone", p->o->samples);
@@ -135,10 +132,7 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
 int reproduce_write_q_sweep_json(const struct repro *p, const char *path, char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", Q_SWEEP_SCHEMA);
-    jw_context_begin(&w, p->s, p->actx.build_options);
+    jw_doc_begin(&w, Q_SWEEP_SCHEMA, p->s, p->actx.build_options);
     jw_key(&w, "grid");
     jw_obj_begin(&w);
     jw_kv_num(&w, "q_min", p->o->q_min);

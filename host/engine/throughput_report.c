@@ -114,10 +114,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
 {
     const struct throughput_options *o = r->o;
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", THROUGHPUT_SCHEMA);
-    jw_context_begin(&w, r->s, r->options[TP_VARIANT_DEFAULT]);
+    jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
     const char *aff = getenv("POCL_AFFINITY");
     jw_kv_str(&w, "pocl_affinity", aff ? aff : "(unset)");
     jw_key(&w, "throughput");
