@@ -44,8 +44,7 @@ void jw_context_begin(struct jw *w, const struct cl_session *s, const char *buil
 {
     char date[64];
     utc_now_iso(date, sizeof date);
-    jw_key(w, "context");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "context");
     jw_kv_str(w, "date", date);
     jw_kv_str(w, "brdfbench_version", BRDF_VERSION);
     jw_kv_str(w, "git_revision", brdf_git_revision);

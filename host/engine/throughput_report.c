@@ -45,8 +45,7 @@ static struct tp_ratios ratios_of(const struct tp_run *r, int i, int v, int m)
 
 static void jw_stats(struct jw *w, const char *key, struct tp_stats s)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_num(w, "min", s.min);
     jw_kv_num(w, "median", s.median);
     jw_kv_num(w, "max", s.max);
@@ -66,8 +65,7 @@ static void jw_ratio(struct jw *w, const char *key, double v, const char *why_mi
 /* Every timed launch's rate, in the order they ran: what a comparison of two runs tests. */
 static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
 {
-    jw_key(w, key);
-    jw_arr_begin(w);
+    jw_kv_arr(w, key);
     for (int k = 0; f->ok && k < f->nreps; ++k)
         jw_num(w, f->rep_seconds[k] > 0 ? f->per_launch / f->rep_seconds[k] : NAN);
     jw_arr_end(w);
@@ -78,8 +76,7 @@ static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
 static void jw_kernel_fingerprints(struct jw *w)
 {
     static const char *const files[] = { "brdf_models.h", "throughput.cl", "accuracy.cl", "peak.cl" };
-    jw_key(w, "kernel_sources_fnv1a64");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "kernel_sources_fnv1a64");
     for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
         size_t len = 0;
         char *src = clsession_kernel_source(files[i], &len);
@@ -117,8 +114,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
     const char *aff = getenv("POCL_AFFINITY");
     jw_kv_str(&w, "pocl_affinity", aff ? aff : "(unset)");
-    jw_key(&w, "throughput");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "throughput");
     jw_kv_int(&w, "reps", o->reps);
     jw_kv_num(&w, "min_time_s", o->min_time);
     jw_kv_int(&w, "work_items", r->work_items);
@@ -135,14 +131,12 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_obj_end(&w);
     jw_obj_end(&w);   /* context */
 
-    jw_key(&w, "definitions");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "definitions");
     for (size_t i = 0; i < sizeof tp_definitions / sizeof tp_definitions[0]; ++i)
         jw_kv_str(&w, tp_definitions[i][0], tp_definitions[i][1]);
     jw_obj_end(&w);
 
-    jw_key(&w, "builds");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "builds");
     for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
         if (!variant_on(r, v))
             continue;
@@ -157,8 +151,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     }
     jw_arr_end(&w);
 
-    jw_key(&w, "peak");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "peak");
     jw_kv_str(&w, "status", r->peak.ok ? "ok" : "failed");
     if (!r->peak.ok)
         jw_kv_str(&w, "reason", r->peak.reason);
@@ -173,8 +166,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_kv_str(&w, "which", "measured before and after the models; the higher median is the peak");
     jw_obj_end(&w);
 
-    jw_key(&w, "results");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "results");
     for (int v = 0; v < TP_VARIANT_COUNT; ++v)
         for (int i = 0; i < r->nentries; ++i)
             for (int m = 0; m < TP_NMODE_COUNT; ++m) {
@@ -213,8 +205,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
                          !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
                                   : e->hostc[m].reason);
                 jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
-                jw_key(&w, "host_c");
-                jw_obj_begin(&w);
+                jw_kv_obj(&w, "host_c");
                 if (!o->host_c) {
                     jw_kv_str(&w, "status", "not run");
                 } else {
@@ -228,8 +219,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
                     jw_kv_int(&w, "threads", r->threads);
                 }
                 jw_obj_end(&w);
-                jw_key(&w, "accuracy");
-                jw_obj_begin(&w);
+                jw_kv_obj(&w, "accuracy");
                 jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
                 if (!e->acc_ok[v])
                     jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
@@ -241,8 +231,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
             }
     jw_arr_end(&w);
 
-    jw_key(&w, "sweep");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "sweep");
     if (!r->sweep_ran) {
         jw_kv_str(&w, "status", "not run");
     } else {
@@ -279,8 +268,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
         jw_kv_num(&w, "agreement_max_rel_diff", agree);
         jw_kv_str(&w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
                                         "relative to at least 1e-4 (their sample cosines differ by float rounding)");
-        jw_key(&w, "models");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "models");
         for (int k = 0; k < r->nsw; ++k) {
             const struct tp_sweep_model *s = &r->sw[k];
             jw_obj_begin(&w);
