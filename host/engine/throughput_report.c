@@ -107,6 +107,26 @@ static const char *tp_definitions[][2] = {
     { "accuracy.max_diff_of_peak", "largest |device value - double reference value| / |reference lobe at c = 1| over 4096 probe points, half in the epicentre, half out to 4 x_e, n over [n_lo, n_hi]" },
 };
 
+/* Steps (v, i, m) to the next measured row (variant v, entry i, n mode m), in the order the
+ * result files list them; start from v = i = 0, m = -1. 0 when there is none left. */
+static int next_measured(const struct tp_run *r, int *v, int *i, int *m)
+{
+    if (r->nentries <= 0)
+        return 0;
+    for (;;) {
+        if (++*m == TP_NMODE_COUNT) {
+            *m = 0;
+            if (++*i == r->nentries) {
+                *i = 0;
+                if (++*v == TP_VARIANT_COUNT)
+                    return 0;
+            }
+        }
+        if (variant_on(r, *v) && r->e[*i].measured[*v][*m])
+            return 1;
+    }
+}
+
 int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
 {
     const struct throughput_options *o = r->o;
@@ -167,68 +187,64 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_obj_end(&w);
 
     jw_kv_arr(&w, "results");
-    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
-        for (int i = 0; i < r->nentries; ++i)
-            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
-                const struct tp_entry *e = &r->e[i];
-                if (!variant_on(r, v) || !e->measured[v][m])
-                    continue;
-                const struct tp_figure *f = &e->dev[v][m];
-                struct tp_ratios q = ratios_of(r, i, v, m);
-                jw_obj_begin(&w);
-                jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
-                jw_kv_str(&w, "label", e->label);
-                jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
-                jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
-                jw_kv_str(&w, "variant", tp_variant_name(v));
-                jw_kv_str(&w, "build_options", r->options[v]);
-                jw_kv_str(&w, "n_mode", nmode_names[m]);
-                jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
-                if (!f->ok)
-                    jw_kv_str(&w, "reason", f->reason);
-                jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
-                jw_reps(&w, "evals_per_s_reps", f);
-                jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
-                jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
-                jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
-                jw_kv_int(&w, "iterations_per_work_item", f->iters);
-                jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
-                jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
-                jw_kv_bool(&w, "values_finite", f->ok && f->finite);
-                if (f->ok && !f->finite)
-                    jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
-                                          "finite); the rate is the rate of that code");
-                jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
-                jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
-                         f->ok ? "the model's reference is not part of this run" : f->reason);
-                jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
-                         !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
-                                  : e->hostc[m].reason);
-                jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
-                jw_kv_obj(&w, "host_c");
-                if (!o->host_c) {
-                    jw_kv_str(&w, "status", "not run");
-                } else {
-                    jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
-                    if (!e->hostc[m].ok)
-                        jw_kv_str(&w, "reason", e->hostc[m].reason);
-                    jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
-                    jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
-                    jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
-                    jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
-                    jw_kv_int(&w, "threads", r->threads);
-                }
-                jw_obj_end(&w);
-                jw_kv_obj(&w, "accuracy");
-                jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
-                if (!e->acc_ok[v])
-                    jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
-                jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
-                jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
-                jw_kv_int(&w, "points", TP_ACC_POINTS);
-                jw_obj_end(&w);
-                jw_obj_end(&w);
-            }
+    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
+        const struct tp_entry *e = &r->e[i];
+        const struct tp_figure *f = &e->dev[v][m];
+        struct tp_ratios q = ratios_of(r, i, v, m);
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
+        jw_kv_str(&w, "label", e->label);
+        jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
+        jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
+        jw_kv_str(&w, "variant", tp_variant_name(v));
+        jw_kv_str(&w, "build_options", r->options[v]);
+        jw_kv_str(&w, "n_mode", nmode_names[m]);
+        jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
+        if (!f->ok)
+            jw_kv_str(&w, "reason", f->reason);
+        jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+        jw_reps(&w, "evals_per_s_reps", f);
+        jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
+        jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
+        jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
+        jw_kv_int(&w, "iterations_per_work_item", f->iters);
+        jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
+        jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
+        jw_kv_bool(&w, "values_finite", f->ok && f->finite);
+        if (f->ok && !f->finite)
+            jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
+                                  "finite); the rate is the rate of that code");
+        jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
+        jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
+                 f->ok ? "the model's reference is not part of this run" : f->reason);
+        jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
+                 !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
+                          : e->hostc[m].reason);
+        jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
+        jw_kv_obj(&w, "host_c");
+        if (!o->host_c) {
+            jw_kv_str(&w, "status", "not run");
+        } else {
+            jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
+            if (!e->hostc[m].ok)
+                jw_kv_str(&w, "reason", e->hostc[m].reason);
+            jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
+            jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
+            jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
+            jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
+            jw_kv_int(&w, "threads", r->threads);
+        }
+        jw_obj_end(&w);
+        jw_kv_obj(&w, "accuracy");
+        jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
+        if (!e->acc_ok[v])
+            jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
+        jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
+        jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
+        jw_kv_int(&w, "points", TP_ACC_POINTS);
+        jw_obj_end(&w);
+        jw_obj_end(&w);
+    }
     jw_arr_end(&w);
 
     jw_kv_obj(&w, "sweep");
@@ -343,29 +359,25 @@ int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t err
     tx_printf(&t, "model,label,variant,build_options,n_mode,status,evals_per_s_min,evals_per_s_median,"
                   "evals_per_s_max,evals_per_s_wall_median,ratio_to_reference,ratio_to_model_reference,"
                   "ratio_to_host_c,fraction_of_peak,host_c_evals_per_s_median,max_diff_of_peak,reason\n");
-    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
-        for (int i = 0; i < r->nentries; ++i)
-            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
-                const struct tp_entry *e = &r->e[i];
-                if (!variant_on(r, v) || !e->measured[v][m])
-                    continue;
-                const struct tp_figure *f = &e->dev[v][m];
-                struct tp_ratios q = ratios_of(r, i, v, m);
-                tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
-                          tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
-                tx_num(&t, f->ok ? f->rate.min : NAN);
-                tx_num(&t, f->ok ? f->rate.median : NAN);
-                tx_num(&t, f->ok ? f->rate.max : NAN);
-                tx_num(&t, f->ok ? f->rate_wall.median : NAN);
-                tx_num(&t, q.to_reference);
-                tx_num(&t, q.to_model_reference);
-                tx_num(&t, q.to_host_c);
-                tx_num(&t, q.of_peak);
-                tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
-                tx_num(&t, e->acc_max_diff[v]);
-                /* reasons never hold a double quote: they are written by this program */
-                tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
-            }
+    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
+        const struct tp_entry *e = &r->e[i];
+        const struct tp_figure *f = &e->dev[v][m];
+        struct tp_ratios q = ratios_of(r, i, v, m);
+        tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
+                  tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
+        tx_num(&t, f->ok ? f->rate.min : NAN);
+        tx_num(&t, f->ok ? f->rate.median : NAN);
+        tx_num(&t, f->ok ? f->rate.max : NAN);
+        tx_num(&t, f->ok ? f->rate_wall.median : NAN);
+        tx_num(&t, q.to_reference);
+        tx_num(&t, q.to_model_reference);
+        tx_num(&t, q.to_host_c);
+        tx_num(&t, q.of_peak);
+        tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
+        tx_num(&t, e->acc_max_diff[v]);
+        /* reasons never hold a double quote: they are written by this program */
+        tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
+    }
     int rc = t.failed ? -1 : write_file_atomic(path, t.s, t.len, err, errlen);
     if (t.failed)
         snprintf(err, errlen, "out of memory writing %.900s", path);
