@@ -8,7 +8,7 @@
  *     and a plot of f against x. */
 #include "check.h"
 #include "exitcodes.h"
-#include "field.h"
+#include "field_report.h"
 #include "models.h"
 #include "plots.h"
 #include "testutil.h"

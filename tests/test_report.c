@@ -12,7 +12,7 @@
 #include "clsession.h"
 #include "draw.h"
 #include "exitcodes.h"
-#include "field.h"
+#include "field_report.h"
 #include "models.h"
 #include "outdir.h"
 #include "plots.h"

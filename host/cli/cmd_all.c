@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "context.h"
 #include "exitcodes.h"
-#include "field.h"
+#include "field_report.h"
 #include "fit.h"
 #include "frontier.h"
 #include "outdir.h"

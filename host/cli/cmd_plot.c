@@ -7,7 +7,7 @@
 #include "jsonr.h"
 #include "commands.h"
 #include "exitcodes.h"
-#include "field.h"
+#include "field_report.h"
 #include "outdir.h"
 #include "plots.h"
 

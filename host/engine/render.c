@@ -851,13 +851,8 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
                                    (float)mr->metrics.max_abs, title, err, errlen) != 0)
                 goto io_fail;
         }
-        if (o->verbose) {
-            printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB  ref-check %s (%.2g of peak)\n",
-                   render_scene_names[sd->kind], m->label, mr->metrics.max_abs, mr->metrics.mean_abs,
-                   isfinite(mr->metrics.psnr_db) ? mr->metrics.psnr_db : INFINITY,
-                   mr->check.within ? "ok" : "OUT OF BOUND", mr->check.relative_to_peak);
-            fflush(stdout);
-        }
+        if (o->verbose)
+            render_print_model(sd->kind, m->label, mr);
     }
     if (grid_m && o->write_images) {
         /* the whole grid: row r holds model r, its reference and its error */
@@ -1132,14 +1127,8 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
         hc->count++;
     }
     hc->done = 1;
-    if (o->verbose) {
-        printf("  %s: %s against Blinn-Phong fitted to it: n = %.4g, k = %.4g, relative rms residual %.3g (%zu "
-               "pixels)\n", sc, hc->he.label, hc->n_fit, hc->k_fit, hc->rel_rms, hc->fit_pixels);
-        for (int k = 0; k < hc->count; k++)
-            printf("    %-28s vs He: max %-9.3g mean %-9.3g  vs Blinn-Phong fit: max %.3g\n", hc->e[k].label,
-                   hc->e[k].metrics.max_abs, hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
-        fflush(stdout);
-    }
+    if (o->verbose)
+        render_print_he(sd->kind, hc);
     goto done;
 fail:
     if (!err[0])
@@ -1327,30 +1316,11 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
         snprintf(sr->source, sizeof sr->source, "%s", sd.source);
         sr->triangles = sd.mesh.ntris;
         sr->patches = sd.patches;
-        if (o->verbose) {
-            printf("%s: %s", render_scene_names[si], sd.source);
-            if (si != RENDER_SPHERES)
-                printf(" (%zu triangles)", sd.mesh.ntris);
-            printf("\n");
-            fflush(stdout);
-        }
+        if (o->verbose)
+            render_print_scene(sr);
         rc = image_pass(&dev, &sd, o, stage, sr, err, errlen);
-        if (rc == 0 && o->verbose) {
-            double worst = 0;
-            int codes = 0, samples = 0, within = 1;
-            for (int mi = 0; mi < o->nmodels; mi++) {
-                const struct reference_check *c = &sr->models[mi].check;
-                worst = fmax(worst, c->relative_to_peak);
-                codes = c->max_code > codes ? c->max_code : codes;
-                samples += c->samples;
-                within &= c->within;
-            }
-            printf("  %s: device vs double reference on %d sampled pixels: max |difference| of "
-                   "the specular radiance %.2g of the peak (bound 1e-3), colours within %d "
-                   "code%s of the exact display curve: %s\n",
-                   render_scene_names[si], samples, worst, codes, codes == 1 ? "" : "s",
-                   within ? "within the bound" : "OUT OF BOUND");
-        }
+        if (rc == 0 && o->verbose)
+            render_print_check(sr, o->nmodels);
         if (rc == 0 && o->he_material >= 0 && si != RENDER_SPHERES)
             rc = he_pass(&dev, &sd, o, stage, sr, err, errlen);
         for (int ti = 0; rc == 0 && ti < o->ntime_sizes; ti++) {

@@ -335,6 +335,51 @@ char *render_summary_markdown(const struct render_options *o, const struct scene
     return b.s;
 }
 
+void render_print_scene(const struct scene_result *sr)
+{
+    printf("%s: %s", render_scene_names[sr->kind], sr->source);
+    if (sr->kind != RENDER_SPHERES)
+        printf(" (%zu triangles)", sr->triangles);
+    printf("\n");
+    fflush(stdout);
+}
+
+void render_print_model(int scene, const char *label, const struct model_result *mr)
+{
+    printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB  ref-check %s (%.2g of peak)\n",
+           render_scene_names[scene], label, mr->metrics.max_abs, mr->metrics.mean_abs,
+           isfinite(mr->metrics.psnr_db) ? mr->metrics.psnr_db : INFINITY, mr->check.within ? "ok" : "OUT OF BOUND",
+           mr->check.relative_to_peak);
+    fflush(stdout);
+}
+
+void render_print_check(const struct scene_result *sr, int nmodels)
+{
+    double worst = 0;
+    int codes = 0, samples = 0, within = 1;
+    for (int mi = 0; mi < nmodels; mi++) {
+        const struct reference_check *c = &sr->models[mi].check;
+        worst = fmax(worst, c->relative_to_peak);
+        codes = c->max_code > codes ? c->max_code : codes;
+        samples += c->samples;
+        within &= c->within;
+    }
+    printf("  %s: device vs double reference on %d sampled pixels: max |difference| of the specular radiance %.2g of "
+           "the peak (bound 1e-3), colours within %d code%s of the exact display curve: %s\n",
+           render_scene_names[sr->kind], samples, worst, codes, codes == 1 ? "" : "s",
+           within ? "within the bound" : "OUT OF BOUND");
+}
+
+void render_print_he(int scene, const struct he_comparison *hc)
+{
+    printf("  %s: %s against Blinn-Phong fitted to it: n = %.4g, k = %.4g, relative rms residual %.3g (%zu "
+           "pixels)\n", render_scene_names[scene], hc->he.label, hc->n_fit, hc->k_fit, hc->rel_rms, hc->fit_pixels);
+    for (int k = 0; k < hc->count; k++)
+        printf("    %-28s vs He: max %-9.3g mean %-9.3g  vs Blinn-Phong fit: max %.3g\n", hc->e[k].label,
+               hc->e[k].metrics.max_abs, hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
+    fflush(stdout);
+}
+
 void render_print_timings(const struct scene_result *sr)
 {
     for (int ti = 0; ti < sr->ntimings; ti++) {

@@ -117,6 +117,12 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
 /* The markdown summary for the report (malloc'd; NULL when out of memory). */
 char *render_summary_markdown(const struct render_options *o, const struct scene_result *res,
                               const struct cl_session *s);
+/* Progress on stdout: a scene's source, one model's image figures, the scene's device-vs-double
+ * check over its models, He's comparison. */
+void render_print_scene(const struct scene_result *sr);
+void render_print_model(int scene, const char *label, const struct model_result *mr);
+void render_print_check(const struct scene_result *sr, int nmodels);
+void render_print_he(int scene, const struct he_comparison *hc);
 /* One scene's timings on stdout. */
 void render_print_timings(const struct scene_result *sr);
 
