@@ -97,6 +97,19 @@ static inline struct model_spec spec(const char *text)
     return s;
 }
 
+/* A test made of functions run in turn in a temporary folder of its own, dir (name_XXXXXX,
+ * test_tmpdir_make): its exit status, 3 when the folder cannot be made. */
+static inline int test_run_in_tmpdir(char *dir, size_t len, const char *name, void (*const tests[])(void),
+                                     size_t count)
+{
+    if (test_tmpdir_make(dir, len, name) != 0)
+        return 3;
+    for (size_t i = 0; i < count; ++i)
+        tests[i]();
+    test_tmpdir_done(dir);
+    return check_summary();
+}
+
 /* Opens a session on the first OpenCL device for a test's device checks and returns
  * clsession_open's code: 0 when open; EXIT_NO_DEVICE, with the reason printed, when there is no
  * device (the device checks are skipped); any other code is a failed check naming the error. */
