@@ -1,8 +1,8 @@
 /* testutil.h - what the C tests share besides check.h: a temporary folder of the test's own,
  * made with mkdtemp and removed with everything in it at the end (kept when a check failed or
- * BRDF_KEEP_TEST_OUTPUT is set), a small input file written there, spec() for a model text
- * the test needs parsed, and the opening and the end of the tests with device checks (a skip
- * when there is no OpenCL device). */
+ * BRDF_KEEP_TEST_OUTPUT is set), a small input file written there and a file read back whole,
+ * spec() for a model text the test needs parsed, and the opening and the end of the tests with
+ * device checks (a skip when there is no OpenCL device). */
 #ifndef BRDF_TEST_TESTUTIL_H
 #define BRDF_TEST_TESTUTIL_H
 
@@ -95,6 +95,24 @@ static inline struct model_spec spec(const char *text)
         exit(3);
     }
     return s;
+}
+
+/* The whole of the file at path, NUL-terminated, its length in *len; NULL when it cannot be read. */
+static inline char *test_read_file(const char *path, size_t *len)
+{
+    struct stat st;
+    FILE *f = fopen(path, "rb");
+    char *text = f && fstat(fileno(f), &st) == 0 ? malloc((size_t)st.st_size + 1) : NULL;
+    size_t got = text ? fread(text, 1, (size_t)st.st_size, f) : 0;
+    if (f)
+        fclose(f);
+    if (text && got == (size_t)st.st_size) {
+        text[got] = '\0';
+        *len = got;
+        return text;
+    }
+    free(text);
+    return NULL;
 }
 
 /* A test made of functions run in turn in a temporary folder of its own, dir (name_XXXXXX,
