@@ -116,8 +116,7 @@ static int merge_devices(const char *run_dir, const char *file, const char *rows
                 jw_key(&w, ctx->keys[c]);
                 jw_value(&w, &ctx->items[c]);
             }
-            jw_key(&w, "devices");
-            jw_arr_begin(&w);
+            jw_kv_arr(&w, "devices");
             for (int k = 0; k < n; ++k) {
                 const struct jr_value *dc = jr_get(&docs[k].root, "context");
                 char idx[32], sub[64];

@@ -41,6 +41,18 @@ int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir
     return 0;
 }
 
+int cli_run_open(const char *cmd, struct cl_session *s, const struct device_options *dev, const char *out_dir,
+                 int temp, char *run_dir, size_t run_dir_len, char *tmp_dir, size_t tmp_dir_len)
+{
+    int rc = cli_run_session(cmd, s, dev);
+    if (rc)
+        return rc;
+    rc = cli_run_folder(cmd, out_dir, temp, run_dir, run_dir_len, tmp_dir, tmp_dir_len);
+    if (rc)
+        clsession_close(s);
+    return rc;
+}
+
 int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir)
 {
     char err[1024];

@@ -4,6 +4,8 @@
  *   cli_run_folder    makes the run folder: a temporary one when `temp` (a --json/--csv document
  *                     without --out, cli_temp_dir), else --out or a new results/<date-time>
  *                     (outdir_for_command); 0 or EXIT_RUNTIME;
+ *   cli_run_open      cli_run_session then cli_run_folder, the session closed again when the
+ *                     folder fails; 0 (session open, folder made) or the exit code;
  *   cli_run_latest    points results/latest at the run folder when it is a new results/<date-time>
  *                     (no --out, not temporary); 0 or EXIT_RUNTIME;
  *   cli_run_deliver   copies the folder's document `name` to the path of `flag` (cli_deliver);
@@ -19,6 +21,8 @@
 int cli_run_session(const char *cmd, struct cl_session *s, const struct device_options *dev);
 int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir, size_t run_dir_len, char *tmp_dir,
                    size_t tmp_dir_len);
+int cli_run_open(const char *cmd, struct cl_session *s, const struct device_options *dev, const char *out_dir,
+                 int temp, char *run_dir, size_t run_dir_len, char *tmp_dir, size_t tmp_dir_len);
 int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir);
 int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, const char *flag, const char *dest);
 

@@ -76,14 +76,11 @@ int cmd_fit(int argc, char **argv)
         goto usage_error;
 
     struct cl_session s;
-    int rc = cli_run_session("fit", &s, &dev);
+    char run_dir[4096], tmp_dir[512];
+    int rc = cli_run_open("fit", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
+                          sizeof tmp_dir);
     if (rc)
         return rc;
-    char run_dir[4096], tmp_dir[512];
-    if (cli_run_folder("fit", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
-        clsession_close(&s);
-        return EXIT_RUNTIME;
-    }
     /* the summary stays off standard output when the document goes there */
     int fit_quiet = quiet || cli_is_stdout(json_path);
     if (fit_wants_family(&opt))

@@ -64,14 +64,10 @@ int cmd_frontier(int argc, char **argv)
             goto usage_error;
     }
     struct cl_session s;
-    int rc = cli_run_session("frontier", &s, &dev);
+    char run_dir[4096];
+    int rc = cli_run_open("frontier", &s, &dev, out_dir, 0, run_dir, sizeof run_dir, NULL, 0);
     if (rc)
         return rc;
-    char run_dir[4096];
-    if (cli_run_folder("frontier", out_dir, 0, run_dir, sizeof run_dir, NULL, 0)) {
-        clsession_close(&s);
-        return EXIT_RUNTIME;
-    }
     rc = frontier_run(&s, &opt, run_dir, quiet, NULL);
     if (!rc)
         rc = cli_run_latest("frontier", out_dir, NULL, run_dir);

@@ -91,8 +91,7 @@ static int write_json(const char *path, const struct platform_entry *plat, int n
     jw_kv_str(&w, "schema", LIST_SCHEMA);
     jw_kv_str(&w, "brdfbench_version", BRDF_VERSION);
     jw_kv_str(&w, "git_revision", brdf_git_revision);
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "models");
     for (int i = 0; i < models_count(); ++i) {
         const struct model_info *m = models_at(i);
         jw_obj_begin(&w);
@@ -108,8 +107,7 @@ static int write_json(const char *path, const struct platform_entry *plat, int n
             jw_str(&w, m->root);
         else
             jw_null(&w);
-        jw_key(&w, "parameters");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "parameters");
         for (int p = 0; p < m->nparams; ++p) {
             jw_obj_begin(&w);
             jw_kv_str(&w, "name", m->params[p].name);
@@ -124,15 +122,13 @@ static int write_json(const char *path, const struct platform_entry *plat, int n
         jw_obj_end(&w);
     }
     jw_arr_end(&w);
-    jw_key(&w, "platforms");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "platforms");
     for (int p = 0; p < nplat; ++p) {
         jw_obj_begin(&w);
         jw_kv_int(&w, "index", p);
         jw_kv_str(&w, "name", plat[p].name);
         jw_kv_str(&w, "version", plat[p].version);
-        jw_key(&w, "devices");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "devices");
         for (cl_uint d = 0; d < plat[p].ndev; ++d) {
             jw_obj_begin(&w);
             jw_kv_int(&w, "index", d);

@@ -55,14 +55,10 @@ int cmd_reproduce(int argc, char **argv)
         goto usage_error;
 
     struct cl_session s;
-    int rc = cli_run_session("reproduce", &s, &dev);
+    char run_dir[4096];
+    int rc = cli_run_open("reproduce", &s, &dev, out_dir, 0, run_dir, sizeof run_dir, NULL, 0);
     if (rc)
         return rc;
-    char run_dir[4096];
-    if (cli_run_folder("reproduce", out_dir, 0, run_dir, sizeof run_dir, NULL, 0)) {
-        clsession_close(&s);
-        return EXIT_RUNTIME;
-    }
     rc = reproduce_run_ex(&s, run_dir, &opt, quiet, NULL);
     if (!rc)
         rc = cli_run_latest("reproduce", out_dir, NULL, run_dir);

@@ -151,16 +151,12 @@ int cmd_throughput(int argc, char **argv)
     /* PoCL reads this when the platform is first opened. */
     setenv("POCL_AFFINITY", "1", 0);
     struct cl_session s;
-    int rc = cli_run_session("throughput", &s, &dev);
-    if (rc)
-        return rc;
     /* --json or --csv without --out: those documents only, made in a temporary folder */
     char run_dir[4096], tmp_dir[512];
-    if (cli_run_folder("throughput", out_dir, (json_path || csv_path) && !out_dir, run_dir, sizeof run_dir, tmp_dir,
-                       sizeof tmp_dir)) {
-        clsession_close(&s);
-        return EXIT_RUNTIME;
-    }
+    int rc = cli_run_open("throughput", &s, &dev, out_dir, (json_path || csv_path) && !out_dir, run_dir,
+                          sizeof run_dir, tmp_dir, sizeof tmp_dir);
+    if (rc)
+        return rc;
     /* a document on standard output: the engine's table (and its progress) stay off */
     int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
     rc = throughput_run(&s, &o, run_dir, tp_quiet);

@@ -44,8 +44,7 @@ void jw_context_begin(struct jw *w, const struct cl_session *s, const char *buil
 {
     char date[64];
     utc_now_iso(date, sizeof date);
-    jw_key(w, "context");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "context");
     jw_kv_str(w, "date", date);
     jw_kv_str(w, "brdfbench_version", BRDF_VERSION);
     jw_kv_str(w, "git_revision", brdf_git_revision);
@@ -61,4 +60,12 @@ void jw_context_begin(struct jw *w, const struct cl_session *s, const char *buil
         jw_kv_bool(w, "fp64", s->has_fp64);
     }
     jw_kv_str(w, "build_options", build_options ? build_options : "");
+}
+
+void jw_doc_begin(struct jw *w, const char *schema, const struct cl_session *s, const char *build_options)
+{
+    jw_init(w);
+    jw_obj_begin(w);
+    jw_kv_str(w, "schema", schema);
+    jw_context_begin(w, s, build_options);
 }

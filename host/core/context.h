@@ -13,6 +13,9 @@ extern const char *brdf_git_revision;   /* generated at build time */
  * and leaves the object open, so the caller can add its own keys (e.g. "grid") before
  * closing it with jw_obj_end. `s` may be NULL (no device used). */
 void jw_context_begin(struct jw *w, const struct cl_session *s, const char *build_options);
+/* Starts a result document in w: jw_init, the top-level object, "schema": schema and the
+ * context block, left open as jw_context_begin leaves it. */
+void jw_doc_begin(struct jw *w, const char *schema, const struct cl_session *s, const char *build_options);
 /* The host CPU's model name (from /proc/cpuinfo), or "unknown". */
 const char *host_cpu_name(void);
 /* UTC time now as ISO 8601 text. */

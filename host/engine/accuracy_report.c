@@ -14,8 +14,7 @@ double accuracy_check_in_digits(const struct accuracy_result *r) { return r->che
 static void jw_extreme(struct jw *w, const char *key, const char *metric, const char *grid_metric,
                        const struct acc_extreme *e, const struct acc_extreme *g, const char *reason)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_num(w, metric, e->value);
     jw_kv_num(w, "at_n", e->n);
     jw_kv_num(w, "at_x", e->x);
@@ -29,14 +28,10 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
                         const struct cl_session *s, const char *build_options, char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", ACCURACY_SCHEMA);
-    jw_context_begin(&w, s, build_options);
+    jw_doc_begin(&w, ACCURACY_SCHEMA, s, build_options);
     if (count > 0) {
         const struct accuracy_grid *g = &res[0].grid;
-        jw_key(&w, "grid");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "grid");
         jw_kv_num(&w, "n_min", g->n_min);
         jw_kv_num(&w, "n_max", g->n_max);
         jw_kv_num(&w, "n_step", g->n_step);
@@ -48,15 +43,13 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_obj_end(&w);
     }
     jw_obj_end(&w);   /* context */
-    jw_key(&w, "results");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "results");
     for (int i = 0; i < count; ++i) {
         const struct accuracy_result *r = &res[i];
         jw_obj_begin(&w);
         jw_kv_str(&w, "model", r->model.info->id);
         jw_kv_str(&w, "label", r->model.label);
-        jw_key(&w, "params");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "params");
         for (int p = 0; p < r->model.info->nparams; ++p)
             jw_kv_num(&w, r->model.info->params[p].name, r->model.params[p]);
         jw_obj_end(&w);
@@ -69,8 +62,7 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_extreme(&w, "epicentre", "max_rel", "grid_max_rel", &r->epicentre, &r->grid_epicentre, r->reason);
         jw_extreme(&w, "attenuation", "max_abs", "grid_max_abs", &r->attenuation, &r->grid_attenuation, r->reason);
         jw_extreme(&w, "whole", "max_abs", "grid_max_abs", &r->whole, &r->grid_whole, r->reason);
-        jw_key(&w, "check");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "check");
         jw_kv_num(&w, "max_rel_diff", r->check_rel_diff);
         jw_kv_num(&w, "max_abs_diff", r->check_abs_diff);
         jw_kv_num(&w, "probe_max_diff_of_peak", r->probe_rel_diff);
@@ -87,14 +79,12 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
                               "differences below float_floor_of_peak times the reference's peak are float rounding; "
                               "probe: model values at 4096 points against double, relative to the reference's peak");
         jw_obj_end(&w);
-        jw_key(&w, "invalid");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "invalid");
         jw_kv_int(&w, "count", r->invalid_count);
         jw_kv_num(&w, "at_n", r->invalid_n);
         jw_kv_num(&w, "at_x", r->invalid_x);
         jw_obj_end(&w);
-        jw_key(&w, "timing");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "timing");
         jw_kv_num(&w, "device_seconds", r->device_seconds);
         jw_kv_num(&w, "points", r->points);
         jw_kv_num(&w, "gpoints_per_s", r->points / r->device_seconds * 1e-9);

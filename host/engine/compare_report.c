@@ -145,15 +145,24 @@ static int ctx_keys(const struct compare_set *set, const char **keys, int max)
     return n;
 }
 
+/* How many rows of this kind run k has, and of them how many got each verdict. */
+static int verdict_counts(const struct compare_set *set, int k, int kind, int count[CMP_V_CHANGED + 1])
+{
+    int rows = 0;
+    memset(count, 0, (CMP_V_CHANGED + 1) * sizeof *count);
+    for (int i = 0; i < set->nrows; ++i)
+        if (set->rows[i].kind == kind) {
+            ++rows;
+            count[set->rows[i].cell[k].verdict]++;
+        }
+    return rows;
+}
+
 static void counts_line(struct md_buf *b, const struct compare_set *set, int kind)
 {
     for (int k = 1; k < set->nruns; ++k) {
-        int count[CMP_V_CHANGED + 1] = { 0 }, rows = 0;
-        for (int i = 0; i < set->nrows; ++i)
-            if (set->rows[i].kind == kind) {
-                ++rows;
-                count[set->rows[i].cell[k].verdict]++;
-            }
+        int count[CMP_V_CHANGED + 1];
+        int rows = verdict_counts(set, k, kind, count);
         if (!rows)
             return;
         md_printf(b, "%s against %s: %d row%s", set->run[k].name, set->run[0].name, rows, rows == 1 ? "" : "s");
@@ -165,6 +174,26 @@ static void counts_line(struct md_buf *b, const struct compare_set *set, int kin
             }
         md_printf(b, "\n");
     }
+}
+
+/* The header line of a table with a column per run: markdown with the rule cell `rule` per
+ * run, or text with the first column w0 wide and each run's name in w[k] after `gap`. */
+static void runs_header(struct md_buf *b, const struct compare_set *set, int md, const char *first,
+                        const char *rule, int w0, const int *w, const char *gap)
+{
+    if (md) {
+        md_printf(b, "| %s |", first);
+        for (int k = 0; k < set->nruns; ++k)
+            md_printf(b, " %s |", set->run[k].name);
+        md_printf(b, "\n|---|");
+        for (int k = 0; k < set->nruns; ++k)
+            md_printf(b, "%s", rule);
+    } else {
+        md_printf(b, "  %-*s", w0, first);
+        for (int k = 0; k < set->nruns; ++k)
+            md_printf(b, "%s%-*s", gap, w[k], set->run[k].name);
+    }
+    md_printf(b, "\n");
 }
 
 char *compare_text(const struct compare_set *set, int md)
@@ -191,20 +220,12 @@ char *compare_text(const struct compare_set *set, int md)
                 w = (int)fmax(w, fmin(72, strlen(v)));
         }
     }
-    if (md) {
-        md_printf(&b, "## Context\n\n| | ");
-        for (int k = 0; k < R; ++k)
-            md_printf(&b, "%s | ", set->run[k].name);
-        md_printf(&b, "\n|---|");
-        for (int k = 0; k < R; ++k)
-            md_printf(&b, "---|");
-        md_printf(&b, "\n");
-    } else {
-        md_printf(&b, "  %-*s", w0, "context");
-        for (int k = 0; k < R; ++k)
-            md_printf(&b, " %-*s", w, set->run[k].name);
-        md_printf(&b, "\n");
-    }
+    int wk[CMP_MAX_RUNS];
+    for (int k = 0; k < R; ++k)
+        wk[k] = w;
+    if (md)
+        md_printf(&b, "## Context\n\n");
+    runs_header(&b, set, md, md ? "" : "context", "---|", w0, wk, " ");
     for (int i = 0; i < nk; ++i) {
         int differs = 0;
         for (int k = 1; k < R; ++k)
@@ -256,20 +277,7 @@ char *compare_text(const struct compare_set *set, int md)
         if (md)
             md_printf(&b, "## %s\n\n", cmp_kind_name(kind));
         md_printf(&b, md ? "%s (alpha %.3g).\n\n" : "%s (alpha %.3g)\n\n", kind_heading(kind), set->alpha);
-        if (md) {
-            md_printf(&b, "| row |");
-            for (int k = 0; k < R; ++k)
-                md_printf(&b, " %s |", set->run[k].name);
-            md_printf(&b, "\n|---|");
-            for (int k = 0; k < R; ++k)
-                md_printf(&b, "---:|");
-            md_printf(&b, "\n");
-        } else {
-            md_printf(&b, "  %-*s", wl, "row");
-            for (int k = 0; k < R; ++k)
-                md_printf(&b, "  %-*s", wc[k], set->run[k].name);
-            md_printf(&b, "\n");
-        }
+        runs_header(&b, set, md, "row", "---:|", wl, wc, "  ");
         for (int pass = 0; pass < 2; ++pass) {
             if (pass == 1) {
                 int some = 0;
@@ -381,8 +389,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
     jw_kv_str(&w, "date", date);
     jw_kv_str(&w, "layout", set->by_device ? "devices of one run" : "runs");
     jw_kv_num(&w, "alpha", set->alpha);
-    jw_key(&w, "definitions");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "definitions");
     jw_kv_str(&w, "speed", "a rate (higher is better): value = median of the repetitions; verdict from the two-sided "
                            "Mann-Whitney test of this run's repetitions against the baseline's at level alpha: faster "
                            "or slower when p < alpha, same otherwise, undecided when the sample sizes cannot reach "
@@ -393,8 +400,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
     jw_kv_str(&w, "value", "as error, with no better or worse (a fitted coefficient)");
     jw_kv_str(&w, "ratio", "value / the baseline's value of the same row");
     jw_obj_end(&w);
-    jw_key(&w, "runs");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "runs");
     const char *keys[CMP_MAX_CTX + 16];
     int nk = ctx_keys(set, keys, (int)(sizeof keys / sizeof keys[0]));
     for (int k = 0; k < set->nruns; ++k) {
@@ -403,13 +409,11 @@ static int write_json(const struct compare_set *set, const char *path, char *err
         jw_kv_str(&w, "path", set->run[k].path);
         jw_kv_bool(&w, "baseline", k == 0);
         jw_kv_str(&w, "files", set->run[k].files);
-        jw_key(&w, "context");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "context");
         for (int c = 0; c < set->run[k].nctx; ++c)
             jw_kv_str(&w, set->run[k].ctx_key[c], set->run[k].ctx_value[c]);
         jw_obj_end(&w);
-        jw_key(&w, "context_differs");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "context_differs");
         for (int i = 0; k > 0 && i < nk; ++i)
             if (strcmp(keys[i], "files") != 0 && ctx_differs(set, k, keys[i]))
                 jw_str(&w, keys[i]);
@@ -417,8 +421,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
         jw_obj_end(&w);
     }
     jw_arr_end(&w);
-    jw_key(&w, "rows");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "rows");
     for (int i = 0; i < set->nrows; ++i) {
         const struct cmp_row *r = &set->rows[i];
         jw_obj_begin(&w);
@@ -429,8 +432,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
         jw_kv_str(&w, "metric", r->metric);
         jw_kv_str(&w, "sense", sense_name(r->sense));
         jw_kv_bool(&w, "in_all_runs", r->in_all);
-        jw_key(&w, "cells");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "cells");
         for (int k = 0; k < set->nruns; ++k) {
             const struct cmp_cell *c = &r->cell[k];
             jw_obj_begin(&w);
@@ -442,11 +444,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
             if (r->sense == CMP_SPEED) {
                 jw_kv_num(&w, "min", c->lo);
                 jw_kv_num(&w, "max", c->hi);
-                jw_key(&w, "reps");
-                jw_arr_begin(&w);
-                for (int j = 0; j < c->nreps; ++j)
-                    jw_num(&w, c->reps[j]);
-                jw_arr_end(&w);
+                jw_kv_nums(&w, "reps", c->reps, (size_t)c->nreps);
             }
             jw_kv_num(&w, "ratio", c->ratio);
             jw_kv_num(&w, "change", c->change);
@@ -459,24 +457,18 @@ static int write_json(const struct compare_set *set, const char *path, char *err
         jw_obj_end(&w);
     }
     jw_arr_end(&w);
-    jw_key(&w, "summary");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "summary");
     for (int k = 1; k < set->nruns; ++k)
         for (int kind = 0; kind < CMP_KIND_COUNT; ++kind) {
-            int count[CMP_V_CHANGED + 1] = { 0 }, rows = 0;
-            for (int i = 0; i < set->nrows; ++i)
-                if (set->rows[i].kind == kind) {
-                    ++rows;
-                    count[set->rows[i].cell[k].verdict]++;
-                }
+            int count[CMP_V_CHANGED + 1];
+            int rows = verdict_counts(set, k, kind, count);
             if (!rows)
                 continue;
             jw_obj_begin(&w);
             jw_kv_str(&w, "run", set->run[k].name);
             jw_kv_str(&w, "kind", cmp_kind_name(kind));
             jw_kv_int(&w, "rows", rows);
-            jw_key(&w, "verdicts");
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, "verdicts");
             for (int v = CMP_V_MISSING; v <= CMP_V_CHANGED; ++v)
                 if (count[v])
                     jw_kv_int(&w, cmp_verdict_name(v), count[v]);

@@ -12,26 +12,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void jw_vec3(struct jw *w, const char *key, const double v[3])
-{
-    jw_key(w, key);
-    jw_arr_begin(w);
-    for (int i = 0; i < 3; ++i)
-        jw_num(w, v[i]);
-    jw_arr_end(w);
-}
-
 static void jw_recip(struct jw *w, const char *key, const struct recip_worst *r)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_num(w, "max_diff_of_peak", r->diff);
     if (r->eval_error > 0)
         jw_kv_num(w, "max_eval_error_of_peak", r->eval_error);
     jw_kv_num(w, "n", r->n);
-    jw_vec3(w, "N", r->nrm);
-    jw_vec3(w, "L", r->l);
-    jw_vec3(w, "V", r->v);
+    jw_kv_nums(w, "N", r->nrm, 3);
+    jw_kv_nums(w, "L", r->l, 3);
+    jw_kv_nums(w, "V", r->v, 3);
     jw_kv_num(w, "f_LV", r->f_lv);
     jw_kv_num(w, "f_VL", r->f_vl);
     jw_obj_end(w);
@@ -52,13 +42,9 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
 {
     int rc = 0;
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", ENERGY_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, ENERGY_SCHEMA, s, "");
     jw_obj_end(&w);
-    jw_key(&w, "albedo");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "albedo");
     jw_kv_str(&w, "definition", "a(theta_i) = int over the upper hemisphere of f(L, V) cos(theta_o) dw_o, "
                                 "N = z, L = (sin theta_i, 0, cos theta_i)");
     jw_kv_str(&w, "quadrature", "device (float): composite Gauss-Legendre, 16 nodes per panel, in the lobe's polar "
@@ -66,26 +52,19 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
                                 "plus the integrand's kinks; azimuth exact (psi) or 1024-point trapezoid (theta_h); "
                                 "polar sum in double on the host");
     jw_kv_num(&w, "tolerance", sum->quadrature_tolerance);
-    jw_key(&w, "n");
-    jw_arr_begin(&w);
-    for (int i = 0; i < ENERGY_N_COUNT; ++i)
-        jw_num(&w, sum->table_n[i]);
-    jw_arr_end(&w);
-    jw_key(&w, "theta_i_deg");
-    jw_arr_begin(&w);
+    jw_kv_nums(&w, "n", sum->table_n, ENERGY_N_COUNT);
+    jw_kv_arr(&w, "theta_i_deg");
     for (int j = 0; j < ENERGY_THETA_COUNT; ++j)
         jw_num(&w, 5.0 * j);
     jw_arr_end(&w);
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "models");
     for (int mi = 0; mi < sum->count; ++mi) {
         const struct energy_model_summary *ms = &sum->models[mi];
         int cols = ms->cols;
         jw_obj_begin(&w);
         jw_kv_str(&w, "model", ms->spec.label);
         jw_kv_str(&w, "integrand", mode_name(ms->mode));
-        jw_key(&w, "albedo");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "albedo");
         for (int i = 0; i < ENERGY_N_COUNT; ++i) {
             jw_arr_begin(&w);
             for (int j = 0; j < cols; ++j)
@@ -97,8 +76,7 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
         jw_kv_num(&w, "max_at_n", ms->max_at_n);
         jw_kv_num(&w, "max_at_theta_i_deg", ms->max_at_theta_deg);
         jw_kv_num(&w, "refine_change", ms->refine_change);
-        jw_key(&w, "normal_incidence");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "normal_incidence");
         for (int i = 0; i < ENERGY_N_COUNT; ++i) {
             double dev = ms->albedo[i * cols];
             jw_obj_begin(&w);
@@ -125,15 +103,13 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
     jw_arr_end(&w);
     jw_obj_end(&w);
 
-    jw_key(&w, "reciprocity");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "reciprocity");
     jw_kv_int(&w, "pairs", sum->recip_pairs);
     jw_kv_str(&w, "what", "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
                           "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
                           "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
                           "difference relative to the lobe's peak f(c = 1, n)");
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "models");
     for (int i = 0; i < sum->recip_count; ++i) {
         const struct recip_summary *rs = &sum->recip[i];
         jw_obj_begin(&w);
@@ -146,15 +122,13 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
     jw_arr_end(&w);
     jw_obj_end(&w);
 
-    jw_key(&w, "reciprocity_image_pass");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "reciprocity_image_pass");
     jw_kv_int(&w, "pairs", sum->recip_pairs);
     jw_kv_str(&w, "what", "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
                           "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
                           "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
                           "reference (render_shade_ref)");
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "models");
     for (int i = 0; i < sum->pass_count; ++i) {
         const struct recip_pass_summary *q = &sum->pass[i];
         jw_obj_begin(&w);
@@ -164,9 +138,9 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
         jw_kv_num(&w, "device_max_rel_diff", q->device_worst);
         jw_kv_num(&w, "host_max_rel_diff", q->host_worst);
         jw_kv_num(&w, "worst_n", q->n);
-        jw_vec3(&w, "worst_N", q->nrm);
-        jw_vec3(&w, "worst_L", q->l);
-        jw_vec3(&w, "worst_V", q->v);
+        jw_kv_nums(&w, "worst_N", q->nrm, 3);
+        jw_kv_nums(&w, "worst_L", q->l, 3);
+        jw_kv_nums(&w, "worst_V", q->v, 3);
         jw_kv_num(&w, "worst_S_LV", q->s_lv);
         jw_kv_num(&w, "worst_S_VL", q->s_vl);
         jw_obj_end(&w);

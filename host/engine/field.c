@@ -219,8 +219,7 @@ done:
 
 static void jw_peak(struct jw *w, const char *key, const struct field_peak *p)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_num(w, "value", p->value);
     jw_kv_num(w, "n", p->n);
     jw_kv_num(w, "x", p->x);
@@ -231,8 +230,7 @@ static void jw_peak(struct jw *w, const char *key, const struct field_peak *p)
 
 static void jw_field(struct jw *w, const char *key, const float *v, size_t count)
 {
-    jw_key(w, key);
-    jw_arr_begin(w);
+    jw_kv_arr(w, key);
     /* 9 significant digits give back every float exactly, so a redraw finds the same peaks
        (with 4, cells near the maximum tie and the first one wins) and draws the same picture. */
     for (size_t i = 0; i < count; i++) jw_numf(w, v[i], 9);
@@ -243,15 +241,11 @@ int field_write_json(const char *path, const struct field_result *r, const struc
                      size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FIELD_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, FIELD_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_kv_str(&w, "model", r->model.label);
     jw_kv_str(&w, "reference", r->reference.label);
-    jw_key(&w, "grid");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "grid");
     jw_kv_int(&w, "rows", r->grid.rows);
     jw_kv_int(&w, "cols", r->grid.cols);
     jw_kv_num(&w, "n_min", r->grid.n_min);
@@ -260,15 +254,13 @@ int field_write_json(const char *path, const struct field_result *r, const struc
     jw_kv_str(&w, "rows_are", "n, log-spaced from n_min to n_max (as float)");
     jw_kv_str(&w, "epicentre_x", "x = t x_e(n), t = col/(cols-1); x_e(n) = acos(exp(-0.511/n))");
     jw_kv_str(&w, "attenuation_x", "x = x_e(n) u_max^t, t = col/(cols-1); null past pi/2");
-    jw_key(&w, "n");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "n");
     for (int i = 0; i < r->grid.rows; i++) jw_num(&w, r->n[i]);
     jw_arr_end(&w);
     jw_obj_end(&w);
     jw_peak(&w, "epicentre_max_rel", &r->epi_peak);
     jw_peak(&w, "attenuation_max_abs", &r->att_peak);
-    jw_key(&w, "check");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "check");
     jw_kv_num(&w, "max_rel_diff", r->check_rel_diff);
     jw_kv_num(&w, "max_abs_diff", r->check_abs_diff);
     jw_kv_int(&w, "cells", r->check_cells);

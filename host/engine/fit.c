@@ -494,10 +494,16 @@ int fit_wants_family(const struct fit_options *o)
     return o->model || o->power_m || o->objective != FIT_MAX_REL || !isnan(o->max_rel_cap);
 }
 
-/* The options and the sweep grid they give, checked against the device; 0, or EXIT_USAGE with
- * the message on stderr. */
-static int fit_checked_grid(struct cl_session *s, const struct fit_options *o, struct accuracy_grid *g)
+/* The start of fit_run and fit_family_run: the report r (of size bytes) zeroed, its options
+ * and grid set, the clock read; 0, or EXIT_USAGE with the message on stderr when the options
+ * or the sweep grid they give do not hold on this device. */
+static int fit_start(struct cl_session *s, const struct fit_options *o, void *r, size_t size,
+                     struct fit_options *opt, struct accuracy_grid *grid, double *t0)
 {
+    memset(r, 0, size);
+    *opt = *o;
+    *t0 = wall_seconds();
+    struct accuracy_grid *g = grid;
     char err[1024];
     if (fit_options_check(o, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
@@ -517,13 +523,10 @@ int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options 
     char err[1024];
     struct fit_report local;
     struct fit_report *r = report ? report : &local;
-    memset(r, 0, sizeof *r);
-    r->opt = *o;
-    double t0 = wall_seconds();
-    struct accuracy_grid g;
-    if (fit_checked_grid(s, o, &g))
+    double t0;
+    if (fit_start(s, o, r, sizeof *r, &r->opt, &r->grid, &t0))
         return EXIT_USAGE;
-    r->grid = g;
+    struct accuracy_grid g = r->grid;
     r->n_count = accuracy_grid_count(&g);
     int rc = 0;
     double *n = malloc((size_t)r->n_count * sizeof *n);
@@ -863,13 +866,10 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
     char err[1024];
     struct fit_family_report local;
     struct fit_family_report *r = report ? report : &local;
-    memset(r, 0, sizeof *r);
-    r->opt = *o;
-    double t0 = wall_seconds();
-    struct accuracy_grid g;
-    if (fit_checked_grid(s, o, &g))
+    double t0;
+    if (fit_start(s, o, r, sizeof *r, &r->opt, &r->grid, &t0))
         return EXIT_USAGE;
-    r->grid = g;
+    struct accuracy_grid g = r->grid;
     struct fam_search S;
     memset(&S, 0, sizeof S);
     struct model_spec family;

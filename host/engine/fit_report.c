@@ -10,8 +10,7 @@
 
 static void jw_extreme_obj(struct jw *w, const char *key, const char *metric, const struct acc_extreme *e)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_num(w, metric, e->value);
     jw_kv_num(w, "at_n", e->n);
     jw_kv_num(w, "at_x", e->x);
@@ -53,8 +52,7 @@ static void jw_fit_model(struct jw *w, const struct fit_model *m)
     jw_kv_num(w, "max_abs_cap", m->fit.cap);
     if (!isfinite(m->fit.cap))
         jw_kv_str(w, "max_abs_cap_reason", "no cap");
-    jw_key(w, "host_check");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "host_check");
     jw_kv_num(w, "max_rel", m->fit.max_rel);
     jw_kv_num(w, "max_rel_at_n", m->fit.max_rel_n);
     jw_kv_num(w, "max_abs", m->fit.max_abs);
@@ -68,12 +66,8 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
                           const char *build_options, char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FIT_SCHEMA);
-    jw_context_begin(&w, s, build_options);
-    jw_key(&w, "grid");
-    jw_obj_begin(&w);
+    jw_doc_begin(&w, FIT_SCHEMA, s, build_options);
+    jw_kv_obj(&w, "grid");
     jw_kv_num(&w, "n_min", r->grid.n_min);
     jw_kv_num(&w, "n_max", r->grid.n_max);
     jw_kv_num(&w, "n_step", r->grid.n_step);
@@ -86,15 +80,13 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     jw_kv_str(&w, "objective", "minimise over (a, b) the largest epicentre max delta over the n grid, "
                                "k(n) = a n + b; optional cap on the attenuation zone's max Delta");
     jw_fit_model(&w, &r->main);
-    jw_key(&w, "limit_overall");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "limit_overall");
     jw_kv_num(&w, "max_rel", r->limit_max);
     jw_kv_num(&w, "at_n", r->limit_max_n);
     jw_kv_str(&w, "what", "largest over the grid of the per-n minimax: no k(n) of the family does better "
                           "over this range");
     jw_obj_end(&w);
-    jw_key(&w, "limit");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "limit");
     for (long i = 0; i < r->n_count; ++i) {
         jw_obj_begin(&w);
         jw_kv_num(&w, "n", r->limit[i].n);
@@ -103,16 +95,13 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
         jw_obj_end(&w);
     }
     jw_arr_end(&w);
-    jw_key(&w, "capped_at_fq2");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "capped_at_fq2");
     jw_fit_model(&w, &r->at_fq2_cap);
     jw_obj_end(&w);
-    jw_key(&w, "tradeoff");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "tradeoff");
     jw_kv_str(&w, "what", "best affine fit for caps on the attenuation's max Delta between fq2's and the uncapped "
                           "fit's (host double figures)");
-    jw_key(&w, "points");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "points");
     for (int j = 0; j < r->tradeoff_count; ++j) {
         jw_obj_begin(&w);
         jw_kv_num(&w, "max_abs_cap", r->tradeoff[j].cap);
@@ -124,8 +113,7 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    jw_key(&w, "compare");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "compare");
     if (r->main.have_sweep)
         jw_sweep_summary(&w, &r->main.sweep);
     if (r->at_fq2_cap.have_sweep)
@@ -133,8 +121,7 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     for (int i = 0; i < r->compare_count; ++i)
         jw_sweep_summary(&w, &r->compare[i]);
     jw_arr_end(&w);
-    jw_key(&w, "verdict");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "verdict");
     jw_kv_bool(&w, "beats_fq2_max_rel", r->beats_fq2_rel);
     jw_kv_bool(&w, "max_abs_not_worse_than_fq2", r->not_worse_abs);
     jw_kv_str(&w, "text", r->verdict);
@@ -182,8 +169,7 @@ void fit_print(FILE *f, const struct fit_report *r)
 
 static void jw_fit_point(struct jw *w, const struct fit_family_report *r, const char *key, const struct fit_point *p)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_str(w, "status", p->ok ? "ok" : "infeasible");
     if (!p->ok)
         jw_kv_str(w, "reason", p->reason);
@@ -203,12 +189,8 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
                           char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FIT_FAMILY_SCHEMA);
-    jw_context_begin(&w, s, "");
-    jw_key(&w, "grid");
-    jw_obj_begin(&w);
+    jw_doc_begin(&w, FIT_FAMILY_SCHEMA, s, "");
+    jw_kv_obj(&w, "grid");
     jw_kv_num(&w, "n_min", r->grid.n_min);
     jw_kv_num(&w, "n_max", r->grid.n_max);
     jw_kv_num(&w, "n_step", r->grid.n_step);
@@ -225,8 +207,7 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
     jw_fit_point(&w, r, "fit", &r->best);
     jw_fit_point(&w, r, "min_max_rel", &r->min_rel);
     jw_fit_point(&w, r, "min_max_abs", &r->min_abs);
-    jw_key(&w, "tradeoff");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "tradeoff");
     for (int j = 0; j < r->tradeoff_count; ++j) {
         jw_obj_begin(&w);
         for (int k = 0; k < r->nparams; ++k)

@@ -19,10 +19,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
                         size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", FRONTIER_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
     jw_kv_int(&w, "samples_per_zone", r->opt.samples);
     jw_kv_int(&w, "reps", r->opt.reps);
     jw_kv_int(&w, "rounds", r->opt.rounds);
@@ -30,8 +27,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_kv_int(&w, "image_width", r->opt.image_w);
     jw_kv_int(&w, "image_height", r->opt.image_h);
     jw_obj_end(&w);
-    jw_key(&w, "definitions");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "definitions");
     jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options; per "
                           "round over every model the median of its launches; median, min and max over the rounds; "
                           "uniform: one n per launch, varying: n per evaluation");
@@ -43,8 +39,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_kv_str(&w, "ops", "per evaluation: arith = FMA/mul/add/sub/conversions, minmax = min/max/select, div, "
                          "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)");
     jw_obj_end(&w);
-    jw_key(&w, "models");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "models");
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];
         jw_obj_begin(&w);
@@ -53,8 +48,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
         jw_kv_str(&w, "source", row->spec.info->description);
         jw_kv_bool(&w, "on_front", row->on_front);
         for (int m = 0; m < 2; ++m) {
-            jw_key(&w, m ? "rate_varying" : "rate_uniform");
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, m ? "rate_varying" : "rate_uniform");
             jw_kv_num(&w, "min", row->rate[m][0]);
             jw_kv_num(&w, "median", row->rate[m][1]);
             jw_kv_num(&w, "max", row->rate[m][2]);
@@ -62,8 +56,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
                 jw_kv_str(&w, "reason", row->rate_reason[0] ? row->rate_reason : "not measured");
             jw_obj_end(&w);
         }
-        jw_key(&w, "ops");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "ops");
         if (row->ops.known) {
             jw_kv_int(&w, "arith", row->ops.arith);
             jw_kv_int(&w, "minmax", row->ops.minmax);
@@ -75,8 +68,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
         jw_kv_str(&w, "note", row->ops.note);
         jw_obj_end(&w);
         for (int k = 0; k < 2; ++k) {
-            jw_key(&w, range_names[k]);
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, range_names[k]);
             jw_kv_num(&w, "max_rel", row->max_rel[k]);
             jw_kv_num(&w, "max_rel_at_n", row->max_rel_n[k]);
             jw_kv_num(&w, "max_abs", row->max_abs[k]);

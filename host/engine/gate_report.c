@@ -231,17 +231,13 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
                         size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", GATE_RESULT_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, GATE_RESULT_SCHEMA, s, "");
     jw_obj_end(&w);
     jw_kv_str(&w, "gates_file", gs->path);
     if (gs->description[0])
         jw_kv_str(&w, "description", gs->description);
     int failed = gate_set_failures(gs);
-    jw_key(&w, "summary");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "summary");
     jw_kv_int(&w, "gates", gs->count);
     jw_kv_int(&w, "passed", gs->count - failed);
     jw_kv_int(&w, "failed", failed);
@@ -257,8 +253,7 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
     } else {
         jw_null(&w);
     }
-    jw_key(&w, "gates");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "gates");
     for (int i = 0; i < gs->count; ++i) {
         const struct gate *g = &gs->gates[i];
         jw_obj_begin(&w);
@@ -284,8 +279,7 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
         jw_kv_num(&w, "margin_rel", g->margin_rel);
         jw_kv_int(&w, "invalid_count", g->invalid_count);
         if (g->check.figure) {   /* set for the metrics a sweep measures */
-            jw_key(&w, "device_check");
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, "device_check");
             jw_kv_str(&w, "status", g->check.exceeded ? "exceeded" : "ok");
             jw_kv_num(&w, "in_4th_digit_units", g->check.units);
             jw_kv_num(&w, "bound_4th_digit_units", ACC_CHECK_BOUND_UNITS);
@@ -303,8 +297,7 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
         if (g->note[0])
             jw_kv_str(&w, "note", g->note);
         if (g->baseline_status != GATE_BASELINE_NONE) {
-            jw_key(&w, "baseline");
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, "baseline");
             jw_kv_str(&w, "status", g->baseline_status == GATE_BASELINE_OK           ? "ok"
                                     : g->baseline_status == GATE_BASELINE_REGRESSION ? "regression"
                                                                                      : "missing");

@@ -77,49 +77,26 @@ static int read_text_file(const char *path, char **text, size_t *len, char *err,
 
 /* ---------------------------------------------------------------- growable arrays */
 
-struct fvec {
-    float *v;
-    size_t n, cap;
-};
-struct uvec {
-    uint32_t *v;
+/* A growable array of n elements (cap allocated); the element type is the caller's. */
+struct grow {
+    void *v;
     size_t n, cap;
 };
 
-/* The array v (n elements of size elem used, *cap allocated) with room for three more: v itself,
- * or v grown to twice its capacity (3 x 1024 at first); NULL when out of memory (v stays). */
-static void *vec_room3(void *v, size_t n, size_t *cap, size_t elem)
+/* Appends the three elements at xyz (each of size elem) to a, growing it to twice its
+ * capacity (3 x 1024 at first) when full; -1 when out of memory (a stays as it was). */
+static int vec_push3(struct grow *a, size_t elem, const void *xyz)
 {
-    if (n + 3 <= *cap)
-        return v;
-    size_t nc = *cap ? 2 * *cap : 3 * 1024;
-    void *nv = realloc(v, nc * elem);
-    if (nv)
-        *cap = nc;
-    return nv;
-}
-
-static int fvec_push3(struct fvec *a, float x, float y, float z)
-{
-    float *nv = vec_room3(a->v, a->n, &a->cap, sizeof *nv);
-    if (!nv)
-        return -1;
-    a->v = nv;
-    a->v[a->n++] = x;
-    a->v[a->n++] = y;
-    a->v[a->n++] = z;
-    return 0;
-}
-
-static int uvec_push3(struct uvec *a, uint32_t x, uint32_t y, uint32_t z)
-{
-    uint32_t *nv = vec_room3(a->v, a->n, &a->cap, sizeof *nv);
-    if (!nv)
-        return -1;
-    a->v = nv;
-    a->v[a->n++] = x;
-    a->v[a->n++] = y;
-    a->v[a->n++] = z;
+    if (a->n + 3 > a->cap) {
+        size_t nc = a->cap ? 2 * a->cap : 3 * 1024;
+        void *nv = realloc(a->v, nc * elem);
+        if (!nv)
+            return -1;
+        a->v = nv;
+        a->cap = nc;
+    }
+    memcpy((char *)a->v + a->n * elem, xyz, 3 * elem);
+    a->n += 3;
     return 0;
 }
 
@@ -188,8 +165,8 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
     memcpy(copy, text, len);
     copy[len] = '\0';
 
-    struct fvec pos = {0};
-    struct uvec tri = {0};
+    struct grow pos = {0};   /* float x, y, z per vertex */
+    struct grow tri = {0};   /* uint32_t corners per triangle */
     size_t ntex = 0, nnrm = 0;
     long line_no = 0;
     int rc = 0;
@@ -270,7 +247,8 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
                     rc = 2;
                     break;
                 }
-                if (fvec_push3(&pos, (float)val[0], (float)val[1], (float)val[2]) != 0) {
+                const float xyz[3] = { (float)val[0], (float)val[1], (float)val[2] };
+                if (vec_push3(&pos, sizeof xyz[0], xyz) != 0) {
                     set_err(err, errlen, "%s: out of memory", name);
                     rc = 3;
                 }
@@ -336,7 +314,8 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
                 break;
             }
             for (int k = 1; k + 1 < ncorner && rc == 0; k++) {
-                if (uvec_push3(&tri, corner[0], corner[k], corner[k + 1]) != 0) {
+                const uint32_t abc[3] = { corner[0], corner[k], corner[k + 1] };
+                if (vec_push3(&tri, sizeof abc[0], abc) != 0) {
                     set_err(err, errlen, "%s: out of memory", name);
                     rc = 3;
                 }
@@ -488,6 +467,16 @@ struct lexer {
     long tok_line;
 };
 
+/* The token from start to the lexer's position as its text (cut to the room there is). */
+static void lex_keep_text(struct lexer *lx, const char *start)
+{
+    size_t n = (size_t)(lx->s - start);
+    if (n >= sizeof lx->text)
+        n = sizeof lx->text - 1;
+    memcpy(lx->text, start, n);
+    lx->text[n] = '\0';
+}
+
 /* Advances to the next token; returns -1 with a message on an unterminated comment or a
  * number that does not parse. */
 static int lex_next(struct lexer *lx, char *err, size_t errlen)
@@ -536,11 +525,7 @@ static int lex_next(struct lexer *lx, char *err, size_t errlen)
                (isalnum((unsigned char)*lx->s) || *lx->s == '.' ||
                 ((*lx->s == '-' || *lx->s == '+') && (lx->s[-1] == 'e' || lx->s[-1] == 'E'))))
             lx->s++;
-        size_t n = (size_t)(lx->s - start);
-        if (n >= sizeof lx->text)
-            n = sizeof lx->text - 1;
-        memcpy(lx->text, start, n);
-        lx->text[n] = '\0';
+        lex_keep_text(lx, start);
         if (parse_finite(lx->text, &lx->number) != 0) {
             set_err(err, errlen, "%s:%ld: '%s' is not a finite number", lx->name, lx->tok_line,
                     lx->text);
@@ -553,11 +538,7 @@ static int lex_next(struct lexer *lx, char *err, size_t errlen)
         const char *start = lx->s;
         while (lx->s < lx->end && (isalnum((unsigned char)*lx->s) || *lx->s == '_'))
             lx->s++;
-        size_t n = (size_t)(lx->s - start);
-        if (n >= sizeof lx->text)
-            n = sizeof lx->text - 1;
-        memcpy(lx->text, start, n);
-        lx->text[n] = '\0';
+        lex_keep_text(lx, start);
         lx->kind = TOK_IDENT;
         return 0;
     }

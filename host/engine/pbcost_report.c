@@ -19,8 +19,7 @@ static const char *const kind_names[4] = { "lobe of R.V", "lobe of N.H", "BRDF o
 static void jw_terms(struct jw *w, const char *key, const struct pbcost_result *r,
                      const int t[PBCOST_TERMS_THETA][PBCOST_TERMS_RATIO])
 {
-    jw_key(w, key);
-    jw_arr_begin(w);
+    jw_kv_arr(w, key);
     for (int i = 0; i < PBCOST_TERMS_THETA; ++i) {
         jw_arr_begin(w);
         for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
@@ -35,13 +34,9 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
                       size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", PBCOST_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, PBCOST_SCHEMA, s, "");
     jw_obj_end(&w);
-    jw_key(&w, "cost");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "cost");
     jw_kv_str(&w, "what", "evaluations per second from full vectors made in registers (kernels/throughput.cl, "
                           "tp_vec_*): per evaluation three normalisations, N.L, N.V, L.V and the model; float16, two "
                           "streams per work-item, outputs summed; rows interleaved; evaluations_per_s and the "
@@ -51,8 +46,7 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
     jw_kv_int(&w, "reps", r->o.reps);
     jw_kv_num(&w, "min_time", r->o.min_time);
     jw_kv_int(&w, "work_items", r->work_items);
-    jw_key(&w, "rows");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "rows");
     for (int i = 0; i < r->count; ++i) {
         const struct pbcost_row *row = &r->rows[i];
         jw_obj_begin(&w);
@@ -83,22 +77,13 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    jw_key(&w, "he_terms");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "he_terms");
     jw_kv_str(&w, "what", "terms of He's directional-diffuse sum (stopped past the peak m >= g at the first term "
                           "below 2^-24 of the running sum), double host, rough aluminium's lambda = 0.55 um, "
                           "tau = 1 um, index 0.958 + 6.69i, for sigma0 = ratio x lambda; mirror: theta_i = theta_r = "
                           "theta; off: theta_r = min(theta + 20, 89) degrees in the plane of incidence");
-    jw_key(&w, "theta_deg");
-    jw_arr_begin(&w);
-    for (int i = 0; i < PBCOST_TERMS_THETA; ++i)
-        jw_num(&w, r->terms_theta[i]);
-    jw_arr_end(&w);
-    jw_key(&w, "sigma0_over_lambda");
-    jw_arr_begin(&w);
-    for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
-        jw_num(&w, r->terms_ratio[j]);
-    jw_arr_end(&w);
+    jw_kv_nums(&w, "theta_deg", r->terms_theta, PBCOST_TERMS_THETA);
+    jw_kv_nums(&w, "sigma0_over_lambda", r->terms_ratio, PBCOST_TERMS_RATIO);
     jw_terms(&w, "mirror", r, r->terms_mirror);
     jw_terms(&w, "off_mirror", r, r->terms_off);
     jw_obj_end(&w);

@@ -374,8 +374,7 @@ int plots_draw(const struct plot_set *set, const char *dir, char *err, size_t er
 
 static void jw_doubles(struct jw *w, const char *key, const double *v, size_t n)
 {
-    jw_key(w, key);
-    jw_arr_begin(w);
+    jw_kv_arr(w, key);
     /* 17 significant digits give back every double exactly: a redraw is the same picture. */
     for (size_t i = 0; i < n; i++) jw_numf(w, v[i], 17);
     jw_arr_end(w);
@@ -385,13 +384,9 @@ int plots_write_json(const struct plot_set *set, const char *path, const struct 
                      size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", PLOTS_SCHEMA);
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, PLOTS_SCHEMA, s, "");
     jw_obj_end(&w);
-    jw_key(&w, "figures");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "figures");
     for (int i = 0; i < set->count; i++) {
         const struct plot_figure *f = &set->figs[i];
         jw_obj_begin(&w);
@@ -404,18 +399,15 @@ int plots_write_json(const struct plot_set *set, const char *path, const struct 
         jw_kv_bool(&w, "x_log", f->x_log);
         jw_kv_bool(&w, "y_log", f->y_log);
         jw_kv_str(&w, "y_format", f->y_format == 1 ? "percent" : "plain");
-        jw_key(&w, "x_range");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "x_range");
         jw_num(&w, f->x_min);
         jw_num(&w, f->x_max);
         jw_arr_end(&w);
-        jw_key(&w, "y_range");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "y_range");
         jw_num(&w, f->y_min);
         jw_num(&w, f->y_max);
         jw_arr_end(&w);
-        jw_key(&w, "vlines");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "vlines");
         for (int v = 0; v < f->nvlines; v++) {
             jw_obj_begin(&w);
             jw_kv_num(&w, "x", f->vlines[v]);
@@ -424,14 +416,12 @@ int plots_write_json(const struct plot_set *set, const char *path, const struct 
         }
         jw_arr_end(&w);
         if (f->kind == PLOT_BARS) {
-            jw_key(&w, "bar_labels");
-            jw_arr_begin(&w);
+            jw_kv_arr(&w, "bar_labels");
             for (int b = 0; b < f->nbars; b++) jw_str(&w, f->bar_labels[b]);
             jw_arr_end(&w);
             jw_kv_int(&w, "highlight", f->highlight);
         }
-        jw_key(&w, "series");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "series");
         for (int s = 0; s < f->nseries; s++) {
             const struct plot_series *se = &f->series[s];
             jw_obj_begin(&w);

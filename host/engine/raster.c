@@ -108,6 +108,16 @@ void camera_fit_mesh(struct camera *cam, const struct mesh *m, const double from
         cam->eye[c] = cam->target[c] + dist * dir[c];
 }
 
+/* Pixel pi of the G-buffer: its position, normal (as float) and shininess. */
+static void gbuffer_put(struct gbuffer *g, size_t pi, const double pos[3], const double nrm[3], float shininess)
+{
+    for (int k = 0; k < 3; ++k) {
+        gbuffer_plane(g, GB_PX + k)[pi] = (float)pos[k];
+        gbuffer_plane(g, GB_NX + k)[pi] = (float)nrm[k];
+    }
+    gbuffer_plane(g, GB_SHIN)[pi] = shininess;
+}
+
 static double edge_fn(const double *a, const double *b, double px, double py)
 {
     return (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
@@ -143,10 +153,7 @@ int raster_mesh(struct gbuffer *g, const struct mesh *m, const struct camera *ca
     vec3_sub(hi, lo, d);
     double near_z = 1e-6 * sqrt(vec3_dot(d, d));
 
-    float *px = gbuffer_plane(g, GB_PX), *py = gbuffer_plane(g, GB_PY);
-    float *pz = gbuffer_plane(g, GB_PZ), *nx = gbuffer_plane(g, GB_NX);
-    float *ny = gbuffer_plane(g, GB_NY), *nz = gbuffer_plane(g, GB_NZ);
-    float *sh = gbuffer_plane(g, GB_SHIN);
+    const float *sh = gbuffer_plane(g, GB_SHIN);
 
     for (size_t ti = 0; ti < m->ntris; ti++) {
         double P[3][3], N[3][3], S[3][2], Z[3];
@@ -229,13 +236,7 @@ int raster_mesh(struct gbuffer *g, const struct mesh *m, const struct camera *ca
                     for (int c = 0; c < 3; c++)
                         nrm[c] = flip * gn[c];
                 }
-                px[pi] = (float)pos[0];
-                py[pi] = (float)pos[1];
-                pz[pi] = (float)pos[2];
-                nx[pi] = (float)nrm[0];
-                ny[pi] = (float)nrm[1];
-                nz[pi] = (float)nrm[2];
-                sh[pi] = shininess;
+                gbuffer_put(g, pi, pos, nrm, shininess);
             }
         }
     }
@@ -283,10 +284,6 @@ int raster_spheres(struct gbuffer *g, int rows, int cols, const double *col_shin
     }
     struct sphere_grid sg;
     sphere_grid_layout(g->width, g->height, rows, cols, &sg, cam);
-    float *px = gbuffer_plane(g, GB_PX), *py = gbuffer_plane(g, GB_PY);
-    float *pz = gbuffer_plane(g, GB_PZ), *nx = gbuffer_plane(g, GB_NX);
-    float *ny = gbuffer_plane(g, GB_NY), *nz = gbuffer_plane(g, GB_NZ);
-    float *sh = gbuffer_plane(g, GB_SHIN);
     g->foreground = 0;
     const double r2 = sg.radius * sg.radius;
     for (int y = 0; y < g->height; y++) {
@@ -310,13 +307,7 @@ int raster_spheres(struct gbuffer *g, int rows, int cols, const double *col_shin
             }
             vec3_normalize(nrm);
             size_t pi = (size_t)y * g->width + (size_t)x;
-            px[pi] = (float)pos[0];
-            py[pi] = (float)pos[1];
-            pz[pi] = (float)pos[2];
-            nx[pi] = (float)nrm[0];
-            ny[pi] = (float)nrm[1];
-            nz[pi] = (float)nrm[2];
-            sh[pi] = (float)col_shininess[col];
+            gbuffer_put(g, pi, pos, nrm, (float)col_shininess[col]);
             g->foreground++;
         }
     }

@@ -40,26 +40,15 @@ static int is_lobe_entry(const struct timed_entry *te)
 /* "key": [a, b] and "key": [x, y, z] */
 static void jw_kv_int_pair(struct jw *w, const char *key, long long a, long long b)
 {
-    jw_key(w, key);
-    jw_arr_begin(w);
+    jw_kv_arr(w, key);
     jw_int(w, a);
     jw_int(w, b);
     jw_arr_end(w);
 }
 
-static void jw_kv_vec3(struct jw *w, const char *key, const double *v)
-{
-    jw_key(w, key);
-    jw_arr_begin(w);
-    for (int c = 0; c < 3; c++)
-        jw_num(w, v[c]);
-    jw_arr_end(w);
-}
-
 static void write_metrics_json(struct jw *w, const struct image_metrics *mt, double threshold)
 {
-    jw_key(w, "metrics");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "metrics");
     jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
     jw_kv_int(w, "pixels", (long long)mt->pixels);
     jw_kv_num(w, "max_abs", mt->max_abs);
@@ -80,8 +69,7 @@ static void write_metrics_json(struct jw *w, const struct image_metrics *mt, dou
 /* The He comparison of a scene (render_report.h, struct he_comparison). */
 static void write_he_json(struct jw *w, const struct he_comparison *hc, double threshold)
 {
-    jw_key(w, "he_comparison");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "he_comparison");
     jw_kv_str(w, "model", hc->he.label);
     jw_kv_str(w, "method", "Blinn-Phong k E (N.L) ks c^n (c = N.H) fitted to He's specular radiance by least squares "
                            "over the foreground: k in closed form for each n, n by Brent's method in log n; the "
@@ -92,8 +80,7 @@ static void write_he_json(struct jw *w, const struct he_comparison *hc, double t
     jw_kv_num(w, "relative_rms_residual", hc->rel_rms);
     jw_kv_int(w, "fit_pixels", (long long)hc->fit_pixels);
     jw_kv_str(w, "he_image", hc->he_image);
-    jw_key(w, "entries");
-    jw_arr_begin(w);
+    jw_kv_arr(w, "entries");
     for (int k = 0; k < hc->count; k++) {
         const struct he_entry *en = &hc->e[k];
         jw_obj_begin(w);
@@ -101,8 +88,7 @@ static void write_he_json(struct jw *w, const struct he_comparison *hc, double t
         write_metrics_json(w, &en->metrics, threshold);
         jw_kv_num(w, "max_abs_vs_blinn_fit", en->max_abs_vs_blinn);
         if (en->error[0]) {
-            jw_key(w, "files");
-            jw_obj_begin(w);
+            jw_kv_obj(w, "files");
             if (en->image[0])
                 jw_kv_str(w, "image", en->image);
             jw_kv_str(w, "error", en->error);
@@ -121,20 +107,15 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                       size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", "brdfbench.render/1");
-    jw_context_begin(&w, s, "");
+    jw_doc_begin(&w, "brdfbench.render/1", s, "");
     jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
     jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
               "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
     jw_obj_end(&w);
 
-    jw_key(&w, "options");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "options");
     jw_kv_int_pair(&w, "image_size", o->width, o->height);
-    jw_key(&w, "timing_sizes");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "timing_sizes");
     for (int i = 0; i < o->ntime_sizes; i++) {
         jw_arr_begin(&w);
         jw_int(&w, o->time_w[i]);
@@ -144,11 +125,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
     jw_arr_end(&w);
     jw_kv_int(&w, "reps", o->reps);
     jw_kv_int(&w, "warmup", o->warmup);
-    jw_key(&w, "sphere_shininess");
-    jw_arr_begin(&w);
-    for (int i = 0; i < o->ncols; i++)
-        jw_num(&w, o->sphere_n[i]);
-    jw_arr_end(&w);
+    jw_kv_nums(&w, "sphere_shininess", o->sphere_n, (size_t)o->ncols);
     jw_kv_num(&w, "mesh_shininess", o->mesh_n);
     jw_kv_int(&w, "teapot_tessellation", o->tess);
     jw_kv_str(&w, "light", o->point_light ? "point" : "directional");
@@ -157,19 +134,17 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
     jw_kv_num(&w, "ks", o->ks);
     jw_kv_num(&w, "ambient", o->ambient);
     jw_kv_num(&w, "schlick_f0", o->f0);
-    jw_kv_vec3(&w, "tint", o->tint);
+    jw_kv_nums(&w, "tint", o->tint, 3);
     jw_kv_int(&w, "reference_samples_per_model", o->ref_samples);
     jw_obj_end(&w);
 
-    jw_key(&w, "display");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "display");
     jw_kv_str(&w, "curve", "channel k: sRGB8(1 - exp(-exposure tint_k radiance))");
     jw_kv_int(&w, "table_bins", DISPLAY_BINS);
     jw_kv_int(&w, "table_max_code_error", display_code_error);
     jw_obj_end(&w);
 
-    jw_key(&w, "scenes");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "scenes");
     for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
         const struct scene_result *sr = &res[si];
         if (!sr->done)
@@ -185,15 +160,13 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
         }
         if (si != RENDER_SPHERES)
             jw_kv_int(&w, "triangles", (long long)sr->triangles);
-        jw_key(&w, "light");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "light");
         jw_kv_str(&w, "kind", sr->light.point ? "point" : "directional");
-        jw_kv_vec3(&w, sr->light.point ? "position" : "direction", sr->light.light);
+        jw_kv_nums(&w, sr->light.point ? "position" : "direction", sr->light.light, 3);
         jw_kv_num(&w, "intensity", sr->light.intensity);
-        jw_kv_vec3(&w, "eye", sr->light.eye);
+        jw_kv_nums(&w, "eye", sr->light.eye, 3);
         jw_obj_end(&w);
-        jw_key(&w, "image");
-        jw_obj_begin(&w);
+        jw_kv_obj(&w, "image");
         jw_kv_int(&w, "width", o->width);
         jw_kv_int(&w, "height", o->height);
         jw_kv_int(&w, "foreground_pixels", (long long)sr->foreground);
@@ -201,8 +174,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
         if (sr->grid_contact[0])
             jw_kv_str(&w, "contact_sheet", sr->grid_contact);
         jw_obj_end(&w);
-        jw_key(&w, "models");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "models");
         for (int mi = 0; mi < o->nmodels; mi++) {
             const struct model_result *mr = &sr->models[mi];
             const struct model_spec *m = &o->models[mi];
@@ -215,16 +187,14 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                 jw_kv_int_pair(&w, "grid_rows", mr->y0, mr->y1);
             }
             if (mr->image[0]) {
-                jw_key(&w, "files");
-                jw_obj_begin(&w);
+                jw_kv_obj(&w, "files");
                 jw_kv_str(&w, "image", mr->image);
                 jw_kv_str(&w, "error_image", mr->error);
                 jw_kv_str(&w, "contact_sheet", mr->contact);
                 jw_obj_end(&w);
             }
             write_metrics_json(&w, &mr->metrics, o->threshold);
-            jw_key(&w, "double_reference_check");
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, "double_reference_check");
             jw_kv_int(&w, "samples", mr->check.samples);
             jw_kv_num(&w, "max_abs_specular_difference", mr->check.max_abs);
             jw_kv_num(&w, "double_value_there", mr->check.value_at_max);
@@ -241,24 +211,21 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
         jw_arr_end(&w);
         if (sr->he.done)
             write_he_json(&w, &sr->he, o->threshold);
-        jw_key(&w, "timings");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "timings");
         for (int ti = 0; ti < sr->ntimings; ti++) {
             const struct size_timing *st = &sr->timings[ti];
             jw_obj_begin(&w);
             jw_kv_int(&w, "width", st->w);
             jw_kv_int(&w, "height", st->h);
             jw_kv_int(&w, "foreground_pixels", (long long)st->foreground);
-            jw_key(&w, "copy");
-            jw_obj_begin(&w);
+            jw_kv_obj(&w, "copy");
             jw_kv_int(&w, "bytes_per_pixel", RENDER_DEVICE_BYTES_PER_PIXEL);
             jw_kv_num(&w, "median_ms", st->copy_med * 1e3);
             jw_kv_num(&w, "mpixel_per_s", mpix(st, st->copy_med));
             jw_kv_num(&w, "gbyte_per_s",
                       (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
             jw_obj_end(&w);
-            jw_key(&w, "entries");
-            jw_arr_begin(&w);
+            jw_kv_arr(&w, "entries");
             for (int k = 0; k < st->nentries; k++) {
                 const struct timed_entry *te = &st->entries[k];
                 const struct timed_entry *re = reference_entry(st, te);

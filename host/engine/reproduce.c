@@ -483,6 +483,26 @@ static void grid_note(struct repro *p, struct claim *c, int sw)
                  p->grid_change[sw]);
 }
 
+/* A paper-2 claim on one extreme of a sweep over n in [2, 1000]: the paper's printed figure
+ * against the sweep's max delta (rel) or max Delta, to one unit in its last printed digit. */
+static struct claim *p2_sweep_claim(struct reproduce_report *r, const char *id, const char *source,
+                                    const char *text, const char *printed, double claimed,
+                                    const struct acc_extreme *e, int rel)
+{
+    struct claim *c = claim_add(r, "claim", id, source, text);
+    if (!c)
+        return NULL;
+    if (rel) {
+        claim_number(c, printed, claimed, e->value, 1e-5, "+-0.001% (one unit in the last printed digit)");
+        setf(c->measured_text, sizeof c->measured_text, "%.4f%% at n = %g, x = %.5f", 100 * e->value, e->n, e->x);
+    } else {
+        claim_number(c, printed, claimed, e->value, 0.001, "+-0.001 (one unit in the last printed digit)");
+        setf(c->measured_text, sizeof c->measured_text, "%.5f at n = %g, x = %.4f", e->value, e->n, e->x);
+    }
+    setf(c->method, sizeof c->method, "%s", "device sweep, n in [2, 1000] step 1, polished in double");
+    return c;
+}
+
 static int add_paper1(struct repro *p)
 {
     struct reproduce_report *r = p->r;
@@ -726,12 +746,10 @@ static int add_paper2(struct repro *p)
     model_spec_default(models_find("phong"), &phong);
 
     /* f_Q, Q = 0.64 */
-    if (!(c = claim_add(r, "claim", "P2-fq", "paper 2, text after fig. 3",
-                        "f_Q with Q = 0.64: max delta in the epicentre over n in [2, 1000] is 1.255%")))
+    if (!(c = p2_sweep_claim(r, "P2-fq", "paper 2, text after fig. 3",
+                             "f_Q with Q = 0.64: max delta in the epicentre over n in [2, 1000] is 1.255%", "1.255%",
+                             0.01255, &fq->epicentre, 1)))
         return EXIT_RUNTIME;
-    claim_number(c, "1.255%", 0.01255, fq->epicentre.value, 1e-5, "+-0.001% (one unit in the last printed digit)");
-    setf(c->measured_text, sizeof c->measured_text, "%.4f%% at n = %g, x = %.5f", 100 * fq->epicentre.value,
-         fq->epicentre.n, fq->epicentre.x);
     {
         long nc = 999;
         double nv[999];
@@ -747,25 +765,17 @@ static int add_paper2(struct repro *p)
             note_add(c, "1.255%% is f_Q's max delta over [2, 1000] at Q = %.5f.", q_at);
     }
     grid_note(p, c, SW_FQ);
-    setf(c->method, sizeof c->method, "%s", sweep_method);
 
     /* f_Q2 */
-    if (!(c = claim_add(r, "claim", "P2-fq2-rel", "paper 2, fig. 6(a)",
-                        "f_Q2: max delta in the epicentre over n in [2, 1000] is 1.256%")))
+    if (!(c = p2_sweep_claim(r, "P2-fq2-rel", "paper 2, fig. 6(a)",
+                             "f_Q2: max delta in the epicentre over n in [2, 1000] is 1.256%", "1.256%", 0.01256,
+                             &fq2->epicentre, 1)))
         return EXIT_RUNTIME;
-    claim_number(c, "1.256%", 0.01256, fq2->epicentre.value, 1e-5, "+-0.001% (one unit in the last printed digit)");
-    setf(c->measured_text, sizeof c->measured_text, "%.4f%% at n = %g, x = %.5f", 100 * fq2->epicentre.value,
-         fq2->epicentre.n, fq2->epicentre.x);
     grid_note(p, c, SW_FQ2);
-    setf(c->method, sizeof c->method, "%s", sweep_method);
-
-    if (!(c = claim_add(r, "claim", "P2-fq2-abs", "paper 2, fig. 6(b)", "f_Q2: max Delta over n in [2, 1000] is 0.128")))
+    if (!(c = p2_sweep_claim(r, "P2-fq2-abs", "paper 2, fig. 6(b)", "f_Q2: max Delta over n in [2, 1000] is 0.128",
+                             "0.128", 0.128, &fq2->whole, 0)))
         return EXIT_RUNTIME;
-    claim_number(c, "0.128", 0.128, fq2->whole.value, 0.001, "+-0.001 (one unit in the last printed digit)");
-    setf(c->measured_text, sizeof c->measured_text, "%.5f at n = %g, x = %.4f", fq2->whole.value, fq2->whole.n,
-         fq2->whole.x);
     grid_note(p, c, SW_FQ2);
-    setf(c->method, sizeof c->method, "%s", sweep_method);
 
     if (!(c = claim_add(r, "claim", "P2-fq2-zone", "paper 2, discussion",
                         "f_Q2's max Delta lies in the attenuation zone")))
@@ -776,12 +786,11 @@ static int add_paper2(struct repro *p)
     setf(c->method, sizeof c->method, "%s", sweep_method);
 
     /* f2 */
-    if (!(c = claim_add(r, "claim", "P2-f2-rel", "paper 2, discussion",
-                        "f2 (classic cosine-quadratic): max delta in the epicentre over n in [2, 1000] is 7.924%")))
+    if (!(c = p2_sweep_claim(r, "P2-f2-rel", "paper 2, discussion",
+                             "f2 (classic cosine-quadratic): max delta in the epicentre over n in [2, 1000] is 7.924%",
+                             "7.924%", 0.07924, &f2->epicentre, 1)))
         return EXIT_RUNTIME;
-    claim_number(c, "7.924%", 0.07924, f2->epicentre.value, 1e-5, "+-0.001% (one unit in the last printed digit)");
-    setf(c->measured_text, sizeof c->measured_text, "%.4f%% at n = %g, x = %.5f (the zone end)",
-         100 * f2->epicentre.value, f2->epicentre.n, f2->epicentre.x);
+    strncat(c->measured_text, " (the zone end)", sizeof c->measured_text - strlen(c->measured_text) - 1);
     {
         struct cq2_zone_ctx zc = { &cq2_spec, &phong, f2->epicentre.n, 0.07924 };
         double kz = root_brent(cq2_end_minus, &zc, 0.45, 0.60);
@@ -792,15 +801,10 @@ static int add_paper2(struct repro *p)
                         "exp(-0.511).", zc.n, kz);
     }
     grid_note(p, c, SW_CQ2_P2);
-    setf(c->method, sizeof c->method, "%s", sweep_method);
-
-    if (!(c = claim_add(r, "claim", "P2-f2-abs", "paper 2, discussion", "f2: max Delta over n in [2, 1000] is 0.162")))
+    if (!(c = p2_sweep_claim(r, "P2-f2-abs", "paper 2, discussion", "f2: max Delta over n in [2, 1000] is 0.162",
+                             "0.162", 0.162, &f2->whole, 0)))
         return EXIT_RUNTIME;
-    claim_number(c, "0.162", 0.162, f2->whole.value, 0.001, "+-0.001 (one unit in the last printed digit)");
-    setf(c->measured_text, sizeof c->measured_text, "%.5f at n = %g, x = %.4f", f2->whole.value, f2->whole.n,
-         f2->whole.x);
     grid_note(p, c, SW_CQ2_P2);
-    setf(c->method, sizeof c->method, "%s", sweep_method);
 
     double ratio = f2->epicentre.value / fq2->epicentre.value;
     if (!(c = claim_add(r, "claim", "P2-6.3x", "paper 2, conclusions",

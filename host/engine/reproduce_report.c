@@ -101,12 +101,8 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
 {
     const struct reproduce_report *r = p->r;
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", CLAIMS_SCHEMA);
-    jw_context_begin(&w, p->s, p->actx.build_options);
-    jw_key(&w, "grid");
-    jw_obj_begin(&w);
+    jw_doc_begin(&w, CLAIMS_SCHEMA, p->s, p->actx.build_options);
+    jw_kv_obj(&w, "grid");
     jw_kv_int(&w, "samples_per_zone", p->o->samples);
     jw_kv_num(&w, "n_step", 1.0);
     jw_kv_str(&w, "paper1_range", "n in [16, 1000]");
@@ -114,16 +110,14 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
     jw_kv_bool(&w, "grid_check", p->o->grid_check);
     jw_obj_end(&w);
     jw_obj_end(&w);
-    jw_key(&w, "summary");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "summary");
     jw_kv_int(&w, "rows", r->count);
     jw_kv_int(&w, "reproduced", r->reproduced);
     jw_kv_int(&w, "not_reproduced", r->not_reproduced);
     jw_kv_str(&w, "tolerance_rule", "a printed number: within one unit of its last printed digit; otherwise as stated "
                                     "per row");
     jw_obj_end(&w);
-    jw_key(&w, "claims");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "claims");
     for (int i = 0; i < r->count; ++i)
         jw_claim(&w, &r->rows[i]);
     jw_arr_end(&w);
@@ -135,12 +129,8 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
 int reproduce_write_q_sweep_json(const struct repro *p, const char *path, char *err, size_t errlen)
 {
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", Q_SWEEP_SCHEMA);
-    jw_context_begin(&w, p->s, p->actx.build_options);
-    jw_key(&w, "grid");
-    jw_obj_begin(&w);
+    jw_doc_begin(&w, Q_SWEEP_SCHEMA, p->s, p->actx.build_options);
+    jw_kv_obj(&w, "grid");
     jw_kv_num(&w, "q_min", p->o->q_min);
     jw_kv_num(&w, "q_max", p->nq > 0 ? p->q[p->nq - 1] : p->o->q_max);
     jw_kv_num(&w, "q_step", p->o->q_step);
@@ -155,26 +145,16 @@ int reproduce_write_q_sweep_json(const struct repro *p, const char *path, char *
     static const char *const keys[4] = { "Q", "max_rel", "max_abs", "max_abs_attenuation" };
     const double *arrs[4] = { p->q, p->q_rel, p->q_abs, p->q_att };
     for (int k = 0; k < 4; ++k) {
-        jw_key(&w, keys[k]);
-        jw_arr_begin(&w);
-        for (int i = 0; i < p->nq; ++i)
-            jw_num(&w, arrs[k][i]);
-        jw_arr_end(&w);
+        jw_kv_nums(&w, keys[k], arrs[k], (size_t)p->nq);
     }
-    jw_key(&w, "max_rel_at_n");
-    jw_arr_begin(&w);
-    for (int i = 0; i < p->nq; ++i)
-        jw_num(&w, p->q_rel_n[i]);
-    jw_arr_end(&w);
+    jw_kv_nums(&w, "max_rel_at_n", p->q_rel_n, (size_t)p->nq);
     jw_kv_str(&w, "max_abs_what", "over the whole range x in [0, pi/2]; max_abs_attenuation over the attenuation zone");
-    jw_key(&w, "f2");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "f2");
     jw_kv_num(&w, "max_rel", p->f2_rel);
     jw_kv_num(&w, "max_abs", p->f2_abs);
     jw_kv_str(&w, "what", "cq2 on the same grid: does not depend on Q");
     jw_obj_end(&w);
-    jw_key(&w, "best");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "best");
     jw_kv_num(&w, "Q", p->q_best);
     jw_kv_num(&w, "max_rel", p->have_fq_best ? p->fq_best.epicentre.value : NAN);
     jw_kv_num(&w, "max_abs", p->have_fq_best ? p->fq_best.whole.value : NAN);

@@ -45,8 +45,7 @@ static struct tp_ratios ratios_of(const struct tp_run *r, int i, int v, int m)
 
 static void jw_stats(struct jw *w, const char *key, struct tp_stats s)
 {
-    jw_key(w, key);
-    jw_obj_begin(w);
+    jw_kv_obj(w, key);
     jw_kv_num(w, "min", s.min);
     jw_kv_num(w, "median", s.median);
     jw_kv_num(w, "max", s.max);
@@ -66,8 +65,7 @@ static void jw_ratio(struct jw *w, const char *key, double v, const char *why_mi
 /* Every timed launch's rate, in the order they ran: what a comparison of two runs tests. */
 static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
 {
-    jw_key(w, key);
-    jw_arr_begin(w);
+    jw_kv_arr(w, key);
     for (int k = 0; f->ok && k < f->nreps; ++k)
         jw_num(w, f->rep_seconds[k] > 0 ? f->per_launch / f->rep_seconds[k] : NAN);
     jw_arr_end(w);
@@ -78,8 +76,7 @@ static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
 static void jw_kernel_fingerprints(struct jw *w)
 {
     static const char *const files[] = { "brdf_models.h", "throughput.cl", "accuracy.cl", "peak.cl" };
-    jw_key(w, "kernel_sources_fnv1a64");
-    jw_obj_begin(w);
+    jw_kv_obj(w, "kernel_sources_fnv1a64");
     for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
         size_t len = 0;
         char *src = clsession_kernel_source(files[i], &len);
@@ -110,18 +107,34 @@ static const char *tp_definitions[][2] = {
     { "accuracy.max_diff_of_peak", "largest |device value - double reference value| / |reference lobe at c = 1| over 4096 probe points, half in the epicentre, half out to 4 x_e, n over [n_lo, n_hi]" },
 };
 
+/* Steps (v, i, m) to the next measured row (variant v, entry i, n mode m), in the order the
+ * result files list them; start from v = i = 0, m = -1. 0 when there is none left. */
+static int next_measured(const struct tp_run *r, int *v, int *i, int *m)
+{
+    if (r->nentries <= 0)
+        return 0;
+    for (;;) {
+        if (++*m == TP_NMODE_COUNT) {
+            *m = 0;
+            if (++*i == r->nentries) {
+                *i = 0;
+                if (++*v == TP_VARIANT_COUNT)
+                    return 0;
+            }
+        }
+        if (variant_on(r, *v) && r->e[*i].measured[*v][*m])
+            return 1;
+    }
+}
+
 int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
 {
     const struct throughput_options *o = r->o;
     struct jw w;
-    jw_init(&w);
-    jw_obj_begin(&w);
-    jw_kv_str(&w, "schema", THROUGHPUT_SCHEMA);
-    jw_context_begin(&w, r->s, r->options[TP_VARIANT_DEFAULT]);
+    jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
     const char *aff = getenv("POCL_AFFINITY");
     jw_kv_str(&w, "pocl_affinity", aff ? aff : "(unset)");
-    jw_key(&w, "throughput");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "throughput");
     jw_kv_int(&w, "reps", o->reps);
     jw_kv_num(&w, "min_time_s", o->min_time);
     jw_kv_int(&w, "work_items", r->work_items);
@@ -138,14 +151,12 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_obj_end(&w);
     jw_obj_end(&w);   /* context */
 
-    jw_key(&w, "definitions");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "definitions");
     for (size_t i = 0; i < sizeof tp_definitions / sizeof tp_definitions[0]; ++i)
         jw_kv_str(&w, tp_definitions[i][0], tp_definitions[i][1]);
     jw_obj_end(&w);
 
-    jw_key(&w, "builds");
-    jw_arr_begin(&w);
+    jw_kv_arr(&w, "builds");
     for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
         if (!variant_on(r, v))
             continue;
@@ -160,8 +171,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     }
     jw_arr_end(&w);
 
-    jw_key(&w, "peak");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "peak");
     jw_kv_str(&w, "status", r->peak.ok ? "ok" : "failed");
     if (!r->peak.ok)
         jw_kv_str(&w, "reason", r->peak.reason);
@@ -176,76 +186,68 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_kv_str(&w, "which", "measured before and after the models; the higher median is the peak");
     jw_obj_end(&w);
 
-    jw_key(&w, "results");
-    jw_arr_begin(&w);
-    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
-        for (int i = 0; i < r->nentries; ++i)
-            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
-                const struct tp_entry *e = &r->e[i];
-                if (!variant_on(r, v) || !e->measured[v][m])
-                    continue;
-                const struct tp_figure *f = &e->dev[v][m];
-                struct tp_ratios q = ratios_of(r, i, v, m);
-                jw_obj_begin(&w);
-                jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
-                jw_kv_str(&w, "label", e->label);
-                jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
-                jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
-                jw_kv_str(&w, "variant", tp_variant_name(v));
-                jw_kv_str(&w, "build_options", r->options[v]);
-                jw_kv_str(&w, "n_mode", nmode_names[m]);
-                jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
-                if (!f->ok)
-                    jw_kv_str(&w, "reason", f->reason);
-                jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
-                jw_reps(&w, "evals_per_s_reps", f);
-                jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
-                jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
-                jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
-                jw_kv_int(&w, "iterations_per_work_item", f->iters);
-                jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
-                jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
-                jw_kv_bool(&w, "values_finite", f->ok && f->finite);
-                if (f->ok && !f->finite)
-                    jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
-                                          "finite); the rate is the rate of that code");
-                jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
-                jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
-                         f->ok ? "the model's reference is not part of this run" : f->reason);
-                jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
-                         !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
-                                  : e->hostc[m].reason);
-                jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
-                jw_key(&w, "host_c");
-                jw_obj_begin(&w);
-                if (!o->host_c) {
-                    jw_kv_str(&w, "status", "not run");
-                } else {
-                    jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
-                    if (!e->hostc[m].ok)
-                        jw_kv_str(&w, "reason", e->hostc[m].reason);
-                    jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
-                    jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
-                    jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
-                    jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
-                    jw_kv_int(&w, "threads", r->threads);
-                }
-                jw_obj_end(&w);
-                jw_key(&w, "accuracy");
-                jw_obj_begin(&w);
-                jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
-                if (!e->acc_ok[v])
-                    jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
-                jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
-                jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
-                jw_kv_int(&w, "points", TP_ACC_POINTS);
-                jw_obj_end(&w);
-                jw_obj_end(&w);
-            }
+    jw_kv_arr(&w, "results");
+    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
+        const struct tp_entry *e = &r->e[i];
+        const struct tp_figure *f = &e->dev[v][m];
+        struct tp_ratios q = ratios_of(r, i, v, m);
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
+        jw_kv_str(&w, "label", e->label);
+        jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
+        jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
+        jw_kv_str(&w, "variant", tp_variant_name(v));
+        jw_kv_str(&w, "build_options", r->options[v]);
+        jw_kv_str(&w, "n_mode", nmode_names[m]);
+        jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
+        if (!f->ok)
+            jw_kv_str(&w, "reason", f->reason);
+        jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+        jw_reps(&w, "evals_per_s_reps", f);
+        jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
+        jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
+        jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
+        jw_kv_int(&w, "iterations_per_work_item", f->iters);
+        jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
+        jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
+        jw_kv_bool(&w, "values_finite", f->ok && f->finite);
+        if (f->ok && !f->finite)
+            jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
+                                  "finite); the rate is the rate of that code");
+        jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
+        jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
+                 f->ok ? "the model's reference is not part of this run" : f->reason);
+        jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
+                 !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
+                          : e->hostc[m].reason);
+        jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
+        jw_kv_obj(&w, "host_c");
+        if (!o->host_c) {
+            jw_kv_str(&w, "status", "not run");
+        } else {
+            jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
+            if (!e->hostc[m].ok)
+                jw_kv_str(&w, "reason", e->hostc[m].reason);
+            jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
+            jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
+            jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
+            jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
+            jw_kv_int(&w, "threads", r->threads);
+        }
+        jw_obj_end(&w);
+        jw_kv_obj(&w, "accuracy");
+        jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
+        if (!e->acc_ok[v])
+            jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
+        jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
+        jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
+        jw_kv_int(&w, "points", TP_ACC_POINTS);
+        jw_obj_end(&w);
+        jw_obj_end(&w);
+    }
     jw_arr_end(&w);
 
-    jw_key(&w, "sweep");
-    jw_obj_begin(&w);
+    jw_kv_obj(&w, "sweep");
     if (!r->sweep_ran) {
         jw_kv_str(&w, "status", "not run");
     } else {
@@ -282,8 +284,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
         jw_kv_num(&w, "agreement_max_rel_diff", agree);
         jw_kv_str(&w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
                                         "relative to at least 1e-4 (their sample cosines differ by float rounding)");
-        jw_key(&w, "models");
-        jw_arr_begin(&w);
+        jw_kv_arr(&w, "models");
         for (int k = 0; k < r->nsw; ++k) {
             const struct tp_sweep_model *s = &r->sw[k];
             jw_obj_begin(&w);
@@ -358,29 +359,25 @@ int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t err
     tx_printf(&t, "model,label,variant,build_options,n_mode,status,evals_per_s_min,evals_per_s_median,"
                   "evals_per_s_max,evals_per_s_wall_median,ratio_to_reference,ratio_to_model_reference,"
                   "ratio_to_host_c,fraction_of_peak,host_c_evals_per_s_median,max_diff_of_peak,reason\n");
-    for (int v = 0; v < TP_VARIANT_COUNT; ++v)
-        for (int i = 0; i < r->nentries; ++i)
-            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
-                const struct tp_entry *e = &r->e[i];
-                if (!variant_on(r, v) || !e->measured[v][m])
-                    continue;
-                const struct tp_figure *f = &e->dev[v][m];
-                struct tp_ratios q = ratios_of(r, i, v, m);
-                tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
-                          tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
-                tx_num(&t, f->ok ? f->rate.min : NAN);
-                tx_num(&t, f->ok ? f->rate.median : NAN);
-                tx_num(&t, f->ok ? f->rate.max : NAN);
-                tx_num(&t, f->ok ? f->rate_wall.median : NAN);
-                tx_num(&t, q.to_reference);
-                tx_num(&t, q.to_model_reference);
-                tx_num(&t, q.to_host_c);
-                tx_num(&t, q.of_peak);
-                tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
-                tx_num(&t, e->acc_max_diff[v]);
-                /* reasons never hold a double quote: they are written by this program */
-                tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
-            }
+    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
+        const struct tp_entry *e = &r->e[i];
+        const struct tp_figure *f = &e->dev[v][m];
+        struct tp_ratios q = ratios_of(r, i, v, m);
+        tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
+                  tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
+        tx_num(&t, f->ok ? f->rate.min : NAN);
+        tx_num(&t, f->ok ? f->rate.median : NAN);
+        tx_num(&t, f->ok ? f->rate.max : NAN);
+        tx_num(&t, f->ok ? f->rate_wall.median : NAN);
+        tx_num(&t, q.to_reference);
+        tx_num(&t, q.to_model_reference);
+        tx_num(&t, q.to_host_c);
+        tx_num(&t, q.of_peak);
+        tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
+        tx_num(&t, e->acc_max_diff[v]);
+        /* reasons never hold a double quote: they are written by this program */
+        tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
+    }
     int rc = t.failed ? -1 : write_file_atomic(path, t.s, t.len, err, errlen);
     if (t.failed)
         snprintf(err, errlen, "out of memory writing %.900s", path);

@@ -408,6 +408,27 @@ int write_png(const char *path, const cv::Mat &bgr, char *err, size_t errlen)
     return 0;
 }
 
+/* A horizontal error bar from x = a to b at height cy, with end ticks of half-height tick. */
+static void draw_error_bar(cv::Mat &img, int a, int b, int cy, int tick)
+{
+    cv::line(img, cv::Point(a, cy), cv::Point(b, cy), INK, 1);
+    cv::line(img, cv::Point(a, cy - tick), cv::Point(a, cy + tick), INK, 1);
+    cv::line(img, cv::Point(b, cy - tick), cv::Point(b, cy + tick), INK, 1);
+}
+
+/* The image that draw() makes, written to path as PNG; an OpenCV exception on the way becomes
+ * the error "path: what", -1. */
+template <class Draw> static int draw_png(const char *path, char *err, size_t errlen, Draw draw)
+{
+    try {
+        cv::Mat img = draw();
+        return write_png(path, img, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, "%s: %s", path, e.what());
+        return -1;
+    }
+}
+
 bool check_path(const char *path, char *err, size_t errlen)
 {
     if (!path || !*path) {
@@ -467,8 +488,8 @@ bool check_image_args(const char *path, int width, int height, const void *data,
 
 /* Images of width x height (count of them) in a row, captions above, the error colour bar
  * on the right; the last image is the error. */
-int image_row(const char *path, int w, int h, const unsigned char *ref_rgb, const unsigned char *model_rgb,
-              const float *abs_err, float vmax, const char *title, char *err, size_t errlen)
+cv::Mat image_row(int w, int h, const unsigned char *ref_rgb, const unsigned char *model_rgb,
+                  const float *abs_err, float vmax, const char *title)
 {
     bool sheet = ref_rgb != nullptr;
     double lo, hi;
@@ -504,7 +525,7 @@ int image_row(const char *path, int w, int h, const unsigned char *ref_rgb, cons
     int bx = M + nimg * slot + (nimg - 1) * GAP + 18;
     draw_colour_bar(img, cv::Rect(bx, y0, BAR_W, bar_h), DRAW_CMAP_INFERNO, lo, hi, DRAW_FMT_PLAIN,
                     "absolute error");
-    return write_png(path, img, err, errlen);
+    return img;
 }
 
 /* ---- heatmaps --------------------------------------------------------------------- */
@@ -758,26 +779,19 @@ extern "C" int draw_png_rgb8(const char *path, int width, int height, const unsi
                              size_t errlen)
 {
     if (!check_image_args(path, width, height, rgb, "pixel", err, errlen)) return -1;
-    try {
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
         cv::Mat img(height, width, CV_8UC3);
         rgb_to_bgr(rgb, width, height, img);
-        return write_png(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+        return img;
+    });
 }
 
 extern "C" int draw_error_image(const char *path, int width, int height, const float *abs_err, float vmax,
                                 const char *title, char *err, size_t errlen)
 {
     if (!check_image_args(path, width, height, abs_err, "error", err, errlen)) return -1;
-    try {
-        return image_row(path, width, height, nullptr, nullptr, abs_err, vmax, title, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+    return draw_png(path, err, errlen,
+                    [&]() { return image_row(width, height, nullptr, nullptr, abs_err, vmax, title); });
 }
 
 extern "C" int draw_contact_sheet(const char *path, int width, int height, const unsigned char *ref_rgb,
@@ -789,12 +803,8 @@ extern "C" int draw_contact_sheet(const char *path, int width, int height, const
         set_err(err, errlen, "%s: contact sheet needs both the reference and the model image", path);
         return -1;
     }
-    try {
-        return image_row(path, width, height, ref_rgb, model_rgb, abs_err, vmax, title, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+    return draw_png(path, err, errlen,
+                    [&]() { return image_row(width, height, ref_rgb, model_rgb, abs_err, vmax, title); });
 }
 
 extern "C" int draw_heatmap_figure(const char *path, const char *title, int npanels,
@@ -808,7 +818,7 @@ extern "C" int draw_heatmap_figure(const char *path, const char *title, int npan
     }
     for (int k = 0; k < npanels; k++)
         if (!check_panel(panels[k], path, k, err, errlen)) return -1;
-    try {
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
         std::vector<PanelGeom> geom(npanels);
         int total_w = 0;
         for (int k = 0; k < npanels; k++) {
@@ -842,11 +852,8 @@ extern "C" int draw_heatmap_figure(const char *path, const char *title, int npan
             }
             x0 += geom[k].width;
         }
-        return write_png(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+        return img;
+    });
 }
 
 extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, char *err, size_t errlen)
@@ -865,7 +872,7 @@ extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, 
         set_err(err, errlen, "%s: a log axis needs a positive range", path);
         return -1;
     }
-    try {
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
         double xlo, xhi, ylo, yhi;
         if (p->x_max > p->x_min) {
             xlo = p->x_min;
@@ -963,11 +970,8 @@ extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, 
                 row++;
             }
         }
-        return write_png(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+        return img;
+    });
 }
 
 extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, char *err, size_t errlen)
@@ -977,7 +981,7 @@ extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, 
         set_err(err, errlen, "%s: a bar chart needs 1..200 labelled values", path);
         return -1;
     }
-    try {
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
         std::vector<std::string> texts(c->nbars);
         double vmax = 0;
         int label_w = 0, text_w = 0;
@@ -1023,21 +1027,15 @@ extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, 
             if (c->err_lo && c->err_hi && std::isfinite(c->err_lo[i]) && std::isfinite(c->err_hi[i])) {
                 int a = (int)std::lround(ax.map(std::max(0.0, c->err_lo[i])));
                 int b = (int)std::lround(ax.map(std::min(xhi, c->err_hi[i])));
-                int cy = y + row_h / 2;
-                cv::line(img, cv::Point(a, cy), cv::Point(b, cy), INK, 1);
-                cv::line(img, cv::Point(a, cy - 5), cv::Point(a, cy + 5), INK, 1);
-                cv::line(img, cv::Point(b, cy - 5), cv::Point(b, cy + 5), INK, 1);
+                draw_error_bar(img, a, b, y + row_h / 2, 5);
                 end = std::max(end, b);
             }
             put(img, texts[i], end + 6, y + row_h / 2, S_TICK, -1, 0);
         }
         cv::line(img, cv::Point(plot.x - 1, plot.y), cv::Point(plot.x - 1, plot.y + plot.height), INK, 1);
         cv::line(img, cv::Point(plot.x - 1, plot.y + plot.height), cv::Point(plot.x + plot.width, plot.y + plot.height), INK, 1);
-        return write_png(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+        return img;
+    });
 }
 
 extern "C" int draw_read_rgb8(const char *path, int *width, int *height, unsigned char **rgb, char *err,
@@ -1088,7 +1086,7 @@ extern "C" int draw_ratio_chart(const char *path, const struct draw_ratio_chart 
         set_err(err, errlen, "%s: a ratio chart needs 1..2000 bars in labelled groups", path);
         return -1;
     }
-    try {
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
         const int G = c->ngroups, S = c->nseries;
         double vmax = 1;
         int label_w = 0, text_w = 0, legend_w = 0;
@@ -1157,10 +1155,7 @@ extern "C" int draw_ratio_chart(const char *path, const struct draw_ratio_chart 
                 if (c->err_lo && c->err_hi && std::isfinite(c->err_lo[i]) && std::isfinite(c->err_hi[i])) {
                     int a = (int)std::lround(ax.map(std::max(0.0, std::min(xhi, c->err_lo[i]))));
                     int b = (int)std::lround(ax.map(std::max(0.0, std::min(xhi, c->err_hi[i]))));
-                    int cy = y + bar_h / 2;
-                    cv::line(img, cv::Point(a, cy), cv::Point(b, cy), INK, 1);
-                    cv::line(img, cv::Point(a, cy - 4), cv::Point(a, cy + 4), INK, 1);
-                    cv::line(img, cv::Point(b, cy - 4), cv::Point(b, cy + 4), INK, 1);
+                    draw_error_bar(img, a, b, y + bar_h / 2, 4);
                     end = std::max(end, b);
                 }
                 put(img, texts[i], end + 6, y + bar_h / 2, S_TICK, -1, 0);
@@ -1172,18 +1167,15 @@ extern "C" int draw_ratio_chart(const char *path, const struct draw_ratio_chart 
             cv::line(img, cv::Point(x1, y), cv::Point(x1, std::min(y + 4, plot.y + plot.height)), INK, 1);
         cv::line(img, cv::Point(plot.x - 1, plot.y), cv::Point(plot.x - 1, plot.y + plot.height), INK, 1);
         cv::line(img, cv::Point(plot.x - 1, plot.y + plot.height), cv::Point(plot.x + plot.width, plot.y + plot.height), INK, 1);
-        return write_png(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+        return img;
+    });
 }
 
 /* ---- scatter plots ------------------------------------------------------------------------ */
 
 int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *err, size_t errlen)
 {
-    try {
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
         const int W = 1100, H = 720, left = 110, right = 40, top = title_height(plot->title) + 20, bottom = 80;
         cv::Mat img(H, W, CV_8UC3, WHITE);
         put_title(img, plot->title);
@@ -1270,9 +1262,6 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
         put(img, "engines' approximations and tuned models", lx + 14, ly + 40, S_TICK, -1, 0);
         cv::circle(img, cv::Point(lx, ly + 60), 9, palette(3), 2, cv::LINE_AA);
         put(img, "on the front (joined)", lx + 14, ly + 60, S_TICK, -1, 0);
-        return write_png(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, "%s: %s", path, e.what());
-        return -1;
-    }
+        return img;
+    });
 }

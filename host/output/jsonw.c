@@ -136,6 +136,16 @@ void jw_kv_str(struct jw *w, const char *key, const char *s) { jw_key(w, key); j
 void jw_kv_num(struct jw *w, const char *key, double v) { jw_key(w, key); jw_num(w, v); }
 void jw_kv_int(struct jw *w, const char *key, long long v) { jw_key(w, key); jw_int(w, v); }
 void jw_kv_bool(struct jw *w, const char *key, int v) { jw_key(w, key); jw_bool(w, v); }
+void jw_kv_obj(struct jw *w, const char *key) { jw_key(w, key); jw_obj_begin(w); }
+void jw_kv_arr(struct jw *w, const char *key) { jw_key(w, key); jw_arr_begin(w); }
+
+void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count)
+{
+    jw_kv_arr(w, key);
+    for (size_t i = 0; i < count; ++i)
+        jw_num(w, v[i]);
+    jw_arr_end(w);
+}
 
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
 {

@@ -38,6 +38,11 @@ void jw_kv_str(struct jw *w, const char *key, const char *s);
 void jw_kv_num(struct jw *w, const char *key, double v);
 void jw_kv_int(struct jw *w, const char *key, long long v);
 void jw_kv_bool(struct jw *w, const char *key, int v);
+/* "key": { and "key": [ , closed by jw_obj_end and jw_arr_end. */
+void jw_kv_obj(struct jw *w, const char *key);
+void jw_kv_arr(struct jw *w, const char *key);
+/* "key": [v[0], ..., v[count-1]] with jw_num. */
+void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count);
 /* Writes the buffer (plus a newline) atomically to path. Returns 0 or -1. */
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen);
 /* jw_write_file, then jw_free: the end of every writer that builds one document. */
