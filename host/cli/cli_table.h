@@ -126,6 +126,12 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
     { .name = "--csv", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results as CSV to FILE ('-': standard output)", .def = "" }
 
+/* --out, --json and --csv of a command that writes a run folder or, with --json or --csv and no
+ * --out, only those documents. */
+#define CLI_FLAGS_DOCUMENTS(OUT, JSON, CSV)                                                                        \
+    CLI_FLAG_OUT(OUT, CLI_DEF_OUT "; with --json or --csv and no --out, no folder"), CLI_FLAG_JSON(JSON),         \
+    CLI_FLAG_CSV(CSV)
+
 /* Device selection (struct device_options, cli.h). */
 int cli_call_platform(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_device(const char *flag, const char *value, void *dest, char *err, size_t errlen);

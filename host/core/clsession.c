@@ -534,6 +534,40 @@ done:
     return rc;
 }
 
+int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const char *options, cl_program *program,
+                            int count, const char *const names[], cl_kernel *const kernels[])
+{
+    for (int i = 0; i < count; ++i)
+        *kernels[i] = NULL;
+    int rc = clsession_build(s, kernel_file, NULL, options, program);
+    if (rc)
+        return rc;
+    for (int i = 0; i < count; ++i) {
+        cl_int e;
+        *kernels[i] = clCreateKernel(*program, names[i], &e);
+        if (e != CL_SUCCESS) {
+            char what[160];
+            snprintf(what, sizeof what, "clCreateKernel(%s)", names[i]);
+            cl_report(what, e, __FILE__, __LINE__);
+            clsession_release_kernels(program, count, kernels);
+            return EXIT_RUNTIME;
+        }
+    }
+    return 0;
+}
+
+void clsession_release_kernels(cl_program *program, int count, cl_kernel *const kernels[])
+{
+    for (int i = count - 1; i >= 0; --i) {
+        if (*kernels[i])
+            clReleaseKernel(*kernels[i]);
+        *kernels[i] = NULL;
+    }
+    if (*program)
+        clReleaseProgram(*program);
+    *program = NULL;
+}
+
 int clsession_build(struct cl_session *s, const char *kernel_file, const char *extra_source,
                     const char *options, cl_program *out)
 {

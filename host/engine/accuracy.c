@@ -1,5 +1,6 @@
 /* accuracy.c - the dense-grid sweep on the device and its double-precision check. */
 #include "accuracy.h"
+#include "lcg.h"
 #include "exitcodes.h"
 #include "programs.h"
 #include "refine.h"
@@ -102,30 +103,15 @@ int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *buil
     memset(a, 0, sizeof *a);
     a->s = s;
     snprintf(a->build_options, sizeof a->build_options, "%s", build_options ? build_options : "");
-    int rc = clsession_build(s, "accuracy.cl", NULL, a->build_options, &a->program);
-    if (rc)
-        return rc;
-    cl_int e;
-    a->sweep = clCreateKernel(a->program, "accuracy_sweep", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(accuracy_sweep)", fail);
-    a->probe = clCreateKernel(a->program, "models_probe", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(models_probe)", fail);
-    return 0;
-fail:
-    accuracy_close(a);
-    return rc;
+    static const char *const names[] = { "accuracy_sweep", "models_probe" };
+    cl_kernel *const kernels[] = { &a->sweep, &a->probe };
+    return clsession_build_kernels(s, "accuracy.cl", a->build_options, &a->program, 2, names, kernels);
 }
 
 void accuracy_close(struct accuracy_ctx *a)
 {
-    if (a->probe)
-        clReleaseKernel(a->probe);
-    if (a->sweep)
-        clReleaseKernel(a->sweep);
-    if (a->program)
-        clReleaseProgram(a->program);
-    a->probe = a->sweep = NULL;
-    a->program = NULL;
+    cl_kernel *const kernels[] = { &a->sweep, &a->probe };
+    clsession_release_kernels(&a->program, 2, kernels);
 }
 
 /* The sweep and probe kernels that evaluate model m (host/core/programs.h: the shared ones,
@@ -385,10 +371,8 @@ static int check_probe(struct accuracy_ctx *a, struct accuracy_result *r)
     }
     uint64_t state = 0x9e3779b97f4a7c15ULL;
     for (int i = 0; i < ACC_PROBE_POINTS; ++i) {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        double u = (double)(state >> 11) / 9007199254740992.0;
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        double v = (double)(state >> 11) / 9007199254740992.0;
+        double u = lcg_unit(&state);
+        double v = lcg_unit(&state);
         double nv = r->per_n[(long)(u * (double)r->n_count) % r->n_count].n;
         double x_e = zone_epicentre_end(nv);
         /* Half the points in the epicentre, half over the lobe's fall-off (out to 4 x_e). */

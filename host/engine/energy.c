@@ -1,6 +1,7 @@
 /* energy.c - device quadrature (eq. 11 terms, directional albedo), closed forms at normal
  * incidence, the reciprocity check, and energy.json. See energy.h. */
 #include "energy.h"
+#include "lcg.h"
 #include "energy_report.h"
 #include "accuracy.h"
 #include "context.h"
@@ -33,30 +34,15 @@ int integrate_open(struct integrate_ctx *c, struct cl_session *s)
 {
     memset(c, 0, sizeof *c);
     c->s = s;
-    int rc = clsession_build(s, "integrate.cl", NULL, "", &c->program);
-    if (rc)
-        return rc;
-    cl_int e;
-    c->eq11 = clCreateKernel(c->program, "eq11_terms", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(eq11_terms)", fail);
-    c->albedo = clCreateKernel(c->program, "albedo_partial", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(albedo_partial)", fail);
-    c->recip = clCreateKernel(c->program, "reciprocity_pairs", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(reciprocity_pairs)", fail);
-    return 0;
-fail:
-    integrate_close(c);
-    return rc;
+    static const char *const names[] = { "eq11_terms", "albedo_partial", "reciprocity_pairs" };
+    cl_kernel *const kernels[] = { &c->eq11, &c->albedo, &c->recip };
+    return clsession_build_kernels(s, "integrate.cl", "", &c->program, 3, names, kernels);
 }
 
 void integrate_close(struct integrate_ctx *c)
 {
-    if (c->recip) clReleaseKernel(c->recip);
-    if (c->albedo) clReleaseKernel(c->albedo);
-    if (c->eq11) clReleaseKernel(c->eq11);
-    if (c->program) clReleaseProgram(c->program);
-    c->recip = c->albedo = c->eq11 = NULL;
-    c->program = NULL;
+    cl_kernel *const kernels[] = { &c->eq11, &c->albedo, &c->recip };
+    clsession_release_kernels(&c->program, 3, kernels);
 }
 
 /* Gauss-Legendre node i of order `order` on [a, b] (GSL's fixed tables). */
@@ -346,15 +332,10 @@ int albedo_closed_form_normal(const struct model_spec *m, int mode, double n, do
 
 /* ---- reciprocity -------------------------------------------------------------------------- */
 
-static double rnd(uint64_t *state)
-{
-    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*state >> 11) / 9007199254740992.0;
-}
 
 static void unit_sphere(uint64_t *st, double v[3])
 {
-    double z = 2 * rnd(st) - 1, phi = two_pi * rnd(st), r = sqrt(fmax(0, 1 - z * z));
+    double z = 2 * lcg_unit(st) - 1, phi = two_pi * lcg_unit(st), r = sqrt(fmax(0, 1 - z * z));
     v[0] = r * cos(phi);
     v[1] = r * sin(phi);
     v[2] = z;
@@ -369,7 +350,7 @@ static void hemisphere_dir(uint64_t *st, const double nrm[3], const double *arou
         if (around) {
             double u[3];
             unit_sphere(st, u);
-            double s = spread * rnd(st);
+            double s = spread * lcg_unit(st);
             for (int i = 0; i < 3; ++i)
                 v[i] = around[i] + s * u[i];
         } else {
@@ -433,7 +414,7 @@ int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long 
         double *d = dirs + 9 * i;
         /* n log-uniform over [2, 1000]; half the pairs with V near the mirror direction of L,
            where the lobe is not 0, the other half uniform over the hemisphere. */
-        nv[i] = 2.0 * pow(500.0, rnd(&st));
+        nv[i] = 2.0 * pow(500.0, lcg_unit(&st));
         unit_sphere(&st, d);
         hemisphere_dir(&st, d, NULL, 0, d + 3);
         double r[3], nl = dot3(d, d + 3);
@@ -646,8 +627,8 @@ int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_s
     float *nx = gbuffer_plane(&g, GB_NX), *ny = gbuffer_plane(&g, GB_NY), *nz = gbuffer_plane(&g, GB_NZ);
     float *sh = gbuffer_plane(&g, GB_SHIN);
     for (long i = 0; i < pairs; ++i) {
-        double pos[3] = { 2 * rnd(&st) - 1, 2 * rnd(&st) - 1, -1 - 2 * rnd(&st) }, v[3], l[3], h[3], nrm[3];
-        double n = 2.0 * pow(500.0, rnd(&st));
+        double pos[3] = { 2 * lcg_unit(&st) - 1, 2 * lcg_unit(&st) - 1, -1 - 2 * lcg_unit(&st) }, v[3], l[3], h[3], nrm[3];
+        double n = 2.0 * pow(500.0, lcg_unit(&st));
         for (int k = 0; k < 3; ++k) {
             v[k] = eye[k] - pos[k];
             l[k] = lamp[k] - pos[k];
@@ -666,7 +647,7 @@ int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_s
         for (int tries = 0;; ++tries) {
             double u[3];
             unit_sphere(&st, u);
-            double spread = (i % 2) ? 3.0 * zone_epicentre_end(n) * rnd(&st) : 1.5 * rnd(&st);
+            double spread = (i % 2) ? 3.0 * zone_epicentre_end(n) * lcg_unit(&st) : 1.5 * lcg_unit(&st);
             for (int k = 0; k < 3; ++k)
                 nrm[k] = h[k] + spread * u[k];
             double len = sqrt(dot3(nrm, nrm));

@@ -55,24 +55,16 @@ int field_open(struct field_ctx *f, struct cl_session *s, const char *build_opti
 {
     memset(f, 0, sizeof *f);
     f->s = s;
-    int rc = clsession_build(s, "field.cl", NULL, build_options ? build_options : "", &f->program);
-    if (rc) return rc;
-    cl_int e;
     snprintf(f->build_options, sizeof f->build_options, "%s", build_options ? build_options : "");
-    f->kernel = clCreateKernel(f->program, "field_grid", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(field_grid)", fail);
-    return 0;
-fail:
-    field_close(f);
-    return rc;
+    static const char *const names[] = { "field_grid" };
+    cl_kernel *const kernels[] = { &f->kernel };
+    return clsession_build_kernels(s, "field.cl", f->build_options, &f->program, 1, names, kernels);
 }
 
 void field_close(struct field_ctx *f)
 {
-    if (f->kernel) clReleaseKernel(f->kernel);
-    if (f->program) clReleaseProgram(f->program);
-    f->kernel = NULL;
-    f->program = NULL;
+    cl_kernel *const kernels[] = { &f->kernel };
+    clsession_release_kernels(&f->program, 1, kernels);
 }
 
 void field_result_free(struct field_result *r)

@@ -1,6 +1,7 @@
 /* pbcost.c - the physically based models' cost beside the lobes, He's terms per evaluation
  * and the white-furnace albedo at normal incidence (see pbcost.h); pbcost_report.c writes. */
 #include "pbcost.h"
+#include "lcg.h"
 
 #include "exitcodes.h"
 
@@ -86,17 +87,12 @@ static double row_eval_host(const struct pbcost_row *row, double nl, double nv, 
     return model_eval_host(&row->spec, c, n);
 }
 
-static double rnd(uint64_t *st)
-{
-    *st = *st * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*st >> 11) * (1.0 / 9007199254740992.0);
-}
 
 /* Random unit vectors in the upper hemisphere (cosine >= 0.05 to z). */
 static void hemi(uint64_t *st, double v[3])
 {
     for (;;) {
-        double x = 2 * rnd(st) - 1, y = 2 * rnd(st) - 1, z = rnd(st);
+        double x = 2 * lcg_unit(st) - 1, y = 2 * lcg_unit(st) - 1, z = lcg_unit(st);
         double l = sqrt(x * x + y * y + z * z);
         if (l > 1e-3 && l <= 1 && z / l >= 0.05) {
             v[0] = x / l;
@@ -118,7 +114,7 @@ static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *r
         double l[3], v[3];
         hemi(&st, l);
         if (i % 2) {
-            double spread = 0.3 * rnd(&st);
+            double spread = 0.3 * lcg_unit(&st);
             double d[3];
             hemi(&st, d);
             v[0] = -l[0] + spread * (d[0] - 0.5);

@@ -261,16 +261,14 @@ int render_device_open(struct render_device *d, struct cl_session *s,
         return EXIT_RUNTIME;
     }
     display_table_build(o, table, &d->display_code_error);
-    rc = clsession_build(s, "shade.cl", NULL, "", &d->program);
+    static const char *const names[] = { "shade", "copy_gbuffer" };
+    cl_kernel *const kernels[] = { &d->shade, &d->copy };
+    rc = clsession_build_kernels(s, "shade.cl", "", &d->program, 2, names, kernels);
     if (rc) {
-        set_err(err, errlen, "building kernels/shade.cl failed (build log above)");
+        set_err(err, errlen, "building kernels/shade.cl or making its kernels failed (see above)");
         free(table);
         return rc;
     }
-    d->shade = clCreateKernel(d->program, "shade", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(shade)", fail);
-    d->copy = clCreateKernel(d->program, "copy_gbuffer", &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(copy_gbuffer)", fail);
     d->display_table = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                       DISPLAY_BINS * sizeof *table, table, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(display table)", fail);
@@ -287,12 +285,8 @@ void render_device_close(struct render_device *d)
 {
     if (d->display_table)
         clReleaseMemObject(d->display_table);
-    if (d->copy)
-        clReleaseKernel(d->copy);
-    if (d->shade)
-        clReleaseKernel(d->shade);
-    if (d->program)
-        clReleaseProgram(d->program);
+    cl_kernel *const kernels[] = { &d->shade, &d->copy };
+    clsession_release_kernels(&d->program, 2, kernels);
     memset(d, 0, sizeof *d);
 }
 

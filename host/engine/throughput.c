@@ -2,6 +2,7 @@
  * device's peak (see throughput.h for the protocol); throughput_report.c writes the results. */
 #define _POSIX_C_SOURCE 200809L
 #include "throughput.h"
+#include "lcg.h"
 #include "throughput_report.h"
 #include "context.h"
 #include "exitcodes.h"
@@ -598,10 +599,8 @@ static void tp_probe_points(const struct throughput_options *o, float *c, float 
 {
     uint64_t state = 0x2545f4914f6cdd1dULL;
     for (int i = 0; i < count; ++i) {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        double u = (double)(state >> 11) / 9007199254740992.0;
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        double v = (double)(state >> 11) / 9007199254740992.0;
+        double u = lcg_unit(&state);
+        double v = lcg_unit(&state);
         double nv = (double)(float)(o->n_lo + u * (o->n_hi - o->n_lo));
         double x_e = zone_epicentre_end(nv);
         double x = (i % 2 == 0) ? v * x_e : fmin(1.57079632679489662, x_e + v * 3.0 * x_e);
