@@ -23,82 +23,99 @@ JOBS=${MUTATE_JOBS:-2}
 cd "$ROOT" || exit 2
 
 names=() globs=() olds=() news=() tests=()
-# mutant NAME GLOB OLD NEW CTEST_REGEX
-mutant() { names+=("$1"); globs+=("$2"); olds+=("$3"); news+=("$4"); tests+=("$5"); }
+# in_files GLOB CTEST_REGEX: the files (a glob) and the tests of the mutants listed after it
+in_files() { glob=$1 regex=$2; }
+# mutant NAME OLD NEW: a mutant of the files and tests the last in_files named
+mutant() { names+=("$1"); globs+=("$glob"); olds+=("$2"); news+=("$3"); tests+=("$regex"); }
 
-H=kernels/brdf_models.h
 T_MODEL='^(test_model_table|test_models)$'
 T_ACC='^(test_model_table|test_accuracy|test_cli_accuracy)$'
 T_REP='^(test_reproduce|test_reproduce_cli)$'
 T_TP='^(test_throughput|test_throughput_cli)$'
 T_GATE='^(test_gate|test_gate_papers)$'
+# the zone end x_e = acos(exp(-0.511 / n)), in double on the host and in float on the device
+ZONE_HOST='return acos(exp(-0.511 / n));' ZONE_HOST_BUG='return acos(exp(-0.512 / n));'
+ZONE_DEV='const float s_e = -expm1(-0.511f / n);' ZONE_DEV_BUG='const float s_e = -expm1(-0.512f / n);'
+CLAIM_TOL='c->reproduced = isfinite(measured) && fabs(measured - claimed) <= tol * (1 + 1e-9) + 1e-15;'
 
 # ---- model constants and clamps (the header: device and host reference alike)
-mutant fvol-0.464        "$H" 'n * RC(0.463));' 'n * RC(0.464));' "$T_MODEL"
-mutant fq2-intercept     "$H" 'case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));' \
-                              'case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.0991));' "$T_MODEL"
-mutant fq2n-offset       "$H" 'RC(0.214) * (RC(0.807) + n)' 'RC(0.214) * (RC(0.808) + n)' "$T_MODEL"
-mutant fvol64-xi         "$H" 'n * RC(29.0 / 64.0)' 'n * RC(30.0 / 64.0)' "$T_MODEL"
-mutant cq2-half          "$H" 'brdf_quadratic_s(s, n * RC(0.5))' 'brdf_quadratic_s(s, n * RC(0.5) + RC(0.001))' "$T_MODEL"
-mutant quad-clamp        "$H" 'REAL base = fmax(RC(1.0) - k * s, RC(0.0));' 'REAL base = RC(1.0) - k * s;' "$T_MODEL"
-mutant lyon-clamp        "$H" 'REAL base = fmax(RC(1.0) - n * s * RC(exp2(-(RSCALAR)k)), RC(0.0));' \
-                              'REAL base = RC(1.0) - n * s * RC(exp2(-(RSCALAR)k));' "$T_MODEL"
-mutant alpha-of-n        "$H" 'sqrt(RC(2.0) / (n + RC(2.0)))' 'sqrt(RC(2.0) / (n + RC(1.0)))' "$T_MODEL"
-mutant blinnn-norm       "$H" '(exp2(-n * RC(0.5)) + n)' '(exp2(-n * RC(0.25)) + n)' "$T_MODEL"
-mutant schlick-denom     "$H" 'case BRDF_SCHLICK:  return c / (n * s + c);' 'case BRDF_SCHLICK:  return c / (n * s + RC(1.0));' "$T_MODEL"
-mutant k_q-exponent      "$H" 'expm1(RSPLAT(log(q)) / n)' 'expm1(RSPLAT(log(q)) / (n + RC(0.01)))' "$T_MODEL"
-mutant negative-cos      "$H" '    c = fmax(c, RC(0.0));
-    return brdf_eval_cs(' '    return brdf_eval_cs(' "$T_MODEL"
+in_files kernels/brdf_models.h "$T_MODEL"
+mutant fvol-0.464        'n * RC(0.463));' 'n * RC(0.464));'
+mutant fq2-intercept     'case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));' \
+                         'case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.0991));'
+mutant fq2n-offset       'RC(0.214) * (RC(0.807) + n)' 'RC(0.214) * (RC(0.808) + n)'
+mutant fvol64-xi         'n * RC(29.0 / 64.0)' 'n * RC(30.0 / 64.0)'
+mutant cq2-half          'brdf_quadratic_s(s, n * RC(0.5))' 'brdf_quadratic_s(s, n * RC(0.5) + RC(0.001))'
+mutant quad-clamp        'REAL base = fmax(RC(1.0) - k * s, RC(0.0));' 'REAL base = RC(1.0) - k * s;'
+mutant lyon-clamp        'REAL base = fmax(RC(1.0) - n * s * RC(exp2(-(RSCALAR)k)), RC(0.0));' \
+                         'REAL base = RC(1.0) - n * s * RC(exp2(-(RSCALAR)k));'
+mutant alpha-of-n        'sqrt(RC(2.0) / (n + RC(2.0)))' 'sqrt(RC(2.0) / (n + RC(1.0)))'
+mutant blinnn-norm       '(exp2(-n * RC(0.5)) + n)' '(exp2(-n * RC(0.25)) + n)'
+mutant schlick-denom     'case BRDF_SCHLICK:  return c / (n * s + c);' 'case BRDF_SCHLICK:  return c / (n * s + RC(1.0));'
+mutant k_q-exponent      'expm1(RSPLAT(log(q)) / n)' 'expm1(RSPLAT(log(q)) / (n + RC(0.01)))'
+mutant negative-cos      '    c = fmax(c, RC(0.0));
+    return brdf_eval_cs(' '    return brdf_eval_cs('
 
 # ---- zone ends, on the host and on the device; sample placement
-mutant zone-end-host     'host/engine/accuracy*.c' 'return acos(exp(-0.511 / n));' 'return acos(exp(-0.512 / n));' "$T_ACC"
-mutant zone-end-device   'kernels/accuracy.cl' 'const float s_e = -expm1(-0.511f / n);' 'const float s_e = -expm1(-0.512f / n);' "$T_ACC"
-mutant zone-end-field    'kernels/field.cl' 'const float s_e = -expm1(-0.511f / n);' 'const float s_e = -expm1(-0.512f / n);' '^test_report$'
-mutant zone-end-field-host 'host/engine/field*.c' 'return acos(exp(-0.511 / n));' 'return acos(exp(-0.512 / n));' '^test_report$'
-mutant samples-att-ratio 'kernels/accuracy.cl' 'const float log2_r = -log2(s_e) / (float)samples;' \
-                              'const float log2_r = -log2(s_e) / (float)(2 * samples);' "$T_ACC"
-mutant samples-epi-short 'kernels/accuracy.cl' 'const float epi_step = s_e / (float)(samples - 1);' \
-                              'const float epi_step = 0.9f * s_e / (float)(samples - 1);' "$T_ACC"
+in_files 'host/engine/accuracy*.c' "$T_ACC"
+mutant zone-end-host       "$ZONE_HOST" "$ZONE_HOST_BUG"
+in_files kernels/accuracy.cl "$T_ACC"
+mutant zone-end-device     "$ZONE_DEV" "$ZONE_DEV_BUG"
+in_files kernels/field.cl '^test_report$'
+mutant zone-end-field      "$ZONE_DEV" "$ZONE_DEV_BUG"
+in_files 'host/engine/field*.c' '^test_report$'
+mutant zone-end-field-host "$ZONE_HOST" "$ZONE_HOST_BUG"
+in_files kernels/accuracy.cl "$T_ACC"
+mutant samples-att-ratio 'const float log2_r = -log2(s_e) / (float)samples;' \
+                         'const float log2_r = -log2(s_e) / (float)(2 * samples);'
+mutant samples-epi-short 'const float epi_step = s_e / (float)(samples - 1);' \
+                         'const float epi_step = 0.9f * s_e / (float)(samples - 1);'
 
 # ---- comparison directions: the range maxima and the gates
-mutant range-max-dir     'host/engine/accuracy*.c' 'if (e->value > out->value || (isnan(out->value) && isfinite(e->value)))' \
-                              'if (e->value < out->value || (isnan(out->value) && isfinite(e->value)))' "$T_ACC"
-mutant gate-margin-dir   'host/engine/gate*.c' 'if (g->margin < 0) {' 'if (g->margin > 0) {' "$T_GATE"
-mutant gate-max-side     'host/engine/gate*.c' 'double m_hi = g->has_max ? g->max - g->measured : INFINITY;' \
-                              'double m_hi = g->has_max ? g->measured - g->max : INFINITY;' "$T_GATE"
+in_files 'host/engine/accuracy*.c' "$T_ACC"
+mutant range-max-dir     'if (e->value > out->value || (isnan(out->value) && isfinite(e->value)))' \
+                         'if (e->value < out->value || (isnan(out->value) && isfinite(e->value)))'
+in_files 'host/engine/gate*.c' "$T_GATE"
+mutant gate-margin-dir   'if (g->margin < 0) {' 'if (g->margin > 0) {'
+mutant gate-max-side     'double m_hi = g->has_max ? g->max - g->measured : INFINITY;' \
+                         'double m_hi = g->has_max ? g->measured - g->max : INFINITY;'
 
 # ---- tolerances and verdicts
-mutant claims-tol-x2     'host/engine/reproduce*.c' 'c->reproduced = isfinite(measured) && fabs(measured - claimed) <= tol * (1 + 1e-9) + 1e-15;' \
-                              'c->reproduced = isfinite(measured) && fabs(measured - claimed) <= 2 * tol * (1 + 1e-9) + 1e-15;' "$T_REP"
-mutant claims-tol-strict 'host/engine/reproduce*.c' 'c->reproduced = isfinite(measured) && fabs(measured - claimed) <= tol * (1 + 1e-9) + 1e-15;' \
-                              'c->reproduced = isfinite(measured) && fabs(measured - claimed) < 0.7 * tol;' "$T_REP"
-mutant coef-tol-4        'host/engine/reproduce*.c' 'coef_tol[4] = { 0.001, 0.001, 0.01, 0.001 };' 'coef_tol[4] = { 0.001, 0.001, 0.001, 0.001 };' "$T_REP"
-mutant zone-k-reproduce  'host/engine/reproduce*.c' '#define ZONE_K 0.511 ' '#define ZONE_K 0.5111 ' "$T_REP"
-mutant fig4-fit          'host/engine/reproduce*.c' 'double e = fabs((0.448 * n + 0.099) / brdf_k_q(n, 0.64) - 1.0);' \
-                              'double e = fabs((0.448 * n + 0.0995) / brdf_k_q(n, 0.64) - 1.0);' "$T_REP"
+in_files 'host/engine/reproduce*.c' "$T_REP"
+mutant claims-tol-x2     "$CLAIM_TOL" "${CLAIM_TOL/<= tol/<= 2 * tol}"
+mutant claims-tol-strict "$CLAIM_TOL" 'c->reproduced = isfinite(measured) && fabs(measured - claimed) < 0.7 * tol;'
+mutant coef-tol-4        'coef_tol[4] = { 0.001, 0.001, 0.01, 0.001 };' 'coef_tol[4] = { 0.001, 0.001, 0.001, 0.001 };'
+mutant zone-k-reproduce  '#define ZONE_K 0.511 ' '#define ZONE_K 0.5111 '
+mutant fig4-fit          'double e = fabs((0.448 * n + 0.099) / brdf_k_q(n, 0.64) - 1.0);' \
+                         'double e = fabs((0.448 * n + 0.0995) / brdf_k_q(n, 0.64) - 1.0);'
 
 # ---- fit.json
-mutant fit-a-0.45        'host/engine/fit*.c' 'jw_kv_num(w, "a", m->fit.feasible ? m->spec.params[0] : NAN);' \
-                              'jw_kv_num(w, "a", m->fit.feasible ? 0.45 : NAN);' "^test_reproduce_cli$"
-mutant fit-spec-digits   'host/engine/fit*.c' '"quad:a=%.10g,b=%.10g"' '"quad:a=%.4g,b=%.4g"' "^test_reproduce_cli$"
+in_files 'host/engine/fit*.c' '^test_reproduce_cli$'
+mutant fit-a-0.45        'jw_kv_num(w, "a", m->fit.feasible ? m->spec.params[0] : NAN);' \
+                         'jw_kv_num(w, "a", m->fit.feasible ? 0.45 : NAN);'
+mutant fit-spec-digits   '"quad:a=%.10g,b=%.10g"' '"quad:a=%.4g,b=%.4g"'
 
 # ---- JSON precision
-mutant json-digits       'host/output/jsonw.c' 'void jw_num(struct jw *w, double v) { jw_numf(w, v, 17); }' \
-                              'void jw_num(struct jw *w, double v) { jw_numf(w, v, 6); }' '^(test_cli_accuracy|test_gate_papers)$'
+in_files host/output/jsonw.c '^(test_cli_accuracy|test_gate_papers)$'
+mutant json-digits       'void jw_num(struct jw *w, double v) { jw_numf(w, v, 17); }' \
+                         'void jw_num(struct jw *w, double v) { jw_numf(w, v, 6); }'
 
 # ---- ratio formulas
-mutant host-c-inverted   'host/engine/throughput*.c' 'q.to_host_c = ratio(f->rate.median, e->hostc[m].rate.median);' \
-                              'q.to_host_c = ratio(e->hostc[m].rate.median, f->rate.median);' "$T_TP"
-mutant peak-flops        'host/engine/throughput*.c' 'q.of_peak = ratio(f->rate.median, peak_fma_per_s(r));' \
-                              'q.of_peak = ratio(f->rate.median, r->peak.rate.median);' "$T_TP"
-mutant sweep-speedup     'host/engine/throughput*.c' 'jw_ratio(&w, "speedup_vs_host_c", ratio(hsum, dsum), ' \
-                              'jw_ratio(&w, "speedup_vs_host_c", ratio(dsum, hsum), ' "$T_TP"
-mutant render-speedup    'host/engine/render*.c' 'jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);' \
-                              'jw_kv_num(&w, "speedup_vs_reference", te->med / re->med);' '^test_render_cli$'
+in_files 'host/engine/throughput*.c' "$T_TP"
+mutant host-c-inverted   'q.to_host_c = ratio(f->rate.median, e->hostc[m].rate.median);' \
+                         'q.to_host_c = ratio(e->hostc[m].rate.median, f->rate.median);'
+mutant peak-flops        'q.of_peak = ratio(f->rate.median, peak_fma_per_s(r));' \
+                         'q.of_peak = ratio(f->rate.median, r->peak.rate.median);'
+mutant sweep-speedup     'jw_ratio(&w, "speedup_vs_host_c", ratio(hsum, dsum), ' \
+                         'jw_ratio(&w, "speedup_vs_host_c", ratio(dsum, hsum), '
+in_files 'host/engine/render*.c' '^test_render_cli$'
+mutant render-speedup    'jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);' \
+                         'jw_kv_num(&w, "speedup_vs_reference", te->med / re->med);'
 
 # ---- exit codes
-mutant gate-exit-code    'host/cli/cmd_gate.c' 'rc = gate_set_failures(&gs) > 0 ? EXIT_GATE_FAIL : EXIT_OK;' \
-                              'rc = gate_set_failures(&gs) > 1 ? EXIT_GATE_FAIL : EXIT_OK;' "$T_GATE"
+in_files host/cli/cmd_gate.c "$T_GATE"
+mutant gate-exit-code    'rc = gate_set_failures(&gs) > 0 ? EXIT_GATE_FAIL : EXIT_OK;' \
+                         'rc = gate_set_failures(&gs) > 1 ? EXIT_GATE_FAIL : EXIT_OK;'
 
 # ------------------------------------------------------------------------------------------
 backup=$(mktemp -d)

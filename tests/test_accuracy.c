@@ -54,17 +54,13 @@ static int run(struct accuracy_ctx *a, const char *model, double n_min, double n
     return accuracy_run(a, &m, &g, r);
 }
 
-static int test_device(void)
+static int test_device(struct accuracy_ctx *a)
 {
-    struct cl_session s;
-    struct accuracy_ctx a;
-    int rc = test_accuracy_open(&s, &a);
-    if (rc)
-        return rc;
+    int rc;
     struct accuracy_result r;
 
     /* cq2 = c^2 = phong at n = 2: no error anywhere. */
-    if ((rc = run(&a, "cq2", 2, 3, 1, 256, &r)))
+    if ((rc = run(a, "cq2", 2, 3, 1, 256, &r)))
         return rc;
     CHECK(r.per_n[0].epi_rel <= 1e-6 && r.per_n[0].epi_rel_d.value <= 1e-15, "cq2 at n = 2: device %g, double %g",
           r.per_n[0].epi_rel, r.per_n[0].epi_rel_d.value);
@@ -72,7 +68,7 @@ static int test_device(void)
     accuracy_result_free(&r);
 
     /* cq2's epicentre maximum at the zone end (closed form above). */
-    if ((rc = run(&a, "cq2", 900, 1000, 50, 1024, &r)))
+    if ((rc = run(a, "cq2", 900, 1000, 50, 1024, &r)))
         return rc;
     for (long i = 0; i < r.n_count; ++i) {
         double n = r.per_n[i].n, u = -expm1(-0.511 / n);
@@ -90,7 +86,7 @@ static int test_device(void)
         struct model_spec m = spec(models[k]), ref;
         model_reference_spec(&m, &ref);
         for (int j = 0; j < 4; ++j) {
-            if ((rc = run(&a, models[k], ns[j], ns[j] + 1, 1, 2048, &r)))
+            if ((rc = run(a, models[k], ns[j], ns[j] + 1, 1, 2048, &r)))
                 return rc;
             double xe = zone_epicentre_end(ns[j]);
             double be = brute_max(&m, &ref, ns[j], 0, xe, 1, 400000);
@@ -109,7 +105,7 @@ static int test_device(void)
     /* Convergence: doubling the samples moves no range figure in its 4th significant digit. */
     for (int k = 0; k < 6; ++k) {
         struct accuracy_result r1, r2;
-        if ((rc = run(&a, models[k], 2, 300, 1, 512, &r1)) || (rc = run(&a, models[k], 2, 300, 1, 1024, &r2)))
+        if ((rc = run(a, models[k], 2, 300, 1, 512, &r1)) || (rc = run(a, models[k], 2, 300, 1, 1024, &r2)))
             return rc;
         const double v1[] = { r1.epicentre.value, r1.attenuation.value, r1.whole.value };
         const double v2[] = { r2.epicentre.value, r2.attenuation.value, r2.whole.value };
@@ -126,19 +122,11 @@ static int test_device(void)
         accuracy_result_free(&r1);
         accuracy_result_free(&r2);
     }
-    accuracy_close(&a);
-    clsession_close(&s);
     return 0;
 }
 
 int main(void)
 {
     test_grid_helpers();
-    int rc = test_device();
-    if (rc == EXIT_NO_DEVICE) {
-        printf("no OpenCL device: device checks skipped\n");
-        return check_summary_skipped();   /* a host failure is not hidden by the skip */
-    }
-    CHECK(rc == 0, "device checks ran (rc %d)", rc);
-    return check_summary();
+    return test_accuracy_main(test_device);
 }

@@ -117,13 +117,9 @@ static void check_n(const struct accuracy_result *r, long i, int written)
           "%s n=%.9g: attenuation maximum at x = %.9g, zone starts at %.9g", r->model.label, n, p->att_abs_d.x, x_e);
 }
 
-static int test_device(void)
+static int test_device(struct accuracy_ctx *a)
 {
-    struct cl_session s;
-    struct accuracy_ctx a;
-    int rc = test_accuracy_open(&s, &a);
-    if (rc)
-        return rc;
+    int rc;
     struct accuracy_result r;
 
     /* The case of the defect: fq2 and cq2 over n = 999000, 1e6 (default samples). */
@@ -131,7 +127,7 @@ static int test_device(void)
     for (int k = 0; k < 2; ++k) {
         struct model_spec m = spec(written[k]);
         struct accuracy_grid g = { 999000, 1e6, 1000, ACC_DEFAULT_SAMPLES };
-        if ((rc = accuracy_run(&a, &m, &g, &r)) != 0)
+        if ((rc = accuracy_run(a, &m, &g, &r)) != 0)
             return rc;
         for (long i = 0; i < r.n_count; ++i)
             check_n(&r, i, k + 1);
@@ -153,24 +149,16 @@ static int test_device(void)
         struct model_spec m = spec(models[k]);
         for (int j = 0; j < 3; ++j) {
             struct accuracy_grid g = { ns[j] - 1, ns[j], 1, 1024 };
-            if ((rc = accuracy_run(&a, &m, &g, &r)) != 0)
+            if ((rc = accuracy_run(a, &m, &g, &r)) != 0)
                 return rc;
             check_n(&r, 1, 0);
             accuracy_result_free(&r);
         }
     }
-    accuracy_close(&a);
-    clsession_close(&s);
     return 0;
 }
 
 int main(void)
 {
-    int rc = test_device();
-    if (rc == EXIT_NO_DEVICE) {
-        printf("no OpenCL device: device checks skipped\n");
-        return check_summary_skipped();
-    }
-    CHECK(rc == 0, "device checks ran (rc %d)", rc);
-    return check_summary();
+    return test_accuracy_main(test_device);
 }

@@ -2,25 +2,18 @@
 # test_cli_accuracy.sh - `brdfbench accuracy` end to end: the JSON contract, the CSV, and
 # each error path of the foundation (message and exit code; nothing written on bad input).
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap 'chmod -R u+w "$T"; rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 # A small sweep into a folder; the JSON contract is checked with python's strict parser.
 "$BIN" accuracy --models cq2,fq:Q=0.64,lyon:k=3 --n-min 2 --n-max 50 --samples 256 --out "$T/run" >"$T/table" 2>"$T/err"
 rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "small sweep exit $rc: $(cat "$T/err")"
-python3 - "$T/run/accuracy.json" "${INDEP:?INDEP must name the tests/indep binary}" <<'PY' && ok || bad "accuracy.json contract"
-import json, math, subprocess, sys
-def no_const(x): raise ValueError("non-finite number in JSON: " + x)
-d = json.load(open(sys.argv[1]), parse_constant=no_const)
-assert d["schema"] == "brdfbench.accuracy/1"
+check_json "$T/run/accuracy.json" "accuracy.json contract" "${INDEP:?INDEP must name the tests/indep binary}" <<'PY'
+import subprocess
+has_context(d, "brdfbench.accuracy/1", ("date", "device", "platform_version", "build_options", "git_revision", "grid"))
 ctx = d["context"]
-for k in ("date", "device", "platform_version", "build_options", "git_revision", "grid"):
-    assert k in ctx, k
 assert ctx["grid"]["n_min"] == 2 and ctx["grid"]["n_max"] == 50 and ctx["grid"]["samples_per_zone"] == 256
 res = d["results"]
 assert [r["model"] for r in res] == ["cq2", "fq", "lyon"]

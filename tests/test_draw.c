@@ -309,15 +309,7 @@ static void test_errors(void)
 
 int main(void)
 {
-    if (test_tmpdir_make(dir, sizeof dir, "test_draw") != 0)
-        return 1;
-    test_colormap_ends();
-    test_png_round_trip();
-    test_heatmap();
-    test_heatmap_dense_peak();
-    test_error_image_and_sheet();
-    test_line_plot_and_bars();
-    test_errors();
-    test_tmpdir_done(dir);
-    return check_summary();
+    static void (*const tests[])(void) = { test_colormap_ends, test_png_round_trip, test_heatmap,
+        test_heatmap_dense_peak, test_error_image_and_sheet, test_line_plot_and_bars, test_errors };
+    return test_run_in_tmpdir(dir, sizeof dir, "test_draw", tests, sizeof tests / sizeof tests[0]);
 }

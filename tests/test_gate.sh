@@ -4,11 +4,8 @@
 # narrower gate reads its figure off a wider sweep), JUnit XML, the JSON result, and
 # --baseline regressions.
 set -u
-BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
-SRC=${SRC_DIR:?}
-T=$(mktemp -d)
-trap '[ -n "${KEEP:-}" ] || rm -rf "$T"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
 
 # py WHAT CODE ARGS...: runs python CODE with sys.argv[1:] = ARGS; counts its success.
 py() {

@@ -110,40 +110,6 @@ static void test_obj_cube(void)
     }
 }
 
-/* A malformed file: read must fail with 2 and a message "<path>:<line>: <problem>". */
-static void expect_obj_error(const char *name, const char *text, int line, const char *words)
-{
-    struct mesh m;
-    char err[512] = "", want[600];
-    const char *path = write_tmp(name, text);
-    int rc = obj_read(path, &m, err, sizeof err);
-    snprintf(want, sizeof want, "%s:%d:", path, line);
-    CHECK(rc == 2, "%s: rc %d, expected 2 (%s)", name, rc, err);
-    CHECK(strncmp(err, want, strlen(want)) == 0, "%s: message '%s' should start with '%s'",
-          name, err, want);
-    CHECK(strstr(err, words) != NULL, "%s: message '%s' should mention '%s'", name, err, words);
-    if (rc == 0)
-        mesh_free(&m);
-}
-
-static void test_obj_errors(void)
-{
-    expect_obj_error("bad_number.obj", "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n", 3,
-                     "not a finite number");
-    expect_obj_error("short_vertex.obj", "v 0 0 0\nv 1 0\n", 2, "needs 3 to 7 numbers");
-    expect_obj_error("index_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n", 5,
-                     "vertex index");
-    expect_obj_error("zero_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4,
-                     "vertex index");
-    expect_obj_error("two_corners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", 4,
-                     "at least 3 corners");
-    expect_obj_error("bad_normal_ref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n", 4,
-                     "normal index");
-    expect_obj_error("unknown.obj", "v 0 0 0\ncurv 0 1 1 2\n", 2, "unsupported statement");
-    expect_obj_error("nan.obj", "v 0 nan 0\n", 1, "not a finite number");
-    expect_obj_error("no_faces.obj", "v 0 0 0\nv 1 0 0\n", 2, "no faces");
-}
-
 /* A flat patch: control point (row i, column j) = (j/3, i/3, 0). Bernstein polynomials
    reproduce linear functions, so P(u, v) = (u, v, 0) exactly, and
    dP/du x dP/dv = (1,0,0) x (0,1,0) = (0,0,1). */
@@ -244,41 +210,72 @@ static void test_patch_collapsed(void)
     free(p);
 }
 
-static void expect_patch_error(const char *name, const char *text, int line, const char *words)
+/* A malformed file, an OBJ mesh (obj_read) or POV-Ray patches (patches_read): the read must fail
+ * with 2 and a message "<path>:<line>: <problem>" that mentions words. */
+enum scene_reader { OBJ_READ, PATCHES_READ };
+static void expect_read_error(enum scene_reader reader, const char *name, const char *text, int line,
+                              const char *words)
 {
-    struct bezier_patch *p = NULL;
-    size_t n = 0;
     char err[512] = "", want[600];
     const char *path = write_tmp(name, text);
-    int rc = patches_read(path, &p, &n, err, sizeof err);
+    int rc;
+    if (reader == OBJ_READ) {
+        struct mesh m;
+        rc = obj_read(path, &m, err, sizeof err);
+        if (rc == 0)
+            mesh_free(&m);
+    } else {
+        struct bezier_patch *p = NULL;
+        size_t n = 0;
+        rc = patches_read(path, &p, &n, err, sizeof err);
+        free(p);
+    }
     snprintf(want, sizeof want, "%s:%d:", path, line);
     CHECK(rc == 2, "%s: rc %d, expected 2 (%s)", name, rc, err);
     CHECK(strncmp(err, want, strlen(want)) == 0, "%s: message '%s' should start with '%s'",
           name, err, want);
     CHECK(strstr(err, words) != NULL, "%s: message '%s' should mention '%s'", name, err, words);
-    free(p);
 }
 
-static void test_patch_errors(void)
-{
+/* The first three rows of control points of a flat patch, one row a line: (j, i, 0) at row i,
+ * column j. */
+#define FLAT_ROWS_0_TO_2 " <0,0,0> <1,0,0> <2,0,0> <3,0,0>\n <0,1,0> <1,1,0> <2,1,0> <3,1,0>\n" \
+                         " <0,2,0> <1,2,0> <2,2,0> <3,2,0>\n"
+
+/* Malformed files, each read by its reader: the line its message must name and words it must
+ * mention. */
+static const struct {
+    enum scene_reader reader;
+    const char *name, *text;
+    int line;
+    const char *words;
+} bad_files[] = {
+    { OBJ_READ, "bad_number.obj", "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n", 3, "not a finite number" },
+    { OBJ_READ, "short_vertex.obj", "v 0 0 0\nv 1 0\n", 2, "needs 3 to 7 numbers" },
+    { OBJ_READ, "index_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n", 5, "vertex index" },
+    { OBJ_READ, "zero_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4, "vertex index" },
+    { OBJ_READ, "two_corners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", 4, "at least 3 corners" },
+    { OBJ_READ, "bad_normal_ref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n", 4, "normal index" },
+    { OBJ_READ, "unknown.obj", "v 0 0 0\ncurv 0 1 1 2\n", 2, "unsupported statement" },
+    { OBJ_READ, "nan.obj", "v 0 nan 0\n", 1, "not a finite number" },
+    { OBJ_READ, "no_faces.obj", "v 0 0 0\nv 1 0 0\n", 2, "no faces" },
     /* 15 points then '}' on line 6 */
-    expect_patch_error("short.inc",
-                       "bicubic_patch {\n <0,0,0> <1,0,0> <2,0,0> <3,0,0>\n"
-                       " <0,1,0> <1,1,0> <2,1,0> <3,1,0>\n <0,2,0> <1,2,0> <2,2,0> <3,2,0>\n"
-                       " <0,3,0> <1,3,0> <2,3,0>\n}\n",
-                       6, "15 control points, 16 needed");
-    expect_patch_error("badnum.inc", "bicubic_patch {\n <0,0,0>\n <1, y, 0>\n}\n", 3,
-                       "expected a number");
-    expect_patch_error("comma.inc", "bicubic_patch {\n <0 0 0>\n}\n", 2, "expected ','");
-    expect_patch_error("open.inc", "// nothing closes this\nbicubic_patch {\n <0,0,0>\n", 2,
-                       "not closed");
-    expect_patch_error("none.inc", "// no patches here\nsphere { <0,0,0>, 1 }\n", 3,
-                       "no bicubic_patch");
-    expect_patch_error("xform.inc",
-                       "bicubic_patch {\n <0,0,0> <1,0,0> <2,0,0> <3,0,0>\n"
-                       " <0,1,0> <1,1,0> <2,1,0> <3,1,0>\n <0,2,0> <1,2,0> <2,2,0> <3,2,0>\n"
-                       " <0,3,0> <1,3,0> <2,3,0> <3,3,0>\n translate <1, 0, 0>\n}\n",
-                       6, "not supported");
+    { PATCHES_READ, "short.inc", "bicubic_patch {\n" FLAT_ROWS_0_TO_2 " <0,3,0> <1,3,0> <2,3,0>\n}\n", 6,
+      "15 control points, 16 needed" },
+    { PATCHES_READ, "badnum.inc", "bicubic_patch {\n <0,0,0>\n <1, y, 0>\n}\n", 3, "expected a number" },
+    { PATCHES_READ, "comma.inc", "bicubic_patch {\n <0 0 0>\n}\n", 2, "expected ','" },
+    { PATCHES_READ, "open.inc", "// nothing closes this\nbicubic_patch {\n <0,0,0>\n", 2, "not closed" },
+    { PATCHES_READ, "none.inc", "// no patches here\nsphere { <0,0,0>, 1 }\n", 3, "no bicubic_patch" },
+    { PATCHES_READ, "xform.inc",
+      "bicubic_patch {\n" FLAT_ROWS_0_TO_2 " <0,3,0> <1,3,0> <2,3,0> <3,3,0>\n translate <1, 0, 0>\n}\n", 6,
+      "not supported" },
+};
+
+static void test_read_errors(void)
+{
+    for (size_t i = 0; i < sizeof bad_files / sizeof bad_files[0]; ++i)
+        expect_read_error(bad_files[i].reader, bad_files[i].name, bad_files[i].text, bad_files[i].line,
+                          bad_files[i].words);
 }
 
 /* A square [-1,1]^2 in the plane z = 0 seen from (0, 0, 5). */
@@ -409,15 +406,7 @@ static void test_raster_spheres(void)
 
 int main(void)
 {
-    if (test_tmpdir_make(tmpdir, sizeof tmpdir, "test_geometry") != 0)
-        return 3;
-    test_obj_cube();
-    test_obj_errors();
-    test_patch_flat();
-    test_patch_collapsed();
-    test_patch_errors();
-    test_raster_square();
-    test_raster_spheres();
-    test_tmpdir_done(tmpdir);
-    return check_summary();
+    static void (*const tests[])(void) = { test_obj_cube, test_patch_flat, test_patch_collapsed, test_read_errors,
+        test_raster_square, test_raster_spheres };
+    return test_run_in_tmpdir(tmpdir, sizeof tmpdir, "test_geometry", tests, sizeof tests / sizeof tests[0]);
 }

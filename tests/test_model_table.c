@@ -106,20 +106,15 @@ int main(void)
 {
     check_zone_end();
     struct cl_session s;
-    char err[512];
-    int rc = clsession_open(&s, -1, -1, err, sizeof err);
-    if (rc == EXIT_NO_DEVICE) {
-        printf("no OpenCL device (%s): host checks only\n", err);
-        run_all(NULL);
-        return check_summary_skipped();
-    }
-    CHECK(rc == 0, "OpenCL session: %s", rc ? err : "");
+    int rc = test_session_open(&s);
+    if (rc == EXIT_NO_DEVICE)
+        run_all(NULL);   /* the host checks only */
     if (rc)
-        return check_summary();
+        return test_summary(rc);
     struct accuracy_ctx a;
-    rc = accuracy_open(&a, &s, "");
-    CHECK(rc == 0, "accuracy_open (rc %d)", rc);
-    if (rc == 0) {
+    int arc = accuracy_open(&a, &s, "");
+    CHECK(arc == 0, "accuracy_open (rc %d)", arc);
+    if (arc == 0) {
         run_all(&a);
         accuracy_close(&a);
     }

@@ -149,13 +149,9 @@ static void test_parsing(void)
 /* Every model on the device (float16 path) against the double reference. Bound: 1e-5 of
  * the reference lobe's peak, two orders below the 4th digit of any figure we report
  * (the smallest reported errors are about 1e-2). */
-static int test_device(void)
+static int test_device(struct accuracy_ctx *a)
 {
-    struct cl_session s;
-    struct accuracy_ctx a;
-    int rc = test_accuracy_open(&s, &a);
-    if (rc)
-        return rc;
+    int rc = 0;
     enum { N = 1024 };
     static float c[N], n[N], out[N];
     for (int i = 0; i < models_count(); ++i) {
@@ -176,7 +172,7 @@ static int test_device(void)
             c[k] = (float)fmax(cv, 0.0);
             n[k] = (float)nv;
         }
-        if ((rc = accuracy_probe(&a, &m, c, n, N, out)) != 0)
+        if ((rc = accuracy_probe(a, &m, c, n, N, out)) != 0)
             break;
         double worst = 0;
         int worst_k = 0;
@@ -193,8 +189,6 @@ static int test_device(void)
         CHECK(worst <= 1e-5, "%s: device vs double %.3g of the peak at c = %.9g, n = %g", m.label, worst,
               c[worst_k], n[worst_k]);
     }
-    accuracy_close(&a);
-    clsession_close(&s);
     return rc;
 }
 
@@ -202,11 +196,5 @@ int main(void)
 {
     test_host_identities();
     test_parsing();
-    int rc = test_device();
-    if (rc == EXIT_NO_DEVICE) {
-        printf("no OpenCL device: device checks skipped\n");
-        return check_summary_skipped();   /* a host failure is not hidden by the skip */
-    }
-    CHECK(rc == 0, "device checks ran (rc %d)", rc);
-    return check_summary();
+    return test_accuracy_main(test_device);
 }

@@ -8,6 +8,7 @@
 #include "models.h"
 #include "pbcost.h"
 #include "render.h"
+#include "testutil.h"
 
 #include <complex.h>
 #include <gsl/gsl_errno.h>
@@ -309,13 +310,7 @@ int main(void)
     /* On the device: every cost row's float kernel against the double reference at random
        (N, L, V), and the ratios of a row to itself. No time is asserted. */
     struct cl_session s;
-    char err[512];
-    int rc = clsession_open(&s, -1, -1, err, sizeof err);
-    if (rc == EXIT_NO_DEVICE) {
-        fprintf(stderr, "%s\n", err);
-        return check_summary_skipped();
-    }
-    CHECK(rc == 0, "OpenCL session (%s)", err);
+    int rc = test_session_open(&s);
     if (rc == 0) {
         struct pbcost_options o;
         pbcost_options_default(&o);
@@ -332,5 +327,5 @@ int main(void)
         CHECK(r.rows[r.fq2].ratio_to_fq2 == 1 && r.rows[r.phong].ratio_to_phong == 1, "a row against itself is 1");
         clsession_close(&s);
     }
-    return check_summary();
+    return test_summary(rc);
 }

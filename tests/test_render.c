@@ -32,27 +32,6 @@ static void unit(double *a)
 
 static char tmpdir[256];
 
-static char *read_all(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    if (b) {
-        b[n] = '\0';
-        *len = (size_t)n;
-    }
-    return b;
-}
-
 /* One sphere (1 x 1 grid) filling a 64 x 64 frame. raster.h's layout: cells 1 high, the
    sphere of radius 0.42 at the origin, the camera at (0, 0, 4) looking down -z with the
    frame at z = 0 exactly one cell high, so tan(fov/2) = 0.5 / 4. */
@@ -335,14 +314,14 @@ static void test_render_run(struct cl_session *s)
     /* A malformed bunny file: exit 2 naming the file and line; the earlier results stay. */
     size_t len0 = 0, len1 = 0;
     snprintf(path, sizeof path, "%s/render.json", out);
-    char *before = read_all(path, &len0);
+    char *before = test_read_file(path, &len0);
     o.bunny_path = bad;
     err[0] = '\0';
     rc = render_run(s, &o, out, NULL, err, sizeof err);
     char want[700];
     snprintf(want, sizeof want, "%s:4:", bad);
     CHECK(rc == 2 && strstr(err, want) != NULL, "malformed OBJ: rc %d, message '%s'", rc, err);
-    char *after = read_all(path, &len1);
+    char *after = test_read_file(path, &len1);
     CHECK(before && after && len0 == len1 && memcmp(before, after, len0) == 0,
           "a failed run changed render.json");
     free(before);

@@ -52,13 +52,9 @@ expect 2 "cannot read /nonexistent/t.inc" render --scene teapot --teapot-file /n
     --time-sizes 128x64 --reps 3 --warmup 1 --tess 4 --out "$T/run" >"$T/out" 2>"$T/err"
 rc=$?
 [ $rc -eq 0 ] && ok || bad "small run exit $rc: $(cat "$T/err")"
-python3 - "$T/run/render.json" "$T/run" <<'PY' && ok || bad "render.json contract"
-import json, os, sys
-def no_const(x): raise ValueError("non-finite number in JSON: " + x)
-d = json.load(open(sys.argv[1]), parse_constant=no_const)
-assert d["schema"] == "brdfbench.render/1"
-for k in ("date", "device", "platform_version", "build_options", "git_revision"):
-    assert k in d["context"], k
+check_json "$T/run/render.json" "render.json contract" "$T/run" <<'PY'
+import os
+has_context(d, "brdfbench.render/1", ("date", "device", "platform_version", "build_options", "git_revision"))
 scenes = {s["scene"]: s for s in d["scenes"]}
 assert sorted(scenes) == ["spheres", "teapot"], sorted(scenes)
 for s in scenes.values():

@@ -42,6 +42,22 @@ static int near(const unsigned char *p, const int want[3], int tol)
 
 static const struct field_grid small = {21, 31, 2.0, 1000.0};
 
+/* Draws fr's heatmap as name in the test's folder, its panels' layout in L, and reads the picture
+ * back: its pixels (to be freed) and size, or NULL after a failed check. */
+static unsigned char *heatmap_drawn(const struct field_result *fr, const char *name, struct draw_panel_layout L[2], int *w,
+                                    int *h)
+{
+    char path[512], err[1024];
+    path_in(path, sizeof path, name);
+    CHECK(field_draw_heatmap(path, fr, L, err, sizeof err) == 0, "draw: %s", err);
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, w, h, &img, err, sizeof err) != 0) {
+        CHECK(0, "read %s: %s", name, err);
+        return NULL;
+    }
+    return img;
+}
+
 static void test_self_field(struct field_ctx *fc)
 {
     struct model_spec phong = spec("phong");
@@ -55,13 +71,10 @@ static void test_self_field(struct field_ctx *fc)
     }
     /* f and f_ref are the same expression at the same input: every difference is exactly 0 */
     CHECK(zero == cells && nan_or_zero == cells, "phong vs phong: %zu / %zu zero cells", zero, cells);
-    char path[512], err[1024];
-    path_in(path, sizeof path, "heatmap_phong.png");
     struct draw_panel_layout L[2];
-    CHECK(field_draw_heatmap(path, &fr, L, err, sizeof err) == 0, "draw: %s", err);
     int w, h;
-    unsigned char *img = NULL;
-    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+    unsigned char *img = heatmap_drawn(&fr, "heatmap_phong.png", L, &w, &h);
+    if (img) {
         CHECK(w == L[0].image_w && h == L[0].image_h, "size %dx%d vs layout %dx%d", w, h, L[0].image_w, L[0].image_h);
         long off = 0, grey = 0, bottom = 0;
         for (int y = L[0].plot_y; y < L[0].plot_y + L[0].plot_h; y++)
@@ -78,8 +91,6 @@ static void test_self_field(struct field_ctx *fc)
               "attenuation of a zero field: %ld bottom + %ld no-data of %d", bottom, grey, L[1].plot_w * L[1].plot_h);
         CHECK(L[0].max_px == -1 && L[1].max_px == -1, "a zero field has no maximum marker");
         free(img);
-    } else {
-        CHECK(0, "read heatmap_phong.png: %s", err);
     }
     field_result_free(&fr);
 }
@@ -104,13 +115,10 @@ static void test_fvol_field(struct field_ctx *fc)
     CHECK(fr.check_cells > 0 && fr.check_rel_diff < 1e-4, "device vs double %g over %d cells", fr.check_rel_diff,
           fr.check_cells);
 
-    char path[512], err[1024];
-    path_in(path, sizeof path, "heatmap_fvol.png");
     struct draw_panel_layout L[2];
-    CHECK(field_draw_heatmap(path, &fr, L, err, sizeof err) == 0, "draw: %s", err);
     int w, h;
-    unsigned char *img = NULL;
-    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) == 0) {
+    unsigned char *img = heatmap_drawn(&fr, "heatmap_fvol.png", L, &w, &h);
+    if (img) {
         for (int k = 0; k < 2; k++) {
             CHECK(L[k].max_px >= 0, "panel %d has a marker", k);
             if (L[k].max_px >= 0) {
@@ -120,11 +128,10 @@ static void test_fvol_field(struct field_ctx *fc)
         }
         CHECK(L[0].max_row == fr.epi_peak.row && L[0].max_col == fr.epi_peak.col, "marker on the field's peak");
         free(img);
-    } else {
-        CHECK(0, "read heatmap_fvol.png: %s", err);
     }
 
     /* JSON round trip: 4 significant digits */
+    char path[512], err[1024];
     path_in(path, sizeof path, "field_fvol.json");
     CHECK(field_write_json(path, &fr, NULL, err, sizeof err) == 0, "write: %s", err);
     struct field_result back;
@@ -291,14 +298,8 @@ static void test_plots_and_report(struct cl_session *s)
     in.npictures = 4;
     CHECK(report_write(&in, err, sizeof err) == 0, "report: %s", err);
     path_in(path, sizeof path, "report.md");
-    FILE *f = fopen(path, "r");
-    char *text = NULL;
     size_t len = 0;
-    if (f) {
-        text = calloc(1, 1 << 20);
-        len = text ? fread(text, 1, (1 << 20) - 1, f) : 0;
-        fclose(f);
-    }
+    char *text = test_read_file(path, &len);
     CHECK(text && len > 0, "report.md read");
     if (text) {
         int links = 0, missing = 0;

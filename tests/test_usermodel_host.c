@@ -16,6 +16,7 @@
 #include "field.h"
 #include "models.h"
 #include "programs.h"
+#include "testutil.h"
 #include "usermodel.h"
 
 #include <math.h>
@@ -183,15 +184,9 @@ int main(void)
 {
     host_checks();
     struct cl_session s;
-    char err[256];
-    int rc = clsession_open(&s, -1, -1, err, sizeof err);
-    if (rc == EXIT_NO_DEVICE) {
-        fprintf(stderr, "no OpenCL device: %s\n", err);
-        return check_summary_skipped();
-    }
-    CHECK(rc == 0, "clsession_open: %s", err);
+    int rc = test_session_open(&s);
     if (rc == 0)
         device_checks(&s);
     usermodel_clear_all();
-    return check_summary();
+    return test_summary(rc);
 }

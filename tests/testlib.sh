@@ -4,12 +4,13 @@
 pass=0 fail=0
 
 # brdf_test_init: BIN (the brdfbench binary, from $BRDFBENCH), SRC (the source tree, from
-# $SRC_DIR) and T, a temporary folder removed when the test exits.
+# $SRC_DIR) and T, a temporary folder removed when the test exits (write permission given back
+# first, for the tests that take it away), or kept to be looked at when KEEP is set.
 brdf_test_init() {
     BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
     SRC=${SRC_DIR:?SRC_DIR must name the source tree}
     T=$(mktemp -d)
-    trap 'rm -rf "$T"' EXIT
+    trap '[ -n "${KEEP:-}" ] || { chmod -R u+w "$T"; rm -rf "$T"; }' EXIT
 }
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
@@ -23,4 +24,26 @@ expect() {
     if [ "$rc" -ne "$code" ]; then bad "$* -> exit $rc, expected $code: $(head -c 400 "$T/err")"; return; fi
     if ! grep -qE -- "$pattern" "$T/err"; then bad "$* -> message '$(head -c 400 "$T/err")' lacks /$pattern/"; return; fi
     ok
+}
+
+# check_json FILE WHAT [ARGS...] <<'PY' ... PY: runs the Python read from stdin with d = FILE's
+# JSON, parsed strictly (a NaN or Infinity literal fails it), sys.argv[2:] = ARGS, json, math
+# and sys imported, and has_context(d, SCHEMA, KEYS): d's schema is SCHEMA and its context
+# block has each of KEYS. Counts its success.
+check_json() {
+    local file=$1 what=$2
+    shift 2
+    {
+        cat <<'PY'
+import json, math, sys
+def no_const(x): raise ValueError("non-finite number in JSON: " + x)
+d = json.load(open(sys.argv[1]), parse_constant=no_const)
+def has_context(d, schema, keys):
+    assert d["schema"] == schema, d["schema"]
+    for k in keys:
+        assert k in d["context"], k
+PY
+        cat
+    } >"$T/check_json.py"
+    python3 "$T/check_json.py" "$file" "$@" && ok || bad "$what"
 }

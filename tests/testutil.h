@@ -1,12 +1,15 @@
 /* testutil.h - what the C tests share besides check.h: a temporary folder of the test's own,
  * made with mkdtemp and removed with everything in it at the end (kept when a check failed or
- * BRDF_KEEP_TEST_OUTPUT is set), a small input file written there, and spec() for a model
- * text the test needs parsed. */
+ * BRDF_KEEP_TEST_OUTPUT is set), a small input file written there and a file read back whole,
+ * spec() for a model text the test needs parsed, and the opening and the end of the tests with
+ * device checks (a skip when there is no OpenCL device). */
 #ifndef BRDF_TEST_TESTUTIL_H
 #define BRDF_TEST_TESTUTIL_H
 
 #include "accuracy.h"
 #include "check.h"
+#include "clsession.h"
+#include "exitcodes.h"
 #include "models.h"
 
 #include <dirent.h>
@@ -94,17 +97,76 @@ static inline struct model_spec spec(const char *text)
     return s;
 }
 
-/* Opens the first OpenCL device and the accuracy sweep on it. On failure prints the reason
- * and returns its exit code (77 when there is no device, which ctest reports as a skip). */
-static inline int test_accuracy_open(struct cl_session *s, struct accuracy_ctx *a)
+/* The whole of the file at path, NUL-terminated, its length in *len; NULL when it cannot be read. */
+static inline char *test_read_file(const char *path, size_t *len)
+{
+    struct stat st;
+    FILE *f = fopen(path, "rb");
+    char *text = f && fstat(fileno(f), &st) == 0 ? malloc((size_t)st.st_size + 1) : NULL;
+    size_t got = text ? fread(text, 1, (size_t)st.st_size, f) : 0;
+    if (f)
+        fclose(f);
+    if (text && got == (size_t)st.st_size) {
+        text[got] = '\0';
+        *len = got;
+        return text;
+    }
+    free(text);
+    return NULL;
+}
+
+/* A test made of functions run in turn in a temporary folder of its own, dir (name_XXXXXX,
+ * test_tmpdir_make): its exit status, 3 when the folder cannot be made. */
+static inline int test_run_in_tmpdir(char *dir, size_t len, const char *name, void (*const tests[])(void),
+                                     size_t count)
+{
+    if (test_tmpdir_make(dir, len, name) != 0)
+        return 3;
+    for (size_t i = 0; i < count; ++i)
+        tests[i]();
+    test_tmpdir_done(dir);
+    return check_summary();
+}
+
+/* Opens a session on the first OpenCL device for a test's device checks and returns
+ * clsession_open's code: 0 when open; EXIT_NO_DEVICE, with the reason printed, when there is no
+ * device (the device checks are skipped); any other code is a failed check naming the error. */
+static inline int test_session_open(struct cl_session *s)
 {
     char err[512];
     int rc = clsession_open(s, -1, -1, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "%s\n", err);
-        return rc;
+    if (rc == EXIT_NO_DEVICE)
+        printf("no OpenCL device (%s): device checks skipped\n", err);
+    else
+        CHECK(rc == 0, "OpenCL session: %s", rc ? err : "");
+    return rc;
+}
+
+/* The end of a test whose device checks needed the session test_session_open gave code rc:
+ * a skip (77) when there was no device, unless a host check failed, which the skip must not
+ * hide; the passed and failed checks otherwise. */
+static inline int test_summary(int rc)
+{
+    return rc == EXIT_NO_DEVICE ? check_summary_skipped() : check_summary();
+}
+
+/* An accuracy test's device part and its end: body runs on the accuracy sweep of the first
+ * OpenCL device (closed after it) and returns 0, or the code that stopped it, which fails the
+ * test. The test's exit status, as test_summary gives it. */
+static inline int test_accuracy_main(int (*body)(struct accuracy_ctx *a))
+{
+    struct cl_session s;
+    int rc = test_session_open(&s);
+    if (rc == 0) {
+        struct accuracy_ctx a;
+        if ((rc = accuracy_open(&a, &s, "")) == 0) {
+            rc = body(&a);
+            accuracy_close(&a);
+        }
+        clsession_close(&s);
+        CHECK(rc == 0, "device checks ran (rc %d)", rc);
     }
-    return accuracy_open(a, s, "");
+    return test_summary(rc);
 }
 
 #endif
