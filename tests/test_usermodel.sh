@@ -143,6 +143,9 @@ PY
 "$BIN" all --quick --model-file "$F/scaled.cl" --models fq2,scaled:k=2 --out "$T/all" >"$T/out" 2>"$T/err" \
     && ok || bad "all with a user model: $(tail -5 "$T/err")"
 [ -s "$T/all/heatmap_scaled_k2.png" ] && ok || bad "all: no heatmap of the user model"
+check_json "$T/all/frontier.json" "the frontier of all --models with a user model" <<'PY'
+assert [m["model"] for m in d["models"]] == ["fq2", "scaled:k=2"], [m["model"] for m in d["models"]]
+PY
 check_json "$T/all/field_scaled_k2.json" "the user model's error field" <<'PY'
 assert d["model"] == "scaled:k=2" and d["reference"] == "phong"
 assert d["check"]["max_rel_diff"] < 1e-6, d["check"]

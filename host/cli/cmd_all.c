@@ -55,6 +55,7 @@ struct all_run {
     int quiet;                     /* no progress or step lines, no closing path */
     struct model_spec models[ALL_MAX_MODELS];
     int nmodels;
+    int models_given;              /* --models: every step measures just those */
     struct accuracy_result *acc;
     int nacc;
     /* Q sweep */
@@ -632,6 +633,21 @@ static int step_frontier(struct all_run *r)
     o.rounds = 2;
     o.min_time = 0.01;
     o.samples = r->set.quick ? 256 : 512;
+    /* --models: those; else frontier's own set of lobe approximations and the user models */
+    char err[1024];
+    if (r->models_given) {
+        for (int m = 0; m < r->nmodels && o.model_count < FRONTIER_MAX_MODELS; m++)
+            o.models[o.model_count++] = r->models[m];
+        if (r->nmodels > FRONTIER_MAX_MODELS)
+            fprintf(stderr, "brdfbench all: warning: the frontier measures the first %d of the %d models\n",
+                    FRONTIER_MAX_MODELS, r->nmodels);
+    } else if (usermodel_count() > 0) {
+        o.model_count = frontier_default_models(o.models, FRONTIER_MAX_MODELS);
+        if (usermodel_append_all(o.models, &o.model_count, FRONTIER_MAX_MODELS, err, sizeof err)) {
+            fprintf(stderr, "brdfbench all: the frontier: %s\n", err);
+            return EXIT_USAGE;
+        }
+    }
     progress(r, "frontier", 0, 1, "measuring");
     int rc = frontier_run(&r->s, &o, r->run_dir, 1, &r->frontier_md);
     if (rc) {
@@ -774,6 +790,7 @@ int cmd_all(int argc, char **argv)
     if (samples_given) r->set.grid.samples = g.samples;
     r->nmodels = cli_model_list(models_text, r->models, ALL_MAX_MODELS, err, sizeof err);
     if (r->nmodels < 0) goto usage_error;
+    r->models_given = strcmp(models_text, "all") != 0;
     /* User models join the default set (with --models they are named there). */
     if (strcmp(models_text, "all") == 0 && usermodel_append_all(r->models, &r->nmodels, ALL_MAX_MODELS, err, sizeof err))
         goto usage_error;
