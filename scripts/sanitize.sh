@@ -36,4 +36,19 @@ export LSAN_OPTIONS="exitcode=86:suppressions=$supp:print_suppressions=0"
 export UBSAN_OPTIONS="exitcode=86:halt_on_error=1:print_stacktrace=1"
 
 cd "$B"
-ctest --output-on-failure -j2 --timeout 900
+# LeakSanitizer's own stop-the-world tracer now and then crashes at a process's exit while
+# other threads (PoCL's workers) wind down: "Tracer caught signal 11 ... LeakSanitizer has
+# encountered a fatal error" is the tool failing, not a leak or an error found (a known flake:
+# google/sanitizers issue 1353). A run whose failures came with that message reruns its failed
+# tests once; any other failure, or a failure again, fails the run.
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+set +e
+ctest --output-on-failure -j2 --timeout 900 2>&1 | tee "$log"
+rc=${PIPESTATUS[0]}
+set -e
+if [ "$rc" -ne 0 ] && grep -q "LeakSanitizer has encountered a fatal error" "$log"; then
+    echo "sanitize.sh: LeakSanitizer's tracer crashed (not a finding); the failed tests once more:" >&2
+    ctest --output-on-failure --rerun-failed --timeout 900 && rc=0 || rc=$?
+fi
+exit "$rc"
