@@ -30,6 +30,12 @@
 #define BRDF_FN static inline
 #endif
 
+/* The dispatch over model ids (brdf_eval_cs, brdf_eval_s): a kernel may define BRDF_EVAL_FN to
+ * force it inline (accuracy.cl does; see there). */
+#ifndef BRDF_EVAL_FN
+#define BRDF_EVAL_FN BRDF_FN
+#endif
+
 /* A literal in the element type, so that float code never promotes to double. */
 #define RC(x) ((RSCALAR)(x))
 /* A scalar broadcast to REAL (a vector literal in OpenCL C, a cast in C). */
@@ -104,10 +110,33 @@ BRDF_FN REAL brdf_pow_lobe(REAL c, REAL n) { return BRDF_POW_LOBE(c, n); }
 #else
 #define BRDF_SMALL_DIVIDE(a, b) ((a) / (b))
 #endif
+/* ln u for u = 0 or u in [2^-24, 1] (the u = 1 - s above). On the device it is written out
+ * rather than called: PoCL 3.1's vector log is an out-of-line SLEEF call, and every call in the
+ * sweep's loop spills its sixteen-lane accumulators to the stack and back. u = m 2^k with m in
+ * [sqrt(1/2), sqrt(2)), f = m - 1, t = f / (2 + f): ln m = 2 atanh t = 2t + 2t^3 (1/3 + t^2/5 +
+ * t^4/7 + t^6/9 + ...), |t| <= 0.1716, so the series' next term is below 2^-28 of the sum; and
+ * 2t = f - t f, which keeps the exact f as the leading term: ln m = f - t (f - 2 t^2 q). ln 2
+ * is split so that k ln2_hi is exact. Every float u in [2^-24, 1] against the double log:
+ * at most 0.94 ulp (SLEEF's logf_u10 is within 1.0). The host's double uses log. */
+#ifdef __OPENCL_VERSION__
+#define BRDF_LN_UNIT_BODY(F, I)                                                                    \
+    I ix = as_##I(u) + (0x3f800000 - 0x3f3504f3);                                                  \
+    F k = convert_##F(((ix >> 23) & 0xff) - 127);                                                  \
+    F f = as_##F((ix & 0x007fffff) + 0x3f3504f3) - 1.0f;                                           \
+    F t = f / (2.0f + f), t2 = t * t;                                                              \
+    F q = fma(t2, fma(t2, fma(t2, 1.0f / 9.0f, 1.0f / 7.0f), 1.0f / 5.0f), 1.0f / 3.0f);            \
+    F lnm = fma(-t, fma(-2.0f * t2, q, f), f);                                                     \
+    return select(fma(k, 0.693145751953125f, fma(k, 1.428606765330187e-06f, lnm)), (F)(-INFINITY), \
+                  u <= 0.0f)
+__attribute__((overloadable)) static inline float brdf_ln_unit(float u) { BRDF_LN_UNIT_BODY(float, int); }
+__attribute__((overloadable)) static inline float16 brdf_ln_unit(float16 u) { BRDF_LN_UNIT_BODY(float16, int16); }
+#else
+#define brdf_ln_unit(u) log(u)
+#endif
 BRDF_FN REAL brdf_pow_lobe_s(REAL s, REAL n)
 {
     REAL u = RC(1.0) - s;
-    return exp(n * (log(u) + BRDF_SMALL_DIVIDE((RC(1.0) - u) - s, fmax(u, RC(1e-30)))));
+    return exp(n * (brdf_ln_unit(u) + BRDF_SMALL_DIVIDE((RC(1.0) - u) - s, fmax(u, RC(1e-30)))));
 }
 /* The lobe given both c and s = 1 - c. By default it is brdf_pow_lobe(c); a kernel that
  * samples s defines BRDF_POW_LOBE_CS(c, s, n) as brdf_pow_lobe_s(s, n). */
@@ -584,7 +613,7 @@ BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1);
    with parameters p0, p1. Formulas written in c - 1 take -s, which keeps every digit of
    1 - c near c = 1 where a float c has none left; with s = 1 - c computed from c (brdf_eval)
    the results are those of the same formulas in c, bit for bit (c - 1 = -(1 - c) exactly). */
-BRDF_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
+BRDF_EVAL_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
 {
     switch (id) {
     case BRDF_PHONG:
@@ -634,7 +663,7 @@ BRDF_FN REAL brdf_eval(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
 }
 
 /* Evaluate model `id` at s = 1 - c, s in [0, 1] (the accuracy sweep's variable). */
-BRDF_FN REAL brdf_eval_s(int id, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
+BRDF_EVAL_FN REAL brdf_eval_s(int id, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
 {
     s = fmin(s, RC(1.0));
     return brdf_eval_cs(id, RC(1.0) - s, s, n, p0, p1);
