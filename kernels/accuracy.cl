@@ -33,6 +33,8 @@
    inlined, the loop keeps them in registers (with the inline ln of brdf_pow_lobe_s, about 1.25x
    on `brdfbench accuracy --models fvol --samples 32768`, scripts/bench_sweep.sh). */
 #define BRDF_EVAL_FN __attribute__((always_inline)) static inline
+/* The reference lobe's ln u written out, not called (brdf_models.h, brdf_ln_unit). */
+#define BRDF_LN_UNIT(u) brdf_ln_unit(u)
 /* The reference lobe in s: exp(n ln(1 - s)), brdf_models.h's brdf_pow_lobe_s. */
 #define BRDF_POW_LOBE_CS(c, s, n) brdf_pow_lobe_s((s), (n))
 #include "brdf_models.h"

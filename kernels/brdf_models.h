@@ -117,7 +117,7 @@ BRDF_FN REAL brdf_pow_lobe(REAL c, REAL n) { return BRDF_POW_LOBE(c, n); }
  * t^4/7 + t^6/9 + ...), |t| <= 0.1716, so the series' next term is below 2^-28 of the sum; and
  * 2t = f - t f, which keeps the exact f as the leading term: ln m = f - t (f - 2 t^2 q). ln 2
  * is split so that k ln2_hi is exact. Every float u in [2^-24, 1] against the double log:
- * at most 0.94 ulp (SLEEF's logf_u10 is within 1.0). The host's double uses log. */
+ * at most 0.94 ulp (SLEEF's logf_u10 is within 1.0); tests/test_ln_unit.c checks it. */
 #ifdef __OPENCL_VERSION__
 #define BRDF_LN_UNIT_BODY(F, I)                                                                    \
     I ix = as_##I(u) + (0x3f800000 - 0x3f3504f3);                                                  \
@@ -130,13 +130,17 @@ BRDF_FN REAL brdf_pow_lobe(REAL c, REAL n) { return BRDF_POW_LOBE(c, n); }
                   u <= 0.0f)
 __attribute__((overloadable)) static inline float brdf_ln_unit(float u) { BRDF_LN_UNIT_BODY(float, int); }
 __attribute__((overloadable)) static inline float16 brdf_ln_unit(float16 u) { BRDF_LN_UNIT_BODY(float16, int16); }
-#else
-#define brdf_ln_unit(u) log(u)
+#endif
+/* The ln u of brdf_pow_lobe_s: log by default (the host's double; and field.cl, whose heatmap
+ * cells stay bit-identical to a model written as exp(n log c)); accuracy.cl, where the sweep's
+ * speed depends on it, defines it as brdf_ln_unit. */
+#ifndef BRDF_LN_UNIT
+#define BRDF_LN_UNIT(u) log(u)
 #endif
 BRDF_FN REAL brdf_pow_lobe_s(REAL s, REAL n)
 {
     REAL u = RC(1.0) - s;
-    return exp(n * (brdf_ln_unit(u) + BRDF_SMALL_DIVIDE((RC(1.0) - u) - s, fmax(u, RC(1e-30)))));
+    return exp(n * (BRDF_LN_UNIT(u) + BRDF_SMALL_DIVIDE((RC(1.0) - u) - s, fmax(u, RC(1e-30)))));
 }
 /* The lobe given both c and s = 1 - c. By default it is brdf_pow_lobe(c); a kernel that
  * samples s defines BRDF_POW_LOBE_CS(c, s, n) as brdf_pow_lobe_s(s, n). */
