@@ -18,6 +18,12 @@ grep -q 'models_register(&um->info, &um->runtime)' "$SRC/host/core/usermodel.c" 
 hits=$(grep -nE 'usermodel_build|usermodel_builds_|usermodel_reference_|clsession_build_user|USERMODEL_FLOAT_OPTIONS' \
     "$SRC"/host/engine/*.c "$SRC"/host/engine/*.h || true)
 [ -z "$hits" ] && ok || bad "engines build user models themselves: $hits"
+# nor asks whether a model is a user model to decide how to evaluate it: what a model sees
+# (c only) and what its reference costs come from the registry (model_sees_only_c,
+# model_eval_host_on_device); only gate.c, which loads the user models a gates file names,
+# includes usermodel.h
+hits=$(grep -lE '#include "usermodel.h"|usermodel_of' "$SRC"/host/engine/*.c | grep -v '/gate\.c$' || true)
+[ -z "$hits" ] && ok || bad "engines that ask for user models themselves: $hits"
 for f in accuracy.c field.c render.c throughput.c; do
     grep -qE 'programs_(kernel|program|host)\(' "$SRC/host/engine/$f" && ok || bad "$f does not use the program cache"
 done

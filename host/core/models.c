@@ -373,3 +373,14 @@ const char *model_eval_note(const struct model_spec *spec)
     const struct model_runtime *rt = spec ? models_runtime(spec->info) : NULL;
     return rt && rt->note ? rt->note(rt) : NULL;
 }
+
+int model_sees_only_c(const struct model_spec *spec)
+{
+    return spec->info->kernel_id == BRDF_PHONGPOW || models_runtime(spec->info) != NULL;
+}
+
+int model_eval_host_on_device(const struct model_spec *spec)
+{
+    const struct model_runtime *rt = spec ? models_runtime(spec->info) : NULL;
+    return rt && rt->eval_on_device && rt->eval_on_device(rt);
+}

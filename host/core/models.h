@@ -77,6 +77,8 @@ struct model_runtime {
     void (*close_host)(const struct model_runtime *rt, struct cl_session *s);
     /* NULL, or a one-line note for the output when eval_host is not a double evaluation. */
     const char *(*note)(const struct model_runtime *rt);
+    /* 1 when eval_host runs on the device, a launch per value (NULL: it never does). */
+    int (*eval_on_device)(const struct model_runtime *rt);
 };
 #define MODELS_MAX_USER 8
 /* Returns 0, or -1 when the table is full. */
@@ -86,5 +88,12 @@ void models_unregister_all(void);
 const struct model_runtime *models_runtime(const struct model_info *info);
 /* The note of spec's runtime (NULL for a built-in model or a double evaluation). */
 const char *model_eval_note(const struct model_spec *spec);
+/* 1 when the model sees only c, not s = 1 - c: the pow() built-in (phongpow) and every model
+ * registered at run time, whose text is a function of c. The sweeps evaluate such a model on
+ * the float cosines (kernels/accuracy.cl), and its double figures are recomputed there. */
+int model_sees_only_c(const struct model_spec *spec);
+/* 1 when model_eval_host of the model costs a device launch per value (a user model whose text
+ * does not compile on the host): searches that evaluate it many times use coarser grids. */
+int model_eval_host_on_device(const struct model_spec *spec);
 
 #endif

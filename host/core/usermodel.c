@@ -145,6 +145,8 @@ static void runtime_close(const struct model_runtime *rt, struct cl_session *s)
 
 static const char *runtime_note(const struct model_runtime *rt) { return usermodel_reference_note(UM_OF_RUNTIME(rt)); }
 
+static int runtime_on_device(const struct model_runtime *rt) { return !usermodel_host_ready(UM_OF_RUNTIME(rt)); }
+
 /* Called once the model's text (device_source) and origin are known. */
 static void usermodel_fill_runtime(struct user_model *um)
 {
@@ -156,6 +158,7 @@ static void usermodel_fill_runtime(struct user_model *um)
     um->runtime.open_host = runtime_open;
     um->runtime.close_host = runtime_close;
     um->runtime.note = runtime_note;
+    um->runtime.eval_on_device = runtime_on_device;
 }
 
 int usermodel_host_ready(const struct user_model *cum)

@@ -4,7 +4,6 @@
 #include "exitcodes.h"
 #include "programs.h"
 #include "refine.h"
-#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -198,8 +197,7 @@ static void grid_bracket(enum zone z, double n, long samples, double s, double l
    that take s. */
 static double c_lattice(const struct model_spec *m)
 {
-    int c_only = strcmp(m->info->id, "phongpow") == 0 || usermodel_of(m) != NULL;
-    return c_only ? 0x1p-24 : 0.0;
+    return model_sees_only_c(m) ? 0x1p-24 : 0.0;
 }
 
 /* Polishes one per-n maximum in double: from the device's grid maximum at s = 1 - c,

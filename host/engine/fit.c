@@ -684,13 +684,13 @@ int fit_bg_exact_a(double n, int m, double *a_out, double *max_abs_out)
 #define FAM_ATT_SAMPLES 96      /* per n, attenuation grid before the Brent polish */
 #define FAM_SEARCH_N 48         /* n values the search sees (the figures use the whole grid) */
 #define FAM_NM_ITER 400
-/* A user model's double reference runs on the device one point per launch (usermodel.h),
-   about a thousand times slower than a built-in's: its search uses coarser sizes, and no
-   trade-off curve. */
-#define FAM_USER_EPI 12
-#define FAM_USER_ATT 24
-#define FAM_USER_SEARCH_N 12
-#define FAM_USER_NM_ITER 120
+/* A model whose double reference costs a device launch per value (model_eval_host_on_device:
+   a user model whose text does not compile on the host), about a thousand times slower than a
+   host evaluation: its search uses coarser sizes, and no trade-off curve. */
+#define FAM_SLOW_EPI 12
+#define FAM_SLOW_ATT 24
+#define FAM_SLOW_SEARCH_N 12
+#define FAM_SLOW_NM_ITER 120
 #define FAM_NM_STARTS 3
 #define FAM_PENALTY 100.0       /* exact penalty on a cap's excess */
 
@@ -911,11 +911,11 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
         snprintf(r->family, sizeof r->family, "%s", family.info->id);
     }
     r->nparams = S.nparams;
-    int user = !o->power_m && family.info->kernel_id == BRDF_USER;
-    fam_epi_samples = user ? FAM_USER_EPI : FAM_EPI_SAMPLES;
-    fam_att_samples = user ? FAM_USER_ATT : FAM_ATT_SAMPLES;
-    fam_nm_iter = user ? FAM_USER_NM_ITER : FAM_NM_ITER;
-    int search_n = user ? FAM_USER_SEARCH_N : FAM_SEARCH_N;
+    int slow = !o->power_m && model_eval_host_on_device(&family);
+    fam_epi_samples = slow ? FAM_SLOW_EPI : FAM_EPI_SAMPLES;
+    fam_att_samples = slow ? FAM_SLOW_ATT : FAM_ATT_SAMPLES;
+    fam_nm_iter = slow ? FAM_SLOW_NM_ITER : FAM_NM_ITER;
+    int search_n = slow ? FAM_SLOW_SEARCH_N : FAM_SEARCH_N;
     /* The device programs (a user model's own, and its double reference) before the search. */
     struct accuracy_ctx actx;
     memset(&actx, 0, sizeof actx);
@@ -930,7 +930,7 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
     S.fixed[1] = family.params[1];
     long count = accuracy_grid_count(&g);
     double *n = malloc((size_t)count * sizeof *n);
-    double ns[FAM_SEARCH_N + 8];   /* FAM_USER_SEARCH_N is smaller */
+    double ns[FAM_SEARCH_N + 8];   /* FAM_SLOW_SEARCH_N is smaller */
     if (!n) {
         fprintf(stderr, "brdfbench fit: out of memory\n");
         accuracy_close(&actx);
@@ -961,7 +961,7 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
         r->best = *from;
     /* The trade-off: the best max delta for caps on max Delta between the two ends. */
     double lo = r->min_abs.max_abs, hi = r->min_rel.max_abs;
-    for (int j = 1; j + 1 < FIT_TRADEOFF_POINTS && hi > lo && !user; ++j) {
+    for (int j = 1; j + 1 < FIT_TRADEOFF_POINTS && hi > lo && !slow; ++j) {
         double c = lo + (hi - lo) * j / (FIT_TRADEOFF_POINTS - 1);
         fam_fit_point(&S, r->min_rel.params, FIT_MAX_REL, c, n, count, &r->tradeoff[r->tradeoff_count]);
         if (r->tradeoff[r->tradeoff_count].ok)

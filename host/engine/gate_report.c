@@ -6,7 +6,6 @@
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
-#include "usermodel.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -261,7 +260,7 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
         jw_kv_str(&w, "model", g->model.info->id);
         jw_kv_str(&w, "label", g->model.label);
         jw_kv_str(&w, "reference", g->model.info->reference_id);
-        jw_kv_bool(&w, "user_model", usermodel_of(&g->model) != NULL);
+        jw_kv_bool(&w, "user_model", models_runtime(g->model.info) != NULL);
         jw_kv_str(&w, "metric", gate_metric_name(g->metric));
         jw_kv_num(&w, "n_min", g->grid.n_min);
         jw_kv_num(&w, "n_max", g->grid.n_max);
