@@ -51,7 +51,8 @@ int main(void)
     CHECK(k && e == CL_SUCCESS, "ln_probe kernel");
 
     const uint32_t lo = bits_of(0x1p-24f), hi = bits_of(1.0f);
-    size_t cap = (hi - lo) / 61 + 64, count = 0;
+    /* the sampled floats, three around each of the 25 roots 2^ex sqrt(1/2), then 1 and 0 */
+    size_t cap = (hi - lo) / 61 + 1 + 3 * 25 + 2, count = 0;
     float *u = malloc(cap * sizeof *u), *n = calloc(cap, sizeof *n), *out = malloc(cap * sizeof *out);
     CHECK(u && n && out, "memory");
     if (k && u && n && out) {
@@ -65,6 +66,7 @@ int main(void)
         }
         u[count++] = 1.0f;
         u[count++] = 0.0f;
+        CHECK(count <= cap, "%zu values in room for %zu", count, cap);
         CHECK(cl_run_points16(&s, k, 0, u, n, count, out) == 0, "ln_probe runs on %zu values", count);
 
         double worst = 0, worst_u = 0;
