@@ -234,6 +234,15 @@ def frontier(scale, rel):
          "max_rel": rel, "max_abs": 0.1278, "psnr_db": 41.5},
         {"model": "cq2", "evals_per_s": {"min": 1e10, "median": 1.1e10, "max": 1.2e10}, "max_rel": 0.07588}]}
 json.dump(frontier(1.0, 0.012567), open(os.path.join(t, "f1.json"), "w"))
+# with each launch's rate: r5's five launches all take twice as long as r4's, r6's are r4's
+def with_reps(scale):
+    d = render(1.0 * scale, 40.0)
+    ms = [x * scale for x in (0.9, 0.95, 1.0, 1.05, 1.1)]
+    d["scenes"][0]["timings"][0]["entries"][0]["mpixel_per_s_reps"] = [5.184 / m for m in reversed(ms)]
+    return d
+for name, scale in (("r4", 1.0), ("r5", 2.0), ("r6", 1.0)):
+    os.makedirs(os.path.join(t, name))
+    json.dump(with_reps(scale), open(os.path.join(t, name, "render.json"), "w"))
 json.dump(frontier(0.5, 0.012600), open(os.path.join(t, "f2.json"), "w"))
 PY
 "$BIN" compare "$T/r1" "$T/r2" "$T/r3" --out "$T/c8" --quiet 2>"$T/err" && ok || bad "render: $(cat "$T/err")"
@@ -252,6 +261,26 @@ assert ps[2]["verdict"] == "unchanged"
 assert ("spheres 96x54 | phong", "psnr_db") not in by   # infinite PSNR of identical images: no row
 assert by[("spheres 96x54 | phong", "max_abs")]["cells"][1]["verdict"] == "unchanged"
 PY
+"$BIN" compare "$T/r4" "$T/r5" "$T/r6" --out "$T/c10" --quiet 2>"$T/err" && ok || bad "render with reps: $(cat "$T/err")"
+python3 - "$T/c10/compare.json" <<'PY' && ok || bad "render verdicts from the launches' rates"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+sp = {(r["key"], r["metric"]): r for r in d["rows"]}[("spheres | cq2", "mpixel_per_s@96x54")]["cells"]
+# the rank test on 5 rates each: r5's all below r4's: p = 2 / C(10, 5) = 2/252 (exact two-sided);
+# r6's the same values as r4's: p = 1
+assert sp[1]["verdict"] == "slower" and math.isclose(sp[1]["p"], 2 / 252), sp[1]
+assert sp[2]["verdict"] == "same" and sp[2]["p"] == 1.0, sp[2]
+PY
+# a rates array that is not numbers: exit 2 naming the file
+python3 - "$T" <<'PY'
+import json, os, sys
+t = sys.argv[1]
+d = json.load(open(os.path.join(t, "r4", "render.json")))
+d["scenes"][0]["timings"][0]["entries"][0]["mpixel_per_s_reps"] = ["fast"]
+os.makedirs(os.path.join(t, "r7"))
+json.dump(d, open(os.path.join(t, "r7", "render.json"), "w"))
+PY
+expect 2 "r7/render.json:[0-9]+:[0-9]+: " compare "$T/r4" "$T/r7" --out "$T/c11" --quiet
 "$BIN" compare "$T/f1.json" "$T/f2.json" --out "$T/c9" --quiet --fail-if-slower 10 2>"$T/err"
 [ $? -eq 1 ] && grep -q "fq2" "$T/err" && ok || bad "frontier: fq2 at half the rate must fail: $(cat "$T/err")"
 python3 - "$T/c9/compare.json" <<'PY' && ok || bad "frontier rows"

@@ -76,6 +76,13 @@ for s in scenes.values():
         assert 0 < e["min_ms"] <= e["median_ms"] <= e["max_ms"], e
         # Mpixel/s is the image's pixels over the median time (128 x 64 here)
         assert abs(e["mpixel_per_s"] - 128 * 64 / (e["median_ms"] * 1e3)) <= 1e-9 * e["mpixel_per_s"], e
+        # each of the --reps 3 timed launches' rate: the slowest is the longest time, the
+        # middle one is the median's
+        reps = sorted(e["mpixel_per_s_reps"])
+        assert len(reps) == 3, e
+        assert abs(reps[0] - 128 * 64 / (e["max_ms"] * 1e3)) <= 1e-9 * reps[0], e
+        assert abs(reps[1] - e["mpixel_per_s"]) <= 1e-9 * reps[1], e
+        assert abs(reps[2] - 128 * 64 / (e["min_ms"] * 1e3)) <= 1e-9 * reps[2], e
         # the ratio is the interleaved copy's median over this entry's median
         assert abs(e["fraction_of_copy"] - e["copy_median_ms_interleaved"] / e["median_ms"]) < 1e-9
         # the speed-up is the reference's median time over this entry's (docs/definitions.md: cq2 and fq2 against

@@ -316,6 +316,20 @@ static int read_render(struct cmp_reader *rd, const struct jr_doc *d, char *err,
                     /* Mpixel/s is inversely proportional to the time: the slowest run gives lo */
                     c->lo = v * med / num_member(en, "max_ms");
                     c->hi = v * med / num_member(en, "min_ms");
+                    /* the launches' own rates, for the rank test (an older render.json without
+                       them is compared by its min..max range) */
+                    if (jr_get(en, "mpixel_per_s_reps")) {
+                        double *reps = NULL;
+                        size_t n = 0;
+                        if (jr_need_num_array(d, en, "mpixel_per_s_reps", &reps, &n, err, errlen))
+                            return 2;
+                        if (!c->reps && n > 0) {
+                            c->reps = reps;
+                            c->nreps = (int)n;
+                        } else {
+                            free(reps);
+                        }
+                    }
                 }
             }
         }

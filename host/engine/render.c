@@ -1227,6 +1227,8 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
                 goto fail;
             all_copy[ncopy++] = tc[r];
         }
+        te->nreps = reps < RENDER_MAX_KEPT_REPS ? reps : RENDER_MAX_KEPT_REPS;
+        memcpy(te->rep_s, tm, (size_t)te->nreps * sizeof *tm);   /* before median() sorts tm */
         te->med = median(tm, reps);
         te->min = tm[0];
         te->max = tm[reps - 1];

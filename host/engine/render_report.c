@@ -239,6 +239,10 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                 jw_kv_num(&w, "min_ms", te->min * 1e3);
                 jw_kv_num(&w, "max_ms", te->max * 1e3);
                 jw_kv_num(&w, "mpixel_per_s", mpix(st, te->med));
+                jw_kv_arr(&w, "mpixel_per_s_reps");
+                for (int k = 0; k < te->nreps; k++)
+                    jw_num(&w, mpix(st, te->rep_s[k]));
+                jw_arr_end(&w);
                 jw_kv_num(&w, "copy_median_ms_interleaved", te->copy_med * 1e3);
                 jw_kv_num(&w, "fraction_of_copy", frac);
                 if (is_lobe_entry(te)) {

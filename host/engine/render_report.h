@@ -55,12 +55,17 @@ struct model_result {
     char image[256], error[256], contact[256];  /* paths relative to out_dir */
 };
 
+/* Launch times kept per entry, in launch order, for a rank test between runs (compare). */
+#define RENDER_MAX_KEPT_REPS 64
+
 struct timed_entry {
     struct model_spec spec;
     int mode;
     int is_model;              /* in the user's list (not only a reference) */
     char name[MODEL_LABEL_MAX + 32];
     double med, min, max;      /* seconds */
+    int nreps;                 /* the first min(reps, RENDER_MAX_KEPT_REPS) launches: */
+    double rep_s[RENDER_MAX_KEPT_REPS];   /* their seconds */
     double copy_med;           /* the copy kernel's median, interleaved with these reps */
 };
 
