@@ -498,12 +498,11 @@ int fit_wants_family(const struct fit_options *o)
  * and grid set, the clock read; 0, or EXIT_USAGE with the message on stderr when the options
  * or the sweep grid they give do not hold on this device. */
 static int fit_start(struct cl_session *s, const struct fit_options *o, void *r, size_t size,
-                     struct fit_options *opt, struct accuracy_grid *grid, double *t0)
+                     struct fit_options *opt, struct accuracy_grid *g, double *t0)
 {
     memset(r, 0, size);
     *opt = *o;
     *t0 = wall_seconds();
-    struct accuracy_grid *g = grid;
     char err[1024];
     if (fit_options_check(o, err, sizeof err)) {
         fprintf(stderr, "brdfbench fit: %s\n", err);
