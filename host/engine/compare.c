@@ -94,6 +94,24 @@ static struct cmp_cell *cell_for(struct cmp_reader *rd, const char *device, cons
 }
 
 /* A figure of a run. A cell already filled (a duplicate key in one file) keeps its first value. */
+/* The array of numbers at obj's key as c's repetitions (the rank test's sample), unless c has
+ * them already; 0, or 2 with err when the array is not numbers. */
+static int take_reps(const struct jr_doc *d, const struct jr_value *obj, const char *key, struct cmp_cell *c,
+                     char *err, size_t errlen)
+{
+    double *reps = NULL;
+    size_t n = 0;
+    if (jr_need_num_array(d, obj, key, &reps, &n, err, errlen))
+        return 2;
+    if (!c->reps && n > 0) {
+        c->reps = reps;
+        c->nreps = (int)n;
+    } else {
+        free(reps);
+    }
+    return 0;
+}
+
 static struct cmp_cell *put_value(struct cmp_reader *rd, const char *device, const char *key, const char *model,
                                   const char *metric, int sense, double v, const char *reason)
 {
@@ -235,12 +253,8 @@ static int read_throughput(struct cmp_reader *rd, const struct jr_doc *d, char *
             continue;
         c->lo = num_member(eps, "min");
         c->hi = num_member(eps, "max");
-        double *reps = NULL;
-        size_t n = 0;
-        if (jr_need_num_array(d, row, "evals_per_s_reps", &reps, &n, err, errlen))
+        if (take_reps(d, row, "evals_per_s_reps", c, err, errlen))
             return 2;
-        c->reps = reps;
-        c->nreps = (int)n;
     }
     return 0;
 }
@@ -318,18 +332,8 @@ static int read_render(struct cmp_reader *rd, const struct jr_doc *d, char *err,
                     c->hi = v * med / num_member(en, "min_ms");
                     /* the launches' own rates, for the rank test (an older render.json without
                        them is compared by its min..max range) */
-                    if (jr_get(en, "mpixel_per_s_reps")) {
-                        double *reps = NULL;
-                        size_t n = 0;
-                        if (jr_need_num_array(d, en, "mpixel_per_s_reps", &reps, &n, err, errlen))
-                            return 2;
-                        if (!c->reps && n > 0) {
-                            c->reps = reps;
-                            c->nreps = (int)n;
-                        } else {
-                            free(reps);
-                        }
-                    }
+                    if (jr_get(en, "mpixel_per_s_reps") && take_reps(d, en, "mpixel_per_s_reps", c, err, errlen))
+                        return 2;
                 }
             }
         }
@@ -411,13 +415,9 @@ static void frontier_members(struct cmp_reader *rd, const struct jr_doc *d, cons
             char base[64];
             snprintf(base, sizeof base, "%.*s", (int)(strstr(name, "_reps") - name), name);
             struct cmp_cell *c = cell_for(rd, dev, model, model, base, CMP_SPEED);
-            double *reps = NULL;
-            size_t n = 0;
-            char e[8];
-            if (c && !c->reps && jr_need_num_array(d, obj, obj->keys[k], &reps, &n, e, sizeof e) == 0) {
-                c->reps = reps;
-                c->nreps = (int)n;
-            }
+            char e[8];   /* a frontier file's array that is not numbers is left out, as before */
+            if (c)
+                take_reps(d, obj, obj->keys[k], c, e, sizeof e);
         }
     }
 }
