@@ -6,6 +6,7 @@
 #include "clsession.h"
 #include "context.h"
 #include "exitcodes.h"
+#include "frontier.h"
 #include "outdir.h"
 #include "usermodel.h"
 
@@ -350,6 +351,12 @@ int cli_model_list(const char *text, struct model_spec *out, int max, char *err,
             out[kept++] = out[i];
     }
     return kept;
+}
+
+int cli_frontier_default_models(struct model_spec *out, int max, char *err, size_t errlen)
+{
+    int count = frontier_default_models(out, max);
+    return usermodel_append_all(out, &count, max, err, errlen) ? -2 : count;
 }
 
 /* ---- "-" as an output path ------------------------------------------------------------- */

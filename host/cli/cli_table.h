@@ -166,6 +166,9 @@ int cli_call_model_expr(const char *flag, const char *value, void *dest, char *e
 /* Parses --models text (or the default) into models, merging a model given twice (same label)
  * with a note. Returns the count, or -2 with a message. */
 int cli_model_list(const char *text, struct model_spec *out, int max, char *err, size_t errlen);
+/* The frontier's models when --models is not given (frontier and all): its default set of lobe
+ * approximations, then every user model. Returns the count, or -2 with a message. */
+int cli_frontier_default_models(struct model_spec *out, int max, char *err, size_t errlen);
 
 /* "-" as an output path: the writer writes into a temporary folder and the document is then
  * copied to standard output. cli_output_path gives the path to hand the writer (path itself

@@ -634,19 +634,20 @@ static int step_frontier(struct all_run *r)
     o.min_time = 0.01;
     o.samples = r->set.quick ? 256 : 512;
     /* --models: those; else frontier's own set of lobe approximations and the user models */
-    char err[1024];
     if (r->models_given) {
         for (int m = 0; m < r->nmodels && o.model_count < FRONTIER_MAX_MODELS; m++)
             o.models[o.model_count++] = r->models[m];
         if (r->nmodels > FRONTIER_MAX_MODELS)
             fprintf(stderr, "brdfbench all: warning: the frontier measures the first %d of the %d models\n",
                     FRONTIER_MAX_MODELS, r->nmodels);
-    } else if (usermodel_count() > 0) {
-        o.model_count = frontier_default_models(o.models, FRONTIER_MAX_MODELS);
-        if (usermodel_append_all(o.models, &o.model_count, FRONTIER_MAX_MODELS, err, sizeof err)) {
+    } else {
+        char err[1024];
+        int n = cli_frontier_default_models(o.models, FRONTIER_MAX_MODELS, err, sizeof err);
+        if (n < 0) {
             fprintf(stderr, "brdfbench all: the frontier: %s\n", err);
             return EXIT_USAGE;
         }
+        o.model_count = n;
     }
     progress(r, "frontier", 0, 1, "measuring");
     int rc = frontier_run(&r->s, &o, r->run_dir, 1, &r->frontier_md);

@@ -4,7 +4,6 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "frontier.h"
-#include "usermodel.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -52,17 +51,11 @@ int cmd_frontier(int argc, char **argv)
     opt.reps = reps;
     if (no_image)
         opt.image_w = opt.image_h = 0;
-    if (models_given) {
-        int n = cli_model_list(models_text, opt.models, FRONTIER_MAX_MODELS, err, sizeof err);
-        if (n < 0)
-            goto usage_error;
-        opt.model_count = n;
-    } else if (usermodel_count() > 0) {
-        /* the default set and the user models */
-        opt.model_count = frontier_default_models(opt.models, FRONTIER_MAX_MODELS);
-        if (usermodel_append_all(opt.models, &opt.model_count, FRONTIER_MAX_MODELS, err, sizeof err))
-            goto usage_error;
-    }
+    int n = models_given ? cli_model_list(models_text, opt.models, FRONTIER_MAX_MODELS, err, sizeof err)
+                         : cli_frontier_default_models(opt.models, FRONTIER_MAX_MODELS, err, sizeof err);
+    if (n < 0)
+        goto usage_error;
+    opt.model_count = n;
     struct cl_session s;
     char run_dir[4096];
     int rc = cli_run_open("frontier", &s, &dev, out_dir, 0, run_dir, sizeof run_dir, NULL, 0);
