@@ -44,11 +44,10 @@ int main(void)
         return test_summary(rc);
     cl_program prog = NULL;
     cl_kernel k = NULL;
-    CHECK(clsession_build(&s, "accuracy.cl", probe_source, "", &prog) == 0, "accuracy.cl with the probe builds");
-    cl_int e = CL_SUCCESS;
-    if (prog)
-        k = clCreateKernel(prog, "ln_probe", &e);
-    CHECK(k && e == CL_SUCCESS, "ln_probe kernel");
+    static const char *const names[] = { "ln_probe" };
+    cl_kernel *const kernels[] = { &k };
+    CHECK(clsession_build_kernels(&s, "accuracy.cl", probe_source, "", &prog, 1, names, kernels) == 0,
+          "accuracy.cl with the probe builds, and its ln_probe kernel");
 
     const uint32_t lo = bits_of(0x1p-24f), hi = bits_of(1.0f);
     /* the sampled floats, three around each of the 25 roots 2^ex sqrt(1/2), then 1 and 0 */
@@ -93,10 +92,7 @@ int main(void)
     free(u);
     free(n);
     free(out);
-    if (k)
-        clReleaseKernel(k);
-    if (prog)
-        clReleaseProgram(prog);
+    clsession_release_kernels(&prog, 1, kernels);
     clsession_close(&s);
     return test_summary(0);
 }

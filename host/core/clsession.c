@@ -534,12 +534,13 @@ done:
     return rc;
 }
 
-int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const char *options, cl_program *program,
-                            int count, const char *const names[], cl_kernel *const kernels[])
+int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                            const char *options, cl_program *program, int count, const char *const names[],
+                            cl_kernel *const kernels[])
 {
     for (int i = 0; i < count; ++i)
         *kernels[i] = NULL;
-    int rc = clsession_build(s, kernel_file, NULL, options, program);
+    int rc = clsession_build(s, kernel_file, extra_source, options, program);
     if (rc)
         return rc;
     for (int i = 0; i < count; ++i) {

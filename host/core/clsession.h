@@ -82,11 +82,12 @@ char *clsession_kernel_source(const char *name, size_t *len);
  * and the options on stderr and returns EXIT_RUNTIME (3). */
 int clsession_build(struct cl_session *s, const char *kernel_file, const char *extra_source,
                     const char *options, cl_program *out);
-/* clsession_build of kernels/<file> (no extra source), then its kernels names[i] into
- * *kernels[i]; on failure everything made is released (all set to NULL), the OpenCL error is on
- * stderr and the exit code (EXIT_RUNTIME) is returned. */
-int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const char *options, cl_program *program,
-                            int count, const char *const names[], cl_kernel *const kernels[]);
+/* clsession_build of kernels/<file> and extra_source (may be NULL), then its kernels names[i]
+ * into *kernels[i]; on failure everything made is released (all set to NULL), the OpenCL error
+ * is on stderr and the exit code (EXIT_RUNTIME) is returned. */
+int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const char *extra_source,
+                            const char *options, cl_program *program, int count, const char *const names[],
+                            cl_kernel *const kernels[]);
 /* Releases the kernels and the program (those not NULL) and sets them to NULL. */
 void clsession_release_kernels(cl_program *program, int count, cl_kernel *const kernels[]);
 /* Same, but a failed build returns EXIT_USAGE: for user-supplied sources. */

@@ -104,7 +104,7 @@ int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *buil
     snprintf(a->build_options, sizeof a->build_options, "%s", build_options ? build_options : "");
     static const char *const names[] = { "accuracy_sweep", "models_probe" };
     cl_kernel *const kernels[] = { &a->sweep, &a->probe };
-    return clsession_build_kernels(s, "accuracy.cl", a->build_options, &a->program, 2, names, kernels);
+    return clsession_build_kernels(s, "accuracy.cl", NULL, a->build_options, &a->program, 2, names, kernels);
 }
 
 void accuracy_close(struct accuracy_ctx *a)

@@ -36,7 +36,7 @@ int integrate_open(struct integrate_ctx *c, struct cl_session *s)
     c->s = s;
     static const char *const names[] = { "eq11_terms", "albedo_partial", "reciprocity_pairs" };
     cl_kernel *const kernels[] = { &c->eq11, &c->albedo, &c->recip };
-    return clsession_build_kernels(s, "integrate.cl", "", &c->program, 3, names, kernels);
+    return clsession_build_kernels(s, "integrate.cl", NULL, "", &c->program, 3, names, kernels);
 }
 
 void integrate_close(struct integrate_ctx *c)

@@ -55,7 +55,7 @@ int field_open(struct field_ctx *f, struct cl_session *s, const char *build_opti
     snprintf(f->build_options, sizeof f->build_options, "%s", build_options ? build_options : "");
     static const char *const names[] = { "field_grid" };
     cl_kernel *const kernels[] = { &f->kernel };
-    return clsession_build_kernels(s, "field.cl", f->build_options, &f->program, 1, names, kernels);
+    return clsession_build_kernels(s, "field.cl", NULL, f->build_options, &f->program, 1, names, kernels);
 }
 
 void field_close(struct field_ctx *f)

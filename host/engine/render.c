@@ -263,7 +263,7 @@ int render_device_open(struct render_device *d, struct cl_session *s,
     display_table_build(o, table, &d->display_code_error);
     static const char *const names[] = { "shade", "copy_gbuffer" };
     cl_kernel *const kernels[] = { &d->shade, &d->copy };
-    rc = clsession_build_kernels(s, "shade.cl", "", &d->program, 2, names, kernels);
+    rc = clsession_build_kernels(s, "shade.cl", NULL, "", &d->program, 2, names, kernels);
     if (rc) {
         set_err(err, errlen, "building kernels/shade.cl or making its kernels failed (see above)");
         free(table);
