@@ -16,9 +16,9 @@
 int cmd_compare(int argc, char **argv)
 {
     char err[1200];
-    int quiet = 0, less_accurate = 0;
+    int quiet = 0, less_accurate = 0, holm = 0, absolute = 0;
     const char *out_dir = NULL;
-    double alpha = CMP_DEFAULT_ALPHA, slower_pct = -1;
+    double alpha = CMP_DEFAULT_ALPHA, slower_pct = -1, threshold_pct = -1;
     const struct cli_flag flags[] = {
         CLI_FLAG_OUT(&out_dir, "a new folder results/<date-time>/; results/latest stays"),
         { .name = "--alpha", .value = "P", .kind = CLI_DOUBLE, .dest = &alpha, .min = 1e-6, .max = 0.5,
@@ -26,6 +26,12 @@ int cmd_compare(int argc, char **argv)
         { .name = "--fail-if-slower", .value = "PCT", .kind = CLI_DOUBLE, .dest = &slower_pct, .min = 0, .max = 100,
           .help = "exit 1 naming every rate that is slower than the baseline (by the test) by more than PCT percent",
           .def = "" },
+        { .name = "--threshold", .value = "PCT", .kind = CLI_DOUBLE, .dest = &threshold_pct, .min = 0, .max = 100,
+          .help = "the smallest change a rate's verdict calls (default: --fail-if-slower's PCT, else 5)", .def = "" },
+        { .name = "--holm", .kind = CLI_SWITCH, .dest = &holm, .set = 1,
+          .help = "Holm's family-wise correction of the p-values over each run's rates (for CI gates over many rows)" },
+        { .name = "--absolute", .kind = CLI_SWITCH, .dest = &absolute, .set = 1,
+          .help = "decide on the absolute rates, not the rates normalised by the run's reference kernel" },
         { .name = "--fail-if-less-accurate", .kind = CLI_SWITCH, .dest = &less_accurate, .set = 1,
           .help = "exit 1 naming every accuracy figure worse at its 4th digit" },
         CLI_FLAG_QUIET(&quiet),
@@ -39,9 +45,14 @@ int cmd_compare(int argc, char **argv)
                  "  options, n mode; accuracy: model, figure, grid; render: scene, model; frontier: model);\n"
                  "  rows found in only some runs are listed as such. One run of --device all alone lays\n"
                  "  its devices side by side. Writes compare.md, compare.csv, compare.json, compare.png.\n"
-                 "  Verdicts: a rate is faster / slower / same by the Mann-Whitney test of the two runs'\n"
-                 "  repetitions (undecided when there are too few to reach --alpha); an accuracy figure is\n"
-                 "  unchanged or changed (better / worse) at its 4th significant digit.\n",
+                 "  Verdicts: a rate is decided on its normalised repetitions (each over the reference kernel\n"
+                 "  timed in the same round, so that the machine's drift cancels; --absolute: the raw rates):\n"
+                 "  faster / slower when the Mann-Whitney test of the two runs' repetitions gives p < --alpha\n"
+                 "  (Holm-adjusted with --holm) and the ratio is beyond 1 +- --threshold; noisy when the\n"
+                 "  ratio's confidence interval is too wide to decide a change of that size; same otherwise;\n"
+                 "  undecided when there are too few repetitions to reach --alpha. An accuracy figure is\n"
+                 "  unchanged or changed (better / worse) at its 4th significant digit.\n"
+                 "  Example: brdfbench compare results/base results/latest --fail-if-slower 10 --holm\n",
         CLI_TABLE(flags),
         .epilog = "  Exit codes: 0 done, 1 a --fail-if condition holds, 2 a missing path, a file of another\n"
                   "  schema or version, runs with nothing in common, or a bad flag, 3 an output not written.\n",
@@ -72,6 +83,9 @@ int cmd_compare(int argc, char **argv)
         fprintf(stderr, "brdfbench compare: %s\n", err);
         goto done;
     }
+    set->threshold = (threshold_pct >= 0 ? threshold_pct : slower_pct >= 0 ? slower_pct : 100 * CMP_DEFAULT_THRESHOLD) / 100;
+    set->holm = holm;
+    set->absolute = absolute;
     compare_evaluate(set, alpha);
     if (!quiet) {
         char *t = compare_text(set, 0);
@@ -79,6 +93,15 @@ int cmd_compare(int argc, char **argv)
             fputs(t, stdout);
         free(t);
     }
+    int few = compare_few_reps(set);
+    if (few)
+        fprintf(stderr, "brdfbench compare: warning: a rate has only %d repetition%s (fewer than %d): its verdict has "
+                        "little power; take more (throughput --reps 10)\n", few, few == 1 ? "" : "s", set->min_reps);
+    for (int k = 0; k < set->nruns; ++k)
+        if (set->run[k].disturbed)
+            fprintf(stderr, "brdfbench compare: warning: %s was disturbed: %d repetition%s stayed preempted by other "
+                            "work after the retries (see its \"machine\" context)\n", set->run[k].name,
+                    set->run[k].disturbed, set->run[k].disturbed == 1 ? "" : "s");
     char run_dir[4096];
     if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err) ||
         compare_write(set, run_dir, err, sizeof err)) {

@@ -294,6 +294,9 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
     clGetDeviceInfo(s->device, CL_DEVICE_VERSION, sizeof s->device_version, s->device_version, NULL);
     clGetDeviceInfo(s->device, CL_DRIVER_VERSION, sizeof s->driver_version, s->driver_version, NULL);
     clGetDeviceInfo(s->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof s->compute_units, &s->compute_units, NULL);
+    cl_device_type dtype = 0;
+    clGetDeviceInfo(s->device, CL_DEVICE_TYPE, sizeof dtype, &dtype, NULL);
+    s->is_cpu = (dtype & CL_DEVICE_TYPE_CPU) != 0;
     clGetDeviceInfo(s->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof s->global_mem, &s->global_mem, NULL);
     clGetDeviceInfo(s->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof s->max_alloc, &s->max_alloc, NULL);
     char ext[8192] = "";

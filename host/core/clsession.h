@@ -19,6 +19,7 @@ struct cl_session {
     char platform_name[256], platform_version[256];
     char device_name[256], device_version[256], driver_version[256];
     cl_uint compute_units;
+    int is_cpu;                   /* CL_DEVICE_TYPE_CPU: its launches run on this machine's cores */
     cl_ulong global_mem, max_alloc;
     int has_fp64;
     double last_build_seconds;    /* wall time of the latest clsession_build */

@@ -17,7 +17,7 @@
 static const char *const kind_names[CMP_KIND_COUNT] = { "throughput", "accuracy", "render", "fit", "frontier" };
 static const char *const kind_files[CMP_KIND_COUNT] = { "throughput.json", "accuracy.json", "render.json", "fit.json",
                                                         "frontier.json" };
-static const char *const kind_schemas[CMP_KIND_COUNT] = { "brdfbench.throughput/2", "brdfbench.accuracy/1",
+static const char *const kind_schemas[CMP_KIND_COUNT] = { "brdfbench.throughput/3", "brdfbench.accuracy/1",
                                                           "brdfbench.render/1", "brdfbench.fit/1",
                                                           "brdfbench.frontier/1" };
 
@@ -39,6 +39,7 @@ const char *cmp_verdict_name(int v)
     case CMP_V_BETTER: return "changed, better";
     case CMP_V_WORSE: return "changed, worse";
     case CMP_V_CHANGED: return "changed";
+    case CMP_V_NOISY: return "noisy";
     }
     return "?";
 }
@@ -233,6 +234,15 @@ static int read_throughput(struct cmp_reader *rd, const struct jr_doc *d, char *
                          fp->items[i].str);
         if (buf[0])
             ctx_put(&rd->set->run[rd->run], "kernel sources", buf);
+        const struct jr_value *rn = jr_get(tp, "runner");
+        snprintf(buf, sizeof buf, "load %s -> %s", str_member(tp, "loadavg_start", "?"), str_member(tp, "loadavg_end", "?"));
+        if (rn)
+            snprintf(buf + strlen(buf), sizeof buf - strlen(buf), ", steal %.3g s, %g of %g launches retried, %g reps disturbed",
+                     num_member(rn, "steal_seconds"), num_member(rn, "preemption_retries"), num_member(rn, "launches"),
+                     num_member(rn, "disturbed_reps"));
+        ctx_put(&rd->set->run[rd->run], "machine", buf);
+        if (rn && num_member(rn, "disturbed_reps") > 0)
+            rd->set->run[rd->run].disturbed = (int)num_member(rn, "disturbed_reps");
     }
     int tagged = distinct_devices(rows, "device") > 1;
     for (size_t i = 0; i < rows->count; ++i) {
@@ -255,6 +265,26 @@ static int read_throughput(struct cmp_reader *rd, const struct jr_doc *d, char *
         c->hi = num_member(eps, "max");
         if (take_reps(d, row, "evals_per_s_reps", c, err, errlen))
             return 2;
+        /* the normalised rates per CPU second where the run has them (a CPU device), else the
+           normalised rates */
+        static const char *const norm_keys[2] = { "normalised_cpu_reps", "normalised_reps" };
+        for (int q = 0; q < 2 && !c->norm; ++q) {
+            if (!jr_get(row, norm_keys[q]))
+                continue;
+            double *nr = NULL;
+            size_t nn = 0;
+            if (jr_need_num_array(d, row, norm_keys[q], &nr, &nn, err, errlen))
+                return 2;
+            if (nn > 0) {
+                c->norm = nr;
+                c->nnorm = (int)nn;
+                c->norm_cpu = q == 0;
+            } else {
+                free(nr);
+            }
+        }
+        c->retries = (int)fmax(0, num_member(row, "preemption_retries"));
+        c->disturbed = (int)fmax(0, num_member(row, "disturbed_reps"));
     }
     return 0;
 }
@@ -480,7 +510,8 @@ static int read_file(struct compare_set *set, int run, const char *path, char *e
              kind_schemas[0], kind_schemas[1], kind_schemas[2], kind_schemas[3], kind_schemas[4]);
         goto done;
     }
-    if (strcmp(schema, kind_schemas[kind]) != 0) {
+    /* throughput/2 files (no normalised rates) are still compared, on their absolute rates */
+    if (strcmp(schema, kind_schemas[kind]) != 0 && strcmp(schema, "brdfbench.throughput/2") != 0) {
         fail(err, errlen, "%s: schema \"%s\", compare reads \"%s\" (run the command again with this version)", path,
              schema, kind_schemas[kind]);
         goto done;
@@ -616,10 +647,12 @@ static void split_devices(struct compare_set *set)
         snprintf(model, sizeof model, "%s", r->model);
         snprintf(metric, sizeof metric, "%s", r->metric);
         struct cmp_cell *c = cell_for(&rd, "", key, model, metric, sense);   /* may move set->rows */
-        if (c)
+        if (c) {
             *c = moved;
-        else
+        } else {
             free(moved.reps);
+            free(moved.norm);
+        }
     }
     /* drop the emptied device rows */
     int w = 0;
@@ -633,6 +666,8 @@ int compare_load(struct compare_set *set, const char *const *paths, int npaths, 
 {
     memset(set, 0, sizeof *set);
     set->alpha = CMP_DEFAULT_ALPHA;
+    set->threshold = CMP_DEFAULT_THRESHOLD;
+    set->min_reps = CMP_WARN_REPS;
     if (npaths < 1 || npaths > CMP_MAX_RUNS) {
         fail(err, errlen, "expected 1 to %d runs (the first is the baseline), got %d", CMP_MAX_RUNS, npaths);
         return 2;
@@ -682,9 +717,96 @@ static int same_4_digits(double a, double b)
     return strcmp(x, y) == 0;
 }
 
-static void judge(const struct cmp_row *row, const struct cmp_cell *b, struct cmp_cell *c, double alpha)
+static double median_of(const double *v, int n)
 {
-    c->ratio = c->change = c->p = NAN;
+    double *t = malloc((size_t)(n > 0 ? n : 1) * sizeof *t);
+    int k = 0;
+    for (int i = 0; t && i < n; ++i)
+        if (isfinite(v[i]) && v[i] > 0)
+            t[k++] = v[i];
+    double m = NAN;
+    if (k > 0) {
+        for (int i = 1; i < k; ++i)   /* insertion sort: a run's repetitions */
+            for (int j = i; j > 0 && t[j - 1] > t[j]; --j) {
+                double x = t[j];
+                t[j] = t[j - 1];
+                t[j - 1] = x;
+            }
+        m = k % 2 ? t[k / 2] : 0.5 * (t[k / 2 - 1] + t[k / 2]);
+    }
+    free(t);
+    return m;
+}
+
+/* The logarithms of a sample's positive finite values (the rest NAN): malloc'd. */
+static double *logs_of(const double *v, int n)
+{
+    double *l = malloc((size_t)(n > 0 ? n : 1) * sizeof *l);
+    for (int i = 0; l && i < n; ++i)
+        l[i] = isfinite(v[i]) && v[i] > 0 ? log(v[i]) : NAN;
+    return l;
+}
+
+/* A speed cell's test against the baseline's: ratio, interval and p; the verdict follows once
+   every row's p is known (Holm). */
+static void judge_speed(const struct compare_set *set, const struct cmp_cell *b, struct cmp_cell *c)
+{
+    const double *x, *y;
+    int nx, ny;
+    if (!set->absolute && b->norm && c->norm && b->nnorm > 0 && c->nnorm > 0 && b->norm_cpu == c->norm_cpu) {
+        c->basis = c->norm_cpu ? CMP_BASIS_CPU : CMP_BASIS_NORMALISED;
+        x = c->norm, nx = c->nnorm, y = b->norm, ny = b->nnorm;
+    } else if (b->nreps > 0 && c->nreps > 0) {
+        c->basis = CMP_BASIS_ABSOLUTE;
+        x = c->reps, nx = c->nreps, y = b->reps, ny = b->nreps;
+    } else {
+        c->basis = isfinite(b->lo) && isfinite(b->hi) && isfinite(c->lo) && isfinite(c->hi) ? CMP_BASIS_RANGES
+                                                                                               : CMP_BASIS_NONE;
+        c->verdict = c->basis == CMP_BASIS_NONE ? CMP_V_UNDECIDED
+                     : c->hi < b->lo ? CMP_V_SLOWER : c->lo > b->hi ? CMP_V_FASTER : CMP_V_SAME;
+        return;
+    }
+    struct ranktest_result t;
+    double *lx = logs_of(x, nx), *ly = logs_of(y, ny), est, lo, hi;
+    if (lx && ly && ranktest_mann_whitney(lx, nx, ly, ny, &t) == 0 &&
+        ranktest_shift_ci(lx, nx, ly, ny, set->alpha, &est, &lo, &hi) == 0) {
+        c->p = c->p_adj = t.p;
+        c->ratio = exp(est);
+        c->ci_lo = exp(lo);
+        c->ci_hi = exp(hi);
+        c->verdict = t.p_min > set->alpha ? CMP_V_UNDECIDED : CMP_V_SAME;   /* refined in decide_speed */
+        if (t.u > 0.5 * nx * ny)
+            c->verdict = -c->verdict;   /* marks "x above y" until decide_speed */
+    } else {
+        c->verdict = CMP_V_UNDECIDED;
+    }
+    free(lx);
+    free(ly);
+}
+
+/* The verdict of a tested speed cell, from its (adjusted) p, ratio and interval. */
+static void decide_speed(const struct compare_set *set, struct cmp_cell *c)
+{
+    int above = c->verdict < 0;
+    int v = above ? -c->verdict : c->verdict;
+    if (v != CMP_V_SAME) {
+        c->verdict = v;
+        return;
+    }
+    double band = log1p(set->threshold);
+    if (c->p_adj < set->alpha && fabs(log(c->ratio)) > band)
+        c->verdict = above ? CMP_V_FASTER : CMP_V_SLOWER;
+    else if (!(log(c->ci_hi) - log(c->ci_lo) <= 2 * band))
+        c->verdict = CMP_V_NOISY;
+    else
+        c->verdict = CMP_V_SAME;
+}
+
+static void judge(const struct compare_set *set, const struct cmp_row *row, const struct cmp_cell *b,
+                  struct cmp_cell *c)
+{
+    c->ratio = c->change = c->p = c->p_adj = c->ci_lo = c->ci_hi = NAN;
+    c->basis = CMP_BASIS_NONE;
     if (!b->present || !c->present) {
         c->verdict = CMP_V_MISSING;
         return;
@@ -696,20 +818,7 @@ static void judge(const struct cmp_row *row, const struct cmp_cell *b, struct cm
     c->change = c->value - b->value;
     c->ratio = b->value != 0 ? c->value / b->value : NAN;
     if (row->sense == CMP_SPEED) {
-        struct ranktest_result t;
-        if (b->nreps > 0 && c->nreps > 0 && ranktest_mann_whitney(c->reps, c->nreps, b->reps, b->nreps, &t) == 0) {
-            c->p = t.p;
-            if (t.p_min > alpha)
-                c->verdict = CMP_V_UNDECIDED;
-            else if (t.p >= alpha)
-                c->verdict = CMP_V_SAME;
-            else
-                c->verdict = t.u > 0.5 * c->nreps * b->nreps ? CMP_V_FASTER : CMP_V_SLOWER;
-        } else if (isfinite(b->lo) && isfinite(b->hi) && isfinite(c->lo) && isfinite(c->hi)) {
-            c->verdict = c->hi < b->lo ? CMP_V_SLOWER : c->lo > b->hi ? CMP_V_FASTER : CMP_V_SAME;
-        } else {
-            c->verdict = CMP_V_UNDECIDED;
-        }
+        judge_speed(set, b, c);
         return;
     }
     if (same_4_digits(b->value, c->value))
@@ -720,6 +829,35 @@ static void judge(const struct cmp_row *row, const struct cmp_cell *b, struct cm
         c->verdict = c->value > b->value ? CMP_V_BETTER : CMP_V_WORSE;
     else
         c->verdict = CMP_V_CHANGED;
+}
+
+static int cmp_p(const void *a, const void *b)
+{
+    double x = (*(struct cmp_cell *const *)a)->p, y = (*(struct cmp_cell *const *)b)->p;
+    return (x > y) - (x < y);
+}
+
+/* Holm's step-down adjustment over run k's tested speed cells: the i-th smallest p (from 0)
+   times (m - i), made monotone, capped at 1. */
+static void holm_adjust(struct compare_set *set, int k)
+{
+    struct cmp_cell **t = malloc((size_t)(set->nrows > 0 ? set->nrows : 1) * sizeof *t);
+    if (!t)
+        return;
+    int m = 0;
+    for (int i = 0; i < set->nrows; ++i) {
+        struct cmp_cell *c = &set->rows[i].cell[k];
+        if (set->rows[i].sense == CMP_SPEED && isfinite(c->p))
+            t[m++] = c;
+    }
+    qsort(t, (size_t)m, sizeof *t, cmp_p);
+    double run_max = 0;
+    for (int i = 0; i < m; ++i) {
+        double adj = fmin(1.0, t[i]->p * (double)(m - i));
+        run_max = fmax(run_max, adj);
+        t[i]->p_adj = run_max;
+    }
+    free(t);
 }
 
 void compare_evaluate(struct compare_set *set, double alpha)
@@ -737,11 +875,34 @@ void compare_evaluate(struct compare_set *set, double alpha)
             set->rows_in_some++;
         r->cell[0].ratio = r->cell[0].ok ? 1.0 : NAN;
         r->cell[0].change = r->cell[0].ok ? 0.0 : NAN;
-        r->cell[0].p = NAN;
+        r->cell[0].p = r->cell[0].p_adj = r->cell[0].ci_lo = r->cell[0].ci_hi = NAN;
         r->cell[0].verdict = r->cell[0].present ? CMP_V_NONE : CMP_V_MISSING;
         for (int k = 1; k < set->nruns; ++k)
-            judge(r, &r->cell[0], &r->cell[k], alpha);
+            judge(set, r, &r->cell[0], &r->cell[k]);
     }
+    for (int k = 1; k < set->nruns; ++k) {
+        if (set->holm)
+            holm_adjust(set, k);
+        for (int i = 0; i < set->nrows; ++i) {
+            struct cmp_cell *c = &set->rows[i].cell[k];
+            if (set->rows[i].sense == CMP_SPEED && (c->basis == CMP_BASIS_NORMALISED || c->basis == CMP_BASIS_CPU ||
+                                                    c->basis == CMP_BASIS_ABSOLUTE))
+                decide_speed(set, c);
+        }
+    }
+}
+
+int compare_few_reps(const struct compare_set *set)
+{
+    int few = 0;
+    for (int i = 0; i < set->nrows; ++i)
+        for (int k = 0; k < set->nruns; ++k) {
+            const struct cmp_cell *c = &set->rows[i].cell[k];
+            int n = c->nnorm > 0 ? c->nnorm : c->nreps;
+            if (set->rows[i].sense == CMP_SPEED && c->present && c->ok && n > 0 && n < set->min_reps)
+                few = few == 0 || n < few ? n : few;
+        }
+    return few;
 }
 
 static void append(char **out, size_t *len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -798,7 +959,7 @@ void compare_free(struct compare_set *set)
 {
     for (int i = 0; i < set->nrows; ++i)
         for (int k = 0; k < CMP_MAX_RUNS; ++k)
-            free(set->rows[i].cell[k].reps);
+            free(set->rows[i].cell[k].reps), free(set->rows[i].cell[k].norm);
     free(set->rows);
     set->rows = NULL;
     set->nrows = set->cap = 0;

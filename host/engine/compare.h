@@ -28,6 +28,8 @@
 #define CMP_MAX_CTX 32
 #define CMP_TEXT 256
 #define CMP_DEFAULT_ALPHA 0.05
+#define CMP_DEFAULT_THRESHOLD 0.05   /* 5%: the smallest change a speed verdict calls */
+#define CMP_WARN_REPS 5             /* fewer repetitions per side: compare warns */
 
 /* The result files compare reads, with the schema version it reads of each. */
 enum cmp_kind { CMP_THROUGHPUT = 0, CMP_ACCURACY, CMP_RENDER, CMP_FIT, CMP_FRONTIER, CMP_KIND_COUNT };
@@ -54,7 +56,8 @@ enum cmp_verdict {
     CMP_V_UNCHANGED,
     CMP_V_BETTER,        /* changed at the 4th digit, for the better */
     CMP_V_WORSE,         /* changed at the 4th digit, for the worse */
-    CMP_V_CHANGED        /* changed at the 4th digit (a value with no better or worse) */
+    CMP_V_CHANGED,       /* changed at the 4th digit (a value with no better or worse) */
+    CMP_V_NOISY          /* the repetitions spread too widely to decide a change of the asked size */
 };
 const char *cmp_verdict_name(int v);      /* "same", "slower", "changed, worse", ... */
 
@@ -70,7 +73,24 @@ struct cmp_cell {
     double ratio;                /* value / baseline value (NAN when either is missing or 0) */
     double change;               /* value - baseline value */
     double p;                    /* the rank test's two-sided p (NAN when not tested) */
+    double p_adj;                /* p after Holm's correction over the run's speed rows (= p without --holm) */
+    double ci_lo, ci_hi;         /* the ratio's confidence interval at 1 - alpha (Hodges-Lehmann on logs) */
+    int basis;                   /* what decided a speed: enum cmp_basis */
+    double *norm;                /* a speed's normalised repetitions (rate / the run's reference kernel
+                                    in the same round; malloc'd), or NULL */
+    int nnorm;
+    int norm_cpu;                /* norm holds the normalised rates per CPU second */
+    int retries, disturbed;      /* preemption retries and disturbed repetitions behind the figure */
     int verdict;                 /* enum cmp_verdict */
+};
+
+/* What a speed verdict was decided on. */
+enum cmp_basis {
+    CMP_BASIS_NONE = 0,
+    CMP_BASIS_NORMALISED,        /* both runs' normalised repetitions (the drift of the machine cancelled) */
+    CMP_BASIS_ABSOLUTE,          /* both runs' absolute repetitions */
+    CMP_BASIS_RANGES,            /* min..max ranges only (no repetitions kept) */
+    CMP_BASIS_CPU                /* both runs' normalised rates per CPU second (a CPU device) */
 };
 
 struct cmp_row {
@@ -91,6 +111,7 @@ struct cmp_run {
     int nctx;
     char ctx_key[CMP_MAX_CTX][48];
     char ctx_value[CMP_MAX_CTX][CMP_TEXT];
+    int disturbed;               /* repetitions the runner kept although preempted (context.throughput.runner) */
 };
 
 struct compare_set {
@@ -100,6 +121,10 @@ struct compare_set {
     struct cmp_row *rows;
     int nrows, cap;
     double alpha;
+    double threshold;            /* the smallest change a speed verdict calls, as a fraction (0.05: 5%) */
+    int holm;                    /* Holm's family-wise correction over each run's speed rows */
+    int min_reps;                /* fewer repetitions than this on a side: a warning */
+    int absolute;                /* decide on absolute rates even where normalised ones exist */
     /* the devices a --device all file lists (context.devices): name = tag, with their context */
     struct cmp_run devices[CMP_MAX_RUNS];
     int ndevices;
@@ -113,8 +138,19 @@ struct compare_set {
 int compare_load(struct compare_set *set, const char *const *paths, int npaths, char *err, size_t errlen);
 
 /* Fills every cell's ratio, change, p and verdict against the baseline (alpha: the rank
- * test's level, in (0, 1)). */
+ * test's level, in (0, 1)), with the threshold, holm, min_reps and absolute fields of set
+ * as they are (compare_load sets their defaults: 5%, off, 5, off).
+ *
+ * A speed: decided on the normalised repetitions where both cells have them (else the
+ * absolute ones): the ratio is the Hodges-Lehmann estimate of the ratio of the two samples
+ * (on logarithms) with its confidence interval at 1 - alpha; "faster"/"slower" when the rank
+ * test's p (Holm-adjusted with holm) is below alpha AND the ratio is beyond 1 +- threshold;
+ * "noisy" when not, and the interval is wider than the band 1/(1+threshold)..(1+threshold)
+ * (the repetitions cannot tell such a change from noise); "same" otherwise; "undecided" when
+ * the sample sizes cannot reach alpha at all. */
 void compare_evaluate(struct compare_set *set, double alpha);
+/* The fewest repetitions of a measured speed cell when below set->min_reps, else 0. */
+int compare_few_reps(const struct compare_set *set);
 
 /* The context entry `key` of run r, or NULL. */
 const char *compare_context(const struct compare_set *set, int r, const char *key);

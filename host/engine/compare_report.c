@@ -18,6 +18,12 @@ static const char *sense_name(int s)
     return s >= 0 && s <= CMP_VALUE ? n[s] : "?";
 }
 
+static const char *basis_name(int b)
+{
+    static const char *const n[] = { "", "normalised", "absolute", "ranges", "normalised per CPU second" };
+    return b >= 0 && b <= CMP_BASIS_CPU ? n[b] : "?";
+}
+
 /* A value as the table shows it: rates in G/s or M/s, the rest with 4 significant digits. */
 static void fmt_value(char *buf, size_t len, const struct cmp_row *r, double v)
 {
@@ -66,7 +72,10 @@ static void cell_text(char *buf, size_t len, const struct compare_set *set, cons
     }
     /* value, ratio or change, verdict: aligned within a column */
     if (r->sense == CMP_SPEED) {
-        if (isfinite(c->p))
+        if (isfinite(c->p) && isfinite(c->ci_lo))
+            snprintf(buf, len, "%10s %7.3fx [%.3f, %.3f] %-9s (p %.2g)", v, c->ratio, c->ci_lo,
+                     isfinite(c->ci_hi) ? c->ci_hi : INFINITY, cmp_verdict_name(c->verdict), set->holm ? c->p_adj : c->p);
+        else if (isfinite(c->p))
             snprintf(buf, len, "%10s %7.3fx %-9s (p %.2g)", v, c->ratio, cmp_verdict_name(c->verdict), c->p);
         else
             snprintf(buf, len, "%10s %7.3fx %-9s", v, c->ratio, cmp_verdict_name(c->verdict));
@@ -81,8 +90,9 @@ static void cell_text(char *buf, size_t len, const struct compare_set *set, cons
 static const char *kind_heading(int kind)
 {
     switch (kind) {
-    case CMP_THROUGHPUT: return "throughput: evaluations/s, median of the repetitions; against the baseline: ratio, and "
-                                "the Mann-Whitney test of the repetitions";
+    case CMP_THROUGHPUT: return "throughput: evaluations/s, median of the repetitions; against the baseline: the ratio "
+                                "(Hodges-Lehmann, on the normalised rates where both runs have them) with its "
+                                "confidence interval, and the Mann-Whitney test of the repetitions";
     case CMP_ACCURACY: return "accuracy: max delta (epicentre), max Delta (attenuation, whole range); against the "
                               "baseline: the signed change, at the 4th significant digit";
     case CMP_RENDER: return "render: image error (max |error|, RMSE, PSNR: 4th significant digit) and Mpixel/s (the "
@@ -97,7 +107,7 @@ static const char *kind_heading(int kind)
 /* The context rows worth showing side by side, in this order; others follow as read. */
 static const char *const ctx_order[] = { "files", "device", "devices", "platform", "platform_version", "device_version",
                                          "driver_version", "compute_units", "host_cpu", "host_cores", "git_revision",
-                                         "brdfbench_version", "build_options", "pocl_affinity", "kernel sources", "throughput settings", "accuracy grid",
+                                         "brdfbench_version", "build_options", "pocl_affinity", "kernel sources", "throughput settings", "machine", "accuracy grid",
                                          "fit grid", "date" };
 
 static const char *ctx_value(const struct compare_set *set, int k, const char *key)
@@ -146,10 +156,10 @@ static int ctx_keys(const struct compare_set *set, const char **keys, int max)
 }
 
 /* How many rows of this kind run k has, and of them how many got each verdict. */
-static int verdict_counts(const struct compare_set *set, int k, int kind, int count[CMP_V_CHANGED + 1])
+static int verdict_counts(const struct compare_set *set, int k, int kind, int count[CMP_V_NOISY + 1])
 {
     int rows = 0;
-    memset(count, 0, (CMP_V_CHANGED + 1) * sizeof *count);
+    memset(count, 0, (CMP_V_NOISY + 1) * sizeof *count);
     for (int i = 0; i < set->nrows; ++i)
         if (set->rows[i].kind == kind) {
             ++rows;
@@ -161,13 +171,13 @@ static int verdict_counts(const struct compare_set *set, int k, int kind, int co
 static void counts_line(struct md_buf *b, const struct compare_set *set, int kind)
 {
     for (int k = 1; k < set->nruns; ++k) {
-        int count[CMP_V_CHANGED + 1];
+        int count[CMP_V_NOISY + 1];
         int rows = verdict_counts(set, k, kind, count);
         if (!rows)
             return;
         md_printf(b, "%s against %s: %d row%s", set->run[k].name, set->run[0].name, rows, rows == 1 ? "" : "s");
         const char *sep = ": ";
-        for (int v = CMP_V_MISSING; v <= CMP_V_CHANGED; ++v)
+        for (int v = CMP_V_MISSING; v <= CMP_V_NOISY; ++v)
             if (count[v]) {
                 md_printf(b, "%s%d %s", sep, count[v], cmp_verdict_name(v));
                 sep = ", ";
@@ -347,7 +357,8 @@ static int write_csv(const struct compare_set *set, const char *path, char *err,
 {
     struct md_buf b;
     md_init(&b);
-    md_printf(&b, "kind,device,key,metric,sense,run,present,status,value,min,max,reps,ratio,change,p,verdict,reason\n");
+    md_printf(&b, "kind,device,key,metric,sense,run,present,status,value,min,max,reps,ratio,change,p,p_adjusted,ratio_ci_lo,"
+                  "ratio_ci_hi,basis,verdict,reason\n");
     for (int i = 0; i < set->nrows; ++i) {
         const struct cmp_row *r = &set->rows[i];
         for (int k = 0; k < set->nruns; ++k) {
@@ -366,6 +377,10 @@ static int write_csv(const struct compare_set *set, const char *path, char *err,
             csv_num(&b, c->ratio);
             csv_num(&b, c->change);
             csv_num(&b, c->p);
+            csv_num(&b, c->p_adj);
+            csv_num(&b, c->ci_lo);
+            csv_num(&b, c->ci_hi);
+            md_printf(&b, ",%s", basis_name(c->basis));
             md_printf(&b, ",%s,", k == 0 ? "baseline" : cmp_verdict_name(c->verdict));
             csv_text(&b, c->present && !c->ok ? c->reason : "");
             md_printf(&b, "\n");
@@ -389,11 +404,17 @@ static int write_json(const struct compare_set *set, const char *path, char *err
     jw_kv_str(&w, "date", date);
     jw_kv_str(&w, "layout", set->by_device ? "devices of one run" : "runs");
     jw_kv_num(&w, "alpha", set->alpha);
+    jw_kv_num(&w, "threshold", set->threshold);
+    jw_kv_bool(&w, "holm", set->holm);
     jw_kv_obj(&w, "definitions");
-    jw_kv_str(&w, "speed", "a rate (higher is better): value = median of the repetitions; verdict from the two-sided "
-                           "Mann-Whitney test of this run's repetitions against the baseline's at level alpha: faster "
-                           "or slower when p < alpha, same otherwise, undecided when the sample sizes cannot reach "
-                           "alpha; without repetitions, same when the min..max ranges overlap");
+    jw_kv_str(&w, "speed", "a rate (higher is better): value = median of the repetitions; decided on the normalised "
+                           "repetitions (rate / the run's reference kernel in the same round) where both runs have "
+                           "them, else the absolute ones (basis); ratio = the Hodges-Lehmann estimate of the ratio of "
+                           "the two samples, ratio_ci its distribution-free interval at 1 - alpha; faster or slower when "
+                           "the two-sided Mann-Whitney p (p_adjusted: Holm over the run's rates, with --holm) < alpha "
+                           "and the ratio is beyond 1 +- threshold; noisy when the interval is wider than that band; "
+                           "same otherwise; undecided when the sample sizes cannot reach alpha; without repetitions, "
+                           "same when the min..max ranges overlap");
     jw_kv_str(&w, "error", "an error figure (lower is better): unchanged when both round to the same 4 significant "
                            "digits, else changed, better or worse; change = value - baseline");
     jw_kv_str(&w, "score", "as error, higher is better (PSNR)");
@@ -448,8 +469,16 @@ static int write_json(const struct compare_set *set, const char *path, char *err
             }
             jw_kv_num(&w, "ratio", c->ratio);
             jw_kv_num(&w, "change", c->change);
-            if (r->sense == CMP_SPEED)
+            if (r->sense == CMP_SPEED) {
                 jw_kv_num(&w, "p", c->p);
+                jw_kv_num(&w, "p_adjusted", c->p_adj);
+                jw_kv_num(&w, "ratio_ci_lo", c->ci_lo);
+                jw_kv_num(&w, "ratio_ci_hi", c->ci_hi);
+                jw_kv_str(&w, "basis", basis_name(c->basis));
+                jw_kv_nums(&w, "normalised_reps", c->norm, (size_t)c->nnorm);
+                jw_kv_int(&w, "preemption_retries", c->retries);
+                jw_kv_int(&w, "disturbed_reps", c->disturbed);
+            }
             jw_kv_str(&w, "verdict", k == 0 ? "baseline" : cmp_verdict_name(c->verdict));
             jw_obj_end(&w);
         }
@@ -460,7 +489,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
     jw_kv_arr(&w, "summary");
     for (int k = 1; k < set->nruns; ++k)
         for (int kind = 0; kind < CMP_KIND_COUNT; ++kind) {
-            int count[CMP_V_CHANGED + 1];
+            int count[CMP_V_NOISY + 1];
             int rows = verdict_counts(set, k, kind, count);
             if (!rows)
                 continue;
@@ -469,7 +498,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
             jw_kv_str(&w, "kind", cmp_kind_name(kind));
             jw_kv_int(&w, "rows", rows);
             jw_kv_obj(&w, "verdicts");
-            for (int v = CMP_V_MISSING; v <= CMP_V_CHANGED; ++v)
+            for (int v = CMP_V_MISSING; v <= CMP_V_NOISY; ++v)
                 if (count[v])
                     jw_kv_int(&w, cmp_verdict_name(v), count[v]);
             jw_obj_end(&w);

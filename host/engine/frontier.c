@@ -173,46 +173,35 @@ static int frontier_cost(struct cl_session *s, struct frontier_report *r, int qu
     int rc = tp_program_build(&prog, s, specs, r->count, TP_VARIANT_DEFAULT, NULL);
     if (rc)
         return rc;
-    /* Rounds over every model, each round starting one model further on, so that a busy spell
-       on a shared machine falls on every model alike rather than on the few measured during
-       it. A round's figure is the median of its launches; the rate is the median of the
-       rounds' figures and its spread their min..max. */
-    int rounds = r->opt.rounds > 0 ? r->opt.rounds : 1;
-    double med[FRONTIER_MAX_MODELS][2][FRONTIER_MAX_ROUNDS];
-    int got[FRONTIER_MAX_MODELS][2] = { { 0 } };
-    for (int round = 0; round < rounds; ++round)
-        for (int k = 0; k < r->count; ++k) {
-            int i = (k + round) % r->count;
-            struct frontier_row *row = &r->rows[i];
-            for (int m = 0; m < TP_NMODE_COUNT; ++m) {
-                double rate[3];
-                if (tp_program_rate(&prog, &row->spec, m, &to, work_items, rate, row->rate_reason,
-                                    sizeof row->rate_reason) == 0)
-                    med[i][m][got[i][m]++] = rate[1];
-            }
-        }
+    /* Every model in both n modes in the runner's interleaved rounds (a fresh random order per
+       round, the peak kernel timed in each): rounds x reps repetitions per figure. The front is
+       decided on the normalised rates (rate / the peak's rate in the same round), so that a
+       busy spell on a shared machine, which slows the peak as much as the models, cancels. */
+    to.reps = (r->opt.rounds > 0 ? r->opt.rounds : 1) * (r->opt.reps > 0 ? r->opt.reps : 1);
+    if (to.reps > TP_MAX_REPS)
+        to.reps = TP_MAX_REPS;
+    struct tp_timed t[2 * FRONTIER_MAX_MODELS];
+    memset(t, 0, sizeof t);
     for (int i = 0; i < r->count; ++i)
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            t[2 * i + m] = (struct tp_timed){ .m = &r->rows[i].spec, .nmode = m };
+    rc = tp_time_set(&prog, t, 2 * r->count, &to, work_items, quiet);
+    for (int i = 0; rc == 0 && i < r->count; ++i)
         for (int m = 0; m < TP_NMODE_COUNT; ++m) {
-            int n = got[i][m];
-            if (n == 0)
-                continue;
-            double *v = med[i][m];
-            for (int a = 1; a < n; ++a)   /* insertion sort: a handful of values */
-                for (int b = a; b > 0 && v[b - 1] > v[b]; --b) {
-                    double t = v[b];
-                    v[b] = v[b - 1];
-                    v[b - 1] = t;
-                }
             struct frontier_row *row = &r->rows[i];
-            row->rate[m][0] = v[0];
-            row->rate[m][1] = (n % 2) ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-            row->rate[m][2] = v[n - 1];
+            const struct tp_timed *x = &t[2 * i + m];
+            if (!x->ok) {
+                snprintf(row->rate_reason, sizeof row->rate_reason, "%s", x->reason);
+                continue;
+            }
+            memcpy(row->rate[m], x->rate, sizeof x->rate);
+            memcpy(row->norm[m], x->norm, sizeof x->norm);
             if (!quiet)
-                fprintf(stderr, "frontier: %-18s %-8s %8.3g G/s (%d rounds)\n", row->spec.label, tp_nmode_name(m),
-                        row->rate[m][1] * 1e-9, n);
+                fprintf(stderr, "frontier: %-18s %-8s %8.3g G/s, %.4g of peak (%d rounds)\n", row->spec.label,
+                        tp_nmode_name(m), row->rate[m][1] * 1e-9, row->norm[m][1], x->nreps);
         }
     tp_program_release(&prog);
-    return 0;
+    return rc;
 }
 
 /* PSNR of the teapot pass: the render engine writes its render.json into a folder of its own
@@ -300,7 +289,8 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, const c
         row->kind = frontier_kind_of(row->spec.info->id);
         row->ops = frontier_ops_of(row->spec.info->id);
         for (int m = 0; m < 2; ++m)
-            row->rate[m][0] = row->rate[m][1] = row->rate[m][2] = NAN;
+            row->rate[m][0] = row->rate[m][1] = row->rate[m][2] = row->norm[m][0] = row->norm[m][1] =
+                row->norm[m][2] = NAN;
         if (strcmp(row->spec.label, "fq2") == 0)
             r->fq2 = i;
     }
@@ -315,8 +305,10 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, const c
            ab[FRONTIER_MAX_MODELS] = { 0 };
     int front[FRONTIER_MAX_MODELS] = { 0 };
     for (int i = 0; i < r->count; ++i) {
-        lo[i] = r->rows[i].rate[0][0];
-        hi[i] = r->rows[i].rate[0][2];
+        /* the normalised rates where the peak was timed, else the absolute ones */
+        int nrm = isfinite(r->rows[i].norm[0][1]);
+        lo[i] = nrm ? r->rows[i].norm[0][0] : r->rows[i].rate[0][0];
+        hi[i] = nrm ? r->rows[i].norm[0][2] : r->rows[i].rate[0][2];
         rel[i] = r->rows[i].max_rel[0];
         ab[i] = r->rows[i].max_abs[0];
     }

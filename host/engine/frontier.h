@@ -36,6 +36,8 @@ struct frontier_row {
     struct frontier_ops ops;
     double rate[2][3];                /* [uniform, varying][min, median, max] evaluations/s over the
                                          rounds' medians; NAN: missing */
+    double norm[2][3];                /* the same over the peak kernel's rate in the same round
+                                         (host/core/runner.h): what the front is decided on */
     char rate_reason[160];
     double max_rel[2], max_rel_n[2];  /* [n from 2, n from 16]; host-polished device sweep */
     double max_abs[2], max_abs_n[2];

@@ -257,7 +257,8 @@ int plots_add_throughput(struct plot_set *set, const char *json_path, const char
     int rc = 2;
     if (jr_need_str(&d, &d.root, "schema", &schema, err, errlen)) goto done;
     /* version 2 only adds each row's repetitions */
-    if (strcmp(schema, "brdfbench.throughput/1") != 0 && strcmp(schema, "brdfbench.throughput/2") != 0) {
+    if (strcmp(schema, "brdfbench.throughput/1") != 0 && strcmp(schema, "brdfbench.throughput/2") != 0 &&
+        strcmp(schema, "brdfbench.throughput/3") != 0) {
         jr_fail(&d, jr_get(&d.root, "schema"), err, errlen,
                 "schema \"%s\", expected \"brdfbench.throughput/2\" (or /1)", schema);
         goto done;

@@ -3,6 +3,8 @@
  * C(N, nx) draws from the pooled ranks. Counts are kept in doubles: C(40, 20) < 2^53. */
 #include "ranktest.h"
 
+#include <gsl/gsl_cdf.h>
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,5 +125,86 @@ int ranktest_mann_whitney(const double *x, int nx, const double *y, int ny, stru
     }
     free(r2);
     free(it);
+    return 0;
+}
+
+/* The largest c with P(U <= c) <= tail for U of sizes m, n without ties, or -1: the k-subsets
+   of the ranks 1..N with rank sum s counted by dynamic programming, U = S - m (m + 1) / 2.
+   N <= RANKTEST_EXACT_MAX. */
+static long u_null_critical(int m, int n, double tail)
+{
+    int N = m + n;
+    long smax = (long)N * (N + 1) / 2;
+    size_t cols = (size_t)smax + 1;
+    double *ways = calloc((size_t)(m + 1) * cols, sizeof *ways);
+    if (!ways)
+        return -1;
+    ways[0] = 1;
+    for (int r = 1; r <= N; ++r)
+        for (int k = (r < m ? r : m); k >= 1; --k)
+            for (long s = smax; s >= r; --s)
+                ways[(size_t)k * cols + (size_t)s] += ways[(size_t)(k - 1) * cols + (size_t)(s - r)];
+    const double *row = ways + (size_t)m * cols;
+    double total = 0, below = 0;
+    for (long s = 0; s <= smax; ++s)
+        total += row[s];
+    long base = (long)m * (m + 1) / 2, c = -1;
+    for (long s = base; s <= smax; ++s) {
+        below += row[s];
+        if (!(below / total <= tail))
+            break;
+        c = s - base;
+    }
+    free(ways);
+    return c;
+}
+
+static int dbl_cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int ranktest_shift_ci(const double *x, int nx, const double *y, int ny, double alpha, double *est, double *lo,
+                      double *hi)
+{
+    *est = *lo = *hi = NAN;
+    int m = 0, n = 0;
+    for (int i = 0; i < nx; ++i)
+        m += isfinite(x[i]) != 0;
+    for (int j = 0; j < ny; ++j)
+        n += isfinite(y[j]) != 0;
+    if (m == 0 || n == 0 || !(alpha > 0 && alpha < 1))
+        return -1;
+    size_t mn = (size_t)m * (size_t)n;
+    double *d = malloc(mn * sizeof *d);
+    if (!d)
+        return -1;
+    size_t k = 0;
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j)
+            if (isfinite(x[i]) && isfinite(y[j]))
+                d[k++] = x[i] - y[j];
+    qsort(d, mn, sizeof *d, dbl_cmp);
+    *est = (mn % 2) ? d[mn / 2] : 0.5 * (d[mn / 2 - 1] + d[mn / 2]);
+    /* c: the largest count with P(U <= c) <= alpha / 2; the interval runs from the (c+1)-th
+       smallest difference to the (c+1)-th largest */
+    long c = -1;
+    if (m + n <= RANKTEST_EXACT_MAX) {
+        c = u_null_critical(m, n, 0.5 * alpha);
+    } else {
+        double z = -gsl_cdf_ugaussian_Pinv(0.5 * alpha);
+        c = (long)floor(0.5 * (double)mn - z * sqrt((double)mn * (m + n + 1.0) / 12.0) - 0.5);
+        if (c >= (long)mn / 2)
+            c = (long)mn / 2 - 1;
+    }
+    if (c >= 0) {
+        *lo = d[c];
+        *hi = d[mn - 1 - (size_t)c];
+    } else {
+        *lo = -INFINITY;
+        *hi = INFINITY;
+    }
+    free(d);
     return 0;
 }

@@ -21,4 +21,13 @@ struct ranktest_result {
  * side has no finite value or there is no memory. */
 int ranktest_mann_whitney(const double *x, int nx, const double *y, int ny, struct ranktest_result *out);
 
+/* The Hodges-Lehmann estimate of the shift x - y (the median of the nx ny differences) and
+ * its distribution-free confidence interval at level 1 - alpha (the differences' order
+ * statistics at the Mann-Whitney critical count: exact for up to RANKTEST_EXACT_MAX values,
+ * normal approximation above). Samples too small for the level give an unbounded interval
+ * (-inf, inf). Applied to logarithms it gives a ratio's estimate and interval. Returns 0, or
+ * -1 when a side has no finite value. */
+int ranktest_shift_ci(const double *x, int nx, const double *y, int ny, double alpha, double *est, double *lo,
+                      double *hi);
+
 #endif

@@ -9,6 +9,7 @@
 #include "hostc_baseline.h"
 #include "outdir.h"
 #include "programs.h"
+#include "runner.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -47,6 +48,7 @@ void throughput_options_default(struct throughput_options *o)
     o->sweep_grid = (struct accuracy_grid){ 2.0, 1000.0, 1.0, ACC_DEFAULT_SAMPLES };
     o->sweep_reps = 3;
     o->base_options = NULL;
+    o->seed = 0x5eed0001ULL;
 }
 
 int throughput_options_check(const struct throughput_options *o, char *err, size_t errlen)
@@ -331,14 +333,37 @@ static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_
     return e;
 }
 
-/* Iterations that make one run last about min_time, from a run of `iters` that took t seconds. */
-static long tp_scaled_iters(long iters, double t, double min_time)
+/* ---- timing through the runner (host/core/runner.h) ------------------------------------ */
+
+/* A device item of the runner: a kernel ready to launch, with its own output buffer. */
+struct tp_dev_ctx {
+    struct tp_kernel_run kr;
+    int timer_wall;               /* the profiling events gave no time: wall time used */
+};
+
+static int tp_dev_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
 {
-    return (long)fmin((double)TP_MAX_ITERS, fmax(1.0, ceil((double)iters * min_time / t)));
+    struct tp_dev_ctx *d = ctx;
+    double ev, wall;
+    const char *call = "";
+    cl_int e = tp_launch_once(&d->kr, iters, &ev, &wall, &call);
+    if (e != CL_SUCCESS) {
+        snprintf(reason, reason_len, "launch: %s failed with %s", call, cl_error_name(e));
+        return -1;
+    }
+    /* A driver that does not fill the profiling events (a zero, a nanosecond, or a time far
+       below the wall time of a long launch) gives no rate: the wall time stands in, and the
+       figure says so. */
+    if (!(ev > 1e-8) || (wall > 1e-3 && ev < 1e-3 * wall)) {
+        d->timer_wall = 1;
+        ev = wall;
+    }
+    *seconds = ev;
+    return 0;
 }
 
-/* What the C side of a pair evaluates: the same model, n mode and work-items. */
-struct tp_hostc_job {
+/* A C item of the runner: the tuned C loop of the same model, n mode and work-items. */
+struct tp_c_ctx {
     const struct throughput_options *o;
     const struct model_spec *m;       /* NULL: powf */
     int nmode;
@@ -347,135 +372,269 @@ struct tp_hostc_job {
     float *sums;
 };
 
-/* One timed run of either side: 0, or -1 with the figure failed and why. */
-struct tp_side {
-    int (*once)(struct tp_side *side, long iters, double *seconds, double *wall);
-    struct tp_figure *f;
-    const char *phase;                /* device: named in a failure message */
-    struct tp_kernel_run *r;          /* device */
-    const struct tp_hostc_job *j;     /* C */
-};
-
-static int tp_dev_once(struct tp_side *side, long iters, double *seconds, double *wall)
+static int tp_c_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
 {
-    const char *call = "";
-    cl_int e = tp_launch_once(side->r, iters, seconds, wall, &call);
-    if (e != CL_SUCCESS) {
-        fig_fail(side->f, "%s launch: %s failed with %s", side->phase, call, cl_error_name(e));
-        return -1;
-    }
-    if (!(*seconds > 0)) {
-        fig_fail(side->f, "the profiling timer gave no time for a launch (CL_PROFILING_COMMAND_START/END)");
-        return -1;
-    }
-    return 0;
-}
-
-static int tp_hostc_once(struct tp_side *side, long iters, double *seconds, double *wall)
-{
-    const struct tp_hostc_job *j = side->j;
+    struct tp_c_ctx *j = ctx;
     struct tp_inputs in;
-    char err[256];
     tp_inputs_for(j->o, j->nmode, j->work_items, iters, &in);
     if (hostc_throughput(j->m ? j->m->info->kernel_id : -1, j->m ? (float)j->m->params[0] : 0.0f,
-                         j->m ? (float)j->m->params[1] : 0.0f, &in, j->threads, j->sums, seconds, err, sizeof err)) {
-        fig_fail(side->f, "%s", err);
+                         j->m ? (float)j->m->params[1] : 0.0f, &in, j->threads, j->sums, seconds, reason, reason_len))
         return -1;
-    }
     *seconds = fmax(*seconds, 1e-9);
-    *wall = *seconds;
     return 0;
 }
 
-/* Iterations grown until one run takes a quarter of min_time, then scaled to min_time. */
-static int tp_calibrate(struct tp_side *side, double min_time, long *iters_out)
+/* A figure from the runner's record of its item. */
+static void tp_fill_item(struct tp_figure *f, const struct runner_item *it, const float *out, size_t nout, int timer_wall)
 {
-    double t, wall;
-    long iters = 1;
-    side->phase = "calibration";
-    for (;;) {
-        if (side->once(side, iters, &t, &wall))
-            return -1;
-        if (t >= 0.25 * min_time || iters >= TP_MAX_ITERS)
-            break;
-        double grow = fmin(fmax(0.5 * min_time / t, 2.0), 1000.0);
-        iters = (long)fmin((double)TP_MAX_ITERS, ceil((double)iters * grow));
+    if (!it->ok) {
+        fig_fail(f, "%s", it->reason);
+        return;
     }
-    *iters_out = tp_scaled_iters(iters, t, min_time);
-    side->phase = "timed";
-    return 0;
-}
-
-static void tp_fill(struct tp_figure *f, long iters, double per_launch, const double *secs, const double *walls,
-                    int reps, const float *out, size_t nout)
-{
-    f->iters = iters;
-    f->per_launch = per_launch;
-    f->sec = stats_of(secs, reps);
-    f->sec_wall = stats_of(walls, reps);
+    int reps = it->nreps < TP_MAX_REPS ? it->nreps : TP_MAX_REPS;
+    f->iters = it->iters;
+    f->per_launch = it->work_per_iter * (double)it->iters;
+    f->sec = stats_of(it->seconds, reps);
+    f->sec_wall = stats_of(it->wall, reps);
     f->rate = rates_of(f->sec, f->per_launch);
     f->rate_wall = rates_of(f->sec_wall, f->per_launch);
-    f->checksum = sum_floats(out, nout);
+    f->checksum = out ? sum_floats(out, nout) : NAN;
     f->nreps = reps;
-    memcpy(f->rep_seconds, secs, (size_t)reps * sizeof *secs);
+    memcpy(f->rep_seconds, it->seconds, (size_t)reps * sizeof *it->seconds);
+    memcpy(f->rep_cpu, it->cpu, (size_t)reps * sizeof *it->cpu);
+    f->has_norm = it->norm != NULL;
+    if (it->norm) {
+        memcpy(f->rep_norm, it->norm, (size_t)reps * sizeof *it->norm);
+        f->norm = stats_of(it->norm, reps);
+    }
+    f->has_cpu_norm = it->cpu_norm != NULL;
+    if (it->cpu_norm) {
+        memcpy(f->rep_cpu_norm, it->cpu_norm, (size_t)reps * sizeof *it->cpu_norm);
+        f->cpu_norm = stats_of(it->cpu_norm, reps);
+    }
+    f->retries = it->retries;
+    f->disturbed = it->disturbed;
+    f->timer_wall = timer_wall;
     f->ok = 1;
     f->finite = isfinite(f->checksum);
 }
 
-/* Times a device kernel (r, may be NULL) and its C counterpart (j, may be NULL) with their
-   repetitions interleaved, so that both sides of a ratio see the same load on a shared machine. */
-static void tp_time_pair(struct tp_kernel_run *r, float *host_out, struct tp_figure *fd, const struct tp_hostc_job *j,
-                         struct tp_figure *fc)
+/* One timed thing of a run: a model (NULL: pow) in an n mode, on the device in a program, or
+   (prog NULL) its tuned C loop. */
+struct tp_job {
+    struct tp_figure *f;
+    struct tp_program *prog;
+    const struct model_spec *m;
+    int nmode;
+};
+
+struct tp_progress {
+    int quiet;
+    double t0, last;
+};
+
+static void tp_round_done(void *ctx, int done, int rounds)
 {
-    if (!r && !j)
-        return;
-    const struct throughput_options *o = r ? r->o : j->o;
-    struct tp_side side[2] = { { tp_dev_once, fd, "warm-up", r, NULL }, { tp_hostc_once, fc, "", NULL, j } };
-    int ok[2] = { r != NULL, j != NULL };
-    long iters[2] = { 0, 0 };
-    double secs[2][TP_MAX_REPS], walls[2][TP_MAX_REPS], t, w;
-    /* the device's warm-up: its exact NDRange, compiled by PoCL here */
-    if (ok[0])
-        ok[0] = tp_dev_once(&side[0], 1, &t, &w) == 0;
-    if (ok[1] && j->m && !hostc_supports(j->m->info->kernel_id)) {
-        fig_fail(fc, "no C loop for this model (user models run on the device only)");
-        ok[1] = 0;
+    struct tp_progress *p = ctx;
+    double now = wall_seconds();
+    if (!p->quiet && (now - p->last > 1.0 || done == rounds)) {
+        fprintf(stderr, "throughput: round %d of %d (%.1f s)\n", done, rounds, now - p->t0);
+        p->last = now;
     }
-    for (int k = 0; k < 2; ++k)
-        if (ok[k])
-            ok[k] = tp_calibrate(&side[k], o->min_time, &iters[k]) == 0;
-    /* A calibration run that was slowed down (a busy moment on a shared machine) leaves too few
-       iterations, and the timed runs then measure overheads: a side whose median run is short
-       of min_time / 2 is scaled up from that median and the repetitions are taken again. */
-    for (int round = 0; round < 3; ++round) {
-        for (int rep = 0; rep < o->reps; ++rep)
-            for (int k = 0; k < 2; ++k)
-                if (ok[k])
-                    ok[k] = side[k].once(&side[k], iters[k], &secs[k][rep], &walls[k][rep]) == 0;
-        if (round == 2)
-            break;   /* the times above belong to iters[] as it stands */
-        int again = 0;
-        for (int k = 0; k < 2; ++k) {
-            double med = ok[k] ? stats_of(secs[k], o->reps).median : 0;
-            if (ok[k] && med < 0.5 * o->min_time && iters[k] < TP_MAX_ITERS) {
-                iters[k] = tp_scaled_iters(iters[k], med, o->min_time);
-                again = 1;
+}
+
+/* The peak kernel, the reference of every round: built into *prog and ready in *d. */
+static int tp_peak_setup(struct cl_session *s, const char *options, long work_items, cl_program *prog,
+                         struct tp_dev_ctx *d, const struct throughput_options *o, struct tp_figure *f, double *build_s)
+{
+    memset(d, 0, sizeof *d);
+    cl_int e;
+    if (clsession_build(s, "peak.cl", NULL, options, prog)) {
+        fig_fail(f, "building kernels/peak.cl failed (build log on stderr)");
+        return -1;
+    }
+    *build_s = s->last_build_seconds;
+    d->kr.s = s;
+    d->kr.o = o;
+    d->kr.kind = 2;
+    d->kr.global = (size_t)work_items;
+    d->kr.local = 1;
+    d->kr.work_per_iter = (double)work_items * PEAK_UNROLL * PEAK_CHAINS * 16 * 2;
+    d->kr.k = clCreateKernel(*prog, "peak_fma", &e);
+    if (e != CL_SUCCESS) {
+        fig_fail(f, "clCreateKernel(peak_fma) failed with %s", cl_error_name(e));
+        return -1;
+    }
+    d->kr.out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e);
+    if (e != CL_SUCCESS) {
+        fig_fail(f, "clCreateBuffer failed with %s", cl_error_name(e));
+        return -1;
+    }
+    if ((e = tp_set_fixed(&d->kr, NULL)) != CL_SUCCESS) {
+        fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(e));
+        return -1;
+    }
+    return 0;
+}
+
+static void tp_dev_release(struct tp_dev_ctx *d)
+{
+    if (d->kr.out)
+        clReleaseMemObject(d->kr.out);
+    if (d->kr.k)
+        clReleaseKernel(d->kr.k);
+    d->kr.out = NULL;
+    d->kr.k = NULL;
+}
+
+/* Times every job and the peak kernel (the reference) in the runner's interleaved rounds.
+   Jobs that cannot be set up are failed figures; the others are filled from the runner. */
+struct tp_bench {
+    struct cl_session *s;
+    const struct throughput_options *o;
+    long work_items;
+    int threads;
+    const char *peak_options;
+    struct tp_figure *peak;
+    double peak_build_seconds;
+    /* the run's record */
+    long launches, retried, disturbed;
+    int rounds;
+};
+
+static int tp_bench_run(struct tp_bench *b, struct tp_job *jobs, int njobs, int quiet)
+{
+    struct cl_session *s = b->s;
+    const struct throughput_options *o = b->o;
+    int n = njobs + 1, rc = 0;
+    struct runner_item *items = calloc((size_t)n, sizeof *items);
+    struct tp_dev_ctx *dev = calloc((size_t)n, sizeof *dev);
+    struct tp_c_ctx *cj = calloc((size_t)n, sizeof *cj);
+    size_t nout = (size_t)b->work_items * 16;
+    float *host = malloc(nout * sizeof *host);
+    cl_program peak_prog = NULL;
+    if (!items || !dev || !cj || !host) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    memset(b->peak, 0, sizeof *b->peak);
+    int peak_ok = tp_peak_setup(s, b->peak_options, b->work_items, &peak_prog, &dev[0], o, b->peak,
+                                &b->peak_build_seconds) == 0;
+    int cpu_threads = s->is_cpu ? (int)(s->compute_units ? s->compute_units : 1) : 0;
+    int used = 0;
+    /* item 0: the reference */
+    if (peak_ok) {
+        items[used] = (struct runner_item){ .name = "peak", .launch = tp_dev_launch, .ctx = &dev[0], .calibrate = 1,
+                                            .work_per_iter = dev[0].kr.work_per_iter, .cpu_threads = cpu_threads };
+        ++used;
+    }
+    int *job_item = calloc((size_t)n, sizeof *job_item);
+    if (!job_item) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    for (int i = 0; i < njobs; ++i) {
+        struct tp_job *j = &jobs[i];
+        job_item[i] = -1;
+        if (j->f->reason[0])
+            continue;   /* failed before timing (a build, a model without a C loop) */
+        struct runner_item *it = &items[used];
+        if (j->prog) {
+            struct tp_dev_ctx *d = &dev[used];
+            cl_int e = CL_SUCCESS;
+            d->kr.s = s;
+            d->kr.o = o;
+            d->kr.kind = j->nmode == TP_N_VARYING ? 1 : 0;
+            d->kr.global = (size_t)b->work_items;
+            d->kr.local = 1;   /* one float16 work-item per group: each is a long loop already */
+            d->kr.work_per_iter = (double)b->work_items * TP_EVALS_PER_ITER;
+            if (!tp_has(j->prog, j->m)) {
+                fig_fail(j->f, "model %s is not in the throughput program", j->m ? j->m->label : "pow");
+                continue;
             }
+            if ((d->kr.k = tp_kernel(j->prog, nmode_names[j->nmode], j->m, &e)), e != CL_SUCCESS) {
+                fig_fail(j->f, "clCreateKernel failed with %s", cl_error_name(e));
+                continue;
+            }
+            d->kr.out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, nout * sizeof(float), NULL, &e);
+            if (e != CL_SUCCESS) {
+                fig_fail(j->f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
+                continue;
+            }
+            if ((e = tp_set_fixed(&d->kr, j->m)) != CL_SUCCESS) {
+                fig_fail(j->f, "clSetKernelArg failed with %s", cl_error_name(e));
+                continue;
+            }
+            *it = (struct runner_item){ .name = j->m ? j->m->label : "pow", .launch = tp_dev_launch, .ctx = d,
+                                        .calibrate = 1, .work_per_iter = d->kr.work_per_iter,
+                                        .cpu_threads = cpu_threads };
+        } else {
+            struct tp_c_ctx *c = &cj[used];
+            *c = (struct tp_c_ctx){ o, j->m, j->nmode, b->work_items, b->threads, malloc(nout * sizeof(float)) };
+            if (!c->sums) {
+                fig_fail(j->f, "out of memory");
+                continue;
+            }
+            *it = (struct runner_item){ .name = "C", .launch = tp_c_launch, .ctx = c, .calibrate = 1,
+                                        .work_per_iter = (double)b->work_items * TP_EVALS_PER_ITER,
+                                        .cpu_threads = b->threads };
         }
-        if (!again)
-            break;
+        job_item[i] = used++;
     }
-    if (ok[0]) {
-        size_t nout = r->global * 16;
-        cl_int e = clEnqueueReadBuffer(r->s->queue, r->out, CL_TRUE, 0, nout * sizeof(float), host_out, 0, NULL, NULL);
-        if (e != CL_SUCCESS)
-            fig_fail(fd, "reading the sums: clEnqueueReadBuffer failed with %s", cl_error_name(e));
-        else
-            tp_fill(fd, iters[0], r->work_per_iter * (double)iters[0], secs[0], walls[0], o->reps, host_out, nout);
+    struct runner run;
+    runner_init(&run, items, used);
+    run.reference = peak_ok ? 0 : -1;
+    run.rounds = o->reps;
+    run.min_time = o->min_time;
+    run.seed = o->seed;
+    struct tp_progress prog = { quiet, wall_seconds(), wall_seconds() };
+    run.progress = tp_round_done;
+    run.progress_ctx = &prog;
+    if (!quiet)
+        fprintf(stderr, "throughput: %d items x %d rounds, interleaved (reference: %s)\n", used, o->reps,
+                peak_ok ? "the peak FMA kernel" : "none");
+    if (runner_run(&run)) {
+        rc = EXIT_RUNTIME;
+        runner_release(&run);
+        goto done;
     }
-    if (ok[1])
-        tp_fill(fc, iters[1], (double)j->work_items * (double)iters[1] * TP_EVALS_PER_ITER, secs[1], walls[1], o->reps,
-                j->sums, (size_t)j->work_items * 16);
+    b->launches = run.launches;
+    b->retried = run.retried;
+    b->disturbed = run.disturbed;
+    b->rounds = run.rounds;
+    if (peak_ok) {
+        cl_int e = clEnqueueReadBuffer(s->queue, dev[0].kr.out, CL_TRUE, 0, nout * sizeof(float), host, 0, NULL, NULL);
+        tp_fill_item(b->peak, &items[0], e == CL_SUCCESS ? host : NULL, nout, dev[0].timer_wall);
+    }
+    for (int i = 0; i < njobs; ++i) {
+        int k = job_item[i];
+        if (k < 0)
+            continue;
+        if (jobs[i].prog) {
+            cl_int e = clEnqueueReadBuffer(s->queue, dev[k].kr.out, CL_TRUE, 0, nout * sizeof(float), host, 0, NULL,
+                                           NULL);
+            if (e != CL_SUCCESS && items[k].ok)
+                fig_fail(jobs[i].f, "reading the sums: clEnqueueReadBuffer failed with %s", cl_error_name(e));
+            else
+                tp_fill_item(jobs[i].f, &items[k], host, nout, dev[k].timer_wall);
+        } else {
+            tp_fill_item(jobs[i].f, &items[k], cj[k].sums, nout, 0);
+        }
+    }
+    runner_release(&run);
+    free(job_item);
+done:
+    for (int i = 0; dev && i < n; ++i)
+        tp_dev_release(&dev[i]);
+    for (int i = 0; cj && i < n; ++i)
+        free(cj[i].sums);
+    if (peak_prog)
+        clReleaseProgram(peak_prog);
+    free(host);
+    free(cj);
+    free(dev);
+    free(items);
+    return rc;
 }
 
 int tp_program_points(struct tp_program *p, const struct model_spec *m, const float *c, const float *n, size_t count,
@@ -544,54 +703,38 @@ done:
     return rc;
 }
 
-int tp_program_rate(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
-                    long work_items, double rate[3], char *reason, size_t reason_len)
+int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struct throughput_options *o,
+                long work_items, int quiet)
 {
-    rate[0] = rate[1] = rate[2] = NAN;
-    struct tp_figure f;
-    memset(&f, 0, sizeof f);
-    float *sums = malloc((size_t)work_items * 16 * sizeof *sums);
-    struct tp_kernel_run r = tp_program_run(p, nmode, o, work_items);
-    r.work_per_iter = (double)work_items * TP_EVALS_PER_ITER;
-    cl_int e = CL_SUCCESS;
-    if (!sums)
-        fig_fail(&f, "out of memory");
-    else if (!tp_has(p, m))
-        fig_fail(&f, "model %s is not in the throughput program", m ? m->label : "pow");
-    else if ((r.k = tp_kernel(p, nmode_names[nmode], m, &e)), e != CL_SUCCESS)
-        fig_fail(&f, "clCreateKernel failed with %s", cl_error_name(e));
-    else if (!(r.out = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e)))
-        fig_fail(&f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
-    else if ((e = tp_set_fixed(&r, m)) != CL_SUCCESS)
-        fig_fail(&f, "clSetKernelArg failed with %s", cl_error_name(e));
-    else
-        tp_time_pair(&r, sums, &f, NULL, NULL);
-    if (r.out) clReleaseMemObject(r.out);
-    if (r.k) clReleaseKernel(r.k);
-    free(sums);
-    if (!f.ok) {
-        snprintf(reason, reason_len, "%s", f.reason[0] ? f.reason : "not measured");
-        return -1;
+    struct tp_figure *f = calloc((size_t)count + 1, sizeof *f);
+    struct tp_job *jobs = calloc((size_t)count, sizeof *jobs);
+    if (!f || !jobs) {
+        free(f);
+        free(jobs);
+        return EXIT_RUNTIME;
     }
-    rate[0] = f.rate.min;
-    rate[1] = f.rate.median;
-    rate[2] = f.rate.max;
-    return 0;
+    for (int i = 0; i < count; ++i)
+        jobs[i] = (struct tp_job){ &f[i + 1], p, t[i].m, t[i].nmode };
+    struct tp_bench b = { p->s, o, work_items, 1, o->base_options ? o->base_options : "", &f[0], 0, 0, 0, 0, 0 };
+    int rc = tp_bench_run(&b, jobs, count, quiet);
+    for (int i = 0; i < count && rc == 0; ++i) {
+        const struct tp_figure *g = &f[i + 1];
+        t[i].ok = g->ok;
+        snprintf(t[i].reason, sizeof t[i].reason, "%s", g->ok ? "" : g->reason[0] ? g->reason : "not measured");
+        t[i].rate[0] = g->ok ? g->rate.min : NAN;
+        t[i].rate[1] = g->ok ? g->rate.median : NAN;
+        t[i].rate[2] = g->ok ? g->rate.max : NAN;
+        t[i].norm[0] = g->ok && g->has_norm ? g->norm.min : NAN;
+        t[i].norm[1] = g->ok && g->has_norm ? g->norm.median : NAN;
+        t[i].norm[2] = g->ok && g->has_norm ? g->norm.max : NAN;
+        t[i].nreps = g->ok ? g->nreps : 0;
+    }
+    free(jobs);
+    free(f);
+    return rc;
 }
 
 /* ---- a whole run -------------------------------------------------------------------------- */
-
-/* The load average, where the system has one: timing on a shared machine is read with it. */
-static void tp_read_load(char *buf, size_t len)
-{
-    snprintf(buf, len, "unknown");
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (!f)
-        return;
-    if (fgets(buf, (int)len, f))
-        buf[strcspn(buf, "\n")] = '\0';
-    fclose(f);
-}
 
 /* Probe points as in the accuracy check: half in the epicentre, half over the fall-off (out to
    4 x_e), n spread over the varying range. */
@@ -653,7 +796,7 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
 /* Builds the program of every variant (each build timed on its own), then measures model by
  * model with the variants back to back and the C baseline interleaved with the default
  * variant, so that every ratio compares figures taken moments apart. */
-static void tp_measure_models(struct tp_run *r, float *sums, float *csums, int quiet)
+static void tp_measure_models(struct tp_run *r, int quiet)
 {
     struct tp_program prog[TP_VARIANT_COUNT];
     memset(prog, 0, sizeof prog);
@@ -672,57 +815,52 @@ static void tp_measure_models(struct tp_run *r, float *sums, float *csums, int q
         if (!quiet)
             fprintf(stderr, "throughput: %s build %.2f s\n", tp_variant_name(v), prog[v].build_seconds);
     }
-    cl_int e;
-    cl_mem out = clCreateBuffer(r->s->ctx, CL_MEM_WRITE_ONLY, (size_t)r->work_items * 16 * sizeof(float), NULL, &e);
-    for (int i = 0; i < r->nentries; ++i)
+    /* every figure of the run in one set of interleaved rounds: each model in each n mode
+       and variant, its C loop, and the peak kernel as the reference */
+    int cap = r->nentries * TP_NMODE_COUNT * (TP_VARIANT_COUNT + 1), njobs = 0;
+    struct tp_job *jobs = calloc((size_t)cap, sizeof *jobs);
+    for (int i = 0; jobs && i < r->nentries; ++i)
         for (int m = 0; m < TP_NMODE_COUNT; ++m)
             for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
                 if (!variant_on(r, v) || !nmode_on(r, v, m))
                     continue;
                 struct tp_entry *en = &r->e[i];
                 struct tp_figure *f = &en->dev[v][m];
+                memset(f, 0, sizeof *f);
                 en->measured[v][m] = 1;
-                int with_c = v == TP_VARIANT_DEFAULT && r->o->host_c;
-                struct tp_hostc_job job = { r->o, en->m, m, r->work_items, r->threads, csums };
-                if (with_c)
-                    memset(&en->hostc[m], 0, sizeof en->hostc[m]);
-                if (en->skipped) {
+                if (en->skipped)
                     fig_fail(f, "user models are not compiled into the throughput kernels");
-                    fig_fail(&en->hostc[m], "user models have no C loop");
-                    continue;
-                }
-                struct tp_kernel_run kr;
-                memset(&kr, 0, sizeof kr);
-                kr.s = r->s;
-                kr.o = r->o;
-                kr.kind = m == TP_N_VARYING ? 1 : 0;
-                kr.global = (size_t)r->work_items;
-                kr.local = 1;   /* one float16 work-item per group: each is a long loop already */
-                kr.out = out;
-                kr.work_per_iter = (double)r->work_items * TP_EVALS_PER_ITER;
-                cl_int ke = CL_SUCCESS;
-                if (!r->built[v])
+                else if (!r->built[v])
                     fig_fail(f, "%s", r->build_reason[v]);
-                else if (e != CL_SUCCESS)
-                    fig_fail(f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
-                else if ((kr.k = tp_kernel(&prog[v], nmode_names[m], en->m, &ke)), ke != CL_SUCCESS)
-                    fig_fail(f, "clCreateKernel failed with %s", cl_error_name(ke));
-                else if ((ke = tp_set_fixed(&kr, en->m)) != CL_SUCCESS)
-                    fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(ke));
-                /* the C baseline with its device figure, repetitions interleaved */
-                if (f->reason[0])
-                    tp_time_pair(NULL, sums, f, with_c ? &job : NULL, &en->hostc[m]);
-                else
-                    tp_time_pair(&kr, sums, f, with_c ? &job : NULL, &en->hostc[m]);
-                if (kr.k)
-                    clReleaseKernel(kr.k);
-                if (!quiet)
-                    fprintf(stderr, "throughput: %-18s %-8s %-17s %8.3g G/s%s%s\n", en->label, nmode_names[m],
-                            tp_variant_name(v), f->ok ? f->rate.median * 1e-9 : NAN, f->ok ? "" : "  ",
-                            f->ok ? "" : f->reason);
+                jobs[njobs++] = (struct tp_job){ f, &prog[v], en->m, m };
+                if (v != TP_VARIANT_DEFAULT || !r->o->host_c)
+                    continue;
+                struct tp_figure *c = &en->hostc[m];
+                memset(c, 0, sizeof *c);
+                if (en->m && !hostc_supports(en->m->info->kernel_id))
+                    fig_fail(c, "no C loop for this model (user models run on the device only)");
+                jobs[njobs++] = (struct tp_job){ c, NULL, en->m, m };
             }
-    if (out)
-        clReleaseMemObject(out);
+    struct tp_bench b = { r->s, r->o, r->work_items, r->threads, r->peak_options, &r->peak, 0, 0, 0, 0, 0 };
+    snprintf(r->peak_options, sizeof r->peak_options, "%s", r->o->base_options ? r->o->base_options : "");
+    if (jobs)
+        tp_bench_run(&b, jobs, njobs, quiet);
+    r->peak_build_seconds = b.peak_build_seconds;
+    r->launches = b.launches;
+    r->retried = b.retried;
+    r->disturbed = b.disturbed;
+    r->rounds = b.rounds;
+    for (int i = 0; !quiet && i < r->nentries; ++i)
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
+                if (!variant_on(r, v) || !nmode_on(r, v, m))
+                    continue;
+                const struct tp_figure *f = &r->e[i].dev[v][m];
+                fprintf(stderr, "throughput: %-18s %-8s %-17s %8.3g G/s%s%s\n", r->e[i].label, nmode_names[m],
+                        tp_variant_name(v), f->ok ? f->rate.median * 1e-9 : NAN, f->ok ? "" : "  ",
+                        f->ok ? "" : f->reason);
+            }
+    free(jobs);
     float *c = malloc(TP_ACC_POINTS * sizeof *c), *n = malloc(TP_ACC_POINTS * sizeof *n);
     float *vals = malloc(TP_ACC_POINTS * sizeof *vals);
     if (c && n && vals)
@@ -735,43 +873,6 @@ static void tp_measure_models(struct tp_run *r, float *sums, float *csums, int q
     free(vals);
     free(n);
     free(c);
-}
-
-static void tp_measure_peak(struct tp_run *r, float *sums, struct tp_figure *f)
-{
-    memset(f, 0, sizeof *f);
-    cl_program prog = NULL;
-    snprintf(r->peak_options, sizeof r->peak_options, "%s", r->o->base_options ? r->o->base_options : "");
-    if (clsession_build(r->s, "peak.cl", NULL, r->peak_options, &prog)) {
-        fig_fail(f, "building kernels/peak.cl failed (build log on stderr)");
-        return;
-    }
-    r->peak_build_seconds = r->s->last_build_seconds;
-    cl_int e;
-    struct tp_kernel_run kr;
-    memset(&kr, 0, sizeof kr);
-    kr.s = r->s;
-    kr.o = r->o;
-    kr.kind = 2;
-    kr.global = (size_t)r->work_items;
-    kr.local = 1;
-    kr.work_per_iter = (double)r->work_items * PEAK_UNROLL * PEAK_CHAINS * 16 * 2;
-    kr.k = clCreateKernel(prog, "peak_fma", &e);
-    if (e != CL_SUCCESS) {
-        fig_fail(f, "clCreateKernel(peak_fma) failed with %s", cl_error_name(e));
-    } else {
-        kr.out = clCreateBuffer(r->s->ctx, CL_MEM_WRITE_ONLY, (size_t)r->work_items * 16 * sizeof(float), NULL, &e);
-        if (e != CL_SUCCESS)
-            fig_fail(f, "clCreateBuffer failed with %s", cl_error_name(e));
-        else if ((e = tp_set_fixed(&kr, NULL)) != CL_SUCCESS)
-            fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(e));
-        else
-            tp_time_pair(&kr, sums, f, NULL, NULL);
-        if (kr.out)
-            clReleaseMemObject(kr.out);
-        clReleaseKernel(kr.k);
-    }
-    clReleaseProgram(prog);
 }
 
 /* Relative difference of two per-n figures. Below 1e-4 a figure is float noise (a model equal
@@ -923,17 +1024,14 @@ static int tp_run_all(struct cl_session *s, const struct throughput_options *o, 
             fig_fail(&r->e[i].hostc[m], !o->host_c ? "the C baseline was not run (--no-host-c)"
                                         : !variant_on(r, TP_VARIANT_DEFAULT) ? "the C baseline runs with the default variant"
                                         : "not measured");
-    tp_read_load(r->load_start, sizeof r->load_start);
-    /* The peak before and after the models, the better kept: on a shared machine a single
-       measurement can land on a busy moment. */
-    tp_measure_peak(r, sums, &r->peak_first);
-    tp_measure_models(r, sums, csums, quiet);
+    runner_loadavg(r->load_start, sizeof r->load_start);
+    r->steal_start = runner_steal_seconds();
+    r->seed = o->seed;
+    tp_measure_models(r, quiet);
     if (o->sweep)
         tp_measure_sweep(r, quiet);
-    tp_measure_peak(r, sums, &r->peak_last);
-    r->peak = (r->peak_last.ok && (!r->peak_first.ok || r->peak_last.rate.median > r->peak_first.rate.median))
-                  ? r->peak_last : r->peak_first;
-    tp_read_load(r->load_end, sizeof r->load_end);
+    runner_loadavg(r->load_end, sizeof r->load_end);
+    r->steal_end = runner_steal_seconds();
 
     char path[4200];
     if (path_join(path, sizeof path, out_dir, "throughput.json") || tp_write_json(r, path, err, sizeof err) ||

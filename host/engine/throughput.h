@@ -15,9 +15,11 @@
 #include "clsession.h"
 #include "models.h"
 
-/* Version 2 adds evals_per_s_reps (every timed launch's rate) to each row and its host_c;
- * version 1 files are otherwise the same and are still read by `plot` (not by `compare`). */
-#define THROUGHPUT_SCHEMA "brdfbench.throughput/2"
+/* Version 3 adds the runner's record: context.throughput.runner, and per figure its normalised
+ * rates (normalised, normalised_reps), preemption retries and timer; the peak's flops_per_s_reps
+ * replace flops_per_s_first/last. Version 2 added evals_per_s_reps. compare reads 2 and 3;
+ * plot reads 1 to 3. */
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/3"
 #define TP_STREAMS 4            /* kernels/throughput.cl */
 #define TP_EVALS_PER_ITER (16 * TP_STREAMS)
 #define TP_MAX_MODELS 64
@@ -39,7 +41,7 @@ const char *tp_nmode_name(int m);        /* "uniform", "varying" */
 struct throughput_options {
     struct model_spec models[TP_MAX_MODELS];
     int model_count;             /* 0: every model of the default set */
-    int reps;                    /* timed launches per figure, 1..TP_MAX_REPS */
+    int reps;                    /* rounds of the runner: timed launches per figure, 1..TP_MAX_REPS */
     double min_time;             /* seconds one timed launch takes at least */
     unsigned variants;           /* bit (1 << enum tp_variant) per variant to measure */
     unsigned n_modes;            /* bit (1 << enum tp_nmode) per mode to measure */
@@ -53,6 +55,7 @@ struct throughput_options {
     struct accuracy_grid sweep_grid;
     int sweep_reps;
     const char *base_options;    /* build options added to every variant (NULL: none) */
+    unsigned long long seed;     /* of the runner's round orders (host/core/runner.h) */
 };
 
 /* The configuration `brdfbench throughput` starts from, and the one `brdfbench all` runs
@@ -103,11 +106,22 @@ int tp_program_points(struct tp_program *p, const struct model_spec *m, const fl
  * iterations; sums receives work_items x 16 partial sums. Uses the n of o. */
 int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
                       long work_items, long iters, float *sums, double *event_seconds);
-/* Device evaluations/s of m (NULL: pow) in one n mode, by the run's own protocol (warm-up with
- * the exact NDRange, calibration to o->min_time, o->reps launches): rate[] = min, median, max.
- * Returns 0, or -1 with the reason (the figure is then missing, not the run). */
-int tp_program_rate(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
-                    long work_items, double rate[3], char *reason, size_t reason_len);
+/* One model (NULL: pow) in one n mode, timed by tp_time_set. */
+struct tp_timed {
+    const struct model_spec *m;
+    int nmode;
+    /* filled */
+    int ok;
+    char reason[240];
+    double rate[3];              /* evaluations/s: min, median, max over the rounds */
+    double norm[3];              /* rate / the peak kernel's rate in the same round: min, median, max */
+    int nreps;
+};
+/* Times t[0..count) from program p in the runner's interleaved rounds (o->reps rounds, o->min_time
+ * per launch, o->seed), the peak kernel as every round's reference. Returns 0 (a figure that
+ * cannot be measured has ok 0 and its reason), or EXIT_RUNTIME when out of memory. */
+int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struct throughput_options *o,
+                long work_items, int quiet);
 /* The inputs of such a launch, for tp_input_at (host/hostc_baseline.h). */
 struct tp_inputs;
 void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in);

@@ -71,6 +71,31 @@ static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
     jw_arr_end(w);
 }
 
+/* The runner's record of a figure: its normalised rates (rate over the peak kernel's rate in
+   the same round), its preemption retries, and which timer gave its times. */
+static void jw_runner_fields(struct jw *w, const struct tp_figure *f)
+{
+    int norm = f->ok && f->has_norm;
+    jw_stats(w, "normalised", norm ? f->norm : (struct tp_stats){ NAN, NAN, NAN });
+    jw_kv_arr(w, "normalised_reps");
+    for (int k = 0; norm && k < f->nreps; ++k)
+        jw_num(w, f->rep_norm[k]);
+    jw_arr_end(w);
+    int cn = f->ok && f->has_cpu_norm;
+    jw_stats(w, "normalised_cpu", cn ? f->cpu_norm : (struct tp_stats){ NAN, NAN, NAN });
+    jw_kv_arr(w, "normalised_cpu_reps");
+    for (int k = 0; cn && k < f->nreps; ++k)
+        jw_num(w, f->rep_cpu_norm[k]);
+    jw_arr_end(w);
+    jw_kv_arr(w, "cpu_seconds_reps");
+    for (int k = 0; f->ok && k < f->nreps; ++k)
+        jw_num(w, f->rep_cpu[k]);
+    jw_arr_end(w);
+    jw_kv_int(w, "preemption_retries", f->retries);
+    jw_kv_int(w, "disturbed_reps", f->disturbed);
+    jw_kv_str(w, "timer", f->timer_wall ? "wall time: the driver's profiling events gave no time" : "profiling events");
+}
+
 /* A fingerprint of the kernel sources the run compiled (embedded, or --kernel-dir's): a kernel
    changed without a commit still shows in the context that compare lays side by side. */
 static void jw_kernel_fingerprints(struct jw *w)
@@ -147,6 +172,16 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_kv_str(&w, "host_c_flags", "-O3 -march=native -fno-math-errno");
     jw_kv_str(&w, "loadavg_start", r->load_start);
     jw_kv_str(&w, "loadavg_end", r->load_end);
+    jw_kv_obj(&w, "runner");
+    jw_kv_int(&w, "rounds", r->rounds);
+    jw_kv_str(&w, "order", "every figure once per round, in a fresh random order each round");
+    jw_kv_int(&w, "seed", (long)(r->seed & 0x7fffffffffffffffULL));
+    jw_kv_str(&w, "reference", "peak_fma (kernels/peak.cl), timed in every round");
+    jw_kv_int(&w, "launches", r->launches);
+    jw_kv_int(&w, "preemption_retries", r->retried);
+    jw_kv_int(&w, "disturbed_reps", r->disturbed);
+    jw_kv_num(&w, "steal_seconds", r->steal_start >= 0 && r->steal_end >= 0 ? r->steal_end - r->steal_start : NAN);
+    jw_obj_end(&w);
     jw_kernel_fingerprints(&w);
     jw_obj_end(&w);
     jw_obj_end(&w);   /* context */
@@ -181,9 +216,9 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_stats(&w, "flops_per_s", r->peak.rate);
     jw_stats(&w, "flops_per_s_wall", r->peak.rate_wall);
     jw_kv_num(&w, "fma_per_s", peak_fma_per_s(r));
-    jw_kv_num(&w, "flops_per_s_first", r->peak_first.ok ? r->peak_first.rate.median : NAN);
-    jw_kv_num(&w, "flops_per_s_last", r->peak_last.ok ? r->peak_last.rate.median : NAN);
-    jw_kv_str(&w, "which", "measured before and after the models; the higher median is the peak");
+    jw_reps(&w, "flops_per_s_reps", &r->peak);
+    jw_kv_str(&w, "which", "timed once in every round of the runner, among the models: the reference of their "
+                           "normalised rates");
     jw_obj_end(&w);
 
     jw_kv_arr(&w, "results");
@@ -204,6 +239,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
             jw_kv_str(&w, "reason", f->reason);
         jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
         jw_reps(&w, "evals_per_s_reps", f);
+        jw_runner_fields(&w, f);
         jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
         jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
         jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
@@ -230,6 +266,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
                 jw_kv_str(&w, "reason", e->hostc[m].reason);
             jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
             jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
+            jw_runner_fields(&w, &e->hostc[m]);
             jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
             jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
             jw_kv_int(&w, "threads", r->threads);

@@ -28,6 +28,17 @@ struct tp_figure {
     int finite;                        /* 0: some values were NaN or Inf (timed all the same) */
     int nreps;                         /* timed launches, in the order they ran */
     double rep_seconds[TP_MAX_REPS];   /* each one's time (profiling events; C: wall) */
+    /* the runner's normalised rates (host/core/runner.h): each repetition's rate over the
+       reference kernel's rate in the same round */
+    int has_norm;
+    double rep_norm[TP_MAX_REPS];
+    double rep_cpu[TP_MAX_REPS];       /* the process's CPU seconds over each repetition */
+    int has_cpu_norm;
+    double rep_cpu_norm[TP_MAX_REPS];  /* normalised rates per CPU second (runner.h, cpu_norm) */
+    struct tp_stats cpu_norm;
+    struct tp_stats norm;
+    int retries, disturbed;            /* launches retried for preemption; reps kept disturbed */
+    int timer_wall;                    /* the driver gave no profiling time: wall time used */
 };
 
 /* A measured thing: a model of the run, or the pow() built-in (m = NULL). */
@@ -68,7 +79,12 @@ struct tp_run {
     char build_reason[TP_VARIANT_COUNT][TP_REASON];
     char options[TP_VARIANT_COUNT][256];
     double build_seconds[TP_VARIANT_COUNT];
-    struct tp_figure peak, peak_first, peak_last;
+    struct tp_figure peak;                       /* the runner's reference item, timed every round */
+    /* the runner's record (host/core/runner.h) */
+    long launches, retried, disturbed;
+    int rounds;
+    uint64_t seed;
+    double steal_start, steal_end;               /* seconds of steal time (/proc/stat), -1: unknown */
     double peak_build_seconds;
     char peak_options[256];
     /* sweep */
