@@ -26,7 +26,26 @@
  * The s values are the exact float inputs the models saw, so the host can recompute every
  * reduced figure in double at the same input.
  */
+/* ACC_W samples per step of the loop: 16 (float16, for PoCL, which vectorises explicit vectors
+   to 512 bits) or 1 (scalar float: a driver that vectorises across work-items itself, as
+   Mesa's llvmpipe and GPU compilers do, and for which sixteen-lane code is sixteen times the
+   program; host/engine/accuracy.c picks it). The samples are the same either way. */
+#ifndef ACC_W
+#define ACC_W 16
+#endif
+#if ACC_W == 16
 #define REAL float16
+#define ACC_IVEC int16
+#define ACC_TRUE_COUNT(m) (-(m))          /* a true vector comparison is -1 per lane */
+#define ACC_LANES lanes16()
+#elif ACC_W == 1
+#define REAL float
+#define ACC_IVEC int
+#define ACC_TRUE_COUNT(m) ((m) != 0)      /* a true scalar comparison is 1 */
+#define ACC_LANES 0.0f
+#else
+#error "ACC_W must be 16 or 1"
+#endif
 #define RSCALAR float
 /* PoCL leaves the model dispatch out of line on its own (a call per evaluation, four per
    iteration), and each call spills the loop's sixteen-lane accumulators to the stack and back;
@@ -44,7 +63,7 @@
 /* Keeps the larger of (best, value) and the cosine that produced it; NaN never wins. */
 #define KEEP_MAX(best, best_c, value, c)                    \
     do {                                                    \
-        int16 m_ = isgreater((value), (best));              \
+        ACC_IVEC m_ = isgreater((value), (best));           \
         best = select(best, (value), m_);                   \
         best_c = select(best_c, (c), m_);                   \
     } while (0)
@@ -55,8 +74,9 @@ static float16 lanes16(void)
                      8.0f, 9.0f, 10.0f, 11.0f, 12.0f, 13.0f, 14.0f, 15.0f);
 }
 
+#if ACC_W == 16
 /* Index and value of the largest lane (the first one on ties). */
-static int argmax16(float16 v)
+static int argmax_lane(float16 v)
 {
     float a[16];
     vstore16(v, 0, a);
@@ -74,6 +94,15 @@ static float lane_of(float16 v, int k)
     return a[k];
 }
 
+static void store_lanes(float16 v, float *a) { vstore16(v, 0, a); }
+static void store_ilanes(int16 v, int *a) { vstore16(v, 0, a); }
+#else
+static int argmax_lane(float v) { (void)v; return 0; }
+static float lane_of(float v, int k) { (void)k; return v; }
+static void store_lanes(float v, float *a) { a[0] = v; }
+static void store_ilanes(int v, int *a) { a[0] = v; }
+#endif
+
 __kernel void accuracy_sweep(const int model, const float p0, const float p1,
                              const int ref_model, const float rp0, const float rp1,
                              __global const float *n_values, const int n_count,
@@ -83,76 +112,76 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
     if (gid >= n_count)
         return;
     const float n = n_values[gid];
-    const float16 nv = (float16)(n);
+    const REAL nv = (REAL)(n);
     const float s_e = -expm1(-0.511f / n);               /* epicentre end in s (docs/definitions.md) */
-    const float16 lane = lanes16();
+    const REAL lane = ACC_LANES;
     /* Epicentre: s = s_e j / (samples - 1), j = i + lane. */
     const float epi_step = s_e / (float)(samples - 1);
     /* Attenuation: s = s_e r^j, r = (1/s_e)^(1/samples), j = i + lane + 1: a scalar exp2 per
        16 samples times a per-lane factor r^(lane + 1), so no rounding accumulates. */
     const float log2_r = -log2(s_e) / (float)samples;
-    const float16 att_lane = s_e * exp2((lane + 1.0f) * log2_r);
+    const REAL att_lane = s_e * exp2((lane + 1.0f) * log2_r);
     /* A model that sees only c (phongpow's pow(c, n), a user model) gets c = 1 - s rounded to
        float: s is moved onto that lattice first, so that the model, its reference and the
        host's double recomputation all work at the one input the model really saw. */
     const int c_only = model == BRDF_PHONGPOW || model == BRDF_USER;
 
-    float16 epi_rel = (float16)(-1.0f), epi_rel_s = (float16)(0.0f);
-    float16 epi_abs = (float16)(-1.0f), epi_abs_s = (float16)(0.0f);
-    float16 att_abs = (float16)(-1.0f), att_abs_s = (float16)(0.0f);
-    int16 bad = (int16)(0);
-    float16 bad_s = (float16)(NAN);
+    REAL epi_rel = (REAL)(-1.0f), epi_rel_s = (REAL)(0.0f);
+    REAL epi_abs = (REAL)(-1.0f), epi_abs_s = (REAL)(0.0f);
+    REAL att_abs = (REAL)(-1.0f), att_abs_s = (REAL)(0.0f);
+    ACC_IVEC bad = (ACC_IVEC)(0);
+    REAL bad_s = (REAL)(NAN);
 
-    for (int i = 0; i < samples; i += 16) {
+    for (int i = 0; i < samples; i += ACC_W) {
         /* Epicentre (the last sample is s_e itself, up to rounding). */
-        float16 s = fmin(((float)i + lane) * epi_step, s_e);
+        REAL s = fmin(((float)i + lane) * epi_step, s_e);
         if (c_only) {   /* onto the float cosines, never past the zone's end */
-            const float16 c = 1.0f - s;
-            s = select(1.0f - c, 1.0f - nextafter(c, (float16)(2.0f)), isgreater(1.0f - c, s_e));
+            const REAL c = 1.0f - s;
+            s = select(1.0f - c, 1.0f - nextafter(c, (REAL)(2.0f)), isgreater(1.0f - c, s_e));
         }
-        float16 f = brdf_eval_s(model, s, nv, p0, p1);
-        float16 r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
+        REAL f = brdf_eval_s(model, s, nv, p0, p1);
+        REAL r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         /* An invalid model value (NaN, Inf, negative) is counted, not folded into a maximum:
            its error becomes NaN, which never wins. */
-        int16 invalid = isless(f, 0.0f) | !isfinite(f);
+        ACC_IVEC invalid = isless(f, 0.0f) | !isfinite(f);
         bad_s = select(bad_s, s, invalid & isnan(bad_s));
-        bad -= invalid;                           /* a true comparison is -1 per lane */
-        float16 d = select(fabs(f - r), (float16)(NAN), invalid);
+        bad += ACC_TRUE_COUNT(invalid);
+        REAL d = select(fabs(f - r), (REAL)(NAN), invalid);
         KEEP_MAX(epi_rel, epi_rel_s, d / r, s);
         KEEP_MAX(epi_abs, epi_abs_s, d, s);
 
         /* Attenuation; s never passes 1 (x = pi/2). */
         s = fmin(att_lane * exp2((float)i * log2_r), 1.0f);
         if (c_only) {   /* onto the float cosines, never before the zone's start */
-            const float16 c = 1.0f - s;
-            s = select(1.0f - c, 1.0f - nextafter(c, (float16)(0.0f)), isless(1.0f - c, s_e));
+            const REAL c = 1.0f - s;
+            s = select(1.0f - c, 1.0f - nextafter(c, (REAL)(0.0f)), isless(1.0f - c, s_e));
         }
         f = brdf_eval_s(model, s, nv, p0, p1);
         r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         invalid = isless(f, 0.0f) | !isfinite(f);
         bad_s = select(bad_s, s, invalid & isnan(bad_s));
-        bad -= invalid;
-        d = select(fabs(f - r), (float16)(NAN), invalid);
+        bad += ACC_TRUE_COUNT(invalid);
+        d = select(fabs(f - r), (REAL)(NAN), invalid);
         KEEP_MAX(att_abs, att_abs_s, d, s);
     }
 
     __global float *o = out + (size_t)gid * ACC_OUT_STRIDE;
-    int k = argmax16(epi_rel);
+    int k = argmax_lane(epi_rel);
     o[0] = lane_of(epi_rel, k);
     o[1] = lane_of(epi_rel_s, k);
-    k = argmax16(att_abs);
+    k = argmax_lane(att_abs);
     o[2] = lane_of(att_abs, k);
     o[3] = lane_of(att_abs_s, k);
-    k = argmax16(epi_abs);
+    k = argmax_lane(epi_abs);
     o[4] = lane_of(epi_abs, k);
     o[5] = lane_of(epi_abs_s, k);
     int bad_total = 0;
     float first_bad = NAN;
-    int ba[16];
-    float bc[16];
-    vstore16(bad, 0, ba);
-    vstore16(bad_s, 0, bc);
-    for (int q = 0; q < 16; ++q) {
+    int ba[ACC_W];
+    float bc[ACC_W];
+    store_ilanes(bad, ba);
+    store_lanes(bad_s, bc);
+    for (int q = 0; q < ACC_W; ++q) {
         bad_total += ba[q];
         if (isnan(first_bad) && !isnan(bc[q]))
             first_bad = bc[q];
@@ -167,5 +196,10 @@ __kernel void models_probe(const int model, const float p0, const float p1,
                            __global const float *c, __global const float *n, __global float *out)
 {
     const size_t i = get_global_id(0);
+#if ACC_W == 16
     vstore16(brdf_eval(model, vload16(i, c), vload16(i, n), p0, p1), i, out);
+#else
+    for (size_t k = 16 * i; k < 16 * i + 16; ++k)
+        out[k] = brdf_eval(model, c[k], n[k], p0, p1);
+#endif
 }

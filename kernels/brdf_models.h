@@ -30,6 +30,11 @@
 #define BRDF_FN static inline
 #endif
 
+/* A build specialised to one model (-DBRDF_ONLY_MODEL=id and -DBRDF_ONLY_REF=its reference's
+   id, host/core/programs.c) switches on those constants: the compiler then emits their cases
+   alone, and the other models' code is never generated (a driver that inlines every case into
+   every call, such as Mesa's rusticl, spends minutes and gigabytes on the full dispatch). */
+
 /* The dispatch over model ids (brdf_eval_cs, brdf_eval_s): a kernel may define BRDF_EVAL_FN to
  * force it inline (accuracy.cl does; see there). */
 #ifndef BRDF_EVAL_FN
@@ -617,46 +622,67 @@ BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1);
    with parameters p0, p1. Formulas written in c - 1 take -s, which keeps every digit of
    1 - c near c = 1 where a float c has none left; with s = 1 - c computed from c (brdf_eval)
    the results are those of the same formulas in c, bit for bit (c - 1 = -(1 - c) exactly). */
+/* The dispatch's cases, switched on ID: a constant ID (a specialised build) makes the compiler
+   emit that case alone. */
+#ifdef BRDF_HAVE_USER_MODEL
+#define BRDF_USER_CASE case BRDF_USER: return brdf_user_eval(c, n, p0, p1);
+#else
+#define BRDF_USER_CASE
+#endif
+#define BRDF_EVAL_SWITCH(ID)                                                                                  \
+    switch (ID) {                                                                                             \
+    case BRDF_PHONG:                                                                                          \
+    case BRDF_BLINN:    return brdf_pow_lobe_cs(c, s, n);                                                     \
+    case BRDF_PHONGPOW: return pow(c, n);                                                                     \
+    case BRDF_CQ2:      return brdf_quadratic_s(s, n * RC(0.5));                                              \
+    case BRDF_FVOL:     return brdf_quadratic_s(s, n * RC(0.463));                                            \
+    case BRDF_FVOL64:   return brdf_quadratic_s(s, n * RC(29.0 / 64.0));                                      \
+    case BRDF_SCHLICK:  return c / (n * s + c);                                                               \
+    case BRDF_LYON:     return brdf_lyon_s(s, n, (int)p0);                                                    \
+    case BRDF_FQ:       return brdf_quadratic_s(s, brdf_k_q(n, p0));                                          \
+    case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));                                \
+    case BRDF_FQ2N:     return RC(0.214) * (RC(0.807) + n) * brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));  \
+    case BRDF_PHONGN:   return brdf_phong_norm(n) * brdf_pow_lobe_cs(c, s, n);                                \
+    case BRDF_BLINNN:   return brdf_blinn_norm(n) * brdf_pow_lobe_cs(c, s, n);                                \
+    case BRDF_BECKMANN: return brdf_d_beckmann_cs(c, s, brdf_alpha_from_n(n));                                \
+    case BRDF_GGX:      return brdf_d_ggx_cs(c, s, brdf_alpha_from_n(n));                                     \
+    case BRDF_QUAD:     return brdf_quadratic_s(s, n * p0 + p1);                                              \
+    case BRDF_SG:       return brdf_gauss_lobe_s(s, n);                                                       \
+    case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));                                           \
+    case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);                      \
+    case BRDF_KB:       return brdf_kuijk_blake_s(s, brdf_kb_a(n), brdf_kb_b(n));                             \
+    case BRDF_KBSWAP:   return brdf_kuijk_blake_s(s, brdf_kb_b(n), brdf_kb_a(n));                             \
+    case BRDF_BITPOW:   return brdf_bitpow(c, n);                                                             \
+    case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);                                             \
+    case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);                                                   \
+    case BRDF_QUART:    return brdf_fourth_s(s, n * p0 + p1);                                                 \
+    case BRDF_CUBEFIT:  return brdf_cube_s(s, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B));                   \
+    case BRDF_QUARTFIT: return brdf_fourth_s(s, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B));               \
+    case BRDF_GAUSSFIT: return brdf_gauss_lobe_s(s, n * RC(BRDF_GAUSSFIT_A) + RC(BRDF_GAUSSFIT_B));           \
+    BRDF_USER_CASE                                                                                            \
+    case BRDF_CT_BECKMANN:                                                                                    \
+    case BRDF_CT_GGX:                                                                                         \
+    case BRDF_BRADY:                                                                                          \
+    case BRDF_HE:       return brdf_pb_lobe((ID), c, n, p0, p1);                                              \
+    default:            return RSPLAT(NAN);                                                                   \
+    }
+
 BRDF_EVAL_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
 {
-    switch (id) {
-    case BRDF_PHONG:
-    case BRDF_BLINN:    return brdf_pow_lobe_cs(c, s, n);
-    case BRDF_PHONGPOW: return pow(c, n);
-    case BRDF_CQ2:      return brdf_quadratic_s(s, n * RC(0.5));
-    case BRDF_FVOL:     return brdf_quadratic_s(s, n * RC(0.463));
-    case BRDF_FVOL64:   return brdf_quadratic_s(s, n * RC(29.0 / 64.0));
-    case BRDF_SCHLICK:  return c / (n * s + c);
-    case BRDF_LYON:     return brdf_lyon_s(s, n, (int)p0);
-    case BRDF_FQ:       return brdf_quadratic_s(s, brdf_k_q(n, p0));
-    case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));
-    case BRDF_FQ2N:     return RC(0.214) * (RC(0.807) + n) * brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));
-    case BRDF_PHONGN:   return brdf_phong_norm(n) * brdf_pow_lobe_cs(c, s, n);
-    case BRDF_BLINNN:   return brdf_blinn_norm(n) * brdf_pow_lobe_cs(c, s, n);
-    case BRDF_BECKMANN: return brdf_d_beckmann_cs(c, s, brdf_alpha_from_n(n));
-    case BRDF_GGX:      return brdf_d_ggx_cs(c, s, brdf_alpha_from_n(n));
-    case BRDF_QUAD:     return brdf_quadratic_s(s, n * p0 + p1);
-    case BRDF_SG:       return brdf_gauss_lobe_s(s, n);
-    case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));
-    case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);
-    case BRDF_KB:       return brdf_kuijk_blake_s(s, brdf_kb_a(n), brdf_kb_b(n));
-    case BRDF_KBSWAP:   return brdf_kuijk_blake_s(s, brdf_kb_b(n), brdf_kb_a(n));
-    case BRDF_BITPOW:   return brdf_bitpow(c, n);
-    case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);
-    case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);
-    case BRDF_QUART:    return brdf_fourth_s(s, n * p0 + p1);
-    case BRDF_CUBEFIT:  return brdf_cube_s(s, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B));
-    case BRDF_QUARTFIT: return brdf_fourth_s(s, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B));
-    case BRDF_GAUSSFIT: return brdf_gauss_lobe_s(s, n * RC(BRDF_GAUSSFIT_A) + RC(BRDF_GAUSSFIT_B));
-#ifdef BRDF_HAVE_USER_MODEL
-    case BRDF_USER:     return brdf_user_eval(c, n, p0, p1);
-#endif
-    case BRDF_CT_BECKMANN:
-    case BRDF_CT_GGX:
-    case BRDF_BRADY:
-    case BRDF_HE:       return brdf_pb_lobe(id, c, n, p0, p1);
-    default:            return RSPLAT(NAN);
+#ifdef BRDF_ONLY_MODEL
+    /* a build specialised to one model and its reference (-DBRDF_ONLY_MODEL, -DBRDF_ONLY_REF) */
+    if (id == BRDF_ONLY_MODEL) {
+        BRDF_EVAL_SWITCH(BRDF_ONLY_MODEL)
     }
+#ifdef BRDF_ONLY_REF
+    if (id == BRDF_ONLY_REF) {
+        BRDF_EVAL_SWITCH(BRDF_ONLY_REF)
+    }
+#endif
+    return RSPLAT(NAN);
+#else
+    BRDF_EVAL_SWITCH(id)
+#endif
 }
 
 /* Evaluate model `id` at cosine c and shininess n with parameters p0, p1. */

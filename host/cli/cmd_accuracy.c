@@ -106,8 +106,9 @@ int cmd_accuracy(int argc, char **argv)
         goto cleanup;
     }
     if (!quiet)
-        fprintf(stderr, "device: %s (%s); kernel build %.2f s\n", s.device_name, s.platform_version,
-                s.last_build_seconds);
+        fprintf(stderr, "device: %s (%s); %d kernel build%s %.2f s%s\n", s.device_name, s.platform_version,
+                s.builds, s.builds == 1 ? "" : "s", s.build_seconds_total,
+                s.specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
     double started = wall_seconds();
     for (int m = 0; m < nmodels; ++m, ++done) {
         rc = accuracy_run(&actx, &models[m], &grid, &res[m]);
@@ -170,8 +171,12 @@ int cmd_accuracy(int argc, char **argv)
         printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
                "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
                "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
-        printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)\n",
-               dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples);
+        int wall = 0;
+        for (int m = 0; m < nmodels; ++m)
+            wall |= res[m].timer_wall;
+        printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)%s\n",
+               dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples,
+               wall ? "; wall time: the driver's profiling events gave no time" : "");
         if (to_folder)
             printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
         if (json_path)

@@ -66,15 +66,30 @@ double cl_event_seconds(cl_event ev)
     return 1e-9 * (double)(t1 - t0);
 }
 
+double cl_event_seconds_or_wall(cl_event ev, double wall, int *used_wall)
+{
+    double t = cl_event_seconds(ev);
+    /* a driver that does not fill the events gives 0, a nanosecond, or a time far below a
+       long launch's wall time: the wall time stands in */
+    int bad = !(t > 1e-8) || (wall > 1e-3 && t < 1e-3 * wall);
+    if (used_wall)
+        *used_wall = bad;
+    return bad ? wall : t;
+}
+
 /* The launch watchdog: one thread, started at the first launch, sleeping until the armed
  * deadline. The main thread is blocked in the OpenCL wait while it is armed, so what the
  * watchdog does on firing (write(2), unlink, rmdir, _exit) needs no lock it could hold. */
 static pthread_mutex_t wd_lock = PTHREAD_MUTEX_INITIALIZER;
 static pthread_cond_t wd_cond;
 static int wd_started, wd_armed;
+static volatile int build_progress_fd = 2;   /* where the watchdog writes: the real stderr during a build */
 static struct timespec wd_deadline;
 static char wd_message[768];
 static double wd_timeout = CLSESSION_DEFAULT_TIMEOUT;
+/* progress of a long wait (a program build): a line after 1 s, then every 10 s */
+static char wd_progress[320];
+static struct timespec wd_progress_next, wd_armed_at;
 static enum clsession_timeout_source wd_timeout_source = TIMEOUT_DEFAULT;
 
 void clsession_set_timeout(double seconds, enum clsession_timeout_source source)
@@ -87,6 +102,11 @@ void clsession_set_timeout(double seconds, enum clsession_timeout_source source)
 
 double clsession_timeout(void) { return wd_timeout; }
 
+static int ts_before(const struct timespec *a, const struct timespec *b)
+{
+    return a->tv_sec < b->tv_sec || (a->tv_sec == b->tv_sec && a->tv_nsec < b->tv_nsec);
+}
+
 static void *watchdog_main(void *unused)
 {
     (void)unused;
@@ -94,13 +114,28 @@ static void *watchdog_main(void *unused)
     for (;;) {
         while (!wd_armed)
             pthread_cond_wait(&wd_cond, &wd_lock);
-        int r = pthread_cond_timedwait(&wd_cond, &wd_lock, &wd_deadline);
+        int progress = wd_progress[0] && ts_before(&wd_progress_next, &wd_deadline);
+        int r = pthread_cond_timedwait(&wd_cond, &wd_lock, progress ? &wd_progress_next : &wd_deadline);
+        if (r == ETIMEDOUT && wd_armed && progress) {
+            struct timespec now;
+            clock_gettime(CLOCK_MONOTONIC, &now);
+            if (!ts_before(&now, &wd_progress_next)) {
+                char line[400];
+                double so_far = (double)(now.tv_sec - wd_armed_at.tv_sec) + 1e-9 * (double)(now.tv_nsec - wd_armed_at.tv_nsec);
+                int n = snprintf(line, sizeof line, "brdfbench: %s: %.0f s so far (deadline %g s)\n", wd_progress, so_far,
+                                 wd_timeout);
+                ssize_t unused_w = write(build_progress_fd, line, n > 0 ? (size_t)n : 0);
+                (void)unused_w;
+                wd_progress_next.tv_sec += wd_progress_next.tv_sec - wd_armed_at.tv_sec < 2 ? 9 : 10;
+            }
+            continue;
+        }
         if (r == ETIMEDOUT && wd_armed) {
             struct timespec now;
             clock_gettime(CLOCK_MONOTONIC, &now);
             if (now.tv_sec > wd_deadline.tv_sec ||
                 (now.tv_sec == wd_deadline.tv_sec && now.tv_nsec >= wd_deadline.tv_nsec)) {
-                ssize_t unused_w = write(2, wd_message, strlen(wd_message));
+                ssize_t unused_w = write(build_progress_fd, wd_message, strlen(wd_message));
                 (void)unused_w;
                 outdir_remove_own();
                 _exit(EXIT_RUNTIME);
@@ -126,11 +161,34 @@ static int watchdog_start(void)
     return r ? -1 : 0;
 }
 
+static void deadline_arm(const char *message, const char *progress);
+
 void clsession_deadline_arm(cl_kernel kernel, const char *model)
 {
     char name[128] = "?";
     if (kernel && clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
         snprintf(name, sizeof name, "?");
+    char message[768];
+    snprintf(message, sizeof message,
+             "brdfbench: kernel %s%s%.200s%s ran past its deadline of %g s (accepted: --timeout SECONDS, or "
+             "\"timeout\" in a gates file, up to %g); the run is stopped and its unfinished outputs removed\n",
+             name, model ? " of model '" : "", model ? model : "", model ? "'" : "", wd_timeout, CLSESSION_MAX_TIMEOUT);
+    deadline_arm(message, NULL);
+}
+
+void clsession_deadline_arm_build(const char *what)
+{
+    char message[768], progress[320];
+    snprintf(message, sizeof message,
+             "brdfbench: %.300s ran past its deadline of %g s (accepted: --timeout SECONDS, or \"timeout\" in a "
+             "gates file, up to %g); the run is stopped and its unfinished outputs removed\n",
+             what, wd_timeout, CLSESSION_MAX_TIMEOUT);
+    snprintf(progress, sizeof progress, "%.300s", what);
+    deadline_arm(message, progress);
+}
+
+static void deadline_arm(const char *message, const char *progress)
+{
     pthread_mutex_lock(&wd_lock);
     if (!wd_started) {
         if (watchdog_start() != 0) {
@@ -142,12 +200,12 @@ void clsession_deadline_arm(cl_kernel kernel, const char *model)
         }
     }
     if (wd_started == 1) {
-        snprintf(wd_message, sizeof wd_message,
-                 "brdfbench: kernel %s%s%.200s%s ran past its deadline of %g s (accepted: --timeout SECONDS, or "
-                 "\"timeout\" in a gates file, up to %g); the run is stopped and its unfinished outputs removed\n",
-                 name, model ? " of model '" : "", model ? model : "", model ? "'" : "", wd_timeout,
-                 CLSESSION_MAX_TIMEOUT);
+        snprintf(wd_message, sizeof wd_message, "%s", message);
+        snprintf(wd_progress, sizeof wd_progress, "%s", progress ? progress : "");
         clock_gettime(CLOCK_MONOTONIC, &wd_deadline);
+        wd_armed_at = wd_deadline;
+        wd_progress_next = wd_deadline;
+        wd_progress_next.tv_sec += 1;
         double whole = floor(wd_timeout);
         wd_deadline.tv_sec += (time_t)whole;
         wd_deadline.tv_nsec += (long)((wd_timeout - whole) * 1e9);
@@ -297,6 +355,11 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
     cl_device_type dtype = 0;
     clGetDeviceInfo(s->device, CL_DEVICE_TYPE, sizeof dtype, &dtype, NULL);
     s->is_cpu = (dtype & CL_DEVICE_TYPE_CPU) != 0;
+    /* One program per built-in model where the driver compiles a program whole at build time
+       (every driver but PoCL, which compiles each kernel at its first launch and so pays only
+       for what a run launches); BRDFBENCH_SPECIALISE=0/1 overrides. */
+    const char *spec = getenv("BRDFBENCH_SPECIALISE");
+    s->specialise = spec && *spec ? atoi(spec) != 0 : strstr(s->platform_name, "Portable Computing Language") == NULL;
     clGetDeviceInfo(s->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof s->global_mem, &s->global_mem, NULL);
     clGetDeviceInfo(s->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof s->max_alloc, &s->max_alloc, NULL);
     char ext[8192] = "";
@@ -505,9 +568,19 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
     free(src);
     CL_CHECK_ERR_GOTO(e, "clCreateProgramWithSource", done);
     FILE *caught = NULL;
+    char what[400];
+    snprintf(what, sizeof what, "building kernels/%s%s%.300s%s", kernel_file, options && *options ? " (" : "",
+             options && *options ? options : "", options && *options ? ")" : "");
+    /* the progress lines and the deadline write on the real stderr, not the caught one */
     int saved_stderr = stderr_catch_begin(&caught);
+    build_progress_fd = saved_stderr >= 0 ? saved_stderr : 2;
+    clsession_deadline_arm_build(what);
     e = clBuildProgram(prog, 1, &s->device, options ? options : "", NULL, NULL);
+    clsession_deadline_disarm();
+    build_progress_fd = 2;
     s->last_build_seconds = wall_seconds() - t0;
+    s->build_seconds_total += s->last_build_seconds;
+    s->builds++;
     if (e != CL_SUCCESS) {
         size_t loglen = 0;
         clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &loglen);
@@ -537,6 +610,16 @@ done:
     return rc;
 }
 
+cl_kernel clsession_create_kernel(cl_program program, const char *name, cl_int *err)
+{
+    char what[200];
+    snprintf(what, sizeof what, "creating kernel %.120s", name);
+    clsession_deadline_arm_build(what);
+    cl_kernel k = clCreateKernel(program, name, err);
+    clsession_deadline_disarm();
+    return k;
+}
+
 int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const char *extra_source,
                             const char *options, cl_program *program, int count, const char *const names[],
                             cl_kernel *const kernels[])
@@ -548,7 +631,7 @@ int clsession_build_kernels(struct cl_session *s, const char *kernel_file, const
         return rc;
     for (int i = 0; i < count; ++i) {
         cl_int e;
-        *kernels[i] = clCreateKernel(*program, names[i], &e);
+        *kernels[i] = clsession_create_kernel(*program, names[i], &e);
         if (e != CL_SUCCESS) {
             char what[160];
             snprintf(what, sizeof what, "clCreateKernel(%s)", names[i]);

@@ -20,9 +20,12 @@ struct cl_session {
     char device_name[256], device_version[256], driver_version[256];
     cl_uint compute_units;
     int is_cpu;                   /* CL_DEVICE_TYPE_CPU: its launches run on this machine's cores */
+    int specialise;               /* build one program per built-in model (-DBRDF_ONLY_MODEL), not one for all */
     cl_ulong global_mem, max_alloc;
     int has_fp64;
     double last_build_seconds;    /* wall time of the latest clsession_build */
+    double build_seconds_total;   /* of every build of the session */
+    int builds;
     /* Objects cached for the session's life (host/core/programs.c): clsession_close calls
        release_cache first, while the context still exists. */
     void (*release_cache)(struct cl_session *s);
@@ -125,9 +128,18 @@ int clsession_launch(struct cl_session *s, cl_kernel kernel, cl_uint dims, const
 /* The watchdog by hand: arm before a blocking OpenCL call, disarm after it. */
 void clsession_deadline_arm(cl_kernel kernel, const char *model);
 void clsession_deadline_disarm(void);
+/* The same for a blocking build or kernel creation named by `what` ("building kernels/x.cl
+ * (options)"): past a second it prints what is running every 10 s; past the deadline the
+ * one-line message names it. */
+void clsession_deadline_arm_build(const char *what);
+/* clCreateKernel under the deadline, with progress (some drivers compile here). */
+cl_kernel clsession_create_kernel(cl_program program, const char *name, cl_int *err);
 
 /* Seconds between a profiling event's start and end; NAN if the timer failed. */
 double cl_event_seconds(cl_event ev);
+/* The event's time, or `wall` (and *used_wall = 1) where the driver did not fill the
+ * profiling events (0, a nanosecond, or far below the wall time of a launch past 1 ms). */
+double cl_event_seconds_or_wall(cl_event ev, double wall, int *used_wall);
 /* Monotonic wall clock in seconds. */
 double wall_seconds(void);
 

@@ -11,7 +11,8 @@
 
 struct program_entry {
     const struct cl_session *s;
-    const struct model_runtime *rt;
+    const struct model_runtime *rt;   /* NULL: a built-in model's specialised build */
+    int model_id;                     /* that model's kernel id (rt NULL) */
     char *kernel_file, *extra_before, *options;
     cl_program program;
     int kernel_count;
@@ -82,13 +83,18 @@ int programs_host(struct cl_session *s, const struct model_spec *m)
     return 0;
 }
 
-/* The cached build of kernel_file + extra_before + rt's text with options, made on first use. */
+static int entry_add(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
+                     const struct model_runtime *rt, int model_id, cl_program program, struct program_entry **out);
+
+/* The cached build of kernel_file + extra_before + rt's text with options, made on first use;
+   with rt NULL, of kernel_file + extra_before specialised to the built-in model model_id
+   (-DBRDF_ONLY_MODEL: the model dispatch of kernels/brdf_models.h keeps that one case). */
 static int entry_for(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
-                     const struct model_runtime *rt, struct program_entry **out)
+                     const struct model_runtime *rt, int model_id, int ref_id, struct program_entry **out)
 {
     for (int i = 0; i < entry_count; ++i) {
         struct program_entry *e = &entries[i];
-        if (e->s == s && e->rt == rt && strcmp(e->kernel_file, kernel_file) == 0 &&
+        if (e->s == s && e->rt == rt && (rt || e->model_id == model_id) && strcmp(e->kernel_file, kernel_file) == 0 &&
             same_text(e->extra_before, extra_before) && same_text(e->options, options)) {
             *out = e;
             return 0;
@@ -98,12 +104,25 @@ static int entry_for(struct cl_session *s, const char *kernel_file, const char *
     if (!room)
         return EXIT_RUNTIME;
     entries = room;
+    if (!rt) {
+        char opts[1100];
+        snprintf(opts, sizeof opts, "%s%s-DBRDF_ONLY_MODEL=%d -DBRDF_ONLY_REF=%d", options ? options : "",
+                 options && *options ? " " : "", model_id, ref_id);
+        cl_program program = NULL;
+        int rc = clsession_build(s, kernel_file, extra_before, opts, &program);
+        if (rc)
+            return rc;
+        return entry_add(s, kernel_file, extra_before, options, NULL, model_id, program, out);
+    }
     /* The model's text after the kernel file (and the extra text), with its own options. */
     size_t a = extra_before ? strlen(extra_before) : 0, b = strlen(rt->device_source);
     char *source = malloc(a + b + 2);
-    char opts[1024];
+    char opts[1100];
     snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", options && *options ? " " : "",
              rt->device_options ? rt->device_options : "");
+    if (s->specialise)
+        snprintf(opts + strlen(opts), sizeof opts - strlen(opts), " -DBRDF_ONLY_MODEL=%d -DBRDF_ONLY_REF=%d", model_id,
+                 ref_id);
     if (!source) {
         fprintf(stderr, "brdfbench: out of memory\n");
         return EXIT_RUNTIME;
@@ -120,10 +139,17 @@ static int entry_for(struct cl_session *s, const char *kernel_file, const char *
             fprintf(stderr, "brdfbench: %s does not compile; the build log above names its lines\n", rt->what);
         return rc;
     }
+    return entry_add(s, kernel_file, extra_before, options, rt, -1, program, out);
+}
+
+static int entry_add(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
+                     const struct model_runtime *rt, int model_id, cl_program program, struct program_entry **out)
+{
     struct program_entry *e = &entries[entry_count];
     memset(e, 0, sizeof *e);
     e->s = s;
     e->rt = rt;
+    e->model_id = model_id;
     e->kernel_file = dup_text(kernel_file);
     e->extra_before = dup_text(extra_before);
     e->options = dup_text(options);
@@ -143,10 +169,12 @@ int programs_program(struct cl_session *s, const char *kernel_file, const char *
 {
     const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
     *out = shared;
-    if (!rt)
+    if (!rt && (!m || (shared && !s->specialise)))
         return 0;
     struct program_entry *e = NULL;
-    int rc = entry_for(s, kernel_file, extra_before, options, rt, &e);
+    struct model_spec ref;
+    model_reference_spec(m, &ref);
+    int rc = entry_for(s, kernel_file, extra_before, options, rt, m->info->kernel_id, ref.info->kernel_id, &e);
     if (rc)
         return rc;
     *out = e->program;
@@ -158,10 +186,12 @@ int programs_kernel(struct cl_session *s, const char *kernel_file, const char *o
 {
     const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
     *out = shared;
-    if (!rt)
+    if (!rt && (!m || (shared && !s->specialise)))
         return 0;
     struct program_entry *e = NULL;
-    int rc = entry_for(s, kernel_file, NULL, options, rt, &e);
+    struct model_spec ref;
+    model_reference_spec(m, &ref);
+    int rc = entry_for(s, kernel_file, NULL, options, rt, m->info->kernel_id, ref.info->kernel_id, &e);
     if (rc)
         return rc;
     for (int k = 0; k < e->kernel_count; ++k)
@@ -174,7 +204,7 @@ int programs_kernel(struct cl_session *s, const char *kernel_file, const char *o
         return EXIT_RUNTIME;
     }
     cl_int err;
-    cl_kernel k = clCreateKernel(e->program, kernel_name, &err);
+    cl_kernel k = clsession_create_kernel(e->program, kernel_name, &err);
     if (err != CL_SUCCESS) {
         cl_report("clCreateKernel", err, __FILE__, __LINE__);
         return EXIT_RUNTIME;

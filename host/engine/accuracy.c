@@ -102,6 +102,14 @@ int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *buil
     memset(a, 0, sizeof *a);
     a->s = s;
     snprintf(a->build_options, sizeof a->build_options, "%s", build_options ? build_options : "");
+    /* a session that specialises builds each model's program when it is first asked for
+       (kernels_for, host/core/programs.h), never the program of every model, and with the
+       scalar loop (kernels/accuracy.cl, ACC_W) */
+    if (s->specialise) {
+        size_t n = strlen(a->build_options);
+        snprintf(a->build_options + n, sizeof a->build_options - n, "%s-DACC_W=1", n ? " " : "");
+        return 0;
+    }
     static const char *const names[] = { "accuracy_sweep", "models_probe" };
     cl_kernel *const kernels[] = { &a->sweep, &a->probe };
     return clsession_build_kernels(s, "accuracy.cl", NULL, a->build_options, &a->program, 2, names, kernels);
@@ -429,7 +437,10 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     for (long i = 0; i < count; ++i)
         nv[i] = (float)accuracy_grid_n(g, i);
 
-    if ((rc = accuracy_sweep_device(a, m, g, raw, &out->device_seconds)) != 0)
+    a->timer_wall = 0;
+    rc = accuracy_sweep_device(a, m, g, raw, &out->device_seconds);
+    out->timer_wall = a->timer_wall;
+    if (rc != 0)
         goto done;
     out->points = (double)count * 2.0 * (double)g->samples;
 
@@ -556,9 +567,12 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
     size_t local = sweep_local_size(count, a->s->compute_units);
     size_t global = ((size_t)count + local - 1) / local * local;
+    double t0 = wall_seconds();
     if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
         goto done;
-    *device_seconds = cl_event_seconds(ev);
+    int used_wall = 0;
+    *device_seconds = cl_event_seconds_or_wall(ev, wall_seconds() - t0, &used_wall);
+    a->timer_wall |= used_wall;
     if (raw)
         CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
                                           raw, 0, NULL, NULL), done);

@@ -76,6 +76,7 @@ struct accuracy_result {
     long long invalid_count;       /* model values that were NaN, Inf or negative */
     double invalid_n, invalid_x;   /* the first such point */
     double device_seconds;         /* sum of kernel times (profiling events) */
+    int timer_wall;                /* the events gave no time: device_seconds is wall time */
     double points;                 /* samples evaluated (each: the model and its reference) */
     int ok;                        /* 0 when figures are missing; reason says why */
     int device_disagrees;          /* the check exceeded its bound: reason says where */
@@ -87,6 +88,7 @@ struct accuracy_ctx {
     cl_program program;
     cl_kernel sweep, probe;
     char build_options[256];
+    int timer_wall;                /* the driver's profiling events gave no time: wall time used */
 };
 
 

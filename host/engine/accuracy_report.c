@@ -88,6 +88,8 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_num(&w, "device_seconds", r->device_seconds);
         jw_kv_num(&w, "points", r->points);
         jw_kv_num(&w, "gpoints_per_s", r->points / r->device_seconds * 1e-9);
+        jw_kv_str(&w, "timer", r->timer_wall ? "wall time: the driver's profiling events gave no time"
+                                             : "profiling events");
         jw_obj_end(&w);
         jw_obj_end(&w);
     }

@@ -53,6 +53,8 @@ int field_open(struct field_ctx *f, struct cl_session *s, const char *build_opti
     memset(f, 0, sizeof *f);
     f->s = s;
     snprintf(f->build_options, sizeof f->build_options, "%s", build_options ? build_options : "");
+    if (s->specialise)   /* each model's program on first use (host/core/programs.h) */
+        return 0;
     static const char *const names[] = { "field_grid" };
     cl_kernel *const kernels[] = { &f->kernel };
     return clsession_build_kernels(s, "field.cl", NULL, f->build_options, &f->program, 1, names, kernels);

@@ -239,7 +239,7 @@ static cl_kernel tp_kernel(struct tp_program *p, const char *kind, const struct 
     else
         snprintf(name, sizeof name, "tp_%s_pow", kind);
     cl_program user = tp_user_program(p, m);
-    return clCreateKernel(user ? user : p->program, name, e);
+    return clsession_create_kernel(user ? user : p->program, name, e);
 }
 
 void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in)
@@ -460,7 +460,7 @@ static int tp_peak_setup(struct cl_session *s, const char *options, long work_it
     d->kr.global = (size_t)work_items;
     d->kr.local = 1;
     d->kr.work_per_iter = (double)work_items * PEAK_UNROLL * PEAK_CHAINS * 16 * 2;
-    d->kr.k = clCreateKernel(*prog, "peak_fma", &e);
+    d->kr.k = clsession_create_kernel(*prog, "peak_fma", &e);
     if (e != CL_SUCCESS) {
         fig_fail(f, "clCreateKernel(peak_fma) failed with %s", cl_error_name(e));
         return -1;
