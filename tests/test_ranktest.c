@@ -6,6 +6,7 @@
 #include "ranktest.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 static struct ranktest_result mw(const double *x, int nx, const double *y, int ny)
 {
@@ -127,6 +128,53 @@ int main(void)
         struct ranktest_result r = mw(x, 7, y, 5);
         CHECK_NEAR(r.u, u_obs, 0, "U with ties, 7 vs 5");
         CHECK_NEAR(r.p, (double)tail / total, 1e-13, "exact p against enumeration");
+    }
+    /* Hodges-Lehmann shift and its interval, worked by hand. x = {11..15}, y = {1..5}: the 25
+       differences x_i - y_j are 6 (once), 7 (twice), ..., 10 (five times), ..., 14 (once); their
+       median (13th) is 10. For 5 against 5, P(U <= 2) = 4/252 = 0.0159 <= 0.025 and
+       P(U <= 3) = 7/252 = 0.0278 > 0.025 (counts of the U distribution: 1, 1, 2, 3), so the 95%
+       interval runs from the 3rd smallest difference (7) to the 3rd largest (13). */
+    {
+        double x[] = { 11, 12, 13, 14, 15 }, y[] = { 1, 2, 3, 4, 5 }, est, lo, hi;
+        CHECK(ranktest_shift_ci(x, 5, y, 5, 0.05, &est, &lo, &hi) == 0, "shift_ci");
+        CHECK_NEAR(est, 10, 0, "Hodges-Lehmann estimate");
+        CHECK_NEAR(lo, 7, 0, "95% interval: 3rd smallest difference");
+        CHECK_NEAR(hi, 13, 0, "95% interval: 3rd largest difference");
+        /* at alpha 0.2: P(U <= 4) = 12/252 = 0.0476 <= 0.1, P(U <= 5) = 19/252 = 0.0754 <= 0.1,
+           P(U <= 6) = 28/252 = 0.111 > 0.1: c = 5, from the 6th smallest (8) to the 6th largest (12) */
+        CHECK(ranktest_shift_ci(x, 5, y, 5, 0.2, &est, &lo, &hi) == 0, "shift_ci at 0.2");
+        CHECK_NEAR(lo, 8, 0, "80% interval: 6th smallest difference");
+        CHECK_NEAR(hi, 12, 0, "80% interval: 6th largest difference");
+    }
+    /* Too few values for the level: 2 against 2 can give no p below 1/6, so a 95% interval
+       has no finite end. */
+    {
+        double x[] = { 3, 4 }, y[] = { 1, 2 }, est, lo, hi;
+        CHECK(ranktest_shift_ci(x, 2, y, 2, 0.05, &est, &lo, &hi) == 0, "shift_ci 2 vs 2");
+        CHECK(isinf(lo) && isinf(hi) && lo < 0 && hi > 0, "2 vs 2: unbounded interval (%g, %g)", lo, hi);
+        CHECK_NEAR(est, 2, 0, "2 vs 2: median of {1, 2, 2, 3}");
+    }
+    /* Large samples (normal approximation): 30 against 30, y = x + 1 exactly: every one of the
+       900 differences of x_i + 1 - x_j is an integer shift; the estimate is the true shift 1
+       and the interval holds it. The critical count is floor(450 - 1.96 sqrt(900 * 61 / 12) - 0.5)
+       = floor(450 - 132.6 - 0.5) = 316 (written out here). */
+    {
+        double x[30], y[30], est, lo, hi;
+        for (int i = 0; i < 30; ++i) {
+            x[i] = i + 1.0;
+            y[i] = i;
+        }
+        CHECK(ranktest_shift_ci(x, 30, y, 30, 0.05, &est, &lo, &hi) == 0, "shift_ci 30 vs 30");
+        CHECK_NEAR(est, 1, 0, "30 vs 30: estimate");
+        /* differences d = 1 + (i - j): value v occurs 30 - |v - 1| times; the 317th smallest */
+        int count = 0;
+        double d317 = 0;
+        for (int v = -28; v <= 30 && count < 317; ++v) {
+            count += 30 - abs(v - 1);
+            d317 = v;
+        }
+        CHECK_NEAR(lo, d317, 0, "30 vs 30: 317th smallest difference");
+        CHECK_NEAR(hi, 2 - d317, 0, "30 vs 30: symmetric upper end");
     }
     return check_summary();
 }
