@@ -119,6 +119,8 @@ int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_arg
                 return EXIT_USAGE;
             }
             *(int *)f->dest = f->set;
+            if (strcmp(f->name, "--quiet") == 0)
+                clsession_set_progress(0);   /* no progress lines of long builds either */
             continue;
         }
         if (a[strlen(f->name)] != '=' && i + 1 >= argc) {

@@ -16,7 +16,7 @@
 int cmd_compare(int argc, char **argv)
 {
     char err[1200];
-    int quiet = 0, less_accurate = 0, holm = 0, absolute = 0;
+    int quiet = 0, less_accurate = 0, holm = 0, absolute = 0, confirm = 0;
     const char *out_dir = NULL;
     double alpha = CMP_DEFAULT_ALPHA, slower_pct = -1, threshold_pct = -1;
     const struct cli_flag flags[] = {
@@ -30,6 +30,9 @@ int cmd_compare(int argc, char **argv)
           .help = "the smallest change a rate's verdict calls (default: --fail-if-slower's PCT, else 5)", .def = "" },
         { .name = "--holm", .kind = CLI_SWITCH, .dest = &holm, .set = 1,
           .help = "Holm's family-wise correction of the p-values over each run's rates (for CI gates over many rows)" },
+        { .name = "--confirm", .kind = CLI_SWITCH, .dest = &confirm, .set = 1,
+          .help = "the runs after the first are its confirmations (the same run timed again): a rate fails "
+                  "--fail-if-slower only when every run finds it slower" },
         { .name = "--absolute", .kind = CLI_SWITCH, .dest = &absolute, .set = 1,
           .help = "decide on the absolute rates, not the rates normalised by the run's reference kernel" },
         { .name = "--fail-if-less-accurate", .kind = CLI_SWITCH, .dest = &less_accurate, .set = 1,
@@ -86,6 +89,7 @@ int cmd_compare(int argc, char **argv)
     set->threshold = (threshold_pct >= 0 ? threshold_pct : slower_pct >= 0 ? slower_pct : 100 * CMP_DEFAULT_THRESHOLD) / 100;
     set->holm = holm;
     set->absolute = absolute;
+    set->confirm = confirm;
     compare_evaluate(set, alpha);
     if (!quiet) {
         char *t = compare_text(set, 0);

@@ -83,7 +83,10 @@ double cl_event_seconds_or_wall(cl_event ev, double wall, int *used_wall)
 static pthread_mutex_t wd_lock = PTHREAD_MUTEX_INITIALIZER;
 static pthread_cond_t wd_cond;
 static int wd_started, wd_armed;
-static volatile int build_progress_fd = 2;   /* where the watchdog writes: the real stderr during a build */
+static volatile int build_progress_fd = 2;
+static int progress_on = 1;
+
+void clsession_set_progress(int on) { progress_on = on; }   /* where the watchdog writes: the real stderr during a build */
 static struct timespec wd_deadline;
 static char wd_message[768];
 static double wd_timeout = CLSESSION_DEFAULT_TIMEOUT;
@@ -184,7 +187,7 @@ void clsession_deadline_arm_build(const char *what)
              "gates file, up to %g); the run is stopped and its unfinished outputs removed\n",
              what, wd_timeout, CLSESSION_MAX_TIMEOUT);
     snprintf(progress, sizeof progress, "%.300s", what);
-    deadline_arm(message, progress);
+    deadline_arm(message, progress_on ? progress : NULL);
 }
 
 static void deadline_arm(const char *message, const char *progress)

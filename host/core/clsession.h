@@ -132,6 +132,8 @@ void clsession_deadline_disarm(void);
  * (options)"): past a second it prints what is running every 10 s; past the deadline the
  * one-line message names it. */
 void clsession_deadline_arm_build(const char *what);
+/* Progress lines of long builds on (1, the default) or off (--quiet). */
+void clsession_set_progress(int on);
 /* clCreateKernel under the deadline, with progress (some drivers compile here). */
 cl_kernel clsession_create_kernel(cl_program program, const char *name, cl_int *err);
 

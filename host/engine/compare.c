@@ -717,27 +717,6 @@ static int same_4_digits(double a, double b)
     return strcmp(x, y) == 0;
 }
 
-static double median_of(const double *v, int n)
-{
-    double *t = malloc((size_t)(n > 0 ? n : 1) * sizeof *t);
-    int k = 0;
-    for (int i = 0; t && i < n; ++i)
-        if (isfinite(v[i]) && v[i] > 0)
-            t[k++] = v[i];
-    double m = NAN;
-    if (k > 0) {
-        for (int i = 1; i < k; ++i)   /* insertion sort: a run's repetitions */
-            for (int j = i; j > 0 && t[j - 1] > t[j]; --j) {
-                double x = t[j];
-                t[j] = t[j - 1];
-                t[j - 1] = x;
-            }
-        m = k % 2 ? t[k / 2] : 0.5 * (t[k / 2 - 1] + t[k / 2]);
-    }
-    free(t);
-    return m;
-}
-
 /* The logarithms of a sample's positive finite values (the rest NAN): malloc'd. */
 static double *logs_of(const double *v, int n)
 {
@@ -935,14 +914,25 @@ int compare_failures(const struct compare_set *set, double slower_pct, int less_
         *out = NULL;
     for (int i = 0; i < set->nrows; ++i) {
         const struct cmp_row *r = &set->rows[i];
+        /* with confirm, a speed fails only when every run after the baseline finds it slower:
+           the first one's rows are named, with the others' ratios */
+        int slower_all = set->nruns > 1;
+        for (int k = 1; k < set->nruns; ++k) {
+            const struct cmp_cell *c = &r->cell[k];
+            slower_all &= r->sense == CMP_SPEED && c->verdict == CMP_V_SLOWER && c->ratio < 1.0 - slower_pct / 100.0;
+        }
         for (int k = 1; k < set->nruns; ++k) {
             const struct cmp_cell *c = &r->cell[k];
             const char *dev = *r->device ? r->device : "";
-            if (slower_pct >= 0 && r->sense == CMP_SPEED && c->verdict == CMP_V_SLOWER &&
-                c->ratio < 1.0 - slower_pct / 100.0) {
+            int slower = r->sense == CMP_SPEED && c->verdict == CMP_V_SLOWER && c->ratio < 1.0 - slower_pct / 100.0;
+            if (slower_pct >= 0 && slower && (!set->confirm || (k == 1 && slower_all))) {
                 ++count;
-                append(out, &len, "%s: %s %s%s%s %s: %.3gx the baseline (p = %.2g)\n", set->run[k].name,
-                       cmp_kind_name(r->kind), dev, *dev ? " | " : "", r->key, r->metric, c->ratio, c->p);
+                append(out, &len, "%s: %s %s%s%s %s: %.3gx the baseline (p = %.2g)", set->run[k].name,
+                       cmp_kind_name(r->kind), dev, *dev ? " | " : "", r->key, r->metric, c->ratio,
+                       set->holm ? c->p_adj : c->p);
+                for (int q = 2; set->confirm && q < set->nruns; ++q)
+                    append(out, &len, "; confirmed by %s: %.3gx", set->run[q].name, r->cell[q].ratio);
+                append(out, &len, "\n");
             }
             if (less_accurate && (r->sense == CMP_ERROR || r->sense == CMP_SCORE) && c->verdict == CMP_V_WORSE) {
                 ++count;

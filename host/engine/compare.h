@@ -125,6 +125,8 @@ struct compare_set {
     int holm;                    /* Holm's family-wise correction over each run's speed rows */
     int min_reps;                /* fewer repetitions than this on a side: a warning */
     int absolute;                /* decide on absolute rates even where normalised ones exist */
+    int confirm;                 /* --fail-if-slower: a row fails only when every run finds it slower
+                                    (the runs after the first are its confirmations) */
     /* the devices a --device all file lists (context.devices): name = tag, with their context */
     struct cmp_run devices[CMP_MAX_RUNS];
     int ndevices;
