@@ -7,7 +7,7 @@
 #   - a planted 2x in the normalised rates: "slower", ratio 0.5 exactly (Hodges-Lehmann of
 #     scaled copies), its interval around 0.5;
 #   - a change beyond alpha but inside the threshold: "same"; the same change with a smaller
-#     --threshold: "slower";
+#     --min-change: "slower";
 #   - repetitions spread over 0.5..2: "noisy";
 #   - Holm over 20 rows: p = 2/252 each (5 vs 5 fully apart) is significant alone, not after
 #     x 20 (the smallest adjusted p is 20 x 2/252 = 0.159);
@@ -81,7 +81,7 @@ python3 -c "import sys; r,lo,hi=map(float,sys.argv[1:]); assert abs(r-0.5)<1e-12
 python3 -c "import sys; assert abs(float(sys.argv[1]) - 2/252) < 1e-12" "$p" && ok || bad "planted: p $p, expected 2/252"
 v=$(verdict base small m)
 [[ $v == same* ]] && ok || bad "4% change, 5% threshold: '$v', expected same"
-v=$(verdict base small m --threshold 1)
+v=$(verdict base small m --min-change 1)
 [[ $v == slower* ]] && ok || bad "4% change, 1% threshold: '$v', expected slower"
 v=$(verdict base noisy m)
 [[ $v == noisy* ]] && ok || bad "spread 0.5..2: '$v', expected noisy"
@@ -101,6 +101,6 @@ grep -q "only 3 repetitions" "$T/err" && ok || bad "3 repetitions: no warning: $
 expect 1 "throughput m \| default \| n uniform evals_per_s: 0\.5x" compare "$T/base" "$T/planted" --out "$T/f1" --fail-if-slower 10
 "$BIN" compare "$T/base" "$T/drift" --out "$T/f2" --fail-if-slower 10 --quiet 2>"$T/err" && ok ||
     bad "drift must not fail --fail-if-slower: $(cat "$T/err")"
-expect 2 "--threshold" compare "$T/base" "$T/drift" --threshold 150
+expect 2 "--min-change" compare "$T/base" "$T/drift" --min-change 150
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # test_deadline.sh - every kernel launch has a deadline (docs/architecture.md, habit 12): a user model
 # whose loop never ends stops `accuracy`, `gate` and `all` with exit 3 and one line naming
-# the kernel and the model, well within the deadline plus a margin, leaving no folder it
+# the kernel and the model (a program build past it: the program), well within the deadline plus a margin, leaving no folder it
 # made and no file half-written; a folder or file that existed before stays as it was.
 # The deadline comes from --timeout or the gates file's "timeout" (the flag wins).
 set -u
@@ -34,14 +34,14 @@ runaway() {
 }
 
 # accuracy: --out names a folder that does not exist yet, nor does its parent.
-runaway "accuracy --out" 2 accuracy --model-file spin.cl --n-max 20 --out new/run --timeout 2
+runaway "accuracy --out" 4 accuracy --model-file spin.cl --n-max 20 --out new/run --timeout 4
 [ ! -e new ] && ok || bad "accuracy left $(find new | head -5 | tr '\n' ' ')"
 # accuracy without --out: results/ and its run folder are made by the run, and removed.
-runaway "accuracy (results/)" 2 accuracy --model-file spin.cl --n-max 20 --timeout 2
+runaway "accuracy (results/)" 4 accuracy --model-file spin.cl --n-max 20 --timeout 4
 [ ! -e results ] && ok || bad "accuracy left $(find results | head -5 | tr '\n' ' ')"
 # A folder that existed before stays, with what it held and nothing more.
 mkdir kept && echo before >kept/note.txt
-runaway "accuracy --out existing" 2 accuracy --model-file spin.cl --n-max 20 --out kept --timeout 2
+runaway "accuracy --out existing" 4 accuracy --model-file spin.cl --n-max 20 --out kept --timeout 4
 [ "$(ls -A kept)" = note.txt ] && [ "$(cat kept/note.txt)" = before ] && ok \
     || bad "the existing folder changed: $(ls -A kept | tr '\n' ' ')"
 
@@ -56,8 +56,8 @@ printf '{"timeout": 600, "gates": [{"model": "spin", "model_file": "spin.cl", "m
 runaway "gate --timeout over the file" 3 gate g600.json --timeout 3
 
 # render: the shading kernel, named with the model it shades.
-KERNEL=shade runaway "render --out" 2 render --scene spheres --model-file spin.cl --models spin --size 320x200 \
-    --time-sizes none --out rrun --timeout 2
+KERNEL=shade runaway "render --out" 4 render --scene spheres --model-file spin.cl --models spin --size 320x200 \
+    --time-sizes none --out rrun --timeout 4
 [ ! -e rrun ] && ok || bad "render left $(find rrun | head -5 | tr '\n' ' ')"
 
 # all: its run folder is removed.
@@ -67,6 +67,18 @@ runaway "all --out" 3 all --quick --model-file spin.cl --out allrun --timeout 3
 # Nothing else appeared in the test's folder (no temporary files beside the reports).
 left=$(ls -A | grep -v -x -e spin.cl -e kept -e g.json -e g600.json -e gates.json -e gates.xml -e out -e err)
 [ -z "$left" ] && ok || bad "left behind: $left"
+
+# A program build is under the deadline too: with a cache of its own (a cold build) and a
+# deadline of 10 ms, the build of the accuracy program cannot finish in time; one line names
+# the program and its options, exit 3, no folder left.
+POCL_CACHE_DIR="$T/coldcache" "$BIN" accuracy --models fq2 --n-max 8 --samples 16 --out coldrun --timeout 0.01 \
+    >"$T/out" 2>"$T/err"
+rc=$?
+[ "$rc" -eq 3 ] && ok || bad "a build past its deadline: exit $rc, expected 3: $(head -c 400 "$T/err")"
+grep -qE "^brdfbench: building kernels/accuracy.cl.* ran past its deadline of 0.01 s" "$T/err" && ok ||
+    bad "a build past its deadline: message $(head -c 400 "$T/err")"
+[ ! -e coldrun ] && ok || bad "a build past its deadline left its folder"
+rm -rf "$T/coldcache"
 
 # The flag and the key are checked like any other value.
 expect 2 "^brdfbench accuracy: --timeout: '0' is not a finite number in \[0.01, 604800\]" accuracy --timeout 0

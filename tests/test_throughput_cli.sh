@@ -12,7 +12,7 @@ rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "tiny run exit $rc: $(cat "$T/err")"
 check_json "$T/run/throughput.json" "throughput.json contract" <<'PY'
-has_context(d, "brdfbench.throughput/2", ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
+has_context(d, "brdfbench.throughput/3", ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
 ctx = d["context"]
 assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
 assert [b["variant"] for b in d["builds"]] == ["default", "denorms-are-zero"]
@@ -20,6 +20,25 @@ pk = d["peak"]
 # an FMA is 2 flops (kernels/peak.cl counts 2 flops per lane and step)
 assert pk["status"] == "ok" and abs(pk["fma_per_s"] - pk["flops_per_s"]["median"] / 2) <= 1e-9 * pk["fma_per_s"], pk
 rows = d["results"]
+# The runner (host/core/runner.h): --reps 2 rounds, the peak kernel three times per round (at
+# the round's start, middle and end), its rates kept in round order; each row's normalised
+# rate of round k is its rate over the median of the peak's three rates of round k, recomputed
+# here from the two arrays.
+rn = ctx["throughput"]["runner"]
+assert rn["rounds"] == 2 and rn["launches"] > 0 and rn["preemption_retries"] >= 0, rn
+pr = pk["flops_per_s_reps"]
+assert len(pr) == 3 * 2, pr
+ref = [sorted(pr[3 * k:3 * k + 3])[1] for k in range(2)]
+for r in d["results"]:
+    if r["status"] != "ok":
+        continue
+    assert len(r["normalised_reps"]) == 2, r["normalised_reps"]
+    for k in range(2):
+        x, y = r["normalised_reps"][k], r["evals_per_s_reps"][k] / ref[k]
+        assert abs(x - y) <= 1e-12 * y, (r["label"], k, x, y)
+    # a CPU device: the rates per CPU second too, and the CPU seconds of each repetition
+    assert len(r["normalised_cpu_reps"]) == 2 and len(r["cpu_seconds_reps"]) == 2, r
+    assert r["timer"] == "profiling events", r["timer"]
 # pow + 3 models; default: uniform and varying; denorms-are-zero: uniform
 assert len(rows) == 4 * 2 + 4, len(rows)
 assert [r["label"] for r in rows[:8:2]] == ["pow", "phong", "cq2", "fq:Q=0.7"], [r["label"] for r in rows]

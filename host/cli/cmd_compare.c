@@ -26,7 +26,7 @@ int cmd_compare(int argc, char **argv)
         { .name = "--fail-if-slower", .value = "PCT", .kind = CLI_DOUBLE, .dest = &slower_pct, .min = 0, .max = 100,
           .help = "exit 1 naming every rate that is slower than the baseline (by the test) by more than PCT percent",
           .def = "" },
-        { .name = "--threshold", .value = "PCT", .kind = CLI_DOUBLE, .dest = &threshold_pct, .min = 0, .max = 100,
+        { .name = "--min-change", .value = "PCT", .kind = CLI_DOUBLE, .dest = &threshold_pct, .min = 0, .max = 100,
           .help = "the smallest change a rate's verdict calls (default: --fail-if-slower's PCT, else 5)", .def = "" },
         { .name = "--holm", .kind = CLI_SWITCH, .dest = &holm, .set = 1,
           .help = "Holm's family-wise correction of the p-values over each run's rates (for CI gates over many rows)" },
@@ -51,7 +51,7 @@ int cmd_compare(int argc, char **argv)
                  "  Verdicts: a rate is decided on its normalised repetitions (each over the reference kernel\n"
                  "  timed in the same round, so that the machine's drift cancels; --absolute: the raw rates):\n"
                  "  faster / slower when the Mann-Whitney test of the two runs' repetitions gives p < --alpha\n"
-                 "  (Holm-adjusted with --holm) and the ratio is beyond 1 +- --threshold; noisy when the\n"
+                 "  (Holm-adjusted with --holm) and the ratio is beyond 1 +- --min-change; noisy when the\n"
                  "  ratio's confidence interval is too wide to decide a change of that size; same otherwise;\n"
                  "  undecided when there are too few repetitions to reach --alpha. An accuracy figure is\n"
                  "  unchanged or changed (better / worse) at its 4th significant digit.\n"

@@ -169,7 +169,7 @@ int programs_program(struct cl_session *s, const char *kernel_file, const char *
 {
     const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
     *out = shared;
-    if (!rt && (!m || (shared && !s->specialise)))
+    if (!rt && (!m || !s->specialise))
         return 0;
     struct program_entry *e = NULL;
     struct model_spec ref;
@@ -186,7 +186,7 @@ int programs_kernel(struct cl_session *s, const char *kernel_file, const char *o
 {
     const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
     *out = shared;
-    if (!rt && (!m || (shared && !s->specialise)))
+    if (!rt && (!m || !s->specialise))
         return 0;
     struct program_entry *e = NULL;
     struct model_spec ref;

@@ -20,7 +20,9 @@
 
 /* The kernel kernel_name of kernel_file (built with options) that evaluates model m: `shared`
  * (the engine's own build, for the built-in models) when m is built-in, else the kernel of
- * the cached build with m's text. The cache owns that kernel (do not release it); the same
+ * the cached build with m's text. In a session that specialises (clsession.h), a built-in
+ * model gets a cached build of its own too, with -DBRDF_ONLY_MODEL and -DBRDF_ONLY_REF (its
+ * reference), so that a driver never compiles the dispatch of every model. The cache owns that kernel (do not release it); the same
  * kernel object is handed to every engine of the session, so set its arguments before each
  * launch. Returns 0, EXIT_USAGE when m's text does not compile (its build log and a line
  * naming the model are on stderr), or EXIT_RUNTIME. */

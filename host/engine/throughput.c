@@ -180,7 +180,7 @@ int tp_program_build(struct tp_program *p, struct cl_session *s, const struct mo
             int known = 0;
             for (int k = 0; k < p->user_count; ++k)
                 known |= p->user[k].model == models[i].info;
-            if (!known && p->user_count < MODELS_MAX_USER) {
+            if (!known && p->user_count < TP_MAX_MODELS) {
                 p->user[p->user_count].model = models[i].info;
                 p->user[p->user_count++].program = own;
             }

@@ -85,11 +85,12 @@ struct tp_program {
     double build_seconds;
     int ids[TP_MAX_MODELS];       /* kernel ids compiled in */
     int id_count;
-    /* Each user model's own build of throughput.cl (its kernels named by BRDF_USER). */
+    /* Each user model's own build of throughput.cl (its kernels named by BRDF_USER), and in
+       a session that specialises each built-in model's (host/core/programs.h). */
     struct {
         const struct model_info *model;
         cl_program program;
-    } user[MODELS_MAX_USER];
+    } user[TP_MAX_MODELS];
     int user_count;
 };
 
