@@ -121,9 +121,12 @@ static inline int syn_write(const char *path, const struct syn_material *m, cons
         memcpy(dims, d->dims, sizeof dims);
     for (int i = 0; i < 3; ++i)
         syn_put_le(buf + 4 * i, (uint32_t)dims[i], 4);
-    for (int c = 0; c < 3; ++c)
-        for (long idx = 0; idx < SYN_CELLS; ++idx) {
-            double v = d->all_negative ? -1.0 : syn_stored(m, c, idx);
+    for (long idx = 0; idx < SYN_CELLS; ++idx) {
+        double value = syn_value(m, idx);   /* once per cell: the channels differ only in scale */
+        for (int c = 0; c < 3; ++c) {
+            double v = m->kind == SYN_PATTERN ? value + c / 8.0 : value / syn_scale[c];
+            if (d->all_negative)
+                v = -1.0;
             int th = (int)(idx / (90 * 180));
             if (c == 1 && th >= d->neg_th_lo && th < d->neg_th_hi)
                 v = -1.0;
@@ -135,6 +138,7 @@ static inline int syn_write(const char *path, const struct syn_material *m, cons
             memcpy(&u, &v, sizeof u);
             syn_put_le(buf + 12 + ((size_t)c * SYN_CELLS + (size_t)idx) * 8, u, 8);
         }
+    }
     size_t len = (size_t)((long)size - d->trim);
     FILE *f = fopen(path, "wb");
     int ok = f && fwrite(buf, 1, len, f) == len;
