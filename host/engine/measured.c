@@ -175,65 +175,69 @@ static void linear_start(const struct fit_data *d, const double *b, double *ks, 
         *kd = floor_value;
 }
 
-/* The starting point of a fit: a grid over n (Blinn-Phong) or alpha and F0 (Cook-Torrance),
- * (ks, kd) by linear_start at each, the one of least cost. */
-static void fit_start(const struct fit_data *d, double *x)
+/* The starting points of a fit: a grid over n (Blinn-Phong: the best one) or over alpha for
+ * each of three F0 (Cook-Torrance: the best alpha of each F0, since the fit cannot cross the
+ * flat ends of the logit in F0), (ks, kd) by linear_start at each. Returns the number of starts. */
+#define FIT_MAX_STARTS 3
+static int fit_starts(const struct fit_data *d, double x[FIT_MAX_STARTS][4])
 {
     double *b = malloc((size_t)d->count * sizeof *b);
-    double best = INFINITY;
+    memset(x, 0, sizeof(double) * FIT_MAX_STARTS * 4);
     if (!b) {
-        x[0] = d->model == MFIT_BLINN ? log(100.0) : log(0.2);
-        x[1] = 0;
-        x[2] = 0;
-        x[3] = 0;
-        return;
+        x[0][0] = d->model == MFIT_BLINN ? log(100.0) : log(0.2);
+        return 1;
     }
     if (d->model == MFIT_BLINN) {
+        double best = INFINITY;
         for (int gi = 0; gi <= 40; ++gi) {
             double n = pow(10.0, 5.0 * gi / 40.0);   /* 1 .. 1e5 */
             for (long i = 0; i < d->count; ++i)
                 b[i] = pow(fmax(d->cells[d->pick[i]].ch, 0.0), n);
             double ks, kd;
             linear_start(d, b, &ks, &kd);
-            double t[3] = { log(n), log(ks), log(kd) };
+            double t[4] = { log(n), log(ks), log(kd), 0 };
             double c = cost_of(d, t);
             if (c < best) {
                 best = c;
-                memcpy(x, t, sizeof t);
+                memcpy(x[0], t, sizeof t);
             }
         }
-    } else {
-        static const double f0s[] = { 0.04, 0.3, 0.9 };
-        int id = d->model == MFIT_CT_BECKMANN ? BRDF_CT_BECKMANN : BRDF_CT_GGX;
+        free(b);
+        return 1;
+    }
+    static const double f0s[FIT_MAX_STARTS] = { 0.04, 0.3, 0.9 };
+    int id = d->model == MFIT_CT_BECKMANN ? BRDF_CT_BECKMANN : BRDF_CT_GGX;
+    for (int fi = 0; fi < FIT_MAX_STARTS; ++fi) {
+        double best = INFINITY;
         for (int gi = 0; gi <= 24; ++gi) {
             double alpha = pow(10.0, -2.5 + 2.5 * gi / 24.0);   /* 0.003 .. 1 */
-            for (int fi = 0; fi < 3; ++fi) {
-                for (long i = 0; i < d->count; ++i) {
-                    const struct cell_geo *g = &d->cells[d->pick[i]];
-                    b[i] = brdf_pb_eval_h(id, g->nl, g->nv, g->lv, g->ch, g->vh, alpha_to_n(alpha), f0s[fi], 0.0, 1.0);
-                }
-                double ks, kd;
-                linear_start(d, b, &ks, &kd);
-                double t[4] = { log(alpha), log(f0s[fi] / (1 - f0s[fi])), log(ks), log(kd) };
-                double c = cost_of(d, t);
-                if (c < best) {
-                    best = c;
-                    memcpy(x, t, sizeof t);
-                }
+            for (long i = 0; i < d->count; ++i) {
+                const struct cell_geo *g = &d->cells[d->pick[i]];
+                b[i] = brdf_pb_eval_h(id, g->nl, g->nv, g->lv, g->ch, g->vh, alpha_to_n(alpha), f0s[fi], 0.0, 1.0);
+            }
+            double ks, kd;
+            linear_start(d, b, &ks, &kd);
+            double t[4] = { log(alpha), log(f0s[fi] / (1 - f0s[fi])), log(ks), log(kd) };
+            double c = cost_of(d, t);
+            if (c < best) {
+                best = c;
+                memcpy(x[fi], t, sizeof t);
             }
         }
     }
     free(b);
+    return FIT_MAX_STARTS;
 }
 
 /* Fits model d->model by gsl_multifit_nlinear (Levenberg-Marquardt on the trust-region
- * driver, finite-difference Jacobian) from fit_start. */
+ * driver, finite-difference Jacobian) from each of fit_starts; the fit of least cost is kept. */
 static void fit_run(const struct fit_data *d, struct measured_fit *out)
 {
     size_t p = d->model == MFIT_BLINN ? 3 : 4;
-    double x0[4] = { 0, 0, 0, 0 };
-    fit_start(d, x0);
+    double starts[FIT_MAX_STARTS][4];
+    int nstarts = fit_starts(d, starts);
     memset(out, 0, sizeof *out);
+    out->rms_fit = INFINITY;
     gsl_error_handler_t *old = gsl_set_error_handler_off();
     gsl_multifit_nlinear_fdf fdf;
     memset(&fdf, 0, sizeof fdf);
@@ -249,25 +253,31 @@ static void fit_run(const struct fit_data *d, struct measured_fit *out)
         gsl_set_error_handler(old);
         return;
     }
-    gsl_vector_view xv = gsl_vector_view_array(x0, p);
-    int info = 0;
-    int status = gsl_multifit_nlinear_init(&xv.vector, &fdf, w);
-    if (status == GSL_SUCCESS)
-        status = gsl_multifit_nlinear_driver(400, 1e-12, 1e-12, 1e-14, NULL, NULL, &info, w);
-    double x[4] = { 0, 0, 0, 0 };
-    gsl_vector *xs = gsl_multifit_nlinear_position(w);
-    for (size_t i = 0; i < p; ++i)
-        x[i] = gsl_vector_get(xs, i);
-    out->iterations = (int)gsl_multifit_nlinear_niter(w);
-    /* GSL_EMAXITER and GSL_ENOPROG leave the best point found so far: kept, with the reason */
-    out->ok = status == GSL_SUCCESS;
-    if (!out->ok)
-        snprintf(out->reason, sizeof out->reason, "gsl_multifit_nlinear_driver: %s after %d iterations",
-                 gsl_strerror(status), out->iterations);
+    for (int st = 0; st < nstarts; ++st) {
+        gsl_vector_view xv = gsl_vector_view_array(starts[st], p);
+        int info = 0;
+        int status = gsl_multifit_nlinear_init(&xv.vector, &fdf, w);
+        if (status == GSL_SUCCESS)
+            status = gsl_multifit_nlinear_driver(400, 1e-12, 1e-12, 1e-14, NULL, NULL, &info, w);
+        double x[4] = { 0, 0, 0, 0 };
+        gsl_vector *xs = gsl_multifit_nlinear_position(w);
+        for (size_t i = 0; i < p; ++i)
+            x[i] = gsl_vector_get(xs, i);
+        double rms = sqrt(cost_of(d, x) / (double)d->count);
+        if (!(rms < out->rms_fit))
+            continue;
+        out->rms_fit = rms;
+        out->iterations = (int)gsl_multifit_nlinear_niter(w);
+        /* GSL_EMAXITER and GSL_ENOPROG leave the best point found so far: kept, with the reason */
+        out->ok = status == GSL_SUCCESS;
+        out->reason[0] = '\0';
+        if (!out->ok)
+            snprintf(out->reason, sizeof out->reason, "gsl_multifit_nlinear_driver: %s after %d iterations",
+                     gsl_strerror(status), out->iterations);
+        unpack(d->model, x, &out->n, &out->f0, &out->ks, &out->kd, &out->alpha);
+    }
     gsl_multifit_nlinear_free(w);
     gsl_set_error_handler(old);
-    unpack(d->model, x, &out->n, &out->f0, &out->ks, &out->kd, &out->alpha);
-    out->rms_fit = sqrt(cost_of(d, x) / (double)d->count);
 }
 
 /* The fit's cells: an even stride through the used cells, the stride made prime to 180 (phi_d's
