@@ -10,6 +10,7 @@
 #include "check.h"
 #include "measured.h"
 #include "merl.h"
+#include "lobe_formulas.h"
 #include "merl_synth.h"
 #include "testutil.h"
 
@@ -73,6 +74,38 @@ static void test_blinn(void)
     for (int l = 0; l < r.nlobes; ++l)
         CHECK(isfinite(r.lobes[l].err_measured) && isfinite(r.lobes[l].err_phong), "lobe %s: errors %g %g",
               r.lobes[l].spec.label, r.lobes[l].err_measured, r.lobes[l].err_phong);
+    /* fq2's and sg's errors against the material written out again from the metric's definition
+     * (docs/measured.md) and tests/lobe_formulas.h: used cells are those outside the negative
+     * block with L and V above the surface; r = ln(1 + N.L (ks f + kd)) - ln(1 + N.L Y) */
+    static const char *const again[] = { "fq2", "sg" };
+    for (int a = 0; a < 2; ++a) {
+        double sum = 0;
+        long used = 0;
+        for (long idx = 0; idx < SYN_CELLS; ++idx) {
+            int th_i = (int)(idx / (90 * 180));
+            double L[3], V[3];
+            syn_cell_dirs(idx, L, V);
+            if ((th_i >= 70 && th_i < 73) || !(L[2] > 0 && V[2] > 0))
+                continue;
+            double h[3] = { L[0] + V[0], L[1] + V[1], L[2] + V[2] };
+            double c = h[2] / sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            double lobe = lf_eval(again[a], c, 1 - c, 64, 0, 0);
+            double rr = log1p(L[2] * (2.5 * lobe + 0.08)) - log1p(L[2] * syn_value(&m, idx));
+            sum += rr * rr;
+            ++used;
+        }
+        double want = sqrt(sum / used);
+        int found = 0;
+        for (int l = 0; l < r.nlobes; ++l)
+            if (strcmp(r.lobes[l].spec.label, again[a]) == 0) {
+                found = 1;
+                /* the fit's n, ks, kd agree with 64, 2.5, 0.08 to about 1e-15: far below this tolerance */
+                CHECK(fabs(r.lobes[l].err_measured / want - 1) < 1e-6, "%s: err_measured %.9g, written again %.9g",
+                      again[a], r.lobes[l].err_measured, want);
+            }
+        CHECK(found, "lobe %s not measured", again[a]);
+        CHECK(used == r.used_cells, "used cells %ld, written again %ld", r.used_cells, used);
+    }
     /* the slice at theta_d = 0: the unmeasured theta_h cells 70..72 are NaN, the rest is the material */
     const struct measured_slice *s = &r.slice[0];
     CHECK(isnan(s->measured[70]) && isnan(s->measured[72]) && !isnan(s->measured[69]) && !isnan(s->measured[73]),

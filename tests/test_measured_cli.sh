@@ -56,5 +56,26 @@ expect 2 'empty: no \.binary files in the folder' measured "$T/empty"
 expect 2 '--fit-cells' measured "$T/mats" --fit-cells 5
 expect 2 "unknown model 'nope'" measured "$T/mats" --models nope
 
+# gates: a lobe's error against a measured material (docs/gates.md). The Blinn-Phong material is
+# the lobe blinn exactly (error 0 up to rounding); fq2 differs from c^64 (its max Delta is 0.128),
+# so its error against the material is not 0.
+cat >"$T/gates.json" <<JSON
+{"gates": [
+  {"model": "blinn", "metric": "measured.rms", "measured": "mats/blinn64.binary", "max": 1e-9},
+  {"model": "fq2", "metric": "measured.rms", "measured": "mats/blinn64.binary", "max": 1e-9}
+]}
+JSON
+"$BIN" gate "$T/gates.json" --json "$T/gate.json" >"$T/gate.out" 2>"$T/gate.err"
+rc=$?
+[ "$rc" -eq 1 ] && ok || bad "gate exit $rc, expected 1 (fq2 fails): $(head -c 400 "$T/gate.err")"
+grep -qE '^PASS .*blinn measured\.rms' "$T/gate.out" && ok || bad "blinn's gate did not pass: $(cat "$T/gate.out")"
+grep -qE '^FAIL .*fq2 measured\.rms' "$T/gate.out" && ok || bad "fq2's gate did not fail: $(cat "$T/gate.out")"
+printf '{"gates": [{"model": "fq2", "metric": "measured.rms", "max": 1}]}' >"$T/g_nofile.json"
+expect 2 'g_nofile\.json:1:[0-9]+: gate 1: measured\.rms needs "measured"' gate "$T/g_nofile.json"
+printf '{"gates": [{"model": "fq2", "metric": "whole.max_abs", "measured": "x.binary", "max": 1}]}' >"$T/g_other.json"
+expect 2 'gate 1: "measured" is read only by the metric measured\.rms' gate "$T/g_other.json"
+printf '{"gates": [{"model": "fq2", "metric": "measured.rms", "measured": "dims.binary", "max": 1}]}' >"$T/g_bad.json"
+expect 2 'dims\.binary: dimensions 90 90 360' gate "$T/g_bad.json"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

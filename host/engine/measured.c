@@ -394,6 +394,12 @@ int measured_material_run(struct cl_session *s, const struct merl_material *mat,
     }
     out->fit_cells = npick;
     for (int k = 0; k < MFIT_COUNT; ++k) {
+        if (k != MFIT_BLINN && o->skip_physical) {
+            struct measured_fit *f = &out->fit[k];
+            f->n = f->ks = f->kd = f->alpha = f->f0 = f->rms = f->rms_fit = NAN;
+            snprintf(f->reason, sizeof f->reason, "not run");
+            continue;
+        }
         struct fit_data d = { cells, pick, npick, k };
         fit_run(&d, &out->fit[k]);
         double sum = 0;

@@ -37,6 +37,7 @@ extern const char *const measured_fit_name[MFIT_COUNT];   /* "blinn-phong", "ct-
 
 struct measured_options {
     long fit_cells;                       /* at most this many cells in a fit */
+    int skip_physical;                    /* 1: no Cook-Torrance fits (their entries NaN, "not run") */
     int nlobes;
     struct model_spec lobes[MEASURED_MAX_LOBES];
     int quiet;

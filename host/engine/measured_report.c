@@ -31,7 +31,7 @@ void measured_file_name(const char *name, char *out, size_t len)
 static void jw_fit(struct jw *w, const char *key, const struct measured_fit *f, int physical)
 {
     jw_kv_obj(w, key);
-    jw_kv_str(w, "status", f->ok ? "ok" : "not converged");
+    jw_kv_str(w, "status", f->ok ? "ok" : strcmp(f->reason, "not run") == 0 ? "not run" : "not converged");
     if (!f->ok)
         jw_kv_str(w, "reason", f->reason);
     if (physical) {
