@@ -221,6 +221,7 @@ t 2 "^brdfbench measured: --fit-cells: '10' is not an integer in \[100, 1458000\
 t 2 "^brdfbench measured: empty\.binary: short file: 0 bytes, a MERL file starts with three 32-bit dimensions" measured empty.binary --out run
 t 2 "^brdfbench measured: dims360\.binary: dimensions 90 90 360 \(expected 90 90 180, product 1458000\)" measured dims360.binary --out run
 t 2 "^brdfbench measured: headonly\.binary: size 12 bytes, 34992000 short of the 34992012 that dimensions 90 90 180 need" measured headonly.binary --out run
+t 2 "^brdfbench all: --measured: nothere: No such file or directory" all --quick --measured nothere --out run
 t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
 
 # accuracy and gate: the n range (float n; below 0.1 no float grid resolves the lobe) and the

@@ -8,7 +8,9 @@
  *     below around the alpha-to-n mapping n = 2/alpha^2 - 2 = 48;
  *   - a block of negative cells is excluded and counted. */
 #include "check.h"
+#include "mdbuf.h"
 #include "measured.h"
+#include "measured_report.h"
 #include "merl.h"
 #include "lobe_formulas.h"
 #include "merl_synth.h"
@@ -153,6 +155,16 @@ static void test_ggx(void)
           2 * n_map);
     /* the Cook-Torrance fit that is the material beats Blinn-Phong's by far */
     CHECK(g->rms < bp->rms * 1e-3, "ct-ggx rms %g against blinn-phong %g", g->rms, bp->rms);
+    /* report.md's section (all --measured): the material, its fits and its pictures */
+    struct measured_report rep = { .count = 1, .materials = &r };
+    struct md_buf md;
+    md_init(&md);
+    measured_markdown(&md, &rep);
+    CHECK(md.s && strstr(md.s, "### ggx02\n") && strstr(md.s, "| ct-ggx | alpha = 0.2, F0 = 0.3, ks = 1.5, kd = 0.05 |") &&
+              strstr(md.s, "(measured_slice_ggx02.png)") && strstr(md.s, "(measured_errors_ggx02.png)") &&
+              strstr(md.s, "| fq2 | "),
+          "report section:\n%s", md.s ? md.s : "(none)");
+    md_free(&md);
     merl_free(&t);
 }
 

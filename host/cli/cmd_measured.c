@@ -10,88 +10,8 @@
 #include "merl.h"
 #include "outdir.h"
 
-#include <dirent.h>
-#include <errno.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-
-struct path_list {
-    char **paths;
-    int count, cap;
-};
-
-static int path_add(struct path_list *l, const char *path)
-{
-    if (l->count >= MEASURED_MAX_MATERIALS)
-        return -1;
-    if (l->count == l->cap) {
-        int cap = l->cap ? 2 * l->cap : 16;
-        char **p = realloc(l->paths, (size_t)cap * sizeof *p);
-        if (!p)
-            return -1;
-        l->paths = p;
-        l->cap = cap;
-    }
-    l->paths[l->count] = strdup(path);
-    if (!l->paths[l->count])
-        return -1;
-    l->count++;
-    return 0;
-}
-
-static void path_list_free(struct path_list *l)
-{
-    for (int i = 0; i < l->count; ++i)
-        free(l->paths[i]);
-    free(l->paths);
-    memset(l, 0, sizeof *l);
-}
-
-static int binary_entry(const struct dirent *e)
-{
-    size_t n = strlen(e->d_name);
-    return e->d_name[0] != '.' && n > 7 && strcmp(e->d_name + n - 7, ".binary") == 0;
-}
-
-/* A FILE, or every *.binary of a DIR in name order. Returns 0 or EXIT_USAGE with a message. */
-static int collect(const char *arg, struct path_list *l, char *err, size_t errlen)
-{
-    struct stat st;
-    if (stat(arg, &st) != 0) {
-        snprintf(err, errlen, "%s: %s (expected a MERL .binary file or a folder of them)", arg, strerror(errno));
-        return EXIT_USAGE;
-    }
-    if (!S_ISDIR(st.st_mode)) {
-        if (path_add(l, arg)) {
-            snprintf(err, errlen, "%s: at most %d materials per run", arg, MEASURED_MAX_MATERIALS);
-            return EXIT_USAGE;
-        }
-        return 0;
-    }
-    struct dirent **list = NULL;
-    int n = scandir(arg, &list, binary_entry, alphasort);
-    if (n < 0) {
-        snprintf(err, errlen, "%s: cannot read the folder: %s", arg, strerror(errno));
-        return EXIT_USAGE;
-    }
-    int rc = 0;
-    if (n == 0) {
-        snprintf(err, errlen, "%s: no .binary files in the folder (expected MERL files named NAME.binary)", arg);
-        rc = EXIT_USAGE;
-    }
-    for (int i = 0; i < n; ++i) {
-        char path[OUTDIR_PATH_MAX];
-        if (!rc && (path_join(path, sizeof path, arg, list[i]->d_name) || path_add(l, path))) {
-            snprintf(err, errlen, "%s: at most %d materials per run", arg, MEASURED_MAX_MATERIALS);
-            rc = EXIT_USAGE;
-        }
-        free(list[i]);
-    }
-    free(list);
-    return rc;
-}
 
 int cmd_measured(int argc, char **argv)
 {
@@ -142,45 +62,28 @@ int cmd_measured(int argc, char **argv)
             return cli_parse_exit(&cmd, EXIT_USAGE, err);
         opt.nlobes = n;
     }
-    struct path_list files = { 0 };
+    char **files = NULL;
+    int nfiles = 0;
     for (int i = 0; i < args.npositional; ++i)
-        if (collect(args.positional[i], &files, err, sizeof err)) {
-            path_list_free(&files);
+        if (measured_collect(args.positional[i], &files, &nfiles, err, sizeof err)) {
+            measured_paths_free(files, nfiles);
             return cli_parse_exit(&cmd, EXIT_USAGE, err);
         }
     opt.quiet = quiet;
 
-    struct measured_report rep = { .opt = opt, .count = 0 };
-    rep.materials = calloc((size_t)files.count, sizeof *rep.materials);
-    if (!rep.materials) {
-        fprintf(stderr, "brdfbench measured: out of memory\n");
-        path_list_free(&files);
-        return EXIT_RUNTIME;
-    }
     struct cl_session s;
     char run_dir[4096], tmp_dir[512];
     int rc = cli_run_open("measured", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
                           sizeof tmp_dir);
     if (rc) {
-        free(rep.materials);
-        path_list_free(&files);
+        measured_paths_free(files, nfiles);
         return rc;
     }
     int table_quiet = quiet || cli_is_stdout(json_path);
-    for (int i = 0; i < files.count && !rc; ++i) {
-        struct merl_material mat;
-        rc = merl_read(files.paths[i], &mat, err, sizeof err);
-        if (rc) {
-            fprintf(stderr, "brdfbench measured: %s\n", err);
-            break;
-        }
-        if (!table_quiet)
-            fprintf(stderr, "measured: %s (%d of %d)\n", mat.name, i + 1, files.count);
-        rc = measured_material_run(&s, &mat, &opt, &rep.materials[rep.count]);
-        merl_free(&mat);
-        if (!rc)
-            rep.count++;
-    }
+    struct measured_report rep;
+    rc = measured_run(&s, files, nfiles, &opt, table_quiet ? NULL : stderr, &rep, err, sizeof err);
+    if (rc && err[0])
+        fprintf(stderr, "brdfbench measured: %s\n", err);
     char path[4300];
     if (!rc) {
         path_join(path, sizeof path, run_dir, "measured.json");
@@ -205,7 +108,7 @@ int cmd_measured(int argc, char **argv)
             printf("written: %s\n", json_path);
     }
     clsession_close(&s);
-    free(rep.materials);
-    path_list_free(&files);
+    measured_report_free(&rep);
+    measured_paths_free(files, nfiles);
     return rc;
 }

@@ -4,7 +4,12 @@
 #include "measured.h"
 
 #include "exitcodes.h"
+#include "outdir.h"
 #include "programs.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <sys/stat.h>
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
@@ -465,4 +470,108 @@ int measured_material_run(struct cl_session *s, const struct merl_material *mat,
     free(pick);
     free(cells);
     return s ? device_check(s, mat, out) : 0;
+}
+
+/* ---- a run over files ---------------------------------------------------------------------- */
+
+static int path_add(char ***paths, int *count, const char *path)
+{
+    if (*count >= MEASURED_MAX_MATERIALS)
+        return -1;
+    char **p = realloc(*paths, (size_t)(*count + 1) * sizeof *p);
+    if (!p)
+        return -1;
+    *paths = p;
+    p[*count] = strdup(path);
+    if (!p[*count])
+        return -1;
+    ++*count;
+    return 0;
+}
+
+void measured_paths_free(char **paths, int count)
+{
+    for (int i = 0; i < count; ++i)
+        free(paths[i]);
+    free(paths);
+}
+
+static int binary_entry(const struct dirent *e)
+{
+    size_t n = strlen(e->d_name);
+    return e->d_name[0] != '.' && n > 7 && strcmp(e->d_name + n - 7, ".binary") == 0;
+}
+
+int measured_collect(const char *arg, char ***paths, int *count, char *err, size_t errlen)
+{
+    struct stat st;
+    if (stat(arg, &st) != 0) {
+        snprintf(err, errlen, "%s: %s (expected a MERL .binary file or a folder of them)", arg, strerror(errno));
+        return EXIT_USAGE;
+    }
+    if (!S_ISDIR(st.st_mode)) {
+        if (path_add(paths, count, arg)) {
+            snprintf(err, errlen, "%s: at most %d materials per run", arg, MEASURED_MAX_MATERIALS);
+            return EXIT_USAGE;
+        }
+        return 0;
+    }
+    struct dirent **list = NULL;
+    int n = scandir(arg, &list, binary_entry, alphasort);
+    if (n < 0) {
+        snprintf(err, errlen, "%s: cannot read the folder: %s", arg, strerror(errno));
+        return EXIT_USAGE;
+    }
+    int rc = 0;
+    if (n == 0) {
+        snprintf(err, errlen, "%s: no .binary files in the folder (expected MERL files named NAME.binary)", arg);
+        rc = EXIT_USAGE;
+    }
+    for (int i = 0; i < n; ++i) {
+        char path[OUTDIR_PATH_MAX];
+        if (!rc && (path_join(path, sizeof path, arg, list[i]->d_name) || path_add(paths, count, path))) {
+            snprintf(err, errlen, "%s: at most %d materials per run", arg, MEASURED_MAX_MATERIALS);
+            rc = EXIT_USAGE;
+        }
+        free(list[i]);
+    }
+    free(list);
+    return rc;
+}
+
+int measured_run(struct cl_session *s, char *const *paths, int count, const struct measured_options *o,
+                 FILE *progress, struct measured_report *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    out->opt = *o;
+    out->materials = calloc((size_t)(count > 0 ? count : 1), sizeof *out->materials);
+    if (!out->materials) {
+        snprintf(err, errlen, "out of memory");
+        return EXIT_RUNTIME;
+    }
+    int rc = 0;
+    for (int i = 0; i < count && !rc; ++i) {
+        struct merl_material mat;
+        rc = merl_read(paths[i], &mat, err, errlen);
+        if (rc)
+            break;
+        if (progress)
+            fprintf(progress, "measured: %s (%d of %d)\n", mat.name, i + 1, count);
+        rc = measured_material_run(s, &mat, o, &out->materials[out->count]);
+        merl_free(&mat);
+        if (rc)
+            err[0] = '\0';   /* measured_material_run has said why on stderr */
+        else
+            out->count++;
+    }
+    if (rc)
+        out->count = 0;
+    return rc;
+}
+
+void measured_report_free(struct measured_report *r)
+{
+    free(r->materials);
+    r->materials = NULL;
+    r->count = 0;
 }

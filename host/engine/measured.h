@@ -15,6 +15,8 @@
 #ifndef BRDF_MEASURED_H
 #define BRDF_MEASURED_H
 
+#include <stdio.h>
+
 #include "clsession.h"
 #include "merl.h"
 #include "models.h"
@@ -89,6 +91,27 @@ int measured_default_lobes(struct model_spec *out, int max);
 /* Fits and measures one material read by merl_read. Returns 0 or an exit code. */
 int measured_material_run(struct cl_session *s, const struct merl_material *mat, const struct measured_options *o,
                           struct measured_material *out);
+
+/* The materials of a run. */
+struct measured_report {
+    struct measured_options opt;
+    int count;
+    struct measured_material *materials;
+};
+
+/* Appends to *paths (count *count, malloc'd strings) arg itself, or when arg is a folder its
+ * *.binary files in name order. Returns 0 or EXIT_USAGE with a message (arg missing, a folder
+ * without .binary files, more than MEASURED_MAX_MATERIALS). */
+int measured_collect(const char *arg, char ***paths, int *count, char *err, size_t errlen);
+void measured_paths_free(char **paths, int count);
+
+/* Reads and measures each file in turn (one table in memory at a time) into out (its
+ * materials allocated here; measured_report_free). progress (may be NULL) gets a line per
+ * material. Returns 0, EXIT_USAGE with the reader's message in err when a file is malformed
+ * (out then holds nothing), or an exit code (err empty when the message is already on stderr). */
+int measured_run(struct cl_session *s, char *const *paths, int count, const struct measured_options *o,
+                 FILE *progress, struct measured_report *out, char *err, size_t errlen);
+void measured_report_free(struct measured_report *r);
 
 /* The value of fitted model k at a cell's L, V (N = z), in sr^-1. */
 double measured_fit_value(const struct measured_fit *f, int k, const double L[3], const double V[3]);

@@ -219,3 +219,36 @@ int measured_write_plots(const char *dir, const struct measured_report *r, char 
             return -1;
     return 0;
 }
+
+void measured_markdown(struct md_buf *md, const struct measured_report *r)
+{
+    md_printf(md, "Each material's Blinn-Phong fit `ks cos(theta_h)^n + kd` and Cook-Torrance fits (alpha, F0, ks, "
+                  "kd), by least squares on luminance in r = ln(1 + cos(theta_i) f) - ln(1 + cos(theta_i) Y) over its "
+                  "measured cells; then every cheap lobe at the fitted n, scaled the same way: its RMS error against "
+                  "the material, against the fitted Blinn-Phong, and the ratio (docs/measured.md; data in "
+                  "`measured.json`).\n\n");
+    for (int i = 0; i < r->count; ++i) {
+        const struct measured_material *m = &r->materials[i];
+        const struct measured_fit *bp = &m->fit[MFIT_BLINN], *be = &m->fit[MFIT_CT_BECKMANN],
+                                  *gg = &m->fit[MFIT_CT_GGX];
+        md_printf(md, "### %s\n\n%ld cells used (%ld unmeasured, %ld below the surface); device lookup %s.\n\n",
+                  m->name, m->used_cells, m->unmeasured, m->below_horizon,
+                  m->device_points == 0 ? "not run" : m->device_ok ? "ok at every cell" : "**disagrees**");
+        md_printf(md, "| fit | parameters | RMS error |\n|---|---|---|\n");
+        md_printf(md, "| blinn-phong | n = %.5g, ks = %.5g, kd = %.5g | %.4g |\n", bp->n, bp->ks, bp->kd, bp->rms);
+        md_printf(md, "| ct-beckmann | alpha = %.5g, F0 = %.4g, ks = %.5g, kd = %.5g | %.4g |\n", be->alpha, be->f0,
+                  be->ks, be->kd, be->rms);
+        md_printf(md, "| ct-ggx | alpha = %.5g, F0 = %.4g, ks = %.5g, kd = %.5g | %.4g |\n\n", gg->alpha, gg->f0,
+                  gg->ks, gg->kd, gg->rms);
+        md_printf(md, "| lobe | error vs material | error vs Blinn-Phong | ratio |\n|---|---|---|---|\n");
+        for (int l = 0; l < m->nlobes; ++l) {
+            const struct measured_lobe *lb = &m->lobes[l];
+            md_printf(md, "| %s | %.5g | %.5g | %.4g |\n", lb->spec.label, lb->err_measured, lb->err_phong, lb->ratio);
+        }
+        char fname[300];
+        measured_file_name(m->name, fname, sizeof fname);
+        md_printf(md, "\n![%s: each lobe's error against the material and against Blinn-Phong](measured_errors_%s.png)"
+                      "\n\n![%s: the measured slice with the fitted curves](measured_slice_%s.png)\n\n",
+                  m->name, fname, m->name, fname);
+    }
+}
