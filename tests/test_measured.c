@@ -117,20 +117,19 @@ static void test_blinn(void)
     merl_free(&t);
 }
 
-/* Where Blinn-Phong's best n should fall for the GGX material, derived from small-angle
- * expansions (theta = theta_h):
+/* Where Blinn-Phong's best n should fall for the GGX material, from small-angle expansions in
+ * theta = theta_h:
  *   cos^n theta = exp(-n theta^2/2 + ...);
  *   GGX D = a^2 / (pi (a^2 cos^2 + sin^2)^2) = (1/(pi a^2)) (1 + theta^2 (1 - a^2)/a^2 + ...)^-2
  *         = (1/(pi a^2)) exp(-2 theta^2 (1 - a^2)/a^2 + ...),
- * so the two agree in curvature at the peak for n = 4/a^2 - 4 (96 at a = 0.2); GGX's tails fall
+ * so the two agree in curvature at the peak for n = 4/a^2 - 4 (96 at a = 0.2). GGX's tails fall
  * like theta^-4, slower than any exp(-n theta^2/2), so a fit over the whole lobe trades peak
- * curvature for tail and lands below that. The lower end: the n whose half-width at half maximum
- * matches GGX's, (1 + t^2/a^2)^-2 = 1/2 at t^2 = a^2 (sqrt 2 - 1) against n t^2/2 = ln 2:
- * n = 2 ln 2 / (a^2 (sqrt 2 - 1)) = 83.7 at a = 0.2, would be the fit of the peak alone; the
- * heavier tails pull the fit lower still. The mapping brdfbench uses, n = 2/a^2 - 2 = 48, is
- * where alpha(n) = sqrt(2/(n+2)) comes from (Beckmann's curvature, n = 2/a^2 - 4 = 46, with the
- * normalisation's + 2). The test accepts n within a factor 2 of the mapping on either side,
- * [24, 96]: the upper end is the curvature match above, and the interval is symmetric in ln n. */
+ * curvature for tail and lands below that: 96 is the upper end. The mapping brdfbench uses,
+ * n = 2/a^2 - 2 = 48 (alpha(n) = sqrt(2/(n+2)), Beckmann's peak curvature 2/a^2 - 4 with the
+ * normalisation's + 2), is half of it; the test accepts [n_map/2, 2 n_map] = [24, 96], the
+ * upper end being the curvature match and the interval symmetric about the mapping in ln n.
+ * (Matching the half-width at half maximum instead, (1 + t^2/a^2)^-2 = 1/2 at t^2 = a^2 (sqrt 2
+ * - 1) against n t^2/2 = ln 2, gives n = 2 ln 2 / (a^2 (sqrt 2 - 1)) = 83.7, inside it.) */
 static void test_ggx(void)
 {
     const double alpha = 0.2, f0 = 0.3, ks = 1.5, kd = 0.05;

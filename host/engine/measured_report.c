@@ -108,6 +108,7 @@ int measured_write_json(const char *path, const struct measured_report *r, const
         jw_obj_end(&w);
         jw_kv_obj(&w, "slices");
         jw_kv_num(&w, "phi_d_deg", (MEASURED_SLICE_PD + 0.5) * 180.0 / MERL_PD);
+        jw_kv_str(&w, "null", "a cell not measured, or with L or V below the surface (a fit not run: every value)");
         jw_kv_nums(&w, "theta_h_deg", m->slice[0].theta_h_deg, MERL_TH);
         jw_kv_arr(&w, "theta_d");
         for (int sl = 0; sl < MEASURED_SLICES; ++sl) {
