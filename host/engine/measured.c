@@ -82,19 +82,6 @@ static double fit_value_geo(int k, double n, double f0, double ks, double kd, co
     return kd + ks * brdf_pb_eval_h(id, g->nl, g->nv, g->lv, g->ch, g->vh, n, f0, 0.0, 1.0);
 }
 
-double measured_fit_value(const struct measured_fit *f, int k, const double L[3], const double V[3])
-{
-    struct cell_geo g;
-    g.nl = L[2];
-    g.nv = V[2];
-    g.lv = L[0] * V[0] + L[1] * V[1] + L[2] * V[2];
-    double h[3] = { L[0] + V[0], L[1] + V[1], L[2] + V[2] };
-    double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    g.ch = h[2] / hl;
-    g.vh = (V[0] * h[0] + V[1] * h[1] + V[2] * h[2]) / hl;
-    return fit_value_geo(k, f->n, f->f0, f->ks, f->kd, &g);
-}
-
 /* The metric's residual of a model value f against the measured luminance y at a cell. */
 static double residual(double f, const struct cell_geo *g)
 {

@@ -113,7 +113,4 @@ int measured_run(struct cl_session *s, char *const *paths, int count, const stru
                  FILE *progress, struct measured_report *out, char *err, size_t errlen);
 void measured_report_free(struct measured_report *r);
 
-/* The value of fitted model k at a cell's L, V (N = z), in sr^-1. */
-double measured_fit_value(const struct measured_fit *f, int k, const double L[3], const double V[3]);
-
 #endif
