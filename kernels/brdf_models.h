@@ -699,4 +699,58 @@ BRDF_EVAL_FN REAL brdf_eval_s(int id, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
     return brdf_eval_cs(id, RC(1.0) - s, s, n, p0, p1);
 }
 
+
+/* ---- measured BRDFs: the MERL table (Matusik, Pfister, Brand, McMillan 2003; docs/measured.md) ---- */
+
+/* The table's dimensions (theta_h, theta_d, phi_d) and each channel's scale to sr^-1. */
+#define BRDF_MERL_TH 90
+#define BRDF_MERL_TD 90
+#define BRDF_MERL_PD 180
+#define BRDF_MERL_CELLS (BRDF_MERL_TH * BRDF_MERL_TD * BRDF_MERL_PD)
+#define BRDF_MERL_SCALE_R (1.0 / 1500.0)
+#define BRDF_MERL_SCALE_G (1.15 / 1500.0)
+#define BRDF_MERL_SCALE_B (1.66 / 1500.0)
+
+/* Rusinkiewicz's half/difference angles of unit L and V about N = z (tangent space):
+ * H = (L + V)/|L + V|, theta_h = angle(N, H), phi_h its azimuth; D = L rotated by -phi_h about N
+ * and then by -theta_h about the binormal y, theta_d = angle(N, D), phi_d its azimuth in
+ * (-pi, pi]. The polar angles come from atan2 of the sine and the cosine: acos of a float
+ * cosine has no digits left below theta ~ 3e-4, where the table's second theta_h cell starts
+ * (1.9e-4). At H = N the azimuth phi_h is 0 (atan2(0, 0) = 0). */
+BRDF_FN void brdf_merl_half_diff(RSCALAR lx, RSCALAR ly, RSCALAR lz, RSCALAR vx, RSCALAR vy, RSCALAR vz,
+                                 RSCALAR *theta_h, RSCALAR *theta_d, RSCALAR *phi_d)
+{
+    RSCALAR hx = lx + vx, hy = ly + vy, hz = lz + vz;
+    RSCALAR hxy = sqrt(hx * hx + hy * hy);
+    RSCALAR th = atan2(hxy, hz);
+    RSCALAR ph = atan2(hy, hx);
+    RSCALAR cp = cos(ph), sp = sin(ph), ct = cos(th), st = sin(th);
+    RSCALAR x1 = lx * cp + ly * sp, y1 = -lx * sp + ly * cp;   /* rotated by -phi_h about z */
+    RSCALAR x2 = x1 * ct - lz * st, z2 = x1 * st + lz * ct;    /* then by -theta_h about y */
+    *theta_h = th;
+    *theta_d = atan2(sqrt(x2 * x2 + y1 * y1), z2);
+    *phi_d = atan2(y1, x2);
+}
+
+/* The cell of (theta_h, theta_d, phi_d): theta_h_i = floor(90 sqrt(theta_h / (pi/2))),
+ * theta_d_i = floor(90 theta_d / (pi/2)), phi_d folded into [0, pi) by reciprocity (phi_d < 0:
+ * + pi) and phi_d_i = floor(180 phi_d / pi), each clamped to its range (a NaN angle reads as 0);
+ * the flat index phi_d_i + 180 (theta_d_i + 90 theta_h_i). No interpolation: the table's value is
+ * that of the cell holding the direction. */
+BRDF_FN int brdf_merl_index3(RSCALAR theta_h, RSCALAR theta_d, RSCALAR phi_d, int *ith, int *itd, int *ipd)
+{
+    if (phi_d < RC(0.0))
+        phi_d = phi_d + RC(BRDF_PI);
+    RSCALAR fh = floor(sqrt(fmax(theta_h, RC(0.0)) / RC(BRDF_PI / 2.0)) * RC(BRDF_MERL_TH));
+    RSCALAR fd = floor(theta_d / RC(BRDF_PI / 2.0) * RC(BRDF_MERL_TD));
+    RSCALAR fp = floor(phi_d / RC(BRDF_PI) * RC(BRDF_MERL_PD));
+    int i = (int)fmin(fmax(fh, RC(0.0)), RC(BRDF_MERL_TH - 1));
+    int j = (int)fmin(fmax(fd, RC(0.0)), RC(BRDF_MERL_TD - 1));
+    int k = (int)fmin(fmax(fp, RC(0.0)), RC(BRDF_MERL_PD - 1));
+    *ith = i;
+    *itd = j;
+    *ipd = k;
+    return k + BRDF_MERL_PD * (j + BRDF_MERL_TD * i);
+}
+
 #endif /* BRDF_MODELS_H */

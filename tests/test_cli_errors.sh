@@ -210,6 +210,18 @@ t 2 "^brdfbench compare: unknown option '--bogus' \(see brdfbench compare --help
 t 2 "^brdfbench compare: --alpha: '2' is not a finite number in \[1e-06, 0.5\]" compare a b --alpha 2
 t 2 "^brdfbench compare: --fail-if-slower: '-1' is not a finite number in \[0, 100\]" compare a b --fail-if-slower -1
 t 2 "^brdfbench compare: nothere: No such file or directory" compare nothere nothere --out run
+# measured (MERL files; the cases that need a whole 35 MB file are in test_measured_cli.sh)
+: >empty.binary
+printf '\x5a\x00\x00\x00\x5a\x00\x00\x00\x68\x01\x00\x00' >dims360.binary
+printf '\x5a\x00\x00\x00\x5a\x00\x00\x00\xb4\x00\x00\x00' >headonly.binary
+t 2 "^brdfbench measured: expected a MERL \.binary file or a folder of them" measured
+t 2 "^brdfbench measured: nothere\.binary: No such file or directory \(expected a MERL \.binary file or a folder of them\)" measured nothere.binary
+t 2 "^brdfbench measured: folder: no \.binary files in the folder" measured folder
+t 2 "^brdfbench measured: --fit-cells: '10' is not an integer in \[100, 1458000\]" measured empty.binary --fit-cells 10
+t 2 "^brdfbench measured: empty\.binary: short file: 0 bytes, a MERL file starts with three 32-bit dimensions" measured empty.binary --out run
+t 2 "^brdfbench measured: dims360\.binary: dimensions 90 90 360 \(expected 90 90 180, product 1458000\)" measured dims360.binary --out run
+t 2 "^brdfbench measured: headonly\.binary: size 12 bytes, 34992000 short of the 34992012 that dimensions 90 90 180 need" measured headonly.binary --out run
+t 2 "^brdfbench all: --measured: nothere: No such file or directory" all --quick --measured nothere --out run
 t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
 
 # accuracy and gate: the n range (float n; below 0.1 no float grid resolves the lobe) and the

@@ -13,6 +13,8 @@
 #include "field_report.h"
 #include "fit.h"
 #include "frontier.h"
+#include "measured.h"
+#include "measured_report.h"
 #include "outdir.h"
 #include "plots.h"
 #include "render.h"
@@ -31,7 +33,7 @@
 
 #define ALL_MAX_MODELS 64
 #define ALL_MAX_Q 256
-#define ALL_STEPS 10
+#define ALL_STEPS_BASE 10
 
 struct all_settings {
     int quick;
@@ -73,9 +75,15 @@ struct all_run {
     struct md_buf claims_md, fit_md, throughput_md, images_md;
     struct report_block frontier;
     char *frontier_md;
+    const char *measured_dir;      /* --measured DIR: the measured materials' section */
+    struct report_block measured;
+    struct md_buf measured_md;
 };
 
 /* ---- progress ------------------------------------------------------------------- */
+
+/* The steps of this run: one more with --measured. */
+static int all_steps(const struct all_run *r) { return ALL_STEPS_BASE + (r->measured_dir != NULL); }
 
 static double elapsed(const struct all_run *r) { return wall_seconds() - r->t0; }
 
@@ -104,7 +112,7 @@ static void step_done(struct all_run *r, const char *name, double started, const
     r->step++;
     if (!r->quiet) {
         if (r->tty) fprintf(stderr, "\r\033[K");
-        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, ALL_STEPS, name, msg,
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, all_steps(r), name, msg,
                 wall_seconds() - started);
     }
     md_printf(&r->steps, "%d. **%s**: %s (%.1f s)\n", r->step, name, msg, wall_seconds() - started);
@@ -143,7 +151,7 @@ static void part(struct all_run *r, const char *name, struct report_block *blk, 
     if (!r->part_rc || rc == EXIT_RUNTIME) r->part_rc = rc == EXIT_NO_DEVICE ? EXIT_RUNTIME : rc;
     r->step++;
     if (r->tty) fprintf(stderr, "\r\033[K");
-    fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", elapsed(r), r->step, ALL_STEPS, name, rc);
+    fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", elapsed(r), r->step, all_steps(r), name, rc);
     md_printf(&r->steps, "%d. **%s**: failed (exit %d)\n", r->step, name, rc);
 }
 
@@ -660,6 +668,40 @@ static int step_frontier(struct all_run *r)
     return 0;
 }
 
+/* The measured materials of --measured DIR (measured.h): measured.json, its pictures and a
+ * section of report.md. */
+static int step_measured(struct all_run *r)
+{
+    double t = wall_seconds();
+    char err[4600], path[4300];
+    char **files = NULL;
+    int nfiles = 0;
+    struct measured_options o;
+    measured_options_default(&o);
+    struct measured_report rep;
+    memset(&rep, 0, sizeof rep);
+    int rc = measured_collect(r->measured_dir, &files, &nfiles, err, sizeof err);
+    if (!rc) {
+        progress(r, "measured", 0, 1, "fitting");
+        rc = measured_run(&r->s, files, nfiles, &o, NULL, &rep, err, sizeof err);
+    }
+    if (!rc && (path_join(path, sizeof path, r->run_dir, "measured.json") ||
+                measured_write_json(path, &rep, &r->s, err, sizeof err) ||
+                measured_write_plots(r->run_dir, &rep, err, sizeof err)))
+        rc = EXIT_RUNTIME;
+    if (rc && err[0])
+        fprintf(stderr, "brdfbench all: --measured: %s\n", err);
+    if (!rc) {
+        md_init(&r->measured_md);
+        measured_markdown(&r->measured_md, &rep);
+        r->measured.markdown = r->measured_md.s;
+        step_done(r, "measured", t, "%d materials -> measured.json, measured_*.png", rep.count);
+    }
+    measured_report_free(&rep);
+    measured_paths_free(files, nfiles);
+    return rc;
+}
+
 static int step_report(struct all_run *r, double wall)
 {
     double t = wall_seconds();
@@ -683,6 +725,7 @@ static int step_report(struct all_run *r, double wall)
     in.throughput = r->throughput;
     in.images = r->images;
     in.frontier = r->frontier;
+    in.measured = r->measured;
     in.pictures = r->pics;
     in.npictures = r->npics;
     /* the step list closes with this step's own line, written before the page */
@@ -695,7 +738,7 @@ static int step_report(struct all_run *r, double wall)
     }
     r->step++;
     if (!r->quiet)
-        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, ALL_STEPS,
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, all_steps(r),
                 "report", r->run_dir, wall_seconds() - t);
     return 0;
 }
@@ -727,6 +770,7 @@ static void run_free(struct all_run *r)
     md_free(&r->throughput_md);
     md_free(&r->images_md);
     free(r->frontier_md);
+    md_free(&r->measured_md);
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
@@ -763,6 +807,9 @@ int cmd_all(int argc, char **argv)
         { .name = "--quick", .kind = CLI_SWITCH, .dest = &quick, .set = 1,
           .help = "coarse grids (seconds; for tests and trials, not for figures): n step 10, 256 samples" },
         CLI_FLAG_QUIET(&r->quiet),
+        { .name = "--measured", .value = "DIR", .kind = CLI_PATH, .dest = &r->measured_dir, .def = "",
+          .help = "also measure the cheap lobes against the MERL .binary files of DIR (or one file): "
+                  "measured.json and a section of report.md (docs/measured.md)" },
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };
@@ -796,6 +843,16 @@ int cmd_all(int argc, char **argv)
     if (strcmp(models_text, "all") == 0 && usermodel_append_all(r->models, &r->nmodels, ALL_MAX_MODELS, err, sizeof err))
         goto usage_error;
     if (accuracy_grid_check(&r->set.grid, NULL, err, sizeof err)) goto usage_error;
+    if (r->measured_dir) {   /* a missing folder fails before the long run, not after it */
+        char **files = NULL;
+        int nfiles = 0;
+        int bad = measured_collect(r->measured_dir, &files, &nfiles, err, sizeof err);
+        measured_paths_free(files, nfiles);
+        if (bad) {
+            fprintf(stderr, "brdfbench all: --measured: %s\n", err);
+            return EXIT_USAGE;
+        }
+    }
 
     int rc = clsession_open(&r->s, dev.platform, dev.device, err, sizeof err);
     if (rc) {
@@ -835,6 +892,8 @@ int cmd_all(int argc, char **argv)
     if ((rc = step_plots(r)) != 0) goto done;
     part(r, "images", &r->images, step_images(r));
     part(r, "frontier", &r->frontier, step_frontier(r));
+    if (r->measured_dir)
+        part(r, "measured", &r->measured, step_measured(r));
     if ((rc = step_report(r, elapsed(r))) != 0) goto done;
     if (r->part_failures) {
         fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);

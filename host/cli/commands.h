@@ -16,5 +16,6 @@ int cmd_version(int argc, char **argv);
 int cmd_frontier(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 /* more commands below, one per line */
+int cmd_measured(int argc, char **argv);
 
 #endif

@@ -29,6 +29,7 @@ static const struct command commands[] = {
     { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)" },
     /* more commands below, one per line */
     { "frontier", cmd_frontier, "cost against accuracy of every lobe approximation: the Pareto front, plots, which to ship" },
+    { "measured", cmd_measured, "measured materials (MERL files): Blinn-Phong and Cook-Torrance fits, every cheap lobe against them" },
 };
 
 static void usage(FILE *f)

@@ -5,6 +5,7 @@
 #include "energy.h"
 #include "exitcodes.h"
 #include "jsonr.h"
+#include "measured.h"
 #include "outdir.h"
 #include "programs.h"
 #include "usermodel.h"
@@ -28,12 +29,17 @@ static const struct {
     { "albedo.max", "max directional albedo over n and theta_i = 0, 5, ..., 85 degrees (normalised and "
                     "microfacet models; device quadrature of host/energy.h)" },
     { "invalid.count", "model values that were NaN, Inf or negative in the sweep" },
+    { "measured.rms", "the lobe's RMS error against the measured material of \"measured\" (a MERL file), at the "
+                      "Blinn-Phong fit's n and scale (brdfbench measured's err_measured)" },
 };
 
 const char *gate_metric_name(enum gate_metric m) { return metrics[m].name; }
 const char *gate_metric_meaning(enum gate_metric m) { return metrics[m].meaning; }
 
-static int metric_needs_sweep(enum gate_metric m) { return m != GATE_ENERGY_MAX_DEV && m != GATE_ALBEDO_MAX; }
+static int metric_needs_sweep(enum gate_metric m)
+{
+    return m != GATE_ENERGY_MAX_DEV && m != GATE_ALBEDO_MAX && m != GATE_MEASURED_RMS;
+}
 
 #define GATE_ALBEDO_THETA_COUNT 18   /* theta_i = 0, 5, ..., 85 degrees, as energy.json */
 #define GATE_ALBEDO_MAX_N 1000       /* values of n of an albedo gate (each costs 18 quadratures) */
@@ -122,7 +128,7 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
 {
     static const char *keys[] = { "model", "model_file", "expression", "metric", "n_min", "n_max", "n_step",
                                   "samples", "min", "max", "name", "claimed", "note", "accept_device_disagreement",
-                                  NULL };
+                                  "measured", NULL };
     char where[32], msg[1024];
     snprintf(where, sizeof where, "gate %d: ", index + 1);
     memset(g, 0, sizeof *g);
@@ -137,7 +143,7 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
         if (!known)
             return jr_fail(d, &gv->items[k], err, errlen,
                            "%sunknown member \"%.40s\" (accepted: model, model_file, expression, metric, n_min, "
-                           "n_max, n_step, samples, min, max, name, claimed, note, accept_device_disagreement)", where,
+                           "n_max, n_step, samples, min, max, name, claimed, note, accept_device_disagreement, measured)", where,
                            gv->keys[k]);
     }
     const struct jr_value *model_v, *file_v, *expr_v, *metric_v, *v;
@@ -168,6 +174,17 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     if (g->metric == GATE_ALBEDO_MAX && albedo_mode_of(g->model.info) < 0)
         return jr_fail(d, metric_v, err, errlen, "%salbedo.max needs a normalised or microfacet model (%s is %s)",
                        where, g->model.info->id, g->model.info->family);
+
+    if (member(d, gv, "measured", JR_STR, where, &v, err, errlen))
+        return EXIT_USAGE;
+    if (v && g->metric != GATE_MEASURED_RMS)
+        return jr_fail(d, v, err, errlen, "%s\"measured\" is read only by the metric measured.rms (this gate's is %s)",
+                       where, metrics[g->metric].name);
+    if (!v && g->metric == GATE_MEASURED_RMS)
+        return jr_fail(d, metric_v, err, errlen, "%smeasured.rms needs \"measured\": the path of a MERL .binary file",
+                       where);
+    if (v && (!v->str[0] || resolve_path(g->measured_path, sizeof g->measured_path, base_dir, v->str)))
+        return jr_fail(d, v, err, errlen, "%s\"measured\" is empty or too long", where);
 
     /* The grid: the accuracy command's defaults. */
     g->grid.n_min = 2.0;
@@ -648,6 +665,43 @@ done:
     return rc;
 }
 
+/* A measured.rms gate: the lobe at the Blinn-Phong fit of the material (measured.h); at_n is
+ * that fit's n. A malformed file is EXIT_USAGE, named. */
+static int gate_measured(struct gate *g, struct cl_session *s)
+{
+    char err[4600];
+    struct merl_material mat;
+    int rc = merl_read(g->measured_path, &mat, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench gate: %s\n", err);
+        return rc;
+    }
+    struct measured_options o;
+    measured_options_default(&o);
+    o.nlobes = 1;
+    o.lobes[0] = g->model;
+    o.skip_physical = 1;   /* the gate needs the Blinn-Phong fit only */
+    struct measured_material *r = malloc(sizeof *r);
+    if (!r) {
+        merl_free(&mat);
+        fprintf(stderr, "brdfbench gate: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    rc = measured_material_run(s, &mat, &o, r);
+    if (!rc) {
+        g->measured = r->lobes[0].err_measured;
+        g->at_n = r->fit[MFIT_BLINN].n;
+        if (!r->device_ok) {   /* judged as no figure: gate_judge fails it with this reason */
+            g->measured = NAN;
+            snprintf(g->reason, sizeof g->reason, "the device lookup disagrees with the host's table on %ld cells",
+                     r->device_points - r->device_same_cell + r->device_value_diff);
+        }
+    }
+    free(r);
+    merl_free(&mat);
+    return rc;
+}
+
 /* PASS/FAIL against the bounds and the baseline. */
 static void gate_judge(struct gate *g, double tolerance)
 {
@@ -778,6 +832,12 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
             gate_from_sweep(g, &sw->result);
             if (sw->result.reason[0] && sw->result.invalid_count == 0)
                 snprintf(g->reason, sizeof g->reason, "%s", sw->result.reason);
+        } else if (g->metric == GATE_MEASURED_RMS) {
+            if ((rc = gate_measured(g, s)) != 0)
+                goto done;
+            if (progress)
+                fprintf(progress, "measured: %s against %s (%.2f s)\n", g->model.label, g->measured_path,
+                        wall_seconds() - t0);
         } else if (g->metric == GATE_ALBEDO_MAX) {
             if (!ic_open) {
                 if ((rc = integrate_open(&ic, s)) != 0)

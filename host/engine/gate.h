@@ -24,6 +24,7 @@ enum gate_metric {
     GATE_ENERGY_MAX_DEV,      /* max over n of |2 pi int_0^(pi/2) f cos x sin x dx - 1| */
     GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/energy.h) */
     GATE_INVALID_COUNT,       /* model values that were NaN, Inf or negative in the sweep */
+    GATE_MEASURED_RMS,        /* the lobe's error against a measured material (host/engine/measured.h) */
     GATE_METRIC_COUNT
 };
 
@@ -48,6 +49,7 @@ struct gate {
     char note[256];
     int line, col;             /* where the gate is in the gates file */
     int accept_device_disagreement; /* "accept_device_disagreement": true: judged on the figure alone */
+    char measured_path[4096];  /* "measured": the MERL file of a measured.rms gate, resolved */
 
     /* Measured. */
     enum gate_status status;

@@ -148,6 +148,7 @@ char *report_markdown(const struct report_input *in)
         {"render.json", "the image passes (pictures in `render/<scene>/`)"},
         {"plots.json", "every plot's data"},
         {"frontier.json", "cost against accuracy of every lobe approximation (and `frontier.csv`)"},
+        {"measured.json", "the lobes against measured materials"},
     };
     md_printf(&b, "\nData files beside this page:");
     for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
@@ -176,6 +177,8 @@ char *report_markdown(const struct report_input *in)
     pictures(&b, in, REPORT_IMAGES);
     if (in->frontier.markdown || in->frontier.missing)
         block(&b, "Which lobe to ship", &in->frontier);
+    if (in->measured.markdown || in->measured.missing)
+        block(&b, "Measured materials", &in->measured);
     if (in->notes_md) md_printf(&b, "## Notes\n\n%s\n", in->notes_md);
     if (b.failed) {
         md_free(&b);

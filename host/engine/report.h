@@ -47,6 +47,7 @@ struct report_input {
     int npictures;
     const char *notes_md;         /* optional closing notes */
     struct report_block frontier; /* "Which lobe to ship" (frontier_markdown) */
+    struct report_block measured; /* "Measured materials" (measured_markdown; all --measured DIR) */
 };
 
 /* Builds the markdown text (malloc'd, NUL-terminated) or NULL when out of memory. */

@@ -1173,7 +1173,7 @@ extern "C" int draw_ratio_chart(const char *path, const struct draw_ratio_chart 
 
 /* ---- scatter plots ------------------------------------------------------------------------ */
 
-int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *err, size_t errlen)
+static int scatter_plot(const char *path, const struct draw_scatter *plot, bool legend, char *err, size_t errlen)
 {
     return draw_png(path, err, errlen, [&]() -> cv::Mat {
         const int W = 1100, H = 720, left = 110, right = 40, top = title_height(plot->title) + 20, bottom = 80;
@@ -1252,6 +1252,7 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
             put(img, plot->labels[i], x0, p.y + dy[best], S_TICK, -1, 0);
         }
         /* legend */
+        if (!legend) return img;
         int lx = left + 12, ly = top + 14;
         cv::rectangle(img, cv::Point(lx - 5, ly - 5), cv::Point(lx + 5, ly + 5), INK, cv::FILLED);
         put(img, "reference (exact: drawn at the axis floor)", lx + 14, ly, S_TICK, -1, 0);
@@ -1264,4 +1265,14 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
         put(img, "on the front (joined)", lx + 14, ly + 60, S_TICK, -1, 0);
         return img;
     });
+}
+
+int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *err, size_t errlen)
+{
+    return scatter_plot(path, plot, true, err, errlen);
+}
+
+int draw_scatter_plot_plain(const char *path, const struct draw_scatter *plot, char *err, size_t errlen)
+{
+    return scatter_plot(path, plot, false, err, errlen);
 }

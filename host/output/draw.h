@@ -156,6 +156,8 @@ struct draw_scatter {
     const int *front;
 };
 int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *err, size_t errlen);
+/* The same without the legend of the marks, for points all of one kind. */
+int draw_scatter_plot_plain(const char *path, const struct draw_scatter *plot, char *err, size_t errlen);
 
 /* ---- grouped ratio bars (brdfbench compare) ---------------------------------------------- */
 

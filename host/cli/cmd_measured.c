@@ -1,0 +1,114 @@
+/* cmd_measured.c - `brdfbench measured FILE|DIR ...`: measured materials (MERL .binary files, a
+ * folder's .binary files) fitted by Blinn-Phong and Cook-Torrance, and every cheap lobe measured
+ * against them and against the fitted Blinn-Phong (host/engine/measured.h). */
+#include "cli_run.h"
+#include "cli_table.h"
+#include "commands.h"
+#include "exitcodes.h"
+#include "measured.h"
+#include "measured_report.h"
+#include "merl.h"
+#include "outdir.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int cmd_measured(int argc, char **argv)
+{
+    char err[4600];
+    struct measured_options opt;
+    measured_options_default(&opt);
+    struct device_options dev;
+    device_options_init(&dev);
+    const char *out_dir = NULL, *json_path = NULL, *models = NULL;
+    int quiet = 0, models_given = 0;
+    const struct cli_flag flags[] = {
+        { .name = "--fit-cells", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, &opt.fit_cells),
+          .min = MEASURED_MIN_FIT_CELLS, .max = MEASURED_MAX_FIT_CELLS,
+          .help = "at most N cells in each fit (an even stride through the used cells); errors are always over "
+                  "every used cell" },
+        CLI_FLAG_MODELS(&models, &models_given,
+                        "every cheap lobe: the registry's approximations of cos^n, without the two-parameter families"),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
+        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_USERMODEL,
+    };
+    const struct cli_command cmd = {
+        .name = "measured",
+        .synopsis = "FILE|DIR ... [OPTIONS]",
+        .about = "  Measured materials (MERL .binary files, Matusik et al. 2003; a folder: its .binary files):\n"
+                 "  Blinn-Phong ks cos(theta_h)^n + kd and Cook-Torrance (Beckmann, GGX: alpha, F0, ks, kd) fitted\n"
+                 "  by least squares on luminance in ln(1 + cos(theta_i) f), then every cheap lobe at the fitted n,\n"
+                 "  scaled the same way, against the material and against the fitted Blinn-Phong.\n"
+                 "  Writes measured.json, measured_errors_<name>.png and measured_slice_<name>.png.\n",
+        .epilog = "  Exit codes: 0 done, 2 bad input (a malformed file is named with what is wrong), 3 a runtime "
+                  "error.\n",
+        .max_positional = CLI_MAX_POSITIONAL,
+        CLI_TABLE(flags),
+    };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc)
+        return cli_parse_exit(&cmd, prc, err);
+    if (args.npositional == 0) {
+        snprintf(err, sizeof err, "expected a MERL .binary file or a folder of them (brdfbench measured FILE|DIR ...)");
+        return cli_parse_exit(&cmd, EXIT_USAGE, err);
+    }
+    if (models_given) {
+        int n = cli_model_list(models, opt.lobes, MEASURED_MAX_LOBES, err, sizeof err);
+        if (n < 0)
+            return cli_parse_exit(&cmd, EXIT_USAGE, err);
+        opt.nlobes = n;
+    }
+    char **files = NULL;
+    int nfiles = 0;
+    for (int i = 0; i < args.npositional; ++i)
+        if (measured_collect(args.positional[i], &files, &nfiles, err, sizeof err)) {
+            measured_paths_free(files, nfiles);
+            return cli_parse_exit(&cmd, EXIT_USAGE, err);
+        }
+    opt.quiet = quiet;
+
+    struct cl_session s;
+    char run_dir[4096], tmp_dir[512];
+    int rc = cli_run_open("measured", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
+                          sizeof tmp_dir);
+    if (rc) {
+        measured_paths_free(files, nfiles);
+        return rc;
+    }
+    int table_quiet = quiet || cli_is_stdout(json_path);
+    struct measured_report rep;
+    rc = measured_run(&s, files, nfiles, &opt, table_quiet ? NULL : stderr, &rep, err, sizeof err);
+    if (rc && err[0])
+        fprintf(stderr, "brdfbench measured: %s\n", err);
+    char path[4300];
+    if (!rc) {
+        path_join(path, sizeof path, run_dir, "measured.json");
+        if (measured_write_json(path, &rep, &s, err, sizeof err) ||
+            measured_write_plots(tmp_dir[0] ? tmp_dir : run_dir, &rep, err, sizeof err)) {
+            fprintf(stderr, "brdfbench measured: %s\n", err);
+            rc = EXIT_RUNTIME;
+        }
+    }
+    if (!rc && cli_run_latest("measured", out_dir, tmp_dir, run_dir))
+        rc = EXIT_RUNTIME;
+    if (!rc && json_path && cli_run_deliver("measured", run_dir, "measured.json", "--json", json_path))
+        rc = EXIT_RUNTIME;
+    cli_temp_dir_remove(tmp_dir);
+    if (rc)
+        outdir_remove_own_empty();
+    if (!rc && !table_quiet) {
+        measured_print(stdout, &rep);
+        if (!tmp_dir[0])
+            printf("written: %s/measured.json\n", run_dir);
+        if (json_path)
+            printf("written: %s\n", json_path);
+    }
+    clsession_close(&s);
+    measured_report_free(&rep);
+    measured_paths_free(files, nfiles);
+    return rc;
+}
