@@ -26,13 +26,103 @@
  *   tp_varying_X (n_lo, dn_lane, dn_step, p0, p1, dc, iters, out)
  *   tp_points_X  (p0, p1, c[], n[], out[])           f at given points (accuracy checks)
  * out receives 16 partial sums per work-item.
+ *
+ * TP_W = 1 (-DTP_W=1, for a driver that vectorises across work-items itself and for which
+ * sixteen-lane code is sixteen times the program: Mesa's llvmpipe, GPU compilers) writes the
+ * same kernels in scalar float with a loop over the 16 lanes: the same inputs, rounded the
+ * same way, and the same 16 sums per work-item. The physically based models' kernels are
+ * float16 only.
  */
+#ifndef TP_W
+#define TP_W 16
+#endif
+#if TP_W == 16
 #define REAL float16
+#elif TP_W == 1
+#define REAL float
+#else
+#error "TP_W must be 16 or 1"
+#endif
 #define RSCALAR float
 #include "brdf_models.h"
 
 #define TP_STREAMS 4   /* host/throughput.h TP_STREAMS must match */
 
+#if TP_W == 1
+#define TP_PHASE(gid) ((float)((gid) % 64) * (1.0f / 64.0f))
+/* The cosine start of stream u and lane k: ((16 u + k) + phase) * dc, as the float16 form
+   rounds it (the lane and 16 u are added first). */
+#define TP_COS_START1(u, k, phase, dc) ((((float)(k) + (float)(16 * (u))) + (phase)) * (dc))
+
+#define TP_UNIFORM_KERNEL(name, F)                                                              \
+    __kernel void name(const float n_uniform, const float p0, const float p1, const float dc, \
+                       const int iters, __global float *out)                                  \
+    {                                                                                         \
+        const int gid = (int)get_global_id(0);                                                \
+        const float n = n_uniform;                                                            \
+        const float dc_step = dc * (float)(16 * TP_STREAMS);                                  \
+        const float phase = TP_PHASE(gid);                                                    \
+        for (int k = 0; k < 16; ++k) {                                                        \
+            float c0 = TP_COS_START1(0, k, phase, dc), c1 = TP_COS_START1(1, k, phase, dc);   \
+            float c2 = TP_COS_START1(2, k, phase, dc), c3 = TP_COS_START1(3, k, phase, dc);   \
+            float a0 = 0.0f, a1 = 0.0f, a2 = 0.0f, a3 = 0.0f;                                 \
+            for (int i = 0; i < iters; ++i) {                                                 \
+                a0 += F(c0, n, p0, p1);                                                       \
+                a1 += F(c1, n, p0, p1);                                                       \
+                a2 += F(c2, n, p0, p1);                                                       \
+                a3 += F(c3, n, p0, p1);                                                       \
+                c0 += dc_step;                                                                \
+                c1 += dc_step;                                                                \
+                c2 += dc_step;                                                                \
+                c3 += dc_step;                                                                \
+            }                                                                                 \
+            out[16 * gid + k] = (a0 + a1) + (a2 + a3);                                        \
+        }                                                                                     \
+    }
+
+#define TP_VARYING_KERNEL(name, F)                                                              \
+    __kernel void name(const float n_lo, const float dn_lane, const float dn_step,             \
+                       const float p0, const float p1, const float dc, const int iters,        \
+                       __global float *out)                                                   \
+    {                                                                                         \
+        const int gid = (int)get_global_id(0);                                                \
+        const float dc_step = dc * (float)(16 * TP_STREAMS);                                  \
+        const float phase = TP_PHASE(gid);                                                    \
+        for (int k = 0; k < 16; ++k) {                                                        \
+            float c0 = TP_COS_START1(0, k, phase, dc), c1 = TP_COS_START1(1, k, phase, dc);   \
+            float c2 = TP_COS_START1(2, k, phase, dc), c3 = TP_COS_START1(3, k, phase, dc);   \
+            float n0 = fma((float)k, dn_lane, n_lo);                                          \
+            float n1 = fma((float)k + 16.0f, dn_lane, n_lo);                                  \
+            float n2 = fma((float)k + 32.0f, dn_lane, n_lo);                                  \
+            float n3 = fma((float)k + 48.0f, dn_lane, n_lo);                                  \
+            float a0 = 0.0f, a1 = 0.0f, a2 = 0.0f, a3 = 0.0f;                                 \
+            for (int i = 0; i < iters; ++i) {                                                 \
+                a0 += F(c0, n0, p0, p1);                                                      \
+                a1 += F(c1, n1, p0, p1);                                                      \
+                a2 += F(c2, n2, p0, p1);                                                      \
+                a3 += F(c3, n3, p0, p1);                                                      \
+                c0 += dc_step;                                                                \
+                c1 += dc_step;                                                                \
+                c2 += dc_step;                                                                \
+                c3 += dc_step;                                                                \
+                n0 += dn_step;                                                                \
+                n1 += dn_step;                                                                \
+                n2 += dn_step;                                                                \
+                n3 += dn_step;                                                                \
+            }                                                                                 \
+            out[16 * gid + k] = (a0 + a1) + (a2 + a3);                                        \
+        }                                                                                     \
+    }
+
+#define TP_POINTS_KERNEL(name, F)                                                               \
+    __kernel void name(const float p0, const float p1, __global const float *c,                \
+                       __global const float *n, __global float *out)                          \
+    {                                                                                         \
+        const size_t i = get_global_id(0);                                                    \
+        for (size_t k = 16 * i; k < 16 * i + 16; ++k)                                         \
+            out[k] = F(c[k], n[k], p0, p1);                                                   \
+    }
+#else
 static float16 tp_lanes(void)
 {
     return (float16)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f,
@@ -109,9 +199,11 @@ static float16 tp_lanes(void)
         vstore16(F(vload16(i, c), vload16(i, n), p0, p1), i, out);                            \
     }
 
+#endif
+
 /* The three kernels of one model, its id a compile-time constant. */
 #define TP_MODEL_KERNELS(id)                                                                   \
-    static float16 tp_model_##id(float16 c, float16 n, float p0, float p1)                    \
+    static REAL tp_model_##id(REAL c, REAL n, float p0, float p1)                             \
     {                                                                                         \
         return brdf_eval(id, c, n, p0, p1);                                                   \
     }                                                                                         \
@@ -120,7 +212,7 @@ static float16 tp_lanes(void)
     TP_POINTS_KERNEL(tp_points_##id, tp_model_##id)
 
 /* The pow() built-in, the reference cost: c^n as a shader would write it. */
-static float16 tp_pow_builtin(float16 c, float16 n, float p0, float p1)
+static REAL tp_pow_builtin(REAL c, REAL n, float p0, float p1)
 {
     (void)p0;
     (void)p1;
@@ -132,6 +224,7 @@ TP_POINTS_KERNEL(tp_points_pow, tp_pow_builtin)
 
 /* TP_MODEL_KERNELS lines are appended by the host at the end of this file. */
 
+#if TP_W == 16
 /* ---- physically based models: the cost of an evaluation from the full vectors (N, L, V) ----
  *
  * A BRDF of N, L and V cannot be fed one cosine, so these kernels make three unit vectors per
@@ -217,5 +310,7 @@ static float16 tp_vec_dot_unit(float16 ax, float16 ay, float16 bx, float16 by, f
 
 TP_VEC_KERNEL(tp_vec_pow, 0, 3)
 TP_VEC_POINTS_KERNEL(tp_vec_points_pow, 0, 3)
+
+#endif
 
 /* TP_MODEL_KERNELS and TP_VEC_MODEL_KERNELS lines follow, appended by the host. */

@@ -30,6 +30,11 @@ leak:libLLVM
 leak:libclang-cpp
 leak:libOpenCL.so
 leak:libhwloc
+# Mesa's OpenCL drivers (rusticl and Clover, mesa-opencl-icd) are loaded by the ICD loader in
+# every process on a machine that has them, and keep allocations of their own too.
+leak:libRusticlOpenCL
+leak:libMesaOpenCL
+leak:libgallium
 EOF
 export ASAN_OPTIONS="exitcode=86:detect_leaks=1"
 export LSAN_OPTIONS="exitcode=86:suppressions=$supp:print_suppressions=0"

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake pkg-config git python3
-  pocl-opencl-icd ocl-icd-opencl-dev ocl-icd-libopencl1 opencl-headers clinfo
+  pocl-opencl-icd ocl-icd-opencl-dev ocl-icd-libopencl1 opencl-headers clinfo mesa-opencl-icd
   libopencv-dev libgsl-dev libjansson-dev
   glmark2-data povray-examples
   clang libclang-rt-14-dev

@@ -164,6 +164,9 @@ int tp_program_build(struct tp_program *p, struct cl_session *s, const struct mo
     p->variant = variant;
     snprintf(p->options, sizeof p->options, "%s%s%s", base_options ? base_options : "",
              base_options && *base_options && *tp_variant_options(variant) ? " " : "", tp_variant_options(variant));
+    if (s->specialise)   /* the scalar kernels (kernels/throughput.cl, TP_W) */
+        snprintf(p->options + strlen(p->options), sizeof p->options - strlen(p->options), "%s-DTP_W=1",
+                 p->options[0] ? " " : "");
     char extra[TP_MAX_MODELS * 32 + 64];
     size_t used = 0;
     extra[0] = '\0';
@@ -449,7 +452,11 @@ static int tp_peak_setup(struct cl_session *s, const char *options, long work_it
 {
     memset(d, 0, sizeof *d);
     cl_int e;
-    if (clsession_build(s, "peak.cl", NULL, options, prog)) {
+    /* scalar chains for a driver that vectorises across work-items (kernels/peak.cl, PEAK_W) */
+    int lanes = s->specialise ? 1 : 16;
+    char opts[400];
+    snprintf(opts, sizeof opts, "%s%s", options ? options : "", s->specialise ? (options && *options ? " -DPEAK_W=1" : "-DPEAK_W=1") : "");
+    if (clsession_build(s, "peak.cl", NULL, opts, prog)) {
         fig_fail(f, "building kernels/peak.cl failed (build log on stderr)");
         return -1;
     }
@@ -459,7 +466,7 @@ static int tp_peak_setup(struct cl_session *s, const char *options, long work_it
     d->kr.kind = 2;
     d->kr.global = (size_t)work_items;
     d->kr.local = 1;
-    d->kr.work_per_iter = (double)work_items * PEAK_UNROLL * PEAK_CHAINS * 16 * 2;
+    d->kr.work_per_iter = (double)work_items * PEAK_UNROLL * PEAK_CHAINS * lanes * 2;
     d->kr.k = clsession_create_kernel(*prog, "peak_fma", &e);
     if (e != CL_SUCCESS) {
         fig_fail(f, "clCreateKernel(peak_fma) failed with %s", cl_error_name(e));
@@ -604,7 +611,8 @@ static int tp_bench_run(struct tp_bench *b, struct tp_job *jobs, int njobs, int 
     b->rounds = run.rounds;
     if (peak_ok) {
         cl_int e = clEnqueueReadBuffer(s->queue, dev[0].kr.out, CL_TRUE, 0, nout * sizeof(float), host, 0, NULL, NULL);
-        tp_fill_item(b->peak, &items[0], e == CL_SUCCESS ? host : NULL, nout, dev[0].timer_wall);
+        size_t peak_out = (size_t)b->work_items * (s->specialise ? 1 : 16);   /* kernels/peak.cl, PEAK_W */
+        tp_fill_item(b->peak, &items[0], e == CL_SUCCESS ? host : NULL, peak_out, dev[0].timer_wall);
     }
     for (int i = 0; i < njobs; ++i) {
         int k = job_item[i];
