@@ -133,12 +133,24 @@ static int merge_devices(const char *run_dir, const char *file, const char *rows
                         jw_key(&w, keys[j]);
                         jw_value(&w, jr_get(dc, keys[j]));
                     }
+                /* each device's own settings (its work-items, the runner's record) and, for
+                   throughput, its measured peak: they differ by device */
+                static const char *const own[] = { "throughput", "grid" };
+                for (size_t j = 0; j < sizeof own / sizeof own[0]; ++j)
+                    if (jr_get(dc, own[j])) {
+                        jw_key(&w, own[j]);
+                        jw_value(&w, jr_get(dc, own[j]));
+                    }
+                if (jr_get(&docs[k].root, "peak")) {
+                    jw_key(&w, "peak");
+                    jw_value(&w, jr_get(&docs[k].root, "peak"));
+                }
                 jw_obj_end(&w);
             }
             jw_arr_end(&w);
             jw_kv_str(&w, "devices_note", "one run per device, each complete in its devices/<k>/ folder; the rows "
-                                          "here are all of theirs, tagged with \"device\"; other sections are the "
-                                          "first device's");
+                                          "here are all of theirs, tagged with \"device\"; each device's settings and "
+                                          "peak are in its entry; other sections are the first device's");
             jw_obj_end(&w);
         } else if (strcmp(root->keys[i], rows_key) == 0) {
             jw_arr_begin(&w);

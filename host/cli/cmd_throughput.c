@@ -159,8 +159,14 @@ int cmd_throughput(int argc, char **argv)
     int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
     rc = throughput_run(&s, &o, run_dir, tp_quiet);
     /* the physically based models from full vectors (pbcost.h), in a run of the default set */
-    if (!rc && !models_given && usermodel_count() == 0 && !tmp_dir[0])
-        rc = pbcost_run_write(&s, run_dir, tp_quiet);
+    if (!rc && !models_given && usermodel_count() == 0 && !tmp_dir[0]) {
+        if (s.specialise)   /* its kernels are float16 (kernels/throughput.cl, TP_W) */
+            fprintf(stderr, "throughput: the physically based models' full-vector table is not run on %s: its kernels "
+                            "are float16 only, which this driver compiles for minutes (PoCL runs it)\n",
+                    s.platform_name);
+        else
+            rc = pbcost_run_write(&s, run_dir, tp_quiet);
+    }
     if (!rc)
         rc = cli_run_latest("throughput", out_dir, tmp_dir, run_dir);
     if (!rc && json_path)

@@ -214,18 +214,66 @@ static int distinct_devices(const struct jr_value *rows, const char *member)
 
 /* ---- the files ------------------------------------------------------------------------- */
 
+/* A throughput context block's settings and machine record, as context lines of run. */
+static void throughput_context(struct cmp_run *run, const struct jr_value *tp, int *disturbed)
+{
+    char buf[CMP_TEXT];
+    snprintf(buf, sizeof buf, "%g reps, min time %g s, %g work-items, n %g, n range %g:%g", num_member(tp, "reps"),
+             num_member(tp, "min_time_s"), num_member(tp, "work_items"), num_member(tp, "n_uniform"),
+             num_member(tp, "n_lo"), num_member(tp, "n_hi"));
+    ctx_put(run, "throughput settings", buf);
+    const struct jr_value *rn = jr_get(tp, "runner");
+    snprintf(buf, sizeof buf, "load %s -> %s", str_member(tp, "loadavg_start", "?"), str_member(tp, "loadavg_end", "?"));
+    if (rn)
+        snprintf(buf + strlen(buf), sizeof buf - strlen(buf), ", steal %.3g s, %g of %g launches retried, %g reps disturbed",
+                 num_member(rn, "steal_seconds"), num_member(rn, "preemption_retries"), num_member(rn, "launches"),
+                 num_member(rn, "disturbed_reps"));
+    ctx_put(run, "machine", buf);
+    if (disturbed && rn && num_member(rn, "disturbed_reps") > 0)
+        *disturbed = (int)num_member(rn, "disturbed_reps");
+}
+
+/* A run's measured peak (its reference kernel) as a speed row of its own. */
+static int put_peak(struct cmp_reader *rd, const struct jr_doc *d, const char *device, const struct jr_value *pk,
+                    char *err, size_t errlen)
+{
+    if (!pk || pk->type != JR_OBJ)
+        return 0;
+    const struct jr_value *f = jr_get(pk, "flops_per_s");
+    int ok = strcmp(str_member(pk, "status", "ok"), "ok") == 0;
+    struct cmp_cell *c = put_value(rd, device, "peak (reference kernel)", "peak", "flops_per_s", CMP_SPEED,
+                                   num_member(f, "median"), ok ? NULL : str_member(pk, "reason", "failed"));
+    if (!c)
+        return 0;
+    c->lo = num_member(f, "min");
+    c->hi = num_member(f, "max");
+    return jr_get(pk, "flops_per_s_reps") ? take_reps(d, pk, "flops_per_s_reps", c, err, errlen) : 0;
+}
+
 static int read_throughput(struct cmp_reader *rd, const struct jr_doc *d, char *err, size_t errlen)
 {
     const struct jr_value *rows;
     if (jr_need(d, &d->root, "results", JR_ARR, &rows, err, errlen))
         return 2;
     const struct jr_value *ctx = jr_get(&d->root, "context"), *tp = jr_get(ctx, "throughput");
+    const struct jr_value *devs = jr_get(ctx, "devices");
+    int several = devs && devs->type == JR_ARR && devs->count > 1;
+    if (several) {
+        for (size_t i = 0; i < devs->count; ++i) {
+            const struct jr_value *dv = &devs->items[i];
+            const char *tag = str_member(dv, "tag", str_member(dv, "device", "?"));
+            if (put_peak(rd, d, tag, jr_get(dv, "peak"), err, errlen))
+                return 2;
+            for (int j = 0; j < rd->set->ndevices; ++j)
+                if (strcmp(rd->set->devices[j].name, tag) == 0 && jr_get(dv, "throughput"))
+                    throughput_context(&rd->set->devices[j], jr_get(dv, "throughput"), NULL);
+        }
+    } else if (put_peak(rd, d, "", jr_get(&d->root, "peak"), err, errlen)) {
+        return 2;
+    }
     if (tp) {
         char buf[CMP_TEXT];
-        snprintf(buf, sizeof buf, "%g reps, min time %g s, %g work-items, n %g, n range %g:%g",
-                 num_member(tp, "reps"), num_member(tp, "min_time_s"), num_member(tp, "work_items"),
-                 num_member(tp, "n_uniform"), num_member(tp, "n_lo"), num_member(tp, "n_hi"));
-        ctx_put(&rd->set->run[rd->run], "throughput settings", buf);
+        throughput_context(&rd->set->run[rd->run], tp, &rd->set->run[rd->run].disturbed);
         const struct jr_value *fp = jr_get(tp, "kernel_sources_fnv1a64");
         buf[0] = '\0';
         for (size_t i = 0; fp && fp->type == JR_OBJ && i < fp->count; ++i)
@@ -234,15 +282,6 @@ static int read_throughput(struct cmp_reader *rd, const struct jr_doc *d, char *
                          fp->items[i].str);
         if (buf[0])
             ctx_put(&rd->set->run[rd->run], "kernel sources", buf);
-        const struct jr_value *rn = jr_get(tp, "runner");
-        snprintf(buf, sizeof buf, "load %s -> %s", str_member(tp, "loadavg_start", "?"), str_member(tp, "loadavg_end", "?"));
-        if (rn)
-            snprintf(buf + strlen(buf), sizeof buf - strlen(buf), ", steal %.3g s, %g of %g launches retried, %g reps disturbed",
-                     num_member(rn, "steal_seconds"), num_member(rn, "preemption_retries"), num_member(rn, "launches"),
-                     num_member(rn, "disturbed_reps"));
-        ctx_put(&rd->set->run[rd->run], "machine", buf);
-        if (rn && num_member(rn, "disturbed_reps") > 0)
-            rd->set->run[rd->run].disturbed = (int)num_member(rn, "disturbed_reps");
     }
     int tagged = distinct_devices(rows, "device") > 1;
     for (size_t i = 0; i < rows->count; ++i) {
@@ -728,11 +767,14 @@ static double *logs_of(const double *v, int n)
 
 /* A speed cell's test against the baseline's: ratio, interval and p; the verdict follows once
    every row's p is known (Holm). */
-static void judge_speed(const struct compare_set *set, const struct cmp_cell *b, struct cmp_cell *c)
+static void judge_speed(const struct compare_set *set, const struct cmp_cell *b, struct cmp_cell *c, int same_device)
 {
     const double *x, *y;
     int nx, ny;
-    if (!set->absolute && b->norm && c->norm && b->nnorm > 0 && c->nnorm > 0 && b->norm_cpu == c->norm_cpu) {
+    /* normalised rates compare a device with itself (the drift of the machine cancels); two
+       devices are compared on what they deliver */
+    if (!set->absolute && same_device && b->norm && c->norm && b->nnorm > 0 && c->nnorm > 0 &&
+        b->norm_cpu == c->norm_cpu) {
         c->basis = c->norm_cpu ? CMP_BASIS_CPU : CMP_BASIS_NORMALISED;
         x = c->norm, nx = c->nnorm, y = b->norm, ny = b->nnorm;
     } else if (b->nreps > 0 && c->nreps > 0) {
@@ -782,7 +824,7 @@ static void decide_speed(const struct compare_set *set, struct cmp_cell *c)
 }
 
 static void judge(const struct compare_set *set, const struct cmp_row *row, const struct cmp_cell *b,
-                  struct cmp_cell *c)
+                  struct cmp_cell *c, int same_device)
 {
     c->ratio = c->change = c->p = c->p_adj = c->ci_lo = c->ci_hi = NAN;
     c->basis = CMP_BASIS_NONE;
@@ -797,7 +839,7 @@ static void judge(const struct compare_set *set, const struct cmp_row *row, cons
     c->change = c->value - b->value;
     c->ratio = b->value != 0 ? c->value / b->value : NAN;
     if (row->sense == CMP_SPEED) {
-        judge_speed(set, b, c);
+        judge_speed(set, b, c, same_device);
         return;
     }
     if (same_4_digits(b->value, c->value))
@@ -842,6 +884,11 @@ static void holm_adjust(struct compare_set *set, int k)
 void compare_evaluate(struct compare_set *set, double alpha)
 {
     set->alpha = alpha;
+    int same_device[CMP_MAX_RUNS] = { 0 };
+    for (int k = 1; k < set->nruns; ++k) {
+        const char *a = compare_context(set, 0, "device"), *b = compare_context(set, k, "device");
+        same_device[k] = !set->by_device && (!a || !b || strcmp(a, b) == 0);
+    }
     set->rows_in_all = set->rows_in_some = 0;
     for (int i = 0; i < set->nrows; ++i) {
         struct cmp_row *r = &set->rows[i];
@@ -857,7 +904,7 @@ void compare_evaluate(struct compare_set *set, double alpha)
         r->cell[0].p = r->cell[0].p_adj = r->cell[0].ci_lo = r->cell[0].ci_hi = NAN;
         r->cell[0].verdict = r->cell[0].present ? CMP_V_NONE : CMP_V_MISSING;
         for (int k = 1; k < set->nruns; ++k)
-            judge(set, r, &r->cell[0], &r->cell[k]);
+            judge(set, r, &r->cell[0], &r->cell[k], same_device[k]);
     }
     for (int k = 1; k < set->nruns; ++k) {
         if (set->holm)
