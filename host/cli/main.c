@@ -55,8 +55,7 @@ static void usage(FILE *f)
     fprintf(f, "usage: brdfbench COMMAND [OPTIONS]   (brdfbench COMMAND --help for its options)\n\ncommands:\n");
     for (size_t i = 0; i < NCOMMANDS; ++i)
         fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].help);
-    fprintf(f, "  %-12s %s\n", "help", "help COMMAND: a command's options; help --man [COMMAND], help --man-dir DIR, "
-               "help --completion bash|zsh [FILE]: its man pages and shell completions");
+    fprintf(f, "  %-12s %s\n", "help", "a command's options (help COMMAND), its man page, or the shell completions");
 }
 
 static const struct command *find_command(const char *name)
@@ -259,53 +258,68 @@ static void write_zsh(FILE *f, const void *arg) { (void)arg; print_zsh_completio
 /* brdfbench help [COMMAND | --man [COMMAND] | --man-dir DIR | --completion bash|zsh [FILE]] */
 static int cmd_help(int argc, char **argv)
 {
-    if (argc < 2) {
-        usage(stdout);
-        return EXIT_OK;
+    int man = 0;
+    const char *man_dir = NULL, *shell = NULL;
+    const struct cli_flag flags[] = {
+        { .name = "--man", .kind = CLI_SWITCH, .dest = &man, .set = 1,
+          .help = "write the man page of COMMAND (roff), or without COMMAND brdfbench(1)" },
+        { .name = "--man-dir", .value = "DIR", .kind = CLI_PATH, .dest = &man_dir, .def = "",
+          .help = "write every man page into folder DIR: brdfbench.1 and brdfbench-COMMAND.1" },
+        { .name = "--completion", .value = "SHELL", .kind = CLI_TEXT, .dest = &shell, .def = "",
+          .range = "bash or zsh", .help = "write the shell completion script, to the FILE given after it or "
+                                          "to standard output" },
+    };
+    const struct cli_command cmd = {
+        .name = "help",
+        .synopsis = "[COMMAND | --man [COMMAND] | --man-dir DIR | --completion bash|zsh [FILE]]",
+        .about = "  Writes a command's options (as COMMAND --help does), its man page, or the shell\n"
+                 "  completions; all of them are made from the commands' flag tables.\n",
+        CLI_TABLE(flags),
+        .max_positional = 1,
+    };
+    struct cli_args args;
+    char err[512];
+    cli_set_command_info("a command's options, its man page, or the shell completions", "brdfbench help accuracy");
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc)
+        return cli_parse_exit(&cmd, prc, err);
+    const char *word = args.npositional ? args.positional[0] : NULL;
+    if ((man != 0) + (man_dir != NULL) + (shell != NULL) > 1) {
+        fprintf(stderr, "brdfbench help: --man, --man-dir and --completion: one at a time\n");
+        return EXIT_USAGE;
     }
-    const char *a = argv[1];
-    if (strcmp(a, "--man") == 0) {
-        if (argc > 3) {
-            fprintf(stderr, "brdfbench help: --man takes at most one COMMAND\n");
+    if (shell) {
+        if (strcmp(shell, "bash") != 0 && strcmp(shell, "zsh") != 0) {
+            fprintf(stderr, "brdfbench help: --completion: '%s' is not a shell of the completions (accepted: bash, "
+                            "zsh)\n", shell);
             return EXIT_USAGE;
         }
-        if (argc == 2)
-            return write_output(NULL, write_main_man, NULL);
-        const struct command *c = find_command(argv[2]);
-        return c ? write_output(NULL, write_command_man, c) : unknown_command(argv[2]);
+        return write_output(word, strcmp(shell, "bash") == 0 ? write_bash : write_zsh, NULL);
     }
-    if (strcmp(a, "--man-dir") == 0) {
-        if (argc != 3) {
-            fprintf(stderr, "brdfbench help: --man-dir takes one folder (expected help --man-dir DIR)\n");
+    if (man_dir) {
+        if (word) {
+            fprintf(stderr, "brdfbench help: --man-dir writes every page: no COMMAND (got '%s')\n", word);
             return EXIT_USAGE;
         }
         char path[4096];
-        snprintf(path, sizeof path, "%s/brdfbench.1", argv[2]);
+        snprintf(path, sizeof path, "%s/brdfbench.1", man_dir);
         int rc = write_output(path, write_main_man, NULL);
         for (size_t i = 0; i < NCOMMANDS && rc == EXIT_OK; ++i) {
-            snprintf(path, sizeof path, "%s/brdfbench-%s.1", argv[2], commands[i].name);
+            snprintf(path, sizeof path, "%s/brdfbench-%s.1", man_dir, commands[i].name);
             rc = write_output(path, write_command_man, &commands[i]);
         }
         return rc;
     }
-    if (strcmp(a, "--completion") == 0) {
-        if (argc < 3 || argc > 4 || (strcmp(argv[2], "bash") != 0 && strcmp(argv[2], "zsh") != 0)) {
-            fprintf(stderr, "brdfbench help: --completion takes bash or zsh and an optional FILE "
-                            "(expected help --completion bash|zsh [FILE])\n");
-            return EXIT_USAGE;
-        }
-        return write_output(argc == 4 ? argv[3] : NULL, strcmp(argv[2], "bash") == 0 ? write_bash : write_zsh, NULL);
-    }
-    if (argc > 2) {
-        fprintf(stderr, "brdfbench help: takes one COMMAND (got '%s' after '%s')\n", argv[2], a);
-        return EXIT_USAGE;
-    }
-    if (strcmp(a, "help") == 0) {
+    if (!word) {
+        if (man)
+            return write_output(NULL, write_main_man, NULL);
         usage(stdout);
         return EXIT_OK;
     }
-    const struct command *c = find_command(a);
-    return c ? command_help(c, CLI_HELP_TEXT, NULL) : unknown_command(a);
+    const struct command *c = find_command(word);
+    if (!c)
+        return unknown_command(word);
+    return man ? write_output(NULL, write_command_man, c) : command_help(c, CLI_HELP_TEXT, NULL);
 }
 
 int main(int argc, char **argv)
@@ -322,13 +336,13 @@ int main(int argc, char **argv)
         cli_print_version(stdout);
         return EXIT_OK;
     }
-    if (strcmp(argv[1], "help") == 0)
-        return cmd_help(argc - 1, argv + 1);
     /* -h is --help for every command (no command takes -h otherwise). */
     static char help_flag[] = "--help";
     for (int i = 2; i < argc; ++i)
         if (strcmp(argv[i], "-h") == 0)
             argv[i] = help_flag;
+    if (strcmp(argv[1], "help") == 0)
+        return cmd_help(argc - 1, argv + 1);
     const struct command *c = find_command(argv[1]);
     if (!c)
         return unknown_command(argv[1]);
