@@ -498,6 +498,25 @@ int cli_model_list(const char *text, struct model_spec *out, int max, char *err,
     return kept;
 }
 
+int cli_add_unlisted_user_models(struct model_spec *models, int count, int max, char *err, size_t errlen)
+{
+    for (int i = 0; i < usermodel_count(); ++i) {
+        const struct user_model *um = usermodel_at(i);
+        int listed = 0;
+        for (int k = 0; k < count && !listed; ++k)
+            listed = models[k].info == &um->info;
+        if (listed)
+            continue;
+        if (count >= max) {
+            snprintf(err, errlen, "--models and the user models: at most %d models per run", max);
+            return -2;
+        }
+        model_spec_default(&um->info, &models[count++]);
+        cli_note("user model '%s' (%s) is not in --models: measured as well", um->name, um->origin);
+    }
+    return count;
+}
+
 int cli_frontier_default_models(struct model_spec *out, int max, char *err, size_t errlen)
 {
     int count = frontier_default_models(out, max);

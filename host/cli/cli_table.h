@@ -178,6 +178,11 @@ int cli_call_model_expr(const char *flag, const char *value, void *dest, char *e
 /* Parses --models text (or the default) into models, merging a model given twice (same label)
  * with a note. Returns the count, or -2 with a message. */
 int cli_model_list(const char *text, struct model_spec *out, int max, char *err, size_t errlen);
+/* Appends to models[count] (at most max) every user model (--model, --model-file) that the
+ * list does not hold, with its default parameters and a note on stderr, so that a model the
+ * command line defines is never dropped without a word. Returns the new count, or -2 with a
+ * message when the list is full. */
+int cli_add_unlisted_user_models(struct model_spec *models, int count, int max, char *err, size_t errlen);
 /* The frontier's models when --models is not given (frontier and all): its default set of lobe
  * approximations, then every user model. Returns the count, or -2 with a message. */
 int cli_frontier_default_models(struct model_spec *out, int max, char *err, size_t errlen);
