@@ -8,6 +8,7 @@
  * or the same lobe written in the OpenCL C form; error positions are counted by hand in the
  * texts below. */
 #include "check.h"
+#include "hostjit.h"
 #include "models.h"
 #include "shaderlang.h"
 #include "usermodel.h"
@@ -271,6 +272,61 @@ int main(void)
                       hostjit_function(um->host)(0.5, 10.0, 3.0, 0));
             usermodel_free(um);
         }
+    }
+    /* 8. BRDF Explorer files: the full BRDF with L = N and V at 2 theta_h (N.H = c), its
+          luminance, against the built-in models that write the same BRDFs (and 0 past
+          theta_h = 45 degrees, where V is below the horizon, as for the built-ins). */
+    static const struct { const char *file, *builtin; double p0; } brdfs[] = {
+        { "blinnphong.brdf", "blinn", 0 },
+        { "ct_ggx.brdf", "ct-ggx:F0=0.5", 0.5 },
+        { "everytype.brdf", "blinnn", 2.0 },
+        { NULL, NULL, 0 } };
+    for (int i = 0; brdfs[i].file; ++i) {
+        char path[1024], text[8192];
+        const char *src = getenv("SRC_DIR");
+        snprintf(path, sizeof path, "%s/tests/test_shaderlang_files/%s", src ? src : ".", brdfs[i].file);
+        FILE *f = fopen(path, "rb");
+        size_t len = f ? fread(text, 1, sizeof text, f) : 0;
+        if (f)
+            fclose(f);
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_file_text(text, len, path, &um, err, sizeof err);
+        CHECK(rc == 0, "%s: %s", brdfs[i].file, err);
+        if (rc)
+            continue;
+        struct model_spec ref;
+        CHECK(model_spec_parse(brdfs[i].builtin, &ref, err, sizeof err) == 0, "%s", err);
+        CHECK(um->info.lobe == LOBE_THETA_H, "%s: lobe theta_h", brdfs[i].file);
+        CHECK(usermodel_host_ready(um), "%s on the host: %s", brdfs[i].file, um->host_error);
+        if (usermodel_host_ready(um)) {
+            double worst = 0;
+            for (double n = 2; n <= 1000; n *= 1.6)
+                for (int k = 0; k <= 200; ++k) {
+                    double c = k / 200.0;
+                    double v = hostjit_function(um->host)(c, n, brdfs[i].p0, 0), r = model_eval_host(&ref, c, n);
+                    if (2 * c * c - 1 <= 0)
+                        r = 0; /* V below the horizon: the reduced BRDF is 0 (blinn, blinnn are lobes of any c) */
+                    double rel = fabs(v - r) / (fabs(r) > 1e-300 ? fabs(r) : 1.0);
+                    if (!(rel <= worst))
+                        worst = rel;
+                }
+            CHECK(worst <= 1e-9, "%s against %s: largest relative difference %g", brdfs[i].file, brdfs[i].builtin,
+                  worst);
+        }
+        usermodel_free(um);
+    }
+    {
+        char path[1024];
+        const char *src = getenv("SRC_DIR");
+        snprintf(path, sizeof path, "%s/tests/test_shaderlang_files/bad_shader.brdf", src ? src : ".");
+        int rc = usermodel_load_file(path, NULL, err, sizeof err);
+        /* line 8 of the file (the shader's third line): "    return vec3(pow(dot(N, normalize(L + V)), nn));" */
+        CHECK(rc == 2 && strstr(err, "bad_shader.brdf:8:47: use of undeclared identifier 'nn'"), "%s", err);
+        static const char t[] = "::begin parameters\nfloat n 1 1000\n::end parameters\n::begin shader\n::end shader\n";
+        struct user_model *um = NULL;
+        rc = usermodel_parse_file_text(t, strlen(t), "t.brdf", &um, err, sizeof err);
+        CHECK(rc == 2 && strstr(err, "t.brdf:2: float takes 4 values after its type (NAME MIN MAX DEFAULT), found 3"),
+              "%s", err);
     }
     usermodel_clear_all();
     return check_summary();

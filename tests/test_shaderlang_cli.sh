@@ -45,5 +45,33 @@ expect 2 "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'" accur
     --model-file "$F/line3.glsl" --n-max 4 --samples 16 --out "$T/e1"
 [ ! -e "$T/e1" ] && ok || bad "a failed model still wrote $T/e1"
 
+# 3. BRDF Explorer files (full BRDFs, L = N, theta_h swept, luminance): Blinn-Phong against the
+#    built-in blinn and Cook-Torrance (GGX) against the built-in ct-ggx are those models, so their
+#    errors are rounding (the double figures; the float sweep's check is not meant for errors of
+#    1e-14 and may say so). Past theta_h = 45 degrees V is below the horizon and the BRDF is 0,
+#    so against the lobe blinn the attenuation zone holds c^n there: at n = 2 and x = pi/4, 1/2.
+"$BIN" accuracy --model-file "$F/blinnphong.brdf" --model-file "$F/ct_ggx.brdf" --n-min 2 --n-max 60 --samples 64 \
+    --out "$T/b" >"$T/out" 2>"$T/err" && ok || bad "accuracy of .brdf files: $(tail -5 "$T/err")"
+check_json "$T/b/accuracy.json" ".brdf Blinn-Phong and Cook-Torrance are the built-in models" <<'PY'
+r = {x["model"]: x for x in d["results"]}
+bp, ct = r["blinnphong"], r["ct_ggx"]
+assert bp["reference"] == "blinn" and ct["reference"] == "ct-ggx:F0=0.5", (bp["reference"], ct["reference"])
+assert bp["epicentre"]["max_rel"] < 1e-9, bp["epicentre"]
+for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+    assert ct[zone][key] < 1e-9, (zone, ct[zone])
+assert abs(bp["whole"]["max_abs"] - 0.5) < 1e-9 and bp["whole"]["at_n"] == 2, bp["whole"]
+assert abs(bp["whole"]["at_x"] - math.pi / 4) < 1e-6, bp["whole"]
+PY
+"$BIN" throughput --model-file "$F/blinnphong.brdf" --models blinnphong,blinn --reps 1 --min-time 0.002 \
+    --variants default --n-modes uniform --no-sweep --no-host-c --quiet --out "$T/tp" 2>"$T/err" \
+    && ok || bad "throughput of a .brdf file: $(tail -3 "$T/err")"
+check_json "$T/tp/throughput.json" "the .brdf model measured by throughput" <<'PY'
+assert [x for x in d["results"] if x["model"] == "blinnphong"], [x["model"] for x in d["results"]]
+PY
+"$BIN" render --model-file "$F/blinnphong.brdf" --models blinnphong --scene spheres --size 64x48 --time-sizes none \
+    --no-images --quiet --out "$T/r" >"$T/out" 2>"$T/err" && ok || bad "render of a .brdf file: $(tail -3 "$T/err")"
+expect 2 "bad_shader.brdf:8:47: use of undeclared identifier 'nn'" accuracy --model-file "$F/bad_shader.brdf" \
+    --n-max 4 --samples 16 --out "$T/e2"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
