@@ -280,6 +280,9 @@ int main(void)
         { "blinnphong.brdf", "blinn", 0 },
         { "ct_ggx.brdf", "ct-ggx:F0=0.5", 0.5 },
         { "everytype.brdf", "blinnn", 2.0 },
+        /* full BRDFs of (L, V, N) in GLSL and HLSL files, reduced the same way */
+        { "blinn_full.glsl", "blinn", 0 },
+        { "ct_full.hlsl", "ct-ggx:F0=0.7", 0.7 },
         { NULL, NULL, 0 } };
     for (int i = 0; brdfs[i].file; ++i) {
         char path[1024], text[8192];

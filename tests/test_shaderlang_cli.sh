@@ -50,11 +50,16 @@ expect 2 "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'" accur
 #    errors are rounding (the double figures; the float sweep's check is not meant for errors of
 #    1e-14 and may say so). Past theta_h = 45 degrees V is below the horizon and the BRDF is 0,
 #    so against the lobe blinn the attenuation zone holds c^n there: at n = 2 and x = pi/4, 1/2.
-"$BIN" accuracy --model-file "$F/blinnphong.brdf" --model-file "$F/ct_ggx.brdf" --n-min 2 --n-max 60 --samples 64 \
-    --out "$T/b" >"$T/out" 2>"$T/err" && ok || bad "accuracy of .brdf files: $(tail -5 "$T/err")"
+#    ct_full.hlsl is the same Cook-Torrance as a full BRDF of (L, V, N, X, Y) in HLSL, F0 = 0.5.
+"$BIN" accuracy --model-file "$F/blinnphong.brdf" --model-file "$F/ct_ggx.brdf" --model-file "$F/ct_full.hlsl" \
+    --n-min 2 --n-max 60 --samples 64 --out "$T/b" >"$T/out" 2>"$T/err" && ok || bad "accuracy of .brdf files: $(tail -5 "$T/err")"
 check_json "$T/b/accuracy.json" ".brdf Blinn-Phong and Cook-Torrance are the built-in models" <<'PY'
 r = {x["model"]: x for x in d["results"]}
 bp, ct = r["blinnphong"], r["ct_ggx"]
+full = r["ct_full"]
+assert full["reference"] == "ct-ggx:F0=0.5", full["reference"]
+for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+    assert full[zone][key] < 1e-9, (zone, full[zone])
 assert bp["reference"] == "blinn" and ct["reference"] == "ct-ggx:F0=0.5", (bp["reference"], ct["reference"])
 assert bp["epicentre"]["max_rel"] < 1e-9, bp["epicentre"]
 for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):

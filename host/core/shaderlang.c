@@ -2025,6 +2025,7 @@ struct header {
     char params[SL_MAX_PARAMS][SL_NAME_MAX + 1];
     int integer[SL_MAX_PARAMS];
     char reference[SL_NAME_MAX + 1];
+    char lobe[16];
     char description[200];
     /* A .brdf file: the header written for it, code lexed before and after the user's text
        (no position of their own), and the line the user's text starts on. */
@@ -2090,6 +2091,8 @@ static void read_header(const char *text, size_t len, struct header *h)
                     snprintf(h->function, sizeof h->function, "%.*s", (int)vl, v);
                 else if (kl == 9 && strncmp(k, "reference", 9) == 0)
                     snprintf(h->reference, sizeof h->reference, "%.*s", (int)vl, v);
+                else if (kl == 4 && strncmp(k, "lobe", 4) == 0)
+                    snprintf(h->lobe, sizeof h->lobe, "%.*s", (int)(vl < 15 ? vl : 15), v);
                 else if (kl == 11 && strncmp(k, "description", 11) == 0)
                     snprintf(h->description, sizeof h->description, "%.*s", (int)(b - v), v);
                 else if (kl == 5 && strncmp(k, "param", 5) == 0 && h->nparams < SL_MAX_PARAMS) {
@@ -2137,6 +2140,8 @@ static struct stmt *parse_program(struct sl *S, struct stmt *globals)
         return body;
     }
     struct func **tail = &S->funcs;
+    while (*tail)
+        tail = &(*tail)->next;
     while (peek(S)->k != K_EOF) {
         const struct tok *start = peek(S);
         if (accept(S, ";"))
@@ -2219,6 +2224,73 @@ static int valid_identifier(const char *s)
 }
 
 /* Translates text (the whole file or expression), whose model is called name. */
+/* The luminance of a colour and the geometry of the lobe of a full BRDF: L = N, V at 2 theta_h
+ * from N in the XZ plane (N.V = 2c^2 - 1, N.H = V.H = c), 0 where V is below the horizon, as the
+ * built-in physical models (kernels/brdf_models.h, brdf_pb_lobe). */
+#define SL_LOBE_GEOMETRY                                                                               \
+    "vec3 brdfbench_N = vec3(0.0, 0.0, 1.0); "                                                         \
+    "float brdfbench_nv = 2.0 * brdfbench_c * brdfbench_c - 1.0; "                                     \
+    "vec3 brdfbench_V = vec3(2.0 * brdfbench_c * sqrt(max((1.0 - brdfbench_c) * (1.0 + brdfbench_c), 0.0)), " \
+    "0.0, brdfbench_nv); "
+#define SL_LUMINANCE "vec3(0.2126, 0.7152, 0.0722)"
+
+/* A model function of vectors, float|vec3 f(vec3 L, vec3 V, vec3 N[, vec3 X, vec3 Y], float n
+ * [, float p0[, float p1]]): a full BRDF. Appends and parses the lobe function that calls it
+ * and returns that function. */
+static struct func *full_brdf_lobe(struct sl *S, struct func *f, const struct header *h, struct stmt *globals)
+{
+    int nvec = 0;
+    while (nvec < f->nparams && f->pty[nvec].b == B_FLOAT && f->pty[nvec].n == 3)
+        ++nvec;
+    static const char *form = "a full BRDF takes (vec3 L, vec3 V, vec3 N[, vec3 X, vec3 Y], float n[, float p0"
+                              "[, float p1]]) and returns float or vec3";
+    if (nvec != 3 && nvec != 5)
+        FAIL(S, f->name, "%s (this one takes %d vectors first)", form, nvec);
+    if (f->nparams <= nvec || f->pty[nvec].b != B_FLOAT || f->pty[nvec].n != 1)
+        FAIL(S, f->name, "%s: the shininess n after the vectors is missing", form);
+    for (int i = nvec + 1; i < f->nparams; ++i)
+        if (f->pty[i].b != B_FLOAT || f->pty[i].n != 1)
+            FAIL(S, f->pname[i], "%s", form);
+    if (f->nparams - nvec - 1 != h->nparams)
+        FAIL(S, f->name, "the full BRDF takes %d parameter%s after n, the header declares %d", f->nparams - nvec - 1,
+             f->nparams - nvec - 1 == 1 ? "" : "s", h->nparams);
+    if (!(f->ret.b == B_FLOAT && (f->ret.n == 1 || f->ret.n == 3)))
+        FAIL(S, f->name, "%s (this one returns %s)", form, type_name(S, f->ret));
+    if (h->present && strcmp(h->lobe, "theta_h") != 0)
+        FAIL(S, f->name, "a full BRDF is measured over theta_h: its header says 'lobe: theta_h'");
+    struct md_buf w;
+    md_init(&w);
+    md_printf(&w, "float brdfbench_lobe(float brdfbench_c, float brdfbench_n");
+    for (int i = 0; i < h->nparams; ++i)
+        md_printf(&w, ", float brdfbench_p%d", i);
+    md_printf(&w, ") { " SL_LOBE_GEOMETRY "%s brdfbench_r = %.*s(brdfbench_N, brdfbench_V, brdfbench_N, ",
+              f->ret.n == 3 ? "vec3" : "float", f->name->len, f->name->p);
+    if (nvec == 5)
+        md_printf(&w, "vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), ");
+    md_printf(&w, "brdfbench_n");
+    for (int i = 0; i < h->nparams; ++i)
+        md_printf(&w, ", brdfbench_p%d", i);
+    md_printf(&w, "); float brdfbench_y = %s; return brdfbench_nv > 0.0 ? brdfbench_y : 0.0; }",
+              f->ret.n == 3 ? "dot(brdfbench_r, " SL_LUMINANCE ")" : "brdfbench_r");
+    if (w.failed) {
+        md_free(&w);
+        sl_fail_at(S, 0, 0, "out of memory");
+    }
+    /* the tokens go before the end of the text; the text is kept until the translation ends */
+    char *kept = arena_alloc(S, w.len + 1);
+    memcpy(kept, w.s, w.len + 1);
+    md_free(&w);
+    struct tok eof = S->toks.v[--S->toks.n];
+    S->pos = S->toks.n;
+    lex_span(S, kept, kept + strlen(kept), 0, 0, NULL);
+    tokv_push(S, &S->toks, eof);
+    parse_program(S, globals);
+    for (struct func *g = S->funcs; g; g = g->next)
+        if (tok_is(g->name, "brdfbench_lobe"))
+            return g;
+    sl_fail_at(S, 0, 0, "internal: the lobe function of the full BRDF is missing");
+}
+
 static __attribute__((noinline)) void translate_text(struct sl *S, const char *text, size_t len, const struct header *h, const char *name)
 {
     S->src = text;
@@ -2251,6 +2323,7 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
 
     const char *fname = h->function[0] ? h->function : name;
     struct func *model = NULL;
+    int full_brdf = 0;
     if (!body) {
         for (struct func *f = S->funcs; f; f = f->next)
             if ((int)strlen(fname) == f->name->len && strncmp(f->name->p, fname, (size_t)f->name->len) == 0)
@@ -2262,6 +2335,10 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
                 model = f; /* the last one */
         if (!model)
             sl_fail_at(S, 0, 0, "no function defined");
+        if (model->nparams > 0 && model->pty[0].b == B_FLOAT && model->pty[0].n == 3) {
+            model = full_brdf_lobe(S, model, h, globals);
+            full_brdf = 1;
+        }
         if (model->ret.b != B_FLOAT || model->ret.n != 1)
             FAIL(S, model->name, "the model's function must return float (a lobe value), not %s", type_name(S, model->ret));
         if (model->nparams < 2)
@@ -2318,7 +2395,9 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
         }
         md_append(&S->out, "\n", 1);
     } else {
-        md_printf(&S->out, "/* brdfbench-model\n * name: %s\n * function: %s\n */\n", name, emit_name);
+        md_printf(&S->out, "/* brdfbench-model\n * name: %s\n * function: %s\n%s */\n", name, emit_name,
+                  full_brdf ? " * lobe: theta_h\n * reference: blinn\n * description: a full BRDF: luminance of "
+                              "f(L = N, V) with theta_h = acos(c)\n" : "");
     }
     S->line_next = -1;
     int fline = model && model->name->line > 0 ? model->name->line : first_line;
