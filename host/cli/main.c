@@ -19,6 +19,8 @@ struct command {
     const char *example;   /* one command line, shown by --help and the man page */
 };
 
+static int cmd_help(int argc, char **argv);
+
 static const struct command commands[] = {
     { "list", cmd_list, "the models (formulas, parameters, references) and the OpenCL devices",
       "brdfbench list --json -" },
@@ -47,6 +49,8 @@ static const struct command commands[] = {
     /* more commands below, one per line */
     { "frontier", cmd_frontier, "cost against accuracy of every lobe approximation: the Pareto front, plots, which to ship",
       "brdfbench frontier --out results/frontier" },
+    { "help", cmd_help, "a command's options (help COMMAND), its man page, or the shell completions",
+      "brdfbench help accuracy" },
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
@@ -55,7 +59,6 @@ static void usage(FILE *f)
     fprintf(f, "usage: brdfbench COMMAND [OPTIONS]   (brdfbench COMMAND --help for its options)\n\ncommands:\n");
     for (size_t i = 0; i < NCOMMANDS; ++i)
         fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].help);
-    fprintf(f, "  %-12s %s\n", "help", "a command's options (help COMMAND), its man page, or the shell completions");
 }
 
 static const struct command *find_command(const char *name)
@@ -71,7 +74,7 @@ static int unknown_command(const char *name)
     fprintf(stderr, "brdfbench: unknown command '%s' (accepted:", name);
     for (size_t i = 0; i < NCOMMANDS; ++i)
         fprintf(stderr, " %s", commands[i].name);
-    fprintf(stderr, " help)\n");
+    fprintf(stderr, ")\n");
     return EXIT_USAGE;
 }
 
@@ -153,7 +156,7 @@ static void print_bash_completion(FILE *f)
     fprintf(f, "    local commands=\"");
     for (size_t i = 0; i < NCOMMANDS; ++i)
         fprintf(f, "%s ", commands[i].name);
-    fprintf(f, "help\"\n");
+    fprintf(f, "\"\n");
     fprintf(f, "    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"$commands\" -- \"$cur\"))\n"
                "        return\n    fi\n    local flags=\"\" paths=\"\"\n    case \"${COMP_WORDS[1]}\" in\n");
     struct flag_word w[MAX_WORDS];
@@ -171,8 +174,8 @@ static void print_bash_completion(FILE *f)
             }
         fprintf(f, "\" ;;\n");
     }
-    fprintf(f, "    help)\n        COMPREPLY=($(compgen -W \"$commands --man --man-dir --completion\" -- \"$cur\"))\n"
-               "        return ;;\n    esac\n");
+    fprintf(f, "    esac\n    if [ \"${COMP_WORDS[1]}\" = help ] && [[ \"$cur\" != -* ]]; then\n"
+               "        COMPREPLY=($(compgen -W \"$commands\" -- \"$cur\"))\n        return\n    fi\n");
     fprintf(f, "    local p\n    for p in $paths; do\n        if [ \"$prev\" = \"$p\" ]; then\n"
                "            COMPREPLY=($(compgen -f -- \"$cur\"))\n            return\n        fi\n    done\n");
     fprintf(f, "    if [[ \"$cur\" == -* ]]; then\n        COMPREPLY=($(compgen -W \"$flags\" -- \"$cur\"))\n"
@@ -203,7 +206,7 @@ static void print_zsh_completion(FILE *f)
         zsh_desc(f, commands[i].help, 0);
         fprintf(f, "'\n");
     }
-    fprintf(f, "        'help:a command'\\''s options, man pages and completions'\n    )\n");
+    fprintf(f, "    )\n");
     fprintf(f, "    if (( CURRENT == 2 )); then\n        _describe 'command' commands\n        return\n    fi\n"
                "    local cmd=$words[2]\n    shift words\n    (( CURRENT-- ))\n    case $cmd in\n");
     struct flag_word w[MAX_WORDS];
@@ -218,12 +221,16 @@ static void print_zsh_completion(FILE *f)
                 fprintf(f, ":%s:%s", w[k].value, is_path_value(w[k].value) ? "_files" : "");
             fprintf(f, "' \\\n");
         }
-        fprintf(f, "            '*:argument:_files' ;;\n");
+        if (strcmp(commands[i].name, "help") == 0) {
+            fprintf(f, "            '1:command:(");
+            for (size_t j = 0; j < NCOMMANDS; ++j)
+                fprintf(f, "%s%s", j ? " " : "", commands[j].name);
+            fprintf(f, ")' ;;\n");
+        } else {
+            fprintf(f, "            '*:argument:_files' ;;\n");
+        }
     }
-    fprintf(f, "    help)\n        _arguments '1:command:(");
-    for (size_t i = 0; i < NCOMMANDS; ++i)
-        fprintf(f, "%s ", commands[i].name);
-    fprintf(f, "--man --man-dir --completion)' ;;\n    esac\n}\n_brdfbench \"$@\"\n");
+    fprintf(f, "    esac\n}\n_brdfbench \"$@\"\n");
 }
 
 /* Writes to path (NULL: standard output) through a temporary file, so a failure leaves no half file. */
@@ -279,7 +286,6 @@ static int cmd_help(int argc, char **argv)
     };
     struct cli_args args;
     char err[512];
-    cli_set_command_info("a command's options, its man page, or the shell completions", "brdfbench help accuracy");
     int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
@@ -341,8 +347,6 @@ int main(int argc, char **argv)
     for (int i = 2; i < argc; ++i)
         if (strcmp(argv[i], "-h") == 0)
             argv[i] = help_flag;
-    if (strcmp(argv[1], "help") == 0)
-        return cmd_help(argc - 1, argv + 1);
     const struct command *c = find_command(argv[1]);
     if (!c)
         return unknown_command(argv[1]);
