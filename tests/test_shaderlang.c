@@ -133,6 +133,8 @@ static const struct feature features[] = {
     { "f23=mix(0.0, c, c)", f_mix },
     { "f24=bool b = c > 0.3 && !(c > 0.8); if (b || n > 100.0) return 1.0; return 0.0;", f_bool },
     { "f25=fract(c*n)", f_frac },
+    /* integers chosen by a condition on c become floats (a lane's int would differ from its neighbour's) */
+    { "f26=c < 0.5 ? 0 : 1", f_step },
     { NULL, NULL } };
 
 int main(void)

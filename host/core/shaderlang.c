@@ -1628,9 +1628,7 @@ static struct val ev(struct sl *S, struct expr *e)
         struct val a = ev(S, e->b), b = ev(S, e->c);
         if (a.t.b == B_BOOL || b.t.b == B_BOOL)
             FAIL(S, e->t, "?: of conditions: combine them with && || !");
-        if (a.t.b == B_INT && b.t.b == B_INT) {
-            if (!c.uniform)
-                FAIL(S, e->t, "an int chosen by a condition on c or n: make the values float");
+        if (a.t.b == B_INT && b.t.b == B_INT && c.uniform) {
             r.t = a.t;
             r.c[0] = sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[0], b.c[0]);
             return r;
