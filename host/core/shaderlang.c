@@ -26,8 +26,9 @@
 #define SL_MAX_PARAMS 2      /* as MODEL_MAX_PARAMS */
 #define SL_MAX_ARGS 8
 #define SL_MAX_UNROLL 256    /* iterations of one unrolled for loop */
-#define SL_MAX_INLINE 32     /* nested calls of helper functions */
+#define SL_MAX_INLINE 16     /* nested calls of helper functions */
 #define SL_MAX_MACRO_DEPTH 16
+#define SL_MAX_NESTING 200   /* parentheses, operators and statements inside each other */
 
 /* ---- memory: one arena per translation ------------------------------------------------ */
 
@@ -158,6 +159,7 @@ struct sl {
     const struct func *inlining[SL_MAX_INLINE];
     int ninline;
     struct fnctx *fn;
+    int depth;                 /* of the parser's recursion */
 };
 
 static void *arena_alloc(struct sl *S, size_t n);
@@ -651,7 +653,17 @@ static struct expr *parse_postfix(struct sl *S)
     return e;
 }
 
+static struct expr *parse_unary_inner(struct sl *S);
 static struct expr *parse_unary(struct sl *S)
+{
+    if (++S->depth > SL_MAX_NESTING)
+        FAIL(S, peek(S), "nested more than %d levels deep", SL_MAX_NESTING);
+    struct expr *e = parse_unary_inner(S);
+    --S->depth;
+    return e;
+}
+
+static struct expr *parse_unary_inner(struct sl *S)
 {
     const struct tok *t = peek(S);
     if (tok_is(t, "-") || tok_is(t, "+") || tok_is(t, "!")) {
@@ -858,7 +870,17 @@ static struct stmt *parse_simple(struct sl *S, int top_body, int need_semicolon)
     return s;
 }
 
+static struct stmt *parse_statement_inner(struct sl *S, int top_body);
 static struct stmt *parse_statement(struct sl *S, int top_body)
+{
+    if (++S->depth > SL_MAX_NESTING)
+        FAIL(S, peek(S), "nested more than %d levels deep", SL_MAX_NESTING);
+    struct stmt *st = parse_statement_inner(S, top_body);
+    --S->depth;
+    return st;
+}
+
+static struct stmt *parse_statement_inner(struct sl *S, int top_body)
 {
     const struct tok *t = peek(S);
     check_unsupported_word(S, t);
