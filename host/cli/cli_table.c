@@ -205,8 +205,156 @@ static void write_wrapped(FILE *out, const char *text, int col)
     }
 }
 
+static enum cli_help_format help_format = CLI_HELP_TEXT;
+static FILE *help_out;
+static const char *command_summary, *command_example;
+
+void cli_set_help_format(enum cli_help_format format, FILE *out)
+{
+    help_format = format;
+    help_out = out;
+}
+
+void cli_set_command_info(const char *summary, const char *example)
+{
+    command_summary = summary;
+    command_example = example;
+}
+
+void cli_write_roff(FILE *f, const char *text)
+{
+    int line_start = 1;
+    for (const char *p = text; *p; ++p) {
+        if (line_start && (*p == '.' || *p == '\''))
+            fputs("\\&", f);
+        if (*p == '\\')
+            fputs("\\e", f);
+        else if (*p == '-')
+            fputs("\\-", f);
+        else
+            fputc(*p, f);
+        line_start = *p == '\n';
+    }
+}
+
+/* The text of a flag as --help shows it: its help, then its range and default. */
+static void flag_text(const struct cli_flag *f, char *text, size_t len)
+{
+    char range[128], def[256];
+    range_text(f, range, sizeof range);
+    default_text(f, def, sizeof def);
+    size_t used = (size_t)snprintf(text, len, "%s", f->help);
+    if ((range[0] || def[0]) && used < len)
+        snprintf(text + used, len - used, " (%s%s%s%s)", range, range[0] && def[0] ? "; " : "",
+                 def[0] ? "default: " : "", def);
+}
+
+/* Lines of text that each begin with two spaces (a command's about and epilog), as roff. */
+static void roff_paragraphs(FILE *out, const char *text)
+{
+    const char *p = text;
+    while (*p) {
+        const char *eol = strchr(p, '\n');
+        size_t n = eol ? (size_t)(eol - p) : strlen(p);
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)n, p);
+        const char *q = line;
+        while (*q == ' ')
+            ++q;
+        if (*q) {
+            cli_write_roff(out, q);
+            fputc('\n', out);
+        } else {
+            fputs(".PP\n", out);
+        }
+        p += n;
+        if (*p == '\n')
+            ++p;
+    }
+}
+
+/* The command's man page, brdfbench-NAME(1), from the same table as --help. */
+static void print_man(FILE *out, const struct cli_command *c)
+{
+    char upper[64];
+    snprintf(upper, sizeof upper, "%s", c->name);
+    for (char *p = upper; *p; ++p)
+        if (*p >= 'a' && *p <= 'z')
+            *p = (char)(*p - 'a' + 'A');
+    fprintf(out, ".\\\" brdfbench-%s(1): made by brdfbench help --man %s from its flag table\n", c->name, c->name);
+    fprintf(out, ".TH BRDFBENCH\\-%s 1 \"\" \"brdfbench %s\" \"brdfbench manual\"\n", upper, BRDF_VERSION);
+    fprintf(out, ".SH NAME\nbrdfbench\\-%s \\- ", c->name);
+    cli_write_roff(out, command_summary ? command_summary : c->name);
+    fprintf(out, "\n.SH SYNOPSIS\n.B brdfbench %s\n", c->name);
+    cli_write_roff(out, c->synopsis ? c->synopsis : "[OPTIONS]");
+    fputs("\n", out);
+    if (c->about) {
+        fputs(".SH DESCRIPTION\n", out);
+        roff_paragraphs(out, c->about);
+    }
+    fputs(".SH OPTIONS\n", out);
+    for (int k = 0; k < c->nflags; ++k) {
+        const struct cli_flag *f = &c->flags[k];
+        if (f->kind == CLI_RENAMED)
+            continue;
+        char text[1200];
+        flag_text(f, text, sizeof text);
+        fputs(".TP\n.B ", out);
+        cli_write_roff(out, f->name);
+        if (f->value) {
+            fputs(" \\fI", out);
+            cli_write_roff(out, f->value);
+            fputs("\\fR", out);
+        }
+        fputc('\n', out);
+        cli_write_roff(out, text);
+        fputc('\n', out);
+    }
+    fputs(".TP\n.B \\-\\-help\\fR, \\fB\\-h\nthis help\n.TP\n.B \\-\\-version\nthe program's version and revision\n", out);
+    if (c->epilog) {
+        fputs(".SH NOTES\n", out);
+        roff_paragraphs(out, c->epilog);
+    }
+    if (command_example) {
+        fputs(".SH EXAMPLE\n.nf\n", out);
+        cli_write_roff(out, command_example);
+        fputs("\n.fi\n", out);
+    }
+    fputs(".SH SEE ALSO\n.BR brdfbench (1)\n", out);
+}
+
+/* One line per flag for the shell completions. */
+static void print_words(FILE *out, const struct cli_command *c)
+{
+    for (int k = 0; k < c->nflags; ++k) {
+        const struct cli_flag *f = &c->flags[k];
+        if (f->kind == CLI_RENAMED)
+            continue;
+        /* the help up to its first ';' or '(' (a short description) */
+        char desc[120];
+        size_t n = strcspn(f->help, ";(\n\t");
+        if (n > sizeof desc - 1)
+            n = sizeof desc - 1;
+        snprintf(desc, sizeof desc, "%.*s", (int)n, f->help);
+        while (n > 0 && desc[n - 1] == ' ')
+            desc[--n] = '\0';
+        fprintf(out, "%s\t%s\t%s\n", f->name, f->value ? f->value : "", desc);
+    }
+    fprintf(out, "--help\t\tthis help\n--version\t\tthe program's version and revision\n");
+}
+
 void cli_print_help(FILE *out, const struct cli_command *c)
 {
+    if (help_out)
+        out = help_out;
+    if (help_format == CLI_HELP_MAN) {
+        print_man(out, c);
+        return;
+    }
+    if (help_format == CLI_HELP_WORDS) {
+        print_words(out, c);
+        return;
+    }
     fprintf(out, "usage: brdfbench %s %s\n", c->name, c->synopsis ? c->synopsis : "[OPTIONS]");
     if (c->about)
         fputs(c->about, out);
@@ -214,14 +362,9 @@ void cli_print_help(FILE *out, const struct cli_command *c)
         const struct cli_flag *f = &c->flags[k];
         if (f->kind == CLI_RENAMED)
             continue;
-        char head[64], range[128], def[256], text[1200];
+        char head[64], text[1200];
         snprintf(head, sizeof head, "%s%s%s", f->name, f->value ? " " : "", f->value ? f->value : "");
-        range_text(f, range, sizeof range);
-        default_text(f, def, sizeof def);
-        size_t used = (size_t)snprintf(text, sizeof text, "%s", f->help);
-        if (range[0] || def[0])
-            snprintf(text + used, sizeof text - used, " (%s%s%s%s)", range, range[0] && def[0] ? "; " : "",
-                     def[0] ? "default: " : "", def);
+        flag_text(f, text, sizeof text);
         int col = fprintf(out, "  %-*s", HELP_COLUMN - 3, head) + 0;
         if (col >= HELP_COLUMN) {   /* a long flag: the text starts on the next line */
             fprintf(out, "\n%*s", HELP_COLUMN, "");
@@ -234,6 +377,8 @@ void cli_print_help(FILE *out, const struct cli_command *c)
     fprintf(out, "  %-*s %s\n", HELP_COLUMN - 3, "--version", "the program's version and revision");
     if (c->epilog)
         fputs(c->epilog, out);
+    if (command_example)
+        fprintf(out, "example:\n  %s\n", command_example);
 }
 
 /* ---- shared flags ---------------------------------------------------------------------- */
@@ -353,6 +498,25 @@ int cli_model_list(const char *text, struct model_spec *out, int max, char *err,
             out[kept++] = out[i];
     }
     return kept;
+}
+
+int cli_add_unlisted_user_models(struct model_spec *models, int count, int max, char *err, size_t errlen)
+{
+    for (int i = 0; i < usermodel_count(); ++i) {
+        const struct user_model *um = usermodel_at(i);
+        int listed = 0;
+        for (int k = 0; k < count && !listed; ++k)
+            listed = models[k].info == &um->info;
+        if (listed)
+            continue;
+        if (count >= max) {
+            snprintf(err, errlen, "--models and the user models: at most %d models per run", max);
+            return -2;
+        }
+        model_spec_default(&um->info, &models[count++]);
+        cli_note("user model '%s' (%s) is not in --models: measured as well", um->name, um->origin);
+    }
+    return count;
 }
 
 int cli_frontier_default_models(struct model_spec *out, int max, char *err, size_t errlen)

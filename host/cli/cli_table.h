@@ -72,8 +72,19 @@ int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_arg
 int cli_parse_exit(const struct cli_command *c, int prc, const char *err);
 /* A struct cli_command's table: CLI_TABLE(flags) for .flags and .nflags of the array flags. */
 #define CLI_TABLE(F) .flags = (F), .nflags = (int)(sizeof(F) / sizeof((F)[0]))
-/* Writes the command's --help from its table. */
+/* Writes the command's --help from its table (in the format cli_set_help_format chose). */
 void cli_print_help(FILE *f, const struct cli_command *c);
+/* What --help writes: the text (the default), the command's man page (roff), or its flags for
+ * the shell completions, one a line: "FLAG<TAB>VALUE<TAB>HELP" (VALUE empty for a switch). */
+enum cli_help_format { CLI_HELP_TEXT, CLI_HELP_MAN, CLI_HELP_WORDS };
+/* out NULL: standard output. */
+void cli_set_help_format(enum cli_help_format format, FILE *out);
+/* The command's one-line summary and example (main.c's command table), for --help and its
+ * man page. */
+void cli_set_command_info(const char *summary, const char *example);
+/* Text as roff (man pages) writes it: backslashes and hyphens escaped, a leading '.' or '\''
+ * guarded. */
+void cli_write_roff(FILE *f, const char *text);
 /* The name of the command being parsed ("accuracy"), for notes printed while parsing. */
 const char *cli_command_name(void);
 /* "brdfbench VERSION (REVISION)": what `brdfbench version` and every --version print. */
@@ -156,16 +167,22 @@ int cli_call_model_file(const char *flag, const char *value, void *dest, char *e
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 #define CLI_FLAGS_USERMODEL                                                                                        \
     { .name = "--model-file", .value = "FILE", .kind = CLI_CALL, .call = cli_call_model_file, .def = "",           \
-      .help = "add the user model of FILE.cl (see docs/user-models.md); repeatable; the same file "               \
-              "twice is read once" },                                                                             \
+      .help = "add the user model of FILE: OpenCL C (FILE.cl) or GLSL/HLSL (FILE.glsl, FILE.hlsl; see "         \
+              "docs/user-models.md); repeatable; the same file twice is read once" },                            \
     { .name = "--model", .value = "NAME=EXPR", .kind = CLI_CALL, .call = cli_call_model_expr, .def = "",           \
-      .help = "add a user model given by an OpenCL C expression of c and n, e.g. "                                \
-              "--model 'sq=pow(fmax(0.45*n*(c-1)+1,0),2)'; repeatable; the same NAME=EXPR twice "                 \
-              "is read once, NAME with another EXPR is refused" }
+      .help = "add a user model given by an expression of c and n, or GLSL/HLSL statements ending in "          \
+              "return, e.g. --model 'sq=pow(fmax(0.45*n*(c-1)+1,0),2)' or --model "                              \
+              "'q=t = 1 - 0.25*n*(1-c); t = max(t, 0); return t*t*t*t;'; repeatable; the same "                  \
+              "NAME=EXPR twice is read once, NAME with another EXPR is refused" }
 
 /* Parses --models text (or the default) into models, merging a model given twice (same label)
  * with a note. Returns the count, or -2 with a message. */
 int cli_model_list(const char *text, struct model_spec *out, int max, char *err, size_t errlen);
+/* Appends to models[count] (at most max) every user model (--model, --model-file) that the
+ * list does not hold, with its default parameters and a note on stderr, so that a model the
+ * command line defines is never dropped without a word. Returns the new count, or -2 with a
+ * message when the list is full. */
+int cli_add_unlisted_user_models(struct model_spec *models, int count, int max, char *err, size_t errlen);
 /* The frontier's models when --models is not given (frontier and all): its default set of lobe
  * approximations, then every user model. Returns the count, or -2 with a message. */
 int cli_frontier_default_models(struct model_spec *out, int max, char *err, size_t errlen);

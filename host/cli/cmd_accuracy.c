@@ -6,7 +6,10 @@
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
+#include "field.h"
+#include "field_report.h"
 #include "outdir.h"
+#include "plots.h"
 #include "usermodel.h"
 
 #include <math.h>
@@ -15,6 +18,78 @@
 #include <string.h>
 
 #define MAX_MODELS 64
+
+static int self_referenced(const struct model_spec *m) { return strcmp(m->info->id, m->info->reference_id) == 0; }
+
+/* --pictures: each model's error field and heatmap over the run's range of n, and the per-n
+ * maxima of every model against n (plots.json and its pictures), in run_dir. */
+static int accuracy_pictures(struct cl_session *s, const struct model_spec *models,
+                             const struct accuracy_result *res, int nmodels, const struct accuracy_grid *grid,
+                             const char *run_dir, int quiet, int *drawn)
+{
+    char err[1024], name[200], path[4400], safe[96];
+    int rc = 0;
+    *drawn = 0;
+    struct field_grid fg = { FIELD_DEFAULT_ROWS, FIELD_DEFAULT_COLS, grid->n_min, grid->n_max };
+    if (!(grid->n_min < grid->n_max)) {
+        if (!quiet)
+            fprintf(stderr, "brdfbench accuracy: note: --pictures: one n (%g), so no heatmaps (they span a range of n)\n",
+                    grid->n_min);
+    } else {
+        struct field_ctx f;
+        if ((rc = field_open(&f, s, "")) != 0)
+            return rc;
+        for (int m = 0; m < nmodels && !rc; ++m) {
+            if (self_referenced(&models[m]))
+                continue;   /* zero by definition: nothing to see */
+            struct field_result fr;
+            if ((rc = field_run(&f, &models[m], &fg, &fr)) != 0)
+                break;
+            field_safe_label(models[m].label, safe, sizeof safe);
+            snprintf(name, sizeof name, "field_%s.json", safe);
+            path_join(path, sizeof path, run_dir, name);
+            if (field_write_json(path, &fr, s, err, sizeof err)) {
+                fprintf(stderr, "brdfbench accuracy: %s\n", err);
+                rc = EXIT_RUNTIME;
+            } else {
+                snprintf(name, sizeof name, "heatmap_%s.png", safe);
+                path_join(path, sizeof path, run_dir, name);
+                if (field_draw_heatmap(path, &fr, NULL, err, sizeof err)) {
+                    fprintf(stderr, "brdfbench accuracy: %s\n", err);
+                    rc = EXIT_RUNTIME;
+                } else {
+                    ++*drawn;
+                }
+            }
+            field_result_free(&fr);
+        }
+        field_close(&f);
+        if (rc)
+            return rc;
+    }
+    struct plot_set set;
+    plots_init(&set);
+    plots_add_max_vs_n(&set, "max_rel_error_epicentre_vs_n.png",
+                       "max delta over the epicentre against n, each model against its reference",
+                       "Max relative error delta over the epicentre, per n", res, nmodels, 1, NULL, 0);
+    plots_add_max_vs_n(&set, "max_abs_error_vs_n.png",
+                       "max Delta over [0, pi/2] against n, each model against its reference",
+                       "Max absolute error Delta over [0, pi/2], per n", res, nmodels, 0, NULL, 0);
+    path_join(path, sizeof path, run_dir, "plots.json");
+    if (plots_write_json(&set, path, s, err, sizeof err)) {
+        fprintf(stderr, "brdfbench accuracy: %s\n", err);
+        rc = EXIT_RUNTIME;
+    } else {
+        int failed = plots_draw(&set, run_dir, err, sizeof err);
+        if (failed) {
+            fprintf(stderr, "brdfbench accuracy: %s\n", err);
+            rc = EXIT_RUNTIME;
+        }
+        *drawn += set.count - failed;
+    }
+    plots_free(&set);
+    return rc;
+}
 
 int cmd_accuracy(int argc, char **argv)
 {
@@ -27,7 +102,7 @@ int cmd_accuracy(int argc, char **argv)
     struct device_options dev;
     device_options_init(&dev);
     const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
-    int quiet = 0, models_given = 0;
+    int quiet = 0, models_given = 0, pictures = 0;
     struct model_spec models[MAX_MODELS];
 
     const struct cli_flag flags[] = {
@@ -38,6 +113,11 @@ int cmd_accuracy(int argc, char **argv)
         CLI_FLAG_SAMPLES(&grid.samples, ACC_MAX_SAMPLES),
         CLI_FLAGS_DOCUMENTS(&out_dir, &json_path, &csv_path),
         CLI_FLAG_QUIET(&quiet),
+        { .name = "--pictures", .kind = CLI_SWITCH, .dest = &pictures, .set = 1,
+          .help = "also draw, into the run folder, each model's error heatmap (field_<model>.json and "
+                  "heatmap_<model>.png, over the run's range of n) and the max delta and max Delta against n "
+                  "of every model (plots.json and two PNGs), user models included; brdfbench plot and heatmap "
+                  "redraw them" },
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };
@@ -53,8 +133,15 @@ int cmd_accuracy(int argc, char **argv)
     if (!models_given && usermodel_count() > 0)
         models_text = usermodel_names();
     int nmodels = cli_model_list(models_text, models, MAX_MODELS, err, sizeof err);
+    if (nmodels >= 0)
+        nmodels = cli_add_unlisted_user_models(models, nmodels, MAX_MODELS, err, sizeof err);
     if (nmodels < 0)
         goto usage_error;
+    if (pictures && !out_dir && (json_path || csv_path)) {
+        snprintf(err, sizeof err, "--pictures writes into the run folder: give --out DIR (with --json or --csv "
+                                  "and no --out there is none)");
+        goto usage_error;
+    }
     if (accuracy_grid_check(&grid, NULL, err, sizeof err))
         goto usage_error;
     if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
@@ -158,6 +245,10 @@ int cmd_accuracy(int argc, char **argv)
         rc = EXIT_RUNTIME;
         goto cleanup;
     }
+    int npictures = 0;
+    if (pictures && to_folder && (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet,
+                                                         &npictures)) != 0)
+        goto cleanup;
     if (!quiet && !doc_on_stdout) {
         accuracy_print_table(stdout, res, nmodels);
         double worst = 0, dev_s = 0, pts = 0;
@@ -179,6 +270,9 @@ int cmd_accuracy(int argc, char **argv)
                wall ? "; wall time: the driver's profiling events gave no time" : "");
         if (to_folder)
             printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
+        if (npictures)
+            printf("written: %d pictures in %s (heatmap_<model>.png, max_rel_error_epicentre_vs_n.png, "
+                   "max_abs_error_vs_n.png)\n", npictures, run_dir);
         if (json_path)
             printf("written: %s\n", json_path);
         if (csv_path)

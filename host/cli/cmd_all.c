@@ -371,16 +371,16 @@ static int step_plots(struct all_run *r)
                          "f against x at n = 20: phong (reference), fq2, fq (Q = 0.64), cq2 (paper 2, fig. 5)",
                          "Lobes at n = 20 (paper 2, fig. 5)", 20, specs, n);
     /* paper 1 figs. 3, 5 and paper 2 fig. 6: per-n maxima, lobe approximations */
-    static const char *const lobe_families[] = {"quadratic", "rational"};
+    static const char *const lobe_families[] = {"quadratic", "rational", "user"};
     static const char *const norm_families[] = {"normalised", "microfacet"};
     plots_add_max_vs_n(&r->plots, "max_rel_error_epicentre_vs_n.png",
                        "max delta over the epicentre against n, lobe approximations against phong (paper 1 fig. 3, "
                        "paper 2 fig. 6a)",
-                       "Max relative error delta over the epicentre, per n", r->acc, r->nacc, 1, lobe_families, 2);
+                       "Max relative error delta over the epicentre, per n", r->acc, r->nacc, 1, lobe_families, 3);
     plots_add_max_vs_n(&r->plots, "max_abs_error_vs_n.png",
                        "max Delta over [0, pi/2] against n, lobe approximations against phong (paper 1 fig. 5, "
                        "paper 2 fig. 6b)",
-                       "Max absolute error Delta over [0, pi/2], per n", r->acc, r->nacc, 0, lobe_families, 2);
+                       "Max absolute error Delta over [0, pi/2], per n", r->acc, r->nacc, 0, lobe_families, 3);
     plots_add_max_vs_n(&r->plots, "max_rel_error_epicentre_vs_n_normalised.png",
                        "max delta over the epicentre against n, normalised and microfacet lobes against their "
                        "normalised references",

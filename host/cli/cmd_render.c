@@ -209,6 +209,8 @@ int cmd_render(int argc, char **argv)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
         int n = cli_model_list(models_text, o.models, RENDER_MAX_MODELS, err, sizeof err);
+        if (n >= 0)
+            n = cli_add_unlisted_user_models(o.models, n, RENDER_MAX_MODELS, err, sizeof err);
         if (n < 0)
             goto usage_error;
         o.nmodels = n;

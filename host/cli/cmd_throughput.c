@@ -140,6 +140,8 @@ int cmd_throughput(int argc, char **argv)
     if (!models_given && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     int n = cli_model_list(models_text, o.models, TP_MAX_MODELS, err, sizeof err);
+    if (n >= 0)
+        n = cli_add_unlisted_user_models(o.models, n, TP_MAX_MODELS, err, sizeof err);
     if (n < 0)
         goto usage_error;
     o.model_count = n;

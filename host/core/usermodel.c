@@ -4,6 +4,7 @@
 #include "usermodel.h"
 #include "exitcodes.h"
 #include "mdbuf.h"
+#include "shaderlang.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -309,11 +310,19 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
         return file_fail(err, errlen, path, 0, "larger than %d bytes", USERMODEL_MAX_FILE);
     if (memchr(text, '\0', len))
         return file_fail(err, errlen, path, 0, "NUL byte in a model file (a text file is expected)");
+    /* A GLSL/HLSL-style file is read as its translation (shaderlang.h). */
+    char *translated = NULL;
+    int sl = shaderlang_file(text, len, path, &translated, &len, err, errlen);
+    if (sl == EXIT_USAGE)
+        return sl;
+    if (sl == 0)
+        text = translated;
     char *copy = malloc(len + 1);
     struct user_model *um = usermodel_new();
     if (!copy || !um) {
         free(copy);
         free(um);
+        free(translated);
         return file_fail(err, errlen, path, 0, "out of memory");
     }
     memcpy(copy, text, len);
@@ -455,6 +464,7 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
     }
 done:
     free(copy);
+    free(translated);
     if (rc)
         usermodel_free(um);
     else
@@ -489,6 +499,24 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
     if (elen == 0 || elen > USERMODEL_MAX_EXPR) {
         snprintf(err, errlen, "--model %s: the expression must have 1 to %d characters", name, USERMODEL_MAX_EXPR);
         return EXIT_USAGE;
+    }
+    {
+        /* GLSL/HLSL-style text (shaderlang.h): read as the model file it translates to. */
+        char origin[USERMODEL_NAME_MAX + 16], *text = NULL;
+        size_t tlen = 0;
+        snprintf(origin, sizeof origin, "--model %s", name);
+        int sl = shaderlang_expression(name, expr, origin, &text, &tlen, err, errlen);
+        if (sl == 0) {
+            sl = usermodel_parse_file_text(text, tlen, origin, out, err, errlen);
+            free(text);
+            if (sl == 0) {
+                (*out)->from_file = 0;
+                snprintf((*out)->formula, sizeof (*out)->formula, "%s", expr);
+                snprintf((*out)->description, sizeof (*out)->description, "user expression %.200s", expr);
+            }
+        }
+        if (sl != SHADERLANG_NOT_SHADER)
+            return sl;
     }
     int blank = 1;
     for (size_t i = 0; i < elen; ++i) {

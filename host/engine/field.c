@@ -71,8 +71,10 @@ void field_result_free(struct field_result *r)
     free(r->n);
     free(r->epi_rel);
     free(r->att_abs);
+    free(r->standin);
     r->n = NULL;
     r->epi_rel = r->att_abs = NULL;
+    r->standin = NULL;
 }
 
 static void find_peak(const struct field_result *r, const float *v, int attenuation, struct field_peak *p)

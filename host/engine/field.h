@@ -43,6 +43,9 @@ struct field_result {
     double check_rel_diff, check_abs_diff;
     int check_cells;
     double device_seconds;
+    /* A field file of a model this process does not know (a user model of the run that made it):
+       model.info points here, made from the file's label, formula and lobe (field_read_json). */
+    struct model_info *standin;
 };
 
 struct field_ctx {

@@ -42,6 +42,9 @@ int field_write_json(const char *path, const struct field_result *r, const struc
     jw_obj_end(&w);
     jw_kv_str(&w, "model", r->model.label);
     jw_kv_str(&w, "reference", r->reference.label);
+    /* what a redraw needs of a model it may not know (a user model): its formula and lobe angle */
+    jw_kv_str(&w, "formula", r->model.info->formula ? r->model.info->formula : "");
+    jw_kv_str(&w, "lobe", r->model.info->lobe == LOBE_PSI ? "psi" : "theta_h");
     jw_kv_obj(&w, "grid");
     jw_kv_int(&w, "rows", r->grid.rows);
     jw_kv_int(&w, "cols", r->grid.cols);
@@ -115,8 +118,39 @@ int field_read_json(const char *path, struct field_result *r, char *err, size_t 
         jr_need_num_array(&d, grid, "n", &n, &nn, err, errlen))
         goto done;
     if (model_spec_parse(model, &r->model, why, sizeof why)) {
-        jr_fail(&d, jr_get(root, "model"), err, errlen, "%s", why);
-        goto done;
+        /* A model this process does not know (a user model of the run that wrote the file): the
+           picture needs only its label, formula and lobe angle, which the file carries. */
+        const char *formula = NULL, *lobe = NULL;
+        const struct jr_value *fv = jr_get(root, "formula"), *lv = jr_get(root, "lobe");
+        if ((fv && jr_need_str(&d, root, "formula", &formula, err, errlen)) ||
+            (lv && jr_need_str(&d, root, "lobe", &lobe, err, errlen)))
+            goto done;
+        if (lobe && strcmp(lobe, "psi") != 0 && strcmp(lobe, "theta_h") != 0) {
+            jr_fail(&d, lv, err, errlen, "lobe \"%s\" is not psi or theta_h", lobe);
+            goto done;
+        }
+        if (strlen(model) >= sizeof r->model.label) {
+            jr_fail(&d, jr_get(root, "model"), err, errlen, "%s", why);
+            goto done;
+        }
+        size_t flen = formula ? strlen(formula) + 1 : 1, mlen = strlen(model) + 1;
+        r->standin = calloc(1, sizeof *r->standin + flen + mlen);
+        if (!r->standin) {
+            snprintf(err, errlen, "%s: out of memory", path);
+            goto done;
+        }
+        char *id = (char *)(r->standin + 1), *f = id + mlen;
+        memcpy(id, model, mlen);
+        memcpy(f, formula ? formula : "", flen);
+        r->standin->id = id;
+        r->standin->kernel_id = -1;
+        r->standin->family = "user";
+        r->standin->lobe = lobe && strcmp(lobe, "theta_h") == 0 ? LOBE_THETA_H : LOBE_PSI;
+        r->standin->formula = formula ? f : "(the formula is not in this field file)";
+        r->standin->description = "a model of the run that wrote this field file";
+        memset(&r->model, 0, sizeof r->model);
+        r->model.info = r->standin;
+        snprintf(r->model.label, sizeof r->model.label, "%s", model);
     }
     if (model_spec_parse(ref, &r->reference, why, sizeof why)) {
         jr_fail(&d, jr_get(root, "reference"), err, errlen, "%s", why);

@@ -1,0 +1,338 @@
+/* test_shaderlang.c - user models written as GLSL or HLSL (host/core/shaderlang.c), through
+ * the user-model parser and their double reference on the host; no device needed.
+ *
+ * Expected values are each formula written a second time here in C (the shader functions by
+ * their GLSL/HLSL definitions: saturate = clamp to [0, 1], lerp = mix = x + (y - x) a,
+ * reflect(I, N) = I - 2 dot(N, I) N, step, smoothstep as in the GLSL specification), or a
+ * built-in model with the same formula (lyon:k=2 is (1 - n (1 - c) / 4)^4, zeroed past its root),
+ * or the same lobe written in the OpenCL C form; error positions are counted by hand in the
+ * texts below. */
+#include "check.h"
+#include "hostjit.h"
+#include "models.h"
+#include "shaderlang.h"
+#include "usermodel.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int register_expr(const char *arg, struct model_spec *spec)
+{
+    struct user_model *um = NULL;
+    char err[600] = "";
+    int rc = usermodel_parse_expression(arg, &um, err, sizeof err);
+    if (rc == 0)
+        rc = usermodel_register(um, err, sizeof err);
+    CHECK(rc == 0, "registering %s: %s", arg, err);
+    if (rc)
+        return 0;
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)(strchr(arg, '=') - arg), arg);
+    rc = model_spec_parse(name, spec, err, sizeof err);
+    CHECK(rc == 0, "parsing %s: %s", name, err);
+    return rc == 0 && usermodel_host_ready(usermodel_of(spec));
+}
+
+static int load(const char *file, const char *label, struct model_spec *spec)
+{
+    char path[1024], err[600] = "";
+    const char *src = getenv("SRC_DIR");
+    snprintf(path, sizeof path, "%s/tests/test_shaderlang_files/%s", src ? src : ".", file);
+    int rc = usermodel_load_file(path, NULL, err, sizeof err);
+    CHECK(rc == 0, "loading %s: %s", file, err);
+    if (rc)
+        return 0;
+    rc = model_spec_parse(label, spec, err, sizeof err);
+    CHECK(rc == 0, "parsing %s: %s", label, err);
+    return rc == 0 && usermodel_host_ready(usermodel_of(spec));
+}
+
+/* The error of a --model text, or of a file text, that must fail. */
+static const char *expr_error(const char *arg)
+{
+    static char err[600];
+    struct user_model *um = NULL;
+    err[0] = '\0';
+    int rc = usermodel_parse_expression(arg, &um, err, sizeof err);
+    if (rc == 0) {
+        usermodel_free(um);
+        snprintf(err, sizeof err, "(accepted)");
+    }
+    return err;
+}
+
+static double issue_lobe(double c, double n)
+{
+    double t = 1 - 0.25 * n * (1 - c);
+    t = t > 0 ? t : 0;
+    return t * t * t * t;
+}
+
+struct feature {
+    const char *arg;
+    double (*expect)(double c, double n);
+};
+
+static double f_saturate(double c, double n) { (void)n; double x = 1.5 * c; return x < 0 ? 0 : x > 1 ? 1 : x; }
+static double f_lerp(double c, double n) { (void)n; return c + (1.0 - c) * 0.25; }
+static double f_mad(double c, double n) { return c * n + 1.0; }
+static double f_rsqrt(double c, double n) { (void)n; return 1.0 / sqrt(c + 1.0) + 1.0 / sqrt(c + 2.0); }
+static double f_clamp(double c, double n) { double x = n * (c - 0.9); return x < 0 ? 0 : x > 1 ? 1 : x; }
+static double f_step(double c, double n) { (void)n; return c < 0.5 ? 0.0 : 1.0; }
+static double f_smooth(double c, double n)
+{
+    (void)n;
+    double t = (c - 0.2) / 0.6;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return t * t * (3 - 2 * t);
+}
+static double f_exp2(double c, double n) { return exp2(n * (c - 1.0)); }
+static double f_pow(double c, double n) { return pow(c, n); }
+static double f_piecewise(double c, double n) { (void)n; return c < 0.5 ? 0.0 : c < 0.75 ? c : 2.0 * c; }
+static double f_ternary(double c, double n) { (void)n; return c > 0.5 ? c : 0.5; }
+static double f_casts(double c, double n) { (void)n; return c + 0.5; }
+static double f_suffix(double c, double n) { (void)n; return 0.5 * c + 0.25; }
+static double f_intdiv(double c, double n) { (void)n; return c + 1.0; }
+static double f_swizzle(double c, double n) { return 2.0 * c + n; }
+static double f_compound(double c, double n) { (void)n; double t = c; t += 1.0; t *= 2.0; t -= c; t /= 2.0; return t; }
+static double f_loop(double c, double n) { (void)n; double b = c * c; b *= b; return b * b; }
+static double f_cross(double c, double n) { (void)n; return c; }
+static double f_dot3(double c, double n) { (void)n; return 3.0 * c * c; }
+static double f_length(double c, double n) { (void)n; return sqrt(c * c + 1.0 + 4.0); }
+static double f_normalize(double c, double n) { (void)n; double l = sqrt(c * c + 1.0 + 4.0); return c / l; }
+static double f_min_max(double c, double n) { return fmin(fmax(c, 0.25), 0.75) * n; }
+static double f_mix(double c, double n) { (void)n; return 0.0 + (c - 0.0) * c; }
+static double f_bool(double c, double n) { return (c > 0.3 && !(c > 0.8)) || n > 100 ? 1.0 : 0.0; }
+static double f_frac(double c, double n) { double x = c * n; return x - floor(x); }
+
+static const struct feature features[] = {
+    { "f1=saturate(c*1.5)", f_saturate },
+    { "f2=lerp(c, 1.0, 0.25)", f_lerp },
+    { "f3=mad(c, n, 1.0f)", f_mad },
+    { "f4=rsqrt(c+1.0) + inversesqrt(c+2.0)", f_rsqrt },
+    { "f5=clamp(n*(c-0.9), 0, 1)", f_clamp },
+    { "f6=step(0.5, c)", f_step },
+    { "f7=smoothstep(0.2, 0.8, c)", f_smooth },
+    { "f8=exp2(n*(c-1.0))", f_exp2 },
+    { "f9=pow(c, n)", f_pow },
+    { "f10=if (c < 0.5) return 0.0; else if (c < 0.75) { return c; } return 2.0*c;", f_piecewise },
+    { "f11=c > 0.5 ? c : 0.5", f_ternary },
+    { "f12=float(1) * (float)c + float(2)/4", f_casts },
+    { "f13=0.5h * c + 0.25f", f_suffix },
+    { "f14=1/2 + c + 3/2", f_intdiv },
+    { "f15=vec4 v = vec4(c, n, 1.0, 2.0); return v.w * v.x + v.zy.y;", f_swizzle },
+    { "f16=float t = c; t += 1.0; t *= 2.0; t -= c; t /= 2.0; return t;", f_compound },
+    { "f17=float b = c; for (int i = 0; i < 3; i++) b *= b; return b;", f_loop },
+    { "f18=cross(vec3(1,0,0), vec3(0,1,0)).z * c", f_cross },
+    { "f19=float3 v = float3(c, c, c); return dot(v, v);", f_dot3 },
+    { "f20=length(vec3(c, 1.0, 2.0))", f_length },
+    { "f21=normalize(vec3(c, 1.0, 2.0)).x", f_normalize },
+    { "f22=min(max(c, 0.25), 0.75) * n", f_min_max },
+    { "f23=mix(0.0, c, c)", f_mix },
+    { "f24=bool b = c > 0.3 && !(c > 0.8); if (b || n > 100.0) return 1.0; return 0.0;", f_bool },
+    { "f25=fract(c*n)", f_frac },
+    /* integers chosen by a condition on c become floats (a lane's int would differ from its neighbour's) */
+    { "f26=c < 0.5 ? 0 : 1", f_step },
+    { NULL, NULL } };
+
+int main(void)
+{
+    struct model_spec m, a, b, d;
+    char err[600];
+
+    /* 1. The issue's example, pasted as it is (t is declared by its first assignment). */
+    if (register_expr("q4=t = 1 - 0.25*n*(1-c); t = max(t, 0); return t*t*t*t;", &m))
+        for (double n = 1; n <= 2000; n *= 1.9)
+            for (int i = 0; i <= 100; ++i) {
+                double c = i / 100.0;
+                CHECK(model_eval_host(&m, c, n) == issue_lobe(c, n), "q4 at c=%g n=%g: %.17g vs %.17g", c, n,
+                      model_eval_host(&m, c, n), issue_lobe(c, n));
+            }
+
+    /* 2. lyon:k=2 written in GLSL (a file without a header: named after the file, lyon2). */
+    if (load("lyon2.glsl", "lyon2", &m)) {
+        CHECK(model_spec_parse("lyon:k=2", &a, err, sizeof err) == 0, "%s", err);
+        double worst = 0;
+        for (double n = 1; n <= 1e5; n *= 1.7)
+            for (int i = 0; i <= 400; ++i) {
+                double c = 1.0 - pow(i / 400.0, 3.0);
+                double v = model_eval_host(&m, c, n), r = model_eval_host(&a, c, n);
+                double rel = fabs(v - r) / (r > 1e-300 ? r : 1.0);
+                if (!(rel <= worst))
+                    worst = rel;
+            }
+        /* the built-in works in s = 1 - c given; the file computes 1 - c: the last bits only */
+        CHECK(worst <= 1e-13, "lyon2.glsl vs lyon:k=2: largest relative difference %g", worst);
+        CHECK(strcmp(usermodel_of(&m)->name, "lyon2") == 0, "the headerless file's model name");
+    }
+
+    /* 3. The same lobe in OpenCL C, GLSL and HLSL: the same double values, bit for bit. */
+    if (load("quartic_cl.cl", "quartic_cl:k=0.3", &a) && load("quartic_glsl.glsl", "quartic_glsl:k=0.3", &b) &&
+        load("quartic_hlsl.hlsl", "quartic_hlsl:k=0.3", &d)) {
+        int same = 1;
+        for (double n = 1; n <= 1e4; n *= 1.3)
+            for (int i = 0; i <= 200; ++i) {
+                double c = i / 200.0;
+                double x = model_eval_host(&a, c, n), y = model_eval_host(&b, c, n), z = model_eval_host(&d, c, n);
+                if (x != y || x != z)
+                    same = 0;
+                double t = 1.0 - 0.3 * n * (1.0 - c);
+                t = t > 0 ? t : 0;
+                if (x != t * t * t * t)
+                    same = 0;
+            }
+        CHECK(same, "quartic in OpenCL C, GLSL and HLSL differ (or differ from (1 - k n (1 - c))^4)");
+    }
+
+    /* 4. Each construct against its definition (parsed, compiled for the host and evaluated
+          without registering: a run holds at most 8 user models). */
+    for (int f = 0; features[f].arg; ++f) {
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_expression(features[f].arg, &um, err, sizeof err);
+        CHECK(rc == 0, "%s: %s", features[f].arg, err);
+        if (rc)
+            continue;
+        CHECK(usermodel_host_ready(um), "%s does not compile on the host: %s", features[f].arg, um->host_error);
+        if (usermodel_host_ready(um)) {
+            double worst = 0;
+            for (double n = 1.5; n <= 300; n *= 2.3)
+                for (int i = 0; i <= 64; ++i) {
+                    double c = i / 64.0;
+                    double v = hostjit_function(um->host)(c, n, 0, 0), e = features[f].expect(c, n);
+                    double diff = fabs(v - e) / (fabs(e) > 1 ? fabs(e) : 1.0);
+                    if (!(diff <= worst))
+                        worst = diff;
+                }
+            CHECK(worst <= 4e-16, "%s: largest difference %g", features[f].arg, worst);
+        }
+        usermodel_free(um);
+    }
+
+    /* 5. Errors at the user's line and column. */
+    {
+        char path[1024];
+        const char *src = getenv("SRC_DIR");
+        snprintf(path, sizeof path, "%s/tests/test_shaderlang_files/line3.glsl", src ? src : ".");
+        int rc = usermodel_load_file(path, NULL, err, sizeof err);
+        /* line 3 is "    float t = pow(c, n) * undefined_thing;": the name begins in column 27 */
+        CHECK(rc == 2 && strstr(err, "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'"), "%d %s", rc, err);
+    }
+    static const struct { const char *arg, *message; } errors[] = {
+        /* "float t = c; return t +;": the ';' after '+' is character 24 */
+        { "e1=float t = c; return t +;", "--model e1:1:24: expected a value, found ';'" },
+        { "e2=vec3 v = vec3(c); return v;", "--model e2:1:26: the returned value: a vec3 cannot become a float" },
+        { "e3=float t = c;", "--model e3:1:13: the model ends without returning a value" },
+        { "e4=saturate(c) * q", "--model e4:1:15: use of undeclared identifier 'q'" },
+        { "e5=return dot(vec3(c), vec2(c));", "--model e5:1:21: dot of vectors of different sizes" },
+        { "e6=while (c > 0.5) c = c * 0.5; return c;", "--model e6:1:1: while loops are not supported" },
+        { "e7=vec3 v = vec3(c, n); return v.x;", "--model e7:1:10: vec3(...) needs 3 components, these give 2" },
+        { NULL, NULL } };
+    for (int i = 0; errors[i].arg; ++i) {
+        const char *e = expr_error(errors[i].arg);
+        CHECK(strstr(e, errors[i].message) != NULL, "%s: got '%s', expected '%s'", errors[i].arg, e, errors[i].message);
+    }
+
+    /* 6. A bare expression that only OpenCL C knows is left to OpenCL C, as before. */
+    {
+        char *out = NULL;
+        size_t len = 0;
+        CHECK(shaderlang_expression("o", "pow(c, n) * q", "--model o", &out, &len, err, sizeof err) ==
+              SHADERLANG_NOT_SHADER, "an unknown name in a bare expression: %s", err);
+        CHECK(shaderlang_expression("o", "native_powr(c, n)", "--model o", &out, &len, err, sizeof err) ==
+              SHADERLANG_NOT_SHADER, "native_powr: %s", err);
+        free(out);
+        static const char cl[] = "/* brdfbench-model\n * name: x\n */\nREAL x(REAL c, REAL n) { return c; }\n";
+        CHECK(shaderlang_file(cl, strlen(cl), "x.txt", &out, &len, err, sizeof err) == SHADERLANG_NOT_SHADER,
+              "a file that uses REAL is OpenCL C");
+        free(out);
+    }
+
+    /* 7. A file's parameter needs the header's range; the header's count must match. */
+    {
+        static const char t1[] = "float f(float c, float n, float k) { return k * c; }\n";
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_file_text(t1, strlen(t1), "f.glsl", &um, err, sizeof err);
+        CHECK(rc == 2 && strstr(err, "f.glsl:1:33: the model's parameter 'k' needs a range"), "%s", err);
+        static const char t2[] = "/* brdfbench-model\n * name: g\n * param: k 0 1 0.5\n */\n"
+                                 "float g(float c, float n) { return c; }\n";
+        rc = usermodel_parse_file_text(t2, strlen(t2), "g.hlsl", &um, err, sizeof err);
+        CHECK(rc == 2 && strstr(err, "g.hlsl:5:7: the model's function takes 0 parameters after c and n, the "
+                                     "header declares 1"), "%s", err);
+        /* #define, helpers, globals and a header's parameter in a GLSL file */
+        static const char t3[] = "/* brdfbench-model\n * name: h\n * param: k 0 4 2\n */\n"
+                                 "#define HALF 0.5\nconst float TWO = 2.0;\n"
+                                 "float sq(float x) { return x * x; }\n"
+                                 "float h(float c, float n, float k) { return sq(c) * HALF * TWO * k; }\n";
+        rc = usermodel_parse_file_text(t3, strlen(t3), "h.glsl", &um, err, sizeof err);
+        CHECK(rc == 0, "h.glsl: %s", err);
+        if (rc == 0) {
+            CHECK(usermodel_host_ready(um), "h.glsl on the host: %s", um->host_error);
+            if (usermodel_host_ready(um))
+                CHECK(hostjit_function(um->host)(0.5, 10.0, 3.0, 0) == 0.25 * 0.5 * 2.0 * 3.0, "h:k=3 at c = 0.5: %g",
+                      hostjit_function(um->host)(0.5, 10.0, 3.0, 0));
+            usermodel_free(um);
+        }
+    }
+    /* 8. BRDF Explorer files: the full BRDF with L = N and V at 2 theta_h (N.H = c), its
+          luminance, against the built-in models that write the same BRDFs (and 0 past
+          theta_h = 45 degrees, where V is below the horizon, as for the built-ins). */
+    static const struct { const char *file, *builtin; double p0; } brdfs[] = {
+        { "blinnphong.brdf", "blinn", 0 },
+        { "ct_ggx.brdf", "ct-ggx:F0=0.5", 0.5 },
+        { "everytype.brdf", "blinnn", 2.0 },
+        /* full BRDFs of (L, V, N) in GLSL and HLSL files, reduced the same way */
+        { "blinn_full.glsl", "blinn", 0 },
+        { "ct_full.hlsl", "ct-ggx:F0=0.7", 0.7 },
+        { NULL, NULL, 0 } };
+    for (int i = 0; brdfs[i].file; ++i) {
+        char path[1024], text[8192];
+        const char *src = getenv("SRC_DIR");
+        snprintf(path, sizeof path, "%s/tests/test_shaderlang_files/%s", src ? src : ".", brdfs[i].file);
+        FILE *f = fopen(path, "rb");
+        size_t len = f ? fread(text, 1, sizeof text, f) : 0;
+        if (f)
+            fclose(f);
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_file_text(text, len, path, &um, err, sizeof err);
+        CHECK(rc == 0, "%s: %s", brdfs[i].file, err);
+        if (rc)
+            continue;
+        struct model_spec ref;
+        CHECK(model_spec_parse(brdfs[i].builtin, &ref, err, sizeof err) == 0, "%s", err);
+        CHECK(um->info.lobe == LOBE_THETA_H, "%s: lobe theta_h", brdfs[i].file);
+        CHECK(usermodel_host_ready(um), "%s on the host: %s", brdfs[i].file, um->host_error);
+        if (usermodel_host_ready(um)) {
+            double worst = 0;
+            for (double n = 2; n <= 1000; n *= 1.6)
+                for (int k = 0; k <= 200; ++k) {
+                    double c = k / 200.0;
+                    double v = hostjit_function(um->host)(c, n, brdfs[i].p0, 0), r = model_eval_host(&ref, c, n);
+                    if (2 * c * c - 1 <= 0)
+                        r = 0; /* V below the horizon: the reduced BRDF is 0 (blinn, blinnn are lobes of any c) */
+                    double rel = fabs(v - r) / (fabs(r) > 1e-300 ? fabs(r) : 1.0);
+                    if (!(rel <= worst))
+                        worst = rel;
+                }
+            CHECK(worst <= 1e-9, "%s against %s: largest relative difference %g", brdfs[i].file, brdfs[i].builtin,
+                  worst);
+        }
+        usermodel_free(um);
+    }
+    {
+        char path[1024];
+        const char *src = getenv("SRC_DIR");
+        snprintf(path, sizeof path, "%s/tests/test_shaderlang_files/bad_shader.brdf", src ? src : ".");
+        int rc = usermodel_load_file(path, NULL, err, sizeof err);
+        /* line 8 of the file (the shader's third line): "    return vec3(pow(dot(N, normalize(L + V)), nn));" */
+        CHECK(rc == 2 && strstr(err, "bad_shader.brdf:8:47: use of undeclared identifier 'nn'"), "%s", err);
+        static const char t[] = "::begin parameters\nfloat n 1 1000\n::end parameters\n::begin shader\n::end shader\n";
+        struct user_model *um = NULL;
+        rc = usermodel_parse_file_text(t, strlen(t), "t.brdf", &um, err, sizeof err);
+        CHECK(rc == 2 && strstr(err, "t.brdf:2: float takes 4 values after its type (NAME MIN MAX DEFAULT), found 3"),
+              "%s", err);
+    }
+    usermodel_clear_all();
+    return check_summary();
+}

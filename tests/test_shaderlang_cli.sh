@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# test_shaderlang_cli.sh - shader-language models (host/core/shaderlang.c) through the accuracy
+# command: the same lobe written in OpenCL C, GLSL and HLSL, and the issue's pasted GLSL
+# statements (Lyon's lobe with k = 2 written in GLSL) give the same printed figures as the
+# built-in lyon:k=2, and an error in line 3 of a GLSL file is reported at line 3. (Each user
+# model costs a kernel build: tests/test_shaderlang.c checks more writings on the host.)
+#
+# Expected values are identities, not the program's output: (1 - k n (1 - c))^4 with k = 1/4
+# is (1 - n (1 - c) / 2^2)^(2^2), which is lyon:k=2 (docs/definitions.md), so every row of the
+# table must read as lyon:k=2's, digit for digit (the models' names and the speed column aside).
+set -u
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+F=$SRC/tests/test_shaderlang_files
+
+# 1. Five writings of one lobe in one run.
+"$BIN" accuracy --model-file "$F/quartic_cl.cl" --model-file "$F/quartic_glsl.glsl" \
+    --model-file "$F/quartic_hlsl.hlsl" \
+    --model 'q4=t = 1 - 0.25*n*(1-c); t = max(t, 0); return t*t*t*t;' \
+    --models lyon:k=2,quartic_cl:k=0.25,quartic_glsl:k=0.25,quartic_hlsl:k=0.25,q4 \
+    --n-min 2 --n-max 40 --samples 64 --out "$T/a" >"$T/out" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "accuracy of the shader-language models: exit $rc: $(tail -5 "$T/err")"
+# The table's rows without the label (first column) and the speed (last column).
+rows=$(awk '$1 ~ /^(lyon:k=2|quartic_cl:k=0.25|quartic_glsl:k=0.25|quartic_hlsl:k=0.25|q4)$/ {
+    $1 = ""; $NF = ""; print }' "$T/out")
+[ "$(printf '%s\n' "$rows" | wc -l)" -eq 5 ] && ok || bad "expected 5 rows in the table: $(cat "$T/out")"
+[ "$(printf '%s\n' "$rows" | sort -u | wc -l)" -eq 1 ] && ok || bad "the five writings of lyon:k=2 print different figures:
+$(cat "$T/out")"
+check_json "$T/a/accuracy.json" "the five writings have lyon:k=2's figures in accuracy.json" <<'PY'
+r = {x["label"]: x for x in d["results"]}
+ref = r["lyon:k=2"]
+for label in ("quartic_cl:k=0.25", "quartic_glsl:k=0.25", "quartic_hlsl:k=0.25", "q4"):
+    x = r[label]
+    assert x["status"] == "ok", x
+    for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+        a, b = x[zone][key], ref[zone][key]
+        assert abs(a - b) <= 1e-12 * abs(b), (label, zone, a, b)
+        assert x[zone]["at_n"] == ref[zone]["at_n"], (label, zone)
+PY
+
+# 2. An error in line 3 of a GLSL file is reported at line 3 (and its column), exit 2.
+expect 2 "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'" accuracy \
+    --model-file "$F/line3.glsl" --n-max 4 --samples 16 --out "$T/e1"
+[ ! -e "$T/e1" ] && ok || bad "a failed model still wrote $T/e1"
+
+# 3. BRDF Explorer files (full BRDFs, L = N, theta_h swept, luminance): Blinn-Phong against the
+#    built-in blinn and Cook-Torrance (GGX) against the built-in ct-ggx are those models, so their
+#    errors are rounding (the double figures; the float sweep's check is not meant for errors of
+#    1e-14 and may say so). Past theta_h = 45 degrees V is below the horizon and the BRDF is 0,
+#    so against the lobe blinn the attenuation zone holds c^n there: at n = 2 and x = pi/4, 1/2.
+#    ct_full.hlsl is the same Cook-Torrance as a full BRDF of (L, V, N, X, Y) in HLSL, F0 = 0.5.
+"$BIN" accuracy --model-file "$F/blinnphong.brdf" --model-file "$F/ct_ggx.brdf" --model-file "$F/ct_full.hlsl" \
+    --n-min 2 --n-max 60 --samples 64 --out "$T/b" >"$T/out" 2>"$T/err" && ok || bad "accuracy of .brdf files: $(tail -5 "$T/err")"
+check_json "$T/b/accuracy.json" ".brdf Blinn-Phong and Cook-Torrance are the built-in models" <<'PY'
+r = {x["model"]: x for x in d["results"]}
+bp, ct = r["blinnphong"], r["ct_ggx"]
+full = r["ct_full"]
+assert full["reference"] == "ct-ggx:F0=0.5", full["reference"]
+for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+    assert full[zone][key] < 1e-9, (zone, full[zone])
+assert bp["reference"] == "blinn" and ct["reference"] == "ct-ggx:F0=0.5", (bp["reference"], ct["reference"])
+assert bp["epicentre"]["max_rel"] < 1e-9, bp["epicentre"]
+for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+    assert ct[zone][key] < 1e-9, (zone, ct[zone])
+assert abs(bp["whole"]["max_abs"] - 0.5) < 1e-9 and bp["whole"]["at_n"] == 2, bp["whole"]
+assert abs(bp["whole"]["at_x"] - math.pi / 4) < 1e-6, bp["whole"]
+PY
+"$BIN" throughput --model-file "$F/blinnphong.brdf" --models blinnphong,blinn --reps 1 --min-time 0.002 \
+    --variants default --n-modes uniform --no-sweep --no-host-c --quiet --out "$T/tp" 2>"$T/err" \
+    && ok || bad "throughput of a .brdf file: $(tail -3 "$T/err")"
+check_json "$T/tp/throughput.json" "the .brdf model measured by throughput" <<'PY'
+assert [x for x in d["results"] if x["model"] == "blinnphong"], [x["model"] for x in d["results"]]
+PY
+"$BIN" render --model-file "$F/blinnphong.brdf" --models blinnphong --scene spheres --size 64x48 --time-sizes none \
+    --no-images --quiet --out "$T/r" >"$T/out" 2>"$T/err" && ok || bad "render of a .brdf file: $(tail -3 "$T/err")"
+expect 2 "bad_shader.brdf:8:47: use of undeclared identifier 'nn'" accuracy --model-file "$F/bad_shader.brdf" \
+    --n-max 4 --samples 16 --out "$T/e2"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,5 @@
+float broken(float c, float n)
+{
+    float t = pow(c, n) * undefined_thing;
+    return t;
+}
