@@ -286,7 +286,7 @@ sp = {(r["key"], r["metric"]): r for r in d["rows"]}[("spheres | cq2", "mpixel_p
 # the rank test on 5 rates each: r5's all below r4's: p = 2 / C(10, 5) = 2/252 (exact two-sided);
 # r6's the same values as r4's: p = 1, ratio 1, but its interval (5 vs 5 at 0.05: the 3rd
 # smallest and largest of the 25 ratios m_j / m_i of (0.9, 0.95, 1, 1.05, 1.1): 0.95 / 1.1 and
-# 1.1 / 0.95) is wider than the 5% band: noisy
+# 1.1 / 0.95) is wider than the 10% band: noisy
 assert sp[1]["verdict"] == "slower" and math.isclose(sp[1]["p"], 2 / 252), sp[1]
 assert sp[2]["verdict"] == "noisy" and sp[2]["p"] == 1.0, sp[2]
 assert math.isclose(sp[2]["ratio_ci_lo"], 0.95 / 1.1) and math.isclose(sp[2]["ratio_ci_hi"], 1.1 / 0.95), sp[2]

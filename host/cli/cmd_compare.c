@@ -27,7 +27,7 @@ int cmd_compare(int argc, char **argv)
           .help = "exit 1 naming every rate that is slower than the baseline (by the test) by more than PCT percent",
           .def = "" },
         { .name = "--min-change", .value = "PCT", .kind = CLI_DOUBLE, .dest = &threshold_pct, .min = 0, .max = 100,
-          .help = "the smallest change a rate's verdict calls (default: --fail-if-slower's PCT, else 5)", .def = "" },
+          .help = "the smallest change a rate's verdict calls (default: --fail-if-slower's PCT, else 10)", .def = "" },
         { .name = "--holm", .kind = CLI_SWITCH, .dest = &holm, .set = 1,
           .help = "Holm's family-wise correction of the p-values over each run's rates (for CI gates over many rows)" },
         { .name = "--confirm", .kind = CLI_SWITCH, .dest = &confirm, .set = 1,

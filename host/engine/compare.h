@@ -28,7 +28,7 @@
 #define CMP_MAX_CTX 32
 #define CMP_TEXT 256
 #define CMP_DEFAULT_ALPHA 0.05
-#define CMP_DEFAULT_THRESHOLD 0.05   /* 5%: the smallest change a speed verdict calls */
+#define CMP_DEFAULT_THRESHOLD 0.10   /* 10%: the smallest change a speed verdict calls (scripts/bench_compare.sh) */
 #define CMP_WARN_REPS 5             /* fewer repetitions per side: compare warns */
 
 /* The result files compare reads, with the schema version it reads of each. */
@@ -121,7 +121,7 @@ struct compare_set {
     struct cmp_row *rows;
     int nrows, cap;
     double alpha;
-    double threshold;            /* the smallest change a speed verdict calls, as a fraction (0.05: 5%) */
+    double threshold;            /* the smallest change a speed verdict calls, as a fraction (0.10: 10%) */
     int holm;                    /* Holm's family-wise correction over each run's speed rows */
     int min_reps;                /* fewer repetitions than this on a side: a warning */
     int absolute;                /* decide on absolute rates even where normalised ones exist */

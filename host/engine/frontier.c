@@ -305,10 +305,13 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, const c
            ab[FRONTIER_MAX_MODELS] = { 0 };
     int front[FRONTIER_MAX_MODELS] = { 0 };
     for (int i = 0; i < r->count; ++i) {
-        /* the normalised rates where the peak was timed, else the absolute ones */
+        /* the normalised rates where the peak was timed, else the absolute ones; a spread is at
+           least the median -+ FRONTIER_MIN_CHANGE (compare's minimum change): two costs within
+           it are a tie, whatever a quiet moment made of their spreads */
         int nrm = isfinite(r->rows[i].norm[0][1]);
-        lo[i] = nrm ? r->rows[i].norm[0][0] : r->rows[i].rate[0][0];
-        hi[i] = nrm ? r->rows[i].norm[0][2] : r->rows[i].rate[0][2];
+        const double *q = nrm ? r->rows[i].norm[0] : r->rows[i].rate[0];
+        lo[i] = fmin(q[0], q[1] / (1.0 + FRONTIER_MIN_CHANGE));
+        hi[i] = fmax(q[2], q[1] * (1.0 + FRONTIER_MIN_CHANGE));
         rel[i] = r->rows[i].max_rel[0];
         ab[i] = r->rows[i].max_abs[0];
     }

@@ -18,6 +18,10 @@
 #define FRONTIER_MAX_MODELS 32
 #define FRONTIER_MAX_ROUNDS 16
 
+/* Costs within this fraction of each other are a tie on the front (as compare's default
+ * minimum change: scripts/bench_compare.sh). */
+#define FRONTIER_MIN_CHANGE 0.10
+
 /* What a point is, for the plots' marks. */
 enum frontier_kind { FR_REFERENCE = 0, FR_PAPER, FR_ENGINE, FR_TUNED, FR_OTHER };
 

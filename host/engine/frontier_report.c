@@ -28,14 +28,18 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_kv_int(&w, "image_height", r->opt.image_h);
     jw_obj_end(&w);
     jw_kv_obj(&w, "definitions");
-    jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options; per "
-                          "round over every model the median of its launches; median, min and max over the rounds; "
+    jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options, timed "
+                          "by the runner (host/core/runner.h): rounds x reps rounds over every model in a fresh random "
+                          "order with the peak kernel as each round's reference; median, min and max over the rounds; "
                           "uniform: one n per launch, varying: n per evaluation");
+    jw_kv_str(&w, "normalised", "rate / the peak kernel's rate in the same round (per CPU second on a CPU device "
+                                "where the runner keeps it): what the front is decided on");
     jw_kv_str(&w, "max_rel", "largest epicentre delta over the n range (device sweep polished in double)");
     jw_kv_str(&w, "max_abs", "largest attenuation-zone Delta over the n range");
     jw_kv_str(&w, "psnr_db", "teapot image pass against the model's reference, 8-bit sRGB, peak 255");
-    jw_kv_str(&w, "front", "Pareto set over (uniform rate, max_rel and max_abs over n in [2, 1000]); two rates whose "
-                           "min-max spreads overlap count as equal");
+    jw_kv_str(&w, "front", "Pareto set over (uniform normalised rate, max_rel and max_abs over n in [2, 1000]); two "
+                           "rates whose spreads overlap count as equal, a spread being at least the median +- 10% "
+                           "(compare's minimum change)");
     jw_kv_str(&w, "ops", "per evaluation: arith = FMA/mul/add/sub/conversions, minmax = min/max/select, div, "
                          "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)");
     jw_obj_end(&w);
@@ -52,6 +56,11 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
             jw_kv_num(&w, "min", row->rate[m][0]);
             jw_kv_num(&w, "median", row->rate[m][1]);
             jw_kv_num(&w, "max", row->rate[m][2]);
+            jw_kv_obj(&w, "normalised");
+            jw_kv_num(&w, "min", row->norm[m][0]);
+            jw_kv_num(&w, "median", row->norm[m][1]);
+            jw_kv_num(&w, "max", row->norm[m][2]);
+            jw_obj_end(&w);
             if (!isfinite(row->rate[m][1]))
                 jw_kv_str(&w, "reason", row->rate_reason[0] ? row->rate_reason : "not measured");
             jw_obj_end(&w);

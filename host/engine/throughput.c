@@ -732,9 +732,12 @@ int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struc
         t[i].rate[0] = g->ok ? g->rate.min : NAN;
         t[i].rate[1] = g->ok ? g->rate.median : NAN;
         t[i].rate[2] = g->ok ? g->rate.max : NAN;
-        t[i].norm[0] = g->ok && g->has_norm ? g->norm.min : NAN;
-        t[i].norm[1] = g->ok && g->has_norm ? g->norm.median : NAN;
-        t[i].norm[2] = g->ok && g->has_norm ? g->norm.max : NAN;
+        /* per CPU second where the runner keeps it (a CPU device), else per wall second */
+        const struct tp_stats *q = g->has_cpu_norm ? &g->cpu_norm : &g->norm;
+        int has = g->ok && (g->has_cpu_norm || g->has_norm);
+        t[i].norm[0] = has ? q->min : NAN;
+        t[i].norm[1] = has ? q->median : NAN;
+        t[i].norm[2] = has ? q->max : NAN;
         t[i].nreps = g->ok ? g->nreps : 0;
     }
     free(jobs);

@@ -115,7 +115,8 @@ struct tp_timed {
     int ok;
     char reason[240];
     double rate[3];              /* evaluations/s: min, median, max over the rounds */
-    double norm[3];              /* rate / the peak kernel's rate in the same round: min, median, max */
+    double norm[3];              /* rate / the peak kernel's rate in the same round (per CPU second on a CPU
+                                    device): min, median, max */
     int nreps;
 };
 /* Times t[0..count) from program p in the runner's interleaved rounds (o->reps rounds, o->min_time
