@@ -305,13 +305,16 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, const c
            ab[FRONTIER_MAX_MODELS] = { 0 };
     int front[FRONTIER_MAX_MODELS] = { 0 };
     for (int i = 0; i < r->count; ++i) {
-        /* the normalised rates where the peak was timed, else the absolute ones; a spread is at
-           least the median -+ FRONTIER_MIN_CHANGE (compare's minimum change): two costs within
-           it are a tie, whatever a quiet moment made of their spreads */
+        /* the normalised rates where the peak was timed, else the absolute ones; two costs whose
+           medians are within FRONTIER_MIN_CHANGE of each other (compare's minimum change) are a
+           tie: the spread handed to frontier_pareto is median x/ sqrt(1 + FRONTIER_MIN_CHANGE),
+           so that two overlap exactly when their medians' ratio is within 1 + FRONTIER_MIN_CHANGE.
+           A median over the rounds moves little between runs; a min or a max moves with one
+           quiet or busy moment. */
         int nrm = isfinite(r->rows[i].norm[0][1]);
-        const double *q = nrm ? r->rows[i].norm[0] : r->rows[i].rate[0];
-        lo[i] = fmin(q[0], q[1] / (1.0 + FRONTIER_MIN_CHANGE));
-        hi[i] = fmax(q[2], q[1] * (1.0 + FRONTIER_MIN_CHANGE));
+        double med = nrm ? r->rows[i].norm[0][1] : r->rows[i].rate[0][1], half = sqrt(1.0 + FRONTIER_MIN_CHANGE);
+        lo[i] = med / half;
+        hi[i] = med * half;
         rel[i] = r->rows[i].max_rel[0];
         ab[i] = r->rows[i].max_abs[0];
     }

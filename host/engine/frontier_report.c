@@ -38,8 +38,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_kv_str(&w, "max_abs", "largest attenuation-zone Delta over the n range");
     jw_kv_str(&w, "psnr_db", "teapot image pass against the model's reference, 8-bit sRGB, peak 255");
     jw_kv_str(&w, "front", "Pareto set over (uniform normalised rate, max_rel and max_abs over n in [2, 1000]); two "
-                           "rates whose spreads overlap count as equal, a spread being at least the median +- 10% "
-                           "(compare's minimum change)");
+                           "rates whose medians are within 10% of each other (compare's minimum change) count as equal");
     jw_kv_str(&w, "ops", "per evaluation: arith = FMA/mul/add/sub/conversions, minmax = min/max/select, div, "
                          "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)");
     jw_obj_end(&w);
