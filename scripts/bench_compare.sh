@@ -48,15 +48,16 @@ compare_flags() {
     esac
 }
 
-# counts "FLAGGED ROWS PLANTED_SLOWER PLANTED_ROWS" of one comparison's compare.csv
+# counts "FLAGGED ROWS PLANTED_SLOWER PLANTED_ROWS" of one comparison's compare.csv (COND
+# planted: the lobe's rows are the planted ones; otherwise they are rows like any other)
 count() {
-    python3 - "$1" <<'PY'
+    python3 - "$1" "$2" <<'PY'
 import csv, sys
 flagged = rows = ps = pr = 0
 for r in csv.DictReader(open(sys.argv[1])):
     if r["kind"] != "throughput" or r["verdict"] == "baseline" or r["key"].startswith("peak"):
         continue
-    if r["key"].startswith("mylobe |"):
+    if sys.argv[2] == "planted" and r["key"].startswith("mylobe |"):
         pr += 1
         ps += r["verdict"] == "slower"
     else:
@@ -79,7 +80,7 @@ for cond in aa aa-load planted; do
         esac
         for set in $SETS; do
             "$B" compare "$a" "$b" --out "$W/c-$cond-$i-$set" --quiet $(compare_flags "$set") >/dev/null 2>&1 || true
-            read -r f r s p <<<"$(count "$W/c-$cond-$i-$set/compare.csv")"
+            read -r f r s p <<<"$(count "$W/c-$cond-$i-$set/compare.csv" "$cond")"
             F[$cond.$set]=$((F[$cond.$set] + f)) R[$cond.$set]=$((R[$cond.$set] + r))
             S[$cond.$set]=$((S[$cond.$set] + s)) P[$cond.$set]=$((P[$cond.$set] + p))
             echo "$cond pair $i, $set: $f of $r rows flagged; planted lobe slower in $s of $p" >&2

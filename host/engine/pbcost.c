@@ -1,6 +1,7 @@
 /* pbcost.c - the physically based models' cost beside the lobes, He's terms per evaluation
  * and the white-furnace albedo at normal incidence (see pbcost.h); pbcost_report.c writes. */
 #include "pbcost.h"
+#include "runner.h"
 #include "lcg.h"
 
 #include "exitcodes.h"
@@ -213,6 +214,23 @@ done:
     return rc;
 }
 
+/* A row's kernel as an item of the runner. */
+struct pbcost_launch {
+    struct cl_session *s;
+    cl_kernel k;
+    size_t global;
+};
+
+static int pbcost_item_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
+{
+    struct pbcost_launch *l = ctx;
+    if (launch(l->s, l->k, iters, seconds, l->global)) {
+        snprintf(reason, reason_len, "a launch failed (see stderr)");
+        return -1;
+    }
+    return 0;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -329,45 +347,52 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
         CL_CHECK_GOTO(clSetKernelArg(kern[i], 5, sizeof out, &out), done);
         if ((rc = check_row(s, prog, row, o->n)) != 0)
             goto done;
-        /* a warm-up launch first: PoCL compiles a kernel for its launch shape at its first
-           launch, which must not enter the calibration */
-        long iters = 4;
-        double t = 0;
-        if ((rc = launch(s, kern[i], 1, &t, global)) != 0)
-            goto done;
-        for (;;) {
-            if ((rc = launch(s, kern[i], iters, &t, global)) != 0)
-                goto done;
-            if (t >= 0.25 * o->min_time || iters >= PBCOST_MAX_ITERS)
-                break;
-            iters = (long)fmin((double)PBCOST_MAX_ITERS, ceil(iters * fmin(fmax(0.5 * o->min_time / fmax(t, 1e-9), 2.0), 1000.0)));
-        }
-        row->iters = (long)fmin((double)PBCOST_MAX_ITERS, fmax(1.0, ceil(iters * o->min_time / fmax(t, 1e-9))));
-        row->evals_per_launch = (double)global * (double)row->iters * PBCOST_STREAMS * PBCOST_LANES;
     }
-    /* timed launches, the rows interleaved so that their ratios compare moments apart */
+    /* warm-up, calibration and the timed launches by the measurement runner (host/core/runner.h):
+       the rows interleaved in a fresh random order each round, so that their ratios compare
+       moments apart */
     {
-        double *tm = calloc((size_t)r->count * (size_t)o->reps, sizeof *tm);
-        if (!tm) {
+        struct runner_item items[PBCOST_MAX_ROWS];
+        struct pbcost_launch ctx[PBCOST_MAX_ROWS];
+        memset(items, 0, sizeof items);
+        for (int i = 0; i < r->count; ++i) {
+            ctx[i] = (struct pbcost_launch){ s, kern[i], global };
+            items[i] = (struct runner_item){ .name = r->rows[i].spec.label, .launch = pbcost_item_launch,
+                                             .ctx = &ctx[i], .calibrate = 1,
+                                             .work_per_iter = (double)global * PBCOST_STREAMS * PBCOST_LANES,
+                                             .cpu_threads = s->is_cpu ? (int)s->compute_units : 0 };
+        }
+        struct runner run;
+        runner_init(&run, items, r->count);
+        run.rounds = o->reps;
+        run.min_time = o->min_time;
+        if (runner_run(&run)) {
+            runner_release(&run);
             rc = EXIT_RUNTIME;
             goto done;
         }
-        for (int rep = 0; rep < o->reps && rc == 0; ++rep)
-            for (int i = 0; i < r->count && rc == 0; ++i)
-                rc = launch(s, kern[i], r->rows[i].iters, &tm[i * o->reps + rep], global);
         for (int i = 0; i < r->count && rc == 0; ++i) {
             struct pbcost_row *row = &r->rows[i];
-            double *v = &tm[i * o->reps];
-            qsort(v, (size_t)o->reps, sizeof *v, cmp_double);
+            const struct runner_item *it = &items[i];
+            if (!it->ok || it->nreps == 0) {
+                fprintf(stderr, "brdfbench: physical: %s: %s\n", row->spec.label, it->reason);
+                rc = EXIT_RUNTIME;
+                break;
+            }
+            double *v = it->seconds;
+            int k = it->nreps;
+            qsort(v, (size_t)k, sizeof *v, cmp_double);
+            row->iters = it->iters;
+            row->evals_per_launch = (double)global * (double)row->iters * PBCOST_STREAMS * PBCOST_LANES;
             row->min_s = v[0];
-            row->max_s = v[o->reps - 1];
-            row->med_s = o->reps % 2 ? v[o->reps / 2] : 0.5 * (v[o->reps / 2 - 1] + v[o->reps / 2]);
+            row->max_s = v[k - 1];
+            row->med_s = k % 2 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
             /* the rate of the fastest launch: on a shared machine other work only ever slows a
                launch down, so the minimum time is the steadiest estimate of the cost */
             row->evals_per_s = row->min_s > 0 ? row->evals_per_launch / row->min_s : NAN;
             row->evals_per_s_median = row->med_s > 0 ? row->evals_per_launch / row->med_s : NAN;
         }
-        free(tm);
+        runner_release(&run);
         if (rc)
             goto done;
     }
