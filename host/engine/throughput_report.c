@@ -75,22 +75,12 @@ static void jw_reps(struct jw *w, const char *key, const struct tp_figure *f)
    the same round), its preemption retries, and which timer gave its times. */
 static void jw_runner_fields(struct jw *w, const struct tp_figure *f)
 {
-    int norm = f->ok && f->has_norm;
+    int norm = f->ok && f->has_norm, cn = f->ok && f->has_cpu_norm;
     jw_stats(w, "normalised", norm ? f->norm : (struct tp_stats){ NAN, NAN, NAN });
-    jw_kv_arr(w, "normalised_reps");
-    for (int k = 0; norm && k < f->nreps; ++k)
-        jw_num(w, f->rep_norm[k]);
-    jw_arr_end(w);
-    int cn = f->ok && f->has_cpu_norm;
+    jw_kv_nums(w, "normalised_reps", f->rep_norm, norm ? (size_t)f->nreps : 0);
     jw_stats(w, "normalised_cpu", cn ? f->cpu_norm : (struct tp_stats){ NAN, NAN, NAN });
-    jw_kv_arr(w, "normalised_cpu_reps");
-    for (int k = 0; cn && k < f->nreps; ++k)
-        jw_num(w, f->rep_cpu_norm[k]);
-    jw_arr_end(w);
-    jw_kv_arr(w, "cpu_seconds_reps");
-    for (int k = 0; f->ok && k < f->nreps; ++k)
-        jw_num(w, f->rep_cpu[k]);
-    jw_arr_end(w);
+    jw_kv_nums(w, "normalised_cpu_reps", f->rep_cpu_norm, cn ? (size_t)f->nreps : 0);
+    jw_kv_nums(w, "cpu_seconds_reps", f->rep_cpu, f->ok ? (size_t)f->nreps : 0);
     jw_kv_int(w, "preemption_retries", f->retries);
     jw_kv_int(w, "disturbed_reps", f->disturbed);
     jw_kv_str(w, "timer", f->timer_wall ? "wall time: the driver's profiling events gave no time" : "profiling events");
