@@ -16,6 +16,7 @@
 #include "refine.h"
 #include "render_report.h"
 #include "report.h"
+#include "runner.h"
 
 #include <errno.h>
 #include <ftw.h>
@@ -1181,9 +1182,35 @@ static void timed_entries(const struct render_options *o, struct size_timing *st
         }
 }
 
-/* Timing of one scene at one size: for every entry, warm-up launches, then reps launches
-   each preceded by a copy-kernel launch, so the ratio to the copy comes from launches
-   interleaved in time. */
+/* A pass of the timing as an item of the measurement runner (host/core/runner.h): one launch
+   of the shading kernel of an entry (te) over the G-buffer, or of the copy kernel (te NULL). */
+struct pass_item {
+    struct render_device *dev;
+    const struct gbuffer *g;
+    cl_mem gbuf, out_rgba, out_spec;
+    const struct timed_entry *te;
+    const struct render_light *lt;
+    const struct render_options *o;
+};
+
+static int pass_item_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
+{
+    const struct pass_item *p = ctx;
+    (void)iters;   /* a pass is the whole image: not calibrated */
+    int rc = p->te ? render_device_shade(p->dev, p->gbuf, p->g->stride, p->g->npix, p->out_rgba, p->out_spec,
+                                         &p->te->spec, p->te->mode, p->lt, p->o, NULL, NULL, seconds)
+                   : device_copy(p->dev, p->gbuf, p->g->stride, p->g->npix, p->out_rgba, p->out_spec, seconds);
+    if (rc) {
+        snprintf(reason, reason_len, "an OpenCL error in the timing pass (see above)");
+        return -1;
+    }
+    return 0;
+}
+
+/* Timing of one scene at one size by the measurement runner: every entry's shading pass an
+   item, the copy kernel (the same G-buffer read, the same image written, no shading) the
+   reference timed three times a round; o->reps rounds in a fresh random order each, after
+   o->warmup warm-up passes of each. */
 static int time_pass(struct render_device *dev, const struct scene_data *sd,
                      const struct render_options *o, int w, int h, struct size_timing *st,
                      char *err, size_t errlen)
@@ -1192,7 +1219,10 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
     struct gbuffer g;
     struct render_light lt;
     cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
-    double *tm = NULL, *tc = NULL, *all_copy = NULL;
+    struct runner_item *items = NULL;
+    struct pass_item *pi = NULL;
+    struct runner run;
+    int ran = 0;
     int rc = scene_gbuffer(sd, o, w, h, &g, &lt, err, errlen);
     if (rc)
         return rc;
@@ -1200,39 +1230,71 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
     st->h = h;
     st->foreground = g.foreground;
     timed_entries(o, st);
-    int reps = o->reps;
-    tm = malloc((size_t)reps * sizeof *tm);
-    tc = malloc((size_t)reps * sizeof *tc);
-    all_copy = malloc((size_t)reps * st->nentries * sizeof *all_copy);
-    if (!tm || !tc || !all_copy) {
+    int n = st->nentries + 1;
+    items = calloc((size_t)n, sizeof *items);
+    pi = calloc((size_t)n, sizeof *pi);
+    if (!items || !pi) {
         set_err(err, errlen, "out of memory");
         rc = EXIT_RUNTIME;
         goto done;
     }
     if ((rc = pass_buffers(s, &g, CL_MEM_READ_ONLY, "", &gbuf, &out_rgba, &out_spec)))
         goto fail;
-    int ncopy = 0;
+    for (int k = 0; k < n; k++) {
+        pi[k] = (struct pass_item){ dev, &g, gbuf, out_rgba, out_spec, k < st->nentries ? &st->entries[k] : NULL,
+                                    &lt, o };
+        items[k] = (struct runner_item){ .name = k < st->nentries ? st->entries[k].name : "copy",
+                                         .launch = pass_item_launch, .ctx = &pi[k], .calibrate = 0, .iters = 1,
+                                         .work_per_iter = (double)g.npix,
+                                         .cpu_threads = s->is_cpu ? (int)s->compute_units : 0 };
+        /* the runner warms each up once; the rest of o->warmup here */
+        for (int r = 1; r < o->warmup; r++) {
+            double t;
+            char why[RUNNER_REASON];
+            if (pass_item_launch(&pi[k], 1, &t, why, sizeof why)) {
+                rc = EXIT_RUNTIME;
+                goto fail;
+            }
+        }
+    }
+    runner_init(&run, items, n);
+    run.reference = n - 1;
+    run.rounds = o->reps;
+    if (runner_run(&run)) {
+        set_err(err, errlen, "out of memory");
+        rc = EXIT_RUNTIME;
+        runner_release(&run);
+        goto done;
+    }
+    ran = 1;
+    const struct runner_item *copy = &items[n - 1];
+    if (!copy->ok) {
+        rc = EXIT_RUNTIME;
+        goto fail;
+    }
+    double *cs = malloc((size_t)copy->nreps * sizeof *cs);
+    if (!cs) {
+        set_err(err, errlen, "out of memory");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    memcpy(cs, copy->seconds, (size_t)copy->nreps * sizeof *cs);
+    st->copy_med = median(cs, copy->nreps);
+    free(cs);
     for (int k = 0; k < st->nentries; k++) {
         struct timed_entry *te = &st->entries[k];
-        for (int r = 0; r < o->warmup; r++) {
-            if ((rc = device_copy(dev, gbuf, g.stride, g.npix, out_rgba, out_spec, NULL)) ||
-                (rc = render_device_shade(dev, gbuf, g.stride, g.npix, out_rgba, out_spec,
-                                          &te->spec, te->mode, &lt, o, NULL, NULL, NULL)))
-                goto fail;
+        struct runner_item *it = &items[k];
+        if (!it->ok) {
+            rc = EXIT_RUNTIME;
+            goto fail;
         }
-        for (int r = 0; r < reps; r++) {
-            if ((rc = device_copy(dev, gbuf, g.stride, g.npix, out_rgba, out_spec, &tc[r])) ||
-                (rc = render_device_shade(dev, gbuf, g.stride, g.npix, out_rgba, out_spec,
-                                          &te->spec, te->mode, &lt, o, NULL, NULL, &tm[r])))
-                goto fail;
-            all_copy[ncopy++] = tc[r];
-        }
+        int reps = it->nreps;
         te->nreps = reps < RENDER_MAX_KEPT_REPS ? reps : RENDER_MAX_KEPT_REPS;
-        memcpy(te->rep_s, tm, (size_t)te->nreps * sizeof *tm);   /* before median() sorts tm */
-        te->med = median(tm, reps);
-        te->min = tm[0];
-        te->max = tm[reps - 1];
-        te->copy_med = median(tc, reps);
+        memcpy(te->rep_s, it->seconds, (size_t)te->nreps * sizeof *it->seconds);   /* before median() sorts */
+        te->med = median(it->seconds, reps);
+        te->min = it->seconds[0];
+        te->max = it->seconds[reps - 1];
+        te->copy_med = st->copy_med;
         if (!(te->med > 0) || !(te->copy_med > 0)) {
             set_err(err, errlen, "%s: the profiling timer gave no time for %s", render_scene_names[sd->kind],
                     te->name);
@@ -1240,7 +1302,6 @@ static int time_pass(struct render_device *dev, const struct scene_data *sd,
             goto done;
         }
     }
-    st->copy_med = median(all_copy, ncopy);
     goto done;
 fail:
     if (!err[0])
@@ -1248,9 +1309,10 @@ fail:
                 render_scene_names[sd->kind], w, h);
     rc = rc ? rc : EXIT_RUNTIME;
 done:
-    free(tm);
-    free(tc);
-    free(all_copy);
+    if (ran)
+        runner_release(&run);
+    free(pi);
+    free(items);
     pass_release(out_spec, out_rgba, gbuf, &g);
     return rc;
 }
