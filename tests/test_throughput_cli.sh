@@ -109,7 +109,7 @@ PY
 expect 2 '--reps: .*in \[1, 1000\]' throughput --reps 0 --out "$T/x1"
 expect 2 '--min-time: .*in \[0.0001, 10\]' throughput --min-time 1e9 --out "$T/x2"
 expect 2 '--min-time' throughput --min-time abc --out "$T/x3"
-expect 2 "--variants: unknown 'fast' \(accepted: default, fast-relaxed-math, denorms-are-zero\)" throughput --variants fast --out "$T/x4"
+expect 2 "--variants: unknown 'fast' \(accepted: default, fast-relaxed-math, denorms-are-zero, ab\)" throughput --variants fast --out "$T/x4"
 expect 2 '--n-modes: .*accepted: uniform, varying' throughput --n-modes none --out "$T/x5"
 expect 2 '--n-range: not a flag of brdfbench throughput: .*--n-min LO --n-max HI' throughput --n-range 5 --out "$T/x6"
 expect 2 '--n-min \(9\) must be below --n-max \(3\)' throughput --n-min 9 --n-max 3 --out "$T/x7"
@@ -119,6 +119,28 @@ expect 2 'unknown model' throughput --models nosuch --out "$T/x10"
 expect 2 "unknown option '--bogus'" throughput --bogus
 for k in 1 2 3 4 5 6 7 8 9 10; do [ -e "$T/x$k" ] && bad "bad flag $k made its output folder"; done
 "$BIN" throughput --help >"$T/help" 2>&1 && grep -q -- '--min-time' "$T/help" && ok || bad "--help"
+
+# A/B in one process: --ab-options measures the default build options and the default plus
+# OPTIONS in the same rounds; ab/a and ab/b hold one side each, as the default variant, so that
+# compare matches them row by row; both sides share the rounds' reference (the same peak rates).
+"$BIN" throughput --models fq2,cq2 --ab-options "-cl-fast-relaxed-math" --reps 3 --min-time 0.002 --work-items 4 \
+    --variants default --no-host-c --no-sweep --quiet --out "$T/ab" 2>"$T/err" && ok || bad "--ab-options run: $(cat "$T/err")"
+python3 - "$T/ab" <<'PY' && ok || bad "--ab-options: the two sides"
+import json, sys
+full, a, b = (json.load(open(sys.argv[1] + f)) for f in ("/throughput.json", "/ab/a/throughput.json", "/ab/b/throughput.json"))
+assert {r["variant"] for r in full["results"]} == {"default", "ab"}, {r["variant"] for r in full["results"]}
+key = lambda r: (r["label"], r["variant"], r["n_mode"])
+assert sorted(map(key, a["results"])) == sorted(map(key, b["results"])) and len(a["results"]) == 3 * 2
+assert all(len(r["normalised_cpu_reps"]) == 3 for r in a["results"] + b["results"])
+assert b["context"]["ab"]["side"] == "b" and "-cl-fast-relaxed-math" in b["context"]["build_options"]
+assert a["context"]["build_options"] == "" and a["peak"]["flops_per_s_reps"] == b["peak"]["flops_per_s_reps"]
+ab = {(r["label"], r["n_mode"]): r for r in full["results"] if r["variant"] == "ab"}
+for r in b["results"]:
+    assert r["evals_per_s_reps"] == ab[(r["label"], r["n_mode"])]["evals_per_s_reps"]
+PY
+"$BIN" compare "$T/ab/ab/a" "$T/ab/ab/b" --out "$T/abc" --quiet 2>"$T/err" && ok || bad "compare of the A/B sides: $(cat "$T/err")"
+expect 2 "--variants: ab is the variant of --ab-options OPTIONS" throughput --variants default,ab --out "$T/x11"
+expect 2 "--ab-options: expected OpenCL build options" throughput --ab-options "" --out "$T/x12"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -34,6 +34,10 @@ void device_options_init(struct device_options *o);
  * --device is one, runs cmd once per device (cli_devices.c) and gathers the rows of `file`
  * (its array `rows_key`) tagged with their device; returns that exit code. Returns -1 when
  * --device names one device (the command goes on as usual). */
+/* After a throughput run with --ab-options: RUN/ab/a/throughput.json (the default variant's rows)
+ * and RUN/ab/b/throughput.json (the ab variant's, as the default variant), for compare.
+ * Returns 0, or EXIT_RUNTIME with err filled. */
+int cli_write_ab(const char *run_dir, const char *ab_options, char *err, size_t errlen);
 int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, char **), const char *file,
                    const char *rows_key);
 int cli_is_device_list(const char *value);

@@ -282,3 +282,82 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
                run_dir, file, n, devices);
     return 0;
 }
+
+/* One side of an A/B run: RUN/ab/<side>/throughput.json with the rows of `variant` renamed to
+   the default variant (so that compare matches them with the other side's), the context's
+   build options those of the side, and context.ab saying what the document is. */
+static int write_ab_side(const char *run_dir, const struct jr_doc *d, const char *side, const char *variant,
+                         const char *options, char *err, size_t errlen)
+{
+    char dir[4200], path[4300];
+    snprintf(dir, sizeof dir, "%s/ab/%s", run_dir, side);
+    if (outdir_prepare(dir, "--ab-options", err, errlen))
+        return EXIT_RUNTIME;
+    const struct jr_value *root = &d->root;
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    for (size_t i = 0; i < root->count; ++i) {
+        const char *key = root->keys[i];
+        const struct jr_value *v = &root->items[i];
+        jw_key(&w, key);
+        if (strcmp(key, "context") == 0) {
+            jw_obj_begin(&w);
+            for (size_t c = 0; c < v->count; ++c) {
+                jw_key(&w, v->keys[c]);
+                if (strcmp(v->keys[c], "build_options") == 0)
+                    jw_str(&w, options);
+                else
+                    jw_value(&w, &v->items[c]);
+            }
+            jw_kv_obj(&w, "ab");
+            jw_kv_str(&w, "side", side);
+            jw_kv_str(&w, "build_options", options);
+            jw_kv_str(&w, "note", "one side of an A/B run: both sides' rows were timed in the same interleaved rounds "
+                                  "of one process (the full run is ../../throughput.json)");
+            jw_obj_end(&w);
+            jw_obj_end(&w);
+        } else if (strcmp(key, "results") == 0 && v->type == JR_ARR) {
+            jw_arr_begin(&w);
+            for (size_t r = 0; r < v->count; ++r) {
+                const struct jr_value *row = &v->items[r];
+                if (strcmp(member_str(row, "variant"), variant) != 0)
+                    continue;
+                jw_obj_begin(&w);
+                for (size_t m = 0; row->type == JR_OBJ && m < row->count; ++m) {
+                    jw_key(&w, row->keys[m]);
+                    if (strcmp(row->keys[m], "variant") == 0)
+                        jw_str(&w, "default");
+                    else
+                        jw_value(&w, &row->items[m]);
+                }
+                jw_obj_end(&w);
+            }
+            jw_arr_end(&w);
+        } else {
+            jw_value(&w, v);
+        }
+    }
+    jw_obj_end(&w);
+    snprintf(path, sizeof path, "%s/throughput.json", dir);
+    int rc = jw_write_file(&w, path, err, errlen) ? EXIT_RUNTIME : 0;
+    jw_free(&w);
+    return rc;
+}
+
+int cli_write_ab(const char *run_dir, const char *ab_options, char *err, size_t errlen)
+{
+    char path[4200];
+    struct jr_doc d;
+    snprintf(path, sizeof path, "%s/throughput.json", run_dir);
+    if (jr_parse_file(path, &d, err, errlen))
+        return EXIT_RUNTIME;
+    const char *base = member_str(jr_get(&d.root, "context"), "build_options");
+    char b_options[1024];
+    snprintf(b_options, sizeof b_options, "%s%s%s", base, *base ? " " : "", ab_options);
+    int rc = write_ab_side(run_dir, &d, "a", "default", base, err, errlen);
+    if (!rc)
+        rc = write_ab_side(run_dir, &d, "b", "ab", b_options, err, errlen);
+    jr_free(&d);
+    return rc;
+}

@@ -2,6 +2,7 @@
  * device, against the pow() built-in, tuned C and the device's peak, under three sets of build
  * options; written as throughput.json, throughput.csv and a table. */
 #define _POSIX_C_SOURCE 200809L
+#include "cli.h"
 #include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
@@ -71,7 +72,7 @@ int cmd_throughput(int argc, char **argv)
     throughput_options_default(&o);
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
+    const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL, *ab_options = NULL;
     int quiet = 0, models_given = 0;
 
     const struct cli_flag flags[] = {
@@ -82,6 +83,10 @@ int cmd_throughput(int argc, char **argv)
           .max = TP_MIN_TIME_MAX, .help = "seconds one timed launch lasts at least" },
         { .name = "--variants", .value = "LIST", .kind = CLI_CALL, .call = call_variants, .dest = &o.variants,
           .help = "build options to measure: default,fast-relaxed-math,denorms-are-zero", .def = "all three" },
+        { .name = "--ab-options", .value = "OPTIONS", .kind = CLI_TEXT, .dest = &ab_options,
+          .help = "also measure the default build options plus OPTIONS (variant ab) in the same interleaved rounds, "
+                  "and write OUT/ab/a and OUT/ab/b for `brdfbench compare OUT/ab/a OUT/ab/b`: an A/B comparison "
+                  "in one process", .def = "" },
         { .name = "--n-modes", .value = "LIST", .kind = CLI_CALL, .call = call_n_modes, .dest = &o.n_modes,
           .help = "uniform (one n per launch), varying (one n per evaluation)", .def = "both" },
         { .name = "--variant-n-modes", .value = "LIST", .kind = CLI_CALL, .call = call_n_modes,
@@ -145,6 +150,14 @@ int cmd_throughput(int argc, char **argv)
     if (n < 0)
         goto usage_error;
     o.model_count = n;
+    if (ab_options) {
+        if (!*ab_options || strlen(ab_options) > 400) {
+            snprintf(err, sizeof err, "--ab-options: expected OpenCL build options (1 to 400 characters)");
+            goto usage_error;
+        }
+        o.ab_options = ab_options;
+        o.variants |= 1u << TP_VARIANT_AB;
+    }
     if (throughput_options_check(&o, err, sizeof err))
         goto usage_error;
 
@@ -160,6 +173,15 @@ int cmd_throughput(int argc, char **argv)
     /* a document on standard output: the engine's table (and its progress) stay off */
     int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
     rc = throughput_run(&s, &o, run_dir, tp_quiet);
+    if (!rc && ab_options) {
+        char e2[1100];
+        if (cli_write_ab(run_dir, ab_options, e2, sizeof e2)) {
+            fprintf(stderr, "brdfbench throughput: %s\n", e2);
+            rc = EXIT_RUNTIME;
+        } else if (!tp_quiet) {
+            printf("A/B in one process: brdfbench compare %s/ab/a %s/ab/b\n", run_dir, run_dir);
+        }
+    }
     /* the physically based models from full vectors (pbcost.h), in a run of the default set */
     if (!rc && !models_given && usermodel_count() == 0 && !tmp_dir[0]) {
         if (s.specialise)   /* its kernels are float16 (kernels/throughput.cl, TP_W) */

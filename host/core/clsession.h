@@ -140,7 +140,7 @@ cl_kernel clsession_create_kernel(cl_program program, const char *name, cl_int *
 /* Seconds between a profiling event's start and end; NAN if the timer failed. */
 double cl_event_seconds(cl_event ev);
 /* The event's time, or `wall` (and *used_wall = 1) where the driver did not fill the
- * profiling events (0, a nanosecond, or far below the wall time of a launch past 1 ms). */
+ * profiling events (0 or a nanosecond). */
 double cl_event_seconds_or_wall(cl_event ev, double wall, int *used_wall);
 /* Monotonic wall clock in seconds. */
 double wall_seconds(void);

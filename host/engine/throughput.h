@@ -30,7 +30,9 @@
 #define TP_MAX_ITERS (1L << 24)
 
 /* Build-option variants: what each does to speed, and to accuracy against the double reference. */
-enum tp_variant { TP_VARIANT_DEFAULT = 0, TP_VARIANT_FAST_RELAXED, TP_VARIANT_DENORMS_ZERO, TP_VARIANT_COUNT };
+/* TP_VARIANT_AB: the default variant with the build options of --ab-options added, measured in the
+ * same interleaved rounds as the default one (an A/B comparison in one process). */
+enum tp_variant { TP_VARIANT_DEFAULT = 0, TP_VARIANT_FAST_RELAXED, TP_VARIANT_DENORMS_ZERO, TP_VARIANT_AB, TP_VARIANT_COUNT };
 /* How n reaches the model: one value per launch (a material), or one per evaluation (a map). */
 enum tp_nmode { TP_N_UNIFORM = 0, TP_N_VARYING, TP_NMODE_COUNT };
 
@@ -56,6 +58,7 @@ struct throughput_options {
     int sweep_reps;
     const char *base_options;    /* build options added to every variant (NULL: none) */
     unsigned long long seed;     /* of the runner's round orders (host/core/runner.h) */
+    const char *ab_options;      /* the build options of TP_VARIANT_AB (NULL: no A/B) */
 };
 
 /* The configuration `brdfbench throughput` starts from, and the one `brdfbench all` runs

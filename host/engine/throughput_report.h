@@ -101,7 +101,7 @@ static inline int variant_on(const struct tp_run *r, int v) { return (r->o->vari
 
 static inline int nmode_on(const struct tp_run *r, int v, int m)
 {
-    unsigned modes = v == TP_VARIANT_DEFAULT ? r->o->n_modes : r->o->variant_n_modes;
+    unsigned modes = v == TP_VARIANT_DEFAULT || v == TP_VARIANT_AB ? r->o->n_modes : r->o->variant_n_modes;
     return (modes >> m) & 1u;
 }
 
