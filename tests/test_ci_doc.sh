@@ -38,15 +38,17 @@ rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "the baseline's run: $(cat "$T/err")"
 
+# SLOWER_PCT 25: the suite runs two tests at a time, and under the sanitizers, on a 2-core
+# machine; the planted lobe is about 3x slower (0.33), far past it.
 pipeline() {   # RUN BASELINE GATES LOBE_FILE
-    (cd "$T" && BRDFBENCH="$BIN" RUN="$1" BASELINE="$2" GATES="$3" TP_FLAGS="$(tp_flags "$4")" \
+    (cd "$T" && BRDFBENCH="$BIN" RUN="$1" BASELINE="$2" GATES="$3" TP_FLAGS="$(tp_flags "$4")" SLOWER_PCT=25 \
         bash "$T/run.sh") >"$T/out" 2>"$T/err"
 }
 
 # Nothing changed (the same binary and lobe, timed again): the pipeline passes. This is a
 # statistical claim, not a timing assertion: with the rates normalised by the reference
-# kernel, a 10% threshold, Holm's correction over the rows and a confirmation run, identical
-# code fails only if both runs call a row more than 10% slower at family-wise level 0.05.
+# kernel, a 25% threshold, Holm's correction over the rows and a confirmation run, identical
+# code fails only if both runs call a row more than 25% slower at family-wise level 0.05.
 pipeline "$T/run1" "$T/base" "$T/gates.json" mylobe.cl
 rc=$?
 [ $rc -eq 0 ] && ok || bad "pipeline with nothing changed: exit $rc: $(tail -5 "$T/err")"
