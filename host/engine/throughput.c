@@ -903,20 +903,55 @@ static double rel_diff(float a, float b)
     return fabs((double)a - (double)b) / s;
 }
 
+/* One side of the sweep's timing as an item of the runner: the device sweep of a model, or
+   (c set) the same sweep in tuned C. A sweep is fixed work: not calibrated. */
+struct tp_sweep_item {
+    struct accuracy_ctx *a;
+    const struct model_spec *m, *ref;
+    const struct accuracy_grid *g;
+    const float *nv;
+    long count;
+    int threads, c;
+    float *out;                   /* the sweep's per-n figures, for the agreement check */
+};
+
+static int tp_sweep_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
+{
+    struct tp_sweep_item *w = ctx;
+    (void)iters;
+    if (!w->c) {
+        if (accuracy_sweep_device(w->a, w->m, w->g, w->out, seconds)) {
+            snprintf(reason, reason_len, "the device sweep failed (see stderr)");
+            return -1;
+        }
+        return 0;
+    }
+    return hostc_sweep(w->m->info->kernel_id, (float)w->m->params[0], (float)w->m->params[1], w->ref->info->kernel_id,
+                       (float)w->ref->params[0], (float)w->ref->params[1], w->nv, w->count, w->g->samples, w->threads,
+                       w->out, seconds, reason, reason_len)
+               ? -1 : 0;
+}
+
 /* The accuracy sweep on the device (its own kernel, as `brdfbench accuracy` runs it) against
-   the same sweep in C, model by model, with the same protocol: a warm-up, then timed runs. */
+   the same sweep in C, every model's two sides items of one runner: warmed up, then
+   o->sweep_reps rounds in a fresh random order each. */
 static void tp_measure_sweep(struct tp_run *r, int quiet)
 {
     const struct throughput_options *o = r->o;
     const struct accuracy_grid *g = &o->sweep_grid;
     struct accuracy_ctx actx;
+    int opened = 0, n = 0;
     r->sweep_ran = 1;
     r->sweep_n_count = accuracy_grid_count(g);
     r->sw = calloc((size_t)r->nmodels, sizeof *r->sw);
     float *nv = malloc((size_t)r->sweep_n_count * sizeof *nv);
-    float *dev = malloc((size_t)r->sweep_n_count * 8 * sizeof *dev);
-    float *hc = malloc((size_t)r->sweep_n_count * 8 * sizeof *hc);
-    if (!r->sw || !nv || !dev || !hc) {
+    size_t per = (size_t)r->sweep_n_count * 8;
+    float *outs = malloc(2 * (size_t)r->nmodels * per * sizeof *outs);
+    struct model_spec *refs = calloc((size_t)r->nmodels, sizeof *refs);
+    struct tp_sweep_item *si = calloc(2 * (size_t)r->nmodels, sizeof *si);
+    struct runner_item *items = calloc(2 * (size_t)r->nmodels, sizeof *items);
+    int *first = calloc((size_t)r->nmodels, sizeof *first);
+    if (!r->sw || !nv || !outs || !refs || !si || !items || !first) {
         snprintf(r->sweep_reason, TP_REASON, "out of memory for %ld values of n", r->sweep_n_count);
         goto done;
     }
@@ -926,6 +961,7 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
         snprintf(r->sweep_reason, TP_REASON, "building kernels/accuracy.cl failed (build log on stderr)");
         goto done;
     }
+    opened = 1;
     r->sweep_build_seconds = r->s->last_build_seconds;
     for (long i = 0; i < r->sweep_n_count; ++i)
         nv[i] = (float)accuracy_grid_n(g, i);
@@ -935,54 +971,66 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
         struct tp_sweep_model *w = &r->sw[k];
         snprintf(w->label, sizeof w->label, "%s", m->label);
         w->points = (double)r->sweep_n_count * 2.0 * (double)g->samples;
-        struct model_spec ref;
-        model_reference_spec(m, &ref);
-        if (!hostc_supports(m->info->kernel_id) || !hostc_supports(ref.info->kernel_id)) {
+        model_reference_spec(m, &refs[k]);
+        first[k] = -1;
+        if (!hostc_supports(m->info->kernel_id) || !hostc_supports(refs[k].info->kernel_id)) {
             snprintf(w->reason, TP_REASON, "user models have no C loop; not compared");
             continue;
         }
-        double ds[TP_MAX_REPS], hs[TP_MAX_REPS], t;
-        int failed = 0;
-        for (int rep = -1; rep < o->sweep_reps && !failed; ++rep) {   /* rep -1: the warm-up */
-            if (accuracy_sweep_device(&actx, m, g, dev, &t)) {
-                snprintf(w->reason, TP_REASON, "the device sweep failed (see stderr)");
-                failed = 1;
-            } else if (!(t > 0)) {
-                snprintf(w->reason, TP_REASON, "the profiling timer gave no time for the sweep");
-                failed = 1;
-            } else if (rep >= 0) {
-                ds[rep] = t;
-            }
+        first[k] = n;
+        for (int c = 0; c < 2; ++c, ++n) {
+            si[n] = (struct tp_sweep_item){ &actx, m, &refs[k], g, nv, r->sweep_n_count, r->threads, c,
+                                           outs + (size_t)n * per };
+            items[n] = (struct runner_item){ .name = m->label, .launch = tp_sweep_launch, .ctx = &si[n],
+                                             .calibrate = 0, .iters = 1, .work_per_iter = w->points,
+                                             .cpu_threads = c ? r->threads
+                                                          : r->s->is_cpu ? (int)r->s->compute_units : 0 };
         }
-        char err[256];
-        for (int rep = 0; rep < o->sweep_reps && !failed; ++rep) {
-            if (hostc_sweep(m->info->kernel_id, (float)m->params[0], (float)m->params[1], ref.info->kernel_id,
-                            (float)ref.params[0], (float)ref.params[1], nv, r->sweep_n_count, g->samples, r->threads,
-                            hc, &hs[rep], err, sizeof err)) {
-                snprintf(w->reason, TP_REASON, "%.200s", err);
-                failed = 1;
-            }
-        }
-        if (failed)
+    }
+    struct runner run;
+    runner_init(&run, items, n);
+    run.rounds = o->sweep_reps;
+    run.seed = o->seed;
+    if (n > 0 && runner_run(&run)) {
+        snprintf(r->sweep_reason, TP_REASON, "out of memory");
+        runner_release(&run);
+        goto done;
+    }
+    for (int k = 0; k < r->nmodels; ++k) {
+        struct tp_sweep_model *w = &r->sw[k];
+        int d = first[k];
+        if (d < 0)
             continue;
-        w->dev_s = stats_of(ds, o->sweep_reps);
-        w->hostc_s = stats_of(hs, o->sweep_reps);
+        const struct runner_item *dv = &items[d], *hc = &items[d + 1];
+        if (!dv->ok || !hc->ok) {
+            snprintf(w->reason, TP_REASON, "%.200s", !dv->ok ? dv->reason : hc->reason);
+            continue;
+        }
+        w->dev_s = stats_of(dv->seconds, dv->nreps);
+        w->hostc_s = stats_of(hc->seconds, hc->nreps);
         w->agree = 0;
+        const float *dev = si[d].out, *hco = si[d + 1].out;
         for (long i = 0; i < r->sweep_n_count; ++i)
             for (int q = 0; q < 6; q += 2) {
-                double d = rel_diff(dev[i * 8 + q], hc[i * 8 + q]);
-                if (!(d <= w->agree))
-                    w->agree = d;
+                double x = rel_diff(dev[i * 8 + q], hco[i * 8 + q]);
+                if (!(x <= w->agree))
+                    w->agree = x;
             }
         w->ok = 1;
         if (!quiet)
             fprintf(stderr, "throughput: sweep %-18s device %.3f s, C %.3f s\n", w->label, w->dev_s.median,
                     w->hostc_s.median);
     }
-    accuracy_close(&actx);
+    if (n > 0)
+        runner_release(&run);
 done:
-    free(hc);
-    free(dev);
+    if (opened)
+        accuracy_close(&actx);
+    free(first);
+    free(items);
+    free(si);
+    free(refs);
+    free(outs);
     free(nv);
 }
 
