@@ -30,6 +30,10 @@ leak:libLLVM
 leak:libclang-cpp
 leak:libOpenCL.so
 leak:libhwloc
+# A second OpenCL driver that the ICD loader loads beside PoCL (Mesa's rusticl and clover
+# register in /etc/OpenCL/vendors): its allocations at load time are the driver's, too.
+leak:libRusticlOpenCL
+leak:libMesaOpenCL
 EOF
 export ASAN_OPTIONS="exitcode=86:detect_leaks=1"
 export LSAN_OPTIONS="exitcode=86:suppressions=$supp:print_suppressions=0"

@@ -57,6 +57,8 @@ int main(int argc, char **argv)
     for (int i = 2; i < argc; ++i)
         if (strcmp(argv[i], "-h") == 0)
             argv[i] = help_flag;
+    /* a run stopped by a signal leaves no half-written outputs (outdir.h) */
+    outdir_install_signal_handlers();
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
         if (strcmp(argv[1], commands[i].name) == 0) {
             int rc = commands[i].run(argc - 1, argv + 1);
