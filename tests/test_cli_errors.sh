@@ -15,6 +15,7 @@ case "${BAD_INPUTS_MD:-}" in ""|/*) ;; *) BAD_INPUTS_MD=$PWD/$BAD_INPUTS_MD ;; e
 cd "$T" || exit 1
 pass=0 fail=0 row=0
 md=""
+WHAT=""   # what the next row's fixture holds, shown beside its command in docs/bad-inputs.md
 
 # t CODE REGEX [VAR=VALUE ...] ARGS...: runs brdfbench ARGS (with the environment variables
 # given first); the exit code must be CODE and stderr must hold exactly one line matching
@@ -44,7 +45,17 @@ t() {
         fail=$((fail + 1))
         echo "FAIL row $row: brdfbench $* -> $verdict: $(head -c 400 "$T/err")" >&2
     fi
-    local shown="${envs[*]:+${envs[*]} }brdfbench $*"
+    # a small text file the test made, named by the command, is shown with what it holds
+    local a held=""
+    for a in "$@"; do
+        if [[ "$a" != /* && "$a" != -* ]] && [ -f "$a" ] && [ ! -L "$a" ] && [ "$(stat -c %s "$a")" -le 240 ] &&
+            ! LC_ALL=C grep -qa '[^[:print:][:space:]]' "$a"; then
+            held+="${held:+; }$a: $(tr '\n' ' ' <"$a" | sed 's/ *$//')"
+        fi
+    done
+    [ -n "$WHAT" ] && held="$WHAT${held:+; $held}"
+    local shown="${envs[*]:+${envs[*]} }brdfbench $*${held:+   [$held]}"
+    WHAT=""
     shown=${shown//$T\//}
     shown=${shown//$SRC\//}
     first=${first//$T\//}
@@ -260,7 +271,10 @@ t 2 "^brdfbench heatmap: --label cq2: run1 has no model of that label \(accepted
 printf 'bunny\\\001\002\000\003' >some.bin   # binary: a backslash, control bytes, a NUL
 printf 'ply\nformat ascii 1.0\nend_header\n' >mesh.ply
 t 2 "^brdfbench accuracy: --out: empty path \(accepted: a folder or file name\)" accuracy --out ''
-t 2 "^brdfbench render: /dev/null:1: no bicubic_patch found \(expected a POV-Ray file with bicubic_patch blocks" \
+: >empty.pov
+t 2 "^brdfbench render: empty.pov:1: no bicubic_patch found \(expected a POV-Ray file with bicubic_patch blocks" \
+    render --scene teapot --teapot-file empty.pov --out run
+t 2 "^brdfbench render: /dev/null: cannot read: is a character device, not a regular file" \
     render --scene teapot --teapot-file /dev/null --out run
 t 2 "^brdfbench render: some.bin:1: not a Wavefront OBJ file \(expected text lines of v, vt, vn and f statements\); found binary data" \
     render --scene bunny --bunny-file some.bin --out run
@@ -276,6 +290,326 @@ ln -s same.json link.json
 t 2 "^brdfbench gate: --json: 'link.json' is the file --junit names \('same.json'\)" gate good.json --junit same.json --json link.json
 t 2 "^brdfbench gate: --json: '-' is the file --junit names \('/dev/fd/1'\)" gate good.json --junit /dev/fd/1 --json -
 t 2 "^brdfbench accuracy: --timeout: 'inf' is not a finite number in \[0.01, 604800\]" accuracy --timeout inf
+
+# ---- issue 23: the next hostile inputs -------------------------------------------------------
+# Result files fed back (plot, heatmap, compare, gate --baseline), names that become file names,
+# model texts, limits and environments. A real run folder R0 (all --quick) and an accuracy run
+# are the fixtures; each row edits a copy. tests/test_hostile.sh checks the same inputs'
+# effects (no file replaced outside the run folder, the earlier run kept, no hang).
+"$BIN" all --quick --models fq2 --out R0 --quiet >/dev/null 2>&1
+"$BIN" accuracy --models fq2,cq2 --n-max 50 --samples 256 --out base --quiet >/dev/null 2>&1
+# pj DIR PYTHON: a copy of R0 as DIR with PYTHON run on its plots.json (as d; figure 0 as f)
+pj() {
+    WHAT="$1/plots.json: $2"
+    rm -rf "$1" && cp -r R0 "$1"
+    python3 - "$1/plots.json" "$2" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+f = d["figures"][0]
+exec(sys.argv[2])
+json.dump(d, open(sys.argv[1], "w"))
+PY
+}
+# fj DIR PYTHON: the same for DIR/field_fq2.json (as d)
+fj() {
+    WHAT="$1/field_fq2.json: $2"
+    rm -rf "$1" && cp -r R0 "$1"
+    python3 - "$1/field_fq2.json" "$2" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+exec(sys.argv[2])
+json.dump(d, open(sys.argv[1], "w"))
+PY
+}
+# plots.json: a figure's file is a plain NAME.png, never a data file of the run or a path
+for name in accuracy.json plots.json report.md field_fq2.json x.PNG.json ../escape.png /tmp/abs.png .hidden.png \
+            'a b.png' '' 'x.png/' 'new
+line.png' '-.png~' 'x.png.tmp.123'; do
+    pj P "f['file'] = $(printf '%s' "$name" | python3 -c 'import json,sys; print(json.dumps(sys.stdin.read()))')"
+    t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"file\" is \".*\" \(accepted: NAME.png, a plain file name" plot P
+done
+pj P "f['file'] = 'x' * 300 + '.png'"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"file\" is longer than 127 bytes" plot P
+pj P "d['figures'][1]['file'] = f['file']"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: figure 2 has the file name \"curves_n16_paper1_fig2.png\" of figure 1" plot P
+# plots.json: ranges a picture cannot show, and malformed figures
+pj P "f['y_range'] = [1e-300, 2e-300]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"y_range\" \[1e-300, 2e-300\] cannot be drawn" plot P
+pj P "f['y_range'] = [1, 1 + 1e-15]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"y_range\" \[1, 1.000000000000001\] cannot be drawn" plot P
+pj P "f['y_range'] = [1e-320, 1e-310]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"y_range\" \[9.99988867182683e-321, 9.999999999999969e-311\] cannot be drawn" plot P
+pj P "f['x_range'] = [-1e301, 1e301]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"x_range\" \[-1e\+301, 1e\+301\] cannot be drawn" plot P
+pj P "f['y_log'] = True; f['y_range'] = [-1, 1]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"y_range\" \[-1, 1\] cannot be drawn .*log axis" plot P
+pj P "f['y_range'] = [0, 1, 2]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"y_range\" must hold two numbers" plot P
+pj P "f['y_range'] = 'auto'"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: member \"y_range\" is a string" plot P
+pj P "f['kind'] = 'pie'"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"kind\" is \"pie\" \(accepted: lines, bars\)" plot P
+pj P "f['y_format'] = 'hex'"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"y_format\" is \"hex\" \(accepted: plain, percent\)" plot P
+pj P "f['series'][0]['colour'] = 12"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: \"colour\" must be an integer in \[-1, 9\]" plot P
+pj P "f['series'][0]['x'] = f['series'][0]['x'][:-1]"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: series \".*\" has [0-9]+ x and [0-9]+ y values" plot P
+pj P "f['series'] = f['series'] * 10"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: more than 24 series" plot P
+pj P "f['vlines'] = [{'x': 1, 'label': 'v'}] * 5"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: more than 4 vlines" plot P
+pj P "d['schema'] = 'brdfbench.plots/2'"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: schema \"brdfbench.plots/2\", expected \"brdfbench.plots/1\"" plot P
+pj P "d['figures'] = {}"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: member \"figures\" is an object" plot P
+pj P "del f['series']"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: member \"series\" is missing" plot P
+pj P "f['title'] = 7"
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: member \"title\" is a number" plot P
+# plots.json itself: not JSON, not a file
+rm -rf P && cp -r R0 P
+printf '{"schema": NaN}' >P/plots.json
+WHAT='P/plots.json: {"schema": NaN}'
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: " plot P
+printf '\xef\xbb\xbf{}' >P/plots.json
+WHAT='P/plots.json: a UTF-8 byte order mark, then {}'
+t 2 "^brdfbench plot: P/plots.json:1:1: " plot P
+python3 -c 'print("[" * 100 + "]" * 100)' >P/plots.json
+WHAT='P/plots.json: 100 nested arrays'
+t 2 "^brdfbench plot: P/plots.json:.*(nest|deep)" plot P
+printf '{"schema": "brdfbench.plots/1", "schema": "x", "figures": []}' >P/plots.json
+WHAT='P/plots.json: "schema" twice'
+t 2 "^brdfbench plot: P/plots.json:1:[0-9]+: .*duplicate" plot P
+: >P/plots.json
+WHAT='P/plots.json: empty'
+t 2 "^brdfbench plot: P/plots.json: empty file" plot P
+rm P/plots.json && mkfifo P/plots.json
+WHAT='P/plots.json: a FIFO'
+t 2 "^brdfbench plot: P/plots.json: is a FIFO, not a regular file" plot P
+rm P/plots.json && ln -s /dev/zero P/plots.json
+WHAT='P/plots.json -> /dev/zero'
+t 2 "^brdfbench plot: P/plots.json: is a character device, not a regular file" plot P
+rm P/plots.json && mkdir P/plots.json
+WHAT='P/plots.json: a folder'
+t 2 "^brdfbench plot: P/plots.json: is a folder, not a file" plot P
+rm -rf P/plots.json && ln -s nowhere.json P/plots.json
+WHAT='P/plots.json: a dangling link'
+t 2 "^brdfbench plot: P/plots.json: cannot open: No such file or directory" plot P
+# heatmap: field files fed back
+fj H "del d['model']"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:1: member \"model\" is missing" heatmap H
+fj H "d['model'] = 5"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: member \"model\" is a number" heatmap H
+fj H "d['model'] = 'nosuch'"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: unknown model 'nosuch'" heatmap H
+fj H "d['grid']['rows'] = 1"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: grid rows/cols must be integers in \[2, 10000\]" heatmap H
+fj H "d['grid']['rows'] = 3000; d['grid']['cols'] = 3000"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: " heatmap H
+fj H "d['grid']['n'] = d['grid']['n'][:-1]"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: \"n\" has 40 values, rows is 41" heatmap H
+fj H "d['schema'] = 'brdfbench.field/0'"
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: schema \"brdfbench.field/0\", expected" heatmap H
+rm -rf H && cp -r R0 H && rm H/field_fq2.json && mkfifo H/field_fq2.json
+WHAT='H/field_fq2.json: a FIFO'
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json: is a FIFO, not a regular file" heatmap H
+WHAT='H/field_fq2.json: a FIFO'
+t 2 "^brdfbench heatmap: --label fq2: H/field_fq2.json: is a FIFO, not a regular file" heatmap H --label fq2
+rm H/field_fq2.json && ln -s /dev/urandom H/field_fq2.json
+WHAT='H/field_fq2.json -> /dev/urandom'
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json: is a character device, not a regular file" heatmap H
+truncate -s 200M H/field_fq2.json.big && rm H/field_fq2.json && mv H/field_fq2.json.big H/field_fq2.json
+WHAT='H/field_fq2.json: 200 MB'
+t 2 "multi:^brdfbench heatmap: H/field_fq2.json: is larger than [0-9]+ bytes \(209715200\)" heatmap H
+rm -rf H && mkdir H
+t 2 "^brdfbench heatmap: H holds no field_<model>.json to draw from" heatmap H
+t 2 "^brdfbench heatmap: --label \.\./fq2: H has no model of that label" heatmap H --label ../fq2
+t 2 "^brdfbench heatmap: RUN_DIR 'good.json' is not a folder" heatmap good.json
+mkfifo fifo_dir
+t 2 "^brdfbench plot: RUN_DIR 'fifo_dir' is not a folder" plot fifo_dir
+# compare and gate --baseline: the files of a run that are not what they say
+mkdir -p C1 && mkfifo C1/accuracy.json
+WHAT='C1/accuracy.json: a FIFO'
+t 2 "^brdfbench compare: C1/accuracy.json: is a FIFO, not a regular file" compare base C1 --out run
+mkdir -p C2/accuracy.json
+WHAT='C2/accuracy.json: a folder'
+t 2 "^brdfbench compare: " compare base C2 --out run
+t 2 "^brdfbench compare: /dev/null: is a character device, not a regular file" compare base /dev/null --out run
+mkdir -p C3 && : >C3/accuracy.json
+WHAT='C3/accuracy.json: empty'
+t 2 "^brdfbench compare: C3/accuracy.json: empty file" compare base C3 --out run
+t 2 "^brdfbench gate: --baseline: C1/accuracy.json: is a FIFO, not a regular file" gate good.json --baseline C1
+t 2 "^brdfbench gate: --baseline: /dev/zero: is a character device, not a regular file" gate good.json --baseline /dev/zero
+t 2 "^brdfbench gate: --baseline: R0/plots.json:2:13: not an accuracy.json \(schema brdfbench.accuracy/1 expected\)" gate good.json --baseline R0/plots.json
+t 2 "^brdfbench gate: --baseline: R0/throughput.json:2:13: not an accuracy.json" gate good.json --baseline R0/throughput.json
+mkdir -p C4
+t 2 "^brdfbench gate: --baseline: C4/accuracy.json: cannot open: No such file" gate good.json --baseline C4
+python3 -c 'import json; d = json.load(open("base/accuracy.json")); d["results"] = {}; json.dump(d, open("bad_results.json", "w"))'
+t 2 "^brdfbench gate: --baseline: bad_results.json:1:1: member \"results\" \(an array\) is missing" gate good.json --baseline bad_results.json
+# gates files: model files outside their folder, files that are not files, reserved names
+mkdir -p gd/sub && cp "$F/scaled.cl" gd/sub/ && cp "$F/scaled.cl" outside.cl && ln -sf ../outside.cl gd/link.cl && mkfifo gd/fifo.cl
+printf '{"gates":[{"model":"scaled","model_file":"../outside.cl","metric":"whole.max_abs","max":1}]}' >gd/up.json
+printf '{"gates":[{"model":"scaled","model_file":"%s/outside.cl","metric":"whole.max_abs","max":1}]}' "$T" >gd/abs.json
+printf '{"gates":[{"model":"scaled","model_file":"link.cl","metric":"whole.max_abs","max":1}]}' >gd/link.json
+printf '{"gates":[{"model":"scaled","model_file":"sub/../../outside.cl","metric":"whole.max_abs","max":1}]}' >gd/dots.json
+printf '{"gates":[{"model":"fifo","model_file":"fifo.cl","metric":"whole.max_abs","max":1}]}' >gd/fifo.json
+printf '{"gates":[{"model":"r","expression":"brdf_user_eval(c,n,p0,p1)","metric":"whole.max_abs","max":1}]}' >gd/wrapper.json
+printf '{"gates":[{"model":"r","expression":"brdfbench_host_eval(c,n,0,0)","metric":"whole.max_abs","max":1}]}' >gd/host_eval.json
+printf '{"gates":[{"model":"brdf_r","expression":"c","metric":"whole.max_abs","max":1}]}' >gd/name.json
+printf '{"timeout": "10", "gates":[{"model":"fq2","metric":"whole.max_abs","max":1}]}' >gd/timeout_string.json
+printf '{"timeout": 1e9, "gates":[{"model":"fq2","metric":"whole.max_abs","max":1}]}' >gd/timeout_big.json
+t 2 "^brdfbench gate: gd/up.json:1:[0-9]+: gate 1: \"model_file\" '../outside.cl' lies outside the gates file's folder gd; a model file is a program" gate gd/up.json
+t 2 "^brdfbench gate: gd/abs.json:1:[0-9]+: gate 1: \"model_file\" '.*outside.cl' lies outside the gates file's folder gd" gate gd/abs.json
+t 2 "^brdfbench gate: gd/link.json:1:[0-9]+: gate 1: \"model_file\" 'link.cl' lies outside the gates file's folder gd" gate gd/link.json
+t 2 "^brdfbench gate: gd/dots.json:1:[0-9]+: gate 1: \"model_file\" 'sub/../../outside.cl' lies outside" gate gd/dots.json
+t 2 "^brdfbench gate: gd/fifo.json:1:[0-9]+: gate 1: --model-file: cannot read gd/fifo.cl: is a FIFO, not a regular file" gate gd/fifo.json
+t 2 "^brdfbench gate: gd/wrapper.json:1:[0-9]+: gate 1: --model r: character 1: identifier 'brdf_user_eval' is reserved" gate gd/wrapper.json
+t 2 "^brdfbench gate: gd/host_eval.json:1:[0-9]+: gate 1: --model r: character 1: identifier 'brdfbench_host_eval' is reserved" gate gd/host_eval.json
+t 2 "^brdfbench gate: gd/name.json:1:[0-9]+: gate 1: --model: name 'brdf_r' is not an identifier .* or is reserved" gate gd/name.json
+t 2 "^brdfbench gate: gd/timeout_string.json:1:[0-9]+: \"timeout\" is a string, a number expected" gate gd/timeout_string.json
+t 2 "^brdfbench gate: gd/timeout_big.json:1:[0-9]+: \"timeout\" 1e\+09 is out of range \(accepted: seconds in \[0.01, 604800\]\)" gate gd/timeout_big.json
+t 2 "^brdfbench gate: /dev/zero: cannot read the gates file: is a character device, not a regular file" gate /dev/zero
+truncate -s 5M big_gates.json
+t 2 "^brdfbench gate: big_gates.json: larger than 4 MiB" gate big_gates.json
+t 2 "^brdfbench gate: /dev/fd/[0-9]+:1:[0-9]+: \"gates\" has 0 gates" gate <(printf '{"gates": []}')
+# --kernel-dir: a FIFO, a folder or nothing where brdf_models.h should be
+mkdir -p K1 && mkfifo K1/brdf_models.h && mkdir -p K2/brdf_models.h
+t 2 "^brdfbench accuracy: --kernel-dir: K1/brdf_models.h is a FIFO, not a regular file \(accepted: a kernels/ folder\)" accuracy --kernel-dir K1
+t 2 "^brdfbench accuracy: --kernel-dir: K2/brdf_models.h is a folder, not a file" accuracy --kernel-dir K2
+t 2 "^brdfbench accuracy: --kernel-dir: good.json does not hold brdf_models.h" accuracy --kernel-dir good.json
+# user-model expressions: brdfbench's own names, characters, lengths
+t 2 "^brdfbench accuracy: --model r: character 1: identifier 'brdf_user_eval' is reserved \(brdf_\*, BRDF_\* and brdfbench_\*" accuracy --model 'r=brdf_user_eval(c,n,p0,p1)' --n-max 10
+t 2 "^brdfbench accuracy: --model r: character 5: identifier 'brdf_eval' is reserved" accuracy --model 'r=c + brdf_eval(0, c, n, 0, 0)'
+t 2 "^brdfbench accuracy: --model r: character 1: identifier 'brdf_eval_s' is reserved" accuracy --model 'r=brdf_eval_s(0, 1 - c, n, 0, 0)'
+t 2 "^brdfbench accuracy: --model r: character 3: identifier 'BRDF_PI' is reserved" accuracy --model 'r=c*BRDF_PI'
+t 2 "^brdfbench accuracy: --model r: character 8: identifier 'brdf_x' is reserved" accuracy --model 'r=1e5f*c+brdf_x'
+t 2 "^brdfbench render: --model r: character 1: identifier 'brdf_user_eval' is reserved" render --model 'r=brdf_user_eval(c,n,0,0)'
+t 2 "^brdfbench throughput: --model r: character 1: identifier 'brdf_user_eval' is reserved" throughput --model 'r=brdf_user_eval(c,n,0,0)'
+t 2 "^brdfbench all: --model r: character 1: identifier 'brdf_user_eval' is reserved" all --model 'r=brdf_user_eval(c,n,0,0)'
+t 2 "^brdfbench accuracy: --model: name 'brdf_q' is not an identifier" accuracy --model 'brdf_q=c'
+t 2 "^brdfbench accuracy: --model: name 'c' is not an identifier" accuracy --model 'c=c'
+t 2 "^brdfbench accuracy: --model: name 'n' is not an identifier" accuracy --model 'n=c'
+t 2 "^brdfbench accuracy: --model: the name before '=' must have 1 to 48 characters" accuracy --model "$(printf 'a%.0s' {1..49})=c"
+t 2 "^brdfbench accuracy: --model: the name before '=' must have 1 to 48 characters" accuracy --model '=c'
+t 2 "^brdfbench accuracy: --model: name 'a b' is not an identifier" accuracy --model 'a b=c'
+t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model "e=c$(printf '\t')*n"
+t 2 "^brdfbench accuracy: --model e: character 1 of the expression is not allowed" accuracy --model "e=$(printf '\xc3\xa9')"
+t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model 'e=c//n'
+t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model 'e=c/*n*/'
+t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model 'e=c#n'
+t 2 "^brdfbench accuracy: --model e: the expression must have 1 to 1000 characters" accuracy --model "e=$(printf 'c%.0s' {1..1001})"
+t 2 "^brdfbench accuracy: --model e: the expression is blank" accuracy --model 'e=   '
+# model files: recursion, pasting, reserved names, files that are not files, limits
+mk() { printf '/* brdfbench-model\n * name: %s\n */\n%b' "$1" "$2" >"$1.cl"; }
+mk self 'REAL self(REAL c, REAL n) { return c > 2 ? self(c, n) : c; }\n'
+mk mut '#define G(c, n) mut(c, n)\nREAL h(REAL c, REAL n) { return G(c, n); }\nREAL mut(REAL c, REAL n) { return c > 2 ? h(c, n) : c; }\n'
+mk paste '#define CAT(a, b) a##b\nREAL paste(REAL c, REAL n) { return CAT(c, ) * n; }\n'
+mk cont 'REAL cont(REAL c, REAL n) { return brdf_user_\\\neval(c, n, 0, 0); }\n'
+mk disp 'REAL disp(REAL c, REAL n) { return brdf_eval(0, c, n, 0, 0); }\n'
+mk macro '#define W brdf_user_eval\nREAL macro(REAL c, REAL n) { return W(c, n, 0, 0); }\n'
+mk bench 'REAL bench(REAL c, REAL n) { return brdfbench_host_eval(c, n, 0, 0); }\n'
+mk helper 'REAL helper(REAL c, REAL n) { return brdf_quadratic_s(1 - c, n); }\n'
+printf '/* brdfbench-model\n * name: brdf_mine\n */\nREAL brdf_mine(REAL c, REAL n) { return c; }\n' >name_reserved.cl
+printf '/* brdfbench-model\n * name: fn\n * function: brdf_user_eval\n */\nREAL x(REAL c, REAL n) { return c; }\n' >fn_reserved.cl
+printf '/* brdfbench-model\n * name: pc\n * param: c 0 1 0.5\n */\nREAL pc(REAL c, REAL n, RSCALAR k) { return c; }\n' >param_c.cl
+printf '/* brdfbench-model\n * name: p3\n * param: a 0 1 0.5\n * param: b 0 1 0.5\n * param: d 0 1 0.5\n */\nREAL p3(REAL c, REAL n) { return c; }\n' >p3.cl
+printf '/* brdfbench-model\n * name: dn\n * name: dn\n */\nREAL dn(REAL c, REAL n) { return c; }\n' >twice.cl
+printf '/* brdfbench-model\n * name: rf\n * reference: nosuch\n */\nREAL rf(REAL c, REAL n) { return c; }\n' >ref.cl
+printf '/* brdfbench-model\n * name: lb\n * lobe: phi\n */\nREAL lb(REAL c, REAL n) { return c; }\n' >lobe.cl
+printf '/* brdfbench-model\n * name: df\n * param: k 0 1 2\n */\nREAL df(REAL c, REAL n, RSCALAR k) { return c; }\n' >default.cl
+printf '/* brdfbench-model\n * name: di\n * param: k 0 10 2.5 integer\n */\nREAL di(REAL c, REAL n, RSCALAR k) { return c; }\n' >default_int.cl
+printf '/* brdfbench-model\n * name: un\n REAL un(REAL c, REAL n) { return c; }\n' >unterminated.cl
+printf '/* brdfbench-model\n * name: nul\n */\nREAL nul(REAL c, REAL n) { return c; }\n\000\n' >nul.cl
+: >empty.cl
+{ printf '/* brdfbench-model\n * name: huge\n */\n'; head -c 300000 /dev/zero | tr '\0' ' '; printf 'REAL huge(REAL c, REAL n) { return c; }\n'; } >huge.cl
+mkfifo fifo.cl
+t 2 "^brdfbench accuracy: self.cl:4: 'self' calls itself \(self -> self\): OpenCL C has no recursion" accuracy --model-file self.cl
+t 2 "^brdfbench accuracy: mut.cl:4: 'G' calls itself \(G -> mut -> h -> G\): OpenCL C has no recursion" accuracy --model-file mut.cl
+t 2 "^brdfbench accuracy: paste.cl:4: token pasting \(##\) is not accepted in a user model" accuracy --model-file paste.cl
+t 2 "^brdfbench accuracy: cont.cl:4: identifier 'brdf_user_eval' is reserved" accuracy --model-file cont.cl
+t 2 "^brdfbench accuracy: disp.cl:4: identifier 'brdf_eval' is reserved" accuracy --model-file disp.cl
+t 2 "^brdfbench accuracy: macro.cl:4: identifier 'brdf_user_eval' is reserved" accuracy --model-file macro.cl
+t 2 "^brdfbench accuracy: bench.cl:4: identifier 'brdfbench_host_eval' is reserved" accuracy --model-file bench.cl
+t 2 "^brdfbench accuracy: helper.cl:4: identifier 'brdf_quadratic_s' is reserved .*only the helpers brdf_quadratic, " accuracy --model-file helper.cl
+t 2 "^brdfbench accuracy: name_reserved.cl:2: name 'brdf_mine' is not an identifier of 1 to 48 characters .* or is reserved" accuracy --model-file name_reserved.cl
+t 2 "^brdfbench accuracy: fn_reserved.cl:3: function 'brdf_user_eval' is not an identifier of 1 to 48 characters or is reserved" accuracy --model-file fn_reserved.cl
+t 2 "^brdfbench accuracy: param_c.cl:3: parameter name 'c' is not an identifier of 1 to 48 characters or is reserved" accuracy --model-file param_c.cl
+t 2 "^brdfbench accuracy: p3.cl:5: more than 2 parameters \(accepted: 0 to 2\)" accuracy --model-file p3.cl
+t 2 "^brdfbench accuracy: twice.cl:3: 'name' is declared twice" accuracy --model-file twice.cl
+t 2 "^brdfbench accuracy: ref.cl:3: reference 'nosuch' is not a built-in model" accuracy --model-file ref.cl
+t 2 "^brdfbench accuracy: lobe.cl:3: lobe 'phi' is unknown \(accepted: psi, theta_h\)" accuracy --model-file lobe.cl
+t 2 "^brdfbench accuracy: default.cl:3: parameter 'k': DEFAULT 2 is not a number in \[0, 1\]" accuracy --model-file default.cl
+t 2 "^brdfbench accuracy: default_int.cl:3: parameter 'k': DEFAULT 2.5 is not an integer in \[0, 10\]" accuracy --model-file default_int.cl
+t 2 "^brdfbench accuracy: unterminated.cl:1: a model file begins with a header comment" accuracy --model-file unterminated.cl
+t 2 "^brdfbench accuracy: nul.cl: NUL byte in a model file \(a text file is expected\)" accuracy --model-file nul.cl
+t 2 "^brdfbench accuracy: empty.cl: empty model file" accuracy --model-file empty.cl
+t 2 "^brdfbench accuracy: huge.cl: larger than 262144 bytes" accuracy --model-file huge.cl
+t 2 "^brdfbench accuracy: --model-file: cannot read fifo.cl: is a FIFO, not a regular file" accuracy --model-file fifo.cl
+t 2 "^brdfbench accuracy: --model-file: cannot read /dev/zero: is a character device, not a regular file" accuracy --model-file /dev/zero
+t 2 "^brdfbench accuracy: --model-file: cannot read /dev/null: is a character device, not a regular file" accuracy --model-file /dev/null
+t 2 "^brdfbench accuracy: --model-file: cannot read /dev/stdin: is a " accuracy --model-file /dev/stdin
+cp self.cl self2.cl && sed -i 's/self/other/g' self2.cl && cp "$F/scaled.cl" scaled_copy.cl
+t 2 "^brdfbench accuracy: scaled_copy.cl: user model 'scaled' is already defined by .*scaled.cl" accuracy --model-file "$F/scaled.cl" --model-file scaled_copy.cl
+# names that become file and folder names: what --out may be for all, which replaces it whole
+mkdir -p own && echo mine >own/notes.sh && mkdir -p own2/src && mkfifo own3_fifo && mkdir -p own3 && mv own3_fifo own3/x.json
+t 2 "^brdfbench all: --out: own holds 'notes.sh', which is no part of a brdfbench run" all --quick --out own
+t 2 "^brdfbench all: --out: own2 holds 'src', which is no part of a brdfbench run" all --quick --out own2
+t 2 "^brdfbench all: --out: own3 holds 'x.json', which is no part of a brdfbench run" all --quick --out own3
+t 2 "^brdfbench all: --out: \. is the working folder or holds it" all --quick --out .
+t 2 "^brdfbench all: --out: / is the working folder or holds it" all --quick --out /
+t 2 "^brdfbench all: --out: \.\. is the working folder or holds it" all --quick --out ..
+t 3 "^brdfbench all: --out: good.json is not a folder" all --quick --out good.json
+t 3 "^brdfbench all: --out: /dev/null is not a folder" all --quick --out /dev/null
+t 3 "^brdfbench all: --out: cannot create folder /proc/brdf/x: " all --quick --out /proc/brdf/x
+mkdir -p rl/latest && mkdir -p rf && echo mine >rf/latest
+t 3 "^brdfbench all: rl/latest is a folder, not the symlink to the latest run that brdfbench keeps there" all --quick --results-root rl
+t 3 "^brdfbench all: rf/latest is a file, not the symlink to the latest run that brdfbench keeps there" all --quick --results-root rf
+t 3 "^brdfbench all: good.json is not a folder" all --quick --results-root good.json
+# --json and --csv: a place that cannot take the file fails before the work
+t 3 "^brdfbench accuracy: --json: folder nowhere does not exist" accuracy --json nowhere/acc.json
+t 3 "^brdfbench accuracy: --csv: folder nowhere does not exist" accuracy --csv nowhere/acc.csv
+t 3 "^brdfbench accuracy: --json: folder is a folder \(a file name is expected\)" accuracy --json folder
+t 3 "^brdfbench accuracy: --json: cannot write good.json/x.json: Not a directory" accuracy --json good.json/x.json
+t 3 "^brdfbench throughput: --json: folder nowhere does not exist" throughput --json nowhere/tp.json
+t 3 "^brdfbench throughput: --csv: folder nowhere does not exist" throughput --csv nowhere/tp.csv
+t 3 "^brdfbench fit: --json: folder nowhere does not exist" fit --json nowhere/fit.json
+ln -sf nowhere/dangling.json dangling.json
+t 3 "^brdfbench accuracy: --json: folder nowhere does not exist" accuracy --json dangling.json
+t 2 "^brdfbench accuracy: --csv: the rows of several devices are gathered into accuracy.json only" accuracy --device all --csv x.csv
+t 2 "^brdfbench throughput: --csv: the rows of several devices are gathered into throughput.json only" throughput --device all --csv x.csv
+# scene files: devices, folders, FIFOs, binary or huge files are refused before they are read
+mkfifo scene.fifo && truncate -s 300M sparse.pov && printf 'ply\n\000binary' >bin.pov
+t 2 "^brdfbench render: /dev/zero: cannot read: is a character device, not a regular file" render --scene teapot --teapot-file /dev/zero --out run
+t 2 "^brdfbench render: /tmp: cannot read: is a folder, not a file" render --scene teapot --teapot-file /tmp --out run
+t 2 "^brdfbench render: scene.fifo: cannot read: is a FIFO, not a regular file" render --scene teapot --teapot-file scene.fifo --out run
+t 2 "^brdfbench render: sparse.pov: 314572800 bytes, larger than a scene file may be" render --scene teapot --teapot-file sparse.pov --out run
+t 2 "^brdfbench render: bin.pov:2: not a POV-Ray file \(expected a text file with bicubic_patch blocks\); found binary data" render --scene teapot --teapot-file bin.pov --out run
+t 2 "^brdfbench render: /dev/urandom: cannot read: is a character device, not a regular file" render --scene bunny --bunny-file /dev/urandom --out run
+t 2 "^brdfbench render: sparse.pov: 314572800 bytes, larger than a scene file may be" render --scene bunny --bunny-file sparse.pov --out run
+t 2 "^brdfbench render: folder: cannot read: is a folder, not a file" render --scene bunny --bunny-file folder --out run
+t 2 "^brdfbench render: bunny scene: cannot read nothere.obj: No such file" render --scene bunny --bunny-file nothere.obj --out run
+# limits
+t 2 "^brdfbench accuracy: --timeout: '1e-9' is not a finite number in \[0.01, 604800\]" accuracy --timeout 1e-9
+t 2 "^brdfbench accuracy: --timeout: '700000' is not a finite number in \[0.01, 604800\]" accuracy --timeout 700000
+t 2 "^brdfbench accuracy: --timeout: '-1' is not a finite number" accuracy --timeout -1
+t 2 "^brdfbench accuracy: --timeout: '5s' is not a finite number" accuracy --timeout 5s
+t 2 "^brdfbench accuracy: --samples: '4194320' is not an integer in \[16, 4194304\]" accuracy --samples 4194320
+t 2 "^brdfbench accuracy: --n-step: 1e-300 gives .* values of n \(accepted: 2 to 10000000\)" accuracy --n-step 1e-300
+t 2 "^brdfbench accuracy: --n-max: '1e6x' is not a finite number" accuracy --n-max 1e6x
+t 2 "^brdfbench render: --size: '16385x16' is not WxH" render --size 16385x16
+t 2 "^brdfbench render: --size: '99999999999x1' is not WxH" render --size 99999999999x1
+t 2 "^brdfbench render: --exposure: '1e400' is not a finite number" render --exposure 1e400
+t 2 "^brdfbench accuracy: --platform: '64' is not an integer in \[0, 63\]" accuracy --platform 64
+t 2 "^brdfbench accuracy: --model z9: at most 8 user models per run" accuracy --model z1=c --model z2=c --model z3=c --model z4=c --model z5=c --model z6=c --model z7=c --model z8=c --model z9=c
+# environments
+t 2 "^brdfbench accuracy: --n-min: '0,5' is not a finite number" LC_ALL=C.UTF-8 accuracy --n-min 0,5
+t 3 "^brdfbench accuracy: --json -: cannot make a temporary folder in /nonexistent \(TMPDIR\): No such file or directory" TMPDIR=/nonexistent accuracy --models fq2 --n-max 4 --samples 16 --json -
+t 77 "^brdfbench accuracy: no OpenCL platform found" OCL_ICD_VENDORS=/nonexistent accuracy --models fq2 --n-max 4 --samples 16 --out run
+t 2 "^brdfbench accuracy: POCL_CACHE_DIR=good.json is not a writable folder \(PoCL keeps its compiled kernels there" POCL_CACHE_DIR=good.json accuracy --models fq2 --n-max 4 --samples 16 --out run
+t 77 "^brdfbench accuracy: no OpenCL device found: platform '.*' reports none; POCL_DEVICES=nosuch selects the devices" POCL_DEVICES=nosuch accuracy --models fq2 --n-max 4 --samples 16 --out run
+t 2 "^brdfbench accuracy: --out: empty path" POCL_DEVICES= accuracy --out ''
+
 # A compile error's first line is the compiler's own FILE:LINE:COL line.
 "$BIN" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out run >/dev/null 2>"$T/err"
 head -n 1 "$T/err" | grep -qE "^[^ ]*bad_syntax.cl:6:[0-9]+: error: expected ';'" && pass=$((pass + 1)) ||
@@ -288,15 +622,56 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
     {
         echo "# Bad inputs"
         echo
-        echo "Every row is a case of tests/test_cli_errors.sh: the command, the exit code it gave and the first"
+        echo "Every row is a case of tests/test_cli_errors.sh: the command (in brackets, what the small files the"
+        echo "test made for it hold, or how it changed a copy of a run folder), the exit code it gave and the first"
         echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
-        echo "or output error (docs/architecture.md). Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
+        echo "or output error, 77 no OpenCL device (docs/architecture.md). Rows 155 on are the hostile inputs of"
+        echo "issue 23: result files fed back, names that become file names, model texts, limits, environments."
+        echo "Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
         echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases, one check that no refused run"
         echo "wrote an output folder and one that a compile error's first line is FILE:LINE:COL; $pass passed, $fail failed."
         echo
         echo "| # | command | exit | message | result |"
         echo "|---|---|---|---|---|"
         printf '%s' "$md"
+        cat <<'EOT'
+
+## What a row cannot show
+
+Some hostile inputs are about what must *not* happen: a file replaced outside the run folder,
+an earlier run lost, a hang. tests/test_hostile.sh checks those effects (each check failed on
+the binary before its fix, issue 23); the rows above with the same inputs check their exit
+code and message.
+
+- A symlink inside a run folder (`heatmap_fq2.png -> /tmp/victim`): `heatmap` and `plot`
+  replace the link by the picture; the link's target is unchanged. Outputs named on the command
+  line still write through a link (tests/test_outputs.sh).
+- `plots.json` naming a data file of the run (`accuracy.json`, `plots.json`, `report.md`,
+  `field_fq2.json`, `x.PNG.json`) or a path: exit 2, and no file of the run folder changes.
+- A `y_range` of `[1e-300, 2e-300]`, `[1, 1 + 1e-15]` or `[1e-320, 1e-310]`: exit 2 within
+  seconds; a point at 1e300 inside a valid range is clipped, not dashed along 1e300 pixels.
+- A FIFO as `accuracy.json` (compare, `gate --baseline`), `plots.json`, `field_*.json`,
+  `brdf_models.h` of `--kernel-dir` or a model file: exit 2 at once, no wait for a writer.
+- `--teapot-file /dev/zero`, a folder, or a 300 MB file: exit 2 before anything is read.
+- The wrapper `brdf_user_eval` in an expression (also in a gates file), a model file whose
+  function calls itself: exit 2 before the OpenCL compiler sees it (it crashed with SIGSEGV).
+- A gates file naming a model file outside its folder (`../x.cl`, an absolute path, a link
+  out): exit 2 before the file is read or compiled; `--allow-outside-model-files` runs it.
+- A host reference that never returns: a progress line after a second, then exit 3 at the
+  deadline with the run's folder removed.
+- `all --out mix` over a complete earlier run, failing (a model that loops only in float, exit
+  3), stopped by SIGTERM or SIGINT: `mix` is file for file as it was, and no staging folder is
+  left; a complete run replaces `mix` as a whole (a stale file of the earlier run is gone);
+  `all --results-root rs` stopped: no half run in `rs`.
+- `all --out` a folder of other files, or the working folder: exit 2, the folder untouched.
+- `results/latest` that is a folder or a file: exit 3 before the run, and the file is kept.
+- A hard link to a model file given twice is one model; `--json nowhere/x.json` fails before
+  the device is opened; SIGTERM of `accuracy --out a/b/D` leaves no folder it made.
+- `accuracy --device all --json -`: one document on standard output (the rows of every device),
+  no results folder.
+- `ulimit -v 200000` or `400000`: exit 77 or 3 with a line that names the limit, not abort()
+  on an uncaught std::bad_alloc (exit 134).
+EOT
     } >"$BAD_INPUTS_MD.tmp" && mv "$BAD_INPUTS_MD.tmp" "$BAD_INPUTS_MD"
 fi
 echo "$row cases + 2 checks: $pass passed, $fail failed"

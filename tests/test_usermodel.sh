@@ -174,8 +174,9 @@ expect 2 "bad_syntax.cl:6:[0-9]+: .*expected ';'" accuracy --model-file "$F/bad_
 [ ! -e "$T/e1/accuracy.json" ] && ok || bad "a failed build wrote results"
 # 'q' is the 13th character of the expression.
 expect 2 "--model e1:1:13: .*undeclared identifier 'q'" accuracy --model 'e1=pow(c, n) * q' --n-max 4 --out "$T/e2"
+cp "$F/bad_syntax.cl" "$T/g/bad_syntax.cl"   # a gates file names model files beside it
 cat >"$T/g/broken.json" <<EOF
-{"gates": [{"model": "broken", "model_file": "$F/bad_syntax.cl", "metric": "epicentre.max_rel", "max": 1}]}
+{"gates": [{"model": "broken", "model_file": "bad_syntax.cl", "metric": "epicentre.max_rel", "max": 1}]}
 EOF
 expect 2 "bad_syntax.cl:6:" gate "$T/g/broken.json"
 expect 2 "bad_syntax.cl:6:" render --model-file "$F/bad_syntax.cl" --scene spheres --size 32x32 --time-sizes none --out "$T/e3"

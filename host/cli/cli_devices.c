@@ -5,6 +5,8 @@
  * the list of devices in context.devices. `brdfbench compare RUN` lays them side by side. */
 #define _POSIX_C_SOURCE 200809L
 #include "cli.h"
+#include "cli_run.h"
+#include "cli_table.h"
 #include "clsession.h"
 #include "exitcodes.h"
 #include "jsonr.h"
@@ -210,14 +212,35 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
         return -n;
     }
     const char *out_dir = flag_value(argc, argv, "--out");
+    const char *json_path = flag_value(argc, argv, "--json"), *csv_path = flag_value(argc, argv, "--csv");
     int quiet = 0;
     for (int i = 1; i < argc; ++i)
         quiet |= strcmp(argv[i], "--quiet") == 0;
+    /* --json without --out: the gathered rows only, made in a temporary folder (as one device's
+       run makes its document); the devices' runs write no document of their own */
+    if (csv_path && !out_dir) {
+        fprintf(stderr, "brdfbench %s: --csv: the rows of several devices are gathered into %s only (accepted: "
+                "--json FILE|-, or --out DIR for each device's CSV)\n", command, file);
+        return EXIT_USAGE;
+    }
+    int temp = json_path && !out_dir;
     struct stat st;
     int existed = out_dir && stat(out_dir, &st) == 0;
     char run_dir[4096], devices[4200], sub[4300];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err) ||
-        path_join(devices, sizeof devices, run_dir, "devices") || outdir_prepare(devices, "--out", err, sizeof err)) {
+    if (temp) {
+        if (cli_run_check_documents(command, json_path, NULL))
+            return EXIT_RUNTIME;
+        if (cli_temp_dir(run_dir, sizeof run_dir, err, sizeof err)) {
+            fprintf(stderr, "brdfbench %s: %s\n", command, err);
+            return EXIT_RUNTIME;
+        }
+        outdir_own(run_dir);   /* removed at the end, and by a deadline or signal */
+        outdir_confine(run_dir);
+    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench %s: %s\n", command, err);
+        return EXIT_RUNTIME;
+    }
+    if (path_join(devices, sizeof devices, run_dir, "devices") || outdir_prepare(devices, "--out", err, sizeof err)) {
         fprintf(stderr, "brdfbench %s: %s\n", command, err);
         return EXIT_RUNTIME;
     }
@@ -228,8 +251,8 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
     int ac = 0;
     for (int i = 0; i < argc; ++i) {
         int takes = 0;
-        static const char *const drop[] = { "--device", "--platform", "--out" };
-        for (size_t j = 0; j < 3; ++j)
+        static const char *const drop[] = { "--device", "--platform", "--out", "--json", "--csv" };
+        for (size_t j = 0; j < (temp ? 5u : 3u); ++j)
             if (strcmp(argv[i], drop[j]) == 0)
                 takes = 2;
             else if (strncmp(argv[i], drop[j], strlen(drop[j])) == 0 && argv[i][strlen(drop[j])] == '=')
@@ -240,6 +263,9 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
         }
         av[ac++] = argv[i];
     }
+    /* only the gathered document is kept: the devices' runs print no table of files that go */
+    if (temp)
+        av[ac++] = "--quiet";
     char pbuf[16], dbuf[16];
     av[ac] = "--platform";
     av[ac + 1] = pbuf;
@@ -266,12 +292,28 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
         }
     }
     free(av);
-    if (rc)
+    if (rc) {
+        if (temp)
+            outdir_remove_own();
         return rc;
+    }
     rc = merge_devices(run_dir, file, rows_key, refs, n, err, sizeof err);
     if (rc) {
         fprintf(stderr, "brdfbench %s: %s\n", command, err);
+        if (temp)
+            outdir_remove_own();
         return EXIT_RUNTIME;
+    }
+    if (temp) {
+        char src[4300];
+        path_join(src, sizeof src, run_dir, file);
+        rc = cli_deliver(src, "--json", json_path, err, sizeof err) ? EXIT_RUNTIME : 0;
+        if (rc)
+            fprintf(stderr, "brdfbench %s: %s\n", command, err);
+        outdir_remove_own();   /* the temporary folder with the devices' runs */
+        if (!rc && !quiet && !cli_is_stdout(json_path))
+            printf("written: %s (%d devices, rows tagged with \"device\")\n", json_path, n);
+        return rc;
     }
     if (!out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench %s: %s\n", command, err);

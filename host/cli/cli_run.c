@@ -6,7 +6,12 @@
 #include "exitcodes.h"
 #include "outdir.h"
 
+#include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 static void cli_run_error(const char *cmd, const char *err)
 {
@@ -70,6 +75,38 @@ int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, cons
     char err[1024], src[4200];
     path_join(src, sizeof src, run_dir, name);
     if (cli_deliver(src, flag, dest, err, sizeof err)) {
+        cli_run_error(cmd, err);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+/* A document for standard output is made in a temporary folder first (cli_output_path): the
+   folder it is made in (TMPDIR, else /tmp) must take one. */
+static int check_temp_base(const char *flag, char *err, size_t errlen)
+{
+    const char *tmp = getenv("TMPDIR");
+    const char *base = tmp && *tmp ? tmp : "/tmp";
+    struct stat st;
+    if (stat(base, &st) != 0 || !S_ISDIR(st.st_mode) || access(base, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "%s -: cannot make a temporary folder in %s%s: %s", flag, base,
+                 tmp && *tmp ? " (TMPDIR)" : "", errno ? strerror(errno) : strerror(ENOTDIR));
+        return -1;
+    }
+    return 0;
+}
+
+int cli_run_check_documents(const char *cmd, const char *json_path, const char *csv_path)
+{
+    char err[1024];
+    errno = 0;
+    if ((cli_is_stdout(json_path) && check_temp_base("--json", err, sizeof err)) ||
+        (cli_is_stdout(csv_path) && check_temp_base("--csv", err, sizeof err))) {
+        cli_run_error(cmd, err);
+        return EXIT_RUNTIME;
+    }
+    if ((json_path && output_file_check("--json", json_path, err, sizeof err)) ||
+        (csv_path && output_file_check("--csv", csv_path, err, sizeof err))) {
         cli_run_error(cmd, err);
         return EXIT_RUNTIME;
     }

@@ -8,6 +8,7 @@
  *                     folder fails; 0 (session open, folder made) or the exit code;
  *   cli_run_latest    points results/latest at the run folder when it is a new results/<date-time>
  *                     (no --out, not temporary); 0 or EXIT_RUNTIME;
+ *   cli_run_check_documents  checks --json/--csv before the work;
  *   cli_run_deliver   copies the folder's document `name` to the path of `flag` (cli_deliver);
  *                     0 or EXIT_RUNTIME. */
 #ifndef BRDFBENCH_CLI_RUN_H
@@ -24,6 +25,9 @@ int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir
 int cli_run_open(const char *cmd, struct cl_session *s, const struct device_options *dev, const char *out_dir,
                  int temp, char *run_dir, size_t run_dir_len, char *tmp_dir, size_t tmp_dir_len);
 int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir);
+/* Checks --json and --csv paths (either may be NULL) before any work (output_file_check): 0 or
+ * EXIT_RUNTIME, so a missing or read-only folder fails at once, not after the measurement. */
+int cli_run_check_documents(const char *cmd, const char *json_path, const char *csv_path);
 int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, const char *flag, const char *dest);
 
 #endif

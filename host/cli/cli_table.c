@@ -7,6 +7,7 @@
 #include "context.h"
 #include "exitcodes.h"
 #include "frontier.h"
+#include "infile.h"
 #include "outdir.h"
 #include "usermodel.h"
 
@@ -411,12 +412,16 @@ int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *e
 {
     char probe[4096];
     snprintf(probe, sizeof probe, "%s/brdf_models.h", value);
-    FILE *f = fopen(probe, "r");
-    if (!f) {
-        snprintf(err, errlen, "%s: %s does not hold brdf_models.h (accepted: a kernels/ folder)", flag, value);
+    char why[256];
+    int fd = infile_open(probe, 0, NULL, why, sizeof why);
+    if (fd < 0) {
+        if (strncmp(why, "is ", 3) == 0)   /* there, but a FIFO, a device or a folder */
+            snprintf(err, errlen, "%s: %s/brdf_models.h %s (accepted: a kernels/ folder)", flag, value, why);
+        else
+            snprintf(err, errlen, "%s: %s does not hold brdf_models.h (accepted: a kernels/ folder)", flag, value);
         return EXIT_USAGE;
     }
-    fclose(f);
+    close(fd);
     ((struct device_options *)dest)->kernel_dir = value;
     clsession_set_kernel_dir(value);
     return 0;

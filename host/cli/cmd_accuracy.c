@@ -154,7 +154,10 @@ int cmd_accuracy(int argc, char **argv)
     int doc_on_stdout = cli_is_stdout(json_path) || cli_is_stdout(csv_path);
 
     struct cl_session s;
-    int rc = cli_run_session("accuracy", &s, &dev);
+    int rc = cli_run_check_documents("accuracy", json_path, csv_path);
+    if (rc)
+        return rc;
+    rc = cli_run_session("accuracy", &s, &dev);
     if (rc)
         return rc;
     if (accuracy_grid_check(&grid, &s, err, sizeof err)) {
@@ -187,7 +190,7 @@ int cmd_accuracy(int argc, char **argv)
             goto cleanup;
         }
         snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", NULL, err, sizeof err)) {
+    } else if (outdir_prepare("results", NULL, err, sizeof err) || outdir_check_latest("results", err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
         goto cleanup;

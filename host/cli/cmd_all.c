@@ -49,7 +49,8 @@ struct all_run {
     struct accuracy_ctx actx;
     int actx_open;
     const char *results_root;
-    char run_dir[4096];
+    char run_dir[4200];            /* where the run is written: the staging folder */
+    char final_dir[4096];          /* where it goes when complete: --out or results/<date-time> */
     char command[1024];
     double t0;
     int step;
@@ -116,6 +117,7 @@ static void step_done(struct all_run *r, const char *name, double started, const
                 wall_seconds() - started);
     }
     md_printf(&r->steps, "%d. **%s**: %s (%.1f s)\n", r->step, name, msg, wall_seconds() - started);
+    outdir_reassert_signal_handlers();   /* in front of the OpenCL compiler's (outdir.h) */
 }
 
 static void add_picture(struct all_run *r, const char *file, int section, const char *fmt, ...)
@@ -150,6 +152,7 @@ static void part(struct all_run *r, const char *name, struct report_block *blk, 
     r->part_failures++;
     if (!r->part_rc || rc == EXIT_RUNTIME) r->part_rc = rc == EXIT_NO_DEVICE ? EXIT_RUNTIME : rc;
     r->step++;
+    outdir_reassert_signal_handlers();
     if (r->tty) fprintf(stderr, "\r\033[K");
     fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", elapsed(r), r->step, all_steps(r), name, rc);
     md_printf(&r->steps, "%d. **%s**: failed (exit %d)\n", r->step, name, rc);
@@ -710,6 +713,7 @@ static int step_report(struct all_run *r, double wall)
     struct report_input in;
     memset(&in, 0, sizeof in);
     in.run_dir = r->run_dir;
+    in.shown_dir = r->final_dir;
     in.command = r->command;
     in.date = date;
     in.device = r->s.device_name;
@@ -739,7 +743,7 @@ static int step_report(struct all_run *r, double wall)
     r->step++;
     if (!r->quiet)
         fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, all_steps(r),
-                "report", r->run_dir, wall_seconds() - t);
+                "report", r->final_dir, wall_seconds() - t);
     return 0;
 }
 
@@ -859,26 +863,33 @@ int cmd_all(int argc, char **argv)
         fprintf(stderr, "brdfbench all: %s\n", err);
         return rc;
     }
-    /* the run folder exists before any work, so a bad location fails fast */
-    if (out_dir) {
-        if (outdir_prepare(out_dir, "--out", err, sizeof err)) {
+    /* The run is built in a fresh staging folder beside its final place and swapped in only
+     * when complete (outdir_stage_begin): a failure, a deadline or a signal leaves an earlier
+     * run in --out as it was, and no half run anywhere. The places are checked before any
+     * work, so a bad location fails fast. */
+    if (!out_dir) {
+        if (outdir_new_run(r->results_root, r->final_dir, sizeof r->final_dir, err, sizeof err)) {
             fprintf(stderr, "brdfbench all: %s\n", err);
             clsession_close(&r->s);
             return EXIT_RUNTIME;
         }
-        snprintf(r->run_dir, sizeof r->run_dir, "%s", out_dir);
-    } else if (outdir_new_run(r->results_root, r->run_dir, sizeof r->run_dir, err, sizeof err)) {
+    } else {
+        snprintf(r->final_dir, sizeof r->final_dir, "%s", out_dir);
+    }
+    if ((rc = outdir_stage_begin(r->final_dir, out_dir ? "--out" : NULL, r->run_dir, sizeof r->run_dir, err,
+                                 sizeof err)) != 0) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         clsession_close(&r->s);
-        return EXIT_RUNTIME;
+        return rc == 2 ? EXIT_USAGE : EXIT_RUNTIME;
     }
     if (!r->quiet)
-        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->run_dir,
+        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->final_dir,
                 quick ? " (quick grids)" : "");
     md_init(&r->steps);
     plots_init(&r->plots);
     if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) goto done;
     r->actx_open = 1;
+    outdir_reassert_signal_handlers();
 
     /* The sweep, the heatmaps and the plots are this command's own: a failure there stops the
      * run. The claims, throughput and image passes are other commands' parts: a failure there
@@ -906,16 +917,27 @@ int cmd_all(int argc, char **argv)
         rc = EXIT_RUNTIME;
         goto done;
     }
-    if (!out_dir && outdir_set_latest(r->results_root, r->run_dir, err, sizeof err)) {
+    if (outdir_stage_commit(err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if (!out_dir && outdir_set_latest(r->results_root, r->final_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         rc = EXIT_RUNTIME;
         goto done;
     }
     if (!r->quiet) {
-        fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->run_dir);
-        printf("%s/report.md\n", r->run_dir);
+        fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->final_dir);
+        printf("%s/report.md\n", r->final_dir);
     }
 done:
+    if (rc) {
+        /* nothing of this run is kept: the staged folder goes, an earlier run stays */
+        outdir_stage_abandon();
+        fprintf(stderr, "brdfbench all: the run is not kept (exit %d)%s%s%s\n", rc,
+                out_dir ? "; " : "", out_dir ? out_dir : "", out_dir ? " is as it was before" : "");
+    }
     run_free(r);
     clsession_close(&r->s);
     return rc;

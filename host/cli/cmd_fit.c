@@ -77,8 +77,11 @@ int cmd_fit(int argc, char **argv)
 
     struct cl_session s;
     char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_open("fit", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
-                          sizeof tmp_dir);
+    int rc = cli_run_check_documents("fit", json_path, NULL);
+    if (rc)
+        return rc;
+    rc = cli_run_open("fit", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
+                      sizeof tmp_dir);
     if (rc)
         return rc;
     /* the summary stays off standard output when the document goes there */

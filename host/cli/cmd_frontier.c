@@ -65,7 +65,8 @@ int cmd_frontier(int argc, char **argv)
     if (!rc)
         rc = cli_run_latest("frontier", out_dir, NULL, run_dir);
     if (!rc && !quiet)
-        printf("written: %s/frontier.json\n", run_dir);
+        printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", run_dir,
+               opt.image_w > 0 ? " and frontier_teapot/" : "");
     clsession_close(&s);
     return rc;
 

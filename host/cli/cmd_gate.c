@@ -49,7 +49,7 @@ int cmd_gate(int argc, char **argv)
     device_options_init(&dev);
     const char *gates_path = NULL, *junit = NULL, *json = NULL, *baseline = NULL;
     double tolerance = GATE_DEFAULT_TOLERANCE;
-    int quiet = 0, tolerance_given = 0;
+    int quiet = 0, tolerance_given = 0, outside_model_files = 0;
     char baseline_help[256];
     snprintf(baseline_help, sizeof baseline_help,
              "compare with an earlier accuracy.json (a run folder or the file itself): a figure above baseline + "
@@ -64,6 +64,9 @@ int cmd_gate(int argc, char **argv)
         { .name = "--tolerance", .value = "REL", .kind = CLI_DOUBLE, .dest = &tolerance, .min = 0.0, .max = 1.0,
           .given = &tolerance_given, .help = "relative tolerance of --baseline" },
         CLI_FLAG_QUIET(&quiet),
+        { .name = "--allow-outside-model-files", .kind = CLI_SWITCH, .dest = &outside_model_files, .set = 1,
+          .help = "let the gates file name model files outside its own folder (a model file is a program run on "
+                  "the host: only for gates files you trust)" },
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };
@@ -110,6 +113,7 @@ int cmd_gate(int argc, char **argv)
     }
 
     struct gate_set gs;
+    gate_allow_outside_model_files(outside_model_files);
     int rc = gate_set_load(gates_path, &gs, err, sizeof err);
     if (rc) {
         fprintf(stderr, "brdfbench gate: %s\n", err);

@@ -188,6 +188,8 @@ static int redraw(int argc, char **argv, int heatmaps_only)
                 dir);
         return EXIT_USAGE;
     }
+    /* the run folder is input: the pictures written into it never follow a link out of it */
+    outdir_confine(dir);
     int worst = 0, drawn = 0;
     if (!heatmaps_only) {
         char path[4096];

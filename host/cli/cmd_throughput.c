@@ -166,8 +166,11 @@ int cmd_throughput(int argc, char **argv)
     struct cl_session s;
     /* --json or --csv without --out: those documents only, made in a temporary folder */
     char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_open("throughput", &s, &dev, out_dir, (json_path || csv_path) && !out_dir, run_dir,
-                          sizeof run_dir, tmp_dir, sizeof tmp_dir);
+    int rc = cli_run_check_documents("throughput", json_path, csv_path);
+    if (rc)
+        return rc;
+    rc = cli_run_open("throughput", &s, &dev, out_dir, (json_path || csv_path) && !out_dir, run_dir,
+                      sizeof run_dir, tmp_dir, sizeof tmp_dir);
     if (rc)
         return rc;
     /* a document on standard output: the engine's table (and its progress) stay off */

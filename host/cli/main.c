@@ -349,6 +349,8 @@ int main(int argc, char **argv)
     for (int i = 2; i < argc; ++i)
         if (strcmp(argv[i], "-h") == 0)
             argv[i] = help_flag;
+    /* a run stopped by a signal leaves no half-written outputs (outdir.h) */
+    outdir_install_signal_handlers();
     const struct command *c = find_command(argv[1]);
     if (!c)
         return unknown_command(argv[1]);

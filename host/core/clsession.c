@@ -2,12 +2,15 @@
 #define _POSIX_C_SOURCE 200809L
 #include "clsession.h"
 #include "exitcodes.h"
+#include "infile.h"
 #include "kernels_embedded.h"
 #include "outdir.h"
 
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -298,13 +301,43 @@ done:
 static const char *no_device_hint =
     "install the CPU OpenCL driver: apt-get install pocl-opencl-icd (and ocl-icd-libopencl1)";
 
+/* What in the environment is known to keep a driver that is installed from showing a device:
+ * "; ..." clauses, or "" (the install hint alone is no help then). */
+static void env_hints(char *why, size_t len)
+{
+    size_t used = 0;
+    why[0] = '\0';
+    const char *cache = getenv("POCL_CACHE_DIR");
+    struct stat cst;
+    if (cache && *cache && stat(cache, &cst) == 0 && (!S_ISDIR(cst.st_mode) || access(cache, W_OK | X_OK) != 0))
+        used += (size_t)snprintf(why + used, len - used, "; POCL_CACHE_DIR=%.200s is not a writable folder", cache);
+    const char *devs = getenv("POCL_DEVICES");
+    if (devs && *devs && used < len)
+        used += (size_t)snprintf(why + used, len - used, "; POCL_DEVICES=%.100s selects the devices", devs);
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && used < len)
+        snprintf(why + used, len - used, "; the address space is limited to %llu MiB (ulimit -v), which may be too "
+                 "little to load the driver", (unsigned long long)(rl.rlim_cur >> 20));
+}
+
 int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
+    /* PoCL keeps its compiled kernels in POCL_CACHE_DIR: one that cannot take them fails every
+       build later with a log that does not say why */
+    const char *cache = getenv("POCL_CACHE_DIR");
+    struct stat cst;
+    if (cache && *cache && stat(cache, &cst) == 0 && (!S_ISDIR(cst.st_mode) || access(cache, W_OK | X_OK) != 0)) {
+        snprintf(err, errlen, "POCL_CACHE_DIR=%.300s is not a writable folder (PoCL keeps its compiled kernels there; "
+                 "unset it or name a folder you can write)", cache);
+        return EXIT_USAGE;
+    }
     cl_uint nplat = 0;
     cl_int e = clGetPlatformIDs(0, NULL, &nplat);
     if (e == -1001 || (e == CL_SUCCESS && nplat == 0)) {
-        snprintf(err, errlen, "no OpenCL platform found; %s", no_device_hint);
+        char why[1024];
+        env_hints(why, sizeof why);
+        snprintf(err, errlen, "no OpenCL platform found%s; %s", why, no_device_hint);
         return EXIT_NO_DEVICE;
     }
     if (e != CL_SUCCESS) {
@@ -344,8 +377,13 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
         found = 1;
     }
     if (!found) {
-        snprintf(err, errlen, "no OpenCL device found%s; %s",
-                 platform_index >= 0 ? " on the chosen platform" : "", no_device_hint);
+        /* a platform is there but has no device: say what is known to cause that before the
+           install hint, which does not help when the driver is installed */
+        char why[1024], name[128] = "?";
+        clGetPlatformInfo(plats[platform_index >= 0 ? platform_index : 0], CL_PLATFORM_NAME, sizeof name, name, NULL);
+        env_hints(why, sizeof why);
+        snprintf(err, errlen, "no OpenCL device found%s: platform '%s' reports none%s; if no driver is installed, %s",
+                 platform_index >= 0 ? " on the chosen platform" : "", name, why, no_device_hint);
         return EXIT_NO_DEVICE;
     }
     clGetPlatformInfo(s->platform, CL_PLATFORM_NAME, sizeof s->platform_name, s->platform_name, NULL);
@@ -405,22 +443,13 @@ char *clsession_kernel_source(const char *name, size_t *len)
     if (kernel_dir_override) {
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", kernel_dir_override, name);
-        FILE *f = fopen(path, "rb");
-        if (!f)
+        /* a regular file of at most 16 MiB (a FIFO or device there is refused: infile.h) */
+        char *buf = NULL, why[256];
+        size_t n = 0;
+        if (infile_read(path, 0, (size_t)16 << 20, &buf, &n, why, sizeof why) != 0)
             return NULL;
-        fseek(f, 0, SEEK_END);
-        long n = ftell(f);
-        fseek(f, 0, SEEK_SET);
-        char *buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
-        if (!buf || fread(buf, 1, (size_t)n, f) != (size_t)n) {
-            free(buf);
-            fclose(f);
-            return NULL;
-        }
-        fclose(f);
-        buf[n] = '\0';
         if (len)
-            *len = (size_t)n;
+            *len = n;
         return buf;
     }
     for (int i = 0; i < embedded_kernel_count; ++i) {

@@ -3,8 +3,10 @@
 #define _POSIX_C_SOURCE 200809L
 #include "usermodel.h"
 #include "exitcodes.h"
+#include "infile.h"
 #include "mdbuf.h"
 #include "shaderlang.h"
+#include "usermodel_check.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -14,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* The model ids (BRDF_USER); the header's functions are not used here. */
 #define REAL double
@@ -453,6 +456,10 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
                        um->info.nparams > 1 ? ", RSCALAR ..." : "");
         goto done;
     }
+    /* The text may not name brdfbench's own functions (the wrapper, the dispatchers); the
+       header is a comment, which the scan skips. */
+    if ((rc = usermodel_check_text(text, len, path, 1, err, errlen)) != 0)
+        goto done;
     if (!have_description)
         snprintf(um->description, sizeof um->description, "user model from %.200s", path);
     snprintf(um->formula, sizeof um->formula, "%s(c, n%s) in %.200s", um->function,
@@ -534,6 +541,13 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
     if (blank) {
         snprintf(err, errlen, "--model %s: the expression is blank", name);
         return EXIT_USAGE;
+    }
+    {
+        char what[USERMODEL_NAME_MAX + 16];
+        snprintf(what, sizeof what, "--model %s", name);
+        int r = usermodel_check_text(expr, elen, what, 0, err, errlen);
+        if (r)
+            return r;
     }
     struct user_model *um = usermodel_new();
     if (!um) {
@@ -641,30 +655,33 @@ int usermodel_load_file(const char *path, const struct user_model **out, char *e
 {
     if (out)
         *out = NULL;
+    /* The same file again, however it is reached (the same path, a link, a hard link): the
+       model it defined. */
+    struct stat st_new, st_old;
+    int have_new = stat(path, &st_new) == 0;
     for (int i = 0; i < registry_count; ++i)
-        if (registry[i]->from_file && strcmp(registry[i]->origin, path) == 0) {
+        if (registry[i]->from_file &&
+            (strcmp(registry[i]->origin, path) == 0 ||
+             (have_new && stat(registry[i]->origin, &st_old) == 0 && st_old.st_dev == st_new.st_dev &&
+              st_old.st_ino == st_new.st_ino))) {
             if (out)
                 *out = registry[i];
             return 0;
         }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "--model-file: cannot read %s: %s", path, strerror(errno));
-        return EXIT_USAGE;
-    }
-    char *buf = malloc(USERMODEL_MAX_FILE + 1);
-    if (!buf) {
-        fclose(f);
+    /* A regular file, its size checked before it is read (no FIFO or device: infile.h). */
+    char *buf = NULL, why[256];
+    size_t len = 0;
+    int r = infile_read(path, 0, USERMODEL_MAX_FILE, &buf, &len, why, sizeof why);
+    if (r == -2) {
         snprintf(err, errlen, "--model-file: out of memory");
         return EXIT_RUNTIME;
     }
-    size_t len = fread(buf, 1, USERMODEL_MAX_FILE + 1, f);
-    int bad = ferror(f);
-    int saved = errno;
-    fclose(f);
-    if (bad) {
-        free(buf);
-        snprintf(err, errlen, "--model-file: cannot read %s: %s", path, strerror(saved));
+    if (r == -1 && strncmp(why, "is larger", 9) == 0)
+        return file_fail(err, errlen, path, 0, "larger than %d bytes", USERMODEL_MAX_FILE);
+    if (r != 0) {
+        if (strncmp(why, "is a folder", 11) == 0)
+            snprintf(why, sizeof why, "%s", strerror(EISDIR));
+        snprintf(err, errlen, "--model-file: cannot read %s: %s", path, why);
         return EXIT_USAGE;
     }
     struct user_model *um = NULL;
@@ -755,8 +772,12 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
     struct user_model *um = (struct user_model *)usermodel_of(m);
     if (!um)
         return NAN;
-    if (usermodel_host_ready(um))
-        return hostjit_function(um->host)(c, n, m->params[0], m->params[1]);
+    if (usermodel_host_ready(um)) {
+        usermodel_watch_begin(um, c, n);   /* the host reference's deadline (usermodel_check.h) */
+        double v = hostjit_function(um->host)(c, n, m->params[0], m->params[1]);
+        usermodel_watch_end();
+        return v;
+    }
     if (!um->ref_point)
         return NAN;
     struct cl_session *s = um->ref_session;

@@ -99,7 +99,9 @@ int field_read_json(const char *path, struct field_result *r, char *err, size_t 
 {
     struct jr_doc d;
     memset(r, 0, sizeof *r);
-    if (jr_parse_file(path, &d, err, errlen)) return 2;
+    /* a field holds two grids of at most FIELD_MAX_CELLS values, about 13 bytes each as written
+       (9 digits): a file far larger is refused by its size, before jansson spends seconds on it */
+    if (jr_parse_file_max(path, (size_t)2 * FIELD_MAX_CELLS * 20 + ((size_t)1 << 20), &d, err, errlen)) return 2;
     const struct jr_value *root = &d.root, *grid;
     const char *schema, *model, *ref;
     double rows, cols, *n = NULL;

@@ -163,9 +163,12 @@ void frontier_print(FILE *f, const struct frontier_report *r)
         char ops[16] = "?";
         if (row->ops.known)
             snprintf(ops, sizeof ops, "%d/%d/%d", row->ops.arith + row->ops.minmax, row->ops.div, row->ops.transc);
-        fprintf(f, "%-14s %-9s %5s %11.4g %11.4g %6s %9.4f%% %9.5f %9.4f%% %9.5f %7.1f\n", row->spec.label,
+        char psnr[16] = "-";   /* not measured (--no-image) or not finite: no "nan" */
+        if (isfinite(row->psnr_db))
+            snprintf(psnr, sizeof psnr, "%.1f", row->psnr_db);
+        fprintf(f, "%-14s %-9s %5s %11.4g %11.4g %6s %9.4f%% %9.5f %9.4f%% %9.5f %7s\n", row->spec.label,
                 kind_names[row->kind], row->on_front ? "yes" : "", row->rate[0][1], row->rate[1][1], ops,
-                100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1], row->psnr_db);
+                100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1], psnr);
     }
 }
 

@@ -1,9 +1,11 @@
 /* gate.c - the gates file, the sweeps it needs and the judgement (gate.h); the reports are
  * written by gate_report.c. */
+#define _DEFAULT_SOURCE   /* realpath */
 #define _POSIX_C_SOURCE 200809L
 #include "gate.h"
 #include "energy.h"
 #include "exitcodes.h"
+#include "infile.h"
 #include "jsonr.h"
 #include "measured.h"
 #include "outdir.h"
@@ -13,6 +15,7 @@
 #include <errno.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,6 +82,25 @@ static int resolve_path(char *out, size_t outlen, const char *base_dir, const ch
     return (n < 0 || (size_t)n >= outlen) ? -1 : 0;
 }
 
+/* A model file is a program run on the host (compiled by libtcc into this process, and by
+ * the OpenCL driver): a gates file may name only the model files in its own folder or below
+ * it, unless the command line allows others (gate_allow_outside_model_files). */
+static int outside_allowed;
+
+void gate_allow_outside_model_files(int allow) { outside_allowed = allow; }
+
+/* 1 when path (which exists) lies in base_dir or below it, links resolved. */
+static int lies_inside(const char *path, const char *base_dir)
+{
+    char rp[PATH_MAX], rb[PATH_MAX];
+    if (!realpath(base_dir, rb) || !realpath(path, rp))
+        return 0;
+    size_t n = strlen(rb);
+    if (n == 1 && rb[0] == '/')
+        return 1;
+    return strncmp(rp, rb, n) == 0 && rp[n] == '/';
+}
+
 /* The user model a gate declares with "model_file" or "expression", registered. */
 static int gate_user_model(const struct jr_doc *d, const char *where,
                            const struct jr_value *model_v, const struct jr_value *file_v,
@@ -92,6 +114,13 @@ static int gate_user_model(const struct jr_doc *d, const char *where,
         const struct user_model *um = NULL;
         if (!file_v->str[0] || resolve_path(path, sizeof path, base_dir, file_v->str))
             return jr_fail(d, file_v, err, errlen, "%s\"model_file\" is empty or too long", where);
+        struct stat st;
+        if (!outside_allowed && stat(path, &st) == 0 && !lies_inside(path, base_dir && *base_dir ? base_dir : "."))
+            return jr_fail(d, file_v, err, errlen,
+                           "%s\"model_file\" '%.200s' lies outside the gates file's folder %s; a model file is a "
+                           "program that brdfbench runs on the host, so a gates file names only those in its own "
+                           "folder (--allow-outside-model-files lifts this)", where, file_v->str,
+                           base_dir && *base_dir ? base_dir : ".");
         if (usermodel_load_file(path, &um, msg, sizeof msg))
             return jr_fail(d, file_v, err, errlen, "%s%s", where, msg);
         /* "model" names the model of that file (with parameters, if any). */
@@ -334,30 +363,22 @@ done:
 int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot read the gates file: %s", path, strerror(errno));
-        return EXIT_USAGE;
-    }
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        snprintf(err, errlen, "%s: is a folder, not a gates file", path);
-        return EXIT_USAGE;
-    }
+    /* named on the command line: a pipe is accepted (gate <(make-gates)), a device is not */
+    char *buf = NULL, why[256];
+    size_t len = 0;
     const size_t max = 4u << 20;
-    char *buf = malloc(max + 1);
-    if (!buf) {
-        fclose(f);
+    int r = infile_read(path, INFILE_PIPE_OK, max, &buf, &len, why, sizeof why);
+    if (r == -2) {
         snprintf(err, errlen, "%s: out of memory", path);
         return EXIT_RUNTIME;
     }
-    size_t len = fread(buf, 1, max + 1, f);
-    int bad = ferror(f);
-    fclose(f);
-    if (bad || len > max) {
-        free(buf);
-        snprintf(err, errlen, bad ? "%s: cannot read the gates file" : "%s: larger than 4 MiB", path);
+    if (r != 0) {
+        if (strncmp(why, "is a folder", 11) == 0)
+            snprintf(err, errlen, "%s: is a folder, not a gates file", path);
+        else if (strncmp(why, "is larger", 9) == 0)
+            snprintf(err, errlen, "%s: larger than 4 MiB", path);
+        else
+            snprintf(err, errlen, "%s: cannot read the gates file: %s", path, why);
         return EXIT_USAGE;
     }
     char base[4096];

@@ -97,4 +97,9 @@ int gate_set_run(struct gate_set *g, struct cl_session *s, FILE *progress);
 /* Number of gates that failed (after gate_set_run). */
 int gate_set_failures(const struct gate_set *g);
 
+/* Lets a gates file name model files outside its own folder (gate --allow-outside-model-files).
+ * By default a "model_file" must lie in the gates file's folder or below it, links resolved:
+ * a model file is a program run on the host (docs/gates.md). */
+void gate_allow_outside_model_files(int allow);
+
 #endif

@@ -2,6 +2,7 @@
  * normals for the image passes (see geometry.h). */
 #include "geometry.h"
 #include "errmsg.h"
+#include "infile.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -10,6 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 void mesh_free(struct mesh *m)
 {
@@ -21,54 +24,68 @@ void mesh_free(struct mesh *m)
     memset(m, 0, sizeof *m);
 }
 
-/* Whole file into a NUL-terminated buffer. Returns 0 or 3. */
-static int read_text_file(const char *path, char **text, size_t *len, char *err, size_t errlen)
+/* A scene file is text of at most this many bytes (the packaged teapot is 20 KB, the bunny
+ * 2.4 MB). */
+#define SCENE_FILE_MAX ((size_t)256 << 20)
+
+/* Whole file into a NUL-terminated buffer: a regular file (no FIFO, device or folder:
+ * infile.h) of at most SCENE_FILE_MAX bytes, whose first 4096 bytes hold no NUL byte; the size
+ * and those bytes are checked before the rest is read, so `--teapot-file /dev/zero` or a large
+ * binary file is refused at once. expected: what the file should be, for the binary case.
+ * Returns 0, 2 (bad input) or 3 (out of memory, read error). */
+static int read_text_file(const char *path, const char *expected, char **text, size_t *len, char *err,
+                          size_t errlen)
 {
     *text = NULL;
     *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        set_err(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return 3;
+    struct stat st;
+    char why[256];
+    int fd = infile_open(path, 0, &st, why, sizeof why);
+    if (fd < 0) {
+        set_err(err, errlen, "%s: cannot read: %s", path, why);
+        return 2;
     }
-    size_t cap = 1 << 16, n = 0;
+    if ((unsigned long long)st.st_size > SCENE_FILE_MAX) {
+        set_err(err, errlen, "%s: %lld bytes, larger than a scene file may be (accepted: at most %zu bytes of text)",
+                path, (long long)st.st_size, SCENE_FILE_MAX);
+        close(fd);
+        return 2;
+    }
+    size_t cap = (size_t)st.st_size, n = 0;
     char *buf = malloc(cap + 1);
     if (!buf) {
-        fclose(f);
+        close(fd);
         set_err(err, errlen, "%s: out of memory", path);
         return 3;
     }
-    for (;;) {
-        if (n == cap) {
-            if (cap > ((size_t)1 << 31)) {
-                free(buf);
-                fclose(f);
-                set_err(err, errlen, "%s: file larger than 2 GiB", path);
-                return 3;
-            }
-            char *nb = realloc(buf, 2 * cap + 1);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                set_err(err, errlen, "%s: out of memory", path);
-                return 3;
-            }
-            buf = nb;
-            cap *= 2;
+    while (n < cap) {
+        ssize_t got = read(fd, buf + n, cap - n);
+        if (got < 0 && errno == EINTR)
+            continue;
+        if (got < 0) {
+            set_err(err, errlen, "%s: read error: %s", path, strerror(errno));
+            free(buf);
+            close(fd);
+            return 3;
         }
-        size_t got = fread(buf + n, 1, cap - n, f);
-        n += got;
-        if (got == 0) {
-            if (ferror(f)) {
-                free(buf);
-                fclose(f);
-                set_err(err, errlen, "%s: read error", path);
-                return 3;
-            }
+        if (got == 0)
             break;
+        n += (size_t)got;
+        if (n >= 4096 || n == cap) {
+            size_t head = n < 4096 ? n : 4096;
+            const char *nul = memchr(buf, '\0', head);
+            if (nul) {
+                long at = 1;
+                for (const char *q = buf; q < nul; ++q)
+                    at += *q == '\n';
+                set_err(err, errlen, "%s:%ld: %s; found binary data", path, at, expected);
+                free(buf);
+                close(fd);
+                return 2;
+            }
         }
     }
-    fclose(f);
+    close(fd);
     buf[n] = '\0';
     *text = buf;
     *len = n;
@@ -363,7 +380,8 @@ int obj_read(const char *path, struct mesh *out, char *err, size_t errlen)
     char *text;
     size_t len;
     memset(out, 0, sizeof *out);
-    int rc = read_text_file(path, &text, &len, err, errlen);
+    int rc = read_text_file(path, "not a Wavefront OBJ file (expected text lines of v, vt, vn and f statements)",
+                            &text, &len, err, errlen);
     if (rc)
         return rc;
     rc = obj_parse(text, len, path, out, err, errlen);
@@ -700,7 +718,8 @@ int patches_read(const char *path, struct bezier_patch **out, size_t *count, cha
     size_t len;
     *out = NULL;
     *count = 0;
-    int rc = read_text_file(path, &text, &len, err, errlen);
+    int rc = read_text_file(path, "not a POV-Ray file (expected a text file with bicubic_patch blocks)", &text,
+                            &len, err, errlen);
     if (rc)
         return rc;
     rc = patches_parse(text, len, path, out, count, err, errlen);

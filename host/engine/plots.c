@@ -8,6 +8,7 @@
 #include "jsonw.h"
 #include "outdir.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -477,6 +478,42 @@ static int need_range(const struct jr_doc *d, const struct jr_value *o, const ch
     return 0;
 }
 
+int plot_file_name_ok(const char *name)
+{
+    size_t n = strlen(name);
+    if (n <= 4 || n > 200 || name[0] == '.' || strcmp(name + n - 4, ".png") != 0)
+        return 0;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)name[i];
+        if (!(isalnum(c) || strchr("._-+=", c)))
+            return 0;
+    }
+    return 1;
+}
+
+/* A range given in plots.json (hi > lo; otherwise the data's own range is drawn) must be one a
+ * picture can show: its ends normal doubles, its width at least 1e-9 of its ends' size (and a
+ * log range a ratio of at least 1 + 1e-9). A hand-edited [1, 1 + 1e-15] or [1e-300, 2e-300]
+ * would put the data 1e15 to 1e300 pixels away. */
+static int check_range(const struct jr_doc *d, const struct jr_value *o, const char *key, double lo, double hi,
+                       int log_axis, char *err, size_t errlen)
+{
+    if (!(hi > lo))
+        return 0;
+    double big = fmax(fabs(lo), fabs(hi));
+    int ok;
+    if (log_axis)
+        ok = lo >= 1e-300 && hi <= 1e300 && hi / lo >= 1 + 1e-9;
+    else
+        ok = big <= 1e300 && hi - lo >= 1e-200 && hi - lo >= 1e-9 * big;
+    if (!ok)
+        return jr_fail(d, jr_get(o, key), err, errlen,
+                       "\"%s\" [%.16g, %.16g] cannot be drawn (accepted: ends within 1e+300 in size, a width of at "
+                       "least 1e-200 and 1e-9 of the ends%s; or [0, 0] for the data's own range)",
+                       key, lo, hi, log_axis ? ", positive ends with a ratio of at least 1 + 1e-9 on a log axis" : "");
+    return 0;
+}
+
 static int read_figure(const struct jr_doc *d, const struct jr_value *o, struct plot_figure *f, char *err,
                        size_t errlen)
 {
@@ -492,9 +529,21 @@ static int read_figure(const struct jr_doc *d, const struct jr_value *o, struct 
         need_range(d, o, "x_range", &f->x_min, &f->x_max, err, errlen) ||
         need_range(d, o, "y_range", &f->y_min, &f->y_max, err, errlen))
         return 2;
-    /* a picture name is a plain file name inside the run folder */
-    if (!f->file[0] || strchr(f->file, '/') || strcmp(f->file, "..") == 0 || f->file[0] == '.')
-        return jr_fail(d, jr_get(o, "file"), err, errlen, "\"file\" must be a plain file name, not \"%s\"", f->file);
+    /* a picture name is a plain NAME.png inside the run folder: no path, no data file of the
+       run (accuracy.json, plots.json, report.md, field_*.json), no hidden or odd name */
+    if (!plot_file_name_ok(f->file)) {
+        char shown[128];   /* a control character in the name is shown as '?', so the message is one line */
+        size_t k = 0;
+        for (; f->file[k] && k < sizeof shown - 1; k++)
+            shown[k] = (unsigned char)f->file[k] < 0x20 || f->file[k] == 0x7f ? '?' : f->file[k];
+        shown[k] = '\0';
+        return jr_fail(d, jr_get(o, "file"), err, errlen,
+                       "\"file\" is \"%s\" (accepted: NAME.png, a plain file name of letters, digits and "
+                       "._-+=, not starting with '.')", shown);
+    }
+    if (check_range(d, o, "x_range", f->x_min, f->x_max, f->x_log, err, errlen) ||
+        check_range(d, o, "y_range", f->y_min, f->y_max, f->y_log, err, errlen))
+        return 2;
     if (strcmp(kind, "lines") == 0) f->kind = PLOT_LINES;
     else if (strcmp(kind, "bars") == 0) f->kind = PLOT_BARS;
     else return jr_fail(d, jr_get(o, "kind"), err, errlen, "\"kind\" is \"%s\" (accepted: lines, bars)", kind);
@@ -571,6 +620,13 @@ int plots_read_json(const char *path, struct plot_set *set, char *err, size_t er
             goto done;
         }
         if (read_figure(&d, &figs->items[i], f, err, errlen)) goto done;
+        for (int k = 0; k < set->count - 1; k++)
+            if (strcmp(set->figs[k].file, f->file) == 0) {
+                jr_fail(&d, jr_get(&figs->items[i], "file"), err, errlen,
+                        "figure %zu has the file name \"%s\" of figure %d (each figure needs its own file)", i + 1,
+                        f->file, k + 1);
+                goto done;
+            }
     }
     rc = 0;
 done:

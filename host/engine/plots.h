@@ -104,4 +104,8 @@ int plots_write_json(const struct plot_set *set, const char *path, const struct 
                      size_t errlen);
 int plots_read_json(const char *path, struct plot_set *set, char *err, size_t errlen);
 
+/* 1 when name is a picture name plots.json may give: NAME.png, letters, digits and ._-+=,
+ * not starting with '.', at most 200 characters (so never a data file of the run). */
+int plot_file_name_ok(const char *name);
+
 #endif

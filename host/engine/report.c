@@ -155,7 +155,7 @@ char *report_markdown(const struct report_input *in)
         if (file_exists(in->run_dir, data[i].file)) md_printf(&b, " `%s`: %s;", data[i].file, data[i].what);
     md_printf(&b, " `field_<model>.json`: every heatmap's grid. `brdfbench plot %s` redraws the plots and heatmaps "
                   "from them without recomputing.\n\n",
-              in->run_dir);
+              in->shown_dir ? in->shown_dir : in->run_dir);
     if (in->steps_md) md_printf(&b, "Steps:\n\n%s\n", in->steps_md);
 
     block(&b, "Claims of the papers", &in->claims);

@@ -33,6 +33,7 @@ struct report_block {
 
 struct report_input {
     const char *run_dir;
+    const char *shown_dir;        /* the folder's name in the text (NULL: run_dir); all writes a staged folder */
     const char *command;          /* the command line that made the run */
     const char *date;             /* ISO 8601 */
     const char *device, *platform_version, *host_cpu, *git_revision;

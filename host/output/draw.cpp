@@ -8,6 +8,7 @@
 #include "draw.h"
 
 extern "C" {
+#include "infile.h"
 #include "outdir.h"
 }
 
@@ -24,6 +25,8 @@ extern "C" {
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -672,10 +675,38 @@ void draw_panel(cv::Mat &img, int x0, int y0, const draw_heatmap_panel &p, const
 
 bool usable(double v, bool log) { return std::isfinite(v) && (!log || v > 0); }
 
+/* Liang-Barsky: clips the segment a-b to the box [x0, x1] x [y0, y1]; false when nothing of it
+ * (or a non-finite end) is inside. */
+static bool clip_segment(cv::Point2d &a, cv::Point2d &b, double x0, double y0, double x1, double y1)
+{
+    if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y)) return false;
+    double t0 = 0, t1 = 1, dx = b.x - a.x, dy = b.y - a.y;
+    const double p[4] = {-dx, dx, -dy, dy}, q[4] = {a.x - x0, x1 - a.x, a.y - y0, y1 - a.y};
+    for (int k = 0; k < 4; k++) {
+        if (p[k] == 0) {
+            if (q[k] < 0) return false;
+            continue;
+        }
+        double r = q[k] / p[k];
+        if (p[k] < 0) {
+            if (r > t1) return false;
+            if (r > t0) t0 = r;
+        } else {
+            if (r < t0) return false;
+            if (r < t1) t1 = r;
+        }
+    }
+    cv::Point2d na = a + (b - a) * t0, nb = a + (b - a) * t1;
+    a = na;
+    b = nb;
+    return true;
+}
+
 /* Polyline with an optional dash pattern, clipped by drawing into the plot's sub-image. */
 void draw_polyline(cv::Mat &roi, const std::vector<cv::Point2d> &pts, cv::Scalar col, bool dashed, int thick)
 {
     if (pts.size() == 1) {
+        if (!(std::fabs(pts[0].x) < 1e6 && std::fabs(pts[0].y) < 1e6)) return;   /* far outside */
         cv::circle(roi, cv::Point((int)std::lround(pts[0].x), (int)std::lround(pts[0].y)), 2, col, -1, cv::LINE_AA);
         return;
     }
@@ -683,6 +714,9 @@ void draw_polyline(cv::Mat &roi, const std::vector<cv::Point2d> &pts, cv::Scalar
     double phase = 0;
     for (size_t i = 1; i < pts.size(); i++) {
         cv::Point2d a = pts[i - 1], b = pts[i];
+        /* only what lies in the picture is drawn: a point far outside (a range a hand-edited
+           plots.json made 1e-15 wide) would make a segment of 1e300 pixels to dash */
+        if (!clip_segment(a, b, -8.0, -8.0, roi.cols + 8.0, roi.rows + 8.0)) continue;
         if (!dashed) {
             /* sub-pixel precision: 4 fractional bits */
             cv::line(roi, cv::Point((int)std::lround(a.x * 16), (int)std::lround(a.y * 16)),
@@ -947,7 +981,7 @@ extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, 
                     }
                     cv::Point2d q(ax.map(x) - plot.x, ay.map(y) - plot.y);
                     run.push_back(q);
-                    if (se.markers)
+                    if (se.markers && std::fabs(q.x) < 1e6 && std::fabs(q.y) < 1e6)
                         cv::circle(roi, cv::Point((int)std::lround(q.x), (int)std::lround(q.y)), 3, col, 1, cv::LINE_AA);
                 }
                 flush();
@@ -1042,12 +1076,13 @@ extern "C" int draw_read_rgb8(const char *path, int *width, int *height, unsigne
                               size_t errlen)
 {
     if (!check_path(path, err, errlen)) return -1;
-    FILE *f = fopen(path, "rb"); /* a clear message, and no warning from imread */
-    if (!f) {
-        set_err(err, errlen, "%s: %s", path, strerror(errno));
+    char why[256];
+    int fd = infile_open(path, 0, NULL, why, sizeof why); /* a clear message, no warning from imread, no FIFO */
+    if (fd < 0) {
+        set_err(err, errlen, "%s: %s", path, why);
         return -1;
     }
-    fclose(f);
+    close(fd);
     try {
         cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
         if (img.empty()) {

@@ -2,6 +2,7 @@
  * pass over the accepted text gives every value its line and column; every error names
  * file:line:col. */
 #include "jsonr.h"
+#include "infile.h"
 
 #include <jansson.h>
 
@@ -251,41 +252,27 @@ int jr_parse_text(const char *text, size_t len, const char *name, struct jr_doc 
 
 int jr_parse_file(const char *path, struct jr_doc *doc, char *err, size_t errlen)
 {
+    return jr_parse_file_max(path, (size_t)JR_MAX_FILE, doc, err, errlen);
+}
+
+int jr_parse_file_max(const char *path, size_t max, struct jr_doc *doc, char *err, size_t errlen)
+{
     memset(doc, 0, sizeof *doc);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    char *buf = NULL, why[256];
+    size_t len = 0;
+    /* A result file is a regular file: a FIFO or device in its place is refused, not waited on. */
+    int r = infile_read(path, 0, max, &buf, &len, why, sizeof why);
+    if (r == -2) {
+        snprintf(err, errlen, "%s: out of memory", path);
         return 2;
     }
-    char *buf = NULL;
-    size_t len = 0, cap = 0;
-    for (;;) {
-        if (len == cap) {
-            cap = cap ? cap * 2 : 65536;
-            if ((long)cap > JR_MAX_FILE + 1) {
-                fclose(f);
-                free(buf);
-                snprintf(err, errlen, "%s: larger than %ld bytes", path, JR_MAX_FILE);
-                return 2;
-            }
-            char *nb = realloc(buf, cap);
-            if (!nb) {
-                fclose(f);
-                free(buf);
-                snprintf(err, errlen, "%s: out of memory", path);
-                return 2;
-            }
-            buf = nb;
-        }
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) break;
+    if (r == -3) {
+        snprintf(err, errlen, "%s: read error: %s", path, why);
+        return 2;
     }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        snprintf(err, errlen, "%s: read error", path);
+    if (r != 0) {
+        int cannot_open = strncmp(why, "is ", 3) != 0;
+        snprintf(err, errlen, "%s: %s%s", path, cannot_open ? "cannot open: " : "", why);
         return 2;
     }
     if (len == 0) {

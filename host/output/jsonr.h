@@ -31,6 +31,9 @@ struct jr_doc {
 /* Parses a file. Returns 0, or 2 with a message when the file is missing, unreadable or
  * not strict JSON (then doc holds nothing to free). */
 int jr_parse_file(const char *path, struct jr_doc *doc, char *err, size_t errlen);
+/* The same with a size limit of max bytes, checked before the file is read. The file must be
+ * a regular file (a FIFO or device is refused: host/output/infile.h). */
+int jr_parse_file_max(const char *path, size_t max, struct jr_doc *doc, char *err, size_t errlen);
 /* Parses text of length len; name is used in messages. Returns 0 or 2. */
 int jr_parse_text(const char *text, size_t len, const char *name, struct jr_doc *doc, char *err, size_t errlen);
 void jr_free(struct jr_doc *doc);

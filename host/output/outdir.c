@@ -6,6 +6,8 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
+#include <limits.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,6 +35,80 @@ static void own_dir_add(const char *dir)
         return;
     memcpy(own_dirs[own_dir_count], dir, strlen(dir) + 1);
     own_dir_count = own_dir_count + 1;
+}
+
+static void own_dir_forget(const char *dir)
+{
+    for (int i = 0; i < own_dir_count; ++i)
+        if (strcmp(own_dirs[i], dir) == 0)
+            own_dirs[i][0] = '\0';
+}
+
+/* Run folders: what is written below one never follows a link out of it (outdir_confine). */
+#define CONFINED_MAX 16
+static char confined[CONFINED_MAX][OUTDIR_PATH_MAX];
+static struct stat confined_st[CONFINED_MAX];
+static int confined_count;
+
+void outdir_confine(const char *dir)
+{
+    char d[OUTDIR_PATH_MAX];
+    if (!dir || !*dir || snprintf(d, sizeof d, "%s", dir) >= (int)sizeof d)
+        return;
+    size_t n = strlen(d);
+    while (n > 1 && d[n - 1] == '/')
+        d[--n] = '\0';
+    for (int i = 0; i < confined_count; ++i)
+        if (strcmp(confined[i], d) == 0)
+            return;
+    if (confined_count >= CONFINED_MAX)
+        return;
+    if (stat(d, &confined_st[confined_count]) != 0)
+        memset(&confined_st[confined_count], 0, sizeof confined_st[0]);
+    memcpy(confined[confined_count], d, n + 1);
+    confined_count++;
+}
+
+/* The length of the run folder that path lies in (as spelled: "RUN/x.png", or a file directly
+ * in a folder that is a run folder however spelled), or 0. */
+static size_t confined_root(const char *path)
+{
+    size_t best = 0;
+    for (int i = 0; i < confined_count; ++i) {
+        size_t n = strlen(confined[i]);
+        if (strncmp(path, confined[i], n) == 0 && path[n] == '/' && n > best)
+            best = n;
+    }
+    if (best)
+        return best;
+    /* the same folder spelled otherwise (./run, a link to it): the file's own folder */
+    const char *slash = strrchr(path, '/');
+    char dir[OUTDIR_PATH_MAX];
+    struct stat st;
+    if (!slash || (size_t)(slash - path) >= sizeof dir)
+        return 0;
+    size_t n = slash > path ? (size_t)(slash - path) : 1;
+    memcpy(dir, path, n);
+    dir[n] = '\0';
+    if (stat(dir, &st) != 0)
+        return 0;
+    for (int i = 0; i < confined_count; ++i)
+        if (confined_st[i].st_ino && confined_st[i].st_dev == st.st_dev && confined_st[i].st_ino == st.st_ino)
+            return (size_t)(slash - path);
+    return 0;
+}
+
+/* Scratch folders (outdir_own): removed with all they hold by every tidy-up, a signal's too. */
+static char scratch_dirs[4][OUTDIR_PATH_MAX];
+static volatile int scratch_count;
+
+void outdir_own(const char *dir)
+{
+    own_dir_add(dir);
+    if (scratch_count < 4 && strlen(dir) < OUTDIR_PATH_MAX) {
+        memcpy(scratch_dirs[scratch_count], dir, strlen(dir) + 1);
+        scratch_count = scratch_count + 1;
+    }
 }
 
 /* Removes everything inside the folder open as fd (depth-first), with system calls only. */
@@ -71,11 +147,23 @@ static void remove_contents_at(int fd, int depth)
     }
 }
 
+/* The swap of a staged run folder (outdir_stage_commit) where the two-rename fallback is used:
+ * 1 while the earlier run is moved aside and the new one not yet in its place. */
+static volatile int swap_phase;
+static char swap_final[OUTDIR_PATH_MAX], swap_old[OUTDIR_PATH_MAX + 128];
+
 void outdir_remove_own(void)
 {
     if (own_tmp_set)
         unlink(own_tmp);
+    if (swap_phase == 1) {
+        /* the earlier run goes back to its place */
+        rename(swap_old, swap_final);
+        swap_phase = 0;
+    }
     for (int i = own_dir_count - 1; i >= 0; --i) {
+        if (!own_dirs[i][0])
+            continue;
         int fd = open(own_dirs[i], O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
         if (fd < 0)
             continue;
@@ -88,7 +176,8 @@ void outdir_remove_own(void)
 void outdir_remove_own_empty(void)
 {
     for (int i = own_dir_count - 1; i >= 0; --i)
-        rmdir(own_dirs[i]);   /* fails, as it should, on a folder that holds something */
+        if (own_dirs[i][0])
+            rmdir(own_dirs[i]);   /* fails, as it should, on a folder that holds something */
 }
 
 /* The descriptor a path names when it is standard output or error or another open descriptor
@@ -230,6 +319,116 @@ int output_paths_same(const char *a, const char *b)
     return fda.st_dev == fdb.st_dev && fda.st_ino == fdb.st_ino;
 }
 
+/* A file inside a run folder (outdir_confine): each folder below the run folder is opened
+ * without following links, and the file is written as a temporary file in its folder and
+ * renamed over the name, which replaces a symlink, a FIFO or a device there by a regular file
+ * instead of writing through it. So a link planted in a run folder (heatmap_fq2.png ->
+ * /tmp/victim) never sends an output out of the folder. */
+static int write_confined(const char *path, size_t rootlen, const void *data, size_t len, char *err,
+                          size_t errlen)
+{
+    char root[OUTDIR_PATH_MAX], rest[OUTDIR_PATH_MAX];
+    if (rootlen >= sizeof root || strlen(path + rootlen) >= sizeof rest) {
+        snprintf(err, errlen, "cannot write %s: %s", path, strerror(ENAMETOOLONG));
+        return -1;
+    }
+    memcpy(root, path, rootlen);
+    root[rootlen] = '\0';
+    snprintf(rest, sizeof rest, "%s", path + rootlen + 1);
+    int dfd = open(rootlen ? root : "/", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd < 0) {
+        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
+        return -1;
+    }
+    /* the folders between the run folder and the file: real folders, no links */
+    char *name = rest, *slash;
+    while ((slash = strchr(name, '/')) != NULL) {
+        *slash = '\0';
+        if (name[0] && strcmp(name, ".") != 0) {
+            if (strcmp(name, "..") == 0) {
+                snprintf(err, errlen, "cannot write %s: '..' leads out of the run folder %s", path, root);
+                close(dfd);
+                return -1;
+            }
+            int sub = openat(dfd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+            if (sub < 0) {
+                int e = errno;
+                snprintf(err, errlen, "cannot write %s: %s%s", path,
+                         e == ELOOP ? "" : strerror(e),
+                         e == ELOOP ? "a folder on the way is a symlink (a run folder's outputs stay inside it)" : "");
+                close(dfd);
+                return -1;
+            }
+            close(dfd);
+            dfd = sub;
+        }
+        name = slash + 1;
+    }
+    if (!name[0] || strcmp(name, ".") == 0 || strcmp(name, "..") == 0) {
+        snprintf(err, errlen, "cannot write %s: not a file name", path);
+        close(dfd);
+        return -1;
+    }
+    struct stat st;
+    mode_t mode = 0644;
+    if (fstatat(dfd, name, &st, AT_SYMLINK_NOFOLLOW) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            snprintf(err, errlen, "cannot write %s: it is a folder", path);
+            close(dfd);
+            return -1;
+        }
+        if (S_ISREG(st.st_mode))
+            mode = st.st_mode & 07777;
+    }
+    /* the temporary file's full path, for outdir_remove_own */
+    size_t dirlen = strlen(path) - strlen(name);
+    char tmp_name[300], tmp_full[OUTDIR_PATH_MAX];
+    int fd = -1;
+    for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        if (snprintf(tmp_name, sizeof tmp_name, "%.200s.tmp.%ld%06lx", name, (long)getpid(),
+                     ((unsigned long)ts.tv_nsec ^ ((unsigned long)attempt * 2654435761u)) & 0xffffff) >=
+                (int)sizeof tmp_name ||
+            dirlen + strlen(tmp_name) >= sizeof tmp_full) {
+            snprintf(err, errlen, "%s: path too long", path);
+            close(dfd);
+            return -1;
+        }
+        memcpy(tmp_full, path, dirlen);
+        memcpy(tmp_full + dirlen, tmp_name, strlen(tmp_name) + 1);
+        memcpy(own_tmp, tmp_full, strlen(tmp_full) + 1);
+        own_tmp_set = 1;
+        fd = openat(dfd, tmp_name, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+        if (fd < 0 && errno != EEXIST) {
+            own_tmp_set = 0;
+            snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
+            close(dfd);
+            return -1;
+        }
+    }
+    if (fd < 0) {
+        own_tmp_set = 0;
+        snprintf(err, errlen, "cannot write %s: no free temporary name", path);
+        close(dfd);
+        return -1;
+    }
+    int rc = -1;
+    if (write_all(fd, data, len) != 0 || fchmod(fd, mode) != 0 || fsync(fd) != 0) {
+        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
+        close(fd);
+    } else if (close(fd) != 0 || renameat(dfd, tmp_name, dfd, name) != 0) {
+        snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
+    } else {
+        rc = 0;
+    }
+    if (rc != 0)
+        unlinkat(dfd, tmp_name, 0);
+    own_tmp_set = 0;
+    close(dfd);
+    return rc;
+}
+
 int write_file_atomic(const char *path, const void *data, size_t len, char *err, size_t errlen)
 {
     struct out_target t;
@@ -237,6 +436,9 @@ int write_file_atomic(const char *path, const void *data, size_t len, char *err,
         snprintf(err, errlen, "cannot write '': empty file name");
         return -1;
     }
+    size_t root = confined_root(path);
+    if (root)
+        return write_confined(path, root, data, len, err, errlen);
     out_resolve(path, &t);
     switch (t.kind) {
     case OUT_BAD:
@@ -303,6 +505,55 @@ int write_file_atomic(const char *path, const void *data, size_t len, char *err,
     return rc;
 }
 
+int output_file_check(const char *flag, const char *path, char *err, size_t errlen)
+{
+    struct out_target t;
+    if (!path || !*path) {
+        snprintf(err, errlen, "%s: empty file name", flag);
+        return -1;
+    }
+    out_resolve(path, &t);
+    switch (t.kind) {
+    case OUT_FD:
+        return 0;
+    case OUT_BAD:
+        snprintf(err, errlen, "%s: cannot write %s: %s", flag, path, strerror(t.err));
+        return -1;
+    case OUT_FOLDER:
+        snprintf(err, errlen, "%s: %s is a folder (a file name is expected)", flag, path);
+        return -1;
+    case OUT_THROUGH:
+        if (access(t.path, W_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot write %s: %s", flag, path, strerror(errno));
+            return -1;
+        }
+        return 0;
+    case OUT_REGULAR:
+    case OUT_NEW:
+        break;
+    }
+    /* a file made by rename in its folder: the folder must exist and take new files */
+    char dir[OUTDIR_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s", t.path);
+    char *slash = strrchr(dir, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == dir)
+        dir[1] = '\0';
+    else
+        *slash = '\0';
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(err, errlen, "%s: folder %s does not exist", flag, dir);
+        return -1;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "%s: folder %s is not writable: %s", flag, dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
 /* mkdir -p; each folder it makes is recorded as this process's own. */
 static int mkdir_p(const char *dir)
 {
@@ -350,12 +601,31 @@ int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
         snprintf(err, errlen, "%s%sfolder %s is not writable: %s", arg, sep, dir, strerror(errno));
         return -1;
     }
+    outdir_confine(dir);
+    return 0;
+}
+
+int outdir_check_latest(const char *results_root, char *err, size_t errlen)
+{
+    /* results/latest is the link this program keeps: anything else there is refused before the
+       run, not found after it (a folder cannot be replaced, a file would be lost) */
+    char latest[OUTDIR_PATH_MAX];
+    struct stat lst;
+    if (path_join(latest, sizeof latest, results_root, "latest") == 0 && lstat(latest, &lst) == 0 &&
+        !S_ISLNK(lst.st_mode)) {
+        snprintf(err, errlen, "%s is %s, not the symlink to the latest run that brdfbench keeps there (move it "
+                 "away, or give --out)", latest, S_ISDIR(lst.st_mode) ? "a folder" : S_ISREG(lst.st_mode) ? "a file"
+                 : "not a symlink");
+        return -1;
+    }
     return 0;
 }
 
 int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err, size_t errlen)
 {
     if (outdir_prepare(results_root, NULL, err, errlen) != 0)
+        return -1;
+    if (outdir_check_latest(results_root, err, errlen) != 0)
         return -1;
     time_t now = time(NULL);
     struct tm tmv;
@@ -371,6 +641,7 @@ int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err
         }
         if (mkdir(out, 0755) == 0) {
             own_dir_add(out);
+            outdir_confine(out);
             return 0;
         }
         if (errno != EEXIST) {
@@ -411,4 +682,387 @@ int outdir_set_latest(const char *results_root, const char *run_dir, char *err, 
         return -1;
     }
     return 0;
+}
+
+/* ---- staged run folders ------------------------------------------------------------------ */
+
+static char stage_dir[OUTDIR_PATH_MAX + 64], stage_final[OUTDIR_PATH_MAX];
+static int stage_inside;   /* the final folder is a mount point: staged inside it */
+
+/* What a run of brdfbench leaves in its folder: result files, pictures, reports, the image
+ * passes' folder, and the temporary files of an interrupted write. */
+static int is_run_entry(const char *name, unsigned char type)
+{
+    static const char *ends[] = { ".json", ".csv", ".md", ".png", ".xml", ".txt", NULL };
+    size_t n = strlen(name);
+    if (type == DT_DIR)
+        return strcmp(name, "render") == 0 || strcmp(name, "devices") == 0 || strncmp(name, "frontier_", 9) == 0 ||
+               strncmp(name, ".render-", 8) == 0 ||
+               strncmp(name, ".brdfbench-", 11) == 0;
+    if (type != DT_REG && type != DT_LNK && type != DT_UNKNOWN)
+        return 0;
+    if (strstr(name, ".tmp."))
+        return 1;
+    for (int i = 0; ends[i]; ++i) {
+        size_t e = strlen(ends[i]);
+        if (n > e && strcmp(name + n - e, ends[i]) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* Returns 0 when dir holds only what a run writes, else 2 with the first other entry named. */
+static int check_run_folder(const char *dir, const char *arg, char *err, size_t errlen)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        snprintf(err, errlen, "%s: cannot read folder %s: %s", arg, dir, strerror(errno));
+        return 3;
+    }
+    struct dirent *e;
+    int rc = 0;
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        unsigned char type = e->d_type;
+        if (type == DT_UNKNOWN) {
+            struct stat st;
+            char p[OUTDIR_PATH_MAX + 300];
+            snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+            if (lstat(p, &st) == 0)
+                type = S_ISDIR(st.st_mode) ? DT_DIR : S_ISREG(st.st_mode) ? DT_REG : S_ISLNK(st.st_mode) ? DT_LNK
+                                                                                                       : DT_FIFO;
+        }
+        if (!is_run_entry(e->d_name, type)) {
+            snprintf(err, errlen,
+                     "%s: %s holds '%.200s', which is no part of a brdfbench run; a complete run replaces its "
+                     "folder as a whole (accepted: a new or empty folder, or an earlier run's folder)",
+                     arg, dir, e->d_name);
+            rc = 2;
+            break;
+        }
+    }
+    closedir(d);
+    return rc;
+}
+
+int outdir_stage_begin(const char *final_dir, const char *arg, char *stage, size_t stagelen, char *err,
+                       size_t errlen)
+{
+    char fin[OUTDIR_PATH_MAX];
+    struct stat st;
+    if (!arg)
+        arg = "run folder";
+    if (!final_dir || !*final_dir) {
+        snprintf(err, errlen, "%s: empty folder name", arg);
+        return 2;
+    }
+    if (snprintf(fin, sizeof fin, "%s", final_dir) >= (int)sizeof fin) {
+        snprintf(err, errlen, "%s: path too long", arg);
+        return 2;
+    }
+    size_t n = strlen(fin);
+    while (n > 1 && fin[n - 1] == '/')
+        fin[--n] = '\0';
+    stage_inside = 0;
+    if (stat(fin, &st) == 0) {
+        if (!S_ISDIR(st.st_mode)) {
+            snprintf(err, errlen, "%s: %s is not a folder", arg, final_dir);
+            return 3;
+        }
+        /* the folder itself is swapped: where it really is (a link to it stays a link) */
+        char real[PATH_MAX], cwd[PATH_MAX];
+        if (!realpath(fin, real) || strlen(real) >= sizeof fin) {
+            snprintf(err, errlen, "%s: %s: %s", arg, final_dir, strerror(errno));
+            return 3;
+        }
+        if (getcwd(cwd, sizeof cwd)) {
+            size_t rl = strlen(real);
+            if (strcmp(real, "/") == 0 || (strncmp(cwd, real, rl) == 0 && (cwd[rl] == '/' || cwd[rl] == '\0'))) {
+                snprintf(err, errlen, "%s: %s is the working folder or holds it; a complete run replaces its folder "
+                         "as a whole (accepted: a new or empty folder, or an earlier run's folder)", arg, final_dir);
+                return 2;
+            }
+        }
+        int rc = check_run_folder(fin, arg, err, errlen);
+        if (rc)
+            return rc;
+        if (access(fin, W_OK | X_OK) != 0) {
+            snprintf(err, errlen, "%s: folder %s is not writable: %s", arg, final_dir, strerror(errno));
+            return 3;
+        }
+        snprintf(fin, sizeof fin, "%s", real);
+        /* a mount point cannot be renamed: the run is staged inside it */
+        char parent[OUTDIR_PATH_MAX];
+        snprintf(parent, sizeof parent, "%s", fin);
+        char *slash = strrchr(parent, '/');
+        if (slash == parent)
+            slash[1] = '\0';
+        else if (slash)
+            *slash = '\0';
+        struct stat pst;
+        if (stat(parent, &pst) != 0 || pst.st_dev != st.st_dev || access(parent, W_OK | X_OK) != 0)
+            stage_inside = 1;
+    } else {
+        /* a new folder: its parent made (recorded as this process's) and checked */
+        char parent[OUTDIR_PATH_MAX];
+        snprintf(parent, sizeof parent, "%s", fin);
+        char *slash = strrchr(parent, '/');
+        if (slash && slash != parent) {
+            *slash = '\0';
+            if (mkdir_p(parent) != 0) {
+                snprintf(err, errlen, "%s: cannot create folder %s: %s", arg, final_dir, strerror(errno));
+                return 3;
+            }
+        } else {
+            snprintf(parent, sizeof parent, "%s", slash ? "/" : ".");
+        }
+        if (stat(parent, &st) != 0 || !S_ISDIR(st.st_mode)) {
+            snprintf(err, errlen, "%s: cannot create folder %s: %s", arg, final_dir, strerror(ENOTDIR));
+            return 3;
+        }
+        if (access(parent, W_OK | X_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot create folder %s: %s", arg, final_dir, strerror(errno));
+            return 3;
+        }
+    }
+    /* the staging folder: beside the final one (the same file system, so a rename moves it), or
+       inside it for a mount point */
+    const char *base = strrchr(fin, '/');
+    int made = -1;
+    if (stage_inside) {
+        made = snprintf(stage_dir, sizeof stage_dir, "%s/.brdfbench-partial-%ld", fin, (long)getpid());
+    } else if (base) {
+        made = snprintf(stage_dir, sizeof stage_dir, "%.*s.%s.partial-%ld", (int)(base - fin + 1), fin, base + 1,
+                        (long)getpid());
+    } else {
+        made = snprintf(stage_dir, sizeof stage_dir, ".%s.partial-%ld", fin, (long)getpid());
+    }
+    if (made < 0 || (size_t)made >= sizeof stage_dir || (size_t)made >= stagelen) {
+        snprintf(err, errlen, "%s: path too long", arg);
+        return 2;
+    }
+    /* a staging folder of an earlier process of the same id is stale */
+    int old = open(stage_dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (old >= 0) {
+        remove_contents_at(old, 0);
+        close(old);
+        rmdir(stage_dir);
+    }
+    if (mkdir(stage_dir, 0755) != 0) {
+        snprintf(err, errlen, "%s: cannot create folder %s: %s", arg, stage_dir, strerror(errno));
+        return 3;
+    }
+    own_dir_add(stage_dir);
+    outdir_confine(stage_dir);
+    snprintf(stage_final, sizeof stage_final, "%s", fin);
+    snprintf(stage, stagelen, "%s", stage_dir);
+    return 0;
+}
+
+/* Removes the folder at path with all it holds (system calls only). */
+static void remove_tree(const char *path)
+{
+    int fd = open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0)
+        return;
+    remove_contents_at(fd, 0);
+    close(fd);
+    rmdir(path);
+}
+
+/* A mount point's contents swapped entry by entry: the earlier run's entries into a folder of
+ * old ones, the staged ones up into the final folder, then the old ones removed. */
+static int commit_inside(char *err, size_t errlen)
+{
+    char old_dir[OUTDIR_PATH_MAX + 64];
+    snprintf(old_dir, sizeof old_dir, "%s/.brdfbench-old-%ld", stage_final, (long)getpid());
+    remove_tree(old_dir);
+    if (mkdir(old_dir, 0755) != 0) {
+        snprintf(err, errlen, "cannot create folder %s: %s", old_dir, strerror(errno));
+        return -1;
+    }
+    const char *stage_base = strrchr(stage_dir, '/') + 1, *old_base = strrchr(old_dir, '/') + 1;
+    DIR *d = opendir(stage_final);
+    if (!d) {
+        snprintf(err, errlen, "cannot read folder %s: %s", stage_final, strerror(errno));
+        return -1;
+    }
+    int dfd = dirfd(d), sfd = open(stage_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC),
+        ofd = open(old_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    struct dirent *e;
+    int rc = 0;
+    while (rc == 0 && sfd >= 0 && ofd >= 0 && (e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0 || strcmp(e->d_name, stage_base) == 0 ||
+            strcmp(e->d_name, old_base) == 0)
+            continue;
+        if (renameat(dfd, e->d_name, ofd, e->d_name) != 0) {
+            snprintf(err, errlen, "cannot move %s/%s aside: %s", stage_final, e->d_name, strerror(errno));
+            rc = -1;
+        }
+    }
+    closedir(d);
+    d = rc == 0 ? opendir(stage_dir) : NULL;
+    int ffd = open(stage_final, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    while (rc == 0 && d && ffd >= 0 && (e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        if (renameat(sfd, e->d_name, ffd, e->d_name) != 0) {
+            snprintf(err, errlen, "cannot move %s into %s: %s", e->d_name, stage_final, strerror(errno));
+            rc = -1;
+        }
+    }
+    if (d)
+        closedir(d);
+    if (ffd >= 0)
+        close(ffd);
+    if (sfd >= 0)
+        close(sfd);
+    if (ofd >= 0)
+        close(ofd);
+    if (rc == 0) {
+        remove_tree(old_dir);
+        rmdir(stage_dir);
+    }
+    return rc;
+}
+
+int outdir_stage_commit(char *err, size_t errlen)
+{
+    if (!stage_dir[0]) {
+        snprintf(err, errlen, "no staged run folder");
+        return -1;
+    }
+    int rc = 0;
+    struct stat st;
+    if (stage_inside) {
+        rc = commit_inside(err, errlen);
+    } else if (lstat(stage_final, &st) != 0) {
+        if (rename(stage_dir, stage_final) != 0) {
+            snprintf(err, errlen, "cannot move %s to %s: %s", stage_dir, stage_final, strerror(errno));
+            rc = -1;
+        }
+    } else if (renameat2(AT_FDCWD, stage_dir, AT_FDCWD, stage_final, RENAME_EXCHANGE) == 0) {
+        /* one step: the new run in place, the earlier one at the staging name, removed */
+        remove_tree(stage_dir);
+    } else {
+        /* no atomic exchange here: the earlier run aside, the new one in, the earlier removed;
+           outdir_remove_own puts the earlier run back if the process is stopped in between */
+        snprintf(swap_final, sizeof swap_final, "%s", stage_final);
+        snprintf(swap_old, sizeof swap_old, "%s.old-%ld", stage_dir, (long)getpid());
+        remove_tree(swap_old);
+        if (rename(stage_final, swap_old) != 0) {
+            snprintf(err, errlen, "cannot move %s aside: %s", stage_final, strerror(errno));
+            rc = -1;
+        } else {
+            swap_phase = 1;
+            if (rename(stage_dir, stage_final) != 0) {
+                snprintf(err, errlen, "cannot move %s to %s: %s", stage_dir, stage_final, strerror(errno));
+                rename(swap_old, stage_final);
+                swap_phase = 0;
+                rc = -1;
+            } else {
+                swap_phase = 2;
+                remove_tree(swap_old);
+                swap_phase = 0;
+            }
+        }
+    }
+    if (rc == 0) {
+        /* the run is complete and in place: nothing of it, nor the folders made to hold it, is
+           this process's to remove any more */
+        for (int i = 0; i < own_dir_count; ++i)
+            own_dirs[i][0] = '\0';
+        stage_dir[0] = '\0';
+    }
+    return rc;
+}
+
+void outdir_stage_abandon(void)
+{
+    if (!stage_dir[0])
+        return;
+    remove_tree(stage_dir);
+    own_dir_forget(stage_dir);
+    stage_dir[0] = '\0';
+}
+
+/* ---- signals ------------------------------------------------------------------------------ */
+
+void outdir_remove_unfinished(void)
+{
+    if (own_tmp_set)
+        unlink(own_tmp);
+    if (swap_phase == 1) {
+        rename(swap_old, swap_final);
+        swap_phase = 0;
+    }
+    if (stage_dir[0])
+        remove_tree(stage_dir);
+    for (int i = scratch_count - 1; i >= 0; --i)
+        remove_tree(scratch_dirs[i]);
+    outdir_remove_own_empty();
+}
+
+/* The process's own stderr, kept at start: a program build redirects descriptor 2 into a file
+   for a while (host/core/clsession.c), and a signal's line must not go there. */
+static int signal_msg_fd = 2;
+
+static void on_stop_signal(int sig)
+{
+    static const char msg_head[] = "brdfbench: stopped by signal ";
+    static const char msg_tail[] = "; the run's unfinished outputs are removed (an earlier run in its folder stays)\n";
+    char num[8];
+    int n = 0, v = sig;
+    char rev[8];
+    do {
+        rev[n++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v && n < 7);
+    for (int i = 0; i < n; ++i)
+        num[i] = rev[n - 1 - i];
+    ssize_t w = write(signal_msg_fd, msg_head, sizeof msg_head - 1);
+    w = write(signal_msg_fd, num, (size_t)n);
+    w = write(signal_msg_fd, msg_tail, sizeof msg_tail - 1);
+    (void)w;
+    outdir_remove_unfinished();
+    signal(sig, SIG_DFL);
+    raise(sig);
+    _exit(128 + sig);
+}
+
+void outdir_install_terminate_handler(void);   /* terminate.cpp */
+
+static const int stop_sigs[] = { SIGINT, SIGTERM, SIGHUP, SIGQUIT };
+static int stop_sig_ours[4];
+
+static void install_stop(int i)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sigfillset(&sa.sa_mask);
+    sigaction(stop_sigs[i], &sa, NULL);
+}
+
+void outdir_install_signal_handlers(void)
+{
+    outdir_install_terminate_handler();
+    int fd = fcntl(2, F_DUPFD_CLOEXEC, 10);
+    if (fd >= 0)
+        signal_msg_fd = fd;
+    for (int i = 0; i < 4; ++i) {
+        struct sigaction old;
+        if (sigaction(stop_sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+            continue;   /* ignored by whoever started us (nohup): stays ignored */
+        stop_sig_ours[i] = 1;
+        install_stop(i);
+    }
+}
+
+void outdir_reassert_signal_handlers(void)
+{
+    for (int i = 0; i < 4; ++i)
+        if (stop_sig_ours[i])
+            install_stop(i);
 }

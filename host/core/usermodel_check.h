@@ -1,0 +1,34 @@
+/* usermodel_check.h - what a user model's text may not do, and the deadline of its host
+ * reference (docs/user-models.md).
+ *
+ * The text check: a model (a file's text, an expression) may not name brdfbench's own code:
+ * every brdf_*, BRDF_* and brdfbench_* identifier but the documented helpers of
+ * kernels/brdf_models.h is refused, outside comments and literals and after line
+ * continuations are joined; so is token pasting (##), which could build such a name. In a
+ * model file, a function or macro that reaches itself is refused too. The wrapper
+ * brdf_user_eval and the dispatchers brdf_eval* lead back into the model, and OpenCL C has no
+ * recursion: PoCL's compiler crashes on it (SIGSEGV) instead of saying so.
+ *
+ * The deadline: the host reference is the model's own code in this process, one call per
+ * value. usermodel_watch_begin/end mark a call (a counter and the point, plain stores); a
+ * watcher thread, started with the first call, reports a call that has not returned after a
+ * second (again every 10 s) and ends the run at the launch deadline (clsession_timeout) as a
+ * runaway kernel does: one line, the unfinished outputs removed, exit 3.
+ */
+#ifndef BRDF_USERMODEL_CHECK_H
+#define BRDF_USERMODEL_CHECK_H
+
+#include <stddef.h>
+
+#include "usermodel.h"
+
+/* Checks a model's text. what: "PATH" (a model file, text from line 1: messages name
+ * PATH:LINE) or "--model NAME" (an expression: messages name the character). Returns 0, or
+ * EXIT_USAGE with the message (EXIT_RUNTIME when out of memory). */
+int usermodel_check_text(const char *text, size_t len, const char *what, int is_file, char *err, size_t errlen);
+
+/* Around one call of a user model's host reference. */
+void usermodel_watch_begin(const struct user_model *um, double c, double n);
+void usermodel_watch_end(void);
+
+#endif

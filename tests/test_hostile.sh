@@ -1,0 +1,246 @@
+#!/usr/bin/env bash
+# test_hostile.sh - what a hostile or careless input must never do (issue 23): replace a file
+# outside the run folder, lose an earlier run, run host code the user did not name, hang, or end
+# by a signal. Each check below failed on the binary before its fix; the exit codes and
+# messages of the same inputs are also rows of tests/test_cli_errors.sh (docs/bad-inputs.md).
+# Every command that could hang runs under `timeout`: a hang shows as exit 124, not as a stuck
+# suite.
+set -u
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+cd "$T" || exit 1
+F=$SRC/tests/test_usermodel_files
+
+# md5 of every file under a folder, sorted: "the same folder" means the same list.
+tree_sum() { (cd "$1" && find . -type f -o -type l | sort | xargs -r md5sum); }
+# run LIMIT ARGS...: brdfbench ARGS under timeout LIMIT; stdout, stderr in out, err; sets rc.
+run() {
+    local limit=$1
+    shift
+    timeout -s KILL "$limit" "$BIN" "$@" >out 2>err
+    rc=$?
+}
+
+# A run folder of all (R) and an accuracy run (base), as the issue's repros assume.
+run 300 all --quick --models fq2 --results-root rr --quiet
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "all --quick: exit $rc: $(head -c 400 err)"
+R=rr/latest
+run 120 accuracy --models fq2,cq2 --n-max 50 --samples 256 --out base --quiet
+[ $rc -eq 0 ] && ok || bad "accuracy --out base: exit $rc"
+
+# ---- High 1: plot and heatmap never write through a link inside the run folder ----------
+echo keep >victim.txt
+cp -r "$R/." R1
+ln -sf "$T/victim.txt" R1/heatmap_fq2.png
+run 60 heatmap R1 --label fq2
+[ $rc -eq 0 ] && [ "$(cat victim.txt)" = keep ] && ok || bad "heatmap wrote through a link: exit $rc, victim: $(head -c 20 victim.txt | od -c | head -1)"
+[ -f R1/heatmap_fq2.png ] && [ ! -L R1/heatmap_fq2.png ] && ok || bad "heatmap: the link was not replaced by the picture"
+echo keep >victim2.txt
+ln -sf "$T/victim2.txt" R1/curves_n16_paper1_fig2.png
+run 60 plot R1
+[ $rc -eq 0 ] && [ "$(cat victim2.txt)" = keep ] && [ ! -L R1/curves_n16_paper1_fig2.png ] && ok ||
+    bad "plot wrote through a link: exit $rc: $(head -c 300 err)"
+
+# ---- High 2: plots.json cannot name a data file of the run --------------------------------
+for name in accuracy.json plots.json report.md field_fq2.json x.PNG.json ../escape.png .hidden.png "a b.png"; do
+    rm -rf R2 && cp -r "$R/." R2
+    before=$(tree_sum R2 | grep -v ' ./plots.json$')
+    python3 - "$name" <<'PY'
+import json, sys
+d = json.load(open("R2/plots.json"))
+d["figures"][0]["file"] = sys.argv[1]
+json.dump(d, open("R2/plots.json", "w"))
+PY
+    run 60 plot R2
+    [ $rc -eq 2 ] && grep -q '"file" is ".*" (accepted: NAME.png' err && ok || bad "plots.json file '$name': exit $rc: $(head -c 300 err)"
+    [ "$(tree_sum R2 | grep -v ' ./plots.json$')" = "$before" ] && ok || bad "plots.json file '$name': the run folder changed"
+done
+# two figures with one file name
+rm -rf R2 && cp -r "$R/." R2
+python3 - <<'PY'
+import json
+d = json.load(open("R2/plots.json"))
+d["figures"][1]["file"] = d["figures"][0]["file"]
+json.dump(d, open("R2/plots.json", "w"))
+PY
+run 60 plot R2
+[ $rc -eq 2 ] && grep -q 'figure 2 has the file name ".*" of figure 1' err && ok || bad "two figures, one file: exit $rc: $(head -c 300 err)"
+
+# ---- High 5: a degenerate range is refused, a far-away point is clipped (no hang) ---------
+for range in "1e-300,2e-300" "1,1.000000000000001" "1e-320,1e-310"; do
+    rm -rf R5 && cp -r "$R/." R5
+    python3 - "$range" <<'PY'
+import json, sys
+lo, hi = (float(v) for v in sys.argv[1].split(","))
+d = json.load(open("R5/plots.json"))
+for f in d["figures"]:
+    if f["kind"] == "lines" and not f["y_log"]:
+        f["y_range"] = [lo, hi]
+        break
+json.dump(d, open("R5/plots.json", "w"))
+PY
+    run 60 plot R5
+    [ $rc -eq 2 ] && grep -q '"y_range" .* cannot be drawn' err && ok || bad "y_range [$range]: exit $rc (124: a hang): $(head -c 300 err)"
+done
+# a value 1e300 on a dashed series inside a valid range: drawn (clipped), not dashed for 1e300 px
+rm -rf R5 && cp -r "$R/." R5
+python3 - <<'PY'
+import json
+d = json.load(open("R5/plots.json"))
+for f in d["figures"]:
+    if f["kind"] == "lines" and not f["y_log"]:
+        f["y_range"] = [0, 1]
+        for s in f["series"]:
+            s["dashed"] = True
+            if s["y"]:
+                s["y"][len(s["y"]) // 2] = 1e300
+        break
+json.dump(d, open("R5/plots.json", "w"))
+PY
+run 60 plot R5
+[ $rc -eq 0 ] && ok || bad "a point at 1e300: exit $rc (137: a hang): $(head -c 300 err)"
+
+# ---- High 6: a FIFO where a file is read is refused at once -------------------------------
+mkdir F6 && mkfifo F6/accuracy.json
+run 20 compare base F6 --out cmp6
+[ $rc -eq 2 ] && grep -q 'accuracy.json: is a FIFO, not a regular file' err && ok || bad "compare with a FIFO: exit $rc: $(head -c 300 err)"
+run 20 gate "$SRC/tests/gates/example.json" --baseline F6
+[ $rc -eq 2 ] && grep -q 'FIFO' err && ok || bad "gate --baseline with a FIFO: exit $rc: $(head -c 300 err)"
+rm -rf R6 && cp -r "$R/." R6 && rm R6/plots.json && mkfifo R6/plots.json
+run 20 plot R6
+[ $rc -eq 2 ] && grep -q 'plots.json: is a FIFO' err && ok || bad "plot with a FIFO plots.json: exit $rc: $(head -c 300 err)"
+rm -rf R6 && cp -r "$R/." R6 && rm R6/field_fq2.json && mkfifo R6/field_fq2.json
+run 20 heatmap R6
+[ $rc -eq 2 ] && grep -q 'field_fq2.json: is a FIFO' err && ok || bad "heatmap with a FIFO field: exit $rc: $(head -c 300 err)"
+mkdir K6 && cp "$SRC"/kernels/* K6/ && rm K6/brdf_models.h && mkfifo K6/brdf_models.h
+run 20 accuracy --kernel-dir K6 --n-max 4 --samples 16 --out k6
+[ $rc -eq 2 ] && grep -q 'brdf_models.h is a FIFO' err && ok || bad "--kernel-dir with a FIFO: exit $rc: $(head -c 300 err)"
+mkfifo m6.cl
+run 20 accuracy --model-file m6.cl --out m6
+[ $rc -eq 2 ] && grep -q 'm6.cl: is a FIFO, not a regular file' err && ok || bad "--model-file FIFO: exit $rc: $(head -c 300 err)"
+
+# ---- Medium 5: --teapot-file /dev/zero is refused before it is read ------------------------
+run 20 render --scene teapot --teapot-file /dev/zero --out z5
+[ $rc -eq 2 ] && grep -q '/dev/zero: cannot read: is a character device' err && ok || bad "--teapot-file /dev/zero: exit $rc: $(head -c 300 err)"
+run 20 render --scene teapot --teapot-file /tmp --out z5
+[ $rc -eq 2 ] && grep -q '/tmp: cannot read: is a folder' err && ok || bad "--teapot-file /tmp: exit $rc: $(head -c 300 err)"
+head -c 300000000 /dev/zero >big.pov 2>/dev/null
+run 20 render --scene teapot --teapot-file big.pov --out z5
+[ $rc -eq 2 ] && grep -q 'big.pov: 300000000 bytes, larger than a scene file may be' err && ok || bad "a 300 MB teapot: exit $rc: $(head -c 300 err)"
+rm -f big.pov
+[ ! -e z5 ] && ok || bad "a refused render left z5"
+
+# ---- High 7: the wrapper and recursion are refused before the compiler sees them ----------
+run 60 accuracy --model 'r=brdf_user_eval(c,n,p0,p1)' --n-max 10 --out r7
+[ $rc -eq 2 ] && grep -q "identifier 'brdf_user_eval' is reserved" err && [ ! -e r7 ] && ok || bad "the wrapper in an expression: exit $rc: $(head -c 300 err)"
+printf '/* brdfbench-model\n * name: self\n */\nREAL self(REAL c, REAL n) { return c > 2 ? self(c, n) : c; }\n' >self.cl
+run 60 accuracy --model-file self.cl --n-max 10 --samples 16 --out r7
+[ $rc -eq 2 ] && grep -q "self.cl:4: 'self' calls itself (self -> self)" err && ok || bad "a recursive model file: exit $rc (139: the compiler crashed): $(head -c 300 err)"
+printf '{"gates":[{"model":"r","expression":"brdf_eval(1,c,n,0,0)","metric":"whole.max_abs","max":1}]}' >g7.json
+run 60 gate g7.json
+[ $rc -eq 2 ] && grep -q "identifier 'brdf_eval' is reserved" err && ok || bad "the dispatcher in a gates file: exit $rc: $(head -c 300 err)"
+
+# ---- High 4: a gates file runs only the model files in its own folder ----------------------
+mkdir -p g4/sub && cp "$F/scaled.cl" g4/sub/ && cp "$F/scaled.cl" outside.cl
+printf '{"gates":[{"model":"scaled","model_file":"../outside.cl","metric":"whole.max_abs","n_max":20,"samples":64,"max":1}]}' >g4/up.json
+printf '{"gates":[{"model":"scaled","model_file":"%s","metric":"whole.max_abs","n_max":20,"samples":64,"max":1}]}' "$T/outside.cl" >g4/abs.json
+ln -s ../outside.cl g4/link.cl
+printf '{"gates":[{"model":"scaled","model_file":"link.cl","metric":"whole.max_abs","n_max":20,"samples":64,"max":1}]}' >g4/link.json
+printf '{"gates":[{"model":"scaled","model_file":"sub/scaled.cl","metric":"whole.max_abs","n_max":20,"samples":64,"max":1}]}' >g4/in.json
+for g in up abs link; do
+    run 60 gate g4/$g.json
+    [ $rc -eq 2 ] && grep -q '"model_file" .* lies outside the gates file.s folder' err && ok || bad "gate $g.json: exit $rc: $(head -c 300 err)"
+done
+run 60 gate g4/in.json --quiet
+[ $rc -eq 0 ] && ok || bad "gate in.json (a model file below the gates file): exit $rc: $(head -c 300 err)"
+run 60 gate g4/up.json --quiet --allow-outside-model-files
+[ $rc -eq 0 ] && ok || bad "gate up.json --allow-outside-model-files: exit $rc: $(head -c 300 err)"
+
+# ---- Medium 6: a host reference that never returns: progress, then the deadline ----------
+printf '/* brdfbench-model\n * name: hostloop\n */\nREAL hostloop(REAL c, REAL n)\n{\n    while (sizeof(REAL) == 8) { }\n    return c;\n}\n' >hostloop.cl
+# (--timeout 8: the launch deadline covers a cold PoCL cache's compile of the first launch too)
+t0=$(date +%s)
+run 60 accuracy --model-file hostloop.cl --n-max 20 --samples 16 --out m6run --timeout 8
+t1=$(date +%s)
+[ $rc -eq 3 ] && ok || bad "a host loop: exit $rc (137: a hang), expected 3: $(head -c 400 err)"
+grep -q "the host reference of user model 'hostloop' (hostloop.cl) has been evaluating one value" err && ok || bad "a host loop: no progress line"
+grep -q "the host reference of user model 'hostloop' (hostloop.cl) ran past its deadline of 8 s" err && ok || bad "a host loop: no deadline line"
+[ ! -e m6run ] && [ $((t1 - t0)) -lt 40 ] && ok || bad "a host loop: folder left or took $((t1 - t0)) s"
+
+# ---- High 3 (and 9): a failed or stopped all leaves the earlier run as it was --------------
+run 300 all --quick --models fq2 --out mix --quiet
+[ $rc -eq 0 ] && ok || bad "all --out mix: exit $rc"
+before=$(tree_sum mix)
+# a model that loops only in scalar float: the sweep (float16), the claims, the fit and the
+# throughput steps have written their files when the heatmaps' kernel runs past its deadline
+printf '/* brdfbench-model\n * name: floatloop\n */\nREAL floatloop(REAL c, REAL n)\n{\n    while (sizeof(REAL) == 4) { }\n    return c;\n}\n' >floatloop.cl
+run 180 all --quick --model-file floatloop.cl --models fq2,floatloop --out mix --timeout 8
+[ $rc -eq 3 ] && grep -q "ran past its deadline" err && ok || bad "all with a float-only loop: exit $rc: $(tail -c 300 err)"
+[ "$(tree_sum mix)" = "$before" ] && ok || bad "all with a float-only loop: mix changed: $(tree_sum mix | diff - <(echo "$before") | head -5)"
+# (SIGINT is ignored in a background job of a script, and brdfbench keeps it ignored, as nohup
+# asks: the signal is given its default action for the run, through Python's exec)
+nointignore() { python3 -c 'import os, signal, sys; signal.signal(signal.SIGINT, signal.SIG_DFL); os.execvp(sys.argv[1], sys.argv[1:])' "$@"; }
+for sig in TERM INT; do
+    nointignore timeout -s $sig 1.5 "$BIN" all --quick --models fq2 --out mix >out 2>err
+    rc=$?
+    [ "$(tree_sum mix)" = "$before" ] && ok || bad "all stopped by SIG$sig (exit $rc): mix changed"
+    grep -q "stopped by signal" err || [ $rc -eq 0 ] && ok || bad "all stopped by SIG$sig: exit $rc, no line says so: $(tail -c 300 err)"
+done
+ls -A | grep -q 'partial' && bad "a staging folder was left: $(ls -A | grep partial)" || ok
+# a new run under --results-root: stopped, it leaves no half run (results/latest untouched)
+timeout -s TERM 2 "$BIN" all --quick --models fq2 --results-root rs >out 2>err
+[ ! -e rs ] || [ -z "$(ls -A rs)" ] && ok || bad "a stopped all left $(ls -A rs)"
+# a completed run replaces the earlier one as a whole: nothing of it stays
+echo stale >mix/stale.json
+run 300 all --quick --models fq2 --out mix --quiet
+[ $rc -eq 0 ] && [ ! -e mix/stale.json ] && [ -s mix/report.md ] && ok || bad "a complete run did not replace the earlier one: exit $rc"
+grep -q 'partial' mix/report.md && bad "report.md names the staging folder" || ok
+# an --out that holds other things is refused before any work, and kept as it was
+mkdir -p own && echo mine >own/notes.sh
+run 60 all --quick --models fq2 --out own
+[ $rc -eq 2 ] && grep -q "own holds 'notes.sh', which is no part of a brdfbench run" err && [ "$(cat own/notes.sh)" = mine ] && ok ||
+    bad "all --out a folder of other files: exit $rc: $(head -c 300 err)"
+mkdir -p wd && (cd wd && timeout -s KILL 60 "$BIN" all --quick --models fq2 --out . >../out 2>../err; echo $? >../rc)
+[ "$(cat rc)" = 2 ] && grep -q 'is the working folder' err && ok || bad "all --out .: exit $(cat rc): $(head -c 300 err)"
+
+# ---- Low: results/latest that is not a link is refused before the run ----------------------
+mkdir -p la && (cd la && mkdir -p results/latest && timeout -s KILL 60 "$BIN" all --quick --models fq2 >../out 2>../err; echo $? >../rc)
+[ "$(cat rc)" = 3 ] && grep -q 'results/latest is a folder, not the symlink' err && [ "$(ls -A la/results)" = latest ] && ok ||
+    bad "a folder results/latest: exit $(cat rc): $(head -c 300 err)"
+mkdir -p lf/results && echo mine >lf/results/latest && (cd lf && timeout -s KILL 60 "$BIN" accuracy --models fq2 --n-max 10 --samples 16 >../out 2>../err; echo $? >../rc)
+[ "$(cat rc)" = 3 ] && [ "$(cat lf/results/latest)" = mine ] && ok || bad "a file results/latest: exit $(cat rc), $(cat lf/results/latest)"
+
+# ---- Low: a hard link to a model file is the same model ------------------------------------
+ln "$F/scaled.cl" hard.cl 2>/dev/null || cp "$F/scaled.cl" hard.cl
+if [ "$(stat -c %i hard.cl)" = "$(stat -c %i "$F/scaled.cl")" ]; then
+    run 60 accuracy --model-file "$F/scaled.cl" --model-file hard.cl --models scaled --n-max 10 --samples 16 --out hl --quiet
+    [ $rc -eq 0 ] && ok || bad "a hard link to a model file: exit $rc: $(head -c 300 err)"
+fi
+
+# ---- Low: --json into a missing folder fails before the work -------------------------------
+run 60 accuracy --json nowhere/acc.json
+[ $rc -eq 3 ] && grep -q '^brdfbench accuracy: --json: folder nowhere does not exist' err && ! grep -q '^device:' err && ok ||
+    bad "--json nowhere/: exit $rc: $(head -c 300 err)"
+
+# ---- Low: accuracy --device all --json - makes no results folder; stdout is one document -----
+mkdir -p dv && (cd dv && timeout -s KILL 120 "$BIN" accuracy --device all --models fq2 --n-max 10 --samples 16 --json - >../out 2>../err; echo $? >../rc)
+[ "$(cat rc)" = 0 ] && [ -z "$(ls -A dv)" ] && python3 -c 'import json,sys; d = json.load(open("out")); assert d["schema"] == "brdfbench.accuracy/1" and all("device" in r for r in d["results"])' &&
+    ok || bad "accuracy --device all --json -: exit $(cat rc), left $(ls -A dv), stdout $(head -c 200 out)"
+
+# ---- Low: SIGTERM of accuracy --out a/b/D leaves no folder it made -------------------------
+timeout -s TERM 3 "$BIN" accuracy --model-file hostloop.cl --n-max 20 --samples 16 --out a/b/D --timeout 600 >out 2>err
+[ ! -e a ] && grep -q 'stopped by signal 15' err && ok || bad "SIGTERM of accuracy --out a/b/D left $(find a 2>/dev/null | tr '\n' ' ')"
+
+# ---- Low: a memory limit: a line that names it, exit 3 or 77, never abort() (exit 134) -------
+# (not under AddressSanitizer, which cannot start under such a limit)
+if ! nm "$BIN" 2>/dev/null | grep -q __asan_init; then
+    for kb in 200000 400000; do
+        (ulimit -v $kb; timeout -s KILL 120 "$BIN" accuracy --model 'sq=c*c' --n-max 20 --samples 16 --out uv >out 2>err; echo $? >rc)
+        { [ "$(cat rc)" = 3 ] || [ "$(cat rc)" = 77 ]; } && grep -q 'ulimit -v' err && [ ! -e uv ] && ok ||
+            bad "ulimit -v $kb: exit $(cat rc): $(tail -c 300 err)"
+    done
+fi
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
