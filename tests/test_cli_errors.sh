@@ -401,8 +401,9 @@ fj H "del d['model']"
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:1: member \"model\" is missing" heatmap H
 fj H "d['model'] = 5"
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: member \"model\" is a number" heatmap H
+# a model the process does not know is redrawn from the field file's own formula (issue 21)
 fj H "d['model'] = 'nosuch'"
-t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: unknown model 'nosuch'" heatmap H
+t 0 "^brdfbench heatmap: 1 picture\(s\) redrawn in H" heatmap H
 fj H "d['grid']['rows'] = 1"
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: grid rows/cols must be integers in \[2, 10000\]" heatmap H
 fj H "d['grid']['rows'] = 3000; d['grid']['cols'] = 3000"
@@ -493,10 +494,7 @@ t 2 "^brdfbench accuracy: --model: name 'n' is not an identifier" accuracy --mod
 t 2 "^brdfbench accuracy: --model: the name before '=' must have 1 to 48 characters" accuracy --model "$(printf 'a%.0s' {1..49})=c"
 t 2 "^brdfbench accuracy: --model: the name before '=' must have 1 to 48 characters" accuracy --model '=c'
 t 2 "^brdfbench accuracy: --model: name 'a b' is not an identifier" accuracy --model 'a b=c'
-t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model "e=c$(printf '\t')*n"
 t 2 "^brdfbench accuracy: --model e: character 1 of the expression is not allowed" accuracy --model "e=$(printf '\xc3\xa9')"
-t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model 'e=c//n'
-t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model 'e=c/*n*/'
 t 2 "^brdfbench accuracy: --model e: character 2 of the expression is not allowed" accuracy --model 'e=c#n'
 t 2 "^brdfbench accuracy: --model e: the expression must have 1 to 1000 characters" accuracy --model "e=$(printf 'c%.0s' {1..1001})"
 t 2 "^brdfbench accuracy: --model e: the expression is blank" accuracy --model 'e=   '

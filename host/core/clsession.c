@@ -608,6 +608,7 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
     clsession_deadline_arm_build(what);
     e = clBuildProgram(prog, 1, &s->device, options ? options : "", NULL, NULL);
     clsession_deadline_disarm();
+    outdir_reassert_signal_handlers();   /* back in front of the handlers the OpenCL compiler installs */
     build_progress_fd = 2;
     s->last_build_seconds = wall_seconds() - t0;
     s->build_seconds_total += s->last_build_seconds;
@@ -648,6 +649,7 @@ cl_kernel clsession_create_kernel(cl_program program, const char *name, cl_int *
     clsession_deadline_arm_build(what);
     cl_kernel k = clCreateKernel(program, name, err);
     clsession_deadline_disarm();
+    outdir_reassert_signal_handlers();
     return k;
 }
 

@@ -303,6 +303,10 @@ static int make_file_source(struct user_model *um, const char *text, size_t len)
     return 0;
 }
 
+/* Set while the translation of a --model expression is parsed: machine-made text, whose own
+   brdfbench_* names are not the user's (the expression itself was checked). */
+static int translating_expression;
+
 int usermodel_parse_file_text(const char *text, size_t len, const char *path, struct user_model **out,
                               char *err, size_t errlen)
 {
@@ -313,13 +317,24 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
         return file_fail(err, errlen, path, 0, "larger than %d bytes", USERMODEL_MAX_FILE);
     if (memchr(text, '\0', len))
         return file_fail(err, errlen, path, 0, "NUL byte in a model file (a text file is expected)");
-    /* A GLSL/HLSL-style file is read as its translation (shaderlang.h). */
+    /* A GLSL/HLSL-style file is read as its translation (shaderlang.h). The reserved names are
+       looked for in what the user wrote: the translation names its own brdfbench_* values. */
     char *translated = NULL;
+    const char *own = text;
+    size_t own_len = len;
     int sl = shaderlang_file(text, len, path, &translated, &len, err, errlen);
     if (sl == EXIT_USAGE)
         return sl;
-    if (sl == 0)
+    int generated = translating_expression;
+    if (sl == 0) {
+        int rc0 = usermodel_check_text(own, own_len, path, 1, err, errlen);
+        if (rc0) {
+            free(translated);
+            return rc0;
+        }
         text = translated;
+        generated = 1;
+    }
     char *copy = malloc(len + 1);
     struct user_model *um = usermodel_new();
     if (!copy || !um) {
@@ -458,7 +473,7 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
     }
     /* The text may not name brdfbench's own functions (the wrapper, the dispatchers); the
        header is a comment, which the scan skips. */
-    if ((rc = usermodel_check_text(text, len, path, 1, err, errlen)) != 0)
+    if (!generated && (rc = usermodel_check_text(text, len, path, 1, err, errlen)) != 0)
         goto done;
     if (!have_description)
         snprintf(um->description, sizeof um->description, "user model from %.200s", path);
@@ -513,8 +528,15 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
         size_t tlen = 0;
         snprintf(origin, sizeof origin, "--model %s", name);
         int sl = shaderlang_expression(name, expr, origin, &text, &tlen, err, errlen);
+        /* the user's own text may not name brdfbench's code; its translation does */
+        if (sl == 0 && (sl = usermodel_check_text(expr, elen, origin, 0, err, errlen)) != 0) {
+            free(text);
+            text = NULL;
+        }
         if (sl == 0) {
+            translating_expression = 1;
             sl = usermodel_parse_file_text(text, tlen, origin, out, err, errlen);
+            translating_expression = 0;
             free(text);
             if (sl == 0) {
                 (*out)->from_file = 0;
