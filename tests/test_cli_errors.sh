@@ -542,7 +542,7 @@ t 2 "^brdfbench accuracy: default_int.cl:3: parameter 'k': DEFAULT 2.5 is not an
 t 2 "^brdfbench accuracy: unterminated.cl:1: a model file begins with a header comment" accuracy --model-file unterminated.cl
 t 2 "^brdfbench accuracy: nul.cl: NUL byte in a model file \(a text file is expected\)" accuracy --model-file nul.cl
 t 2 "^brdfbench accuracy: empty.cl: empty model file" accuracy --model-file empty.cl
-t 2 "^brdfbench accuracy: huge.cl: larger than 262144 bytes" accuracy --model-file huge.cl
+t 2 "^brdfbench accuracy: huge.cl: larger than 65536 bytes" accuracy --model-file huge.cl
 t 2 "^brdfbench accuracy: --model-file: cannot read fifo.cl: is a FIFO, not a regular file" accuracy --model-file fifo.cl
 t 2 "^brdfbench accuracy: --model-file: cannot read /dev/zero: is a character device, not a regular file" accuracy --model-file /dev/zero
 t 2 "^brdfbench accuracy: --model-file: cannot read /dev/null: is a character device, not a regular file" accuracy --model-file /dev/null
