@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <libgen.h>
 #include <limits.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1008,7 +1009,7 @@ void outdir_remove_unfinished(void)
    for a while (host/core/clsession.c), and a signal's line must not go there. */
 static int signal_msg_fd = 2;
 
-static void on_stop_signal(int sig)
+static void on_stop_signal_body(int sig)
 {
     static const char msg_head[] = "brdfbench: stopped by signal ";
     static const char msg_tail[] = "; the run's unfinished outputs are removed (an earlier run in its folder stays)\n";
@@ -1026,6 +1027,11 @@ static void on_stop_signal(int sig)
     w = write(signal_msg_fd, msg_tail, sizeof msg_tail - 1);
     (void)w;
     outdir_remove_unfinished();
+}
+
+static void on_stop_signal(int sig)
+{
+    on_stop_signal_body(sig);
     signal(sig, SIG_DFL);
     raise(sig);
     _exit(128 + sig);
@@ -1045,18 +1051,55 @@ static void install_stop(int i)
     sigaction(stop_sigs[i], &sa, NULL);
 }
 
+/* The stop signals are blocked in every thread (the OpenCL driver's threads, started later,
+   inherit the mask) and taken by this one thread with sigwait: the handlers that the OpenCL
+   compiler installs while it compiles (LLVM's, in front of ours, whose chain has been seen to
+   end the process by the default action under load) then never see them. */
+static sigset_t stop_set;
+
+static void *stop_signal_thread(void *unused)
+{
+    (void)unused;
+    for (;;) {
+        int sig = 0;
+        if (sigwait(&stop_set, &sig) != 0)
+            continue;
+        /* as the handler: the line, the tidy-up, then the default action of the signal */
+        on_stop_signal_body(sig);
+        sigset_t one;
+        sigemptyset(&one);
+        sigaddset(&one, sig);
+        signal(sig, SIG_DFL);
+        pthread_sigmask(SIG_UNBLOCK, &one, NULL);
+        raise(sig);
+        _exit(128 + sig);
+    }
+    return NULL;
+}
+
 void outdir_install_signal_handlers(void)
 {
     outdir_install_terminate_handler();
     int fd = fcntl(2, F_DUPFD_CLOEXEC, 10);
     if (fd >= 0)
         signal_msg_fd = fd;
+    sigemptyset(&stop_set);
     for (int i = 0; i < 4; ++i) {
         struct sigaction old;
         if (sigaction(stop_sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
             continue;   /* ignored by whoever started us (nohup): stays ignored */
         stop_sig_ours[i] = 1;
         install_stop(i);
+        sigaddset(&stop_set, stop_sigs[i]);
+    }
+    /* the thread that takes them; without one the handlers above take them as before */
+    pthread_attr_t attr;
+    pthread_t t;
+    if (pthread_attr_init(&attr) == 0) {
+        pthread_attr_setdetachstate(&attr, PTHREAD_CREATE_DETACHED);
+        if (pthread_sigmask(SIG_BLOCK, &stop_set, NULL) == 0 && pthread_create(&t, &attr, stop_signal_thread, NULL) != 0)
+            pthread_sigmask(SIG_UNBLOCK, &stop_set, NULL);
+        pthread_attr_destroy(&attr);
     }
 }
 
