@@ -16,7 +16,7 @@
 #
 # Environment: BRDFBENCH (the binary; default build/brdfbench), TP_FLAGS (the throughput flags;
 # default below), MODELS (default: throughput's default set), COMPARE_SETS ("default ci", or "default" for a binary whose compare has no
-# --holm), KEEP=1 to keep the runs. A benchmark, not a test: its figures go into notes, never
+# --holm), CONDITIONS (default "aa aa-load planted"), KEEP=1 to keep the runs. A benchmark, not a test: its figures go into notes, never
 # into assertions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,6 +24,7 @@ B=${BRDFBENCH:-build/brdfbench}
 PAIRS=${1:-5}
 TP_FLAGS=${TP_FLAGS:---reps 10 --variants default --no-host-c --no-sweep --quiet}
 SETS=${COMPARE_SETS:-default ci}
+CONDS=${CONDITIONS:-aa aa-load planted}
 # the default set of `brdfbench throughput` (model_spec_list_default), named, and the user lobe
 MODELS=${MODELS:-phong,blinn,cq2,fvol,fvol64,schlick,lyon:k=2,fq:Q=0.64,fq2,fq2n,phongn,blinnn,beckmann,ggx,phongpow}
 W=$(mktemp -d)
@@ -68,7 +69,7 @@ PY
 }
 
 declare -A F R S P
-for cond in aa aa-load planted; do
+for cond in $CONDS; do
     for set in $SETS; do F[$cond.$set]=0 R[$cond.$set]=0 S[$cond.$set]=0 P[$cond.$set]=0; done
     for i in $(seq 1 "$PAIRS"); do
         a=$W/$cond-$i-a b=$W/$cond-$i-b
@@ -90,7 +91,7 @@ done
 
 echo "brdfbench $("$B" --version 2>/dev/null | head -1), $PAIRS pairs per condition, throughput $TP_FLAGS"
 printf '%-9s %-8s %16s %22s\n' condition compare "false alarms" "planted rows slower"
-for cond in aa aa-load planted; do
+for cond in $CONDS; do
     for set in $SETS; do
         f=${F[$cond.$set]} r=${R[$cond.$set]} s=${S[$cond.$set]} p=${P[$cond.$set]}
         share=$(python3 -c "print('%d/%d = %.1f%%' % ($f, $r, 100.0 * $f / $r) if $r else '-')")
