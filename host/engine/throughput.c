@@ -319,8 +319,11 @@ static cl_int tp_set_fixed(struct tp_kernel_run *r, const struct model_spec *m)
     return clSetKernelArg(r->k, 7, sizeof r->out, &r->out);
 }
 
-/* One launch: event time and wall time (enqueue to finish). Returns an OpenCL error or 0. */
-static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_s, double *wall_s, const char **call)
+/* One launch: event time and wall time (enqueue to finish); where the driver's profiling
+   events give no time, the wall time stands in for the event time and *used_wall says so
+   (cl_event_seconds_or_wall). Returns an OpenCL error or 0. */
+static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_s, double *wall_s, int *used_wall,
+                             const char **call)
 {
     cl_event ev = NULL;
     cl_int e = tp_set_iters(r, iters);
@@ -335,7 +338,7 @@ static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_
         e = clsession_finish(r->s, r->k, NULL);
     }
     *wall_s = wall_seconds() - t0;
-    *event_s = (e == CL_SUCCESS) ? cl_event_seconds(ev) : NAN;
+    *event_s = (e == CL_SUCCESS) ? cl_event_seconds_or_wall(ev, *wall_s, used_wall) : NAN;
     if (ev)
         clReleaseEvent(ev);
     return e;
@@ -352,21 +355,15 @@ struct tp_dev_ctx {
 static int tp_dev_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
 {
     struct tp_dev_ctx *d = ctx;
-    double ev, wall;
+    double wall;
+    int used_wall = 0;
     const char *call = "";
-    cl_int e = tp_launch_once(&d->kr, iters, &ev, &wall, &call);
+    cl_int e = tp_launch_once(&d->kr, iters, seconds, &wall, &used_wall, &call);
     if (e != CL_SUCCESS) {
         snprintf(reason, reason_len, "launch: %s failed with %s", call, cl_error_name(e));
         return -1;
     }
-    /* A driver that does not fill the profiling events (a zero or a nanosecond: rusticl on
-       llvmpipe) gives no rate: the wall time stands in, and the figure says so. (A time far
-       below the wall time is no sign: PoCL's first launches compile, outside the event.) */
-    if (!(ev > 1e-8)) {
-        d->timer_wall = 1;
-        ev = wall;
-    }
-    *seconds = ev;
+    d->timer_wall |= used_wall;   /* the figure says which timer gave its times */
     return 0;
 }
 
@@ -460,7 +457,8 @@ static int tp_peak_setup(struct cl_session *s, const char *options, long work_it
     /* scalar chains for a driver that vectorises across work-items (kernels/peak.cl, PEAK_W) */
     int lanes = s->specialise ? 1 : 16;
     char opts[400];
-    snprintf(opts, sizeof opts, "%s%s", options ? options : "", s->specialise ? (options && *options ? " -DPEAK_W=1" : "-DPEAK_W=1") : "");
+    snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", s->specialise && options && *options ? " " : "",
+             s->specialise ? "-DPEAK_W=1" : "");
     if (clsession_build(s, "peak.cl", NULL, opts, prog)) {
         fig_fail(f, "building kernels/peak.cl failed (build log on stderr)");
         return -1;
@@ -702,7 +700,7 @@ int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmod
     CL_CHECK_GOTO(tp_set_fixed(&r, m), done);
     double wall;
     const char *call;
-    e = tp_launch_once(&r, iters, event_seconds, &wall, &call);
+    e = tp_launch_once(&r, iters, event_seconds, &wall, NULL, &call);
     if (e != CL_SUCCESS) {
         cl_report(call, e, __FILE__, __LINE__);
         rc = EXIT_RUNTIME;
