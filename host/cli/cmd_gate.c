@@ -125,8 +125,8 @@ int cmd_gate(int argc, char **argv)
         return rc;
     }
     /* The outputs can be written: found out before any sweep runs. */
-    if ((junit && !cli_is_stdout(junit) && gate_output_check("--junit", junit, err, sizeof err)) ||
-        (json && !cli_is_stdout(json) && gate_output_check("--json", json, err, sizeof err))) {
+    if ((junit && !cli_is_stdout(junit) && output_file_check("--junit", junit, err, sizeof err)) ||
+        (json && !cli_is_stdout(json) && output_file_check("--json", json, err, sizeof err))) {
         fprintf(stderr, "brdfbench gate: %s\n", err);
         gate_set_free(&gs);
         return EXIT_RUNTIME;

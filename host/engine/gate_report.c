@@ -102,41 +102,6 @@ static int write_output(const char *path, const char *data, size_t len, char *er
     return write_file_atomic(path, data, len, err, errlen);
 }
 
-int gate_output_check(const char *flag, const char *path, char *err, size_t errlen)
-{
-    struct stat st;
-    if (!path[0]) {
-        snprintf(err, errlen, "%s: empty file name", flag);
-        return -1;
-    }
-    if (stat(path, &st) == 0) {
-        if (S_ISDIR(st.st_mode)) {
-            snprintf(err, errlen, "%s: %s is a folder (a file name is expected)", flag, path);
-            return -1;
-        }
-        if (!S_ISREG(st.st_mode))
-            return access(path, W_OK) == 0 ? 0 : (snprintf(err, errlen, "%s: cannot write %s: %s", flag, path,
-                                                           strerror(errno)), -1);
-    }
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (!slash)
-        snprintf(dir, sizeof dir, ".");
-    else if (slash == dir)
-        dir[1] = '\0';
-    else
-        *slash = '\0';
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s: folder %s does not exist", flag, dir);
-        return -1;
-    }
-    if (access(dir, W_OK | X_OK) != 0) {
-        snprintf(err, errlen, "%s: folder %s is not writable: %s", flag, dir, strerror(errno));
-        return -1;
-    }
-    return 0;
-}
 
 /* Escaped text for an XML attribute or element; control characters (not allowed in XML 1.0)
    become spaces. */

@@ -15,8 +15,5 @@ int gate_set_write_junit(const struct gate_set *g, const char *path, const struc
                          char *err, size_t errlen);
 int gate_set_write_json(const struct gate_set *g, const char *path, const struct cl_session *s,
                         char *err, size_t errlen);
-/* Checks before any sweep that path can be written: its folder exists and is writable, or it
- * is an existing device file. 0 or -1 with a message. */
-int gate_output_check(const char *flag, const char *path, char *err, size_t errlen);
 
 #endif
