@@ -30,7 +30,5 @@ struct hostjit *hostjit_compile(const char *models_header, const char *model_tex
 hostjit_fn hostjit_function(const struct hostjit *j);
 void hostjit_free(struct hostjit *j);
 
-/* The prelude placed before the model's text (for tests and docs/user-models.md). */
-const char *hostjit_prelude(void);
 
 #endif

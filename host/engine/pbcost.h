@@ -8,12 +8,12 @@
 #ifndef BRDF_PBCOST_H
 #define BRDF_PBCOST_H
 
+#include "schemas.h"
 #include <stdio.h>
 
 #include "clsession.h"
 #include "models.h"
 
-#define PBCOST_SCHEMA "brdfbench.physical/1"
 #define PBCOST_MAX_ROWS 16
 #define PBCOST_CHECK_POINTS 4096
 #define PBCOST_TERMS_THETA 5     /* theta = 0, 30, 60, 75, 85 degrees */

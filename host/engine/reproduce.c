@@ -29,7 +29,7 @@
 
 static const double half_pi = 1.57079632679489661923;
 static const double two_pi = 6.28318530717958647692;
-#define ZONE_K 0.511                 /* docs/definitions.md: the epicentre ends where c^n = exp(-0.511) */
+#define ZONE_K BRDF_ZONE_K           /* kernels/brdf_shared.h: the epicentre ends where c^n = exp(-0.511) */
 
 void reproduce_options_default(struct reproduce_options *o)
 {
@@ -1324,16 +1324,3 @@ done:
     return rc;
 }
 
-int reproduce_run(struct cl_session *s, const char *out_dir, int quiet)
-{
-    struct reproduce_options o;
-    reproduce_options_default(&o);
-    return reproduce_run_ex(s, out_dir, &o, quiet, NULL);
-}
-
-int reproduce_fit_run(struct cl_session *s, const char *out_dir, int quiet)
-{
-    struct fit_options o;
-    fit_options_default(&o);
-    return fit_run(s, out_dir, &o, quiet, NULL);
-}
