@@ -299,8 +299,7 @@ static void check_per_n(struct accuracy_result *r)
     }
 }
 
-/* One unit in the 4th significant digit of v; 0 when v is not a positive finite number. */
-static double fourth_digit_unit(double v)
+double fourth_digit_unit(double v)
 {
     return (v > 0 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
 }
