@@ -589,6 +589,11 @@ BRDF_FN REAL brdf_pb_lobe(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
 /* Supplied by a user model file compiled at run time. */
 BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1);
 #endif
+#ifdef BRDF_HAVE_USER_FULL
+/* A user full BRDF at the vectors L, V, N of a scene (luminance; docs/user-models.md). */
+BRDF_FN REAL brdf_user_full(REAL lx, REAL ly, REAL lz, REAL vx, REAL vy, REAL vz, REAL nx, REAL ny, REAL nz, REAL n,
+                            RSCALAR p0, RSCALAR p1);
+#endif
 
 /* Evaluate model `id` at cosine c, given as c and s = 1 - c (c in [0, 1]), and shininess n
    with parameters p0, p1. Formulas written in c - 1 take -s, which keeps every digit of
@@ -713,6 +718,43 @@ BRDF_FN int brdf_merl_index3(RSCALAR theta_h, RSCALAR theta_d, RSCALAR phi_d, in
     *itd = j;
     *ipd = k;
     return k + BRDF_MERL_PD * (j + BRDF_MERL_TD * i);
+}
+
+/* The half/difference angles of unit L, V about a unit normal N of a scene: L and V in the tangent
+ * frame (T, B, N), T from the axis least aligned with N made orthogonal to it, B = N x T (for an
+ * isotropic table the frame's turn about N drops out), then brdf_merl_half_diff. The host's
+ * lookup (host/core/merl.c) and the device's (render, the physical-cost table) share it. */
+BRDF_FN void brdf_merl_half_diff_n(RSCALAR lx, RSCALAR ly, RSCALAR lz, RSCALAR vx, RSCALAR vy, RSCALAR vz,
+                                   RSCALAR nx, RSCALAR ny, RSCALAR nz, RSCALAR *theta_h, RSCALAR *theta_d,
+                                   RSCALAR *phi_d)
+{
+    RSCALAR ax = fabs(nx), ay = fabs(ny), az = fabs(nz);
+    RSCALAR tx = RC(0.0), ty = RC(0.0), tz = RC(0.0);
+    if (ax <= ay && ax <= az)
+        tx = RC(1.0);
+    else if (ay <= az)
+        ty = RC(1.0);
+    else
+        tz = RC(1.0);
+    RSCALAR d = tx * nx + ty * ny + tz * nz;
+    tx -= d * nx;
+    ty -= d * ny;
+    tz -= d * nz;
+    RSCALAR tl = sqrt(tx * tx + ty * ty + tz * tz);
+    tx /= tl;
+    ty /= tl;
+    tz /= tl;
+    RSCALAR bx = ny * tz - nz * ty, by = nz * tx - nx * tz, bz = nx * ty - ny * tx;
+    brdf_merl_half_diff(lx * tx + ly * ty + lz * tz, lx * bx + ly * by + lz * bz, lx * nx + ly * ny + lz * nz,
+                        vx * tx + vy * ty + vz * tz, vx * bx + vy * by + vz * bz, vx * nx + vy * ny + vz * nz,
+                        theta_h, theta_d, phi_d);
+}
+
+/* A measured cell's luminance, Y = 0.2126 R + 0.7152 G + 0.0722 B (sr^-1); 0 where a channel is
+ * negative (not measured). */
+BRDF_FN RSCALAR brdf_merl_luminance(RSCALAR r, RSCALAR g, RSCALAR b)
+{
+    return r < RC(0.0) || g < RC(0.0) || b < RC(0.0) ? RC(0.0) : RC(0.2126) * r + RC(0.7152) * g + RC(0.0722) * b;
 }
 
 #endif /* BRDF_MODELS_H */

@@ -270,9 +270,10 @@ static float16 tp_vec_dot_unit(float16 ax, float16 ay, float16 bx, float16 by, f
 /* Two independent streams per work-item (the physically based models are long enough that
    two hide the sums' latency); the ramps: x_N in [-0.3, 0.3], x_L in [-1, 0.2], x_V in
    [-0.2, 1], y small, so most pairs are lit and the highlight is crossed. */
-#define TP_VEC_KERNEL(name, id, kind)                                                            \
+#define TP_VEC_KERNEL(name, id, kind) TP_VEC_KERNEL_OF(name, id, kind, TP_VEC_STREAM, )
+#define TP_VEC_KERNEL_OF(name, id, kind, STREAM, EXTRA_ARGS)                                     \
     __kernel void name(const float n_uniform, const float p0, const float p1, const float step,  \
-                       const int iters, __global float *out)                                    \
+                       const int iters, __global float *out EXTRA_ARGS)                         \
     {                                                                                           \
         const int gid = (int)get_global_id(0);                                                  \
         const float16 n = (float16)(n_uniform);                                                 \
@@ -283,8 +284,8 @@ static float16 tp_vec_dot_unit(float16 ax, float16 ay, float16 bx, float16 by, f
             float16 xn0 = 0.6f * t0 - 0.3f, xl0 = -1.0f + 1.2f * t0, xv0 = 1.0f - 1.2f * t0;    \
             float16 xn1 = 0.6f * t1 - 0.3f, xl1 = -1.0f + 1.2f * t1, xv1 = 1.0f - 1.2f * t1;    \
             float16 y0 = 0.1f * t0 - 0.05f, y1 = 0.1f * t1 - 0.05f;                             \
-            TP_VEC_STREAM(a0, xn0, y0, xl0, -y0, xv0, 0.5f * y0, n, id, kind, p0, p1);          \
-            TP_VEC_STREAM(a1, xn1, y1, xl1, -y1, xv1, 0.5f * y1, n, id, kind, p0, p1);          \
+            STREAM(a0, xn0, y0, xl0, -y0, xv0, 0.5f * y0, n, id, kind, p0, p1);                 \
+            STREAM(a1, xn1, y1, xl1, -y1, xv1, 0.5f * y1, n, id, kind, p0, p1);                 \
             t0 = t0 + step;                                                                     \
             t1 = t1 + step;                                                                     \
             t0 = t0 - floor(t0);                                                                \
@@ -309,6 +310,72 @@ static float16 tp_vec_dot_unit(float16 ax, float16 ay, float16 bx, float16 by, f
 
 TP_VEC_KERNEL(tp_vec_pow, 0, 3)
 TP_VEC_POINTS_KERNEL(tp_vec_points_pow, 0, 3)
+
+/* ---- full BRDFs that take the vectors themselves: a user full BRDF (kind 4: a GLSL/HLSL
+ * function of L, V, N or a BRDF Explorer file, brdf_user_full) and a measured material (kind 5:
+ * the MERL table, a float buffer in the file's layout). The same generated vectors as above,
+ * normalised, and the result zeroed where L or V lies below the surface, as for the lobes.
+ * A lookup pays the half/difference angles (two atan2, a sqrt and a rotation per lane) and
+ * three loads from a 17.5 MB table: memory traffic, where the other rows pay arithmetic.
+ *   tp_full_K (n, p0, p1, step, iters, out, table)
+ *   tp_full_points_K (p0, p1, planes[10 x count: Lxyz Vxyz Nxyz n], count, out[], table) */
+static float16 tp_merl_lookup16(__global const float *table, float16 lx, float16 ly, float16 lz, float16 vx,
+                                float16 vy, float16 vz, float16 nx, float16 ny, float16 nz)
+{
+    float a[9][16], y[16];
+    vstore16(lx, 0, a[0]); vstore16(ly, 0, a[1]); vstore16(lz, 0, a[2]);
+    vstore16(vx, 0, a[3]); vstore16(vy, 0, a[4]); vstore16(vz, 0, a[5]);
+    vstore16(nx, 0, a[6]); vstore16(ny, 0, a[7]); vstore16(nz, 0, a[8]);
+    for (int k = 0; k < 16; ++k) {
+        float th, td, pd;
+        int ih, id, ip;
+        brdf_merl_half_diff_n(a[0][k], a[1][k], a[2][k], a[3][k], a[4][k], a[5][k], a[6][k], a[7][k], a[8][k],
+                              &th, &td, &pd);
+        int idx = brdf_merl_index3(th, td, pd, &ih, &id, &ip);
+        y[k] = brdf_merl_luminance(table[idx], table[BRDF_MERL_CELLS + idx], table[2 * BRDF_MERL_CELLS + idx]);
+    }
+    return vload16(0, y);
+}
+
+static float16 tp_full_eval(int kind, float16 lx, float16 ly, float16 lz, float16 vx, float16 vy, float16 vz,
+                            float16 nx, float16 ny, float16 nz, float16 n, float p0, float p1,
+                            __global const float *table)
+{
+    float16 f = (float16)(0.0f);
+#ifdef BRDF_HAVE_USER_FULL
+    if (kind == 4)
+        f = brdf_user_full(lx, ly, lz, vx, vy, vz, nx, ny, nz, n, p0, p1);
+#endif
+    if (kind == 5)
+        f = tp_merl_lookup16(table, lx, ly, lz, vx, vy, vz, nx, ny, nz);
+    float16 nl = nx * lx + ny * ly + nz * lz, nv = nx * vx + ny * vy + nz * vz;
+    return select((float16)(0.0f), f, isgreater(nl, 0.0f) & isgreater(nv, 0.0f));
+}
+
+#define TP_FULL_STREAM(a, xn, yn, xl, yl, xv, yv, n, id, kind, p0, p1)                          \
+    do {                                                                                        \
+        float16 in_ = rsqrt(xn * xn + yn * yn + 1.0f);                                          \
+        float16 il_ = rsqrt(xl * xl + yl * yl + 1.0f);                                          \
+        float16 iv_ = rsqrt(xv * xv + yv * yv + 1.0f);                                          \
+        a += tp_full_eval(kind, xl * il_, yl * il_, il_, xv * iv_, yv * iv_, iv_, xn * in_,     \
+                          yn * in_, in_, n, p0, p1, table);                                     \
+    } while (0)
+
+#define TP_TABLE_ARG , __global const float *table
+#define TP_FULL_MODEL_KERNELS(kind)                                                              \
+    TP_VEC_KERNEL_OF(tp_full_##kind, 0, kind, TP_FULL_STREAM, TP_TABLE_ARG)                      \
+    __kernel void tp_full_points_##kind(const float p0, const float p1, __global const float *g,  \
+                                        const uint count, __global float *out,                  \
+                                        __global const float *table)                            \
+    {                                                                                           \
+        const size_t i = get_global_id(0);                                                      \
+        vstore16(tp_full_eval(kind, vload16(i, g), vload16(i, g + count),                       \
+                              vload16(i, g + 2 * count), vload16(i, g + 3 * count),             \
+                              vload16(i, g + 4 * count), vload16(i, g + 5 * count),             \
+                              vload16(i, g + 6 * count), vload16(i, g + 7 * count),             \
+                              vload16(i, g + 8 * count), vload16(i, g + 9 * count), p0, p1,     \
+                              table), i, out);                                                  \
+    }
 
 #endif
 

@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
+#include "measured.h"
 #include "pbcost.h"
 #include "throughput.h"
 #include "usermodel.h"
@@ -74,6 +75,7 @@ int cmd_throughput(int argc, char **argv)
     device_options_init(&dev);
     const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL, *ab_options = NULL;
     int quiet = 0, models_given = 0;
+    const char *measured_arg = NULL;
 
     const struct cli_flag flags[] = {
         CLI_FLAG_MODELS(&models_text, &models_given, "all; with --model or --model-file, only the user models"),
@@ -111,6 +113,9 @@ int cmd_throughput(int argc, char **argv)
           .max = 998, .help = "step of n of the timed sweep over [2, 1000]" },
         { .name = "--sweep-reps", .value = "N", .kind = CLI_INT, .dest = &o.sweep_reps, .min = 1, .max = TP_MAX_REPS,
           .help = "timed runs per model of the sweep" },
+        { .name = "--measured", .value = "FILE|DIR", .kind = CLI_PATH, .dest = &measured_arg, .def = "",
+          .help = "also time the lookup of measured materials (MERL .binary files, a folder's; at most 4) as rows "
+                  "of the physically based table, from a device buffer in the file's layout (docs/measured.md)" },
         CLI_FLAGS_DOCUMENTS(&out_dir, &json_path, &csv_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_USERMODEL,
@@ -160,6 +165,22 @@ int cmd_throughput(int argc, char **argv)
     }
     if (throughput_options_check(&o, err, sizeof err))
         goto usage_error;
+    /* the measured materials, read before anything is made */
+    struct merl_material mats[PBCOST_MAX_MEASURED];
+    struct pbcost_options po;
+    pbcost_options_default(&po);
+    if (measured_arg) {
+        int lrc = measured_load("--measured", measured_arg, PBCOST_MAX_MEASURED, mats, &po.nmeasured, err, sizeof err);
+        if (lrc == EXIT_USAGE)
+            goto usage_error;
+        if (lrc)
+            return lrc;
+        for (int i = 0; i < po.nmeasured; ++i)
+            po.measured[i] = &mats[i];
+    }
+    int full_models = 0;
+    for (int i = 0; i < usermodel_count(); ++i)
+        full_models += usermodel_at(i)->full;
 
     /* PoCL reads this when the platform is first opened. */
     setenv("POCL_AFFINITY", "1", 0);
@@ -168,11 +189,11 @@ int cmd_throughput(int argc, char **argv)
     char run_dir[4096], tmp_dir[512];
     int rc = cli_run_check_documents("throughput", json_path, csv_path);
     if (rc)
-        return rc;
+        goto free_measured;
     rc = cli_run_open("throughput", &s, &dev, out_dir, (json_path || csv_path) && !out_dir, run_dir,
                       sizeof run_dir, tmp_dir, sizeof tmp_dir);
     if (rc)
-        return rc;
+        goto free_measured;
     /* a document on standard output: the engine's table (and its progress) stay off */
     int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
     rc = throughput_run(&s, &o, run_dir, tp_quiet);
@@ -185,14 +206,15 @@ int cmd_throughput(int argc, char **argv)
             printf("A/B in one process: brdfbench compare %s/ab/a %s/ab/b\n", run_dir, run_dir);
         }
     }
-    /* the physically based models from full vectors (pbcost.h), in a run of the default set */
-    if (!rc && !models_given && usermodel_count() == 0 && !tmp_dir[0]) {
+    /* the physically based models from full vectors (pbcost.h), in a run of the default set, and
+       with the user full BRDFs and measured materials */
+    if (!rc && ((!models_given && usermodel_count() == 0) || full_models || po.nmeasured) && !tmp_dir[0]) {
         if (s.specialise)   /* its kernels are float16 (kernels/throughput.cl, TP_W) */
             fprintf(stderr, "throughput: the physically based models' full-vector table is not run on %s: its kernels "
                             "are float16 only, which this driver compiles for minutes (PoCL runs it)\n",
                     s.platform_name);
         else
-            rc = pbcost_run_write(&s, run_dir, tp_quiet);
+            rc = pbcost_run_write(&s, &po, run_dir, tp_quiet);
     }
     if (!rc)
         rc = cli_run_latest("throughput", out_dir, tmp_dir, run_dir);
@@ -202,6 +224,9 @@ int cmd_throughput(int argc, char **argv)
         rc = cli_run_deliver("throughput", run_dir, "throughput.csv", "--csv", csv_path);
     cli_temp_dir_remove(tmp_dir);
     clsession_close(&s);
+free_measured:
+    for (int i = 0; i < po.nmeasured; ++i)
+        merl_free(&mats[i]);
     return rc;
 
 usage_error:

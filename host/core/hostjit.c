@@ -126,6 +126,7 @@ static const char epilogue[] =
 struct hostjit {
     TCCState *tcc;
     hostjit_fn fn;
+    hostjit_full_fn full;
 };
 
 struct jit_errors {
@@ -214,6 +215,9 @@ struct hostjit *hostjit_compile(const char *models_header, const char *model_tex
     }
     /* An object pointer to a function pointer: what tcc_get_symbol returns is code. */
     memcpy(&j->fn, &sym, sizeof j->fn);
+    void *full = tcc_get_symbol(s, "brdfbench_host_full");
+    if (full)
+        memcpy(&j->full, &full, sizeof j->full);
     j->tcc = s;
     free(src);
     return j;
@@ -228,6 +232,7 @@ fail:
 }
 
 hostjit_fn hostjit_function(const struct hostjit *j) { return j ? j->fn : NULL; }
+hostjit_full_fn hostjit_full_function(const struct hostjit *j) { return j ? j->full : NULL; }
 
 void hostjit_free(struct hostjit *j)
 {

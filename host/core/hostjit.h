@@ -28,6 +28,11 @@ typedef double (*hostjit_fn)(double c, double n, double p0, double p1);
  * the compiler's first message in err (file:line: error ...) when the text is not C. */
 struct hostjit *hostjit_compile(const char *models_header, const char *model_text, char *err, size_t errlen);
 hostjit_fn hostjit_function(const struct hostjit *j);
+/* A full BRDF's function of the vectors (L, V, N components, n, p0, p1), the text's
+ * brdfbench_host_full, or NULL where the text defines none. */
+typedef double (*hostjit_full_fn)(double lx, double ly, double lz, double vx, double vy, double vz, double nx,
+                                  double ny, double nz, double n, double p0, double p1);
+hostjit_full_fn hostjit_full_function(const struct hostjit *j);
 void hostjit_free(struct hostjit *j);
 
 

@@ -164,19 +164,7 @@ static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1]
 void merl_half_diff(const double L[3], const double V[3], const double N[3], double *theta_h, double *theta_d,
                     double *phi_d)
 {
-    /* A tangent frame (T, B, N): T from the axis least aligned with N. */
-    double a[3] = { 0, 0, 0 };
-    int least = fabs(N[0]) <= fabs(N[1]) ? (fabs(N[0]) <= fabs(N[2]) ? 0 : 2) : (fabs(N[1]) <= fabs(N[2]) ? 1 : 2);
-    a[least] = 1;
-    double d = dot3(a, N);
-    double T[3] = { a[0] - d * N[0], a[1] - d * N[1], a[2] - d * N[2] };
-    double tl = sqrt(dot3(T, T));
-    T[0] /= tl;
-    T[1] /= tl;
-    T[2] /= tl;
-    double B[3] = { N[1] * T[2] - N[2] * T[1], N[2] * T[0] - N[0] * T[2], N[0] * T[1] - N[1] * T[0] };
-    brdf_merl_half_diff(dot3(L, T), dot3(L, B), dot3(L, N), dot3(V, T), dot3(V, B), dot3(V, N), theta_h, theta_d,
-                        phi_d);
+    brdf_merl_half_diff_n(L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], theta_h, theta_d, phi_d);
 }
 
 long merl_index(double theta_h, double theta_d, double phi_d, int *ith, int *itd, int *ipd)
@@ -233,6 +221,38 @@ int merl_lookup(const struct merl_material *m, const double L[3], const double V
     return merl_cell(m, merl_index(th, td, pd, NULL, NULL, NULL), rgb);
 }
 
+double merl_luminance(const struct merl_material *m, const double L[3], const double V[3], const double N[3])
+{
+    double rgb[3];
+    merl_lookup(m, L, V, N, rgb);
+    return brdf_merl_luminance(rgb[0], rgb[1], rgb[2]);
+}
+
+int merl_table_buffer(struct cl_session *s, const struct merl_material *m, cl_mem *out)
+{
+    size_t table_bytes = 3 * (size_t)MERL_CELLS * sizeof(float);
+    *out = NULL;
+    if (table_bytes > s->max_alloc) {
+        fprintf(stderr, "brdfbench: %s: the %zu-byte table exceeds the device's allocation limit (%llu bytes)\n",
+                m->name, table_bytes, (unsigned long long)s->max_alloc);
+        return EXIT_RUNTIME;
+    }
+    float *table = malloc(table_bytes);
+    if (!table) {
+        fprintf(stderr, "brdfbench: %s: out of memory for the device table\n", m->name);
+        return EXIT_RUNTIME;
+    }
+    for (size_t i = 0; i < 3 * (size_t)MERL_CELLS; ++i)
+        table[i] = (float)m->value[i];
+    int rc = 0;
+    cl_int e;
+    *out = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, table_bytes, table, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(merl table)", done);
+done:
+    free(table);
+    return rc;
+}
+
 int merl_eval_device(struct cl_session *s, const struct merl_material *m, const float *L, const float *V,
                      size_t count, float *rgb, int *index)
 {
@@ -241,7 +261,6 @@ int merl_eval_device(struct cl_session *s, const struct merl_material *m, const 
     cl_program program = NULL;
     cl_kernel kernel = NULL;
     cl_mem buf[5] = { NULL, NULL, NULL, NULL, NULL };
-    float *table = NULL;
     static const char *const names[] = { "merl_lookup" };
     cl_kernel *const kernels[] = { &kernel };
     size_t table_bytes = 3 * (size_t)MERL_CELLS * sizeof(float);
@@ -253,18 +272,9 @@ int merl_eval_device(struct cl_session *s, const struct merl_material *m, const 
                 "limit (%llu bytes)\n", count, table_bytes, (unsigned long long)s->max_alloc);
         return EXIT_RUNTIME;
     }
-    table = malloc(table_bytes);
-    if (!table) {
-        fprintf(stderr, "brdfbench: merl lookup: out of memory\n");
-        return EXIT_RUNTIME;
-    }
-    for (size_t i = 0; i < 3 * (size_t)MERL_CELLS; ++i)
-        table[i] = (float)m->value[i];
     rc = clsession_build_kernels(s, "merl.cl", NULL, "", &program, 1, names, kernels);
-    if (rc)
+    if (rc || (rc = merl_table_buffer(s, m, &buf[0])) != 0)
         goto done;
-    buf[0] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, table_bytes, table, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(merl table)", done);
     buf[1] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, 3 * count * sizeof(float), (void *)L, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(merl L)", done);
     buf[2] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, 3 * count * sizeof(float), (void *)V, &e);
@@ -292,6 +302,5 @@ done:
         if (buf[i])
             clReleaseMemObject(buf[i]);
     clsession_release_kernels(&program, 1, kernels);
-    free(table);
     return rc;
 }

@@ -64,6 +64,13 @@ int merl_cell(const struct merl_material *m, long idx, double rgb[3]);
 /* The device lookup (kernels/merl.cl): count tangent-space direction pairs (L, V as xyz triples,
  * N = z, floats) evaluated from a float copy of the table (3 x MERL_CELLS, scaled); rgb
  * receives 3 floats per pair, index the flat cell index used. Returns 0 or an exit code. */
+/* A device buffer of the table in its file's layout (3 x MERL_CELLS floats, scaled), what the
+ * kernels that look a material up read (kernels/merl.cl, shade.cl, throughput.cl). Returns 0 or
+ * an exit code (a message on stderr). */
+int merl_table_buffer(struct cl_session *s, const struct merl_material *m, cl_mem *out);
+/* The luminance of the cell holding (L, V) about N (brdf_merl_luminance: 0 where not measured). */
+double merl_luminance(const struct merl_material *m, const double L[3], const double V[3], const double N[3]);
+
 int merl_eval_device(struct cl_session *s, const struct merl_material *m, const float *L, const float *V,
                      size_t count, float *rgb, int *index);
 

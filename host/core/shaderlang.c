@@ -2253,6 +2253,27 @@ static int valid_identifier(const char *s)
     "vec3 brdfbench_V = vec3(2.0 * brdfbench_c * sqrt(max((1.0 - brdfbench_c) * (1.0 + brdfbench_c), 0.0)), " \
     "0.0, brdfbench_nv); "
 #define SL_LUMINANCE "vec3(0.2126, 0.7152, 0.0722)"
+/* The tangents X, Y a full BRDF of (L, V, N, X, Y) gets at a normal N of the scene: the
+ * branch-free orthonormal basis of Duff et al. 2017 ("Building an orthonormal basis, revisited");
+ * an isotropic BRDF does not depend on them. */
+#define SL_TANGENT_FRAME                                                                               \
+    "float brdfbench_s = brdfbench_N.z >= 0.0 ? 1.0 : -1.0; "                                          \
+    "float brdfbench_a = -1.0 / (brdfbench_s + brdfbench_N.z); "                                       \
+    "float brdfbench_b = brdfbench_N.x * brdfbench_N.y * brdfbench_a; "                                \
+    "vec3 brdfbench_X = vec3(1.0 + brdfbench_s * brdfbench_N.x * brdfbench_N.x * brdfbench_a, "        \
+    "brdfbench_s * brdfbench_b, -brdfbench_s * brdfbench_N.x); "                                       \
+    "vec3 brdfbench_Y = vec3(brdfbench_b, brdfbench_s + brdfbench_N.y * brdfbench_N.y * brdfbench_a, " \
+    "-brdfbench_N.y); "
+
+/* The opening of the full-vector function of a full BRDF (SHADERLANG_FULL_FUNCTION), with nparams
+ * model parameters, up to its first statement. */
+static void full_function_open(struct md_buf *w, int nparams)
+{
+    md_printf(w, " float brdfbench_full(vec3 brdfbench_L, vec3 brdfbench_V, vec3 brdfbench_N, float brdfbench_n");
+    for (int i = 0; i < nparams; ++i)
+        md_printf(w, ", float brdfbench_p%d", i);
+    md_printf(w, ") { " SL_TANGENT_FRAME);
+}
 
 /* A model function of vectors, float|vec3 f(vec3 L, vec3 V, vec3 N[, vec3 X, vec3 Y], float n
  * [, float p0[, float p1]]): a full BRDF. Appends and parses the lobe function that calls it
@@ -2292,6 +2313,16 @@ static struct func *full_brdf_lobe(struct sl *S, struct func *f, const struct he
         md_printf(&w, ", brdfbench_p%d", i);
     md_printf(&w, "); float brdfbench_y = %s; return brdfbench_nv > 0.0 ? brdfbench_y : 0.0; }",
               f->ret.n == 3 ? "dot(brdfbench_r, " SL_LUMINANCE ")" : "brdfbench_r");
+    /* the same function at the vectors of a scene (render, the physical-cost table) */
+    full_function_open(&w, h->nparams);
+    md_printf(&w, "%s brdfbench_r = %.*s(brdfbench_L, brdfbench_V, brdfbench_N, ", f->ret.n == 3 ? "vec3" : "float",
+              f->name->len, f->name->p);
+    if (nvec == 5)
+        md_printf(&w, "brdfbench_X, brdfbench_Y, ");
+    md_printf(&w, "brdfbench_n");
+    for (int i = 0; i < h->nparams; ++i)
+        md_printf(&w, ", brdfbench_p%d", i);
+    md_printf(&w, "); return %s; }", f->ret.n == 3 ? "dot(brdfbench_r, " SL_LUMINANCE ")" : "brdfbench_r");
     if (w.failed) {
         md_free(&w);
         sl_fail_at(S, 0, 0, "out of memory");
@@ -2309,6 +2340,90 @@ static struct func *full_brdf_lobe(struct sl *S, struct func *f, const struct he
         if (tok_is(g->name, "brdfbench_lobe"))
             return g;
     sl_fail_at(S, 0, 0, "internal: the lobe function of the full BRDF is missing");
+}
+
+/* Emits the function emit_name: the model's (c, n[, p...]), or with full set the full-vector
+ * function of a full BRDF (REAL L, V, N components, n[, p...]). */
+static void emit_function(struct sl *S, struct func *model, struct stmt *body, struct stmt *globals,
+                          const struct header *h, const char *emit_name, int first_line, int full)
+{
+    S->line_next = -1;
+    int fline = model && model->name->line > 0 ? model->name->line : first_line;
+    S->stmt_line = fline;
+    md_printf(&S->out, "#line %d \"", fline);
+    for (const char *p = S->origin; *p; ++p) {
+        if (*p == '"' || *p == '\\')
+            md_append(&S->out, "\\", 1);
+        md_append(&S->out, p, 1);
+    }
+    if (full)
+        md_printf(&S->out, "\"\nREAL %s(REAL sl_a0_x, REAL sl_a0_y, REAL sl_a0_z, REAL sl_a1_x, REAL sl_a1_y, "
+                  "REAL sl_a1_z, REAL sl_a2_x, REAL sl_a2_y, REAL sl_a2_z, REAL sl_n", emit_name);
+    else
+        md_printf(&S->out, "\"\nREAL %s(REAL sl_c, REAL sl_n", emit_name);
+    for (int i = 0; i < h->nparams; ++i)
+        md_printf(&S->out, ", RSCALAR sl_p%d", i);
+    md_printf(&S->out, ")\n{\n");
+    S->line_next = fline + 2;
+    push_scope(S, 1);
+    S->globals = S->scope;
+    struct fnctx fc = { { B_FLOAT, 1 }, { NULL }, NULL, NULL, 1, 0 };
+    S->fn = &fc;
+    /* The arguments: in the function form in a scope of their own under the globals (a helper
+       sees the globals, not the model's arguments); in the body form among the globals. */
+    struct scope *args = S->globals;
+    if (model) {
+        push_scope(S, 1);
+        args = S->scope;
+    }
+    static const struct tok cn[2] = { { K_ID, 0, 0, "c", 1 }, { K_ID, 0, 0, "n", 1 } };
+    struct tok pt[SL_MAX_PARAMS];
+    if (full) {
+        /* L, V, N, n, then the parameters */
+        for (int i = 0; i < model->nparams; ++i) {
+            struct sym *s = declare(S, args, model->pname[i], model->pty[i]);
+            for (int k = 0; k < model->pty[i].n && i < 3; ++k)
+                out_line(S, "REAL %s = sl_a%d_%c;", s->c[k], i, "xyz"[k]);
+            if (i == 3)
+                out_line(S, "REAL %s = sl_n;", s->c[0]);
+            else if (i > 3)
+                out_line(S, "REAL %s = RSPLAT(sl_p%d);", s->c[0], i - 4);
+        }
+    }
+    for (int i = 0; i < 2 + h->nparams && !full; ++i) {
+        const struct tok *pn;
+        struct type ty = { B_FLOAT, 1 };
+        if (model) {
+            pn = model->pname[i];
+            ty = model->pty[i];
+        } else if (i < 2) {
+            pn = &cn[i];
+        } else {
+            pt[i - 2] = (struct tok){ K_ID, 0, 0, h->params[i - 2], (int)strlen(h->params[i - 2]) };
+            pn = &pt[i - 2];
+            ty.b = h->integer[i - 2] ? B_INT : B_FLOAT;
+        }
+        struct sym *s = declare(S, args, pn, ty);
+        if (i < 2)
+            out_line(S, "REAL %s = sl_%c;", s->c[0], i == 0 ? 'c' : 'n');
+        else if (ty.b == B_INT)
+            out_line(S, "int %s = (int)sl_p%d;", s->c[0], i - 2);
+        else
+            out_line(S, "REAL %s = RSPLAT(sl_p%d);", s->c[0], i - 2);
+    }
+    if (model) {
+        S->scope = S->globals;
+        emit_block(S, globals, NULL, 0);
+        S->scope = args;
+        S->inlining[S->ninline++] = model;
+        emit_block(S, model->body, NULL, 0);
+    } else {
+        S->allow_implicit = 1;
+        emit_block(S, body, NULL, 0);
+    }
+    if (!fc.returned)
+        out_line(S, "return sl_ret;");
+    md_printf(&S->out, "}\n");
 }
 
 static __attribute__((noinline)) void translate_text(struct sl *S, const char *text, size_t len, const struct header *h, const char *name)
@@ -2419,67 +2534,15 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
                   full_brdf ? " * lobe: theta_h\n * reference: blinn\n * description: a full BRDF: luminance of "
                               "f(L = N, V) with theta_h = acos(c)\n" : "");
     }
-    S->line_next = -1;
-    int fline = model && model->name->line > 0 ? model->name->line : first_line;
-    S->stmt_line = fline;
-    md_printf(&S->out, "#line %d \"", fline);
-    for (const char *p = S->origin; *p; ++p) {
-        if (*p == '"' || *p == '\\')
-            md_append(&S->out, "\\", 1);
-        md_append(&S->out, p, 1);
-    }
-    md_printf(&S->out, "\"\nREAL %s(REAL sl_c, REAL sl_n", emit_name);
-    for (int i = 0; i < h->nparams; ++i)
-        md_printf(&S->out, ", RSCALAR sl_p%d", i);
-    md_printf(&S->out, ")\n{\n");
-    S->line_next = fline + 2;
-    push_scope(S, 1);
-    S->globals = S->scope;
-    struct fnctx fc = { { B_FLOAT, 1 }, { NULL }, NULL, NULL, 1, 0 };
-    S->fn = &fc;
-    /* The arguments: in the function form in a scope of their own under the globals (a helper
-       sees the globals, not the model's arguments); in the body form among the globals. */
-    struct scope *args = S->globals;
-    if (model) {
-        push_scope(S, 1);
-        args = S->scope;
-    }
-    static const struct tok cn[2] = { { K_ID, 0, 0, "c", 1 }, { K_ID, 0, 0, "n", 1 } };
-    struct tok pt[SL_MAX_PARAMS];
-    for (int i = 0; i < 2 + h->nparams; ++i) {
-        const struct tok *pn;
-        struct type ty = { B_FLOAT, 1 };
-        if (model) {
-            pn = model->pname[i];
-            ty = model->pty[i];
-        } else if (i < 2) {
-            pn = &cn[i];
-        } else {
-            pt[i - 2] = (struct tok){ K_ID, 0, 0, h->params[i - 2], (int)strlen(h->params[i - 2]) };
-            pn = &pt[i - 2];
-            ty.b = h->integer[i - 2] ? B_INT : B_FLOAT;
-        }
-        struct sym *s = declare(S, args, pn, ty);
-        if (i < 2)
-            out_line(S, "REAL %s = sl_%c;", s->c[0], i == 0 ? 'c' : 'n');
-        else if (ty.b == B_INT)
-            out_line(S, "int %s = (int)sl_p%d;", s->c[0], i - 2);
-        else
-            out_line(S, "REAL %s = RSPLAT(sl_p%d);", s->c[0], i - 2);
-    }
-    if (model) {
-        S->scope = S->globals;
-        emit_block(S, globals, NULL, 0);
-        S->scope = args;
-        S->inlining[S->ninline++] = model;
-        emit_block(S, model->body, NULL, 0);
-    } else {
-        S->allow_implicit = 1;
-        emit_block(S, body, NULL, 0);
-    }
-    if (!fc.returned)
-        out_line(S, "return sl_ret;");
-    md_printf(&S->out, "}\n");
+    emit_function(S, model, body, globals, h, emit_name, first_line, 0);
+    /* a full BRDF: its function of the vectors too */
+    if (full_brdf || h->header_text)
+        for (struct func *g = S->funcs; g; g = g->next)
+            if (tok_is(g->name, "brdfbench_full")) {
+                S->scope = NULL;
+                S->ninline = 0;
+                emit_function(S, g, NULL, globals, h, SHADERLANG_FULL_FUNCTION, first_line, 1);
+            }
     if (S->out.failed)
         sl_fail_at(S, 0, 0, "out of memory");
 }
@@ -2554,6 +2617,19 @@ static int parse_finite(const char *t, double *v)
 /* A BRDF Explorer file: "::begin parameters" (float NAME MIN MAX DEFAULT, bool NAME 0|1,
  * color NAME R G B) and "::begin shader" with vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y),
  * as a full BRDF reduced to a lobe (docs/user-models.md, "BRDF Explorer files"). */
+/* The statements that open a .brdf file's functions: the shininess to n (or alpha) and the model
+ * parameters to their globals. */
+static void brdf_set_params(struct md_buf *epi, int has_n, const struct brdf_param *prm, const int *model_params,
+                            int nmp)
+{
+    if (has_n)
+        md_printf(epi, "n = brdfbench_n; ");
+    else
+        md_printf(epi, "alpha = sqrt(2.0 / (brdfbench_n + 2.0)); ");
+    for (int i = 0; i < nmp; ++i)
+        md_printf(epi, "%s = brdfbench_p%d; ", prm[model_params[i]].name, i);
+}
+
 static int brdf_file(const char *text, size_t len, const char *path, const char *name, char **out, size_t *outlen,
                      char *err, size_t errlen)
 {
@@ -2714,12 +2790,7 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
     for (int i = 0; i < nmp; ++i)
         md_printf(&epi, ", float brdfbench_p%d", i);
     md_printf(&epi, ") { ");
-    if (shin >= 0)
-        md_printf(&epi, "n = brdfbench_n; ");
-    else
-        md_printf(&epi, "alpha = sqrt(2.0 / (brdfbench_n + 2.0)); ");
-    for (int i = 0; i < nmp; ++i)
-        md_printf(&epi, "%s = brdfbench_p%d; ", prm[model_params[i]].name, i);
+    brdf_set_params(&epi, shin >= 0, prm, model_params, nmp);
     /* L = N, V at 2 theta_h from N in the XZ plane: N.V = 2c^2 - 1, N.H = V.H = c */
     md_printf(&epi, "vec3 brdfbench_N = vec3(0.0, 0.0, 1.0); "
                     "float brdfbench_nv = 2.0 * brdfbench_c * brdfbench_c - 1.0; "
@@ -2729,6 +2800,10 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
                     "vec3(0.0, 1.0, 0.0)); "
                     "float brdfbench_y = dot(brdfbench_rgb, vec3(0.2126, 0.7152, 0.0722)); "
                     "return brdfbench_nv > 0.0 ? brdfbench_y : 0.0; }");
+    full_function_open(&epi, nmp);
+    brdf_set_params(&epi, shin >= 0, prm, model_params, nmp);
+    md_printf(&epi, "return dot(BRDF(brdfbench_L, brdfbench_V, brdfbench_N, brdfbench_X, brdfbench_Y), "
+                    "vec3(0.2126, 0.7152, 0.0722)); }");
     int rc;
     if (hb.failed || pre.failed || epi.failed) {
         rc = brdf_fail(err, errlen, path, 0, "out of memory");

@@ -20,6 +20,12 @@
 
 #define SHADERLANG_NOT_SHADER 1
 
+/* A full BRDF of (L, V, N[, X, Y]) (a GLSL/HLSL function of vectors, a .brdf file) also gets a
+ * function of the scene's vectors: REAL brdfbench_full(REAL Lx, Ly, Lz, Vx, Vy, Vz, Nx, Ny, Nz,
+ * REAL n[, RSCALAR p0[, RSCALAR p1]]), the luminance of the BRDF with the tangents X, Y made
+ * from N (usermodel.c wraps it as brdf_user_full). */
+#define SHADERLANG_FULL_FUNCTION "brdfbench_full"
+
 /* A model file. Shader language: a name ending in .glsl, .hlsl, .frag, .fx, .fxh or .hlsli,
  * or any other name but .cl whose text does not use REAL or RSCALAR. The header comment is
  * optional: without it the model is named after the file (its name up to the first dot). */

@@ -156,7 +156,7 @@ static void usermodel_fill_runtime(struct user_model *um)
 {
     snprintf(um->what, sizeof um->what, "user model '%s' (%s)", um->name, um->origin);
     um->runtime.device_source = um->device_source;
-    um->runtime.device_options = USERMODEL_FLOAT_OPTIONS;
+    um->runtime.device_options = um->full ? USERMODEL_FLOAT_OPTIONS USERMODEL_FULL_OPTION : USERMODEL_FLOAT_OPTIONS;
     um->runtime.what = um->what;
     um->runtime.eval_host = runtime_eval;
     um->runtime.open_host = runtime_open;
@@ -280,6 +280,19 @@ static int has_call_or_definition(const char *text, const char *name)
     return 0;
 }
 
+/* A full BRDF's wrappers: brdf_user_full for the kernels, brdfbench_host_full for the host's
+ * double build (hostjit.h). */
+static void full_wrapper(struct md_buf *b, const struct user_model *um)
+{
+    const char *pp = um->info.nparams > 1 ? ", p0, p1" : um->info.nparams > 0 ? ", p0" : "";
+    md_printf(b, "BRDF_FN REAL brdf_user_full(REAL lx, REAL ly, REAL lz, REAL vx, REAL vy, REAL vz, REAL nx, "
+                 "REAL ny, REAL nz, REAL n, RSCALAR p0, RSCALAR p1)\n{\n    (void)p0;\n    (void)p1;\n"
+                 "    return " SHADERLANG_FULL_FUNCTION "(lx, ly, lz, vx, vy, vz, nx, ny, nz, n%s);\n}\n", pp);
+    md_printf(b, "#ifdef BRDF_HOST_JIT\ndouble brdfbench_host_full(double lx, double ly, double lz, double vx, "
+                 "double vy, double vz, double nx, double ny, double nz, double n, double p0, double p1)\n{\n"
+                 "    return brdf_user_full(lx, ly, lz, vx, vy, vz, nx, ny, nz, n, p0, p1);\n}\n#endif\n");
+}
+
 /* The text appended to a kernel file for a model file: its whole text from line 1 (so the
  * compiler's line numbers are the file's own), then the wrapper that brdf_eval calls. */
 static int make_file_source(struct user_model *um, const char *text, size_t len)
@@ -294,6 +307,12 @@ static int make_file_source(struct user_model *um, const char *text, size_t len)
     md_printf(&b, "BRDF_FN REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n{\n");
     md_printf(&b, "    (void)p0;\n    (void)p1;\n    return %s(c, n%s%s);\n}\n", um->function,
               um->info.nparams > 0 ? ", p0" : "", um->info.nparams > 1 ? ", p1" : "");
+    static const char full_def[] = "\nREAL " SHADERLANG_FULL_FUNCTION "(";
+    um->full = 0;
+    for (size_t i = 0; i + sizeof full_def - 1 <= len && !um->full; ++i)
+        um->full = memcmp(text + i, full_def, sizeof full_def - 1) == 0;
+    if (um->full)
+        full_wrapper(&b, um);
     if (b.failed) {
         md_free(&b);
         return -1;
@@ -787,6 +806,25 @@ const char *usermodel_reference_note(const struct user_model *um)
         return NULL;
     return "the device has no cl_khr_fp64: this user model's reference is evaluated in float on the device, "
            "so its float-vs-double check does not hold";
+}
+
+const struct user_model *usermodel_full_of(const struct model_spec *m)
+{
+    const struct user_model *um = usermodel_of(m);
+    return um && um->full ? um : NULL;
+}
+
+double usermodel_eval_full_host(const struct model_spec *m, const double L[3], const double V[3], const double N[3],
+                                double n)
+{
+    const struct user_model *um = usermodel_full_of(m);
+    if (!um || !usermodel_host_ready(um) || !hostjit_full_function(um->host))
+        return NAN;
+    usermodel_watch_begin(um, NAN, n);   /* the host reference's deadline (usermodel_check.h) */
+    double v = hostjit_full_function(um->host)(L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n,
+                                               m->params[0], m->params[1]);
+    usermodel_watch_end();
+    return v;
 }
 
 double usermodel_eval_host(const struct model_spec *m, double c, double n)

@@ -49,6 +49,7 @@ struct user_model {
     char param_names[MODEL_MAX_PARAMS][USERMODEL_NAME_MAX + 1];
     char origin[512];              /* the file's path, or "--model NAME" */
     int from_file;
+    int full;                      /* a full BRDF: its text defines brdfbench_full (shaderlang.h) */
     char *device_source;           /* appended after a kernel file: #line, the user's text, a wrapper */
     char what[600];                /* "user model 'NAME' (ORIGIN)", for messages */
     struct model_runtime runtime;  /* what the registry and host/core/programs.c use */
@@ -102,8 +103,17 @@ const struct user_model *usermodel_of_info(const struct model_info *info);
     "                     e.g. --model 'sq=fmax(0.45*n*(c-1)+1,0)*fmax(0.45*n*(c-1)+1,0)';\n" \
     "                     repeatable\n"
 
-/* The options that a user model's float builds add to a kernel file's (programs.c). */
+/* The options that a user model's float builds add to a kernel file's (programs.c); a full
+ * BRDF's add USERMODEL_FULL_OPTION too, which declares brdf_user_full. */
 #define USERMODEL_FLOAT_OPTIONS "-DBRDF_HAVE_USER_MODEL -cl-single-precision-constant"
+#define USERMODEL_FULL_OPTION " -DBRDF_HAVE_USER_FULL"
+
+/* The user full BRDF behind m (a GLSL/HLSL function of vectors, a .brdf file), or NULL. */
+const struct user_model *usermodel_full_of(const struct model_spec *m);
+/* Its luminance at unit L, V, N (tangents made from N) and shininess n, in double on the host;
+ * NAN where the text does not compile on the host. */
+double usermodel_eval_full_host(const struct model_spec *m, const double L[3], const double V[3], const double N[3],
+                                double n);
 
 /* Compiles the model's host reference now (it is compiled on first use otherwise). Returns 1
  * when the model is evaluated on the host, 0 when its text is not C (the reason is in

@@ -526,6 +526,29 @@ int measured_collect(const char *arg, char ***paths, int *count, char *err, size
     return rc;
 }
 
+int measured_load(const char *flag, const char *arg, int max, struct merl_material *out, int *count, char *err,
+                  size_t errlen)
+{
+    char **paths = NULL, rerr[1024];
+    int n = 0, rc = measured_collect(arg, &paths, &n, rerr, sizeof rerr);
+    *count = 0;
+    if (!rc && n > max) {
+        snprintf(rerr, sizeof rerr, "%s: %d materials, at most %d accepted", arg, n, max);
+        rc = EXIT_USAGE;
+    }
+    for (int i = 0; i < n && !rc; ++i)
+        if ((rc = merl_read(paths[i], &out[i], rerr, sizeof rerr)) == 0)
+            ++*count;
+    if (rc) {
+        for (int i = 0; i < *count; ++i)
+            merl_free(&out[i]);
+        *count = 0;
+        snprintf(err, errlen, "%s: %s", flag, rerr);
+    }
+    measured_paths_free(paths, n);
+    return rc;
+}
+
 int measured_run(struct cl_session *s, char *const *paths, int count, const struct measured_options *o,
                  FILE *progress, struct measured_report *out, char *err, size_t errlen)
 {

@@ -104,6 +104,12 @@ struct measured_report {
  * without .binary files, more than MEASURED_MAX_MATERIALS). */
 int measured_collect(const char *arg, char ***paths, int *count, char *err, size_t errlen);
 void measured_paths_free(char **paths, int count);
+/* Reads the materials of arg (a MERL file or a folder of them, as measured_collect) into
+ * out[0..*count), at most max of them: what the flag `flag` (--measured) of throughput and render
+ * loads before any work. Returns 0 or EXIT_USAGE/EXIT_RUNTIME with a one-line message in err
+ * (nothing kept on failure). */
+int measured_load(const char *flag, const char *arg, int max, struct merl_material *out, int *count, char *err,
+                  size_t errlen);
 
 /* Reads and measures each file in turn (one table in memory at a time) into out (its
  * materials allocated here; measured_report_free). progress (may be NULL) gets a line per

@@ -3,6 +3,8 @@
 #include "pbcost.h"
 #include "runner.h"
 #include "lcg.h"
+#include "programs.h"
+#include "usermodel.h"
 
 #include "exitcodes.h"
 
@@ -71,6 +73,22 @@ static int make_rows(struct pbcost_result *r)
             row->physical = 1;
         }
     }
+    /* the user full BRDFs (GLSL/HLSL functions of vectors, .brdf files) and the measured tables */
+    for (int i = 0; i < usermodel_count() && r->count < PBCOST_MAX_ROWS; ++i) {
+        if (!usermodel_at(i)->full)
+            continue;
+        row = &r->rows[r->count++];
+        model_spec_default(&usermodel_at(i)->info, &row->spec);
+        strcpy(row->name, row->spec.label);
+        row->kind = 4;
+    }
+    for (int i = 0; i < r->o.nmeasured && r->count < PBCOST_MAX_ROWS; ++i) {
+        row = &r->rows[r->count++];
+        model_spec_default(models_find("phong"), &row->spec);   /* unused: n only */
+        snprintf(row->name, sizeof row->name, "merl:%.*s", (int)sizeof row->name - 6, r->o.measured[i]->name);
+        row->kind = 5;
+        row->merl = r->o.measured[i];
+    }
     return 0;
 }
 
@@ -105,6 +123,103 @@ static void hemi(uint64_t *st, double v[3])
 
 /* Device against double at random (N = z, L, V): half of the V near L's mirror direction, so
    the highlights are sampled; the largest |difference| relative to the sample's peak. */
+static void sample_pair(uint64_t *st, int i, double l[3], double v[3])
+{
+    hemi(st, l);
+    if (i % 2) {
+        double spread = 0.3 * lcg_unit(st);
+        double d[3];
+        hemi(st, d);
+        v[0] = -l[0] + spread * (d[0] - 0.5);
+        v[1] = -l[1] + spread * (d[1] - 0.5);
+        v[2] = l[2];
+        double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        for (int k = 0; k < 3; ++k)
+            v[k] /= len;
+    } else {
+        hemi(st, v);
+    }
+}
+
+/* The double reference of a user full BRDF or a measured row at the device's float vectors,
+   zeroed below the surface as tp_full_eval does. */
+static double full_eval_host(const struct pbcost_row *row, const double L[3], const double V[3], const double N[3],
+                             double n)
+{
+    double nl = L[0] * N[0] + L[1] * N[1] + L[2] * N[2], nv = V[0] * N[0] + V[1] * N[1] + V[2] * N[2];
+    if (!(nl > 0 && nv > 0))
+        return 0;
+    return row->kind == 5 ? merl_luminance(row->merl, L, V, N) : usermodel_eval_full_host(&row->spec, L, V, N, n);
+}
+
+/* check_row for the rows of vectors (kinds 4, 5): the same random pairs about N = z, passed as
+   the vectors themselves (planes Lxyz Vxyz Nxyz n). */
+static int check_full_row(struct cl_session *s, cl_program prog, struct pbcost_row *row, double n, cl_mem table)
+{
+    enum { P = PBCOST_CHECK_POINTS };
+    static float g[10 * P], out[P];
+    uint64_t st = 0x51ed2701a3b4c5d6ULL;
+    for (int i = 0; i < P; ++i) {
+        double l[3], v[3], nz[3] = { 0, 0, 1 };
+        sample_pair(&st, i, l, v);
+        for (int k = 0; k < 3; ++k) {
+            g[k * P + i] = (float)l[k];
+            g[(3 + k) * P + i] = (float)v[k];
+            g[(6 + k) * P + i] = (float)nz[k];
+        }
+        g[9 * P + i] = (float)n;
+    }
+    char name[64];
+    snprintf(name, sizeof name, "tp_full_points_%d", row->kind);
+    int rc = 0;
+    cl_int e;
+    cl_mem b[2] = { NULL, NULL };
+    cl_kernel k = clCreateKernel(prog, name, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_full_points)", done);
+    float p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
+    cl_uint count = P;
+    b[0] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof g, g, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_full_points input)", done);
+    b[1] = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof out, NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_full_points output)", done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof b[0], &b[0]), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof count, &count), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof b[1], &b[1]), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 5, sizeof table, &table), done);
+    size_t global = P / PBCOST_LANES;
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
+    CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
+    CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, b[1], CL_TRUE, 0, sizeof out, out, 0, NULL, NULL), done);
+    static double host[P];
+    double peak = 0, worst = 0;
+    for (int i = 0; i < P; ++i) {
+        double L[3], V[3], N[3];
+        for (int j = 0; j < 3; ++j) {
+            L[j] = g[j * P + i];
+            V[j] = g[(3 + j) * P + i];
+            N[j] = g[(6 + j) * P + i];
+        }
+        host[i] = full_eval_host(row, L, V, N, g[9 * P + i]);
+        peak = fmax(peak, fabs(host[i]));
+    }
+    for (int i = 0; i < P; ++i) {
+        double d = fabs(out[i] - host[i]) / fmax(peak, 1e-300);
+        if (!(d <= worst))
+            worst = d;   /* a NaN stays the worst */
+    }
+    row->check_max_abs_of_peak = worst;
+    row->terms_mean = row->terms_max = NAN;
+done:
+    for (int j = 1; j >= 0; --j)
+        if (b[j])
+            clReleaseMemObject(b[j]);
+    if (k)
+        clReleaseKernel(k);
+    return rc;
+}
+
 static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *row, double n)
 {
     enum { P = PBCOST_CHECK_POINTS };
@@ -112,20 +227,7 @@ static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *r
     uint64_t st = 0x51ed2701a3b4c5d6ULL;
     for (int i = 0; i < P; ++i) {
         double l[3], v[3];
-        hemi(&st, l);
-        if (i % 2) {
-            double spread = 0.3 * lcg_unit(&st);
-            double d[3];
-            hemi(&st, d);
-            v[0] = -l[0] + spread * (d[0] - 0.5);
-            v[1] = -l[1] + spread * (d[1] - 0.5);
-            v[2] = l[2];
-            double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-            for (int k = 0; k < 3; ++k)
-                v[k] /= len;
-        } else {
-            hemi(&st, v);
-        }
+        sample_pair(&st, i, l, v);
         nl[i] = (float)l[2];
         nv[i] = (float)v[2];
         lv[i] = (float)(l[0] * v[0] + l[1] * v[1] + l[2] * v[2]);
@@ -308,19 +410,25 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
     /* one program: throughput.cl with a TP_VEC_MODEL_KERNELS line per model id */
     char extra[2048] = "";
     size_t used = 0;
+    for (int i = 0; i < r->count; ++i)
+        if (r->rows[i].kind == 5) {
+            used += (size_t)snprintf(extra + used, sizeof extra - used, "TP_FULL_MODEL_KERNELS(5)\n");
+            break;
+        }
     for (int i = 0; i < r->count; ++i) {
         const struct pbcost_row *row = &r->rows[i];
-        if (row->kind == 3)
+        if (row->kind >= 3)
             continue;
         int dup = 0;
         for (int j = 0; j < i; ++j)
-            dup |= r->rows[j].kind != 3 && r->rows[j].spec.info->kernel_id == row->spec.info->kernel_id;
+            dup |= r->rows[j].kind < 3 && r->rows[j].spec.info->kernel_id == row->spec.info->kernel_id;
         if (!dup)
             used += (size_t)snprintf(extra + used, sizeof extra - used, "TP_VEC_MODEL_KERNELS(%d, %d)\n",
                                      row->spec.info->kernel_id, row->kind);
     }
     cl_program prog = NULL;
     cl_kernel kern[PBCOST_MAX_ROWS] = { NULL };
+    cl_mem table[PBCOST_MAX_ROWS] = { NULL };   /* a measured row's table; a small dummy else */
     cl_mem out = NULL;
     if (!quiet)
         fprintf(stderr, "physical: building the full-vector kernels...\n");
@@ -334,19 +442,39 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
     for (int i = 0; i < r->count; ++i) {
         struct pbcost_row *row = &r->rows[i];
         char name[64];
+        cl_program rprog = prog;   /* a user full BRDF: throughput.cl with its text (programs.h) */
+        if (row->kind == 4 &&
+            (rc = programs_program(s, "throughput.cl", "TP_FULL_MODEL_KERNELS(4)\n", "", &row->spec, NULL, &rprog)))
+            goto done;
         if (row->kind == 3)
             snprintf(name, sizeof name, "tp_vec_pow");
+        else if (row->kind >= 4)
+            snprintf(name, sizeof name, "tp_full_%d", row->kind);
         else
             snprintf(name, sizeof name, "tp_vec_%d", row->spec.info->kernel_id);
-        kern[i] = clCreateKernel(prog, name, &e);
+        kern[i] = clCreateKernel(rprog, name, &e);
         CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec)", done);
         float n = (float)o->n, p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
         CL_CHECK_GOTO(clSetKernelArg(kern[i], 0, sizeof n, &n), done);
         CL_CHECK_GOTO(clSetKernelArg(kern[i], 1, sizeof p0, &p0), done);
         CL_CHECK_GOTO(clSetKernelArg(kern[i], 2, sizeof p1, &p1), done);
         CL_CHECK_GOTO(clSetKernelArg(kern[i], 5, sizeof out, &out), done);
-        if ((rc = check_row(s, prog, row, o->n)) != 0)
+        if (row->kind >= 4) {
+            if (row->kind == 5) {
+                if ((rc = merl_table_buffer(s, row->merl, &table[i])) != 0)
+                    goto done;
+            } else {
+                table[i] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY, 16 * sizeof(float), NULL, &e);
+                CL_CHECK_ERR_GOTO(e, "clCreateBuffer(physical dummy table)", done);
+            }
+            CL_CHECK_GOTO(clSetKernelArg(kern[i], 6, sizeof table[i], &table[i]), done);
+            rc = check_full_row(s, rprog, row, o->n, table[i]);
+        } else {
+            rc = check_row(s, prog, row, o->n);
+        }
+        if (rc)
             goto done;
+        snprintf(row->status, sizeof row->status, "%s", row->check_max_abs_of_peak <= PBCOST_CHECK_TOL ? "ok" : "check");
     }
     /* warm-up, calibration and the timed launches by the measurement runner (host/core/runner.h):
        the rows interleaved in a fresh random order each round, so that their ratios compare
@@ -357,7 +485,8 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
         memset(items, 0, sizeof items);
         for (int i = 0; i < r->count; ++i) {
             ctx[i] = (struct pbcost_launch){ s, kern[i], global };
-            items[i] = (struct runner_item){ .name = r->rows[i].spec.label, .launch = pbcost_item_launch,
+            items[i] = (struct runner_item){ .name = r->rows[i].kind >= 4 ? r->rows[i].name : r->rows[i].spec.label,
+                                             .launch = pbcost_item_launch,
                                              .ctx = &ctx[i], .calibrate = 1,
                                              .work_per_iter = (double)global * PBCOST_STREAMS * PBCOST_LANES,
                                              .cpu_threads = s->is_cpu ? (int)s->compute_units : 0 };
@@ -375,7 +504,7 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
             struct pbcost_row *row = &r->rows[i];
             const struct runner_item *it = &items[i];
             if (!it->ok || it->nreps == 0) {
-                fprintf(stderr, "brdfbench: physical: %s: %s\n", row->spec.label, it->reason);
+                fprintf(stderr, "brdfbench: physical: %s: %s\n", row->name, it->reason);
                 rc = EXIT_RUNTIME;
                 break;
             }
@@ -404,9 +533,12 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
     }
     r->seconds = wall_seconds() - t0;
 done:
-    for (int i = 0; i < PBCOST_MAX_ROWS; ++i)
+    for (int i = 0; i < PBCOST_MAX_ROWS; ++i) {
         if (kern[i])
             clReleaseKernel(kern[i]);
+        if (table[i])
+            clReleaseMemObject(table[i]);
+    }
     if (out)
         clReleaseMemObject(out);
     if (prog)

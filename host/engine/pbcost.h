@@ -12,9 +12,12 @@
 #include <stdio.h>
 
 #include "clsession.h"
+#include "merl.h"
 #include "models.h"
 
-#define PBCOST_MAX_ROWS 16
+#define PBCOST_MAX_ROWS 24
+#define PBCOST_MAX_MEASURED 4    /* measured materials as rows (--measured) */
+#define PBCOST_CHECK_TOL 1e-3    /* a row's check: |device - double| / peak at most this */
 #define PBCOST_CHECK_POINTS 4096
 #define PBCOST_TERMS_THETA 5     /* theta = 0, 30, 60, 75, 85 degrees */
 #define PBCOST_TERMS_RATIO 6     /* sigma0 / lambda = 0.01, 0.05, 0.1, 0.2, 0.5, 1 */
@@ -24,13 +27,18 @@ struct pbcost_options {
     int reps;                    /* timed launches per row (default 9) */
     double min_time;             /* seconds one timed launch lasts at least (default 0.02) */
     long work_items;             /* 0: 32 per compute unit */
+    int nmeasured;               /* measured materials timed as rows (table lookups) */
+    const struct merl_material *measured[PBCOST_MAX_MEASURED];
 };
 void pbcost_options_default(struct pbcost_options *o);
 
 struct pbcost_row {
     struct model_spec spec;      /* the model (for pow(): phong's spec) */
     char name[MODEL_LABEL_MAX + 16];
-    int kind;                    /* 0 lobe of R.V, 1 lobe of N.H, 2 physically based, 3 pow() */
+    int kind;                    /* 0 lobe of R.V, 1 lobe of N.H, 2 physically based, 3 pow(),
+                                    4 a user full BRDF of (L, V, N), 5 a measured material */
+    const struct merl_material *merl;   /* kind 5 */
+    char status[8];              /* "ok", or "check" where the device misses the double reference */
     int physical;
     long iters;
     double evals_per_launch;
@@ -61,9 +69,10 @@ struct pbcost_result {
 /* Measures every row. Returns 0 or an exit code (a message on stderr). */
 int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r, int quiet);
 
-/* The default measurement, written to out_dir/physical.json, the table on stdout unless quiet
+/* The default measurement with the user full BRDFs registered and the measured materials of
+ * o (NULL: none), written to out_dir/physical.json, the table on stdout unless quiet
  * (`brdfbench throughput` runs it beside its own rows). Returns 0 or an exit code. */
-int pbcost_run_write(struct cl_session *s, const char *out_dir, int quiet);
+int pbcost_run_write(struct cl_session *s, const struct pbcost_options *o, const char *out_dir, int quiet);
 
 /* The number of terms He's directional-diffuse sum takes (double host, float-resolution
  * stopping rule) for unit vectors given by their cosines, with the rough aluminium preset's

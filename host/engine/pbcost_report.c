@@ -14,7 +14,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const kind_names[4] = { "lobe of R.V", "lobe of N.H", "BRDF of (N, L, V)", "pow(R.V, n)" };
+static const char *const kind_names[6] = { "lobe of R.V", "lobe of N.H", "BRDF of (N, L, V)", "pow(R.V, n)",
+                                           "user BRDF (N, L, V)", "table lookup" };
+#define PBCOST_LOOKUP_NOTE "a measured material's row is a table lookup (the half/difference angles and three loads " \
+                           "from a 17.5 MB table in device memory): its cost is memory bandwidth, not arithmetic"
 
 static void jw_terms(struct jw *w, const char *key, const struct pbcost_result *r,
                      const int t[PBCOST_TERMS_THETA][PBCOST_TERMS_RATIO])
@@ -65,6 +68,7 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
         jw_kv_num(&w, "ratio_to_pow", row->ratio_to_pow);
         jw_kv_num(&w, "check_max_abs_of_peak", row->check_max_abs_of_peak);
         jw_kv_int(&w, "check_points", PBCOST_CHECK_POINTS);
+        jw_kv_str(&w, "status", row->status);
         if (row->physical) {
             jw_kv_num(&w, "albedo_normal_incidence", row->albedo_normal);
             jw_kv_num(&w, "albedo_quadrature_error", row->albedo_normal_error);
@@ -91,6 +95,8 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
                                  "dtheta (L = N), GSL adaptive quadrature in double; n as in the cost rows for the "
                                  "microfacet models; He with its uniform-diffuse term and the specular term over its "
                                  "1-degree source");
+    if (r->o.nmeasured)
+        jw_kv_str(&w, "lookup_note", PBCOST_LOOKUP_NOTE);
     jw_kv_num(&w, "seconds", r->seconds);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
@@ -107,6 +113,8 @@ char *pbcost_markdown(const struct pbcost_result *r)
                   "run. Check: largest |device - double| over %d random (N, L, V), relative to the sample's peak. "
                   "Albedo: white-furnace albedo at normal incidence (double quadrature).\n\n",
               r->o.n, r->o.reps, PBCOST_CHECK_POINTS);
+    if (r->o.nmeasured)
+        md_printf(&b, "Note: %s.\n\n", PBCOST_LOOKUP_NOTE);
     md_printf(&b, "| model | evaluates | G evaluations/s | vs fq2 | vs Phong | vs pow() | check | He terms "
                   "(mean, max) | albedo at normal incidence |\n|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < r->count; ++i) {
@@ -116,9 +124,9 @@ char *pbcost_markdown(const struct pbcost_result *r)
             snprintf(terms, sizeof terms, "%.1f, %.0f", row->terms_mean, row->terms_max);
         if (row->physical)
             snprintf(alb, sizeof alb, "%.4f", row->albedo_normal);
-        md_printf(&b, "| %s | %s | %.3g | %.3gx | %.3gx | %.3gx | %.2g | %s | %s |\n", row->name,
+        md_printf(&b, "| %s | %s | %.3g | %.3gx | %.3gx | %.3gx | %.2g %s | %s | %s |\n", row->name,
                   kind_names[row->kind], row->evals_per_s * 1e-9, row->ratio_to_fq2, row->ratio_to_phong,
-                  row->ratio_to_pow, row->check_max_abs_of_peak, terms, alb);
+                  row->ratio_to_pow, row->check_max_abs_of_peak, row->status, terms, alb);
     }
     md_printf(&b, "\nTerms of He's directional-diffuse sum per evaluation (stopped at float resolution), "
                   "rough aluminium's lambda, tau and index, sigma0 = ratio x lambda; mirror direction / 20 "
@@ -146,23 +154,27 @@ void pbcost_print_table(FILE *f, const struct pbcost_result *r)
 {
     fprintf(f, "physically based models from full vectors (N, L, V), n = %g, fastest of %d launches:\n", r->o.n,
             r->o.reps);
-    fprintf(f, "  %-22s %-18s %12s %9s %9s %9s %10s %12s\n", "model", "evaluates", "G evals/s", "vs fq2", "vs Phong",
-            "vs pow()", "check", "albedo(0)");
+    fprintf(f, "  %-22s %-20s %12s %9s %9s %9s %10s %6s %12s\n", "model", "evaluates", "G evals/s", "vs fq2",
+            "vs Phong", "vs pow()", "check", "status", "albedo(0)");
     for (int i = 0; i < r->count; ++i) {
         const struct pbcost_row *row = &r->rows[i];
-        fprintf(f, "  %-22s %-18s %12.4g %8.3gx %8.3gx %8.3gx %10.2g %12.6g", row->name, kind_names[row->kind],
+        fprintf(f, "  %-22s %-20s %12.4g %8.3gx %8.3gx %8.3gx %10.2g %6s %12.6g", row->name, kind_names[row->kind],
                 row->evals_per_s * 1e-9, row->ratio_to_fq2, row->ratio_to_phong, row->ratio_to_pow,
-                row->check_max_abs_of_peak, row->albedo_normal);
+                row->check_max_abs_of_peak, row->status, row->albedo_normal);
         if (isfinite(row->terms_mean))
             fprintf(f, "  He terms mean %.1f max %.0f", row->terms_mean, row->terms_max);
         fprintf(f, "\n");
     }
+    if (r->o.nmeasured)
+        fprintf(f, "  note: %s\n", PBCOST_LOOKUP_NOTE);
 }
 
-int pbcost_run_write(struct cl_session *s, const char *out_dir, int quiet)
+int pbcost_run_write(struct cl_session *s, const struct pbcost_options *given, const char *out_dir, int quiet)
 {
     struct pbcost_options o;
     pbcost_options_default(&o);
+    if (given)
+        o = *given;
     struct pbcost_result *r = malloc(sizeof *r);
     if (!r)
         return EXIT_RUNTIME;
