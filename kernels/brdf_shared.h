@@ -14,7 +14,7 @@
 #define ACC_OUT_STRIDE 8
 
 /* The throughput loops: independent streams per work-item and lanes per stream
-   (kernels/throughput.cl; host/engine/hostc_baseline.c repeats the loop in C on the same inputs) */
+   (kernels/throughput.cl; host/support/hostc_baseline.c repeats the loop in C on the same inputs) */
 #define TP_STREAMS 4
 #define TP_LANES 16
 

@@ -127,7 +127,7 @@ struct tp_timed {
  * cannot be measured has ok 0 and its reason), or EXIT_RUNTIME when out of memory. */
 int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struct throughput_options *o,
                 long work_items, int quiet);
-/* The inputs of such a launch, for tp_input_at (host/engine/hostc_baseline.h). */
+/* The inputs of such a launch, for tp_input_at (host/support/hostc_baseline.h). */
 struct tp_inputs;
 void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in);
 

@@ -1,5 +1,5 @@
 /* hostc_sweep.c - the accuracy sweep of kernels/accuracy.cl in tuned C, one n at a time: the
- * baseline of the sweep's speed (host/engine/hostc_baseline.c runs it on every CPU).
+ * baseline of the sweep's speed (host/support/hostc_baseline.c runs it on every CPU).
  *
  * A file of its own because the sweep evaluates the reference lobe in s = 1 - cos x, as
  * exp(n log1p(-s)) (BRDF_POW_LOBE_CS), where the throughput baseline evaluates c^n with powf:

@@ -32,7 +32,7 @@ int hostc_supports(int model_id);
 int hostc_throughput(int model_id, float p0, float p1, const struct tp_inputs *in, int threads, float *sums,
                      double *seconds, char *err, size_t errlen);
 
-/* One n of the sweep (host/engine/hostc_sweep.c): writes the 8 floats of kernels/accuracy.cl. */
+/* One n of the sweep (host/support/hostc_sweep.c): writes the 8 floats of kernels/accuracy.cl. */
 void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1, float n, long samples, float *o);
 /* The accuracy sweep of kernels/accuracy.cl in C: same zones, sampling in s = 1 - cos x,
  * reductions and output layout (8 floats per n), with the reference lobe as
