@@ -19,7 +19,9 @@
  *       S = D F G / (4 (N.L)(N.V)) for Cook-Torrance: D the model, Schlick F, the
  *           separable Smith G that belongs to D (Beckmann or GGX), or
  *       S = the BRDF of a physically based model (brdf_pb_eval_ud, without He's
- *           uniform-diffuse term: the pass adds its own diffuse term)
+ *           uniform-diffuse term: the pass adds its own diffuse term), or
+ *       S = a user full BRDF at the pixel's L, V, N (brdf_user_full: a GLSL/HLSL function of
+ *           vectors or a BRDF Explorer file, luminance)
  *   radiance           L = E (N.L) kd + ambient + L_s              (white light)
  * The material is tinted: display colour channel k = sRGB8(1 - exp(-exposure tint_k L)),
  * i.e. diffuse and specular reflectance both scaled by the tint (a coloured metal). One
@@ -39,6 +41,7 @@
 #define SHADE_CT_BECKMANN 2 /* Cook-Torrance with the Smith G of the Beckmann distribution */
 #define SHADE_CT_GGX 3      /* Cook-Torrance with the Smith G of GGX */
 #define SHADE_PHYSICAL 4    /* a physically based BRDF of (N, L, V): brdf_pb_eval_ud */
+#define SHADE_USER_FULL 5   /* a user full BRDF at the pixel's L, V, N: brdf_user_full */
 
 /* Display table: bin of radiance x = (float bits >> 15) - DISPLAY_BIN0, clamped to
  * [0, DISPLAY_BINS - 1]; covers x in [2^-16, 2^8) (below: code 0, above: saturated). */
@@ -136,6 +139,10 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
             c = (ndotl + ndotv) * hinv;
             if (mode == SHADE_PHYSICAL)
                 s = brdf_pb_eval_ud(model, ndotl, ndotv, ldotv, n, p0, p1, 0.0f);
+#ifdef BRDF_HAVE_USER_FULL
+            else if (mode == SHADE_USER_FULL)
+                s = brdf_user_full(lx, ly, lz, vx, vy, vz, nx, ny, nz, n, p0, p1);
+#endif
             else
                 s = brdf_eval(model, c, n, p0, p1);
             if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {

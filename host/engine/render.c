@@ -17,6 +17,7 @@
 #include "render_report.h"
 #include "report.h"
 #include "runner.h"
+#include "usermodel.h"
 
 #include <errno.h>
 #include <ftw.h>
@@ -47,7 +48,7 @@ static const double world_up[3] = {0.0, 1.0, 0.0};
 
 const char *const render_scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
 const char *const render_mode_names[RENDER_MODE_COUNT] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
-                                                          "cook-torrance-ggx", "physical"};
+                                                          "cook-torrance-ggx", "physical", "full-brdf"};
 
 /* ------------------------------------------------------------------ options */
 
@@ -136,11 +137,18 @@ int render_check_size(const struct cl_session *s, const char *what, long width, 
 
 int render_shading_mode(const struct model_spec *m)
 {
+    if (usermodel_full_of(m))   /* a user full BRDF: the vectors L, V, N of every pixel */
+        return SHADE_USER_FULL;
     if (strcmp(m->info->family, "microfacet") == 0)
         return m->info->kernel_id == BRDF_GGX ? SHADE_CT_GGX : SHADE_CT_BECKMANN;
     if (strcmp(m->info->family, "physical") == 0)
         return SHADE_PHYSICAL;
     return m->info->lobe == LOBE_PSI ? SHADE_LOBE_PSI : SHADE_LOBE_THETA_H;
+}
+
+int render_reference_mode(int mode, const struct model_spec *ref)
+{
+    return mode == SHADE_USER_FULL ? render_shading_mode(ref) : mode;
 }
 
 void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
@@ -177,6 +185,8 @@ void render_shade_ref(const struct model_spec *m, int mode, const struct render_
         cosine = vec3_dot(nrm, h);
         if (mode == SHADE_PHYSICAL)
             s = brdf_pb_eval_ud(m->info->kernel_id, ndotl, ndotv, vec3_dot(l, v), n, m->params[0], m->params[1], 0.0);
+        else if (mode == SHADE_USER_FULL)
+            s = usermodel_eval_full_host(m, l, v, nrm, n);
         else
             s = model_eval_host(m, cosine, n);
         if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {
@@ -786,13 +796,13 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
         if (rc)
             goto fail;
         /* the reference in the model's own shading mode, shaded once per scene */
-        int ci = -1;
+        int ci = -1, ref_mode = render_reference_mode(mr->mode, &mr->ref);
         for (int k = 0; k < cache.n; k++)
-            if (cache.e[k].mode == mr->mode && strcmp(cache.e[k].label, mr->ref.label) == 0)
+            if (cache.e[k].mode == ref_mode && strcmp(cache.e[k].label, mr->ref.label) == 0)
                 ci = k;
         if (ci < 0) {
             ci = cache.n;
-            cache.e[ci].mode = mr->mode;
+            cache.e[ci].mode = ref_mode;
             snprintf(cache.e[ci].label, sizeof cache.e[ci].label, "%s", mr->ref.label);
             cache.e[ci].rgba = malloc(npix * sizeof(unsigned));
             cache.e[ci].spec = malloc(npix * sizeof(float));
@@ -800,7 +810,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
             if (!cache.e[ci].rgba || !cache.e[ci].spec)
                 goto oom;
             rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, &mr->ref,
-                                     mr->mode, &res->light, o, cache.e[ci].rgba,
+                                     ref_mode, &res->light, o, cache.e[ci].rgba,
                                      cache.e[ci].spec, NULL);
             if (rc)
                 goto fail;
@@ -1161,8 +1171,10 @@ static void timed_entries(const struct render_options *o, struct size_timing *st
             struct model_spec ref;
             const struct model_spec *m = &o->models[mi];
             int mode = render_shading_mode(m);
-            if (pass == 1)
+            if (pass == 1) {
                 model_reference_spec(m, &ref);
+                mode = render_reference_mode(mode, &ref);
+            }
             const struct model_spec *sp = pass == 0 ? m : &ref;
             int found = 0;
             for (int k = 0; k < st->nentries; k++)

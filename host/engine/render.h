@@ -76,6 +76,9 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
 
 /* Shading mode of the kernel for a model: the cosine it takes and Cook-Torrance or not. */
 int render_shading_mode(const struct model_spec *m);
+/* The mode a model's reference ref is shaded in beside a model shaded in `mode`: the same, but a
+ * user full BRDF's reference (a built-in model) in its own. */
+int render_reference_mode(int mode, const struct model_spec *ref);
 
 /* Shading parameters (the kernel's float16 `params`) for a camera eye and the options. */
 struct render_light {

@@ -24,7 +24,8 @@ static const struct timed_entry *reference_entry(const struct size_timing *st,
     struct model_spec ref;
     model_reference_spec(&te->spec, &ref);
     for (int k = 0; k < st->nentries; k++)
-        if (st->entries[k].mode == te->mode && strcmp(st->entries[k].spec.label, ref.label) == 0)
+        if (st->entries[k].mode == render_reference_mode(te->mode, &ref) &&
+            strcmp(st->entries[k].spec.label, ref.label) == 0)
             return &st->entries[k];
     return NULL;
 }

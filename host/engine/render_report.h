@@ -15,6 +15,7 @@
 #define SHADE_CT_BECKMANN 2
 #define SHADE_CT_GGX 3
 #define SHADE_PHYSICAL 4
+#define SHADE_USER_FULL 5
 #define DISPLAY_MIN_EXP (-16)
 #define DISPLAY_MAX_EXP 8
 #define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
@@ -111,7 +112,7 @@ struct scene_result {
     struct he_comparison he;
 };
 
-#define RENDER_MODE_COUNT 5
+#define RENDER_MODE_COUNT 6
 extern const char *const render_scene_names[RENDER_SCENE_COUNT];
 extern const char *const render_mode_names[RENDER_MODE_COUNT];
 
