@@ -3,7 +3,8 @@
 # Blinn-Phong file written here renders the image the built-in blinn renders, at every pixel's
 # own L, V and N; throughput's physically based table times that file and a measured material
 # (a MERL file written by tests/merl_synth) as rows, each with a finite rate and a passing
-# device-versus-double check; --measured refuses what it cannot read.
+# device-versus-double check; render --measured shades the teapot with that material beside
+# the lobes fitted to it; --measured refuses what it cannot read.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -72,14 +73,40 @@ for r in rows.values():
 assert "memory bandwidth" in d["lookup_note"]
 PY
 
+# the teapot shaded with the material beside its fitted lobes: the Blinn-Phong fit is the
+# written material (n 64, ks 2.5, kd 0.08, within 0.1%), so its image is the analytic
+# E (N.L) (ks (N.H)^n + kd) shading, and the device's nearest-cell lookup must stay within the
+# table's cell size of it: rms below 1% and max below 10% of the peak radiance
+"$BIN" render --scene teapot --models blinn --measured "$T/b64.binary" --size 96x72 --time-sizes none --tess 4 \
+    --quiet --out "$T/rm" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "render --measured: exit $rc: $(head -c 400 "$T/err")"
+for f in measured_b64.png measured_b64_blinn-phong_fit_error.png measured_b64_ct-ggx_fit.png; do
+    [ -s "$T/rm/render/teapot/$f" ] && ok || bad "render --measured wrote no $f"
+done
+check_json "$T/rm/render.json" "render.json: the measured material beside its fits" <<'PY'
+sc = [s for s in d["scenes"] if s["scene"] == "teapot"][0]
+m = sc["measured"][0]
+assert m["material"] == "b64" and m["check_status"] == "ok", m
+peak = m["peak_radiance"]
+assert peak > 0.5, peak
+fits = {f["fit"]: f for f in m["fits"]}
+assert sorted(fits) == ["blinn-phong fit", "ct-beckmann fit", "ct-ggx fit"], sorted(fits)
+b = fits["blinn-phong fit"]
+for key, want in (("n", 64), ("ks", 2.5), ("kd", 0.08)):
+    assert abs(b[key] - want) <= 1e-3 * want, (key, b[key], want)
+assert b["rms"] <= 0.01 * peak and b["max_abs"] <= 0.1 * peak, (b["rms"], b["max_abs"], peak)
+PY
+
 # bad input: exit 2 naming the flag, nothing written
+expect 2 "^brdfbench render: --measured: $T/none.binary: " render --measured "$T/none.binary" --out "$T/bad4"
 expect 2 "^brdfbench throughput: --measured: $T/none.binary: " throughput --measured "$T/none.binary" --out "$T/bad1"
 "$SYN" "$T/short.binary" pattern short >/dev/null
 expect 2 "^brdfbench throughput: --measured: $T/short.binary: " throughput --measured "$T/short.binary" --out "$T/bad2"
 mkdir -p "$T/five"
 for k in 1 2 3 4 5; do cp "$T/b64.binary" "$T/five/m$k.binary"; done
 expect 2 "--measured: $T/five: 5 materials, at most 4 accepted" throughput --measured "$T/five" --out "$T/bad3"
-[ -e "$T/bad1" ] || [ -e "$T/bad2" ] || [ -e "$T/bad3" ] && bad "a refused --measured wrote a run folder" || ok
+[ -e "$T/bad1" ] || [ -e "$T/bad2" ] || [ -e "$T/bad3" ] || [ -e "$T/bad4" ] && bad "a refused --measured wrote a run folder" || ok
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
