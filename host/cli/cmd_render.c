@@ -185,10 +185,7 @@ int cmd_render(int argc, char **argv)
         { .name = "--teapot-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.teapot_path,
           .help = "POV-Ray file with bicubic_patch blocks" },
         { .name = "--bunny-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.bunny_path, .help = "OBJ file" },
-        { .name = "--measured", .value = "FILE|DIR", .kind = CLI_PATH, .dest = &measured_arg, .def = "",
-          .help = "also shade the teapot and the bunny with measured materials (MERL .binary files, a folder's; at "
-                  "most 4) beside the Blinn-Phong and Cook-Torrance lobes fitted to each, with error images against "
-                  "the measured one (docs/measured.md)" },
+        CLI_FLAG_MEASURED(&measured_arg),
         { .name = "--no-images", .kind = CLI_SWITCH, .dest = &o.write_images, .set = 0,
           .help = "metrics and timings only, no PNGs" },
         CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),

@@ -17,7 +17,6 @@
 #include "render_report.h"
 #include "report.h"
 #include "runner.h"
-#include "usermodel.h"
 
 #include <errno.h>
 #include <ftw.h>
@@ -138,7 +137,7 @@ int render_check_size(const struct cl_session *s, const char *what, long width, 
 
 int render_shading_mode(const struct model_spec *m)
 {
-    if (usermodel_full_of(m))   /* a user full BRDF: the vectors L, V, N of every pixel */
+    if (model_is_full(m->info))   /* a user full BRDF: the vectors L, V, N of every pixel */
         return SHADE_USER_FULL;
     if (strcmp(m->info->family, "microfacet") == 0)
         return m->info->kernel_id == BRDF_GGX ? SHADE_CT_GGX : SHADE_CT_BECKMANN;
@@ -192,7 +191,7 @@ void render_shade_ref(const struct model_spec *m, int mode, const struct render_
         if (mode == SHADE_PHYSICAL)
             s = brdf_pb_eval_ud(m->info->kernel_id, ndotl, ndotv, vec3_dot(l, v), n, m->params[0], m->params[1], 0.0);
         else if (mode == SHADE_USER_FULL)
-            s = usermodel_eval_full_host(m, l, v, nrm, n);
+            s = model_eval_full_host(m, l, v, nrm, n);
         else
             s = model_eval_host(m, cosine, n);
         if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {

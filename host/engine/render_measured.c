@@ -207,16 +207,12 @@ int render_measured_pass(struct render_device *dev, const struct gbuffer *g, con
                                  (float)fmax(res->peak * 0.25, 1e-12), k == 0, err, errlen)) != 0)
             goto done;
     }
-done:
-    if (dev->merl_table)
-        clReleaseMemObject(dev->merl_table);
+done:;
+    cl_mem made[4] = { out_spec, out_rgba, gbuf, dev->merl_table };
+    for (int i = 0; i < 4; ++i)
+        if (made[i])
+            clReleaseMemObject(made[i]);
     dev->merl_table = NULL;
-    if (out_spec)
-        clReleaseMemObject(out_spec);
-    if (out_rgba)
-        clReleaseMemObject(out_rgba);
-    if (gbuf)
-        clReleaseMemObject(gbuf);
     free(mm);
     free(rgba);
     free(spec);
