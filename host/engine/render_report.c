@@ -423,10 +423,16 @@ static void write_measured(struct jw *w, const struct scene_result *sr)
             jw_obj_begin(w);
             jw_kv_str(w, "fit", en->label);
             jw_kv_bool(w, "fitted", en->fitted);
+            if (!en->fitted) {   /* nothing drawn: the fit did not converge (measured.json says why) */
+                jw_kv_str(w, "status", "not fitted");
+                jw_obj_end(w);
+                continue;
+            }
             jw_kv_num(w, "n", en->n);
             jw_kv_num(w, "ks", en->ks);
             jw_kv_num(w, "kd", en->kd);
-            jw_kv_num(w, "f0", en->f0);
+            if (k > 1)   /* Cook-Torrance only */
+                jw_kv_num(w, "f0", en->f0);
             jw_kv_num(w, "max_abs", en->max_abs);
             jw_kv_num(w, "rms", en->rms);
             jw_obj_end(w);
