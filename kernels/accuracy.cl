@@ -58,7 +58,6 @@
 #define BRDF_POW_LOBE_CS(c, s, n) brdf_pow_lobe_s((s), (n))
 #include "brdf_models.h"
 
-#define ACC_OUT_STRIDE 8
 
 /* Keeps the larger of (best, value) and the cosine that produced it; NaN never wins. */
 #define KEEP_MAX(best, best_c, value, c)                    \
@@ -113,7 +112,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         return;
     const float n = n_values[gid];
     const REAL nv = (REAL)(n);
-    const float s_e = -expm1(-0.511f / n);               /* epicentre end in s (docs/definitions.md) */
+    const float s_e = -expm1(-(float)BRDF_ZONE_K / n);               /* epicentre end in s (docs/definitions.md) */
     const REAL lane = ACC_LANES;
     /* Epicentre: s = s_e j / (samples - 1), j = i + lane. */
     const float epi_step = s_e / (float)(samples - 1);
@@ -124,7 +123,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
     /* A model that sees only c (phongpow's pow(c, n), a user model) gets c = 1 - s rounded to
        float: s is moved onto that lattice first, so that the model, its reference and the
        host's double recomputation all work at the one input the model really saw. */
-    const int c_only = model == BRDF_PHONGPOW || model == BRDF_USER;
+    const int c_only = brdf_sees_only_c(model);
 
     REAL epi_rel = (REAL)(-1.0f), epi_rel_s = (REAL)(0.0f);
     REAL epi_abs = (REAL)(-1.0f), epi_abs_s = (REAL)(0.0f);

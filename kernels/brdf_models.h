@@ -48,48 +48,20 @@
 
 #define BRDF_PI 3.14159265358979323846
 
-/* Model ids shared by the kernels and the host registry (host/core/models.c). */
+#include "brdf_shared.h"
+
+/* Model ids shared by the kernels and the host registry (host/core/models.c), in the order of
+   kernels/brdf_model_list.h; a user model (compiled at run time, brdf_user_eval) comes last. */
 enum brdf_model_id {
-    BRDF_PHONG = 0,   /* c^n, reference of the Phong family (x = psi)               */
-    BRDF_BLINN,       /* c^n, reference of the Blinn family (x = theta_h)           */
-    BRDF_CQ2,         /* (n/2 (c-1) + 1)^2, classic cosine-quadratic                */
-    BRDF_FVOL,        /* (0.463 n (c-1) + 1)^2, paper 1                             */
-    BRDF_FVOL64,      /* (29/64 n (c-1) + 1)^2, paper 1's cheap variant             */
-    BRDF_SCHLICK,     /* c / (n - n c + c)                                          */
-    BRDF_LYON,        /* (1 - n (1-c) / 2^k)^(2^k), p0 = k                          */
-    BRDF_FQ,          /* (k_Q(n) (c-1) + 1)^2, p0 = Q                               */
-    BRDF_FQ2,         /* ((0.448 n + 0.099)(c-1) + 1)^2, paper 2                    */
-    BRDF_FQ2N,        /* 0.214 (0.807 + n) * fq2, paper 2's normalised form         */
-    BRDF_PHONGN,      /* (n+2)/(2 pi) c^n                                           */
-    BRDF_BLINNN,      /* (n+2)(n+4) / (8 pi (2^(-n/2) + n)) c^n                     */
-    BRDF_BECKMANN,    /* Beckmann D(theta_h; alpha(n))                              */
-    BRDF_GGX,         /* GGX D(theta_h; alpha(n))                                   */
-    BRDF_QUAD,        /* ((a n + b)(c-1) + 1)^2, p0 = a, p1 = b: the fitted family  */
-    BRDF_PHONGPOW,    /* c^n through the pow() built-in: the literal pow() reference */
-    BRDF_SG,          /* exp(n (c-1)), spherical Gaussian (Lagarde 2012)            */
-    BRDF_UE4PHONG,    /* exp((n + 0.775)(c-1)), UE4 mobile PhongApprox (Karis 2014) */
-    BRDF_BG,          /* max(0, A c + 1 - A)^m, Beaudoin-Guardado 2002, m = 2^p0    */
-    BRDF_KB,          /* Kuijk-Blake 1989 piecewise quadratic in the angle          */
-    BRDF_KBSWAP,      /* the same with a and b exchanged                            */
-    BRDF_BITPOW,      /* c^n by integer arithmetic on the float's bits              */
-    BRDF_GAUSS,       /* exp((a n + b)(c-1)), p0 = a, p1 = b: the Gaussian family   */
-    BRDF_CUBE,        /* ((a n + b)(c-1) + 1)^3, p0 = a, p1 = b                     */
-    BRDF_QUART,       /* ((a n + b)(c-1) + 1)^4, p0 = a, p1 = b                     */
-    BRDF_CUBEFIT,     /* pow3 with the frozen minimax constants below               */
-    BRDF_QUARTFIT,    /* pow4 with the frozen minimax constants below              */
-    BRDF_GAUSSFIT,    /* gauss with the frozen minimax constants below              */
-    BRDF_USER,        /* a user model compiled at run time (brdf_user_eval)         */
-    /* Physically based BRDFs f(N, L, V) (brdf_pb_eval); as lobes f(c, n): the BRDF with the
-       light at the normal and theta_h = acos(c) (brdf_pb_lobe). */
-    BRDF_CT_BECKMANN, /* Cook-Torrance D F G / (4 N.L N.V), Beckmann D, its Smith G, p0 = F0 */
-    BRDF_CT_GGX,      /* Cook-Torrance with GGX D and its Smith G, p0 = F0            */
-    BRDF_BRADY,       /* D G / (a^-2 b^-2 tan^2 theta_h + 0.9994) as paper 2 prints it */
-    BRDF_HE,          /* He, Torrance, Sillion, Greenberg 1991, p0 = material preset  */
+#define BRDF_MODEL(E, C_ONLY, EVAL, ...) BRDF_##E,
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
+    BRDF_USER,
     BRDF_MODEL_COUNT
 };
 
 /* Epicentre zone end, as a cosine: the reference c^n equals e^(-0.511) there (docs/definitions.md). */
-BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-0.511) / n); }
+BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-BRDF_ZONE_K) / n); }
 
 /* The lobe c^n, written as exp(n ln c), the way a shader compiler lowers pow (GPUs: exp2
  * and log2 units). PoCL 3.1's vector pow() runs at scalar speed (16-30 cycles a value) while
@@ -634,60 +606,50 @@ BRDF_FN REAL brdf_user_full(REAL lx, REAL ly, REAL lz, REAL vx, REAL vy, REAL vz
 #else
 #define BRDF_USER_CASE
 #endif
-#define BRDF_EVAL_SWITCH(ID)                                                                                  \
-    switch (ID) {                                                                                             \
-    case BRDF_PHONG:                                                                                          \
-    case BRDF_BLINN:    return brdf_pow_lobe_cs(c, s, n);                                                     \
-    case BRDF_PHONGPOW: return pow(c, n);                                                                     \
-    case BRDF_CQ2:      return brdf_quadratic_s(s, n * RC(0.5));                                              \
-    case BRDF_FVOL:     return brdf_quadratic_s(s, n * RC(0.463));                                            \
-    case BRDF_FVOL64:   return brdf_quadratic_s(s, n * RC(29.0 / 64.0));                                      \
-    case BRDF_SCHLICK:  return c / (n * s + c);                                                               \
-    case BRDF_LYON:     return brdf_lyon_s(s, n, (int)p0);                                                    \
-    case BRDF_FQ:       return brdf_quadratic_s(s, brdf_k_q(n, p0));                                          \
-    case BRDF_FQ2:      return brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));                                \
-    case BRDF_FQ2N:     return RC(0.214) * (RC(0.807) + n) * brdf_quadratic_s(s, n * RC(0.448) + RC(0.099));  \
-    case BRDF_PHONGN:   return brdf_phong_norm(n) * brdf_pow_lobe_cs(c, s, n);                                \
-    case BRDF_BLINNN:   return brdf_blinn_norm(n) * brdf_pow_lobe_cs(c, s, n);                                \
-    case BRDF_BECKMANN: return brdf_d_beckmann_cs(c, s, brdf_alpha_from_n(n));                                \
-    case BRDF_GGX:      return brdf_d_ggx_cs(c, s, brdf_alpha_from_n(n));                                     \
-    case BRDF_QUAD:     return brdf_quadratic_s(s, n * p0 + p1);                                              \
-    case BRDF_SG:       return brdf_gauss_lobe_s(s, n);                                                       \
-    case BRDF_UE4PHONG: return brdf_gauss_lobe_s(s, n + RC(0.775));                                           \
-    case BRDF_BG:       return brdf_squarings_s(s, brdf_bg_a(n, 1 << (int)p0), (int)p0);                      \
-    case BRDF_KB:       return brdf_kuijk_blake_s(s, brdf_kb_a(n), brdf_kb_b(n));                             \
-    case BRDF_KBSWAP:   return brdf_kuijk_blake_s(s, brdf_kb_b(n), brdf_kb_a(n));                             \
-    case BRDF_BITPOW:   return brdf_bitpow(c, n);                                                             \
-    case BRDF_GAUSS:    return brdf_gauss_lobe_s(s, n * p0 + p1);                                             \
-    case BRDF_CUBE:     return brdf_cube_s(s, n * p0 + p1);                                                   \
-    case BRDF_QUART:    return brdf_fourth_s(s, n * p0 + p1);                                                 \
-    case BRDF_CUBEFIT:  return brdf_cube_s(s, n * RC(BRDF_CUBEFIT_A) + RC(BRDF_CUBEFIT_B));                   \
-    case BRDF_QUARTFIT: return brdf_fourth_s(s, n * RC(BRDF_QUARTFIT_A) + RC(BRDF_QUARTFIT_B));               \
-    case BRDF_GAUSSFIT: return brdf_gauss_lobe_s(s, n * RC(BRDF_GAUSSFIT_A) + RC(BRDF_GAUSSFIT_B));           \
-    BRDF_USER_CASE                                                                                            \
-    case BRDF_CT_BECKMANN:                                                                                    \
-    case BRDF_CT_GGX:                                                                                         \
-    case BRDF_BRADY:                                                                                          \
-    case BRDF_HE:       return brdf_pb_lobe((ID), c, n, p0, p1);                                              \
-    default:            return RSPLAT(NAN);                                                                   \
-    }
+/* The dispatch's cases, one per row of kernels/brdf_model_list.h. */
+#define BRDF_MODEL(E, C_ONLY, EVAL, ...) case BRDF_##E: return EVAL;
 
 BRDF_EVAL_FN REAL brdf_eval_cs(int id, REAL c, REAL s, REAL n, RSCALAR p0, RSCALAR p1)
 {
 #ifdef BRDF_ONLY_MODEL
     /* a build specialised to one model and its reference (-DBRDF_ONLY_MODEL, -DBRDF_ONLY_REF) */
     if (id == BRDF_ONLY_MODEL) {
-        BRDF_EVAL_SWITCH(BRDF_ONLY_MODEL)
+        switch (BRDF_ONLY_MODEL) {
+#include "brdf_model_list.h"
+        BRDF_USER_CASE
+        default: break;
+        }
     }
 #ifdef BRDF_ONLY_REF
     if (id == BRDF_ONLY_REF) {
-        BRDF_EVAL_SWITCH(BRDF_ONLY_REF)
+        switch (BRDF_ONLY_REF) {
+#include "brdf_model_list.h"
+        BRDF_USER_CASE
+        default: break;
+        }
     }
 #endif
     return RSPLAT(NAN);
 #else
-    BRDF_EVAL_SWITCH(id)
+    switch (id) {
+#include "brdf_model_list.h"
+    BRDF_USER_CASE
+    default: return RSPLAT(NAN);
+    }
 #endif
+}
+#undef BRDF_MODEL
+
+/* 1 when model id's formula takes c alone, not s = 1 - c (kernels/brdf_model_list.h's C_ONLY,
+   and every user model): the accuracy sweep then hands it c rounded from s, as a shader would. */
+BRDF_FN int brdf_sees_only_c(int id)
+{
+    switch (id) {
+#define BRDF_MODEL(E, C_ONLY, EVAL, ...) case BRDF_##E: return C_ONLY;
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
+    default: return 1;
+    }
 }
 
 /* Evaluate model `id` at cosine c and shininess n with parameters p0, p1. */

@@ -37,13 +37,13 @@ __kernel void field_grid(const int model, const float p0, const float p1,
     if (col >= cols || row >= rows)
         return;
     const float n = n_values[row];
-    const float s_e = -expm1(-0.511f / n);
+    const float s_e = -expm1(-(float)BRDF_ZONE_K / n);
     const float x_e = 2.0f * asin(sqrt(0.5f * s_e));   /* epicentre end (docs/definitions.md), acos(1 - s_e) */
     const float t = (float)col / (float)(cols - 1);
     const size_t at = (size_t)row * (size_t)cols + (size_t)col;
 
     /* A model that sees only c (phongpow, a user model) is compared at the float c it saw. */
-    const int c_only = model == BRDF_PHONGPOW || model == BRDF_USER;
+    const int c_only = brdf_sees_only_c(model);
     float s = s_of_x(t * x_e);
     if (c_only)
         s = 1.0f - (1.0f - s);

@@ -7,8 +7,7 @@
  * One iteration is PEAK_UNROLL steps of PEAK_CHAINS chains of 16 lanes: 2 flops per lane and
  * step. The host counts flops as work-items x iters x PEAK_UNROLL x PEAK_CHAINS x PEAK_W x 2.
  */
-#define PEAK_CHAINS 16   /* host/throughput.c PEAK_CHAINS and PEAK_UNROLL must match */
-#define PEAK_UNROLL 4
+#include "brdf_shared.h"   /* PEAK_CHAINS, PEAK_UNROLL */
 /* Lanes per chain: 16 (float16) for PoCL, which vectorises explicit vectors; 1 (float) for a
    driver that vectorises across work-items itself (Mesa's llvmpipe, GPU compilers), where a
    float16 chain is sixteen times the program (host/engine/throughput.c passes -DPEAK_W=1). */

@@ -8,7 +8,7 @@
  * bits at most and its scalar pow/exp calls are not vectorised at all. Several independent
  * streams keep the sums' add latency off the critical path.
  *
- * Inputs (the same in host/hostc_baseline.c, which times the same work in C):
+ * Inputs (the same in host/engine/hostc_baseline.c, which times the same work in C):
  *   cosine   c = ((16 u + lane) + phase) * dc, then c += 64 dc per iteration, so one work-item
  *            sweeps c over [0, 1) (the cosine comes from a dot product in shading; every value
  *            of it occurs); phase = (gid mod 64) / 64 gives each work-item its own points;
@@ -46,7 +46,6 @@
 #define RSCALAR float
 #include "brdf_models.h"
 
-#define TP_STREAMS 4   /* host/throughput.h TP_STREAMS must match */
 
 #if TP_W == 1
 #define TP_PHASE(gid) ((float)((gid) % 64) * (1.0f / 64.0f))

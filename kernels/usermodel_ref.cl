@@ -2,7 +2,7 @@
  * usermodel_ref.cl - the reference of a user model: its own text compiled a second time, in
  * double where the device has cl_khr_fp64 (USERMODEL_REF_DOUBLE), else in float.
  *
- * The host (host/usermodel.c) appends the user model's text after this file and defines
+ * The host (host/core/usermodel.c) appends the user model's text after this file and defines
  * BRDF_HAVE_USER_MODEL, so brdf_eval(BRDF_USER, ...) reaches it through brdf_models.h exactly
  * as in the float and float16 builds. The host's double-precision checks of the accuracy
  * sweep (recomputing each per-n figure, polishing maxima) call usermodel_ref_point.

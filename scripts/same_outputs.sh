@@ -2,7 +2,8 @@
 # same_outputs.sh - do two builds write the same results? Runs `all --quick` and a family fit
 # with each binary and compares every JSON file of the two runs field by field, leaving out
 # what differs from run to run by nature: dates, the revision, load averages and anything
-# timed (rates, seconds, medians, checksums of time-bounded loops, ratios of rates, Pareto
+# timed (rates, seconds, medians, normalised rates, retries, checksums of time-bounded loops,
+# the hashes of the kernel sources, ratios of rates, Pareto
 # flags that follow the rates). A check for changes meant to leave the figures alone.
 # usage: scripts/same_outputs.sh OLD_BINARY NEW_BINARY
 set -euo pipefail
@@ -18,7 +19,8 @@ python3 - "$out/old" "$out/new" <<'PY'
 import json, os, re, sys
 old, new = sys.argv[1:3]
 timed = re.compile(r'date|git_revision|loadavg|seconds|timings|peak|rate|flops|per_s|_ms|mpixel|gbyte|'
-                   r'fraction_of|speed|ratio|launch|wall|median|fma|time|cost|front|pareto|checksum|/y\[')
+                   r'fraction_of|speed|ratio|launch|wall|median|fma|time|cost|front|pareto|checksum|normalised|disturbed|'
+                   r'preemption|kernel_sources|/y\[')
 diffs, files = [], 0
 def walk(a, b, p):
     if timed.search(p):

@@ -1,5 +1,6 @@
-/* check.h - a minimal test harness: CHECK records a pass or a failure with its location,
- * and check_summary() prints "N passed, M failed" and gives the exit status. */
+/* check.h - a minimal test harness: CHECK records a pass or a failure with its location and
+ * the case CHECK_CASE named last, and check_summary() prints "N passed, M failed" and gives
+ * the exit status. */
 #ifndef BRDF_TEST_CHECK_H
 #define BRDF_TEST_CHECK_H
 
@@ -7,6 +8,9 @@
 #include <stdio.h>
 
 static int check_passed, check_failed;
+/* The case being checked (CHECK_CASE), named in every failure line until the next. */
+static const char *check_case_name;
+#define CHECK_CASE(name) (check_case_name = (name))
 
 #define CHECK(cond, ...)                                                        \
     do {                                                                        \
@@ -14,7 +18,9 @@ static int check_passed, check_failed;
             ++check_passed;                                                     \
         } else {                                                                \
             ++check_failed;                                                     \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);     \
+            fprintf(stderr, "FAIL %s:%d: %s%s%s%s: ", __FILE__, __LINE__,       \
+                    check_case_name ? "[" : "", check_case_name ? check_case_name : "", \
+                    check_case_name ? "] " : "", #cond);                        \
             fprintf(stderr, __VA_ARGS__);                                       \
             fputc('\n', stderr);                                                \
         }                                                                       \

@@ -186,7 +186,7 @@ static void test_plots_and_report(struct cl_session *s)
 
     struct plot_set set;
     plots_init(&set);
-    static const char *const fam[] = {"quadratic"};
+    static const enum model_family fam[] = {MODEL_FAMILY_QUADRATIC};
     CHECK(plots_add_max_vs_n(&set, "max_rel.png", "caption one", "max delta", res, 2, 1, fam, 1) == 0, "max vs n");
     CHECK(set.count == 1 && set.figs[0].nseries == 2, "two series (fvol and cq2)");
     /* the per-n maxima plotted never exceed the refined maximum over the range */

@@ -1,8 +1,12 @@
 /* test_report_json.c - the strict JSON reader behind `brdfbench plot`/`heatmap`: values read
  * as written (worked by hand from the RFC 8259 grammar), and every kind of malformed input
- * refused with the line and column of the problem. No device needed. */
+ * refused with the line and column of the problem; and the writer (jsonw.c), which refuses to
+ * write an unbalanced document. No device needed. */
 #include "check.h"
 #include "jsonr.h"
+#include "jsonw.h"
+
+#include <unistd.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -102,9 +106,43 @@ static void test_errors(void)
           "missing file named: %s", err);
 }
 
+/* A writer that leaves a container open, closes one twice or closes the other kind is refused,
+ * and nothing is written; a balanced one is written and reads back. */
+static void test_writer_balance(void)
+{
+    char dir[] = "/tmp/brdf_jw_XXXXXX", path[256], err[512];
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    snprintf(path, sizeof path, "%s/doc.json", dir);
+    for (int c = 0; c < 4; ++c) {
+        struct jw w;
+        jw_init(&w);
+        jw_obj_begin(&w);
+        jw_kv_arr(&w, "a");
+        jw_num(&w, 1);
+        if (c != 1) jw_arr_end(&w);        /* case 1: the array left open */
+        if (c == 3) jw_arr_end(&w);        /* case 3: an array closed that is not open */
+        if (c != 2) jw_obj_end(&w);        /* case 2: the object left open */
+        else jw_arr_end(&w);               /* ... and closed as an array */
+        err[0] = '\0';
+        int rc = jw_write_file_free(&w, path, err, sizeof err);
+        if (c == 0) {
+            CHECK(rc == 0, "balanced document written: %s", err);
+            struct jr_doc d;
+            CHECK(jr_parse_file(path, &d, err, sizeof err) == 0, "and read back: %s", err);
+            jr_free(&d);
+            unlink(path);
+        } else {
+            CHECK(rc == -1 && strstr(err, "unbalanced"), "case %d refused (%s)", c, err);
+            CHECK(access(path, F_OK) != 0, "case %d: nothing written", c);
+        }
+    }
+    rmdir(dir);
+}
+
 int main(void)
 {
     test_values();
     test_errors();
+    test_writer_balance();
     return check_summary();
 }

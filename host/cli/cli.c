@@ -83,14 +83,6 @@ const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char
     return argv[++*i];
 }
 
-int cli_mul_size(size_t a, size_t b, size_t *out)
-{
-    if (a != 0 && b > SIZE_MAX / a)
-        return 0;
-    *out = a * b;
-    return 1;
-}
-
 #include "clsession.h"
 
 void device_options_init(struct device_options *o)

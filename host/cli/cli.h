@@ -17,8 +17,6 @@ int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
 const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
 /* 1 when argv[i] is `name` or starts with `name=`. */
 int cli_flag_is(const char *argv_i, const char *name);
-/* size_t multiplication with overflow detection: returns 0 on overflow. */
-int cli_mul_size(size_t a, size_t b, size_t *out);
 
 /* Device selection flags shared by every command that runs kernels. */
 struct device_options {

@@ -22,7 +22,6 @@
 
 static const char *current_command = "";
 
-const char *cli_command_name(void) { return current_command; }
 
 void cli_print_version(FILE *f) { fprintf(f, "brdfbench %s (%s)\n", BRDF_VERSION, brdf_git_revision); }
 

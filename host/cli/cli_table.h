@@ -85,8 +85,6 @@ void cli_set_command_info(const char *summary, const char *example);
 /* Text as roff (man pages) writes it: backslashes and hyphens escaped, a leading '.' or '\''
  * guarded. */
 void cli_write_roff(FILE *f, const char *text);
-/* The name of the command being parsed ("accuracy"), for notes printed while parsing. */
-const char *cli_command_name(void);
 /* "brdfbench VERSION (REVISION)": what `brdfbench version` and every --version print. */
 void cli_print_version(FILE *f);
 /* Prints "brdfbench COMMAND: note: ..." on stderr: a harmless oddity of the command line that

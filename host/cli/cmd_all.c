@@ -172,7 +172,7 @@ static int is_self_referenced(const struct model_spec *m)
 {
     struct model_spec ref;
     model_reference_spec(m, &ref);
-    return strcmp(ref.label, m->label) == 0 || strcmp(m->info->family, "reference") == 0;
+    return strcmp(ref.label, m->label) == 0 || m->info->family == MODEL_FAMILY_REFERENCE;
 }
 
 /* ---- steps ---------------------------------------------------------------------- */
@@ -374,8 +374,8 @@ static int step_plots(struct all_run *r)
                          "f against x at n = 20: phong (reference), fq2, fq (Q = 0.64), cq2 (paper 2, fig. 5)",
                          "Lobes at n = 20 (paper 2, fig. 5)", 20, specs, n);
     /* paper 1 figs. 3, 5 and paper 2 fig. 6: per-n maxima, lobe approximations */
-    static const char *const lobe_families[] = {"quadratic", "rational", "user"};
-    static const char *const norm_families[] = {"normalised", "microfacet"};
+    static const enum model_family lobe_families[] = {MODEL_FAMILY_QUADRATIC, MODEL_FAMILY_RATIONAL, MODEL_FAMILY_USER};
+    static const enum model_family norm_families[] = {MODEL_FAMILY_NORMALISED, MODEL_FAMILY_MICROFACET};
     plots_add_max_vs_n(&r->plots, "max_rel_error_epicentre_vs_n.png",
                        "max delta over the epicentre against n, lobe approximations against phong (paper 1 fig. 3, "
                        "paper 2 fig. 6a)",

@@ -1,5 +1,6 @@
 /* cmd_list.c - `brdfbench list`: the model registry and the OpenCL platforms and devices, as
  * text or (--json) as a JSON document. */
+#include "schemas.h"
 #include "cli_table.h"
 #include "clsession.h"
 #include "commands.h"
@@ -11,7 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#define LIST_SCHEMA "brdfbench.list/1"
 
 struct device_entry {
     char name[256];
@@ -63,7 +63,7 @@ static void print_text(const struct platform_entry *plat, int nplat)
         printf("\n  %-9s %s\n", m->id, m->description);
         printf("            f = %s\n", m->formula);
         printf("            reference: %s; lobe angle: %s; family: %s%s\n", m->reference_id,
-               m->lobe == LOBE_PSI ? "psi = angle(R, V)" : "theta_h = angle(N, H)", m->family,
+               m->lobe == LOBE_PSI ? "psi = angle(R, V)" : "theta_h = angle(N, H)", model_family_name(m->family),
                m->in_default_set ? "" : "; not in the default set");
         if (m->root)
             printf("            zero past its root: %s\n", m->root);
@@ -100,7 +100,7 @@ static int write_json(const char *path, const struct platform_entry *plat, int n
         jw_kv_str(&w, "formula", m->formula);
         jw_kv_str(&w, "reference", m->reference_id);
         jw_kv_str(&w, "lobe", m->lobe == LOBE_PSI ? "psi" : "theta_h");
-        jw_kv_str(&w, "family", m->family);
+        jw_kv_str(&w, "family", model_family_name(m->family));
         jw_kv_bool(&w, "in_default_set", m->in_default_set);
         jw_key(&w, "root");
         if (m->root)

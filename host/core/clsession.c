@@ -440,7 +440,7 @@ static const char *kernel_dir_override = NULL;
 
 void clsession_set_kernel_dir(const char *dir) { kernel_dir_override = dir; }
 
-char *clsession_kernel_source(const char *name, size_t *len)
+static char *kernel_source_raw(const char *name, size_t *len)
 {
     if (kernel_dir_override) {
         char path[4096];
@@ -471,42 +471,69 @@ char *clsession_kernel_source(const char *name, size_t *len)
 
 /* Replaces each line `#include "brdf_models.h"` of src by the header's text, with #line
  * directives so that build logs point at the right file and line. */
-static char *resolve_model_include(const char *src, const char *file)
+/* A growing text for expand_includes. */
+struct src_text {
+    char *p;
+    size_t used, cap;
+};
+
+static int src_append(struct src_text *t, const char *s, size_t n)
 {
-    static const char *directive = "#include \"brdf_models.h\"";
-    size_t hlen = 0;
-    char *header = clsession_kernel_source("brdf_models.h", &hlen);
-    if (!header)
-        return NULL;
-    size_t cap = strlen(src) + hlen + 1024;
-    char *out = malloc(cap);
-    if (!out) {
-        free(header);
+    if (t->used + n + 1 > t->cap) {
+        size_t cap = (t->used + n + 1) * 2;
+        char *p = realloc(t->p, cap);
+        if (!p)
+            return -1;
+        t->p = p;
+        t->cap = cap;
+    }
+    memcpy(t->p + t->used, s, n);
+    t->used += n;
+    t->p[t->used] = '\0';
+    return 0;
+}
+
+/* The kernel file's text with every line `#include "NAME"` replaced by NAME's text (another
+ * kernel file, itself expanded), between #line directives so that a build log still names the
+ * file and line. The OpenCL build gets one text and no include path (the files may be the
+ * embedded ones); the host reference of a user model (hostjit.c) gets the same. */
+static char *expand_includes(const char *name, int depth, size_t *len)
+{
+    char *raw = kernel_source_raw(name, NULL);
+    if (!raw || depth > 4) {
+        free(raw);
         return NULL;
     }
-    out[0] = '\0';
-    size_t used = 0;
-    const char *p = src;
-    int line = 1;
-    int done = 0;
-    while (*p) {
+    struct src_text t = { NULL, 0, 0 };
+    int line = 1, fail = src_append(&t, "", 0);
+    for (const char *p = raw; *p && !fail; ++line) {
         const char *eol = strchr(p, '\n');
         size_t n = eol ? (size_t)(eol - p + 1) : strlen(p);
-        if (!done && strncmp(p, directive, strlen(directive)) == 0) {
-            used += (size_t)snprintf(out + used, cap - used, "#line 1 \"brdf_models.h\"\n%s\n#line %d \"%s\"\n",
-                                     header, line + 1, file);
-            done = 1;
+        char inner[128];
+        if (sscanf(p, "#include \"%127[^\"\n]\"", inner) == 1) {
+            char *sub = expand_includes(inner, depth + 1, NULL);
+            char mark[300];
+            int m = snprintf(mark, sizeof mark, "#line 1 \"%s\"\n", inner);
+            fail = !sub || src_append(&t, mark, (size_t)m) || src_append(&t, sub, strlen(sub));
+            m = snprintf(mark, sizeof mark, "\n#line %d \"%s\"\n", line + 1, name);
+            fail = fail || src_append(&t, mark, (size_t)m);
+            free(sub);
         } else {
-            memcpy(out + used, p, n);
-            used += n;
-            out[used] = '\0';
+            fail = src_append(&t, p, n);
         }
         p += n;
-        ++line;
     }
-    free(header);
-    return out;
+    free(raw);
+    if (fail) {
+        free(t.p);
+        return NULL;
+    }
+    if (len)
+        *len = t.used;
+    return t.p;
 }
+
+char *clsession_kernel_source(const char *name, size_t *len) { return expand_includes(name, 0, len); }
 
 /* The OpenCL compiler of PoCL prints its own summary ("1 error generated.") on the process's
  * stderr while it builds; the build log holds the diagnostics themselves. So stderr is
@@ -583,16 +610,10 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
     int rc = 0;
     cl_int e;
     *out = NULL;
-    char *raw = clsession_kernel_source(kernel_file, NULL);
-    if (!raw) {
-        fprintf(stderr, "brdfbench: kernel source %s not found%s%s\n", kernel_file,
-                kernel_dir_override ? " in --kernel-dir " : "", kernel_dir_override ? kernel_dir_override : "");
-        return EXIT_RUNTIME;
-    }
-    char *src = resolve_model_include(raw, kernel_file);
-    free(raw);
+    char *src = clsession_kernel_source(kernel_file, NULL);
     if (!src) {
-        fprintf(stderr, "brdfbench: kernel header brdf_models.h not found\n");
+        fprintf(stderr, "brdfbench: kernel source %s (or a file it includes) not found%s%s\n", kernel_file,
+                kernel_dir_override ? " in --kernel-dir " : "", kernel_dir_override ? kernel_dir_override : "");
         return EXIT_RUNTIME;
     }
     const char *parts[2] = { src, extra_source ? extra_source : "" };

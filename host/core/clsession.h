@@ -8,6 +8,7 @@
 #define CL_TARGET_OPENCL_VERSION 120
 #endif
 #include <CL/cl.h>
+#include "exitcodes.h"
 #include <stddef.h>
 
 struct cl_session {
@@ -43,7 +44,7 @@ void cl_report(const char *call, cl_int err, const char *file, int line);
         cl_int cl_check_err_ = (call);                                         \
         if (cl_check_err_ != CL_SUCCESS) {                                     \
             cl_report(#call, cl_check_err_, __FILE__, __LINE__);               \
-            rc = 3;                                                            \
+            rc = EXIT_RUNTIME;                                                 \
             goto label;                                                        \
         }                                                                      \
     } while (0)
@@ -52,7 +53,7 @@ void cl_report(const char *call, cl_int err, const char *file, int line);
     do {                                                                       \
         if ((e) != CL_SUCCESS) {                                               \
             cl_report(what, (e), __FILE__, __LINE__);                          \
-            rc = 3;                                                            \
+            rc = EXIT_RUNTIME;                                                 \
             goto label;                                                        \
         }                                                                      \
     } while (0)
@@ -77,12 +78,13 @@ int clsession_device_list(const char *text, int platform, struct cl_device_ref *
 
 /* Kernel sources: embedded copies by default; --kernel-dir reads them from a folder. */
 void clsession_set_kernel_dir(const char *dir);
-/* The text of kernels/<name> (embedded or from the kernel dir); NULL if unknown.
+/* The text of kernels/<name> (embedded or from the kernel dir) with its `#include "FILE"`
+ * lines replaced by those kernel files' texts; NULL if it or a file it includes is unknown.
  * The caller frees the result. */
 char *clsession_kernel_source(const char *name, size_t *len);
 
-/* Builds a program from kernels/<file> (its `#include "brdf_models.h"` is resolved by the
- * host) plus optional extra source text appended after it. On failure prints the build log
+/* Builds a program from kernels/<file> (its includes are resolved by the host,
+ * clsession_kernel_source) plus optional extra source text appended after it. On failure prints the build log
  * and the options on stderr and returns EXIT_RUNTIME (3). */
 int clsession_build(struct cl_session *s, const char *kernel_file, const char *extra_source,
                     const char *options, cl_program *out);

@@ -122,7 +122,6 @@ static const char epilogue[] =
     "double brdfbench_host_eval(double c, double n, double p0, double p1)\n"
     "{\n    return brdf_eval(BRDF_USER, c, n, p0, p1);\n}\n";
 
-const char *hostjit_prelude(void) { return prelude; }
 
 struct hostjit {
     TCCState *tcc;

@@ -35,7 +35,5 @@ typedef double (*hostjit_full_fn)(double lx, double ly, double lz, double vx, do
 hostjit_full_fn hostjit_full_function(const struct hostjit *j);
 void hostjit_free(struct hostjit *j);
 
-/* The prelude placed before the model's text (for tests and docs/user-models.md). */
-const char *hostjit_prelude(void);
 
 #endif

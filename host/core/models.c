@@ -15,123 +15,38 @@
 #undef REAL
 #undef RSCALAR
 
-#define NOP { { NULL, 0, 0, 0, 0, NULL } }
-
 static const struct model_info registry[] = {
-    { "phong", BRDF_PHONG, "reference", LOBE_PSI, 0, NOP, "phong",
-      "cos(psi)^n", NULL, "Phong lobe: the reference of the Phong family", 1 },
-    { "blinn", BRDF_BLINN, "reference", LOBE_THETA_H, 0, NOP, "blinn",
-      "cos(theta_h)^n", NULL, "Blinn-Phong lobe: the reference of the Blinn family", 1 },
-    { "cq2", BRDF_CQ2, "quadratic", LOBE_PSI, 0, NOP, "phong",
-      "(n/2 (c-1) + 1)^2", "c = 1 - 2/n", "classic cosine-quadratic F2 (xi = 1/2)", 1 },
-    { "fvol", BRDF_FVOL, "quadratic", LOBE_PSI, 0, NOP, "phong",
-      "(0.463 n (c-1) + 1)^2", "c = 1 - 1/(0.463 n)", "F_VOL of paper 1 (xi = 0.463)", 1 },
-    { "fvol64", BRDF_FVOL64, "quadratic", LOBE_PSI, 0, NOP, "phong",
-      "(29/64 n (c-1) + 1)^2", "c = (29n - 64)/(29n)", "paper 1's cheap variant, xi = 29/64", 1 },
-    { "schlick", BRDF_SCHLICK, "rational", LOBE_PSI, 0, NOP, "phong",
-      "c / (n - n c + c)", NULL, "Schlick's rational approximation F_S", 1 },
-    { "lyon", BRDF_LYON, "quadratic", LOBE_PSI, 1,
-      { { "k", 1, 16, 2, 1, "number of squarings; the exponent is 2^k" } }, "phong",
-      "(1 - n (1-c)/2^k)^(2^k)", "c = 1 - 2^k/n", "Lyon 1993, k squarings (k = 1 is cq2)", 1 },
-    { "fq", BRDF_FQ, "quadratic", LOBE_PSI, 1,
-      { { "Q", 1e-6, 0.999999, 0.64, 0, "level where f_Q equals c^n exactly" } }, "phong",
-      "(k_Q(n) (c-1) + 1)^2, k_Q(n) = (sqrt(Q) - 1)/(Q^(1/n) - 1)", "c = 1 - 1/k_Q(n)",
-      "f_Q of paper 2", 1 },
-    { "fq2", BRDF_FQ2, "quadratic", LOBE_PSI, 0, NOP, "phong",
-      "((0.448 n + 0.099)(c-1) + 1)^2", "c = (448n -901)/(448n + 99)",
-      "f_Q2 of paper 2: linear fit of k_Q(n)", 1 },
-    { "fq2n", BRDF_FQ2N, "normalised", LOBE_PSI, 0, NOP, "phongn",
-      "0.214 (0.807 + n) ((0.448 n + 0.099)(c-1) + 1)^2", "c = (448n - 901)/(448n + 99)",
-      "f_Q2 with paper 2's normalising coefficient", 1 },
-    { "phongn", BRDF_PHONGN, "normalised", LOBE_PSI, 0, NOP, "phongn",
-      "(n+2)/(2 pi) c^n", NULL, "energy-normalised Phong (reference of fq2n)", 1 },
-    { "blinnn", BRDF_BLINNN, "normalised", LOBE_THETA_H, 0, NOP, "blinnn",
-      "(n+2)(n+4) / (8 pi (2^(-n/2) + n)) c^n", NULL, "energy-normalised Blinn-Phong (Giesen)", 1 },
-    { "beckmann", BRDF_BECKMANN, "microfacet", LOBE_THETA_H, 0, NOP, "phongn",
-      "exp(-tan^2 / a^2) / (pi a^2 cos^4), a = sqrt(2/(n+2))", NULL,
-      "Beckmann distribution D against normalised Blinn-Phong D", 1 },
-    { "ggx", BRDF_GGX, "microfacet", LOBE_THETA_H, 0, NOP, "phongn",
-      "a^2 / (pi cos^4 (a^2 + tan^2)^2), a = sqrt(2/(n+2))", NULL,
-      "GGX distribution D against normalised Blinn-Phong D", 1 },
-    { "quad", BRDF_QUAD, "quadratic", LOBE_PSI, 2,
-      { { "a", 0, 10, 0.448, 0, "slope of k(n) = a n + b" },
-        { "b", -10, 10, 0.099, 0, "offset of k(n) = a n + b" } }, "phong",
-      "((a n + b)(c-1) + 1)^2", "c = 1 - 1/(a n + b)",
-      "the affine cosine-quadratic family (brdfbench fit)", 0 },
-    { "phongpow", BRDF_PHONGPOW, "reference", LOBE_PSI, 0, NOP, "phong",
-      "cos(psi)^n through OpenCL's pow()", NULL,
-      "the Phong lobe through the pow() built-in: the literal pow()-based reference, for cost", 1 },
-    { "sg", BRDF_SG, "gaussian", LOBE_PSI, 0, NOP, "phong",
-      "exp(n (c-1))", NULL,
-      "spherical Gaussian (Lagarde 2012, 'Spherical Gaussian approximation for Blinn-Phong, Phong and Fresnel'; "
-      "engines write exp2(n/ln2 (c-1)))", 0 },
-    { "ue4phong", BRDF_UE4PHONG, "gaussian", LOBE_PSI, 0, NOP, "phong",
-      "exp((n + 0.775)(c-1))", NULL,
-      "UE4 mobile PhongApprox (Karis 2014, 'Physically Based Shading on Mobile')", 0 },
-    { "bg", BRDF_BG, "power", LOBE_PSI, 1,
-      { { "j", 1, 4, 1, 1, "squarings: the exponent is m = 2^j" } }, "phong",
-      "max(0, A c + 1 - A)^m, m = 2^j, A(n) = alpha_m n + beta_m", "c = 1 - 1/A",
-      "Beaudoin and Guardado 2002 (ShaderX, 'A non-integer power function on the pixel shader'); A from the "
-      "affine fit of their per-n bisection (kernels/brdf_models.h)", 0 },
-    { "kb", BRDF_KB, "angular", LOBE_PSI, 0, NOP, "phong",
-      "alpha = acos c: 1 - alpha^2/(ab) below a, (alpha-b)^2/(b(b-a)) to b, 0 beyond; "
-      "a = (n+5.6)/(n(0.09n+5.2)), b = (n+65)/(5n+31.7)", "alpha = b",
-      "Kuijk and Blake 1989 (Computer Graphics Forum 8(4)), a and b as docs/definitions.md writes them", 0 },
-    { "kbswap", BRDF_KBSWAP, "angular", LOBE_PSI, 0, NOP, "phong",
-      "kb with a and b exchanged, zeroed where negative", "alpha = sqrt(ab)",
-      "Kuijk and Blake 1989 with a and b exchanged (Kuijk's later note on the print)", 0 },
-    { "bitpow", BRDF_BITPOW, "bits", LOBE_PSI, 0, NOP, "phong",
-      "the float whose bits are n (bits(c) - bits(1)) + bits(1)", "c^n < 2^-149",
-      "integer-bit pow (Schraudolph 1999 style); the host reproduces the bit arithmetic in double", 0 },
-    { "gauss", BRDF_GAUSS, "gaussian", LOBE_PSI, 2,
-      { { "a", 0, 10, 1, 0, "slope of k(n) = a n + b" },
-        { "b", -10, 10, 0, 0, "offset of k(n) = a n + b" } }, "phong",
-      "exp((a n + b)(c-1))", NULL, "the Gaussian family (brdfbench fit; sg is a=1,b=0, ue4phong a=1,b=0.775)", 0 },
-    { "pow3", BRDF_CUBE, "power", LOBE_PSI, 2,
-      { { "a", 0, 10, 0.31, 0, "slope of k(n) = a n + b" },
-        { "b", -10, 10, 0.1, 0, "offset of k(n) = a n + b" } }, "phong",
-      "((a n + b)(c-1) + 1)^3", "c = 1 - 1/(a n + b)", "the power family at m = 3 (brdfbench fit)", 0 },
-    { "pow4", BRDF_QUART, "power", LOBE_PSI, 2,
-      { { "a", 0, 10, 0.237, 0, "slope of k(n) = a n + b" },
-        { "b", -10, 10, 0.1, 0, "offset of k(n) = a n + b" } }, "phong",
-      "((a n + b)(c-1) + 1)^4", "c = 1 - 1/(a n + b)", "the power family at m = 4 (brdfbench fit)", 0 },
-    { "pow3fit", BRDF_CUBEFIT, "power", LOBE_PSI, 0, NOP, "phong",
-      "((A3 n + B3)(c-1) + 1)^3, constants in kernels/brdf_models.h", "c = 1 - 1/(A3 n + B3)",
-      "cube fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
-    { "pow4fit", BRDF_QUARTFIT, "power", LOBE_PSI, 0, NOP, "phong",
-      "((A4 n + B4)(c-1) + 1)^4, constants in kernels/brdf_models.h", "c = 1 - 1/(A4 n + B4)",
-      "quart fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
-    { "gaussfit", BRDF_GAUSSFIT, "gaussian", LOBE_PSI, 0, NOP, "phong",
-      "exp((AG n + BG)(c-1)), constants in kernels/brdf_models.h", NULL,
-      "gauss fitted by brdfbench fit over n in [2, 1000] and frozen (docs/frontier.md)", 0 },
-    /* Physically based BRDFs f(N, L, V) (kernels/brdf_models.h, brdf_pb_eval). As lobes of one
-       cosine they are the BRDF with the light at the normal and theta_h = acos(c); they are
-       their own references and not part of the default set of the lobe commands. */
-    { "ct-beckmann", BRDF_CT_BECKMANN, "physical", LOBE_THETA_H, 1,
-      { { "F0", 0, 1, 0.5, 0, "Schlick's Fresnel reflectance at normal incidence" } }, "ct-beckmann",
-      "D F G / (4 N.L N.V): Beckmann D, Schlick F, Smith G (Walter's rational form), a = sqrt(2/(n+2))", NULL,
-      "Cook-Torrance in full with the Beckmann distribution (paper 1, eq. 7)", 0 },
-    { "ct-ggx", BRDF_CT_GGX, "physical", LOBE_THETA_H, 1,
-      { { "F0", 0, 1, 0.5, 0, "Schlick's Fresnel reflectance at normal incidence" } }, "ct-ggx",
-      "D F G / (4 N.L N.V): GGX D, Schlick F, separable Smith G of GGX, a = sqrt(2/(n+2))", NULL,
-      "Cook-Torrance in full with GGX (Walter et al. 2007; paper 1, eq. 8)", 0 },
-    { "brady", BRDF_BRADY, "physical", LOBE_THETA_H, 2,
-      { { "a", 0.01, 100, 1, 0, "lobe-shape parameter a of the printed form" },
-        { "b", 0.01, 100, 1, 0, "lobe-shape parameter b of the printed form" } }, "brady",
-      "D G / (a^-2 b^-2 tan^2(theta_h) + 0.9994), Beckmann D and its Smith G at a(n)", NULL,
-      "Brady et al. 2014's metal BRDF as paper 2 prints it (the genBRDF original was not found; "
-      "D and G are taken as Cook-Torrance's Beckmann pair)", 0 },
-    { "he", BRDF_HE, "physical", LOBE_THETA_H, 1,
-      { { "material", 0, BRDF_HE_PRESETS - 1, 0, 1,
-          "preset: 0 rough aluminium, 1 polished aluminium, 2 gold, 3 plastic" } }, "he",
-      "rho_sp + rho_dd + rho_ud of He, Torrance, Sillion, Greenberg 1991 (lambda, sigma0, tau, n + ik)", NULL,
-      "He et al. 1991 (Kirchhoff diffraction; the directional-diffuse sum truncated at float resolution)", 0 },
+#define BRDF_MODEL(E, C_ONLY, EVAL, ...) { .kernel_id = BRDF_##E, __VA_ARGS__ },
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
 };
 
-_Static_assert(sizeof registry / sizeof registry[0] == BRDF_MODEL_COUNT - 1,
-               "every model id except BRDF_USER has a registry entry");
+_Static_assert(sizeof registry / sizeof registry[0] == BRDF_USER,
+               "every model id before BRDF_USER has a registry entry");
+
+const char *model_family_name(enum model_family f)
+{
+    static const char *const names[MODEL_FAMILY_COUNT] = {
+        "reference", "quadratic", "rational", "normalised", "microfacet", "gaussian",
+        "power", "angular", "bits", "physical", "user" };
+    return f >= 0 && f < MODEL_FAMILY_COUNT ? names[f] : "?";
+}
+
+const char *model_kind_name(enum model_kind k)
+{
+    static const char *const names[MODEL_KIND_COUNT] = { "reference", "paper", "engine", "tuned", "other" };
+    return k >= 0 && k < MODEL_KIND_COUNT ? names[k] : "?";
+}
 
 int models_count(void) { return (int)(sizeof registry / sizeof registry[0]); }
+
+int model_is_builtin(const struct model_info *info)
+{
+    for (int i = 0; i < models_count(); ++i)
+        if (info == &registry[i])
+            return 1;
+    return 0;
+}
 
 const struct model_info *models_at(int i)
 {
@@ -376,7 +291,7 @@ const char *model_eval_note(const struct model_spec *spec)
 
 int model_sees_only_c(const struct model_spec *spec)
 {
-    return spec->info->kernel_id == BRDF_PHONGPOW || models_runtime(spec->info) != NULL;
+    return brdf_sees_only_c(spec->info->kernel_id);
 }
 
 int model_eval_host_on_device(const struct model_spec *spec)

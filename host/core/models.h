@@ -11,6 +11,43 @@
 
 enum lobe_variable { LOBE_PSI, LOBE_THETA_H };
 
+/* What a formula is; model_family_name gives the word the outputs print. */
+enum model_family {
+    MODEL_FAMILY_REFERENCE = 0,
+    MODEL_FAMILY_QUADRATIC,
+    MODEL_FAMILY_RATIONAL,
+    MODEL_FAMILY_NORMALISED,
+    MODEL_FAMILY_MICROFACET,
+    MODEL_FAMILY_GAUSSIAN,
+    MODEL_FAMILY_POWER,
+    MODEL_FAMILY_ANGULAR,
+    MODEL_FAMILY_BITS,
+    MODEL_FAMILY_PHYSICAL,
+    MODEL_FAMILY_USER,
+    MODEL_FAMILY_COUNT
+};
+const char *model_family_name(enum model_family f);
+
+/* Where a model comes from, for the frontier's marks; model_kind_name gives the word. */
+enum model_kind {
+    MODEL_KIND_REFERENCE = 0,
+    MODEL_KIND_PAPER,      /* the papers' models */
+    MODEL_KIND_ENGINE,     /* cheap lobes shipped by engines */
+    MODEL_KIND_TUNED,      /* brdfbench's fitted families */
+    MODEL_KIND_OTHER,
+    MODEL_KIND_COUNT
+};
+const char *model_kind_name(enum model_kind k);
+
+/* The operation count of a formula per evaluation (docs/frontier.md holds the table):
+ * fused multiply-adds, multiplies and adds (counted together), min/max/select, divides,
+ * transcendental calls. known = 0: not counted (not a cheap lobe, or a user model). */
+struct model_ops {
+    int known;
+    int arith, minmax, div, transc;
+    const char *note;
+};
+
 struct model_param {
     const char *name;
     double min, max, def;
@@ -18,10 +55,11 @@ struct model_param {
     const char *meaning;
 };
 
+/* One model's descriptor: a row of kernels/brdf_model_list.h for a built-in model. */
 struct model_info {
     const char *id;
     int kernel_id;                  /* enum brdf_model_id */
-    const char *family;             /* "reference", "quadratic", "rational", "normalised", "microfacet" */
+    enum model_family family;
     enum lobe_variable lobe;        /* psi (Phong family) or theta_h (Blinn family) */
     int nparams;
     struct model_param params[MODEL_MAX_PARAMS];
@@ -30,6 +68,11 @@ struct model_info {
     const char *root;               /* where a quadratic model is zeroed, or NULL */
     const char *description;
     int in_default_set;             /* part of "all models" */
+    enum model_kind kind;
+    struct model_ops ops;
+    int frontier_rank;              /* position in the frontier's default set; 0: not in it */
+    const char *frontier_variants;  /* more specs of the model in that set, "a,b"; or NULL */
+    const char *colour;             /* plot colour by name (draw_colour_index); "black": a reference */
 };
 
 /* A model with parameter values, e.g. "fq:Q=0.64". */
@@ -41,6 +84,8 @@ struct model_spec {
 
 int models_count(void);
 const struct model_info *models_at(int i);
+/* 1 for a row of the registry (kernels/brdf_model_list.h), 0 for a model added at run time. */
+int model_is_builtin(const struct model_info *info);
 const struct model_info *models_find(const char *id);
 
 /* Parses "id" or "id:name=value,name=value". Returns 0, or 2 with a one-line message. */
@@ -92,8 +137,9 @@ void models_unregister_all(void);
 const struct model_runtime *models_runtime(const struct model_info *info);
 /* The note of spec's runtime (NULL for a built-in model or a double evaluation). */
 const char *model_eval_note(const struct model_spec *spec);
-/* 1 when the model sees only c, not s = 1 - c: the pow() built-in (phongpow) and every model
- * registered at run time, whose text is a function of c. The sweeps evaluate such a model on
+/* 1 when the model sees only c, not s = 1 - c (brdf_sees_only_c of kernels/brdf_models.h: the
+ * rows of kernels/brdf_model_list.h marked C_ONLY, and every model registered at run time,
+ * whose text is a function of c). The sweeps evaluate such a model on
  * the float cosines (kernels/accuracy.cl), and its double figures are recomputed there. */
 int model_sees_only_c(const struct model_spec *spec);
 /* 1 when model_eval_host of the model costs a device launch per value (a user model whose text

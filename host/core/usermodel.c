@@ -110,7 +110,7 @@ static void usermodel_fill_info(struct user_model *um)
     struct model_info *in = &um->info;
     in->id = um->name;
     in->kernel_id = BRDF_USER;
-    in->family = "user";
+    in->family = MODEL_FAMILY_USER;
     in->reference_id = um->reference;
     in->formula = um->formula;
     in->root = NULL;

@@ -4,6 +4,7 @@
 #include "exitcodes.h"
 #include "programs.h"
 #include "refine.h"
+#include "brdf_shared.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -12,13 +13,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define ACC_OUT_STRIDE 8     /* must match kernels/accuracy.cl */
 #define ACC_PROBE_POINTS 4096
 
 static const double half_pi = 1.57079632679489661923;
 
-double zone_epicentre_end(double n) { return acos(exp(-0.511 / n)); }
-double zone_epicentre_end_s(double n) { return -expm1(-0.511 / n); }
+double zone_epicentre_end(double n) { return acos(exp(-BRDF_ZONE_K / n)); }
+double zone_epicentre_end_s(double n) { return -expm1(-BRDF_ZONE_K / n); }
 double angle_of_s(double s) { return 2.0 * asin(sqrt(0.5 * s)); }
 
 double error_abs_host(const struct model_spec *m, const struct model_spec *ref, double c, double n)
@@ -299,8 +299,7 @@ static void check_per_n(struct accuracy_result *r)
     }
 }
 
-/* One unit in the 4th significant digit of v; 0 when v is not a positive finite number. */
-static double fourth_digit_unit(double v)
+double fourth_digit_unit(double v)
 {
     return (v > 0 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0;
 }

@@ -130,6 +130,10 @@ void accuracy_format_n(double n, char *buf, size_t len);
 /* The JSON status word of a result: ok, invalid_values, device_disagrees or failed. */
 const char *accuracy_status(const struct accuracy_result *r);
 
+/* One unit in the 4th significant digit of v (the unit every device-vs-double and grid check is
+ * told in); 0 when v is not a positive finite number. */
+double fourth_digit_unit(double v);
+
 /* Zone geometry in double (docs/definitions.md): x_e(n), and the same end as s = 1 - cos x_e = -expm1(-0.511/n). */
 double zone_epicentre_end(double n);
 double zone_epicentre_end_s(double n);

@@ -2,11 +2,11 @@
 #ifndef BRDF_ACCURACY_REPORT_H
 #define BRDF_ACCURACY_REPORT_H
 
+#include "schemas.h"
 #include <stdio.h>
 
 #include "accuracy.h"
 
-#define ACCURACY_SCHEMA "brdfbench.accuracy/1"
 
 /* The largest device-vs-double difference of a result, in units of the 4th significant
  * digit of the figure it belongs to (so "far below 1" means the digits printed hold). */

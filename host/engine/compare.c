@@ -17,13 +17,10 @@
 static const char *const kind_names[CMP_KIND_COUNT] = { "throughput", "accuracy", "render", "fit", "frontier" };
 static const char *const kind_files[CMP_KIND_COUNT] = { "throughput.json", "accuracy.json", "render.json", "fit.json",
                                                         "frontier.json" };
-static const char *const kind_schemas[CMP_KIND_COUNT] = { "brdfbench.throughput/3", "brdfbench.accuracy/1",
-                                                          "brdfbench.render/1", "brdfbench.fit/1",
-                                                          "brdfbench.frontier/1" };
+static const char *const kind_schemas[CMP_KIND_COUNT] = { THROUGHPUT_SCHEMA, ACCURACY_SCHEMA, RENDER_SCHEMA, FIT_SCHEMA,
+                                                          FRONTIER_SCHEMA };
 
 const char *cmp_kind_name(int k) { return k >= 0 && k < CMP_KIND_COUNT ? kind_names[k] : "?"; }
-const char *cmp_kind_file(int k) { return k >= 0 && k < CMP_KIND_COUNT ? kind_files[k] : "?"; }
-const char *cmp_kind_schema(int k) { return k >= 0 && k < CMP_KIND_COUNT ? kind_schemas[k] : "?"; }
 
 const char *cmp_verdict_name(int v)
 {
@@ -550,7 +547,7 @@ static int read_file(struct compare_set *set, int run, const char *path, char *e
         goto done;
     }
     /* throughput/2 files (no normalised rates) are still compared, on their absolute rates */
-    if (strcmp(schema, kind_schemas[kind]) != 0 && strcmp(schema, "brdfbench.throughput/2") != 0) {
+    if (strcmp(schema, kind_schemas[kind]) != 0 && strcmp(schema, THROUGHPUT_SCHEMA_V2) != 0) {
         fail(err, errlen, "%s: schema \"%s\", compare reads \"%s\" (run the command again with this version)", path,
              schema, kind_schemas[kind]);
         goto done;

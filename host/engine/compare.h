@@ -21,9 +21,9 @@
 #ifndef BRDF_COMPARE_H
 #define BRDF_COMPARE_H
 
+#include "schemas.h"
 #include <stddef.h>
 
-#define COMPARE_SCHEMA "brdfbench.compare/1"
 #define CMP_MAX_RUNS 16
 #define CMP_MAX_CTX 32
 #define CMP_TEXT 256
@@ -34,8 +34,6 @@
 /* The result files compare reads, with the schema version it reads of each. */
 enum cmp_kind { CMP_THROUGHPUT = 0, CMP_ACCURACY, CMP_RENDER, CMP_FIT, CMP_FRONTIER, CMP_KIND_COUNT };
 const char *cmp_kind_name(int kind);      /* "throughput", ... */
-const char *cmp_kind_file(int kind);      /* "throughput.json", ... */
-const char *cmp_kind_schema(int kind);    /* "brdfbench.throughput/2", ... */
 
 /* What a figure means for a verdict. */
 enum cmp_sense {

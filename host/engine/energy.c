@@ -117,9 +117,9 @@ done:
 
 int albedo_mode_of(const struct model_info *m)
 {
-    if (strcmp(m->family, "microfacet") == 0)
+    if (m->family == MODEL_FAMILY_MICROFACET)
         return ALBEDO_MICRO;
-    if (strcmp(m->family, "normalised") == 0)
+    if (m->family == MODEL_FAMILY_NORMALISED)
         return m->lobe == LOBE_PSI ? ALBEDO_PSI : ALBEDO_HALF;
     return -1;
 }

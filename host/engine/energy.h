@@ -14,12 +14,12 @@
 #ifndef BRDF_ENERGY_H
 #define BRDF_ENERGY_H
 
+#include "schemas.h"
 #include <stddef.h>
 
 #include "clsession.h"
 #include "models.h"
 
-#define ENERGY_SCHEMA "brdfbench.energy/1"
 
 /* Albedo modes (must match kernels/integrate.cl). */
 enum albedo_mode { ALBEDO_PSI = 0, ALBEDO_HALF = 1, ALBEDO_MICRO = 2, ALBEDO_DCOS = 3 };
@@ -67,7 +67,7 @@ struct recip_worst {
 int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long pairs, struct recip_worst *device,
                       struct recip_worst *host);
 
-/* Reciprocity of the image pass itself (kernels/shade.cl through host/render.h), for every
+/* Reciprocity of the image pass itself (kernels/shade.cl through host/engine/render.h), for every
  * model the image passes shade, Cook-Torrance included: each pair (L, V) is one pixel shaded
  * twice, with eye and point light swapped; S = specular / (E (N.L) ks) must agree. diff is
  * |S(L,V) - S(V,L)| / max(|S(L,V)|, |S(V,L)|, 1e-6 f(c = 1, n)). */

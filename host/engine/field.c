@@ -13,7 +13,7 @@
 
 static const double half_pi = 1.57079632679489661923;
 
-static double x_e_of(double n) { return acos(exp(-0.511 / n)); }
+static double x_e_of(double n) { return zone_epicentre_end(n); }
 
 int field_grid_check(const struct field_grid *g, char *err, size_t errlen)
 {

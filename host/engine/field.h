@@ -10,12 +10,12 @@
 #ifndef BRDF_FIELD_H
 #define BRDF_FIELD_H
 
+#include "schemas.h"
 #include <stddef.h>
 
 #include "clsession.h"
 #include "models.h"
 
-#define FIELD_SCHEMA "brdfbench.field/1"
 #define FIELD_DEFAULT_ROWS 121
 #define FIELD_DEFAULT_COLS 181
 #define FIELD_MAX_CELLS 4000000L

@@ -146,7 +146,7 @@ int field_read_json(const char *path, struct field_result *r, char *err, size_t 
         memcpy(f, formula ? formula : "", flen);
         r->standin->id = id;
         r->standin->kernel_id = -1;
-        r->standin->family = "user";
+        r->standin->family = MODEL_FAMILY_USER;
         r->standin->lobe = lobe && strcmp(lobe, "theta_h") == 0 ? LOBE_THETA_H : LOBE_PSI;
         r->standin->formula = formula ? f : "(the formula is not in this field file)";
         r->standin->description = "a model of the run that wrote this field file";

@@ -14,12 +14,12 @@
 #ifndef BRDF_FIT_H
 #define BRDF_FIT_H
 
+#include "schemas.h"
 #include <stddef.h>
 
 #include "accuracy.h"
 #include "clsession.h"
 
-#define FIT_SCHEMA "brdfbench.fit/1"
 #define FIT_COMPARE_COUNT 3          /* fq2, fvol, cq2 */
 #define FIT_TRADEOFF_POINTS 5
 #define FIT_CAP_MIN 1e-6             /* smallest cap on max delta or max Delta accepted */
@@ -116,7 +116,6 @@ int fit_options_check(const struct fit_options *o, char *err, size_t errlen);
 
 /* ---- any family: minimax by Nelder-Mead (GSL) on host figures ------------------------------ */
 
-#define FIT_FAMILY_SCHEMA "brdfbench.fit_family/1"
 #define FIT_POWER_M_MAX 16
 
 /* One fitted point of a family: its parameters and its figures over the whole n grid. */

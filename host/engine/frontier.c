@@ -16,63 +16,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Per evaluation, as kernels/brdf_models.h writes the formula with n per evaluation (so k(n)
- * is counted), beside the clamp of c every model shares. arith: FMA, multiply, add, subtract
- * and int/float conversions; minmax: fmin/fmax/select; transc: exp, log, pow, acos, sqrt,
- * expm1 calls. docs/frontier.md has the same table with the reasoning. */
-static const struct {
-    const char *id;
-    struct frontier_ops ops;
-} ops_table[] = {
-    { "phong",    { 1, 1, 0, 0, 2, "exp(n log c)" } },
-    { "blinn",    { 1, 1, 0, 0, 2, "exp(n log c)" } },
-    { "phongpow", { 1, 0, 0, 0, 1, "pow(c, n), the built-in" } },
-    { "cq2",      { 1, 4, 1, 0, 0, "k = n/2; fma; max; square" } },
-    { "fvol",     { 1, 4, 1, 0, 0, "k = 0.463 n; fma; max; square" } },
-    { "fvol64",   { 1, 4, 1, 0, 0, "k = 29/64 n; fma; max; square" } },
-    { "fq2",      { 1, 4, 1, 0, 0, "k = fma(n, 0.448, 0.099); fma; max; square" } },
-    { "quad",     { 1, 4, 1, 0, 0, "k = fma(n, a, b); fma; max; square" } },
-    { "schlick",  { 1, 2, 0, 1, 0, "c / (n (1 - c) + c)" } },
-    { "lyon",     { 1, 3, 1, 0, 0, "1 - n (1-c) 2^-k; max; plus k squarings" } },
-    { "fq",       { 1, 4, 1, 2, 3, "k_Q(n) = (sqrt Q - 1)/expm1(log Q / n); fma; max; square" } },
-    { "sg",       { 1, 2, 0, 0, 1, "exp(n (c - 1))" } },
-    { "ue4phong", { 1, 3, 0, 0, 1, "exp((n + 0.775)(c - 1))" } },
-    { "gauss",    { 1, 3, 0, 0, 1, "exp(fma(n, a, b)(c - 1))" } },
-    { "gaussfit", { 1, 3, 0, 0, 1, "exp(fma(n, a, b)(c - 1))" } },
-    { "bg",       { 1, 3, 1, 0, 0, "A = fma(n, alpha, beta); fma; max; plus j squarings" } },
-    { "kb",       { 1, 13, 4, 4, 2, "2 asin(sqrt(s/2)); a and b (2 divides); two pieces (2 divides); selects" } },
-    { "kbswap",   { 1, 13, 4, 4, 2, "2 asin(sqrt(s/2)); a and b (2 divides); two pieces (2 divides); selects" } },
-    { "bitpow",   { 1, 4, 1, 0, 0, "int subtract, convert, fma, max, convert" } },
-    { "pow3",     { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; square; multiply" } },
-    { "pow3fit",  { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; square; multiply" } },
-    { "pow4",     { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; two squarings" } },
-    { "pow4fit",  { 1, 5, 1, 0, 0, "k = fma(n, a, b); fma; max; two squarings" } },
-};
-
-struct frontier_ops frontier_ops_of(const char *id)
+struct model_ops frontier_ops_of(const struct model_info *info)
 {
-    for (size_t i = 0; i < sizeof ops_table / sizeof ops_table[0]; ++i)
-        if (strcmp(ops_table[i].id, id) == 0)
-            return ops_table[i].ops;
-    struct frontier_ops none = { 0, 0, 0, 0, 0, "no entry (a user model)" };
-    return none;
-}
-
-enum frontier_kind frontier_kind_of(const char *id)
-{
-    static const char *const refs[] = { "phong", "blinn", "phongpow" };
-    static const char *const papers[] = { "cq2", "fvol", "fvol64", "schlick", "lyon", "fq", "fq2" };
-    static const char *const engines[] = { "sg", "ue4phong", "bg", "kb", "kbswap", "bitpow" };
-    static const char *const tuned[] = { "quad", "gauss", "pow3", "pow4", "gaussfit", "pow3fit", "pow4fit" };
-    for (size_t i = 0; i < sizeof refs / sizeof *refs; ++i)
-        if (!strcmp(id, refs[i])) return FR_REFERENCE;
-    for (size_t i = 0; i < sizeof papers / sizeof *papers; ++i)
-        if (!strcmp(id, papers[i])) return FR_PAPER;
-    for (size_t i = 0; i < sizeof engines / sizeof *engines; ++i)
-        if (!strcmp(id, engines[i])) return FR_ENGINE;
-    for (size_t i = 0; i < sizeof tuned / sizeof *tuned; ++i)
-        if (!strcmp(id, tuned[i])) return FR_TUNED;
-    return FR_OTHER;
+    struct model_ops none = { 0, 0, 0, 0, 0, "no entry (a user model)" };
+    return model_is_builtin(info) ? info->ops : none;
 }
 
 void frontier_options_default(struct frontier_options *o)
@@ -86,16 +33,26 @@ void frontier_options_default(struct frontier_options *o)
     o->image_h = 270;
 }
 
+/* The frontier's default set: the registry's models by frontier_rank (kernels/brdf_model_list.h),
+ * each followed by its frontier_variants. */
 int frontier_default_models(struct model_spec *out, int max)
 {
-    static const char *const ids[] = { "phong", "phongpow", "cq2", "fvol", "fvol64", "schlick", "lyon", "fq", "fq2",
-                                       "sg", "ue4phong", "bg", "bg:j=2", "kb", "kbswap", "bitpow", "gaussfit",
-                                       "pow3fit", "pow4fit" };
     int count = 0;
     char err[256];
-    for (size_t i = 0; i < sizeof ids / sizeof *ids && count < max; ++i)
-        if (model_spec_parse(ids[i], &out[count], err, sizeof err) == 0)
-            count++;
+    for (int rank = 1; rank <= models_count(); ++rank)
+        for (int i = 0; i < models_count(); ++i) {
+            const struct model_info *m = models_at(i);
+            if (m->frontier_rank != rank)
+                continue;
+            if (count < max)
+                model_spec_default(m, &out[count++]);
+            char variants[256];
+            snprintf(variants, sizeof variants, "%s", m->frontier_variants ? m->frontier_variants : "");
+            char *save = NULL;
+            for (char *v = strtok_r(variants, ",", &save); v && count < max; v = strtok_r(NULL, ",", &save))
+                if (model_spec_parse(v, &out[count], err, sizeof err) == 0)
+                    count++;
+        }
     return count;
 }
 
@@ -286,8 +243,8 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, const c
     for (int i = 0; i < r->count; ++i) {
         struct frontier_row *row = &r->rows[i];
         row->spec = r->opt.models[i];
-        row->kind = frontier_kind_of(row->spec.info->id);
-        row->ops = frontier_ops_of(row->spec.info->id);
+        row->kind = model_is_builtin(row->spec.info) ? row->spec.info->kind : MODEL_KIND_OTHER;
+        row->ops = frontier_ops_of(row->spec.info);
         for (int m = 0; m < 2; ++m)
             row->rate[m][0] = row->rate[m][1] = row->rate[m][2] = row->norm[m][0] = row->norm[m][1] =
                 row->norm[m][2] = NAN;

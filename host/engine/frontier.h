@@ -9,12 +9,12 @@
 #ifndef BRDF_FRONTIER_H
 #define BRDF_FRONTIER_H
 
+#include "schemas.h"
 #include <stddef.h>
 
 #include "clsession.h"
 #include "models.h"
 
-#define FRONTIER_SCHEMA "brdfbench.frontier/1"
 #define FRONTIER_MAX_MODELS 32
 #define FRONTIER_MAX_ROUNDS 16
 
@@ -22,22 +22,10 @@
  * minimum change: scripts/bench_compare.sh). */
 #define FRONTIER_MIN_CHANGE 0.10
 
-/* What a point is, for the plots' marks. */
-enum frontier_kind { FR_REFERENCE = 0, FR_PAPER, FR_ENGINE, FR_TUNED, FR_OTHER };
-
-/* The operation count of a formula per evaluation (docs/frontier.md holds the table):
- * fused multiply-adds, multiplies and adds (counted together), min/max/select, divides,
- * transcendental calls. known = 0 for a model with no entry (a user model). */
-struct frontier_ops {
-    int known;
-    int arith, minmax, div, transc;
-    const char *note;
-};
-
 struct frontier_row {
     struct model_spec spec;
-    int kind;                         /* enum frontier_kind */
-    struct frontier_ops ops;
+    int kind;                         /* enum model_kind (host/core/models.h) */
+    struct model_ops ops;
     double rate[2][3];                /* [uniform, varying][min, median, max] evaluations/s over the
                                          rounds' medians; NAN: missing */
     double norm[2][3];                /* the same over the peak kernel's rate in the same round
@@ -73,8 +61,8 @@ void frontier_options_default(struct frontier_options *o);
  * frozen fits, every one against phong. Returns the count. */
 int frontier_default_models(struct model_spec *out, int max);
 /* The operation table entry of a model id. */
-struct frontier_ops frontier_ops_of(const char *id);
-enum frontier_kind frontier_kind_of(const char *id);
+/* The descriptor's operation count, or none for a user model. */
+struct model_ops frontier_ops_of(const struct model_info *info);
 
 /* The Pareto front: on_front[i] = 1 when no other point is at least as good in all three
  * (cost higher or within overlapping spreads, max delta and max Delta not larger) and better

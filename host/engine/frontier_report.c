@@ -12,7 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const kind_names[] = { "reference", "paper", "engine", "tuned", "other" };
 static const char *const range_names[2] = { "n_2_1000", "n_16_1000" };
 
 int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
@@ -47,7 +46,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
         const struct frontier_row *row = &r->rows[i];
         jw_obj_begin(&w);
         jw_kv_str(&w, "model", row->spec.label);
-        jw_kv_str(&w, "kind", kind_names[row->kind]);
+        jw_kv_str(&w, "kind", model_kind_name(row->kind));
         jw_kv_str(&w, "source", row->spec.info->description);
         jw_kv_bool(&w, "on_front", row->on_front);
         for (int m = 0; m < 2; ++m) {
@@ -102,7 +101,7 @@ int frontier_write_csv(const char *path, const struct frontier_report *r, char *
                   "arith,minmax,div,transc,max_rel_2,max_abs_2,max_rel_16,max_abs_16,psnr_db\n");
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];
-        md_printf(&b, "\"%s\",%s,%d,%.6g,%.6g,%.6g,%.6g,", row->spec.label, kind_names[row->kind], row->on_front,
+        md_printf(&b, "\"%s\",%s,%d,%.6g,%.6g,%.6g,%.6g,", row->spec.label, model_kind_name(row->kind), row->on_front,
                   row->rate[0][1], row->rate[0][0], row->rate[0][2], row->rate[1][1]);
         if (row->ops.known)
             md_printf(&b, "%d,%d,%d,%d,", row->ops.arith, row->ops.minmax, row->ops.div, row->ops.transc);
@@ -131,11 +130,11 @@ int frontier_write_plots(const char *dir, const struct frontier_report *r, char 
         for (int i = 0; i < r->count; ++i) {
             const struct frontier_row *row = &r->rows[i];
             /* a reference is exact up to rounding: drawn at the axis floor, not at 1e-16 */
-            x[n] = row->kind == FR_REFERENCE ? 0.0 : fig == 0 ? row->max_rel[0] : row->max_abs[0];
+            x[n] = row->kind == MODEL_KIND_REFERENCE ? 0.0 : fig == 0 ? row->max_rel[0] : row->max_abs[0];
             y[n] = row->rate[0][1];
             labels[n] = row->spec.label;
-            kinds[n] = row->kind == FR_REFERENCE ? DRAW_MARK_REFERENCE
-                       : row->kind == FR_PAPER   ? DRAW_MARK_PAPER
+            kinds[n] = row->kind == MODEL_KIND_REFERENCE ? DRAW_MARK_REFERENCE
+                       : row->kind == MODEL_KIND_PAPER   ? DRAW_MARK_PAPER
                                                  : DRAW_MARK_OTHER;
             front[n] = row->on_front;
             n++;
@@ -167,7 +166,7 @@ void frontier_print(FILE *f, const struct frontier_report *r)
         if (isfinite(row->psnr_db))
             snprintf(psnr, sizeof psnr, "%.1f", row->psnr_db);
         fprintf(f, "%-14s %-9s %5s %11.4g %11.4g %6s %9.4f%% %9.5f %9.4f%% %9.5f %7s\n", row->spec.label,
-                kind_names[row->kind], row->on_front ? "yes" : "", row->rate[0][1], row->rate[1][1], ops,
+                model_kind_name(row->kind), row->on_front ? "yes" : "", row->rate[0][1], row->rate[1][1], ops,
                 100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1], psnr);
     }
 }
@@ -179,7 +178,7 @@ static int best_within(const struct frontier_report *r, double budget, int range
     int best = -1;
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];
-        if (row->kind == FR_REFERENCE || !isfinite(row->max_rel[range]) || !isfinite(row->rate[0][2]))
+        if (row->kind == MODEL_KIND_REFERENCE || !isfinite(row->max_rel[range]) || !isfinite(row->rate[0][2]))
             continue;
         if (budget > 0 && row->rate[0][2] < budget)
             continue;
@@ -205,7 +204,7 @@ char *frontier_markdown(const struct frontier_report *r)
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];
         md_printf(&b, "| %s | %s | %s | %.3g | %.3g | %.4f%% | %.4f | %.4f%% | %.4f | ", row->spec.label,
-                  kind_names[row->kind], row->on_front ? "**yes**" : "", row->rate[0][1], row->rate[1][1],
+                  model_kind_name(row->kind), row->on_front ? "**yes**" : "", row->rate[0][1], row->rate[1][1],
                   100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1]);
         if (isfinite(row->psnr_db))
             md_printf(&b, "%.1f |\n", row->psnr_db);

@@ -30,14 +30,13 @@ static const struct {
     { "whole.max_abs", "max absolute error |f - f_ref| over x in [0, pi/2]" },
     { "energy.max_abs_dev", "max over n of |2 pi int_0^(pi/2) f(cos x, n) cos x sin x dx - 1|" },
     { "albedo.max", "max directional albedo over n and theta_i = 0, 5, ..., 85 degrees (normalised and "
-                    "microfacet models; device quadrature of host/energy.h)" },
+                    "microfacet models; device quadrature of host/engine/energy.h)" },
     { "invalid.count", "model values that were NaN, Inf or negative in the sweep" },
     { "measured.rms", "the lobe's RMS error against the measured material of \"measured\" (a MERL file), at the "
                       "Blinn-Phong fit's n and scale (brdfbench measured's err_measured)" },
 };
 
 const char *gate_metric_name(enum gate_metric m) { return metrics[m].name; }
-const char *gate_metric_meaning(enum gate_metric m) { return metrics[m].meaning; }
 
 static int metric_needs_sweep(enum gate_metric m)
 {
@@ -202,7 +201,7 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     g->metric = (enum gate_metric)metric;
     if (g->metric == GATE_ALBEDO_MAX && albedo_mode_of(g->model.info) < 0)
         return jr_fail(d, metric_v, err, errlen, "%salbedo.max needs a normalised or microfacet model (%s is %s)",
-                       where, g->model.info->id, g->model.info->family);
+                       where, g->model.info->id, model_family_name(g->model.info->family));
 
     if (member(d, gv, "measured", JR_STR, where, &v, err, errlen))
         return EXIT_USAGE;
@@ -448,7 +447,7 @@ int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, ch
     }
     int rc = 0;
     const struct jr_value *schema = jr_get(&doc.root, "schema"), *results = jr_get(&doc.root, "results");
-    if (!schema || schema->type != JR_STR || strcmp(schema->str, "brdfbench.accuracy/1") != 0) {
+    if (!schema || schema->type != JR_STR || strcmp(schema->str, ACCURACY_SCHEMA) != 0) {
         rc = jr_fail(&doc, schema ? schema : &doc.root, msg, sizeof msg,
                      "not an accuracy.json (schema brdfbench.accuracy/1 expected)");
         snprintf(err, errlen, "--baseline: %s", msg);

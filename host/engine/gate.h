@@ -4,14 +4,13 @@
 #ifndef BRDF_GATE_H
 #define BRDF_GATE_H
 
+#include "schemas.h"
 #include <stdio.h>
 
 #include "accuracy.h"
 #include "clsession.h"
 #include "models.h"
 
-#define GATES_SCHEMA "brdfbench.gates/1"       /* the gates file (input) */
-#define GATE_RESULT_SCHEMA "brdfbench.gate/1"  /* the --json result (output) */
 #define GATE_MAX_GATES 1000
 #define GATE_DEFAULT_TOLERANCE 1e-3            /* --tolerance: relative regression allowed */
 #define GATE_BASELINE_FLOOR 1e-9               /* absolute slack of a baseline comparison */
@@ -22,7 +21,7 @@ enum gate_metric {
     GATE_ATTENUATION_MAX_ABS, /* max absolute error over the attenuation zone (docs/definitions.md Delta) */
     GATE_WHOLE_MAX_ABS,       /* max absolute error over x in [0, pi/2] */
     GATE_ENERGY_MAX_DEV,      /* max over n of |2 pi int_0^(pi/2) f cos x sin x dx - 1| */
-    GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/energy.h) */
+    GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/engine/energy.h) */
     GATE_INVALID_COUNT,       /* model values that were NaN, Inf or negative in the sweep */
     GATE_MEASURED_RMS,        /* the lobe's error against a measured material (host/engine/measured.h) */
     GATE_METRIC_COUNT
@@ -30,7 +29,6 @@ enum gate_metric {
 
 /* The name of a metric in a gates file ("epicentre.max_rel") and what it measures. */
 const char *gate_metric_name(enum gate_metric m);
-const char *gate_metric_meaning(enum gate_metric m);
 
 enum gate_status { GATE_NOT_RUN, GATE_PASS, GATE_FAIL };
 enum gate_baseline_status { GATE_BASELINE_NONE, GATE_BASELINE_OK, GATE_BASELINE_REGRESSION,
@@ -78,7 +76,7 @@ struct gate_set {
 
 /* Parses a gates file's text. name is used in messages ("name:line:col: problem"); model
  * files named in it are read relative to base_dir. User models it defines are registered
- * (host/usermodel.h). Returns 0, or EXIT_USAGE with a message. No device is needed. */
+ * (host/core/usermodel.h). Returns 0, or EXIT_USAGE with a message. No device is needed. */
 int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir,
                         struct gate_set *out, char *err, size_t errlen);
 int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errlen);

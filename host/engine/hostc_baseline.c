@@ -34,9 +34,6 @@ static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a
 #include <time.h>
 #include <unistd.h>
 
-#define TP_STREAMS 4     /* kernels/throughput.cl */
-#define TP_LANES 16
-#define ACC_OUT_STRIDE 8 /* kernels/accuracy.cl */
 #define HOSTC_MAX_THREADS 256
 
 _Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_dispatch covers model ids 0..39");

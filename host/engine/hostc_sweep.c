@@ -36,7 +36,7 @@ static inline __attribute__((always_inline)) void hostc_sweep_n(const int id, fl
                                                                 float rp0, float rp1, float n, long samples,
                                                                 float *o)
 {
-    const float s_e = -expm1(-0.511f / n);
+    const float s_e = -expm1(-(float)BRDF_ZONE_K / n);
     const float epi_step = s_e / (float)(samples - 1);
     const float log2_r = -log2(s_e) / (float)samples;
     float att_lane[16];

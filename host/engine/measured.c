@@ -44,7 +44,7 @@ int measured_default_lobes(struct model_spec *out, int max)
     int count = 0;
     for (int i = 0; i < models_count() && count < max; ++i) {
         const struct model_info *m = models_at(i);
-        if (strcmp(m->reference_id, "phong") != 0 || strcmp(m->family, "reference") == 0 || m->nparams >= 2)
+        if (strcmp(m->reference_id, "phong") != 0 || m->family == MODEL_FAMILY_REFERENCE || m->nparams >= 2)
             continue;
         model_spec_default(m, &out[count++]);
     }

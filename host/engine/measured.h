@@ -15,13 +15,13 @@
 #ifndef BRDF_MEASURED_H
 #define BRDF_MEASURED_H
 
+#include "schemas.h"
 #include <stdio.h>
 
 #include "clsession.h"
 #include "merl.h"
 #include "models.h"
 
-#define MEASURED_SCHEMA "brdfbench.measured/1"
 #define MEASURED_MAX_LOBES 32
 #define MEASURED_MAX_MATERIALS 512
 #define MEASURED_SLICES 3                 /* theta_d of the slice pictures */

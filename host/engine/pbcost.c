@@ -55,7 +55,7 @@ static int make_rows(struct pbcost_result *r)
     }
     for (int i = 0; i < models_count(); ++i) {
         const struct model_info *info = models_at(i);
-        if (strcmp(info->family, "physical") != 0)
+        if (info->family != MODEL_FAMILY_PHYSICAL)
             continue;
         int variants = info->kernel_id == BRDF_HE ? BRDF_HE_PRESETS : 1;
         for (int v = 0; v < variants && r->count < PBCOST_MAX_ROWS; ++v) {

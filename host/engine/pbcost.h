@@ -8,13 +8,13 @@
 #ifndef BRDF_PBCOST_H
 #define BRDF_PBCOST_H
 
+#include "schemas.h"
 #include <stdio.h>
 
 #include "clsession.h"
 #include "merl.h"
 #include "models.h"
 
-#define PBCOST_SCHEMA "brdfbench.physical/1"
 #define PBCOST_MAX_ROWS 24
 #define PBCOST_MAX_MEASURED 4    /* measured materials as rows (--measured) */
 #define PBCOST_CHECK_TOL 1e-3    /* a row's check: |device - double| / peak at most this */

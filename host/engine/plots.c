@@ -81,13 +81,25 @@ int plot_series_add(struct plot_figure *fig, const char *label, int colour, int 
     return 0;
 }
 
+/* A colour name of kernels/brdf_model_list.h as an index of the pictures' palette (Tableau 10,
+ * host/output/draw.cpp, in this order); "black" is the references' colour. Unknown: -2. */
+static int colour_index(const char *name)
+{
+    static const char *const names[] = { "blue", "orange", "green", "red", "purple",
+                                         "brown", "pink", "grey", "olive", "cyan" };
+    if (name && strcmp(name, "black") == 0) return DRAW_COLOUR_BLACK;
+    for (int i = 0; name && i < (int)(sizeof names / sizeof names[0]); i++)
+        if (strcmp(name, names[i]) == 0) return i;
+    return -2;
+}
+
+int plot_colour_known(const char *name) { return colour_index(name) != -2; }
+
+/* A model's colour; a user model (no colour of its own) takes the palette's first. */
 static int colour_of_info(const struct model_info *info)
 {
-    if (!info) return 0;
-    if (strcmp(info->id, info->reference_id) == 0) return DRAW_COLOUR_BLACK;
-    for (int i = 0; i < models_count(); i++)
-        if (models_at(i) == info) return i % 10;
-    return 0;
+    int i = info ? colour_index(info->colour) : -2;
+    return i == -2 ? 0 : i;
 }
 
 int plot_model_colour(const struct model_spec *m) { return colour_of_info(m->info); }
@@ -108,7 +120,7 @@ int plots_add_curves(struct plot_set *set, const char *file, const char *caption
     snprintf(f->y_label, sizeof f->y_label, "f(cos x, n = %g)", n);
     /* x up to 4 x_e(n): the whole lobe and the start of its tail, readable at any n
        (the reference is below exp(-16 * 0.511) there); capped at pi/2 */
-    double x_end = fmin(half_pi, 4 * acos(exp(-0.511 / n)));
+    double x_end = fmin(half_pi, 4 * zone_epicentre_end(n));
     f->x_min = 0;
     f->x_max = x_end;
     double x[CURVE_POINTS], y[CURVE_POINTS];
@@ -128,21 +140,21 @@ int plots_add_curves(struct plot_set *set, const char *file, const char *caption
             return -1;
     }
     f->nvlines = 1;
-    f->vlines[0] = acos(exp(-0.511 / n));
+    f->vlines[0] = zone_epicentre_end(n);
     snprintf(f->vline_labels[0], sizeof f->vline_labels[0], "x_e(%g): epicentre end", n);
     return 0;
 }
 
-static int family_ok(const struct model_info *info, const char *const *families, int nfamilies)
+static int family_ok(const struct model_info *info, const enum model_family *families, int nfamilies)
 {
     if (nfamilies <= 0) return 1;
     for (int i = 0; i < nfamilies; i++)
-        if (strcmp(info->family, families[i]) == 0) return 1;
+        if (info->family == families[i]) return 1;
     return 0;
 }
 
 int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *caption, const char *title,
-                       const struct accuracy_result *res, int count, int relative, const char *const *families,
+                       const struct accuracy_result *res, int count, int relative, const enum model_family *families,
                        int nfamilies)
 {
     struct plot_figure *f = plots_add(set, PLOT_LINES, file, caption);
@@ -257,11 +269,12 @@ int plots_add_throughput(struct plot_set *set, const char *json_path, const char
     const char *schema;
     int rc = 2;
     if (jr_need_str(&d, &d.root, "schema", &schema, err, errlen)) goto done;
-    /* version 2 only adds each row's repetitions */
-    if (strcmp(schema, "brdfbench.throughput/1") != 0 && strcmp(schema, "brdfbench.throughput/2") != 0 &&
-        strcmp(schema, "brdfbench.throughput/3") != 0) {
+    /* the versions differ in what this reader does not use (repetitions, normalised rates) */
+    if (strcmp(schema, THROUGHPUT_SCHEMA_V1) != 0 && strcmp(schema, THROUGHPUT_SCHEMA_V2) != 0 &&
+        strcmp(schema, THROUGHPUT_SCHEMA) != 0) {
         jr_fail(&d, jr_get(&d.root, "schema"), err, errlen,
-                "schema \"%s\", expected \"brdfbench.throughput/2\" (or /1)", schema);
+                "schema \"%s\", expected \"%s\" (or %s, %s)", schema, THROUGHPUT_SCHEMA,
+                THROUGHPUT_SCHEMA_V2, THROUGHPUT_SCHEMA_V1);
         goto done;
     }
     if (jr_need(&d, &d.root, "results", JR_ARR, &results, err, errlen)) goto done;

@@ -10,12 +10,12 @@
 #ifndef BRDF_PLOTS_H
 #define BRDF_PLOTS_H
 
+#include "schemas.h"
 #include <stddef.h>
 
 #include "accuracy.h"
 #include "models.h"
 
-#define PLOTS_SCHEMA "brdfbench.plots/1"
 #define PLOT_MAX_SERIES 24
 #define PLOT_MAX_BARS 64
 #define PLOT_MAX_VLINES 4
@@ -61,8 +61,10 @@ struct plot_figure *plots_add(struct plot_set *set, int kind, const char *file, 
 /* Copies count points into a new series of fig. Returns 0 or -1 (full or out of memory). */
 int plot_series_add(struct plot_figure *fig, const char *label, int colour, int dashed, const double *x,
                     const double *y, size_t count);
-/* A stable colour per model: its registry position (references are black). */
+/* A stable colour per model: its descriptor's (references are black). */
 int plot_model_colour(const struct model_spec *m);
+/* 1 when name is a colour of the palette ("black" included): every descriptor's must be. */
+int plot_colour_known(const char *name);
 
 /* f(x) for x in [0, min(pi/2, 4 x_e(n))] at shininess n: the reference of models[0] in black, then each
  * model; a dotted line at x_e(n). Evaluated in double on the host. */
@@ -73,7 +75,7 @@ int plots_add_curves(struct plot_set *set, const char *file, const char *caption
  * itself are skipped, and so are models whose registry family is not one of `families`
  * (nfamilies = 0: any). Long n grids are binned (the maximum of each bin) to at most 1000 points. */
 int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *caption, const char *title,
-                       const struct accuracy_result *res, int count, int relative, const char *const *families,
+                       const struct accuracy_result *res, int count, int relative, const enum model_family *families,
                        int nfamilies);
 /* max delta or max Delta against Q: q[count], fq[count]; baseline (e.g. f2's value, which
  * does not depend on Q) drawn as a dashed line; NAN for none. */

@@ -68,7 +68,7 @@ void render_options_default(struct render_options *o)
     o->warmup = 2;
     o->nmodels = model_spec_list_default(o->models, RENDER_MAX_MODELS);
     for (int i = 0; i < models_count() && o->nmodels < RENDER_MAX_MODELS; i++)
-        if (strcmp(models_at(i)->family, "physical") == 0)
+        if (models_at(i)->family == MODEL_FAMILY_PHYSICAL)
             model_spec_default(models_at(i), &o->models[o->nmodels++]);
     o->he_material = 0;
     static const double cols[] = {4, 16, 64, 256, 1000};
@@ -139,9 +139,9 @@ int render_shading_mode(const struct model_spec *m)
 {
     if (model_is_full(m->info))   /* a user full BRDF: the vectors L, V, N of every pixel */
         return SHADE_USER_FULL;
-    if (strcmp(m->info->family, "microfacet") == 0)
+    if (m->info->family == MODEL_FAMILY_MICROFACET)
         return m->info->kernel_id == BRDF_GGX ? SHADE_CT_GGX : SHADE_CT_BECKMANN;
-    if (strcmp(m->info->family, "physical") == 0)
+    if (m->info->family == MODEL_FAMILY_PHYSICAL)
         return SHADE_PHYSICAL;
     return m->info->lobe == LOBE_PSI ? SHADE_LOBE_PSI : SHADE_LOBE_THETA_H;
 }
@@ -1124,7 +1124,7 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
     hc->count = 0;
     for (int mi = -1; mi < o->nmodels && hc->count < RENDER_MAX_MODELS + 1; mi++) {
         const struct model_spec *m = mi < 0 ? &blinn : &o->models[mi];
-        if (mi >= 0 && strcmp(m->info->family, "quadratic") != 0 && strcmp(m->info->family, "rational") != 0)
+        if (mi >= 0 && m->info->family != MODEL_FAMILY_QUADRATIC && m->info->family != MODEL_FAMILY_RATIONAL)
             continue;
         struct he_entry *en = &hc->e[hc->count];
         unsigned *rg = mi < 0 ? rgba_b : rgba_m;

@@ -6,6 +6,7 @@
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "report.h"
+#include "schemas.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -110,7 +111,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                       size_t errlen)
 {
     struct jw w;
-    jw_doc_begin(&w, "brdfbench.render/1", s, "");
+    jw_doc_begin(&w, RENDER_SCHEMA, s, "");
     jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
     jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
               "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
@@ -183,7 +184,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
             const struct model_spec *m = &o->models[mi];
             jw_obj_begin(&w);
             jw_kv_str(&w, "model", m->label);
-            jw_kv_str(&w, "family", m->info->family);
+            jw_kv_str(&w, "family", model_family_name(m->info->family));
             jw_kv_str(&w, "reference", mr->ref.label);
             jw_kv_str(&w, "shading", render_mode_names[mr->mode]);
             if (si == RENDER_SPHERES) {

@@ -29,7 +29,7 @@
 
 static const double half_pi = 1.57079632679489661923;
 static const double two_pi = 6.28318530717958647692;
-#define ZONE_K 0.511                 /* docs/definitions.md: the epicentre ends where c^n = exp(-0.511) */
+#define ZONE_K BRDF_ZONE_K           /* kernels/brdf_shared.h: the epicentre ends where c^n = exp(-0.511) */
 
 void reproduce_options_default(struct reproduce_options *o)
 {
@@ -284,7 +284,6 @@ static double minimise_brent(double (*f)(double, void *), void *ctx, double lo, 
 }
 
 /* Size of one unit in the 4th significant digit of v. */
-static double digit4(double v) { return (v > 0 && isfinite(v)) ? pow(10.0, floor(log10(v)) - 3.0) : 0.0; }
 
 /* The largest delta of a model over the epicentre at one n, on the host in double: a grid of
  * the zone and a Brent polish (any model; used where the device grid cannot go, n = 1e6). */
@@ -358,7 +357,7 @@ static int run_sweeps(struct repro *p)
             if (rc)
                 return rc;
             const struct accuracy_result *a = &p->sw[i];
-            double ue = digit4(a->epicentre.value), ua = digit4(a->attenuation.value);
+            double ue = fourth_digit_unit(a->epicentre.value), ua = fourth_digit_unit(a->attenuation.value);
             double ce = ue > 0 ? fabs(fine.epicentre.value - a->epicentre.value) / ue : 0;
             double ca = ua > 0 ? fabs(fine.attenuation.value - a->attenuation.value) / ua : 0;
             p->grid_change[i] = fmax(ce, ca);
@@ -1324,16 +1323,3 @@ done:
     return rc;
 }
 
-int reproduce_run(struct cl_session *s, const char *out_dir, int quiet)
-{
-    struct reproduce_options o;
-    reproduce_options_default(&o);
-    return reproduce_run_ex(s, out_dir, &o, quiet, NULL);
-}
-
-int reproduce_fit_run(struct cl_session *s, const char *out_dir, int quiet)
-{
-    struct fit_options o;
-    fit_options_default(&o);
-    return fit_run(s, out_dir, &o, quiet, NULL);
-}

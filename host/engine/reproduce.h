@@ -12,12 +12,11 @@
 #ifndef BRDF_REPRODUCE_H
 #define BRDF_REPRODUCE_H
 
+#include "schemas.h"
 #include <stddef.h>
 
 #include "clsession.h"
 
-#define CLAIMS_SCHEMA "brdfbench.claims/1"
-#define Q_SWEEP_SCHEMA "brdfbench.q_sweep/1"
 
 struct reproduce_options {
     long samples;            /* samples per zone of the claim sweeps (default 4096) */
@@ -55,18 +54,12 @@ struct reproduce_report {
     double seconds;
 };
 
-/* Runs everything with the default options; writes the files into out_dir (not NULL) and the
- * table on stdout unless quiet. Returns 0 or an exit code. */
-int reproduce_run(struct cl_session *s, const char *out_dir, int quiet);
 /* Same with options; fills `report` when not NULL (free with reproduce_report_free): the
  * rows and claims.md's markdown, for the main job's report. */
 int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct reproduce_options *o, int quiet,
                      struct reproduce_report *report);
 void reproduce_report_free(struct reproduce_report *r);
 
-/* `brdfbench fit` with its defaults (n in [2, 1000] step 1, no cap): writes out_dir/fit.json
- * and prints its summary unless quiet (fit.h has the options and the report). */
-int reproduce_fit_run(struct cl_session *s, const char *out_dir, int quiet);
 
 /* Paper 1's eq. 11 on the host (nested adaptive GSL quadrature in x and n):
  * term 0: c^n, 1: n^2 (c-1)^2, 2: 2n (c-1), 3: 1, each times cos x sin x, over

@@ -18,8 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PEAK_CHAINS 16           /* kernels/peak.cl */
-#define PEAK_UNROLL 4
 
 static const char *const variant_names[TP_VARIANT_COUNT] = { "default", "fast-relaxed-math", "denorms-are-zero", "ab" };
 /* the ab variant's options are the run's (throughput_options.ab_options) */

@@ -11,16 +11,16 @@
 #ifndef BRDF_THROUGHPUT_H
 #define BRDF_THROUGHPUT_H
 
+#include "schemas.h"
 #include "accuracy.h"
 #include "clsession.h"
 #include "models.h"
+#include "brdf_shared.h"   /* TP_STREAMS, PEAK_CHAINS */
 
 /* Version 3 adds the runner's record: context.throughput.runner, and per figure its normalised
  * rates (normalised, normalised_reps), preemption retries and timer; the peak's flops_per_s_reps
  * replace flops_per_s_first/last. Version 2 added evals_per_s_reps. compare reads 2 and 3;
  * plot reads 1 to 3. */
-#define THROUGHPUT_SCHEMA "brdfbench.throughput/3"
-#define TP_STREAMS 4            /* kernels/throughput.cl */
 #define TP_EVALS_PER_ITER (16 * TP_STREAMS)
 #define TP_MAX_MODELS 64
 #define TP_MAX_REPS 1000
@@ -127,7 +127,7 @@ struct tp_timed {
  * cannot be measured has ok 0 and its reason), or EXIT_RUNTIME when out of memory. */
 int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struct throughput_options *o,
                 long work_items, int quiet);
-/* The inputs of such a launch, for tp_input_at (host/hostc_baseline.h). */
+/* The inputs of such a launch, for tp_input_at (host/engine/hostc_baseline.h). */
 struct tp_inputs;
 void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in);
 

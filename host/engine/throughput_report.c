@@ -116,7 +116,7 @@ static const char *tp_definitions[][2] = {
     { "evals_per_s_reps", "evals_per_s of every timed launch, in the order they ran (empty when the figure failed); brdfbench compare tests two runs' repetitions against each other" },
     { "ratio_to_reference", "evals_per_s / evals_per_s of the pow(c, n) built-in, same build options and n mode, same run" },
     { "ratio_to_model_reference", "evals_per_s / evals_per_s of the model's own reference (phong, phongn, blinnn) as brdf_models.h evaluates it" },
-    { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/hostc_baseline.c: -O3 -march=native, pthreads over the online CPUs, powf for c^n)" },
+    { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/engine/hostc_baseline.c: -O3 -march=native, pthreads over the online CPUs, powf for c^n)" },
     { "fraction_of_peak", "evals_per_s / the device's measured peak in FMA per second (peak_fma float16 chains; flops / 2): the inverse is the model's cost in FMA slots" },
     { "inputs", "c sweeps [0, 1) per work-item in steps of 1/(64 iters), made in registers; n uniform = a kernel argument, n varying = a different n in [n_lo, n_hi] for every evaluation" },
     { "accuracy.max_diff_of_peak", "largest |device value - double reference value| / |reference lobe at c = 1| over 4096 probe points, half in the epicentre, half out to 4 x_e, n over [n_lo, n_hi]" },

@@ -45,14 +45,18 @@ static void jw_open(struct jw *w, char c)
         w->count[w->depth] = 0;
         w->is_array[w->depth] = c == '[';
         w->broken[w->depth] = 0;
+    } else {
+        w->malformed = 1;   /* deeper than the writer tracks: its closings would not match */
     }
 }
 
 static void jw_close(struct jw *w, char c)
 {
     int had_lines = w->broken[w->depth];
-    if (w->depth > 0)
+    if (w->depth > 0 && w->is_array[w->depth] == (c == ']'))
         --w->depth;
+    else
+        w->malformed = 1;   /* a closing with nothing open, or of the other kind */
     if (had_lines) {
         md_append(&w->out, "\n", 1);
         for (int i = 0; i < w->depth; ++i)
@@ -153,6 +157,14 @@ int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
     /* Checked after the newline: its own append may be the one that runs out of memory. */
     if (w->out.failed) {
         snprintf(err, errlen, "%s: out of memory while formatting JSON", path);
+        return -1;
+    }
+    /* a writer's bug never reaches the disk as a truncated or mismatched document */
+    if (w->malformed || w->depth != 0 || w->after_key) {
+        w->out.len--;
+        w->out.s[w->out.len] = '\0';
+        snprintf(err, errlen, "%s: not written: the JSON document is unbalanced (%d containers left open%s)", path,
+                 w->depth, w->malformed ? ", a container closed that was not open" : "");
         return -1;
     }
     int rc = write_file_atomic(path, w->out.s, w->out.len, err, errlen);

@@ -18,6 +18,7 @@ struct jw {
     char is_array[JW_MAX_DEPTH];   /* the container at each depth is an array */
     char broken[JW_MAX_DEPTH];     /* it holds a line break (an object, or a nested container) */
     int after_key;
+    int malformed;            /* a closing that matched no opening, or nesting past JW_MAX_DEPTH */
 };
 
 void jw_init(struct jw *w);
@@ -43,7 +44,9 @@ void jw_kv_obj(struct jw *w, const char *key);
 void jw_kv_arr(struct jw *w, const char *key);
 /* "key": [v[0], ..., v[count-1]] with jw_num. */
 void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count);
-/* Writes the buffer (plus a newline) atomically to path. Returns 0 or -1. */
+/* Writes the buffer (plus a newline) atomically to path. Returns 0, or -1 with a message when out
+ * of memory, when the write fails, or when the document is unbalanced (a container left open or
+ * closed twice: a writer's bug, which never reaches the disk). */
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen);
 /* jw_write_file, then jw_free: the end of every writer that builds one document. */
 int jw_write_file_free(struct jw *w, const char *path, char *err, size_t errlen);

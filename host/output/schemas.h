@@ -1,0 +1,30 @@
+/* schemas.h - every schema string brdfbench writes or reads, once. A writer opens its document
+ * with its kind's string (jw_doc_begin); a reader (compare, gate --baseline, plot, report)
+ * checks against the same string, and accepts the older versions listed here where it still
+ * reads them. A change of a document's layout bumps its version here and nowhere else. */
+#ifndef BRDF_SCHEMAS_H
+#define BRDF_SCHEMAS_H
+
+#define ACCURACY_SCHEMA "brdfbench.accuracy/1"
+#define CLAIMS_SCHEMA "brdfbench.claims/1"
+#define COMPARE_SCHEMA "brdfbench.compare/1"
+#define ENERGY_SCHEMA "brdfbench.energy/1"
+#define FIELD_SCHEMA "brdfbench.field/1"
+#define FIT_SCHEMA "brdfbench.fit/1"
+#define FIT_FAMILY_SCHEMA "brdfbench.fit_family/1"
+#define FRONTIER_SCHEMA "brdfbench.frontier/1"
+#define GATES_SCHEMA "brdfbench.gates/1"        /* the gates file (input) */
+#define GATE_RESULT_SCHEMA "brdfbench.gate/1"   /* gate's --json result (output) */
+#define LIST_SCHEMA "brdfbench.list/1"
+#define MEASURED_SCHEMA "brdfbench.measured/1"
+#define PBCOST_SCHEMA "brdfbench.physical/1"
+#define PLOTS_SCHEMA "brdfbench.plots/1"
+#define Q_SWEEP_SCHEMA "brdfbench.q_sweep/1"
+#define RENDER_SCHEMA "brdfbench.render/1"
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/3"
+/* older throughput documents the readers still take: /2 has the same rows without the
+   runner's normalised rates; /1 (plot only) has the rates alone */
+#define THROUGHPUT_SCHEMA_V2 "brdfbench.throughput/2"
+#define THROUGHPUT_SCHEMA_V1 "brdfbench.throughput/1"
+
+#endif
