@@ -757,4 +757,28 @@ BRDF_FN RSCALAR brdf_merl_luminance(RSCALAR r, RSCALAR g, RSCALAR b)
     return r < RC(0.0) || g < RC(0.0) || b < RC(0.0) ? RC(0.0) : RC(0.2126) * r + RC(0.7152) * g + RC(0.0722) * b;
 }
 
+#ifdef __OPENCL_VERSION__
+/* Sixteen lanes of a measured material's luminance at world-space L, V, N (render's shading
+ * pass, the physical-cost table): the table a float buffer in the file's layout, lane by lane
+ * (a gather: its cost is memory traffic). */
+BRDF_FN float16 brdf_merl_lookup16(__global const float *table, float16 lx, float16 ly, float16 lz, float16 vx,
+                                   float16 vy, float16 vz, float16 nx, float16 ny, float16 nz)
+{
+    float a[9][16], y[16];
+    vstore16(lx, 0, a[0]); vstore16(ly, 0, a[1]); vstore16(lz, 0, a[2]);
+    vstore16(vx, 0, a[3]); vstore16(vy, 0, a[4]); vstore16(vz, 0, a[5]);
+    vstore16(nx, 0, a[6]); vstore16(ny, 0, a[7]); vstore16(nz, 0, a[8]);
+    for (int k = 0; k < 16; ++k) {
+        float th, td, pd;
+        int ih, id, ip;
+        brdf_merl_half_diff_n(a[0][k], a[1][k], a[2][k], a[3][k], a[4][k], a[5][k], a[6][k], a[7][k], a[8][k],
+                              &th, &td, &pd);
+        int idx = brdf_merl_index3(th, td, pd, &ih, &id, &ip);
+        y[k] = brdf_merl_luminance(table[idx], table[BRDF_MERL_CELLS + idx], table[2 * BRDF_MERL_CELLS + idx]);
+    }
+    return vload16(0, y);
+}
+
+#endif
+
 #endif /* BRDF_MODELS_H */

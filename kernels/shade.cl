@@ -19,7 +19,11 @@
  *       S = D F G / (4 (N.L)(N.V)) for Cook-Torrance: D the model, Schlick F, the
  *           separable Smith G that belongs to D (Beckmann or GGX), or
  *       S = the BRDF of a physically based model (brdf_pb_eval_ud, without He's
- *           uniform-diffuse term: the pass adds its own diffuse term)
+ *           uniform-diffuse term: the pass adds its own diffuse term), or
+ *       S = a user full BRDF at the pixel's L, V, N (brdf_user_full: a GLSL/HLSL function of
+ *           vectors or a BRDF Explorer file, luminance), or
+ *       S = a measured material's luminance, the cell of the MERL table holding (L, V) about N
+ *           (brdf_merl_lookup16: a lookup, its cost memory traffic)
  *   radiance           L = E (N.L) kd + ambient + L_s              (white light)
  * The material is tinted: display colour channel k = sRGB8(1 - exp(-exposure tint_k L)),
  * i.e. diffuse and specular reflectance both scaled by the tint (a coloured metal). One
@@ -39,6 +43,8 @@
 #define SHADE_CT_BECKMANN 2 /* Cook-Torrance with the Smith G of the Beckmann distribution */
 #define SHADE_CT_GGX 3      /* Cook-Torrance with the Smith G of GGX */
 #define SHADE_PHYSICAL 4    /* a physically based BRDF of (N, L, V): brdf_pb_eval_ud */
+#define SHADE_USER_FULL 5   /* a user full BRDF at the pixel's L, V, N: brdf_user_full */
+#define SHADE_MEASURED 6    /* a measured material: the MERL table's luminance (merl_table) */
 
 /* Display table: bin of radiance x = (float bits >> 15) - DISPLAY_BIN0, clamped to
  * [0, DISPLAY_BINS - 1]; covers x in [2^-16, 2^8) (below: code 0, above: saturated). */
@@ -69,7 +75,7 @@ static uint16 display_lookup(__global const uint *table, float16 x)
 __kernel void shade(__global const float *gbuf, const uint stride, const uint nchunks,
                     __global uint *out_rgba, __global float *out_spec, const int mode,
                     const int model, const float p0, const float p1, const float16 params,
-                    __global const uint *display_table)
+                    __global const uint *display_table, __global const float *merl_table)
 {
     const uint nitems = (uint)get_global_size(0);
     const uint gid = (uint)get_global_id(0);
@@ -136,6 +142,12 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
             c = (ndotl + ndotv) * hinv;
             if (mode == SHADE_PHYSICAL)
                 s = brdf_pb_eval_ud(model, ndotl, ndotv, ldotv, n, p0, p1, 0.0f);
+#ifdef BRDF_HAVE_USER_FULL
+            else if (mode == SHADE_USER_FULL)
+                s = brdf_user_full(lx, ly, lz, vx, vy, vz, nx, ny, nz, n, p0, p1);
+#endif
+            else if (mode == SHADE_MEASURED)
+                s = brdf_merl_lookup16(merl_table, lx, ly, lz, vx, vy, vz, nx, ny, nz);
             else
                 s = brdf_eval(model, c, n, p0, p1);
             if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {

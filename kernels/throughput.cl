@@ -319,24 +319,6 @@ TP_VEC_POINTS_KERNEL(tp_vec_points_pow, 0, 3)
  * three loads from a 17.5 MB table: memory traffic, where the other rows pay arithmetic.
  *   tp_full_K (n, p0, p1, step, iters, out, table)
  *   tp_full_points_K (p0, p1, planes[10 x count: Lxyz Vxyz Nxyz n], count, out[], table) */
-static float16 tp_merl_lookup16(__global const float *table, float16 lx, float16 ly, float16 lz, float16 vx,
-                                float16 vy, float16 vz, float16 nx, float16 ny, float16 nz)
-{
-    float a[9][16], y[16];
-    vstore16(lx, 0, a[0]); vstore16(ly, 0, a[1]); vstore16(lz, 0, a[2]);
-    vstore16(vx, 0, a[3]); vstore16(vy, 0, a[4]); vstore16(vz, 0, a[5]);
-    vstore16(nx, 0, a[6]); vstore16(ny, 0, a[7]); vstore16(nz, 0, a[8]);
-    for (int k = 0; k < 16; ++k) {
-        float th, td, pd;
-        int ih, id, ip;
-        brdf_merl_half_diff_n(a[0][k], a[1][k], a[2][k], a[3][k], a[4][k], a[5][k], a[6][k], a[7][k], a[8][k],
-                              &th, &td, &pd);
-        int idx = brdf_merl_index3(th, td, pd, &ih, &id, &ip);
-        y[k] = brdf_merl_luminance(table[idx], table[BRDF_MERL_CELLS + idx], table[2 * BRDF_MERL_CELLS + idx]);
-    }
-    return vload16(0, y);
-}
-
 static float16 tp_full_eval(int kind, float16 lx, float16 ly, float16 lz, float16 vx, float16 vy, float16 vz,
                             float16 nx, float16 ny, float16 nz, float16 n, float p0, float p1,
                             __global const float *table)
@@ -347,7 +329,7 @@ static float16 tp_full_eval(int kind, float16 lx, float16 ly, float16 lz, float1
         f = brdf_user_full(lx, ly, lz, vx, vy, vz, nx, ny, nz, n, p0, p1);
 #endif
     if (kind == 5)
-        f = tp_merl_lookup16(table, lx, ly, lz, vx, vy, vz, nx, ny, nz);
+        f = brdf_merl_lookup16(table, lx, ly, lz, vx, vy, vz, nx, ny, nz);
     float16 nl = nx * lx + ny * ly + nz * lz, nv = nx * vx + ny * vy + nz * vz;
     return select((float16)(0.0f), f, isgreater(nl, 0.0f) & isgreater(nv, 0.0f));
 }

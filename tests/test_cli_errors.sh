@@ -233,6 +233,10 @@ t 2 "^brdfbench measured: empty\.binary: short file: 0 bytes, a MERL file starts
 t 2 "^brdfbench measured: dims360\.binary: dimensions 90 90 360 \(expected 90 90 180, product 1458000\)" measured dims360.binary --out run
 t 2 "^brdfbench measured: headonly\.binary: size 12 bytes, 34992000 short of the 34992012 that dimensions 90 90 180 need" measured headonly.binary --out run
 t 2 "^brdfbench all: --measured: nothere: No such file or directory" all --quick --measured nothere --out run
+t 2 "^brdfbench throughput: --measured: nothere\.binary: No such file or directory \(expected a MERL \.binary file or a folder of them\)" throughput --measured nothere.binary --out run
+t 2 "^brdfbench throughput: --measured: empty\.binary: short file: 0 bytes" throughput --measured empty.binary --out run
+t 2 "^brdfbench render: --measured: folder: no \.binary files in the folder" render --measured folder --out run
+t 2 "^brdfbench render: --measured: dims360\.binary: dimensions 90 90 360 \(expected 90 90 180, product 1458000\)" render --measured dims360.binary --out run
 t 2 "^brdfbench fit: --device: 'all': all and lists are taken by throughput, accuracy and render" fit --device all
 
 # accuracy and gate: the n range (float n; below 0.1 no float grid resolves the lobe) and the

@@ -159,6 +159,36 @@ static void test_read_pattern(void)
             }
     CHECK(wrong == 0, "%ld cell values differ from the written ones", wrong);
     CHECK(wrong_measured == 0, "%ld cells with the wrong measured flag", wrong_measured);
+
+    /* A scene's normal is anything but z: the same pairs turned with their normal by one
+     * rotation (Rodrigues, 0.7 rad about (1, 2, 3)/sqrt(14)) read the same cells, since the
+     * angles about N do not change (every 7th cell away from the cell edges the turn's rounding
+     * could cross: centres are half a cell from them). */
+    double ax[3] = { 1 / sqrt(14.0), 2 / sqrt(14.0), 3 / sqrt(14.0) }, ang = 0.7, R[3][3];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            double cross = r == c ? 0 : ((r + 1) % 3 == c ? -ax[3 - r - c] : ax[3 - r - c]);
+            R[r][c] = (r == c ? cos(ang) : 0) + (1 - cos(ang)) * ax[r] * ax[c] + sin(ang) * cross;
+        }
+    long turned_wrong = 0, turned = 0;
+    for (long idx = 0; idx < 1458000L; idx += 7) {
+        int i = (int)(idx / (90 * 180)), j = (int)(idx / 180 % 90), k = (int)(idx % 180);
+        if (i >= 10 && i < 12)
+            continue;
+        double th, td, pd, L[3], V[3], rL[3], rV[3], rN[3], rgb[3];
+        merl_cell_centre(i, j, k, &th, &td, &pd);
+        merl_dirs(th, td, pd, L, V);
+        for (int r = 0; r < 3; ++r) {
+            rL[r] = R[r][0] * L[0] + R[r][1] * L[1] + R[r][2] * L[2];
+            rV[r] = R[r][0] * V[0] + R[r][1] * V[1] + R[r][2] * V[2];
+            rN[r] = R[r][2];
+        }
+        merl_lookup(&pattern, rL, rV, rN, rgb);
+        ++turned;
+        for (int c = 0; c < 3; ++c)
+            turned_wrong += rgb[c] != syn_stored(&m, c, idx) * syn_scale[c];
+    }
+    CHECK(turned > 200000 && turned_wrong == 0, "turned normal: %ld of %ld values differ", turned_wrong, turned);
 }
 
 static void refused(const char *name, const struct syn_defects *d, const char *needle1, const char *needle2)

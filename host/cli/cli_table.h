@@ -124,6 +124,13 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
     { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results into folder DIR", \
       .def = (DEF) }
+/* Measured materials (MERL files, docs/measured.md): all, throughput and render. */
+#define CLI_FLAG_MEASURED(DEST)                                                                                    \
+    { .name = "--measured", .value = "FILE|DIR", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), .def = "", \
+      .help = "measured materials: a MERL .binary file or a folder of them; all: measured.json and a section of "  \
+              "report.md; throughput: their table lookup as rows of the physically based table (at most 4); "     \
+              "render: the teapot and the bunny shaded with each beside the lobes fitted to it (at most 4) "       \
+              "(docs/measured.md)" }
 #define CLI_FLAG_QUIET(DEST)                                                                                       \
     { .name = "--quiet", .kind = CLI_SWITCH, .dest = CLI_DEST(int, DEST), .set = 1, \
       .help = "no progress lines, tables or summaries (files are written as without it; warnings "              \

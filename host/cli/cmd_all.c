@@ -811,9 +811,7 @@ int cmd_all(int argc, char **argv)
         { .name = "--quick", .kind = CLI_SWITCH, .dest = &quick, .set = 1,
           .help = "coarse grids (seconds; for tests and trials, not for figures): n step 10, 256 samples" },
         CLI_FLAG_QUIET(&r->quiet),
-        { .name = "--measured", .value = "DIR", .kind = CLI_PATH, .dest = &r->measured_dir, .def = "",
-          .help = "also measure the cheap lobes against the MERL .binary files of DIR (or one file): "
-                  "measured.json and a section of report.md (docs/measured.md)" },
+        CLI_FLAG_MEASURED(&r->measured_dir),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };

@@ -5,12 +5,17 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "outdir.h"
+#include "measured.h"
 #include "render.h"
 #include "usermodel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define RENDER_MAX_MEASURED_FILES 4
+static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir, char *err,
+                              size_t errlen);
 
 static int parse_size(const char *arg, const char *text, int *w, int *h, char *err, size_t errlen)
 {
@@ -144,7 +149,7 @@ int cmd_render(int argc, char **argv)
     render_options_default(&o);
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = NULL, *out_dir = NULL;
+    const char *models_text = NULL, *out_dir = NULL, *measured_arg = NULL;
     int quiet = 0, models_given = 0;
     char size_range[64], shininess_range[64];
     snprintf(size_range, sizeof size_range, "W and H in [%d, %d]", RENDER_MIN_SIDE, RENDER_MAX_SIDE);
@@ -180,6 +185,7 @@ int cmd_render(int argc, char **argv)
         { .name = "--teapot-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.teapot_path,
           .help = "POV-Ray file with bicubic_patch blocks" },
         { .name = "--bunny-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.bunny_path, .help = "OBJ file" },
+        CLI_FLAG_MEASURED(&measured_arg),
         { .name = "--no-images", .kind = CLI_SWITCH, .dest = &o.write_images, .set = 0,
           .help = "metrics and timings only, no PNGs" },
         CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
@@ -216,34 +222,62 @@ int cmd_render(int argc, char **argv)
         o.nmodels = n;
     }
 
+    struct merl_material mats[RENDER_MAX_MEASURED_FILES];
+    if (measured_arg) {
+        int lrc = measured_load("--measured", measured_arg, RENDER_MAX_MEASURED_FILES, mats, &o.nmeasured, err,
+                                sizeof err);
+        if (lrc == EXIT_USAGE)
+            goto usage_error;
+        if (lrc)
+            return lrc;
+        for (int i = 0; i < o.nmeasured; ++i)
+            o.measured[i] = &mats[i];
+    }
+    int rc = cmd_render_session(&o, &dev, out_dir, err, sizeof err);
+    for (int i = 0; i < o.nmeasured; ++i)
+        merl_free(&mats[i]);
+    return rc;
+
+usage_error:
+    fprintf(stderr, "brdfbench render: %s\n", err);
+    return EXIT_USAGE;
+}
+
+/* The session, the run folder and the run of a parsed command line (*err: a usage message when
+   EXIT_USAGE is returned). */
+static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir, char *err,
+                              size_t errlen)
+{
+    struct render_options o = *op;
     struct cl_session s;
-    int rc = cli_run_session("render", &s, &dev);
+    int rc = cli_run_session("render", &s, devp);
     if (rc)
         return rc;
     /* sizes against the device's memory before anything is allocated */
     int rows = o.scene_on[RENDER_SPHERES] ? o.nmodels : 0;
-    rc = render_check_size(&s, "--size", o.width, o.height, rows, err, sizeof err);
+    rc = render_check_size(&s, "--size", o.width, o.height, rows, err, errlen);
     for (int k = 0; rc == 0 && k < o.ntime_sizes; k++)
         rc = render_check_size(&s, "--time-sizes", o.time_w[k], o.time_h[k], rows, err,
-                               sizeof err);
+                               errlen);
     if (rc) {
         clsession_close(&s);
-        goto usage_error;
+        fprintf(stderr, "brdfbench render: %s\n", err);
+        return EXIT_USAGE;
     }
     char run_dir[4096];
     if (out_dir) {
         snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", NULL, err, sizeof err) != 0 ||
-               outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err) != 0) {
+    } else if (outdir_prepare("results", NULL, err, errlen) != 0 ||
+               outdir_new_run("results", run_dir, sizeof run_dir, err, errlen) != 0) {
         fprintf(stderr, "brdfbench render: %s\n", err);
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
     if (o.verbose)
         printf("device: %s (%s)\n", s.device_name, s.platform_version);
-    rc = render_run(&s, &o, run_dir, NULL, err, sizeof err);
+    rc = render_run(&s, &o, run_dir, NULL, err, errlen);
     if (rc == 0 && !out_dir &&
-        outdir_set_latest("results", run_dir, err, sizeof err) != 0)
+        outdir_set_latest("results", run_dir, err, errlen) != 0)
         rc = EXIT_RUNTIME;
     clsession_close(&s);
     if (rc) {
@@ -253,8 +287,4 @@ int cmd_render(int argc, char **argv)
     if (o.verbose)
         printf("written: %s/render.json and %s/render/\n", run_dir, run_dir);
     return EXIT_OK;
-
-usage_error:
-    fprintf(stderr, "brdfbench render: %s\n", err);
-    return EXIT_USAGE;
 }

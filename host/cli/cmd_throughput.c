@@ -113,9 +113,7 @@ int cmd_throughput(int argc, char **argv)
           .max = 998, .help = "step of n of the timed sweep over [2, 1000]" },
         { .name = "--sweep-reps", .value = "N", .kind = CLI_INT, .dest = &o.sweep_reps, .min = 1, .max = TP_MAX_REPS,
           .help = "timed runs per model of the sweep" },
-        { .name = "--measured", .value = "FILE|DIR", .kind = CLI_PATH, .dest = &measured_arg, .def = "",
-          .help = "also time the lookup of measured materials (MERL .binary files, a folder's; at most 4) as rows "
-                  "of the physically based table, from a device buffer in the file's layout (docs/measured.md)" },
+        CLI_FLAG_MEASURED(&measured_arg),
         CLI_FLAGS_DOCUMENTS(&out_dir, &json_path, &csv_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_USERMODEL,
@@ -178,9 +176,10 @@ int cmd_throughput(int argc, char **argv)
         for (int i = 0; i < po.nmeasured; ++i)
             po.measured[i] = &mats[i];
     }
-    int full_models = 0;
-    for (int i = 0; i < usermodel_count(); ++i)
-        full_models += usermodel_at(i)->full;
+    for (int i = 0; i < o.model_count && po.nfull < PBCOST_MAX_MEASURED; ++i)
+        if (model_is_full(o.models[i].info))
+            po.full[po.nfull++] = o.models[i];
+    int full_models = po.nfull;
 
     /* PoCL reads this when the platform is first opened. */
     setenv("POCL_AFFINITY", "1", 0);

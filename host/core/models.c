@@ -299,3 +299,16 @@ int model_eval_host_on_device(const struct model_spec *spec)
     const struct model_runtime *rt = spec ? models_runtime(spec->info) : NULL;
     return rt && rt->eval_on_device && rt->eval_on_device(rt);
 }
+
+int model_is_full(const struct model_info *info)
+{
+    const struct model_runtime *rt = info ? models_runtime(info) : NULL;
+    return rt && rt->eval_full_host;
+}
+
+double model_eval_full_host(const struct model_spec *spec, const double L[3], const double V[3], const double N[3],
+                            double n)
+{
+    const struct model_runtime *rt = spec ? models_runtime(spec->info) : NULL;
+    return rt && rt->eval_full_host ? rt->eval_full_host(rt, spec, L, V, N, n) : NAN;
+}

@@ -124,6 +124,10 @@ struct model_runtime {
     const char *(*note)(const struct model_runtime *rt);
     /* 1 when eval_host runs on the device, a launch per value (NULL: it never does). */
     int (*eval_on_device)(const struct model_runtime *rt);
+    /* A full BRDF of (L, V, N) (its device text defines brdf_user_full): its luminance at unit
+       vectors in double; NULL for a lobe. */
+    double (*eval_full_host)(const struct model_runtime *rt, const struct model_spec *spec, const double L[3],
+                             const double V[3], const double N[3], double n);
 };
 #define MODELS_MAX_USER 8
 /* Returns 0, or -1 when the table is full. */
@@ -141,5 +145,11 @@ int model_sees_only_c(const struct model_spec *spec);
 /* 1 when model_eval_host of the model costs a device launch per value (a user model whose text
  * does not compile on the host): searches that evaluate it many times use coarser grids. */
 int model_eval_host_on_device(const struct model_spec *spec);
+/* 1 when the model is a full BRDF of (L, V, N) (a runtime with eval_full_host): render and the
+ * physical-cost table evaluate it at the scene's vectors (kernels: brdf_user_full). */
+int model_is_full(const struct model_info *info);
+/* Its value at unit L, V, N and shininess n in double (NAN for a lobe). */
+double model_eval_full_host(const struct model_spec *spec, const double L[3], const double V[3], const double N[3],
+                            double n);
 
 #endif

@@ -151,6 +151,19 @@ static const char *runtime_note(const struct model_runtime *rt) { return usermod
 
 static int runtime_on_device(const struct model_runtime *rt) { return !usermodel_host_ready(UM_OF_RUNTIME(rt)); }
 
+static double runtime_eval_full(const struct model_runtime *rt, const struct model_spec *spec, const double L[3],
+                                const double V[3], const double N[3], double n)
+{
+    const struct user_model *um = UM_OF_RUNTIME(rt);
+    if (!usermodel_host_ready(um) || !hostjit_full_function(um->host))
+        return NAN;
+    usermodel_watch_begin(um, NAN, n);   /* the host reference's deadline (usermodel_check.h) */
+    double v = hostjit_full_function(um->host)(L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n,
+                                               spec->params[0], spec->params[1]);
+    usermodel_watch_end();
+    return v;
+}
+
 /* Called once the model's text (device_source) and origin are known. */
 static void usermodel_fill_runtime(struct user_model *um)
 {
@@ -163,6 +176,7 @@ static void usermodel_fill_runtime(struct user_model *um)
     um->runtime.close_host = runtime_close;
     um->runtime.note = runtime_note;
     um->runtime.eval_on_device = runtime_on_device;
+    um->runtime.eval_full_host = um->full ? runtime_eval_full : NULL;
 }
 
 int usermodel_host_ready(const struct user_model *cum)
@@ -806,25 +820,6 @@ const char *usermodel_reference_note(const struct user_model *um)
         return NULL;
     return "the device has no cl_khr_fp64: this user model's reference is evaluated in float on the device, "
            "so its float-vs-double check does not hold";
-}
-
-const struct user_model *usermodel_full_of(const struct model_spec *m)
-{
-    const struct user_model *um = usermodel_of(m);
-    return um && um->full ? um : NULL;
-}
-
-double usermodel_eval_full_host(const struct model_spec *m, const double L[3], const double V[3], const double N[3],
-                                double n)
-{
-    const struct user_model *um = usermodel_full_of(m);
-    if (!um || !usermodel_host_ready(um) || !hostjit_full_function(um->host))
-        return NAN;
-    usermodel_watch_begin(um, NAN, n);   /* the host reference's deadline (usermodel_check.h) */
-    double v = hostjit_full_function(um->host)(L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n,
-                                               m->params[0], m->params[1]);
-    usermodel_watch_end();
-    return v;
 }
 
 double usermodel_eval_host(const struct model_spec *m, double c, double n)

@@ -108,12 +108,6 @@ const struct user_model *usermodel_of_info(const struct model_info *info);
 #define USERMODEL_FLOAT_OPTIONS "-DBRDF_HAVE_USER_MODEL -cl-single-precision-constant"
 #define USERMODEL_FULL_OPTION " -DBRDF_HAVE_USER_FULL"
 
-/* The user full BRDF behind m (a GLSL/HLSL function of vectors, a .brdf file), or NULL. */
-const struct user_model *usermodel_full_of(const struct model_spec *m);
-/* Its luminance at unit L, V, N (tangents made from N) and shininess n, in double on the host;
- * NAN where the text does not compile on the host. */
-double usermodel_eval_full_host(const struct model_spec *m, const double L[3], const double V[3], const double N[3],
-                                double n);
 
 /* Compiles the model's host reference now (it is compiled on first use otherwise). Returns 1
  * when the model is evaluated on the host, 0 when its text is not C (the reason is in

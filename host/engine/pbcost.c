@@ -4,7 +4,6 @@
 #include "runner.h"
 #include "lcg.h"
 #include "programs.h"
-#include "usermodel.h"
 
 #include "exitcodes.h"
 
@@ -74,11 +73,11 @@ static int make_rows(struct pbcost_result *r)
         }
     }
     /* the user full BRDFs (GLSL/HLSL functions of vectors, .brdf files) and the measured tables */
-    for (int i = 0; i < usermodel_count() && r->count < PBCOST_MAX_ROWS; ++i) {
-        if (!usermodel_at(i)->full)
+    for (int i = 0; i < r->o.nfull && r->count < PBCOST_MAX_ROWS; ++i) {
+        if (!model_is_full(r->o.full[i].info))
             continue;
         row = &r->rows[r->count++];
-        model_spec_default(&usermodel_at(i)->info, &row->spec);
+        row->spec = r->o.full[i];
         strcpy(row->name, row->spec.label);
         row->kind = 4;
     }
@@ -149,7 +148,7 @@ static double full_eval_host(const struct pbcost_row *row, const double L[3], co
     double nl = L[0] * N[0] + L[1] * N[1] + L[2] * N[2], nv = V[0] * N[0] + V[1] * N[1] + V[2] * N[2];
     if (!(nl > 0 && nv > 0))
         return 0;
-    return row->kind == 5 ? merl_luminance(row->merl, L, V, N) : usermodel_eval_full_host(&row->spec, L, V, N, n);
+    return row->kind == 5 ? merl_luminance(row->merl, L, V, N) : model_eval_full_host(&row->spec, L, V, N, n);
 }
 
 /* check_row for the rows of vectors (kinds 4, 5): the same random pairs about N = z, passed as
@@ -392,6 +391,52 @@ static void terms_table(struct pbcost_result *r)
     }
 }
 
+/* A row's throughput kernel (and a measured row's table, a dummy for a user BRDF's), its
+   arguments set and its device values checked against the double reference. The caller
+   releases *kern and *table. */
+static int row_setup(struct cl_session *s, cl_program prog, const struct pbcost_options *o, struct pbcost_row *row,
+                     cl_mem out, cl_kernel *kern, cl_mem *table)
+{
+    int rc = 0;
+    cl_int e;
+    char name[64];
+    cl_program rprog = prog;   /* a user full BRDF: throughput.cl with its text (programs.h) */
+    if (row->kind == 4 &&
+        (rc = programs_program(s, "throughput.cl", "TP_FULL_MODEL_KERNELS(4)\n", "", &row->spec, NULL, &rprog)))
+        return rc;
+    if (row->kind == 3)
+        snprintf(name, sizeof name, "tp_vec_pow");
+    else if (row->kind >= 4)
+        snprintf(name, sizeof name, "tp_full_%d", row->kind);
+    else
+        snprintf(name, sizeof name, "tp_vec_%d", row->spec.info->kernel_id);
+    *kern = clCreateKernel(rprog, name, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec)", done);
+    float n = (float)o->n, p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
+    CL_CHECK_GOTO(clSetKernelArg(*kern, 0, sizeof n, &n), done);
+    CL_CHECK_GOTO(clSetKernelArg(*kern, 1, sizeof p0, &p0), done);
+    CL_CHECK_GOTO(clSetKernelArg(*kern, 2, sizeof p1, &p1), done);
+    CL_CHECK_GOTO(clSetKernelArg(*kern, 5, sizeof out, &out), done);
+    if (row->kind >= 4) {
+        if (row->kind == 5) {
+            if ((rc = merl_table_buffer(s, row->merl, table)) != 0)
+                return rc;
+        } else {
+            *table = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY, 16 * sizeof(float), NULL, &e);
+            CL_CHECK_ERR_GOTO(e, "clCreateBuffer(physical dummy table)", done);
+        }
+        CL_CHECK_GOTO(clSetKernelArg(*kern, 6, sizeof *table, table), done);
+        rc = check_full_row(s, rprog, row, o->n, *table);
+    } else {
+        rc = check_row(s, prog, row, o->n);
+    }
+    if (rc)
+        return rc;
+    snprintf(row->status, sizeof row->status, "%s", row->check_max_abs_of_peak <= PBCOST_CHECK_TOL ? "ok" : "check");
+done:
+    return rc;
+}
+
 int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r, int quiet)
 {
     memset(r, 0, sizeof *r);
@@ -439,43 +484,9 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
     cl_int e;
     out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, global * PBCOST_LANES * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(physical out)", done);
-    for (int i = 0; i < r->count; ++i) {
-        struct pbcost_row *row = &r->rows[i];
-        char name[64];
-        cl_program rprog = prog;   /* a user full BRDF: throughput.cl with its text (programs.h) */
-        if (row->kind == 4 &&
-            (rc = programs_program(s, "throughput.cl", "TP_FULL_MODEL_KERNELS(4)\n", "", &row->spec, NULL, &rprog)))
+    for (int i = 0; i < r->count; ++i)
+        if ((rc = row_setup(s, prog, o, &r->rows[i], out, &kern[i], &table[i])) != 0)
             goto done;
-        if (row->kind == 3)
-            snprintf(name, sizeof name, "tp_vec_pow");
-        else if (row->kind >= 4)
-            snprintf(name, sizeof name, "tp_full_%d", row->kind);
-        else
-            snprintf(name, sizeof name, "tp_vec_%d", row->spec.info->kernel_id);
-        kern[i] = clCreateKernel(rprog, name, &e);
-        CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec)", done);
-        float n = (float)o->n, p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
-        CL_CHECK_GOTO(clSetKernelArg(kern[i], 0, sizeof n, &n), done);
-        CL_CHECK_GOTO(clSetKernelArg(kern[i], 1, sizeof p0, &p0), done);
-        CL_CHECK_GOTO(clSetKernelArg(kern[i], 2, sizeof p1, &p1), done);
-        CL_CHECK_GOTO(clSetKernelArg(kern[i], 5, sizeof out, &out), done);
-        if (row->kind >= 4) {
-            if (row->kind == 5) {
-                if ((rc = merl_table_buffer(s, row->merl, &table[i])) != 0)
-                    goto done;
-            } else {
-                table[i] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY, 16 * sizeof(float), NULL, &e);
-                CL_CHECK_ERR_GOTO(e, "clCreateBuffer(physical dummy table)", done);
-            }
-            CL_CHECK_GOTO(clSetKernelArg(kern[i], 6, sizeof table[i], &table[i]), done);
-            rc = check_full_row(s, rprog, row, o->n, table[i]);
-        } else {
-            rc = check_row(s, prog, row, o->n);
-        }
-        if (rc)
-            goto done;
-        snprintf(row->status, sizeof row->status, "%s", row->check_max_abs_of_peak <= PBCOST_CHECK_TOL ? "ok" : "check");
-    }
     /* warm-up, calibration and the timed launches by the measurement runner (host/core/runner.h):
        the rows interleaved in a fresh random order each round, so that their ratios compare
        moments apart */

@@ -27,6 +27,8 @@ struct pbcost_options {
     int reps;                    /* timed launches per row (default 9) */
     double min_time;             /* seconds one timed launch lasts at least (default 0.02) */
     long work_items;             /* 0: 32 per compute unit */
+    int nfull;                   /* full BRDFs of (L, V, N) given by the user (model_is_full) */
+    struct model_spec full[PBCOST_MAX_MEASURED];
     int nmeasured;               /* measured materials timed as rows (table lookups) */
     const struct merl_material *measured[PBCOST_MAX_MEASURED];
 };

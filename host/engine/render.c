@@ -47,7 +47,8 @@ static const double world_up[3] = {0.0, 1.0, 0.0};
 
 const char *const render_scene_names[RENDER_SCENE_COUNT] = {"spheres", "teapot", "bunny"};
 const char *const render_mode_names[RENDER_MODE_COUNT] = {"lobe-psi", "lobe-theta_h", "cook-torrance-beckmann",
-                                                          "cook-torrance-ggx", "physical"};
+                                                          "cook-torrance-ggx", "physical", "full-brdf",
+                                                          "measured"};
 
 /* ------------------------------------------------------------------ options */
 
@@ -136,6 +137,8 @@ int render_check_size(const struct cl_session *s, const char *what, long width, 
 
 int render_shading_mode(const struct model_spec *m)
 {
+    if (model_is_full(m->info))   /* a user full BRDF: the vectors L, V, N of every pixel */
+        return SHADE_USER_FULL;
     if (m->info->family == MODEL_FAMILY_MICROFACET)
         return m->info->kernel_id == BRDF_GGX ? SHADE_CT_GGX : SHADE_CT_BECKMANN;
     if (m->info->family == MODEL_FAMILY_PHYSICAL)
@@ -143,11 +146,13 @@ int render_shading_mode(const struct model_spec *m)
     return m->info->lobe == LOBE_PSI ? SHADE_LOBE_PSI : SHADE_LOBE_THETA_H;
 }
 
-void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
-                      const struct render_options *o, const double pos[3], const double nrm[3],
-                      double n, double *spec, double *radiance)
+int render_reference_mode(int mode, const struct model_spec *ref)
 {
-    double v[3], l[3], e;
+    return mode == SHADE_USER_FULL ? render_shading_mode(ref) : mode;
+}
+
+void render_pixel_geometry(const struct render_light *lt, const double pos[3], double v[3], double l[3], double *e)
+{
     for (int c = 0; c < 3; c++)
         v[c] = lt->eye[c] - pos[c];
     vec3_normalize(v);
@@ -156,12 +161,20 @@ void render_shade_ref(const struct model_spec *m, int mode, const struct render_
             l[c] = lt->light[c] - pos[c];
         double d2 = vec3_dot(l, l);
         vec3_normalize(l);
-        e = lt->intensity / d2;
+        *e = lt->intensity / d2;
     } else {
         for (int c = 0; c < 3; c++)
             l[c] = lt->light[c];
-        e = lt->intensity;
+        *e = lt->intensity;
     }
+}
+
+void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
+                      const struct render_options *o, const double pos[3], const double nrm[3],
+                      double n, double *spec, double *radiance)
+{
+    double v[3], l[3], e;
+    render_pixel_geometry(lt, pos, v, l, &e);
     double ndotl = vec3_dot(nrm, l), ndotv = vec3_dot(nrm, v), cosine, s;
     if (mode == SHADE_LOBE_PSI) {
         double r[3];
@@ -177,6 +190,8 @@ void render_shade_ref(const struct model_spec *m, int mode, const struct render_
         cosine = vec3_dot(nrm, h);
         if (mode == SHADE_PHYSICAL)
             s = brdf_pb_eval_ud(m->info->kernel_id, ndotl, ndotv, vec3_dot(l, v), n, m->params[0], m->params[1], 0.0);
+        else if (mode == SHADE_USER_FULL)
+            s = model_eval_full_host(m, l, v, nrm, n);
         else
             s = model_eval_host(m, cosine, n);
         if (mode == SHADE_CT_BECKMANN || mode == SHADE_CT_GGX) {
@@ -273,6 +288,8 @@ int render_device_open(struct render_device *d, struct cl_session *s,
     d->display_table = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                       DISPLAY_BINS * sizeof *table, table, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(display table)", fail);
+    d->no_table = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY, 16 * sizeof(float), NULL, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(no measured table)", fail);
     free(table);
     return 0;
 fail:
@@ -286,6 +303,8 @@ void render_device_close(struct render_device *d)
 {
     if (d->display_table)
         clReleaseMemObject(d->display_table);
+    if (d->no_table)
+        clReleaseMemObject(d->no_table);
     cl_kernel *const kernels[] = { &d->shade, &d->copy };
     clsession_release_kernels(&d->program, 2, kernels);
     memset(d, 0, sizeof *d);
@@ -363,6 +382,8 @@ int render_device_shade(struct render_device *d, cl_mem gbuf, size_t stride, siz
     CL_CHECK_GOTO(clSetKernelArg(shade, 9, sizeof params, &params), done);
     CL_CHECK_GOTO(clSetKernelArg(shade, 10, sizeof d->display_table, &d->display_table),
                   done);
+    cl_mem merl = d->merl_table ? d->merl_table : d->no_table;
+    CL_CHECK_GOTO(clSetKernelArg(shade, 11, sizeof merl, &merl), done);
     rc = launch(d, shade, m->label, seconds);
     if (rc)
         return rc;
@@ -642,7 +663,7 @@ static void label_to_file(const char *label, char *out, size_t len)
     out[i] = '\0';
 }
 
-static void rgba_to_rgb(const unsigned *rgba, size_t n, unsigned char *rgb)
+void render_rgba_to_rgb(const unsigned *rgba, size_t n, unsigned char *rgb)
 {
     for (size_t i = 0; i < n; i++) {
         rgb[3 * i + 0] = (unsigned char)(rgba[i] & 255u);
@@ -786,13 +807,13 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
         if (rc)
             goto fail;
         /* the reference in the model's own shading mode, shaded once per scene */
-        int ci = -1;
+        int ci = -1, ref_mode = render_reference_mode(mr->mode, &mr->ref);
         for (int k = 0; k < cache.n; k++)
-            if (cache.e[k].mode == mr->mode && strcmp(cache.e[k].label, mr->ref.label) == 0)
+            if (cache.e[k].mode == ref_mode && strcmp(cache.e[k].label, mr->ref.label) == 0)
                 ci = k;
         if (ci < 0) {
             ci = cache.n;
-            cache.e[ci].mode = mr->mode;
+            cache.e[ci].mode = ref_mode;
             snprintf(cache.e[ci].label, sizeof cache.e[ci].label, "%s", mr->ref.label);
             cache.e[ci].rgba = malloc(npix * sizeof(unsigned));
             cache.e[ci].spec = malloc(npix * sizeof(float));
@@ -800,7 +821,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
             if (!cache.e[ci].rgba || !cache.e[ci].spec)
                 goto oom;
             rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, &mr->ref,
-                                     mr->mode, &res->light, o, cache.e[ci].rgba,
+                                     ref_mode, &res->light, o, cache.e[ci].rgba,
                                      cache.e[ci].spec, NULL);
             if (rc)
                 goto fail;
@@ -813,8 +834,8 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
                         &mr->metrics);
         check_reference(&g, y0, y1, m, mr->mode, &res->light, o, rgba_m, spec_m, &mr->check);
         size_t off = (size_t)y0 * w, n = (size_t)(y1 - y0) * w;
-        rgba_to_rgb(rgba_m + off, n, rgb_m);
-        rgba_to_rgb(rgba_r + off, n, rgb_r);
+        render_rgba_to_rgb(rgba_m + off, n, rgb_m);
+        render_rgba_to_rgb(rgba_r + off, n, rgb_r);
         if (grid_m) {
             memcpy(grid_m + 3 * off, rgb_m, 3 * n);
             memcpy(grid_r + 3 * off, rgb_r, 3 * n);
@@ -965,7 +986,7 @@ static int he_pictures(const char *scene_dir, const char *sc, const char *base, 
     char name[300], path[4600], title[400];
     snprintf(en->error, sizeof en->error, "render/%s/he_%s_error.png", sc, base);
     if (all_pictures) {
-        rgba_to_rgb(rgba, (size_t)w * h, rgb);
+        render_rgba_to_rgb(rgba, (size_t)w * h, rgb);
         snprintf(en->image, sizeof en->image, "render/%s/he_%s.png", sc, base);
         snprintf(en->contact, sizeof en->contact, "render/%s/he_%s_contact.png", sc, base);
         snprintf(name, sizeof name, "he_%s.png", base);
@@ -1087,7 +1108,7 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
         rc = EXIT_RUNTIME;
         goto done;
     }
-    rgba_to_rgb(rgba_he, npix, rgb_he);
+    render_rgba_to_rgb(rgba_he, npix, rgb_he);
     if (o->write_images) {
         char base[MODEL_LABEL_MAX + 8], name[300], path[4600];
         label_to_file(hc->he.label, base, sizeof base);
@@ -1152,6 +1173,27 @@ done:
     return rc;
 }
 
+/* A mesh shaded with each measured material beside its fitted lobes (render_measured.c). */
+static int measured_scene(struct render_device *dev, const struct scene_data *sd, const struct render_options *o,
+                          const char *stage_dir, struct scene_result *res, char *err, size_t errlen)
+{
+    struct gbuffer g;
+    struct render_light lt;
+    char scene_dir[4200];
+    path_join(scene_dir, sizeof scene_dir, stage_dir, render_scene_names[sd->kind]);
+    int rc = scene_gbuffer(sd, o, o->width, o->height, &g, &lt, err, errlen);
+    if (rc)
+        return rc;
+    for (int k = 0; rc == 0 && k < o->nmeasured && k < RENDER_MAX_MEASURED; ++k) {
+        rc = render_measured_pass(dev, &g, &lt, o, o->measured[k], scene_dir, &res->measured[k], err, errlen);
+        res->nmeasured = k + 1;
+        if (rc == 0 && o->verbose)
+            render_print_measured(sd->kind, &res->measured[k]);
+    }
+    gbuffer_free(&g);
+    return rc;
+}
+
 /* The models and their references, each once per shading mode, in the order timed. */
 static void timed_entries(const struct render_options *o, struct size_timing *st)
 {
@@ -1161,8 +1203,10 @@ static void timed_entries(const struct render_options *o, struct size_timing *st
             struct model_spec ref;
             const struct model_spec *m = &o->models[mi];
             int mode = render_shading_mode(m);
-            if (pass == 1)
+            if (pass == 1) {
                 model_reference_spec(m, &ref);
+                mode = render_reference_mode(mode, &ref);
+            }
             const struct model_spec *sp = pass == 0 ? m : &ref;
             int found = 0;
             for (int k = 0; k < st->nentries; k++)
@@ -1387,6 +1431,8 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
             render_print_check(sr, o->nmodels);
         if (rc == 0 && o->he_material >= 0 && si != RENDER_SPHERES)
             rc = he_pass(&dev, &sd, o, stage, sr, err, errlen);
+        if (rc == 0 && o->nmeasured > 0 && si != RENDER_SPHERES)
+            rc = measured_scene(&dev, &sd, o, stage, sr, err, errlen);
         for (int ti = 0; rc == 0 && ti < o->ntime_sizes; ti++) {
             rc = time_pass(&dev, &sd, o, o->time_w[ti], o->time_h[ti], &sr->timings[ti], err,
                            errlen);

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "clsession.h"
+#include "merl.h"
 #include "models.h"
 
 #define RENDER_MAX_MODELS 32
@@ -48,6 +49,8 @@ struct render_options {
     int he_material;                   /* He comparison on the meshes: a preset of the model he, -1: none */
     int write_images;                  /* PNGs (image, error image, contact sheet) */
     int verbose;                       /* progress and the table on stdout */
+    int nmeasured;                     /* measured materials on the meshes (--measured) */
+    const struct merl_material *measured[4];
 };
 
 /* Defaults: all three scenes at 1920x1080, timing at 1920x1080 and 3840x2160 (7 reps after
@@ -76,6 +79,9 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
 
 /* Shading mode of the kernel for a model: the cosine it takes and Cook-Torrance or not. */
 int render_shading_mode(const struct model_spec *m);
+/* The mode a model's reference ref is shaded in beside a model shaded in `mode`: the same, but a
+ * user full BRDF's reference (a built-in model) in its own. */
+int render_reference_mode(int mode, const struct model_spec *ref);
 
 /* Shading parameters (the kernel's float16 `params`) for a camera eye and the options. */
 struct render_light {
@@ -87,6 +93,11 @@ struct render_light {
 
 /* The double-precision host reference of one pixel: specular radiance and total radiance
  * from a position, unit normal and shininess (the same formulas as kernels/shade.cl). */
+/* The unit directions to the eye and the light at a position, and the irradiance e at normal
+ * incidence (the geometry render_shade_ref and kernels/shade.cl use). */
+void render_pixel_geometry(const struct render_light *lt, const double pos[3], double v[3], double l[3], double *e);
+/* The RGB bytes of packed RGBA8 pixels. */
+void render_rgba_to_rgb(const unsigned *rgba, size_t n, unsigned char *rgb);
 void render_shade_ref(const struct model_spec *m, int mode, const struct render_light *lt,
                       const struct render_options *o, const double pos[3], const double nrm[3],
                       double n, double *spec, double *radiance);
@@ -104,6 +115,8 @@ struct render_device {
     cl_program program;
     cl_kernel shade, copy;
     cl_mem display_table;
+    cl_mem merl_table;        /* the measured material of SHADE_MEASURED (NULL: none) */
+    cl_mem no_table;          /* what the kernel reads as the table otherwise */
     int display_code_error;   /* largest table entry's distance to the exact curve, codes */
     size_t global_size;
 };

@@ -25,7 +25,8 @@ static const struct timed_entry *reference_entry(const struct size_timing *st,
     struct model_spec ref;
     model_reference_spec(&te->spec, &ref);
     for (int k = 0; k < st->nentries; k++)
-        if (st->entries[k].mode == te->mode && strcmp(st->entries[k].spec.label, ref.label) == 0)
+        if (st->entries[k].mode == render_reference_mode(te->mode, &ref) &&
+            strcmp(st->entries[k].spec.label, ref.label) == 0)
             return &st->entries[k];
     return NULL;
 }
@@ -66,6 +67,8 @@ static void write_metrics_json(struct jw *w, const struct image_metrics *mt, dou
     jw_kv_num(w, "peak_reference", mt->peak_reference);
     jw_obj_end(w);
 }
+
+static void write_measured(struct jw *w, const struct scene_result *sr);
 
 /* The He comparison of a scene (render_report.h, struct he_comparison). */
 static void write_he_json(struct jw *w, const struct he_comparison *hc, double threshold)
@@ -212,6 +215,8 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
         jw_arr_end(&w);
         if (sr->he.done)
             write_he_json(&w, &sr->he, o->threshold);
+        if (sr->nmeasured)
+            write_measured(&w, sr);
         jw_kv_arr(&w, "timings");
         for (int ti = 0; ti < sr->ntimings; ti++) {
             const struct size_timing *st = &sr->timings[ti];
@@ -383,6 +388,60 @@ void render_print_he(int scene, const struct he_comparison *hc)
         printf("    %-28s vs He: max %-9.3g mean %-9.3g  vs Blinn-Phong fit: max %.3g\n", hc->e[k].label,
                hc->e[k].metrics.max_abs, hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
     fflush(stdout);
+}
+
+void render_print_measured(int scene, const struct render_measured_result *mr)
+{
+    printf("  %s: measured material %s (peak radiance %.4g; device lookup vs host on %ld pixels: %.2g of the "
+           "peak)\n", render_scene_names[scene], mr->material, mr->peak, mr->check_pixels, mr->check_max_abs_of_peak);
+    for (int k = 1; k < mr->count; k++) {
+        const struct render_measured_entry *en = &mr->e[k];
+        if (!en->fitted)
+            printf("    %-22s not fitted\n", en->label);
+        else
+            printf("    %-22s n %-9.4g ks %-9.4g kd %-9.4g F0 %-7.3g vs measured: max %-9.3g rms %.3g\n", en->label,
+                   en->n, en->ks, en->kd, en->f0, en->max_abs, en->rms);
+    }
+    fflush(stdout);
+}
+
+/* A scene's measured comparisons in render.json. */
+static void write_measured(struct jw *w, const struct scene_result *sr)
+{
+    jw_kv_arr(w, "measured");
+    for (int m = 0; m < sr->nmeasured; m++) {
+        const struct render_measured_result *mr = &sr->measured[m];
+        jw_obj_begin(w);
+        jw_kv_str(w, "material", mr->material);
+        jw_kv_str(w, "quantity", "radiance E (N.L) f of the whole BRDF, |fit - measured| over the foreground");
+        jw_kv_num(w, "peak_radiance", mr->peak);
+        jw_kv_num(w, "check_max_abs_of_peak", mr->check_max_abs_of_peak);
+        jw_kv_int(w, "check_pixels", mr->check_pixels);
+        jw_kv_str(w, "check_status", mr->check_max_abs_of_peak <= 1e-3 ? "ok" : "check");
+        jw_kv_arr(w, "fits");
+        for (int k = 1; k < mr->count; k++) {
+            const struct render_measured_entry *en = &mr->e[k];
+            jw_obj_begin(w);
+            jw_kv_str(w, "fit", en->label);
+            jw_kv_bool(w, "fitted", en->fitted);
+            if (!en->fitted) {   /* nothing drawn: the fit did not converge (measured.json says why) */
+                jw_kv_str(w, "status", "not fitted");
+                jw_obj_end(w);
+                continue;
+            }
+            jw_kv_num(w, "n", en->n);
+            jw_kv_num(w, "ks", en->ks);
+            jw_kv_num(w, "kd", en->kd);
+            if (k > 1)   /* Cook-Torrance only */
+                jw_kv_num(w, "f0", en->f0);
+            jw_kv_num(w, "max_abs", en->max_abs);
+            jw_kv_num(w, "rms", en->rms);
+            jw_obj_end(w);
+        }
+        jw_arr_end(w);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
 }
 
 void render_print_timings(const struct scene_result *sr)

@@ -15,6 +15,8 @@
 #define SHADE_CT_BECKMANN 2
 #define SHADE_CT_GGX 3
 #define SHADE_PHYSICAL 4
+#define SHADE_USER_FULL 5
+#define SHADE_MEASURED 6
 #define DISPLAY_MIN_EXP (-16)
 #define DISPLAY_MAX_EXP 8
 #define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
@@ -97,6 +99,26 @@ struct he_comparison {
     struct he_entry e[RENDER_MAX_MODELS + 1];
 };
 
+/* A mesh shaded with a measured material (render --measured) beside the lobes fitted to it
+ * (host/engine/measured.c): entry 0 the measured table, then Blinn-Phong, Cook-Torrance
+ * Beckmann and GGX at their fits; radiance E (N.L) f with the fit's Lambertian term. */
+#define RENDER_MAX_MEASURED 4
+#define RENDER_MEASURED_ENTRIES 4
+struct render_measured_entry {
+    char label[96];
+    int fitted;                  /* the fit converged (else the entry is not drawn) */
+    double n, ks, kd, f0;        /* the fit (Cook-Torrance: n = 2/alpha^2 - 2) */
+    double max_abs, rms;         /* radiance against the measured image, foreground */
+};
+struct render_measured_result {
+    char material[256];
+    double peak;                 /* the measured image's largest radiance */
+    double check_max_abs_of_peak;   /* device lookup against the host's, sampled pixels */
+    long check_pixels;
+    int count;
+    struct render_measured_entry e[RENDER_MEASURED_ENTRIES];
+};
+
 struct scene_result {
     int kind;
     int done;
@@ -109,9 +131,11 @@ struct scene_result {
     int ntimings;
     struct size_timing timings[RENDER_MAX_TIME_SIZES];
     struct he_comparison he;
+    int nmeasured;
+    struct render_measured_result measured[RENDER_MAX_MEASURED];
 };
 
-#define RENDER_MODE_COUNT 5
+#define RENDER_MODE_COUNT 7
 extern const char *const render_scene_names[RENDER_SCENE_COUNT];
 extern const char *const render_mode_names[RENDER_MODE_COUNT];
 
@@ -128,6 +152,14 @@ void render_print_scene(const struct scene_result *sr);
 void render_print_model(int scene, const char *label, const struct model_result *mr);
 void render_print_check(const struct scene_result *sr, int nmodels);
 void render_print_he(int scene, const struct he_comparison *hc);
+struct gbuffer;
+void render_print_measured(int scene, const struct render_measured_result *mr);
+
+/* A mesh's G-buffer g shaded with the measured material mat and with the lobes fitted to it
+ * (render_measured.c): images into scene_dir when o->write_images. Returns 0 or an exit code. */
+int render_measured_pass(struct render_device *dev, const struct gbuffer *g, const struct render_light *lt,
+                         const struct render_options *o, const struct merl_material *mat, const char *scene_dir,
+                         struct render_measured_result *res, char *err, size_t errlen);
 /* One scene's timings on stdout. */
 void render_print_timings(const struct scene_result *sr);
 
