@@ -804,7 +804,7 @@ int cmd_all(int argc, char **argv)
         CLI_FLAG_N_MIN(&g.n_min),
         CLI_FLAG_N_MAX(&g.n_max),
         CLI_FLAG_N_STEP(&g.n_step),
-        CLI_FLAG_SAMPLES(&g.samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_SAMPLES(&g.samples),
         { .name = "--results-root", .value = "DIR", .kind = CLI_PATH, .dest = &r->results_root,
           .help = "where run folders are made" },
         CLI_FLAG_OUT(&out_dir, "a new folder under --results-root, and its latest pointing at it"),

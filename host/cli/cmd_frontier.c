@@ -22,8 +22,7 @@ int cmd_frontier(int argc, char **argv)
         CLI_FLAG_MODELS(&models_text, &models_given,
                         "the references, the papers' models, the engines' approximations and the frozen fits; "
                         "with --model or --model-file, those and the user models"),
-        { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, &opt.samples), .min = 16,
-          .max = 65536, .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" },
+        CLI_FLAG_SAMPLES(&opt.samples),
         { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &reps), .min = 1, .max = 100,
           .help = "timed launches per figure" },
         { .name = "--rounds", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &rounds), .min = 1,

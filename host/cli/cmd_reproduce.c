@@ -21,7 +21,9 @@ int cmd_reproduce(int argc, char **argv)
     int quiet = 0;
     const struct cli_flag flags[] = {
         CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
-        CLI_FLAG_SAMPLES(&opt.samples, ACC_MAX_SAMPLES / 2),
+        CLI_FLAG_SAMPLES_WHY(&opt.samples, ACC_MAX_SAMPLES / 2,
+                             "a multiple of 16 in [16, 2097152]: half the 4194304 of other commands, since the "
+                             "grid check reruns each claim sweep at twice N"),
         { .name = "--no-grid-check", .kind = CLI_SWITCH, .dest = &opt.grid_check, .set = 0,
           .help = "skip re-running each claim sweep at twice the samples" },
         { .name = "--q-step", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.q_step, .min = 1e-4, .max = 0.5,
