@@ -26,5 +26,34 @@ print(" ".join(x.strip() for x in out))' "$T/help_$c")
     else bad "$c --samples: maximum $hi differs from 4194304 with no reason: $entry"; fi
 done
 
+# The rest needs an OpenCL device.
+if ! "$BIN" list --json - | python3 -c 'import json,sys; d=json.load(sys.stdin); sys.exit(0 if any(p["devices"] for p in d["platforms"]) else 1)'; then
+    echo "$pass passed, $fail failed; SKIP: no OpenCL device for the checks that run kernels"
+    [ "$fail" -eq 0 ] && exit 77 || exit 1
+fi
+
+# 2. --json -: standard output holds the one document (json.load of all of it: any table or
+#    "written:" line beside it fails the parse), of the command's schema; no run folder is
+#    made (no results/), and the temporary folder the run wrote into is gone (TMPDIR empty),
+#    sub-folders included (render/<scene>/, frontier_teapot/).
+mkdir -p "$T/tmp"
+json_alone() {   # json_alone WHAT SCHEMA ARGS...
+    local what=$1 schema=$2
+    shift 2
+    TMPDIR="$T/tmp" "$BIN" "$@" --json - >"$T/doc.json" 2>"$T/err"
+    local rc=$?
+    [ $rc -eq 0 ] || { bad "$what --json -: exit $rc: $(tail -c 400 "$T/err")"; return; }
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["schema"] == sys.argv[2], d["schema"]' \
+        "$T/doc.json" "$schema" && ok || bad "$what --json -: stdout is not the $schema document alone: $(head -c 300 "$T/doc.json")"
+    [ ! -e results ] && ok || bad "$what --json - without --out made results/"
+    [ -z "$(ls -A "$T/tmp")" ] && ok || bad "$what --json - left its temporary folder: $(ls -AR "$T/tmp" | head -5)"
+    cp "$T/doc.json" "$T/$what.json"
+}
+json_alone render brdfbench.render/1 render --scene spheres --models phong,fq2 --size 64x32 --time-sizes none --reps 1 --warmup 0
+json_alone frontier brdfbench.frontier/1 frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image
+json_alone reproduce brdfbench.claims/1 reproduce --samples 64 --no-grid-check --q-step 0.1 --q-samples 64 --q-n-step 50 --no-energy
+"$BIN" accuracy --models fq2,cq2 --n-min 2 --n-max 6 --samples 16 --json "$T/acc.json" >/dev/null 2>&1
+json_alone compare brdfbench.compare/1 compare "$T/acc.json" "$T/acc.json"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

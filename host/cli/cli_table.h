@@ -203,8 +203,8 @@ int cli_output_path(struct cli_output *o, const char *path, const char *name, co
                     size_t errlen);
 int cli_output_finish(struct cli_output *o, int ok, char *err, size_t errlen);
 /* A command that writes a folder and takes --json FILE for one of its documents: the folder may
- * be a temporary one (cli_temp_dir, removed with cli_temp_dir_remove, which removes its plain
- * files), and the document is then copied to FILE, or to standard output for "-"
+ * be a temporary one (cli_temp_dir, removed with cli_temp_dir_remove, which removes what the
+ * run wrote in it, its sub-folders included), and the document is then copied to FILE, or to standard output for "-"
  * (cli_deliver; a regular FILE is replaced atomically). Return 0 or EXIT_RUNTIME with a message. */
 int cli_temp_dir(char *dir, size_t len, char *err, size_t errlen);
 void cli_temp_dir_remove(const char *dir);

@@ -144,7 +144,7 @@ int cmd_render(int argc, char **argv)
     render_options_default(&o);
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = NULL, *out_dir = NULL;
+    const char *models_text = NULL, *out_dir = NULL, *json_path = NULL;
     int quiet = 0, models_given = 0;
     char size_range[64], shininess_range[64];
     snprintf(size_range, sizeof size_range, "W and H in [%d, %d]", RENDER_MIN_SIDE, RENDER_MAX_SIDE);
@@ -182,7 +182,8 @@ int cmd_render(int argc, char **argv)
         { .name = "--bunny-file", .value = "PATH", .kind = CLI_PATH, .dest = &o.bunny_path, .help = "OBJ file" },
         { .name = "--no-images", .kind = CLI_SWITCH, .dest = &o.write_images, .set = 0,
           .help = "metrics and timings only, no PNGs" },
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
@@ -204,7 +205,7 @@ int cmd_render(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    o.verbose = !quiet;
+    o.verbose = !quiet && !cli_is_stdout(json_path);   /* stdout holds the document alone */
     if (!models_text && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
@@ -217,7 +218,10 @@ int cmd_render(int argc, char **argv)
     }
 
     struct cl_session s;
-    int rc = cli_run_session("render", &s, &dev);
+    int rc = cli_run_check_documents("render", json_path, NULL);
+    if (rc)
+        return rc;
+    rc = cli_run_session("render", &s, &dev);
     if (rc)
         return rc;
     /* sizes against the device's memory before anything is allocated */
@@ -230,27 +234,24 @@ int cmd_render(int argc, char **argv)
         clsession_close(&s);
         goto usage_error;
     }
-    char run_dir[4096];
-    if (out_dir) {
-        snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", NULL, err, sizeof err) != 0 ||
-               outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err) != 0) {
-        fprintf(stderr, "brdfbench render: %s\n", err);
+    char run_dir[4096], tmp_dir[512];
+    if (cli_run_folder("render", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
     if (o.verbose)
         printf("device: %s (%s)\n", s.device_name, s.platform_version);
     rc = render_run(&s, &o, run_dir, NULL, err, sizeof err);
-    if (rc == 0 && !out_dir &&
-        outdir_set_latest("results", run_dir, err, sizeof err) != 0)
-        rc = EXIT_RUNTIME;
     clsession_close(&s);
     if (rc) {
         fprintf(stderr, "brdfbench render: %s\n", err);
+        cli_temp_dir_remove(tmp_dir);
         return rc;
     }
-    if (o.verbose)
+    rc = cli_run_finish("render", out_dir, tmp_dir, run_dir, "render.json", json_path);
+    if (rc)
+        return rc;
+    if (o.verbose && !tmp_dir[0])
         printf("written: %s/render.json and %s/render/\n", run_dir, run_dir);
     return EXIT_OK;
 
