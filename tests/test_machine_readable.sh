@@ -55,5 +55,30 @@ json_alone reproduce brdfbench.claims/1 reproduce --samples 64 --no-grid-check -
 "$BIN" accuracy --models fq2,cq2 --n-min 2 --n-max 6 --samples 16 --json "$T/acc.json" >/dev/null 2>&1
 json_alone compare brdfbench.compare/1 compare "$T/acc.json" "$T/acc.json"
 
+# 3. CSV headers: each file's header is, column for column, the documented table of
+#    docs/csv-columns.md (the table is the reference: a renamed or added column fails here);
+#    units in the names: no bare max_rel or at_x (a fraction and radians said by the name).
+"$BIN" accuracy --models fq2 --n-min 2 --n-max 3 --samples 16 --csv "$T/accuracy.csv" >/dev/null 2>&1
+"$BIN" throughput --models fq2 --variants default --n-modes uniform --no-sweep --no-host-c --reps 1 --min-time 0.001 \
+    --csv "$T/throughput.csv" >/dev/null 2>&1
+"$BIN" frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image --out "$T/fr" --quiet >/dev/null 2>&1
+cp "$T/fr/frontier.csv" "$T/frontier.csv" 2>/dev/null
+"$BIN" compare "$T/acc.json" "$T/acc.json" --out "$T/cmp" --quiet >/dev/null 2>&1
+cp "$T/cmp/compare.csv" "$T/compare.csv" 2>/dev/null
+python3 - "$SRC/docs/csv-columns.md" "$T" <<'PY' && ok || bad "a CSV header differs from docs/csv-columns.md"
+import collections, csv, re, sys
+doc = collections.OrderedDict()
+for line in open(sys.argv[1]):
+    m = re.match(r"^\| (\w+\.csv) \| (\w+) \|", line)
+    if m:
+        doc.setdefault(m.group(1), []).append(m.group(2))
+assert set(doc) == {"accuracy.csv", "throughput.csv", "frontier.csv", "compare.csv"}, list(doc)
+for name, cols in doc.items():
+    header = next(csv.reader(open(f"{sys.argv[2]}/{name}")))
+    assert header == cols, (name, header, cols)
+    for c in header:
+        assert not re.search(r"(^|_)(max_rel|at_x)$", c) and not c.startswith("rate_"), (name, c, "unit missing")
+PY
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
