@@ -80,5 +80,42 @@ for name, cols in doc.items():
         assert not re.search(r"(^|_)(max_rel|at_x)$", c) and not c.startswith("rate_"), (name, c, "unit missing")
 PY
 
+# 4. JSON Schemas (docs/schemas/, draft 2020-12): each is a valid schema, and the documents of
+#    the small runs above validate against the schema their "schema" string names; a broken
+#    copy of each (a required member taken out, an x past pi/2, a boolean made a string) fails.
+"$BIN" list --json "$T/list.json" >/dev/null 2>&1
+"$BIN" throughput --models fq2 --variants default --n-modes uniform --no-sweep --no-host-c --reps 1 --min-time 0.001 \
+    --json "$T/throughput.json" >/dev/null 2>&1
+python3 - "$SRC/docs/schemas" "$T" <<'PY' && ok || bad "the JSON Schemas of docs/schemas/ and the documents disagree"
+import copy, glob, json, sys
+import jsonschema   # python3-jsonschema (scripts/setup.sh)
+folder, t = sys.argv[1], sys.argv[2]
+schemas = {}
+for f in glob.glob(folder + "/*.schema.json"):
+    s = json.load(open(f))
+    jsonschema.Draft202012Validator.check_schema(s)
+    schemas[s["properties"]["schema"]["const"]] = jsonschema.Draft202012Validator(s)
+def errors(d):
+    return list(schemas[d["schema"]].iter_errors(d))
+docs = {n: json.load(open(f"{t}/{n}.json")) for n in ["acc", "throughput", "render", "frontier", "reproduce", "compare", "list"]}
+for n, d in docs.items():
+    assert d["schema"] in schemas, (n, d["schema"], "no schema file")
+    e = errors(d)
+    assert not e, (n, [x.message for x in e[:3]])
+# every kind a document here names has its file; broken copies must fail
+broken = []
+b = copy.deepcopy(docs["acc"]); b["results"][0]["epicentre"]["at_x"] = 3.2; broken.append(("x > pi/2", b))
+b = copy.deepcopy(docs["acc"]); del b["results"][0]["whole"]; broken.append(("no whole", b))
+b = copy.deepcopy(docs["frontier"]); b["models"][0]["on_front"] = "yes"; broken.append(("on_front a string", b))
+b = copy.deepcopy(docs["throughput"]); b["results"][0]["evals_per_s"]["median"] = -1; broken.append(("negative rate", b))
+b = copy.deepcopy(docs["render"]); del b["scenes"]; broken.append(("no scenes", b))
+b = copy.deepcopy(docs["reproduce"]); b["claims"] = []; broken.append(("no claims", b))
+b = copy.deepcopy(docs["compare"]); b["rows"][0]["sense"] = "faster"; broken.append(("bad sense", b))
+b = copy.deepcopy(docs["list"]); b["schema"] = "brdfbench.list/2"; broken.append(("wrong version", b))
+for what, d in broken:
+    bad = d["schema"] not in schemas or errors(d)
+    assert bad, ("a broken document validates", what)
+PY
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
