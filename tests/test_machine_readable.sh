@@ -117,5 +117,16 @@ for what, d in broken:
     assert bad, ("a broken document validates", what)
 PY
 
+# 5. compare of two accuracy runs (no rate in them) draws its own chart: compare.png is there,
+#    a PNG (its 8-byte signature), and every file the "written:" line names exists.
+"$BIN" compare "$T/acc.json" "$T/acc.json" --out "$T/cmpacc" >"$T/out" 2>"$T/err"
+[ "$(head -c 8 "$T/cmpacc/compare.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] && ok \
+    || bad "compare of two accuracy runs wrote no compare.png: $(ls "$T/cmpacc")"
+written=$(sed -n "s|^written: $T/cmpacc/||p" "$T/out")
+[ -n "$written" ] && ok || bad "compare printed no written: line: $(cat "$T/out" | tail -2)"
+for f in $(printf '%s' "$written" | tr ',' ' '); do
+    [ -e "$T/cmpacc/$f" ] && ok || bad "compare says it wrote $f, which is not there"
+done
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
