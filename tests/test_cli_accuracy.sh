@@ -59,7 +59,7 @@ PY
 # The CSV: a header and one row per model per n (49 values of n, 3 models).
 rows=$(($(wc -l <"$T/run/accuracy.csv") - 1))
 [ "$rows" -eq 147 ] && ok || bad "accuracy.csv has $rows rows, expected 147"
-head -1 "$T/run/accuracy.csv" | grep -q '^model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs' && ok || bad "csv header"
+head -1 "$T/run/accuracy.csv" | grep -q '^model,n,epicentre_max_rel_fraction,epicentre_at_x_rad,attenuation_max_abs' && ok || bad "csv header"
 grep -q 'G points/s' "$T/table" && grep -q 'largest difference' "$T/table" && ok || bad "table lacks speed or check line"
 
 # A model with invalid values (negative past c = 0.5, equal to the reference elsewhere): the

@@ -34,7 +34,7 @@ int main(void)
     const struct cli_flag flags[] = {
         CLI_FLAG_N_MIN(&n_min),
         CLI_FLAG_N_MAX(&n_max),
-        CLI_FLAG_SAMPLES(&samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_SAMPLES(&samples),
         CLI_FLAG_OUT(&out, CLI_DEF_OUT),
         CLI_FLAG_QUIET(&quiet),
         { .name = "--no-images", .kind = CLI_SWITCH, .dest = &images, .set = 0, .help = "no pictures" },

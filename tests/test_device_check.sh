@@ -62,7 +62,7 @@ for row in rows:
     n = float(row["n"]); se = -math.expm1(-0.511 / n); k = float.fromhex("0x1.cac084p-2") * n   # 0.448f
     best = max(abs(max(1 - k * s, 0) ** 2 - math.exp(n * math.log1p(-s))) / math.exp(n * math.log1p(-s))
                for s in (se * i / 200000 for i in range(200001)))
-    got, x = float(row["epicentre_max_rel"]), float(row["epicentre_at_x"])
+    got, x = float(row["epicentre_max_rel_fraction"]), float(row["epicentre_at_x_rad"])
     unit = 10 ** (math.floor(math.log10(best)) - 3)
     print(n, got, best, x, 2 * math.asin(math.sqrt(se / 2)))
     assert abs(got - best) <= 0.1 * unit, (n, got, best)

@@ -189,6 +189,11 @@ static void test_plots_and_report(struct cl_session *s)
     static const enum model_family fam[] = {MODEL_FAMILY_QUADRATIC};
     CHECK(plots_add_max_vs_n(&set, "max_rel.png", "caption one", "max delta", res, 2, 1, fam, 1) == 0, "max vs n");
     CHECK(set.count == 1 && set.figs[0].nseries == 2, "two series (fvol and cq2)");
+    /* fvol and cq2 are quadratic: a plot of the normalised families has nothing to draw, so it
+       is not added (1), never drawn empty */
+    static const enum model_family norm[] = {MODEL_FAMILY_NORMALISED, MODEL_FAMILY_MICROFACET};
+    CHECK(plots_add_max_vs_n(&set, "norm.png", "c", "t", res, 2, 1, norm, 2) == 1 && set.count == 1,
+          "no normalised model: no figure (count %d)", set.count);
     /* the per-n maxima plotted never exceed the refined maximum over the range */
     for (int sidx = 0; sidx < set.figs[0].nseries; sidx++) {
         const struct plot_series *se = &set.figs[0].series[sidx];
@@ -276,12 +281,15 @@ static void test_plots_and_report(struct cl_session *s)
           "malformed throughput.json named: %s", err);
     CHECK(plots_draw(&set, dir, err, sizeof err) == 0, "draw bars: %s", err);
 
-    /* report: three pictures exist, one does not; only the three are linked */
-    struct report_picture pics[4] = {
-        {"max_rel.png", "caption one", REPORT_PLOTS},
-        {"curves.png", "caption two", REPORT_PLOTS},
-        {"bars.png", "caption three", REPORT_THROUGHPUT},
-        {"never_written.png", "caption four", REPORT_PLOTS},
+    /* report: three pictures exist, one does not, one was left out for want of data (the
+       normalised plots when no normalised model ran); only the three are linked, and the fifth
+       is named with its reason instead of an empty plot */
+    struct report_picture pics[5] = {
+        {"max_rel.png", "caption one", REPORT_PLOTS, ""},
+        {"curves.png", "caption two", REPORT_PLOTS, ""},
+        {"bars.png", "caption three", REPORT_THROUGHPUT, ""},
+        {"never_written.png", "caption four", REPORT_PLOTS, ""},
+        {"left_out.png", "caption five", REPORT_PLOTS, "no normalised model ran"},
     };
     struct report_input in;
     memset(&in, 0, sizeof in);
@@ -295,7 +303,7 @@ static void test_plots_and_report(struct cl_session *s)
     in.throughput.markdown = "| model | rate |\n|---|---|\n| fvol | 2.5 |";
     in.images.missing = "not in this test";
     in.pictures = pics;
-    in.npictures = 4;
+    in.npictures = 5;
     CHECK(report_write(&in, err, sizeof err) == 0, "report: %s", err);
     path_in(path, sizeof path, "report.md");
     size_t len = 0;
@@ -318,6 +326,8 @@ static void test_plots_and_report(struct cl_session *s)
             }
         }
         CHECK(links == 3 && missing == 0, "%d links, %d to missing files (want 3 and 0)", links, missing);
+        CHECK(strstr(text, "Not drawn, `left_out.png`: no normalised model ran") != NULL,
+              "report.md says why left_out.png was not drawn");
         CHECK(strstr(text, "never_written.png") && strstr(text, "was not written"), "the missing picture is named");
         CHECK(strstr(text, "`fvol`") && strstr(text, "`cq2`"), "accuracy table rows");
         CHECK(strstr(text, "| fvol | 2.5 |") != NULL, "throughput block included");

@@ -112,3 +112,13 @@ int cli_run_check_documents(const char *cmd, const char *json_path, const char *
     }
     return 0;
 }
+
+int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir, const char *name,
+                   const char *json_path)
+{
+    int rc = cli_run_latest(cmd, out_dir, tmp_dir, run_dir);
+    if (!rc && json_path)
+        rc = cli_run_deliver(cmd, run_dir, name, "--json", json_path);
+    cli_temp_dir_remove(tmp_dir);
+    return rc;
+}

@@ -29,5 +29,9 @@ int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, co
  * EXIT_RUNTIME, so a missing or read-only folder fails at once, not after the measurement. */
 int cli_run_check_documents(const char *cmd, const char *json_path, const char *csv_path);
 int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, const char *flag, const char *dest);
+/* After a run that wrote its folder: cli_run_latest, then the document `name` to --json's path
+ * (when json_path), then the temporary folder removed (when tmp_dir names one). 0 or EXIT_RUNTIME. */
+int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir, const char *name,
+                   const char *json_path);
 
 #endif

@@ -18,6 +18,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static const char *current_command = "";
@@ -602,10 +603,17 @@ void cli_temp_dir_remove(const char *dir)
     if (d) {
         struct dirent *e;
         char path[4096];
-        while ((e = readdir(d)) != NULL)
-            if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0 &&
-                path_join(path, sizeof path, dir, e->d_name) == 0)
+        while ((e = readdir(d)) != NULL) {
+            if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0 ||
+                path_join(path, sizeof path, dir, e->d_name) != 0)
+                continue;
+            /* a folder the run made in it (render/, frontier_teapot/): never a link followed */
+            struct stat st;
+            if (lstat(path, &st) == 0 && S_ISDIR(st.st_mode))
+                cli_temp_dir_remove(path);
+            else
                 unlink(path);
+        }
         closedir(d);
     }
     rmdir(dir);

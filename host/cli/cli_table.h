@@ -110,10 +110,13 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
       .min = 1e-300, .max = ACC_MAX_N, \
       .help = "step of n over the grid; real values allowed, n-max always included" }
 /* samples per zone per n, a multiple of 16 up to MAX */
-#define CLI_FLAG_SAMPLES(DEST, MAX)                                                                                \
+/* One --samples range for every command, [ACC_MIN_SAMPLES, ACC_MAX_SAMPLES]; a command that
+   must take less says why in RANGE (shown in --help and the man page in place of the range). */
+#define CLI_FLAG_SAMPLES_WHY(DEST, MAX, RANGE)                                                                    \
     { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, DEST), \
-      .min = ACC_MIN_SAMPLES, .max = (MAX), \
+      .min = ACC_MIN_SAMPLES, .max = (MAX), .range = (RANGE), \
       .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" }
+#define CLI_FLAG_SAMPLES(DEST) CLI_FLAG_SAMPLES_WHY(DEST, ACC_MAX_SAMPLES, NULL)
 #define CLI_FLAG_MODELS(DEST, GIVEN, DEF)                                                                          \
     { .name = "--models", .value = "LIST", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, DEST), .given = (GIVEN), \
       .help = "models with parameters, comma-separated, e.g. cq2,fq:Q=0.7,lyon:k=4 (see brdfbench list); "        \
@@ -205,8 +208,8 @@ int cli_output_path(struct cli_output *o, const char *path, const char *name, co
                     size_t errlen);
 int cli_output_finish(struct cli_output *o, int ok, char *err, size_t errlen);
 /* A command that writes a folder and takes --json FILE for one of its documents: the folder may
- * be a temporary one (cli_temp_dir, removed with cli_temp_dir_remove, which removes its plain
- * files), and the document is then copied to FILE, or to standard output for "-"
+ * be a temporary one (cli_temp_dir, removed with cli_temp_dir_remove, which removes what the
+ * run wrote in it, its sub-folders included), and the document is then copied to FILE, or to standard output for "-"
  * (cli_deliver; a regular FILE is replaced atomically). Return 0 or EXIT_RUNTIME with a message. */
 int cli_temp_dir(char *dir, size_t len, char *err, size_t errlen);
 void cli_temp_dir_remove(const char *dir);

@@ -110,7 +110,7 @@ int cmd_accuracy(int argc, char **argv)
         CLI_FLAG_N_MIN(&grid.n_min),
         CLI_FLAG_N_MAX(&grid.n_max),
         CLI_FLAG_N_STEP(&grid.n_step),
-        CLI_FLAG_SAMPLES(&grid.samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_SAMPLES(&grid.samples),
         CLI_FLAGS_DOCUMENTS(&out_dir, &json_path, &csv_path),
         CLI_FLAG_QUIET(&quiet),
         { .name = "--pictures", .kind = CLI_SWITCH, .dest = &pictures, .set = 1,

@@ -138,6 +138,7 @@ static void add_picture(struct all_run *r, const char *file, int section, const 
     vsnprintf(p->caption, sizeof p->caption, fmt, ap);
     va_end(ap);
     p->section = section;
+    p->not_drawn[0] = '\0';
 }
 
 /* Records the outcome of another command's part: on failure its section says so. */
@@ -384,16 +385,25 @@ static int step_plots(struct all_run *r)
                        "max Delta over [0, pi/2] against n, lobe approximations against phong (paper 1 fig. 5, "
                        "paper 2 fig. 6b)",
                        "Max absolute error Delta over [0, pi/2], per n", r->acc, r->nacc, 0, lobe_families, 3);
-    plots_add_max_vs_n(&r->plots, "max_rel_error_epicentre_vs_n_normalised.png",
-                       "max delta over the epicentre against n, normalised and microfacet lobes against their "
-                       "normalised references",
-                       "Max relative error delta over the epicentre, normalised lobes", r->acc, r->nacc, 1,
-                       norm_families, 2);
-    plots_add_max_vs_n(&r->plots, "max_abs_error_vs_n_normalised.png",
+    static const char *const norm_files[2] = {"max_rel_error_epicentre_vs_n_normalised.png",
+                                              "max_abs_error_vs_n_normalised.png"};
+    int norm_empty = plots_add_max_vs_n(&r->plots, norm_files[0],
+                                        "max delta over the epicentre against n, normalised and microfacet lobes "
+                                        "against their normalised references",
+                                        "Max relative error delta over the epicentre, normalised lobes", r->acc,
+                                        r->nacc, 1, norm_families, 2) == 1;
+    plots_add_max_vs_n(&r->plots, norm_files[1],
                        "max Delta over [0, pi/2] against n, normalised and microfacet lobes against their normalised "
                        "references",
                        "Max absolute error Delta over [0, pi/2], normalised lobes", r->acc, r->nacc, 0, norm_families,
                        2);
+    for (int k = 0; norm_empty && k < 2; k++) {   /* said in report.md, never drawn empty */
+        add_picture(r, norm_files[k], REPORT_PLOTS, "normalised lobes against n");
+        if (r->npics > 0 && strcmp(r->pics[r->npics - 1].file, norm_files[k]) == 0)
+            snprintf(r->pics[r->npics - 1].not_drawn, sizeof r->pics[0].not_drawn,
+                     "no normalised or microfacet model ran (--models named none: fq2n, phongn, blinnn, beckmann, "
+                     "ggx, ...)");
+    }
     if (r->nq > 0) {
         plots_add_against_q(&r->plots, "fq_max_rel_error_vs_q.png",
                             "max delta of f_Q over the epicentre (n in [2, 1000]) against Q, with f2 (paper 2, fig. 2)",
@@ -804,7 +814,7 @@ int cmd_all(int argc, char **argv)
         CLI_FLAG_N_MIN(&g.n_min),
         CLI_FLAG_N_MAX(&g.n_max),
         CLI_FLAG_N_STEP(&g.n_step),
-        CLI_FLAG_SAMPLES(&g.samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_SAMPLES(&g.samples),
         { .name = "--results-root", .value = "DIR", .kind = CLI_PATH, .dest = &r->results_root,
           .help = "where run folders are made" },
         CLI_FLAG_OUT(&out_dir, "a new folder under --results-root, and its latest pointing at it"),

@@ -2,6 +2,7 @@
  * against the first; the table on stdout, compare.md/.csv/.json/.png, and the CI conditions
  * --fail-if-slower and --fail-if-less-accurate (exit 1). No device is used. */
 #define _POSIX_C_SOURCE 200809L
+#include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "compare.h"
@@ -17,10 +18,12 @@ int cmd_compare(int argc, char **argv)
 {
     char err[1200];
     int quiet = 0, less_accurate = 0, holm = 0, absolute = 0, confirm = 0;
-    const char *out_dir = NULL;
+    const char *out_dir = NULL, *json_path = NULL;
     double alpha = CMP_DEFAULT_ALPHA, slower_pct = -1, threshold_pct = -1;
     const struct cli_flag flags[] = {
-        CLI_FLAG_OUT(&out_dir, "a new folder results/<date-time>/; results/latest stays"),
+        CLI_FLAG_OUT(&out_dir, "a new folder results/<date-time>/; results/latest stays; with --json and no --out, "
+                               "no folder"),
+        CLI_FLAG_JSON(&json_path),
         { .name = "--alpha", .value = "P", .kind = CLI_DOUBLE, .dest = &alpha, .min = 1e-6, .max = 0.5,
           .help = "the rank test's level", .range = "1e-6 to 0.5" },
         { .name = "--fail-if-slower", .value = "PCT", .kind = CLI_DOUBLE, .dest = &slower_pct, .min = 0, .max = 100,
@@ -81,7 +84,12 @@ int cmd_compare(int argc, char **argv)
         fprintf(stderr, "brdfbench compare: out of memory\n");
         return EXIT_RUNTIME;
     }
-    int rc = compare_load(set, paths, npaths, err, sizeof err);
+    /* the table stays off standard output when the document goes there */
+    quiet = quiet || cli_is_stdout(json_path);
+    int rc = cli_run_check_documents("compare", json_path, NULL);
+    if (rc)
+        goto done;
+    rc = compare_load(set, paths, npaths, err, sizeof err);
     if (rc) {
         fprintf(stderr, "brdfbench compare: %s\n", err);
         goto done;
@@ -106,14 +114,24 @@ int cmd_compare(int argc, char **argv)
             fprintf(stderr, "brdfbench compare: warning: %s was disturbed: %d repetition%s stayed preempted by other "
                             "work after the retries (see its \"machine\" context)\n", set->run[k].name,
                     set->run[k].disturbed, set->run[k].disturbed == 1 ? "" : "s");
-    char run_dir[4096];
-    if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err) ||
-        compare_write(set, run_dir, err, sizeof err)) {
-        fprintf(stderr, "brdfbench compare: %s\n", err);
+    char run_dir[4096], tmp_dir[512];
+    if (cli_run_folder("compare", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
         rc = EXIT_RUNTIME;
         goto done;
     }
-    if (!quiet)
+    if (compare_write(set, run_dir, err, sizeof err)) {
+        fprintf(stderr, "brdfbench compare: %s\n", err);
+        cli_temp_dir_remove(tmp_dir);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    /* compare never moves results/latest: out_dir given as the run folder itself */
+    if (json_path && cli_run_deliver("compare", run_dir, "compare.json", "--json", json_path))
+        rc = EXIT_RUNTIME;
+    cli_temp_dir_remove(tmp_dir);
+    if (rc)
+        goto done;
+    if (!quiet && !tmp_dir[0])
         printf("written: %s/compare.md, compare.csv, compare.json, compare.png\n", run_dir);
     char *why = NULL;
     int failing = compare_failures(set, slower_pct, less_accurate, &why);

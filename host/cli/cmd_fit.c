@@ -51,7 +51,7 @@ int cmd_fit(int argc, char **argv)
           .help = "what a family fit minimises: the epicentre's max delta or the attenuation's max Delta" },
         { .name = "--max-rel", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_rel_cap, .min = FIT_CAP_MIN,
           .max = 1.0, .def = "none", .help = "with --objective max_abs: cap on the epicentre's max delta" },
-        CLI_FLAG_SAMPLES(&opt.samples, ACC_MAX_SAMPLES),
+        CLI_FLAG_SAMPLES(&opt.samples),
         CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
         CLI_FLAG_JSON(&json_path),
         CLI_FLAG_QUIET(&quiet),

@@ -15,15 +15,14 @@ int cmd_frontier(int argc, char **argv)
     frontier_options_default(&opt);
     struct device_options dev;
     device_options_init(&dev);
-    const char *out_dir = NULL, *models_text = NULL;
+    const char *out_dir = NULL, *models_text = NULL, *json_path = NULL;
     int quiet = 0;
     int models_given = 0, no_image = 0, rounds = opt.rounds, reps = opt.reps;
     const struct cli_flag flags[] = {
         CLI_FLAG_MODELS(&models_text, &models_given,
                         "the references, the papers' models, the engines' approximations and the frozen fits; "
                         "with --model or --model-file, those and the user models"),
-        { .name = "--samples", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, &opt.samples), .min = 16,
-          .max = 65536, .multiple = 16, .help = "samples per zone and per n of the accuracy sweeps" },
+        CLI_FLAG_SAMPLES(&opt.samples),
         { .name = "--reps", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &reps), .min = 1, .max = 100,
           .help = "timed launches per figure" },
         { .name = "--rounds", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, &rounds), .min = 1,
@@ -31,7 +30,8 @@ int cmd_frontier(int argc, char **argv)
           .help = "rounds over every model; a rate is the median of the rounds' medians, its spread their min..max" },
         { .name = "--no-image", .kind = CLI_SWITCH, .dest = CLI_DEST(int, &no_image), .set = 1,
           .help = "no teapot pass (no PSNR)" },
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
@@ -57,14 +57,21 @@ int cmd_frontier(int argc, char **argv)
         goto usage_error;
     opt.model_count = n;
     struct cl_session s;
-    char run_dir[4096];
-    int rc = cli_run_open("frontier", &s, &dev, out_dir, 0, run_dir, sizeof run_dir, NULL, 0);
+    char run_dir[4096], tmp_dir[512];
+    int rc = cli_run_check_documents("frontier", json_path, NULL);
+    if (!rc)
+        rc = cli_run_open("frontier", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
+                          sizeof tmp_dir);
     if (rc)
         return rc;
+    /* the tables stay off standard output when the document goes there */
+    quiet = quiet || cli_is_stdout(json_path);
     rc = frontier_run(&s, &opt, run_dir, quiet, NULL);
     if (!rc)
-        rc = cli_run_latest("frontier", out_dir, NULL, run_dir);
-    if (!rc && !quiet)
+        rc = cli_run_finish("frontier", out_dir, tmp_dir, run_dir, "frontier.json", json_path);
+    else
+        cli_temp_dir_remove(tmp_dir);
+    if (!rc && !quiet && !tmp_dir[0])
         printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", run_dir,
                opt.image_w > 0 ? " and frontier_teapot/" : "");
     clsession_close(&s);

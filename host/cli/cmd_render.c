@@ -14,8 +14,8 @@
 #include <string.h>
 
 #define RENDER_MAX_MEASURED_FILES 4
-static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir, char *err,
-                              size_t errlen);
+static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir,
+                              const char *json_path, char *err, size_t errlen);
 
 static int parse_size(const char *arg, const char *text, int *w, int *h, char *err, size_t errlen)
 {
@@ -149,7 +149,7 @@ int cmd_render(int argc, char **argv)
     render_options_default(&o);
     struct device_options dev;
     device_options_init(&dev);
-    const char *models_text = NULL, *out_dir = NULL, *measured_arg = NULL;
+    const char *models_text = NULL, *out_dir = NULL, *measured_arg = NULL, *json_path = NULL;
     int quiet = 0, models_given = 0;
     char size_range[64], shininess_range[64];
     snprintf(size_range, sizeof size_range, "W and H in [%d, %d]", RENDER_MIN_SIDE, RENDER_MAX_SIDE);
@@ -188,7 +188,8 @@ int cmd_render(int argc, char **argv)
         CLI_FLAG_MEASURED(&measured_arg),
         { .name = "--no-images", .kind = CLI_SWITCH, .dest = &o.write_images, .set = 0,
           .help = "metrics and timings only, no PNGs" },
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT),
+        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
+        CLI_FLAG_JSON(&json_path),
         CLI_FLAG_QUIET(&quiet),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
@@ -210,7 +211,7 @@ int cmd_render(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    o.verbose = !quiet;
+    o.verbose = !quiet && !cli_is_stdout(json_path);   /* stdout holds the document alone */
     if (!models_text && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
@@ -233,7 +234,7 @@ int cmd_render(int argc, char **argv)
         for (int i = 0; i < o.nmeasured; ++i)
             o.measured[i] = &mats[i];
     }
-    int rc = cmd_render_session(&o, &dev, out_dir, err, sizeof err);
+    int rc = cmd_render_session(&o, &dev, out_dir, json_path, err, sizeof err);
     for (int i = 0; i < o.nmeasured; ++i)
         merl_free(&mats[i]);
     return rc;
@@ -245,12 +246,15 @@ usage_error:
 
 /* The session, the run folder and the run of a parsed command line (*err: a usage message when
    EXIT_USAGE is returned). */
-static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir, char *err,
-                              size_t errlen)
+static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir,
+                              const char *json_path, char *err, size_t errlen)
 {
     struct render_options o = *op;
     struct cl_session s;
-    int rc = cli_run_session("render", &s, devp);
+    int rc = cli_run_check_documents("render", json_path, NULL);
+    if (rc)
+        return rc;
+    rc = cli_run_session("render", &s, devp);
     if (rc)
         return rc;
     /* sizes against the device's memory before anything is allocated */
@@ -264,27 +268,24 @@ static int cmd_render_session(struct render_options *op, struct device_options *
         fprintf(stderr, "brdfbench render: %s\n", err);
         return EXIT_USAGE;
     }
-    char run_dir[4096];
-    if (out_dir) {
-        snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", NULL, err, errlen) != 0 ||
-               outdir_new_run("results", run_dir, sizeof run_dir, err, errlen) != 0) {
-        fprintf(stderr, "brdfbench render: %s\n", err);
+    char run_dir[4096], tmp_dir[512];
+    if (cli_run_folder("render", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
     if (o.verbose)
         printf("device: %s (%s)\n", s.device_name, s.platform_version);
     rc = render_run(&s, &o, run_dir, NULL, err, errlen);
-    if (rc == 0 && !out_dir &&
-        outdir_set_latest("results", run_dir, err, errlen) != 0)
-        rc = EXIT_RUNTIME;
     clsession_close(&s);
     if (rc) {
         fprintf(stderr, "brdfbench render: %s\n", err);
+        cli_temp_dir_remove(tmp_dir);
         return rc;
     }
-    if (o.verbose)
+    rc = cli_run_finish("render", out_dir, tmp_dir, run_dir, "render.json", json_path);
+    if (rc)
+        return rc;
+    if (o.verbose && !tmp_dir[0])
         printf("written: %s/render.json and %s/render/\n", run_dir, run_dir);
     return EXIT_OK;
 }

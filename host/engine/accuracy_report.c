@@ -102,8 +102,9 @@ int accuracy_write_csv(const char *path, const struct accuracy_result *res, int 
 {
     struct md_buf b;
     md_init(&b);
-    md_printf(&b, "model,n,epicentre_max_rel,epicentre_at_x,attenuation_max_abs,attenuation_at_x,"
-                  "whole_max_abs,whole_at_x,invalid_count\n");
+    /* column names carry their unit (docs/csv-columns.md); the JSON keys stay as they are */
+    md_printf(&b, "model,n,epicentre_max_rel_fraction,epicentre_at_x_rad,attenuation_max_abs,attenuation_at_x_rad,"
+                  "whole_max_abs,whole_at_x_rad,invalid_count\n");
     for (int i = 0; i < count && !b.failed; ++i) {
         const struct accuracy_result *r = &res[i];
         for (long k = 0; k < r->n_count && !b.failed; ++k) {

@@ -510,9 +510,12 @@ static int write_json(const struct compare_set *set, const char *path, char *err
 }
 
 /* Per model one group, one bar per run: the throughput rows of the default build options with
-   n uniform where there are any, else every speed row. */
+   n uniform where there are any, else every speed row; runs with no rate at all (accuracy
+   runs) chart their error rows instead (sense CMP_SPEED + 1 asks for those). */
 static int chart_row(const struct cmp_row *r, int throughput_default)
 {
+    if (throughput_default < 0)
+        return r->sense != CMP_SPEED;
     if (r->sense != CMP_SPEED)
         return 0;
     if (throughput_default)
@@ -528,8 +531,13 @@ static int write_chart(const struct compare_set *set, const char *path, char *er
     int G = 0, S = set->nruns;
     for (int i = 0; i < set->nrows; ++i)
         G += chart_row(&set->rows[i], tpd) && G < 200;
+    if (G == 0) {
+        tpd = -1;   /* nothing measured as a rate: the errors, as ratios to the baseline's */
+        for (int i = 0; i < set->nrows; ++i)
+            G += chart_row(&set->rows[i], tpd) && G < 200;
+    }
     if (G == 0)
-        return 0;   /* nothing measured as a rate: no chart */
+        return 0;
     const char **groups = calloc((size_t)G, sizeof *groups), **series = calloc((size_t)S, sizeof *series);
     char (*labels)[2 * CMP_TEXT + 80] = calloc((size_t)G, sizeof *labels);
     double *val = calloc((size_t)G * S, sizeof *val), *lo = calloc((size_t)G * S, sizeof *lo),
@@ -547,7 +555,7 @@ static int write_chart(const struct compare_set *set, const char *path, char *er
         const struct cmp_row *r = &set->rows[i];
         if (!chart_row(r, tpd))
             continue;
-        if (tpd)
+        if (tpd > 0)
             snprintf(labels[g], sizeof labels[g], "%s%s%s", r->device, *r->device ? " | " : "", r->model);
         else
             row_label(labels[g], sizeof labels[g], r);
@@ -566,10 +574,14 @@ static int write_chart(const struct compare_set *set, const char *path, char *er
         ++g;
     }
     char title[512], xlabel[600];
-    snprintf(title, sizeof title, "%s as a ratio to %.200s", tpd ? "evaluations/s (default build options, n uniform)"
-                                                                 : "rates", set->run[0].name);
-    snprintf(xlabel, sizeof xlabel, "ratio to %.200s's median (whisker: min..max of the run; grey: %.200s's own "
-                                    "min..max)", set->run[0].name, set->run[0].name);
+    snprintf(title, sizeof title, "%s as a ratio to %.200s",
+             tpd > 0 ? "evaluations/s (default build options, n uniform)" : tpd < 0 ? "errors (lower is better)" : "rates",
+             set->run[0].name);
+    if (tpd < 0)
+        snprintf(xlabel, sizeof xlabel, "ratio to %.200s's value (n/a: a baseline of 0)", set->run[0].name);
+    else
+        snprintf(xlabel, sizeof xlabel, "ratio to %.200s's median (whisker: min..max of the run; grey: %.200s's own "
+                                        "min..max)", set->run[0].name, set->run[0].name);
     struct draw_ratio_chart ch = { title, xlabel, G, S, groups, series, val, lo, hi, blo, bhi, 0 };
     rc = draw_ratio_chart(path, &ch, err, errlen);
 done:

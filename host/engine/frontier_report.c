@@ -97,8 +97,10 @@ int frontier_write_csv(const char *path, const struct frontier_report *r, char *
 {
     struct md_buf b;
     md_init(&b);
-    md_printf(&b, "model,kind,on_front,rate_uniform_median,rate_uniform_min,rate_uniform_max,rate_varying_median,"
-                  "arith,minmax,div,transc,max_rel_2,max_abs_2,max_rel_16,max_abs_16,psnr_db\n");
+    /* column names carry their unit (docs/csv-columns.md); the JSON keys stay as they are */
+    md_printf(&b, "model,kind,on_front,evals_per_s_uniform_median,evals_per_s_uniform_min,evals_per_s_uniform_max,"
+                  "evals_per_s_varying_median,arith_ops,minmax_ops,div_ops,transc_ops,max_rel_fraction_n2_1000,"
+                  "max_abs_n2_1000,max_rel_fraction_n16_1000,max_abs_n16_1000,psnr_db\n");
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];
         md_printf(&b, "\"%s\",%s,%d,%.6g,%.6g,%.6g,%.6g,", row->spec.label, model_kind_name(row->kind), row->on_front,

@@ -200,6 +200,11 @@ int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *capti
         free(y);
         if (rc) return -1;
     }
+    if (f->nseries == 0) {   /* no model of these families ran: no empty plot */
+        figure_free(f);
+        set->count--;
+        return 1;
+    }
     if (hi > lo) {
         f->x_min = lo;
         f->x_max = hi;

@@ -73,7 +73,9 @@ int plots_add_curves(struct plot_set *set, const char *file, const char *caption
 /* Per-n maxima from accuracy results: relative = 1 plots the epicentre's max delta,
  * relative = 0 the max Delta over the whole range [0, pi/2]. Results of a model against
  * itself are skipped, and so are models whose registry family is not one of `families`
- * (nfamilies = 0: any). Long n grids are binned (the maximum of each bin) to at most 1000 points. */
+ * (nfamilies = 0: any). Long n grids are binned (the maximum of each bin) to at most 1000 points.
+ * Returns 0, -1 (out of memory), or 1 when no model of the families ran: then no figure is
+ * added (an empty plot is never drawn). */
 int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *caption, const char *title,
                        const struct accuracy_result *res, int count, int relative, const enum model_family *families,
                        int nfamilies);

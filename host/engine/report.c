@@ -103,7 +103,11 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
         const struct report_picture *p = &in->pictures[i];
         if (p->section != section) continue;
         any = 1;
-        if (file_exists(in->run_dir, p->file)) {
+        if (p->not_drawn[0]) {
+            md_printf(b, "Not drawn, `%s`: ", p->file);
+            md_cell_text(b, p->not_drawn);
+            md_printf(b, "\n\n");
+        } else if (file_exists(in->run_dir, p->file)) {
             md_printf(b, "![%s](%s)\n\n*", p->file, p->file);
             md_cell_text(b, p->caption);
             md_printf(b, "*\n\n");

@@ -22,6 +22,7 @@ struct report_picture {
     char file[160];       /* name inside the run folder */
     char caption[400];    /* one line */
     int section;          /* enum report_section */
+    char not_drawn[200];  /* why the picture was left out (nothing to draw); "" when drawn */
 };
 
 /* A block of markdown supplied by another part of the run (claims, throughput, image

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# test_machine_readable.sh - one --samples range for every command (or the reason for a smaller
+# one, in its --help), and --json - (the document alone on standard output) on every command
+# that writes a document.
+set -u
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+cd "$T" || exit 1
+
+# 1. --samples: every command that takes it accepts [16, 4194304] (the accuracy sweep's
+#    ACC_MAX_SAMPLES, 2^22), or its --help entry states why it takes less ("since ...").
+COMMANDS=$("$BIN" --help | awk '/^  [a-z]/ { print $1 }' | tr '\n' ' ')
+for c in $COMMANDS; do
+    "$BIN" "$c" --help >"$T/help_$c" 2>&1
+    # the entry with its continuation lines (indented 21 columns) joined
+    entry=$(python3 -c '
+import re, sys
+lines, out = open(sys.argv[1]).read().split("\n"), []
+for i, l in enumerate(lines):
+    if l.startswith("  --samples "):
+        out = [l] + [m for m in __import__("itertools").takewhile(lambda m: m.startswith(" " * 21), lines[i + 1:])]
+print(" ".join(x.strip() for x in out))' "$T/help_$c")
+    [ -n "$entry" ] || continue
+    hi=$(printf '%s' "$entry" | grep -oE 'in \[16, [0-9]+\]' | grep -oE '[0-9]+\]' | tr -d ']')
+    if [ "$hi" = 4194304 ] || printf '%s' "$entry" | grep -qE 'since|because'; then ok
+    else bad "$c --samples: maximum $hi differs from 4194304 with no reason: $entry"; fi
+done
+
+# The rest needs an OpenCL device.
+if ! "$BIN" list --json - | python3 -c 'import json,sys; d=json.load(sys.stdin); sys.exit(0 if any(p["devices"] for p in d["platforms"]) else 1)'; then
+    echo "$pass passed, $fail failed; SKIP: no OpenCL device for the checks that run kernels"
+    [ "$fail" -eq 0 ] && exit 77 || exit 1
+fi
+
+# 2. --json -: standard output holds the one document (json.load of all of it: any table or
+#    "written:" line beside it fails the parse), of the command's schema; no run folder is
+#    made (no results/), and the temporary folder the run wrote into is gone (TMPDIR empty),
+#    sub-folders included (render/<scene>/, frontier_teapot/).
+mkdir -p "$T/tmp"
+json_alone() {   # json_alone WHAT SCHEMA ARGS...
+    local what=$1 schema=$2
+    shift 2
+    TMPDIR="$T/tmp" "$BIN" "$@" --json - >"$T/doc.json" 2>"$T/err"
+    local rc=$?
+    [ $rc -eq 0 ] || { bad "$what --json -: exit $rc: $(tail -c 400 "$T/err")"; return; }
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["schema"] == sys.argv[2], d["schema"]' \
+        "$T/doc.json" "$schema" && ok || bad "$what --json -: stdout is not the $schema document alone: $(head -c 300 "$T/doc.json")"
+    [ ! -e results ] && ok || bad "$what --json - without --out made results/"
+    [ -z "$(ls -A "$T/tmp")" ] && ok || bad "$what --json - left its temporary folder: $(ls -AR "$T/tmp" | head -5)"
+    cp "$T/doc.json" "$T/$what.json"
+}
+json_alone render brdfbench.render/1 render --scene spheres --models phong,fq2 --size 64x32 --time-sizes none --reps 1 --warmup 0
+json_alone frontier brdfbench.frontier/1 frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image
+json_alone reproduce brdfbench.claims/1 reproduce --samples 64 --no-grid-check --q-step 0.1 --q-samples 64 --q-n-step 50 --no-energy
+"$BIN" accuracy --models fq2,cq2 --n-min 2 --n-max 6 --samples 16 --json "$T/acc.json" >/dev/null 2>&1
+json_alone compare brdfbench.compare/1 compare "$T/acc.json" "$T/acc.json"
+
+# 3. CSV headers: each file's header is, column for column, the documented table of
+#    docs/csv-columns.md (the table is the reference: a renamed or added column fails here);
+#    units in the names: no bare max_rel or at_x (a fraction and radians said by the name).
+"$BIN" accuracy --models fq2 --n-min 2 --n-max 3 --samples 16 --csv "$T/accuracy.csv" >/dev/null 2>&1
+"$BIN" throughput --models fq2 --variants default --n-modes uniform --no-sweep --no-host-c --reps 1 --min-time 0.001 \
+    --csv "$T/throughput.csv" >/dev/null 2>&1
+"$BIN" frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image --out "$T/fr" --quiet >/dev/null 2>&1
+cp "$T/fr/frontier.csv" "$T/frontier.csv" 2>/dev/null
+"$BIN" compare "$T/acc.json" "$T/acc.json" --out "$T/cmp" --quiet >/dev/null 2>&1
+cp "$T/cmp/compare.csv" "$T/compare.csv" 2>/dev/null
+python3 - "$SRC/docs/csv-columns.md" "$T" <<'PY' && ok || bad "a CSV header differs from docs/csv-columns.md"
+import collections, csv, re, sys
+doc = collections.OrderedDict()
+for line in open(sys.argv[1]):
+    m = re.match(r"^\| (\w+\.csv) \| (\w+) \|", line)
+    if m:
+        doc.setdefault(m.group(1), []).append(m.group(2))
+assert set(doc) == {"accuracy.csv", "throughput.csv", "frontier.csv", "compare.csv"}, list(doc)
+for name, cols in doc.items():
+    header = next(csv.reader(open(f"{sys.argv[2]}/{name}")))
+    assert header == cols, (name, header, cols)
+    for c in header:
+        assert not re.search(r"(^|_)(max_rel|at_x)$", c) and not c.startswith("rate_"), (name, c, "unit missing")
+PY
+
+# 4. JSON Schemas (docs/schemas/, draft 2020-12): each is a valid schema, and the documents of
+#    the small runs above validate against the schema their "schema" string names; a broken
+#    copy of each (a required member taken out, an x past pi/2, a boolean made a string) fails.
+"$BIN" list --json "$T/list.json" >/dev/null 2>&1
+"$BIN" throughput --models fq2 --variants default --n-modes uniform --no-sweep --no-host-c --reps 1 --min-time 0.001 \
+    --json "$T/throughput.json" >/dev/null 2>&1
+python3 - "$SRC/docs/schemas" "$T" <<'PY' && ok || bad "the JSON Schemas of docs/schemas/ and the documents disagree"
+import copy, glob, json, sys
+import jsonschema   # python3-jsonschema (scripts/setup.sh)
+folder, t = sys.argv[1], sys.argv[2]
+schemas = {}
+for f in glob.glob(folder + "/*.schema.json"):
+    s = json.load(open(f))
+    jsonschema.Draft202012Validator.check_schema(s)
+    schemas[s["properties"]["schema"]["const"]] = jsonschema.Draft202012Validator(s)
+def errors(d):
+    return list(schemas[d["schema"]].iter_errors(d))
+docs = {n: json.load(open(f"{t}/{n}.json")) for n in ["acc", "throughput", "render", "frontier", "reproduce", "compare", "list"]}
+for n, d in docs.items():
+    assert d["schema"] in schemas, (n, d["schema"], "no schema file")
+    e = errors(d)
+    assert not e, (n, [x.message for x in e[:3]])
+# every kind a document here names has its file; broken copies must fail
+broken = []
+b = copy.deepcopy(docs["acc"]); b["results"][0]["epicentre"]["at_x"] = 3.2; broken.append(("x > pi/2", b))
+b = copy.deepcopy(docs["acc"]); del b["results"][0]["whole"]; broken.append(("no whole", b))
+b = copy.deepcopy(docs["frontier"]); b["models"][0]["on_front"] = "yes"; broken.append(("on_front a string", b))
+b = copy.deepcopy(docs["throughput"]); b["results"][0]["evals_per_s"]["median"] = -1; broken.append(("negative rate", b))
+b = copy.deepcopy(docs["render"]); del b["scenes"]; broken.append(("no scenes", b))
+b = copy.deepcopy(docs["reproduce"]); b["claims"] = []; broken.append(("no claims", b))
+b = copy.deepcopy(docs["compare"]); b["rows"][0]["sense"] = "faster"; broken.append(("bad sense", b))
+b = copy.deepcopy(docs["list"]); b["schema"] = "brdfbench.list/2"; broken.append(("wrong version", b))
+for what, d in broken:
+    bad = d["schema"] not in schemas or errors(d)
+    assert bad, ("a broken document validates", what)
+PY
+
+# 5. compare of two accuracy runs (no rate in them) draws its own chart: compare.png is there,
+#    a PNG (its 8-byte signature), and every file the "written:" line names exists.
+"$BIN" compare "$T/acc.json" "$T/acc.json" --out "$T/cmpacc" >"$T/out" 2>"$T/err"
+[ "$(head -c 8 "$T/cmpacc/compare.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] && ok \
+    || bad "compare of two accuracy runs wrote no compare.png: $(ls "$T/cmpacc")"
+written=$(sed -n "s|^written: $T/cmpacc/||p" "$T/out")
+[ -n "$written" ] && ok || bad "compare printed no written: line: $(cat "$T/out" | tail -2)"
+for f in $(printf '%s' "$written" | tr ',' ' '); do
+    [ -e "$T/cmpacc/$f" ] && ok || bad "compare says it wrote $f, which is not there"
+done
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
