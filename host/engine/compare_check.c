@@ -57,6 +57,14 @@ static int check_value(const struct jr_doc *d, const struct jr_value *v, const c
     if (depth > 64 || (name && strcmp(name, "definitions") == 0))
         return 0;   /* the definitions are words about the figures; nothing compare reads is this deep */
     enum fig f = name ? fig_of(parent, name) : FIG_NONE;
+    /* a figure's place holds a number, a rate's also an object of min/median/max, a *_reps
+       member an array */
+    if ((v->type == JR_ARR && f != FIG_NONE && !strstr(name, "_reps")) ||
+        (v->type == JR_OBJ && (f == FIG_ERROR || f == FIG_SCORE))) {
+        snprintf(err, errlen, "%s:%d:%d: \"%s\" is not a number (accepted: a number, or null when not measured)",
+                 d->name, v->line, v->col, name);
+        return 2;
+    }
     if (v->type == JR_OBJ || v->type == JR_ARR) {
         int is_reps = v->type == JR_ARR && f == FIG_RATE;
         for (size_t i = 0; i < v->count; ++i) {
