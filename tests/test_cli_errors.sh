@@ -726,6 +726,18 @@ cj frontier.json "d['models'].append(dict(rows[0]))" 'the row fq2 \(n_2_1000\.ma
 cj render.json "rows[0]['models'].append(dict(rows[0]['models'][0]))" 'the row spheres [0-9]+x[0-9]+ \| fq2 \(max_abs\) appears twice'
 cj fit.json "d['compare'].append(dict(rows[2]))" 'the row fq2 \| n .* \(max_rel\) appears twice'
 cj accuracy.json "d['results'] = [rows[0]] * 3" 'the row fq2 .* appears twice'
+cj throughput.json "rows[0]['evals_per_s']['min'] = -1e-300" '"min" is -1e-300 \(accepted: a rate'
+cj throughput.json "d['peak']['flops_per_s_reps'] = [1, -2]" '"flops_per_s_reps" is -2 \(accepted: a rate'
+cj throughput.json "rows[0]['device'] = 'gpu | 0'" '"device" holds '\''\|'\'''
+cj render.json "rows[0]['timings'][0]['entries'][0]['mpixel_per_s'] = 1e300" '"mpixel_per_s" is 1e\+300 \(accepted: a rate'
+cj render.json "rows[0]['timings'][0]['entries'][0]['mpixel_per_s_reps'] = ['x']" '"mpixel_per_s_reps" holds a value that is not a number'
+cj render.json "rows[0]['models'][0]['metrics']['rmse'] = [0.1]" '"rmse" is not a number'
+cj accuracy.json "rows[0]['epicentre']['max_rel'] = {'v': 1}" '"max_rel" is not a number'
+cj accuracy.json "rows[0]['label'] = 'fq2\x7f'" '"label" holds a control character'
+cj frontier.json "rows[0]['psnr_db'] = -2000" '"psnr_db" is -2000 \(accepted: a PSNR'
+cj fit.json "d['max_abs'] = 1e101" '"max_abs" is 1e\+101 \(accepted: an error in \[0, 1e\+100\]'
+# compare reads at most 16 runs (CMP_MAX_RUNS): the 17th is refused before any is read
+t 2 "^brdfbench compare: at most 16 runs \(accepted: 1 to 16\)" compare R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 --out cmpo
 
 # Names that become file names: two user models that would write one file are refused when
 # the second is defined (field_NAME.json and heatmap_NAME.png drop '_'; render writes
@@ -748,6 +760,13 @@ t 2 "^brdfbench render: --model he_fq2: user model 'he_fq2': the name is a file 
 t 2 "^brdfbench all: --model xy: user model 'xy': its files would be those of model 'x_y'" all --quick --model 'x_y=c' --model 'xy=c*c' --out run
 t 2 "^brdfbench throughput: --model fq_2: user model 'fq_2': its files would be those of model 'fq2'" throughput --model 'fq_2=c' --out run
 t 2 "^brdfbench frontier: --model he_x: user model 'he_x': the name is a file name render keeps" frontier --model 'he_x=c' --out run
+t 2 "^brdfbench accuracy: --model fq2_error: user model 'fq2_error': its files would be those of model 'fq2'" accuracy --model 'fq2_error=c' --out run
+t 2 "^brdfbench accuracy: --model he_: user model 'he_': the name is a file name render keeps for itself" accuracy --model 'he_=c' --out run
+t 2 "^brdfbench accuracy: --model f_v_o_l: user model 'f_v_o_l': its files would be those of model 'fvol'" accuracy --model 'f_v_o_l=c' --out run
+t 2 "^brdfbench accuracy: --model blinn_n: user model 'blinn_n': its files would be those of model 'blinnn'" accuracy --model 'blinn_n=c' --out run
+t 2 "^brdfbench accuracy: --model phongn_contact: user model 'phongn_contact': its files would be those of model 'phongn' \(render's phongn_contact.png\)" accuracy --model 'phongn_contact=c' --out run
+printf '{"gates":[{"model":"x_y","expression":"c","metric":"whole.max_abs","max":1},{"model":"xy","expression":"c*c","metric":"whole.max_abs","max":1}]}' >clash2_gate.json
+t 2 "^brdfbench gate: clash2_gate.json:1:[0-9]+: gate 2: .*user model 'xy': its files would be those of model 'x_y'" gate clash2_gate.json
 printf '/* brdfbench-model\n * name: x_y\n */\nREAL x_y(REAL c, REAL n)\n{\n    return c;\n}\n' >x_y.cl
 t 2 "^brdfbench accuracy: --model xy: user model 'xy': its files would be those of model 'x_y'" accuracy --model-file x_y.cl --model 'xy=c' --out run
 printf '/* brdfbench-model\n * name: fq2_error\n */\nREAL fq2_error(REAL c, REAL n)\n{\n    return c;\n}\n' >fq2_error.cl
@@ -776,7 +795,9 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
         echo "test made for it hold, or how it changed a copy of a run folder), the exit code it gave and the first"
         echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
         echo "or output error, 77 no OpenCL device (docs/architecture.md). Rows 155 on are the hostile inputs of"
-        echo "issue 23: result files fed back, names that become file names, model texts, limits, environments."
+        echo "issue 23: result files fed back, names that become file names, model texts, limits, environments;"
+        echo "rows 341 on its rest: rows a run lost (compare exits 1 naming them), figures and labels compare"
+        echo "refuses, user models whose files would be another model's."
         echo "Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
         echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases, one check that no refused run"
         echo "wrote an output folder and one that a compile error's first line is FILE:LINE:COL; $pass passed, $fail failed."
@@ -821,6 +842,12 @@ code and message.
   no results folder.
 - `ulimit -v 200000` or `400000`: exit 77 or 3 with a line that names the limit, not abort()
   on an uncaught std::bad_alloc (exit 134).
+- A model that is NaN everywhere (`--model 'nanm=c*NAN'`): failed in accuracy.json, in
+  throughput.json (the row's status failed with the reason, no rate, no share of the peak),
+  in render.json (max |error| null, status nonfinite, not 0), in frontier.json (null figures,
+  not -1; status failed, off the front) and in report.md; a gate on it fails.
+- An accuracy-only compare draws no compare.png and removes one an earlier compare left;
+  `gate --baseline` says why an entry was not used (failed, no number, another n step).
 EOT
     } >"$BAD_INPUTS_MD.tmp" && mv "$BAD_INPUTS_MD.tmp" "$BAD_INPUTS_MD"
 fi
