@@ -612,6 +612,177 @@ t 2 "^brdfbench accuracy: POCL_CACHE_DIR=good.json is not a writable folder \(Po
 t 77 "^brdfbench accuracy: no OpenCL device found: platform '.*' reports none; POCL_DEVICES=nosuch selects the devices" POCL_DEVICES=nosuch accuracy --models fq2 --n-max 4 --samples 16 --out run
 t 2 "^brdfbench accuracy: --out: empty path" POCL_DEVICES= accuracy --out ''
 
+# ---- issue 23, the rest: rows lost between runs, figures fed back, names that share a file,
+# models that are NaN. R0 (all --quick, above) is the baseline; each row edits a copy of it.
+# jd DIR FILE PYTHON: a copy of R0 as DIR with PYTHON run on DIR/FILE (as d; its rows as rows:
+# results, models, scenes, or fit.json's compare list)
+jd() {
+    WHAT="$1/$2: $3"
+    rm -rf "$1" && cp -r R0 "$1"
+    python3 - "$1/$2" "$3" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+rows = d.get("results") or d.get("models") or d.get("scenes") or d.get("compare") or []
+exec(sys.argv[2])
+json.dump(d, open(sys.argv[1], "w"))
+PY
+}
+CF="--fail-if-less-accurate --fail-if-slower 90 --out cmpo --quiet"
+W="multi:^brdfbench compare: warning: a rate has only"   # R0 is --quick: one repetition per rate
+# Identical runs never fail, also when the fit moved: the fitted quadratic's label
+# quad:a=...,b=... moves with its coefficients, and its row is matched by its role.
+t 0 "$W" compare R0 R0 $CF
+jd N fit.json "for c in d['compare']: c['model'] = c['model'].replace('quad:a=0.4', 'quad:a=0.5')"
+t 0 "$W" compare R0 N $CF
+jd N fit.json "d['a'] = d['a'] * 1.00001"
+t 0 "$W" compare R0 N --fail-if-slower 90 --out cmpo --quiet
+# A row of the baseline that the new run lost: exit 1, the row named with what happened.
+jd N accuracy.json "rows[0]['status'] = 'failed'"
+t 1 "multi:^N: accuracy fq2 \| n 2\.\.1000 .* epicentre\.max_rel: failed \(the baseline has 0\.01" compare R0 N $CF
+jd N accuracy.json "rows[0]['status'] = 'device_disagrees'; rows[0]['reason'] = 'device and double disagree'"
+t 1 "multi:^N: accuracy fq2 .* attenuation\.max_abs: device and double disagree \(the baseline has" compare R0 N $CF
+jd N accuracy.json "rows[0]['status'] = 'device_disagrees'"
+t 1 "multi:^N: accuracy fq2 .* whole\.max_abs: device_disagrees" compare R0 N $CF
+jd N accuracy.json "del rows[0]"
+t 1 "multi:^N: accuracy fq2 .* epicentre\.max_rel: missing from this run" compare R0 N $CF
+jd N accuracy.json "rows[0]['epicentre']['max_rel'] = None"
+t 1 "multi:^N: accuracy fq2 .* epicentre\.max_rel: not a finite number" compare R0 N $CF
+jd N throughput.json "del rows[2]"
+t 1 "multi:^N: throughput fq2 \| default \| n uniform evals_per_s: missing from this run" compare R0 N $CF
+jd N throughput.json "rows[3]['status'] = 'failed'; rows[3]['reason'] = 'the kernel failed'"
+t 1 "multi:^N: throughput fq2 \| default \| n varying evals_per_s: the kernel failed" compare R0 N $CF
+jd N throughput.json "del d['peak']"
+t 1 "multi:^N: throughput peak \(reference kernel\) flops_per_s: missing from this run" compare R0 N $CF
+jd N render.json "rows[0]['models'] = []"
+t 1 "multi:^N: render spheres [0-9]+x[0-9]+ \| fq2 max_abs: missing from this run" compare R0 N $CF
+jd N render.json "rows[1]['models'][0]['metrics']['status'] = 'nonfinite'; rows[1]['models'][0]['metrics']['reason'] = 'NaN pixels'"
+t 1 "multi:^N: render teapot [0-9]+x[0-9]+ \| fq2 rmse: NaN pixels" compare R0 N $CF
+jd N render.json "rows[2]['timings'][0]['entries'] = [e for e in rows[2]['timings'][0]['entries'] if e.get('model') != 'fq2']"
+t 1 "multi:^N: render bunny \| fq2 mpixel_per_s@[0-9]+x[0-9]+: missing from this run" compare R0 N $CF
+jd N fit.json "d['compare'] = [c for c in rows if c['model'] != 'fq2']"
+t 1 "multi:^N: fit fq2 \| n .* max_rel: missing from this run" compare R0 N $CF
+jd N fit.json "d['status'] = 'failed'; d['reason'] = 'no fit'"
+t 1 "multi:^N: fit best affine k\(n\) \| n .* max_rel: no fit" compare R0 N $CF
+jd N frontier.json "d['models'] = []"
+t 1 "multi:^N: frontier fq2 n_2_1000\.max_rel: missing from this run" compare R0 N $CF
+jd N frontier.json "rows[0]['psnr_db'] = None"
+t 1 "multi:^N: frontier fq2 psnr_db: not a finite number" compare R0 N $CF
+# ... but only under the condition that watches it, and only when the baseline had it
+jd N accuracy.json "del rows[0]"
+t 0 "$W" compare R0 N --fail-if-slower 90 --out cmpo --quiet
+jd N throughput.json "del rows[2]"
+t 0 "$W" compare R0 N --fail-if-less-accurate --out cmpo --quiet
+jd N accuracy.json "rows[0]['status'] = 'failed'"
+t 0 "$W" compare N N $CF
+t 0 "$W" compare N R0 $CF
+t 1 "multi:^N: accuracy fq2 .* failed \(the baseline" compare R0 R0 N $CF
+
+# Figures compare refuses (exit 2, naming the file, line, column and member): negative,
+# absurd and non-numeric figures, labels that break a table, rows given twice.
+# cj FILE PYTHON PATTERN: R0 against a copy whose FILE PYTHON edits: exit 2 and PATTERN after
+# "FILE:LINE:COL: " (or "FILE: ")
+cj() {
+    jd N "$1" "$2"
+    t 2 "^brdfbench compare: N/$1(:[0-9]+:[0-9]+)?: $3" compare R0 N --out cmpo
+}
+cj throughput.json "rows[0]['evals_per_s']['median'] = -5" '"median" is -5 \(accepted: a rate in \[0, 1e\+18\]'
+cj throughput.json "rows[0]['evals_per_s']['median'] = 1e308" '"median" is 1e\+308 \(accepted: a rate'
+cj throughput.json "rows[0]['evals_per_s']['max'] = 1e19" '"max" is 1e\+19 \(accepted: a rate'
+cj throughput.json "rows[0]['evals_per_s']['median'] = '1e9'" '"median" is a string \(accepted: a number, or null'
+cj throughput.json "rows[0]['evals_per_s']['median'] = True" '"median" is a boolean'
+cj throughput.json "rows[0]['evals_per_s']['median'] = [1]" '"median" is not a number'
+cj throughput.json "rows[0]['evals_per_s_reps'][0] = -1" '"evals_per_s_reps" is -1 \(accepted: a rate'
+cj throughput.json "rows[0]['evals_per_s_reps'][0] = 'fast'" '"evals_per_s_reps" holds a value that is not a number'
+cj throughput.json "rows[0]['evals_per_s_reps'][0] = None" '"evals_per_s_reps" holds a value that is not a number'
+cj throughput.json "rows[0]['normalised_reps'] = [-0.5]" '"normalised_reps" is -0.5'
+cj throughput.json "d['peak']['flops_per_s']['median'] = -1" '"median" is -1 \(accepted: a rate'
+cj accuracy.json "rows[0]['epicentre']['max_rel'] = -1" '"max_rel" is -1 \(accepted: an error in \[0, 1e\+100\]'
+cj accuracy.json "rows[0]['epicentre']['max_rel'] = 1e308" '"max_rel" is 1e\+308 \(accepted: an error'
+cj accuracy.json "rows[0]['attenuation']['max_abs'] = '0.1'" '"max_abs" is a string'
+cj accuracy.json "rows[0]['whole']['max_abs'] = -1e-9" '"max_abs" is -1e-09'
+cj accuracy.json "rows[0]['epicentre']['max_rel'] = False" '"max_rel" is a boolean'
+cj render.json "rows[0]['models'][0]['metrics']['max_abs'] = -1" '"max_abs" is -1 \(accepted: an error'
+cj render.json "rows[0]['models'][0]['metrics']['rmse'] = 1e200" '"rmse" is 1e\+200'
+cj render.json "rows[0]['models'][0]['metrics']['psnr_db'] = 1e6" '"psnr_db" is 1e\+06 \(accepted: a PSNR in \[-1000, 1000\] dB'
+cj render.json "rows[0]['models'][0]['metrics']['psnr_db'] = 'high'" '"psnr_db" is a string'
+cj render.json "rows[0]['timings'][0]['entries'][0]['mpixel_per_s'] = -3" '"mpixel_per_s" is -3 \(accepted: a rate'
+cj render.json "rows[0]['models'][0]['metrics']['mean_abs'] = -2" '"mean_abs" is -2'
+cj fit.json "d['max_rel'] = -1" '"max_rel" is -1 \(accepted: an error'
+cj fit.json "rows[2]['max_abs'] = 'small'" '"max_abs" is a string'
+cj fit.json "d['capped_at_fq2']['max_rel'] = 1e308" '"max_rel" is 1e\+308'
+cj frontier.json "rows[0]['n_2_1000']['max_abs'] = 1e300" '"max_abs" is 1e\+300 \(accepted: an error'
+cj frontier.json "rows[0]['psnr_db'] = 5000" '"psnr_db" is 5000 \(accepted: a PSNR'
+cj frontier.json "rows[0]['n_2_1000']['max_rel'] = -1" '"max_rel" is -1 \(accepted: an error'
+cj frontier.json "rows[0]['n_16_1000']['max_abs'] = '0'" '"max_abs" is a string'
+cj accuracy.json "rows[0]['label'] = 'fq2\nx'" '"label" holds a newline \(accepted: one line of text without '\''\|'\'''
+cj accuracy.json "rows[0]['label'] = 'fq2 | x'" '"label" holds '\''\|'\'', which would break the table'
+cj accuracy.json "rows[0]['device'] = 'cpu\x1b[31m'" '"device" holds a control character'
+cj throughput.json "rows[0]['label'] = 'pow\tx'" '"label" holds a control character'
+cj throughput.json "rows[0]['variant'] = 'a|b'" '"variant" holds '\''\|'\'''
+cj throughput.json "rows[0]['n_mode'] = 'uni\rform'" '"n_mode" holds a control character'
+cj render.json "rows[0]['scene'] = 'sph\neres'" '"scene" holds a newline'
+cj render.json "rows[0]['models'][0]['model'] = 'fq2|'" '"model" holds '\''\|'\'''
+cj frontier.json "rows[0]['model'] = 'fq2\n| x |'" '"model" holds a newline'
+cj fit.json "rows[2]['model'] = 'fq2\n'" '"model" holds a newline'
+cj accuracy.json "d['results'].append(dict(rows[0]))" 'the row fq2 \| n 2\.\.1000 .* \(epicentre\.max_rel\) appears twice \(accepted: one row per key'
+cj throughput.json "d['results'].append(dict(rows[2]))" 'the row fq2 \| default \| n uniform \(evals_per_s\) appears twice'
+cj frontier.json "d['models'].append(dict(rows[0]))" 'the row fq2 \(n_2_1000\.max_rel\) appears twice'
+cj render.json "rows[0]['models'].append(dict(rows[0]['models'][0]))" 'the row spheres [0-9]+x[0-9]+ \| fq2 \(max_abs\) appears twice'
+cj fit.json "d['compare'].append(dict(rows[2]))" 'the row fq2 \| n .* \(max_rel\) appears twice'
+cj accuracy.json "d['results'] = [rows[0]] * 3" 'the row fq2 .* appears twice'
+cj throughput.json "rows[0]['evals_per_s']['min'] = -1e-300" '"min" is -1e-300 \(accepted: a rate'
+cj throughput.json "d['peak']['flops_per_s_reps'] = [1, -2]" '"flops_per_s_reps" is -2 \(accepted: a rate'
+cj throughput.json "rows[0]['device'] = 'gpu | 0'" '"device" holds '\''\|'\'''
+cj render.json "rows[0]['timings'][0]['entries'][0]['mpixel_per_s'] = 1e300" '"mpixel_per_s" is 1e\+300 \(accepted: a rate'
+cj render.json "rows[0]['timings'][0]['entries'][0]['mpixel_per_s_reps'] = ['x']" '"mpixel_per_s_reps" holds a value that is not a number'
+cj render.json "rows[0]['models'][0]['metrics']['rmse'] = [0.1]" '"rmse" is not a number'
+cj accuracy.json "rows[0]['epicentre']['max_rel'] = {'v': 1}" '"max_rel" is not a number'
+cj accuracy.json "rows[0]['label'] = 'fq2\x7f'" '"label" holds a control character'
+cj frontier.json "rows[0]['psnr_db'] = -2000" '"psnr_db" is -2000 \(accepted: a PSNR'
+cj fit.json "d['max_abs'] = 1e101" '"max_abs" is 1e\+101 \(accepted: an error in \[0, 1e\+100\]'
+# compare reads at most 16 runs (CMP_MAX_RUNS): the 17th is refused before any is read
+t 2 "^brdfbench compare: at most 16 runs \(accepted: 1 to 16\)" compare R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 R0 --out cmpo
+
+# Names that become file names: two user models that would write one file are refused when
+# the second is defined (field_NAME.json and heatmap_NAME.png drop '_'; render writes
+# NAME_error.png and NAME_contact.png beside NAME.png, and contact.png and he_*.png of its own).
+N2="user model '%s': its files would be those of model '%s'"
+t 2 "^brdfbench accuracy: --model xy: user model 'xy': its files would be those of model 'x_y' \(field_xy.json and heatmap_xy.png\); rename one of the two" accuracy --model 'x_y=c' --model 'xy=c*c' --out run
+t 2 "^brdfbench accuracy: --model x_y: user model 'x_y': its files would be those of model 'xy' \(field_xy.json" accuracy --model 'xy=c' --model 'x_y=c*c' --out run
+t 2 "^brdfbench accuracy: --model x__y: user model 'x__y': its files would be those of model 'x_y'" accuracy --model 'x_y=c' --model 'x__y=c*c' --out run
+t 2 "^brdfbench accuracy: --model fq_2: user model 'fq_2': its files would be those of model 'fq2' \(field_fq2.json" accuracy --model 'fq_2=c*c' --out run
+t 2 "^brdfbench accuracy: --model _fq2: user model '_fq2': its files would be those of model 'fq2'" accuracy --model '_fq2=c*c' --out run
+t 2 "^brdfbench accuracy: --model fq2_: user model 'fq2_': its files would be those of model 'fq2'" accuracy --model 'fq2_=c*c' --out run
+t 2 "^brdfbench accuracy: --model phong_n: user model 'phong_n': its files would be those of model 'phongn'" accuracy --model 'phong_n=c' --out run
+t 2 "^brdfbench accuracy: --model c_q_2: user model 'c_q_2': its files would be those of model 'cq2'" accuracy --model 'c_q_2=c' --out run
+t 2 "^brdfbench render: --model fq2_error: user model 'fq2_error': its files would be those of model 'fq2' \(render's fq2_error.png\)" render --model 'fq2_error=c*c' --out run
+t 2 "^brdfbench render: --model fq2_contact: user model 'fq2_contact': its files would be those of model 'fq2' \(render's fq2_contact.png\)" render --model 'fq2_contact=c*c' --out run
+t 2 "^brdfbench render: --model a: user model 'a': its files would be those of model 'a_error' \(render's a_error.png\)" render --model 'a_error=c' --model 'a=c*c' --out run
+t 2 "^brdfbench render: --model b_contact: user model 'b_contact': its files would be those of model 'b' \(render's b_contact.png\)" render --model 'b=c' --model 'b_contact=c*c' --out run
+t 2 "^brdfbench render: --model contact: user model 'contact': the name is a file name render keeps for itself \(contact, he_\*\)" render --model 'contact=c' --out run
+t 2 "^brdfbench render: --model he_fq2: user model 'he_fq2': the name is a file name render keeps for itself" render --model 'he_fq2=c' --out run
+t 2 "^brdfbench all: --model xy: user model 'xy': its files would be those of model 'x_y'" all --quick --model 'x_y=c' --model 'xy=c*c' --out run
+t 2 "^brdfbench throughput: --model fq_2: user model 'fq_2': its files would be those of model 'fq2'" throughput --model 'fq_2=c' --out run
+t 2 "^brdfbench frontier: --model he_x: user model 'he_x': the name is a file name render keeps" frontier --model 'he_x=c' --out run
+t 2 "^brdfbench accuracy: --model fq2_error: user model 'fq2_error': its files would be those of model 'fq2'" accuracy --model 'fq2_error=c' --out run
+t 2 "^brdfbench accuracy: --model he_: user model 'he_': the name is a file name render keeps for itself" accuracy --model 'he_=c' --out run
+t 2 "^brdfbench accuracy: --model f_v_o_l: user model 'f_v_o_l': its files would be those of model 'fvol'" accuracy --model 'f_v_o_l=c' --out run
+t 2 "^brdfbench accuracy: --model blinn_n: user model 'blinn_n': its files would be those of model 'blinnn'" accuracy --model 'blinn_n=c' --out run
+t 2 "^brdfbench accuracy: --model phongn_contact: user model 'phongn_contact': its files would be those of model 'phongn' \(render's phongn_contact.png\)" accuracy --model 'phongn_contact=c' --out run
+printf '{"gates":[{"model":"x_y","expression":"c","metric":"whole.max_abs","max":1},{"model":"xy","expression":"c*c","metric":"whole.max_abs","max":1}]}' >clash2_gate.json
+t 2 "^brdfbench gate: clash2_gate.json:1:[0-9]+: gate 2: .*user model 'xy': its files would be those of model 'x_y'" gate clash2_gate.json
+printf '/* brdfbench-model\n * name: x_y\n */\nREAL x_y(REAL c, REAL n)\n{\n    return c;\n}\n' >x_y.cl
+t 2 "^brdfbench accuracy: --model xy: user model 'xy': its files would be those of model 'x_y'" accuracy --model-file x_y.cl --model 'xy=c' --out run
+printf '/* brdfbench-model\n * name: fq2_error\n */\nREAL fq2_error(REAL c, REAL n)\n{\n    return c;\n}\n' >fq2_error.cl
+t 2 "^brdfbench render: .*fq2_error.cl: user model 'fq2_error': its files would be those of model 'fq2' \(render's fq2_error.png\)" render --model-file fq2_error.cl --out run
+printf '{"gates":[{"model":"fq_2","expression":"c*c","metric":"whole.max_abs","max":1}]}' >clash_gate.json
+t 2 "^brdfbench gate: clash_gate.json:1:[0-9]+: gate 1: .*user model 'fq_2': its files would be those of model 'fq2'" gate clash_gate.json
+
+# A model that is NaN everywhere, against a run where the same model was finite: named.
+"$BIN" accuracy --model 'um=c*c' --n-max 20 --samples 64 --out ua --quiet >/dev/null 2>&1
+"$BIN" accuracy --model 'um=c*NAN' --n-max 20 --samples 64 --out ub --quiet >/dev/null 2>&1
+t 1 "multi:^ub: accuracy um \| n 2\.\.20 .* epicentre\.max_rel: no finite error values" compare ua ub --fail-if-less-accurate --out cmpo --quiet
+
 # A compile error's first line is the compiler's own FILE:LINE:COL line.
 "$BIN" accuracy --model-file "$F/bad_syntax.cl" --n-max 4 --samples 16 --out run >/dev/null 2>"$T/err"
 head -n 1 "$T/err" | grep -qE "^[^ ]*bad_syntax.cl:6:[0-9]+: error: expected ';'" && pass=$((pass + 1)) ||
@@ -628,7 +799,9 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
         echo "test made for it hold, or how it changed a copy of a run folder), the exit code it gave and the first"
         echo "matching line of stderr (each asserted: exit code and message). Exit 2 is bad input, 3 a runtime"
         echo "or output error, 77 no OpenCL device (docs/architecture.md). Rows 155 on are the hostile inputs of"
-        echo "issue 23: result files fed back, names that become file names, model texts, limits, environments."
+        echo "issue 23: result files fed back, names that become file names, model texts, limits, environments;"
+        echo "rows 341 on its rest: rows a run lost (compare exits 1 naming them), figures and labels compare"
+        echo "refuses, user models whose files would be another model's."
         echo "Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
         echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases, one check that no refused run"
         echo "wrote an output folder and one that a compile error's first line is FILE:LINE:COL; $pass passed, $fail failed."
@@ -673,6 +846,13 @@ code and message.
   no results folder.
 - `ulimit -v 200000` or `400000`: exit 77 or 3 with a line that names the limit, not abort()
   on an uncaught std::bad_alloc (exit 134).
+- A model that is NaN everywhere (`--model 'nanm=c*NAN'`): failed in accuracy.json, in
+  throughput.json (the row's status failed with the reason, no rate, no share of the peak),
+  in render.json (max |error| null, status nonfinite, not 0), in frontier.json (null figures,
+  not -1; status failed, off the front) and in report.md; a gate on it fails.
+- An accuracy-only compare draws its own compare.png (its error rows as ratios to the baseline's)
+  in place of one an earlier compare left;
+  `gate --baseline` says why an entry was not used (failed, no number, another n step).
 EOT
     } >"$BAD_INPUTS_MD.tmp" && mv "$BAD_INPUTS_MD.tmp" "$BAD_INPUTS_MD"
 fi

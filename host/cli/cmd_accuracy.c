@@ -157,6 +157,11 @@ int cmd_accuracy(int argc, char **argv)
     int rc = cli_run_check_documents("accuracy", json_path, csv_path);
     if (rc)
         return rc;
+    /* an --out that is no usable folder is refused before the kernel builds, not after them */
+    if (out_dir && outdir_check_existing(out_dir, "--out", err, sizeof err)) {
+        fprintf(stderr, "brdfbench accuracy: %s\n", err);
+        return EXIT_RUNTIME;
+    }
     rc = cli_run_session("accuracy", &s, &dev);
     if (rc)
         return rc;

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 int cmd_compare(int argc, char **argv)
 {
@@ -131,8 +132,12 @@ int cmd_compare(int argc, char **argv)
     cli_temp_dir_remove(tmp_dir);
     if (rc)
         goto done;
-    if (!quiet && !tmp_dir[0])
-        printf("written: %s/compare.md, compare.csv, compare.json, compare.png\n", run_dir);
+    if (!quiet && !tmp_dir[0]) {
+        char png[4200];
+        struct stat st;   /* the chart is drawn only when a run has a row to chart */
+        int chart = path_join(png, sizeof png, run_dir, "compare.png") == 0 && lstat(png, &st) == 0;
+        printf("written: %s/compare.md, compare.csv, compare.json%s\n", run_dir, chart ? ", compare.png" : "");
+    }
     char *why = NULL;
     int failing = compare_failures(set, slower_pct, less_accurate, &why);
     if (failing) {

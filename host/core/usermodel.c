@@ -656,6 +656,12 @@ int usermodel_register(struct user_model *um, char *err, size_t errlen)
         usermodel_free(um);
         return EXIT_USAGE;
     }
+    char clash[512];
+    if (usermodel_check_file_names(um->name, clash, sizeof clash)) {
+        snprintf(err, errlen, "%s: %s", um->origin, clash);
+        usermodel_free(um);
+        return EXIT_USAGE;
+    }
     if (registry_count >= USERMODEL_MAX || models_register(&um->info, &um->runtime) != 0) {
         snprintf(err, errlen, "%s: at most %d user models per run", um->origin, USERMODEL_MAX);
         usermodel_free(um);

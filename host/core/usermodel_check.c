@@ -429,3 +429,57 @@ void usermodel_watch_begin(const struct user_model *um, double c, double n)
 
 void usermodel_watch_end(void) { atomic_store_explicit(&host_busy, 0, memory_order_relaxed); }
 
+
+/* ---- names that become file names ------------------------------------------------------ */
+
+/* A plain model name's stem in field_NAME.json and heatmap_NAME.png: field_safe_label keeps
+   letters, digits, '.' and '-' and drops '_' (a model name has no ':' or ','). */
+static void field_stem(const char *name, char *out, size_t len)
+{
+    size_t k = 0;
+    for (; *name && k + 1 < len; ++name)
+        if (*name != '_')
+            out[k++] = *name;
+    out[k] = '\0';
+}
+
+/* a is b followed by suffix */
+static int is_suffixed(const char *a, const char *b, const char *suffix)
+{
+    size_t lb = strlen(b);
+    return strncmp(a, b, lb) == 0 && strcmp(a + lb, suffix) == 0;
+}
+
+int usermodel_check_file_names(const char *name, char *err, size_t errlen)
+{
+    /* render writes NAME.png, NAME_error.png and NAME_contact.png per model, contact.png and
+       he_LOBE*.png per scene: a user model may not take those stems */
+    if (strcmp(name, "contact") == 0 || strncmp(name, "he_", 3) == 0) {
+        snprintf(err, errlen, "user model '%s': the name is a file name render keeps for itself (contact, he_*); "
+                 "choose another name", name);
+        return EXIT_USAGE;
+    }
+    char mine[USERMODEL_NAME_MAX + 1], theirs[USERMODEL_NAME_MAX + 1];
+    field_stem(name, mine, sizeof mine);
+    /* the built-in models, then the user models registered before this one */
+    for (int i = 0; i < models_count() + usermodel_count(); ++i) {
+        const char *other = i < models_count() ? models_at(i)->id : usermodel_at(i - models_count())->name;
+        field_stem(other, theirs, sizeof theirs);
+        const char *file = NULL;
+        if (strcmp(mine, theirs) == 0)
+            file = "field_%s.json and heatmap_%s.png";
+        else if (is_suffixed(name, other, "_error") || is_suffixed(other, name, "_error"))
+            file = "render's %s_error.png";
+        else if (is_suffixed(name, other, "_contact") || is_suffixed(other, name, "_contact"))
+            file = "render's %s_contact.png";
+        if (!file)
+            continue;
+        char what[200];
+        const char *stem = file[0] == 'f' ? mine : strlen(name) < strlen(other) ? name : other;
+        snprintf(what, sizeof what, file, stem, stem);
+        snprintf(err, errlen, "user model '%s': its files would be those of model '%s' (%s); rename one of the two",
+                 name, other, what);
+        return EXIT_USAGE;
+    }
+    return 0;
+}

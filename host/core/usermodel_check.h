@@ -27,6 +27,12 @@
  * EXIT_USAGE with the message (EXIT_RUNTIME when out of memory). */
 int usermodel_check_text(const char *text, size_t len, const char *what, int is_file, char *err, size_t errlen);
 
+/* A user model's name against every model known so far: two names that give one file name
+ * (field_NAME.json and heatmap_NAME.png drop '_': x_y and xy; render's NAME_error.png and
+ * NAME_contact.png: fq2_error and fq2) and render's own stems (contact, he_*) are refused.
+ * Returns 0, or EXIT_USAGE with a message naming both models. */
+int usermodel_check_file_names(const char *name, char *err, size_t errlen);
+
 /* Around one call of a user model's host reference. */
 void usermodel_watch_begin(const struct user_model *um, double c, double n);
 void usermodel_watch_end(void);

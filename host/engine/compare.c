@@ -2,6 +2,7 @@
  * decides each cell's verdict against the baseline (see compare.h); compare_report.c writes. */
 #define _POSIX_C_SOURCE 200809L
 #include "compare.h"
+#include "compare_check.h"
 #include "jsonr.h"
 #include "outdir.h"
 #include "ranktest.h"
@@ -58,6 +59,7 @@ struct cmp_reader {
     int run;
     int kind;
     int oom;
+    char dup[CMP_TEXT + 80];   /* the first key given twice in the file, or "" */
 };
 
 static struct cmp_cell *cell_for(struct cmp_reader *rd, const char *device, const char *key, const char *model,
@@ -91,7 +93,6 @@ static struct cmp_cell *cell_for(struct cmp_reader *rd, const char *device, cons
     return &r->cell[rd->run];
 }
 
-/* A figure of a run. A cell already filled (a duplicate key in one file) keeps its first value. */
 /* The array of numbers at obj's key as c's repetitions (the rank test's sample), unless c has
  * them already; 0, or 2 with err when the array is not numbers. */
 static int take_reps(const struct jr_doc *d, const struct jr_value *obj, const char *key, struct cmp_cell *c,
@@ -114,6 +115,8 @@ static struct cmp_cell *put_value(struct cmp_reader *rd, const char *device, con
                                   const char *metric, int sense, double v, const char *reason)
 {
     struct cmp_cell *c = cell_for(rd, device, key, model, metric, sense);
+    if (c && c->present && !rd->dup[0])
+        snprintf(rd->dup, sizeof rd->dup, "%s%s%.200s (%s)", device, *device ? " | " : "", key, metric);
     if (!c || c->present)
         return NULL;
     c->present = 1;
@@ -373,12 +376,14 @@ static int read_render(struct cmp_reader *rd, const struct jr_doc *d, char *err,
             const struct jr_value *mo = &models->items[m];
             const char *model = str_member(mo, "model", "?");
             const struct jr_value *met = jr_get(mo, "metrics");
+            const char *status = str_member(met, "status", "ok");
+            const char *reason = strcmp(status, "ok") == 0 ? NULL : str_member(met, "reason", status);
             snprintf(key, sizeof key, "%s %gx%g | %s", scene, num_member(img, "width"), num_member(img, "height"), model);
             for (size_t k = 0; met && k < sizeof metrics / sizeof metrics[0]; ++k) {
                 double v = num_member(met, metrics[k].name);
-                if (!isfinite(v))
+                if (!isfinite(v) && !reason)
                     continue;   /* a PSNR of identical images is null (infinite): nothing to compare */
-                put_value(rd, sdev, key, model, metrics[k].name, metrics[k].sense, v, NULL);
+                put_value(rd, sdev, key, model, metrics[k].name, metrics[k].sense, v, reason);
             }
         }
         for (size_t t = 0; timings && t < timings->count; ++t) {
@@ -576,10 +581,16 @@ static int read_file(struct compare_set *set, int run, const char *path, char *e
     }
     snprintf(r->files + strlen(r->files), sizeof r->files - strlen(r->files), "%s%s", r->files[0] ? ", " : "",
              kind_files[kind]);
-    struct cmp_reader rd = { set, run, kind, 0 };
+    if (compare_check_doc(&d, err, errlen))
+        goto done;
+    struct cmp_reader rd = { .set = set, .run = run, .kind = kind };
     rc = readers[kind](&rd, &d, err, errlen);
     if (!rc && rd.oom) {
         fail(err, errlen, "out of memory reading %s", path);
+        rc = 2;
+    } else if (!rc && rd.dup[0]) {
+        fail(err, errlen, "%s: the row %s appears twice (accepted: one row per key, as brdfbench writes it)", path,
+             rd.dup);
         rc = 2;
     }
 done:
@@ -674,7 +685,7 @@ static void split_devices(struct compare_set *set)
             ++k;
         if (k == ndev)
             continue;
-        struct cmp_reader rd = { set, k, r->kind, 0 };
+        struct cmp_reader rd = { .set = set, .run = k, .kind = r->kind };
         struct cmp_cell moved = r->cell[0];
         memset(&r->cell[0], 0, sizeof r->cell[0]);
         char key[CMP_TEXT], model[CMP_TEXT], metric[64];
@@ -950,6 +961,19 @@ static void append(char **out, size_t *len, const char *fmt, ...)
     *len += (size_t)n;
 }
 
+/* A row the baseline measured that run k lost: missing from it, or failed there (status failed,
+   device_disagrees, a figure not finite). A row that was not ok in the baseline either, or that
+   is new in run k, is no loss. Returns what happened, or NULL. */
+static const char *lost_in(const struct cmp_row *r, int k)
+{
+    const struct cmp_cell *b = &r->cell[0], *c = &r->cell[k];
+    if (!b->present || !b->ok)
+        return NULL;
+    if (!c->present)
+        return "missing from this run";
+    return c->ok ? NULL : c->reason;
+}
+
 int compare_failures(const struct compare_set *set, double slower_pct, int less_accurate, char **out)
 {
     int count = 0;
@@ -977,6 +1001,14 @@ int compare_failures(const struct compare_set *set, double slower_pct, int less_
                 for (int q = 2; set->confirm && q < set->nruns; ++q)
                     append(out, &len, "; confirmed by %s: %.3gx", set->run[q].name, r->cell[q].ratio);
                 append(out, &len, "\n");
+            }
+            const char *lost = lost_in(r, k);
+            int watched = (slower_pct >= 0 && r->sense == CMP_SPEED) ||
+                          (less_accurate && (r->sense == CMP_ERROR || r->sense == CMP_SCORE));
+            if (lost && watched) {
+                ++count;
+                append(out, &len, "%s: %s %s%s%s %s: %s (the baseline has %.4g)\n", set->run[k].name,
+                       cmp_kind_name(r->kind), dev, *dev ? " | " : "", r->key, r->metric, lost, r->cell[0].value);
             }
             if (less_accurate && (r->sense == CMP_ERROR || r->sense == CMP_SCORE) && c->verdict == CMP_V_WORSE) {
                 ++count;

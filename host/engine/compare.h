@@ -158,6 +158,11 @@ const char *compare_context(const struct compare_set *set, int r, const char *ke
 /* The rows that fail a CI condition, named one per line into out (NULL: counted only):
  * slower_pct >= 0: a speed row with the verdict "slower" whose ratio is below
  * 1 - slower_pct / 100; less_accurate: an accuracy row (error or PSNR) "changed, worse".
+ * Under either condition a row of its sense that the baseline measured and a later run lost
+ * (missing there, or failed: status failed or device_disagrees, a figure not finite) fails
+ * too. Rows are matched by their keys, which never hold a fitted figure: fit.json's quadratic
+ * is compared as the role it plays ("best affine k(n)", "capped at fq2's max Delta"), not by
+ * its label quad:a=...,b=..., so two runs whose fit moved a little still match.
  * Returns the number of such cells. */
 int compare_failures(const struct compare_set *set, double slower_pct, int less_accurate, char **out);
 

@@ -7,8 +7,10 @@
 #include "mdbuf.h"
 #include "outdir.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -536,8 +538,15 @@ static int write_chart(const struct compare_set *set, const char *path, char *er
         for (int i = 0; i < set->nrows; ++i)
             G += chart_row(&set->rows[i], tpd) && G < 200;
     }
-    if (G == 0)
+    if (G == 0) {
+        /* nothing to chart: no chart, and none of an earlier compare left beside this one's
+           tables */
+        if (unlink(path) != 0 && errno != ENOENT) {
+            snprintf(err, errlen, "%s: cannot remove the chart of an earlier compare: %s", path, strerror(errno));
+            return -1;
+        }
         return 0;
+    }
     const char **groups = calloc((size_t)G, sizeof *groups), **series = calloc((size_t)S, sizeof *series);
     char (*labels)[2 * CMP_TEXT + 80] = calloc((size_t)G, sizeof *labels);
     double *val = calloc((size_t)G * S, sizeof *val), *lo = calloc((size_t)G * S, sizeof *lo),

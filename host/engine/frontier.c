@@ -106,6 +106,10 @@ static int frontier_accuracy(struct cl_session *s, struct frontier_report *r)
             if (p->epi_rel_d.value > row->max_rel[1]) { row->max_rel[1] = p->epi_rel_d.value; row->max_rel_n[1] = p->n; }
             if (p->att_abs_d.value > row->max_abs[1]) { row->max_abs[1] = p->att_abs_d.value; row->max_abs_n[1] = p->n; }
         }
+        if (row->max_rel[1] < 0)   /* no finite figure from n = 16 on: none, not -1 */
+            row->max_rel[1] = row->max_rel_n[1] = NAN;
+        if (row->max_abs[1] < 0)
+            row->max_abs[1] = row->max_abs_n[1] = NAN;
         accuracy_result_free(&res);
     }
     accuracy_close(&actx);

@@ -49,6 +49,10 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
         jw_kv_str(&w, "kind", model_kind_name(row->kind));
         jw_kv_str(&w, "source", row->spec.info->description);
         jw_kv_bool(&w, "on_front", row->on_front);
+        int measured = isfinite(row->max_rel[0]) && isfinite(row->max_abs[0]);
+        jw_kv_str(&w, "status", measured ? "ok" : "failed");
+        if (!measured)
+            jw_kv_str(&w, "reason", "no finite error figure (the model's values are NaN or Inf): not a point of the front");
         for (int m = 0; m < 2; ++m) {
             jw_kv_obj(&w, m ? "rate_varying" : "rate_uniform");
             jw_kv_num(&w, "min", row->rate[m][0]);

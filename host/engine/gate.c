@@ -466,8 +466,13 @@ int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, ch
     for (int i = 0; i < g->count; ++i) {
         struct gate *gt = &g->gates[i];
         gt->baseline_status = GATE_BASELINE_MISSING;
-        if (!same_number(base_step, gt->grid.n_step))
+        snprintf(gt->baseline_note, sizeof gt->baseline_note, "no entry for %s over n %g..%g", gt->model.label,
+                 gt->grid.n_min, gt->grid.n_max);
+        if (!same_number(base_step, gt->grid.n_step)) {
+            snprintf(gt->baseline_note, sizeof gt->baseline_note, "its grid has n_step %g, the gate's %g", base_step,
+                     gt->grid.n_step);
             continue;
+        }
         for (size_t k = 0; k < results->count; ++k) {
             const struct jr_value *r = &results->items[k];
             const struct jr_value *label = jr_get(r, "label"), *a = jr_get(r, "n_min"), *b = jr_get(r, "n_max");
@@ -476,10 +481,17 @@ int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, ch
                 !same_number(b->num, gt->grid.n_max))
                 continue;
             double v;
-            if (baseline_value(r, gt->metric, &v) == 0) {
+            const struct jr_value *st = jr_get(r, "status");
+            const char *status = st && st->type == JR_STR ? st->str : "ok";
+            if (strcmp(status, "ok") != 0)   /* a failed figure is no bound to hold a run to */
+                snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s is %.40s (line %d), not used",
+                         gt->model.label, status, r->line);
+            else if (baseline_value(r, gt->metric, &v) == 0) {
                 gt->baseline = v;
                 gt->baseline_status = GATE_BASELINE_OK;   /* judged after the run */
-            }
+            } else
+                snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s (line %d) has no number for "
+                         "this metric, not used", gt->model.label, r->line);
             break;
         }
     }

@@ -61,6 +61,7 @@ struct gate {
 
     /* Against a baseline (--baseline). */
     enum gate_baseline_status baseline_status;
+    char baseline_note[200];   /* GATE_BASELINE_MISSING: why no baseline figure was used */
     double baseline, baseline_change;   /* value, and (measured - baseline) / |baseline| */
 };
 

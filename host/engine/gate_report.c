@@ -30,7 +30,7 @@ static void bound_text(const struct gate *g, char *buf, size_t len)
 /* The one line of a gate, without the PASS/FAIL word. */
 static void gate_line(const struct gate *g, char *buf, size_t len)
 {
-    char bound[96], where[96] = "", margin[64] = "", base[128] = "", claimed[64] = "";
+    char bound[96], where[96] = "", margin[64] = "", base[240] = "", claimed[64] = "";
     bound_text(g, bound, sizeof bound);
     char nt[32];
     accuracy_format_n(g->at_n, nt, sizeof nt);   /* as many digits as the float n needs */
@@ -46,7 +46,7 @@ static void gate_line(const struct gate *g, char *buf, size_t len)
         snprintf(base, sizeof base, "; baseline %.6g (%+.3g%%)", g->baseline,
                  isfinite(g->baseline_change) ? 100.0 * g->baseline_change : 0.0);
     else if (g->baseline_status == GATE_BASELINE_MISSING)
-        snprintf(base, sizeof base, "; baseline: no matching entry");
+        snprintf(base, sizeof base, "; baseline: %s", g->baseline_note[0] ? g->baseline_note : "no matching entry");
     if (g->has_claimed)
         snprintf(claimed, sizeof claimed, "; claimed %.6g", g->claimed);
     snprintf(buf, len, "%s: measured %.7g%s; bound %s%s%s%s%s%s", g->name, g->measured, where, bound, margin, base,

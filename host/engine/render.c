@@ -562,6 +562,10 @@ static void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsig
             double e = fabs((double)spec_m[i] - (double)spec_r[i]);
             *out = (float)e;
             mt->pixels++;
+            if (!isfinite(e)) {
+                mt->nonfinite++;   /* a NaN would pass every comparison below unseen */
+                continue;
+            }
             sum += e;
             sum2 += e * e;
             above += e > threshold;

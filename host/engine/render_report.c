@@ -48,8 +48,20 @@ static void jw_kv_int_pair(struct jw *w, const char *key, long long a, long long
     jw_arr_end(w);
 }
 
-static void write_metrics_json(struct jw *w, const struct image_metrics *mt, double threshold)
+/* The figures as they are shown: none of them when some pixels' errors are not finite (a
+   model that is NaN somewhere is not "max |error| 0"). */
+static struct image_metrics shown(const struct image_metrics *mt)
 {
+    struct image_metrics s = *mt;
+    if (s.nonfinite)
+        s.max_abs = s.mean_abs = s.rmse = s.psnr_db = s.share_above = NAN;
+    return s;
+}
+
+static void write_metrics_json(struct jw *w, const struct image_metrics *mt_in, double threshold)
+{
+    struct image_metrics sm = shown(mt_in);
+    const struct image_metrics *mt = &sm;
     jw_kv_obj(w, "metrics");
     jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
     jw_kv_int(w, "pixels", (long long)mt->pixels);
@@ -59,9 +71,14 @@ static void write_metrics_json(struct jw *w, const struct image_metrics *mt, dou
     jw_kv_num(w, "rmse", mt->rmse);
     jw_kv_num(w, "psnr_db", mt->psnr_db);
     jw_kv_str(w, "psnr_basis", "8-bit sRGB colours of the foreground, peak 255");
-    if (!isfinite(mt->psnr_db))
+    if (mt->nonfinite) {
+        jw_kv_str(w, "status", "nonfinite");
+        jw_kv_int(w, "nonfinite_pixels", (long long)mt->nonfinite);
+        jw_kv_str(w, "reason", "the model's radiance is NaN or Inf at some foreground pixels: no error figure");
+    } else if (!isfinite(mt->psnr_db)) {
         jw_kv_str(w, "psnr_status", mt->pixels ? "identical images: PSNR is infinite"
                                                : "no foreground pixels");
+    }
     jw_kv_num(w, "threshold", threshold);
     jw_kv_num(w, "share_above_threshold", mt->share_above);
     jw_kv_num(w, "peak_reference", mt->peak_reference);
@@ -298,13 +315,14 @@ char *render_summary_markdown(const struct render_options *o, const struct scene
         for (int mi = 0; mi < o->nmodels; mi++) {
             const struct model_result *mr = &sr->models[mi];
             char psnr[32];
-            if (isfinite(mr->metrics.psnr_db))
-                snprintf(psnr, sizeof psnr, "%.1f", mr->metrics.psnr_db);
+            struct image_metrics sm = shown(&mr->metrics);
+            if (isfinite(sm.psnr_db))
+                snprintf(psnr, sizeof psnr, "%.1f", sm.psnr_db);
             else
-                snprintf(psnr, sizeof psnr, "identical");
+                snprintf(psnr, sizeof psnr, "%s", sm.nonfinite ? "not finite" : "identical");
             md_printf(&b, "| %s | %s | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
-                      mr->ref.label, mr->metrics.max_abs, mr->metrics.mean_abs, psnr,
-                      100.0 * mr->metrics.share_above, mr->check.within ? "ok" : "out of bound");
+                      mr->ref.label, sm.max_abs, sm.mean_abs, psnr,
+                      100.0 * sm.share_above, mr->check.within ? "ok" : "out of bound");
             if (big) {
                 const struct timed_entry *te = NULL;
                 for (int k = 0; k < big->nentries; k++)
@@ -356,9 +374,10 @@ void render_print_scene(const struct scene_result *sr)
 
 void render_print_model(int scene, const char *label, const struct model_result *mr)
 {
-    printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB  ref-check %s (%.2g of peak)\n",
-           render_scene_names[scene], label, mr->metrics.max_abs, mr->metrics.mean_abs,
-           isfinite(mr->metrics.psnr_db) ? mr->metrics.psnr_db : INFINITY, mr->check.within ? "ok" : "OUT OF BOUND",
+    struct image_metrics sm = shown(&mr->metrics);
+    printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB%s  ref-check %s (%.2g of peak)\n",
+           render_scene_names[scene], label, sm.max_abs, sm.mean_abs,
+           isfinite(sm.psnr_db) || sm.nonfinite ? sm.psnr_db : INFINITY, sm.nonfinite ? " (NOT FINITE)" : "", mr->check.within ? "ok" : "OUT OF BOUND",
            mr->check.relative_to_peak);
     fflush(stdout);
 }

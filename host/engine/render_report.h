@@ -35,6 +35,8 @@ struct image_metrics {
     double psnr_db;            /* 8-bit RGB; NAN when the images are identical */
     double share_above;        /* share of pixels with error above the threshold */
     double peak_reference;     /* largest reference specular radiance in the region */
+    size_t nonfinite;          /* foreground pixels whose error is NaN or Inf (left out of the figures
+                                  above; any makes the model's figures not figures: written as null) */
 };
 
 struct reference_check {

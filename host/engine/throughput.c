@@ -764,6 +764,23 @@ static void tp_probe_points(const struct throughput_options *o, float *c, float 
     }
 }
 
+/* A model whose values are NaN or Inf at some of the probe points computes nothing
+   that counts: its accuracy and its rates are failed, with the reason (a rate of such code
+   read as "206 G/s, 118% of peak"). */
+static void tp_mark_nonfinite(struct tp_entry *e, int v, long bad)
+{
+    snprintf(e->acc_reason[v], TP_REASON, "%ld of %d values were NaN or Inf",
+             bad, TP_ACC_POINTS);
+    for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+        struct tp_figure *f = &e->dev[v][m];
+        if (!f->ok)
+            continue;
+        f->ok = 0;
+        snprintf(f->reason, sizeof f->reason, "the model's values are not finite (%ld of %d accuracy points NaN or "
+                 "Inf); its rate is not a figure", bad, TP_ACC_POINTS);
+    }
+}
+
 static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const float *c, const float *n, float *out)
 {
     for (int i = 0; i < r->nentries; ++i) {
@@ -792,16 +809,18 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
             double host = e->m ? model_eval_host(e->m, c[k], n[k]) : pow((double)c[k], (double)n[k]);
             double peak = e->m ? fabs(model_eval_host(&ref, 1.0, n[k])) : 1.0;
             if (!isfinite(out[k])) {
-                ++bad;
+                ++bad;   /* a lobe is finite everywhere; NaN or Inf is a broken model */
                 continue;
             }
             double d = fabs((double)out[k] - host) / (peak > 0 ? peak : 1.0);
             if (!(d <= worst))
                 worst = d;
         }
-        e->acc_ok[v] = 1;
-        e->acc_max_diff[v] = worst;
+        e->acc_ok[v] = bad == 0;
+        e->acc_max_diff[v] = bad == TP_ACC_POINTS ? NAN : worst;
         e->acc_nonfinite[v] = bad;
+        if (bad)
+            tp_mark_nonfinite(e, v, bad);
     }
 }
 

@@ -606,6 +606,22 @@ int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
     return 0;
 }
 
+int outdir_check_existing(const char *dir, const char *arg, char *err, size_t errlen)
+{
+    struct stat st;
+    if (!dir || stat(dir, &st) != 0)
+        return 0;   /* not there yet: outdir_prepare makes it (or says why it cannot) */
+    if (!S_ISDIR(st.st_mode)) {
+        snprintf(err, errlen, "%s: %s is not a folder", arg, dir);
+        return -1;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "%s: folder %s is not writable: %s", arg, dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
 int outdir_check_latest(const char *results_root, char *err, size_t errlen)
 {
     /* results/latest is the link this program keeps: anything else there is refused before the

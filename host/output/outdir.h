@@ -36,6 +36,9 @@ void outdir_remove_own_empty(void);
  * message starts with "ARG: " when the folder came from a flag (arg = "--out"), and with
  * nothing when the program chose it (arg = NULL). */
 int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen);
+/* The same refusals for an output folder that exists already (not a folder, not writable),
+ * made before any work and without creating anything: 0 when dir is absent or usable. */
+int outdir_check_existing(const char *dir, const char *arg, char *err, size_t errlen);
 /* Joins dir and name into out. Returns 0, or -1 when it does not fit. */
 int path_join(char *out, size_t outlen, const char *dir, const char *name);
 /* 0 when results_root/latest is absent or a symlink (the one this program keeps), else -1 with a
