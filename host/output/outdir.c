@@ -580,9 +580,24 @@ static int mkdir_p(const char *dir)
     return 0;
 }
 
-int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
+/* An existing dir that is a folder this process may write into; else -1 with the message
+   (arg and sep in front of it). */
+static int folder_usable(const char *dir, const char *arg, const char *sep, char *err, size_t errlen)
 {
     struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(err, errlen, "%s%s%s is not a folder", arg, sep, dir);
+        return -1;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "%s%sfolder %s is not writable: %s", arg, sep, dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
+{
     const char *sep = arg ? ": " : "";
     if (!arg)
         arg = "";
@@ -594,14 +609,8 @@ int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
         snprintf(err, errlen, "%s%scannot create folder %s: %s", arg, sep, dir, strerror(errno));
         return -1;
     }
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s%s%s is not a folder", arg, sep, dir);
+    if (folder_usable(dir, arg, sep, err, errlen))
         return -1;
-    }
-    if (access(dir, W_OK | X_OK) != 0) {
-        snprintf(err, errlen, "%s%sfolder %s is not writable: %s", arg, sep, dir, strerror(errno));
-        return -1;
-    }
     outdir_confine(dir);
     return 0;
 }
@@ -611,15 +620,7 @@ int outdir_check_existing(const char *dir, const char *arg, char *err, size_t er
     struct stat st;
     if (!dir || stat(dir, &st) != 0)
         return 0;   /* not there yet: outdir_prepare makes it (or says why it cannot) */
-    if (!S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s: %s is not a folder", arg, dir);
-        return -1;
-    }
-    if (access(dir, W_OK | X_OK) != 0) {
-        snprintf(err, errlen, "%s: folder %s is not writable: %s", arg, dir, strerror(errno));
-        return -1;
-    }
-    return 0;
+    return folder_usable(dir, arg ? arg : "", arg ? ": " : "", err, errlen);
 }
 
 int outdir_check_latest(const char *results_root, char *err, size_t errlen)
