@@ -81,25 +81,13 @@ int plot_series_add(struct plot_figure *fig, const char *label, int colour, int 
     return 0;
 }
 
-/* A colour name of kernels/brdf_model_list.h as an index of the pictures' palette (Tableau 10,
- * host/output/draw.cpp, in this order); "black" is the references' colour. Unknown: -2. */
-static int colour_index(const char *name)
-{
-    static const char *const names[] = { "blue", "orange", "green", "red", "purple",
-                                         "brown", "pink", "grey", "olive", "cyan" };
-    if (name && strcmp(name, "black") == 0) return DRAW_COLOUR_BLACK;
-    for (int i = 0; name && i < (int)(sizeof names / sizeof names[0]); i++)
-        if (strcmp(name, names[i]) == 0) return i;
-    return -2;
-}
-
-int plot_colour_known(const char *name) { return colour_index(name) != -2; }
+int plot_colour_known(const char *name) { return draw_colour_index(name) != DRAW_COLOUR_UNKNOWN; }
 
 /* A model's colour; a user model (no colour of its own) takes the palette's first. */
 static int colour_of_info(const struct model_info *info)
 {
-    int i = info ? colour_index(info->colour) : -2;
-    return i == -2 ? 0 : i;
+    int i = info ? draw_colour_index(info->colour) : DRAW_COLOUR_UNKNOWN;
+    return i == DRAW_COLOUR_UNKNOWN ? 0 : i;
 }
 
 int plot_model_colour(const struct model_spec *m) { return colour_of_info(m->info); }

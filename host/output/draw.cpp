@@ -60,6 +60,10 @@ cv::Scalar palette(int i)
     return cv::Scalar(c[2], c[1], c[0]);
 }
 
+/* The palette's colours by name, in its order (draw_colour_index). */
+const char *const palette_names[10] = {"blue", "orange", "green", "red", "purple",
+                                       "brown", "pink", "grey", "olive", "cyan"};
+
 /* UTF-8 to the ASCII the Hershey font can draw. */
 std::string ascii(const char *s)
 {
@@ -796,6 +800,14 @@ void finish_range(double lo, double hi, bool log, bool include_zero, bool pad, d
 } /* namespace */
 
 /* ==== extern "C" interface ================================================================ */
+
+extern "C" int draw_colour_index(const char *name)
+{
+    if (name && strcmp(name, "black") == 0) return DRAW_COLOUR_BLACK;
+    for (int i = 0; name && i < 10; i++)
+        if (strcmp(name, palette_names[i]) == 0) return i;
+    return DRAW_COLOUR_UNKNOWN;
+}
 
 extern "C" void draw_colormap_rgb(int cmap, int index, unsigned char rgb[3])
 {

@@ -96,6 +96,12 @@ int draw_heatmap_figure(const char *path, const char *title, int npanels,
 /* ---- line plots ---------------------------------------------------------------------- */
 
 #define DRAW_COLOUR_BLACK (-1)   /* series colour: black (the reference, by convention) */
+#define DRAW_COLOUR_UNKNOWN (-2)
+
+/* A colour by name (the models' descriptors name theirs: kernels/brdf_model_list.h) as a
+ * palette index: "blue", "orange", "green", "red", "purple", "brown", "pink", "grey", "olive",
+ * "cyan" (Tableau 10's order), "black" = DRAW_COLOUR_BLACK; DRAW_COLOUR_UNKNOWN for anything else. */
+int draw_colour_index(const char *name);
 
 struct draw_series {
     const double *x, *y;
