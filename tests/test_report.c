@@ -8,6 +8,7 @@
  *   - report.md links only files that exist. */
 #define _POSIX_C_SOURCE 200809L
 #include "accuracy.h"
+#include "accuracy_report.h"
 #include "check.h"
 #include "clsession.h"
 #include "draw.h"
@@ -291,20 +292,24 @@ static void test_plots_and_report(struct cl_session *s)
         {"never_written.png", "caption four", REPORT_PLOTS, ""},
         {"left_out.png", "caption five", REPORT_PLOTS, "no normalised model ran"},
     };
-    struct report_input in;
-    memset(&in, 0, sizeof in);
-    in.run_dir = dir;
-    in.command = "test";
-    in.wall_seconds = -1;
-    in.acc = res;
-    in.nacc = 2;
-    in.acc_grid = &g;
-    in.claims.missing = "not in this test";
-    in.throughput.markdown = "| model | rate |\n|---|---|\n| fvol | 2.5 |";
-    in.images.missing = "not in this test";
-    in.pictures = pics;
-    in.npictures = 5;
-    CHECK(report_write(&in, err, sizeof err) == 0, "report: %s", err);
+    /* the run folder as `all` leaves it: accuracy.json, the throughput page, run.json */
+    path_in(path, sizeof path, "accuracy.json");
+    CHECK(accuracy_write_json(path, res, 2, NULL, "", err, sizeof err) == 0, "accuracy.json: %s", err);
+    path_in(path, sizeof path, "throughput.md");
+    test_write_file(path, "# brdfbench throughput\n\n| model | rate |\n|---|---|\n| fvol | 2.5 |\n");
+    struct report_step steps[2] = {
+        {"accuracy", "2 models", 1.25, 0},
+        {"claims", "", 0, 3},
+    };
+    struct report_run run = {
+        .command = "test", .folder = "shown/run", .wall_seconds = -1, .steps = steps, .nsteps = 2,
+        .images_note = "", .pictures = pics, .npictures = 5,
+    };
+    run.parts[REPORT_PART_CLAIMS] = (struct report_part_state){1, "not in this test"};
+    run.parts[REPORT_PART_THROUGHPUT].ran = 1;
+    run.parts[REPORT_PART_IMAGES] = (struct report_part_state){1, "not in this test"};
+    CHECK(report_run_write(dir, &run, NULL, err, sizeof err) == 0, "run.json: %s", err);
+    CHECK(report_rebuild(dir, NULL, err, sizeof err) == 0, "report: %s", err);
     path_in(path, sizeof path, "report.md");
     size_t len = 0;
     char *text = test_read_file(path, &len);
@@ -331,9 +336,37 @@ static void test_plots_and_report(struct cl_session *s)
         CHECK(strstr(text, "never_written.png") && strstr(text, "was not written"), "the missing picture is named");
         CHECK(strstr(text, "`fvol`") && strstr(text, "`cq2`"), "accuracy table rows");
         CHECK(strstr(text, "| fvol | 2.5 |") != NULL, "throughput block included");
+        CHECK(strstr(text, "# brdfbench throughput") == NULL, "the page's own title is dropped");
         CHECK(strstr(text, "Not available: not in this test") != NULL, "missing sections say why");
+        /* the step list: two steps from run.json (1.25 s shown to a tenth: "1.2" under
+           round-half-even of printf, or "1.3"), a failed one, then the report's own line */
+        CHECK((strstr(text, "1. **accuracy**: 2 models (1.2 s)\n") || strstr(text, "1. **accuracy**: 2 models (1.3 s)\n")) &&
+                  strstr(text, "2. **claims**: failed (exit 3)\n") && strstr(text, "3. **report**: report.md\n"),
+              "the step list from run.json");
+        CHECK(strstr(text, "`brdfbench plot shown/run`") != NULL, "the folder's shown name from run.json");
+        /* the first model's max delta as the table prints it: 100 x the refined value, 4 significant digits */
+        char cell[64];
+        snprintf(cell, sizeof cell, " %.4g%% |", 100 * res[0].epicentre.value);
+        CHECK(strstr(text, cell) != NULL, "the first model's max delta %s in the table", cell);
+        /* rebuilt twice, the page is the same */
+        char *again = NULL;
+        CHECK(report_build(dir, &again, err, sizeof err) == 0 && again && strcmp(again, text) == 0,
+              "report_build gives the page report_rebuild wrote");
+        free(again);
         free(text);
     }
+    /* a run folder without run.json, and one whose throughput page is gone, are named */
+    char *none = NULL;
+    path_in(path, sizeof path, "throughput.md");
+    remove(path);
+    CHECK(report_build(dir, &none, err, sizeof err) == 2 && none == NULL && strstr(err, "throughput.md"),
+          "the missing page is named: %s", err);
+    path_in(path, sizeof path, "run.json");
+    remove(path);
+    CHECK(report_build(dir, &none, err, sizeof err) == 2 && strstr(err, "run.json"), "no run.json: %s", err);
+    test_write_file(path, "{\"schema\": \"brdfbench.accuracy/1\"}");
+    CHECK(report_build(dir, &none, err, sizeof err) == 2 && strstr(err, "brdfbench.run/1"),
+          "another document as run.json: %s", err);
     plots_free(&set);
     accuracy_result_free(&res[0]);
     accuracy_result_free(&res[1]);

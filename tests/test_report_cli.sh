@@ -94,5 +94,29 @@ mkdir -p "$T/out4/heatmap_fvol.png/keep"
 expect 3 "heatmap_fvol.png" heatmap "$T/out4"
 is_png "$T/out4/heatmap_cq2.png" && ok || bad "heatmap_cq2.png not redrawn beside a failing one"
 
+
+# report RUN_DIR rebuilds report.md from the run folder alone: the page all wrote, to the byte
+"$BIN" report "$RUN" --output "$T/rebuilt.md" && cmp -s "$T/rebuilt.md" "$RUN/report.md" && ok ||
+    bad "report --output differs from the report.md all wrote: $(diff "$T/rebuilt.md" "$RUN/report.md" | head -5)"
+# ... in a copy of the folder with report.md deleted, in place (the folder's name in the text
+# is the one run.json records, so the copy's page is the same)
+cp -r "$RUN/." "$T/copy"
+rm "$T/copy/report.md"
+"$BIN" report "$T/copy" && cmp -s "$T/copy/report.md" "$RUN/report.md" && ok ||
+    bad "report in a copied folder differs: $(diff "$T/copy/report.md" "$RUN/report.md" | head -5)"
+"$BIN" report "$RUN" --output - | cmp -s - "$RUN/report.md" && ok || bad "report --output - differs"
+[ -s "$RUN/run.json" ] && grep -q '"schema": "brdfbench.run/1"' "$RUN/run.json" && ok || bad "no run.json"
+# every section page report.md takes in is there
+for f in claims.md throughput.md frontier.md; do [ -s "$RUN/$f" ] && ok || bad "$f missing"; done
+# what report cannot rebuild is named: exit 2
+expect 2 "run.json: .*No such file" report "$T/out3"
+cp -r "$RUN/." "$T/broken"
+rm "$T/broken/throughput.md"
+expect 2 "throughput.md: .*run.json records its part as done" report "$T/broken" --output -
+printf '{"schema": "brdfbench.run/1", "command": 3}\n' >"$T/broken/run.json"
+expect 2 "run.json:1:[0-9]+: member \"command\" is a number, a string expected" report "$T/broken"
+expect 2 "RUN_DIR '$T/nosuch' is not a folder" report "$T/nosuch"
+expect 2 "--output: " report "$RUN" --output "$T/nosuch/report.md"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

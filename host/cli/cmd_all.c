@@ -68,17 +68,14 @@ struct all_run {
     struct plot_set plots;
     struct report_picture *pics;
     int npics, cappics;
-    struct md_buf steps;
+    struct report_step *steps;     /* the step list of report.md (run.json) */
+    int nsteps, capsteps;
     int picture_failures;
     int part_failures, part_rc;
     char picture_error[1024];
-    struct report_block claims, fit, throughput, images;
-    struct md_buf claims_md, fit_md, throughput_md, images_md;
-    struct report_block frontier;
-    char *frontier_md;
+    struct report_part_state parts[REPORT_PART_COUNT];
+    char images_note[512];         /* the scenes left out */
     const char *measured_dir;      /* --measured DIR: the measured materials' section */
-    struct report_block measured;
-    struct md_buf measured_md;
 };
 
 /* ---- progress ------------------------------------------------------------------- */
@@ -100,6 +97,23 @@ static void progress(const struct all_run *r, const char *what, int done, int to
     fflush(stderr);
 }
 
+/* A line of the report's step list (run.json). Out of memory, the line is lost, not the run. */
+static void add_step(struct all_run *r, const char *name, const char *msg, double secs, int exit_code)
+{
+    if (r->nsteps == r->capsteps) {
+        int nc = r->capsteps ? 2 * r->capsteps : 16;
+        struct report_step *ns = realloc(r->steps, (size_t)nc * sizeof *ns);
+        if (!ns) return;
+        r->steps = ns;
+        r->capsteps = nc;
+    }
+    struct report_step *st = &r->steps[r->nsteps++];
+    snprintf(st->name, sizeof st->name, "%s", name);
+    snprintf(st->message, sizeof st->message, "%s", msg);
+    st->seconds = secs;
+    st->exit_code = exit_code;
+}
+
 /* The line that closes a step: on stderr and in the report's step list. */
 static void step_done(struct all_run *r, const char *name, double started, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -110,13 +124,13 @@ static void step_done(struct all_run *r, const char *name, double started, const
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    double secs = wall_seconds() - started;
     r->step++;
     if (!r->quiet) {
         if (r->tty) fprintf(stderr, "\r\033[K");
-        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, all_steps(r), name, msg,
-                wall_seconds() - started);
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, all_steps(r), name, msg, secs);
     }
-    md_printf(&r->steps, "%d. **%s**: %s (%.1f s)\n", r->step, name, msg, wall_seconds() - started);
+    add_step(r, name, msg, secs, 0);
     outdir_reassert_signal_handlers();   /* in front of the OpenCL compiler's (outdir.h) */
 }
 
@@ -142,21 +156,20 @@ static void add_picture(struct all_run *r, const char *file, int section, const 
 }
 
 /* Records the outcome of another command's part: on failure its section says so. */
-static void part(struct all_run *r, const char *name, struct report_block *blk, int rc)
+static void part(struct all_run *r, const char *name, int which, int rc)
 {
+    struct report_part_state *ps = &r->parts[which];
+    ps->ran = 1;
     if (rc == 0) return;
-    static char why[4][160];
-    int k = r->part_failures < 4 ? r->part_failures : 3;
-    snprintf(why[k], sizeof why[k], "this part failed (exit %d); its message is in the run's error output.", rc);
-    blk->markdown = NULL;
-    blk->missing = why[k];
+    snprintf(ps->missing, sizeof ps->missing, "this part failed (exit %d); its message is in the run's error output.",
+             rc);
     r->part_failures++;
     if (!r->part_rc || rc == EXIT_RUNTIME) r->part_rc = rc == EXIT_NO_DEVICE ? EXIT_RUNTIME : rc;
     r->step++;
     outdir_reassert_signal_handlers();
     if (r->tty) fprintf(stderr, "\r\033[K");
     fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", elapsed(r), r->step, all_steps(r), name, rc);
-    md_printf(&r->steps, "%d. **%s**: failed (exit %d)\n", r->step, name, rc);
+    add_step(r, name, "", 0, rc);
 }
 
 static void picture_failed(struct all_run *r, const char *msg)
@@ -251,7 +264,8 @@ static int step_q_sweep(struct all_run *r)
     double t = wall_seconds();
     char err[1024];
     int rc;
-    if (r->claims.markdown) { /* the claims check ran its own Q sweep: use it */
+    if (r->parts[REPORT_PART_CLAIMS].ran && !r->parts[REPORT_PART_CLAIMS].missing[0]) {
+        /* the claims check ran its own Q sweep: use it */
         if (read_q_sweep(r, err, sizeof err) == 0) {
             step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], read from q_sweep.json", r->nq, r->q[0],
                       r->q[r->nq - 1]);
@@ -452,22 +466,16 @@ static int step_plots(struct all_run *r)
 /* The parts below belong to other commands of brdfbench. Each one fills its report block
  * (markdown, or why it is missing) and adds its pictures; wiring a part in is its library
  * call in place of the `missing` line. */
-/* Appends markdown written as a page of its own under one of the report's sections: its
- * title line (# ...) is dropped and every other heading goes one level down. */
-static void md_embed(struct md_buf *b, const char *text)
+/* A part's page beside its JSON (report_part_page), which report.md takes in as its section. */
+static int write_page(struct all_run *r, int which, const char *text)
 {
-    const char *p = text;
-    if (p[0] == '#' && p[1] == ' ') { /* the page's own title */
-        const char *nl = strchr(p, '\n');
-        p = nl ? nl + 1 : p + strlen(p);
+    char path[4300], err[1024];
+    const char *page = report_part_page(which);
+    if (path_join(path, sizeof path, r->run_dir, page) || write_file_atomic(path, text, strlen(text), err, sizeof err)) {
+        fprintf(stderr, "brdfbench all: %s: %s\n", page, err);
+        return EXIT_RUNTIME;
     }
-    while (*p) {
-        const char *nl = strchr(p, '\n');
-        size_t len = nl ? (size_t)(nl - p) : strlen(p);
-        if (p[0] == '#') md_printf(b, "#");
-        md_printf(b, "%.*s\n", (int)len, p);
-        p += len + (nl ? 1 : 0);
-    }
+    return 0;
 }
 
 /* The claims of both papers (reproduce.h): claims.json, claims.md, q_sweep.json, energy.json. */
@@ -496,12 +504,9 @@ static int step_claims(struct all_run *r)
         fprintf(stderr, "brdfbench all: the claims check failed (exit %d)\n", rc);
         return rc;
     }
-    if (rep.markdown) {
-        md_embed(&r->claims_md, rep.markdown);
-        r->claims.markdown = r->claims_md.s;
-    } else {
-        r->claims.missing = "the claims check ran but gave no table.";
-    }
+    if (!rep.markdown)
+        snprintf(r->parts[REPORT_PART_CLAIMS].missing, sizeof r->parts[0].missing,
+                 "the claims check ran but gave no table.");
     step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced -> claims.json, claims.md, q_sweep.json%s",
               rep.count, rep.reproduced, rep.not_reproduced, o.energy ? ", energy.json" : "");
     reproduce_report_free(&rep);
@@ -528,23 +533,6 @@ static int step_fit(struct all_run *r)
         fprintf(stderr, "brdfbench all: the fit failed (exit %d)\n", rc);
         return rc;
     }
-    struct md_buf *b = &r->fit_md;
-    md_printf(b, "For f = (k(n)(c - 1) + 1)^2 zeroed past its root, over n in [%g, %g] (`brdfbench fit`, `fit.json`):\n\n",
-              o.n_min, o.n_max);
-    md_printf(b, "| model | max δ (epicentre) | max Δ (attenuation) |\n|---|---|---|\n");
-    md_printf(b, "| per-n minimax k(n): the family's limit | %.4f%% (n = %g) | |\n", 100 * rep.limit_max, rep.limit_max_n);
-    const struct fit_model *fm[2] = { &rep.main, &rep.at_fq2_cap };
-    for (int i = 0; i < 2; ++i)
-        if (fm[i]->have_sweep)
-            md_printf(b, "| `%s`%s | %.4f%% | %.5f |\n", fm[i]->spec_text,
-                      i ? " (max Δ capped at fq2's)" : " (best affine, uncapped)",
-                      100 * fm[i]->sweep.epicentre.value, fm[i]->sweep.attenuation.value);
-    for (int i = 0; i < rep.compare_count; ++i)
-        md_printf(b, "| %s | %.4f%% | %.5f |\n", rep.compare[i].model.label, 100 * rep.compare[i].epicentre.value,
-                  rep.compare[i].attenuation.value);
-    if (rep.verdict[0])
-        md_printf(b, "\n%s\n", rep.verdict);
-    r->fit.markdown = b->s;
     step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
     fit_report_free(&rep);
     return 0;
@@ -580,19 +568,15 @@ static int step_throughput(struct all_run *r)
         return rc;
     }
     if (md) {
-        md_embed(&r->throughput_md, md);
-        r->throughput.markdown = r->throughput_md.s;
+        rc = write_page(r, REPORT_PART_THROUGHPUT, md);
         free(md);
+        if (rc) return rc;
     } else {
-        r->throughput.missing = "the throughput measurement ran but gave no table.";
+        snprintf(r->parts[REPORT_PART_THROUGHPUT].missing, sizeof r->parts[0].missing,
+                 "the throughput measurement ran but gave no table.");
     }
     step_done(r, "throughput", t, "%d models -> throughput.json, throughput.csv", o.model_count);
     return 0;
-}
-
-static void add_image_picture(void *ctx, const char *file, const char *caption)
-{
-    add_picture((struct all_run *)ctx, file, REPORT_IMAGES, "%s", caption);
 }
 
 /* The image passes (render.h) at a size that keeps the main job short: images 960 x 540,
@@ -630,13 +614,7 @@ static int step_images(struct all_run *r)
         fprintf(stderr, "brdfbench all: image passes: %s\n", err);
         return rc;
     }
-    md_printf(&r->images_md, "%s", missing[0] ? missing + 1 : "");
-    if (missing[0]) md_printf(&r->images_md, "\n\n");
-    if (report_render_summary(r->run_dir, &r->images_md, add_image_picture, r, err, sizeof err)) {
-        fprintf(stderr, "brdfbench all: %s\n", err);
-        return EXIT_RUNTIME;
-    }
-    r->images.markdown = r->images_md.s;
+    snprintf(r->images_note, sizeof r->images_note, "%s", missing[0] ? missing + 1 : "");
     step_done(r, "images", t, "%d models on %s%s%s at %dx%d, timed at %dx%d -> render.json, render/", o.nmodels,
               "spheres", o.scene_on[RENDER_TEAPOT] ? ", teapot" : "", o.scene_on[RENDER_BUNNY] ? ", bunny" : "",
               o.width, o.height, o.time_w[0], o.time_h[0]);
@@ -671,12 +649,17 @@ static int step_frontier(struct all_run *r)
         o.model_count = n;
     }
     progress(r, "frontier", 0, 1, "measuring");
-    int rc = frontier_run(&r->s, &o, r->run_dir, 1, &r->frontier_md);
+    char *md = NULL;
+    int rc = frontier_run(&r->s, &o, r->run_dir, 1, &md);
+    if (!rc && md) rc = write_page(r, REPORT_PART_FRONTIER, md);
+    else if (!rc)
+        snprintf(r->parts[REPORT_PART_FRONTIER].missing, sizeof r->parts[0].missing,
+                 "the frontier ran but gave no section.");
+    free(md);
     if (rc) {
         fprintf(stderr, "brdfbench all: the frontier failed (exit %d)\n", rc);
         return rc;
     }
-    r->frontier.markdown = r->frontier_md;
     step_done(r, "frontier", t, "cost against accuracy -> frontier.json, frontier.csv, frontier_*.png");
     return 0;
 }
@@ -705,9 +688,13 @@ static int step_measured(struct all_run *r)
     if (rc && err[0])
         fprintf(stderr, "brdfbench all: --measured: %s\n", err);
     if (!rc) {
-        md_init(&r->measured_md);
-        measured_markdown(&r->measured_md, &rep);
-        r->measured.markdown = r->measured_md.s;
+        struct md_buf md;
+        md_init(&md);
+        measured_markdown(&md, &rep);
+        rc = md.failed ? EXIT_RUNTIME : write_page(r, REPORT_PART_MEASURED, md.s ? md.s : "");
+        md_free(&md);
+    }
+    if (!rc) {
         step_done(r, "measured", t, "%d materials -> measured.json, measured_*.png", rep.count);
     }
     measured_report_free(&rep);
@@ -715,40 +702,27 @@ static int step_measured(struct all_run *r)
     return rc;
 }
 
+/* run.json, then report.md made from the run folder as `brdfbench report` makes it. */
 static int step_report(struct all_run *r, double wall)
 {
     double t = wall_seconds();
-    char date[64], err[1024];
-    utc_now_iso(date, sizeof date);
-    struct report_input in;
-    memset(&in, 0, sizeof in);
-    in.run_dir = r->run_dir;
-    in.shown_dir = r->final_dir;
-    in.command = r->command;
-    in.date = date;
-    in.device = r->s.device_name;
-    in.platform_version = r->s.platform_version;
-    in.host_cpu = host_cpu_name();
-    in.git_revision = brdf_git_revision;
-    in.wall_seconds = wall;
-    in.acc = r->acc;
-    in.nacc = r->nacc;
-    in.acc_grid = &r->set.grid;
-    in.claims = r->claims;
-    in.fit = r->fit;
-    in.throughput = r->throughput;
-    in.images = r->images;
-    in.frontier = r->frontier;
-    in.measured = r->measured;
-    in.pictures = r->pics;
-    in.npictures = r->npics;
-    /* the step list closes with this step's own line, written before the page */
-    md_printf(&r->steps, "%d. **report**: report.md\n", r->step + 1);
-    in.steps_md = r->steps.s;
-    int rc = report_write(&in, err, sizeof err);
+    char err[1024];
+    struct report_run run = {
+        .command = r->command,
+        .folder = r->final_dir,
+        .wall_seconds = wall,
+        .steps = r->steps,
+        .nsteps = r->nsteps,
+        .images_note = r->images_note,
+        .pictures = r->pics,
+        .npictures = r->npics,
+    };
+    memcpy(run.parts, r->parts, sizeof run.parts);
+    int rc = report_run_write(r->run_dir, &run, &r->s, err, sizeof err) ? EXIT_RUNTIME : 0;
+    if (!rc) rc = report_rebuild(r->run_dir, NULL, err, sizeof err) ? EXIT_RUNTIME : 0;
     if (rc) {
         fprintf(stderr, "brdfbench all: %s\n", err);
-        return EXIT_RUNTIME;
+        return rc;
     }
     r->step++;
     if (!r->quiet)
@@ -778,13 +752,7 @@ static void run_free(struct all_run *r)
     free(r->acc);
     plots_free(&r->plots);
     free(r->pics);
-    md_free(&r->steps);
-    md_free(&r->claims_md);
-    md_free(&r->fit_md);
-    md_free(&r->throughput_md);
-    md_free(&r->images_md);
-    free(r->frontier_md);
-    md_free(&r->measured_md);
+    free(r->steps);
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
@@ -893,7 +861,6 @@ int cmd_all(int argc, char **argv)
     if (!r->quiet)
         fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->final_dir,
                 quick ? " (quick grids)" : "");
-    md_init(&r->steps);
     plots_init(&r->plots);
     if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) goto done;
     r->actx_open = 1;
@@ -903,16 +870,16 @@ int cmd_all(int argc, char **argv)
      * run. The claims, throughput and image passes are other commands' parts: a failure there
      * is recorded in its report section and the run goes on, then exits non-zero. */
     if ((rc = step_accuracy(r)) != 0) goto done;
-    part(r, "claims", &r->claims, step_claims(r));
-    part(r, "fit", &r->fit, step_fit(r));
+    part(r, "claims", REPORT_PART_CLAIMS, step_claims(r));
+    part(r, "fit", REPORT_PART_FIT, step_fit(r));
     if ((rc = step_q_sweep(r)) != 0) goto done;
-    part(r, "throughput", &r->throughput, step_throughput(r));
+    part(r, "throughput", REPORT_PART_THROUGHPUT, step_throughput(r));
     if ((rc = step_heatmaps(r)) != 0) goto done;
     if ((rc = step_plots(r)) != 0) goto done;
-    part(r, "images", &r->images, step_images(r));
-    part(r, "frontier", &r->frontier, step_frontier(r));
+    part(r, "images", REPORT_PART_IMAGES, step_images(r));
+    part(r, "frontier", REPORT_PART_FRONTIER, step_frontier(r));
     if (r->measured_dir)
-        part(r, "measured", &r->measured, step_measured(r));
+        part(r, "measured", REPORT_PART_MEASURED, step_measured(r));
     if ((rc = step_report(r, elapsed(r))) != 0) goto done;
     if (r->part_failures) {
         fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);

@@ -30,6 +30,8 @@ static const struct command commands[] = {
       "brdfbench all --quick --models fq2,cq2,phong" },
     { "plot", cmd_plot, "redraw every picture of a run folder from its JSON (no device)",
       "brdfbench plot results/latest" },
+    { "report", cmd_report, "rebuild report.md of a run folder from its files alone (no device)",
+      "brdfbench report results/latest --output -" },
     { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)",
       "brdfbench heatmap results/latest --label fq2" },
     { "gate", cmd_gate, "accuracy gates for CI: checks figures of a gates file against bounds (JUnit, JSON)",

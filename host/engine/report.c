@@ -2,9 +2,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "report.h"
 
-#include "accuracy_report.h"
+#include "infile.h"
 #include "jsonr.h"
 #include "outdir.h"
+#include "report_run.h"
+#include "schemas.h"
+
 
 #include <math.h>
 #include <stdio.h>
@@ -37,63 +40,232 @@ static void md_num(struct md_buf *b, double v, const char *fmt)
     }
 }
 
-static void accuracy_table(struct md_buf *b, const struct report_input *in)
+/* What report.md is made of, as read from the run folder. */
+struct report_input {
+    const char *run_dir;
+    struct report_run_doc run;
+    struct report_picture *pictures;  /* run.json's, then those of the image passes */
+    int npictures, cap;
+    int out_of_memory;
+};
+
+static void add_picture(struct report_input *in, const char *file, int section, const char *caption,
+                        const char *not_drawn)
 {
-    md_printf(b, "## Accuracy per model\n\n");
-    if (!in->acc || in->nacc < 1) {
-        md_printf(b, "Not available: the accuracy sweep did not run.\n\n");
-        return;
+    if (in->npictures == in->cap) {
+        int nc = in->cap ? 2 * in->cap : 32;
+        struct report_picture *np = realloc(in->pictures, (size_t)nc * sizeof *np);
+        if (!np) {
+            in->out_of_memory = 1;
+            return;
+        }
+        in->pictures = np;
+        in->cap = nc;
     }
-    if (in->acc_grid)
+    struct report_picture *p = &in->pictures[in->npictures++];
+    snprintf(p->file, sizeof p->file, "%s", file);
+    snprintf(p->caption, sizeof p->caption, "%s", caption);
+    snprintf(p->not_drawn, sizeof p->not_drawn, "%s", not_drawn ? not_drawn : "");
+    p->section = section;
+}
+
+static void add_image_picture(void *ctx, const char *file, const char *caption)
+{
+    add_picture(ctx, file, REPORT_IMAGES, caption, NULL);
+}
+
+static double num_at(const struct jr_value *o, const char *obj, const char *key)
+{
+    const struct jr_value *v = obj ? jr_get(o, obj) : o;
+    v = v ? jr_get(v, key) : NULL;
+    return v && v->type == JR_NUM ? v->num : NAN;
+}
+
+static const char *str_at(const struct jr_value *o, const char *key)
+{
+    const struct jr_value *v = jr_get(o, key);
+    return v && v->type == JR_STR ? v->str : "";
+}
+
+/* A result document of the run folder, checked against its schema. Returns 0, 1 when the file
+ * does not exist, or 2 with a message. */
+static int read_doc(const char *run_dir, const char *name, const char *schema, struct jr_doc *d, char *err,
+                    size_t errlen)
+{
+    char path[4200];
+    const char *have;
+    if (path_join(path, sizeof path, run_dir, name)) {
+        snprintf(err, errlen, "%s/%s: path too long", run_dir, name);
+        return 2;
+    }
+    if (!file_exists(run_dir, name)) return 1;
+    if (jr_parse_file(path, d, err, errlen)) return 2;
+    if (jr_need_str(d, &d->root, "schema", &have, err, errlen) ||
+        (strcmp(have, schema) != 0 && jr_fail(d, &d->root, err, errlen, "schema \"%s\" is not %s", have, schema))) {
+        jr_free(d);
+        return 2;
+    }
+    return 0;
+}
+
+static const char *accuracy_status_text(struct md_buf *b, const struct jr_value *r)
+{
+    const char *status = str_at(r, "status"), *reason = str_at(r, "reason");
+    if (strcmp(status, "failed") == 0 || strcmp(status, "device_disagrees") == 0) {
+        md_printf(b, " %s: ", status);
+        md_cell_text(b, reason);
+        return " |\n";
+    }
+    if (strcmp(status, "invalid_values") == 0) {
+        md_printf(b, " %lld invalid values (first at n = %g, x = %g)", (long long)num_at(r, "invalid", "count"),
+                  num_at(r, "invalid", "at_n"), num_at(r, "invalid", "at_x"));
+        return " |\n";
+    }
+    if (strcmp(str_at(r, "label"), str_at(r, "reference")) == 0) return " reference (zero by definition) |\n";
+    return " ok |\n";
+}
+
+static int accuracy_table(struct md_buf *b, const struct report_input *in, char *err, size_t errlen)
+{
+    struct jr_doc d;
+    md_printf(b, "## Accuracy per model\n\n");
+    int rc = read_doc(in->run_dir, "accuracy.json", ACCURACY_SCHEMA, &d, err, errlen);
+    const struct jr_value *rows = rc ? NULL : jr_get(&d.root, "results");
+    if (rc == 2) return 2;
+    if (!rows || rows->type != JR_ARR || rows->count < 1) {
+        md_printf(b, "Not available: the accuracy sweep did not run.\n\n");
+        if (!rc) jr_free(&d);
+        return 0;
+    }
+    const struct jr_value *ctx = jr_get(&d.root, "context"), *grid = ctx ? jr_get(ctx, "grid") : NULL;
+    if (grid)
         md_printf(b,
                   "Dense grid: n from %g to %g in steps of %g, %ld samples per zone per n; each maximum located on the "
                   "device (float) and then recomputed and refined in double on the host. delta = |f - f_ref| / f_ref "
                   "over the epicentre x in [0, x_e(n)], x_e(n) = acos(exp(-0.511/n)); Delta = |f - f_ref| over the "
                   "attenuation zone (x_e(n), pi/2] and over the whole range. x is psi for the Phong family, theta_h "
                   "for the Blinn family and the microfacet distributions.\n\n",
-                  in->acc_grid->n_min, in->acc_grid->n_max, in->acc_grid->n_step, in->acc_grid->samples);
+                  num_at(grid, NULL, "n_min"), num_at(grid, NULL, "n_max"), num_at(grid, NULL, "n_step"),
+                  (long)num_at(grid, NULL, "samples_per_zone"));
     md_printf(b, "| model | reference | max delta, epicentre | at n | at x (rad) | max Delta, attenuation | at n | at x (rad) "
                  "| max Delta, whole range | device vs double (4th-digit units) | status |\n");
     md_printf(b, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-    for (int i = 0; i < in->nacc; i++) {
-        const struct accuracy_result *r = &in->acc[i];
+    for (size_t i = 0; i < rows->count; i++) {
+        const struct jr_value *r = &rows->items[i];
         md_printf(b, "| `");
-        md_cell_text(b, r->model.label);
+        md_cell_text(b, str_at(r, "label"));
         md_printf(b, "` | `");
-        md_cell_text(b, r->reference.label);
+        md_cell_text(b, str_at(r, "reference"));
         md_printf(b, "` |");
-        md_pct(b, r->epicentre.value);
-        md_num(b, r->epicentre.n, "%.6g");
-        md_num(b, r->epicentre.x, "%.5f");
-        md_num(b, r->attenuation.value, "%.4g");
-        md_num(b, r->attenuation.n, "%.6g");
-        md_num(b, r->attenuation.x, "%.5f");
-        md_num(b, r->whole.value, "%.4g");
-        md_num(b, accuracy_check_in_digits(r), "%.2g");
-        if (!r->ok) {
-            md_printf(b, " failed: ");
-            md_cell_text(b, r->reason);
-            md_printf(b, " |\n");
-        } else if (r->device_disagrees) {
-            md_printf(b, " device_disagrees: ");
-            md_cell_text(b, r->reason);
-            md_printf(b, " |\n");
-        } else if (r->invalid_count) {
-            md_printf(b, " %lld invalid values (first at n = %g, x = %g) |\n", r->invalid_count, r->invalid_n, r->invalid_x);
-        } else if (strcmp(r->model.label, r->reference.label) == 0) {
-            md_printf(b, " reference (zero by definition) |\n");
-        } else {
-            md_printf(b, " ok |\n");
-        }
+        md_pct(b, num_at(r, "epicentre", "max_rel"));
+        md_num(b, num_at(r, "epicentre", "at_n"), "%.6g");
+        md_num(b, num_at(r, "epicentre", "at_x"), "%.5f");
+        md_num(b, num_at(r, "attenuation", "max_abs"), "%.4g");
+        md_num(b, num_at(r, "attenuation", "at_n"), "%.6g");
+        md_num(b, num_at(r, "attenuation", "at_x"), "%.5f");
+        md_num(b, num_at(r, "whole", "max_abs"), "%.4g");
+        md_num(b, num_at(r, "check", "in_4th_digit_units"), "%.2g");
+        md_printf(b, "%s", accuracy_status_text(b, r));
     }
     md_printf(b, "\n");
+    jr_free(&d);
+    return 0;
 }
 
-static void block(struct md_buf *b, const char *heading, const struct report_block *blk)
+static void not_available(struct md_buf *b, const char *why)
+{
+    md_printf(b, "Not available: %s\n\n", why ? why : "this part did not run.");
+}
+
+/* A part's state: 0 when its section can be made, else the reason is printed and 1 returned. */
+static int part_unavailable(struct md_buf *b, const struct report_input *in, int part)
+{
+    if (in->run.part_ran[part] && !in->run.part_missing[part]) return 0;
+    not_available(b, in->run.part_ran[part] ? in->run.part_missing[part] : NULL);
+    return 1;
+}
+
+/* A part's own page (claims.md, throughput.md, ...) as a section of this one. */
+static int page_block(struct md_buf *b, const struct report_input *in, const char *heading, int part, char *err,
+                      size_t errlen)
 {
     md_printf(b, "## %s\n\n", heading);
-    if (blk->markdown) md_printf(b, "%s\n\n", blk->markdown);
-    else md_printf(b, "Not available: %s\n\n", blk->missing ? blk->missing : "this part did not run.");
+    if (part_unavailable(b, in, part)) return 0;
+    char path[4200], why[200], *text = NULL;
+    size_t len = 0;
+    const char *page = report_part_page(part);
+    if (path_join(path, sizeof path, in->run_dir, page)) {
+        snprintf(err, errlen, "%s/%s: path too long", in->run_dir, page);
+        return 2;
+    }
+    int rc = infile_read(path, 0, (size_t)64 << 20, &text, &len, why, sizeof why);
+    if (rc) {
+        snprintf(err, errlen, "%s: %s (run.json records its part as done)", path, rc == -2 ? "out of memory" : why);
+        return rc == -2 ? 3 : 2;
+    }
+    /* claims.md and throughput.md are pages of their own; frontier.md and measured.md are
+       written as this section */
+    if (part == REPORT_PART_CLAIMS || part == REPORT_PART_THROUGHPUT) md_embed(b, text);
+    else md_printf(b, "%s", text);
+    md_printf(b, "\n\n");
+    free(text);
+    return 0;
+}
+
+/* "Beyond the papers": the family's limit, the best affine fit (uncapped and capped at fq2's
+ * max Delta) and the models it is compared with, from fit.json. A fit's row is there when its
+ * device sweep ran: then it leads fit.json's "compare" list, in that order. */
+static int fit_block(struct md_buf *b, const struct report_input *in, char *err, size_t errlen)
+{
+    struct jr_doc d;
+    md_printf(b, "## Beyond the papers: the best affine cosine-quadratic model\n\n");
+    if (part_unavailable(b, in, REPORT_PART_FIT)) return 0;
+    int rc = read_doc(in->run_dir, "fit.json", FIT_SCHEMA, &d, err, errlen);
+    if (rc == 1) snprintf(err, errlen, "%s/fit.json: missing (run.json records its part as done)", in->run_dir);
+    if (rc) return 2;
+    const struct jr_value *root = &d.root, *cmp = jr_get(root, "compare"), *ctx = jr_get(root, "context");
+    const struct jr_value *grid = ctx ? jr_get(ctx, "grid") : NULL;
+    if (!cmp || cmp->type != JR_ARR || !grid) {
+        jr_free(&d);
+        snprintf(err, errlen, "%s/fit.json: no \"compare\" list or no context grid", in->run_dir);
+        return 2;
+    }
+    md_printf(b, "For f = (k(n)(c - 1) + 1)^2 zeroed past its root, over n in [%g, %g] (`brdfbench fit`, `fit.json`):\n\n",
+              num_at(grid, NULL, "n_min"), num_at(grid, NULL, "n_max"));
+    md_printf(b, "| model | max δ (epicentre) | max Δ (attenuation) |\n|---|---|---|\n");
+    md_printf(b, "| per-n minimax k(n): the family's limit | %.4f%% (n = %g) | |\n",
+              100 * num_at(root, "limit_overall", "max_rel"), num_at(root, "limit_overall", "at_n"));
+    const struct jr_value *fits[2] = { root, jr_get(root, "capped_at_fq2") };
+    static const char *const notes[2] = { " (best affine, uncapped)", " (max Δ capped at fq2's)" };
+    size_t k = 0;
+    for (int i = 0; i < 2; ++i) {
+        const char *model = fits[i] ? str_at(fits[i], "model") : "";
+        if (!model[0] || k >= cmp->count || strcmp(str_at(&cmp->items[k], "model"), model) != 0) continue;
+        md_printf(b, "| `%s`%s | %.4f%% | %.5f |\n", model, notes[i], 100 * num_at(&cmp->items[k], "epicentre", "max_rel"),
+                  num_at(&cmp->items[k], "attenuation", "max_abs"));
+        k++;
+    }
+    for (; k < cmp->count; ++k)
+        md_printf(b, "| %s | %.4f%% | %.5f |\n", str_at(&cmp->items[k], "model"),
+                  100 * num_at(&cmp->items[k], "epicentre", "max_rel"), num_at(&cmp->items[k], "attenuation", "max_abs"));
+    const struct jr_value *verdict = jr_get(root, "verdict");
+    if (verdict && str_at(verdict, "text")[0]) md_printf(b, "\n%s\n", str_at(verdict, "text"));
+    md_printf(b, "\n\n");
+    jr_free(&d);
+    return 0;
+}
+
+/* The image passes: the scenes left out, then render.json's summary with its pictures. */
+static int images_block(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
+{
+    md_printf(b, "## Image passes\n\n");
+    if (part_unavailable(b, in, REPORT_PART_IMAGES)) return 0;
+    const char *note = in->run.images_note;
+    md_printf(b, "%s", note);
+    if (note[0]) md_printf(b, "\n\n");
+    if (report_render_summary(in->run_dir, b, add_image_picture, in, err, errlen)) return 2;
+    md_printf(b, "\n\n");
+    return 0;
 }
 
 static void pictures(struct md_buf *b, const struct report_input *in, int section)
@@ -120,29 +292,27 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
     if (!any) md_printf(b, "No pictures in this section.\n\n");
 }
 
-char *report_markdown(const struct report_input *in)
+static void header(struct md_buf *b, const struct report_input *in)
 {
-    struct md_buf b;
-    md_init(&b);
-    md_printf(&b, "# brdfbench report\n\n");
-    md_printf(&b, "| | |\n|---|---|\n");
-    md_printf(&b, "| command | `%s` |\n", in->command ? in->command : "brdfbench all");
-    if (in->date) md_printf(&b, "| date (UTC) | %s |\n", in->date);
-    if (in->device) {
-        md_printf(&b, "| OpenCL device | ");
-        md_cell_text(&b, in->device);
-        md_printf(&b, " |\n| platform | ");
-        md_cell_text(&b, in->platform_version);
-        md_printf(&b, " |\n");
+    const struct report_run_doc *run = &in->run;
+    md_printf(b, "# brdfbench report\n\n");
+    md_printf(b, "| | |\n|---|---|\n");
+    md_printf(b, "| command | `%s` |\n", run->command);
+    md_printf(b, "| date (UTC) | %s |\n", run->date);
+    if (run->device) {
+        md_printf(b, "| OpenCL device | ");
+        md_cell_text(b, run->device);
+        md_printf(b, " |\n| platform | ");
+        md_cell_text(b, run->platform_version);
+        md_printf(b, " |\n");
     }
-    if (in->host_cpu) {
-        md_printf(&b, "| host CPU | ");
-        md_cell_text(&b, in->host_cpu);
-        md_printf(&b, " |\n");
-    }
-    if (in->git_revision) md_printf(&b, "| git revision | `%s` |\n", in->git_revision);
-    if (in->wall_seconds >= 0) md_printf(&b, "| wall time | %.1f s |\n", in->wall_seconds);
+    md_printf(b, "| host CPU | ");
+    md_cell_text(b, run->host_cpu);
+    md_printf(b, " |\n");
+    md_printf(b, "| git revision | `%s` |\n", run->git_revision);
+    if (run->wall_seconds >= 0) md_printf(b, "| wall time | %.1f s |\n", run->wall_seconds);
     static const struct { const char *file, *what; } data[] = {
+        {"run.json", "what this page is made from with the files below (`brdfbench report` rebuilds it)"},
         {"accuracy.json", "the accuracy sweep (and `accuracy.csv`, per model per n)"},
         {"claims.json", "the claims with verdicts (and `claims.md`)"},
         {"fit.json", "the best affine cosine-quadratic model and the family's per-n limit"},
@@ -154,56 +324,106 @@ char *report_markdown(const struct report_input *in)
         {"frontier.json", "cost against accuracy of every lobe approximation (and `frontier.csv`)"},
         {"measured.json", "the lobes against measured materials"},
     };
-    md_printf(&b, "\nData files beside this page:");
+    md_printf(b, "\nData files beside this page:");
     for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
-        if (file_exists(in->run_dir, data[i].file)) md_printf(&b, " `%s`: %s;", data[i].file, data[i].what);
-    md_printf(&b, " `field_<model>.json`: every heatmap's grid. `brdfbench plot %s` redraws the plots and heatmaps "
-                  "from them without recomputing.\n\n",
-              in->shown_dir ? in->shown_dir : in->run_dir);
-    if (in->steps_md) md_printf(&b, "Steps:\n\n%s\n", in->steps_md);
-
-    block(&b, "Claims of the papers", &in->claims);
-    block(&b, "Beyond the papers: the best affine cosine-quadratic model", &in->fit);
-    accuracy_table(&b, in);
-    block(&b, "Throughput", &in->throughput);
-    pictures(&b, in, REPORT_THROUGHPUT);
-
-    md_printf(&b, "## Error heatmaps\n\n");
-    md_printf(&b, "Per model against its reference: left, the relative error delta(x, n) over the epicentre, x "
-                  "normalised per n as x / x_e(n) in [0, 1]; right, the absolute error Delta(x, n) over the attenuation "
-                  "zone, x / x_e(n) on a log axis from 1 to the largest reach of pi/2 (grey where x passes pi/2 for that "
-                  "n). n on a log axis; colour map viridis, scaled from 0 to each panel's maximum, which is ringed. The "
-                  "maxima in the titles are those of the picture's grid; the table above gives the refined ones.\n\n");
-    pictures(&b, in, REPORT_HEATMAPS);
-    md_printf(&b, "## Plots\n\n");
-    pictures(&b, in, REPORT_PLOTS);
-    block(&b, "Image passes", &in->images);
-    pictures(&b, in, REPORT_IMAGES);
-    if (in->frontier.markdown || in->frontier.missing)
-        block(&b, "Which lobe to ship", &in->frontier);
-    if (in->measured.markdown || in->measured.missing)
-        block(&b, "Measured materials", &in->measured);
-    if (in->notes_md) md_printf(&b, "## Notes\n\n%s\n", in->notes_md);
-    if (b.failed) {
-        md_free(&b);
-        return NULL;
-    }
-    return b.s;
+        if (file_exists(in->run_dir, data[i].file)) md_printf(b, " `%s`: %s;", data[i].file, data[i].what);
+    md_printf(b, " `field_<model>.json`: every heatmap's grid. `brdfbench plot %s` redraws the plots and heatmaps "
+                 "from them without recomputing.\n\n",
+              run->folder);
 }
 
-int report_write(const struct report_input *in, char *err, size_t errlen)
+static void steps(struct md_buf *b, const struct report_input *in)
 {
-    char *text = report_markdown(in);
-    if (!text) {
-        snprintf(err, errlen, "report.md: out of memory");
-        return -1;
+    const struct jr_value *st = in->run.steps;
+    md_printf(b, "Steps:\n\n");
+    for (size_t i = 0; i < st->count; i++) {
+        const struct jr_value *s = &st->items[i];
+        if (strcmp(str_at(s, "status"), "ok") == 0)
+            md_printf(b, "%zu. **%s**: %s (%.1f s)\n", i + 1, str_at(s, "name"), str_at(s, "message"),
+                      num_at(s, NULL, "seconds"));
+        else
+            md_printf(b, "%zu. **%s**: failed (exit %d)\n", i + 1, str_at(s, "name"), (int)num_at(s, NULL, "exit_code"));
     }
-    char path[4096];
-    int rc = path_join(path, sizeof path, in->run_dir, "report.md");
-    if (rc) snprintf(err, errlen, "%s/report.md: path too long", in->run_dir);
-    else rc = write_file_atomic(path, text, strlen(text), err, errlen);
+    md_printf(b, "%zu. **report**: report.md\n\n", st->count + 1);
+}
+
+static int read_pictures(struct report_input *in)
+{
+    const struct jr_value *pics = in->run.pictures;
+    for (size_t i = 0; i < pics->count; i++) {
+        const struct jr_value *p = &pics->items[i], *nd = jr_get(p, "not_drawn");
+        add_picture(in, str_at(p, "file"), report_section_of(str_at(p, "section")), str_at(p, "caption"),
+                    nd && nd->type == JR_STR ? nd->str : NULL);
+    }
+    return in->out_of_memory ? 3 : 0;
+}
+
+static int body(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
+{
+    header(b, in);
+    steps(b, in);
+    int rc = page_block(b, in, "Claims of the papers", REPORT_PART_CLAIMS, err, errlen);
+    if (!rc) rc = fit_block(b, in, err, errlen);
+    if (!rc) rc = accuracy_table(b, in, err, errlen);
+    if (!rc) rc = page_block(b, in, "Throughput", REPORT_PART_THROUGHPUT, err, errlen);
+    if (rc) return rc;
+    pictures(b, in, REPORT_THROUGHPUT);
+    md_printf(b, "## Error heatmaps\n\n");
+    md_printf(b, "Per model against its reference: left, the relative error delta(x, n) over the epicentre, x "
+                 "normalised per n as x / x_e(n) in [0, 1]; right, the absolute error Delta(x, n) over the attenuation "
+                 "zone, x / x_e(n) on a log axis from 1 to the largest reach of pi/2 (grey where x passes pi/2 for that "
+                 "n). n on a log axis; colour map viridis, scaled from 0 to each panel's maximum, which is ringed. The "
+                 "maxima in the titles are those of the picture's grid; the table above gives the refined ones.\n\n");
+    pictures(b, in, REPORT_HEATMAPS);
+    md_printf(b, "## Plots\n\n");
+    pictures(b, in, REPORT_PLOTS);
+    if ((rc = images_block(b, in, err, errlen)) != 0) return rc;
+    pictures(b, in, REPORT_IMAGES);
+    if (in->run.part_ran[REPORT_PART_FRONTIER] &&
+        (rc = page_block(b, in, "Which lobe to ship", REPORT_PART_FRONTIER, err, errlen)) != 0)
+        return rc;
+    if (in->run.part_ran[REPORT_PART_MEASURED] &&
+        (rc = page_block(b, in, "Measured materials", REPORT_PART_MEASURED, err, errlen)) != 0)
+        return rc;
+    return in->out_of_memory ? 3 : 0;
+}
+
+int report_build(const char *run_dir, char **text, char *err, size_t errlen)
+{
+    struct report_input in;
+    struct md_buf b;
+    memset(&in, 0, sizeof in);
+    in.run_dir = run_dir;
+    *text = NULL;
+    if (report_run_read(run_dir, &in.run, err, errlen)) return 2;
+    md_init(&b);
+    int rc = read_pictures(&in);
+    if (!rc) rc = body(&b, &in, err, errlen);
+    if (!rc && b.failed) rc = 3;
+    if (rc == 3) snprintf(err, errlen, "report.md: out of memory");
+    report_run_free(&in.run);
+    free(in.pictures);
+    if (rc) {
+        md_free(&b);
+        return rc;
+    }
+    *text = b.s;
+    return 0;
+}
+
+int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen)
+{
+    char *text = NULL, path[4200];
+    int rc = report_build(run_dir, &text, err, errlen);
+    if (rc) return rc;
+    if (!out && path_join(path, sizeof path, run_dir, "report.md")) {
+        snprintf(err, errlen, "%s/report.md: path too long", run_dir);
+        rc = 3;
+    } else {
+        rc = write_file_atomic(out ? out : path, text, strlen(text), err, errlen) ? 3 : 0;
+    }
     free(text);
-    return rc ? -1 : 0;
+    return rc;
 }
 
 /* ---- image passes (render.json) ------------------------------------------------------ */

@@ -1,13 +1,14 @@
 /* report.h - report.md, the page a person reads first in a run folder: how the run was
  * made, the claims table, the per-model accuracy table, the throughput table, and every
  * picture inline with a one-line caption. A picture is linked only when its file exists in
- * the run folder; a section whose results do not exist says so and why. */
+ * the run folder; a section whose results do not exist says so and why. The page is made from
+ * the run folder's files alone (report_build): `all` writes run.json and then the page the same
+ * way `brdfbench report RUN` rebuilds it. */
 #ifndef BRDF_REPORT_H
 #define BRDF_REPORT_H
 
 #include <stddef.h>
 
-#include "accuracy.h"
 #include "mdbuf.h"
 
 enum report_section {
@@ -25,37 +26,63 @@ struct report_picture {
     char not_drawn[200];  /* why the picture was left out (nothing to draw); "" when drawn */
 };
 
-/* A block of markdown supplied by another part of the run (claims, throughput, image
- * passes), or the reason it is missing. */
-struct report_block {
-    const char *markdown;  /* NULL: not available */
-    const char *missing;   /* why not, shown when markdown is NULL */
+/* The parts of a run that other commands make, each a section of report.md with the file it
+ * comes from: claims (claims.md, written by reproduce), fit (fit.json), throughput
+ * (throughput.md), images (render.json), frontier (frontier.md), measured (measured.md). */
+enum report_part {
+    REPORT_PART_CLAIMS = 0,
+    REPORT_PART_FIT,
+    REPORT_PART_THROUGHPUT,
+    REPORT_PART_IMAGES,
+    REPORT_PART_FRONTIER,
+    REPORT_PART_MEASURED,
+    REPORT_PART_COUNT
 };
 
-struct report_input {
-    const char *run_dir;
-    const char *shown_dir;        /* the folder's name in the text (NULL: run_dir); all writes a staged folder */
+/* The page of a part, written beside its JSON by `all` (claims.md comes from reproduce), or
+ * NULL for the parts whose section is made from their JSON (fit, images). */
+const char *report_part_page(int part);
+
+struct report_part_state {
+    int ran;               /* 0: the part was not run (frontier and measured then have no section) */
+    char missing[200];     /* why its section is not available; "" when it is */
+};
+
+/* One line of the step list. */
+struct report_step {
+    char name[32];
+    char message[1024];
+    double seconds;
+    int exit_code;         /* 0: done; else the part failed with this exit code */
+};
+
+/* What `all` records of its run in run.json: with the run folder's other files it is all
+ * that report.md is made of. */
+struct report_run {
     const char *command;          /* the command line that made the run */
-    const char *date;             /* ISO 8601 */
-    const char *device, *platform_version, *host_cpu, *git_revision;
-    double wall_seconds;          /* < 0: not known yet */
-    const char *steps_md;         /* optional: the step log as a markdown list */
-    /* accuracy */
-    const struct accuracy_result *acc;
-    int nacc;
-    const struct accuracy_grid *acc_grid;
-    struct report_block claims, fit, throughput, images;
-    const struct report_picture *pictures;
+    const char *folder;           /* the run folder's name in the text (all writes a staged folder) */
+    double wall_seconds;
+    const struct report_step *steps;
+    int nsteps;
+    struct report_part_state parts[REPORT_PART_COUNT];
+    const char *images_note;      /* scenes left out, "" when none */
+    const struct report_picture *pictures; /* those of the accuracy sweep, heatmaps and plots */
     int npictures;
-    const char *notes_md;         /* optional closing notes */
-    struct report_block frontier; /* "Which lobe to ship" (frontier_markdown) */
-    struct report_block measured; /* "Measured materials" (measured_markdown; all --measured DIR) */
 };
 
-/* Builds the markdown text (malloc'd, NUL-terminated) or NULL when out of memory. */
-char *report_markdown(const struct report_input *in);
-/* Writes run_dir/report.md atomically. Returns 0 or -1 with a message. */
-int report_write(const struct report_input *in, char *err, size_t errlen);
+/* Writes run_dir/run.json (schema RUN_SCHEMA) with the session's context. Returns 0, or -1
+ * with a message. */
+struct cl_session;
+int report_run_write(const char *run_dir, const struct report_run *run, const struct cl_session *s, char *err,
+                     size_t errlen);
+
+/* report.md's text, made from the run folder alone: run.json, accuracy.json, fit.json,
+ * render.json and the parts' pages. *text is malloc'd. Returns 0, or 2 with a message naming
+ * the file that is missing or malformed, or 3 when out of memory. */
+int report_build(const char *run_dir, char **text, char *err, size_t errlen);
+/* Builds report.md and writes it atomically to out (NULL: run_dir/report.md; "-": standard
+ * output). Returns 0, 2 (as report_build) or 3 when it cannot be written. */
+int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen);
 
 /* Summarises run_dir/render.json (written by render_run) for the report: per scene a table of
  * the image metrics and timings into md, and each picture that exists through add(ctx, file,

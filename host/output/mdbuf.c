@@ -71,3 +71,19 @@ void md_cell_text(struct md_buf *b, const char *s)
         else md_printf(b, "%c", *s);
     }
 }
+
+void md_embed(struct md_buf *b, const char *page)
+{
+    const char *p = page;
+    if (p[0] == '#' && p[1] == ' ') { /* the page's own title */
+        const char *nl = strchr(p, '\n');
+        p = nl ? nl + 1 : p + strlen(p);
+    }
+    while (*p) {
+        const char *nl = strchr(p, '\n');
+        size_t len = nl ? (size_t)(nl - p) : strlen(p);
+        if (p[0] == '#') md_printf(b, "#");
+        md_printf(b, "%.*s\n", (int)len, p);
+        p += len + (nl ? 1 : 0);
+    }
+}

@@ -18,6 +18,9 @@ void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(pri
 void md_append(struct md_buf *b, const char *text, size_t n);
 /* Text for a markdown table cell: '|' escaped, line breaks as spaces (NULL: nothing). */
 void md_cell_text(struct md_buf *b, const char *s);
+/* Appends a markdown page as a section of another: its title line (# ...) is dropped and
+ * every other heading goes one level down. */
+void md_embed(struct md_buf *b, const char *page);
 void md_free(struct md_buf *b);
 
 #endif

@@ -1,0 +1,54 @@
+/* cmd_report.c - `brdfbench report RUN_DIR`: rebuilds report.md of a run of `brdfbench all`
+ * from the run folder alone (run.json and the result files beside it), the same page `all`
+ * wrote. No device is used and nothing is recomputed. */
+#define _POSIX_C_SOURCE 200809L
+#include "cli_table.h"
+#include "commands.h"
+#include "exitcodes.h"
+#include "outdir.h"
+#include "report.h"
+
+#include <stdio.h>
+#include <sys/stat.h>
+
+int cmd_report(int argc, char **argv)
+{
+    const char *out = NULL;
+    char err[1024];
+    const struct cli_flag flags[] = {
+        { .name = "--output", .value = "FILE|-", .kind = CLI_PATH, .dest = &out,
+          .help = "write the page to FILE ('-': standard output) instead of RUN_DIR/report.md",
+          .def = "RUN_DIR/report.md" },
+    };
+    const struct cli_command cmd = {
+        .name = "report",
+        .synopsis = "[RUN_DIR] [--output FILE|-]",
+        .about = "  Rebuilds report.md of a run folder of `brdfbench all` (default: results/latest) from its\n"
+                 "  files alone: run.json (the command, the steps, the pictures and their captions) and the\n"
+                 "  result files beside it. The page is the one `all` wrote; no device is used.\n",
+        CLI_TABLE(flags),
+        .max_positional = 1,
+    };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc) return cli_parse_exit(&cmd, prc, err);
+    const char *dir = args.npositional ? args.positional[0] : "results/latest";
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "brdfbench report: RUN_DIR '%s' is not a folder (accepted: a run folder of brdfbench all)\n",
+                dir);
+        return EXIT_USAGE;
+    }
+    if (out && output_file_check("--output", out, err, sizeof err)) {
+        fprintf(stderr, "brdfbench report: %s\n", err);
+        return EXIT_USAGE;
+    }
+    /* the run folder is input: report.md written into it never follows a link out of it */
+    if (!out) outdir_confine(dir);
+    int rc = report_rebuild(dir, out, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench report: %s\n", err);
+        return rc == 2 ? EXIT_USAGE : EXIT_RUNTIME;
+    }
+    return EXIT_OK;
+}
