@@ -13,6 +13,7 @@
 #include "testutil.h"
 
 #include <math.h>
+#include <string.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -121,6 +122,41 @@ static int test_device(struct accuracy_ctx *a)
               r2.check_rel_diff);
         accuracy_result_free(&r1);
         accuracy_result_free(&r2);
+    }
+
+    /* Each figure once: the same sweep asked for again, from another context of the same
+     * session, is a copy of the first (the counter counts it); a sweep recomputed after
+     * accuracy_forget_sweeps gives the same figures, so the copy is what a second run gives;
+     * another grid or another model is run, not copied. */
+    {
+        struct accuracy_ctx b;
+        struct accuracy_result r1, r2, r3, r4;
+        if ((rc = accuracy_open(&b, a->s, "")) != 0) return rc;
+        accuracy_forget_sweeps();
+        long hits = accuracy_reused_sweeps();
+        if ((rc = run(a, "fq2", 2, 200, 3, 256, &r1)) || (rc = run(&b, "fq2", 2, 200, 3, 256, &r2))) return rc;
+        CHECK(accuracy_reused_sweeps() == hits + 1, "the second ask is reused (%ld -> %ld)", hits,
+              accuracy_reused_sweeps());
+        CHECK(r2.per_n != r1.per_n && r2.n_count == r1.n_count &&
+                  memcmp(r2.per_n, r1.per_n, (size_t)r1.n_count * sizeof *r1.per_n) == 0 &&
+                  r2.epicentre.value == r1.epicentre.value && r2.attenuation.value == r1.attenuation.value,
+              "a reused sweep is an own copy of the first");
+        if ((rc = run(&b, "fq2", 2, 200, 4, 256, &r3))) return rc;
+        CHECK(accuracy_reused_sweeps() == hits + 1 && r3.n_count != r1.n_count, "another grid is run");
+        accuracy_result_free(&r3);
+        if ((rc = run(&b, "fvol", 2, 200, 3, 256, &r3))) return rc;
+        CHECK(accuracy_reused_sweeps() == hits + 1 && r3.epicentre.value != r1.epicentre.value, "another model is run");
+        accuracy_forget_sweeps();
+        if ((rc = run(&b, "fq2", 2, 200, 3, 256, &r4))) return rc;
+        CHECK(accuracy_reused_sweeps() == hits + 1, "after forgetting, the sweep runs again");
+        CHECK(r4.epicentre.value == r1.epicentre.value && r4.attenuation.value == r1.attenuation.value &&
+                  r4.whole.value == r1.whole.value && r4.epicentre.n == r1.epicentre.n,
+              "a sweep run again gives the copy's figures: fq2 %.17g vs %.17g", r4.epicentre.value, r1.epicentre.value);
+        accuracy_result_free(&r1);
+        accuracy_result_free(&r2);
+        accuracy_result_free(&r3);
+        accuracy_result_free(&r4);
+        accuracy_close(&b);
     }
     return 0;
 }

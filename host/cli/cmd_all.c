@@ -903,6 +903,9 @@ int cmd_all(int argc, char **argv)
         goto done;
     }
     if (!r->quiet) {
+        if (accuracy_reused_sweeps() > 0)
+            fprintf(stderr, "[%6.1f s] %ld accuracy sweeps asked for by more than one part were run once\n", elapsed(r),
+                    accuracy_reused_sweeps());
         fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->final_dir);
         printf("%s/report.md\n", r->final_dir);
     }

@@ -412,8 +412,8 @@ static size_t sweep_local_size(long count, cl_uint compute_units)
     return (size_t)(per_group < 1 ? 1 : per_group > 8 ? 8 : per_group);
 }
 
-int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
-                 struct accuracy_result *out)
+static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                            struct accuracy_result *out)
 {
     int rc = 0;
     float *nv = NULL, *raw = NULL;
@@ -521,6 +521,92 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
 done:
     free(raw);
     free(nv);
+    return rc;
+}
+
+/* ---- each figure once ------------------------------------------------------------------
+ * A sweep is a function of the model, the grid, the device, its driver and platform, and the
+ * program's source and build options (the kernel source is the process's: embedded, or
+ * --kernel-dir's): the parts of one process (the claims, the fit, the accuracy table, the
+ * frontier, the gates of `all` or `gate`) that ask for the same sweep get the first one's
+ * result instead of running it again. */
+struct sweep_memo {
+    char device[256], driver[256], platform[256], options[256];
+    int specialise;
+    struct model_spec model;
+    struct accuracy_grid grid;
+    struct accuracy_result result;
+};
+static struct sweep_memo *memo;
+static int nmemo, capmemo;
+static long memo_hits;
+
+static int same_sweep(const struct sweep_memo *e, const struct accuracy_ctx *a, const struct model_spec *m,
+                      const struct accuracy_grid *g)
+{
+    return e->specialise == a->s->specialise && e->model.info == m->info &&
+           memcmp(e->model.params, m->params, sizeof m->params) == 0 && strcmp(e->model.label, m->label) == 0 &&
+           memcmp(&e->grid, g, sizeof *g) == 0 && strcmp(e->options, a->build_options) == 0 &&
+           strcmp(e->device, a->s->device_name) == 0 && strcmp(e->driver, a->s->driver_version) == 0 &&
+           strcmp(e->platform, a->s->platform_version) == 0;
+}
+
+/* A deep copy: dst owns its per-n table. Returns 0, or -1 when out of memory. */
+static int copy_result(struct accuracy_result *dst, const struct accuracy_result *src)
+{
+    *dst = *src;
+    dst->per_n = malloc((size_t)src->n_count * sizeof *dst->per_n);
+    if (!dst->per_n) return -1;
+    memcpy(dst->per_n, src->per_n, (size_t)src->n_count * sizeof *dst->per_n);
+    return 0;
+}
+
+static void remember(const struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                     const struct accuracy_result *r)
+{
+    if (nmemo == capmemo) {
+        int nc = capmemo ? 2 * capmemo : 32;
+        struct sweep_memo *nm = realloc(memo, (size_t)nc * sizeof *nm);
+        if (!nm) return; /* not remembered: a later ask runs the sweep again */
+        memo = nm;
+        capmemo = nc;
+    }
+    struct sweep_memo *e = &memo[nmemo];
+    memset(e, 0, sizeof *e);
+    snprintf(e->device, sizeof e->device, "%s", a->s->device_name);
+    snprintf(e->driver, sizeof e->driver, "%s", a->s->driver_version);
+    snprintf(e->options, sizeof e->options, "%s", a->build_options);
+    snprintf(e->platform, sizeof e->platform, "%s", a->s->platform_version);
+    e->specialise = a->s->specialise;
+    e->model = *m;
+    e->grid = *g;
+    if (copy_result(&e->result, r) == 0) nmemo++;
+}
+
+long accuracy_reused_sweeps(void) { return memo_hits; }
+
+void accuracy_forget_sweeps(void)
+{
+    for (int i = 0; i < nmemo; i++) accuracy_result_free(&memo[i].result);
+    free(memo);
+    memo = NULL;
+    nmemo = capmemo = 0;
+}
+
+int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                 struct accuracy_result *out)
+{
+    for (int i = 0; i < nmemo; i++) {
+        if (!same_sweep(&memo[i], a, m, g)) continue;
+        if (copy_result(out, &memo[i].result)) {
+            memset(out, 0, sizeof *out);
+            return EXIT_RUNTIME;
+        }
+        memo_hits++;
+        return 0;
+    }
+    int rc = accuracy_compute(a, m, g, out);
+    if (rc == 0 && out->ok) remember(a, m, g, out);
     return rc;
 }
 
