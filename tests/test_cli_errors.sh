@@ -400,6 +400,49 @@ t 2 "^brdfbench plot: P/plots.json: is a folder, not a file" plot P
 rm -rf P/plots.json && ln -s nowhere.json P/plots.json
 WHAT='P/plots.json: a dangling link'
 t 2 "^brdfbench plot: P/plots.json: cannot open: No such file or directory" plot P
+# report: run.json and the pages fed back (report.md is rebuilt from them)
+t 2 "^brdfbench report: RUN_DIR '/nonexistent' is not a folder" report /nonexistent
+t 2 "^brdfbench report: unexpected argument 'b'" report R0 b
+t 2 "^brdfbench report: base/run.json: No such file: not a run folder of .brdfbench all." report base
+t 2 "^brdfbench report: --output: 'R0/accuracy.json' is inside RUN_DIR 'R0' \(accepted: RUN_DIR/report.md, a file outside the run folder, or -\)" \
+    report R0 --output R0/accuracy.json
+# rj DIR PYTHON: a copy of R0 as DIR with PYTHON run on its run.json (as d)
+rj() {
+    WHAT="$1/run.json: $2"
+    rm -rf "$1" && cp -r R0 "$1"
+    python3 - "$1/run.json" "$2" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+exec(sys.argv[2])
+json.dump(d, open(sys.argv[1], "w"))
+PY
+}
+rj Q "d['schema'] = 'brdfbench.run/2'"
+t 2 "^brdfbench report: Q/run.json:1:1: schema \"brdfbench.run/2\" is not brdfbench.run/1" report Q
+rj Q "del d['command']"
+t 2 "^brdfbench report: Q/run.json:1:1: member \"command\" is missing" report Q
+rj Q "d['pictures'][0]['file'] = '../outside.png'"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: picture file \"../outside.png\" \(accepted: NAME.png, a plain file name" report Q
+rj Q "d['pictures'][0]['file'] = 'x.png) [click](http://example'"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: picture file .* \(accepted: NAME.png" report Q
+rj Q "d['pictures'][0]['section'] = 'pie'"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: unknown section \"pie\" \(heatmaps, plots, throughput, images\)" report Q
+rj Q "d['steps'][0]['status'] = 'done'"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: step status must be \"ok\" or \"failed\"" report Q
+rj Q "d['steps'][0]['seconds'] = -1"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: step \"seconds\" is -1 \(accepted: 0 to 1e9\)" report Q
+rj Q "d['steps'][0] = {'name': 'x', 'status': 'failed', 'exit_code': 1e300, 'seconds': 0}"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: step \"exit_code\" is 1e\+300 \(accepted: a whole number from 1 to 255\)" report Q
+rj Q "d['parts']['bogus'] = {'status': 'ok'}"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: unknown part \"bogus\"" report Q
+rj Q "d['parts']['claims'] = {'status': 'missing'}"
+t 2 "^brdfbench report: Q/run.json:1:[0-9]+: member \"reason\" is missing" report Q
+rm -rf Q && cp -r R0 Q && rm Q/claims.md && mkfifo Q/claims.md
+WHAT='Q/claims.md: a FIFO'
+t 2 "^brdfbench report: Q/claims.md: is a FIFO, not a regular file \(run.json records its part as done\)" report Q
+rm -rf Q && cp -r R0 Q && rm Q/accuracy.json && mkfifo Q/accuracy.json
+WHAT='Q/accuracy.json: a FIFO'
+t 2 "^brdfbench report: Q/accuracy.json: is a FIFO, not a regular file" report Q
 # heatmap: field files fed back
 fj H "del d['model']"
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:1: member \"model\" is missing" heatmap H

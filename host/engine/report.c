@@ -9,6 +9,7 @@
 #include "schemas.h"
 
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -98,7 +99,8 @@ static int read_doc(const char *run_dir, const char *name, const char *schema, s
         snprintf(err, errlen, "%s/%s: path too long", run_dir, name);
         return 2;
     }
-    if (!file_exists(run_dir, name)) return 1;
+    struct stat st;
+    if (stat(path, &st) != 0 && errno == ENOENT) return 1;
     if (jr_parse_file(path, d, err, errlen)) return 2;
     if (jr_need_str(d, &d->root, "schema", &have, err, errlen) ||
         (strcmp(have, schema) != 0 && jr_fail(d, &d->root, err, errlen, "schema \"%s\" is not %s", have, schema))) {

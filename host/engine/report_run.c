@@ -9,6 +9,7 @@
 #include "context.h"
 #include "jsonw.h"
 #include "outdir.h"
+#include "plots.h"
 #include "schemas.h"
 
 #include <errno.h>
@@ -124,6 +125,10 @@ static int read_steps(struct report_run_doc *r, char *err, size_t errlen)
             : strcmp(status, "failed") == 0 ? jr_need_num(d, st, "exit_code", &code, err, errlen)
                                             : jr_fail(d, st, err, errlen, "step status must be \"ok\" or \"failed\""))
             return 2;
+        if (!(secs >= 0 && secs <= 1e9))
+            return jr_fail(d, st, err, errlen, "step \"seconds\" is %g (accepted: 0 to 1e9)", secs);
+        if (strcmp(status, "failed") == 0 && !(code >= 1 && code <= 255 && code == (int)code))
+            return jr_fail(d, st, err, errlen, "step \"exit_code\" is %g (accepted: a whole number from 1 to 255)", code);
     }
     return 0;
 }
@@ -162,6 +167,16 @@ static int read_pictures(struct report_run_doc *r, char *err, size_t errlen)
             return 2;
         if (name_index(section_names, REPORT_SECTION_COUNT, section) < 0)
             return jr_fail(d, pic, err, errlen, "unknown section \"%s\" (heatmaps, plots, throughput, images)", section);
+        /* the pictures of the run folder's top level, named as plots.json names them */
+        if (!plot_file_name_ok(file) || strlen(file) >= sizeof((struct report_picture *)0)->file) {
+            char shown[128];   /* a control character is shown as '?': the message stays one line */
+            size_t k = 0;
+            for (; file[k] && k < sizeof shown - 1; k++) shown[k] = (unsigned char)file[k] < 0x20 ? '?' : file[k];
+            shown[k] = '\0';
+            return jr_fail(d, pic, err, errlen, "picture file \"%s\" (accepted: NAME.png, a plain file name of letters, "
+                           "digits and ._-+=, not starting with '.', under %zu bytes)", shown,
+                           sizeof((struct report_picture *)0)->file);
+        }
     }
     return 0;
 }
