@@ -302,29 +302,22 @@ t 2 "^brdfbench accuracy: --timeout: 'inf' is not a finite number in \[0.01, 604
 # effects (no file replaced outside the run folder, the earlier run kept, no hang).
 "$BIN" all --quick --models fq2 --out R0 --quiet >/dev/null 2>&1
 "$BIN" accuracy --models fq2,cq2 --n-max 50 --samples 256 --out base --quiet >/dev/null 2>&1
-# pj DIR PYTHON: a copy of R0 as DIR with PYTHON run on its plots.json (as d; figure 0 as f)
-pj() {
-    WHAT="$1/plots.json: $2"
+# ej DIR FILE PYTHON: a copy of R0 as DIR with PYTHON run on its JSON file FILE (as d; for
+# plots.json, figure 0 also as f); pj, fj and rj name plots.json, field_fq2.json and run.json
+ej() {
+    WHAT="$1/$2: $3"
     rm -rf "$1" && cp -r R0 "$1"
-    python3 - "$1/plots.json" "$2" <<'PY'
+    python3 - "$1/$2" "$3" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-f = d["figures"][0]
+f = d["figures"][0] if "figures" in d else None
 exec(sys.argv[2])
 json.dump(d, open(sys.argv[1], "w"))
 PY
 }
-# fj DIR PYTHON: the same for DIR/field_fq2.json (as d)
-fj() {
-    WHAT="$1/field_fq2.json: $2"
-    rm -rf "$1" && cp -r R0 "$1"
-    python3 - "$1/field_fq2.json" "$2" <<'PY'
-import json, sys
-d = json.load(open(sys.argv[1]))
-exec(sys.argv[2])
-json.dump(d, open(sys.argv[1], "w"))
-PY
-}
+pj() { ej "$1" plots.json "$2"; }
+fj() { ej "$1" field_fq2.json "$2"; }
+rj() { ej "$1" run.json "$2"; }
 # plots.json: a figure's file is a plain NAME.png, never a data file of the run or a path
 for name in accuracy.json plots.json report.md field_fq2.json x.PNG.json ../escape.png /tmp/abs.png .hidden.png \
             'a b.png' '' 'x.png/' 'new
@@ -406,17 +399,6 @@ t 2 "^brdfbench report: unexpected argument 'b'" report R0 b
 t 2 "^brdfbench report: base/run.json: No such file: not a run folder of .brdfbench all." report base
 t 2 "^brdfbench report: --output: 'R0/accuracy.json' is inside RUN_DIR 'R0' \(accepted: RUN_DIR/report.md, a file outside the run folder, or -\)" \
     report R0 --output R0/accuracy.json
-# rj DIR PYTHON: a copy of R0 as DIR with PYTHON run on its run.json (as d)
-rj() {
-    WHAT="$1/run.json: $2"
-    rm -rf "$1" && cp -r R0 "$1"
-    python3 - "$1/run.json" "$2" <<'PY'
-import json, sys
-d = json.load(open(sys.argv[1]))
-exec(sys.argv[2])
-json.dump(d, open(sys.argv[1], "w"))
-PY
-}
 rj Q "d['schema'] = 'brdfbench.run/2'"
 t 2 "^brdfbench report: Q/run.json:1:1: schema \"brdfbench.run/2\" is not brdfbench.run/1" report Q
 rj Q "del d['command']"

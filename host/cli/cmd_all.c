@@ -478,64 +478,65 @@ static int write_page(struct all_run *r, int which, const char *text)
     return 0;
 }
 
+/* A part's run failed: its message, and the exit code passed on to part(). */
+static int part_failed(const char *what, int rc)
+{
+    fprintf(stderr, "brdfbench all: %s failed (exit %d)\n", what, rc);
+    return rc;
+}
+
+/* The claims check's options: the papers' grids, or coarse ones for --quick. */
+static void claims_options(const struct all_run *r, struct reproduce_options *o)
+{
+    reproduce_options_default(o);
+    if (!r->set.quick) return;
+    o->samples = 256;
+    o->grid_check = 0;
+    o->q_min = 0.30;
+    o->q_max = 0.90;
+    o->q_step = 0.05;
+    o->q_samples = 128;
+    o->q_n_step = 25;
+    o->energy = 0;
+    o->physical = 0;   /* the physically based models' cost: not for a trial run */
+}
+
 /* The claims of both papers (reproduce.h): claims.json, claims.md, q_sweep.json, energy.json. */
 static int step_claims(struct all_run *r)
 {
     double t = wall_seconds();
     struct reproduce_options o;
-    reproduce_options_default(&o);
-    if (r->set.quick) {
-        o.samples = 256;
-        o.grid_check = 0;
-        o.q_min = 0.30;
-        o.q_max = 0.90;
-        o.q_step = 0.05;
-        o.q_samples = 128;
-        o.q_n_step = 25;
-        o.energy = 0;
-        o.physical = 0;   /* the physically based models' cost: not for a trial run */
-    }
     struct reproduce_report rep;
+    claims_options(r, &o);
     memset(&rep, 0, sizeof rep);
     progress(r, "claims", 0, 1, "reproduce");
     int rc = reproduce_run_ex(&r->s, r->run_dir, &o, 1, &rep);
-    if (rc) {
-        reproduce_report_free(&rep);
-        fprintf(stderr, "brdfbench all: the claims check failed (exit %d)\n", rc);
-        return rc;
-    }
-    if (!rep.markdown)
+    if (!rc && !rep.markdown)
         snprintf(r->parts[REPORT_PART_CLAIMS].missing, sizeof r->parts[0].missing,
                  "the claims check ran but gave no table.");
-    step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced -> claims.json, claims.md, q_sweep.json%s",
-              rep.count, rep.reproduced, rep.not_reproduced, o.energy ? ", energy.json" : "");
+    if (!rc)
+        step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced -> claims.json, claims.md, q_sweep.json%s",
+                  rep.count, rep.reproduced, rep.not_reproduced, o.energy ? ", energy.json" : "");
     reproduce_report_free(&rep);
-    return 0;
+    return rc ? part_failed("the claims check", rc) : 0;
 }
 
 /* Beyond the papers (fit.h): the family's per-n limit and the best affine k(n) = a n + b,
- * beside fq2, fvol and cq2 over the same range -> fit.json and a short table. */
+ * beside fq2, fvol and cq2 over the same range -> fit.json (report.md's section comes from it). */
 static int step_fit(struct all_run *r)
 {
     double t = wall_seconds();
     struct fit_options o;
-    fit_options_default(&o);
-    if (r->set.quick) {
-        o.n_step = 25;
-        o.samples = 256;
-    }
     struct fit_report rep;
+    fit_options_default(&o);
+    o.n_step = r->set.quick ? 25 : o.n_step;
+    o.samples = r->set.quick ? 256 : o.samples;
     memset(&rep, 0, sizeof rep);
     progress(r, "fit", 0, 1, "fitting");
     int rc = fit_run(&r->s, r->run_dir, &o, 1, &rep);
-    if (rc) {
-        fit_report_free(&rep);
-        fprintf(stderr, "brdfbench all: the fit failed (exit %d)\n", rc);
-        return rc;
-    }
-    step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
+    if (!rc) step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
     fit_report_free(&rep);
-    return 0;
+    return rc ? part_failed("the fit", rc) : 0;
 }
 
 /* Throughput (throughput.h) with the configuration made for the main job: every model, three
@@ -564,8 +565,7 @@ static int step_throughput(struct all_run *r)
     int rc = throughput_run_md(&r->s, &o, r->run_dir, 1, &md);
     if (rc) {
         free(md);
-        fprintf(stderr, "brdfbench all: the throughput measurement failed (exit %d)\n", rc);
-        return rc;
+        return part_failed("the throughput measurement", rc);
     }
     if (md) {
         rc = write_page(r, REPORT_PART_THROUGHPUT, md);
@@ -656,10 +656,7 @@ static int step_frontier(struct all_run *r)
         snprintf(r->parts[REPORT_PART_FRONTIER].missing, sizeof r->parts[0].missing,
                  "the frontier ran but gave no section.");
     free(md);
-    if (rc) {
-        fprintf(stderr, "brdfbench all: the frontier failed (exit %d)\n", rc);
-        return rc;
-    }
+    if (rc) return part_failed("the frontier", rc);
     step_done(r, "frontier", t, "cost against accuracy -> frontier.json, frontier.csv, frontier_*.png");
     return 0;
 }

@@ -50,15 +50,15 @@ void jw_context_begin(struct jw *w, const struct cl_session *s, const char *buil
     jw_kv_str(w, "git_revision", brdf_git_revision);
     jw_kv_str(w, "host_cpu", host_cpu_name());
     jw_kv_int(w, "host_cores", sysconf(_SC_NPROCESSORS_ONLN));
-    if (s) {
-        jw_kv_str(w, "platform", s->platform_name);
-        jw_kv_str(w, "platform_version", s->platform_version);
-        jw_kv_str(w, "device", s->device_name);
-        jw_kv_str(w, "device_version", s->device_version);
-        jw_kv_str(w, "driver_version", s->driver_version);
-        jw_kv_int(w, "compute_units", s->compute_units);
-        jw_kv_bool(w, "fp64", s->has_fp64);
-    }
+    #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct cl_session, MEMBER, KEY)
+    static const struct jw_field device[] = {
+        F(JWF_TEXT, platform_name, "platform"), F(JWF_TEXT, platform_version, "platform_version"),
+        F(JWF_TEXT, device_name, "device"), F(JWF_TEXT, device_version, "device_version"),
+        F(JWF_TEXT, driver_version, "driver_version"), F(JWF_UINT, compute_units, "compute_units"),
+        F(JWF_BOOL, has_fp64, "fp64"),
+    };
+    #undef F
+    if (s) jw_kv_fields(w, s, JW_FIELDS(device));
     jw_kv_str(w, "build_options", build_options ? build_options : "");
 }
 

@@ -358,6 +358,12 @@ void accuracy_format_n(double n, char *buf, size_t len)
     }
 }
 
+#define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct accuracy_grid, MEMBER, KEY)
+const struct jw_field accuracy_grid_n_fields[ACCURACY_GRID_N_FIELDS] = {
+    F(JWF_NUM, n_min, "n_min"), F(JWF_NUM, n_max, "n_max"), F(JWF_NUM, n_step, "n_step"),
+};
+#undef F
+
 const char *accuracy_status(const struct accuracy_result *r)
 {
     return !r->ok ? "failed" : r->device_disagrees ? "device_disagrees" : r->invalid_count ? "invalid_values" : "ok";

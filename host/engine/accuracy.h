@@ -4,6 +4,8 @@
 #ifndef BRDF_ACCURACY_H
 #define BRDF_ACCURACY_H
 
+#include "jsonw.h"
+
 #include "clsession.h"
 #include "models.h"
 
@@ -30,6 +32,10 @@ struct accuracy_grid {
     double n_min, n_max, n_step;   /* n_min, n_min + step, ..., and n_max itself */
     long samples;                  /* per zone per n, a multiple of 16 */
 };
+
+/* n_min, n_max and n_step of a grid as every result document writes them (jw_kv_fields). */
+#define ACCURACY_GRID_N_FIELDS 3
+extern const struct jw_field accuracy_grid_n_fields[ACCURACY_GRID_N_FIELDS];
 
 /* One maximum with where it occurs. value is NAN when there is none (see status). */
 struct acc_extreme {

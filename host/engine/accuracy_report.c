@@ -32,9 +32,7 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
     if (count > 0) {
         const struct accuracy_grid *g = &res[0].grid;
         jw_kv_obj(&w, "grid");
-        jw_kv_num(&w, "n_min", g->n_min);
-        jw_kv_num(&w, "n_max", g->n_max);
-        jw_kv_num(&w, "n_step", g->n_step);
+        jw_kv_fields(&w, g, accuracy_grid_n_fields, ACCURACY_GRID_N_FIELDS);
         jw_kv_int(&w, "n_count", res[0].n_count);
         jw_kv_int(&w, "samples_per_zone", g->samples);
         jw_kv_str(&w, "epicentre", "s = 1 - cos x uniform over [0, s_e(n)], s_e(n) = 1 - exp(-0.511/n), both ends included");

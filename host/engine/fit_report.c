@@ -68,9 +68,7 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     struct jw w;
     jw_doc_begin(&w, FIT_SCHEMA, s, build_options);
     jw_kv_obj(&w, "grid");
-    jw_kv_num(&w, "n_min", r->grid.n_min);
-    jw_kv_num(&w, "n_max", r->grid.n_max);
-    jw_kv_num(&w, "n_step", r->grid.n_step);
+    jw_kv_fields(&w, &r->grid, accuracy_grid_n_fields, ACCURACY_GRID_N_FIELDS);
     jw_kv_int(&w, "n_count", r->n_count);
     jw_kv_int(&w, "samples_per_zone", r->grid.samples);
     jw_kv_str(&w, "figures", "max_rel / max_abs: the device sweep (brdfbench accuracy) polished in double");
@@ -191,9 +189,7 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
     struct jw w;
     jw_doc_begin(&w, FIT_FAMILY_SCHEMA, s, "");
     jw_kv_obj(&w, "grid");
-    jw_kv_num(&w, "n_min", r->grid.n_min);
-    jw_kv_num(&w, "n_max", r->grid.n_max);
-    jw_kv_num(&w, "n_step", r->grid.n_step);
+    jw_kv_fields(&w, &r->grid, accuracy_grid_n_fields, ACCURACY_GRID_N_FIELDS);
     jw_kv_int(&w, "samples_per_zone", r->grid.samples);
     jw_kv_str(&w, "figures", "host: every n of the grid, each zone on a grid polished with Brent, in double; "
                              "device: the accuracy sweep of the fitted model");

@@ -19,12 +19,13 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
 {
     struct jw w;
     jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
-    jw_kv_int(&w, "samples_per_zone", r->opt.samples);
-    jw_kv_int(&w, "reps", r->opt.reps);
-    jw_kv_int(&w, "rounds", r->opt.rounds);
-    jw_kv_num(&w, "min_time_s", r->opt.min_time);
-    jw_kv_int(&w, "image_width", r->opt.image_w);
-    jw_kv_int(&w, "image_height", r->opt.image_h);
+    #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct frontier_options, MEMBER, KEY)
+    static const struct jw_field options[] = {
+        F(JWF_LONG, samples, "samples_per_zone"), F(JWF_INT, reps, "reps"), F(JWF_INT, rounds, "rounds"),
+        F(JWF_NUM, min_time, "min_time_s"), F(JWF_INT, image_w, "image_width"), F(JWF_INT, image_h, "image_height"),
+    };
+    #undef F
+    jw_kv_fields(&w, &r->opt, JW_FIELDS(options));
     jw_obj_end(&w);
     jw_kv_obj(&w, "definitions");
     jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options, timed "

@@ -191,6 +191,14 @@ int gate_set_write_junit(const struct gate_set *gs, const char *path, const stru
     return rc;
 }
 
+/* A gate's measured figure, in the order gate.json holds it. */
+#define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct gate, MEMBER, KEY)
+static const struct jw_field figure_fields[] = {
+    F(JWF_NUM, measured, "measured"), F(JWF_NUM, at_n, "at_n"), F(JWF_NUM, at_x, "at_x"),
+    F(JWF_NUM, margin, "margin"), F(JWF_NUM, margin_rel, "margin_rel"), F(JWF_LLONG, invalid_count, "invalid_count"),
+};
+#undef F
+
 int gate_set_write_json(const struct gate_set *gs, const char *path, const struct cl_session *s, char *err,
                         size_t errlen)
 {
@@ -227,21 +235,14 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
         jw_kv_str(&w, "reference", g->model.info->reference_id);
         jw_kv_bool(&w, "user_model", models_runtime(g->model.info) != NULL);
         jw_kv_str(&w, "metric", gate_metric_name(g->metric));
-        jw_kv_num(&w, "n_min", g->grid.n_min);
-        jw_kv_num(&w, "n_max", g->grid.n_max);
-        jw_kv_num(&w, "n_step", g->grid.n_step);
+        jw_kv_fields(&w, &g->grid, accuracy_grid_n_fields, ACCURACY_GRID_N_FIELDS);
         jw_kv_int(&w, "samples", g->grid.samples);
         jw_key(&w, "min");
         g->has_min ? jw_num(&w, g->min) : jw_null(&w);
         jw_key(&w, "max");
         g->has_max ? jw_num(&w, g->max) : jw_null(&w);
         jw_kv_str(&w, "status", g->status == GATE_PASS ? "pass" : g->status == GATE_FAIL ? "fail" : "not_run");
-        jw_kv_num(&w, "measured", g->measured);
-        jw_kv_num(&w, "at_n", g->at_n);
-        jw_kv_num(&w, "at_x", g->at_x);
-        jw_kv_num(&w, "margin", g->margin);
-        jw_kv_num(&w, "margin_rel", g->margin_rel);
-        jw_kv_int(&w, "invalid_count", g->invalid_count);
+        jw_kv_fields(&w, g, JW_FIELDS(figure_fields));
         if (g->check.figure) {   /* set for the metrics a sweep measures */
             jw_kv_obj(&w, "device_check");
             jw_kv_str(&w, "status", g->check.exceeded ? "exceeded" : "ok");

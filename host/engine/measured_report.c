@@ -41,11 +41,13 @@ static void jw_fit(struct jw *w, const char *key, const struct measured_fit *f, 
     } else {
         jw_kv_num(w, "n", f->n);
     }
-    jw_kv_num(w, "ks", f->ks);
-    jw_kv_num(w, "kd", f->kd);
-    jw_kv_num(w, "rms", f->rms);
-    jw_kv_num(w, "rms_fit_cells", f->rms_fit);
-    jw_kv_int(w, "iterations", f->iterations);
+    #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct measured_fit, MEMBER, KEY)
+    static const struct jw_field fit[] = {
+        F(JWF_NUM, ks, "ks"), F(JWF_NUM, kd, "kd"), F(JWF_NUM, rms, "rms"), F(JWF_NUM, rms_fit, "rms_fit_cells"),
+        F(JWF_INT, iterations, "iterations"),
+    };
+    #undef F
+    jw_kv_fields(w, f, JW_FIELDS(fit));
     jw_obj_end(w);
 }
 
@@ -79,9 +81,13 @@ int measured_write_json(const char *path, const struct measured_report *r, const
         for (int c = 0; c < 3; ++c)
             jw_int(&w, m->negative[c]);
         jw_arr_end(&w);
-        jw_kv_int(&w, "below_horizon_cells", m->below_horizon);
-        jw_kv_int(&w, "used_cells", m->used_cells);
-        jw_kv_int(&w, "fit_cells", m->fit_cells);
+        #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct measured_material, MEMBER, KEY)
+        static const struct jw_field cells[] = {
+            F(JWF_LONG, below_horizon, "below_horizon_cells"), F(JWF_LONG, used_cells, "used_cells"),
+            F(JWF_LONG, fit_cells, "fit_cells"),
+        };
+        #undef F
+        jw_kv_fields(&w, m, JW_FIELDS(cells));
         jw_fit(&w, "blinn_phong", &m->fit[MFIT_BLINN], 0);
         jw_fit(&w, "ct_beckmann", &m->fit[MFIT_CT_BECKMANN], 1);
         jw_fit(&w, "ct_ggx", &m->fit[MFIT_CT_GGX], 1);

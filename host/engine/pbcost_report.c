@@ -33,6 +33,17 @@ static void jw_terms(struct jw *w, const char *key, const struct pbcost_result *
     (void)r;
 }
 
+/* A cost row's figures, in the order physical.json holds them. */
+#define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct pbcost_row, MEMBER, KEY)
+static const struct jw_field row_figures[] = {
+    F(JWF_LONG, iters, "iterations"), F(JWF_NUM, evals_per_launch, "evaluations_per_launch"),
+    F(JWF_NUM, med_s, "median_s"), F(JWF_NUM, min_s, "min_s"), F(JWF_NUM, max_s, "max_s"),
+    F(JWF_NUM, evals_per_s, "evaluations_per_s"), F(JWF_NUM, evals_per_s_median, "evaluations_per_s_median"),
+    F(JWF_NUM, ratio_to_fq2, "ratio_to_fq2"), F(JWF_NUM, ratio_to_phong, "ratio_to_phong"),
+    F(JWF_NUM, ratio_to_pow, "ratio_to_pow"), F(JWF_NUM, check_max_abs_of_peak, "check_max_abs_of_peak"),
+};
+#undef F
+
 int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r, char *err,
                       size_t errlen)
 {
@@ -56,17 +67,7 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
         jw_kv_str(&w, "model", row->name);
         jw_kv_str(&w, "evaluates", kind_names[row->kind]);
         jw_kv_bool(&w, "physically_based", row->physical);
-        jw_kv_int(&w, "iterations", row->iters);
-        jw_kv_num(&w, "evaluations_per_launch", row->evals_per_launch);
-        jw_kv_num(&w, "median_s", row->med_s);
-        jw_kv_num(&w, "min_s", row->min_s);
-        jw_kv_num(&w, "max_s", row->max_s);
-        jw_kv_num(&w, "evaluations_per_s", row->evals_per_s);
-        jw_kv_num(&w, "evaluations_per_s_median", row->evals_per_s_median);
-        jw_kv_num(&w, "ratio_to_fq2", row->ratio_to_fq2);
-        jw_kv_num(&w, "ratio_to_phong", row->ratio_to_phong);
-        jw_kv_num(&w, "ratio_to_pow", row->ratio_to_pow);
-        jw_kv_num(&w, "check_max_abs_of_peak", row->check_max_abs_of_peak);
+        jw_kv_fields(&w, row, JW_FIELDS(row_figures));
         jw_kv_int(&w, "check_points", PBCOST_CHECK_POINTS);
         jw_kv_str(&w, "status", row->status);
         if (row->physical) {

@@ -110,26 +110,32 @@ static int read_context(struct report_run_doc *r, char *err, size_t errlen)
     return 0;
 }
 
-static int read_steps(struct report_run_doc *r, char *err, size_t errlen)
+/* The array member `key` of run.json, each item checked by check. */
+static int read_items(const struct jr_doc *d, const char *key, const struct jr_value **arr,
+                      int (*check)(const struct jr_doc *, const struct jr_value *, char *, size_t), char *err,
+                      size_t errlen)
 {
-    const struct jr_doc *d = &r->doc;
-    if (jr_need(d, &d->root, "steps", JR_ARR, &r->steps, err, errlen)) return 2;
-    for (size_t i = 0; i < r->steps->count; i++) {
-        const struct jr_value *st = &r->steps->items[i];
-        const char *name, *status, *msg;
-        double secs, code;
-        if (jr_need_str(d, st, "name", &name, err, errlen) || jr_need_str(d, st, "status", &status, err, errlen) ||
-            jr_need_num(d, st, "seconds", &secs, err, errlen))
-            return 2;
-        if (strcmp(status, "ok") == 0 ? jr_need_str(d, st, "message", &msg, err, errlen)
-            : strcmp(status, "failed") == 0 ? jr_need_num(d, st, "exit_code", &code, err, errlen)
-                                            : jr_fail(d, st, err, errlen, "step status must be \"ok\" or \"failed\""))
-            return 2;
-        if (!(secs >= 0 && secs <= 1e9))
-            return jr_fail(d, st, err, errlen, "step \"seconds\" is %g (accepted: 0 to 1e9)", secs);
-        if (strcmp(status, "failed") == 0 && !(code >= 1 && code <= 255 && code == (int)code))
-            return jr_fail(d, st, err, errlen, "step \"exit_code\" is %g (accepted: a whole number from 1 to 255)", code);
-    }
+    if (jr_need(d, &d->root, key, JR_ARR, arr, err, errlen)) return 2;
+    for (size_t i = 0; i < (*arr)->count; i++)
+        if (check(d, &(*arr)->items[i], err, errlen)) return 2;
+    return 0;
+}
+
+static int check_step(const struct jr_doc *d, const struct jr_value *st, char *err, size_t errlen)
+{
+    const char *name, *status, *msg;
+    double secs, code;
+    if (jr_need_str(d, st, "name", &name, err, errlen) || jr_need_str(d, st, "status", &status, err, errlen) ||
+        jr_need_num(d, st, "seconds", &secs, err, errlen))
+        return 2;
+    if (strcmp(status, "ok") == 0 ? jr_need_str(d, st, "message", &msg, err, errlen)
+        : strcmp(status, "failed") == 0 ? jr_need_num(d, st, "exit_code", &code, err, errlen)
+                                        : jr_fail(d, st, err, errlen, "step status must be \"ok\" or \"failed\""))
+        return 2;
+    if (!(secs >= 0 && secs <= 1e9))
+        return jr_fail(d, st, err, errlen, "step \"seconds\" is %g (accepted: 0 to 1e9)", secs);
+    if (strcmp(status, "failed") == 0 && !(code >= 1 && code <= 255 && code == (int)code))
+        return jr_fail(d, st, err, errlen, "step \"exit_code\" is %g (accepted: a whole number from 1 to 255)", code);
     return 0;
 }
 
@@ -155,28 +161,23 @@ static int read_parts(struct report_run_doc *r, char *err, size_t errlen)
     return 0;
 }
 
-static int read_pictures(struct report_run_doc *r, char *err, size_t errlen)
+static int check_picture(const struct jr_doc *d, const struct jr_value *pic, char *err, size_t errlen)
 {
-    const struct jr_doc *d = &r->doc;
-    if (jr_need(d, &d->root, "pictures", JR_ARR, &r->pictures, err, errlen)) return 2;
-    for (size_t i = 0; i < r->pictures->count; i++) {
-        const struct jr_value *pic = &r->pictures->items[i];
-        const char *file, *section, *caption;
-        if (jr_need_str(d, pic, "file", &file, err, errlen) || jr_need_str(d, pic, "section", &section, err, errlen) ||
-            jr_need_str(d, pic, "caption", &caption, err, errlen))
-            return 2;
-        if (name_index(section_names, REPORT_SECTION_COUNT, section) < 0)
-            return jr_fail(d, pic, err, errlen, "unknown section \"%s\" (heatmaps, plots, throughput, images)", section);
-        /* the pictures of the run folder's top level, named as plots.json names them */
-        if (!plot_file_name_ok(file) || strlen(file) >= sizeof((struct report_picture *)0)->file) {
-            char shown[128];   /* a control character is shown as '?': the message stays one line */
-            size_t k = 0;
-            for (; file[k] && k < sizeof shown - 1; k++) shown[k] = (unsigned char)file[k] < 0x20 ? '?' : file[k];
-            shown[k] = '\0';
-            return jr_fail(d, pic, err, errlen, "picture file \"%s\" (accepted: NAME.png, a plain file name of letters, "
-                           "digits and ._-+=, not starting with '.', under %zu bytes)", shown,
-                           sizeof((struct report_picture *)0)->file);
-        }
+    const char *file, *section, *caption;
+    if (jr_need_str(d, pic, "file", &file, err, errlen) || jr_need_str(d, pic, "section", &section, err, errlen) ||
+        jr_need_str(d, pic, "caption", &caption, err, errlen))
+        return 2;
+    if (name_index(section_names, REPORT_SECTION_COUNT, section) < 0)
+        return jr_fail(d, pic, err, errlen, "unknown section \"%s\" (heatmaps, plots, throughput, images)", section);
+    /* the pictures of the run folder's top level, named as plots.json names them */
+    if (!plot_file_name_ok(file) || strlen(file) >= sizeof((struct report_picture *)0)->file) {
+        char shown[128];   /* a control character is shown as '?': the message stays one line */
+        size_t k = 0;
+        for (; file[k] && k < sizeof shown - 1; k++) shown[k] = (unsigned char)file[k] < 0x20 ? '?' : file[k];
+        shown[k] = '\0';
+        return jr_fail(d, pic, err, errlen, "picture file \"%s\" (accepted: NAME.png, a plain file name of letters, "
+                       "digits and ._-+=, not starting with '.', under %zu bytes)", shown,
+                       sizeof((struct report_picture *)0)->file);
     }
     return 0;
 }
@@ -207,7 +208,8 @@ int report_run_read(const char *run_dir, struct report_run_doc *r, char *err, si
              jr_need_str(d, &d->root, "folder", &r->folder, err, errlen) ||
              jr_need_num(d, &d->root, "wall_seconds", &r->wall_seconds, err, errlen) ||
              jr_need_str(d, &d->root, "images_note", &r->images_note, err, errlen) || read_context(r, err, errlen) ||
-             read_steps(r, err, errlen) || read_parts(r, err, errlen) || read_pictures(r, err, errlen);
+             read_items(d, "steps", &r->steps, check_step, err, errlen) || read_parts(r, err, errlen) ||
+             read_items(d, "pictures", &r->pictures, check_picture, err, errlen);
     if (rc) {
         jr_free(&r->doc);
         memset(r, 0, sizeof *r);

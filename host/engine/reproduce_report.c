@@ -77,13 +77,14 @@ char *reproduce_claims_markdown(const struct repro *p)
 
 static void jw_claim(struct jw *w, const struct claim *c)
 {
+    #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct claim, MEMBER, KEY)
+    static const struct jw_field head[] = {
+        F(JWF_TEXT, id, "id"), F(JWF_TEXT, kind, "kind"), F(JWF_TEXT, source, "source"), F(JWF_TEXT, text, "claim"),
+        F(JWF_TEXT, claimed_text, "claimed_text"), F(JWF_NUM, claimed, "claimed"),
+    };
+    #undef F
     jw_obj_begin(w);
-    jw_kv_str(w, "id", c->id);
-    jw_kv_str(w, "kind", c->kind);
-    jw_kv_str(w, "source", c->source);
-    jw_kv_str(w, "claim", c->text);
-    jw_kv_str(w, "claimed_text", c->claimed_text);
-    jw_kv_num(w, "claimed", c->claimed);
+    jw_kv_fields(w, c, JW_FIELDS(head));
     if (!isfinite(c->claimed))
         jw_kv_str(w, "claimed_reason", "not a single number (see claimed_text)");
     jw_kv_str(w, "measured_text", c->measured_text);
@@ -111,9 +112,12 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
     jw_obj_end(&w);
     jw_obj_end(&w);
     jw_kv_obj(&w, "summary");
-    jw_kv_int(&w, "rows", r->count);
-    jw_kv_int(&w, "reproduced", r->reproduced);
-    jw_kv_int(&w, "not_reproduced", r->not_reproduced);
+    #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct reproduce_report, MEMBER, KEY)
+    static const struct jw_field summary[] = {
+        F(JWF_INT, count, "rows"), F(JWF_INT, reproduced, "reproduced"), F(JWF_INT, not_reproduced, "not_reproduced"),
+    };
+    #undef F
+    jw_kv_fields(&w, r, JW_FIELDS(summary));
     jw_kv_str(&w, "tolerance_rule", "a printed number: within one unit of its last printed digit; otherwise as stated "
                                     "per row");
     jw_obj_end(&w);

@@ -179,3 +179,26 @@ int jw_write_file_free(struct jw *w, const char *path, char *err, size_t errlen)
     jw_free(w);
     return rc;
 }
+
+void jw_kv_fields(struct jw *w, const void *record, const struct jw_field *fields, size_t count)
+{
+    const char *base = record;
+    for (size_t i = 0; i < count; i++) {
+        const struct jw_field *f = &fields[i];
+        const char *at = base + f->offset;
+        switch (f->kind) {
+        case JWF_TEXT: jw_kv_str(w, f->key, at); break;
+        case JWF_TEXTP: {
+            const char *text = *(const char *const *)(const void *)at;
+            jw_kv_str(w, f->key, text ? text : "");
+            break;
+        }
+        case JWF_NUM: jw_kv_num(w, f->key, *(const double *)(const void *)at); break;
+        case JWF_INT: jw_kv_int(w, f->key, *(const int *)(const void *)at); break;
+        case JWF_UINT: jw_kv_int(w, f->key, *(const unsigned *)(const void *)at); break;
+        case JWF_LONG: jw_kv_int(w, f->key, *(const long *)(const void *)at); break;
+        case JWF_LLONG: jw_kv_int(w, f->key, *(const long long *)(const void *)at); break;
+        case JWF_BOOL: jw_kv_bool(w, f->key, *(const int *)(const void *)at); break;
+        }
+    }
+}

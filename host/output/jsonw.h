@@ -44,6 +44,28 @@ void jw_kv_obj(struct jw *w, const char *key);
 void jw_kv_arr(struct jw *w, const char *key);
 /* "key": [v[0], ..., v[count-1]] with jw_num. */
 void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count);
+/* A record's members written from a table: each row names the key, the member's C type and
+ * its offset, so a writer lists what a document holds instead of one call per member, and
+ * the keys come out in the table's order. */
+enum jw_field_kind {
+    JWF_TEXT,     /* char array member */
+    JWF_TEXTP,    /* const char * member (NULL: "") */
+    JWF_NUM,      /* double (null when not finite) */
+    JWF_INT,      /* int */
+    JWF_UINT,     /* unsigned int */
+    JWF_LONG,     /* long */
+    JWF_LLONG,    /* long long */
+    JWF_BOOL      /* int, 0 or not */
+};
+struct jw_field {
+    const char *key;
+    enum jw_field_kind kind;
+    size_t offset;
+};
+#define JW_FIELD(KIND, TYPE, MEMBER, KEY) { (KEY), (KIND), offsetof(TYPE, MEMBER) }
+#define JW_FIELDS(TABLE) (TABLE), (sizeof(TABLE) / sizeof((TABLE)[0]))
+void jw_kv_fields(struct jw *w, const void *record, const struct jw_field *fields, size_t count);
+
 /* Writes the buffer (plus a newline) atomically to path. Returns 0, or -1 with a message when out
  * of memory, when the write fails, or when the document is unbalanced (a container left open or
  * closed twice: a writer's bug, which never reaches the disk). */
