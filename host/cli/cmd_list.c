@@ -107,18 +107,13 @@ static int write_json(const char *path, const struct platform_entry *plat, int n
             jw_str(&w, m->root);
         else
             jw_null(&w);
-        jw_kv_arr(&w, "parameters");
-        for (int p = 0; p < m->nparams; ++p) {
-            jw_obj_begin(&w);
-            jw_kv_str(&w, "name", m->params[p].name);
-            jw_kv_num(&w, "min", m->params[p].min);
-            jw_kv_num(&w, "max", m->params[p].max);
-            jw_kv_num(&w, "default", m->params[p].def);
-            jw_kv_bool(&w, "integer", m->params[p].integer);
-            jw_kv_str(&w, "meaning", m->params[p].meaning);
-            jw_obj_end(&w);
-        }
-        jw_arr_end(&w);
+        #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct model_param, MEMBER, KEY)
+        static const struct jw_field param[] = {
+            F(JWF_TEXTP, name, "name"), F(JWF_NUM, min, "min"), F(JWF_NUM, max, "max"), F(JWF_NUM, def, "default"),
+            F(JWF_BOOL, integer, "integer"), F(JWF_TEXTP, meaning, "meaning"),
+        };
+        #undef F
+        jw_kv_records(&w, "parameters", m->params, (size_t)m->nparams, sizeof *m->params, JW_FIELDS(param));
         jw_obj_end(&w);
     }
     jw_arr_end(&w);

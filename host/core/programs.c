@@ -164,18 +164,27 @@ static int entry_add(struct cl_session *s, const char *kernel_file, const char *
     return 0;
 }
 
+/* The build a model needs beyond the shared program: a user model's, or in a session that
+ * specialises a built-in model's own. *e stays NULL when the shared program serves. */
+static int model_entry(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
+                       const struct model_spec *m, struct program_entry **e)
+{
+    const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
+    *e = NULL;
+    if (!rt && (!m || !s->specialise))
+        return 0;
+    struct model_spec ref;
+    model_reference_spec(m, &ref);
+    return entry_for(s, kernel_file, extra_before, options, rt, m->info->kernel_id, ref.info->kernel_id, e);
+}
+
 int programs_program(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
                      const struct model_spec *m, cl_program shared, cl_program *out)
 {
-    const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
+    struct program_entry *e;
     *out = shared;
-    if (!rt && (!m || !s->specialise))
-        return 0;
-    struct program_entry *e = NULL;
-    struct model_spec ref;
-    model_reference_spec(m, &ref);
-    int rc = entry_for(s, kernel_file, extra_before, options, rt, m->info->kernel_id, ref.info->kernel_id, &e);
-    if (rc)
+    int rc = model_entry(s, kernel_file, extra_before, options, m, &e);
+    if (rc || !e)
         return rc;
     *out = e->program;
     return programs_host(s, m);
@@ -184,15 +193,10 @@ int programs_program(struct cl_session *s, const char *kernel_file, const char *
 int programs_kernel(struct cl_session *s, const char *kernel_file, const char *options, const struct model_spec *m,
                     const char *kernel_name, cl_kernel shared, cl_kernel *out)
 {
-    const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
+    struct program_entry *e;
     *out = shared;
-    if (!rt && (!m || !s->specialise))
-        return 0;
-    struct program_entry *e = NULL;
-    struct model_spec ref;
-    model_reference_spec(m, &ref);
-    int rc = entry_for(s, kernel_file, NULL, options, rt, m->info->kernel_id, ref.info->kernel_id, &e);
-    if (rc)
+    int rc = model_entry(s, kernel_file, NULL, options, m, &e);
+    if (rc || !e)
         return rc;
     for (int k = 0; k < e->kernel_count; ++k)
         if (strcmp(e->kernels[k].name, kernel_name) == 0) {

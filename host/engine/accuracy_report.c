@@ -114,15 +114,7 @@ int accuracy_write_csv(const char *path, const struct accuracy_result *res, int 
                       p->invalid_count);
         }
     }
-    int rc;
-    if (b.failed) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        rc = -1;
-    } else {
-        rc = write_file_atomic(path, b.s, b.len, err, errlen);
-    }
-    md_free(&b);
-    return rc;
+    return md_write_file_free(&b, path, err, errlen);
 }
 
 void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count)

@@ -84,32 +84,24 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     jw_kv_str(&w, "what", "largest over the grid of the per-n minimax: no k(n) of the family does better "
                           "over this range");
     jw_obj_end(&w);
-    jw_kv_arr(&w, "limit");
-    for (long i = 0; i < r->n_count; ++i) {
-        jw_obj_begin(&w);
-        jw_kv_num(&w, "n", r->limit[i].n);
-        jw_kv_num(&w, "k", r->limit[i].k);
-        jw_kv_num(&w, "max_rel", r->limit[i].max_rel);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
+    static const struct jw_field limit[] = {
+        JW_FIELD(JWF_NUM, struct fit_limit, n, "n"), JW_FIELD(JWF_NUM, struct fit_limit, k, "k"),
+        JW_FIELD(JWF_NUM, struct fit_limit, max_rel, "max_rel"),
+    };
+    jw_kv_records(&w, "limit", r->limit, (size_t)r->n_count, sizeof *r->limit, JW_FIELDS(limit));
     jw_kv_obj(&w, "capped_at_fq2");
     jw_fit_model(&w, &r->at_fq2_cap);
     jw_obj_end(&w);
     jw_kv_obj(&w, "tradeoff");
     jw_kv_str(&w, "what", "best affine fit for caps on the attenuation's max Delta between fq2's and the uncapped "
                           "fit's (host double figures)");
-    jw_kv_arr(&w, "points");
-    for (int j = 0; j < r->tradeoff_count; ++j) {
-        jw_obj_begin(&w);
-        jw_kv_num(&w, "max_abs_cap", r->tradeoff[j].cap);
-        jw_kv_num(&w, "a", r->tradeoff[j].a);
-        jw_kv_num(&w, "b", r->tradeoff[j].b);
-        jw_kv_num(&w, "max_rel", r->tradeoff[j].max_rel);
-        jw_kv_num(&w, "max_abs", r->tradeoff[j].max_abs);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
+    #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct fit_affine, MEMBER, KEY)
+    static const struct jw_field point[] = {
+        F(JWF_NUM, cap, "max_abs_cap"), F(JWF_NUM, a, "a"), F(JWF_NUM, b, "b"), F(JWF_NUM, max_rel, "max_rel"),
+        F(JWF_NUM, max_abs, "max_abs"),
+    };
+    #undef F
+    jw_kv_records(&w, "points", r->tradeoff, (size_t)r->tradeoff_count, sizeof *r->tradeoff, JW_FIELDS(point));
     jw_obj_end(&w);
     jw_kv_arr(&w, "compare");
     if (r->main.have_sweep)

@@ -120,11 +120,7 @@ int frontier_write_csv(const char *path, const struct frontier_report *r, char *
         else
             md_printf(&b, "\n");
     }
-    int rc = b.failed ? -1 : write_file_atomic(path, b.s ? b.s : "", b.len, err, errlen);
-    if (b.failed)
-        snprintf(err, errlen, "%s: out of memory", path);
-    md_free(&b);
-    return rc;
+    return md_write_file_free(&b, path, err, errlen);
 }
 
 int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen)

@@ -66,41 +66,6 @@ void gate_set_print(FILE *f, const struct gate_set *gs)
             gs->sweeps_run);
 }
 
-/* Writes data to path: atomically for a file, in place for an existing device (e.g.
-   /dev/stdout, /dev/full), where a rename would replace the device itself. */
-static int write_output(const char *path, const char *data, size_t len, char *err, size_t errlen)
-{
-    struct stat st;
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
-        if (S_ISDIR(st.st_mode)) {
-            snprintf(err, errlen, "cannot write %s: it is a folder", path);
-            return -1;
-        }
-        int fd = open(path, O_WRONLY);
-        if (fd < 0) {
-            snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
-            return -1;
-        }
-        size_t done = 0;
-        while (done < len) {
-            ssize_t w = write(fd, data + done, len - done);
-            if (w < 0 && errno == EINTR)
-                continue;
-            if (w <= 0) {
-                snprintf(err, errlen, "cannot write %s: %s", path, w < 0 ? strerror(errno) : "nothing written");
-                close(fd);
-                return -1;
-            }
-            done += (size_t)w;
-        }
-        if (close(fd) != 0) {
-            snprintf(err, errlen, "cannot write %s: %s", path, strerror(errno));
-            return -1;
-        }
-        return 0;
-    }
-    return write_file_atomic(path, data, len, err, errlen);
-}
 
 
 /* Escaped text for an XML attribute or element; control characters (not allowed in XML 1.0)
@@ -180,15 +145,7 @@ int gate_set_write_junit(const struct gate_set *gs, const char *path, const stru
         md_printf(&b, "</system-out>\n    </testcase>\n");
     }
     md_printf(&b, "  </testsuite>\n</testsuites>\n");
-    int rc;
-    if (b.failed) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        rc = -1;
-    } else {
-        rc = write_output(path, b.s, b.len, err, errlen);
-    }
-    md_free(&b);
-    return rc;
+    return md_write_file_free(&b, path, err, errlen);
 }
 
 /* A gate's measured figure, in the order gate.json holds it. */
@@ -275,25 +232,5 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
     }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    int rc;
-    if (w.out.failed) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        rc = -1;
-    } else {
-        char *text = w.out.s;
-        size_t len = w.out.len;
-        /* jw_write_file adds a newline and writes atomically; a device file gets the same text. */
-        char *with_nl = malloc(len + 2);
-        if (!with_nl) {
-            snprintf(err, errlen, "%s: out of memory", path);
-            rc = -1;
-        } else {
-            memcpy(with_nl, text, len);
-            with_nl[len] = '\n';
-            rc = write_output(path, with_nl, len + 1, err, errlen);
-            free(with_nl);
-        }
-    }
-    jw_free(&w);
-    return rc;
+    return jw_write_file_free(&w, path, err, errlen);
 }

@@ -188,11 +188,7 @@ void jw_kv_fields(struct jw *w, const void *record, const struct jw_field *field
         const char *at = base + f->offset;
         switch (f->kind) {
         case JWF_TEXT: jw_kv_str(w, f->key, at); break;
-        case JWF_TEXTP: {
-            const char *text = *(const char *const *)(const void *)at;
-            jw_kv_str(w, f->key, text ? text : "");
-            break;
-        }
+        case JWF_TEXTP: jw_kv_str(w, f->key, *(const char *const *)(const void *)at); break;
         case JWF_NUM: jw_kv_num(w, f->key, *(const double *)(const void *)at); break;
         case JWF_INT: jw_kv_int(w, f->key, *(const int *)(const void *)at); break;
         case JWF_UINT: jw_kv_int(w, f->key, *(const unsigned *)(const void *)at); break;
@@ -201,4 +197,16 @@ void jw_kv_fields(struct jw *w, const void *record, const struct jw_field *field
         case JWF_BOOL: jw_kv_bool(w, f->key, *(const int *)(const void *)at); break;
         }
     }
+}
+
+void jw_kv_records(struct jw *w, const char *key, const void *records, size_t count, size_t stride,
+                   const struct jw_field *fields, size_t nfields)
+{
+    jw_kv_arr(w, key);
+    for (size_t i = 0; i < count; i++) {
+        jw_obj_begin(w);
+        jw_kv_fields(w, (const char *)records + i * stride, fields, nfields);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
 }

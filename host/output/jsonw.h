@@ -49,7 +49,7 @@ void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count);
  * the keys come out in the table's order. */
 enum jw_field_kind {
     JWF_TEXT,     /* char array member */
-    JWF_TEXTP,    /* const char * member (NULL: "") */
+    JWF_TEXTP,    /* const char * member (NULL: null) */
     JWF_NUM,      /* double (null when not finite) */
     JWF_INT,      /* int */
     JWF_UINT,     /* unsigned int */
@@ -65,6 +65,10 @@ struct jw_field {
 #define JW_FIELD(KIND, TYPE, MEMBER, KEY) { (KEY), (KIND), offsetof(TYPE, MEMBER) }
 #define JW_FIELDS(TABLE) (TABLE), (sizeof(TABLE) / sizeof((TABLE)[0]))
 void jw_kv_fields(struct jw *w, const void *record, const struct jw_field *fields, size_t count);
+/* "key": [ {fields of record 0}, {fields of record 1}, ... ] for count records stride bytes
+ * apart starting at records. */
+void jw_kv_records(struct jw *w, const char *key, const void *records, size_t count, size_t stride,
+                   const struct jw_field *fields, size_t nfields);
 
 /* Writes the buffer (plus a newline) atomically to path. Returns 0, or -1 with a message when out
  * of memory, when the write fails, or when the document is unbalanced (a container left open or

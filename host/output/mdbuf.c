@@ -1,5 +1,6 @@
 /* mdbuf.c - the growable text buffer (see mdbuf.h). */
 #include "mdbuf.h"
+#include "outdir.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -86,4 +87,12 @@ void md_embed(struct md_buf *b, const char *page)
         md_printf(b, "%.*s\n", (int)len, p);
         p += len + (nl ? 1 : 0);
     }
+}
+
+int md_write_file_free(struct md_buf *b, const char *path, char *err, size_t errlen)
+{
+    int rc = b->failed ? -1 : write_file_atomic(path, b->s ? b->s : "", b->len, err, errlen);
+    if (b->failed) snprintf(err, errlen, "%s: out of memory", path);
+    md_free(b);
+    return rc;
 }

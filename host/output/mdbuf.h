@@ -22,5 +22,8 @@ void md_cell_text(struct md_buf *b, const char *s);
  * every other heading goes one level down. */
 void md_embed(struct md_buf *b, const char *page);
 void md_free(struct md_buf *b);
+/* The text written to path by write_file_atomic (outdir.h), then the buffer freed; a buffer
+ * that ran out of memory is not written ("PATH: out of memory"). Returns 0 or -1. */
+int md_write_file_free(struct md_buf *b, const char *path, char *err, size_t errlen);
 
 #endif
