@@ -122,3 +122,26 @@ int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, co
     cli_temp_dir_remove(tmp_dir);
     return rc;
 }
+
+int cli_run_engine(struct cli_engine_run *e)
+{
+    struct cl_session s;
+    const int temp = e->json_path && !e->out_dir;
+    e->run_dir[0] = e->tmp_dir[0] = '\0';
+    int rc = cli_run_check_documents(e->cmd, e->json_path, NULL);
+    if (!rc)
+        rc = cli_run_open(e->cmd, &s, e->dev, e->out_dir, temp, e->run_dir, sizeof e->run_dir, e->tmp_dir,
+                          sizeof e->tmp_dir);
+    if (rc)
+        return rc;
+    e->quiet = e->quiet || cli_is_stdout(e->json_path);   /* the tables stay off a document on stdout */
+    rc = e->run(&s, e->run_dir, e->quiet, e->ctx);
+    if (!rc || (e->complete_on && rc == e->complete_on)) {
+        int frc = cli_run_finish(e->cmd, e->out_dir, e->tmp_dir, e->run_dir, e->document, e->json_path);
+        if (frc) rc = frc;
+    } else {
+        cli_temp_dir_remove(e->tmp_dir);
+    }
+    clsession_close(&s);
+    return rc;
+}

@@ -34,4 +34,25 @@ int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, cons
 int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir, const char *name,
                    const char *json_path);
 
+/* The contract of a measuring command that writes one document: its engine's run as a
+ * function of the session, the run folder and whether to keep its tables off standard output. */
+typedef int (*cli_engine_fn)(struct cl_session *s, const char *run_dir, int quiet, void *ctx);
+struct cli_engine_run {
+    const char *cmd;                   /* "frontier": messages start "brdfbench frontier: " */
+    const struct device_options *dev;
+    const char *out_dir, *json_path;   /* --out and --json (either may be NULL) */
+    const char *document;              /* the run folder's file --json delivers: "frontier.json" */
+    int quiet;                         /* --quiet; out: also set when --json goes to standard output */
+    int complete_on;                   /* an exit code besides 0 after which the folder is complete and
+                                          delivered (fit: EXIT_GATE_FAIL, its fit.json says why); 0: none */
+    cli_engine_fn run;
+    void *ctx;                         /* the engine's options */
+    char run_dir[4096], tmp_dir[512];  /* out: where the run was written; tmp_dir "" unless temporary */
+};
+/* Checks --json, opens the session and the run folder, runs the engine, points results/latest
+ * at the folder, delivers the document to --json, removes a temporary folder, closes the
+ * session. Every failure is reported as "brdfbench CMD: message". Returns the engine's exit
+ * code, or that of the step that failed. */
+int cli_run_engine(struct cli_engine_run *e);
+
 #endif

@@ -25,6 +25,11 @@ static int fit_call_objective(const char *flag, const char *value, void *dest, c
     return 0;
 }
 
+static int run_fit(struct cl_session *s, const char *run_dir, int quiet, void *opt)
+{
+    return fit_wants_family(opt) ? fit_family_run(s, run_dir, opt, quiet, NULL) : fit_run(s, run_dir, opt, quiet, NULL);
+}
+
 int cmd_fit(int argc, char **argv)
 {
     char err[1024];
@@ -75,35 +80,18 @@ int cmd_fit(int argc, char **argv)
     if (fit_options_check(&opt, err, sizeof err))
         goto usage_error;
 
-    struct cl_session s;
-    char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_check_documents("fit", json_path, NULL);
-    if (rc)
-        return rc;
-    rc = cli_run_open("fit", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
-                      sizeof tmp_dir);
-    if (rc)
-        return rc;
-    /* the summary stays off standard output when the document goes there */
-    int fit_quiet = quiet || cli_is_stdout(json_path);
-    if (fit_wants_family(&opt))
-        rc = fit_family_run(&s, run_dir, &opt, fit_quiet, NULL);
-    else
-        rc = fit_run(&s, run_dir, &opt, fit_quiet, NULL);
     /* exit 1 (no member meets the cap) still has a fit.json that says why */
-    int written = !rc || rc == EXIT_GATE_FAIL;
-    if (written && cli_run_latest("fit", out_dir, tmp_dir, run_dir))
-        rc = EXIT_RUNTIME;
-    if (written && json_path && cli_run_deliver("fit", run_dir, "fit.json", "--json", json_path))
-        rc = EXIT_RUNTIME;
-    cli_temp_dir_remove(tmp_dir);
-    if (written && !quiet && !cli_is_stdout(json_path)) {
-        if (!tmp_dir[0])
-            printf("written: %s/fit.json\n", run_dir);
+    struct cli_engine_run e = {
+        .cmd = "fit", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "fit.json",
+        .quiet = quiet, .complete_on = EXIT_GATE_FAIL, .run = run_fit, .ctx = &opt,
+    };
+    int rc = cli_run_engine(&e);
+    if ((!rc || rc == EXIT_GATE_FAIL) && !e.quiet) {
+        if (!e.tmp_dir[0])
+            printf("written: %s/fit.json\n", e.run_dir);
         if (json_path)
             printf("written: %s\n", json_path);
     }
-    clsession_close(&s);
     return rc;
 
 usage_error:

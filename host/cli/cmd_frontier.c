@@ -8,6 +8,11 @@
 #include <stdio.h>
 #include <string.h>
 
+static int run_frontier(struct cl_session *s, const char *run_dir, int quiet, void *opt)
+{
+    return frontier_run(s, opt, run_dir, quiet, NULL);
+}
+
 int cmd_frontier(int argc, char **argv)
 {
     char err[1024];
@@ -56,25 +61,14 @@ int cmd_frontier(int argc, char **argv)
     if (n < 0)
         goto usage_error;
     opt.model_count = n;
-    struct cl_session s;
-    char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_check_documents("frontier", json_path, NULL);
-    if (!rc)
-        rc = cli_run_open("frontier", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
-                          sizeof tmp_dir);
-    if (rc)
-        return rc;
-    /* the tables stay off standard output when the document goes there */
-    quiet = quiet || cli_is_stdout(json_path);
-    rc = frontier_run(&s, &opt, run_dir, quiet, NULL);
-    if (!rc)
-        rc = cli_run_finish("frontier", out_dir, tmp_dir, run_dir, "frontier.json", json_path);
-    else
-        cli_temp_dir_remove(tmp_dir);
-    if (!rc && !quiet && !tmp_dir[0])
-        printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", run_dir,
+    struct cli_engine_run e = {
+        .cmd = "frontier", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "frontier.json",
+        .quiet = quiet, .run = run_frontier, .ctx = &opt,
+    };
+    int rc = cli_run_engine(&e);
+    if (!rc && !e.quiet && !e.tmp_dir[0])
+        printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", e.run_dir,
                opt.image_w > 0 ? " and frontier_teapot/" : "");
-    clsession_close(&s);
     return rc;
 
 usage_error:

@@ -13,6 +13,28 @@
 #include <stdio.h>
 #include <string.h>
 
+/* The measurement and its files: measured.json and the slices' pictures in the run folder. */
+struct measured_job {
+    const struct measured_options *opt;
+    char **files;
+    int nfiles;
+    struct measured_report rep;
+};
+
+static int run_measured(struct cl_session *s, const char *run_dir, int quiet, void *ctx)
+{
+    struct measured_job *job = ctx;
+    char err[4600] = "", path[4300];
+    int rc = measured_run(s, job->files, job->nfiles, job->opt, quiet ? NULL : stderr, &job->rep, err, sizeof err);
+    if (!rc && (path_join(path, sizeof path, run_dir, "measured.json") ||
+                measured_write_json(path, &job->rep, s, err, sizeof err) ||
+                measured_write_plots(run_dir, &job->rep, err, sizeof err)))
+        rc = EXIT_RUNTIME;
+    if (rc && err[0])
+        fprintf(stderr, "brdfbench measured: %s\n", err);
+    return rc;
+}
+
 int cmd_measured(int argc, char **argv)
 {
     char err[4600];
@@ -71,44 +93,22 @@ int cmd_measured(int argc, char **argv)
         }
     opt.quiet = quiet;
 
-    struct cl_session s;
-    char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_open("measured", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
-                          sizeof tmp_dir);
-    if (rc) {
-        measured_paths_free(files, nfiles);
-        return rc;
-    }
-    int table_quiet = quiet || cli_is_stdout(json_path);
-    struct measured_report rep;
-    rc = measured_run(&s, files, nfiles, &opt, table_quiet ? NULL : stderr, &rep, err, sizeof err);
-    if (rc && err[0])
-        fprintf(stderr, "brdfbench measured: %s\n", err);
-    char path[4300];
-    if (!rc) {
-        path_join(path, sizeof path, run_dir, "measured.json");
-        if (measured_write_json(path, &rep, &s, err, sizeof err) ||
-            measured_write_plots(tmp_dir[0] ? tmp_dir : run_dir, &rep, err, sizeof err)) {
-            fprintf(stderr, "brdfbench measured: %s\n", err);
-            rc = EXIT_RUNTIME;
-        }
-    }
-    if (!rc && cli_run_latest("measured", out_dir, tmp_dir, run_dir))
-        rc = EXIT_RUNTIME;
-    if (!rc && json_path && cli_run_deliver("measured", run_dir, "measured.json", "--json", json_path))
-        rc = EXIT_RUNTIME;
-    cli_temp_dir_remove(tmp_dir);
+    struct measured_job job = { .opt = &opt, .files = files, .nfiles = nfiles };
+    struct cli_engine_run e = {
+        .cmd = "measured", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "measured.json",
+        .quiet = quiet, .run = run_measured, .ctx = &job,
+    };
+    int rc = cli_run_engine(&e);
     if (rc)
         outdir_remove_own_empty();
-    if (!rc && !table_quiet) {
-        measured_print(stdout, &rep);
-        if (!tmp_dir[0])
-            printf("written: %s/measured.json\n", run_dir);
+    if (!rc && !e.quiet) {
+        measured_print(stdout, &job.rep);
+        if (!e.tmp_dir[0])
+            printf("written: %s/measured.json\n", e.run_dir);
         if (json_path)
             printf("written: %s\n", json_path);
     }
-    clsession_close(&s);
-    measured_report_free(&rep);
+    measured_report_free(&job.rep);
     measured_paths_free(files, nfiles);
     return rc;
 }

@@ -10,6 +10,11 @@
 #include <stdio.h>
 #include <string.h>
 
+static int run_reproduce(struct cl_session *s, const char *run_dir, int quiet, void *opt)
+{
+    return reproduce_run_ex(s, run_dir, opt, quiet, NULL);
+}
+
 int cmd_reproduce(int argc, char **argv)
 {
     char err[1024];
@@ -57,24 +62,13 @@ int cmd_reproduce(int argc, char **argv)
     if (reproduce_options_check(&opt, err, sizeof err))
         goto usage_error;
 
-    struct cl_session s;
-    char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_check_documents("reproduce", json_path, NULL);
-    if (!rc)
-        rc = cli_run_open("reproduce", &s, &dev, out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir,
-                          sizeof tmp_dir);
-    if (rc)
-        return rc;
-    /* the verdicts stay off standard output when the document (claims.json) goes there */
-    quiet = quiet || cli_is_stdout(json_path);
-    rc = reproduce_run_ex(&s, run_dir, &opt, quiet, NULL);
-    if (!rc)
-        rc = cli_run_finish("reproduce", out_dir, tmp_dir, run_dir, "claims.json", json_path);
-    else
-        cli_temp_dir_remove(tmp_dir);
-    if (!rc && !quiet && !tmp_dir[0])
-        printf("written: %s/claims.json, claims.md, q_sweep.json%s\n", run_dir, opt.energy ? ", energy.json" : "");
-    clsession_close(&s);
+    struct cli_engine_run e = {
+        .cmd = "reproduce", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "claims.json",
+        .quiet = quiet, .run = run_reproduce, .ctx = &opt,
+    };
+    int rc = cli_run_engine(&e);
+    if (!rc && !e.quiet && !e.tmp_dir[0])
+        printf("written: %s/claims.json, claims.md, q_sweep.json%s\n", e.run_dir, opt.energy ? ", energy.json" : "");
     return rc;
 
 usage_error:
