@@ -123,6 +123,16 @@ int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, co
     return rc;
 }
 
+void cli_engine_init(struct cli_engine_run *e, const char *cmd, const char *document, cli_engine_fn run, void *ctx)
+{
+    memset(e, 0, sizeof *e);
+    e->cmd = cmd;
+    e->document = document;
+    e->run = run;
+    e->ctx = ctx;
+    device_options_init(&e->dev);
+}
+
 int cli_run_engine(struct cli_engine_run *e)
 {
     struct cl_session s;
@@ -130,7 +140,7 @@ int cli_run_engine(struct cli_engine_run *e)
     e->run_dir[0] = e->tmp_dir[0] = '\0';
     int rc = cli_run_check_documents(e->cmd, e->json_path, NULL);
     if (!rc)
-        rc = cli_run_open(e->cmd, &s, e->dev, e->out_dir, temp, e->run_dir, sizeof e->run_dir, e->tmp_dir,
+        rc = cli_run_open(e->cmd, &s, &e->dev, e->out_dir, temp, e->run_dir, sizeof e->run_dir, e->tmp_dir,
                           sizeof e->tmp_dir);
     if (rc)
         return rc;

@@ -39,7 +39,7 @@ int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, co
 typedef int (*cli_engine_fn)(struct cl_session *s, const char *run_dir, int quiet, void *ctx);
 struct cli_engine_run {
     const char *cmd;                   /* "frontier": messages start "brdfbench frontier: " */
-    const struct device_options *dev;
+    struct device_options dev;         /* the device flags */
     const char *out_dir, *json_path;   /* --out and --json (either may be NULL) */
     const char *document;              /* the run folder's file --json delivers: "frontier.json" */
     int quiet;                         /* --quiet; out: also set when --json goes to standard output */
@@ -49,6 +49,14 @@ struct cli_engine_run {
     void *ctx;                         /* the engine's options */
     char run_dir[4096], tmp_dir[512];  /* out: where the run was written; tmp_dir "" unless temporary */
 };
+/* The command's fields before its flags are read: no --out, --json or --quiet, the default device. */
+void cli_engine_init(struct cli_engine_run *e, const char *cmd, const char *document, cli_engine_fn run, void *ctx);
+/* The flags of every such command, writing into e: --out, --json, --quiet and the device flags
+ * (cli_table.h). */
+#define CLI_FLAGS_ENGINE(E)                                                                                        \
+    CLI_FLAG_OUT(&(E)->out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"), CLI_FLAG_JSON(&(E)->json_path), \
+        CLI_FLAG_QUIET(&(E)->quiet), CLI_FLAGS_DEVICE(&(E)->dev)
+
 /* Checks --json, opens the session and the run folder, runs the engine, points results/latest
  * at the folder, delivers the document to --json, removes a temporary folder, closes the
  * session. Every failure is reported as "brdfbench CMD: message". Returns the engine's exit

@@ -35,10 +35,9 @@ int cmd_fit(int argc, char **argv)
     char err[1024];
     struct fit_options opt;
     fit_options_default(&opt);
-    struct device_options dev;
-    device_options_init(&dev);
-    const char *out_dir = NULL, *json_path = NULL;
-    int quiet = 0;
+    struct cli_engine_run e;
+    cli_engine_init(&e, "fit", "fit.json", run_fit, &opt);
+    e.complete_on = EXIT_GATE_FAIL;   /* no member meets the cap: fit.json says why */
     const struct cli_flag flags[] = {
         CLI_FLAG_N_MIN(&opt.n_min),
         CLI_FLAG_N_MAX(&opt.n_max),
@@ -57,10 +56,7 @@ int cmd_fit(int argc, char **argv)
         { .name = "--max-rel", .value = "X", .kind = CLI_DOUBLE, .dest = &opt.max_rel_cap, .min = FIT_CAP_MIN,
           .max = 1.0, .def = "none", .help = "with --objective max_abs: cap on the epicentre's max delta" },
         CLI_FLAG_SAMPLES(&opt.samples),
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
-        CLI_FLAG_JSON(&json_path),
-        CLI_FLAG_QUIET(&quiet),
-        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_ENGINE(&e),
         CLI_FLAGS_USERMODEL,
     };
     const struct cli_command cmd = {
@@ -80,17 +76,12 @@ int cmd_fit(int argc, char **argv)
     if (fit_options_check(&opt, err, sizeof err))
         goto usage_error;
 
-    /* exit 1 (no member meets the cap) still has a fit.json that says why */
-    struct cli_engine_run e = {
-        .cmd = "fit", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "fit.json",
-        .quiet = quiet, .complete_on = EXIT_GATE_FAIL, .run = run_fit, .ctx = &opt,
-    };
     int rc = cli_run_engine(&e);
     if ((!rc || rc == EXIT_GATE_FAIL) && !e.quiet) {
         if (!e.tmp_dir[0])
             printf("written: %s/fit.json\n", e.run_dir);
-        if (json_path)
-            printf("written: %s\n", json_path);
+        if (e.json_path)
+            printf("written: %s\n", e.json_path);
     }
     return rc;
 

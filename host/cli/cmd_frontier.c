@@ -18,10 +18,9 @@ int cmd_frontier(int argc, char **argv)
     char err[1024];
     struct frontier_options opt;
     frontier_options_default(&opt);
-    struct device_options dev;
-    device_options_init(&dev);
-    const char *out_dir = NULL, *models_text = NULL, *json_path = NULL;
-    int quiet = 0;
+    struct cli_engine_run e;
+    cli_engine_init(&e, "frontier", "frontier.json", run_frontier, &opt);
+    const char *models_text = NULL;
     int models_given = 0, no_image = 0, rounds = opt.rounds, reps = opt.reps;
     const struct cli_flag flags[] = {
         CLI_FLAG_MODELS(&models_text, &models_given,
@@ -35,11 +34,8 @@ int cmd_frontier(int argc, char **argv)
           .help = "rounds over every model; a rate is the median of the rounds' medians, its spread their min..max" },
         { .name = "--no-image", .kind = CLI_SWITCH, .dest = CLI_DEST(int, &no_image), .set = 1,
           .help = "no teapot pass (no PSNR)" },
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
-        CLI_FLAG_JSON(&json_path),
-        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_ENGINE(&e),
         CLI_FLAGS_USERMODEL,
-        CLI_FLAGS_DEVICE(&dev),
     };
     const struct cli_command cmd = {
         .name = "frontier",
@@ -61,10 +57,6 @@ int cmd_frontier(int argc, char **argv)
     if (n < 0)
         goto usage_error;
     opt.model_count = n;
-    struct cli_engine_run e = {
-        .cmd = "frontier", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "frontier.json",
-        .quiet = quiet, .run = run_frontier, .ctx = &opt,
-    };
     int rc = cli_run_engine(&e);
     if (!rc && !e.quiet && !e.tmp_dir[0])
         printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", e.run_dir,

@@ -40,10 +40,11 @@ int cmd_measured(int argc, char **argv)
     char err[4600];
     struct measured_options opt;
     measured_options_default(&opt);
-    struct device_options dev;
-    device_options_init(&dev);
-    const char *out_dir = NULL, *json_path = NULL, *models = NULL;
-    int quiet = 0, models_given = 0;
+    struct measured_job job = { .opt = &opt };
+    struct cli_engine_run e;
+    cli_engine_init(&e, "measured", "measured.json", run_measured, &job);
+    const char *models = NULL;
+    int models_given = 0;
     const struct cli_flag flags[] = {
         { .name = "--fit-cells", .value = "N", .kind = CLI_LONG, .dest = CLI_DEST(long, &opt.fit_cells),
           .min = MEASURED_MIN_FIT_CELLS, .max = MEASURED_MAX_FIT_CELLS,
@@ -51,10 +52,7 @@ int cmd_measured(int argc, char **argv)
                   "every used cell" },
         CLI_FLAG_MODELS(&models, &models_given,
                         "every cheap lobe: the registry's approximations of cos^n, without the two-parameter families"),
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
-        CLI_FLAG_JSON(&json_path),
-        CLI_FLAG_QUIET(&quiet),
-        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_ENGINE(&e),
         CLI_FLAGS_USERMODEL,
     };
     const struct cli_command cmd = {
@@ -91,13 +89,10 @@ int cmd_measured(int argc, char **argv)
             measured_paths_free(files, nfiles);
             return cli_parse_exit(&cmd, EXIT_USAGE, err);
         }
-    opt.quiet = quiet;
+    opt.quiet = e.quiet;
 
-    struct measured_job job = { .opt = &opt, .files = files, .nfiles = nfiles };
-    struct cli_engine_run e = {
-        .cmd = "measured", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "measured.json",
-        .quiet = quiet, .run = run_measured, .ctx = &job,
-    };
+    job.files = files;
+    job.nfiles = nfiles;
     int rc = cli_run_engine(&e);
     if (rc)
         outdir_remove_own_empty();
@@ -105,8 +100,8 @@ int cmd_measured(int argc, char **argv)
         measured_print(stdout, &job.rep);
         if (!e.tmp_dir[0])
             printf("written: %s/measured.json\n", e.run_dir);
-        if (json_path)
-            printf("written: %s\n", json_path);
+        if (e.json_path)
+            printf("written: %s\n", e.json_path);
     }
     measured_report_free(&job.rep);
     measured_paths_free(files, nfiles);

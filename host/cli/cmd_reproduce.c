@@ -20,13 +20,10 @@ int cmd_reproduce(int argc, char **argv)
     char err[1024];
     struct reproduce_options opt;
     reproduce_options_default(&opt);
-    struct device_options dev;
-    device_options_init(&dev);
-    const char *out_dir = NULL, *json_path = NULL;
-    int quiet = 0;
+    struct cli_engine_run e;
+    cli_engine_init(&e, "reproduce", "claims.json", run_reproduce, &opt);
     const struct cli_flag flags[] = {
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
-        CLI_FLAG_JSON(&json_path),
+        CLI_FLAGS_ENGINE(&e),
         CLI_FLAG_SAMPLES_WHY(&opt.samples, ACC_MAX_SAMPLES / 2,
                              "a multiple of 16 in [16, 2097152]: half the 4194304 of other commands, since the "
                              "grid check reruns each claim sweep at twice N"),
@@ -40,8 +37,6 @@ int cmd_reproduce(int argc, char **argv)
           .help = "n step of the Q sweep" },
         { .name = "--no-energy", .kind = CLI_SWITCH, .dest = &opt.energy, .set = 0,
           .help = "skip the albedo and reciprocity checks" },
-        CLI_FLAG_QUIET(&quiet),
-        CLI_FLAGS_DEVICE(&dev),
     };
     const struct cli_command cmd = {
         .name = "reproduce",
@@ -62,10 +57,6 @@ int cmd_reproduce(int argc, char **argv)
     if (reproduce_options_check(&opt, err, sizeof err))
         goto usage_error;
 
-    struct cli_engine_run e = {
-        .cmd = "reproduce", .dev = &dev, .out_dir = out_dir, .json_path = json_path, .document = "claims.json",
-        .quiet = quiet, .run = run_reproduce, .ctx = &opt,
-    };
     int rc = cli_run_engine(&e);
     if (!rc && !e.quiet && !e.tmp_dir[0])
         printf("written: %s/claims.json, claims.md, q_sweep.json%s\n", e.run_dir, opt.energy ? ", energy.json" : "");
