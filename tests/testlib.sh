@@ -47,3 +47,10 @@ PY
     } >"$T/check_json.py"
     python3 "$T/check_json.py" "$file" "$@" && ok || bad "$what"
 }
+
+# jsoncheck CHECK FILE [ARGS...]: the named check of tests/jsoncheck.py on FILE; its exit status
+# (a failure prints the check's name, the file and what differed). Used as `jsoncheck ... && ok
+# || bad "what"`.
+jsoncheck() {
+    python3 "$SRC/tests/jsoncheck.py" "$@"
+}

@@ -18,6 +18,8 @@ void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(pri
 void md_append(struct md_buf *b, const char *text, size_t n);
 /* Text for a markdown table cell: '|' escaped, line breaks as spaces (NULL: nothing). */
 void md_cell_text(struct md_buf *b, const char *s);
+/* A CSV field (RFC 4180): the text in double quotes, each '"' in it doubled (NULL: ""). */
+void md_csv_text(struct md_buf *b, const char *s);
 void md_free(struct md_buf *b);
 
 #endif

@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""jsoncheck.py - the shell tests' checks of the JSON (and CSV) files brdfbench writes, by name.
+
+    python3 tests/jsoncheck.py CHECK FILE [ARGS...]
+
+Runs the check function CHECK on FILE (and the further files or values in ARGS); exits 0 when
+every assertion in it holds, else prints "FAIL CHECK FILE ARGS: what differed" (the assertion's
+message and its line here) on stderr and exits 1. A check's expected values come from the test
+(its arguments) or from a derivation written here, never from the program's output. JSON is
+parsed strictly by load() (a NaN or Infinity literal fails it) unless a check says otherwise.
+`python3 tests/jsoncheck.py --list` names the checks."""
+import csv
+import json
+import math
+import os
+import sys
+import traceback
+
+CHECKS = {}
+
+
+def check(fn):
+    CHECKS[fn.__name__] = fn
+    return fn
+
+
+def no_const(x):
+    raise ValueError("non-finite number in JSON: " + x)
+
+
+def load(path, strict=True):
+    with open(path) as f:
+        return json.load(f, parse_constant=no_const) if strict else json.load(f)
+
+
+def has_context(d, schema, keys):
+    assert d["schema"] == schema, d["schema"]
+    for k in keys:
+        assert k in d["context"], k
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.reader(f))
+
+
+# ---- --device all: the gathered CSV (tests/test_device_csv.sh) -------------------------------
+
+def device_tags(run):
+    """The tag of each device of a --device all run folder, derived from the devices' own
+    documents: the device's name, with " #k" (its place, from 1) where an earlier device of the
+    list has the same name."""
+    tags, names, k = [], [], 1
+    while os.path.isdir(f"{run}/devices/{k}"):
+        doc = [f for f in os.listdir(f"{run}/devices/{k}") if f.endswith(".json")]
+        assert doc, f"{run}/devices/{k} holds no JSON document"
+        name = load(f"{run}/devices/{k}/{sorted(doc)[0]}")["context"]["device"]
+        tags.append(name + (" #%d" % k if name in names else ""))
+        names.append(name)
+        k += 1
+    return tags
+
+
+@check
+def device_csv(gathered, run, name, ndevices):
+    """GATHERED (RUN/NAME or a copy) is the header `device` + the devices' header, then each
+    device's rows of RUN/devices/<k>/NAME in turn, each led by its tag, CSV-quoted (RFC 4180);
+    RUN has NDEVICES devices with that many distinct tags."""
+    tags = device_tags(run)
+    assert len(tags) == int(ndevices) == len(set(tags)), (tags, ndevices)
+    rows = read_csv(gathered)
+    per = [read_csv(f"{run}/devices/{k + 1}/{name}") for k in range(len(tags))]
+    for p in per:
+        assert p[0] == per[0][0], ("the devices' headers differ", p[0], per[0][0])
+    assert rows[0] == ["device"] + per[0][0], ("header", rows[0], per[0][0])
+    expected = [[t] + r for t, p in zip(tags, per) for r in p[1:]]
+    assert len(rows) - 1 == sum(len(p) - 1 for p in per), ("rows", len(rows) - 1, [len(p) - 1 for p in per])
+    assert rows[1:] == expected, ("rows differ", rows[1:3], expected[:2])
+    for t in tags:
+        assert any(r[0] == t for r in rows[1:]), ("no row of", t)
+    # the device column quoted in the text itself: "NAME" with each " doubled
+    with open(gathered, newline="") as f:
+        lines = f.read().split("\n")[1:]
+    quoted = {'"' + t.replace('"', '""') + '",' for t in tags}
+    for line in filter(None, lines):
+        assert any(line.startswith(q) for q in quoted), ("device not quoted", line[:80])
+
+
+@check
+def csv_device_tags(path, *tags):
+    """The first column of the CSV at PATH is `device`, and its values are TAGS, in that order
+    of first appearance, each with the same number of rows."""
+    rows = read_csv(path)
+    assert rows[0][0] == "device", rows[0]
+    seen = []
+    for r in rows[1:]:
+        if r[0] not in seen:
+            seen.append(r[0])
+    assert seen == list(tags), (seen, tags)
+    counts = [sum(r[0] == t for r in rows[1:]) for t in tags]
+    assert len(set(counts)) == 1 and counts[0] > 0, counts
+
+
+def main(argv):
+    if len(argv) == 2 and argv[1] == "--list":
+        print("\n".join(sorted(CHECKS)))
+        return 0
+    if len(argv) < 3 or argv[1] not in CHECKS:
+        print("usage: jsoncheck.py CHECK FILE [ARGS...]; checks: " + ", ".join(sorted(CHECKS)), file=sys.stderr)
+        return 2
+    if not __debug__:
+        print("jsoncheck.py: run without -O (its checks are assertions)", file=sys.stderr)
+        return 2
+    name, args = argv[1], argv[2:]
+    try:
+        CHECKS[name](*args)
+    except Exception as e:   # an assertion, or a member or file the check needs that is missing
+        here = [f for f in traceback.extract_tb(e.__traceback__) if f.filename == __file__]
+        where = here[-1]
+        what = f"{type(e).__name__}: {e}" if not isinstance(e, AssertionError) else (str(e) or "assertion")
+        print(f"FAIL {name} {' '.join(args)}: {what} (jsoncheck.py:{where.lineno}: {where.line})"[:2000],
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
