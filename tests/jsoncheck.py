@@ -101,6 +101,102 @@ def csv_device_tags(path, *tags):
     assert len(set(counts)) == 1 and counts[0] > 0, counts
 
 
+# ---- JSON Schemas (tests/test_machine_readable.sh) -------------------------------------------
+
+def schema_validators(folder):
+    """Every docs/schemas/*.schema.json, checked as a draft 2020-12 schema, by its schema string."""
+    import glob
+    import jsonschema   # python3-jsonschema (scripts/setup.sh)
+    out = {}
+    for f in sorted(glob.glob(folder + "/*.schema.json")):
+        sch = load(f)
+        jsonschema.Draft202012Validator.check_schema(sch)
+        kind = sch["properties"]["schema"]["const"]
+        assert os.path.basename(f) == kind.replace("/", "-") + ".schema.json", (f, kind, "file not named after its kind")
+        out[kind] = jsonschema.Draft202012Validator(sch)
+    return out
+
+
+@check
+def schema_docs(folder, *docs):
+    """Each document DOCS validates against the schema of FOLDER its "schema" string names."""
+    schemas = schema_validators(folder)
+    assert docs, "no document given"
+    for n in docs:
+        d = load(n)
+        assert d["schema"] in schemas, (n, d["schema"], "no schema file")
+        e = list(schemas[d["schema"]].iter_errors(d))
+        assert not e, (n, [(x.json_path, x.message[:200]) for x in e[:3]])
+
+
+def broken_copies(t):
+    """(what, document) pairs, each a document of folder T with one thing broken."""
+    import copy
+    docs = {}
+
+    def b(name):
+        if name not in docs:
+            docs[name] = load(f"{t}/{name}.json")
+        return copy.deepcopy(docs[name])
+    out = []
+
+    def add(what, d):
+        out.append((what, d))
+    d = b("acc"); d["results"][0]["epicentre"]["at_x"] = 3.2; add("x > pi/2", d)
+    d = b("acc"); del d["results"][0]["whole"]; add("no whole", d)
+    d = b("frontier"); d["models"][0]["on_front"] = "yes"; add("on_front a string", d)
+    d = b("throughput"); d["results"][0]["evals_per_s"]["median"] = -1; add("negative rate", d)
+    d = b("render"); del d["scenes"]; add("no scenes", d)
+    d = b("reproduce"); d["claims"] = []; add("no claims", d)
+    d = b("compare"); d["rows"][0]["sense"] = "faster"; add("bad sense", d)
+    d = b("list"); d["schema"] = "brdfbench.list/2"; add("wrong version", d)
+    d = b("fit"); d["status"] = "maybe"; add("fit: status not in its enum", d)
+    d = b("fit"); assert d["max_abs_cap"] is None; del d["max_abs_cap_reason"]; add("fit: a null cap without its reason", d)
+    d = b("fit"); d["compare"][0]["epicentre"]["at_x"] = 3.2; add("fit: x > pi/2", d)
+    d = b("fitfam"); del d["fit"]; add("fit_family: no fit", d)
+    d = b("fitfam"); d["objective"] = "speed"; add("fit_family: objective not in its enum", d)
+    d = b("gate"); d["gates"][0]["status"] = "passed"; add("gate: status not in its enum", d)
+    d = b("gate"); d["gates"][0]["measured"] = None; d["gates"][0].pop("reason", None); add("gate: null measured without a reason", d)
+    d = b("gates"); del d["gates"][0]["max"]; d["gates"][0].pop("min", None); add("gates: a gate without a bound", d)
+    d = b("q_sweep"); d["Q"][0] = 1.5; add("q_sweep: Q past 1", d)
+    d = b("energy"); d["albedo"]["models"][0]["energy_conserving"] = "no"; add("energy: a boolean made a string", d)
+    d = b("physical"); d["cost"]["rows"][0]["evaluations_per_s"] = -1; add("physical: negative rate", d)
+    d = b("physical"); d["cost"]["rows"][0]["status"] = "fine"; add("physical: status not in its enum", d)
+    d = b("measured"); d["materials"][0]["cells"] = 1000; add("measured: not a MERL table's cells", d)
+    d = b("measured"); d["materials"][0]["blinn_phong"]["status"] = "done"; add("measured: fit status not in its enum", d)
+    d = b("field"); d["epicentre_max_rel"]["x"] = 3.2; add("field: x > pi/2", d)
+    d = b("field"); del d["attenuation_abs"]; add("field: no attenuation_abs", d)
+    d = b("plots"); d["figures"][0]["kind"] = "pie"; add("plots: kind not in its enum", d)
+    d = b("plots"); d["figures"] = []; add("plots: no figures", d)
+    return out
+
+
+@check
+def schema_broken(folder, t):
+    """Every broken copy (broken_copies) of a document of folder T fails its schema (or names
+    none)."""
+    schemas = schema_validators(folder)
+    for what, d in broken_copies(t):
+        bad = d["schema"] not in schemas or list(schemas[d["schema"]].iter_errors(d))
+        assert bad, ("a broken document validates", what)
+
+
+@check
+def schemas_cover(schemas_h, folder):
+    """Every schema string of host/output/schemas.h has its file in FOLDER, but the older
+    versions kept only for the readers (a macro named *_SCHEMA_V<k>); and every file there is of
+    a string schemas.h defines."""
+    import re
+    defs = re.findall(r'^#define (\w+) "(brdfbench\.[a-z_]+/[0-9]+)"', open(schemas_h).read(), re.M)
+    assert len(defs) >= 17, ("too few schema strings found in schemas.h", defs)
+    files = set(os.listdir(folder))
+    current = {v for k, v in defs if not re.search(r"_V[0-9]+$", k)}
+    for v in sorted(current):
+        assert v.replace("/", "-") + ".schema.json" in files, (v, "has no schema file in", folder)
+    kinds = {f[: -len(".schema.json")].replace("-", "/") for f in files if f.endswith(".schema.json")}
+    assert kinds <= current, ("schema files of no current kind", sorted(kinds - current))
+
+
 def main(argv):
     if len(argv) == 2 and argv[1] == "--list":
         print("\n".join(sorted(CHECKS)))
