@@ -51,6 +51,7 @@ PY
 # jsoncheck CHECK FILE [ARGS...]: the named check of tests/jsoncheck.py on FILE; its exit status
 # (a failure prints the check's name, the file and what differed). Used as `jsoncheck ... && ok
 # || bad "what"`.
+BRDF_JSONCHECK="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/jsoncheck.py"
 jsoncheck() {
-    python3 "$SRC/tests/jsoncheck.py" "$@"
+    python3 "$BRDF_JSONCHECK" "$@"
 }
