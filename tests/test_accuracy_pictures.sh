@@ -17,12 +17,7 @@ rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "accuracy --models fq2 --model z: exit $rc: $(tail -3 "$T/err")"
 grep -q "user model 'z' (--model z) is not in --models: measured as well" "$T/err" && ok || bad "no note about z: $(cat "$T/err")"
-check_json "$T/a.json" "z is measured beside fq2" <<'PY'
-labels = [x["label"] for x in d["results"]]
-assert labels == ["fq2", "z"], labels
-z = d["results"][1]
-assert abs(z["epicentre"]["max_rel"] - 0.5) < 1e-12, z["epicentre"]
-PY
+jsoncheck accuracy_pictures_z_beside_fq2 "$T/a.json" && ok || bad "z is measured beside fq2"
 
 # 2. --pictures: heatmaps of both models and the two plots, the user model in them.
 "$BIN" accuracy --models fq2,z --model 'z=0.5*pow(c, n)' --n-min 2 --n-max 50 --samples 64 --pictures \
@@ -31,21 +26,8 @@ for f in field_fq2.json field_z.json heatmap_fq2.png heatmap_z.png plots.json ma
          max_abs_error_vs_n.png; do
     [ -s "$T/run/$f" ] && ok || bad "accuracy --pictures wrote no $f"
 done
-check_json "$T/run/field_z.json" "the field of z = 0.5 c^n has its closed-form peaks" <<'PY'
-assert d["model"] == "z" and d["reference"] == "phong", (d["model"], d["reference"])
-assert d["formula"] == "0.5*pow(c, n)" and d["lobe"] == "psi", (d["formula"], d["lobe"])
-assert abs(d["epicentre_max_rel"]["value"] - 0.5) < 1e-6, d["epicentre_max_rel"]
-assert abs(d["attenuation_max_abs"]["value"] - 0.5 * math.exp(-0.511)) < 1e-6, d["attenuation_max_abs"]
-assert d["grid"]["n_min"] == 2 and d["grid"]["n_max"] == 50, d["grid"]
-PY
-check_json "$T/run/plots.json" "both models in both plots" <<'PY'
-figs = {f["file"]: f for f in d["figures"]}
-for name in ("max_rel_error_epicentre_vs_n.png", "max_abs_error_vs_n.png"):
-    labels = [s["label"] for s in figs[name]["series"]]
-    assert "z" in labels and "fq2" in labels, (name, labels)
-z = [s for s in figs["max_rel_error_epicentre_vs_n.png"]["series"] if s["label"] == "z"][0]
-assert all(abs(v - 0.5) < 1e-6 for v in z["y"]), z["y"][:5]   # per-n figures plotted in float
-PY
+jsoncheck accuracy_pictures_field_z_closed_form "$T/run/field_z.json" && ok || bad "the field of z = 0.5 c^n has its closed-form peaks"
+jsoncheck accuracy_pictures_both_models_both_plots "$T/run/plots.json" && ok || bad "both models in both plots"
 
 # 3. plot and heatmap redraw it without the user model being defined.
 rm -f "$T/run/heatmap_z.png"

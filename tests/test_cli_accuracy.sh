@@ -10,52 +10,7 @@ brdf_test_init
 rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed, 1 skipped"; exit 77; fi
 [ $rc -eq 0 ] && ok || bad "small sweep exit $rc: $(cat "$T/err")"
-check_json "$T/run/accuracy.json" "accuracy.json contract" "${INDEP:?INDEP must name the tests/indep binary}" <<'PY'
-import subprocess
-has_context(d, "brdfbench.accuracy/1", ("date", "device", "platform_version", "build_options", "git_revision", "grid"))
-ctx = d["context"]
-assert ctx["grid"]["n_min"] == 2 and ctx["grid"]["n_max"] == 50 and ctx["grid"]["samples_per_zone"] == 256
-res = d["results"]
-assert [r["model"] for r in res] == ["cq2", "fq", "lyon"]
-assert res[1]["params"] == {"Q": 0.64} and res[2]["params"] == {"k": 3}
-# Each figure against tests/indep.c's brute force (grid + golden section over both zones of
-# every n, from the formulas written a second time in tests/lobe_formulas.h), with its n.
-out = subprocess.run([sys.argv[2], "maxima", "2", "50", "cq2", "fq:0.64", "lyon:3"], check=True,
-                     capture_output=True, text=True).stdout
-for r, b in zip(res, json.loads(out)):
-    assert r["n_min"] == 2 and r["n_max"] == 50
-    whole = max(b["att_max_abs"], b["epi_max_abs"])
-    for zone, metric, want in (("epicentre", "max_rel", b["max_rel"]), ("attenuation", "max_abs", b["att_max_abs"]),
-                               ("whole", "max_abs", whole)):
-        z = r[zone]
-        assert abs(z[metric] - want) <= 1e-7 * want, (r["model"], zone, z, want)
-        assert 2 <= z["at_n"] <= 50 and 0 <= z["at_x"] <= 1.5707963267948966 + 1e-12
-    assert r["epicentre"]["at_n"] == b["max_rel_n"] and r["attenuation"]["at_n"] == b["att_n"], (r, b)
-    # The device's grid samples the same function: never above the polished maximum beyond
-    # float rounding (1e-5 relative).
-    for zone, metric in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
-        assert r[zone]["grid_" + metric] <= r[zone][metric] * (1 + 1e-5), (r["model"], zone, r[zone])
-    # The whole range's max |error| is the larger of the two zones' (zones partition [0, pi/2]).
-    assert r["whole"]["max_abs"] >= r["attenuation"]["max_abs"]
-    assert r["check"]["in_4th_digit_units"] < 0.05
-# Both ends of the epicentre are grid points (README: x uniform over [0, x_e(n)], both ends
-# included). cq2's and lyon:k=3's delta grows up to the zone's end (the brute force puts their
-# maxima at x_e(n)), so there the grid holds the maximum itself, to float rounding.
-for r, b in zip(res, json.loads(out)):
-    xe = math.acos(math.exp(-0.511 / b["max_rel_n"]))
-    if abs(b["max_rel_x"] - xe) < 1e-9 * xe:
-        e = r["epicentre"]
-        assert abs(e["grid_max_rel"] - e["max_rel"]) <= 1e-5 * e["max_rel"], (r["model"], e)
-        assert abs(e["at_x"] - xe) <= 1e-9, (r["model"], e, xe)
-assert sum(1 for b in json.loads(out) if abs(b["max_rel_x"] - math.acos(math.exp(-0.511 / b["max_rel_n"]))) < 1e-9) == 2
-# cq2 at n = 50: its epicentre maximum is at the zone end (closed form: see test_accuracy.c);
-# the range maximum is at the largest n, where x_e = acos(exp(-0.511/50)).
-import math
-u = -math.expm1(-0.511 / 50)
-expect = 1 - (1 - 50 * u / 2) ** 2 / math.exp(-0.511)
-assert abs(res[0]["epicentre"]["max_rel"] - expect) < 1e-12, (res[0]["epicentre"], expect)
-assert res[0]["epicentre"]["at_n"] == 50
-PY
+jsoncheck cli_accuracy_accuracy_contract "$T/run/accuracy.json" "${INDEP:?INDEP must name the tests/indep binary}" && ok || bad "accuracy.json contract"
 # The CSV: a header and one row per model per n (49 values of n, 3 models).
 rows=$(($(wc -l <"$T/run/accuracy.csv") - 1))
 [ "$rows" -eq 147 ] && ok || bad "accuracy.csv has $rows rows, expected 147"
@@ -66,14 +21,7 @@ grep -q 'G points/s' "$T/table" && grep -q 'largest difference' "$T/table" && ok
 # invalid values are counted and located, not folded into a maximum (which is then 0 up to
 # rounding, since the model equals c^n wherever it is valid).
 "$BIN" accuracy --model 'negpart=c > 0.5 ? pow(c, n) : -1.0' --models negpart --n-max 20 --samples 256 --out "$T/neg" >/dev/null 2>"$T/err" && ok || bad "negpart sweep: $(cat "$T/err")"
-python3 - "$T/neg/accuracy.json" <<'PY' && ok || bad "invalid values folded into maxima"
-import json, math, sys
-r = json.load(open(sys.argv[1]))["results"][0]
-assert r["status"] == "invalid_values" and r["invalid"]["count"] > 0, r
-# the first invalid point lies past c = 0.5, i.e. x > pi/3
-assert r["invalid"]["at_x"] > math.pi / 3 - 1e-6, r["invalid"]
-assert r["attenuation"]["max_abs"] < 1e-6 and r["whole"]["max_abs"] < 1e-6, r
-PY
+jsoncheck cli_accuracy_invalid_values_folded_into_maxima "$T/neg/accuracy.json" && ok || bad "invalid values folded into maxima"
 
 # -h is --help after a command name too.
 "$BIN" accuracy -h >"$T/help" 2>&1 && grep -q '^usage: brdfbench accuracy' "$T/help" && ok || bad "accuracy -h"

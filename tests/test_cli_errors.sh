@@ -603,8 +603,8 @@ t 3 "^brdfbench throughput: --csv: folder nowhere does not exist" throughput --c
 t 3 "^brdfbench fit: --json: folder nowhere does not exist" fit --json nowhere/fit.json
 ln -sf nowhere/dangling.json dangling.json
 t 3 "^brdfbench accuracy: --json: folder nowhere does not exist" accuracy --json dangling.json
-t 2 "^brdfbench accuracy: --csv: the rows of several devices are gathered into accuracy.json only" accuracy --device all --csv x.csv
-t 2 "^brdfbench throughput: --csv: the rows of several devices are gathered into throughput.json only" throughput --device all --csv x.csv
+t 2 "^brdfbench render: --csv: render writes no CSV; the rows of several devices are gathered into render.json" render --device all --csv x.csv
+t 2 "^brdfbench accuracy: --json - and --csv -: one document at a time on standard output" accuracy --device all --json - --csv -
 # scene files: devices, folders, FIFOs, binary or huge files are refused before they are read
 mkfifo scene.fifo && truncate -s 300M sparse.pov && printf 'ply\n\000binary' >bin.pov
 t 2 "^brdfbench render: /dev/zero: cannot read: is a character device, not a regular file" render --scene teapot --teapot-file /dev/zero --out run

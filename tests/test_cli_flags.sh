@@ -35,37 +35,7 @@ done
 # 2. A flag that several commands take has one meaning: its help entry (continuation lines
 #    joined, the closing "(accepted values; default)" left out, since defaults may differ)
 #    is the same text in every command's --help.
-python3 - "$T" $COMMANDS <<'PY' && ok || bad "a flag reads differently in two commands' --help"
-import re, sys, collections
-folder, commands = sys.argv[1], sys.argv[2:]
-meaning = collections.defaultdict(dict)
-for c in commands:
-    entries, cur = [], None
-    for line in open(f"{folder}/help_{c}"):
-        m = re.match(r"^  (--[a-z0-9-]+)(?: \S+)?\s*(.*)$", line.rstrip("\n"))
-        if m:
-            cur = [m.group(1), m.group(2)]
-            entries.append(cur)
-        elif cur and line.startswith(" " * 21):
-            cur[1] = (cur[1] + " " + line.strip()).strip()
-        else:
-            cur = None
-    for name, text in entries:
-        text = re.sub(r"\s*\((?:[^()]|\([^()]*\))*\)$", "", text)   # the closing parenthesis
-        meaning[name][c] = text
-bad = 0
-for name, per in sorted(meaning.items()):
-    if len(set(per.values())) > 1:
-        bad = 1
-        print(f"{name} means different things: " + "; ".join(f"{c}: {t!r}" for c, t in per.items()), file=sys.stderr)
-# the flags the command line shares must be there, each in every command that runs sweeps
-for name in ["--n-min", "--n-max", "--n-step", "--samples", "--models", "--out", "--quiet"]:
-    for c in ["accuracy", "all"]:
-        if c not in meaning[name]:
-            bad = 1
-            print(f"{c} --help lacks {name}", file=sys.stderr)
-sys.exit(bad)
-PY
+jsoncheck cli_flags_help_flags_read_alike "$T" $COMMANDS && ok || bad "a flag reads differently in two commands' --help"
 
 # 3. --version after any command, and `brdfbench version`: the same one line.
 "$BIN" version >"$T/v0" 2>&1 && [ "$(wc -l <"$T/v0")" -eq 1 ] && grep -qE '^brdfbench [0-9]+\.[0-9]+' "$T/v0" && ok \
@@ -79,16 +49,7 @@ done
 #    (counted independently from the text form: one "  id  description" line per model).
 "$BIN" list --json - >"$T/list.json" 2>"$T/err" && ok || bad "list --json -: $(cat "$T/err")"
 "$BIN" list >"$T/list.txt" 2>&1
-python3 - "$T/list.json" "$T/list.txt" <<'PY' && ok || bad "list --json - differs from list"
-import json, re, sys
-d = json.load(open(sys.argv[1]))
-assert d["schema"] == "brdfbench.list/1", d["schema"]
-ids = [m["id"] for m in d["models"]]
-text_ids = re.findall(r"^  (\S+) +\S", open(sys.argv[2]).read().split("OpenCL platforms")[0], re.M)
-assert ids == text_ids, (ids, text_ids)
-fq = [m for m in d["models"] if m["id"] == "fq"][0]
-assert [p["name"] for p in fq["parameters"]] == ["Q"], fq
-PY
+jsoncheck cli_flags_list_json_as_list "$T/list.json" "$T/list.txt" && ok || bad "list --json - differs from list"
 "$BIN" list --json "$T/list2.json" >"$T/out" 2>&1 && cmp -s "$T/list.json" "$T/list2.json" && [ ! -s "$T/out" ] && ok \
     || bad "list --json FILE differs from list --json -"
 
@@ -101,21 +62,11 @@ GRID=(--n-min 2 --n-max 6 --samples 16)
 
 # 5. --json - and --csv -: the document alone on standard output (no table, no folder).
 "$BIN" accuracy --models fq2,cq2 "${GRID[@]}" --json - >"$T/acc.json" 2>"$T/err" && ok || bad "accuracy --json -: $(cat "$T/err")"
-python3 - "$T/acc.json" <<'PY' && ok || bad "accuracy --json - is not the accuracy document alone"
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert d["schema"].startswith("brdfbench.accuracy/"), d["schema"]
-assert [r["label"] for r in d["results"]] == ["fq2", "cq2"], [r["label"] for r in d["results"]]
-PY
+jsoncheck cli_flags_accuracy_json_stdout_alone "$T/acc.json" && ok || bad "accuracy --json - is not the accuracy document alone"
 [ ! -e results ] && ok || bad "accuracy --json - without --out made a run folder"
 "$BIN" accuracy --models fq2 "${GRID[@]}" --csv - >"$T/acc.csv" 2>"$T/err" && ok || bad "accuracy --csv -: $(cat "$T/err")"
 # the CSV alone: a header, then one row per n of the grid (2..6: 5 rows), all of fq2
-python3 - "$T/acc.csv" <<'PY' && ok || bad "accuracy --csv - is not the CSV alone: $(head -3 "$T/acc.csv")"
-import csv, sys
-rows = list(csv.reader(open(sys.argv[1])))
-assert len(rows) == 1 + 5, len(rows)
-assert all(len(r) == len(rows[0]) for r in rows), "ragged rows"
-PY
+jsoncheck cli_flags_accuracy_csv_stdout_alone "$T/acc.csv" && ok || bad "accuracy --csv - is not the CSV alone: $(head -3 "$T/acc.csv")"
 "$BIN" accuracy --models fq2 "${GRID[@]}" --json "$T/f.json" --out "$T/both" >/dev/null 2>"$T/err" \
     && [ -s "$T/f.json" ] && [ -s "$T/both/accuracy.json" ] && [ -s "$T/both/accuracy.csv" ] && ok \
     || bad "accuracy --json FILE --out DIR must write both: $(cat "$T/err")"
@@ -125,11 +76,7 @@ PY
 "$BIN" throughput --models fq2 --variants default --n-modes uniform --no-sweep --no-host-c --reps 1 --min-time 0.001 \
     --csv - >"$T/tp.csv" 2>"$T/err" && [ ! -e results ] && ok || bad "throughput --csv -: $(cat "$T/err")"
 # the CSV alone: a header and one row per model, pow() (every run's reference row) and fq2
-python3 - "$T/tp.csv" <<'PY' && ok || bad "throughput --csv - is not the CSV alone: $(cat "$T/tp.csv")"
-import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
-assert [r["model"] for r in rows] == ["pow", "fq2"], rows
-PY
+jsoncheck cli_flags_throughput_csv_stdout_alone "$T/tp.csv" && ok || bad "throughput --csv - is not the CSV alone: $(cat "$T/tp.csv")"
 printf '{"gates":[{"model":"fq2","metric":"whole.max_abs","n_min":2,"n_max":6,"samples":16,"max":1}]}' >gates.json
 "$BIN" gate gates.json --json - >"$T/gate.json" 2>"$T/err" && ok || bad "gate --json -: $(cat "$T/err")"
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["gates"][0]["status"] == "pass", d' "$T/gate.json" \
@@ -172,13 +119,7 @@ rc=$?
 rc=$?
 # (warnings may remain: the frontier step measures every lobe approximation, whatever --models says)
 [ $rc -eq 0 ] && [ ! -s "$T/out" ] && ! grep -qv 'warning' "$T/err" && ok || bad "all --quiet with grid flags: exit $rc: $(cat "$T/out" "$T/err")"
-python3 - "$T/all" <<'PY' && ok || bad "all did not apply the grid flags"
-import json, sys
-a = json.load(open(sys.argv[1] + "/accuracy.json"))["results"][0]
-assert (a["n_min"], a["n_max"]) == (3, 40), (a["n_min"], a["n_max"])
-f = json.load(open(sys.argv[1] + "/field_fq2.json"))["grid"]
-assert (f["n_min"], f["n_max"]) == (3, 40), f
-PY
+jsoncheck cli_flags_all_applies_grid_flags "$T/all" && ok || bad "all did not apply the grid flags"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

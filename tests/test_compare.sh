@@ -46,37 +46,14 @@ PY
 "$BIN" compare "$T/a" "$T/slow" --out "$T/c1" >"$T/table" 2>"$T/err"
 rc=$?
 [ $rc -eq 0 ] && ok || bad "compare a slow: exit $rc: $(cat "$T/err")"
-python3 - "$T/c1/compare.json" "$(cat "$T/slow/factor")" <<'PY' && ok || bad "scaled run: factor and verdicts"
-import json, math, sys
-def no_const(x): raise ValueError("non-finite number in JSON: " + x)
-d = json.load(open(sys.argv[1]), parse_constant=no_const)
-f = float(sys.argv[2])
-assert d["schema"] == "brdfbench.compare/1"
-assert [r["name"] for r in d["runs"]] == ["a", "slow"]
-rows = [r for r in d["rows"] if r["kind"] == "throughput" and r["model"] != "peak"]
-assert len(rows) == 2 * 4, len(rows)   # pow, cq2, fq2, phong x uniform, varying
-for r in rows:
-    base, cand = r["cells"]
-    assert base["verdict"] == "baseline" and math.isclose(base["ratio"], 1.0)
-    assert math.isclose(cand["ratio"], f, rel_tol=1e-12), (r["key"], cand["ratio"], f)
-    # 5 repetitions each, fully separated: exact two-sided p = 2 / C(10, 5) = 2/252
-    assert cand["verdict"] == "slower", (r["key"], cand)
-    assert math.isclose(cand["p"], 2 / 252, rel_tol=1e-12), cand["p"]
-print("factor %.4g reported on %d rows" % (f, len(rows)))
-PY
+jsoncheck compare_scaled_run_factor_verdicts "$T/c1/compare.json" "$(cat "$T/slow/factor")" && ok || bad "scaled run: factor and verdicts"
 grep -q "slower" "$T/table" && grep -q "cq2 | default | n uniform" "$T/table" && ok || bad "table lacks the rows: $(head -30 "$T/table")"
 for f in compare.md compare.csv compare.json compare.png; do
     [ -s "$T/c1/$f" ] && ok || bad "$f not written"
 done
 head -c 8 "$T/c1/compare.png" | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a" && ok || bad "compare.png is not a PNG"
 # CSV: one line per row and run, the ratio column as in the JSON
-python3 - "$T/c1/compare.csv" <<'PY' && ok || bad "compare.csv"
-import csv, sys
-rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["key"] != "peak (reference kernel)"]
-assert len(rows) == 2 * 8, len(rows)
-assert {r["run"] for r in rows} == {"a", "slow"}
-assert all(r["verdict"] == "slower" for r in rows if r["run"] == "slow")
-PY
+jsoncheck compare_csv_rows "$T/c1/compare.csv" && ok || bad "compare.csv"
 
 # --fail-if-slower: the factor is far below 0.5, so 40% fails and names the rows; 100% cannot
 expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.[0-9]+x the baseline" compare "$T/a" "$T/slow" --out "$T/c2" --fail-if-slower 40
@@ -85,30 +62,12 @@ expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.[0-9]+x the ba
 # the other way round every row is faster and nothing fails
 "$BIN" compare "$T/slow" "$T/a" --out "$T/c4" --fail-if-slower 0 --quiet 2>"$T/err" && ok ||
     bad "faster run failed --fail-if-slower 0: $(cat "$T/err")"
-python3 - "$T/c4/compare.json" <<'PY' && ok || bad "reversed: faster"
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert all(r["cells"][1]["verdict"] == "faster" for r in d["rows"] if r["model"] != "peak"), d["rows"]
-PY
+jsoncheck compare_reversed_faster "$T/c4/compare.json" && ok || bad "reversed: faster"
 
 # ---- a run against itself --------------------------------------------------------------
 "$BIN" compare "$T/a" "$T/a" --out "$T/self" --quiet --fail-if-slower 0 2>"$T/err" && ok ||
     bad "a against itself: $(cat "$T/err")"
-python3 - "$T/self/compare.json" <<'PY' && ok || bad "self: ratio 1 and same"
-import json, math, sys
-d = json.load(open(sys.argv[1]))
-# the model rows and the run's peak (its reference kernel) as a row of its own
-assert len(d["rows"]) == 8 + 1 and d["rows"][0]["key"] == "peak (reference kernel)", [r["key"] for r in d["rows"]]
-for r in d["rows"]:
-    c = r["cells"][1]
-    # identical repetitions: every value tied with its copy, U = 12.5 = E U, p = 1, ratio 1;
-    # "same" when the ratio's interval lies within the threshold's band (compare.h; here 0, from
-    # --fail-if-slower 0), "noisy" when the run's own spread makes it wider than the band
-    assert c["ratio"] == 1.0 and c["p"] == 1.0, (r["key"], c)
-    wide = math.log(c["ratio_ci_hi"]) - math.log(c["ratio_ci_lo"]) > 2 * math.log1p(d["threshold"])
-    assert c["verdict"] == ("noisy" if wide else "same"), (r["key"], c)
-assert d["runs"][1]["context_differs"] == [], d["runs"][1]["context_differs"]
-PY
+jsoncheck compare_self_ratio_1_same "$T/self/compare.json" && ok || bad "self: ratio 1 and same"
 
 # ---- too few repetitions: with 3 per side the smallest two-sided p is 2/20 = 0.1 > 0.05 ---------
 python3 - "$T/a/throughput.json" "$T/slow/throughput.json" "$T/few_a" "$T/few_slow" <<'PY' || bad "making 3-rep runs"
@@ -123,44 +82,12 @@ for src, dst in ((sys.argv[1], sys.argv[3]), (sys.argv[2], sys.argv[4])):
 PY
 "$BIN" compare "$T/few_a" "$T/few_slow" --out "$T/few" --quiet --fail-if-slower 0 2>"$T/err" && ok ||
     bad "undecided rows must not fail --fail-if-slower: $(cat "$T/err")"
-python3 - "$T/few/compare.json" <<'PY' && ok || bad "3 repetitions: undecided"
-import json, math, sys
-d = json.load(open(sys.argv[1]))
-for r in d["rows"]:
-    if r["model"] == "peak":
-        continue
-    c = r["cells"][1]
-    # fully separated, yet p = 2/20: the test cannot reach 0.05 with these sizes
-    assert c["verdict"] == "undecided" and math.isclose(c["p"], 0.1), (r["key"], c)
-PY
+jsoncheck compare_3_repetitions_undecided "$T/few/compare.json" && ok || bad "3 repetitions: undecided"
 
 # ---- two real runs: matched, the Hodges-Lehmann ratio of the normalised rates per CPU second
 # (recomputed here: the median of the 25 ratios b_j / a_i); the share of "same" is reported ----
 "$BIN" compare "$T/a" "$T/a2" --out "$T/real" --quiet 2>"$T/err" && ok || bad "a against a2: $(cat "$T/err")"
-python3 - "$T/real/compare.json" "$T/a/throughput.json" "$T/a2/throughput.json" <<'PY' && ok || bad "two real runs"
-import json, math, sys
-d, a, b = (json.load(open(p)) for p in sys.argv[1:4])
-med = lambda doc: {(r["label"], r["variant"], r["n_mode"]): r["normalised_cpu_reps"] for r in doc["results"]}
-ma, mb = med(a), med(b)
-def hl_ratio(x, y):
-    q = sorted(math.log(u) - math.log(v) for u in x for v in y)
-    n = len(q)
-    return math.exp(q[n // 2] if n % 2 else 0.5 * (q[n // 2 - 1] + q[n // 2]))
-rows = [r for r in d["rows"] if r["model"] != "peak"]
-assert len(rows) == len(ma) == len(mb) == 8
-verdicts = []
-for r in rows:
-    label, variant, mode = [s.strip() for s in r["key"].split("|")]
-    key = (label, variant, mode.replace("n ", ""))
-    c = r["cells"][1]
-    assert math.isclose(c["ratio"], hl_ratio(mb[key], ma[key]), rel_tol=1e-12), (key, c["ratio"])
-    assert c["basis"] == "normalised per CPU second", c["basis"]
-    assert c["verdict"] in ("same", "faster", "slower", "noisy"), c["verdict"]
-    assert 0 < c["p"] <= 1
-    verdicts.append(c["verdict"])
-print("two real runs: %d of %d rows same (%s)" % (verdicts.count("same"), len(verdicts),
-      ", ".join("%s %d" % (v, verdicts.count(v)) for v in sorted(set(verdicts)))))
-PY
+jsoncheck compare_two_real_runs "$T/real/compare.json" "$T/a/throughput.json" "$T/a2/throughput.json" && ok || bad "two real runs"
 
 # ---- rows in only some runs ----------------------------------------------------------------
 python3 - "$T/a/throughput.json" "$T/mixed" <<'PY' || bad "making the mismatched run"
@@ -174,17 +101,7 @@ os.makedirs(sys.argv[2])
 json.dump(d, open(os.path.join(sys.argv[2], "throughput.json"), "w"))
 PY
 "$BIN" compare "$T/a" "$T/mixed" --out "$T/mix" >"$T/table" 2>"$T/err" && ok || bad "mismatched: $(cat "$T/err")"
-python3 - "$T/mix/compare.json" <<'PY' && ok || bad "mismatched rows listed"
-import json, sys
-d = json.load(open(sys.argv[1]))
-by = {r["key"]: r for r in d["rows"]}
-assert len(d["rows"]) == 8 + 1 + 1, len(d["rows"])   # 6 shared, 2 phong, 1 lyon, the peak
-for k in ("phong | default | n uniform", "phong | default | n varying"):
-    assert not by[k]["in_all_runs"] and by[k]["cells"][1]["status"] == "missing" and by[k]["cells"][1]["verdict"] == "missing"
-lyon = by["lyon:k=3 | default | n varying"]   # a copy of the last row, fq2 with n varying
-assert lyon["cells"][0]["status"] == "missing" and lyon["cells"][1]["status"] == "ok"
-assert sum(r["in_all_runs"] for r in d["rows"]) == 6 + 1
-PY
+jsoncheck compare_mismatched_rows_listed "$T/mix/compare.json" && ok || bad "mismatched rows listed"
 grep -q "rows found in only some of the runs" "$T/table" && grep -q "phong | default | n uniform .*(not in this run)" "$T/table" &&
     ok || bad "table does not list the unmatched rows"
 
@@ -202,27 +119,7 @@ os.makedirs(sys.argv[2])
 json.dump(d, open(os.path.join(sys.argv[2], "accuracy.json"), "w"))
 PY
 expect 1 "cq2 .*epicentre.max_rel" compare "$T/acc" "$T/acc2" --out "$T/c5" --fail-if-less-accurate
-python3 - "$T/c5/compare.json" "$T/acc/accuracy.json" "$T/acc2/accuracy.json" <<'PY' && ok || bad "accuracy verdicts"
-import json, math, sys
-d, a, b = (json.load(open(p)) for p in sys.argv[1:4])
-val = lambda doc, label, fig: [r for r in doc["results"] if r["label"] == label][0][fig.split(".")[0]][fig.split(".")[1]]
-seen = 0
-for r in d["rows"]:
-    label = r["key"].split(" | ")[0]
-    va, vb = val(a, label, r["metric"]), val(b, label, r["metric"])
-    c = r["cells"][1]
-    # the 4th significant digit, as printed with 4 digits
-    same = "%.3e" % va == "%.3e" % vb
-    want = "unchanged" if same else ("changed, better" if vb < va else "changed, worse")
-    assert c["verdict"] == want, (r["key"], r["metric"], c["verdict"], want)
-    assert math.isclose(c["change"], vb - va, rel_tol=1e-9, abs_tol=1e-300), (c["change"], vb - va)
-    seen += 1
-assert seen == 6, seen
-verd = {(r["key"].split(" | ")[0], r["metric"]): r["cells"][1]["verdict"] for r in d["rows"]}
-assert verd[("cq2", "epicentre.max_rel")] == "changed, worse"
-assert verd[("cq2", "attenuation.max_abs")] == "changed, better"
-assert verd[("fq2", "epicentre.max_rel")] == "unchanged"
-PY
+jsoncheck compare_accuracy_verdicts "$T/c5/compare.json" "$T/acc/accuracy.json" "$T/acc2/accuracy.json" && ok || bad "accuracy verdicts"
 "$BIN" compare "$T/acc" "$T/acc2" --out "$T/c6" --quiet 2>"$T/err" && ok || bad "without the flag a change exits 0"
 # the better direction does not fail
 "$BIN" compare "$T/acc2" "$T/acc" --out "$T/c7" --quiet --fail-if-less-accurate 2>"$T/err"
@@ -263,34 +160,9 @@ for name, scale in (("r4", 1.0), ("r5", 2.0), ("r6", 1.0)):
 json.dump(frontier(0.5, 0.012600), open(os.path.join(t, "f2.json"), "w"))
 PY
 "$BIN" compare "$T/r1" "$T/r2" "$T/r3" --out "$T/c8" --quiet 2>"$T/err" && ok || bad "render: $(cat "$T/err")"
-python3 - "$T/c8/compare.json" <<'PY' && ok || bad "render verdicts"
-import json, math, sys
-d = json.load(open(sys.argv[1]))
-by = {(r["key"], r["metric"]): r for r in d["rows"]}
-sp = by[("spheres | cq2", "mpixel_per_s@96x54")]["cells"]
-# r2 takes twice as long: ratio 1/2, ranges [1.8, 2.2] ms vs [0.9, 1.1] ms apart: slower;
-# r3 at 1.05 ms overlaps r1's range: same
-assert math.isclose(sp[1]["ratio"], 0.5) and sp[1]["verdict"] == "slower", sp[1]
-assert math.isclose(sp[2]["ratio"], 1 / 1.05) and sp[2]["verdict"] == "same", sp[2]
-ps = by[("spheres 96x54 | cq2", "psnr_db")]["cells"]
-assert ps[1]["verdict"] == "changed, worse" and math.isclose(ps[1]["change"], -1.0), ps[1]
-assert ps[2]["verdict"] == "unchanged"
-assert ("spheres 96x54 | phong", "psnr_db") not in by   # infinite PSNR of identical images: no row
-assert by[("spheres 96x54 | phong", "max_abs")]["cells"][1]["verdict"] == "unchanged"
-PY
+jsoncheck compare_render_verdicts "$T/c8/compare.json" && ok || bad "render verdicts"
 "$BIN" compare "$T/r4" "$T/r5" "$T/r6" --out "$T/c10" --quiet 2>"$T/err" && ok || bad "render with reps: $(cat "$T/err")"
-python3 - "$T/c10/compare.json" <<'PY' && ok || bad "render verdicts from the launches' rates"
-import json, math, sys
-d = json.load(open(sys.argv[1]))
-sp = {(r["key"], r["metric"]): r for r in d["rows"]}[("spheres | cq2", "mpixel_per_s@96x54")]["cells"]
-# the rank test on 5 rates each: r5's all below r4's: p = 2 / C(10, 5) = 2/252 (exact two-sided);
-# r6's the same values as r4's: p = 1, ratio 1, but its interval (5 vs 5 at 0.05: the 3rd
-# smallest and largest of the 25 ratios m_j / m_i of (0.9, 0.95, 1, 1.05, 1.1): 0.95 / 1.1 and
-# 1.1 / 0.95) is wider than the 10% band: noisy
-assert sp[1]["verdict"] == "slower" and math.isclose(sp[1]["p"], 2 / 252), sp[1]
-assert sp[2]["verdict"] == "noisy" and sp[2]["p"] == 1.0, sp[2]
-assert math.isclose(sp[2]["ratio_ci_lo"], 0.95 / 1.1) and math.isclose(sp[2]["ratio_ci_hi"], 1.1 / 0.95), sp[2]
-PY
+jsoncheck compare_render_verdicts_from_launches_rates "$T/c10/compare.json" && ok || bad "render verdicts from the launches' rates"
 # a rates array that is not numbers: exit 2 naming the file
 python3 - "$T" <<'PY'
 import json, os, sys
@@ -303,17 +175,7 @@ PY
 expect 2 "r7/render.json:[0-9]+:[0-9]+: " compare "$T/r4" "$T/r7" --out "$T/c11" --quiet
 "$BIN" compare "$T/f1.json" "$T/f2.json" --out "$T/c9" --quiet --fail-if-slower 10 2>"$T/err"
 [ $? -eq 1 ] && grep -q "fq2" "$T/err" && ok || bad "frontier: fq2 at half the rate must fail: $(cat "$T/err")"
-python3 - "$T/c9/compare.json" <<'PY' && ok || bad "frontier rows"
-import json, math, sys
-d = json.load(open(sys.argv[1]))
-by = {(r["key"], r["metric"]): r["cells"][1] for r in d["rows"]}
-assert math.isclose(by[("fq2", "evals_per_s")]["ratio"], 0.5)
-assert by[("fq2", "evals_per_s")]["verdict"] == "slower"           # 5 reps each, apart: p = 2/252
-assert math.isclose(by[("fq2", "evals_per_s")]["p"], 2 / 252)
-assert by[("fq2", "max_rel")]["verdict"] == "changed, worse"         # 1.257e-2 -> 1.260e-2
-assert by[("fq2", "max_abs")]["verdict"] == "unchanged"
-assert by[("cq2", "evals_per_s")]["verdict"] == "same"              # no reps: ranges overlap (equal)
-PY
+jsoncheck compare_frontier_rows "$T/c9/compare.json" && ok || bad "frontier rows"
 
 # ---- the kernel sources' fingerprints: a kernel changed without a commit shows in the context
 SRC=${SRC_DIR:?SRC_DIR must name the source tree}
@@ -321,13 +183,7 @@ cp -r "$SRC/kernels" "$T/k_same" && cp -r "$SRC/kernels" "$T/k_edit" && echo "/*
 "$BIN" "${TP[@]}" --models cq2 --kernel-dir "$T/k_same" --out "$T/ks" 2>"$T/err" && ok || bad "kernel-dir run: $(cat "$T/err")"
 "$BIN" "${TP[@]}" --models cq2 --kernel-dir "$T/k_edit" --out "$T/ke" 2>"$T/err" && ok || bad "kernel-dir run: $(cat "$T/err")"
 "$BIN" compare "$T/a" "$T/ks" "$T/ke" --out "$T/ck" --quiet 2>"$T/err" && ok || bad "compare kernel runs: $(cat "$T/err")"
-python3 - "$T/ck/compare.json" <<'PY' && ok || bad "kernel fingerprints in the context"
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert "kernel sources" not in d["runs"][1]["context_differs"], d["runs"][1]   # the same files
-assert "kernel sources" in d["runs"][2]["context_differs"], d["runs"][2]       # one comment added
-assert "brdf_models.h" in d["runs"][2]["context"]["kernel sources"]
-PY
+jsoncheck compare_kernel_fingerprints_in_context "$T/ck/compare.json" && ok || bad "kernel fingerprints in the context"
 
 # ---- fit.json: the fitted coefficients and figures, the other models by name ------------------
 "$BIN" fit --n-min 2 --n-max 30 --out "$T/fit" --quiet >/dev/null 2>"$T/err" && ok || bad "fit run: $(cat "$T/err")"
@@ -341,74 +197,21 @@ json.dump(d, open(os.path.join(sys.argv[2], "fit.json"), "w"))
 PY
 "$BIN" compare "$T/fit" "$T/fit2" --out "$T/cfit" --quiet --fail-if-less-accurate 2>"$T/err" && ok ||
     bad "fit: a better figure must not fail: $(cat "$T/err")"
-python3 - "$T/cfit/compare.json" "$T/fit/fit.json" <<'PY' && ok || bad "fit rows"
-import json, sys
-d, f = (json.load(open(p)) for p in sys.argv[1:3])
-rows = [r for r in d["rows"] if r["kind"] == "fit"]
-best = {r["metric"]: r["cells"][1]["verdict"] for r in rows if r["key"].startswith("best affine")}
-assert best == {"a": "changed", "b": "unchanged", "max_rel": "changed, better", "max_abs": "unchanged"}, best
-# every model fit.json compares with, except the fitted quad: itself, by its moving label
-others = sorted(r["key"].split(" | ")[0] for r in rows if r["metric"] == "max_rel" and " | n " in r["key"]
-                and not r["key"].startswith(("best", "capped")))
-want = sorted(m["model"] for m in f["compare"] if not m["model"].startswith("quad:"))
-assert others == want and len(want) > 0, (others, want)
-PY
+jsoncheck compare_fit_rows "$T/cfit/compare.json" "$T/fit/fit.json" && ok || bad "fit rows"
 
 # ---- several devices in one run: the same PoCL device twice --------------------------------
 "$BIN" "${TP[@]}" --device 0,0 --out "$T/dev" 2>"$T/err" && ok || bad "--device 0,0: $(cat "$T/err")"
-python3 - "$T/dev/throughput.json" <<'PY' && ok || bad "--device 0,0: rows tagged"
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert d["schema"] == "brdfbench.throughput/3"
-devs = d["context"]["devices"]
-assert [x["index"] for x in devs] == ["0:0", "0:0"], devs
-name = devs[0]["device"]
-# the second mention of the same device is told apart by its place in the list
-assert [x["tag"] for x in devs] == [name, name + " #2"], devs
-tags = [r["device"] for r in d["results"]]
-assert tags == [name] * 8 + [name + " #2"] * 8, tags
-PY
+jsoncheck compare_device_0_0_rows_tagged "$T/dev/throughput.json" && ok || bad "--device 0,0: rows tagged"
 for k in 1 2; do [ -s "$T/dev/devices/$k/throughput.json" ] && [ -s "$T/dev/devices/$k/throughput.csv" ] && ok ||
     bad "devices/$k lacks its own outputs"; done
 "$BIN" compare "$T/dev" --out "$T/devc" >"$T/table" 2>"$T/err" && ok || bad "compare one run of 2 devices: $(cat "$T/err")"
-python3 - "$T/devc/compare.json" "$T/dev/throughput.json" <<'PY' && ok || bad "devices side by side"
-import json, math, sys
-d, t = (json.load(open(p)) for p in sys.argv[1:3])
-assert d["layout"] == "devices of one run"
-name = t["context"]["devices"][0]["device"]
-assert [r["name"] for r in d["runs"]] == [name, name + " #2"]
-assert len(d["rows"]) == 8 + 1 and all(r["in_all_runs"] and r["device"] == "" for r in d["rows"])
-# two devices are compared on what they deliver: the absolute rates (normalised ones compare a
-# device with itself)
-med = {(r["device"], r["label"], r["variant"], r["n_mode"]): r["evals_per_s_reps"] for r in t["results"]}
-def hl_ratio(x, y):   # the median of the ratios y_j / x_i, on logarithms
-    q = sorted(math.log(v) - math.log(u) for u in x for v in y)
-    n = len(q)
-    return math.exp(q[n // 2] if n % 2 else 0.5 * (q[n // 2 - 1] + q[n // 2]))
-for r in d["rows"]:
-    if r["model"] == "peak":
-        continue
-    label, variant, mode = [s.strip() for s in r["key"].split("|")]
-    a = med[(name, label, variant, mode[2:])]
-    b = med[(name + " #2", label, variant, mode[2:])]
-    assert math.isclose(r["cells"][1]["ratio"], hl_ratio(a, b), rel_tol=1e-12)
-PY
+jsoncheck compare_devices_side_by_side "$T/devc/compare.json" "$T/dev/throughput.json" && ok || bad "devices side by side"
 # two runs of two devices each match row by row, device by device
 "$BIN" compare "$T/dev" "$T/dev" --out "$T/devc2" --quiet 2>"$T/err" && ok || bad "dev against dev: $(cat "$T/err")"
-python3 - "$T/devc2/compare.json" <<'PY' && ok || bad "dev against dev: rows keyed by device"
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert len(d["rows"]) == 2 * (8 + 1) and len({r["device"] for r in d["rows"]}) == 2
-assert all(r["cells"][1]["verdict"] in ("same", "noisy") and r["cells"][1]["ratio"] == 1.0 for r in d["rows"])
-PY
+jsoncheck compare_dev_against_dev_rows_keyed "$T/devc2/compare.json" && ok || bad "dev against dev: rows keyed by device"
 "$BIN" accuracy --models cq2 --n-max 20 --samples 64 --device 0,0 --out "$T/accdev" --quiet 2>"$T/err" && ok ||
     bad "accuracy --device 0,0: $(cat "$T/err")"
-python3 - "$T/accdev/accuracy.json" <<'PY' && ok || bad "accuracy rows tagged"
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert d["schema"] == "brdfbench.accuracy/1" and len(d["results"]) == 2
-assert d["results"][1]["device"] == d["results"][0]["device"] + " #2"
-PY
+jsoncheck compare_accuracy_rows_tagged "$T/accdev/accuracy.json" && ok || bad "accuracy rows tagged"
 expect 2 "--device: device 7 is out of range for platform 0 \(accepted: 0 to" "${TP[@]}" --device 0:7 --out "$T/x8"
 expect 2 "--device: 'x' is not N or P:D" "${TP[@]}" --device 0,x --out "$T/x9"
 expect 2 "all and lists are taken by throughput, accuracy and render" fit --device all

@@ -40,18 +40,7 @@ if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed"; exit
 # the same 8-bit pixels give the same PNG bytes (one encoder, one size)
 cmp -s "$T/r/render/teapot/blinn.png" "$T/r/render/teapot/bp.png" && ok ||
     bad "bp.brdf's teapot differs from blinn's"
-check_json "$T/r/render.json" "render.json: bp.brdf shaded from the vectors, equal to blinn in float" <<'PY'
-sc = [s for s in d["scenes"] if s["scene"] == "teapot"][0]
-m = {x["model"]: x for x in sc["models"]}
-bp = m["bp"]
-assert bp["shading"] == "full-brdf", bp["shading"]
-assert bp["reference"] == "blinn", bp["reference"]
-# float against float: a few units of 2^-24 of the peak (identical in exact arithmetic)
-peak = bp["metrics"]["peak_reference"]
-assert peak > 0.1, peak
-assert bp["metrics"]["max_abs"] <= 1e-4 * peak, (bp["metrics"]["max_abs"], peak)
-assert bp["double_reference_check"]["max_abs_specular_difference"] <= 1e-3 * peak, bp["double_reference_check"]
-PY
+jsoncheck fullbrdf_cli_bp_brdf_shaded_from_vectors "$T/r/render.json" && ok || bad "render.json: bp.brdf shaded from the vectors, equal to blinn in float"
 
 # a Blinn-Phong material with a Lambertian term, in MERL layout
 "$SYN" "$T/b64.binary" blinn 64 2.5 0.08 >/dev/null || { echo "cannot write the material"; exit 3; }
@@ -60,18 +49,7 @@ PY
 rc=$?
 [ $rc -eq 0 ] && ok || bad "throughput with bp.brdf and --measured: exit $rc: $(head -c 400 "$T/err")"
 grep -q "memory bandwidth, not arithmetic" "$T/out" && ok || bad "the table does not say what a lookup costs"
-check_json "$T/tp/physical.json" "physical.json: the user and measured rows" <<'PY'
-rows = {r["model"]: r for r in d["cost"]["rows"]}
-for name, kind in (("bp", "user BRDF (N, L, V)"), ("merl:b64", "table lookup")):
-    r = rows[name]
-    assert r["evaluates"] == kind, (name, r["evaluates"])
-    assert r["status"] == "ok", (name, r["status"], r["check_max_abs_of_peak"])
-    assert r["evaluations_per_s"] is not None and math.isfinite(r["evaluations_per_s"]) \
-        and r["evaluations_per_s"] > 0, (name, r["evaluations_per_s"])
-for r in rows.values():
-    assert r["status"] == "ok", (r["model"], r["check_max_abs_of_peak"])
-assert "memory bandwidth" in d["lookup_note"]
-PY
+jsoncheck fullbrdf_cli_physical_user_measured_rows "$T/tp/physical.json" && ok || bad "physical.json: the user and measured rows"
 
 # the teapot shaded with the material beside its fitted lobes: the Blinn-Phong fit is the
 # written material (n 64, ks 2.5, kd 0.08, within 0.1%), so its image is the analytic
@@ -84,19 +62,7 @@ rc=$?
 for f in measured_b64.png measured_b64_blinn-phong_fit_error.png measured_b64_ct-ggx_fit.png; do
     [ -s "$T/rm/render/teapot/$f" ] && ok || bad "render --measured wrote no $f"
 done
-check_json "$T/rm/render.json" "render.json: the measured material beside its fits" <<'PY'
-sc = [s for s in d["scenes"] if s["scene"] == "teapot"][0]
-m = sc["measured"][0]
-assert m["material"] == "b64" and m["check_status"] == "ok", m
-peak = m["peak_radiance"]
-assert peak > 0.5, peak
-fits = {f["fit"]: f for f in m["fits"]}
-assert sorted(fits) == ["blinn-phong fit", "ct-beckmann fit", "ct-ggx fit"], sorted(fits)
-b = fits["blinn-phong fit"]
-for key, want in (("n", 64), ("ks", 2.5), ("kd", 0.08)):
-    assert abs(b[key] - want) <= 1e-3 * want, (key, b[key], want)
-assert b["rms"] <= 0.01 * peak and b["max_abs"] <= 0.1 * peak, (b["rms"], b["max_abs"], peak)
-PY
+jsoncheck fullbrdf_cli_render_measured_material_beside_fits "$T/rm/render.json" && ok || bad "render.json: the measured material beside its fits"
 
 # bad input: exit 2 naming the flag, nothing written
 expect 2 "^brdfbench render: --measured: $T/none.binary: " render --measured "$T/none.binary" --out "$T/bad4"

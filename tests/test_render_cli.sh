@@ -52,46 +52,7 @@ expect 2 "cannot read /nonexistent/t.inc" render --scene teapot --teapot-file /n
     --time-sizes 128x64 --reps 3 --warmup 1 --tess 4 --out "$T/run" >"$T/out" 2>"$T/err"
 rc=$?
 [ $rc -eq 0 ] && ok || bad "small run exit $rc: $(cat "$T/err")"
-check_json "$T/run/render.json" "render.json contract" "$T/run" <<'PY'
-import os
-has_context(d, "brdfbench.render/1", ("date", "device", "platform_version", "build_options", "git_revision"))
-scenes = {s["scene"]: s for s in d["scenes"]}
-assert sorted(scenes) == ["spheres", "teapot"], sorted(scenes)
-for s in scenes.values():
-    assert [m["model"] for m in s["models"]] == ["phong", "blinn", "cq2", "fq2"]
-    for m in s["models"]:
-        assert m["double_reference_check"]["within_bound"] is True, m
-        for f in m["files"].values():
-            assert os.path.getsize(os.path.join(sys.argv[2], f)) > 0, f
-        # a model that is its own reference has no error at all
-        if m["model"] == m["reference"]:
-            assert m["metrics"]["max_abs"] == 0 and m["metrics"]["psnr_db"] is None
-    (t,) = s["timings"]
-    assert (t["width"], t["height"]) == (128, 64)
-    cp = t["copy"]
-    assert abs(cp["mpixel_per_s"] - 128 * 64 / (cp["median_ms"] * 1e3)) <= 1e-9 * cp["mpixel_per_s"], cp
-    names = {e["name"]: e for e in t["entries"]}
-    assert set(names) == {"phong", "blinn", "cq2", "fq2"}, names
-    for e in names.values():
-        assert 0 < e["min_ms"] <= e["median_ms"] <= e["max_ms"], e
-        # Mpixel/s is the image's pixels over the median time (128 x 64 here)
-        assert abs(e["mpixel_per_s"] - 128 * 64 / (e["median_ms"] * 1e3)) <= 1e-9 * e["mpixel_per_s"], e
-        # each of the --reps 3 timed launches' rate: the slowest is the longest time, the
-        # middle one is the median's
-        reps = sorted(e["mpixel_per_s_reps"])
-        assert len(reps) == 3, e
-        assert abs(reps[0] - 128 * 64 / (e["max_ms"] * 1e3)) <= 1e-9 * reps[0], e
-        assert abs(reps[1] - e["mpixel_per_s"]) <= 1e-9 * reps[1], e
-        assert abs(reps[2] - 128 * 64 / (e["min_ms"] * 1e3)) <= 1e-9 * reps[2], e
-        # the ratio is the interleaved copy's median over this entry's median
-        assert abs(e["fraction_of_copy"] - e["copy_median_ms_interleaved"] / e["median_ms"]) < 1e-9
-        # the speed-up is the reference's median time over this entry's (docs/definitions.md: cq2 and fq2 against
-        # phong; a reference entry has none other than itself)
-        r = names[e["reference"]]
-        assert abs(e["speedup_vs_reference"] - r["median_ms"] / e["median_ms"]) <= 1e-9 * e["speedup_vs_reference"], e
-    assert names["cq2"]["reference"] == "phong" and names["fq2"]["reference"] == "phong"
-    assert names["blinn"]["reference"] == "blinn"
-PY
+jsoncheck render_cli_render_contract "$T/run/render.json" "$T/run" && ok || bad "render.json contract"
 [ -d "$T/run/render" ] && [ -z "$(ls -A "$T/run" | grep 'render-')" ] && ok || bad "staging folders left in $T/run"
 
 echo "$pass passed, $fail failed"

@@ -28,17 +28,7 @@ rows=$(awk '$1 ~ /^(lyon:k=2|quartic_cl:k=0.25|quartic_glsl:k=0.25|quartic_hlsl:
 [ "$(printf '%s\n' "$rows" | wc -l)" -eq 5 ] && ok || bad "expected 5 rows in the table: $(cat "$T/out")"
 [ "$(printf '%s\n' "$rows" | sort -u | wc -l)" -eq 1 ] && ok || bad "the five writings of lyon:k=2 print different figures:
 $(cat "$T/out")"
-check_json "$T/a/accuracy.json" "the five writings have lyon:k=2's figures in accuracy.json" <<'PY'
-r = {x["label"]: x for x in d["results"]}
-ref = r["lyon:k=2"]
-for label in ("quartic_cl:k=0.25", "quartic_glsl:k=0.25", "quartic_hlsl:k=0.25", "q4"):
-    x = r[label]
-    assert x["status"] == "ok", x
-    for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
-        a, b = x[zone][key], ref[zone][key]
-        assert abs(a - b) <= 1e-12 * abs(b), (label, zone, a, b)
-        assert x[zone]["at_n"] == ref[zone]["at_n"], (label, zone)
-PY
+jsoncheck shaderlang_cli_five_writings_lyon_k2 "$T/a/accuracy.json" && ok || bad "the five writings have lyon:k=2's figures in accuracy.json"
 
 # 2. An error in line 3 of a GLSL file is reported at line 3 (and its column), exit 2.
 expect 2 "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'" accuracy \
@@ -53,26 +43,11 @@ expect 2 "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'" accur
 #    ct_full.hlsl is the same Cook-Torrance as a full BRDF of (L, V, N, X, Y) in HLSL, F0 = 0.5.
 "$BIN" accuracy --model-file "$F/blinnphong.brdf" --model-file "$F/ct_ggx.brdf" --model-file "$F/ct_full.hlsl" \
     --n-min 2 --n-max 60 --samples 64 --out "$T/b" >"$T/out" 2>"$T/err" && ok || bad "accuracy of .brdf files: $(tail -5 "$T/err")"
-check_json "$T/b/accuracy.json" ".brdf Blinn-Phong and Cook-Torrance are the built-in models" <<'PY'
-r = {x["model"]: x for x in d["results"]}
-bp, ct = r["blinnphong"], r["ct_ggx"]
-full = r["ct_full"]
-assert full["reference"] == "ct-ggx:F0=0.5", full["reference"]
-for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
-    assert full[zone][key] < 1e-9, (zone, full[zone])
-assert bp["reference"] == "blinn" and ct["reference"] == "ct-ggx:F0=0.5", (bp["reference"], ct["reference"])
-assert bp["epicentre"]["max_rel"] < 1e-9, bp["epicentre"]
-for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
-    assert ct[zone][key] < 1e-9, (zone, ct[zone])
-assert abs(bp["whole"]["max_abs"] - 0.5) < 1e-9 and bp["whole"]["at_n"] == 2, bp["whole"]
-assert abs(bp["whole"]["at_x"] - math.pi / 4) < 1e-6, bp["whole"]
-PY
+jsoncheck shaderlang_cli_brdf_blinn_phong_cook_torrance "$T/b/accuracy.json" && ok || bad ".brdf Blinn-Phong and Cook-Torrance are the built-in models"
 "$BIN" throughput --model-file "$F/blinnphong.brdf" --models blinnphong,blinn --reps 1 --min-time 0.002 \
     --variants default --n-modes uniform --no-sweep --no-host-c --quiet --out "$T/tp" 2>"$T/err" \
     && ok || bad "throughput of a .brdf file: $(tail -3 "$T/err")"
-check_json "$T/tp/throughput.json" "the .brdf model measured by throughput" <<'PY'
-assert [x for x in d["results"] if x["model"] == "blinnphong"], [x["model"] for x in d["results"]]
-PY
+jsoncheck shaderlang_cli_brdf_model_measured_by_throughput "$T/tp/throughput.json" && ok || bad "the .brdf model measured by throughput"
 "$BIN" render --model-file "$F/blinnphong.brdf" --models blinnphong --scene spheres --size 64x48 --time-sizes none \
     --no-images --quiet --out "$T/r" >"$T/out" 2>"$T/err" && ok || bad "render of a .brdf file: $(tail -3 "$T/err")"
 expect 2 "bad_shader.brdf:8:47: use of undeclared identifier 'nn'" accuracy --model-file "$F/bad_shader.brdf" \

@@ -26,24 +26,10 @@ expect() {
     ok
 }
 
-# check_json FILE WHAT [ARGS...] <<'PY' ... PY: runs the Python read from stdin with d = FILE's
-# JSON, parsed strictly (a NaN or Infinity literal fails it), sys.argv[2:] = ARGS, json, math
-# and sys imported, and has_context(d, SCHEMA, KEYS): d's schema is SCHEMA and its context
-# block has each of KEYS. Counts its success.
-check_json() {
-    local file=$1 what=$2
-    shift 2
-    {
-        cat <<'PY'
-import json, math, sys
-def no_const(x): raise ValueError("non-finite number in JSON: " + x)
-d = json.load(open(sys.argv[1]), parse_constant=no_const)
-def has_context(d, schema, keys):
-    assert d["schema"] == schema, d["schema"]
-    for k in keys:
-        assert k in d["context"], k
-PY
-        cat
-    } >"$T/check_json.py"
-    python3 "$T/check_json.py" "$file" "$@" && ok || bad "$what"
+# jsoncheck CHECK FILE [ARGS...]: the named check of tests/jsoncheck.py on FILE; its exit status
+# (a failure prints the check's name, the file and what differed). Used as `jsoncheck ... && ok
+# || bad "what"`.
+BRDF_JSONCHECK="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/jsoncheck.py"
+jsoncheck() {
+    python3 "$BRDF_JSONCHECK" "$@"
 }

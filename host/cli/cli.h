@@ -30,14 +30,15 @@ void device_options_init(struct device_options *o);
 
 /* --device all, or a list (0,1 or P:D pairs), on throughput, accuracy and render: when argv's
  * --device is one, runs cmd once per device (cli_devices.c) and gathers the rows of `file`
- * (its array `rows_key`) tagged with their device; returns that exit code. Returns -1 when
+ * (its array `rows_key`) tagged with their device, and the rows of CSV file `csv` (NULL: none)
+ * with a first column device; returns that exit code. Returns -1 when
  * --device names one device (the command goes on as usual). */
 /* After a throughput run with --ab-options: RUN/ab/a/throughput.json (the default variant's rows)
  * and RUN/ab/b/throughput.json (the ab variant's, as the default variant), for compare.
  * Returns 0, or EXIT_RUNTIME with err filled. */
 int cli_write_ab(const char *run_dir, const char *ab_options, char *err, size_t errlen);
 int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, char **), const char *file,
-                   const char *rows_key);
+                   const char *rows_key, const char *csv);
 int cli_is_device_list(const char *value);
 
 #endif

@@ -10,7 +10,9 @@
 #include "clsession.h"
 #include "exitcodes.h"
 #include "jsonr.h"
+#include "infile.h"
 #include "jsonw.h"
+#include "mdbuf.h"
 #include "outdir.h"
 
 #include <stdio.h>
@@ -70,15 +72,16 @@ static const char *member_str(const struct jr_value *obj, const char *key)
     return v && v->type == JR_STR ? v->str : "";
 }
 
+typedef char device_tag[300];
+
 /* RUN/<file> from RUN/devices/<k>/<file>: the first file with its rows replaced by every
-   file's rows, each tagged, and context.devices. */
+   file's rows, each tagged, and context.devices; tags[k] receives device k's tag. */
 static int merge_devices(const char *run_dir, const char *file, const char *rows_key, const struct cl_device_ref *refs,
-                         int n, char *err, size_t errlen)
+                         int n, device_tag *tags, char *err, size_t errlen)
 {
     struct jr_doc *docs = calloc((size_t)n, sizeof *docs);
-    char (*tags)[300] = calloc((size_t)n, sizeof *tags);
     int parsed = 0, rc = 2;
-    if (!docs || !tags) {
+    if (!docs) {
         snprintf(err, errlen, "out of memory");
         goto done;
     }
@@ -185,12 +188,233 @@ done:
     for (int k = 0; k < parsed && k < n; ++k)
         jr_free(&docs[k]);
     free(docs);
-    free(tags);
     return rc;
 }
 
+/* Where a CSV record that starts at p ends: at the first newline outside double quotes (RFC
+   4180: a quoted field may hold one), or at the text's end. */
+static const char *csv_record_end(const char *p)
+{
+    int quoted = 0;
+    for (; *p && (quoted || *p != '\n'); ++p)
+        quoted ^= *p == '"';
+    return p;
+}
+
+/* The length of the record [p, e) without a '\r' before its newline. */
+static size_t csv_record_len(const char *p, const char *e)
+{
+    return (size_t)(e - p) - (e > p && e[-1] == '\r');
+}
+
+/* RUN/<csv> from RUN/devices/<k>/<csv>: the header with a first column device, then every
+   device's rows in turn, each with its device's tag (CSV-quoted) in front. The devices' files
+   must have the same header (one command, one set of flags). */
+static int gather_csv(const char *run_dir, const char *csv, const device_tag *tags, int n, char *err,
+                      size_t errlen)
+{
+    struct md_buf b;
+    md_init(&b);
+    char path[4300], *first = NULL;
+    size_t first_len = 0;
+    int rc = EXIT_RUNTIME;
+    for (int k = 0; k < n; ++k) {
+        char *buf, why[256];
+        size_t len;
+        snprintf(path, sizeof path, "%s/devices/%d/%s", run_dir, k + 1, csv);
+        if (infile_read(path, 0, (size_t)1 << 30, &buf, &len, why, sizeof why)) {
+            snprintf(err, errlen, "%.900s: cannot read: %s", path, why);
+            goto done;
+        }
+        const char *e = csv_record_end(buf);
+        size_t hl = csv_record_len(buf, e);
+        if (k == 0) {
+            md_printf(&b, "device,%.*s\n", (int)hl, buf);
+            first = buf;
+            first_len = hl;
+        } else if (hl != first_len || memcmp(buf, first, hl) != 0) {
+            snprintf(err, errlen, "%.900s: its header differs from devices/1/%s's", path, csv);
+            free(buf);
+            goto done;
+        }
+        for (const char *p = *e ? e + 1 : e; *p; p = *e ? e + 1 : e) {
+            e = csv_record_end(p);
+            size_t l = csv_record_len(p, e);
+            if (l == 0)
+                continue;   /* a blank line is no row */
+            md_csv_text(&b, tags[k]);
+            md_printf(&b, ",%.*s\n", (int)l, p);
+        }
+        if (buf != first)
+            free(buf);
+    }
+    if (b.failed) {
+        snprintf(err, errlen, "out of memory");
+        goto done;
+    }
+    path_join(path, sizeof path, run_dir, csv);
+    rc = write_file_atomic(path, b.s, b.len, err, errlen) ? EXIT_RUNTIME : 0;
+done:
+    free(first);
+    md_free(&b);
+    return rc;
+}
+
+/* What one --device all run was asked for. */
+struct per_device {
+    const char *command, *file, *rows_key, *csv;   /* csv: the command's CSV, or NULL */
+    const char *out_dir, *json_path, *csv_path;
+    int quiet, temp, existed;
+    char run_dir[4096], devices[4200];
+};
+
+/* argv without the device and output flags (--json and --csv too: the gathered files are
+   delivered there), --quiet where only documents are kept or one goes to standard output, then
+   room for --platform P --device D --out SUB (set by the caller at *ac .. *ac + 5). */
+static char **device_argv(int argc, char **argv, const struct per_device *pd, int *ac)
+{
+    char **av = calloc((size_t)argc + 8, sizeof *av);
+    if (!av)
+        return NULL;
+    static const char *const drop[] = { "--device", "--platform", "--out", "--json", "--csv" };
+    *ac = 0;
+    for (int i = 0; i < argc; ++i) {
+        int takes = 0;
+        for (size_t j = 0; j < sizeof drop / sizeof drop[0]; ++j)
+            if (strcmp(argv[i], drop[j]) == 0)
+                takes = 2;
+            else if (strncmp(argv[i], drop[j], strlen(drop[j])) == 0 && argv[i][strlen(drop[j])] == '=')
+                takes = 1;
+        if (takes) {
+            i += takes - 1;
+            continue;
+        }
+        av[(*ac)++] = argv[i];
+    }
+    if (pd->temp || cli_is_stdout(pd->json_path) || cli_is_stdout(pd->csv_path))
+        av[(*ac)++] = "--quiet";
+    return av;
+}
+
+/* Runs cmd once per device into DEVICES/<k>; a bad flag (exit 2 on the first) leaves nothing. */
+static int run_devices(int argc, char **argv, int (*cmd)(int, char **), const struct per_device *pd,
+                       const struct cl_device_ref *refs, int n)
+{
+    int ac;
+    char **av = device_argv(argc, argv, pd, &ac);
+    if (!av)
+        return EXIT_RUNTIME;
+    char pbuf[16], dbuf[16], sub[4300];
+    char *tail[] = { "--platform", pbuf, "--device", dbuf, "--out", sub, NULL };
+    memcpy(av + ac, tail, sizeof tail);
+    int rc = 0;
+    for (int k = 0; k < n && !rc; ++k) {
+        snprintf(pbuf, sizeof pbuf, "%d", refs[k].platform);
+        snprintf(dbuf, sizeof dbuf, "%d", refs[k].device);
+        snprintf(sub, sizeof sub, "%s/%d", pd->devices, k + 1);
+        if (!pd->quiet)
+            fprintf(stderr, "%s: device %d of %d (platform %d, device %d) into %s\n", pd->command, k + 1, n,
+                    refs[k].platform, refs[k].device, sub);
+        rc = cmd(ac + 6, av);
+        if (rc == EXIT_USAGE && k == 0) {
+            rmdir(sub);
+            rmdir(pd->devices);
+            if (!pd->existed)
+                rmdir(pd->run_dir);
+        }
+    }
+    free(av);
+    return rc;
+}
+
+/* The gathered files (JSON, and CSV where the command writes one) in RUN, then copied to
+   --json and --csv where given. */
+static int gather_and_deliver(const struct per_device *pd, const struct cl_device_ref *refs, int n)
+{
+    char err[1200], src[4300];
+    device_tag *tags = calloc((size_t)n, sizeof *tags);
+    int rc = tags ? merge_devices(pd->run_dir, pd->file, pd->rows_key, refs, n, tags, err, sizeof err) : 2;
+    if (!tags)
+        snprintf(err, sizeof err, "out of memory");
+    if (!rc && pd->csv)
+        rc = gather_csv(pd->run_dir, pd->csv, tags, n, err, sizeof err);
+    free(tags);
+    if (!rc && pd->json_path)
+        rc = path_join(src, sizeof src, pd->run_dir, pd->file) || cli_deliver(src, "--json", pd->json_path, err, sizeof err);
+    if (!rc && pd->csv_path)
+        rc = path_join(src, sizeof src, pd->run_dir, pd->csv) || cli_deliver(src, "--csv", pd->csv_path, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench %s: %s\n", pd->command, err);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+/* The "written:" lines of a finished run. */
+static void print_written(const struct per_device *pd, int n)
+{
+    if (pd->quiet)
+        return;
+    const char *paths[] = { pd->json_path, pd->csv_path };
+    for (int i = 0; i < 2; ++i)
+        if (paths[i] && !cli_is_stdout(paths[i]))
+            printf("written: %s (%d devices, rows tagged with \"device\")\n", paths[i], n);
+    if (pd->temp)
+        return;
+    char csv[4300] = "";
+    if (pd->csv)
+        snprintf(csv, sizeof csv, ", %s/%s", pd->run_dir, pd->csv);
+    printf("written: %s/%s%s (%d devices, rows tagged with \"device\"; each device's own outputs in %s/)\n",
+           pd->run_dir, pd->file, csv, n, pd->devices);
+}
+
+/* The run folder: a temporary one where only --json/--csv documents are asked for, else --out
+   or a new results/<date-time>; and its devices/ folder. */
+static int open_run_dir(struct per_device *pd, char *err, size_t errlen)
+{
+    struct stat st;
+    pd->existed = pd->out_dir && stat(pd->out_dir, &st) == 0;
+    if (pd->temp) {
+        if (cli_temp_dir(pd->run_dir, sizeof pd->run_dir, err, errlen))
+            return EXIT_RUNTIME;
+        outdir_own(pd->run_dir);   /* removed at the end, and by a deadline or signal */
+        outdir_confine(pd->run_dir);
+    } else if (outdir_for_command(pd->out_dir, pd->run_dir, sizeof pd->run_dir, err, errlen)) {
+        return EXIT_RUNTIME;
+    }
+    if (path_join(pd->devices, sizeof pd->devices, pd->run_dir, "devices") ||
+        outdir_prepare(pd->devices, "--out", err, errlen))
+        return EXIT_RUNTIME;
+    return 0;
+}
+
+/* The flags cli_per_device reads; 0, or EXIT_USAGE with err filled. */
+static int read_flags(int argc, char **argv, struct per_device *pd, long *platform, char *err, size_t errlen)
+{
+    const char *pv = flag_value(argc, argv, "--platform");
+    if (pv && cli_parse_long("--platform", pv, 0, 63, platform, err, errlen))
+        return EXIT_USAGE;
+    pd->out_dir = flag_value(argc, argv, "--out");
+    pd->json_path = flag_value(argc, argv, "--json");
+    pd->csv_path = flag_value(argc, argv, "--csv");
+    for (int i = 1; i < argc; ++i)
+        pd->quiet |= strcmp(argv[i], "--quiet") == 0;
+    if (pd->csv_path && !pd->csv) {
+        snprintf(err, errlen, "--csv: %s writes no CSV; the rows of several devices are gathered into %s "
+                 "(accepted: --json FILE|-, --out DIR)", pd->command, pd->file);
+        return EXIT_USAGE;
+    }
+    if (cli_is_stdout(pd->json_path) && pd->csv && cli_is_stdout(pd->csv_path)) {
+        snprintf(err, errlen, "--json - and --csv -: one document at a time on standard output");
+        return EXIT_USAGE;
+    }
+    /* --json or --csv without --out: the gathered files only, made in a temporary folder */
+    pd->temp = (pd->json_path || pd->csv_path) && !pd->out_dir;
+    return 0;
+}
+
 int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, char **), const char *file,
-                   const char *rows_key)
+                   const char *rows_key, const char *csv)
 {
     const char *list = flag_value(argc, argv, "--device");
     for (int i = 1; i < argc; ++i)
@@ -200,8 +424,8 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
         return -1;
     char err[1200];
     long platform = -1;
-    const char *pv = flag_value(argc, argv, "--platform");
-    if (pv && cli_parse_long("--platform", pv, 0, 63, &platform, err, sizeof err)) {
+    struct per_device pd = { .command = command, .file = file, .rows_key = rows_key, .csv = csv };
+    if (read_flags(argc, argv, &pd, &platform, err, sizeof err)) {
         fprintf(stderr, "brdfbench %s: %s\n", command, err);
         return EXIT_USAGE;
     }
@@ -211,118 +435,24 @@ int cli_per_device(int argc, char **argv, const char *command, int (*cmd)(int, c
         fprintf(stderr, "brdfbench %s: %s\n", command, err);
         return -n;
     }
-    const char *out_dir = flag_value(argc, argv, "--out");
-    const char *json_path = flag_value(argc, argv, "--json"), *csv_path = flag_value(argc, argv, "--csv");
-    int quiet = 0;
-    for (int i = 1; i < argc; ++i)
-        quiet |= strcmp(argv[i], "--quiet") == 0;
-    /* --json without --out: the gathered rows only, made in a temporary folder (as one device's
-       run makes its document); the devices' runs write no document of their own */
-    if (csv_path && !out_dir) {
-        fprintf(stderr, "brdfbench %s: --csv: the rows of several devices are gathered into %s only (accepted: "
-                "--json FILE|-, or --out DIR for each device's CSV)\n", command, file);
-        return EXIT_USAGE;
-    }
-    int temp = json_path && !out_dir;
-    struct stat st;
-    int existed = out_dir && stat(out_dir, &st) == 0;
-    char run_dir[4096], devices[4200], sub[4300];
-    if (temp) {
-        if (cli_run_check_documents(command, json_path, NULL))
-            return EXIT_RUNTIME;
-        if (cli_temp_dir(run_dir, sizeof run_dir, err, sizeof err)) {
-            fprintf(stderr, "brdfbench %s: %s\n", command, err);
-            return EXIT_RUNTIME;
-        }
-        outdir_own(run_dir);   /* removed at the end, and by a deadline or signal */
-        outdir_confine(run_dir);
-    } else if (outdir_for_command(out_dir, run_dir, sizeof run_dir, err, sizeof err)) {
+    if (cli_run_check_documents(command, pd.json_path, pd.csv_path))
+        return EXIT_RUNTIME;
+    if (open_run_dir(&pd, err, sizeof err)) {
         fprintf(stderr, "brdfbench %s: %s\n", command, err);
         return EXIT_RUNTIME;
     }
-    if (path_join(devices, sizeof devices, run_dir, "devices") || outdir_prepare(devices, "--out", err, sizeof err)) {
-        fprintf(stderr, "brdfbench %s: %s\n", command, err);
-        return EXIT_RUNTIME;
-    }
-    /* argv without the device and output flags, then --platform P --device D --out SUB */
-    char **av = calloc((size_t)argc + 8, sizeof *av);
-    if (!av)
-        return EXIT_RUNTIME;
-    int ac = 0;
-    for (int i = 0; i < argc; ++i) {
-        int takes = 0;
-        static const char *const drop[] = { "--device", "--platform", "--out", "--json", "--csv" };
-        for (size_t j = 0; j < (temp ? 5u : 3u); ++j)
-            if (strcmp(argv[i], drop[j]) == 0)
-                takes = 2;
-            else if (strncmp(argv[i], drop[j], strlen(drop[j])) == 0 && argv[i][strlen(drop[j])] == '=')
-                takes = 1;
-        if (takes) {
-            i += takes - 1;
-            continue;
-        }
-        av[ac++] = argv[i];
-    }
-    /* only the gathered document is kept: the devices' runs print no table of files that go */
-    if (temp)
-        av[ac++] = "--quiet";
-    char pbuf[16], dbuf[16];
-    av[ac] = "--platform";
-    av[ac + 1] = pbuf;
-    av[ac + 2] = "--device";
-    av[ac + 3] = dbuf;
-    av[ac + 4] = "--out";
-    av[ac + 5] = sub;
-    av[ac + 6] = NULL;
-    int rc = 0;
-    for (int k = 0; k < n && !rc; ++k) {
-        snprintf(pbuf, sizeof pbuf, "%d", refs[k].platform);
-        snprintf(dbuf, sizeof dbuf, "%d", refs[k].device);
-        snprintf(sub, sizeof sub, "%s/%d", devices, k + 1);
-        if (!quiet)
-            fprintf(stderr, "%s: device %d of %d (platform %d, device %d) into %s\n", command, k + 1, n,
-                    refs[k].platform, refs[k].device, sub);
-        rc = cmd(ac + 6, av);
-        if (rc == EXIT_USAGE && k == 0) {
-            /* a bad flag: nothing measured, so nothing is left behind */
-            rmdir(sub);
-            rmdir(devices);
-            if (!existed)
-                rmdir(run_dir);
-        }
-    }
-    free(av);
-    if (rc) {
-        if (temp)
-            outdir_remove_own();
-        return rc;
-    }
-    rc = merge_devices(run_dir, file, rows_key, refs, n, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench %s: %s\n", command, err);
-        if (temp)
-            outdir_remove_own();
-        return EXIT_RUNTIME;
-    }
-    if (temp) {
-        char src[4300];
-        path_join(src, sizeof src, run_dir, file);
-        rc = cli_deliver(src, "--json", json_path, err, sizeof err) ? EXIT_RUNTIME : 0;
-        if (rc)
-            fprintf(stderr, "brdfbench %s: %s\n", command, err);
+    int rc = run_devices(argc, argv, cmd, &pd, refs, n);
+    if (!rc)
+        rc = gather_and_deliver(&pd, refs, n);
+    if (pd.temp) {
         outdir_remove_own();   /* the temporary folder with the devices' runs */
-        if (!rc && !quiet && !cli_is_stdout(json_path))
-            printf("written: %s (%d devices, rows tagged with \"device\")\n", json_path, n);
-        return rc;
-    }
-    if (!out_dir && outdir_set_latest("results", run_dir, err, sizeof err)) {
+    } else if (!rc && !pd.out_dir && outdir_set_latest("results", pd.run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench %s: %s\n", command, err);
         return EXIT_RUNTIME;
     }
-    if (!quiet)
-        printf("written: %s/%s (%d devices, rows tagged with \"device\"; each device's own outputs in %s/)\n",
-               run_dir, file, n, devices);
-    return 0;
+    if (!rc)
+        print_written(&pd, n);
+    return rc;
 }
 
 /* One side of an A/B run: RUN/ab/<side>/throughput.json with the rows of `variant` renamed to

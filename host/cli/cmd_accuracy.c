@@ -94,7 +94,7 @@ static int accuracy_pictures(struct cl_session *s, const struct model_spec *mode
 int cmd_accuracy(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
-    int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results");
+    int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results", "accuracy.csv");
     if (per_device >= 0)
         return per_device;
     char err[1024];

@@ -141,7 +141,7 @@ static int call_light(const char *flag, const char *v, void *dest, char *err, si
 int cmd_render(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
-    int per_device = cli_per_device(argc, argv, "render", cmd_render, "render.json", "scenes");
+    int per_device = cli_per_device(argc, argv, "render", cmd_render, "render.json", "scenes", NULL);
     if (per_device >= 0)
         return per_device;
     char err[1024];

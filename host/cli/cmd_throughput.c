@@ -65,7 +65,7 @@ static int call_n_modes(const char *flag, const char *v, void *dest, char *err, 
 int cmd_throughput(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
-    int per_device = cli_per_device(argc, argv, "throughput", cmd_throughput, "throughput.json", "results");
+    int per_device = cli_per_device(argc, argv, "throughput", cmd_throughput, "throughput.json", "results", "throughput.csv");
     if (per_device >= 0)
         return per_device;
     char err[1024];

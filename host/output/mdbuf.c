@@ -64,6 +64,14 @@ void md_append(struct md_buf *b, const char *text, size_t n)
     b->s[b->len] = '\0';
 }
 
+void md_csv_text(struct md_buf *b, const char *s)
+{
+    md_append(b, "\"", 1);
+    for (; s && *s; s++)
+        md_append(b, *s == '"' ? "\"\"" : s, *s == '"' ? 2 : 1);
+    md_append(b, "\"", 1);
+}
+
 void md_cell_text(struct md_buf *b, const char *s)
 {
     for (; s && *s; s++) {

@@ -21,6 +21,8 @@ void md_cell_text(struct md_buf *b, const char *s);
 /* Appends a markdown page as a section of another: its title line (# ...) is dropped and
  * every other heading goes one level down. */
 void md_embed(struct md_buf *b, const char *page);
+/* A CSV field (RFC 4180): the text in double quotes, each '"' in it doubled (NULL: ""). */
+void md_csv_text(struct md_buf *b, const char *s);
 void md_free(struct md_buf *b);
 /* The text written to path by write_file_atomic (outdir.h), then the buffer freed; a buffer
  * that ran out of memory is not written ("PATH: out of memory"). Returns 0 or -1. */
