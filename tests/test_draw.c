@@ -291,6 +291,59 @@ static void test_line_plot_and_bars(void)
     }
 }
 
+/* Lengths (in pixels) of the runs of exactly the colour want, one per picture row that holds it,
+ * distinct values in increasing order; returns how many. */
+static int colour_run_lengths(const unsigned char *img, int w, int h, const int want[3], int *len, int max)
+{
+    int n = 0;
+    for (int y = 0; y < h; y++) {
+        int c = 0;
+        for (int x = 0; x < w; x++) c += near(px(img, w, x, y), want, 0);
+        if (c == 0) continue;
+        int seen = 0;
+        for (int k = 0; k < n; k++) seen |= len[k] == c;
+        if (!seen && n < max) len[n++] = c;
+    }
+    for (int i = 1; i < n; i++)   /* insertion sort */
+        for (int k = i; k > 0 && len[k - 1] > len[k]; k--) {
+            int t = len[k];
+            len[k] = len[k - 1];
+            len[k - 1] = t;
+        }
+    return n;
+}
+
+/* A log value axis: bars of 2, 20 and 200 on the decades 1..1000 start at 1, so their lengths are
+ * in the ratio log10(2) : log10(20) : log10(200) (computed here, not read from the picture). */
+static void test_log_bars(void)
+{
+    const char *labels[3] = {"cheap", "middle", "pow"};
+    double v[3] = {2, 20, 200};
+    struct draw_bar_chart bc;
+    memset(&bc, 0, sizeof bc);
+    bc.title = "log bars", bc.x_label = "G evaluations / s", bc.nbars = 3, bc.labels = labels, bc.values = v;
+    bc.highlight = -1, bc.width = 900, bc.x_log = 1;
+    char path[512], err[512];
+    path_in(path, sizeof path, "log_bars.png");
+    CHECK(draw_bar_chart(path, &bc, err, sizeof err) == 0, "log bars: %s", err);
+    int w, h, len[8];
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) != 0) {
+        CHECK(0, "read log_bars.png: %s", err);
+        return;
+    }
+    static const int BLUE[3] = {31, 119, 180};
+    int n = colour_run_lengths(img, w, h, BLUE, len, 8);
+    CHECK(n == 3, "%d different bar lengths, want 3", n);
+    if (n == 3) {
+        double r2 = (double)len[1] / len[0], r3 = (double)len[2] / len[0];
+        double want2 = log10(20.0) / log10(2.0), want3 = log10(200.0) / log10(2.0);
+        CHECK(fabs(r2 - want2) < 0.05 * want2, "bar 20 / bar 2 = %.3f, log ratio %.3f", r2, want2);
+        CHECK(fabs(r3 - want3) < 0.05 * want3, "bar 200 / bar 2 = %.3f, log ratio %.3f", r3, want3);
+    }
+    free(img);
+}
+
 static void test_errors(void)
 {
     unsigned char rgb[12] = {0};
@@ -310,6 +363,6 @@ static void test_errors(void)
 int main(void)
 {
     static void (*const tests[])(void) = { test_colormap_ends, test_png_round_trip, test_heatmap,
-        test_heatmap_dense_peak, test_error_image_and_sheet, test_line_plot_and_bars, test_errors };
+        test_heatmap_dense_peak, test_error_image_and_sheet, test_line_plot_and_bars, test_log_bars, test_errors };
     return test_run_in_tmpdir(dir, sizeof dir, "test_draw", tests, sizeof tests / sizeof tests[0]);
 }

@@ -300,9 +300,11 @@ int plots_add_throughput(struct plot_set *set, const char *json_path, const char
     }
     char title[160];
     snprintf(title, sizeof title, "Throughput per model, n %s (default build options)", n_mode);
-    rc = plots_add_bars(set, file, caption, title, "G evaluations per second (median; whisker: min..max of the repeats)",
-                        labels, med, lo, hi, count, highlight) ? 2 : 0;
+    rc = plots_add_bars(set, file, caption, title,
+                        "G evaluations per second, log scale (median; whisker: min..max of the repeats)", labels, med,
+                        lo, hi, count, highlight) ? 2 : 0;
     if (rc) snprintf(err, errlen, "%s: out of memory", json_path);
+    else set->figs[set->count - 1].x_log = 1;   /* pow() and the cheap lobes are decades apart */
 done:
     jr_free(&d);
     return rc;
@@ -331,6 +333,7 @@ int plot_figure_draw(const struct plot_figure *f, const char *path, char *err, s
             c.err_hi = f->series[2].y;
         }
         c.highlight = f->highlight;
+        c.x_log = f->x_log;   /* the value axis; plots.json's x_log */
         return draw_bar_chart(path, &c, err, errlen);
     }
     struct draw_series s[PLOT_MAX_SERIES];

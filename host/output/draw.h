@@ -142,6 +142,9 @@ struct draw_bar_chart {
     const char *const *value_text;  /* may be NULL: the value printed with %.3g */
     int highlight;                  /* index of a bar drawn in black (the reference), -1 none */
     int width;                      /* 0: 1000 */
+    int x_log;                      /* value axis logarithmic: from the decade at or below the smallest
+                                       positive value (or whisker end) to the decade at or above the
+                                       largest, each decade's tick labelled; bars start at the left end */
 };
 
 int draw_bar_chart(const char *path, const struct draw_bar_chart *chart, char *err, size_t errlen);

@@ -254,6 +254,69 @@ extern "C" int draw_line_plot(const char *path, const struct draw_line_plot *p, 
     });
 }
 
+namespace {
+
+/* The value axis of a bar chart: linear from 0 to a rounded maximum, or logarithmic between the
+ * decades around the smallest and largest positive values (so bars a thousand times apart both
+ * show). */
+Axis bar_axis(const struct draw_bar_chart *c, double vmin, double vmax, int x0, int x1)
+{
+    if (c->x_log) {
+        if (!(vmin > 0)) vmin = vmax > 0 ? vmax / 10 : 1;
+        if (!(vmax > 0)) vmax = 10;
+        double lo = std::pow(10.0, std::floor(std::log10(vmin) + 1e-9));
+        double hi = std::pow(10.0, std::ceil(std::log10(vmax) - 1e-9));
+        if (!(hi > lo)) hi = lo * 10;
+        return Axis{lo, hi, true, (double)x0, (double)x1};
+    }
+    if (!(vmax > 0)) vmax = 1;
+    double step = nice_step(vmax / 6);
+    return Axis{0, std::ceil(vmax / step - 1e-9) * step, false, (double)x0, (double)x1};
+}
+
+/* Log value axis: a labelled tick and grid line at each decade, short unlabelled ticks at 2..9. */
+void draw_decade_ticks(cv::Mat &img, const Axis &a, int y, int grid_top)
+{
+    int e0 = (int)std::lround(std::log10(a.lo)), e1 = (int)std::lround(std::log10(a.hi));
+    for (int e = e0; e <= e1; e++) {
+        double v = std::pow(10.0, e);
+        int px = (int)std::lround(a.map(v));
+        cv::line(img, cv::Point(px, grid_top), cv::Point(px, y - 1), GRID, 1);
+        cv::line(img, cv::Point(px, y), cv::Point(px, y + 6), INK, 1);
+        put(img, tick_label(v, 0, DRAW_FMT_PLAIN), px, y + 9, S_TICK, 0, -1);
+        for (int k = 2; e < e1 && k <= 9; k++) {
+            int mx = (int)std::lround(a.map(k * v));
+            cv::line(img, cv::Point(mx, y), cv::Point(mx, y + 3), INK, 1);
+        }
+    }
+}
+
+/* The value and whisker texts of the bars, the widest label and text, and the positive range. */
+void bar_texts(const struct draw_bar_chart *c, std::vector<std::string> &texts, int *label_w, int *text_w,
+               double *vmin, double *vmax)
+{
+    *vmin = INFINITY;
+    *vmax = 0;
+    *label_w = *text_w = 0;
+    for (int i = 0; i < c->nbars; i++) {
+        double v = c->values[i];
+        char buf[64];
+        if (c->value_text && c->value_text[i]) texts[i] = ascii(c->value_text[i]);
+        else if (std::isfinite(v)) {
+            snprintf(buf, sizeof buf, "%.3g", v);
+            texts[i] = buf;
+        } else texts[i] = "n/a";
+        if (std::isfinite(v)) *vmax = std::max(*vmax, v);
+        if (std::isfinite(v) && v > 0) *vmin = std::min(*vmin, v);
+        if (c->err_hi && std::isfinite(c->err_hi[i])) *vmax = std::max(*vmax, c->err_hi[i]);
+        if (c->err_lo && std::isfinite(c->err_lo[i]) && c->err_lo[i] > 0) *vmin = std::min(*vmin, c->err_lo[i]);
+        *label_w = std::max(*label_w, text_size(ascii(c->labels[i]), S_LABEL).width);
+        *text_w = std::max(*text_w, text_size(texts[i], S_TICK).width);
+    }
+}
+
+} /* namespace */
+
 extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, char *err, size_t errlen)
 {
     if (!check_path(path, err, errlen)) return -1;
@@ -263,24 +326,9 @@ extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, 
     }
     return draw_png(path, err, errlen, [&]() -> cv::Mat {
         std::vector<std::string> texts(c->nbars);
-        double vmax = 0;
-        int label_w = 0, text_w = 0;
-        for (int i = 0; i < c->nbars; i++) {
-            double v = c->values[i];
-            char buf[64];
-            if (c->value_text && c->value_text[i]) texts[i] = ascii(c->value_text[i]);
-            else if (std::isfinite(v)) {
-                snprintf(buf, sizeof buf, "%.3g", v);
-                texts[i] = buf;
-            } else texts[i] = "n/a";
-            if (std::isfinite(v)) vmax = std::max(vmax, v);
-            if (c->err_hi && std::isfinite(c->err_hi[i])) vmax = std::max(vmax, c->err_hi[i]);
-            label_w = std::max(label_w, text_size(ascii(c->labels[i]), S_LABEL).width);
-            text_w = std::max(text_w, text_size(texts[i], S_TICK).width);
-        }
-        if (!(vmax > 0)) vmax = 1;
-        double step = nice_step(vmax / 6);
-        double xhi = std::ceil(vmax / step - 1e-9) * step;
+        double vmin, vmax;
+        int label_w, text_w;
+        bar_texts(c, texts, &label_w, &text_w, &vmin, &vmax);
         std::string t = ascii(c->title);
         int th = title_height(t);
         int W = c->width > 0 ? c->width : 1000;
@@ -291,8 +339,10 @@ extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, 
         cv::Mat img(H, W, CV_8UC3, WHITE);
         put_title(img, t);
         cv::Rect plot(left, th + 10, W - left - right, c->nbars * row_h);
-        Axis ax{0, xhi, false, (double)plot.x, (double)(plot.x + plot.width - 1)};
-        draw_x_ticks(img, ax, plot.y + plot.height, DRAW_FMT_PLAIN, 6, plot.y);
+        Axis ax = bar_axis(c, vmin, vmax, plot.x, plot.x + plot.width - 1);
+        double xlo = ax.lo, xhi = ax.hi;
+        if (c->x_log) draw_decade_ticks(img, ax, plot.y + plot.height, plot.y);
+        else draw_x_ticks(img, ax, plot.y + plot.height, DRAW_FMT_PLAIN, 6, plot.y);
         put(img, ascii(c->x_label), plot.x + plot.width / 2, plot.y + plot.height + 36, S_LABEL, 0, -1);
         for (int i = 0; i < c->nbars; i++) {
             int y = plot.y + i * row_h;
@@ -300,13 +350,14 @@ extern "C" int draw_bar_chart(const char *path, const struct draw_bar_chart *c, 
             double v = c->values[i];
             int end = plot.x;
             if (std::isfinite(v) && v > 0) {
-                end = (int)std::lround(ax.map(std::min(v, xhi)));
+                end = (int)std::lround(ax.map(std::max(xlo, std::min(v, xhi))));
                 cv::Scalar col = (i == c->highlight) ? cv::Scalar(60, 60, 60) : palette(0);
                 cv::rectangle(img, cv::Rect(plot.x, y + 6, std::max(1, end - plot.x), row_h - 12), col, cv::FILLED);
             }
             if (c->err_lo && c->err_hi && std::isfinite(c->err_lo[i]) && std::isfinite(c->err_hi[i])) {
-                int a = (int)std::lround(ax.map(std::max(0.0, c->err_lo[i])));
-                int b = (int)std::lround(ax.map(std::min(xhi, c->err_hi[i])));
+                double lo = c->x_log ? std::max(xlo, c->err_lo[i]) : std::max(0.0, c->err_lo[i]);
+                int a = (int)std::lround(ax.map(std::min(xhi, lo)));
+                int b = (int)std::lround(ax.map(std::max(xlo, std::min(xhi, c->err_hi[i]))));
                 draw_error_bar(img, a, b, y + row_h / 2, 5);
                 end = std::max(end, b);
             }
