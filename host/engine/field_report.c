@@ -3,6 +3,7 @@
 
 #include "context.h"
 #include "draw.h"
+#include "plots.h"
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "jsonw.h"
@@ -256,5 +257,6 @@ int field_draw_heatmap(const char *path, const struct field_result *r, struct dr
     p[1].value_format = DRAW_FMT_PLAIN;
     p[1].bar_label = "absolute error Delta";
     p[1].subtitle = sub1;
-    return draw_heatmap_figure(path, title, 2, p, layout, err, errlen);
+    if (draw_heatmap_figure(path, title, 2, p, layout, err, errlen)) return -1;
+    return plots_stamp_if_quick(path, 0, err, errlen);
 }

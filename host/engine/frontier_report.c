@@ -3,6 +3,7 @@
 #include "frontier_report.h"
 #include "context.h"
 #include "draw.h"
+#include "plots.h"
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
@@ -153,7 +154,7 @@ int frontier_write_plots(const char *dir, const struct frontier_report *r, char 
                                    n, x, y, labels, kinds, front };
         char path[4300];
         path_join(path, sizeof path, dir, fig == 0 ? "frontier_max_rel.png" : "frontier_max_abs.png");
-        if (draw_scatter_plot(path, &sc, err, errlen))
+        if (draw_scatter_plot(path, &sc, err, errlen) || plots_stamp_if_quick(path, 0, err, errlen))
             return -1;
     }
     return 0;

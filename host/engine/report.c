@@ -345,6 +345,8 @@ int report_render_summary(const char *run_dir, struct md_buf *md,
             const char *contact = files ? str_or(files, "contact_sheet", NULL) : NULL;
             if (img && file_exists(run_dir, img)) md_printf(md, " [image](%s)", img);
             if (errimg && file_exists(run_dir, errimg)) md_printf(md, " [error](%s)", errimg);
+            const char *signed_img = files ? str_or(files, "signed_error_image", NULL) : NULL;
+            if (signed_img && file_exists(run_dir, signed_img)) md_printf(md, " [signed error](%s)", signed_img);
             md_printf(md, " |\n");
             /* a model against itself has a black error image: its contact sheet shows nothing new */
             if (contact && strcmp(label, str_or(m, "reference", "")) != 0 && add) {

@@ -184,10 +184,26 @@ void put_title(cv::Mat &img, const std::string &title)
 
 /* ---- colour maps ---------------------------------------------------------------- */
 
+/* Blue (RGB 33, 102, 172) at 0, white at 128, red (RGB 178, 24, 43) at 255, linear between:
+ * the ends of ColorBrewer's RdBu. */
+void diverging_lut(cv::Mat &lut)
+{
+    static const double blue[3] = {172, 102, 33}, red[3] = {43, 24, 178};   /* BGR */
+    lut.create(1, 256, CV_8UC3);
+    for (int i = 0; i < 256; i++) {
+        const double *end = i < 128 ? blue : red;
+        double t = i < 128 ? (128 - i) / 128.0 : (i - 128) / 127.0;
+        cv::Vec3b c;
+        for (int k = 0; k < 3; k++) c[k] = (uchar)std::lround(255 + t * (end[k] - 255));
+        lut.at<cv::Vec3b>(0, i) = c;
+    }
+}
+
 const cv::Mat &colormap_lut(int cmap)
 {
-    static cv::Mat luts[2];
-    int k = (cmap == DRAW_CMAP_INFERNO) ? 1 : 0;
+    static cv::Mat luts[3];
+    int k = cmap == DRAW_CMAP_INFERNO ? 1 : cmap == DRAW_CMAP_DIVERGING ? 2 : 0;
+    if (k == 2 && luts[k].empty()) diverging_lut(luts[k]);
     if (luts[k].empty()) {
         cv::Mat ramp(1, 256, CV_8UC1);
         for (int i = 0; i < 256; i++) ramp.at<unsigned char>(0, i) = (unsigned char)i;
@@ -412,6 +428,17 @@ void draw_error_bar(cv::Mat &img, int a, int b, int cy, int tick)
     cv::line(img, cv::Point(b, cy - tick), cv::Point(b, cy + tick), INK, 1);
 }
 
+
+/* RGB row-major bytes into a BGR picture of w x h. */
+void rgb_to_bgr(const unsigned char *rgb, int w, int h, cv::Mat dst)
+{
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const unsigned char *p = rgb + ((size_t)y * w + x) * 3;
+            dst.at<cv::Vec3b>(y, x) = cv::Vec3b(p[2], p[1], p[0]);
+        }
+}
+
 } /* namespace draw_detail */
 
 using namespace draw_detail;
@@ -480,3 +507,35 @@ extern "C" int draw_read_rgb8(const char *path, int *width, int *height, unsigne
         return -1;
     }
 }
+
+/* The band under a picture that says its run is not for figures: pale amber, dark red text,
+ * centred, the font shrunk until the text fits the picture's width. */
+static cv::Mat stamped(const cv::Mat &img, const std::string &text)
+{
+    double scale = S_LABEL;
+    while (scale > 0.3 && text_size(text, scale).width + 16 > img.cols) scale -= 0.02;
+    int band = text_size(text, scale).height + 16;
+    cv::Mat out(img.rows + band, img.cols, CV_8UC3, STAMP_BG);
+    img.copyTo(out(cv::Rect(0, 0, img.cols, img.rows)));
+    cv::line(out, cv::Point(0, img.rows), cv::Point(img.cols - 1, img.rows), STAMP_INK, 1);
+    put(out, text, img.cols / 2, img.rows + band / 2 + 1, scale, 0, 0, STAMP_INK, 1);
+    return out;
+}
+
+extern "C" int draw_stamp_png(const char *path, const char *text, char *err, size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return -1;
+    if (!text || !*text) {
+        set_err(err, errlen, "%s: no stamp text", path);
+        return -1;
+    }
+    int w = 0, h = 0;
+    unsigned char *rgb = NULL;
+    if (draw_read_rgb8(path, &w, &h, &rgb, err, errlen)) return -1;
+    cv::Mat img(h, w, CV_8UC3);
+    rgb_to_bgr(rgb, w, h, img);
+    free(rgb);
+    std::string t = ascii(text);
+    return draw_png(path, err, errlen, [&]() { return stamped(img, t); });
+}
+

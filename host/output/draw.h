@@ -40,9 +40,31 @@ int draw_contact_sheet(const char *path, int width, int height,
                        const float *abs_err, float vmax, const char *title,
                        char *err, size_t errlen);
 
+/* Signed per-pixel error (model minus reference; NaN = background) at 1:1 scale on the
+ * diverging map: blue where the model is under the reference, red where over, white at zero, on
+ * the symmetric scale [-vmax, vmax] with a labelled colour bar. vmax <= 0 or non-finite: the
+ * largest finite |value|. */
+int draw_signed_error_image(const char *path, int width, int height, const float *signed_err,
+                            float vmax, const char *title, char *err, size_t errlen);
+
+/* A contact sheet of a grid of small images (the sphere grid: a row per model, a column per
+ * shininess), with each row's label left of the reference panel and each column's label above
+ * every panel. Rows and columns split the picture evenly (row r holds the pixel rows y with
+ * floor(y * rows / height) = r, column c likewise in x). Labels shrink to the band they label. */
+struct draw_grid_labels {
+    int rows, cols;
+    const char *const *row_labels;   /* rows of them */
+    const char *const *col_labels;   /* cols of them */
+};
+int draw_contact_grid(const char *path, int width, int height, const unsigned char *ref_rgb,
+                      const unsigned char *model_rgb, const float *abs_err, float vmax, const char *title,
+                      const struct draw_grid_labels *labels, char *err, size_t errlen);
+
 /* ---- colour maps ---------------------------------------------------------------- */
 
-enum draw_cmap { DRAW_CMAP_VIRIDIS = 0, DRAW_CMAP_INFERNO = 1 };
+/* DRAW_CMAP_DIVERGING: blue (RGB 33, 102, 172) at 0, white at 128, red (RGB 178, 24, 43) at 255,
+ * linear between (the ends of ColorBrewer's RdBu), for signed values on a symmetric scale. */
+enum draw_cmap { DRAW_CMAP_VIRIDIS = 0, DRAW_CMAP_INFERNO = 1, DRAW_CMAP_DIVERGING = 2 };
 
 /* The colour map's entry 0..255 (0 = bottom, 255 = top) as R, G, B. */
 void draw_colormap_rgb(int cmap, int index, unsigned char rgb[3]);
@@ -187,6 +209,13 @@ struct draw_ratio_chart {
 };
 
 int draw_ratio_chart(const char *path, const struct draw_ratio_chart *chart, char *err, size_t errlen);
+
+/* ---- the quick-run stamp ------------------------------------------------------------------ */
+
+/* Adds a band under the picture at path (rewritten atomically, as every picture): pale amber
+ * (RGB 255, 240, 200) with text in dark red (RGB 160, 20, 20), centred, the font shrunk to the
+ * picture's width; the picture above the band keeps every pixel. */
+int draw_stamp_png(const char *path, const char *text, char *err, size_t errlen);
 
 /* ---- reading back ------------------------------------------------------------------------ */
 

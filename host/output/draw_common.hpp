@@ -24,6 +24,8 @@ const cv::Scalar GRID(225, 225, 225);
 const cv::Scalar WHITE(255, 255, 255);
 const cv::Scalar NODATA(100, 90, 90);      /* NaN cells / background pixels: RGB (90, 90, 100), a
                                               bluish grey no anti-aliased text pixel takes */
+const cv::Scalar STAMP_BG(200, 240, 255);   /* the quick-run stamp's band: RGB (255, 240, 200) */
+const cv::Scalar STAMP_INK(20, 20, 160);    /* and its text: RGB (160, 20, 20) */
 const int FONT = cv::FONT_HERSHEY_SIMPLEX;
 const double S_TICK = 0.5, S_LABEL = 0.58, S_TITLE = 0.72;
 
@@ -69,6 +71,7 @@ void colour_scale(double vmin, double vmax, double data_max, double *lo, double 
 int write_png(const char *path, const cv::Mat &bgr, char *err, size_t errlen);
 bool check_path(const char *path, char *err, size_t errlen);
 void draw_error_bar(cv::Mat &img, int a, int b, int cy, int tick);
+void rgb_to_bgr(const unsigned char *rgb, int w, int h, cv::Mat dst);
 
 
 /* The image that draw() makes, written to path as PNG; an OpenCV exception on the way becomes

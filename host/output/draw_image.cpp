@@ -22,8 +22,8 @@ double finite_max(const float *v, size_t n)
     return m;
 }
 
-/* False-colour an error image into dst (BGR, width x height). */
-void error_to_bgr(const float *e, int w, int h, double lo, double hi, cv::Mat dst)
+/* False-colour an error image into dst (BGR, width x height) on colour map cmap over [lo, hi]. */
+void error_to_bgr(const float *e, int w, int h, double lo, double hi, int cmap, cv::Mat dst)
 {
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
@@ -31,18 +31,17 @@ void error_to_bgr(const float *e, int w, int h, double lo, double hi, cv::Mat ds
             if (!std::isfinite(v)) {
                 dst.at<cv::Vec3b>(y, x) = cv::Vec3b((uchar)NODATA[0], (uchar)NODATA[1], (uchar)NODATA[2]);
             } else {
-                dst.at<cv::Vec3b>(y, x) = cmap_bgr(DRAW_CMAP_INFERNO, value_index(v, lo, hi));
+                dst.at<cv::Vec3b>(y, x) = cmap_bgr(cmap, value_index(v, lo, hi));
             }
         }
 }
 
-void rgb_to_bgr(const unsigned char *rgb, int w, int h, cv::Mat dst)
+double finite_abs_max(const float *v, size_t n)
 {
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            const unsigned char *p = rgb + ((size_t)y * w + x) * 3;
-            dst.at<cv::Vec3b>(y, x) = cv::Vec3b(p[2], p[1], p[0]);
-        }
+    double m = NAN;
+    for (size_t i = 0; i < n; i++)
+        if (std::isfinite(v[i]) && !(std::fabs(v[i]) <= m)) m = std::fabs(v[i]);
+    return m;
 }
 
 bool check_image_args(const char *path, int width, int height, const void *data, const char *what,
@@ -60,27 +59,77 @@ bool check_image_args(const char *path, int width, int height, const void *data,
     return true;
 }
 
-/* Images of width x height (count of them) in a row, captions above, the error colour bar
- * on the right; the last image is the error. */
-cv::Mat image_row(int w, int h, const unsigned char *ref_rgb, const unsigned char *model_rgb,
-                  const float *abs_err, float vmax, const char *title)
-{
-    bool sheet = ref_rgb != nullptr;
+/* What image_row draws: one error image, or a contact sheet (reference, model, error), with the
+ * error's colour map and scale and, for a grid of small images, its row and column labels. */
+struct RowSpec {
+    int w, h;
+    const unsigned char *ref, *model;   /* both NULL: the error image alone */
+    const float *err;
     double lo, hi;
-    colour_scale(0, vmax, finite_max(abs_err, (size_t)w * h), &lo, &hi);
+    int cmap;
+    const char *err_caption, *bar_caption, *title;
+    const draw_grid_labels *labels;     /* may be NULL */
+};
+
+/* The font scale at which every label fits a band of `band` pixels (height for rows). */
+double label_scale(const char *const *labels, int n, int band, bool widths)
+{
+    double scale = S_TICK;
+    for (; scale > 0.3; scale -= 0.02) {
+        bool fits = true;
+        for (int i = 0; i < n && fits; i++) {
+            cv::Size sz = text_size(ascii(labels[i]), scale);
+            fits = widths ? sz.width + 4 <= band : sz.height + 3 <= band;
+        }
+        if (fits) break;
+    }
+    return scale;
+}
+
+/* Row labels right-aligned at x_right, centred on their bands; column labels above each panel. */
+void grid_labels(cv::Mat &img, const RowSpec &r, int x_right, const std::vector<int> &panel_x, int y0)
+{
+    const draw_grid_labels &g = *r.labels;
+    double rs = label_scale(g.row_labels, g.rows, r.h / g.rows, false);
+    for (int k = 0; k < g.rows; k++)
+        put(img, ascii(g.row_labels[k]), x_right, y0 + (int)((k + 0.5) * r.h / g.rows), rs, 1, 0);
+    double cs = label_scale(g.col_labels, g.cols, r.w / g.cols, true);
+    for (int x0 : panel_x)
+        for (int c = 0; c < g.cols; c++)
+            put(img, ascii(g.col_labels[c]), x0 + (int)((c + 0.5) * r.w / g.cols), y0 - 4, cs, 0, 1);
+}
+
+int row_label_width(const RowSpec &r)
+{
+    if (!r.labels) return 0;
+    const draw_grid_labels &g = *r.labels;
+    double rs = label_scale(g.row_labels, g.rows, r.h / g.rows, false);
+    int w = 0;
+    for (int k = 0; k < g.rows; k++) w = std::max(w, text_size(ascii(g.row_labels[k]), rs).width);
+    return w + 8;
+}
+
+/* Images of width x height in a row, captions above, the error colour bar on the right; the
+ * last image is the error. */
+cv::Mat image_row(const RowSpec &r)
+{
+    const int w = r.w, h = r.h;
+    bool sheet = r.ref != nullptr;
     const int M = 12, GAP = 12, BAR_W = 20, BAR_MIN_H = 220;
     int nimg = sheet ? 3 : 1;
-    std::string t = ascii(title);
+    std::string t = ascii(r.title);
     int th = title_height(t);
-    int cap_h = sheet ? 26 : 0;
+    int col_h = r.labels ? 18 : 0;
+    int cap_h = (sheet ? 26 : 0) + col_h;
     int bar_h = std::max(h, BAR_MIN_H);
-    int bar_extent = colour_bar_extent(lo, hi, DRAW_FMT_PLAIN, BAR_W);
-    static const char *captions[3] = {"reference", "model", "abs. error"};
+    int bar_extent = colour_bar_extent(r.lo, r.hi, DRAW_FMT_PLAIN, BAR_W);
+    const char *captions[3] = {"reference", "model", r.err_caption};
     /* each image sits centred in a slot at least as wide as its caption */
     int slot = w;
     if (sheet)
         for (int k = 0; k < 3; k++) slot = std::max(slot, text_size(captions[k], S_LABEL).width + 8);
-    int width = M + nimg * slot + (nimg - 1) * GAP + 18 + bar_extent + M;
+    int left = M + row_label_width(r);
+    int width = left + nimg * slot + (nimg - 1) * GAP + 18 + bar_extent + M;
     int title_w = 0;
     for (const std::string &l : split_lines(t)) title_w = std::max(title_w, text_size(l, S_TITLE).width + 2 * M);
     width = std::max(width, title_w);
@@ -88,18 +137,29 @@ cv::Mat image_row(int w, int h, const unsigned char *ref_rgb, const unsigned cha
     cv::Mat img(height, width, CV_8UC3, WHITE);
     put_title(img, t);
     int y0 = th + cap_h;
+    std::vector<int> panel_x;
     for (int k = 0; k < nimg; k++) {
-        int sx = M + k * (slot + GAP), x0 = sx + (slot - w) / 2;
+        int sx = left + k * (slot + GAP), x0 = sx + (slot - w) / 2;
         cv::Mat dst = img(cv::Rect(x0, y0, w, h));
-        if (sheet && k == 0) rgb_to_bgr(ref_rgb, w, h, dst);
-        else if (sheet && k == 1) rgb_to_bgr(model_rgb, w, h, dst);
-        else error_to_bgr(abs_err, w, h, lo, hi, dst);
-        if (sheet) put(img, captions[k], sx + slot / 2, y0 - 6, S_LABEL, 0, 1);
+        if (sheet && k == 0) rgb_to_bgr(r.ref, w, h, dst);
+        else if (sheet && k == 1) rgb_to_bgr(r.model, w, h, dst);
+        else error_to_bgr(r.err, w, h, r.lo, r.hi, r.cmap, dst);
+        if (sheet) put(img, captions[k], sx + slot / 2, y0 - 6 - col_h, S_LABEL, 0, 1);
+        panel_x.push_back(x0);
     }
-    int bx = M + nimg * slot + (nimg - 1) * GAP + 18;
-    draw_colour_bar(img, cv::Rect(bx, y0, BAR_W, bar_h), DRAW_CMAP_INFERNO, lo, hi, DRAW_FMT_PLAIN,
-                    "absolute error");
+    if (r.labels) grid_labels(img, r, panel_x[0] - 6, panel_x, y0);
+    int bx = left + nimg * slot + (nimg - 1) * GAP + 18;
+    draw_colour_bar(img, cv::Rect(bx, y0, BAR_W, bar_h), r.cmap, r.lo, r.hi, DRAW_FMT_PLAIN, r.bar_caption);
     return img;
+}
+
+/* The RowSpec of an absolute error (inferno over [0, vmax]). */
+RowSpec abs_row(int w, int h, const unsigned char *ref, const unsigned char *model, const float *abs_err, float vmax,
+                const char *title, const draw_grid_labels *labels)
+{
+    RowSpec r{w, h, ref, model, abs_err, 0, 1, DRAW_CMAP_INFERNO, "abs. error", "absolute error", title, labels};
+    colour_scale(0, vmax, finite_max(abs_err, (size_t)w * h), &r.lo, &r.hi);
+    return r;
 }
 
 /* ---- heatmaps --------------------------------------------------------------------- */
@@ -260,12 +320,23 @@ extern "C" int draw_error_image(const char *path, int width, int height, const f
 {
     if (!check_image_args(path, width, height, abs_err, "error", err, errlen)) return -1;
     return draw_png(path, err, errlen,
-                    [&]() { return image_row(width, height, nullptr, nullptr, abs_err, vmax, title); });
+                    [&]() { return image_row(abs_row(width, height, nullptr, nullptr, abs_err, vmax, title, nullptr)); });
 }
 
-extern "C" int draw_contact_sheet(const char *path, int width, int height, const unsigned char *ref_rgb,
-                                  const unsigned char *model_rgb, const float *abs_err, float vmax,
-                                  const char *title, char *err, size_t errlen)
+extern "C" int draw_signed_error_image(const char *path, int width, int height, const float *signed_err,
+                                       float vmax, const char *title, char *err, size_t errlen)
+{
+    if (!check_image_args(path, width, height, signed_err, "error", err, errlen)) return -1;
+    double m = (std::isfinite(vmax) && vmax > 0) ? vmax : finite_abs_max(signed_err, (size_t)width * height);
+    if (!(std::isfinite(m) && m > 0)) m = 1;
+    RowSpec r{width, height, nullptr, nullptr, signed_err, -m, m, DRAW_CMAP_DIVERGING, "signed error",
+              "model - reference (blue under, red over)", title, nullptr};
+    return draw_png(path, err, errlen, [&]() { return image_row(r); });
+}
+
+static int contact(const char *path, int width, int height, const unsigned char *ref_rgb,
+                   const unsigned char *model_rgb, const float *abs_err, float vmax, const char *title,
+                   const draw_grid_labels *labels, char *err, size_t errlen)
 {
     if (!check_image_args(path, width, height, abs_err, "error", err, errlen)) return -1;
     if (!ref_rgb || !model_rgb) {
@@ -273,7 +344,26 @@ extern "C" int draw_contact_sheet(const char *path, int width, int height, const
         return -1;
     }
     return draw_png(path, err, errlen,
-                    [&]() { return image_row(width, height, ref_rgb, model_rgb, abs_err, vmax, title); });
+                    [&]() { return image_row(abs_row(width, height, ref_rgb, model_rgb, abs_err, vmax, title, labels)); });
+}
+
+extern "C" int draw_contact_sheet(const char *path, int width, int height, const unsigned char *ref_rgb,
+                                  const unsigned char *model_rgb, const float *abs_err, float vmax,
+                                  const char *title, char *err, size_t errlen)
+{
+    return contact(path, width, height, ref_rgb, model_rgb, abs_err, vmax, title, nullptr, err, errlen);
+}
+
+extern "C" int draw_contact_grid(const char *path, int width, int height, const unsigned char *ref_rgb,
+                                 const unsigned char *model_rgb, const float *abs_err, float vmax, const char *title,
+                                 const struct draw_grid_labels *labels, char *err, size_t errlen)
+{
+    if (!labels || labels->rows < 1 || labels->cols < 1 || labels->rows > height || labels->cols > width ||
+        !labels->row_labels || !labels->col_labels) {
+        set_err(err, errlen, "%s: a contact grid needs 1..%d rows and 1..%d columns, each labelled", path, height, width);
+        return -1;
+    }
+    return contact(path, width, height, ref_rgb, model_rgb, abs_err, vmax, title, labels, err, errlen);
 }
 
 extern "C" int draw_heatmap_figure(const char *path, const char *title, int npanels,
