@@ -70,6 +70,57 @@ static void test_plots(const char *dir)
     plots_free(&set);
 }
 
+/* A run folder's accuracy.json with the grid of its context block (nothing else is read). */
+static void write_grid(const char *dir, double n_step, long samples)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/accuracy.json", dir);
+    FILE *f = fopen(path, "w");
+    if (!f) return;
+    fprintf(f, "{\"schema\": \"brdfbench.accuracy/1\", \"context\": {\"grid\": {\"n_min\": 2, \"n_max\": 1000, "
+               "\"n_step\": %g, \"samples_per_zone\": %ld}}, \"results\": []}\n", n_step, samples);
+    fclose(f);
+}
+
+static long file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+/* The quick stamp follows the run folder's grid: all --quick's (n step 10, 256 samples) and
+ * coarser is quick, the full grid (step 1, 4096 samples) and a folder without accuracy.json are
+ * not; a plot redrawn in a quick folder carries the band, in the others it is the plain picture. */
+static void test_quick_stamp(const char *dir)
+{
+    char quick[4200], full[4200], none[4200], err[1024];
+    snprintf(quick, sizeof quick, "%s/quick", dir);
+    snprintf(full, sizeof full, "%s/full", dir);
+    snprintf(none, sizeof none, "%s/none", dir);
+    CHECK(mkdir(quick, 0755) == 0 && mkdir(full, 0755) == 0 && mkdir(none, 0755) == 0, "folders");
+    write_grid(quick, 10, 256);
+    write_grid(full, 1, 4096);
+    CHECK(plots_run_is_quick(quick), "n step 10, 256 samples: not quick");
+    CHECK(!plots_run_is_quick(full), "n step 1, 4096 samples: quick");
+    CHECK(!plots_run_is_quick(none), "no accuracy.json: quick");
+    write_grid(full, 1, 128);   /* coarser in samples alone: quick (the answer follows the file) */
+    CHECK(plots_run_is_quick(full), "n step 1, 128 samples: not quick");
+    write_grid(full, 1, 4096);
+    struct plot_set set;
+    plots_init(&set);
+    double q[3] = {0.3, 0.5, 0.7}, v[3] = {0.02, 0.01, 0.03};
+    CHECK(plots_add_against_q(&set, "q.png", "c", "t", "max delta", 1, q, v, 3, "f_Q", NAN, "", NAN) == 0, "built");
+    CHECK(plots_draw(&set, quick, err, sizeof err) == 0 && plots_draw(&set, full, err, sizeof err) == 0 &&
+              plots_draw(&set, none, err, sizeof err) == 0, "drawn: %s", err);
+    char a[8500], b[8500], c[8500];
+    snprintf(a, sizeof a, "%s/q.png", quick);
+    snprintf(b, sizeof b, "%s/q.png", full);
+    snprintf(c, sizeof c, "%s/q.png", none);
+    CHECK(same_file(b, c), "a full run's picture differs from one drawn outside a run");
+    CHECK(!same_file(a, b) && file_size(a) > file_size(b), "the quick run's picture has no stamp");
+    plots_free(&set);
+}
+
 static int test_heatmap(const char *dir)
 {
     struct cl_session s;
@@ -117,6 +168,7 @@ int main(void)
     if (test_tmpdir_make(dir, sizeof dir, "redraw"))
         return 1;
     test_plots(dir);
+    test_quick_stamp(dir);
     int rc = test_heatmap(dir);
     if (rc == EXIT_NO_DEVICE) {
         printf("no OpenCL device: device checks skipped\n");

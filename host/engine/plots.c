@@ -339,7 +339,8 @@ bool plots_run_is_quick(const char *run_dir)
     if (path_join(path, sizeof path, run_dir, "accuracy.json") || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
         return false;
     if (last_answer >= 0 && strcmp(last_dir, run_dir) == 0 && st.st_ino == last_st.st_ino &&
-        st.st_dev == last_st.st_dev && st.st_size == last_st.st_size && st.st_mtime == last_st.st_mtime)
+        st.st_dev == last_st.st_dev && st.st_size == last_st.st_size && st.st_mtim.tv_sec == last_st.st_mtim.tv_sec &&
+        st.st_mtim.tv_nsec == last_st.st_mtim.tv_nsec)
         return last_answer == 1;
     int q = accuracy_json_quick(path);
     snprintf(last_dir, sizeof last_dir, "%s", run_dir);

@@ -856,7 +856,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
                 grid_err[off + k] = peak > 0 ? (float)(errimg[k] / peak) : errimg[k];
         }
         if (o->write_images) {
-            char base[MODEL_LABEL_MAX + 8], title[400], ctitle[400];
+            char base[MODEL_LABEL_MAX + 8], title[400], ctitle[400], stitle[400];
             label_to_file(m->label, base, sizeof base);
             const char *sc = render_scene_names[sd->kind];
             snprintf(title, sizeof title,
@@ -865,8 +865,9 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
                      mr->metrics.mean_abs);
             snprintf(ctitle, sizeof ctitle, "%s: reference %s | model %s | error (max %.3g)", sc,
                      mr->ref.label, m->label, mr->metrics.max_abs);
+            render_signed_title(stitle, sizeof stitle, sc, m->label, mr->ref.label, mr->metrics.max_abs);
             struct render_picture_set ps = {scene_dir, sc, "", base, w, y1 - y0, rgb_m, rgb_r, errimg,
-                                            signed_m, mr->metrics.max_abs, title, ctitle, mr->image,
+                                            signed_m, mr->metrics.max_abs, title, stitle, ctitle, mr->image,
                                             mr->error, mr->signed_error, mr->contact};
             if (render_write_pictures(&ps, err, errlen) != 0)
                 goto io_fail;
@@ -976,15 +977,16 @@ static int he_pictures(const char *scene_dir, const char *sc, const char *base, 
                        const unsigned char *rgb_he, unsigned char *rgb, const float *errimg, const float *signed_img,
                        struct he_entry *en, const char *he_label, int all_pictures, char *err, size_t errlen)
 {
-    char title[400], ctitle[400];
+    char title[400], ctitle[400], stitle[400];
     if (all_pictures)
         render_rgba_to_rgb(rgba, (size_t)w * h, rgb);
     snprintf(title, sizeof title, "%s: |%s - %s| specular radiance, max %.3g mean %.3g", sc, en->label, he_label,
              en->metrics.max_abs, en->metrics.mean_abs);
     snprintf(ctitle, sizeof ctitle, "%s: %s | %s | error (max %.3g)", sc, he_label, en->label, en->metrics.max_abs);
+    render_signed_title(stitle, sizeof stitle, sc, en->label, he_label, en->metrics.max_abs);
     struct render_picture_set ps = {scene_dir, sc, "he_", base, w, h, all_pictures ? rgb : NULL,
                                     all_pictures ? rgb_he : NULL, errimg, signed_img, en->metrics.max_abs, title,
-                                    ctitle, en->image, en->error, en->signed_error, en->contact};
+                                    stitle, ctitle, en->image, en->error, en->signed_error, en->contact};
     return render_write_pictures(&ps, err, errlen);
 }
 

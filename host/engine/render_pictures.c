@@ -24,9 +24,16 @@ static void picture_path(const struct render_picture_set *p, const char *suffix,
     if (rel) snprintf(rel, 256, "render/%s/%s", p->scene, name);
 }
 
+void render_signed_title(char *out, size_t len, const char *scene, const char *model, const char *reference,
+                         double max_abs)
+{
+    snprintf(out, len, "%s: %s - %s specular radiance\nblue: model under the reference, red: over, white: equal; "
+             "scale +-%.3g", scene, model, reference, max_abs);
+}
+
 int render_write_pictures(const struct render_picture_set *p, char *err, size_t errlen)
 {
-    char path[4600], title[600];
+    char path[4600];
     if (p->rgb) {
         picture_path(p, "", path, sizeof path, p->image);
         if (draw_png_rgb8(path, p->w, p->h, p->rgb, err, errlen) != 0) return EXIT_RUNTIME;
@@ -36,9 +43,7 @@ int render_write_pictures(const struct render_picture_set *p, char *err, size_t 
         stamp(path, err, errlen))
         return EXIT_RUNTIME;
     picture_path(p, "_signed_error", path, sizeof path, p->signed_error);
-    snprintf(title, sizeof title, "%s\nsigned: model - reference, on the symmetric scale +-%.3g", p->error_title,
-             p->max_abs);
-    if (draw_signed_error_image(path, p->w, p->h, p->signed_err, (float)p->max_abs, title, err, errlen) != 0 ||
+    if (draw_signed_error_image(path, p->w, p->h, p->signed_err, (float)p->max_abs, p->signed_title, err, errlen) != 0 ||
         stamp(path, err, errlen))
         return EXIT_RUNTIME;
     if (!p->ref_rgb) return 0;

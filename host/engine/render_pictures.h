@@ -19,10 +19,15 @@ struct render_picture_set {
     const unsigned char *rgb, *ref_rgb;
     const float *abs_err, *signed_err;
     double max_abs;
-    const char *error_title, *contact_title;
+    const char *error_title, *signed_title, *contact_title;
     char *image, *error, *signed_error, *contact;   /* 256 bytes each; image/contact may be NULL */
 };
 int render_write_pictures(const struct render_picture_set *p, char *err, size_t errlen);
+
+/* The signed error image's title: "<scene>: <model> - <reference> specular radiance; blue: under,
+ * red: over, scale +-<max>". */
+void render_signed_title(char *out, size_t len, const char *scene, const char *model, const char *reference,
+                         double max_abs);
 
 /* The sphere grid's contact sheet (scene_dir/contact.png): a row per model of o, labelled with
  * its name, a column per shininess, labelled "n = ...". */

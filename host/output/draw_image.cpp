@@ -330,7 +330,7 @@ extern "C" int draw_signed_error_image(const char *path, int width, int height, 
     double m = (std::isfinite(vmax) && vmax > 0) ? vmax : finite_abs_max(signed_err, (size_t)width * height);
     if (!(std::isfinite(m) && m > 0)) m = 1;
     RowSpec r{width, height, nullptr, nullptr, signed_err, -m, m, DRAW_CMAP_DIVERGING, "signed error",
-              "model - reference (blue under, red over)", title, nullptr};
+              "model - reference", title, nullptr};
     return draw_png(path, err, errlen, [&]() { return image_row(r); });
 }
 
