@@ -483,6 +483,80 @@ static void test_stamp(void)
     free(b);
 }
 
+/* Vertical runs of exactly colour want in the picture's column x. */
+static int runs_in_column(const unsigned char *img, int w, int h, int x, const int want[3])
+{
+    int runs = 0, in = 0;
+    for (int y = 0; y < h; y++) {
+        int m = near(px(img, w, x, y), want, 0);
+        runs += m && !in;
+        in = m;
+    }
+    return runs;
+}
+
+/* The middle of the columns of the picture's last 80 that hold colour want (the marks'
+ * column; the legend's marks are at the left). */
+static int mark_column(const unsigned char *img, int w, int h, const int want[3])
+{
+    int lo = -1, hi = -1;
+    for (int x = w - 80; x < w; x++)
+        for (int y = 0; y < h; y++)
+            if (near(px(img, w, x, y), want, 0)) {
+                if (lo < 0) lo = x;
+                hi = x;
+                break;
+            }
+    return lo < 0 ? -1 : (lo + hi) / 2;
+}
+
+/* compare's chart: 64 rows in two panels, the second run's verdict cycling better, worse, same,
+ * lost: 16 marks of each colour (the colours of draw.h), one per row, in the marks' column. */
+static void test_verdict_chart(void)
+{
+    enum { ROWS = 64, S = 2 };
+    static char text[ROWS][160];
+    static const char *labels[ROWS];
+    static double ratio[ROWS * S];
+    static int verdict[ROWS * S];
+    static const int kinds[4] = {DRAW_VERDICT_BETTER, DRAW_VERDICT_WORSE, DRAW_VERDICT_SAME, DRAW_VERDICT_LOST};
+    for (int i = 0; i < ROWS; i++) {
+        /* a device name far wider than the label column: wrapped, not clipped */
+        snprintf(text[i], sizeof text[i], "pthread-haswell-AMD EPYC 7B13 64-Core Processor with a long name %d | "
+                 "model%d | default | n uniform", i, i);
+        labels[i] = text[i];
+        ratio[i * S] = 1;
+        ratio[i * S + 1] = 0.5 + i / 32.0;
+        verdict[i * S] = DRAW_VERDICT_NONE;
+        verdict[i * S + 1] = kinds[i % 4];
+    }
+    struct draw_verdict_panel p[2] = {{"throughput: rates", 40, labels, ratio, verdict},
+                                      {"accuracy: errors", 24, labels + 40, ratio + 40 * S, verdict + 40 * S}};
+    const char *series[S] = {"baseline run", "new run"};
+    struct draw_verdict_chart c = {"verdicts", "ratio", S, series, 2, p, 0};
+    char path[512], err[512];
+    path_in(path, sizeof path, "verdicts.png");
+    CHECK(draw_verdict_chart(path, &c, err, sizeof err) == 0, "verdict chart: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) != 0) {
+        CHECK(0, "read verdicts.png: %s", err);
+        return;
+    }
+    CHECK(w == 1100, "the chart grew to %d pixels wide for long labels (they wrap)", w);
+    static const int GREEN[3] = {0, 140, 60}, RED[3] = {200, 0, 0}, GREY[3] = {150, 150, 150}, BLACK[3] = {0, 0, 0};
+    const int *want[4] = {GREEN, RED, GREY, BLACK};
+    for (int k = 0; k < 4; k++) {
+        unsigned char rgb[3];
+        draw_verdict_rgb(kinds[k], rgb);
+        CHECK(near(rgb, want[k], 0), "verdict %d's colour is %d,%d,%d", kinds[k], rgb[0], rgb[1], rgb[2]);
+        int x = mark_column(img, w, h, want[k]);
+        int n = x >= 0 ? runs_in_column(img, w, h, x, want[k]) : 0;
+        CHECK(n == ROWS / 4, "%d marks of verdict %d in column %d, want %d", n, kinds[k], x, ROWS / 4);
+    }
+    free(img);
+}
+
 static void test_errors(void)
 {
     unsigned char rgb[12] = {0};
@@ -503,6 +577,6 @@ int main(void)
 {
     static void (*const tests[])(void) = { test_colormap_ends, test_png_round_trip, test_heatmap,
         test_heatmap_dense_peak, test_error_image_and_sheet, test_line_plot_and_bars, test_log_bars,
-        test_signed_error, test_contact_grid, test_stamp, test_errors };
+        test_signed_error, test_contact_grid, test_stamp, test_verdict_chart, test_errors };
     return test_run_in_tmpdir(dir, sizeof dir, "test_draw", tests, sizeof tests / sizeof tests[0]);
 }

@@ -210,6 +210,39 @@ struct draw_ratio_chart {
 
 int draw_ratio_chart(const char *path, const struct draw_ratio_chart *chart, char *err, size_t errlen);
 
+/* ---- verdict charts (brdfbench compare) --------------------------------------------------- */
+
+/* Small multiples: one panel per kind of row (throughput rates, accuracy errors, ...), every row
+ * of it, each run's value as a ratio to the baseline's (a bar per run on a log axis through 1),
+ * and per row, for every run after the baseline, its verdict's mark in a column at the right:
+ * better (faster, smaller error) a green triangle up, worse a red triangle down, same a grey
+ * circle, lost (missing from the run, or failed) a black cross, undecided (noisy, too few
+ * repetitions, changed with no better or worse) an amber diamond. Row labels and run names are
+ * wrapped (at " | ", then at blanks) and shrunk to fit, never clipped. */
+enum draw_verdict {
+    DRAW_VERDICT_NONE = 0, DRAW_VERDICT_BETTER, DRAW_VERDICT_WORSE, DRAW_VERDICT_SAME, DRAW_VERDICT_LOST,
+    DRAW_VERDICT_UNDECIDED
+};
+/* The marks' colours, RGB: better 0,140,60; worse 200,0,0; same 150,150,150; lost 0,0,0;
+ * undecided 230,160,0 (drawn without anti-aliasing: exactly these). */
+void draw_verdict_rgb(int verdict, unsigned char rgb[3]);
+struct draw_verdict_panel {
+    const char *title;
+    int nrows;
+    const char *const *labels;   /* nrows */
+    const double *ratio;         /* nrows * nseries, [row * nseries + run]; NaN: none */
+    const int *verdict;          /* nrows * nseries, enum draw_verdict (the baseline's: NONE) */
+};
+struct draw_verdict_chart {
+    const char *title, *x_label;
+    int nseries;                 /* runs, the baseline first */
+    const char *const *series;
+    int npanels;
+    const struct draw_verdict_panel *panels;
+    int width;                   /* 0: 1100 */
+};
+int draw_verdict_chart(const char *path, const struct draw_verdict_chart *c, char *err, size_t errlen);
+
 /* ---- the quick-run stamp ------------------------------------------------------------------ */
 
 /* Adds a band under the picture at path (rewritten atomically, as every picture): pale amber
