@@ -7,8 +7,10 @@
  *   - a plot of max delta against Q with values and a marked Q at full double precision,
  *     and a plot of f against x. */
 #include "check.h"
+#include "draw.h"
 #include "exitcodes.h"
 #include "field_report.h"
+#include "heatmaps_shared.h"
 #include "models.h"
 #include "plots.h"
 #include "testutil.h"
@@ -121,6 +123,53 @@ static void test_quick_stamp(const char *dir)
     plots_free(&set);
 }
 
+static double largest(const float *v, size_t n)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(v[i]) && v[i] > m) m = v[i];
+    return m;
+}
+
+/* --shared-scale: with the fields of fq2 and cq2 in a folder, each heatmap is redrawn on the
+ * largest delta and the largest Delta of the two (computed here from the fields), the same
+ * picture as drawn with those scales, and the page of both is written. */
+static void test_shared_scale(const char *dir, const struct field_result *a, const struct field_result *b,
+                              const struct cl_session *s)
+{
+    char run[4200], path[4300], err[1024];
+    snprintf(run, sizeof run, "%s/shared", dir);
+    CHECK(mkdir(run, 0755) == 0, "folder");
+    const struct field_result *fr[2] = {a, b};
+    double epi = 0, att = 0;
+    for (int k = 0; k < 2; k++) {
+        size_t cells = (size_t)fr[k]->grid.rows * fr[k]->grid.cols;
+        epi = fmax(epi, largest(fr[k]->epi_rel, cells));
+        att = fmax(att, largest(fr[k]->att_abs, cells));
+        char safe[96], name[200];
+        field_safe_label(fr[k]->model.label, safe, sizeof safe);
+        snprintf(name, sizeof name, "%s/field_%s.json", run, safe);
+        CHECK(field_write_json(name, fr[k], s, err, sizeof err) == 0, "field JSON: %s", err);
+    }
+    int drawn = 0;
+    CHECK(plots_heatmaps_shared(run, 1, NULL, &drawn, err, sizeof err) == 0, "shared: %s", err);
+    CHECK(drawn == 2, "%d heatmaps redrawn on the shared scale, want 2", drawn);
+    snprintf(path, sizeof path, "%s/%s", run, HEATMAPS_SHARED_FILE);
+    struct stat st;
+    CHECK(stat(path, &st) == 0 && st.st_size > 0, "no %s", HEATMAPS_SHARED_FILE);
+    for (int k = 0; k < 2; k++) {
+        char safe[96], mine[4300], theirs[4300];
+        struct draw_panel_layout lay[2];
+        field_safe_label(fr[k]->model.label, safe, sizeof safe);
+        snprintf(mine, sizeof mine, "%s/expected_%s.png", dir, safe);
+        snprintf(theirs, sizeof theirs, "%s/heatmap_%s.png", run, safe);
+        CHECK(field_draw_heatmap_scaled(mine, fr[k], epi, att, lay, err, sizeof err) == 0, "drawn: %s", err);
+        CHECK(lay[0].vmax_used == epi && lay[1].vmax_used == att, "%s: scales %g, %g, want %g, %g", safe,
+              lay[0].vmax_used, lay[1].vmax_used, epi, att);
+        CHECK(same_file(mine, theirs), "%s: the shared-scale heatmap is not drawn on the largest of both", safe);
+    }
+}
+
 static int test_heatmap(const char *dir)
 {
     struct cl_session s;
@@ -155,6 +204,12 @@ static int test_heatmap(const char *dir)
           back.att_peak.col, r.att_peak.row, r.att_peak.col);
     CHECK(field_draw_heatmap(b, &back, NULL, err, sizeof err) == 0, "heatmap redrawn: %s", err);
     CHECK(same_file(a, b), "the redrawn heatmap differs from the picture of the run");
+    struct model_spec m2 = spec("cq2");
+    struct field_result r2;
+    if ((rc = field_run(&f, &m2, &g, &r2)) != 0)
+        return rc;
+    test_shared_scale(dir, &r, &r2, &s);
+    field_result_free(&r2);
     field_result_free(&back);
     field_result_free(&r);
     field_close(&f);

@@ -21,6 +21,7 @@
 #include "reproduce.h"
 #include "throughput.h"
 #include "jsonr.h"
+#include "heatmaps_shared.h"
 #include "report.h"
 #include "usermodel.h"
 
@@ -798,7 +799,7 @@ int cmd_all(int argc, char **argv)
     r->tty = isatty(STDERR_FILENO);
     r->results_root = "results";
     const char *models_text = "all", *out_dir = NULL;
-    int quick = 0;
+    int quick = 0, shared_scale = 0;
     struct device_options dev;
     device_options_init(&dev);
     size_t used = (size_t)snprintf(r->command, sizeof r->command, "brdfbench all");
@@ -821,6 +822,7 @@ int cmd_all(int argc, char **argv)
         { .name = "--quick", .kind = CLI_SWITCH, .dest = &quick, .set = 1,
           .help = "coarse grids (seconds; for tests and trials, not for figures): n step 10, 256 samples" },
         CLI_FLAG_QUIET(&r->quiet),
+        CLI_FLAG_SHARED_SCALE(&shared_scale),
         CLI_FLAG_MEASURED(&r->measured_dir),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
@@ -908,6 +910,7 @@ int cmd_all(int argc, char **argv)
     if ((rc = step_q_sweep(r)) != 0) goto done;
     part(r, "throughput", &r->throughput, step_throughput(r));
     if ((rc = step_heatmaps(r)) != 0) goto done;
+    if ((rc = plots_heatmaps_shared_step("all", r->run_dir, shared_scale)) != 0) goto done;
     if ((rc = step_plots(r)) != 0) goto done;
     part(r, "images", &r->images, step_images(r));
     part(r, "frontier", &r->frontier, step_frontier(r));

@@ -115,6 +115,12 @@ int draw_heatmap_figure(const char *path, const char *title, int npanels,
                         const struct draw_heatmap_panel *panels,
                         struct draw_panel_layout *layout, char *err, size_t errlen);
 
+/* Small multiples: npanels (1..400) heatmaps of 240 x 170 pixels each, ncols (1..8) to a row,
+ * under one title; each panel as in draw_heatmap_figure (its own colour bar, caption and
+ * subtitle). */
+int draw_heatmap_grid(const char *path, const char *title, int npanels, int ncols,
+                      const struct draw_heatmap_panel *panels, char *err, size_t errlen);
+
 /* ---- line plots ---------------------------------------------------------------------- */
 
 #define DRAW_COLOUR_BLACK (-1)   /* series colour: black (the reference, by convention) */

@@ -302,6 +302,23 @@ void draw_panel(cv::Mat &img, int x0, int y0, const draw_heatmap_panel &p, const
     }
 }
 
+/* The geometry of a heatmap panel whose grid is plot_w x plot_h pixels. */
+PanelGeom panel_geom(const draw_heatmap_panel &p, int plot_w, int plot_h)
+{
+    PanelGeom g;
+    double fmax = finite_max(p.values, (size_t)p.cols * p.rows), lo, hi;
+    colour_scale(p.vmin, p.vmax, fmax, &lo, &hi);
+    Axis ay{p.y_min, p.y_max, p.y_log != 0, 0, 1};
+    g.left = 8 + 24 + y_label_width(ay, DRAW_FMT_PLAIN, 6) + 8 + 8;
+    g.plot_w = plot_w;
+    g.plot_h = plot_h;
+    g.bar_gap = 20;
+    g.bar_w = HM_BAR_W;
+    g.bar_extent = colour_bar_extent(lo, hi, p.value_format, HM_BAR_W);
+    g.width = g.left + g.plot_w + g.bar_gap + g.bar_extent + 16;
+    return g;
+}
+
 } /* namespace */
 
 extern "C" int draw_png_rgb8(const char *path, int width, int height, const unsigned char *rgb, char *err,
@@ -381,19 +398,8 @@ extern "C" int draw_heatmap_figure(const char *path, const char *title, int npan
         std::vector<PanelGeom> geom(npanels);
         int total_w = 0;
         for (int k = 0; k < npanels; k++) {
-            const draw_heatmap_panel &p = panels[k];
-            PanelGeom &g = geom[k];
-            double fmax = finite_max(p.values, (size_t)p.cols * p.rows), lo, hi;
-            colour_scale(p.vmin, p.vmax, fmax, &lo, &hi);
-            Axis ay{p.y_min, p.y_max, p.y_log != 0, 0, 1};
-            g.left = 8 + 24 + y_label_width(ay, DRAW_FMT_PLAIN, 6) + 8 + 8;
-            g.plot_w = HM_PLOT_W;
-            g.plot_h = HM_PLOT_H;
-            g.bar_gap = 20;
-            g.bar_w = HM_BAR_W;
-            g.bar_extent = colour_bar_extent(lo, hi, p.value_format, HM_BAR_W);
-            g.width = g.left + g.plot_w + g.bar_gap + g.bar_extent + 16;
-            total_w += g.width;
+            geom[k] = panel_geom(panels[k], HM_PLOT_W, HM_PLOT_H);
+            total_w += geom[k].width;
         }
         std::string t = ascii(title);
         int panels_w = total_w;
@@ -414,3 +420,39 @@ extern "C" int draw_heatmap_figure(const char *path, const char *title, int npan
         return img;
     });
 }
+
+extern "C" int draw_heatmap_grid(const char *path, const char *title, int npanels, int ncols,
+                                 const struct draw_heatmap_panel *panels, char *err, size_t errlen)
+{
+    if (!check_path(path, err, errlen)) return -1;
+    if (npanels < 1 || npanels > 400 || ncols < 1 || ncols > 8 || !panels) {
+        set_err(err, errlen, "%s: a heatmap grid has 1..400 panels in 1..8 columns, not %d in %d", path, npanels, ncols);
+        return -1;
+    }
+    for (int k = 0; k < npanels; k++)
+        if (!check_panel(panels[k], path, k, err, errlen)) return -1;
+    return draw_png(path, err, errlen, [&]() -> cv::Mat {
+        const int PW = 240, PH = 170, row_h = HM_TOP + PH + HM_BOTTOM;
+        std::vector<PanelGeom> geom(npanels);
+        std::vector<int> col_w(ncols, 0);
+        for (int k = 0; k < npanels; k++) {
+            geom[k] = panel_geom(panels[k], PW, PH);
+            col_w[k % ncols] = std::max(col_w[k % ncols], geom[k].width);
+        }
+        int total_w = 0;
+        for (int w : col_w) total_w += w;
+        std::string t = ascii(title);
+        int panels_w = total_w;
+        for (const std::string &l : split_lines(t)) total_w = std::max(total_w, text_size(l, S_TITLE).width + 24);
+        int th = title_height(t), nrows = (npanels + ncols - 1) / ncols;
+        cv::Mat img(th + nrows * row_h, total_w, CV_8UC3, WHITE);
+        put_title(img, t);
+        for (int k = 0; k < npanels; k++) {
+            int x0 = (total_w - panels_w) / 2;
+            for (int c = 0; c < k % ncols; c++) x0 += col_w[c];
+            draw_panel(img, x0, th + (k / ncols) * row_h, panels[k], geom[k], nullptr);
+        }
+        return img;
+    });
+}
+
