@@ -51,6 +51,10 @@ static void test_plots(const char *dir)
                               "f_Q", 0.0758812345678, "f2", 0.651234567) == 0, "Q plot built");
     struct model_spec m[2] = { spec("fq2"), spec("cq2") };
     CHECK(plots_add_curves(&set, "curves.png", "caption", "f at n = 16", 16.0, m, 2) == 0, "curves built");
+    /* no empty plot: a Q sweep with no finite value adds no figure */
+    double none[3] = {NAN, NAN, NAN};
+    CHECK(plots_add_against_q(&set, "empty.png", "c", "t", "y", 1, q, none, 3, "f_Q", NAN, "", NAN) == 1 &&
+              set.count == 2, "an all-NaN Q sweep added a figure (%d figures)", set.count);
     char first[4200], json[4200], again[4200], err[1024];
     snprintf(first, sizeof first, "%s/first", dir);
     snprintf(again, sizeof again, "%s/again", dir);

@@ -6,6 +6,7 @@
 #include "frontier.h"
 
 #include <stdio.h>
+#include <sys/stat.h>
 #include <string.h>
 
 int cmd_frontier(int argc, char **argv)
@@ -71,9 +72,14 @@ int cmd_frontier(int argc, char **argv)
         rc = cli_run_finish("frontier", out_dir, tmp_dir, run_dir, "frontier.json", json_path);
     else
         cli_temp_dir_remove(tmp_dir);
-    if (!rc && !quiet && !tmp_dir[0])
-        printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", run_dir,
+    if (!rc && !quiet && !tmp_dir[0]) {
+        char png[4200];
+        struct stat st;   /* the plots are drawn only when a model has a rate to plot */
+        int plots = path_join(png, sizeof png, run_dir, "frontier_max_rel.png") == 0 && lstat(png, &st) == 0;
+        printf("written: %s/frontier.json, frontier.csv%s%s\n", run_dir,
+               plots ? ", frontier_max_rel.png, frontier_max_abs.png" : " (no plots: no model has a measured rate)",
                opt.image_w > 0 ? " and frontier_teapot/" : "");
+    }
     clsession_close(&s);
     return rc;
 

@@ -210,8 +210,11 @@ int plots_add_against_q(struct plot_set *set, const char *file, const char *capt
                         const char *y_label, int y_format, const double *q, const double *fq, int count,
                         const char *fq_label, double baseline, const char *baseline_label, double mark_q)
 {
+    int finite = 0;
+    for (int i = 0; i < count; i++) finite += isfinite(q[i]) && isfinite(fq[i]);
+    if (finite == 0) return 1;   /* nothing to draw: no figure (an empty plot is never drawn) */
     struct plot_figure *f = plots_add(set, PLOT_LINES, file, caption);
-    if (!f || count < 1) return -1;
+    if (!f) return -1;
     set_text(f->title, sizeof f->title, title);
     set_text(f->x_label, sizeof f->x_label, "Q");
     set_text(f->y_label, sizeof f->y_label, y_label);

@@ -81,7 +81,8 @@ int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *capti
                        const struct accuracy_result *res, int count, int relative, const enum model_family *families,
                        int nfamilies);
 /* max delta or max Delta against Q: q[count], fq[count]; baseline (e.g. f2's value, which
- * does not depend on Q) drawn as a dashed line; NAN for none. */
+ * does not depend on Q) drawn as a dashed line; NAN for none. Returns 0, -1 (out of memory), or
+ * 1 when no (q, fq) pair is finite: then no figure is added. */
 int plots_add_against_q(struct plot_set *set, const char *file, const char *caption, const char *title,
                         const char *y_label, int y_format, const double *q, const double *fq, int count,
                         const char *fq_label, double baseline, const char *baseline_label, double mark_q);
