@@ -45,15 +45,19 @@ static int nearest_index(int cmap, const unsigned char *p)
     return best;
 }
 
-static void test_colormap_ends(void)
+/* Entry index of colour map cmap is want, within tol per channel. */
+static void check_entry(int cmap, int index, const int want[3], int tol, const char *what)
 {
     unsigned char c[3];
-    draw_colormap_rgb(DRAW_CMAP_VIRIDIS, 0, c);
-    CHECK(near(c, VIRIDIS_BOTTOM, 2), "viridis bottom is %d,%d,%d", c[0], c[1], c[2]);
-    draw_colormap_rgb(DRAW_CMAP_VIRIDIS, 255, c);
-    CHECK(near(c, VIRIDIS_TOP, 2), "viridis top is %d,%d,%d", c[0], c[1], c[2]);
-    draw_colormap_rgb(DRAW_CMAP_INFERNO, 255, c);
-    CHECK(near(c, INFERNO_TOP, 2), "inferno top is %d,%d,%d", c[0], c[1], c[2]);
+    draw_colormap_rgb(cmap, index, c);
+    CHECK(near(c, want, tol), "%s is %d,%d,%d", what, c[0], c[1], c[2]);
+}
+
+static void test_colormap_ends(void)
+{
+    check_entry(DRAW_CMAP_VIRIDIS, 0, VIRIDIS_BOTTOM, 2, "viridis bottom");
+    check_entry(DRAW_CMAP_VIRIDIS, 255, VIRIDIS_TOP, 2, "viridis top");
+    check_entry(DRAW_CMAP_INFERNO, 255, INFERNO_TOP, 2, "inferno top");
 }
 
 static void test_png_round_trip(void)
@@ -364,13 +368,9 @@ static const int RDBU_BLUE[3] = {33, 102, 172}, WHITE3[3] = {255, 255, 255}, RDB
 
 static void test_signed_error(void)
 {
-    unsigned char c[3];
-    draw_colormap_rgb(DRAW_CMAP_DIVERGING, 0, c);
-    CHECK(near(c, RDBU_BLUE, 0), "diverging bottom %d,%d,%d", c[0], c[1], c[2]);
-    draw_colormap_rgb(DRAW_CMAP_DIVERGING, 128, c);
-    CHECK(near(c, WHITE3, 0), "diverging middle %d,%d,%d", c[0], c[1], c[2]);
-    draw_colormap_rgb(DRAW_CMAP_DIVERGING, 255, c);
-    CHECK(near(c, RDBU_RED, 0), "diverging top %d,%d,%d", c[0], c[1], c[2]);
+    check_entry(DRAW_CMAP_DIVERGING, 0, RDBU_BLUE, 0, "diverging bottom");
+    check_entry(DRAW_CMAP_DIVERGING, 128, WHITE3, 0, "diverging middle");
+    check_entry(DRAW_CMAP_DIVERGING, 255, RDBU_RED, 0, "diverging top");
     enum { W = 30, H = 10 };
     static float e[W * H];
     const float x = 0.037f;

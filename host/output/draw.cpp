@@ -94,18 +94,20 @@ std::string ascii(const char *s)
     return out;
 }
 
-std::vector<std::string> split_lines(const std::string &s)
+std::vector<std::string> split_on(const std::string &s, const std::string &sep)
 {
-    std::vector<std::string> lines;
+    std::vector<std::string> parts;
     size_t start = 0;
     for (;;) {
-        size_t nl = s.find('\n', start);
-        lines.push_back(s.substr(start, nl == std::string::npos ? std::string::npos : nl - start));
-        if (nl == std::string::npos) break;
-        start = nl + 1;
+        size_t at = s.find(sep, start);
+        parts.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
+        if (at == std::string::npos) break;
+        start = at + sep.size();
     }
-    return lines;
+    return parts;
 }
+
+std::vector<std::string> split_lines(const std::string &s) { return split_on(s, "\n"); }
 
 cv::Size text_size(const std::string &t, double scale, int *baseline)
 {

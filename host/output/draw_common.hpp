@@ -48,6 +48,7 @@ struct Axis {
 void set_err(char *err, size_t errlen, const char *fmt, ...);
 cv::Scalar palette(int i);
 std::string ascii(const char *s);
+std::vector<std::string> split_on(const std::string &s, const std::string &sep);
 std::vector<std::string> split_lines(const std::string &s);
 cv::Size text_size(const std::string &t, double scale, int *baseline = nullptr);
 void put(cv::Mat &img, const std::string &t, int x, int y, double scale, int halign, int valign,

@@ -35,17 +35,11 @@ struct Wrapped {
     double scale;
 };
 
+/* The pieces of a label between its " | ", each but the last keeping its "|". */
 std::vector<std::string> words_of(const std::string &t)
 {
-    std::vector<std::string> out;
-    size_t start = 0;
-    for (;;) {
-        size_t bar = t.find(" | ", start);
-        out.push_back(t.substr(start, bar == std::string::npos ? std::string::npos : bar - start) +
-                      (bar == std::string::npos ? "" : " |"));
-        if (bar == std::string::npos) break;
-        start = bar + 3;
-    }
+    std::vector<std::string> out = split_on(t, " | ");
+    for (size_t i = 0; i + 1 < out.size(); i++) out[i] += " |";
     return out;
 }
 
