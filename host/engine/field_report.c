@@ -221,7 +221,7 @@ void field_heatmap_panels(const struct field_result *r, double epi_vmax, double 
                           struct draw_heatmap_panel *p, struct field_panel_text *t)
 {
     const char *var = r->model.info->lobe == LOBE_PSI ? "psi" : "theta_h";
-    const char *shared = " (scale shared by the run's models)";
+    const char *shared = " (shared)";   /* the scale of every model of the run: the bar's height holds no more */
     snprintf(t->sub[0], sizeof t->sub[0], "relative error delta(x, n) over the epicentre");
     snprintf(t->sub[1], sizeof t->sub[1], "absolute error Delta(x, n) over the attenuation zone");
     snprintf(t->x_label[0], sizeof t->x_label[0], "x / x_e(n),  x = %s,  x_e(n) = acos(exp(-0.511/n))", var);
