@@ -1,6 +1,7 @@
 /* draw.cpp - the parts of the pictures behind draw.h that every picture shares (draw_common.hpp),
  * the colour maps and reading a PNG back; the pictures themselves are in draw_image.cpp (images,
- * heatmaps), draw_plot.cpp (line plots, bar charts) and draw_chart.cpp (ratio and scatter charts).
+ * heatmaps), draw_plot.cpp (line plots, bar charts), draw_chart.cpp (scatter plots) and
+ * draw_compare.cpp (compare's verdict chart).
  *
  * The only C++ and the only OpenCV user in the host: everything crosses the extern "C"
  * interface of draw.h, every OpenCV exception is caught here and turned into -1 plus a

@@ -196,26 +196,6 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
 /* The same without the legend of the marks, for points all of one kind. */
 int draw_scatter_plot_plain(const char *path, const struct draw_scatter *plot, char *err, size_t errlen);
 
-/* ---- grouped ratio bars (brdfbench compare) ---------------------------------------------- */
-
-/* Horizontal bars in groups: per group (a model), one bar per series (a run) at values
- * [g * nseries + s], as a ratio to the baseline; err_lo/err_hi (may be NULL) a whisker per bar
- * (the run's min..max over the baseline's median); band_lo/band_hi (may be NULL) a grey band
- * behind each group (the baseline's own min..max over its median: its noise). A dashed line
- * marks 1. A non-finite value draws no bar and "n/a". */
-struct draw_ratio_chart {
-    const char *title, *x_label;
-    int ngroups, nseries;
-    const char *const *groups;
-    const char *const *series;
-    const double *values;
-    const double *err_lo, *err_hi;
-    const double *band_lo, *band_hi;
-    int width;                      /* 0: 1000 */
-};
-
-int draw_ratio_chart(const char *path, const struct draw_ratio_chart *chart, char *err, size_t errlen);
-
 /* ---- verdict charts (brdfbench compare) --------------------------------------------------- */
 
 /* Small multiples: one panel per kind of row (throughput rates, accuracy errors, ...), every row

@@ -1,4 +1,4 @@
-/* draw_chart.cpp - the grouped ratio charts (compare) and scatter plots (frontier) of draw.h. */
+/* draw_chart.cpp - the scatter plots (frontier, measured) of draw.h. */
 #include "draw_common.hpp"
 
 #include <algorithm>
@@ -9,99 +9,6 @@
 #include <vector>
 
 using namespace draw_detail;
-
-extern "C" int draw_ratio_chart(const char *path, const struct draw_ratio_chart *c, char *err, size_t errlen)
-{
-    if (!check_path(path, err, errlen)) return -1;
-    if (!c || c->ngroups < 1 || c->nseries < 1 || c->ngroups * c->nseries > 2000 || !c->groups || !c->series ||
-        !c->values) {
-        set_err(err, errlen, "%s: a ratio chart needs 1..2000 bars in labelled groups", path);
-        return -1;
-    }
-    return draw_png(path, err, errlen, [&]() -> cv::Mat {
-        const int G = c->ngroups, S = c->nseries;
-        double vmax = 1;
-        int label_w = 0, text_w = 0, legend_w = 0;
-        std::vector<std::string> texts((size_t)G * S);
-        for (int i = 0; i < G * S; i++) {
-            double v = c->values[i];
-            char buf[64];
-            if (std::isfinite(v)) {
-                snprintf(buf, sizeof buf, "%.3fx", v);
-                texts[i] = buf;
-                vmax = std::max(vmax, v);
-            } else texts[i] = "n/a";
-            if (c->err_hi && std::isfinite(c->err_hi[i])) vmax = std::max(vmax, c->err_hi[i]);
-            text_w = std::max(text_w, text_size(texts[i], S_TICK).width);
-        }
-        for (int g = 0; g < G; g++) {
-            label_w = std::max(label_w, text_size(ascii(c->groups[g]), S_LABEL).width);
-            if (c->band_hi && std::isfinite(c->band_hi[g])) vmax = std::max(vmax, c->band_hi[g]);
-        }
-        for (int s = 0; s < S; s++) legend_w += text_size(ascii(c->series[s]), S_LABEL).width + 46;
-        vmax = std::min(vmax, 1e6);
-        double step = nice_step(vmax * 1.05 / 6);
-        double xhi = std::ceil(vmax * 1.05 / step - 1e-9) * step;
-        std::string t = ascii(c->title);
-        int th = title_height(t);
-        int W = c->width > 0 ? c->width : 1000;
-        int left = 16 + label_w + 12, right = text_w + 30;
-        int bar_h = 16, gap = 12, legend_h = 34, bottom = 70;
-        W = std::max({W, left + right + 240, legend_w + 40});
-        int group_h = S * bar_h + gap;
-        int H = th + legend_h + G * group_h + bottom;
-        cv::Mat img(H, W, CV_8UC3, WHITE);
-        put_title(img, t);
-        /* legend: one swatch per run */
-        int lx = 20, ly = th + legend_h / 2;
-        for (int s = 0; s < S; s++) {
-            cv::rectangle(img, cv::Rect(lx, ly - 7, 30, 14), s == 0 ? cv::Scalar(60, 60, 60) : palette(s - 1), cv::FILLED);
-            std::string name = ascii(c->series[s]);
-            put(img, name, lx + 38, ly, S_LABEL, -1, 0);
-            lx += 46 + text_size(name, S_LABEL).width;
-        }
-        cv::Rect plot(left, th + legend_h, W - left - right, G * group_h);
-        Axis ax{0, xhi, false, (double)plot.x, (double)(plot.x + plot.width - 1)};
-        for (int g = 0; g < G; g++) {
-            int y0 = plot.y + g * group_h;
-            if (c->band_lo && c->band_hi && std::isfinite(c->band_lo[g]) && std::isfinite(c->band_hi[g])) {
-                int a = (int)std::lround(ax.map(std::max(0.0, std::min(xhi, c->band_lo[g]))));
-                int b = (int)std::lround(ax.map(std::max(0.0, std::min(xhi, c->band_hi[g]))));
-                cv::rectangle(img, cv::Rect(a, y0, std::max(1, b - a), S * bar_h), cv::Scalar(215, 215, 215), cv::FILLED);
-            }
-        }
-        draw_x_ticks(img, ax, plot.y + plot.height, DRAW_FMT_PLAIN, 6, plot.y);
-        put(img, ascii(c->x_label), plot.x + plot.width / 2, plot.y + plot.height + 36, S_LABEL, 0, -1);
-        for (int g = 0; g < G; g++) {
-            int y0 = plot.y + g * group_h;
-            put(img, ascii(c->groups[g]), plot.x - 10, y0 + S * bar_h / 2, S_LABEL, 1, 0);
-            for (int s = 0; s < S; s++) {
-                int i = g * S + s, y = y0 + s * bar_h;
-                double v = c->values[i];
-                int end = plot.x;
-                if (std::isfinite(v) && v > 0) {
-                    end = (int)std::lround(ax.map(std::min(v, xhi)));
-                    cv::Scalar col = s == 0 ? cv::Scalar(60, 60, 60) : palette(s - 1);
-                    cv::rectangle(img, cv::Rect(plot.x, y + 2, std::max(1, end - plot.x), bar_h - 4), col, cv::FILLED);
-                }
-                if (c->err_lo && c->err_hi && std::isfinite(c->err_lo[i]) && std::isfinite(c->err_hi[i])) {
-                    int a = (int)std::lround(ax.map(std::max(0.0, std::min(xhi, c->err_lo[i]))));
-                    int b = (int)std::lround(ax.map(std::max(0.0, std::min(xhi, c->err_hi[i]))));
-                    draw_error_bar(img, a, b, y + bar_h / 2, 4);
-                    end = std::max(end, b);
-                }
-                put(img, texts[i], end + 6, y + bar_h / 2, S_TICK, -1, 0);
-            }
-        }
-        /* 1 = the baseline, dashed */
-        int x1 = (int)std::lround(ax.map(1.0));
-        for (int y = plot.y; y < plot.y + plot.height; y += 8)
-            cv::line(img, cv::Point(x1, y), cv::Point(x1, std::min(y + 4, plot.y + plot.height)), INK, 1);
-        cv::line(img, cv::Point(plot.x - 1, plot.y), cv::Point(plot.x - 1, plot.y + plot.height), INK, 1);
-        cv::line(img, cv::Point(plot.x - 1, plot.y + plot.height), cv::Point(plot.x + plot.width, plot.y + plot.height), INK, 1);
-        return img;
-    });
-}
 
 /* ---- scatter plots ------------------------------------------------------------------------ */
 

@@ -1,5 +1,5 @@
-/* draw_common.hpp - what the pictures of draw_image.cpp, draw_plot.cpp and draw_chart.cpp share,
- * defined in draw.cpp: text in the Hershey font, titles, colour maps, axes and ticks, colour bars,
+/* draw_common.hpp - what the pictures of draw_image.cpp, draw_plot.cpp, draw_chart.cpp and
+ * draw_compare.cpp share, defined in draw.cpp: text in the Hershey font, titles, colour maps, axes and ticks, colour bars,
  * the quick-run stamp and the atomic PNG write. C++ only; nothing outside host/output includes it.
  */
 #ifndef BRDF_DRAW_COMMON_HPP
