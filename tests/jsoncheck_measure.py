@@ -25,6 +25,10 @@ def render_cli_render_contract(*args):
             assert m["double_reference_check"]["within_bound"] is True, m
             for f in m["files"].values():
                 assert os.path.getsize(os.path.join(argv[2], f)) > 0, f
+            # the signed error image beside the absolute one, named after it
+            fs = m["files"]
+            assert set(fs) == {"image", "error_image", "signed_error_image", "contact_sheet"}, fs
+            assert fs["signed_error_image"] == fs["error_image"][:-len("_error.png")] + "_signed_error.png", fs
             # a model that is its own reference has no error at all
             if m["model"] == m["reference"]:
                 assert m["metrics"]["max_abs"] == 0 and m["metrics"]["psnr_db"] is None

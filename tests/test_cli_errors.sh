@@ -97,6 +97,7 @@ t 2 "^brdfbench accuracy: --n-min: 'abc' is not a finite number in \[" accuracy 
 t 2 "^brdfbench accuracy: --n-min: 'nan' is not a finite number" accuracy --n-min nan
 t 2 "^brdfbench accuracy: --n-max: 'inf' is not a finite number" accuracy --n-max inf
 t 2 "^brdfbench accuracy: --n-min: '1e999' is not a finite number" accuracy --n-min 1e999
+t 2 "^brdfbench accuracy: --shared-scale scales the heatmaps of --pictures \(accepted: with --pictures\)" accuracy --shared-scale --out "$T/ss"
 t 2 "^brdfbench accuracy: --n-min: '-5' is not a finite number in \[0.1, 1e\+06\]" accuracy --n-min -5
 t 2 "^brdfbench accuracy: --n-max: '0' is not a finite number" accuracy --n-max 0
 t 2 "^brdfbench accuracy: --n-min: '2x' is not a finite number" accuracy --n-min 2x

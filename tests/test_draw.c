@@ -45,15 +45,19 @@ static int nearest_index(int cmap, const unsigned char *p)
     return best;
 }
 
-static void test_colormap_ends(void)
+/* Entry index of colour map cmap is want, within tol per channel. */
+static void check_entry(int cmap, int index, const int want[3], int tol, const char *what)
 {
     unsigned char c[3];
-    draw_colormap_rgb(DRAW_CMAP_VIRIDIS, 0, c);
-    CHECK(near(c, VIRIDIS_BOTTOM, 2), "viridis bottom is %d,%d,%d", c[0], c[1], c[2]);
-    draw_colormap_rgb(DRAW_CMAP_VIRIDIS, 255, c);
-    CHECK(near(c, VIRIDIS_TOP, 2), "viridis top is %d,%d,%d", c[0], c[1], c[2]);
-    draw_colormap_rgb(DRAW_CMAP_INFERNO, 255, c);
-    CHECK(near(c, INFERNO_TOP, 2), "inferno top is %d,%d,%d", c[0], c[1], c[2]);
+    draw_colormap_rgb(cmap, index, c);
+    CHECK(near(c, want, tol), "%s is %d,%d,%d", what, c[0], c[1], c[2]);
+}
+
+static void test_colormap_ends(void)
+{
+    check_entry(DRAW_CMAP_VIRIDIS, 0, VIRIDIS_BOTTOM, 2, "viridis bottom");
+    check_entry(DRAW_CMAP_VIRIDIS, 255, VIRIDIS_TOP, 2, "viridis top");
+    check_entry(DRAW_CMAP_INFERNO, 255, INFERNO_TOP, 2, "inferno top");
 }
 
 static void test_png_round_trip(void)
@@ -291,6 +295,268 @@ static void test_line_plot_and_bars(void)
     }
 }
 
+/* Lengths (in pixels) of the runs of exactly the colour want, one per picture row that holds it,
+ * distinct values in increasing order; returns how many. */
+static int colour_run_lengths(const unsigned char *img, int w, int h, const int want[3], int *len, int max)
+{
+    int n = 0;
+    for (int y = 0; y < h; y++) {
+        int c = 0;
+        for (int x = 0; x < w; x++) c += near(px(img, w, x, y), want, 0);
+        if (c == 0) continue;
+        int seen = 0;
+        for (int k = 0; k < n; k++) seen |= len[k] == c;
+        if (!seen && n < max) len[n++] = c;
+    }
+    for (int i = 1; i < n; i++)   /* insertion sort */
+        for (int k = i; k > 0 && len[k - 1] > len[k]; k--) {
+            int t = len[k];
+            len[k] = len[k - 1];
+            len[k - 1] = t;
+        }
+    return n;
+}
+
+/* A log value axis: bars of 2, 20 and 200 on the decades 1..1000 start at 1, so their lengths are
+ * in the ratio log10(2) : log10(20) : log10(200) (computed here, not read from the picture). */
+static void test_log_bars(void)
+{
+    const char *labels[3] = {"cheap", "middle", "pow"};
+    double v[3] = {2, 20, 200};
+    struct draw_bar_chart bc;
+    memset(&bc, 0, sizeof bc);
+    bc.title = "log bars", bc.x_label = "G evaluations / s", bc.nbars = 3, bc.labels = labels, bc.values = v;
+    bc.highlight = -1, bc.width = 900, bc.x_log = 1;
+    char path[512], err[512];
+    path_in(path, sizeof path, "log_bars.png");
+    CHECK(draw_bar_chart(path, &bc, err, sizeof err) == 0, "log bars: %s", err);
+    int w, h, len[8];
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) != 0) {
+        CHECK(0, "read log_bars.png: %s", err);
+        return;
+    }
+    static const int BLUE[3] = {31, 119, 180};
+    int n = colour_run_lengths(img, w, h, BLUE, len, 8);
+    CHECK(n == 3, "%d different bar lengths, want 3", n);
+    if (n == 3) {
+        double r2 = (double)len[1] / len[0], r3 = (double)len[2] / len[0];
+        double want2 = log10(20.0) / log10(2.0), want3 = log10(200.0) / log10(2.0);
+        CHECK(fabs(r2 - want2) < 0.05 * want2, "bar 20 / bar 2 = %.3f, log ratio %.3f", r2, want2);
+        CHECK(fabs(r3 - want3) < 0.05 * want3, "bar 200 / bar 2 = %.3f, log ratio %.3f", r3, want3);
+    }
+    free(img);
+}
+
+/* The first pixel (in reading order of columns, then rows) of exactly colour want: its x and y. */
+static int find_colour(const unsigned char *img, int w, int h, const int want[3], int *fx, int *fy)
+{
+    *fx = *fy = -1;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            if (near(px(img, w, x, y), want, 0)) {
+                if (*fx < 0 || x < *fx) *fx = x;
+                if (*fy < 0 || y < *fy) *fy = y;
+            }
+    return *fx >= 0;
+}
+
+/* The diverging map's ends and middle are ColorBrewer RdBu's (33, 102, 172), white and
+ * (178, 24, 43), as draw.h documents; a signed error image of -x | 0 | +x (auto scale: +-x) draws
+ * exactly those, and of -x/2 | 0 | +x/2 blue-ish, white and red-ish. */
+static const int RDBU_BLUE[3] = {33, 102, 172}, WHITE3[3] = {255, 255, 255}, RDBU_RED[3] = {178, 24, 43};
+
+static void test_signed_error(void)
+{
+    check_entry(DRAW_CMAP_DIVERGING, 0, RDBU_BLUE, 0, "diverging bottom");
+    check_entry(DRAW_CMAP_DIVERGING, 128, WHITE3, 0, "diverging middle");
+    check_entry(DRAW_CMAP_DIVERGING, 255, RDBU_RED, 0, "diverging top");
+    enum { W = 30, H = 10 };
+    static float e[W * H];
+    const float x = 0.037f;
+    for (int y = 0; y < H; y++)
+        for (int i = 0; i < W; i++) {
+            float v = i < 10 ? -x : i < 20 ? 0 : x;
+            e[y * W + i] = y < 5 ? v : v / 2;
+        }
+    char path[512], err[512];
+    path_in(path, sizeof path, "signed.png");
+    CHECK(draw_signed_error_image(path, W, H, e, 0, "signed", err, sizeof err) == 0, "signed: %s", err);
+    int w, h, x0, y0;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) != 0) {
+        CHECK(0, "read signed.png: %s", err);
+        return;
+    }
+    /* the image's top left is the first pure blue pixel (the colour bar's blue row is lower) */
+    if (find_colour(img, w, h, RDBU_BLUE, &x0, &y0)) {
+        CHECK(near(px(img, w, x0 + 5, y0 + 2), RDBU_BLUE, 0), "-x is not blue");
+        CHECK(near(px(img, w, x0 + 15, y0 + 2), WHITE3, 0), "0 is not white");
+        CHECK(near(px(img, w, x0 + 25, y0 + 2), RDBU_RED, 0), "+x is not red");
+        const unsigned char *b = px(img, w, x0 + 5, y0 + 7), *r = px(img, w, x0 + 25, y0 + 7);
+        CHECK(b[2] > b[0] + 40 && b[2] < 255, "-x/2 is %d,%d,%d, not a lighter blue", b[0], b[1], b[2]);
+        CHECK(r[0] > r[2] + 40 && r[0] < 255, "+x/2 is %d,%d,%d, not a lighter red", r[0], r[1], r[2]);
+        CHECK(near(px(img, w, x0 + 15, y0 + 7), WHITE3, 0), "0 is not white in the lower half");
+    } else {
+        CHECK(0, "no pure blue in signed.png");
+    }
+    free(img);
+}
+
+/* The sphere grid's labels: the same images drawn as a plain contact sheet and as a labelled grid;
+ * the grid is wider by its row labels, and has text left of the reference panel and above it. */
+static void test_contact_grid(void)
+{
+    enum { W = 120, H = 80 };
+    static unsigned char ref[W * H * 3], mod[W * H * 3];
+    static float e[W * H];
+    for (int i = 0; i < W * H; i++) {
+        ref[3 * i + 1] = 255;   /* pure green: where the reference panel is */
+        mod[3 * i + 2] = 200;
+        e[i] = (float)(i % W) / W;
+    }
+    const char *rows[2] = {"phong", "fq2"}, *cols[2] = {"n = 8", "n = 64"};
+    struct draw_grid_labels lab = {2, 2, rows, cols};
+    char plain[512], grid[512], err[512];
+    path_in(plain, sizeof plain, "sheet_plain.png");
+    path_in(grid, sizeof grid, "sheet_grid.png");
+    CHECK(draw_contact_sheet(plain, W, H, ref, mod, e, 0, "t", err, sizeof err) == 0, "sheet: %s", err);
+    CHECK(draw_contact_grid(grid, W, H, ref, mod, e, 0, "t", &lab, err, sizeof err) == 0, "grid: %s", err);
+    int w0, h0, w, h, x0, y0;
+    unsigned char *a = NULL, *g = NULL;
+    if (draw_read_rgb8(plain, &w0, &h0, &a, err, sizeof err) || draw_read_rgb8(grid, &w, &h, &g, err, sizeof err)) {
+        CHECK(0, "read sheets: %s", err);
+        free(a);
+        return;
+    }
+    CHECK(w > w0, "the labelled grid is %d wide, the plain sheet %d", w, w0);
+    static const int GREEN[3] = {0, 255, 0};
+    if (find_colour(g, w, h, GREEN, &x0, &y0)) {
+        long left_dark = 0, above_dark = 0;
+        for (int y = y0; y < y0 + H; y++)
+            for (int x = 0; x < x0; x++) left_dark += px(g, w, x, y)[0] < 120;
+        for (int y = y0 - 16; y < y0; y++)
+            for (int x = x0; x < x0 + W; x++) above_dark += px(g, w, x, y)[0] < 120;
+        CHECK(left_dark > 20, "%ld dark pixels left of the reference panel: no row labels", left_dark);
+        CHECK(above_dark > 20, "%ld dark pixels above the reference panel: no column labels", above_dark);
+    } else {
+        CHECK(0, "no reference panel in the grid");
+    }
+    free(a);
+    free(g);
+}
+
+/* The quick-run stamp: a band under the picture, which keeps every pixel above it. */
+static void test_stamp(void)
+{
+    const char *labels[2] = {"a", "b"};
+    double v[2] = {1, 2};
+    struct draw_bar_chart bc;
+    memset(&bc, 0, sizeof bc);
+    bc.title = "stamp", bc.x_label = "x", bc.nbars = 2, bc.labels = labels, bc.values = v, bc.highlight = -1;
+    char path[512], err[512];
+    path_in(path, sizeof path, "stamped.png");
+    CHECK(draw_bar_chart(path, &bc, err, sizeof err) == 0, "bars: %s", err);
+    int w0, h0, w, h;
+    unsigned char *a = NULL, *b = NULL;
+    CHECK(draw_read_rgb8(path, &w0, &h0, &a, err, sizeof err) == 0, "read: %s", err);
+    CHECK(draw_stamp_png(path, "coarse grid (--quick), not for figures", err, sizeof err) == 0, "stamp: %s", err);
+    CHECK(draw_stamp_png(path, "", err, sizeof err) == -1, "an empty stamp accepted");
+    if (a && draw_read_rgb8(path, &w, &h, &b, err, sizeof err) == 0) {
+        CHECK(w == w0 && h > h0, "stamped %dx%d from %dx%d", w, h, w0, h0);
+        CHECK(memcmp(a, b, (size_t)w0 * h0 * 3) == 0, "the picture above the stamp changed");
+        /* the band: amber (255, 240, 200) behind dark red text (160, 20, 20) */
+        static const int AMBER[3] = {255, 240, 200};
+        long amber = 0, ink = 0;
+        for (int y = h0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                const unsigned char *p = px(b, w, x, y);
+                amber += near(p, AMBER, 0);
+                ink += p[0] > 120 && p[1] < 90 && p[2] < 90;
+            }
+        CHECK(amber > (long)w * (h - h0) / 2, "the band is not amber (%ld pixels)", amber);
+        CHECK(ink > 50, "the band holds no text (%ld dark red pixels)", ink);
+    } else {
+        CHECK(0, "read the stamped picture: %s", err);
+    }
+    free(a);
+    free(b);
+}
+
+/* Vertical runs of exactly colour want in the picture's column x. */
+static int runs_in_column(const unsigned char *img, int w, int h, int x, const int want[3])
+{
+    int runs = 0, in = 0;
+    for (int y = 0; y < h; y++) {
+        int m = near(px(img, w, x, y), want, 0);
+        runs += m && !in;
+        in = m;
+    }
+    return runs;
+}
+
+/* The middle of the columns of the picture's last 80 that hold colour want (the marks'
+ * column; the legend's marks are at the left). */
+static int mark_column(const unsigned char *img, int w, int h, const int want[3])
+{
+    int lo = -1, hi = -1;
+    for (int x = w - 80; x < w; x++)
+        for (int y = 0; y < h; y++)
+            if (near(px(img, w, x, y), want, 0)) {
+                if (lo < 0) lo = x;
+                hi = x;
+                break;
+            }
+    return lo < 0 ? -1 : (lo + hi) / 2;
+}
+
+/* compare's chart: 64 rows in two panels, the second run's verdict cycling better, worse, same,
+ * lost: 16 marks of each colour (the colours of draw.h), one per row, in the marks' column. */
+static void test_verdict_chart(void)
+{
+    enum { ROWS = 64, S = 2 };
+    static char text[ROWS][160];
+    static const char *labels[ROWS];
+    static double ratio[ROWS * S];
+    static int verdict[ROWS * S];
+    static const int kinds[4] = {DRAW_VERDICT_BETTER, DRAW_VERDICT_WORSE, DRAW_VERDICT_SAME, DRAW_VERDICT_LOST};
+    for (int i = 0; i < ROWS; i++) {
+        /* a device name far wider than the label column: wrapped, not clipped */
+        snprintf(text[i], sizeof text[i], "pthread-haswell-AMD EPYC 7B13 64-Core Processor with a long name %d | "
+                 "model%d | default | n uniform", i, i);
+        labels[i] = text[i];
+        ratio[i * S] = 1;
+        ratio[i * S + 1] = 0.5 + i / 32.0;
+        verdict[i * S] = DRAW_VERDICT_NONE;
+        verdict[i * S + 1] = kinds[i % 4];
+    }
+    struct draw_verdict_panel p[2] = {{"throughput: rates", 40, labels, ratio, verdict},
+                                      {"accuracy: errors", 24, labels + 40, ratio + 40 * S, verdict + 40 * S}};
+    const char *series[S] = {"baseline run", "new run"};
+    struct draw_verdict_chart c = {"verdicts", "ratio", S, series, 2, p, 0};
+    char path[512], err[512];
+    path_in(path, sizeof path, "verdicts.png");
+    CHECK(draw_verdict_chart(path, &c, err, sizeof err) == 0, "verdict chart: %s", err);
+    int w, h;
+    unsigned char *img = NULL;
+    if (draw_read_rgb8(path, &w, &h, &img, err, sizeof err) != 0) {
+        CHECK(0, "read verdicts.png: %s", err);
+        return;
+    }
+    CHECK(w == 1100, "the chart grew to %d pixels wide for long labels (they wrap)", w);
+    static const int GREEN[3] = {0, 140, 60}, RED[3] = {200, 0, 0}, GREY[3] = {150, 150, 150}, BLACK[3] = {0, 0, 0};
+    const int *want[4] = {GREEN, RED, GREY, BLACK};
+    for (int k = 0; k < 4; k++) {
+        unsigned char rgb[3];
+        draw_verdict_rgb(kinds[k], rgb);
+        CHECK(near(rgb, want[k], 0), "verdict %d's colour is %d,%d,%d", kinds[k], rgb[0], rgb[1], rgb[2]);
+        int x = mark_column(img, w, h, want[k]);
+        int n = x >= 0 ? runs_in_column(img, w, h, x, want[k]) : 0;
+        CHECK(n == ROWS / 4, "%d marks of verdict %d in column %d, want %d", n, kinds[k], x, ROWS / 4);
+    }
+    free(img);
+}
+
 static void test_errors(void)
 {
     unsigned char rgb[12] = {0};
@@ -310,6 +576,7 @@ static void test_errors(void)
 int main(void)
 {
     static void (*const tests[])(void) = { test_colormap_ends, test_png_round_trip, test_heatmap,
-        test_heatmap_dense_peak, test_error_image_and_sheet, test_line_plot_and_bars, test_errors };
+        test_heatmap_dense_peak, test_error_image_and_sheet, test_line_plot_and_bars, test_log_bars,
+        test_signed_error, test_contact_grid, test_stamp, test_verdict_chart, test_errors };
     return test_run_in_tmpdir(dir, sizeof dir, "test_draw", tests, sizeof tests / sizeof tests[0]);
 }

@@ -18,11 +18,15 @@
 #include "check.h"
 #include "fit.h"
 #include "frontier.h"
+#include "frontier_report.h"
 #include "models.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static struct model_spec spec_of(const char *text)
 {
@@ -158,6 +162,34 @@ static void test_power_m1(void)
     }
 }
 
+/* No empty plot: a frontier whose models have no measured rate draws no scatter plot, removes
+ * an earlier run's, and its markdown says the plots are not drawn instead of linking them. */
+static void test_no_empty_plots(void)
+{
+    static struct frontier_report r;
+    memset(&r, 0, sizeof r);
+    r.count = 2;
+    r.fq2 = -1;
+    r.rows[0].spec = spec("phong");
+    r.rows[1].spec = spec("fq2");
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 3; k++) r.rows[i].rate[0][k] = r.rows[i].rate[1][k] = NAN;
+    CHECK(!frontier_plots_drawable(&r), "rates all NaN, yet a plot to draw");
+    char dir[4096], path[4200], err[512];
+    CHECK(test_tmpdir_make(dir, sizeof dir, "frontier_empty") == 0, "tmp folder");
+    snprintf(path, sizeof path, "%s/frontier_max_rel.png", dir);
+    FILE *f = fopen(path, "w");   /* an earlier run's plot */
+    if (f) fclose(f);
+    CHECK(frontier_write_plots(dir, &r, err, sizeof err) == 0, "write: %s", err);
+    CHECK(access(path, F_OK) != 0, "an empty frontier left a plot");
+    char *md = frontier_markdown(&r);
+    CHECK(md && !strstr(md, "frontier_max_rel.png)") && strstr(md, "not drawn"), "markdown links a plot not drawn");
+    free(md);
+    r.rows[1].rate[0][1] = 1e9;
+    CHECK(frontier_plots_drawable(&r), "one rate, yet nothing to draw");
+    test_tmpdir_done(dir);
+}
+
 int main(void)
 {
     test_gaussian_large_n();
@@ -166,5 +198,6 @@ int main(void)
     test_pareto();
     test_bitpow();
     test_power_m1();
+    test_no_empty_plots();
     return check_summary();
 }

@@ -59,7 +59,8 @@ jsoncheck fullbrdf_cli_physical_user_measured_rows "$T/tp/physical.json" && ok |
     --quiet --out "$T/rm" >"$T/out" 2>"$T/err"
 rc=$?
 [ $rc -eq 0 ] && ok || bad "render --measured: exit $rc: $(head -c 400 "$T/err")"
-for f in measured_b64.png measured_b64_blinn-phong_fit_error.png measured_b64_ct-ggx_fit.png; do
+for f in measured_b64.png measured_b64_blinn-phong_fit_error.png measured_b64_blinn-phong_fit_signed_error.png \
+    measured_b64_ct-ggx_fit.png; do
     [ -s "$T/rm/render/teapot/$f" ] && ok || bad "render --measured wrote no $f"
 done
 jsoncheck fullbrdf_cli_render_measured_material_beside_fits "$T/rm/render.json" && ok || bad "render.json: the measured material beside its fits"

@@ -93,6 +93,11 @@ expect 3 "heatmap_fvol.png" heatmap "$T/out4"
 is_png "$T/out4/heatmap_cq2.png" && ok || bad "heatmap_cq2.png not redrawn beside a failing one"
 
 
+# a --quick run says so at the top of its report, and shows the side-by-side heatmap page
+grep -q '^\*\*Coarse grids (`--quick`): a trial run, not for figures.\*\*' "$RUN/report.md" && ok ||
+    bad "report.md of a --quick run lacks its trial-run line"
+grep -q '(heatmaps_shared_scale.png)' "$RUN/report.md" && [ -s "$RUN/heatmaps_shared_scale.png" ] && ok ||
+    bad "report.md lacks the shared-scale heatmap page"
 # report RUN_DIR rebuilds report.md from the run folder alone: the page all wrote, to the byte
 "$BIN" report "$RUN" --output "$T/rebuilt.md" && cmp -s "$T/rebuilt.md" "$RUN/report.md" && ok ||
     bad "report --output differs from the report.md all wrote: $(diff "$T/rebuilt.md" "$RUN/report.md" | head -5)"

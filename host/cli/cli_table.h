@@ -134,6 +134,12 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
               "report.md; throughput: their table lookup as rows of the physically based table (at most 4); "     \
               "render: the teapot and the bunny shaded with each beside the lobes fitted to it (at most 4) "       \
               "(docs/measured.md)" }
+/* The heatmaps on one colour scale (heatmaps_shared.h): all, accuracy, plot, heatmap. */
+#define CLI_FLAG_SHARED_SCALE(DEST)                                                                                \
+    { .name = "--shared-scale", .kind = CLI_SWITCH, .dest = CLI_DEST(int, DEST), .set = 1,                       \
+      .help = "draw every model's heatmap on one colour scale per panel (the largest delta and the largest "      \
+              "Delta over the run's models), said in each colour bar; heatmaps_shared_scale.png, every model's "  \
+              "fields side by side on that scale, is written either way" }
 #define CLI_FLAG_QUIET(DEST)                                                                                       \
     { .name = "--quiet", .kind = CLI_SWITCH, .dest = CLI_DEST(int, DEST), .set = 1, \
       .help = "no progress lines, tables or summaries (files are written as without it; warnings "              \

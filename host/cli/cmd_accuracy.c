@@ -8,6 +8,7 @@
 #include "exitcodes.h"
 #include "field.h"
 #include "field_report.h"
+#include "heatmaps_shared.h"
 #include "outdir.h"
 #include "plots.h"
 #include "usermodel.h"
@@ -102,7 +103,7 @@ int cmd_accuracy(int argc, char **argv)
     struct device_options dev;
     device_options_init(&dev);
     const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
-    int quiet = 0, models_given = 0, pictures = 0;
+    int quiet = 0, models_given = 0, pictures = 0, shared_scale = 0;
     struct model_spec models[MAX_MODELS];
 
     const struct cli_flag flags[] = {
@@ -118,6 +119,7 @@ int cmd_accuracy(int argc, char **argv)
                   "heatmap_<model>.png, over the run's range of n) and the max delta and max Delta against n "
                   "of every model (plots.json and two PNGs), user models included; brdfbench plot and heatmap "
                   "redraw them" },
+        CLI_FLAG_SHARED_SCALE(&shared_scale),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };
@@ -140,6 +142,10 @@ int cmd_accuracy(int argc, char **argv)
     if (pictures && !out_dir && (json_path || csv_path)) {
         snprintf(err, sizeof err, "--pictures writes into the run folder: give --out DIR (with --json or --csv "
                                   "and no --out there is none)");
+        goto usage_error;
+    }
+    if (shared_scale && !pictures) {
+        snprintf(err, sizeof err, "--shared-scale scales the heatmaps of --pictures (accepted: with --pictures)");
         goto usage_error;
     }
     if (accuracy_grid_check(&grid, NULL, err, sizeof err))
@@ -256,6 +262,8 @@ int cmd_accuracy(int argc, char **argv)
     int npictures = 0;
     if (pictures && to_folder && (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet,
                                                          &npictures)) != 0)
+        goto cleanup;
+    if (pictures && to_folder && (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
         goto cleanup;
     if (!quiet && !doc_on_stdout) {
         accuracy_print_table(stdout, res, nmodels);

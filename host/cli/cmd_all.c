@@ -21,6 +21,7 @@
 #include "reproduce.h"
 #include "throughput.h"
 #include "jsonr.h"
+#include "heatmaps_shared.h"
 #include "report.h"
 #include "usermodel.h"
 
@@ -29,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define ALL_MAX_MODELS 64
@@ -728,6 +730,19 @@ static int step_report(struct all_run *r, double wall)
     return 0;
 }
 
+/* The side-by-side heatmap page, when the run has fields to show (a run of references alone has
+ * none). */
+static void add_shared_page(struct all_run *r, int shared_scale)
+{
+    char path[4300];
+    struct stat st;
+    if (path_join(path, sizeof path, r->run_dir, HEATMAPS_SHARED_FILE) || stat(path, &st) != 0) return;
+    add_picture(r, HEATMAPS_SHARED_FILE, REPORT_HEATMAPS,
+                "every model's delta and Delta fields side by side on one colour scale per panel kind, the largest "
+                "over the models%s",
+                shared_scale ? " (--shared-scale: the heatmaps above are on the same scales)" : "");
+}
+
 /* ---- command ---------------------------------------------------------------------- */
 
 static void settings_default(struct all_settings *s, int quick)
@@ -763,7 +778,7 @@ int cmd_all(int argc, char **argv)
     r->tty = isatty(STDERR_FILENO);
     r->results_root = "results";
     const char *models_text = "all", *out_dir = NULL;
-    int quick = 0;
+    int quick = 0, shared_scale = 0;
     struct device_options dev;
     device_options_init(&dev);
     size_t used = (size_t)snprintf(r->command, sizeof r->command, "brdfbench all");
@@ -786,6 +801,7 @@ int cmd_all(int argc, char **argv)
         { .name = "--quick", .kind = CLI_SWITCH, .dest = &quick, .set = 1,
           .help = "coarse grids (seconds; for tests and trials, not for figures): n step 10, 256 samples" },
         CLI_FLAG_QUIET(&r->quiet),
+        CLI_FLAG_SHARED_SCALE(&shared_scale),
         CLI_FLAG_MEASURED(&r->measured_dir),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
@@ -872,6 +888,8 @@ int cmd_all(int argc, char **argv)
     if ((rc = step_q_sweep(r)) != 0) goto done;
     part(r, "throughput", REPORT_PART_THROUGHPUT, step_throughput(r));
     if ((rc = step_heatmaps(r)) != 0) goto done;
+    if ((rc = plots_heatmaps_shared_step("all", r->run_dir, shared_scale)) != 0) goto done;
+    add_shared_page(r, shared_scale);
     if ((rc = step_plots(r)) != 0) goto done;
     part(r, "images", REPORT_PART_IMAGES, step_images(r));
     part(r, "frontier", REPORT_PART_FRONTIER, step_frontier(r));

@@ -4,8 +4,10 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "frontier.h"
+#include "outdir.h"
 
 #include <stdio.h>
+#include <sys/stat.h>
 #include <string.h>
 
 static int run_frontier(struct cl_session *s, const char *run_dir, int quiet, void *opt)
@@ -58,9 +60,14 @@ int cmd_frontier(int argc, char **argv)
         goto usage_error;
     opt.model_count = n;
     int rc = cli_run_engine(&e);
-    if (!rc && !e.quiet && !e.tmp_dir[0])
-        printf("written: %s/frontier.json, frontier.csv, frontier_max_rel.png, frontier_max_abs.png%s\n", e.run_dir,
+    if (!rc && !e.quiet && !e.tmp_dir[0]) {
+        char png[4200];
+        struct stat st;   /* the plots are drawn only when a model has a rate to plot */
+        int plots = path_join(png, sizeof png, e.run_dir, "frontier_max_rel.png") == 0 && lstat(png, &st) == 0;
+        printf("written: %s/frontier.json, frontier.csv%s%s\n", e.run_dir,
+               plots ? ", frontier_max_rel.png, frontier_max_abs.png" : " (no plots: no model has a measured rate)",
                opt.image_w > 0 ? " and frontier_teapot/" : "");
+    }
     return rc;
 
 usage_error:

@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "exitcodes.h"
 #include "field_report.h"
+#include "heatmaps_shared.h"
 #include "outdir.h"
 #include "plots.h"
 
@@ -17,7 +18,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 /* Redraws one field file; returns 0, 2 (input) or 3 (picture). Messages start with
    "brdfbench CMD: " and, for a model the user named, "--label LABEL: ". */
@@ -51,44 +51,11 @@ static int redraw_field(const char *cmd, const char *model, const char *dir, con
     return rc;
 }
 
-static int is_field_file(const char *name)
-{
-    size_t n = strlen(name);
-    return n > strlen("field_.json") && strncmp(name, "field_", 6) == 0 && strcmp(name + n - 5, ".json") == 0;
-}
-
-/* The field_*.json files of dir in name order (NULL on a folder that cannot be read). */
-static char **field_files(const char *dir, size_t *count)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return NULL;
-    char **names = NULL;
-    size_t cap = 0;
-    *count = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (!is_field_file(e->d_name)) continue;
-        if (*count == cap) {
-            cap = cap ? cap * 2 : 32;
-            char **nn = realloc(names, cap * sizeof *nn);
-            if (!nn) break;
-            names = nn;
-        }
-        if (!(names[*count] = strdup(e->d_name))) break;
-        ++*count;
-    }
-    closedir(d);
-    if (names)
-        qsort(names, *count, sizeof *names, cmp_str);
-    return names;
-}
-
 /* The labels of the models of a run (each field file's "model"), comma-separated. */
 static void run_labels(const char *dir, char *out, size_t len)
 {
     size_t count = 0, used = 0;
-    char **names = field_files(dir, &count);
+    char **names = field_file_names(dir, &count);
     out[0] = '\0';
     for (size_t i = 0; i < count; i++) {
         char path[4096], err[256];
@@ -127,7 +94,7 @@ static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, 
         return 0;
     }
     size_t count = 0;
-    char **names = field_files(dir, &count);
+    char **names = field_file_names(dir, &count);
     if (!names && count == 0) {
         DIR *probe = opendir(dir);
         if (!probe) {
@@ -150,8 +117,11 @@ static int redraw(int argc, char **argv, int heatmaps_only)
 {
     const char *name = heatmaps_only ? "heatmap" : "plot";
     const char *dir = NULL, *model = NULL;
+    int shared = 0;
     char err[1024];
+    const struct cli_flag plot_flags[] = { CLI_FLAG_SHARED_SCALE(&shared) };
     const struct cli_flag heatmap_flags[] = {
+        CLI_FLAG_SHARED_SCALE(&shared),
         { .name = "--label", .value = "LABEL", .kind = CLI_TEXT, .dest = &model,
           .help = "redraw only the model of this label, as the run names it (e.g. fvol or fq:Q=0.64)",
           .def = "every model of the run" },
@@ -161,14 +131,15 @@ static int redraw(int argc, char **argv, int heatmaps_only)
     };
     const struct cli_command cmd = {
         .name = name,
-        .synopsis = heatmaps_only ? "[RUN_DIR] [--label LABEL]" : "[RUN_DIR]",
+        .synopsis = heatmaps_only ? "[RUN_DIR] [--label LABEL] [--shared-scale]" : "[RUN_DIR] [--shared-scale]",
         .about = heatmaps_only
                      ? "  Redraws heatmap_<model>.png from field_<model>.json in RUN_DIR (default: results/latest),\n"
                        "  every model or only one. No device is used.\n"
                      : "  Redraws every picture of a run folder (default: results/latest) from its JSON: the plots\n"
                        "  from plots.json and the heatmaps from field_<model>.json. No device is used.\n",
-        .flags = heatmaps_only ? heatmap_flags : NULL,
-        .nflags = heatmaps_only ? (int)(sizeof heatmap_flags / sizeof heatmap_flags[0]) : 0,
+        .flags = heatmaps_only ? heatmap_flags : plot_flags,
+        .nflags = heatmaps_only ? (int)(sizeof heatmap_flags / sizeof heatmap_flags[0])
+                                : (int)(sizeof plot_flags / sizeof plot_flags[0]),
         .max_positional = 1,
     };
     struct cli_args args;
@@ -221,6 +192,16 @@ static int redraw(int argc, char **argv, int heatmaps_only)
     if (heatmaps_only && !model && nfields == 0) {
         fprintf(stderr, "brdfbench %s: %s holds no field_<model>.json to draw from\n", name, dir);
         return EXIT_USAGE;
+    }
+    if ((nfields > 0 || model) && worst != EXIT_USAGE) {
+        /* the page of every model on one scale, and with --shared-scale each heatmap on it */
+        int scaled = 0, rc = plots_heatmaps_shared(dir, shared, model, &scaled, err, sizeof err);
+        if (rc) {
+            fprintf(stderr, "brdfbench %s: %s\n", name, err);
+            if (rc > worst) worst = rc;
+        } else {
+            printf("%s/%s\n", dir, HEATMAPS_SHARED_FILE);
+        }
     }
     fprintf(stderr, "brdfbench %s: %d picture(s) redrawn in %s\n", name, drawn, dir);
     return worst;

@@ -511,97 +511,114 @@ static int write_json(const struct compare_set *set, const char *path, char *err
     return jw_write_file_free(&w, path, err, errlen);
 }
 
-/* Per model one group, one bar per run: the throughput rows of the default build options with
-   n uniform where there are any, else every speed row; runs with no rate at all (accuracy
-   runs) chart their error rows instead (sense CMP_SPEED + 1 asks for those). */
-static int chart_row(const struct cmp_row *r, int throughput_default)
+/* A verdict as the chart's mark. */
+static int chart_verdict(int v)
 {
-    if (throughput_default < 0)
-        return r->sense != CMP_SPEED;
-    if (r->sense != CMP_SPEED)
-        return 0;
-    if (throughput_default)
-        return r->kind == CMP_THROUGHPUT && strstr(r->key, "| default | n uniform") != NULL;
-    return 1;
+    switch (v) {
+    case CMP_V_FASTER:
+    case CMP_V_BETTER: return DRAW_VERDICT_BETTER;
+    case CMP_V_SLOWER:
+    case CMP_V_WORSE: return DRAW_VERDICT_WORSE;
+    case CMP_V_SAME:
+    case CMP_V_UNCHANGED: return DRAW_VERDICT_SAME;
+    case CMP_V_MISSING:
+    case CMP_V_FAILED: return DRAW_VERDICT_LOST;
+    case CMP_V_NONE: return DRAW_VERDICT_NONE;
+    default: return DRAW_VERDICT_UNDECIDED;
+    }
+}
+
+static const char *const sense_title[4] = {"rates (higher is better)", "errors (lower is better)",
+                                           "scores (higher is better)", "values"};
+
+/* The chart's data: a panel per kind of row and sense, in that order, every row of it. */
+struct chart_data {
+    struct draw_verdict_panel panels[CMP_KIND_COUNT * 4];
+    char titles[CMP_KIND_COUNT * 4][96];
+    int npanels;
+    const char **labels;
+    char (*label_text)[2 * CMP_TEXT + 80];
+    double *ratio;
+    int *verdict;
+};
+
+static void chart_free(struct chart_data *d)
+{
+    free(d->labels);
+    free(d->label_text);
+    free(d->ratio);
+    free(d->verdict);
+}
+
+static int chart_fill(const struct compare_set *set, struct chart_data *d)
+{
+    const int N = set->nrows, S = set->nruns;
+    memset(d, 0, sizeof *d);
+    d->labels = calloc((size_t)N + 1, sizeof *d->labels);
+    d->label_text = calloc((size_t)N + 1, sizeof *d->label_text);
+    d->ratio = calloc((size_t)N * S + 1, sizeof *d->ratio);
+    d->verdict = calloc((size_t)N * S + 1, sizeof *d->verdict);
+    if (!d->labels || !d->label_text || !d->ratio || !d->verdict) return -1;
+    int at = 0;
+    for (int kind = 0; kind < CMP_KIND_COUNT; ++kind)
+        for (int sense = 0; sense < 4; ++sense) {
+            struct draw_verdict_panel *p = &d->panels[d->npanels];
+            int first = at;
+            for (int i = 0; i < N; ++i) {
+                const struct cmp_row *r = &set->rows[i];
+                if (r->kind != kind || r->sense != sense) continue;
+                row_label(d->label_text[at], sizeof d->label_text[at], r);
+                d->labels[at] = d->label_text[at];
+                const struct cmp_cell *b = &r->cell[0];
+                double base = b->present && b->ok ? b->value : NAN;
+                for (int k = 0; k < S; ++k) {
+                    const struct cmp_cell *c = &r->cell[k];
+                    int ok = c->present && c->ok && isfinite(base) && base > 0;
+                    d->ratio[(size_t)at * S + k] = ok ? c->value / base : NAN;
+                    d->verdict[(size_t)at * S + k] = k == 0 ? DRAW_VERDICT_NONE : chart_verdict(c->verdict);
+                }
+                ++at;
+            }
+            if (at == first) continue;
+            snprintf(d->titles[d->npanels], sizeof d->titles[0], "%s: %s (%d rows)", cmp_kind_name(kind),
+                     sense_title[sense], at - first);
+            p->title = d->titles[d->npanels];
+            p->nrows = at - first;
+            p->labels = d->labels + first;
+            p->ratio = d->ratio + (size_t)first * S;
+            p->verdict = d->verdict + (size_t)first * S;
+            ++d->npanels;
+        }
+    return 0;
 }
 
 static int write_chart(const struct compare_set *set, const char *path, char *err, size_t errlen)
 {
-    int tpd = 0;
-    for (int i = 0; i < set->nrows; ++i)
-        tpd |= chart_row(&set->rows[i], 1);
-    int G = 0, S = set->nruns;
-    for (int i = 0; i < set->nrows; ++i)
-        G += chart_row(&set->rows[i], tpd) && G < 200;
-    if (G == 0) {
-        tpd = -1;   /* nothing measured as a rate: the errors, as ratios to the baseline's */
-        for (int i = 0; i < set->nrows; ++i)
-            G += chart_row(&set->rows[i], tpd) && G < 200;
-    }
-    if (G == 0) {
-        /* nothing to chart: no chart, and none of an earlier compare left beside this one's
-           tables */
+    if (set->nrows == 0) {
+        /* nothing to chart: no chart, and none of an earlier compare left beside this one's tables */
         if (unlink(path) != 0 && errno != ENOENT) {
             snprintf(err, errlen, "%s: cannot remove the chart of an earlier compare: %s", path, strerror(errno));
             return -1;
         }
         return 0;
     }
-    const char **groups = calloc((size_t)G, sizeof *groups), **series = calloc((size_t)S, sizeof *series);
-    char (*labels)[2 * CMP_TEXT + 80] = calloc((size_t)G, sizeof *labels);
-    double *val = calloc((size_t)G * S, sizeof *val), *lo = calloc((size_t)G * S, sizeof *lo),
-           *hi = calloc((size_t)G * S, sizeof *hi), *blo = calloc((size_t)G, sizeof *blo),
-           *bhi = calloc((size_t)G, sizeof *bhi);
-    int rc = -1;
-    if (!groups || !series || !labels || !val || !lo || !hi || !blo || !bhi) {
+    struct chart_data d;
+    if (chart_fill(set, &d)) {
+        chart_free(&d);
         snprintf(err, errlen, "%s: out of memory", path);
-        goto done;
+        return -1;
     }
-    for (int k = 0; k < S; ++k)
+    const char *series[CMP_MAX_RUNS];
+    for (int k = 0; k < set->nruns; ++k)
         series[k] = set->run[k].name;
-    int g = 0;
-    for (int i = 0; i < set->nrows && g < G; ++i) {
-        const struct cmp_row *r = &set->rows[i];
-        if (!chart_row(r, tpd))
-            continue;
-        if (tpd > 0)
-            snprintf(labels[g], sizeof labels[g], "%s%s%s", r->device, *r->device ? " | " : "", r->model);
-        else
-            row_label(labels[g], sizeof labels[g], r);
-        groups[g] = labels[g];
-        const struct cmp_cell *b = &r->cell[0];
-        double base = b->present && b->ok ? b->value : NAN;
-        blo[g] = b->lo / base;
-        bhi[g] = b->hi / base;
-        for (int k = 0; k < S; ++k) {
-            const struct cmp_cell *c = &r->cell[k];
-            int ok = c->present && c->ok && isfinite(base) && base > 0;
-            val[g * S + k] = ok ? c->value / base : NAN;
-            lo[g * S + k] = ok ? c->lo / base : NAN;
-            hi[g * S + k] = ok ? c->hi / base : NAN;
-        }
-        ++g;
-    }
     char title[512], xlabel[600];
-    snprintf(title, sizeof title, "%s as a ratio to %.200s",
-             tpd > 0 ? "evaluations/s (default build options, n uniform)" : tpd < 0 ? "errors (lower is better)" : "rates",
+    snprintf(title, sizeof title, "Every row as a ratio to %.200s, a panel per kind of row, each run's verdict at the right",
              set->run[0].name);
-    if (tpd < 0)
-        snprintf(xlabel, sizeof xlabel, "ratio to %.200s's value (n/a: a baseline of 0)", set->run[0].name);
-    else
-        snprintf(xlabel, sizeof xlabel, "ratio to %.200s's median (whisker: min..max of the run; grey: %.200s's own "
-                                        "min..max)", set->run[0].name, set->run[0].name);
-    struct draw_ratio_chart ch = { title, xlabel, G, S, groups, series, val, lo, hi, blo, bhi, 0 };
-    rc = draw_ratio_chart(path, &ch, err, errlen);
-done:
-    free(groups);
-    free(series);
-    free(labels);
-    free(val);
-    free(lo);
-    free(hi);
-    free(blo);
-    free(bhi);
+    snprintf(xlabel, sizeof xlabel, "ratio to %.200s's value (log; a rate: its median; none: not measured or a baseline of 0)",
+             set->run[0].name);
+    struct draw_verdict_chart ch = { title, xlabel, set->nruns, series, d.npanels, d.panels, 0 };
+    int rc = draw_verdict_chart(path, &ch, err, errlen);
+    chart_free(&d);
     return rc;
 }
 

@@ -3,6 +3,7 @@
 
 #include "context.h"
 #include "draw.h"
+#include "plots.h"
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "jsonw.h"
@@ -216,26 +217,18 @@ void field_safe_label(const char *label, char *out, size_t len)
 
 /* ---- picture ------------------------------------------------------------------------ */
 
-int field_draw_heatmap(const char *path, const struct field_result *r, struct draw_panel_layout *layout, char *err,
-                       size_t errlen)
+void field_heatmap_panels(const struct field_result *r, double epi_vmax, double att_vmax,
+                          struct draw_heatmap_panel *p, struct field_panel_text *t)
 {
     const char *var = r->model.info->lobe == LOBE_PSI ? "psi" : "theta_h";
-    char title[1024], sub0[160], sub1[160], xl0[160], xl1[160];
-    char peak0[160] = "no finite value", peak1[160] = "no finite value";
-    if (isfinite(r->epi_peak.value))
-        snprintf(peak0, sizeof peak0, "max delta %.4g%% at n = %.4g, %s = %.4g rad", 100 * r->epi_peak.value,
-                 r->epi_peak.n, var, r->epi_peak.x);
-    if (isfinite(r->att_peak.value))
-        snprintf(peak1, sizeof peak1, "max Delta %.4g at n = %.4g, %s = %.4g rad", r->att_peak.value, r->att_peak.n, var,
-                 r->att_peak.x);
-    snprintf(title, sizeof title, "%s against %s:  %s\n%s;  %s  (on this %dx%d grid)", r->model.label,
-             r->reference.label, r->model.info->formula, peak0, peak1, r->grid.cols, r->grid.rows);
-    snprintf(sub0, sizeof sub0, "relative error delta(x, n) over the epicentre");
-    snprintf(sub1, sizeof sub1, "absolute error Delta(x, n) over the attenuation zone");
-    snprintf(xl0, sizeof xl0, "x / x_e(n),  x = %s,  x_e(n) = acos(exp(-0.511/n))", var);
-    snprintf(xl1, sizeof xl1, "x / x_e(n) (log),  x = %s;  grey: past pi/2", var);
-    struct draw_heatmap_panel p[2];
-    memset(p, 0, sizeof p);
+    const char *shared = " (shared)";   /* the scale of every model of the run: the bar's height holds no more */
+    snprintf(t->sub[0], sizeof t->sub[0], "relative error delta(x, n) over the epicentre");
+    snprintf(t->sub[1], sizeof t->sub[1], "absolute error Delta(x, n) over the attenuation zone");
+    snprintf(t->x_label[0], sizeof t->x_label[0], "x / x_e(n),  x = %s,  x_e(n) = acos(exp(-0.511/n))", var);
+    snprintf(t->x_label[1], sizeof t->x_label[1], "x / x_e(n) (log),  x = %s;  grey: past pi/2", var);
+    snprintf(t->bar[0], sizeof t->bar[0], "relative error delta%s", epi_vmax > 0 ? shared : "");
+    snprintf(t->bar[1], sizeof t->bar[1], "absolute error Delta%s", att_vmax > 0 ? shared : "");
+    memset(p, 0, 2 * sizeof *p);
     for (int k = 0; k < 2; k++) {
         p[k].cols = r->grid.cols;
         p[k].rows = r->grid.rows;
@@ -245,16 +238,42 @@ int field_draw_heatmap(const char *path, const struct field_result *r, struct dr
         p[k].y_label = "shininess n (log)";
         p[k].cmap = DRAW_CMAP_VIRIDIS;
         p[k].mark_max = 1;
+        p[k].subtitle = t->sub[k];
+        p[k].x_label = t->x_label[k];
+        p[k].bar_label = t->bar[k];
+        p[k].vmax = k == 0 ? epi_vmax : att_vmax;   /* <= 0: the panel's own [0, max] */
     }
     p[0].values = r->epi_rel;
-    p[0].x_min = 0, p[0].x_max = 1, p[0].x_label = xl0;
+    p[0].x_min = 0, p[0].x_max = 1;
     p[0].value_format = DRAW_FMT_PERCENT;
-    p[0].bar_label = "relative error delta";
-    p[0].subtitle = sub0;
     p[1].values = r->att_abs;
-    p[1].x_min = 1, p[1].x_max = r->u_max, p[1].x_log = 1, p[1].x_label = xl1;
+    p[1].x_min = 1, p[1].x_max = r->u_max, p[1].x_log = 1;
     p[1].value_format = DRAW_FMT_PLAIN;
-    p[1].bar_label = "absolute error Delta";
-    p[1].subtitle = sub1;
-    return draw_heatmap_figure(path, title, 2, p, layout, err, errlen);
+}
+
+int field_draw_heatmap_scaled(const char *path, const struct field_result *r, double epi_vmax, double att_vmax,
+                              struct draw_panel_layout *layout, char *err, size_t errlen)
+{
+    const char *var = r->model.info->lobe == LOBE_PSI ? "psi" : "theta_h";
+    char title[1024];
+    char peak0[160] = "no finite value", peak1[160] = "no finite value";
+    if (isfinite(r->epi_peak.value))
+        snprintf(peak0, sizeof peak0, "max delta %.4g%% at n = %.4g, %s = %.4g rad", 100 * r->epi_peak.value,
+                 r->epi_peak.n, var, r->epi_peak.x);
+    if (isfinite(r->att_peak.value))
+        snprintf(peak1, sizeof peak1, "max Delta %.4g at n = %.4g, %s = %.4g rad", r->att_peak.value, r->att_peak.n, var,
+                 r->att_peak.x);
+    snprintf(title, sizeof title, "%s against %s:  %s\n%s;  %s  (on this %dx%d grid)", r->model.label,
+             r->reference.label, r->model.info->formula, peak0, peak1, r->grid.cols, r->grid.rows);
+    struct draw_heatmap_panel p[2];
+    struct field_panel_text t;
+    field_heatmap_panels(r, epi_vmax, att_vmax, p, &t);
+    if (draw_heatmap_figure(path, title, 2, p, layout, err, errlen)) return -1;
+    return plots_stamp_if_quick(path, 0, err, errlen);
+}
+
+int field_draw_heatmap(const char *path, const struct field_result *r, struct draw_panel_layout *layout, char *err,
+                       size_t errlen)
+{
+    return field_draw_heatmap_scaled(path, r, 0, 0, layout, err, errlen);
 }

@@ -3,11 +3,14 @@
 #include "frontier_report.h"
 #include "context.h"
 #include "draw.h"
+#include "plots.h"
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
 
 #include <math.h>
+#include <unistd.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,8 +126,28 @@ int frontier_write_csv(const char *path, const struct frontier_report *r, char *
     return md_write_file_free(&b, path, err, errlen);
 }
 
+int frontier_plots_drawable(const struct frontier_report *r)
+{
+    for (int i = 0; i < r->count; ++i)
+        if (isfinite(r->rows[i].rate[0][1]) && r->rows[i].rate[0][1] > 0)
+            return 1;
+    return 0;
+}
+
 int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen)
 {
+    if (!frontier_plots_drawable(r)) {
+        /* no point to draw: no plot, and none of an earlier run left beside these tables */
+        for (int fig = 0; fig < 2; ++fig) {
+            char path[4300];
+            path_join(path, sizeof path, dir, fig == 0 ? "frontier_max_rel.png" : "frontier_max_abs.png");
+            if (unlink(path) != 0 && errno != ENOENT) {
+                snprintf(err, errlen, "%s: cannot remove the plot of an earlier run: %s", path, strerror(errno));
+                return -1;
+            }
+        }
+        return 0;
+    }
     double x[FRONTIER_MAX_MODELS], y[FRONTIER_MAX_MODELS];
     const char *labels[FRONTIER_MAX_MODELS];
     int kinds[FRONTIER_MAX_MODELS], front[FRONTIER_MAX_MODELS];
@@ -150,7 +173,7 @@ int frontier_write_plots(const char *dir, const struct frontier_report *r, char 
                                    n, x, y, labels, kinds, front };
         char path[4300];
         path_join(path, sizeof path, dir, fig == 0 ? "frontier_max_rel.png" : "frontier_max_abs.png");
-        if (draw_scatter_plot(path, &sc, err, errlen))
+        if (draw_scatter_plot(path, &sc, err, errlen) || plots_stamp_if_quick(path, 0, err, errlen))
             return -1;
     }
     return 0;
@@ -247,8 +270,12 @@ char *frontier_markdown(const struct frontier_report *r)
     } else {
         md_printf(&b, "fq2 is not in this run (or its rate is missing): no budgets relative to it.\n");
     }
-    md_printf(&b, "\n![evaluations/s against max delta](frontier_max_rel.png)\n"
-                  "![evaluations/s against max Delta](frontier_max_abs.png)\n");
+    if (frontier_plots_drawable(r))
+        md_printf(&b, "\n![evaluations/s against max delta](frontier_max_rel.png)\n"
+                      "![evaluations/s against max Delta](frontier_max_abs.png)\n");
+    else
+        md_printf(&b, "\nThe plots of evaluations/s against max delta and max Delta are not drawn: no model has a "
+                      "measured rate.\n");
     if (b.failed) {
         md_free(&b);
         return NULL;

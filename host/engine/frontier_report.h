@@ -11,6 +11,9 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
                         size_t errlen);
 int frontier_write_csv(const char *path, const struct frontier_report *r, char *err, size_t errlen);
 /* Two pictures: evaluations/s against max delta and against max Delta (both log axes). */
+/* 1 when some model has a measured rate: the plots have a point to draw (else they are not
+ * drawn, an earlier run's are removed, and the markdown says so). */
+int frontier_plots_drawable(const struct frontier_report *r);
 int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen);
 /* The table on f. */
 void frontier_print(FILE *f, const struct frontier_report *r);

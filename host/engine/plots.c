@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static const double half_pi = 1.57079632679489661923;
 
@@ -209,8 +210,11 @@ int plots_add_against_q(struct plot_set *set, const char *file, const char *capt
                         const char *y_label, int y_format, const double *q, const double *fq, int count,
                         const char *fq_label, double baseline, const char *baseline_label, double mark_q)
 {
+    int finite = 0;
+    for (int i = 0; i < count; i++) finite += isfinite(q[i]) && isfinite(fq[i]);
+    if (finite == 0) return 1;   /* nothing to draw: no figure (an empty plot is never drawn) */
     struct plot_figure *f = plots_add(set, PLOT_LINES, file, caption);
-    if (!f || count < 1) return -1;
+    if (!f) return -1;
     set_text(f->title, sizeof f->title, title);
     set_text(f->x_label, sizeof f->x_label, "Q");
     set_text(f->y_label, sizeof f->y_label, y_label);
@@ -300,12 +304,70 @@ int plots_add_throughput(struct plot_set *set, const char *json_path, const char
     }
     char title[160];
     snprintf(title, sizeof title, "Throughput per model, n %s (default build options)", n_mode);
-    rc = plots_add_bars(set, file, caption, title, "G evaluations per second (median; whisker: min..max of the repeats)",
-                        labels, med, lo, hi, count, highlight) ? 2 : 0;
+    rc = plots_add_bars(set, file, caption, title,
+                        "G evaluations per second, log scale (median; whisker: min..max of the repeats)", labels, med,
+                        lo, hi, count, highlight) ? 2 : 0;
     if (rc) snprintf(err, errlen, "%s: out of memory", json_path);
+    else set->figs[set->count - 1].x_log = 1;   /* pow() and the cheap lobes are decades apart */
 done:
     jr_free(&d);
     return rc;
+}
+
+/* ---- the quick-run stamp ------------------------------------------------------------------ */
+
+/* The grid of run_dir/accuracy.json (its context block): 1 quick, 0 not, -1 unreadable. */
+static int accuracy_json_quick(const char *path)
+{
+    struct jr_doc d;
+    char err[512];
+    if (jr_parse_file(path, &d, err, sizeof err)) return -1;
+    const struct jr_value *grid = jr_get(jr_get(&d.root, "context"), "grid");
+    double step = 0, samples = 0;
+    int rc = -1;
+    if (grid && !jr_need_num(&d, grid, "n_step", &step, err, sizeof err) &&
+        !jr_need_num(&d, grid, "samples_per_zone", &samples, err, sizeof err))
+        rc = step >= 10 || samples <= 256;   /* all --quick: n step 10, 256 samples per zone */
+    jr_free(&d);
+    return rc;
+}
+
+bool plots_run_is_quick(const char *run_dir)
+{
+    static char last_dir[4096];
+    static struct stat last_st;
+    static int last_answer = -1;
+    char path[4200];
+    struct stat st;
+    if (path_join(path, sizeof path, run_dir, "accuracy.json") || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+        return false;
+    if (last_answer >= 0 && strcmp(last_dir, run_dir) == 0 && st.st_ino == last_st.st_ino &&
+        st.st_dev == last_st.st_dev && st.st_size == last_st.st_size && st.st_mtim.tv_sec == last_st.st_mtim.tv_sec &&
+        st.st_mtim.tv_nsec == last_st.st_mtim.tv_nsec)
+        return last_answer == 1;
+    int q = accuracy_json_quick(path);
+    snprintf(last_dir, sizeof last_dir, "%s", run_dir);
+    last_st = st;
+    last_answer = q == 1;
+    return q == 1;
+}
+
+int plots_stamp_if_quick(const char *png, int up, char *err, size_t errlen)
+{
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", png);
+    for (int k = 0; k <= up; k++) {   /* the picture's folder, then `up` more */
+        char *slash = strrchr(dir, '/');
+        if (!slash) {   /* a relative name: "." and one ".." per level left */
+            snprintf(dir, sizeof dir, ".");
+            for (int j = k; j < up; j++) strncat(dir, "/..", sizeof dir - strlen(dir) - 1);
+            break;
+        }
+        *slash = '\0';
+        if (dir[0] == '\0') snprintf(dir, sizeof dir, "/");
+    }
+    if (!plots_run_is_quick(dir)) return 0;
+    return draw_stamp_png(png, PLOTS_QUICK_STAMP, err, errlen);
 }
 
 /* ---- drawing ---------------------------------------------------------------------- */
@@ -331,7 +393,9 @@ int plot_figure_draw(const struct plot_figure *f, const char *path, char *err, s
             c.err_hi = f->series[2].y;
         }
         c.highlight = f->highlight;
-        return draw_bar_chart(path, &c, err, errlen);
+        c.x_log = f->x_log;   /* the value axis; plots.json's x_log */
+        if (draw_bar_chart(path, &c, err, errlen)) return -1;
+        return plots_stamp_if_quick(path, 0, err, errlen);
     }
     struct draw_series s[PLOT_MAX_SERIES];
     for (int i = 0; i < f->nseries; i++) {
@@ -359,7 +423,8 @@ int plot_figure_draw(const struct plot_figure *f, const char *path, char *err, s
     p.nvlines = f->nvlines;
     p.vlines = f->vlines;
     p.vline_labels = vl;
-    return draw_line_plot(path, &p, err, errlen);
+    if (draw_line_plot(path, &p, err, errlen)) return -1;
+    return plots_stamp_if_quick(path, 0, err, errlen);
 }
 
 int plots_draw(const struct plot_set *set, const char *dir, char *err, size_t errlen)

@@ -11,6 +11,7 @@
 #define BRDF_PLOTS_H
 
 #include "schemas.h"
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "accuracy.h"
@@ -80,7 +81,8 @@ int plots_add_max_vs_n(struct plot_set *set, const char *file, const char *capti
                        const struct accuracy_result *res, int count, int relative, const enum model_family *families,
                        int nfamilies);
 /* max delta or max Delta against Q: q[count], fq[count]; baseline (e.g. f2's value, which
- * does not depend on Q) drawn as a dashed line; NAN for none. */
+ * does not depend on Q) drawn as a dashed line; NAN for none. Returns 0, -1 (out of memory), or
+ * 1 when no (q, fq) pair is finite: then no figure is added. */
 int plots_add_against_q(struct plot_set *set, const char *file, const char *caption, const char *title,
                         const char *y_label, int y_format, const double *q, const double *fq, int count,
                         const char *fq_label, double baseline, const char *baseline_label, double mark_q);
@@ -107,6 +109,19 @@ struct cl_session;
 int plots_write_json(const struct plot_set *set, const char *path, const struct cl_session *s, char *err,
                      size_t errlen);
 int plots_read_json(const char *path, struct plot_set *set, char *err, size_t errlen);
+
+/* ---- the quick-run stamp ------------------------------------------------------------------ */
+
+#define PLOTS_QUICK_STAMP "coarse grid (--quick), not for figures"
+
+/* true when the run folder's accuracy.json was measured on a grid as coarse as `all --quick`'s
+ * in either dimension (an n step of 10 or more, or 256 samples per zone or fewer); false when
+ * it has none or cannot be read. The answer for a folder is kept until its accuracy.json
+ * changes. */
+bool plots_run_is_quick(const char *run_dir);
+/* Stamps PLOTS_QUICK_STAMP under the picture png (draw_stamp_png) when the run folder `up`
+ * levels above png's own folder (0: that folder) is quick. 0, or -1 with a message. */
+int plots_stamp_if_quick(const char *png, int up, char *err, size_t errlen);
 
 /* 1 when name is a picture name plots.json may give: NAME.png, letters, digits and ._-+=,
  * not starting with '.', at most 200 characters (so never a data file of the run). */

@@ -14,6 +14,7 @@
 #include "programs.h"
 #include "raster.h"
 #include "refine.h"
+#include "render_pictures.h"
 #include "render_report.h"
 #include "report.h"
 #include "runner.h"
@@ -540,10 +541,11 @@ static void model_region(const struct scene_data *sd, const struct render_option
 
 /* ------------------------------------------------------------------ metrics */
 
-/* Error, metrics and the error picture for rows [y0, y1). errimg: (y1-y0) x w floats. */
+/* Error, metrics and the error pictures for rows [y0, y1). errimg: (y1-y0) x w floats of
+   |model - reference|; signed_img (NULL: none) the same of model - reference. */
 static void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsigned *rgba_m,
                             const float *spec_m, const unsigned *rgba_r, const float *spec_r,
-                            double threshold, float *errimg, struct image_metrics *mt)
+                            double threshold, float *errimg, float *signed_img, struct image_metrics *mt)
 {
     const float *sh = gbuffer_plane(g, GB_SHIN);
     const int w = g->width;
@@ -555,12 +557,15 @@ static void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsig
         for (int x = 0; x < w; x++) {
             size_t i = (size_t)y * w + x;
             float *out = errimg + (size_t)(y - y0) * w + x;
+            float *sgn = signed_img ? signed_img + (size_t)(y - y0) * w + x : NULL;
             if (!(sh[i] > 0)) {
                 *out = NAN;
+                if (sgn) *sgn = NAN;
                 continue;
             }
-            double e = fabs((double)spec_m[i] - (double)spec_r[i]);
+            double d = (double)spec_m[i] - (double)spec_r[i], e = fabs(d);
             *out = (float)e;
+            if (sgn) *sgn = (float)d;
             mt->pixels++;
             if (!isfinite(e)) {
                 mt->nonfinite++;   /* a NaN would pass every comparison below unseen */
@@ -768,7 +773,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
     struct shaded_cache cache = {0};
     cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
     unsigned *rgba_m = NULL;
-    float *spec_m = NULL, *errimg = NULL, *grid_err = NULL;
+    float *spec_m = NULL, *errimg = NULL, *signed_m = NULL, *grid_err = NULL;
     unsigned char *rgb_m = NULL, *rgb_r = NULL, *grid_m = NULL, *grid_r = NULL;
     int rc = 0;
     double t0 = wall_seconds();
@@ -783,9 +788,10 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
     rgba_m = malloc(npix * sizeof *rgba_m);
     spec_m = malloc(npix * sizeof *spec_m);
     errimg = malloc(npix * sizeof *errimg);
+    signed_m = malloc(npix * sizeof *signed_m);
     rgb_m = malloc(npix * 3);
     rgb_r = malloc(npix * 3);
-    if (!rgba_m || !spec_m || !errimg || !rgb_m || !rgb_r)
+    if (!rgba_m || !spec_m || !errimg || !signed_m || !rgb_m || !rgb_r)
         goto oom;
     if (sd->kind == RENDER_SPHERES) {
         grid_err = malloc(npix * sizeof *grid_err);
@@ -834,7 +840,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
         const float *spec_r = cache.e[ci].spec;
         model_region(sd, o, h, mi, &mr->y0, &mr->y1);
         const int y0 = mr->y0, y1 = mr->y1;
-        compute_metrics(&g, y0, y1, rgba_m, spec_m, rgba_r, spec_r, o->threshold, errimg,
+        compute_metrics(&g, y0, y1, rgba_m, spec_m, rgba_r, spec_r, o->threshold, errimg, signed_m,
                         &mr->metrics);
         check_reference(&g, y0, y1, m, mr->mode, &res->light, o, rgba_m, spec_m, &mr->check);
         size_t off = (size_t)y0 * w, n = (size_t)(y1 - y0) * w;
@@ -850,31 +856,20 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
                 grid_err[off + k] = peak > 0 ? (float)(errimg[k] / peak) : errimg[k];
         }
         if (o->write_images) {
-            char base[MODEL_LABEL_MAX + 8], name[300], path[4600], title[400];
+            char base[MODEL_LABEL_MAX + 8], title[400], ctitle[400], stitle[400];
             label_to_file(m->label, base, sizeof base);
             const char *sc = render_scene_names[sd->kind];
-            snprintf(mr->image, sizeof mr->image, "render/%s/%s.png", sc, base);
-            snprintf(mr->error, sizeof mr->error, "render/%s/%s_error.png", sc, base);
-            snprintf(mr->contact, sizeof mr->contact, "render/%s/%s_contact.png", sc, base);
-            snprintf(name, sizeof name, "%s.png", base);
-            path_join(path, sizeof path, scene_dir, name);
-            if (draw_png_rgb8(path, w, y1 - y0, rgb_m, err, errlen) != 0)
-                goto io_fail;
             snprintf(title, sizeof title,
                      "%s: |%s - %s| specular radiance (%s), max %.3g mean %.3g", sc, m->label,
                      mr->ref.label, render_mode_names[mr->mode], mr->metrics.max_abs,
                      mr->metrics.mean_abs);
-            snprintf(name, sizeof name, "%s_error.png", base);
-            path_join(path, sizeof path, scene_dir, name);
-            if (draw_error_image(path, w, y1 - y0, errimg, (float)mr->metrics.max_abs, title, err,
-                                 errlen) != 0)
-                goto io_fail;
-            snprintf(title, sizeof title, "%s: reference %s | model %s | error (max %.3g)", sc,
+            snprintf(ctitle, sizeof ctitle, "%s: reference %s | model %s | error (max %.3g)", sc,
                      mr->ref.label, m->label, mr->metrics.max_abs);
-            snprintf(name, sizeof name, "%s_contact.png", base);
-            path_join(path, sizeof path, scene_dir, name);
-            if (draw_contact_sheet(path, w, y1 - y0, rgb_r, rgb_m, errimg,
-                                   (float)mr->metrics.max_abs, title, err, errlen) != 0)
+            render_signed_title(stitle, sizeof stitle, sc, m->label, mr->ref.label, mr->metrics.max_abs);
+            struct render_picture_set ps = {scene_dir, sc, "", base, w, y1 - y0, rgb_m, rgb_r, errimg,
+                                            signed_m, mr->metrics.max_abs, title, stitle, ctitle, mr->image,
+                                            mr->error, mr->signed_error, mr->contact};
+            if (render_write_pictures(&ps, err, errlen) != 0)
                 goto io_fail;
         }
         if (o->verbose)
@@ -888,13 +883,7 @@ static int image_pass(struct render_device *dev, const struct scene_data *sd,
             if (mt->peak_reference > 0)
                 vmax = fmax(vmax, mt->max_abs / mt->peak_reference);
         }
-        char path[4600], title[300];
-        path_join(path, sizeof path, scene_dir, "contact.png");
-        snprintf(title, sizeof title,
-                 "spheres: a row per model (as listed), a column per shininess; references | "
-                 "models | error / the row's reference peak (max %.3g)", vmax);
-        if (draw_contact_sheet(path, w, h, grid_r, grid_m, grid_err, (float)vmax, title, err,
-                               errlen) != 0)
+        if (render_write_grid(scene_dir, o, w, h, grid_r, grid_m, grid_err, vmax, err, errlen) != 0)
             goto io_fail;
         snprintf(res->grid_contact, sizeof res->grid_contact, "render/spheres/contact.png");
     }
@@ -916,6 +905,7 @@ done:
     free(rgba_m);
     free(spec_m);
     free(errimg);
+    free(signed_m);
     free(rgb_m);
     free(rgb_r);
     free(grid_err);
@@ -984,34 +974,20 @@ void render_he_fit(const double *a, const double *c, const double *h, size_t cou
    contact sheet He | entry | error (PNG writing is most of this pass's time, so the other
    cheap lobes get the error image only). */
 static int he_pictures(const char *scene_dir, const char *sc, const char *base, int w, int h, const unsigned *rgba,
-                       const unsigned char *rgb_he, unsigned char *rgb, const float *errimg, struct he_entry *en,
-                       const char *he_label, int all_pictures, char *err, size_t errlen)
+                       const unsigned char *rgb_he, unsigned char *rgb, const float *errimg, const float *signed_img,
+                       struct he_entry *en, const char *he_label, int all_pictures, char *err, size_t errlen)
 {
-    char name[300], path[4600], title[400];
-    snprintf(en->error, sizeof en->error, "render/%s/he_%s_error.png", sc, base);
-    if (all_pictures) {
+    char title[400], ctitle[400], stitle[400];
+    if (all_pictures)
         render_rgba_to_rgb(rgba, (size_t)w * h, rgb);
-        snprintf(en->image, sizeof en->image, "render/%s/he_%s.png", sc, base);
-        snprintf(en->contact, sizeof en->contact, "render/%s/he_%s_contact.png", sc, base);
-        snprintf(name, sizeof name, "he_%s.png", base);
-        path_join(path, sizeof path, scene_dir, name);
-        if (draw_png_rgb8(path, w, h, rgb, err, errlen) != 0)
-            return EXIT_RUNTIME;
-    }
     snprintf(title, sizeof title, "%s: |%s - %s| specular radiance, max %.3g mean %.3g", sc, en->label, he_label,
              en->metrics.max_abs, en->metrics.mean_abs);
-    snprintf(name, sizeof name, "he_%s_error.png", base);
-    path_join(path, sizeof path, scene_dir, name);
-    if (draw_error_image(path, w, h, errimg, (float)en->metrics.max_abs, title, err, errlen) != 0)
-        return EXIT_RUNTIME;
-    if (!all_pictures)
-        return 0;
-    snprintf(title, sizeof title, "%s: %s | %s | error (max %.3g)", sc, he_label, en->label, en->metrics.max_abs);
-    snprintf(name, sizeof name, "he_%s_contact.png", base);
-    path_join(path, sizeof path, scene_dir, name);
-    if (draw_contact_sheet(path, w, h, rgb_he, rgb, errimg, (float)en->metrics.max_abs, title, err, errlen) != 0)
-        return EXIT_RUNTIME;
-    return 0;
+    snprintf(ctitle, sizeof ctitle, "%s: %s | %s | error (max %.3g)", sc, he_label, en->label, en->metrics.max_abs);
+    render_signed_title(stitle, sizeof stitle, sc, en->label, he_label, en->metrics.max_abs);
+    struct render_picture_set ps = {scene_dir, sc, "he_", base, w, h, all_pictures ? rgb : NULL,
+                                    all_pictures ? rgb_he : NULL, errimg, signed_img, en->metrics.max_abs, title,
+                                    stitle, ctitle, en->image, en->error, en->signed_error, en->contact};
+    return render_write_pictures(&ps, err, errlen);
 }
 
 /* A mesh shaded by He's model (o->he_material), then by Blinn-Phong at the n (and scale) that
@@ -1029,7 +1005,7 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
     struct he_fit fit = {0};
     cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
     unsigned *rgba_he = NULL, *rgba_b = NULL, *rgba_m = NULL;
-    float *spec_he = NULL, *spec_b = NULL, *spec_m = NULL, *errimg = NULL;
+    float *spec_he = NULL, *spec_b = NULL, *spec_m = NULL, *errimg = NULL, *signed_img = NULL;
     unsigned char *rgb_he = NULL, *rgb = NULL;
     int rc = 0;
     char text[64];
@@ -1049,12 +1025,13 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
     spec_b = malloc(npix * sizeof *spec_b);
     spec_m = malloc(npix * sizeof *spec_m);
     errimg = malloc(npix * sizeof *errimg);
+    signed_img = malloc(npix * sizeof *signed_img);
     rgb_he = malloc(npix * 3);
     rgb = malloc(npix * 3);
     fit.a = malloc(npix * sizeof *fit.a);
     fit.c = malloc(npix * sizeof *fit.c);
     fit.h = malloc(npix * sizeof *fit.h);
-    if (!rgba_he || !rgba_b || !rgba_m || !spec_he || !spec_b || !spec_m || !errimg || !rgb_he || !rgb || !fit.a ||
+    if (!rgba_he || !rgba_b || !rgba_m || !spec_he || !spec_b || !spec_m || !errimg || !signed_img || !rgb_he || !rgb || !fit.a ||
         !fit.c || !fit.h) {
         set_err(err, errlen, "%s: out of memory for the He comparison", sc);
         rc = EXIT_RUNTIME;
@@ -1137,7 +1114,7 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
                                       rg, sp, NULL)) != 0)
             goto fail;
         snprintf(en->label, sizeof en->label, "%s@n=%.4g", m->label, hc->n_fit);
-        compute_metrics(&g, 0, h, rg, sp, rgba_he, spec_he, o->threshold, errimg, &en->metrics);
+        compute_metrics(&g, 0, h, rg, sp, rgba_he, spec_he, o->threshold, errimg, signed_img, &en->metrics);
         en->max_abs_vs_blinn = 0;
         for (size_t i = 0; i < npix; i++)
             if (sh[i] > 0)
@@ -1146,7 +1123,7 @@ static int he_pass(struct render_device *dev, const struct scene_data *sd, const
             char base[MODEL_LABEL_MAX + 8];
             label_to_file(m->label, base, sizeof base);
             int all_pictures = mi < 0 || m->info->kernel_id == BRDF_FQ2;
-            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, rgb_he, rgb, errimg, en, hc->he.label, all_pictures,
+            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, rgb_he, rgb, errimg, signed_img, en, hc->he.label, all_pictures,
                                   err, errlen)) != 0)
                 goto done;
         }
@@ -1170,6 +1147,7 @@ done:
     free(spec_he);
     free(spec_b);
     free(spec_m);
+    free(signed_img);
     free(errimg);
     free(rgb_he);
     free(rgb);

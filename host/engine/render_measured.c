@@ -97,7 +97,7 @@ static void pixel_irradiance(const struct gbuffer *g, const struct render_light 
 
 static int write_pictures(const char *scene_dir, const char *mat, const struct render_measured_entry *en, int w,
                           int h, const unsigned char *rgb_meas, const unsigned char *rgb, const float *errimg,
-                          float vmax, int first, char *err, size_t errlen)
+                          const float *signed_img, float vmax, int first, char *err, size_t errlen)
 {
     char path[4400], name[400], title[512];
     char base[96];
@@ -119,6 +119,12 @@ static int write_pictures(const char *scene_dir, const char *mat, const struct r
     snprintf(title, sizeof title, "%s: |%s - measured| radiance (max %.3g)", mat, en->label, en->max_abs);
     if (draw_error_image(path, w, h, errimg, vmax, title, err, errlen))
         return EXIT_RUNTIME;
+    snprintf(name, sizeof name, "measured_%s_%s_signed_error.png", mat, base);
+    path_join(path, sizeof path, scene_dir, name);
+    snprintf(title, sizeof title, "%s: %s - measured radiance\nblue: the fit under the measurement, red: over; scale +-%.3g",
+             mat, en->label, en->max_abs);
+    if (draw_signed_error_image(path, w, h, signed_img, (float)en->max_abs, title, err, errlen))
+        return EXIT_RUNTIME;
     snprintf(name, sizeof name, "measured_%s_%s_contact.png", mat, base);
     path_join(path, sizeof path, scene_dir, name);
     snprintf(title, sizeof title, "%s: measured | %s | error (max %.3g)", mat, en->label, en->max_abs);
@@ -138,12 +144,13 @@ int render_measured_pass(struct render_device *dev, const struct gbuffer *g, con
     unsigned *rgba = malloc(npix * sizeof *rgba);
     float *spec = malloc(npix * sizeof *spec), *spec_meas = malloc(npix * sizeof *spec_meas);
     float *errimg = malloc(npix * sizeof *errimg), *shin = malloc(g->stride * sizeof *shin);
+    float *signed_img = malloc(npix * sizeof *signed_img);
     double *ed = malloc(npix * sizeof *ed), *rad_meas = malloc(npix * sizeof *rad_meas);
     double *rad = malloc(npix * sizeof *rad);
     unsigned char *rgb_meas = malloc(npix * 3), *rgb = malloc(npix * 3);
     memset(res, 0, sizeof *res);
     snprintf(res->material, sizeof res->material, "%s", mat->name);
-    if (!mm || !rgba || !spec || !spec_meas || !errimg || !shin || !ed || !rad_meas || !rad || !rgb_meas || !rgb) {
+    if (!mm || !rgba || !spec || !spec_meas || !errimg || !signed_img || !shin || !ed || !rad_meas || !rad || !rgb_meas || !rgb) {
         snprintf(err, errlen, "%s: out of memory for the measured comparison", mat->name);
         rc = EXIT_RUNTIME;
         goto done;
@@ -195,6 +202,7 @@ int render_measured_pass(struct render_device *dev, const struct gbuffer *g, con
             for (size_t i = 0; i < npix; ++i) {
                 double d = sh[i] > 0 ? fabs(rad[i] - rad_meas[i]) : 0;
                 errimg[i] = (float)d;
+                signed_img[i] = sh[i] > 0 ? (float)(rad[i] - rad_meas[i]) : NAN;   /* background: no data */
                 en->max_abs = fmax(en->max_abs, d);
                 sum += d * d;
                 cnt += sh[i] > 0;
@@ -203,7 +211,7 @@ int render_measured_pass(struct render_device *dev, const struct gbuffer *g, con
             render_rgba_to_rgb(rgba, npix, rgb);
         }
         if (o->write_images &&
-            (rc = write_pictures(scene_dir, mat->name, en, g->width, g->height, rgb_meas, rgb, errimg,
+            (rc = write_pictures(scene_dir, mat->name, en, g->width, g->height, rgb_meas, rgb, errimg, signed_img,
                                  (float)fmax(res->peak * 0.25, 1e-12), k == 0, err, errlen)) != 0)
             goto done;
     }
@@ -218,6 +226,7 @@ done:;
     free(spec);
     free(spec_meas);
     free(errimg);
+    free(signed_img);
     free(shin);
     free(ed);
     free(rad_meas);

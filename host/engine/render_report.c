@@ -113,6 +113,8 @@ static void write_he_json(struct jw *w, const struct he_comparison *hc, double t
             if (en->image[0])
                 jw_kv_str(w, "image", en->image);
             jw_kv_str(w, "error", en->error);
+            if (en->signed_error[0])
+                jw_kv_str(w, "signed_error", en->signed_error);
             if (en->contact[0])
                 jw_kv_str(w, "contact_sheet", en->contact);
             jw_obj_end(w);
@@ -211,6 +213,8 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                 jw_kv_obj(&w, "files");
                 jw_kv_str(&w, "image", mr->image);
                 jw_kv_str(&w, "error_image", mr->error);
+                if (mr->signed_error[0])
+                    jw_kv_str(&w, "signed_error_image", mr->signed_error);
                 jw_kv_str(&w, "contact_sheet", mr->contact);
                 jw_obj_end(&w);
             }

@@ -57,6 +57,7 @@ struct model_result {
     struct image_metrics metrics;
     struct reference_check check;
     char image[256], error[256], contact[256];  /* paths relative to out_dir */
+    char signed_error[256];    /* the signed error image, beside error */
 };
 
 /* Launch times kept per entry, in launch order, for a rank test between runs (compare). */
@@ -89,6 +90,7 @@ struct he_entry {
     struct image_metrics metrics;           /* against He's image */
     double max_abs_vs_blinn;                /* against the fitted Blinn-Phong image */
     char image[256], error[256], contact[256];
+    char signed_error[256];
 };
 struct he_comparison {
     int done;

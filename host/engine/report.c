@@ -5,6 +5,7 @@
 #include "infile.h"
 #include "jsonr.h"
 #include "outdir.h"
+#include "plots.h"
 #include "report_run.h"
 #include "schemas.h"
 
@@ -326,6 +327,9 @@ static void header(struct md_buf *b, const struct report_input *in)
         {"frontier.json", "cost against accuracy of every lobe approximation (and `frontier.csv`)"},
         {"measured.json", "the lobes against measured materials"},
     };
+    if (plots_run_is_quick(in->run_dir))
+        md_printf(b, "\n**Coarse grids (`--quick`): a trial run, not for figures.** Every picture carries the stamp "
+                     "\"%s\".\n", PLOTS_QUICK_STAMP);
     md_printf(b, "\nData files beside this page:");
     for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
         if (file_exists(in->run_dir, data[i].file)) md_printf(b, " `%s`: %s;", data[i].file, data[i].what);
@@ -567,6 +571,8 @@ int report_render_summary(const char *run_dir, struct md_buf *md,
             const char *contact = files ? str_or(files, "contact_sheet", NULL) : NULL;
             if (img && file_exists(run_dir, img)) md_printf(md, " [image](%s)", img);
             if (errimg && file_exists(run_dir, errimg)) md_printf(md, " [error](%s)", errimg);
+            const char *signed_img = files ? str_or(files, "signed_error_image", NULL) : NULL;
+            if (signed_img && file_exists(run_dir, signed_img)) md_printf(md, " [signed error](%s)", signed_img);
             md_printf(md, " |\n");
             /* a model against itself has a black error image: its contact sheet shows nothing new */
             if (contact && strcmp(label, str_or(m, "reference", "")) != 0 && add) {

@@ -40,9 +40,31 @@ int draw_contact_sheet(const char *path, int width, int height,
                        const float *abs_err, float vmax, const char *title,
                        char *err, size_t errlen);
 
+/* Signed per-pixel error (model minus reference; NaN = background) at 1:1 scale on the
+ * diverging map: blue where the model is under the reference, red where over, white at zero, on
+ * the symmetric scale [-vmax, vmax] with a labelled colour bar. vmax <= 0 or non-finite: the
+ * largest finite |value|. */
+int draw_signed_error_image(const char *path, int width, int height, const float *signed_err,
+                            float vmax, const char *title, char *err, size_t errlen);
+
+/* A contact sheet of a grid of small images (the sphere grid: a row per model, a column per
+ * shininess), with each row's label left of the reference panel and each column's label above
+ * every panel. Rows and columns split the picture evenly (row r holds the pixel rows y with
+ * floor(y * rows / height) = r, column c likewise in x). Labels shrink to the band they label. */
+struct draw_grid_labels {
+    int rows, cols;
+    const char *const *row_labels;   /* rows of them */
+    const char *const *col_labels;   /* cols of them */
+};
+int draw_contact_grid(const char *path, int width, int height, const unsigned char *ref_rgb,
+                      const unsigned char *model_rgb, const float *abs_err, float vmax, const char *title,
+                      const struct draw_grid_labels *labels, char *err, size_t errlen);
+
 /* ---- colour maps ---------------------------------------------------------------- */
 
-enum draw_cmap { DRAW_CMAP_VIRIDIS = 0, DRAW_CMAP_INFERNO = 1 };
+/* DRAW_CMAP_DIVERGING: blue (RGB 33, 102, 172) at 0, white at 128, red (RGB 178, 24, 43) at 255,
+ * linear between (the ends of ColorBrewer's RdBu), for signed values on a symmetric scale. */
+enum draw_cmap { DRAW_CMAP_VIRIDIS = 0, DRAW_CMAP_INFERNO = 1, DRAW_CMAP_DIVERGING = 2 };
 
 /* The colour map's entry 0..255 (0 = bottom, 255 = top) as R, G, B. */
 void draw_colormap_rgb(int cmap, int index, unsigned char rgb[3]);
@@ -93,6 +115,12 @@ int draw_heatmap_figure(const char *path, const char *title, int npanels,
                         const struct draw_heatmap_panel *panels,
                         struct draw_panel_layout *layout, char *err, size_t errlen);
 
+/* Small multiples: npanels (1..400) heatmaps of 240 x 170 pixels each, ncols (1..8) to a row,
+ * under one title; each panel as in draw_heatmap_figure (its own colour bar, caption and
+ * subtitle). */
+int draw_heatmap_grid(const char *path, const char *title, int npanels, int ncols,
+                      const struct draw_heatmap_panel *panels, char *err, size_t errlen);
+
 /* ---- line plots ---------------------------------------------------------------------- */
 
 #define DRAW_COLOUR_BLACK (-1)   /* series colour: black (the reference, by convention) */
@@ -142,6 +170,9 @@ struct draw_bar_chart {
     const char *const *value_text;  /* may be NULL: the value printed with %.3g */
     int highlight;                  /* index of a bar drawn in black (the reference), -1 none */
     int width;                      /* 0: 1000 */
+    int x_log;                      /* value axis logarithmic: from the decade at or below the smallest
+                                       positive value (or whisker end) to the decade at or above the
+                                       largest, each decade's tick labelled; bars start at the left end */
 };
 
 int draw_bar_chart(const char *path, const struct draw_bar_chart *chart, char *err, size_t errlen);
@@ -165,25 +196,45 @@ int draw_scatter_plot(const char *path, const struct draw_scatter *plot, char *e
 /* The same without the legend of the marks, for points all of one kind. */
 int draw_scatter_plot_plain(const char *path, const struct draw_scatter *plot, char *err, size_t errlen);
 
-/* ---- grouped ratio bars (brdfbench compare) ---------------------------------------------- */
+/* ---- verdict charts (brdfbench compare) --------------------------------------------------- */
 
-/* Horizontal bars in groups: per group (a model), one bar per series (a run) at values
- * [g * nseries + s], as a ratio to the baseline; err_lo/err_hi (may be NULL) a whisker per bar
- * (the run's min..max over the baseline's median); band_lo/band_hi (may be NULL) a grey band
- * behind each group (the baseline's own min..max over its median: its noise). A dashed line
- * marks 1. A non-finite value draws no bar and "n/a". */
-struct draw_ratio_chart {
-    const char *title, *x_label;
-    int ngroups, nseries;
-    const char *const *groups;
-    const char *const *series;
-    const double *values;
-    const double *err_lo, *err_hi;
-    const double *band_lo, *band_hi;
-    int width;                      /* 0: 1000 */
+/* Small multiples: one panel per kind of row (throughput rates, accuracy errors, ...), every row
+ * of it, each run's value as a ratio to the baseline's (a bar per run on a log axis through 1),
+ * and per row, for every run after the baseline, its verdict's mark in a column at the right:
+ * better (faster, smaller error) a green triangle up, worse a red triangle down, same a grey
+ * circle, lost (missing from the run, or failed) a black cross, undecided (noisy, too few
+ * repetitions, changed with no better or worse) an amber diamond. Row labels and run names are
+ * wrapped (at " | ", then at blanks) and shrunk to fit, never clipped. */
+enum draw_verdict {
+    DRAW_VERDICT_NONE = 0, DRAW_VERDICT_BETTER, DRAW_VERDICT_WORSE, DRAW_VERDICT_SAME, DRAW_VERDICT_LOST,
+    DRAW_VERDICT_UNDECIDED
 };
+/* The marks' colours, RGB: better 0,140,60; worse 200,0,0; same 150,150,150; lost 0,0,0;
+ * undecided 230,160,0 (drawn without anti-aliasing: exactly these). */
+void draw_verdict_rgb(int verdict, unsigned char rgb[3]);
+struct draw_verdict_panel {
+    const char *title;
+    int nrows;
+    const char *const *labels;   /* nrows */
+    const double *ratio;         /* nrows * nseries, [row * nseries + run]; NaN: none */
+    const int *verdict;          /* nrows * nseries, enum draw_verdict (the baseline's: NONE) */
+};
+struct draw_verdict_chart {
+    const char *title, *x_label;
+    int nseries;                 /* runs, the baseline first */
+    const char *const *series;
+    int npanels;
+    const struct draw_verdict_panel *panels;
+    int width;                   /* 0: 1100 */
+};
+int draw_verdict_chart(const char *path, const struct draw_verdict_chart *c, char *err, size_t errlen);
 
-int draw_ratio_chart(const char *path, const struct draw_ratio_chart *chart, char *err, size_t errlen);
+/* ---- the quick-run stamp ------------------------------------------------------------------ */
+
+/* Adds a band under the picture at path (rewritten atomically, as every picture): pale amber
+ * (RGB 255, 240, 200) with text in dark red (RGB 160, 20, 20), centred, the font shrunk to the
+ * picture's width; the picture above the band keeps every pixel. */
+int draw_stamp_png(const char *path, const char *text, char *err, size_t errlen);
 
 /* ---- reading back ------------------------------------------------------------------------ */
 
