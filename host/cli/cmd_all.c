@@ -78,6 +78,9 @@ struct all_run {
     struct report_part_state parts[REPORT_PART_COUNT];
     char images_note[512];         /* the scenes left out */
     const char *measured_dir;      /* --measured DIR: the measured materials' section */
+    const char *out_dir;           /* --out, or NULL: a new folder under results_root */
+    struct device_options dev;
+    int shared_scale;              /* --shared-scale */
 };
 
 /* ---- progress ------------------------------------------------------------------- */
@@ -768,19 +771,13 @@ static void run_free(struct all_run *r)
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
-int cmd_all(int argc, char **argv)
+/* The flags: the grids, the models and the places. Returns -1 to run, else the exit code. */
+static int parse_all(struct all_run *r, int argc, char **argv)
 {
     char err[1024];
-    static struct all_run run; /* large; one per process */
-    struct all_run *r = &run;
-    memset(r, 0, sizeof *r);
-    r->t0 = wall_seconds();
-    r->tty = isatty(STDERR_FILENO);
-    r->results_root = "results";
-    const char *models_text = "all", *out_dir = NULL;
-    int quick = 0, shared_scale = 0;
-    struct device_options dev;
-    device_options_init(&dev);
+    const char *models_text = "all";
+    int quick = 0;
+    device_options_init(&r->dev);
     size_t used = (size_t)snprintf(r->command, sizeof r->command, "brdfbench all");
     for (int i = 1; i < argc && used < sizeof r->command; i++)
         used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
@@ -797,14 +794,14 @@ int cmd_all(int argc, char **argv)
         CLI_FLAG_SAMPLES(&g.samples),
         { .name = "--results-root", .value = "DIR", .kind = CLI_PATH, .dest = &r->results_root,
           .help = "where run folders are made" },
-        CLI_FLAG_OUT(&out_dir, "a new folder under --results-root, and its latest pointing at it"),
+        CLI_FLAG_OUT(&r->out_dir, "a new folder under --results-root, and its latest pointing at it"),
         { .name = "--quick", .kind = CLI_SWITCH, .dest = &quick, .set = 1,
           .help = "coarse grids (seconds; for tests and trials, not for figures): n step 10, 256 samples" },
         CLI_FLAG_QUIET(&r->quiet),
-        CLI_FLAG_SHARED_SCALE(&shared_scale),
+        CLI_FLAG_SHARED_SCALE(&r->shared_scale),
         CLI_FLAG_MEASURED(&r->measured_dir),
         CLI_FLAGS_USERMODEL,
-        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_DEVICE(&r->dev),
     };
     flags[1].given = &n_min_given;
     flags[2].given = &n_max_given;
@@ -847,7 +844,19 @@ int cmd_all(int argc, char **argv)
         }
     }
 
-    int rc = clsession_open(&r->s, dev.platform, dev.device, err, sizeof err);
+    return -1;
+
+usage_error:
+    fprintf(stderr, "brdfbench all: %s\n", err);
+    return EXIT_USAGE;
+}
+
+/* The session, the run's places and the staging folder (outdir_stage_begin). Returns 0 or the
+ * exit code, the session closed again on failure. */
+static int open_run(struct all_run *r)
+{
+    char err[1024];
+    int rc = clsession_open(&r->s, r->dev.platform, r->dev.device, err, sizeof err);
     if (rc) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         return rc;
@@ -856,16 +865,16 @@ int cmd_all(int argc, char **argv)
      * when complete (outdir_stage_begin): a failure, a deadline or a signal leaves an earlier
      * run in --out as it was, and no half run anywhere. The places are checked before any
      * work, so a bad location fails fast. */
-    if (!out_dir) {
+    if (!r->out_dir) {
         if (outdir_new_run(r->results_root, r->final_dir, sizeof r->final_dir, err, sizeof err)) {
             fprintf(stderr, "brdfbench all: %s\n", err);
             clsession_close(&r->s);
             return EXIT_RUNTIME;
         }
     } else {
-        snprintf(r->final_dir, sizeof r->final_dir, "%s", out_dir);
+        snprintf(r->final_dir, sizeof r->final_dir, "%s", r->out_dir);
     }
-    if ((rc = outdir_stage_begin(r->final_dir, out_dir ? "--out" : NULL, r->run_dir, sizeof r->run_dir, err,
+    if ((rc = outdir_stage_begin(r->final_dir, r->out_dir ? "--out" : NULL, r->run_dir, sizeof r->run_dir, err,
                                  sizeof err)) != 0) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         clsession_close(&r->s);
@@ -873,49 +882,64 @@ int cmd_all(int argc, char **argv)
     }
     if (!r->quiet)
         fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->final_dir,
-                quick ? " (quick grids)" : "");
+                r->set.quick ? " (quick grids)" : "");
+    return 0;
+}
+
+/* Every step in turn. The sweep, the heatmaps and the plots are this command's own: a failure
+ * there stops the run. The other parts' failures are recorded in their report sections and the
+ * run goes on. Returns 0 or the exit code of the step that stopped it. */
+static int run_steps(struct all_run *r)
+{
+    int rc;
     plots_init(&r->plots);
-    if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) goto done;
+    if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) return rc;
     r->actx_open = 1;
     outdir_reassert_signal_handlers();
 
-    /* The sweep, the heatmaps and the plots are this command's own: a failure there stops the
-     * run. The claims, throughput and image passes are other commands' parts: a failure there
-     * is recorded in its report section and the run goes on, then exits non-zero. */
-    if ((rc = step_accuracy(r)) != 0) goto done;
+    if ((rc = step_accuracy(r)) != 0) return rc;
     part(r, "claims", REPORT_PART_CLAIMS, step_claims(r));
     part(r, "fit", REPORT_PART_FIT, step_fit(r));
-    if ((rc = step_q_sweep(r)) != 0) goto done;
+    if ((rc = step_q_sweep(r)) != 0) return rc;
     part(r, "throughput", REPORT_PART_THROUGHPUT, step_throughput(r));
-    if ((rc = step_heatmaps(r)) != 0) goto done;
-    if ((rc = plots_heatmaps_shared_step("all", r->run_dir, shared_scale)) != 0) goto done;
-    add_shared_page(r, shared_scale);
-    if ((rc = step_plots(r)) != 0) goto done;
+    if ((rc = step_heatmaps(r)) != 0) return rc;
+    if ((rc = plots_heatmaps_shared_step("all", r->run_dir, r->shared_scale)) != 0) return rc;
+    add_shared_page(r, r->shared_scale);
+    if ((rc = step_plots(r)) != 0) return rc;
     part(r, "images", REPORT_PART_IMAGES, step_images(r));
     part(r, "frontier", REPORT_PART_FRONTIER, step_frontier(r));
     if (r->measured_dir)
         part(r, "measured", REPORT_PART_MEASURED, step_measured(r));
-    if ((rc = step_report(r, elapsed(r))) != 0) goto done;
+    return 0;
+}
+
+/* After the steps: report.md, then the staged run swapped into place and results/latest.
+ * Returns 0 or the exit code. */
+static int finish_run(struct all_run *r)
+{
+    char err[1024];
+    int rc = step_report(r, elapsed(r));
+    if (rc) return rc;
     if (r->part_failures) {
         fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);
         rc = r->part_rc;
-        goto done;
+        return rc;
     }
     if (r->picture_failures) {
         fprintf(stderr, "brdfbench all: %d picture(s) could not be written; first: %s\n", r->picture_failures,
                 r->picture_error);
         rc = EXIT_RUNTIME;
-        goto done;
+        return rc;
     }
     if (outdir_stage_commit(err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         rc = EXIT_RUNTIME;
-        goto done;
+        return rc;
     }
-    if (!out_dir && outdir_set_latest(r->results_root, r->final_dir, err, sizeof err)) {
+    if (!r->out_dir && outdir_set_latest(r->results_root, r->final_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         rc = EXIT_RUNTIME;
-        goto done;
+        return rc;
     }
     if (!r->quiet) {
         if (accuracy_reused_sweeps() > 0)
@@ -924,18 +948,32 @@ int cmd_all(int argc, char **argv)
         fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->final_dir);
         printf("%s/report.md\n", r->final_dir);
     }
-done:
+    return 0;
+}
+
+int cmd_all(int argc, char **argv)
+{
+    static struct all_run run; /* large; one per process */
+    struct all_run *r = &run;
+    memset(r, 0, sizeof *r);
+    r->t0 = wall_seconds();
+    r->tty = isatty(STDERR_FILENO);
+    r->results_root = "results";
+    size_t used = (size_t)snprintf(r->command, sizeof r->command, "brdfbench all");
+    for (int i = 1; i < argc && used < sizeof r->command; i++)
+        used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
+    int rc = parse_all(r, argc, argv);
+    if (rc >= 0) return rc;
+    if ((rc = open_run(r)) != 0) return rc;
+    rc = run_steps(r);
+    if (!rc) rc = finish_run(r);
     if (rc) {
         /* nothing of this run is kept: the staged folder goes, an earlier run stays */
         outdir_stage_abandon();
         fprintf(stderr, "brdfbench all: the run is not kept (exit %d)%s%s%s\n", rc,
-                out_dir ? "; " : "", out_dir ? out_dir : "", out_dir ? " is as it was before" : "");
+                r->out_dir ? "; " : "", r->out_dir ? r->out_dir : "", r->out_dir ? " is as it was before" : "");
     }
     run_free(r);
     clsession_close(&r->s);
     return rc;
-
-usage_error:
-    fprintf(stderr, "brdfbench all: %s\n", err);
-    return EXIT_USAGE;
 }
