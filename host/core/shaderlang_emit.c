@@ -134,7 +134,7 @@ struct func *sl_find_func(struct sl *S, const struct tok *t)
     return NULL;
 }
 
-static void fail_unknown(struct sl *S, const struct tok *t, const char *what)
+static __attribute__((noreturn)) void fail_unknown(struct sl *S, const struct tok *t, const char *what)
 {
     S->unknown_name = 1;
     FAIL(S, t, "use of undeclared %s '%.*s'", what, t->len, t->p);
@@ -142,144 +142,183 @@ static void fail_unknown(struct sl *S, const struct tok *t, const char *what)
 
 /* ---- expressions -------------------------------------------------------------------------- */
 
-struct val sl_ev(struct sl *S, struct expr *e)
+/* A value of a float kind with no components yet (what each kind of expression starts from). */
+static struct val val_float(void)
 {
     struct val r = { { B_FLOAT, 1 }, { NULL }, 1 };
+    return r;
+}
+
+static struct val ev_int(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    r.t = (struct type){ B_INT, 1 };
+    if (e->op == 1) {
+        r.c[0] = "1";
+        return r;
+    }
+    int len = e->t->len;
+    while (len > 0 && (e->t->p[len - 1] == 'u' || e->t->p[len - 1] == 'U'))
+        --len;
+    if (len > 9)
+        FAIL(S, e->t, "the integer %.*s is too large (write it with a decimal point)", e->t->len, e->t->p);
+    r.c[0] = sl_sfmt(S, "%ld", strtol(sl_sfmt(S, "%.*s", len, e->t->p), NULL, 10));
+    return r;
+}
+
+static struct val ev_var(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct sym *s = sl_lookup(S, e->t);
+    if (!s)
+        fail_unknown(S, e->t, "identifier");
+    if (s->t.b == B_BOOL) {
+        r.t = s->t;
+        r.c[0] = sl_sfmt(S, "(%s != RSPLAT(0.0))", s->c[0]);
+        r.uniform = 0;
+        return r;
+    }
+    if (s->has_value) {
+        r.t = s->t;
+        r.c[0] = sl_sfmt(S, "%ld", s->value);
+        return r;
+    }
+    return sl_sym_val(s);
+}
+
+static struct val ev_swizzle(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct val v = sl_ev(S, e->a);
+    if (v.t.b != B_FLOAT)
+        FAIL(S, e->t, "a swizzle of a %s", sl_type_name(S, v.t));
+    for (int i = 0; i < e->nswz; ++i)
+        if (e->swz[i] >= v.t.n)
+            FAIL(S, e->t, "component %c of a %s", "xyzw"[e->swz[i]], sl_type_name(S, v.t));
+    r.t = (struct type){ B_FLOAT, e->nswz };
+    r.uniform = v.uniform;
+    for (int i = 0; i < e->nswz; ++i)
+        r.c[i] = v.c[e->swz[i]];
+    return r;
+}
+
+static struct val ev_unary(struct sl *S, struct expr *e)
+{
+    struct val v = sl_ev(S, e->a);
+    if (e->op == '!') {
+        if (v.t.b != B_BOOL)
+            FAIL(S, e->t, "'!' of a %s (a condition is expected)", sl_type_name(S, v.t));
+        v.c[0] = sl_sfmt(S, "(!%s)", v.c[0]);
+        return v;
+    }
+    if (v.t.b != B_FLOAT && v.t.b != B_INT)
+        FAIL(S, e->t, "'%c' of a %s", e->op == 'u' ? '-' : '+', sl_type_name(S, v.t));
+    if (e->op == 'p')
+        return v;
+    for (int i = 0; i < v.t.n; ++i)
+        v.c[i] = sl_sfmt(S, "(-%s)", v.c[i]);
+    return v;
+}
+
+static struct val ev_binary(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct val a = sl_ev(S, e->a), b = sl_ev(S, e->b);
+    int op = e->op;
+    if (op == 'A' || op == 'O') {
+        if (a.t.b != B_BOOL || b.t.b != B_BOOL)
+            FAIL(S, e->t, "'%s' needs conditions, not %s and %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));
+        r.t = a.t;
+        r.uniform = a.uniform && b.uniform;
+        r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
+        return r;
+    }
+    if (strchr("<>LGEN", op)) {
+        if (a.t.b == B_BOOL || b.t.b == B_BOOL)
+            FAIL(S, e->t, "'%s' of conditions: combine them with && || !", sl_op_text(op));
+        if (a.t.n > 1 || b.t.n > 1)
+            FAIL(S, e->t, "'%s' of vectors: compare their components", sl_op_text(op));
+        if (a.t.b != b.t.b) {
+            a = sl_to_float(S, a, e->t);
+            b = sl_to_float(S, b, e->t);
+        }
+        r.t = (struct type){ B_BOOL, 1 };
+        r.uniform = a.uniform && b.uniform;
+        r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
+        return r;
+    }
+    return sl_arith(S, op, a, b, e->t);
+}
+
+static struct val ev_ternary(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct val c = sl_ev(S, e->a);
+    if (c.t.b != B_BOOL || c.t.n != 1)
+        FAIL(S, e->a->t, "the condition of ?: is a %s, not a comparison", sl_type_name(S, c.t));
+    struct val a = sl_ev(S, e->b), b = sl_ev(S, e->c);
+    if (a.t.b == B_BOOL || b.t.b == B_BOOL)
+        FAIL(S, e->t, "?: of conditions: combine them with && || !");
+    if (a.t.b == B_INT && b.t.b == B_INT && c.uniform) {
+        r.t = a.t;
+        r.c[0] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[0], b.c[0]);
+        return r;
+    }
+    a = sl_to_float(S, a, e->b->t);
+    b = sl_to_float(S, b, e->c->t);
+    int n = a.t.n > b.t.n ? a.t.n : b.t.n;
+    if (a.t.n != b.t.n && a.t.n != 1 && b.t.n != 1)
+        FAIL(S, e->t, "?: between a %s and a %s", sl_type_name(S, a.t), sl_type_name(S, b.t));
+    if (n > 1)
+        c.c[0] = sl_temp_cond(S, c.c[0], c.uniform);
+    r.t = (struct type){ B_FLOAT, n };
+    r.uniform = 0;
+    for (int i = 0; i < n; ++i)
+        r.c[i] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[a.t.n == 1 ? 0 : i], b.c[b.t.n == 1 ? 0 : i]);
+    return n > 1 ? sl_temp_val(S, r) : r;
+}
+
+/* A call: a constructor or cast, a function of the text, or a built-in. */
+static struct val ev_call(struct sl *S, struct expr *e)
+{
+    struct type t;
+    int so;
+    if (sl_type_of_name(e->t, &t, &so))
+        return construct(S, t, e);
+    struct func *f = sl_find_func(S, e->t);
+    if (f)
+        return call_user(S, f, e);
+    const struct builtin *bi = sl_find_builtin(e->t);
+    if (bi)
+        return sl_call_builtin(S, bi, e);
+    fail_unknown(S, e->t, "function");
+}
+
+struct val sl_ev(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
     switch (e->k) {
     case E_FLT:
         r.c[0] = sl_sfmt(S, "RSPLAT(%s)", sl_float_literal(S, e->t));
         return r;
     case E_INT:
-        if (e->op == 1) {
-            r.t = (struct type){ B_INT, 1 };
-            r.c[0] = "1";
-            return r;
-        }
-        {
-            int len = e->t->len;
-            while (len > 0 && (e->t->p[len - 1] == 'u' || e->t->p[len - 1] == 'U'))
-                --len;
-            if (len > 9)
-                FAIL(S, e->t, "the integer %.*s is too large (write it with a decimal point)", e->t->len, e->t->p);
-            r.t = (struct type){ B_INT, 1 };
-            r.c[0] = sl_sfmt(S, "%ld", strtol(sl_sfmt(S, "%.*s", len, e->t->p), NULL, 10));
-        }
-        return r;
+        return ev_int(S, e);
     case E_BOOL:
         r.t = (struct type){ B_BOOL, 1 };
         r.c[0] = sl_tok_is(e->t, "true") ? "1" : "0";
         return r;
-    case E_VAR: {
-        struct sym *s = sl_lookup(S, e->t);
-        if (!s)
-            fail_unknown(S, e->t, "identifier");
-        if (s->t.b == B_BOOL) {
-            r.t = s->t;
-            r.c[0] = sl_sfmt(S, "(%s != RSPLAT(0.0))", s->c[0]);
-            r.uniform = 0;
-            return r;
-        }
-        if (s->has_value) {
-            r.t = s->t;
-            r.c[0] = sl_sfmt(S, "%ld", s->value);
-            return r;
-        }
-        return sl_sym_val(s);
-    }
-    case E_SWZ: {
-        struct val v = sl_ev(S, e->a);
-        if (v.t.b != B_FLOAT)
-            FAIL(S, e->t, "a swizzle of a %s", sl_type_name(S, v.t));
-        for (int i = 0; i < e->nswz; ++i)
-            if (e->swz[i] >= v.t.n)
-                FAIL(S, e->t, "component %c of a %s", "xyzw"[e->swz[i]], sl_type_name(S, v.t));
-        r.t = (struct type){ B_FLOAT, e->nswz };
-        r.uniform = v.uniform;
-        for (int i = 0; i < e->nswz; ++i)
-            r.c[i] = v.c[e->swz[i]];
-        return r;
-    }
-    case E_UN: {
-        struct val v = sl_ev(S, e->a);
-        if (e->op == '!') {
-            if (v.t.b != B_BOOL)
-                FAIL(S, e->t, "'!' of a %s (a condition is expected)", sl_type_name(S, v.t));
-            v.c[0] = sl_sfmt(S, "(!%s)", v.c[0]);
-            return v;
-        }
-        if (v.t.b != B_FLOAT && v.t.b != B_INT)
-            FAIL(S, e->t, "'%c' of a %s", e->op == 'u' ? '-' : '+', sl_type_name(S, v.t));
-        if (e->op == 'p')
-            return v;
-        for (int i = 0; i < v.t.n; ++i)
-            v.c[i] = sl_sfmt(S, "(-%s)", v.c[i]);
-        return v;
-    }
-    case E_BIN: {
-        struct val a = sl_ev(S, e->a), b = sl_ev(S, e->b);
-        int op = e->op;
-        if (op == 'A' || op == 'O') {
-            if (a.t.b != B_BOOL || b.t.b != B_BOOL)
-                FAIL(S, e->t, "'%s' needs conditions, not %s and %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));
-            r.t = a.t;
-            r.uniform = a.uniform && b.uniform;
-            r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
-            return r;
-        }
-        if (strchr("<>LGEN", op)) {
-            if (a.t.b == B_BOOL || b.t.b == B_BOOL)
-                FAIL(S, e->t, "'%s' of conditions: combine them with && || !", sl_op_text(op));
-            if (a.t.n > 1 || b.t.n > 1)
-                FAIL(S, e->t, "'%s' of vectors: compare their components", sl_op_text(op));
-            if (a.t.b != b.t.b) {
-                a = sl_to_float(S, a, e->t);
-                b = sl_to_float(S, b, e->t);
-            }
-            r.t = (struct type){ B_BOOL, 1 };
-            r.uniform = a.uniform && b.uniform;
-            r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
-            return r;
-        }
-        return sl_arith(S, op, a, b, e->t);
-    }
-    case E_TER: {
-        struct val c = sl_ev(S, e->a);
-        if (c.t.b != B_BOOL || c.t.n != 1)
-            FAIL(S, e->a->t, "the condition of ?: is a %s, not a comparison", sl_type_name(S, c.t));
-        struct val a = sl_ev(S, e->b), b = sl_ev(S, e->c);
-        if (a.t.b == B_BOOL || b.t.b == B_BOOL)
-            FAIL(S, e->t, "?: of conditions: combine them with && || !");
-        if (a.t.b == B_INT && b.t.b == B_INT && c.uniform) {
-            r.t = a.t;
-            r.c[0] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[0], b.c[0]);
-            return r;
-        }
-        a = sl_to_float(S, a, e->b->t);
-        b = sl_to_float(S, b, e->c->t);
-        int n = a.t.n > b.t.n ? a.t.n : b.t.n;
-        if (a.t.n != b.t.n && a.t.n != 1 && b.t.n != 1)
-            FAIL(S, e->t, "?: between a %s and a %s", sl_type_name(S, a.t), sl_type_name(S, b.t));
-        if (n > 1)
-            c.c[0] = sl_temp_cond(S, c.c[0], c.uniform);
-        r.t = (struct type){ B_FLOAT, n };
-        r.uniform = 0;
-        for (int i = 0; i < n; ++i)
-            r.c[i] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[a.t.n == 1 ? 0 : i], b.c[b.t.n == 1 ? 0 : i]);
-        return n > 1 ? sl_temp_val(S, r) : r;
-    }
-    case E_CALL: {
-        struct type t;
-        int so;
-        if (sl_type_of_name(e->t, &t, &so))
-            return construct(S, t, e);
-        struct func *f = sl_find_func(S, e->t);
-        if (f)
-            return call_user(S, f, e);
-        const struct builtin *bi = sl_find_builtin(e->t);
-        if (bi)
-            return sl_call_builtin(S, bi, e);
-        fail_unknown(S, e->t, "function");
-    }
+    case E_VAR:
+        return ev_var(S, e);
+    case E_SWZ:
+        return ev_swizzle(S, e);
+    case E_UN:
+        return ev_unary(S, e);
+    case E_BIN:
+        return ev_binary(S, e);
+    case E_TER:
+        return ev_ternary(S, e);
+    case E_CALL:
+        return ev_call(S, e);
     }
     FAIL(S, e->t, "internal: unknown expression");
 }

@@ -54,6 +54,135 @@ static void push_expanded(struct sl *S, struct tok t, int depth)
 static const char *const ops2[] = { "+=", "-=", "*=", "/=", "%=", "++", "--", "==", "!=", "<=", ">=", "&&", "||", NULL };
 static const char ops1[] = "+-*/%(){}[],;?:=<>!.";
 
+/* Past a block comment that starts at *p, counting lines and columns. */
+static void skip_block_comment(struct sl *S, const char **pp, const char *end, int *line, int *col)
+{
+    const char *p = *pp;
+    int l0 = *line, c0 = *col;
+    p += 2;
+    *col += 2;
+    while (p < end && !(p[0] == '*' && p + 1 < end && p[1] == '/')) {
+        if (*p == '\n') {
+            ++*line;
+            *col = 1;
+        } else {
+            ++*col;
+        }
+        ++p;
+    }
+    if (p >= end)
+        sl_fail_at(S, l0, c0, "unterminated comment");
+    p += 2;
+    *col += 2;
+    *pp = p;
+}
+
+/* A preprocessor line at p (its '#'): #define NAME VALUE becomes a macro, #version, #extension
+ * and #pragma are skipped. Returns the end of the line. */
+static const char *lex_directive(struct sl *S, const char *p, const char *end, int line, int col)
+{
+    S->shader_only = 1;
+    const char *eol = memchr(p, '\n', (size_t)(end - p));
+    if (!eol)
+        eol = end;
+    const char *q = p + 1;
+    while (q < eol && (*q == ' ' || *q == '\t'))
+        ++q;
+    const char *w = q;
+    while (q < eol && isalpha((unsigned char)*q))
+        ++q;
+    int wl = (int)(q - w);
+    if ((wl == 7 && strncmp(w, "version", 7) == 0) || (wl == 9 && strncmp(w, "extension", 9) == 0) ||
+        (wl == 6 && strncmp(w, "pragma", 6) == 0)) {
+        /* nothing for a lobe: skipped */
+    } else if (wl == 6 && strncmp(w, "define", 6) == 0) {
+        while (q < eol && (*q == ' ' || *q == '\t'))
+            ++q;
+        const char *nm = q;
+        while (q < eol && (isalnum((unsigned char)*q) || *q == '_'))
+            ++q;
+        if (q == nm || isdigit((unsigned char)*nm))
+            sl_fail_at(S, line, col + (int)(nm - p), "#define needs a name");
+        if (q < eol && *q == '(')
+            sl_fail_at(S, line, col + (int)(q - p),
+                       "function-like macros are not supported (write a function instead)");
+        struct macro *m = sl_arena_alloc(S, sizeof *m);
+        m->name = nm;
+        m->len = (int)(q - nm);
+        sl_lex_span(S, q, eol, line, col + (int)(q - p), &m->body);
+        m->next = S->macros;
+        S->macros = m;
+    } else {
+        sl_fail_at(S, line, col, "preprocessor directive '#%.*s' is not supported (#define NAME VALUE, "
+                   "#version, #extension and #pragma are)", wl, w);
+    }
+    return eol;
+}
+
+/* A number at p: its kind (K_INT or K_FLT) and length into t. */
+static void lex_number(struct sl *S, const char *p, const char *end, struct tok *t)
+{
+    int line = t->line, col = t->col;
+    const char *q = p;
+    int is_float = 0;
+    if (*p == '0' && q + 1 < end && (q[1] == 'x' || q[1] == 'X'))
+        sl_fail_at(S, line, col, "hexadecimal numbers are not supported");
+    while (q < end && isdigit((unsigned char)*q))
+        ++q;
+    if (q < end && *q == '.') {
+        is_float = 1;
+        ++q;
+        while (q < end && isdigit((unsigned char)*q))
+            ++q;
+    }
+    if (q < end && (*q == 'e' || *q == 'E')) {
+        const char *r = q + 1;
+        if (r < end && (*r == '+' || *r == '-'))
+            ++r;
+        if (r >= end || !isdigit((unsigned char)*r))
+            sl_fail_at(S, line, col, "malformed exponent in the number '%.*s'", (int)(r - p), p);
+        while (r < end && isdigit((unsigned char)*r))
+            ++r;
+        q = r;
+        is_float = 1;
+    }
+    /* Suffixes: f F h H lf LF (float), u U (int). */
+    if (q < end && (*q == 'f' || *q == 'F' || *q == 'h' || *q == 'H')) {
+        if (*q == 'h' || *q == 'H')
+            S->shader_only = 1;
+        ++q;
+        is_float = 1;
+    } else if (q + 1 < end && (q[0] == 'l' || q[0] == 'L') && (q[1] == 'f' || q[1] == 'F')) {
+        q += 2;
+        is_float = 1;
+        S->shader_only = 1;
+    } else if (!is_float && q < end && (*q == 'u' || *q == 'U')) {
+        ++q;
+    }
+    if (q < end && (isalnum((unsigned char)*q) || *q == '_' || *q == '.'))
+        sl_fail_at(S, line, col, "malformed number '%.*s'", (int)(q - p) + 1, p);
+    t->k = is_float ? K_FLT : K_INT;
+    t->len = (int)(q - p);
+}
+
+/* An operator at p: its length into t (K_OP). */
+static void lex_operator(struct sl *S, const char *p, const char *end, struct tok *t)
+{
+    unsigned char ch = (unsigned char)*p;
+    t->k = K_OP;
+    for (int i = 0; ops2[i]; ++i)
+        if (p + 1 < end && p[0] == ops2[i][0] && p[1] == ops2[i][1])
+            t->len = 2;
+    if (!t->len && strchr(ops1, ch) && ch)
+        t->len = 1;
+    if (!t->len) {
+        if (ch < 0x20 || ch > 0x7e)
+            sl_fail_at(S, t->line, t->col, "character 0x%02x is not allowed in a model", ch);
+        sl_fail_at(S, t->line, t->col, "'%c' is not an operator of a model (+ - * / %% comparisons && || ! ?: "
+                   "= and the compound assignments are)", ch);
+    }
+}
+
 /* Tokens of [p, end): into the program (macros expanded), or into a macro's body. */
 void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col, struct tokv *into)
 {
@@ -78,62 +207,13 @@ void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col
             continue;
         }
         if (ch == '/' && p + 1 < end && p[1] == '*') {
-            int l0 = line, c0 = col;
-            p += 2;
-            col += 2;
-            while (p < end && !(p[0] == '*' && p + 1 < end && p[1] == '/')) {
-                if (*p == '\n') {
-                    ++line;
-                    col = 1;
-                } else {
-                    ++col;
-                }
-                ++p;
-            }
-            if (p >= end)
-                sl_fail_at(S, l0, c0, "unterminated comment");
-            p += 2;
-            col += 2;
+            skip_block_comment(S, &p, end, &line, &col);
             continue;
         }
         if (ch == '#') {
             if (!at_line_start || into)
                 sl_fail_at(S, line, col, "'#' is only allowed at the start of a line (a preprocessor directive)");
-            S->shader_only = 1;
-            const char *eol = memchr(p, '\n', (size_t)(end - p));
-            if (!eol)
-                eol = end;
-            const char *q = p + 1;
-            while (q < eol && (*q == ' ' || *q == '\t'))
-                ++q;
-            const char *w = q;
-            while (q < eol && isalpha((unsigned char)*q))
-                ++q;
-            int wl = (int)(q - w);
-            if ((wl == 7 && strncmp(w, "version", 7) == 0) || (wl == 9 && strncmp(w, "extension", 9) == 0) ||
-                (wl == 6 && strncmp(w, "pragma", 6) == 0)) {
-                /* nothing for a lobe: skipped */
-            } else if (wl == 6 && strncmp(w, "define", 6) == 0) {
-                while (q < eol && (*q == ' ' || *q == '\t'))
-                    ++q;
-                const char *nm = q;
-                while (q < eol && (isalnum((unsigned char)*q) || *q == '_'))
-                    ++q;
-                if (q == nm || isdigit((unsigned char)*nm))
-                    sl_fail_at(S, line, col + (int)(nm - p), "#define needs a name");
-                if (q < eol && *q == '(')
-                    sl_fail_at(S, line, col + (int)(q - p),
-                               "function-like macros are not supported (write a function instead)");
-                struct macro *m = sl_arena_alloc(S, sizeof *m);
-                m->name = nm;
-                m->len = (int)(q - nm);
-                sl_lex_span(S, q, eol, line, col + (int)(q - p), &m->body);
-                m->next = S->macros;
-                S->macros = m;
-            } else {
-                sl_fail_at(S, line, col, "preprocessor directive '#%.*s' is not supported (#define NAME VALUE, "
-                           "#version, #extension and #pragma are)", wl, w);
-            }
+            const char *eol = lex_directive(S, p, end, line, col);
             col += (int)(eol - p);
             p = eol;
             continue;
@@ -147,59 +227,9 @@ void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col
             t.k = K_ID;
             t.len = (int)(q - p);
         } else if (isdigit(ch) || (ch == '.' && p + 1 < end && isdigit((unsigned char)p[1]))) {
-            const char *q = p;
-            int is_float = 0;
-            if (ch == '0' && q + 1 < end && (q[1] == 'x' || q[1] == 'X'))
-                sl_fail_at(S, line, col, "hexadecimal numbers are not supported");
-            while (q < end && isdigit((unsigned char)*q))
-                ++q;
-            if (q < end && *q == '.') {
-                is_float = 1;
-                ++q;
-                while (q < end && isdigit((unsigned char)*q))
-                    ++q;
-            }
-            if (q < end && (*q == 'e' || *q == 'E')) {
-                const char *r = q + 1;
-                if (r < end && (*r == '+' || *r == '-'))
-                    ++r;
-                if (r >= end || !isdigit((unsigned char)*r))
-                    sl_fail_at(S, line, col, "malformed exponent in the number '%.*s'", (int)(r - p), p);
-                while (r < end && isdigit((unsigned char)*r))
-                    ++r;
-                q = r;
-                is_float = 1;
-            }
-            /* Suffixes: f F h H lf LF (float), u U (int). */
-            if (q < end && (*q == 'f' || *q == 'F' || *q == 'h' || *q == 'H')) {
-                if (*q == 'h' || *q == 'H')
-                    S->shader_only = 1;
-                ++q;
-                is_float = 1;
-            } else if (q + 1 < end && (q[0] == 'l' || q[0] == 'L') && (q[1] == 'f' || q[1] == 'F')) {
-                q += 2;
-                is_float = 1;
-                S->shader_only = 1;
-            } else if (!is_float && q < end && (*q == 'u' || *q == 'U')) {
-                ++q;
-            }
-            if (q < end && (isalnum((unsigned char)*q) || *q == '_' || *q == '.'))
-                sl_fail_at(S, line, col, "malformed number '%.*s'", (int)(q - p) + 1, p);
-            t.k = is_float ? K_FLT : K_INT;
-            t.len = (int)(q - p);
+            lex_number(S, p, end, &t);
         } else {
-            t.k = K_OP;
-            for (int i = 0; ops2[i]; ++i)
-                if (p + 1 < end && p[0] == ops2[i][0] && p[1] == ops2[i][1])
-                    t.len = 2;
-            if (!t.len && strchr(ops1, ch) && ch)
-                t.len = 1;
-            if (!t.len) {
-                if (ch < 0x20 || ch > 0x7e)
-                    sl_fail_at(S, line, col, "character 0x%02x is not allowed in a model", ch);
-                sl_fail_at(S, line, col, "'%c' is not an operator of a model (+ - * / %% comparisons && || ! ?: "
-                           "= and the compound assignments are)", ch);
-            }
+            lex_operator(S, p, end, &t);
         }
         if (into)
             sl_tokv_push(S, into, t);
