@@ -27,15 +27,10 @@ static int brdf_fail(char *err, size_t errlen, const char *path, int line, const
     __attribute__((format(printf, 5, 6)));
 static int brdf_fail(char *err, size_t errlen, const char *path, int line, const char *fmt, ...)
 {
-    char msg[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    sl_vformat_at(err, errlen, path, line, -1, fmt, ap);
     va_end(ap);
-    if (line > 0)
-        snprintf(err, errlen, "%s:%d: %s", path, line, msg);
-    else
-        snprintf(err, errlen, "%s: %s", path, msg);
     return EXIT_USAGE;
 }
 

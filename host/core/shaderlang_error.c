@@ -12,20 +12,26 @@
 #include <stdlib.h>
 #include <string.h>
 
-void sl_fail_at(struct sl *S, int line, int col, const char *fmt, ...)
+void sl_vformat_at(char *err, size_t errlen, const char *origin, int line, int col, const char *fmt, va_list ap)
 {
     char msg[400];
-    va_list ap;
-    va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (line > 0)
-        snprintf(S->err, S->errlen, "%s:%d:%d: %s", S->origin, line, col, msg);
+    if (line > 0 && col >= 0)
+        snprintf(err, errlen, "%s:%d:%d: %s", origin, line, col, msg);
+    else if (line > 0)
+        snprintf(err, errlen, "%s:%d: %s", origin, line, msg);
     else
-        snprintf(S->err, S->errlen, "%s: %s", S->origin, msg);
-    longjmp(S->fail, 1);
+        snprintf(err, errlen, "%s: %s", origin, msg);
 }
 
+void sl_fail_at(struct sl *S, int line, int col, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    sl_vformat_at(S->err, S->errlen, S->origin, line, col, fmt, ap);
+    va_end(ap);
+    longjmp(S->fail, 1);
+}
 
 void *sl_arena_alloc(struct sl *S, size_t n)
 {

@@ -8,6 +8,7 @@
 #define BRDF_SHADERLANG_INTERNAL_H
 
 #include <setjmp.h>
+#include <stdarg.h>
 #include <stddef.h>
 
 #include "mdbuf.h"
@@ -183,6 +184,9 @@ struct header {
 
 /* ---- failures (a message with its line and column, longjmp to the entry point) and the arena ---- */
 /* (shaderlang_error.c) */
+/* "origin:line:col: message" into err ("origin:line: ..." when col < 0, "origin: ..." without
+ * a line). */
+void sl_vformat_at(char *err, size_t errlen, const char *origin, int line, int col, const char *fmt, va_list ap);
 void sl_fail_at(struct sl *S, int line, int col, const char *fmt, ...) __attribute__((format(printf, 4, 5), noreturn));
 void *sl_arena_alloc(struct sl *S, size_t n);
 const char *sl_sfmt(struct sl *S, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
