@@ -10,7 +10,6 @@
 #include "measured.h"
 #include "outdir.h"
 #include "programs.h"
-#include "usermodel.h"
 #include <errno.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>

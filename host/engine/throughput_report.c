@@ -487,7 +487,30 @@ static const char *xfmt(char *buf, size_t len, double v, const char *suffix)
 }
 
 /* The summary tables, as text (md = 0) or markdown (md = 1). */
-static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+/* One cell of the build-options table: entry e's rate under variant vv in n mode m (x default)
+ * and its accuracy. Returns whether the rate's values were not all finite. */
+static int variant_cell(const struct tp_entry *e, int vv, int m, char *cell, size_t cell_len, char *accs,
+                        size_t accs_len)
+{
+    char a[32];
+    const struct tp_figure *f = &e->dev[vv][m];
+    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
+    if (!e->measured[vv][m] || !f->ok)
+        snprintf(cell, cell_len, "%s", e->measured[vv][m] ? "failed" : "-");
+    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
+        snprintf(cell, cell_len, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
+                 f->rate.median / f0->rate.median);
+    else
+        snprintf(cell, cell_len, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
+    if (e->acc_ok[vv])
+        snprintf(accs, accs_len, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
+    else
+        snprintf(accs, accs_len, "-");
+    return !f->finite && f->ok;
+}
+
+/* The device peak and the default build options' table. */
+static void table_default(const struct tp_run *r, struct tp_text *t, int md)
 {
     const struct throughput_options *o = r->o;
     char a[32], b[32], c[32], d[32], e2[32], f2[32], g2[32], h2[32];
@@ -519,22 +542,20 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
                 else
                     snprintf(range, sizeof range, "failed");
                 const char *label = e->m ? e->label : "pow() built-in";
-                if (md)
-                    tx_printf(t, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", label, nmode_names[m],
-                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
-                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
-                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
-                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
-                else
-                    tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
-                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
-                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
-                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
-                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
+                tx_printf(t, md ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
+                                : "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
+                          gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
+                          xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
+                          xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
+                          gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
             }
         tx_printf(t, "\n");
     }
-    /* build options: speed beside accuracy */
+}
+
+/* Build options: speed beside accuracy. */
+static void table_variants(const struct tp_run *r, struct tp_text *t, int md)
+{
     int nvar = 0;
     for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
         nvar += variant_on(r, vv);
@@ -572,22 +593,8 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
                 for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv) {
                     if (!variant_on(r, vv))
                         continue;
-                    const struct tp_figure *f = &e->dev[vv][m];
-                    char cell[64];
-                    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
-                    if (!e->measured[vv][m] || !f->ok)
-                        snprintf(cell, sizeof cell, "%s", e->measured[vv][m] ? "failed" : "-");
-                    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
-                        snprintf(cell, sizeof cell, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
-                                 f->rate.median / f0->rate.median);
-                    else
-                        snprintf(cell, sizeof cell, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
-                    nonfinite |= !f->finite && f->ok;
-                    char accs[32];
-                    if (e->acc_ok[vv])
-                        snprintf(accs, sizeof accs, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
-                    else
-                        snprintf(accs, sizeof accs, "-");
+                    char cell[64], accs[32];
+                    nonfinite |= variant_cell(e, vv, m, cell, sizeof cell, accs, sizeof accs);
                     tx_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
                 }
                 tx_printf(t, "\n");
@@ -596,6 +603,12 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
             tx_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
         tx_printf(t, "\n");
     }
+}
+
+/* The accuracy sweep, device against tuned C. */
+static void table_sweep(const struct tp_run *r, struct tp_text *t)
+{
+    const struct throughput_options *o = r->o;
     if (r->sweep_ran) {
         double dsum = 0, hsum = 0, pts = 0;
         int ok = 0;
@@ -614,6 +627,13 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
         else
             tx_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
     }
+}
+
+static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+{
+    table_default(r, t, md);
+    table_variants(r, t, md);
+    table_sweep(r, t);
 }
 
 char *tp_tables_text(const struct tp_run *r, int md)
