@@ -98,22 +98,34 @@ static void json_albedo(struct jw *w, const struct energy_summary *sum)
         jw_num(w, 5.0 * j);
     jw_arr_end(w);
     jw_kv_arr(w, "models");
-    for (int mi = 0; mi < sum->count; ++mi) {
+    for (int mi = 0; mi < sum->count; ++mi)
         json_albedo_model(w, sum, &sum->models[mi]);
-    }
+    jw_arr_end(w);
+    jw_obj_end(w);
+}
+
+/* A reciprocity section of energy.json: its pairs, what it compares, then its models. */
+static void recip_section_begin(struct jw *w, const char *name, long pairs, const char *what)
+{
+    jw_kv_obj(w, name);
+    jw_kv_int(w, "pairs", pairs);
+    jw_kv_str(w, "what", what);
+    jw_kv_arr(w, "models");
+}
+
+static void recip_section_end(struct jw *w)
+{
     jw_arr_end(w);
     jw_obj_end(w);
 }
 
 static void json_reciprocity(struct jw *w, const struct energy_summary *sum)
 {
-    jw_kv_obj(w, "reciprocity");
-    jw_kv_int(w, "pairs", sum->recip_pairs);
-    jw_kv_str(w, "what", "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
-                         "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
-                         "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
-                         "difference relative to the lobe's peak f(c = 1, n)");
-    jw_kv_arr(w, "models");
+    recip_section_begin(w, "reciprocity", sum->recip_pairs,
+                        "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
+                        "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
+                        "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
+                        "difference relative to the lobe's peak f(c = 1, n)");
     for (int i = 0; i < sum->recip_count; ++i) {
         const struct recip_summary *rs = &sum->recip[i];
         jw_obj_begin(w);
@@ -123,19 +135,16 @@ static void json_reciprocity(struct jw *w, const struct energy_summary *sum)
         jw_recip(w, "host_worst", &rs->host);
         jw_obj_end(w);
     }
-    jw_arr_end(w);
-    jw_obj_end(w);
+    recip_section_end(w);
 }
 
 static void json_reciprocity_pass(struct jw *w, const struct energy_summary *sum)
 {
-    jw_kv_obj(w, "reciprocity_image_pass");
-    jw_kv_int(w, "pairs", sum->recip_pairs);
-    jw_kv_str(w, "what", "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
-                         "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
-                         "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
-                         "reference (render_shade_ref)");
-    jw_kv_arr(w, "models");
+    recip_section_begin(w, "reciprocity_image_pass", sum->recip_pairs,
+                        "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
+                        "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
+                        "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
+                        "reference (render_shade_ref)");
     for (int i = 0; i < sum->pass_count; ++i) {
         const struct recip_pass_summary *q = &sum->pass[i];
         jw_obj_begin(w);
@@ -152,8 +161,7 @@ static void json_reciprocity_pass(struct jw *w, const struct energy_summary *sum
         jw_kv_num(w, "worst_S_VL", q->s_vl);
         jw_obj_end(w);
     }
-    jw_arr_end(w);
-    jw_obj_end(w);
+    recip_section_end(w);
 }
 
 int energy_write(const struct cl_session *s, struct energy_summary *sum, int keep_json, const char *out_dir)
