@@ -24,7 +24,7 @@ hits=$(grep -nE 'usermodel_build|usermodel_builds_|usermodel_reference_|clsessio
 # includes usermodel.h
 hits=$(grep -lE '#include "usermodel.h"|usermodel_of' "$SRC"/host/engine/*.c | grep -v '/gate\.c$' || true)
 [ -z "$hits" ] && ok || bad "engines that ask for user models themselves: $hits"
-for f in accuracy.c field.c render.c throughput.c; do
+for f in accuracy.c field.c render_shade.c throughput.c; do
     grep -qE 'programs_(kernel|program|host)\(' "$SRC/host/engine/$f" && ok || bad "$f does not use the program cache"
 done
 

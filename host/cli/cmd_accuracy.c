@@ -92,6 +92,149 @@ static int accuracy_pictures(struct cl_session *s, const struct model_spec *mode
     return rc;
 }
 
+/* The run folder: out_dir (made when missing), or under results/ (its name given after the sweep);
+ * none without to_folder. 0, or EXIT_RUNTIME with the message on stderr. */
+static int prepare_run_dir(int to_folder, const char *out_dir, char *run_dir, size_t run_dir_len)
+{
+    char err[1024];
+    if (!to_folder)
+        return 0;
+    if (out_dir) {
+        if (outdir_prepare(out_dir, "--out", err, sizeof err)) {
+            fprintf(stderr, "brdfbench accuracy: %s\n", err);
+            return EXIT_RUNTIME;
+        }
+        snprintf(run_dir, run_dir_len, "%s", out_dir);
+    } else if (outdir_prepare("results", NULL, err, sizeof err) || outdir_check_latest("results", err, sizeof err)) {
+        fprintf(stderr, "brdfbench accuracy: %s\n", err);
+        return EXIT_RUNTIME;
+    }
+    return 0;
+}
+
+/* accuracy.json (csv 0) or accuracy.csv (csv 1) at path. */
+static int write_document(int csv, const char *path, const struct accuracy_result *res, int nmodels,
+                          const struct cl_session *s, const char *build_options, char *err, size_t errlen)
+{
+    return csv ? accuracy_write_csv(path, res, nmodels, err, errlen)
+               : accuracy_write_json(path, res, nmodels, s, build_options, err, errlen);
+}
+
+/* --json or --csv: one document where the flag says (a file, or standard output). */
+static int write_flag_document(int csv, const char *flag_path, const struct accuracy_result *res, int nmodels,
+                               const struct cl_session *s, const char *build_options, char *err, size_t errlen)
+{
+    struct cli_output o;
+    const char *wp;
+    int wrc = cli_output_path(&o, flag_path, csv ? "accuracy.csv" : "accuracy.json", &wp, err, errlen);
+    if (!wrc)
+        wrc = write_document(csv, wp, res, nmodels, s, build_options, err, errlen);
+    int frc = cli_output_finish(&o, !wrc, err, errlen);
+    return wrc ? wrc : frc;
+}
+
+/* accuracy.json and accuracy.csv in run_dir (when not NULL; results/latest moved to it when
+ * set_latest), then the --json and --csv documents. 0, or non-zero with the message in err. */
+static int write_documents(const struct accuracy_result *res, int nmodels, const struct cl_session *s,
+                           const char *build_options, const char *run_dir, int set_latest, const char *json_path,
+                           const char *csv_path, char *err, size_t errlen)
+{
+    char path[4200];
+    int wrc = 0;
+    if (run_dir) {
+        path_join(path, sizeof path, run_dir, "accuracy.json");
+        wrc = write_document(0, path, res, nmodels, s, build_options, err, errlen);
+        if (!wrc) {
+            path_join(path, sizeof path, run_dir, "accuracy.csv");
+            wrc = write_document(1, path, res, nmodels, s, build_options, err, errlen);
+        }
+        if (!wrc && set_latest)
+            wrc = outdir_set_latest("results", run_dir, err, errlen);
+    }
+    if (!wrc && json_path)
+        wrc = write_flag_document(0, json_path, res, nmodels, s, build_options, err, errlen);
+    if (!wrc && csv_path)
+        wrc = write_flag_document(1, csv_path, res, nmodels, s, build_options, err, errlen);
+    return wrc;
+}
+
+/* The checks of the parsed flags: the models (into models; their count, or -1 with the message
+ * in err), --pictures against the outputs, the grid, one document on standard output. */
+static int check_args(const char *models_text, int models_given, struct model_spec *models, int pictures,
+                      const char *out_dir, const char *json_path, const char *csv_path,
+                      const struct accuracy_grid *grid, char *err, size_t errlen)
+{
+    if (!models_given && usermodel_count() > 0)
+        models_text = usermodel_names();
+    int nmodels = cli_model_list(models_text, models, MAX_MODELS, err, errlen);
+    if (nmodels >= 0)
+        nmodels = cli_add_unlisted_user_models(models, nmodels, MAX_MODELS, err, errlen);
+    if (nmodels < 0)
+        return -1;
+    if (pictures && !out_dir && (json_path || csv_path)) {
+        snprintf(err, errlen, "--pictures writes into the run folder: give --out DIR (with --json or --csv "
+                              "and no --out there is none)");
+        return -1;
+    }
+    if (accuracy_grid_check(grid, NULL, err, errlen))
+        return -1;
+    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
+        snprintf(err, errlen, "--json - and --csv -: one document at a time on standard output");
+        return -1;
+    }
+    return nmodels;
+}
+
+/* Every model's sweep into res (*done counts the results made), with a progress line once the
+ * run takes a while. */
+static int sweep_models(struct accuracy_ctx *actx, const struct model_spec *models, int nmodels,
+                        const struct accuracy_grid *grid, struct accuracy_result *res, int *done, int quiet)
+{
+    double started = wall_seconds();
+    for (int m = 0; m < nmodels; ++m, ++*done) {
+        int rc = accuracy_run(actx, &models[m], grid, &res[m]);
+        if (rc)
+            return rc;
+        if (!quiet && wall_seconds() - started > 1.0)   /* a progress line once a run takes a while */
+            fprintf(stderr, "accuracy: %d/%d %s done (%.1f s)\n", m + 1, nmodels, models[m].label,
+                    wall_seconds() - started);
+    }
+    return 0;
+}
+
+/* The table, the device-against-double check, the device time and what was written. */
+static void print_summary(const struct accuracy_result *res, int nmodels, const struct accuracy_grid *g,
+                          const char *run_dir, int npictures, const char *json_path, const char *csv_path)
+{
+    accuracy_print_table(stdout, res, nmodels);
+    double worst = 0, dev_s = 0, pts = 0;
+    int beyond = 0;
+    for (int m = 0; m < nmodels; ++m) {
+        worst = fmax(worst, accuracy_check_in_digits(&res[m]));
+        beyond += res[m].device_disagrees;
+        dev_s += res[m].device_seconds;
+        pts += res[m].points;
+    }
+    printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
+           "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
+           "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
+    int wall = 0;
+    for (int m = 0; m < nmodels; ++m)
+        wall |= res[m].timer_wall;
+    printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)%s\n",
+           dev_s, pts, pts / dev_s * 1e-9, g->n_min, g->n_max, g->n_step, g->samples,
+           wall ? "; wall time: the driver's profiling events gave no time" : "");
+    if (run_dir)
+        printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
+    if (npictures)
+        printf("written: %d pictures in %s (heatmap_<model>.png, max_rel_error_epicentre_vs_n.png, "
+               "max_abs_error_vs_n.png)\n", npictures, run_dir);
+    if (json_path)
+        printf("written: %s\n", json_path);
+    if (csv_path)
+        printf("written: %s\n", csv_path);
+}
+
 int cmd_accuracy(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
@@ -132,26 +275,12 @@ int cmd_accuracy(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    if (!models_given && usermodel_count() > 0)
-        models_text = usermodel_names();
-    int nmodels = cli_model_list(models_text, models, MAX_MODELS, err, sizeof err);
-    if (nmodels >= 0)
-        nmodels = cli_add_unlisted_user_models(models, nmodels, MAX_MODELS, err, sizeof err);
+    int nmodels = check_args(models_text, models_given, models, pictures, out_dir, json_path, csv_path, &grid, err,
+                             sizeof err);
     if (nmodels < 0)
         goto usage_error;
-    if (pictures && !out_dir && (json_path || csv_path)) {
-        snprintf(err, sizeof err, "--pictures writes into the run folder: give --out DIR (with --json or --csv "
-                                  "and no --out there is none)");
-        goto usage_error;
-    }
     if (shared_scale && !pictures) {
         snprintf(err, sizeof err, "--shared-scale scales the heatmaps of --pictures (accepted: with --pictures)");
-        goto usage_error;
-    }
-    if (accuracy_grid_check(&grid, NULL, err, sizeof err))
-        goto usage_error;
-    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
-        snprintf(err, sizeof err, "--json - and --csv -: one document at a time on standard output");
         goto usage_error;
     }
     /* --json or --csv without --out: those files only, no run folder. A document on
@@ -192,68 +321,21 @@ int cmd_accuracy(int argc, char **argv)
     /* Check the output folder before the sweep, so a bad --out fails fast (and after the
        builds, so a user model that does not compile leaves no folder behind). */
     char run_dir[4096] = "";
-    if (!to_folder) {
-        /* no folder */
-    } else if (out_dir) {
-        if (outdir_prepare(out_dir, "--out", err, sizeof err)) {
-            fprintf(stderr, "brdfbench accuracy: %s\n", err);
-            rc = EXIT_RUNTIME;
-            goto cleanup;
-        }
-        snprintf(run_dir, sizeof run_dir, "%s", out_dir);
-    } else if (outdir_prepare("results", NULL, err, sizeof err) || outdir_check_latest("results", err, sizeof err)) {
-        fprintf(stderr, "brdfbench accuracy: %s\n", err);
-        rc = EXIT_RUNTIME;
+    if ((rc = prepare_run_dir(to_folder, out_dir, run_dir, sizeof run_dir)))
         goto cleanup;
-    }
     if (!quiet)
         fprintf(stderr, "device: %s (%s); %d kernel build%s %.2f s%s\n", s.device_name, s.platform_version,
                 s.builds, s.builds == 1 ? "" : "s", s.build_seconds_total,
                 s.specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
-    double started = wall_seconds();
-    for (int m = 0; m < nmodels; ++m, ++done) {
-        rc = accuracy_run(&actx, &models[m], &grid, &res[m]);
-        if (rc)
-            goto cleanup;
-        if (!quiet && wall_seconds() - started > 1.0)   /* a progress line once a run takes a while */
-            fprintf(stderr, "accuracy: %d/%d %s done (%.1f s)\n", m + 1, nmodels, models[m].label,
-                    wall_seconds() - started);
-    }
+    if ((rc = sweep_models(&actx, models, nmodels, &grid, res, &done, quiet)))
+        goto cleanup;
     if (to_folder && !out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
         goto cleanup;
     }
-    char path[4200];
-    int wrc = 0;
-    if (to_folder) {
-        path_join(path, sizeof path, run_dir, "accuracy.json");
-        wrc = accuracy_write_json(path, res, nmodels, &s, actx.build_options, err, sizeof err);
-        if (!wrc) {
-            path_join(path, sizeof path, run_dir, "accuracy.csv");
-            wrc = accuracy_write_csv(path, res, nmodels, err, sizeof err);
-        }
-        if (!wrc && !out_dir)
-            wrc = outdir_set_latest("results", run_dir, err, sizeof err);
-    }
-    if (!wrc && json_path) {
-        struct cli_output o;
-        const char *wp;
-        wrc = cli_output_path(&o, json_path, "accuracy.json", &wp, err, sizeof err);
-        if (!wrc)
-            wrc = accuracy_write_json(wp, res, nmodels, &s, actx.build_options, err, sizeof err);
-        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
-        wrc = wrc ? wrc : frc;
-    }
-    if (!wrc && csv_path) {
-        struct cli_output o;
-        const char *wp;
-        wrc = cli_output_path(&o, csv_path, "accuracy.csv", &wp, err, sizeof err);
-        if (!wrc)
-            wrc = accuracy_write_csv(wp, res, nmodels, err, sizeof err);
-        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
-        wrc = wrc ? wrc : frc;
-    }
+    int wrc = write_documents(res, nmodels, &s, actx.build_options, to_folder ? run_dir : NULL, !out_dir, json_path,
+                              csv_path, err, sizeof err);
     if (wrc) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
@@ -265,35 +347,8 @@ int cmd_accuracy(int argc, char **argv)
         goto cleanup;
     if (pictures && to_folder && (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
         goto cleanup;
-    if (!quiet && !doc_on_stdout) {
-        accuracy_print_table(stdout, res, nmodels);
-        double worst = 0, dev_s = 0, pts = 0;
-        int beyond = 0;
-        for (int m = 0; m < nmodels; ++m) {
-            worst = fmax(worst, accuracy_check_in_digits(&res[m]));
-            beyond += res[m].device_disagrees;
-            dev_s += res[m].device_seconds;
-            pts += res[m].points;
-        }
-        printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
-               "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
-               "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
-        int wall = 0;
-        for (int m = 0; m < nmodels; ++m)
-            wall |= res[m].timer_wall;
-        printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)%s\n",
-               dev_s, pts, pts / dev_s * 1e-9, grid.n_min, grid.n_max, grid.n_step, grid.samples,
-               wall ? "; wall time: the driver's profiling events gave no time" : "");
-        if (to_folder)
-            printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
-        if (npictures)
-            printf("written: %d pictures in %s (heatmap_<model>.png, max_rel_error_epicentre_vs_n.png, "
-                   "max_abs_error_vs_n.png)\n", npictures, run_dir);
-        if (json_path)
-            printf("written: %s\n", json_path);
-        if (csv_path)
-            printf("written: %s\n", csv_path);
-    }
+    if (!quiet && !doc_on_stdout)
+        print_summary(res, nmodels, &grid, to_folder ? run_dir : NULL, npictures, json_path, csv_path);
 cleanup:
     for (int m = 0; m < done; ++m)
         accuracy_result_free(&res[m]);

@@ -15,6 +15,46 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* The warnings on stderr: too few repetitions for a verdict, runs disturbed by other work. */
+static void print_warnings(const struct compare_set *set)
+{
+    int few = compare_few_reps(set);
+    if (few)
+        fprintf(stderr, "brdfbench compare: warning: a rate has only %d repetition%s (fewer than %d): its verdict has "
+                        "little power; take more (throughput --reps 10)\n", few, few == 1 ? "" : "s", set->min_reps);
+    for (int k = 0; k < set->nruns; ++k)
+        if (set->run[k].disturbed)
+            fprintf(stderr, "brdfbench compare: warning: %s was disturbed: %d repetition%s stayed preempted by other "
+                            "work after the retries (see its \"machine\" context)\n", set->run[k].name,
+                    set->run[k].disturbed, set->run[k].disturbed == 1 ? "" : "s");
+}
+
+/* What was written into the run folder (the chart only when drawn). */
+static void print_written(const char *run_dir)
+{
+    char png[4200];
+    struct stat st;   /* the chart is drawn only when a run has a row to chart */
+    int chart = path_join(png, sizeof png, run_dir, "compare.png") == 0 && lstat(png, &st) == 0;
+    printf("written: %s/compare.md, compare.csv, compare.json%s\n", run_dir, chart ? ", compare.png" : "");
+}
+
+/* --fail-if-slower and --fail-if-less-accurate: the failing rows named on stderr, EXIT_GATE_FAIL;
+ * else 0. */
+static int report_failures(const struct compare_set *set, double slower_pct, int less_accurate)
+{
+    int rc = 0;
+    char *why = NULL;
+    int failing = compare_failures(set, slower_pct, less_accurate, &why);
+    if (failing) {
+        fprintf(stderr, "brdfbench compare: %d row%s fail%s the %s:\n%s", failing, failing == 1 ? "" : "s",
+                failing == 1 ? "s" : "", slower_pct >= 0 && less_accurate ? "conditions" : "condition",
+                why ? why : "");
+        rc = EXIT_GATE_FAIL;
+    }
+    free(why);
+    return rc;
+}
+
 int cmd_compare(int argc, char **argv)
 {
     char err[1200];
@@ -79,7 +119,6 @@ int cmd_compare(int argc, char **argv)
         snprintf(err, sizeof err, "expected BASELINE RUN [RUN ...] (run folders or result files; see --help)");
         goto usage_error;
     }
-
     struct compare_set *set = calloc(1, sizeof *set);
     if (!set) {
         fprintf(stderr, "brdfbench compare: out of memory\n");
@@ -106,15 +145,7 @@ int cmd_compare(int argc, char **argv)
             fputs(t, stdout);
         free(t);
     }
-    int few = compare_few_reps(set);
-    if (few)
-        fprintf(stderr, "brdfbench compare: warning: a rate has only %d repetition%s (fewer than %d): its verdict has "
-                        "little power; take more (throughput --reps 10)\n", few, few == 1 ? "" : "s", set->min_reps);
-    for (int k = 0; k < set->nruns; ++k)
-        if (set->run[k].disturbed)
-            fprintf(stderr, "brdfbench compare: warning: %s was disturbed: %d repetition%s stayed preempted by other "
-                            "work after the retries (see its \"machine\" context)\n", set->run[k].name,
-                    set->run[k].disturbed, set->run[k].disturbed == 1 ? "" : "s");
+    print_warnings(set);
     char run_dir[4096], tmp_dir[512];
     if (cli_run_folder("compare", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
         rc = EXIT_RUNTIME;
@@ -132,21 +163,9 @@ int cmd_compare(int argc, char **argv)
     cli_temp_dir_remove(tmp_dir);
     if (rc)
         goto done;
-    if (!quiet && !tmp_dir[0]) {
-        char png[4200];
-        struct stat st;   /* the chart is drawn only when a run has a row to chart */
-        int chart = path_join(png, sizeof png, run_dir, "compare.png") == 0 && lstat(png, &st) == 0;
-        printf("written: %s/compare.md, compare.csv, compare.json%s\n", run_dir, chart ? ", compare.png" : "");
-    }
-    char *why = NULL;
-    int failing = compare_failures(set, slower_pct, less_accurate, &why);
-    if (failing) {
-        fprintf(stderr, "brdfbench compare: %d row%s fail%s the %s:\n%s", failing, failing == 1 ? "" : "s",
-                failing == 1 ? "s" : "", slower_pct >= 0 && less_accurate ? "conditions" : "condition",
-                why ? why : "");
-        rc = EXIT_GATE_FAIL;
-    }
-    free(why);
+    if (!quiet && !tmp_dir[0])
+        print_written(run_dir);
+    rc = report_failures(set, slower_pct, less_accurate);
 done:
     compare_free(set);
     free(set);

@@ -42,6 +42,61 @@ static void print_gates(FILE *f, const struct gate_set *gs, int quiet)
     free(text);
 }
 
+/* The checks of the parsed flags and the gates file named: 0, or -1 with the message in err. */
+static int check_args(const struct cli_args *args, const char *baseline, const char *junit, const char *json,
+                      int tolerance_given, char *err, size_t errlen)
+{
+    if (args->npositional > 1) {
+        snprintf(err, errlen, "one gates file expected, got '%s' and '%s'", args->positional[0], args->positional[1]);
+        return -1;
+    }
+    if (baseline && !*baseline) {
+        snprintf(err, errlen, "--baseline: empty path (accepted: a run folder or an accuracy.json)");
+        return -1;
+    }
+    if (cli_is_stdout(junit) && cli_is_stdout(json)) {
+        snprintf(err, errlen, "--junit - and --json -: one document at a time on standard output");
+        return -1;
+    }
+    if (!args->npositional) {
+        snprintf(err, errlen, "a gates file is missing (usage: brdfbench gate GATES.json [OPTIONS])");
+        return -1;
+    }
+    if (junit && json && output_paths_same(junit, json)) {
+        snprintf(err, errlen, "--json: '%s' is the file --junit names ('%s'); each report needs its own file",
+                 json, junit);
+        return -1;
+    }
+    if (tolerance_given && !baseline) {
+        snprintf(err, errlen, "--tolerance: only with --baseline");
+        return -1;
+    }
+    return 0;
+}
+
+/* --junit and --json, each a file or standard output. 0, or EXIT_RUNTIME with the message on stderr. */
+static int write_reports(const struct gate_set *gs, const struct cl_session *s, const char *junit, const char *json)
+{
+    char err[2048];
+    for (int k = 0; k < 2; ++k) {
+        const char *path = k == 0 ? junit : json;
+        if (!path)
+            continue;
+        struct cli_output o;
+        const char *wp;
+        int wrc = cli_output_path(&o, path, k == 0 ? "junit.xml" : "gate.json", &wp, err, sizeof err);
+        if (!wrc)
+            wrc = k == 0 ? gate_set_write_junit(gs, wp, s, err, sizeof err)
+                         : gate_set_write_json(gs, wp, s, err, sizeof err);
+        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
+        if (wrc || frc) {
+            fprintf(stderr, "brdfbench gate: %s\n", err);
+            return EXIT_RUNTIME;
+        }
+    }
+    return 0;
+}
+
 int cmd_gate(int argc, char **argv)
 {
     char err[2048];
@@ -85,32 +140,9 @@ int cmd_gate(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    if (args.npositional > 1) {
-        snprintf(err, sizeof err, "one gates file expected, got '%s' and '%s'", args.positional[0], args.positional[1]);
-        goto usage_error;
-    }
     gates_path = args.npositional ? args.positional[0] : NULL;
-    if (baseline && !*baseline) {
-        snprintf(err, sizeof err, "--baseline: empty path (accepted: a run folder or an accuracy.json)");
+    if (check_args(&args, baseline, junit, json, tolerance_given, err, sizeof err))
         goto usage_error;
-    }
-    if (cli_is_stdout(junit) && cli_is_stdout(json)) {
-        snprintf(err, sizeof err, "--junit - and --json -: one document at a time on standard output");
-        goto usage_error;
-    }
-    if (!gates_path) {
-        snprintf(err, sizeof err, "a gates file is missing (usage: brdfbench gate GATES.json [OPTIONS])");
-        goto usage_error;
-    }
-    if (junit && json && output_paths_same(junit, json)) {
-        snprintf(err, sizeof err, "--json: '%s' is the file --junit names ('%s'); each report needs its own file",
-                 json, junit);
-        goto usage_error;
-    }
-    if (tolerance_given && !baseline) {
-        snprintf(err, sizeof err, "--tolerance: only with --baseline");
-        goto usage_error;
-    }
 
     struct gate_set gs;
     gate_allow_outside_model_files(outside_model_files);
@@ -149,23 +181,8 @@ int cmd_gate(int argc, char **argv)
     /* a document on standard output: the gate lines go to stderr */
     print_gates(cli_is_stdout(junit) || cli_is_stdout(json) ? stderr : stdout, &gs, quiet);
     fflush(stdout);
-    for (int k = 0; k < 2; ++k) {
-        const char *path = k == 0 ? junit : json;
-        if (!path)
-            continue;
-        struct cli_output o;
-        const char *wp;
-        int wrc = cli_output_path(&o, path, k == 0 ? "junit.xml" : "gate.json", &wp, err, sizeof err);
-        if (!wrc)
-            wrc = k == 0 ? gate_set_write_junit(&gs, wp, &s, err, sizeof err)
-                         : gate_set_write_json(&gs, wp, &s, err, sizeof err);
-        int frc = cli_output_finish(&o, !wrc, err, sizeof err);
-        if (wrc || frc) {
-            fprintf(stderr, "brdfbench gate: %s\n", err);
-            rc = EXIT_RUNTIME;
-            goto done;
-        }
-    }
+    if ((rc = write_reports(&gs, &s, junit, json)) != 0)
+        goto done;
     rc = gate_set_failures(&gs) > 0 ? EXIT_GATE_FAIL : EXIT_OK;
 done:
     clsession_close(&s);

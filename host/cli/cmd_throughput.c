@@ -62,6 +62,96 @@ static int call_n_modes(const char *flag, const char *v, void *dest, char *err, 
     return parse_name_set(flag, v, tp_nmode_name, TP_NMODE_COUNT, dest, err, errlen);
 }
 
+/* The checks of the parsed flags, and the options they make (the models, the A/B variant):
+ * 0, or -1 with the message in err. */
+static int check_args(struct throughput_options *o, const char *json_path, const char *csv_path,
+                      const char *models_text, int models_given, const char *ab_options, char *err, size_t errlen)
+{
+    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
+        snprintf(err, errlen, "--json - and --csv -: one document at a time on standard output");
+        return -1;
+    }
+    if (!(o->n_lo < o->n_hi)) {
+        snprintf(err, errlen, "--n-min (%g) must be below --n-max (%g)", o->n_lo, o->n_hi);
+        return -1;
+    }
+    if (!models_given && usermodel_count() > 0)
+        models_text = usermodel_names();   /* with a user model and no --models: the user models */
+    int n = cli_model_list(models_text, o->models, TP_MAX_MODELS, err, errlen);
+    if (n >= 0)
+        n = cli_add_unlisted_user_models(o->models, n, TP_MAX_MODELS, err, errlen);
+    if (n < 0)
+        return -1;
+    o->model_count = n;
+    if (ab_options) {
+        if (!*ab_options || strlen(ab_options) > 400) {
+            snprintf(err, errlen, "--ab-options: expected OpenCL build options (1 to 400 characters)");
+            return -1;
+        }
+        o->ab_options = ab_options;
+        o->variants |= 1u << TP_VARIANT_AB;
+    }
+    if (throughput_options_check(o, err, errlen))
+        return -1;
+    return 0;
+}
+
+/* --ab-options: OUT/ab/a and OUT/ab/b for `brdfbench compare`. */
+static int write_ab(const char *run_dir, const char *ab_options, int tp_quiet)
+{
+    char e2[1100];
+    if (cli_write_ab(run_dir, ab_options, e2, sizeof e2)) {
+        fprintf(stderr, "brdfbench throughput: %s\n", e2);
+        return EXIT_RUNTIME;
+    }
+    if (!tp_quiet)
+        printf("A/B in one process: brdfbench compare %s/ab/a %s/ab/b\n", run_dir, run_dir);
+    return 0;
+}
+
+/* --measured's materials (read before anything is made) and the full BRDFs among the models,
+ * for the physically based models' table: 0, or the exit code (EXIT_USAGE with the message in err). */
+static int load_materials(const char *measured_arg, const struct throughput_options *o, struct merl_material *mats,
+                          struct pbcost_options *po, char *err, size_t errlen)
+{
+    if (measured_arg) {
+        int lrc = measured_load("--measured", measured_arg, PBCOST_MAX_MEASURED, mats, &po->nmeasured, err, errlen);
+        if (lrc)
+            return lrc;
+        for (int i = 0; i < po->nmeasured; ++i)
+            po->measured[i] = &mats[i];
+    }
+    for (int i = 0; i < o->model_count && po->nfull < PBCOST_MAX_MEASURED; ++i)
+        if (model_is_full(o->models[i].info))
+            po->full[po->nfull++] = o->models[i];
+    return 0;
+}
+
+/* The physically based models from full vectors (pbcost.h), in a run of the default set, and
+ * with the user full BRDFs and measured materials. */
+static int run_physical(struct cl_session *s, const struct pbcost_options *po, const char *run_dir, int tp_quiet)
+{
+    if (!s->specialise)
+        return pbcost_run_write(s, po, run_dir, tp_quiet);
+    /* its kernels are float16 (kernels/throughput.cl, TP_W) */
+    fprintf(stderr, "throughput: the physically based models' full-vector table is not run on %s: its kernels "
+                    "are float16 only, which this driver compiles for minutes (PoCL runs it)\n",
+            s->platform_name);
+    return 0;
+}
+
+/* results/latest, then the --json and --csv documents from the run folder. */
+static int deliver(const char *out_dir, const char *tmp_dir, const char *run_dir, const char *json_path,
+                   const char *csv_path)
+{
+    int rc = cli_run_latest("throughput", out_dir, tmp_dir, run_dir);
+    if (!rc && json_path)
+        rc = cli_run_deliver("throughput", run_dir, "throughput.json", "--json", json_path);
+    if (!rc && csv_path)
+        rc = cli_run_deliver("throughput", run_dir, "throughput.csv", "--csv", csv_path);
+    return rc;
+}
+
 int cmd_throughput(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
@@ -137,48 +227,17 @@ int cmd_throughput(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    if (cli_is_stdout(json_path) && cli_is_stdout(csv_path)) {
-        snprintf(err, sizeof err, "--json - and --csv -: one document at a time on standard output");
-        goto usage_error;
-    }
-    if (!(o.n_lo < o.n_hi)) {
-        snprintf(err, sizeof err, "--n-min (%g) must be below --n-max (%g)", o.n_lo, o.n_hi);
-        goto usage_error;
-    }
-    if (!models_given && usermodel_count() > 0)
-        models_text = usermodel_names();   /* with a user model and no --models: the user models */
-    int n = cli_model_list(models_text, o.models, TP_MAX_MODELS, err, sizeof err);
-    if (n >= 0)
-        n = cli_add_unlisted_user_models(o.models, n, TP_MAX_MODELS, err, sizeof err);
-    if (n < 0)
-        goto usage_error;
-    o.model_count = n;
-    if (ab_options) {
-        if (!*ab_options || strlen(ab_options) > 400) {
-            snprintf(err, sizeof err, "--ab-options: expected OpenCL build options (1 to 400 characters)");
-            goto usage_error;
-        }
-        o.ab_options = ab_options;
-        o.variants |= 1u << TP_VARIANT_AB;
-    }
-    if (throughput_options_check(&o, err, sizeof err))
+    if (check_args(&o, json_path, csv_path, models_text, models_given, ab_options, err, sizeof err))
         goto usage_error;
     /* the measured materials, read before anything is made */
     struct merl_material mats[PBCOST_MAX_MEASURED];
     struct pbcost_options po;
     pbcost_options_default(&po);
-    if (measured_arg) {
-        int lrc = measured_load("--measured", measured_arg, PBCOST_MAX_MEASURED, mats, &po.nmeasured, err, sizeof err);
-        if (lrc == EXIT_USAGE)
-            goto usage_error;
-        if (lrc)
-            return lrc;
-        for (int i = 0; i < po.nmeasured; ++i)
-            po.measured[i] = &mats[i];
-    }
-    for (int i = 0; i < o.model_count && po.nfull < PBCOST_MAX_MEASURED; ++i)
-        if (model_is_full(o.models[i].info))
-            po.full[po.nfull++] = o.models[i];
+    int lrc = load_materials(measured_arg, &o, mats, &po, err, sizeof err);
+    if (lrc == EXIT_USAGE)
+        goto usage_error;
+    if (lrc)
+        return lrc;
     int full_models = po.nfull;
 
     /* PoCL reads this when the platform is first opened. */
@@ -196,31 +255,12 @@ int cmd_throughput(int argc, char **argv)
     /* a document on standard output: the engine's table (and its progress) stay off */
     int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
     rc = throughput_run(&s, &o, run_dir, tp_quiet);
-    if (!rc && ab_options) {
-        char e2[1100];
-        if (cli_write_ab(run_dir, ab_options, e2, sizeof e2)) {
-            fprintf(stderr, "brdfbench throughput: %s\n", e2);
-            rc = EXIT_RUNTIME;
-        } else if (!tp_quiet) {
-            printf("A/B in one process: brdfbench compare %s/ab/a %s/ab/b\n", run_dir, run_dir);
-        }
-    }
-    /* the physically based models from full vectors (pbcost.h), in a run of the default set, and
-       with the user full BRDFs and measured materials */
-    if (!rc && ((!models_given && usermodel_count() == 0) || full_models || po.nmeasured) && !tmp_dir[0]) {
-        if (s.specialise)   /* its kernels are float16 (kernels/throughput.cl, TP_W) */
-            fprintf(stderr, "throughput: the physically based models' full-vector table is not run on %s: its kernels "
-                            "are float16 only, which this driver compiles for minutes (PoCL runs it)\n",
-                    s.platform_name);
-        else
-            rc = pbcost_run_write(&s, &po, run_dir, tp_quiet);
-    }
+    if (!rc && ab_options)
+        rc = write_ab(run_dir, ab_options, tp_quiet);
+    if (!rc && ((!models_given && usermodel_count() == 0) || full_models || po.nmeasured) && !tmp_dir[0])
+        rc = run_physical(&s, &po, run_dir, tp_quiet);
     if (!rc)
-        rc = cli_run_latest("throughput", out_dir, tmp_dir, run_dir);
-    if (!rc && json_path)
-        rc = cli_run_deliver("throughput", run_dir, "throughput.json", "--json", json_path);
-    if (!rc && csv_path)
-        rc = cli_run_deliver("throughput", run_dir, "throughput.csv", "--csv", csv_path);
+        rc = deliver(out_dir, tmp_dir, run_dir, json_path, csv_path);
     cli_temp_dir_remove(tmp_dir);
     clsession_close(&s);
 free_measured:

@@ -598,34 +598,14 @@ done:
 #include "raster.h"
 #include "render.h"
 
-int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_summary *out, int max, int *count)
+/* The reciprocity pass's G-buffer: random pixels in front of the eye at the origin, lit by the
+   lamp, each with its n and a normal facing both (half of them near the half vector). */
+static void recip_gbuffer(struct gbuffer *g, long pairs, const double eye[3], const double lamp[3])
 {
-    char err[512];
-    int rc = 0;
-    *count = 0;
-    struct render_options o;
-    render_options_default(&o);
-    struct render_device d;
-    memset(&d, 0, sizeof d);
-    struct gbuffer g;
-    memset(&g, 0, sizeof g);
-    cl_mem gbuf = NULL, orgba = NULL, ospec = NULL;
-    float *spec_a = malloc((size_t)pairs * sizeof *spec_a), *spec_b = malloc((size_t)pairs * sizeof *spec_b);
-    if (!spec_a || !spec_b || gbuffer_alloc(&g, (int)pairs, 1, err, sizeof err)) {
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    if ((rc = render_device_open(&d, s, &o, err, sizeof err)) != 0) {
-        fprintf(stderr, "brdfbench: %s\n", err);
-        goto done;
-    }
-    /* The eye at the origin and a point light at P (launch A), then swapped (launch B): at
-       each pixel, V of one launch is L of the other, computed by the same float operations. */
-    const double eye[3] = { 0, 0, 0 }, lamp[3] = { 0.7, 0.4, 0.2 };
     uint64_t st = 0x9e3779b97f4a7c15ULL;
-    float *px = gbuffer_plane(&g, GB_PX), *py = gbuffer_plane(&g, GB_PY), *pz = gbuffer_plane(&g, GB_PZ);
-    float *nx = gbuffer_plane(&g, GB_NX), *ny = gbuffer_plane(&g, GB_NY), *nz = gbuffer_plane(&g, GB_NZ);
-    float *sh = gbuffer_plane(&g, GB_SHIN);
+    float *px = gbuffer_plane(g, GB_PX), *py = gbuffer_plane(g, GB_PY), *pz = gbuffer_plane(g, GB_PZ);
+    float *nx = gbuffer_plane(g, GB_NX), *ny = gbuffer_plane(g, GB_NY), *nz = gbuffer_plane(g, GB_NZ);
+    float *sh = gbuffer_plane(g, GB_SHIN);
     for (long i = 0; i < pairs; ++i) {
         double pos[3] = { 2 * lcg_unit(&st) - 1, 2 * lcg_unit(&st) - 1, -1 - 2 * lcg_unit(&st) }, v[3], l[3], h[3], nrm[3];
         double n = 2.0 * pow(500.0, lcg_unit(&st));
@@ -660,6 +640,79 @@ int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_s
         nx[i] = (float)nrm[0]; ny[i] = (float)nrm[1]; nz[i] = (float)nrm[2];
         sh[i] = (float)n;
     }
+}
+
+/* One model's two launches (spec_a: eye and lamp as given, spec_b: swapped) compared pixel by
+   pixel, and the same with the pass's double reference; the worst pair into r. */
+static void recip_compare(struct recip_pass_summary *r, const struct render_options *o, const struct gbuffer *g,
+                          long pairs, const float *spec_a, const float *spec_b, const double eye[3],
+                          const double lamp[3], const struct render_light *la, const struct render_light *lb)
+{
+    const float *px = gbuffer_plane(g, GB_PX), *py = gbuffer_plane(g, GB_PY), *pz = gbuffer_plane(g, GB_PZ);
+    const float *nx = gbuffer_plane(g, GB_NX), *ny = gbuffer_plane(g, GB_NY), *nz = gbuffer_plane(g, GB_NZ);
+    const float *sh = gbuffer_plane(g, GB_SHIN);
+    for (long i = 0; i < pairs; ++i) {
+        double pos[3] = { px[i], py[i], pz[i] }, nrm[3] = { nx[i], ny[i], nz[i] }, v[3], l[3];
+        for (int k = 0; k < 3; ++k) {
+            v[k] = eye[k] - pos[k];
+            l[k] = lamp[k] - pos[k];
+        }
+        double ea = 1.0 / dot3(l, l), eb = 1.0 / dot3(v, v);
+        double lv = sqrt(dot3(v, v)), ll = sqrt(dot3(l, l));
+        for (int k = 0; k < 3; ++k) {
+            v[k] /= lv;
+            l[k] /= ll;
+        }
+        double nl = dot3(nrm, l), nv = dot3(nrm, v);
+        if (!(nl > 0.01 && nv > 0.01))
+            continue;
+        double n = sh[i], floor_v = 1e-6 * fabs(model_eval_host(&r->spec, 1.0, n));
+        double sa = spec_a[i] / (ea * nl * o->ks), sb = spec_b[i] / (eb * nv * o->ks);
+        double dd = fabs(sa - sb) / fmax(fmax(fabs(sa), fabs(sb)), floor_v);
+        r->lit++;
+        if (dd > r->device_worst) {
+            r->device_worst = dd;
+            r->n = n;
+            memcpy(r->nrm, nrm, sizeof nrm);
+            memcpy(r->l, l, sizeof l);
+            memcpy(r->v, v, sizeof v);
+            r->s_lv = sa;
+            r->s_vl = sb;
+        }
+        double ha, hb, rad;
+        render_shade_ref(&r->spec, r->mode, la, o, pos, nrm, n, &ha, &rad);
+        render_shade_ref(&r->spec, r->mode, lb, o, pos, nrm, n, &hb, &rad);
+        ha /= ea * nl * o->ks;
+        hb /= eb * nv * o->ks;
+        r->host_worst = fmax(r->host_worst, fabs(ha - hb) / fmax(fmax(fabs(ha), fabs(hb)), floor_v));
+    }
+}
+
+int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_summary *out, int max, int *count)
+{
+    char err[512];
+    int rc = 0;
+    *count = 0;
+    struct render_options o;
+    render_options_default(&o);
+    struct render_device d;
+    memset(&d, 0, sizeof d);
+    struct gbuffer g;
+    memset(&g, 0, sizeof g);
+    cl_mem gbuf = NULL, orgba = NULL, ospec = NULL;
+    float *spec_a = malloc((size_t)pairs * sizeof *spec_a), *spec_b = malloc((size_t)pairs * sizeof *spec_b);
+    if (!spec_a || !spec_b || gbuffer_alloc(&g, (int)pairs, 1, err, sizeof err)) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if ((rc = render_device_open(&d, s, &o, err, sizeof err)) != 0) {
+        fprintf(stderr, "brdfbench: %s\n", err);
+        goto done;
+    }
+    /* The eye at the origin and a point light at P (launch A), then swapped (launch B): at
+       each pixel, V of one launch is L of the other, computed by the same float operations. */
+    const double eye[3] = { 0, 0, 0 }, lamp[3] = { 0.7, 0.4, 0.2 };
+    recip_gbuffer(&g, pairs, eye, lamp);
     cl_int e;
     gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, g.stride * GB_NPLANES * sizeof(float),
                           g.data, &e);
@@ -682,41 +735,7 @@ int reciprocity_image_pass(struct cl_session *s, long pairs, struct recip_pass_s
             (rc = render_device_shade(&d, gbuf, g.stride, g.npix, orgba, ospec, &r->spec, r->mode, &lb, &o, NULL,
                                       spec_b, &t)) != 0)
             goto done;
-        for (long i = 0; i < pairs; ++i) {
-            double pos[3] = { px[i], py[i], pz[i] }, nrm[3] = { nx[i], ny[i], nz[i] }, v[3], l[3];
-            for (int k = 0; k < 3; ++k) {
-                v[k] = eye[k] - pos[k];
-                l[k] = lamp[k] - pos[k];
-            }
-            double ea = 1.0 / dot3(l, l), eb = 1.0 / dot3(v, v);
-            double lv = sqrt(dot3(v, v)), ll = sqrt(dot3(l, l));
-            for (int k = 0; k < 3; ++k) {
-                v[k] /= lv;
-                l[k] /= ll;
-            }
-            double nl = dot3(nrm, l), nv = dot3(nrm, v);
-            if (!(nl > 0.01 && nv > 0.01))
-                continue;
-            double n = sh[i], floor_v = 1e-6 * fabs(model_eval_host(&r->spec, 1.0, n));
-            double sa = spec_a[i] / (ea * nl * o.ks), sb = spec_b[i] / (eb * nv * o.ks);
-            double dd = fabs(sa - sb) / fmax(fmax(fabs(sa), fabs(sb)), floor_v);
-            r->lit++;
-            if (dd > r->device_worst) {
-                r->device_worst = dd;
-                r->n = n;
-                memcpy(r->nrm, nrm, sizeof nrm);
-                memcpy(r->l, l, sizeof l);
-                memcpy(r->v, v, sizeof v);
-                r->s_lv = sa;
-                r->s_vl = sb;
-            }
-            double ha, hb, rad;
-            render_shade_ref(&r->spec, r->mode, &la, &o, pos, nrm, n, &ha, &rad);
-            render_shade_ref(&r->spec, r->mode, &lb, &o, pos, nrm, n, &hb, &rad);
-            ha /= ea * nl * o.ks;
-            hb /= eb * nv * o.ks;
-            r->host_worst = fmax(r->host_worst, fabs(ha - hb) / fmax(fmax(fabs(ha), fabs(hb)), floor_v));
-        }
+        recip_compare(r, &o, &g, pairs, spec_a, spec_b, eye, lamp, &la, &lb);
         (*count)++;
     }
 done:

@@ -38,115 +38,141 @@ static const char *mode_name(int mode)
     return "?";
 }
 
+/* One model of energy.json's "albedo": its table, maximum and normal incidence. */
+static void json_albedo_model(struct jw *w, const struct energy_summary *sum, const struct energy_model_summary *ms)
+{
+    int cols = ms->cols;
+    jw_obj_begin(w);
+    jw_kv_str(w, "model", ms->spec.label);
+    jw_kv_str(w, "integrand", mode_name(ms->mode));
+    jw_kv_arr(w, "albedo");
+    for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+        jw_arr_begin(w);
+        for (int j = 0; j < cols; ++j)
+            jw_num(w, ms->albedo[i * cols + j]);
+        jw_arr_end(w);
+    }
+    jw_arr_end(w);
+    jw_kv_num(w, "max_albedo", ms->max_albedo);
+    jw_kv_num(w, "max_at_n", ms->max_at_n);
+    jw_kv_num(w, "max_at_theta_i_deg", ms->max_at_theta_deg);
+    jw_kv_num(w, "refine_change", ms->refine_change);
+    jw_kv_arr(w, "normal_incidence");
+    for (int i = 0; i < ENERGY_N_COUNT; ++i) {
+        double dev = ms->albedo[i * cols];
+        jw_obj_begin(w);
+        jw_kv_num(w, "n", ms->normal_n[i]);
+        jw_kv_num(w, "device", dev);
+        if (ms->normal_derivation[i]) {
+            jw_kv_num(w, "closed_form", ms->normal_closed[i]);
+            jw_kv_num(w, "diff", fabs(dev - ms->normal_closed[i]));
+            jw_kv_str(w, "derivation", ms->normal_derivation[i]);
+        } else {
+            jw_kv_num(w, "closed_form", NAN);
+            jw_kv_str(w, "reason", "no closed form derived");
+        }
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+    jw_kv_num(w, "normal_incidence_max_diff", ms->normal_max_diff);
+    jw_kv_bool(w, "energy_conserving", ms->max_albedo <= 1.0 + sum->quadrature_tolerance);
+    if (ms->mode == ALBEDO_MICRO)
+        jw_kv_str(w, "note", "D alone, without the masking term G: the albedo grows towards grazing "
+                             "incidence; the distribution's own check is its normalisation (D cos)");
+    jw_obj_end(w);
+}
+
+static void json_albedo(struct jw *w, const struct energy_summary *sum)
+{
+    jw_kv_obj(w, "albedo");
+    jw_kv_str(w, "definition", "a(theta_i) = int over the upper hemisphere of f(L, V) cos(theta_o) dw_o, "
+                               "N = z, L = (sin theta_i, 0, cos theta_i)");
+    jw_kv_str(w, "quadrature", "device (float): composite Gauss-Legendre, 16 nodes per panel, in the lobe's polar "
+                               "angle (psi around R, or theta_h around N), panels from x_e(n)/4 doubling to pi/2 "
+                               "plus the integrand's kinks; azimuth exact (psi) or 1024-point trapezoid (theta_h); "
+                               "polar sum in double on the host");
+    jw_kv_num(w, "tolerance", sum->quadrature_tolerance);
+    jw_kv_nums(w, "n", sum->table_n, ENERGY_N_COUNT);
+    jw_kv_arr(w, "theta_i_deg");
+    for (int j = 0; j < ENERGY_THETA_COUNT; ++j)
+        jw_num(w, 5.0 * j);
+    jw_arr_end(w);
+    jw_kv_arr(w, "models");
+    for (int mi = 0; mi < sum->count; ++mi)
+        json_albedo_model(w, sum, &sum->models[mi]);
+    jw_arr_end(w);
+    jw_obj_end(w);
+}
+
+/* A reciprocity section of energy.json: its pairs, what it compares, then its models. */
+static void recip_section_begin(struct jw *w, const char *name, long pairs, const char *what)
+{
+    jw_kv_obj(w, name);
+    jw_kv_int(w, "pairs", pairs);
+    jw_kv_str(w, "what", what);
+    jw_kv_arr(w, "models");
+}
+
+static void recip_section_end(struct jw *w)
+{
+    jw_arr_end(w);
+    jw_obj_end(w);
+}
+
+static void json_reciprocity(struct jw *w, const struct energy_summary *sum)
+{
+    recip_section_begin(w, "reciprocity", sum->recip_pairs,
+                        "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
+                        "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
+                        "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
+                        "difference relative to the lobe's peak f(c = 1, n)");
+    for (int i = 0; i < sum->recip_count; ++i) {
+        const struct recip_summary *rs = &sum->recip[i];
+        jw_obj_begin(w);
+        jw_kv_str(w, "model", rs->spec.label);
+        jw_kv_str(w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
+        jw_recip(w, "device_worst", &rs->device);
+        jw_recip(w, "host_worst", &rs->host);
+        jw_obj_end(w);
+    }
+    recip_section_end(w);
+}
+
+static void json_reciprocity_pass(struct jw *w, const struct energy_summary *sum)
+{
+    recip_section_begin(w, "reciprocity_image_pass", sum->recip_pairs,
+                        "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
+                        "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
+                        "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
+                        "reference (render_shade_ref)");
+    for (int i = 0; i < sum->pass_count; ++i) {
+        const struct recip_pass_summary *q = &sum->pass[i];
+        jw_obj_begin(w);
+        jw_kv_str(w, "model", q->spec.label);
+        jw_kv_int(w, "shading_mode", q->mode);
+        jw_kv_int(w, "pairs_lit_both_ways", q->lit);
+        jw_kv_num(w, "device_max_rel_diff", q->device_worst);
+        jw_kv_num(w, "host_max_rel_diff", q->host_worst);
+        jw_kv_num(w, "worst_n", q->n);
+        jw_kv_nums(w, "worst_N", q->nrm, 3);
+        jw_kv_nums(w, "worst_L", q->l, 3);
+        jw_kv_nums(w, "worst_V", q->v, 3);
+        jw_kv_num(w, "worst_S_LV", q->s_lv);
+        jw_kv_num(w, "worst_S_VL", q->s_vl);
+        jw_obj_end(w);
+    }
+    recip_section_end(w);
+}
+
 int energy_write(const struct cl_session *s, struct energy_summary *sum, int keep_json, const char *out_dir)
 {
     int rc = 0;
     struct jw w;
     jw_doc_begin(&w, ENERGY_SCHEMA, s, "");
     jw_obj_end(&w);
-    jw_kv_obj(&w, "albedo");
-    jw_kv_str(&w, "definition", "a(theta_i) = int over the upper hemisphere of f(L, V) cos(theta_o) dw_o, "
-                                "N = z, L = (sin theta_i, 0, cos theta_i)");
-    jw_kv_str(&w, "quadrature", "device (float): composite Gauss-Legendre, 16 nodes per panel, in the lobe's polar "
-                                "angle (psi around R, or theta_h around N), panels from x_e(n)/4 doubling to pi/2 "
-                                "plus the integrand's kinks; azimuth exact (psi) or 1024-point trapezoid (theta_h); "
-                                "polar sum in double on the host");
-    jw_kv_num(&w, "tolerance", sum->quadrature_tolerance);
-    jw_kv_nums(&w, "n", sum->table_n, ENERGY_N_COUNT);
-    jw_kv_arr(&w, "theta_i_deg");
-    for (int j = 0; j < ENERGY_THETA_COUNT; ++j)
-        jw_num(&w, 5.0 * j);
-    jw_arr_end(&w);
-    jw_kv_arr(&w, "models");
-    for (int mi = 0; mi < sum->count; ++mi) {
-        const struct energy_model_summary *ms = &sum->models[mi];
-        int cols = ms->cols;
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "model", ms->spec.label);
-        jw_kv_str(&w, "integrand", mode_name(ms->mode));
-        jw_kv_arr(&w, "albedo");
-        for (int i = 0; i < ENERGY_N_COUNT; ++i) {
-            jw_arr_begin(&w);
-            for (int j = 0; j < cols; ++j)
-                jw_num(&w, ms->albedo[i * cols + j]);
-            jw_arr_end(&w);
-        }
-        jw_arr_end(&w);
-        jw_kv_num(&w, "max_albedo", ms->max_albedo);
-        jw_kv_num(&w, "max_at_n", ms->max_at_n);
-        jw_kv_num(&w, "max_at_theta_i_deg", ms->max_at_theta_deg);
-        jw_kv_num(&w, "refine_change", ms->refine_change);
-        jw_kv_arr(&w, "normal_incidence");
-        for (int i = 0; i < ENERGY_N_COUNT; ++i) {
-            double dev = ms->albedo[i * cols];
-            jw_obj_begin(&w);
-            jw_kv_num(&w, "n", ms->normal_n[i]);
-            jw_kv_num(&w, "device", dev);
-            if (ms->normal_derivation[i]) {
-                jw_kv_num(&w, "closed_form", ms->normal_closed[i]);
-                jw_kv_num(&w, "diff", fabs(dev - ms->normal_closed[i]));
-                jw_kv_str(&w, "derivation", ms->normal_derivation[i]);
-            } else {
-                jw_kv_num(&w, "closed_form", NAN);
-                jw_kv_str(&w, "reason", "no closed form derived");
-            }
-            jw_obj_end(&w);
-        }
-        jw_arr_end(&w);
-        jw_kv_num(&w, "normal_incidence_max_diff", ms->normal_max_diff);
-        jw_kv_bool(&w, "energy_conserving", ms->max_albedo <= 1.0 + sum->quadrature_tolerance);
-        if (ms->mode == ALBEDO_MICRO)
-            jw_kv_str(&w, "note", "D alone, without the masking term G: the albedo grows towards grazing "
-                                  "incidence; the distribution's own check is its normalisation (D cos)");
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
-
-    jw_kv_obj(&w, "reciprocity");
-    jw_kv_int(&w, "pairs", sum->recip_pairs);
-    jw_kv_str(&w, "what", "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
-                          "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
-                          "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
-                          "difference relative to the lobe's peak f(c = 1, n)");
-    jw_kv_arr(&w, "models");
-    for (int i = 0; i < sum->recip_count; ++i) {
-        const struct recip_summary *rs = &sum->recip[i];
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "model", rs->spec.label);
-        jw_kv_str(&w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
-        jw_recip(&w, "device_worst", &rs->device);
-        jw_recip(&w, "host_worst", &rs->host);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
-
-    jw_kv_obj(&w, "reciprocity_image_pass");
-    jw_kv_int(&w, "pairs", sum->recip_pairs);
-    jw_kv_str(&w, "what", "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
-                          "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
-                          "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
-                          "reference (render_shade_ref)");
-    jw_kv_arr(&w, "models");
-    for (int i = 0; i < sum->pass_count; ++i) {
-        const struct recip_pass_summary *q = &sum->pass[i];
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "model", q->spec.label);
-        jw_kv_int(&w, "shading_mode", q->mode);
-        jw_kv_int(&w, "pairs_lit_both_ways", q->lit);
-        jw_kv_num(&w, "device_max_rel_diff", q->device_worst);
-        jw_kv_num(&w, "host_max_rel_diff", q->host_worst);
-        jw_kv_num(&w, "worst_n", q->n);
-        jw_kv_nums(&w, "worst_N", q->nrm, 3);
-        jw_kv_nums(&w, "worst_L", q->l, 3);
-        jw_kv_nums(&w, "worst_V", q->v, 3);
-        jw_kv_num(&w, "worst_S_LV", q->s_lv);
-        jw_kv_num(&w, "worst_S_VL", q->s_vl);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_obj_end(&w);
+    json_albedo(&w, sum);
+    json_reciprocity(&w, sum);
+    json_reciprocity_pass(&w, sum);
     jw_kv_num(&w, "seconds", sum->seconds);
     jw_obj_end(&w);
     if (keep_json && !w.out.failed) {

@@ -4,6 +4,7 @@
 #include "throughput.h"
 #include "lcg.h"
 #include "throughput_report.h"
+#include "throughput_internal.h"
 #include "context.h"
 #include "exitcodes.h"
 #include "hostc_baseline.h"
@@ -115,7 +116,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static struct tp_stats stats_of(const double *v, int n)
+struct tp_stats tp_stats_of(const double *v, int n)
 {
     struct tp_stats s = { NAN, NAN, NAN };
     double sorted[TP_MAX_REPS];
@@ -133,14 +134,13 @@ static struct tp_stats stats_of(const double *v, int n)
 }
 
 /* Rates from times: the fastest launch gives the largest rate. */
-static struct tp_stats rates_of(struct tp_stats seconds, double work)
+struct tp_stats tp_rates_of(struct tp_stats seconds, double work)
 {
     struct tp_stats r = { work / seconds.max, work / seconds.median, work / seconds.min };
     return r;
 }
 
-static void fig_fail(struct tp_figure *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void fig_fail(struct tp_figure *f, const char *fmt, ...)
+void tp_fig_fail(struct tp_figure *f, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -149,7 +149,7 @@ static void fig_fail(struct tp_figure *f, const char *fmt, ...)
     f->ok = 0;
 }
 
-static double sum_floats(const float *v, size_t n)
+double tp_sum_floats(const float *v, size_t n)
 {
     double s = 0;
     for (size_t i = 0; i < n; ++i)
@@ -225,7 +225,7 @@ static cl_program tp_user_program(const struct tp_program *p, const struct model
     return NULL;
 }
 
-static int tp_has(const struct tp_program *p, const struct model_spec *m)
+int tp_has(const struct tp_program *p, const struct model_spec *m)
 {
     if (!m)
         return 1;
@@ -237,7 +237,7 @@ static int tp_has(const struct tp_program *p, const struct model_spec *m)
     return 0;
 }
 
-static cl_kernel tp_kernel(struct tp_program *p, const char *kind, const struct model_spec *m, cl_int *e)
+cl_kernel tp_kernel(struct tp_program *p, const char *kind, const struct model_spec *m, cl_int *e)
 {
     char name[64];
     if (m)
@@ -260,492 +260,6 @@ void tp_inputs_for(const struct throughput_options *o, int nmode, long work_item
     in->iters = iters;
     in->work_items = work_items;
 }
-
-/* A kernel ready to launch, with the arguments that depend on the iteration count. */
-struct tp_kernel_run {
-    struct cl_session *s;
-    cl_kernel k;
-    int kind;                     /* 0: uniform, 1: varying, 2: peak */
-    const struct throughput_options *o;
-    size_t global, local;
-    cl_mem out;
-    double work_per_iter;         /* work of one iteration over the whole launch */
-};
-
-static cl_int tp_set_iters(struct tp_kernel_run *r, long iters)
-{
-    cl_int e, it = (cl_int)iters;
-    if (r->kind == 2)
-        return clSetKernelArg(r->k, 2, sizeof it, &it);
-    struct tp_inputs in;
-    tp_inputs_for(r->o, r->kind == 1 ? TP_N_VARYING : TP_N_UNIFORM, (long)r->global, iters, &in);
-    if (r->kind == 0) {
-        if ((e = clSetKernelArg(r->k, 3, sizeof in.dc, &in.dc)) != CL_SUCCESS)
-            return e;
-        return clSetKernelArg(r->k, 4, sizeof it, &it);
-    }
-    if ((e = clSetKernelArg(r->k, 2, sizeof in.dn_step, &in.dn_step)) != CL_SUCCESS)
-        return e;
-    if ((e = clSetKernelArg(r->k, 5, sizeof in.dc, &in.dc)) != CL_SUCCESS)
-        return e;
-    return clSetKernelArg(r->k, 6, sizeof it, &it);
-}
-
-/* Sets the arguments that stay fixed: n, parameters, output. */
-static cl_int tp_set_fixed(struct tp_kernel_run *r, const struct model_spec *m)
-{
-    cl_int e;
-    float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
-    struct tp_inputs in;
-    tp_inputs_for(r->o, r->kind == 1 ? TP_N_VARYING : TP_N_UNIFORM, (long)r->global, 1, &in);
-    if (r->kind == 2) {
-        float a = 0.999f, b = 0.001f;   /* x <- a x + b converges to 1 */
-        if ((e = clSetKernelArg(r->k, 0, sizeof a, &a)) != CL_SUCCESS) return e;
-        if ((e = clSetKernelArg(r->k, 1, sizeof b, &b)) != CL_SUCCESS) return e;
-        return clSetKernelArg(r->k, 3, sizeof r->out, &r->out);
-    }
-    if (r->kind == 0) {
-        if ((e = clSetKernelArg(r->k, 0, sizeof in.n_uniform, &in.n_uniform)) != CL_SUCCESS) return e;
-        if ((e = clSetKernelArg(r->k, 1, sizeof p0, &p0)) != CL_SUCCESS) return e;
-        if ((e = clSetKernelArg(r->k, 2, sizeof p1, &p1)) != CL_SUCCESS) return e;
-        return clSetKernelArg(r->k, 5, sizeof r->out, &r->out);
-    }
-    if ((e = clSetKernelArg(r->k, 0, sizeof in.n_lo, &in.n_lo)) != CL_SUCCESS) return e;
-    if ((e = clSetKernelArg(r->k, 1, sizeof in.dn_lane, &in.dn_lane)) != CL_SUCCESS) return e;
-    if ((e = clSetKernelArg(r->k, 3, sizeof p0, &p0)) != CL_SUCCESS) return e;
-    if ((e = clSetKernelArg(r->k, 4, sizeof p1, &p1)) != CL_SUCCESS) return e;
-    return clSetKernelArg(r->k, 7, sizeof r->out, &r->out);
-}
-
-/* One launch: event time and wall time (enqueue to finish); where the driver's profiling
-   events give no time, the wall time stands in for the event time and *used_wall says so
-   (cl_event_seconds_or_wall). Returns an OpenCL error or 0. */
-static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_s, double *wall_s, int *used_wall,
-                             const char **call)
-{
-    cl_event ev = NULL;
-    cl_int e = tp_set_iters(r, iters);
-    *call = "clSetKernelArg";
-    if (e != CL_SUCCESS)
-        return e;
-    double t0 = wall_seconds();
-    *call = "clEnqueueNDRangeKernel";
-    e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, &r->local, 0, NULL, &ev);
-    if (e == CL_SUCCESS) {
-        *call = "clFinish";
-        e = clsession_finish(r->s, r->k, NULL);
-    }
-    *wall_s = wall_seconds() - t0;
-    *event_s = (e == CL_SUCCESS) ? cl_event_seconds_or_wall(ev, *wall_s, used_wall) : NAN;
-    if (ev)
-        clReleaseEvent(ev);
-    return e;
-}
-
-/* ---- timing through the runner (host/core/runner.h) ------------------------------------ */
-
-/* A device item of the runner: a kernel ready to launch, with its own output buffer. */
-struct tp_dev_ctx {
-    struct tp_kernel_run kr;
-    int timer_wall;               /* the profiling events gave no time: wall time used */
-};
-
-static int tp_dev_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
-{
-    struct tp_dev_ctx *d = ctx;
-    double wall;
-    int used_wall = 0;
-    const char *call = "";
-    cl_int e = tp_launch_once(&d->kr, iters, seconds, &wall, &used_wall, &call);
-    if (e != CL_SUCCESS) {
-        snprintf(reason, reason_len, "launch: %s failed with %s", call, cl_error_name(e));
-        return -1;
-    }
-    d->timer_wall |= used_wall;   /* the figure says which timer gave its times */
-    return 0;
-}
-
-/* A C item of the runner: the tuned C loop of the same model, n mode and work-items. */
-struct tp_c_ctx {
-    const struct throughput_options *o;
-    const struct model_spec *m;       /* NULL: powf */
-    int nmode;
-    long work_items;
-    int threads;
-    float *sums;
-};
-
-static int tp_c_launch(void *ctx, long iters, double *seconds, char *reason, size_t reason_len)
-{
-    struct tp_c_ctx *j = ctx;
-    struct tp_inputs in;
-    tp_inputs_for(j->o, j->nmode, j->work_items, iters, &in);
-    if (hostc_throughput(j->m ? j->m->info->kernel_id : -1, j->m ? (float)j->m->params[0] : 0.0f,
-                         j->m ? (float)j->m->params[1] : 0.0f, &in, j->threads, j->sums, seconds, reason, reason_len))
-        return -1;
-    *seconds = fmax(*seconds, 1e-9);
-    return 0;
-}
-
-/* A figure from the runner's record of its item. */
-static void tp_fill_item(struct tp_figure *f, const struct runner_item *it, const float *out, size_t nout, int timer_wall)
-{
-    if (!it->ok) {
-        fig_fail(f, "%s", it->reason);
-        return;
-    }
-    int reps = it->nreps < TP_MAX_REPS ? it->nreps : TP_MAX_REPS;
-    f->iters = it->iters;
-    f->per_launch = it->work_per_iter * (double)it->iters;
-    f->sec = stats_of(it->seconds, reps);
-    f->sec_wall = stats_of(it->wall, reps);
-    f->rate = rates_of(f->sec, f->per_launch);
-    f->rate_wall = rates_of(f->sec_wall, f->per_launch);
-    f->checksum = out ? sum_floats(out, nout) : NAN;
-    f->nreps = reps;
-    memcpy(f->rep_seconds, it->seconds, (size_t)reps * sizeof *it->seconds);
-    memcpy(f->rep_cpu, it->cpu, (size_t)reps * sizeof *it->cpu);
-    f->has_norm = it->norm != NULL;
-    if (it->norm) {
-        memcpy(f->rep_norm, it->norm, (size_t)reps * sizeof *it->norm);
-        f->norm = stats_of(it->norm, reps);
-    }
-    f->has_cpu_norm = it->cpu_norm != NULL;
-    if (it->cpu_norm) {
-        memcpy(f->rep_cpu_norm, it->cpu_norm, (size_t)reps * sizeof *it->cpu_norm);
-        f->cpu_norm = stats_of(it->cpu_norm, reps);
-    }
-    f->retries = it->retries;
-    f->disturbed = it->disturbed;
-    f->timer_wall = timer_wall;
-    f->ok = 1;
-    f->finite = isfinite(f->checksum);
-}
-
-/* One timed thing of a run: a model (NULL: pow) in an n mode, on the device in a program, or
-   (prog NULL) its tuned C loop. */
-struct tp_job {
-    struct tp_figure *f;
-    struct tp_program *prog;
-    const struct model_spec *m;
-    int nmode;
-};
-
-struct tp_progress {
-    int quiet;
-    double t0, last;
-};
-
-static void tp_round_done(void *ctx, int done, int rounds)
-{
-    struct tp_progress *p = ctx;
-    double now = wall_seconds();
-    if (!p->quiet && (now - p->last > 1.0 || done == rounds)) {
-        fprintf(stderr, "throughput: round %d of %d (%.1f s)\n", done, rounds, now - p->t0);
-        p->last = now;
-    }
-}
-
-/* The peak kernel, the reference of every round: built into *prog and ready in *d. */
-static int tp_peak_setup(struct cl_session *s, const char *options, long work_items, cl_program *prog,
-                         struct tp_dev_ctx *d, const struct throughput_options *o, struct tp_figure *f, double *build_s)
-{
-    memset(d, 0, sizeof *d);
-    cl_int e;
-    /* scalar chains for a driver that vectorises across work-items (kernels/peak.cl, PEAK_W) */
-    int lanes = s->specialise ? 1 : 16;
-    char opts[400];
-    snprintf(opts, sizeof opts, "%s%s%s", options ? options : "", s->specialise && options && *options ? " " : "",
-             s->specialise ? "-DPEAK_W=1" : "");
-    if (clsession_build(s, "peak.cl", NULL, opts, prog)) {
-        fig_fail(f, "building kernels/peak.cl failed (build log on stderr)");
-        return -1;
-    }
-    *build_s = s->last_build_seconds;
-    d->kr.s = s;
-    d->kr.o = o;
-    d->kr.kind = 2;
-    d->kr.global = (size_t)work_items;
-    d->kr.local = 1;
-    d->kr.work_per_iter = (double)work_items * PEAK_UNROLL * PEAK_CHAINS * lanes * 2;
-    d->kr.k = clsession_create_kernel(*prog, "peak_fma", &e);
-    if (e != CL_SUCCESS) {
-        fig_fail(f, "clCreateKernel(peak_fma) failed with %s", cl_error_name(e));
-        return -1;
-    }
-    d->kr.out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e);
-    if (e != CL_SUCCESS) {
-        fig_fail(f, "clCreateBuffer failed with %s", cl_error_name(e));
-        return -1;
-    }
-    if ((e = tp_set_fixed(&d->kr, NULL)) != CL_SUCCESS) {
-        fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(e));
-        return -1;
-    }
-    return 0;
-}
-
-static void tp_dev_release(struct tp_dev_ctx *d)
-{
-    if (d->kr.out)
-        clReleaseMemObject(d->kr.out);
-    if (d->kr.k)
-        clReleaseKernel(d->kr.k);
-    d->kr.out = NULL;
-    d->kr.k = NULL;
-}
-
-/* Times every job and the peak kernel (the reference) in the runner's interleaved rounds.
-   Jobs that cannot be set up are failed figures; the others are filled from the runner. */
-struct tp_bench {
-    struct cl_session *s;
-    const struct throughput_options *o;
-    long work_items;
-    int threads;
-    const char *peak_options;
-    struct tp_figure *peak;
-    double peak_build_seconds;
-    /* the run's record */
-    long launches, retried, disturbed;
-    int rounds;
-};
-
-static int tp_bench_run(struct tp_bench *b, struct tp_job *jobs, int njobs, int quiet)
-{
-    struct cl_session *s = b->s;
-    const struct throughput_options *o = b->o;
-    int n = njobs + 1, rc = 0;
-    struct runner_item *items = calloc((size_t)n, sizeof *items);
-    struct tp_dev_ctx *dev = calloc((size_t)n, sizeof *dev);
-    struct tp_c_ctx *cj = calloc((size_t)n, sizeof *cj);
-    size_t nout = (size_t)b->work_items * 16;
-    float *host = malloc(nout * sizeof *host);
-    cl_program peak_prog = NULL;
-    if (!items || !dev || !cj || !host) {
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    memset(b->peak, 0, sizeof *b->peak);
-    int peak_ok = tp_peak_setup(s, b->peak_options, b->work_items, &peak_prog, &dev[0], o, b->peak,
-                                &b->peak_build_seconds) == 0;
-    int cpu_threads = s->is_cpu ? (int)(s->compute_units ? s->compute_units : 1) : 0;
-    int used = 0;
-    /* item 0: the reference */
-    if (peak_ok) {
-        items[used] = (struct runner_item){ .name = "peak", .launch = tp_dev_launch, .ctx = &dev[0], .calibrate = 1,
-                                            .work_per_iter = dev[0].kr.work_per_iter, .cpu_threads = cpu_threads };
-        ++used;
-    }
-    int *job_item = calloc((size_t)n, sizeof *job_item);
-    if (!job_item) {
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    for (int i = 0; i < njobs; ++i) {
-        struct tp_job *j = &jobs[i];
-        job_item[i] = -1;
-        if (j->f->reason[0])
-            continue;   /* failed before timing (a build, a model without a C loop) */
-        struct runner_item *it = &items[used];
-        if (j->prog) {
-            struct tp_dev_ctx *d = &dev[used];
-            cl_int e = CL_SUCCESS;
-            d->kr.s = s;
-            d->kr.o = o;
-            d->kr.kind = j->nmode == TP_N_VARYING ? 1 : 0;
-            d->kr.global = (size_t)b->work_items;
-            d->kr.local = 1;   /* one float16 work-item per group: each is a long loop already */
-            d->kr.work_per_iter = (double)b->work_items * TP_EVALS_PER_ITER;
-            if (!tp_has(j->prog, j->m)) {
-                fig_fail(j->f, "model %s is not in the throughput program", j->m ? j->m->label : "pow");
-                continue;
-            }
-            if ((d->kr.k = tp_kernel(j->prog, nmode_names[j->nmode], j->m, &e)), e != CL_SUCCESS) {
-                fig_fail(j->f, "clCreateKernel failed with %s", cl_error_name(e));
-                continue;
-            }
-            d->kr.out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, nout * sizeof(float), NULL, &e);
-            if (e != CL_SUCCESS) {
-                fig_fail(j->f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
-                continue;
-            }
-            if ((e = tp_set_fixed(&d->kr, j->m)) != CL_SUCCESS) {
-                fig_fail(j->f, "clSetKernelArg failed with %s", cl_error_name(e));
-                continue;
-            }
-            *it = (struct runner_item){ .name = j->m ? j->m->label : "pow", .launch = tp_dev_launch, .ctx = d,
-                                        .calibrate = 1, .work_per_iter = d->kr.work_per_iter,
-                                        .cpu_threads = cpu_threads };
-        } else {
-            struct tp_c_ctx *c = &cj[used];
-            *c = (struct tp_c_ctx){ o, j->m, j->nmode, b->work_items, b->threads, malloc(nout * sizeof(float)) };
-            if (!c->sums) {
-                fig_fail(j->f, "out of memory");
-                continue;
-            }
-            *it = (struct runner_item){ .name = "C", .launch = tp_c_launch, .ctx = c, .calibrate = 1,
-                                        .work_per_iter = (double)b->work_items * TP_EVALS_PER_ITER,
-                                        .cpu_threads = b->threads };
-        }
-        job_item[i] = used++;
-    }
-    struct runner run;
-    runner_init(&run, items, used);
-    run.reference = peak_ok ? 0 : -1;
-    run.rounds = o->reps;
-    run.min_time = o->min_time;
-    run.seed = o->seed;
-    struct tp_progress prog = { quiet, wall_seconds(), wall_seconds() };
-    run.progress = tp_round_done;
-    run.progress_ctx = &prog;
-    if (!quiet)
-        fprintf(stderr, "throughput: %d items x %d rounds, interleaved (reference: %s)\n", used, o->reps,
-                peak_ok ? "the peak FMA kernel" : "none");
-    if (runner_run(&run)) {
-        rc = EXIT_RUNTIME;
-        runner_release(&run);
-        goto done;
-    }
-    b->launches = run.launches;
-    b->retried = run.retried;
-    b->disturbed = run.disturbed;
-    b->rounds = run.rounds;
-    if (peak_ok) {
-        cl_int e = clEnqueueReadBuffer(s->queue, dev[0].kr.out, CL_TRUE, 0, nout * sizeof(float), host, 0, NULL, NULL);
-        size_t peak_out = (size_t)b->work_items * (s->specialise ? 1 : 16);   /* kernels/peak.cl, PEAK_W */
-        tp_fill_item(b->peak, &items[0], e == CL_SUCCESS ? host : NULL, peak_out, dev[0].timer_wall);
-    }
-    for (int i = 0; i < njobs; ++i) {
-        int k = job_item[i];
-        if (k < 0)
-            continue;
-        if (jobs[i].prog) {
-            cl_int e = clEnqueueReadBuffer(s->queue, dev[k].kr.out, CL_TRUE, 0, nout * sizeof(float), host, 0, NULL,
-                                           NULL);
-            if (e != CL_SUCCESS && items[k].ok)
-                fig_fail(jobs[i].f, "reading the sums: clEnqueueReadBuffer failed with %s", cl_error_name(e));
-            else
-                tp_fill_item(jobs[i].f, &items[k], host, nout, dev[k].timer_wall);
-        } else {
-            tp_fill_item(jobs[i].f, &items[k], cj[k].sums, nout, 0);
-        }
-    }
-    runner_release(&run);
-    free(job_item);
-done:
-    for (int i = 0; dev && i < n; ++i)
-        tp_dev_release(&dev[i]);
-    for (int i = 0; cj && i < n; ++i)
-        free(cj[i].sums);
-    if (peak_prog)
-        clReleaseProgram(peak_prog);
-    free(host);
-    free(cj);
-    free(dev);
-    free(items);
-    return rc;
-}
-
-int tp_program_points(struct tp_program *p, const struct model_spec *m, const float *c, const float *n, size_t count,
-                      float *out)
-{
-    int rc = 0;
-    cl_int e;
-    cl_kernel k = NULL;
-    if (!tp_has(p, m)) {
-        fprintf(stderr, "brdfbench: model %s is not in the throughput program\n", m->label);
-        return EXIT_RUNTIME;
-    }
-    k = tp_kernel(p, "points", m, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_points)", done);
-    float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
-    rc = cl_run_points16(p->s, k, 2, c, n, count, out);
-done:
-    if (k) clReleaseKernel(k);
-    return rc;
-}
-
-/* A launch of the shared throughput program over work_items work-items of one each. */
-static struct tp_kernel_run tp_program_run(const struct tp_program *p, int nmode, const struct throughput_options *o,
-                                           long work_items)
-{
-    struct tp_kernel_run r;
-    memset(&r, 0, sizeof r);
-    r.s = p->s;
-    r.o = o;
-    r.kind = nmode == TP_N_VARYING ? 1 : 0;
-    r.global = (size_t)work_items;
-    r.local = 1;
-    return r;
-}
-
-int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
-                      long work_items, long iters, float *sums, double *event_seconds)
-{
-    int rc = 0;
-    cl_int e;
-    struct tp_kernel_run r = tp_program_run(p, nmode, o, work_items);
-    if (!tp_has(p, m)) {
-        fprintf(stderr, "brdfbench: model %s is not in the throughput program\n", m->label);
-        return EXIT_RUNTIME;
-    }
-    r.k = tp_kernel(p, nmode_names[nmode], m, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_uniform/tp_varying)", done);
-    r.out = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sums)", done);
-    CL_CHECK_GOTO(tp_set_fixed(&r, m), done);
-    double wall;
-    const char *call;
-    e = tp_launch_once(&r, iters, event_seconds, &wall, NULL, &call);
-    if (e != CL_SUCCESS) {
-        cl_report(call, e, __FILE__, __LINE__);
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    CL_CHECK_GOTO(clEnqueueReadBuffer(p->s->queue, r.out, CL_TRUE, 0, (size_t)work_items * 16 * sizeof(float), sums, 0,
-                                      NULL, NULL), done);
-done:
-    if (r.out) clReleaseMemObject(r.out);
-    if (r.k) clReleaseKernel(r.k);
-    return rc;
-}
-
-int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struct throughput_options *o,
-                long work_items, int quiet)
-{
-    struct tp_figure *f = calloc((size_t)count + 1, sizeof *f);
-    struct tp_job *jobs = calloc((size_t)count, sizeof *jobs);
-    if (!f || !jobs) {
-        free(f);
-        free(jobs);
-        return EXIT_RUNTIME;
-    }
-    for (int i = 0; i < count; ++i)
-        jobs[i] = (struct tp_job){ &f[i + 1], p, t[i].m, t[i].nmode };
-    struct tp_bench b = { p->s, o, work_items, 1, o->base_options ? o->base_options : "", &f[0], 0, 0, 0, 0, 0 };
-    int rc = tp_bench_run(&b, jobs, count, quiet);
-    for (int i = 0; i < count && rc == 0; ++i) {
-        const struct tp_figure *g = &f[i + 1];
-        t[i].ok = g->ok;
-        snprintf(t[i].reason, sizeof t[i].reason, "%s", g->ok ? "" : g->reason[0] ? g->reason : "not measured");
-        t[i].rate[0] = g->ok ? g->rate.min : NAN;
-        t[i].rate[1] = g->ok ? g->rate.median : NAN;
-        t[i].rate[2] = g->ok ? g->rate.max : NAN;
-        /* per CPU second where the runner keeps it (a CPU device), else per wall second */
-        const struct tp_stats *q = g->has_cpu_norm ? &g->cpu_norm : &g->norm;
-        int has = g->ok && (g->has_cpu_norm || g->has_norm);
-        t[i].norm[0] = has ? q->min : NAN;
-        t[i].norm[1] = has ? q->median : NAN;
-        t[i].norm[2] = has ? q->max : NAN;
-        t[i].nreps = g->ok ? g->nreps : 0;
-    }
-    free(jobs);
-    free(f);
-    return rc;
-}
-
 /* ---- a whole run -------------------------------------------------------------------------- */
 
 /* Probe points as in the accuracy check: half in the epicentre, half over the fall-off (out to
@@ -864,16 +378,16 @@ static void tp_measure_models(struct tp_run *r, int quiet)
                 memset(f, 0, sizeof *f);
                 en->measured[v][m] = 1;
                 if (en->skipped)
-                    fig_fail(f, "user models are not compiled into the throughput kernels");
+                    tp_fig_fail(f, "user models are not compiled into the throughput kernels");
                 else if (!r->built[v])
-                    fig_fail(f, "%s", r->build_reason[v]);
+                    tp_fig_fail(f, "%s", r->build_reason[v]);
                 jobs[njobs++] = (struct tp_job){ f, &prog[v], en->m, m };
                 if (v != TP_VARIANT_DEFAULT || !r->o->host_c)
                     continue;
                 struct tp_figure *c = &en->hostc[m];
                 memset(c, 0, sizeof *c);
                 if (en->m && !hostc_supports(en->m->info->kernel_id))
-                    fig_fail(c, "no C loop for this model (user models run on the device only)");
+                    tp_fig_fail(c, "no C loop for this model (user models run on the device only)");
                 jobs[njobs++] = (struct tp_job){ c, NULL, en->m, m };
             }
     struct tp_bench b = { r->s, r->o, r->work_items, r->threads, r->peak_options, &r->peak, 0, 0, 0, 0, 0 };
@@ -1021,8 +535,8 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
             snprintf(w->reason, TP_REASON, "%.200s", !dv->ok ? dv->reason : hc->reason);
             continue;
         }
-        w->dev_s = stats_of(dv->seconds, dv->nreps);
-        w->hostc_s = stats_of(hc->seconds, hc->nreps);
+        w->dev_s = tp_stats_of(dv->seconds, dv->nreps);
+        w->hostc_s = tp_stats_of(hc->seconds, hc->nreps);
         w->agree = 0;
         const float *dev = si[d].out, *hco = si[d + 1].out;
         for (long i = 0; i < r->sweep_n_count; ++i)
@@ -1104,7 +618,7 @@ static int tp_run_all(struct cl_session *s, const struct throughput_options *o, 
                 r->work_items, r->nmodels, r->nmodels == 1 ? "" : "s", o->min_time, o->reps);
     for (int i = 0; i < r->nentries; ++i)
         for (int m = 0; m < TP_NMODE_COUNT; ++m)
-            fig_fail(&r->e[i].hostc[m], !o->host_c ? "the C baseline was not run (--no-host-c)"
+            tp_fig_fail(&r->e[i].hostc[m], !o->host_c ? "the C baseline was not run (--no-host-c)"
                                         : !variant_on(r, TP_VARIANT_DEFAULT) ? "the C baseline runs with the default variant"
                                         : "not measured");
     runner_loadavg(r->load_start, sizeof r->load_start);

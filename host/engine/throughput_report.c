@@ -151,201 +151,238 @@ static int next_measured(const struct tp_run *r, int *v, int *i, int *m)
     }
 }
 
-int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
+/* throughput.json, part by part (tp_write_json). */
+static void json_context(struct jw *w, const struct tp_run *r)
 {
     const struct throughput_options *o = r->o;
+    const char *aff = getenv("POCL_AFFINITY");
+    jw_kv_str(w, "pocl_affinity", aff ? aff : "(unset)");
+    jw_kv_obj(w, "throughput");
+    jw_kv_int(w, "reps", o->reps);
+    jw_kv_num(w, "min_time_s", o->min_time);
+    jw_kv_int(w, "work_items", r->work_items);
+    jw_kv_int(w, "local_size", 1);
+    jw_kv_int(w, "evaluations_per_iteration", TP_EVALS_PER_ITER);
+    jw_kv_num(w, "n_uniform", (float)o->n_uniform);
+    jw_kv_num(w, "n_lo", o->n_lo);
+    jw_kv_num(w, "n_hi", o->n_hi);
+    jw_kv_int(w, "host_c_threads", o->host_c ? r->threads : 0);
+    jw_kv_str(w, "host_c_flags", "-O3 -march=native -fno-math-errno");
+    jw_kv_str(w, "loadavg_start", r->load_start);
+    jw_kv_str(w, "loadavg_end", r->load_end);
+    jw_kv_obj(w, "runner");
+    jw_kv_int(w, "rounds", r->rounds);
+    jw_kv_str(w, "order", "every figure once per round, in a fresh random order each round");
+    jw_kv_int(w, "seed", (long)(r->seed & 0x7fffffffffffffffULL));
+    jw_kv_str(w, "reference", "peak_fma (kernels/peak.cl), timed in every round");
+    jw_kv_int(w, "launches", r->launches);
+    jw_kv_int(w, "preemption_retries", r->retried);
+    jw_kv_int(w, "disturbed_reps", r->disturbed);
+    jw_kv_num(w, "steal_seconds", r->steal_start >= 0 && r->steal_end >= 0 ? r->steal_end - r->steal_start : NAN);
+    jw_obj_end(w);
+    jw_kernel_fingerprints(w);
+    jw_obj_end(w);
+    jw_obj_end(w);   /* context */
+
+}
+
+static void json_builds(struct jw *w, const struct tp_run *r)
+{
+    jw_kv_arr(w, "builds");
+    for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
+        if (!variant_on(r, v))
+            continue;
+        jw_obj_begin(w);
+        jw_kv_str(w, "variant", tp_variant_name(v));
+        jw_kv_str(w, "build_options", r->options[v]);
+        jw_kv_str(w, "status", r->built[v] ? "ok" : "failed");
+        jw_kv_num(w, "build_seconds", r->build_seconds[v]);
+        if (!r->built[v])
+            jw_kv_str(w, "reason", r->build_reason[v]);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+}
+
+static void json_peak(struct jw *w, const struct tp_run *r)
+{
+    jw_kv_obj(w, "peak");
+    jw_kv_str(w, "status", r->peak.ok ? "ok" : "failed");
+    if (!r->peak.ok)
+        jw_kv_str(w, "reason", r->peak.reason);
+    jw_kv_str(w, "kernel", "kernels/peak.cl: 16 independent float16 FMA chains per work-item, 2 flops per lane and step");
+    jw_kv_str(w, "build_options", r->peak_options);
+    jw_kv_num(w, "build_seconds", r->peak_build_seconds);
+    jw_stats(w, "flops_per_s", r->peak.rate);
+    jw_stats(w, "flops_per_s_wall", r->peak.rate_wall);
+    jw_kv_num(w, "fma_per_s", peak_fma_per_s(r));
+    jw_reps(w, "flops_per_s_reps", &r->peak);
+    jw_kv_str(w, "which", "timed once in every round of the runner, among the models: the reference of their "
+                          "normalised rates");
+    jw_obj_end(w);
+}
+
+static void json_host_c(struct jw *w, const struct tp_run *r, const struct tp_entry *e, int m)
+{
+    const struct throughput_options *o = r->o;
+    jw_kv_obj(w, "host_c");
+    if (!o->host_c) {
+        jw_kv_str(w, "status", "not run");
+    } else {
+        jw_kv_str(w, "status", e->hostc[m].ok ? "ok" : "failed");
+        if (!e->hostc[m].ok)
+            jw_kv_str(w, "reason", e->hostc[m].reason);
+        jw_stats(w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
+        jw_reps(w, "evals_per_s_reps", &e->hostc[m]);
+        jw_runner_fields(w, &e->hostc[m]);
+        jw_kv_int(w, "iterations_per_work_item", e->hostc[m].iters);
+        jw_kv_num(w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
+        jw_kv_int(w, "threads", r->threads);
+    }
+    jw_obj_end(w);
+}
+
+/* One row of "results": entry i in build variant v and n mode m. */
+static void json_result(struct jw *w, const struct tp_run *r, int v, int i, int m)
+{
+    const struct throughput_options *o = r->o;
+    const struct tp_entry *e = &r->e[i];
+    const struct tp_figure *f = &e->dev[v][m];
+    struct tp_ratios q = ratios_of(r, i, v, m);
+    jw_obj_begin(w);
+    jw_kv_str(w, "model", e->m ? e->m->info->id : "pow");
+    jw_kv_str(w, "label", e->label);
+    jw_kv_str(w, "kind", e->m ? "model" : "builtin");
+    jw_kv_str(w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
+    jw_kv_str(w, "variant", tp_variant_name(v));
+    jw_kv_str(w, "build_options", r->options[v]);
+    jw_kv_str(w, "n_mode", nmode_names[m]);
+    jw_kv_str(w, "status", f->ok ? "ok" : "failed");
+    if (!f->ok)
+        jw_kv_str(w, "reason", f->reason);
+    jw_stats(w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+    jw_reps(w, "evals_per_s_reps", f);
+    jw_runner_fields(w, f);
+    jw_stats(w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
+    jw_stats(w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
+    jw_stats(w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
+    jw_kv_int(w, "iterations_per_work_item", f->iters);
+    jw_kv_num(w, "evaluations_per_launch", f->per_launch);
+    jw_kv_num(w, "checksum", f->ok ? f->checksum : NAN);
+    jw_kv_bool(w, "values_finite", f->ok && f->finite);
+    if (f->ok && !f->finite)
+        jw_kv_str(w, "note", "some values were NaN or Inf under these build options (their sum is not "
+                             "finite); the rate is the rate of that code");
+    jw_ratio(w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
+    jw_ratio(w, "ratio_to_model_reference", q.to_model_reference,
+             f->ok ? "the model's reference is not part of this run" : f->reason);
+    jw_ratio(w, "ratio_to_host_c", q.to_host_c,
+             !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
+                     : e->hostc[m].reason);
+    jw_ratio(w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
+    json_host_c(w, r, e, m);
+    jw_kv_obj(w, "accuracy");
+    jw_kv_str(w, "status", e->acc_ok[v] ? "ok" : "failed");
+    if (!e->acc_ok[v])
+        jw_kv_str(w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
+    jw_kv_num(w, "max_diff_of_peak", e->acc_max_diff[v]);
+    jw_kv_int(w, "nonfinite", e->acc_nonfinite[v]);
+    jw_kv_int(w, "points", TP_ACC_POINTS);
+    jw_obj_end(w);
+    jw_obj_end(w);
+}
+
+static void json_sweep_models(struct jw *w, const struct tp_run *r)
+{
+    jw_kv_arr(w, "models");
+    for (int k = 0; k < r->nsw; ++k) {
+        const struct tp_sweep_model *s = &r->sw[k];
+        jw_obj_begin(w);
+        jw_kv_str(w, "label", s->label);
+        jw_kv_str(w, "status", s->ok ? "ok" : "failed");
+        if (!s->ok)
+            jw_kv_str(w, "reason", s->reason);
+        jw_stats(w, "device_seconds", s->ok ? s->dev_s : (struct tp_stats){ NAN, NAN, NAN });
+        jw_stats(w, "host_c_seconds", s->ok ? s->hostc_s : (struct tp_stats){ NAN, NAN, NAN });
+        jw_kv_num(w, "points", s->points);
+        jw_ratio(w, "speedup_vs_host_c", s->ok ? ratio(s->hostc_s.median, s->dev_s.median) : NAN, s->reason);
+        jw_kv_num(w, "agreement_max_rel_diff", s->ok ? s->agree : NAN);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+}
+
+static void json_sweep_ran(struct jw *w, const struct tp_run *r)
+{
+    const struct throughput_options *o = r->o;
+    double dsum = 0, hsum = 0, pts = 0, agree = 0;
+    int all_ok = r->nsw > 0 && !r->sweep_reason[0];
+    for (int k = 0; k < r->nsw; ++k) {
+        if (!r->sw[k].ok) {
+            all_ok = 0;
+            continue;
+        }
+        dsum += r->sw[k].dev_s.median;
+        hsum += r->sw[k].hostc_s.median;
+        pts += r->sw[k].points;
+        if (!sweep_alternative(r->sw[k].label))
+            agree = fmax(agree, r->sw[k].agree);
+    }
+    jw_kv_str(w, "status", all_ok ? "ok" : "partial");
+    if (r->sweep_reason[0])
+        jw_kv_str(w, "reason", r->sweep_reason);
+    jw_kv_str(w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
+                         "(the same samples in s = 1 - cos x, expf(n log1pf(-s)) for c^n), per model: median of the timed runs");
+    jw_kv_num(w, "n_min", o->sweep_grid.n_min);
+    jw_kv_num(w, "n_max", o->sweep_grid.n_max);
+    jw_kv_num(w, "n_step", o->sweep_grid.n_step);
+    jw_kv_int(w, "n_count", r->sweep_n_count);
+    jw_kv_int(w, "samples_per_zone", o->sweep_grid.samples);
+    jw_kv_int(w, "reps", o->sweep_reps);
+    jw_kv_num(w, "build_seconds", r->sweep_build_seconds);
+    jw_kv_num(w, "device_seconds", dsum > 0 ? dsum : NAN);
+    jw_kv_num(w, "host_c_seconds", hsum > 0 ? hsum : NAN);
+    jw_kv_num(w, "points", pts);
+    jw_kv_num(w, "device_points_per_s", dsum > 0 ? pts / dsum : NAN);
+    jw_kv_num(w, "host_c_points_per_s", hsum > 0 ? pts / hsum : NAN);
+    jw_ratio(w, "speedup_vs_host_c", ratio(hsum, dsum), "no model was timed on both sides");
+    jw_kv_num(w, "agreement_max_rel_diff", agree);
+    jw_kv_str(w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
+                                   "relative to at least 1e-4 (their sample cosines differ by float rounding), "
+                                   "over the models but those in agreement_excludes: a second formula of a "
+                                   "reference lobe (phongpow: the pow() built-in, which C's expf(n log1pf(-s)) "
+                                   "is not meant to match); every model's own figure is in models");
+    jw_kv_arr(w, "agreement_excludes");
+    for (int k = 0; k < r->nsw; ++k)
+        if (sweep_alternative(r->sw[k].label))
+            jw_str(w, r->sw[k].label);
+    jw_arr_end(w);
+    json_sweep_models(w, r);
+}
+
+int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
+{
     struct jw w;
     jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
-    const char *aff = getenv("POCL_AFFINITY");
-    jw_kv_str(&w, "pocl_affinity", aff ? aff : "(unset)");
-    jw_kv_obj(&w, "throughput");
-    jw_kv_int(&w, "reps", o->reps);
-    jw_kv_num(&w, "min_time_s", o->min_time);
-    jw_kv_int(&w, "work_items", r->work_items);
-    jw_kv_int(&w, "local_size", 1);
-    jw_kv_int(&w, "evaluations_per_iteration", TP_EVALS_PER_ITER);
-    jw_kv_num(&w, "n_uniform", (float)o->n_uniform);
-    jw_kv_num(&w, "n_lo", o->n_lo);
-    jw_kv_num(&w, "n_hi", o->n_hi);
-    jw_kv_int(&w, "host_c_threads", o->host_c ? r->threads : 0);
-    jw_kv_str(&w, "host_c_flags", "-O3 -march=native -fno-math-errno");
-    jw_kv_str(&w, "loadavg_start", r->load_start);
-    jw_kv_str(&w, "loadavg_end", r->load_end);
-    jw_kv_obj(&w, "runner");
-    jw_kv_int(&w, "rounds", r->rounds);
-    jw_kv_str(&w, "order", "every figure once per round, in a fresh random order each round");
-    jw_kv_int(&w, "seed", (long)(r->seed & 0x7fffffffffffffffULL));
-    jw_kv_str(&w, "reference", "peak_fma (kernels/peak.cl), timed in every round");
-    jw_kv_int(&w, "launches", r->launches);
-    jw_kv_int(&w, "preemption_retries", r->retried);
-    jw_kv_int(&w, "disturbed_reps", r->disturbed);
-    jw_kv_num(&w, "steal_seconds", r->steal_start >= 0 && r->steal_end >= 0 ? r->steal_end - r->steal_start : NAN);
-    jw_obj_end(&w);
-    jw_kernel_fingerprints(&w);
-    jw_obj_end(&w);
-    jw_obj_end(&w);   /* context */
+    json_context(&w, r);
 
     jw_kv_obj(&w, "definitions");
     for (size_t i = 0; i < sizeof tp_definitions / sizeof tp_definitions[0]; ++i)
         jw_kv_str(&w, tp_definitions[i][0], tp_definitions[i][1]);
     jw_obj_end(&w);
 
-    jw_kv_arr(&w, "builds");
-    for (int v = 0; v < TP_VARIANT_COUNT; ++v) {
-        if (!variant_on(r, v))
-            continue;
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "variant", tp_variant_name(v));
-        jw_kv_str(&w, "build_options", r->options[v]);
-        jw_kv_str(&w, "status", r->built[v] ? "ok" : "failed");
-        jw_kv_num(&w, "build_seconds", r->build_seconds[v]);
-        if (!r->built[v])
-            jw_kv_str(&w, "reason", r->build_reason[v]);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-
-    jw_kv_obj(&w, "peak");
-    jw_kv_str(&w, "status", r->peak.ok ? "ok" : "failed");
-    if (!r->peak.ok)
-        jw_kv_str(&w, "reason", r->peak.reason);
-    jw_kv_str(&w, "kernel", "kernels/peak.cl: 16 independent float16 FMA chains per work-item, 2 flops per lane and step");
-    jw_kv_str(&w, "build_options", r->peak_options);
-    jw_kv_num(&w, "build_seconds", r->peak_build_seconds);
-    jw_stats(&w, "flops_per_s", r->peak.rate);
-    jw_stats(&w, "flops_per_s_wall", r->peak.rate_wall);
-    jw_kv_num(&w, "fma_per_s", peak_fma_per_s(r));
-    jw_reps(&w, "flops_per_s_reps", &r->peak);
-    jw_kv_str(&w, "which", "timed once in every round of the runner, among the models: the reference of their "
-                           "normalised rates");
-    jw_obj_end(&w);
-
+    json_builds(&w, r);
+    json_peak(&w, r);
     jw_kv_arr(&w, "results");
-    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
-        const struct tp_entry *e = &r->e[i];
-        const struct tp_figure *f = &e->dev[v][m];
-        struct tp_ratios q = ratios_of(r, i, v, m);
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "model", e->m ? e->m->info->id : "pow");
-        jw_kv_str(&w, "label", e->label);
-        jw_kv_str(&w, "kind", e->m ? "model" : "builtin");
-        jw_kv_str(&w, "formula", e->m ? e->m->info->formula : "pow(c, n), the OpenCL built-in");
-        jw_kv_str(&w, "variant", tp_variant_name(v));
-        jw_kv_str(&w, "build_options", r->options[v]);
-        jw_kv_str(&w, "n_mode", nmode_names[m]);
-        jw_kv_str(&w, "status", f->ok ? "ok" : "failed");
-        if (!f->ok)
-            jw_kv_str(&w, "reason", f->reason);
-        jw_stats(&w, "evals_per_s", f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
-        jw_reps(&w, "evals_per_s_reps", f);
-        jw_runner_fields(&w, f);
-        jw_stats(&w, "evals_per_s_wall", f->ok ? f->rate_wall : (struct tp_stats){ NAN, NAN, NAN });
-        jw_stats(&w, "seconds", f->ok ? f->sec : (struct tp_stats){ NAN, NAN, NAN });
-        jw_stats(&w, "seconds_wall", f->ok ? f->sec_wall : (struct tp_stats){ NAN, NAN, NAN });
-        jw_kv_int(&w, "iterations_per_work_item", f->iters);
-        jw_kv_num(&w, "evaluations_per_launch", f->per_launch);
-        jw_kv_num(&w, "checksum", f->ok ? f->checksum : NAN);
-        jw_kv_bool(&w, "values_finite", f->ok && f->finite);
-        if (f->ok && !f->finite)
-            jw_kv_str(&w, "note", "some values were NaN or Inf under these build options (their sum is not "
-                                  "finite); the rate is the rate of that code");
-        jw_ratio(&w, "ratio_to_reference", q.to_reference, f->ok ? "the pow() built-in was not measured" : f->reason);
-        jw_ratio(&w, "ratio_to_model_reference", q.to_model_reference,
-                 f->ok ? "the model's reference is not part of this run" : f->reason);
-        jw_ratio(&w, "ratio_to_host_c", q.to_host_c,
-                 !f->ok ? f->reason : !o->host_c ? "the C baseline was not run (--no-host-c)"
-                          : e->hostc[m].reason);
-        jw_ratio(&w, "fraction_of_peak", q.of_peak, f->ok ? r->peak.reason : f->reason);
-        jw_kv_obj(&w, "host_c");
-        if (!o->host_c) {
-            jw_kv_str(&w, "status", "not run");
-        } else {
-            jw_kv_str(&w, "status", e->hostc[m].ok ? "ok" : "failed");
-            if (!e->hostc[m].ok)
-                jw_kv_str(&w, "reason", e->hostc[m].reason);
-            jw_stats(&w, "evals_per_s", e->hostc[m].ok ? e->hostc[m].rate : (struct tp_stats){ NAN, NAN, NAN });
-            jw_reps(&w, "evals_per_s_reps", &e->hostc[m]);
-            jw_runner_fields(&w, &e->hostc[m]);
-            jw_kv_int(&w, "iterations_per_work_item", e->hostc[m].iters);
-            jw_kv_num(&w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
-            jw_kv_int(&w, "threads", r->threads);
-        }
-        jw_obj_end(&w);
-        jw_kv_obj(&w, "accuracy");
-        jw_kv_str(&w, "status", e->acc_ok[v] ? "ok" : "failed");
-        if (!e->acc_ok[v])
-            jw_kv_str(&w, "reason", e->acc_reason[v][0] ? e->acc_reason[v] : "not measured");
-        jw_kv_num(&w, "max_diff_of_peak", e->acc_max_diff[v]);
-        jw_kv_int(&w, "nonfinite", e->acc_nonfinite[v]);
-        jw_kv_int(&w, "points", TP_ACC_POINTS);
-        jw_obj_end(&w);
-        jw_obj_end(&w);
-    }
+    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);)
+        json_result(&w, r, v, i, m);
     jw_arr_end(&w);
 
     jw_kv_obj(&w, "sweep");
-    if (!r->sweep_ran) {
+    if (!r->sweep_ran)
         jw_kv_str(&w, "status", "not run");
-    } else {
-        double dsum = 0, hsum = 0, pts = 0, agree = 0;
-        int all_ok = r->nsw > 0 && !r->sweep_reason[0];
-        for (int k = 0; k < r->nsw; ++k) {
-            if (!r->sw[k].ok) {
-                all_ok = 0;
-                continue;
-            }
-            dsum += r->sw[k].dev_s.median;
-            hsum += r->sw[k].hostc_s.median;
-            pts += r->sw[k].points;
-            if (!sweep_alternative(r->sw[k].label))
-                agree = fmax(agree, r->sw[k].agree);
-        }
-        jw_kv_str(&w, "status", all_ok ? "ok" : "partial");
-        if (r->sweep_reason[0])
-            jw_kv_str(&w, "reason", r->sweep_reason);
-        jw_kv_str(&w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
-                              "(the same samples in s = 1 - cos x, expf(n log1pf(-s)) for c^n), per model: median of the timed runs");
-        jw_kv_num(&w, "n_min", o->sweep_grid.n_min);
-        jw_kv_num(&w, "n_max", o->sweep_grid.n_max);
-        jw_kv_num(&w, "n_step", o->sweep_grid.n_step);
-        jw_kv_int(&w, "n_count", r->sweep_n_count);
-        jw_kv_int(&w, "samples_per_zone", o->sweep_grid.samples);
-        jw_kv_int(&w, "reps", o->sweep_reps);
-        jw_kv_num(&w, "build_seconds", r->sweep_build_seconds);
-        jw_kv_num(&w, "device_seconds", dsum > 0 ? dsum : NAN);
-        jw_kv_num(&w, "host_c_seconds", hsum > 0 ? hsum : NAN);
-        jw_kv_num(&w, "points", pts);
-        jw_kv_num(&w, "device_points_per_s", dsum > 0 ? pts / dsum : NAN);
-        jw_kv_num(&w, "host_c_points_per_s", hsum > 0 ? pts / hsum : NAN);
-        jw_ratio(&w, "speedup_vs_host_c", ratio(hsum, dsum), "no model was timed on both sides");
-        jw_kv_num(&w, "agreement_max_rel_diff", agree);
-        jw_kv_str(&w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
-                                        "relative to at least 1e-4 (their sample cosines differ by float rounding), "
-                                        "over the models but those in agreement_excludes: a second formula of a "
-                                        "reference lobe (phongpow: the pow() built-in, which C's expf(n log1pf(-s)) "
-                                        "is not meant to match); every model's own figure is in models");
-        jw_kv_arr(&w, "agreement_excludes");
-        for (int k = 0; k < r->nsw; ++k)
-            if (sweep_alternative(r->sw[k].label))
-                jw_str(&w, r->sw[k].label);
-        jw_arr_end(&w);
-        jw_kv_arr(&w, "models");
-        for (int k = 0; k < r->nsw; ++k) {
-            const struct tp_sweep_model *s = &r->sw[k];
-            jw_obj_begin(&w);
-            jw_kv_str(&w, "label", s->label);
-            jw_kv_str(&w, "status", s->ok ? "ok" : "failed");
-            if (!s->ok)
-                jw_kv_str(&w, "reason", s->reason);
-            jw_stats(&w, "device_seconds", s->ok ? s->dev_s : (struct tp_stats){ NAN, NAN, NAN });
-            jw_stats(&w, "host_c_seconds", s->ok ? s->hostc_s : (struct tp_stats){ NAN, NAN, NAN });
-            jw_kv_num(&w, "points", s->points);
-            jw_ratio(&w, "speedup_vs_host_c", s->ok ? ratio(s->hostc_s.median, s->dev_s.median) : NAN, s->reason);
-            jw_kv_num(&w, "agreement_max_rel_diff", s->ok ? s->agree : NAN);
-            jw_obj_end(&w);
-        }
-        jw_arr_end(&w);
-    }
+    else
+        json_sweep_ran(&w, r);
     jw_obj_end(&w);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
@@ -450,7 +487,30 @@ static const char *xfmt(char *buf, size_t len, double v, const char *suffix)
 }
 
 /* The summary tables, as text (md = 0) or markdown (md = 1). */
-static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+/* One cell of the build-options table: entry e's rate under variant vv in n mode m (x default)
+ * and its accuracy. Returns whether the rate's values were not all finite. */
+static int variant_cell(const struct tp_entry *e, int vv, int m, char *cell, size_t cell_len, char *accs,
+                        size_t accs_len)
+{
+    char a[32];
+    const struct tp_figure *f = &e->dev[vv][m];
+    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
+    if (!e->measured[vv][m] || !f->ok)
+        snprintf(cell, cell_len, "%s", e->measured[vv][m] ? "failed" : "-");
+    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
+        snprintf(cell, cell_len, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
+                 f->rate.median / f0->rate.median);
+    else
+        snprintf(cell, cell_len, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
+    if (e->acc_ok[vv])
+        snprintf(accs, accs_len, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
+    else
+        snprintf(accs, accs_len, "-");
+    return !f->finite && f->ok;
+}
+
+/* The device peak and the default build options' table. */
+static void table_default(const struct tp_run *r, struct tp_text *t, int md)
 {
     const struct throughput_options *o = r->o;
     char a[32], b[32], c[32], d[32], e2[32], f2[32], g2[32], h2[32];
@@ -482,22 +542,20 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
                 else
                     snprintf(range, sizeof range, "failed");
                 const char *label = e->m ? e->label : "pow() built-in";
-                if (md)
-                    tx_printf(t, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", label, nmode_names[m],
-                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
-                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
-                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
-                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
-                else
-                    tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
-                              gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
-                              xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
-                              xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
-                              gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
+                tx_printf(t, md ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
+                                : "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
+                          gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
+                          xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
+                          xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
+                          gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
             }
         tx_printf(t, "\n");
     }
-    /* build options: speed beside accuracy */
+}
+
+/* Build options: speed beside accuracy. */
+static void table_variants(const struct tp_run *r, struct tp_text *t, int md)
+{
     int nvar = 0;
     for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
         nvar += variant_on(r, vv);
@@ -535,22 +593,8 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
                 for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv) {
                     if (!variant_on(r, vv))
                         continue;
-                    const struct tp_figure *f = &e->dev[vv][m];
-                    char cell[64];
-                    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
-                    if (!e->measured[vv][m] || !f->ok)
-                        snprintf(cell, sizeof cell, "%s", e->measured[vv][m] ? "failed" : "-");
-                    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
-                        snprintf(cell, sizeof cell, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
-                                 f->rate.median / f0->rate.median);
-                    else
-                        snprintf(cell, sizeof cell, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
-                    nonfinite |= !f->finite && f->ok;
-                    char accs[32];
-                    if (e->acc_ok[vv])
-                        snprintf(accs, sizeof accs, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
-                    else
-                        snprintf(accs, sizeof accs, "-");
+                    char cell[64], accs[32];
+                    nonfinite |= variant_cell(e, vv, m, cell, sizeof cell, accs, sizeof accs);
                     tx_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
                 }
                 tx_printf(t, "\n");
@@ -559,6 +603,12 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
             tx_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
         tx_printf(t, "\n");
     }
+}
+
+/* The accuracy sweep, device against tuned C. */
+static void table_sweep(const struct tp_run *r, struct tp_text *t)
+{
+    const struct throughput_options *o = r->o;
     if (r->sweep_ran) {
         double dsum = 0, hsum = 0, pts = 0;
         int ok = 0;
@@ -577,6 +627,13 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
         else
             tx_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
     }
+}
+
+static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+{
+    table_default(r, t, md);
+    table_variants(r, t, md);
+    table_sweep(r, t);
 }
 
 char *tp_tables_text(const struct tp_run *r, int md)

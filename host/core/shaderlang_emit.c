@@ -1,0 +1,673 @@
+/* shaderlang_emit.c - the shader-language translator (shaderlang.c): constructors, calls, expressions and statements, emitted as C. */
+#define _POSIX_C_SOURCE 200809L
+#include "shaderlang.h"
+#include "shaderlang_internal.h"
+#include "exitcodes.h"
+#include "mdbuf.h"
+
+#include <ctype.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- constructors, casts and calls --------------------------------------------------------- */
+
+static int const_int(struct sl *S, struct expr *e, long *out);
+
+static struct val call_user(struct sl *S, struct func *f, struct expr *e)
+{
+    if (e->nargs != f->nparams)
+        FAIL(S, e->t, "%.*s takes %d argument%s, not %d", f->name->len, f->name->p, f->nparams,
+             f->nparams == 1 ? "" : "s", e->nargs);
+    for (int i = 0; i < S->ninline; ++i)
+        if (S->inlining[i] == f)
+            FAIL(S, e->t, "%.*s calls itself: recursion is not supported", f->name->len, f->name->p);
+    if (S->ninline >= SL_MAX_INLINE)
+        FAIL(S, e->t, "calls nested more than %d deep", SL_MAX_INLINE);
+    if (f->ret.b == B_VOID || f->ret.b == B_BOOL)
+        FAIL(S, f->name, "a helper function must return a number or a vector (this one returns %s)",
+             sl_type_name(S, f->ret));
+    if (!sl_stmt_returns(f->body))
+        FAIL(S, f->close, "%.*s can reach its end without returning a value", f->name->len, f->name->p);
+    struct val args[SL_MAX_ARGS];
+    for (int i = 0; i < e->nargs; ++i)
+        args[i] = sl_convert(S, sl_ev(S, e->args[i]), f->pty[i], e->args[i]->t,
+                          sl_sfmt(S, "argument %d of %.*s", i + 1, f->name->len, f->name->p));
+    int saved_line = S->stmt_line;
+    struct scope *saved_scope = S->scope;
+    struct fnctx *saved_fn = S->fn;
+    struct fnctx fc = { f->ret, { NULL }, NULL, NULL, 0, 0 };
+    int k = ++S->ntemp;
+    if (f->ret.b == B_INT) {
+        fc.ret_c[0] = sl_sfmt(S, "sl_r%d", k);
+        sl_out_line(S, "int %s = 0;", fc.ret_c[0]);
+    } else {
+        for (int i = 0; i < f->ret.n; ++i) {
+            fc.ret_c[i] = f->ret.n == 1 ? sl_sfmt(S, "sl_r%d", k) : sl_sfmt(S, "sl_r%d_%c", k, "xyzw"[i]);
+            sl_out_line(S, "REAL %s = RSPLAT(0.0);", fc.ret_c[i]);
+        }
+    }
+    S->scope = S->globals;
+    sl_push_scope(S, 1);
+    S->stmt_line = f->name->line;
+    for (int i = 0; i < f->nparams; ++i) {
+        struct sym *p = sl_declare(S, S->scope, f->pname[i], f->pty[i]);
+        for (int c = 0; c < f->pty[i].n; ++c)
+            sl_out_line(S, "%s %s = %s;", f->pty[i].b == B_INT ? "int" : f->pty[i].b == B_BOOL ? "REAL" : "REAL",
+                        p->c[c], f->pty[i].b == B_BOOL ? sl_sfmt(S, "(%s) ? RSPLAT(1.0) : RSPLAT(0.0)", args[i].c[c])
+                                                      : args[i].c[c]);
+    }
+    S->inlining[S->ninline++] = f;
+    S->fn = &fc;
+    sl_emit_block(S, f->body, NULL, 0);
+    S->fn = saved_fn;
+    --S->ninline;
+    S->scope = saved_scope;
+    S->stmt_line = saved_line;
+    struct val r = { f->ret, { NULL }, f->ret.b == B_INT };
+    for (int i = 0; i < f->ret.n; ++i)
+        r.c[i] = fc.ret_c[i];
+    return r;
+}
+
+static struct val construct(struct sl *S, struct type t, struct expr *e)
+{
+    struct val r = { t, { NULL }, 1 };
+    if (t.b == B_VOID)
+        FAIL(S, e->t, "void is not a value");
+    if (t.b == B_BOOL)
+        FAIL(S, e->t, "bool(...) is not supported (compare with != 0.0)");
+    if (t.b == B_INT) {
+        if (e->nargs != 1)
+            FAIL(S, e->t, "int(...) takes one value");
+        struct expr *x = e->args[0];
+        if (x->k == E_FLT) {
+            r.c[0] = sl_sfmt(S, "(int)(%s)", sl_float_literal(S, x->t));
+            return r;
+        }
+        struct val v = sl_ev(S, x);
+        if (v.t.b == B_INT)
+            return v;
+        FAIL(S, x->t, "int of a %s: only an int or a literal number becomes an int (an int is the same in "
+                      "every lane of a sweep; keep the value a float)", sl_type_name(S, v.t));
+    }
+    struct val parts[SL_MAX_ARGS];
+    int total = 0;
+    for (int i = 0; i < e->nargs; ++i) {
+        parts[i] = sl_ev(S, e->args[i]);
+        if (parts[i].t.b == B_BOOL) {
+            parts[i] = (struct val){ { B_FLOAT, 1 },
+                                     { sl_sfmt(S, "((%s) ? RSPLAT(1.0) : RSPLAT(0.0))", parts[i].c[0]) }, parts[i].uniform };
+        }
+        parts[i] = sl_to_float(S, parts[i], e->args[i]->t);
+        total += parts[i].t.n;
+    }
+    r.uniform = 0;
+    if (e->nargs == 1 && parts[0].t.n == 1) {
+        const char *s = t.n > 1 ? sl_temp_real(S, parts[0].c[0]) : parts[0].c[0];
+        for (int i = 0; i < t.n; ++i)
+            r.c[i] = s;
+        return r;
+    }
+    if (e->nargs == 1 && parts[0].t.n >= t.n && e->is_cast) {
+        /* HLSL's (float3)v4 keeps the first components */
+        for (int i = 0; i < t.n; ++i)
+            r.c[i] = parts[0].c[i];
+        return r;
+    }
+    if (total != t.n)
+        FAIL(S, e->t, "%s(...) needs %d component%s, these give %d", sl_type_name(S, t), t.n, t.n == 1 ? "" : "s", total);
+    int k = 0;
+    for (int i = 0; i < e->nargs; ++i)
+        for (int j = 0; j < parts[i].t.n; ++j)
+            r.c[k++] = parts[i].c[j];
+    return r;
+}
+
+struct func *sl_find_func(struct sl *S, const struct tok *t)
+{
+    for (struct func *f = S->funcs; f; f = f->next)
+        if (f->name->len == t->len && strncmp(f->name->p, t->p, (size_t)t->len) == 0)
+            return f;
+    return NULL;
+}
+
+static __attribute__((noreturn)) void fail_unknown(struct sl *S, const struct tok *t, const char *what)
+{
+    S->unknown_name = 1;
+    FAIL(S, t, "use of undeclared %s '%.*s'", what, t->len, t->p);
+}
+
+/* ---- expressions -------------------------------------------------------------------------- */
+
+/* A value of a float kind with no components yet (what each kind of expression starts from). */
+static struct val val_float(void)
+{
+    struct val r = { { B_FLOAT, 1 }, { NULL }, 1 };
+    return r;
+}
+
+static struct val ev_int(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    r.t = (struct type){ B_INT, 1 };
+    if (e->op == 1) {
+        r.c[0] = "1";
+        return r;
+    }
+    int len = e->t->len;
+    while (len > 0 && (e->t->p[len - 1] == 'u' || e->t->p[len - 1] == 'U'))
+        --len;
+    if (len > 9)
+        FAIL(S, e->t, "the integer %.*s is too large (write it with a decimal point)", e->t->len, e->t->p);
+    r.c[0] = sl_sfmt(S, "%ld", strtol(sl_sfmt(S, "%.*s", len, e->t->p), NULL, 10));
+    return r;
+}
+
+static struct val ev_var(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct sym *s = sl_lookup(S, e->t);
+    if (!s)
+        fail_unknown(S, e->t, "identifier");
+    if (s->t.b == B_BOOL) {
+        r.t = s->t;
+        r.c[0] = sl_sfmt(S, "(%s != RSPLAT(0.0))", s->c[0]);
+        r.uniform = 0;
+        return r;
+    }
+    if (s->has_value) {
+        r.t = s->t;
+        r.c[0] = sl_sfmt(S, "%ld", s->value);
+        return r;
+    }
+    return sl_sym_val(s);
+}
+
+static struct val ev_swizzle(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct val v = sl_ev(S, e->a);
+    if (v.t.b != B_FLOAT)
+        FAIL(S, e->t, "a swizzle of a %s", sl_type_name(S, v.t));
+    for (int i = 0; i < e->nswz; ++i)
+        if (e->swz[i] >= v.t.n)
+            FAIL(S, e->t, "component %c of a %s", "xyzw"[e->swz[i]], sl_type_name(S, v.t));
+    r.t = (struct type){ B_FLOAT, e->nswz };
+    r.uniform = v.uniform;
+    for (int i = 0; i < e->nswz; ++i)
+        r.c[i] = v.c[e->swz[i]];
+    return r;
+}
+
+static struct val ev_unary(struct sl *S, struct expr *e)
+{
+    struct val v = sl_ev(S, e->a);
+    if (e->op == '!') {
+        if (v.t.b != B_BOOL)
+            FAIL(S, e->t, "'!' of a %s (a condition is expected)", sl_type_name(S, v.t));
+        v.c[0] = sl_sfmt(S, "(!%s)", v.c[0]);
+        return v;
+    }
+    if (v.t.b != B_FLOAT && v.t.b != B_INT)
+        FAIL(S, e->t, "'%c' of a %s", e->op == 'u' ? '-' : '+', sl_type_name(S, v.t));
+    if (e->op == 'p')
+        return v;
+    for (int i = 0; i < v.t.n; ++i)
+        v.c[i] = sl_sfmt(S, "(-%s)", v.c[i]);
+    return v;
+}
+
+static struct val ev_binary(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct val a = sl_ev(S, e->a), b = sl_ev(S, e->b);
+    int op = e->op;
+    if (op == 'A' || op == 'O') {
+        if (a.t.b != B_BOOL || b.t.b != B_BOOL)
+            FAIL(S, e->t, "'%s' needs conditions, not %s and %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));
+        r.t = a.t;
+        r.uniform = a.uniform && b.uniform;
+        r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
+        return r;
+    }
+    if (strchr("<>LGEN", op)) {
+        if (a.t.b == B_BOOL || b.t.b == B_BOOL)
+            FAIL(S, e->t, "'%s' of conditions: combine them with && || !", sl_op_text(op));
+        if (a.t.n > 1 || b.t.n > 1)
+            FAIL(S, e->t, "'%s' of vectors: compare their components", sl_op_text(op));
+        if (a.t.b != b.t.b) {
+            a = sl_to_float(S, a, e->t);
+            b = sl_to_float(S, b, e->t);
+        }
+        r.t = (struct type){ B_BOOL, 1 };
+        r.uniform = a.uniform && b.uniform;
+        r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
+        return r;
+    }
+    return sl_arith(S, op, a, b, e->t);
+}
+
+static struct val ev_ternary(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    struct val c = sl_ev(S, e->a);
+    if (c.t.b != B_BOOL || c.t.n != 1)
+        FAIL(S, e->a->t, "the condition of ?: is a %s, not a comparison", sl_type_name(S, c.t));
+    struct val a = sl_ev(S, e->b), b = sl_ev(S, e->c);
+    if (a.t.b == B_BOOL || b.t.b == B_BOOL)
+        FAIL(S, e->t, "?: of conditions: combine them with && || !");
+    if (a.t.b == B_INT && b.t.b == B_INT && c.uniform) {
+        r.t = a.t;
+        r.c[0] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[0], b.c[0]);
+        return r;
+    }
+    a = sl_to_float(S, a, e->b->t);
+    b = sl_to_float(S, b, e->c->t);
+    int n = a.t.n > b.t.n ? a.t.n : b.t.n;
+    if (a.t.n != b.t.n && a.t.n != 1 && b.t.n != 1)
+        FAIL(S, e->t, "?: between a %s and a %s", sl_type_name(S, a.t), sl_type_name(S, b.t));
+    if (n > 1)
+        c.c[0] = sl_temp_cond(S, c.c[0], c.uniform);
+    r.t = (struct type){ B_FLOAT, n };
+    r.uniform = 0;
+    for (int i = 0; i < n; ++i)
+        r.c[i] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[a.t.n == 1 ? 0 : i], b.c[b.t.n == 1 ? 0 : i]);
+    return n > 1 ? sl_temp_val(S, r) : r;
+}
+
+/* A call: a constructor or cast, a function of the text, or a built-in. */
+static struct val ev_call(struct sl *S, struct expr *e)
+{
+    struct type t;
+    int so;
+    if (sl_type_of_name(e->t, &t, &so))
+        return construct(S, t, e);
+    struct func *f = sl_find_func(S, e->t);
+    if (f)
+        return call_user(S, f, e);
+    const struct builtin *bi = sl_find_builtin(e->t);
+    if (bi)
+        return sl_call_builtin(S, bi, e);
+    fail_unknown(S, e->t, "function");
+}
+
+struct val sl_ev(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    switch (e->k) {
+    case E_FLT:
+        r.c[0] = sl_sfmt(S, "RSPLAT(%s)", sl_float_literal(S, e->t));
+        return r;
+    case E_INT:
+        return ev_int(S, e);
+    case E_BOOL:
+        r.t = (struct type){ B_BOOL, 1 };
+        r.c[0] = sl_tok_is(e->t, "true") ? "1" : "0";
+        return r;
+    case E_VAR:
+        return ev_var(S, e);
+    case E_SWZ:
+        return ev_swizzle(S, e);
+    case E_UN:
+        return ev_unary(S, e);
+    case E_BIN:
+        return ev_binary(S, e);
+    case E_TER:
+        return ev_ternary(S, e);
+    case E_CALL:
+        return ev_call(S, e);
+    }
+    FAIL(S, e->t, "internal: unknown expression");
+}
+
+/* ---- statements -------------------------------------------------------------------------- */
+
+int sl_stmt_returns(const struct stmt *s)
+{
+    if (!s)
+        return 0;
+    switch (s->k) {
+    case S_RET: return 1;
+    case S_BLOCK:
+        for (int i = 0; i < s->n; ++i)
+            if (sl_stmt_returns(s->items[i]))
+                return 1;
+        return 0;
+    case S_IF: return s->s2 && sl_stmt_returns(s->s1) && sl_stmt_returns(s->s2);
+    default: return 0;
+    }
+}
+
+/* "pred and the lane still runs", or NULL for every lane. */
+static const char *effective(struct sl *S, const char *pred)
+{
+    const char *live = S->fn->live;
+    if (!pred)
+        return live;
+    if (!live)
+        return pred;
+    return sl_sfmt(S, "(%s && %s)", pred, live);
+}
+
+static const char *and_cond(struct sl *S, const char *a, const char *b)
+{
+    if (!a)
+        return b;
+    return sl_sfmt(S, "(%s && %s)", a, b);
+}
+
+static void assign_sym(struct sl *S, struct sym *s, const int *comp, int ncomp, struct val v, const char *pred,
+                       const struct tok *where)
+{
+    const char *E = effective(S, pred);
+    if (s->t.b == B_INT) {
+        if (E)
+            FAIL(S, where, "the int '%s' is assigned under a condition: make it a float", sl_sfmt(S, "%.*s", s->len, s->name));
+        sl_out_line(S, "%s = %s;", s->c[0], v.c[0]);
+        return;
+    }
+    if (s->t.b == B_BOOL) {
+        const char *m = sl_sfmt(S, "((%s) ? RSPLAT(1.0) : RSPLAT(0.0))", v.c[0]);
+        if (E)
+            sl_out_line(S, "%s = (%s) ? %s : %s;", s->c[0], E, m, s->c[0]);
+        else
+            sl_out_line(S, "%s = %s;", s->c[0], m);
+        return;
+    }
+    /* A component read on the right may be written on the left: read them all first. */
+    if (ncomp > 1)
+        for (int i = 0; i < ncomp; ++i)
+            for (int j = 0; j < s->t.n; ++j)
+                if (strstr(v.c[i], s->c[j]))
+                    v.c[i] = sl_temp_real(S, sl_sfmt(S, "(%s)", v.c[i]));
+    if (E && ncomp > 1)
+        E = sl_temp_cond(S, E, 0);
+    for (int i = 0; i < ncomp; ++i) {
+        const char *dst = s->c[comp[i]];
+        if (E)
+            sl_out_line(S, "%s = %s ? %s : %s;", dst, E, v.c[i], dst);
+        else
+            sl_out_line(S, "%s = %s;", dst, v.c[i]);
+    }
+}
+
+static void emit_decl(struct sl *S, struct stmt *d)
+{
+    struct type t = d->ty;
+    struct val v;
+    if (d->e) {
+        v = sl_ev(S, d->e);
+        if (t.b == B_BOOL) {
+            if (v.t.b != B_BOOL)
+                FAIL(S, d->e->t, "a bool is set from a %s", sl_type_name(S, v.t));
+        } else {
+            v = sl_convert(S, v, t, d->e->t, sl_sfmt(S, "'%.*s'", d->name->len, d->name->p));
+        }
+    } else {
+        v.t = t;
+        v.uniform = 1;
+        for (int i = 0; i < t.n; ++i)
+            v.c[i] = t.b == B_INT ? "0" : "RSPLAT(0.0)";
+        if (t.b == B_BOOL)
+            v.c[0] = "0";
+    }
+    /* a const int of a constant value is substituted where it is used (for loop bounds) */
+    long value = 0;
+    int constant = t.b == B_INT && d->is_const && d->e && const_int(S, d->e, &value);
+    struct sym *s = sl_declare(S, S->scope, d->name, t);
+    s->is_const = d->is_const;
+    if (constant) {
+        s->has_value = 1;
+        s->value = value;
+        return;
+    }
+    if (t.b == B_INT) {
+        sl_out_line(S, "int %s = %s;", s->c[0], v.c[0]);
+    } else if (t.b == B_BOOL) {
+        sl_out_line(S, "REAL %s = (%s) ? RSPLAT(1.0) : RSPLAT(0.0);", s->c[0], v.c[0]);
+    } else {
+        for (int i = 0; i < t.n; ++i)
+            sl_out_line(S, "REAL %s = %s;", s->c[i], v.c[i]);
+    }
+}
+
+static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
+{
+    struct expr *l = st->lhs;
+    const struct tok *nt = l->k == E_SWZ ? l->a->t : l->t;
+    if (!(l->k == E_VAR || (l->k == E_SWZ && l->a->k == E_VAR)))
+        FAIL(S, l->t, "the left of an assignment must be a variable or its components");
+    struct sym *s = sl_lookup(S, nt);
+    struct val v = sl_ev(S, st->e);
+    if (!s) {
+        if (!(S->allow_implicit && st->op == '=' && l->k == E_VAR))
+            fail_unknown(S, nt, "identifier");
+        /* the body form: the first assignment declares it, at the function's level */
+        struct scope *sc = S->scope;
+        while (!sc->function_level)
+            sc = sc->up;
+        struct type t = v.t.b == B_INT ? (struct type){ B_FLOAT, 1 } : v.t;
+        if (t.b == B_VOID)
+            FAIL(S, st->e->t, "a void value");
+        s = sl_declare(S, sc, nt, t);
+        if (t.b == B_FLOAT)
+            for (int i = 0; i < t.n; ++i)
+                sl_out_line(S, "REAL %s = RSPLAT(0.0);", s->c[i]);
+        else
+            sl_out_line(S, "REAL %s = RSPLAT(0.0);", s->c[0]);
+    }
+    if (s->is_const)
+        FAIL(S, nt, "'%.*s' is const", nt->len, nt->p);
+    int comp[4] = { 0, 1, 2, 3 }, ncomp = s->t.n;
+    struct type target = s->t;
+    if (l->k == E_SWZ) {
+        if (s->t.b != B_FLOAT)
+            FAIL(S, l->t, "a swizzle of a %s", sl_type_name(S, s->t));
+        ncomp = l->nswz;
+        for (int i = 0; i < ncomp; ++i) {
+            comp[i] = l->swz[i];
+            if (comp[i] >= s->t.n)
+                FAIL(S, l->t, "component %c of a %s", "xyzw"[comp[i]], sl_type_name(S, s->t));
+            for (int j = 0; j < i; ++j)
+                if (comp[j] == comp[i])
+                    FAIL(S, l->t, "component %c is written twice", "xyzw"[comp[i]]);
+        }
+        target = (struct type){ B_FLOAT, ncomp };
+    }
+    if (st->op != '=') {
+        if (s->t.b == B_BOOL)
+            FAIL(S, st->t, "a compound assignment to a bool");
+        struct val cur = sl_sym_val(s);
+        struct val part = cur;
+        part.t = target;
+        for (int i = 0; i < ncomp; ++i)
+            part.c[i] = cur.c[comp[i]];
+        v = sl_arith(S, st->op, part, v, st->t);
+    }
+    if (s->t.b == B_BOOL) {
+        if (v.t.b != B_BOOL)
+            FAIL(S, st->e->t, "a bool is set from a %s", sl_type_name(S, v.t));
+    } else {
+        v = sl_convert(S, v, target, st->e->t, sl_sfmt(S, "'%.*s'", nt->len, nt->p));
+    }
+    assign_sym(S, s, comp, ncomp, v, pred, st->t);
+}
+
+static void emit_return(struct sl *S, struct stmt *st, const char *pred)
+{
+    struct fnctx *fc = S->fn;
+    struct val v = sl_ev(S, st->e);
+    v = sl_convert(S, v, fc->ret, st->e->t, "the returned value");
+    const char *E = effective(S, pred);
+    if (!E && fc->is_model && !fc->ret_c[0]) {
+        sl_out_line(S, "return %s;", v.c[0]);
+        fc->returned = 1;
+        return;
+    }
+    if (fc->is_model && !fc->ret_c[0]) {
+        fc->ret_c[0] = "sl_ret";
+        sl_out_line(S, "REAL sl_ret = RSPLAT(0.0);");
+    }
+    if (E && fc->ret.n > 1)
+        E = sl_temp_cond(S, E, 0);
+    for (int i = 0; i < fc->ret.n; ++i) {
+        if (E)
+            sl_out_line(S, "%s = %s ? %s : %s;", fc->ret_c[i], E, v.c[i], fc->ret_c[i]);
+        else
+            sl_out_line(S, "%s = %s;", fc->ret_c[i], v.c[i]);
+    }
+    if (E) {
+        if (!fc->live_var) {
+            fc->live_var = sl_sfmt(S, "sl_live%d", ++S->ntemp);
+            sl_out_line(S, "REAL %s = RSPLAT(1.0);", fc->live_var);
+            fc->live = sl_sfmt(S, "(%s != RSPLAT(0.0))", fc->live_var);
+        }
+        sl_out_line(S, "%s = %s ? RSPLAT(0.0) : %s;", fc->live_var, E, fc->live_var);
+    }
+}
+
+static int const_int(struct sl *S, struct expr *e, long *out)
+{
+    switch (e->k) {
+    case E_INT: {
+        struct val v = sl_ev(S, e);
+        *out = strtol(v.c[0], NULL, 10);
+        return 1;
+    }
+    case E_VAR: {
+        struct sym *s = sl_lookup(S, e->t);
+        if (s && s->has_value) {
+            *out = s->value;
+            return 1;
+        }
+        return 0;
+    }
+    case E_UN: {
+        long a;
+        if (e->op == 'u' && const_int(S, e->a, &a)) {
+            *out = -a;
+            return 1;
+        }
+        return 0;
+    }
+    case E_BIN: {
+        long a, b;
+        if (!const_int(S, e->a, &a) || !const_int(S, e->b, &b))
+            return 0;
+        switch (e->op) {
+        case '+': *out = a + b; return 1;
+        case '-': *out = a - b; return 1;
+        case '*': *out = a * b; return 1;
+        case '/': if (b == 0) return 0; *out = a / b; return 1;
+        default: return 0;
+        }
+    }
+    default:
+        return 0;
+    }
+}
+
+static void emit_stmt(struct sl *S, struct stmt *st, const char *pred);
+
+/* for (int i = A; i < B; i++) with constant A and B: unrolled. */
+static void emit_for(struct sl *S, struct stmt *st, const char *pred)
+{
+    static const char *form = "a for loop must read for (int i = A; i < B; i++) (or <=, >, >=, --, += K, -= K) "
+                              "with A, B and K constant integers";
+    struct stmt *init = st->s1;
+    if (!(init->k == S_BLOCK && init->n == 1 && init->items[0]->k == S_DECL && init->items[0]->ty.b == B_INT &&
+          init->items[0]->e))
+        FAIL(S, st->t, "%s", form);
+    struct stmt *d = init->items[0];
+    long i0, bound, step;
+    if (!const_int(S, d->e, &i0))
+        FAIL(S, d->e->t, "the loop's start is not a constant integer; %s", form);
+    struct expr *c = st->e;
+    if (!(c->k == E_BIN && strchr("<>LG", c->op) && c->a->k == E_VAR && c->a->t->len == d->name->len &&
+          strncmp(c->a->t->p, d->name->p, (size_t)d->name->len) == 0 && const_int(S, c->b, &bound)))
+        FAIL(S, c->t, "%s", form);
+    struct stmt *inc = st->s2;
+    if (!(inc->k == S_ASSIGN && inc->lhs->k == E_VAR && inc->lhs->t->len == d->name->len &&
+          strncmp(inc->lhs->t->p, d->name->p, (size_t)d->name->len) == 0 && (inc->op == '+' || inc->op == '-') &&
+          const_int(S, inc->e, &step) && step > 0))
+        FAIL(S, inc->t, "%s", form);
+    if (inc->op == '-')
+        step = -step;
+    int count = 0;
+    for (long i = i0;; i += step) {
+        int go = c->op == '<' ? i < bound : c->op == 'L' ? i <= bound : c->op == '>' ? i > bound : i >= bound;
+        if (!go)
+            break;
+        if (++count > SL_MAX_UNROLL)
+            FAIL(S, st->t, "a for loop of more than %d iterations", SL_MAX_UNROLL);
+        sl_push_scope(S, 0);
+        struct sym *s = sl_declare(S, S->scope, d->name, d->ty);
+        s->is_const = 1;
+        s->has_value = 1;
+        s->value = i;
+        emit_stmt(S, st->s3, pred);
+        S->scope = S->scope->up;
+        if (sl_stmt_returns(st->s3))
+            FAIL(S, st->t, "a return inside a for loop is not supported");
+    }
+}
+
+static void emit_stmt(struct sl *S, struct stmt *st, const char *pred)
+{
+    S->stmt_line = st->t->line;
+    switch (st->k) {
+    case S_EMPTY:
+        return;
+    case S_DECL:
+        emit_decl(S, st);
+        return;
+    case S_ASSIGN:
+        emit_assign(S, st, pred);
+        return;
+    case S_RET:
+        emit_return(S, st, pred);
+        return;
+    case S_BLOCK:
+        sl_emit_block(S, st, pred, st->op != 1);
+        return;
+    case S_FOR:
+        emit_for(S, st, pred);
+        return;
+    case S_IF: {
+        struct val c = sl_ev(S, st->e);
+        if (c.t.b != B_BOOL)
+            FAIL(S, st->e->t, "the condition of if is a %s, not a comparison", sl_type_name(S, c.t));
+        S->stmt_line = st->t->line;
+        const char *cm = sl_temp_cond(S, c.c[0], c.uniform);
+        int uniform = c.uniform && (!pred || strncmp(pred, "sl_b", 4) == 0);
+        const char *tp = sl_temp_cond(S, and_cond(S, pred, cm), uniform);
+        sl_emit_block(S, st->s1, tp, 1);
+        if (st->s2) {
+            S->stmt_line = st->t->line;
+            const char *ep = sl_temp_cond(S, and_cond(S, pred, sl_sfmt(S, "(!%s)", cm)), uniform);
+            sl_emit_block(S, st->s2, ep, 1);
+        }
+        return;
+    }
+    }
+}
+
+void sl_emit_block(struct sl *S, struct stmt *b, const char *pred, int new_scope)
+{
+    if (new_scope)
+        sl_push_scope(S, 0);
+    if (b->k != S_BLOCK) {
+        emit_stmt(S, b, pred);
+    } else {
+        for (int i = 0; i < b->n; ++i) {
+            emit_stmt(S, b->items[i], pred);
+            if (sl_stmt_returns(b->items[i]))
+                break; /* what follows is never reached */
+        }
+    }
+    if (new_scope)
+        S->scope = S->scope->up;
+}

@@ -1,0 +1,240 @@
+/* shaderlang_internal.h - inside the shader-language translator (shaderlang.h is its interface):
+ * the tokens, the syntax tree, the translation state and the functions its stages share.
+ * shaderlang_error.c: failures and the arena; shaderlang_lex.c: the lexer; shaderlang_parse.c:
+ * the parser; shaderlang_check.c: types, values, built-ins; shaderlang_emit.c: expressions and
+ * statements emitted as C; shaderlang.c: the program and the three builds; shaderlang_brdf.c:
+ * BRDF Explorer .brdf files. */
+#ifndef BRDF_SHADERLANG_INTERNAL_H
+#define BRDF_SHADERLANG_INTERNAL_H
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "mdbuf.h"
+
+#define SL_NAME_MAX 48       /* as USERMODEL_NAME_MAX */
+#define SL_MAX_PARAMS 2      /* as MODEL_MAX_PARAMS */
+#define SL_MAX_ARGS 8
+#define SL_MAX_UNROLL 256    /* iterations of one unrolled for loop */
+#define SL_MAX_INLINE 16     /* nested calls of helper functions */
+#define SL_MAX_MACRO_DEPTH 16
+#define SL_MAX_NESTING 200   /* parentheses, operators and statements inside each other */
+
+/* ---- memory: one arena per translation ------------------------------------------------ */
+
+struct arena_block {
+    struct arena_block *next;
+    size_t used, cap;
+    max_align_t data[];
+};
+
+enum tok_kind { K_EOF, K_ID, K_INT, K_FLT, K_OP };
+
+struct tok {
+    int k;
+    int line, col;
+    const char *p;
+    int len;
+};
+
+struct tokv {
+    struct tok *v;
+    int n, cap;
+};
+
+struct macro {
+    const char *name;
+    int len;
+    struct tokv body;
+    int active;
+    struct macro *next;
+};
+
+enum base { B_VOID, B_BOOL, B_INT, B_FLOAT };
+struct type {
+    int b;
+    int n; /* components: 1 to 4 (vectors of float only) */
+};
+
+enum expr_kind { E_FLT, E_INT, E_BOOL, E_VAR, E_UN, E_BIN, E_TER, E_CALL, E_SWZ };
+struct expr {
+    int k;
+    const struct tok *t;   /* where it is, for messages; the name of a variable or a call */
+    int op;
+    struct expr *a, *b, *c;
+    struct expr **args;
+    int nargs;
+    int swz[4], nswz;
+    int is_cast;
+};
+
+enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY };
+struct stmt {
+    int k;
+    const struct tok *t;
+    struct type ty;        /* S_DECL */
+    int is_const;
+    const struct tok *name;
+    struct expr *e;        /* init, rhs, condition, returned value */
+    struct expr *lhs;
+    int op;
+    struct stmt *s1, *s2, *s3; /* then/else; for: init, step, body */
+    struct stmt **items;   /* S_BLOCK */
+    int n, cap;
+};
+
+struct func {
+    const struct tok *name;
+    struct type ret;
+    int nparams;
+    struct type pty[SL_MAX_ARGS];
+    const struct tok *pname[SL_MAX_ARGS];
+    struct stmt *body;
+    const struct tok *close;
+    struct func *next;
+};
+
+struct sym {
+    const char *name;
+    int len;
+    struct type t;
+    const char *c[4];     /* the C names of its components */
+    int is_const;
+    int has_value;        /* a constant int: its value */
+    long value;
+    struct sym *next;
+};
+
+struct scope {
+    struct sym *syms;
+    struct scope *up;
+    int function_level;   /* implicit declarations go here */
+};
+
+struct fnctx {
+    struct type ret;
+    const char *ret_c[4];  /* NULL until needed (the model function), else declared */
+    const char *live;      /* condition "this lane has not returned yet", NULL before any early return */
+    const char *live_var;
+    int is_model;
+    int returned;          /* the model function has returned (a plain return was written) */
+};
+
+struct used_name {
+    const char *s;
+    struct used_name *next;
+};
+
+struct sl {
+    jmp_buf fail;
+    char *err;
+    size_t errlen;
+    const char *origin;
+    const char *src;           /* the text being translated */
+    struct arena_block *arena;
+    struct tokv toks;
+    int pos;
+    struct macro *macros;
+    int allow_implicit;        /* the body form: assigning an undeclared name declares it */
+    int shader_only;           /* the text used something OpenCL C has not */
+    int unknown_name;          /* the failure was an unknown name */
+    int statement_form;
+    struct md_buf out;
+    int line_next;             /* the line number the next output line has */
+    int stmt_line;
+    int ntemp;
+    struct used_name *used;
+    struct scope *scope, *globals;
+    struct func *funcs;
+    const struct func *inlining[SL_MAX_INLINE];
+    int ninline;
+    struct fnctx *fn;
+    int depth;                 /* of the parser's recursion */
+};
+
+
+struct val {
+    struct type t;
+    const char *c[4];
+    int uniform;   /* the same in every lane (literals, ints, uniform booleans) */
+};
+
+struct builtin;
+
+/* What the program's header comment says (sl_read_header). */
+struct header {
+    int present;
+    size_t end;                 /* bytes of the text the header comment takes */
+    char name[SL_NAME_MAX + 1];
+    char function[SL_NAME_MAX + 1];
+    int nparams;
+    char params[SL_MAX_PARAMS][SL_NAME_MAX + 1];
+    int integer[SL_MAX_PARAMS];
+    char reference[SL_NAME_MAX + 1];
+    char lobe[16];
+    char description[200];
+    /* A .brdf file: the header written for it, code lexed before and after the user's text
+       (no position of their own), and the line the user's text starts on. */
+    const char *header_text, *prelude, *epilogue;
+    int first_line;
+};
+
+#define FAIL(S, t, ...) sl_fail_at((S), (t) ? (t)->line : 0, (t) ? (t)->col : 0, __VA_ARGS__)
+
+/* ---- failures (a message with its line and column, longjmp to the entry point) and the arena ---- */
+/* (shaderlang_error.c) */
+/* "origin:line:col: message" into err ("origin:line: ..." when col < 0, "origin: ..." without
+ * a line). */
+void sl_vformat_at(char *err, size_t errlen, const char *origin, int line, int col, const char *fmt, va_list ap);
+void sl_fail_at(struct sl *S, int line, int col, const char *fmt, ...) __attribute__((format(printf, 4, 5), noreturn));
+void *sl_arena_alloc(struct sl *S, size_t n);
+const char *sl_sfmt(struct sl *S, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+const char *sl_tok_str(struct sl *S, const struct tok *t);
+int sl_tok_is(const struct tok *t, const char *s);
+
+/* ---- the lexer (shaderlang_lex.c) ---- */
+void sl_tokv_push(struct sl *S, struct tokv *v, struct tok t);
+void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col, struct tokv *into);
+
+/* ---- the parser (shaderlang_parse.c) ---- */
+const struct tok *sl_peek(struct sl *S);
+int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only);
+struct stmt *sl_new_stmt(struct sl *S, int k, const struct tok *t);
+struct stmt *sl_parse_program(struct sl *S, struct stmt *globals);
+
+/* ---- type checks, values and temporaries, the built-in functions (shaderlang_check.c) ---- */
+const char *sl_type_name(struct sl *S, struct type t);
+void sl_out_line(struct sl *S, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+const char *sl_temp_real(struct sl *S, const char *expr);
+const char *sl_temp_cond(struct sl *S, const char *cond, int uniform);
+struct val sl_temp_val(struct sl *S, struct val v);
+const char *sl_float_literal(struct sl *S, const struct tok *t);
+struct val sl_to_float(struct sl *S, struct val v, const struct tok *where);
+struct val sl_convert(struct sl *S, struct val v, struct type t, const struct tok *where, const char *what);
+struct sym *sl_lookup(struct sl *S, const struct tok *t);
+void sl_push_scope(struct sl *S, int function_level);
+struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, struct type t);
+struct val sl_sym_val(struct sym *s);
+const char *sl_op_text(int op);
+struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where);
+/* The built-in function a call names, or NULL. */
+const struct builtin *sl_find_builtin(const struct tok *t);
+struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *e);
+
+/* ---- constructors, calls, expressions and statements, emitted as C (shaderlang_emit.c) ---- */
+struct func *sl_find_func(struct sl *S, const struct tok *t);
+struct val sl_ev(struct sl *S, struct expr *e);
+int sl_stmt_returns(const struct stmt *s);
+void sl_emit_block(struct sl *S, struct stmt *b, const char *pred, int new_scope);
+
+/* ---- the program (shaderlang.c) ---- */
+void sl_read_header(const char *text, size_t len, struct header *h);
+int sl_valid_identifier(const char *s);
+void sl_full_function_open(struct md_buf *w, int nparams);
+int sl_translate(struct sl *S, const char *text, size_t len, const struct header *h, const char *name,
+                 char **out, size_t *outlen);
+void sl_free(struct sl *S);
+int sl_uses_word(const char *text, size_t len, const char *w);
+
+#endif

@@ -1,0 +1,630 @@
+/* shaderlang_parse.c - the shader-language translator (shaderlang.c): the parser. */
+#define _POSIX_C_SOURCE 200809L
+#include "shaderlang.h"
+#include "shaderlang_internal.h"
+#include "exitcodes.h"
+#include "mdbuf.h"
+
+#include <ctype.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- the parser ------------------------------------------------------------------------- */
+
+const struct tok *sl_peek(struct sl *S) { return &S->toks.v[S->pos]; }
+static const struct tok *peek_at(struct sl *S, int k)
+{
+    int i = S->pos + k;
+    return &S->toks.v[i < S->toks.n ? i : S->toks.n - 1];
+}
+static const struct tok *next(struct sl *S)
+{
+    const struct tok *t = &S->toks.v[S->pos];
+    if (t->k != K_EOF)
+        ++S->pos;
+    return t;
+}
+static int accept(struct sl *S, const char *s)
+{
+    if (sl_tok_is(sl_peek(S), s)) {
+        next(S);
+        return 1;
+    }
+    return 0;
+}
+static const char *tok_desc(struct sl *S, const struct tok *t)
+{
+    return t->k == K_EOF ? "the end of the text" : sl_sfmt(S, "'%.*s'", t->len > 40 ? 40 : t->len, t->p);
+}
+static const struct tok *expect(struct sl *S, const char *s)
+{
+    const struct tok *t = sl_peek(S);
+    if (!sl_tok_is(t, s))
+        FAIL(S, t, "expected '%s', found %s", s, tok_desc(S, t));
+    return next(S);
+}
+
+/* A type name: float, half, vec2..4, float2..4, half2..4, int, uint, bool, void. 1 when t is one. */
+int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
+{
+    if (t->k != K_ID)
+        return 0;
+    char w[16];
+    if (t->len >= (int)sizeof w)
+        return 0;
+    memcpy(w, t->p, (size_t)t->len);
+    w[t->len] = '\0';
+    *shader_only = 0;
+    if (strcmp(w, "float") == 0 || strcmp(w, "half") == 0 || strcmp(w, "min16float") == 0) {
+        *ty = (struct type){ B_FLOAT, 1 };
+        return 1;
+    }
+    if (strcmp(w, "int") == 0 || strcmp(w, "uint") == 0) {
+        *ty = (struct type){ B_INT, 1 };
+        return 1;
+    }
+    if (strcmp(w, "bool") == 0) {
+        *ty = (struct type){ B_BOOL, 1 };
+        return 1;
+    }
+    if (strcmp(w, "void") == 0) {
+        *ty = (struct type){ B_VOID, 1 };
+        return 1;
+    }
+    size_t l = strlen(w);
+    char last = w[l - 1];
+    if (last >= '2' && last <= '4') {
+        w[l - 1] = '\0';
+        if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0) {
+            *ty = (struct type){ B_FLOAT, last - '0' };
+            *shader_only = 1;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static int is_qualifier(const struct tok *t)
+{
+    static const char *q[] = { "highp", "mediump", "lowp", "precise", "in", NULL };
+    for (int i = 0; q[i]; ++i)
+        if (sl_tok_is(t, q[i]))
+            return 1;
+    return 0;
+}
+
+static void check_unsupported_word(struct sl *S, const struct tok *t)
+{
+    static const struct { const char *w, *why; } words[] = {
+        { "while", "while loops are not supported (a for loop with constant bounds is)" },
+        { "do", "do loops are not supported (a for loop with constant bounds is)" },
+        { "switch", "switch is not supported (use if/else)" },
+        { "break", "break is not supported" },
+        { "continue", "continue is not supported" },
+        { "discard", "discard is not supported" },
+        { "struct", "structs are not supported" },
+        { "uniform", "uniforms are not supported: declare the model's parameters in the header "
+                     "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
+        { "out", "out parameters are not supported" },
+        { "inout", "inout parameters are not supported" },
+        { "double", "double is not supported (write float: the reference is double anyway)" },
+        { "mat2", "matrices are not supported" }, { "mat3", "matrices are not supported" },
+        { "mat4", "matrices are not supported" }, { "float3x3", "matrices are not supported" },
+        { "float4x4", "matrices are not supported" },
+        { NULL, NULL } };
+    for (int i = 0; words[i].w; ++i)
+        if (sl_tok_is(t, words[i].w))
+            FAIL(S, t, "%s", words[i].why);
+}
+
+static struct expr *new_expr(struct sl *S, int k, const struct tok *t)
+{
+    struct expr *e = sl_arena_alloc(S, sizeof *e);
+    e->k = k;
+    e->t = t;
+    return e;
+}
+
+static struct expr *parse_expr(struct sl *S);
+
+static int swizzle_index(char ch)
+{
+    const char *sets[] = { "xyzw", "rgba", "stpq" };
+    for (int s = 0; s < 3; ++s)
+        for (int i = 0; i < 4; ++i)
+            if (sets[s][i] == ch)
+                return i;
+    return -1;
+}
+
+static struct expr *parse_call_args(struct sl *S, struct expr *e)
+{
+    expect(S, "(");
+    struct expr *args[SL_MAX_ARGS];
+    int n = 0;
+    if (!accept(S, ")")) {
+        for (;;) {
+            if (n == SL_MAX_ARGS)
+                FAIL(S, sl_peek(S), "more than %d arguments", SL_MAX_ARGS);
+            args[n++] = parse_expr(S);
+            if (accept(S, ")"))
+                break;
+            expect(S, ",");
+        }
+    }
+    e->args = sl_arena_alloc(S, sizeof *e->args * (size_t)(n ? n : 1));
+    memcpy(e->args, args, sizeof *args * (size_t)n);
+    e->nargs = n;
+    return e;
+}
+
+static struct expr *parse_unary(struct sl *S);
+
+static struct expr *parse_primary(struct sl *S)
+{
+    const struct tok *t = sl_peek(S);
+    struct type ty;
+    int so;
+    if (t->k == K_FLT) {
+        next(S);
+        return new_expr(S, E_FLT, t);
+    }
+    if (t->k == K_INT) {
+        next(S);
+        return new_expr(S, E_INT, t);
+    }
+    if (t->k == K_ID) {
+        check_unsupported_word(S, t);
+        if (sl_tok_is(t, "true") || sl_tok_is(t, "false")) {
+            next(S);
+            S->shader_only = 1;
+            return new_expr(S, E_BOOL, t);
+        }
+        next(S);
+        if (sl_tok_is(sl_peek(S), "(")) {
+            if (sl_type_of_name(t, &ty, &so))
+                S->shader_only = 1;
+            return parse_call_args(S, new_expr(S, E_CALL, t));
+        }
+        if (sl_type_of_name(t, &ty, &so))
+            FAIL(S, t, "a type name here: a constructor takes its components in parentheses, e.g. %.*s(...)",
+                 t->len, t->p);
+        return new_expr(S, E_VAR, t);
+    }
+    if (sl_tok_is(t, "(")) {
+        const struct tok *t1 = peek_at(S, 1);
+        if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), ")")) {
+            /* a cast: (float)x, (int)x, (float3)x */
+            next(S);
+            next(S);
+            next(S);
+            S->shader_only = 1;
+            struct expr *e = new_expr(S, E_CALL, t1);
+            e->is_cast = 1;
+            e->args = sl_arena_alloc(S, sizeof *e->args);
+            e->args[0] = parse_unary(S);
+            e->nargs = 1;
+            return e;
+        }
+        next(S);
+        struct expr *e = parse_expr(S);
+        expect(S, ")");
+        return e;
+    }
+    FAIL(S, t, "expected a value, found %s", tok_desc(S, t));
+}
+
+static struct expr *parse_postfix(struct sl *S)
+{
+    struct expr *e = parse_primary(S);
+    while (sl_tok_is(sl_peek(S), ".")) {
+        const struct tok *dot = next(S);
+        const struct tok *f = sl_peek(S);
+        if (f->k != K_ID)
+            FAIL(S, f, "expected a swizzle (.x, .xy, .rgb, ...) after '.'");
+        next(S);
+        struct expr *s = new_expr(S, E_SWZ, dot);
+        s->a = e;
+        if (f->len > 4)
+            FAIL(S, f, "a swizzle has 1 to 4 components, '%.*s' has %d", f->len, f->p, f->len);
+        for (int i = 0; i < f->len; ++i) {
+            int k = swizzle_index(f->p[i]);
+            if (k < 0)
+                FAIL(S, f, "'%c' is not a component (x y z w, r g b a or s t p q)", f->p[i]);
+            s->swz[i] = k;
+        }
+        s->nswz = f->len;
+        S->shader_only = 1;
+        e = s;
+    }
+    if (sl_tok_is(sl_peek(S), "["))
+        FAIL(S, sl_peek(S), "indexing with [] is not supported (use .x, .y, ...)");
+    return e;
+}
+
+static struct expr *parse_unary_inner(struct sl *S);
+static struct expr *parse_unary(struct sl *S)
+{
+    if (++S->depth > SL_MAX_NESTING)
+        FAIL(S, sl_peek(S), "nested more than %d levels deep", SL_MAX_NESTING);
+    struct expr *e = parse_unary_inner(S);
+    --S->depth;
+    return e;
+}
+
+static struct expr *parse_unary_inner(struct sl *S)
+{
+    const struct tok *t = sl_peek(S);
+    if (sl_tok_is(t, "-") || sl_tok_is(t, "+") || sl_tok_is(t, "!")) {
+        next(S);
+        struct expr *e = new_expr(S, E_UN, t);
+        e->op = t->p[0] == '-' ? 'u' : t->p[0] == '+' ? 'p' : '!';
+        e->a = parse_unary(S);
+        return e;
+    }
+    if (sl_tok_is(t, "++") || sl_tok_is(t, "--"))
+        FAIL(S, t, "'%.*s' is a statement here: write it on its own (++x;)", t->len, t->p);
+    return parse_postfix(S);
+}
+
+/* Binary operators by precedence level (lowest first). */
+static int binop_code(const struct tok *t, int level)
+{
+    if (t->k != K_OP)
+        return 0;
+    static const struct { const char *s; int code, level; } ops[] = {
+        { "||", 'O', 0 }, { "&&", 'A', 1 }, { "==", 'E', 2 }, { "!=", 'N', 2 }, { "<", '<', 3 },
+        { ">", '>', 3 },  { "<=", 'L', 3 }, { ">=", 'G', 3 }, { "+", '+', 4 },  { "-", '-', 4 },
+        { "*", '*', 5 },  { "/", '/', 5 },  { "%", '%', 5 },  { NULL, 0, 0 } };
+    for (int i = 0; ops[i].s; ++i)
+        if (ops[i].level == level && sl_tok_is(t, ops[i].s))
+            return ops[i].code;
+    return 0;
+}
+
+static struct expr *parse_binary(struct sl *S, int level)
+{
+    if (level > 5)
+        return parse_unary(S);
+    struct expr *e = parse_binary(S, level + 1);
+    for (;;) {
+        const struct tok *t = sl_peek(S);
+        int code = binop_code(t, level);
+        if (!code)
+            return e;
+        next(S);
+        struct expr *b = new_expr(S, E_BIN, t);
+        b->op = code;
+        b->a = e;
+        b->b = parse_binary(S, level + 1);
+        e = b;
+    }
+}
+
+static struct expr *parse_expr(struct sl *S)
+{
+    struct expr *c = parse_binary(S, 0);
+    if (sl_tok_is(sl_peek(S), "?")) {
+        const struct tok *q = next(S);
+        struct expr *e = new_expr(S, E_TER, q);
+        e->a = c;
+        e->b = parse_expr(S);
+        expect(S, ":");
+        e->c = parse_expr(S);
+        return e;
+    }
+    return c;
+}
+
+struct stmt *sl_new_stmt(struct sl *S, int k, const struct tok *t)
+{
+    struct stmt *s = sl_arena_alloc(S, sizeof *s);
+    s->k = k;
+    s->t = t;
+    return s;
+}
+
+static void block_add(struct sl *S, struct stmt *b, struct stmt *s)
+{
+    if (b->n == b->cap) {
+        int cap = b->cap ? 2 * b->cap : 8;
+        struct stmt **v = sl_arena_alloc(S, sizeof *v * (size_t)cap);
+        if (b->n)
+            memcpy(v, b->items, sizeof *v * (size_t)b->n);
+        b->items = v;
+        b->cap = cap;
+    }
+    b->items[b->n++] = s;
+}
+
+/* Qualifiers and a type, if the next tokens are one. */
+static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
+{
+    int save = S->pos;
+    *is_const = 0;
+    for (;;) {
+        const struct tok *t = sl_peek(S);
+        if (sl_tok_is(t, "const")) {
+            *is_const = 1;
+            next(S);
+        } else if (sl_tok_is(t, "static") || is_qualifier(t)) {
+            next(S);
+        } else {
+            break;
+        }
+    }
+    int so;
+    const struct tok *t = sl_peek(S);
+    check_unsupported_word(S, t);
+    if (sl_type_of_name(t, ty, &so) && !sl_tok_is(peek_at(S, 1), "(")) {
+        if (so)
+            S->shader_only = 1;
+        next(S);
+        return 1;
+    }
+    S->pos = save;
+    return 0;
+}
+
+static struct stmt *parse_statement(struct sl *S, int top_body);
+
+/* Declarations of one type: `float a = 1.0, b;` as a block of S_DECL (no scope of its own). */
+static struct stmt *parse_declaration(struct sl *S, struct type ty, int is_const, const struct tok *start)
+{
+    struct stmt *list = sl_new_stmt(S, S_BLOCK, start);
+    list->op = 1; /* no scope */
+    for (;;) {
+        const struct tok *name = sl_peek(S);
+        if (name->k != K_ID)
+            FAIL(S, name, "expected a variable name, found %s", tok_desc(S, name));
+        check_unsupported_word(S, name);
+        next(S);
+        struct stmt *d = sl_new_stmt(S, S_DECL, name);
+        d->ty = ty;
+        d->is_const = is_const;
+        d->name = name;
+        if (sl_tok_is(sl_peek(S), "["))
+            FAIL(S, sl_peek(S), "arrays are not supported");
+        if (accept(S, "="))
+            d->e = parse_expr(S);
+        else if (is_const)
+            FAIL(S, name, "const '%.*s' needs a value", name->len, name->p);
+        block_add(S, list, d);
+        if (accept(S, ";"))
+            return list;
+        expect(S, ",");
+    }
+}
+
+static struct stmt *parse_block(struct sl *S)
+{
+    const struct tok *open = expect(S, "{");
+    struct stmt *b = sl_new_stmt(S, S_BLOCK, open);
+    while (!sl_tok_is(sl_peek(S), "}")) {
+        if (sl_peek(S)->k == K_EOF)
+            FAIL(S, open, "this '{' is not closed");
+        block_add(S, b, parse_statement(S, 0));
+    }
+    next(S);
+    return b;
+}
+
+static struct stmt *parse_simple(struct sl *S, int top_body, int need_semicolon)
+{
+    const struct tok *t = sl_peek(S);
+    struct type ty;
+    int is_const;
+    if (parse_decl_type(S, &ty, &is_const)) {
+        if (ty.b == B_VOID)
+            FAIL(S, t, "a variable cannot be void");
+        return parse_declaration(S, ty, is_const, t);
+    }
+    if (sl_tok_is(t, "++") || sl_tok_is(t, "--")) {
+        next(S);
+        struct stmt *s = sl_new_stmt(S, S_ASSIGN, t);
+        s->lhs = parse_unary(S);
+        s->op = t->p[0];
+        s->e = new_expr(S, E_INT, t);
+        s->e->op = 1; /* the literal 1 */
+        if (need_semicolon)
+            expect(S, ";");
+        return s;
+    }
+    struct expr *e = parse_expr(S);
+    const struct tok *a = sl_peek(S);
+    struct stmt *s = sl_new_stmt(S, S_ASSIGN, a);
+    s->lhs = e;
+    if (sl_tok_is(a, "=") || sl_tok_is(a, "+=") || sl_tok_is(a, "-=") || sl_tok_is(a, "*=") || sl_tok_is(a, "/=") ||
+        sl_tok_is(a, "%=")) {
+        next(S);
+        s->op = a->len == 1 ? '=' : a->p[0];
+        s->e = parse_expr(S);
+    } else if (sl_tok_is(a, "++") || sl_tok_is(a, "--")) {
+        next(S);
+        s->op = a->p[0];
+        s->e = new_expr(S, E_INT, a);
+        s->e->op = 1;
+    } else if (top_body && a->k == K_EOF) {
+        /* the body form's last expression, without return: its value */
+        struct stmt *r = sl_new_stmt(S, S_RET, e->t);
+        r->e = e;
+        return r;
+    } else {
+        if (sl_tok_is(a, ";"))
+            FAIL(S, e->t, "this expression is computed and then dropped (assign it, or return it)");
+        FAIL(S, a, "expected ';' or an assignment, found %s", tok_desc(S, a));
+    }
+    if (need_semicolon)
+        expect(S, ";");
+    return s;
+}
+
+static struct stmt *parse_statement_inner(struct sl *S, int top_body);
+static struct stmt *parse_statement(struct sl *S, int top_body)
+{
+    if (++S->depth > SL_MAX_NESTING)
+        FAIL(S, sl_peek(S), "nested more than %d levels deep", SL_MAX_NESTING);
+    struct stmt *st = parse_statement_inner(S, top_body);
+    --S->depth;
+    return st;
+}
+
+static struct stmt *parse_statement_inner(struct sl *S, int top_body)
+{
+    const struct tok *t = sl_peek(S);
+    check_unsupported_word(S, t);
+    if (sl_tok_is(t, "{"))
+        return parse_block(S);
+    if (accept(S, ";"))
+        return sl_new_stmt(S, S_EMPTY, t);
+    if (sl_tok_is(t, "if")) {
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, S_IF, t);
+        expect(S, "(");
+        s->e = parse_expr(S);
+        expect(S, ")");
+        s->s1 = parse_statement(S, 0);
+        if (accept(S, "else"))
+            s->s2 = parse_statement(S, 0);
+        return s;
+    }
+    if (sl_tok_is(t, "else"))
+        FAIL(S, t, "'else' without an 'if'");
+    if (sl_tok_is(t, "return")) {
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, S_RET, t);
+        if (sl_tok_is(sl_peek(S), ";"))
+            FAIL(S, sl_peek(S), "return needs a value");
+        s->e = parse_expr(S);
+        if (!(top_body && sl_peek(S)->k == K_EOF))
+            expect(S, ";");
+        return s;
+    }
+    if (sl_tok_is(t, "for")) {
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, S_FOR, t);
+        expect(S, "(");
+        s->s1 = parse_simple(S, 0, 0);
+        if (s->s1->k == S_BLOCK && s->s1->op == 1) {
+            /* parse_declaration consumed the ';' */
+        } else {
+            expect(S, ";");
+        }
+        s->e = parse_expr(S);
+        expect(S, ";");
+        s->s2 = parse_simple(S, 0, 0);
+        expect(S, ")");
+        s->s3 = parse_statement(S, 0);
+        return s;
+    }
+    return parse_simple(S, top_body, 1);
+}
+
+
+
+/* The function form: somewhere outside braces and parentheses a type, a name and '('. */
+static int is_function_start(struct sl *S)
+{
+    int depth = 0;
+    for (int i = S->pos; i + 2 < S->toks.n; ++i) {
+        const struct tok *t = &S->toks.v[i];
+        if (sl_tok_is(t, "{") || sl_tok_is(t, "("))
+            ++depth;
+        else if (sl_tok_is(t, "}") || sl_tok_is(t, ")"))
+            --depth;
+        struct type ty;
+        int so;
+        if (depth == 0 && sl_type_of_name(t, &ty, &so) && t[1].k == K_ID && sl_tok_is(&t[2], "("))
+            return 1;
+    }
+    return 0;
+}
+
+/* A file: function definitions and global declarations, or (no function) a body. */
+struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
+{
+    if (!is_function_start(S)) {
+        struct stmt *body = sl_new_stmt(S, S_BLOCK, sl_peek(S));
+        while (sl_peek(S)->k != K_EOF)
+            block_add(S, body, parse_statement(S, 1));
+        return body;
+    }
+    struct func **tail = &S->funcs;
+    while (*tail)
+        tail = &(*tail)->next;
+    while (sl_peek(S)->k != K_EOF) {
+        const struct tok *start = sl_peek(S);
+        if (accept(S, ";"))
+            continue;
+        if (sl_tok_is(start, "precision")) {
+            while (sl_peek(S)->k != K_EOF && !accept(S, ";"))
+                next(S);
+            continue;
+        }
+        struct type t;
+        int is_const;
+        int save = S->pos;
+        if (!parse_decl_type(S, &t, &is_const)) {
+            check_unsupported_word(S, start);
+            FAIL(S, start, "expected a function or a declaration, found %s", tok_desc(S, start));
+        }
+        const struct tok *name = sl_peek(S);
+        if (name->k != K_ID)
+            FAIL(S, name, "expected a name, found %s", tok_desc(S, name));
+        if (!sl_tok_is(peek_at(S, 1), "(")) {
+            S->pos = save;
+            parse_decl_type(S, &t, &is_const);
+            if (t.b == B_VOID)
+                FAIL(S, start, "a variable cannot be void");
+            struct stmt *d = parse_declaration(S, t, is_const, start);
+            block_add(S, globals, d);
+            continue;
+        }
+        next(S);
+        expect(S, "(");
+        struct func *f = sl_arena_alloc(S, sizeof *f);
+        f->name = name;
+        f->ret = t;
+        if (sl_find_func(S, name))
+            FAIL(S, name, "function '%.*s' is defined twice (overloads are not supported)", name->len, name->p);
+        if (accept(S, "void")) {
+            expect(S, ")");
+        } else if (!accept(S, ")")) {
+            for (;;) {
+                struct type pt;
+                int pc;
+                const struct tok *pt0 = sl_peek(S);
+                if (!parse_decl_type(S, &pt, &pc))
+                    FAIL(S, pt0, "expected a parameter type, found %s", tok_desc(S, pt0));
+                if (pt.b == B_VOID)
+                    FAIL(S, pt0, "a parameter cannot be void");
+                const struct tok *pn = sl_peek(S);
+                if (pn->k != K_ID)
+                    FAIL(S, pn, "expected a parameter name, found %s", tok_desc(S, pn));
+                next(S);
+                if (sl_tok_is(sl_peek(S), ":"))
+                    FAIL(S, sl_peek(S), "HLSL semantics (': NAME') are not supported on a model's parameters");
+                if (f->nparams == SL_MAX_ARGS)
+                    FAIL(S, pn, "more than %d parameters", SL_MAX_ARGS);
+                f->pty[f->nparams] = pt;
+                f->pname[f->nparams++] = pn;
+                if (accept(S, ")"))
+                    break;
+                expect(S, ",");
+            }
+        }
+        if (accept(S, ";"))
+            continue; /* a prototype */
+        f->body = parse_block(S);
+        f->close = &S->toks.v[S->pos - 1];
+        *tail = f;
+        tail = &f->next;
+    }
+    return NULL;
+}
