@@ -4,6 +4,8 @@
  * pointing at it and report.md there. One progress line per step on stderr, with a live
  * bar when stderr is a terminal. */
 #define _POSIX_C_SOURCE 200809L
+#include "cmd_all_internal.h"
+
 #include "accuracy.h"
 #include "accuracy_report.h"
 #include "cli_table.h"
@@ -33,72 +35,22 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define ALL_MAX_MODELS 64
-#define ALL_MAX_Q 256
-#define ALL_STEPS_BASE 10
-
-struct all_settings {
-    int quick;
-    struct accuracy_grid grid;     /* the main sweep */
-    struct accuracy_grid q_grid;   /* each f_Q of the Q sweep */
-    double q_min, q_max, q_step;
-    struct field_grid field;
-};
-
-struct all_run {
-    struct all_settings set;
-    struct cl_session s;
-    struct accuracy_ctx actx;
-    int actx_open;
-    const char *results_root;
-    char run_dir[4200];            /* where the run is written: the staging folder */
-    char final_dir[4096];          /* where it goes when complete: --out or results/<date-time> */
-    char command[1024];
-    double t0;
-    int step;
-    int tty;
-    int quiet;                     /* no progress or step lines, no closing path */
-    struct model_spec models[ALL_MAX_MODELS];
-    int nmodels;
-    int models_given;              /* --models: every step measures just those */
-    struct accuracy_result *acc;
-    int nacc;
-    /* Q sweep */
-    int nq;
-    double q[ALL_MAX_Q], q_delta[ALL_MAX_Q], q_Delta[ALL_MAX_Q];
-    double f2_delta, f2_Delta;
-    struct plot_set plots;
-    struct report_picture *pics;
-    int npics, cappics;
-    struct report_step *steps;     /* the step list of report.md (run.json) */
-    int nsteps, capsteps;
-    int picture_failures;
-    int part_failures, part_rc;
-    char picture_error[1024];
-    struct report_part_state parts[REPORT_PART_COUNT];
-    char images_note[512];         /* the scenes left out */
-    const char *measured_dir;      /* --measured DIR: the measured materials' section */
-    const char *out_dir;           /* --out, or NULL: a new folder under results_root */
-    struct device_options dev;
-    int shared_scale;              /* --shared-scale */
-};
-
 /* ---- progress ------------------------------------------------------------------- */
 
 /* The steps of this run: one more with --measured. */
 static int all_steps(const struct all_run *r) { return ALL_STEPS_BASE + (r->measured_dir != NULL); }
 
-static double elapsed(const struct all_run *r) { return wall_seconds() - r->t0; }
+double all_elapsed(const struct all_run *r) { return wall_seconds() - r->t0; }
 
 /* A live bar on a terminal: [#####.....] 7/14 fvol */
-static void progress(const struct all_run *r, const char *what, int done, int total, const char *item)
+void all_progress(const struct all_run *r, const char *what, int done, int total, const char *item)
 {
     if (!r->tty || r->quiet || total <= 0) return;
     int width = 30, fill = done * width / total;
     char bar[64];
     for (int i = 0; i < width; i++) bar[i] = i < fill ? '#' : '.';
     bar[width] = 0;
-    fprintf(stderr, "\r\033[K[%6.1f s] %-10s [%s] %d/%d %s", elapsed(r), what, bar, done, total, item ? item : "");
+    fprintf(stderr, "\r\033[K[%6.1f s] %-10s [%s] %d/%d %s", all_elapsed(r), what, bar, done, total, item ? item : "");
     fflush(stderr);
 }
 
@@ -120,9 +72,7 @@ static void add_step(struct all_run *r, const char *name, const char *msg, doubl
 }
 
 /* The line that closes a step: on stderr and in the report's step list. */
-static void step_done(struct all_run *r, const char *name, double started, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static void step_done(struct all_run *r, const char *name, double started, const char *fmt, ...)
+void all_step_done(struct all_run *r, const char *name, double started, const char *fmt, ...)
 {
     char msg[1024];
     va_list ap;
@@ -133,7 +83,7 @@ static void step_done(struct all_run *r, const char *name, double started, const
     r->step++;
     if (!r->quiet) {
         if (r->tty) fprintf(stderr, "\r\033[K");
-        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", elapsed(r), r->step, all_steps(r), name, msg, secs);
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s (%.1f s)\n", all_elapsed(r), r->step, all_steps(r), name, msg, secs);
     }
     add_step(r, name, msg, secs, 0);
     outdir_reassert_signal_handlers();   /* in front of the OpenCL compiler's (outdir.h) */
@@ -173,7 +123,7 @@ static void part(struct all_run *r, const char *name, int which, int rc)
     r->step++;
     outdir_reassert_signal_handlers();
     if (r->tty) fprintf(stderr, "\r\033[K");
-    fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", elapsed(r), r->step, all_steps(r), name, rc);
+    fprintf(stderr, "[%6.1f s] step %d/%d %-10s FAILED (exit %d)\n", all_elapsed(r), r->step, all_steps(r), name, rc);
     add_step(r, name, "", 0, rc);
 }
 
@@ -208,7 +158,7 @@ static int step_accuracy(struct all_run *r)
     r->acc = calloc((size_t)r->nmodels, sizeof *r->acc);
     if (!r->acc) return EXIT_RUNTIME;
     for (int m = 0; m < r->nmodels; m++) {
-        progress(r, "accuracy", m, r->nmodels, r->models[m].label);
+        all_progress(r, "accuracy", m, r->nmodels, r->models[m].label);
         if ((rc = accuracy_run(&r->actx, &r->models[m], &r->set.grid, &r->acc[m])) != 0) return rc;
         r->nacc = m + 1;
     }
@@ -216,7 +166,7 @@ static int step_accuracy(struct all_run *r)
     if (accuracy_write_json(path, r->acc, r->nacc, &r->s, r->actx.build_options, err, sizeof err)) goto fail;
     path_join(path, sizeof path, r->run_dir, "accuracy.csv");
     if (accuracy_write_csv(path, r->acc, r->nacc, err, sizeof err)) goto fail;
-    step_done(r, "accuracy", t, "%d models, n in [%g, %g] step %g, %ld samples per zone -> accuracy.json, accuracy.csv",
+    all_step_done(r, "accuracy", t, "%d models, n in [%g, %g] step %g, %ld samples per zone -> accuracy.json, accuracy.csv",
               r->nacc, r->set.grid.n_min, r->set.grid.n_max, r->set.grid.n_step, r->set.grid.samples);
     return 0;
 fail:
@@ -272,7 +222,7 @@ static int step_q_sweep(struct all_run *r)
     if (r->parts[REPORT_PART_CLAIMS].ran && !r->parts[REPORT_PART_CLAIMS].missing[0]) {
         /* the claims check ran its own Q sweep: use it */
         if (read_q_sweep(r, err, sizeof err) == 0) {
-            step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], read from q_sweep.json", r->nq, r->q[0],
+            all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], read from q_sweep.json", r->nq, r->q[0],
                       r->q[r->nq - 1]);
             return 0;
         }
@@ -296,7 +246,7 @@ static int step_q_sweep(struct all_run *r)
             fprintf(stderr, "brdfbench all: Q sweep: %s\n", err);
             return EXIT_USAGE;
         }
-        progress(r, "Q sweep", i, total, text);
+        all_progress(r, "Q sweep", i, total, text);
         if ((rc = accuracy_run(&r->actx, &m, g, &res)) != 0) return rc;
         r->q[r->nq] = q;
         r->q_delta[r->nq] = res.epicentre.value;
@@ -313,7 +263,7 @@ static int step_q_sweep(struct all_run *r)
         r->f2_Delta = res.whole.value;
         accuracy_result_free(&res);
     }
-    step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone", r->nq,
+    all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone", r->nq,
               r->set.q_min, r->q[r->nq - 1], g->n_min, g->n_max, g->n_step, g->samples);
     return 0;
 }
@@ -331,7 +281,7 @@ static int step_heatmaps(struct all_run *r)
     for (int m = 0; m < r->nmodels; m++) {
         const struct model_spec *spec = &r->models[m];
         if (is_self_referenced(spec)) continue; /* zero by definition: nothing to see */
-        progress(r, "heatmaps", drawn, total, spec->label);
+        all_progress(r, "heatmaps", drawn, total, spec->label);
         struct field_result fr;
         if ((rc = field_run(&f, spec, &r->set.field, &fr)) != 0) break;
         worst_rel = fmax(worst_rel, fr.check_rel_diff);
@@ -358,7 +308,7 @@ static int step_heatmaps(struct all_run *r)
     }
     field_close(&f);
     if (rc) return rc;
-    step_done(r, "heatmaps", t, "%d of %d pictures, %dx%d cells per zone, n in [%g, %g]; device vs double on sampled "
+    all_step_done(r, "heatmaps", t, "%d of %d pictures, %dx%d cells per zone, n in [%g, %g]; device vs double on sampled "
               "cells: delta within %.2g (absolute), Delta within %.2g%% of its maximum",
               drawn, total, r->set.field.cols, r->set.field.rows, r->set.field.n_min, r->set.field.n_max, worst_rel,
               100 * worst_abs);
@@ -458,250 +408,14 @@ static int step_plots(struct all_run *r)
     int drawn = 0;
     for (int i = 0; i < r->plots.count; i++) {
         const struct plot_figure *f = &r->plots.figs[i];
-        progress(r, "plots", i, r->plots.count, f->file);
+        all_progress(r, "plots", i, r->plots.count, f->file);
         path_join(path, sizeof path, r->run_dir, f->file);
         if (plot_figure_draw(f, path, err, sizeof err)) picture_failed(r, err);
         else drawn++;
         add_picture(r, f->file, f->kind == PLOT_BARS ? REPORT_THROUGHPUT : REPORT_PLOTS, "%s", f->caption);
     }
-    step_done(r, "plots", t, "%d of %d pictures -> plots.json", drawn, r->plots.count);
+    all_step_done(r, "plots", t, "%d of %d pictures -> plots.json", drawn, r->plots.count);
     return 0;
-}
-
-/* The parts below belong to other commands of brdfbench. Each one fills its report block
- * (markdown, or why it is missing) and adds its pictures; wiring a part in is its library
- * call in place of the `missing` line. */
-/* A part's page beside its JSON (report_part_page), which report.md takes in as its section. */
-static int write_page(struct all_run *r, int which, const char *text)
-{
-    char path[4300], err[1024];
-    const char *page = report_part_page(which);
-    if (path_join(path, sizeof path, r->run_dir, page) || write_file_atomic(path, text, strlen(text), err, sizeof err)) {
-        fprintf(stderr, "brdfbench all: %s: %s\n", page, err);
-        return EXIT_RUNTIME;
-    }
-    return 0;
-}
-
-/* A part's run failed: its message, and the exit code passed on to part(). */
-static int part_failed(const char *what, int rc)
-{
-    fprintf(stderr, "brdfbench all: %s failed (exit %d)\n", what, rc);
-    return rc;
-}
-
-/* The claims check's options: the papers' grids, or coarse ones for --quick. */
-static void claims_options(const struct all_run *r, struct reproduce_options *o)
-{
-    reproduce_options_default(o);
-    if (!r->set.quick) return;
-    o->samples = 256;
-    o->grid_check = 0;
-    o->q_min = 0.30;
-    o->q_max = 0.90;
-    o->q_step = 0.05;
-    o->q_samples = 128;
-    o->q_n_step = 25;
-    o->energy = 0;
-    o->physical = 0;   /* the physically based models' cost: not for a trial run */
-}
-
-/* The claims of both papers (reproduce.h): claims.json, claims.md, q_sweep.json, energy.json. */
-static int step_claims(struct all_run *r)
-{
-    double t = wall_seconds();
-    struct reproduce_options o;
-    struct reproduce_report rep;
-    claims_options(r, &o);
-    memset(&rep, 0, sizeof rep);
-    progress(r, "claims", 0, 1, "reproduce");
-    int rc = reproduce_run_ex(&r->s, r->run_dir, &o, 1, &rep);
-    if (!rc && !rep.markdown)
-        snprintf(r->parts[REPORT_PART_CLAIMS].missing, sizeof r->parts[0].missing,
-                 "the claims check ran but gave no table.");
-    if (!rc)
-        step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced -> claims.json, claims.md, q_sweep.json%s",
-                  rep.count, rep.reproduced, rep.not_reproduced, o.energy ? ", energy.json" : "");
-    reproduce_report_free(&rep);
-    return rc ? part_failed("the claims check", rc) : 0;
-}
-
-/* Beyond the papers (fit.h): the family's per-n limit and the best affine k(n) = a n + b,
- * beside fq2, fvol and cq2 over the same range -> fit.json (report.md's section comes from it). */
-static int step_fit(struct all_run *r)
-{
-    double t = wall_seconds();
-    struct fit_options o;
-    struct fit_report rep;
-    fit_options_default(&o);
-    o.n_step = r->set.quick ? 25 : o.n_step;
-    o.samples = r->set.quick ? 256 : o.samples;
-    memset(&rep, 0, sizeof rep);
-    progress(r, "fit", 0, 1, "fitting");
-    int rc = fit_run(&r->s, r->run_dir, &o, 1, &rep);
-    if (!rc) step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
-    fit_report_free(&rep);
-    return rc ? part_failed("the fit", rc) : 0;
-}
-
-/* Throughput (throughput.h) with the configuration made for the main job: every model, three
- * sets of build options, both n modes, the C baseline and the sweep timing. Bars of the
- * default build options per n mode go with the plots. */
-static int step_throughput(struct all_run *r)
-{
-    double t = wall_seconds();
-    struct throughput_options o;
-    throughput_options_default(&o);
-    o.model_count = 0;
-    for (int m = 0; m < r->nmodels && o.model_count < TP_MAX_MODELS; m++) o.models[o.model_count++] = r->models[m];
-    if (r->set.quick) {
-        o.reps = 2;
-        o.min_time = 1e-3;
-        o.variants = 1u << TP_VARIANT_DEFAULT;
-        o.host_c = 0;
-        o.sweep = 0;
-    }
-    char err[1024], *md = NULL;
-    if (throughput_options_check(&o, err, sizeof err)) {
-        fprintf(stderr, "brdfbench all: throughput: %s\n", err);
-        return EXIT_USAGE;
-    }
-    progress(r, "throughput", 0, 1, "measuring");
-    int rc = throughput_run_md(&r->s, &o, r->run_dir, 1, &md);
-    if (rc) {
-        free(md);
-        return part_failed("the throughput measurement", rc);
-    }
-    if (md) {
-        rc = write_page(r, REPORT_PART_THROUGHPUT, md);
-        free(md);
-        if (rc) return rc;
-    } else {
-        snprintf(r->parts[REPORT_PART_THROUGHPUT].missing, sizeof r->parts[0].missing,
-                 "the throughput measurement ran but gave no table.");
-    }
-    step_done(r, "throughput", t, "%d models -> throughput.json, throughput.csv", o.model_count);
-    return 0;
-}
-
-/* The image passes (render.h) at a size that keeps the main job short: images 960 x 540,
- * timings at 1920 x 1080 (5 launches after 2 warm-ups). A scene whose data package is not
- * installed is left out and the report says so. */
-static int step_images(struct all_run *r)
-{
-    double t = wall_seconds();
-    char err[1024], missing[512] = "";
-    struct render_options o;
-    render_options_default(&o);
-    o.width = r->set.quick ? 320 : 960;
-    o.height = r->set.quick ? 180 : 540;
-    o.ntime_sizes = 1;
-    o.time_w[0] = r->set.quick ? 320 : 1920;
-    o.time_h[0] = r->set.quick ? 180 : 1080;
-    o.reps = r->set.quick ? 1 : 5;
-    o.warmup = r->set.quick ? 1 : 2;
-    o.verbose = 0;
-    o.nmodels = 0;
-    for (int m = 0; m < r->nmodels && o.nmodels < RENDER_MAX_MODELS; m++) o.models[o.nmodels++] = r->models[m];
-    if (access(o.teapot_path, R_OK) != 0) {
-        o.scene_on[RENDER_TEAPOT] = 0;
-        snprintf(missing + strlen(missing), sizeof missing - strlen(missing),
-                 " The teapot was left out: %s is missing (Debian package %s).", o.teapot_path, RENDER_TEAPOT_PACKAGE);
-    }
-    if (access(o.bunny_path, R_OK) != 0) {
-        o.scene_on[RENDER_BUNNY] = 0;
-        snprintf(missing + strlen(missing), sizeof missing - strlen(missing),
-                 " The bunny was left out: %s is missing (Debian package %s).", o.bunny_path, RENDER_BUNNY_PACKAGE);
-    }
-    progress(r, "images", 0, 1, "render");
-    int rc = render_run(&r->s, &o, r->run_dir, NULL, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench all: image passes: %s\n", err);
-        return rc;
-    }
-    snprintf(r->images_note, sizeof r->images_note, "%s", missing[0] ? missing + 1 : "");
-    step_done(r, "images", t, "%d models on %s%s%s at %dx%d, timed at %dx%d -> render.json, render/", o.nmodels,
-              "spheres", o.scene_on[RENDER_TEAPOT] ? ", teapot" : "", o.scene_on[RENDER_BUNNY] ? ", bunny" : "",
-              o.width, o.height, o.time_w[0], o.time_h[0]);
-    return 0;
-}
-
-/* Which lobe to ship (frontier.h): every lobe approximation's cost against its accuracy, with
- * shorter timings than `brdfbench frontier` (2 rounds of 3 launches of 10 ms) to keep the main job short. */
-static int step_frontier(struct all_run *r)
-{
-    double t = wall_seconds();
-    struct frontier_options o;
-    frontier_options_default(&o);
-    o.reps = 3;
-    o.rounds = 2;
-    o.min_time = 0.01;
-    o.samples = r->set.quick ? 256 : 512;
-    /* --models: those; else frontier's own set of lobe approximations and the user models */
-    if (r->models_given) {
-        for (int m = 0; m < r->nmodels && o.model_count < FRONTIER_MAX_MODELS; m++)
-            o.models[o.model_count++] = r->models[m];
-        if (r->nmodels > FRONTIER_MAX_MODELS)
-            fprintf(stderr, "brdfbench all: warning: the frontier measures the first %d of the %d models\n",
-                    FRONTIER_MAX_MODELS, r->nmodels);
-    } else {
-        char err[1024];
-        int n = cli_frontier_default_models(o.models, FRONTIER_MAX_MODELS, err, sizeof err);
-        if (n < 0) {
-            fprintf(stderr, "brdfbench all: the frontier: %s\n", err);
-            return EXIT_USAGE;
-        }
-        o.model_count = n;
-    }
-    progress(r, "frontier", 0, 1, "measuring");
-    char *md = NULL;
-    int rc = frontier_run(&r->s, &o, r->run_dir, 1, &md);
-    if (!rc && md) rc = write_page(r, REPORT_PART_FRONTIER, md);
-    else if (!rc)
-        snprintf(r->parts[REPORT_PART_FRONTIER].missing, sizeof r->parts[0].missing,
-                 "the frontier ran but gave no section.");
-    free(md);
-    if (rc) return part_failed("the frontier", rc);
-    step_done(r, "frontier", t, "cost against accuracy -> frontier.json, frontier.csv, frontier_*.png");
-    return 0;
-}
-
-/* The measured materials of --measured DIR (measured.h): measured.json, its pictures and a
- * section of report.md. */
-static int step_measured(struct all_run *r)
-{
-    double t = wall_seconds();
-    char err[4600], path[4300];
-    char **files = NULL;
-    int nfiles = 0;
-    struct measured_options o;
-    measured_options_default(&o);
-    struct measured_report rep;
-    memset(&rep, 0, sizeof rep);
-    int rc = measured_collect(r->measured_dir, &files, &nfiles, err, sizeof err);
-    if (!rc) {
-        progress(r, "measured", 0, 1, "fitting");
-        rc = measured_run(&r->s, files, nfiles, &o, NULL, &rep, err, sizeof err);
-    }
-    if (!rc && (path_join(path, sizeof path, r->run_dir, "measured.json") ||
-                measured_write_json(path, &rep, &r->s, err, sizeof err) ||
-                measured_write_plots(r->run_dir, &rep, err, sizeof err)))
-        rc = EXIT_RUNTIME;
-    if (rc && err[0])
-        fprintf(stderr, "brdfbench all: --measured: %s\n", err);
-    if (!rc) {
-        struct md_buf md;
-        md_init(&md);
-        measured_markdown(&md, &rep);
-        rc = md.failed ? EXIT_RUNTIME : write_page(r, REPORT_PART_MEASURED, md.s ? md.s : "");
-        md_free(&md);
-    }
-    if (!rc) {
-        step_done(r, "measured", t, "%d materials -> measured.json, measured_*.png", rep.count);
-    }
-    measured_report_free(&rep);
-    measured_paths_free(files, nfiles);
-    return rc;
 }
 
 /* run.json, then report.md made from the run folder as `brdfbench report` makes it. */
@@ -728,7 +442,7 @@ static int step_report(struct all_run *r, double wall)
     }
     r->step++;
     if (!r->quiet)
-        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", elapsed(r), r->step, all_steps(r),
+        fprintf(stderr, "[%6.1f s] step %d/%d %-10s %s/report.md (%.1f s)\n", all_elapsed(r), r->step, all_steps(r),
                 "report", r->final_dir, wall_seconds() - t);
     return 0;
 }
@@ -898,18 +612,18 @@ static int run_steps(struct all_run *r)
     outdir_reassert_signal_handlers();
 
     if ((rc = step_accuracy(r)) != 0) return rc;
-    part(r, "claims", REPORT_PART_CLAIMS, step_claims(r));
-    part(r, "fit", REPORT_PART_FIT, step_fit(r));
+    part(r, "claims", REPORT_PART_CLAIMS, all_step_claims(r));
+    part(r, "fit", REPORT_PART_FIT, all_step_fit(r));
     if ((rc = step_q_sweep(r)) != 0) return rc;
-    part(r, "throughput", REPORT_PART_THROUGHPUT, step_throughput(r));
+    part(r, "throughput", REPORT_PART_THROUGHPUT, all_step_throughput(r));
     if ((rc = step_heatmaps(r)) != 0) return rc;
     if ((rc = plots_heatmaps_shared_step("all", r->run_dir, r->shared_scale)) != 0) return rc;
     add_shared_page(r, r->shared_scale);
     if ((rc = step_plots(r)) != 0) return rc;
-    part(r, "images", REPORT_PART_IMAGES, step_images(r));
-    part(r, "frontier", REPORT_PART_FRONTIER, step_frontier(r));
+    part(r, "images", REPORT_PART_IMAGES, all_step_images(r));
+    part(r, "frontier", REPORT_PART_FRONTIER, all_step_frontier(r));
     if (r->measured_dir)
-        part(r, "measured", REPORT_PART_MEASURED, step_measured(r));
+        part(r, "measured", REPORT_PART_MEASURED, all_step_measured(r));
     return 0;
 }
 
@@ -918,7 +632,7 @@ static int run_steps(struct all_run *r)
 static int finish_run(struct all_run *r)
 {
     char err[1024];
-    int rc = step_report(r, elapsed(r));
+    int rc = step_report(r, all_elapsed(r));
     if (rc) return rc;
     if (r->part_failures) {
         fprintf(stderr, "brdfbench all: %d part(s) failed (see above); the report says which\n", r->part_failures);
@@ -943,9 +657,9 @@ static int finish_run(struct all_run *r)
     }
     if (!r->quiet) {
         if (accuracy_reused_sweeps() > 0)
-            fprintf(stderr, "[%6.1f s] %ld accuracy sweeps asked for by more than one part were run once\n", elapsed(r),
+            fprintf(stderr, "[%6.1f s] %ld accuracy sweeps asked for by more than one part were run once\n", all_elapsed(r),
                     accuracy_reused_sweeps());
-        fprintf(stderr, "[%6.1f s] done: %s/report.md\n", elapsed(r), r->final_dir);
+        fprintf(stderr, "[%6.1f s] done: %s/report.md\n", all_elapsed(r), r->final_dir);
         printf("%s/report.md\n", r->final_dir);
     }
     return 0;
