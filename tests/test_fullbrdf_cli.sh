@@ -49,6 +49,13 @@ jsoncheck fullbrdf_cli_bp_brdf_shaded_from_vectors "$T/r/render.json" && ok || b
 rc=$?
 [ $rc -eq 0 ] && ok || bad "throughput with bp.brdf and --measured: exit $rc: $(head -c 400 "$T/err")"
 grep -q "memory bandwidth, not arithmetic" "$T/out" && ok || bad "the table does not say what a lookup costs"
+# a row without an albedo (a lobe, a user BRDF, a measured material) shows "-", never nan
+! grep -qw "nan" "$T/out" && ok || bad "the physically based table prints nan: $(grep -w nan "$T/out" | head -2)"
+# the sweep timing of a run whose only model is a user BRDF says why nothing was timed
+"$BIN" throughput --model-file "$T/bp.brdf" --reps 1 --min-time 0.001 --no-host-c --variants default \
+    --n-modes uniform --out "$T/tp2" >"$T/out" 2>"$T/err"
+grep -q "accuracy sweep: not measured (no model has a tuned C loop to compare with (user models have none))" "$T/out" &&
+    ok || bad "the sweep timing's reason: $(grep 'accuracy sweep' "$T/out")"
 jsoncheck fullbrdf_cli_physical_user_measured_rows "$T/tp/physical.json" && ok || bad "physical.json: the user and measured rows"
 
 # the teapot shaded with the material beside its fitted lobes: the Blinn-Phong fit is the

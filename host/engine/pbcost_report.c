@@ -159,9 +159,12 @@ void pbcost_print_table(FILE *f, const struct pbcost_result *r)
             "vs Phong", "vs pow()", "check", "status", "albedo(0)");
     for (int i = 0; i < r->count; ++i) {
         const struct pbcost_row *row = &r->rows[i];
-        fprintf(f, "  %-22s %-20s %12.4g %8.3gx %8.3gx %8.3gx %10.2g %6s %12.6g", row->name, kind_names[row->kind],
+        char alb[32] = "-";   /* a lobe or a user BRDF has no albedo figure */
+        if (isfinite(row->albedo_normal))
+            snprintf(alb, sizeof alb, "%.6g", row->albedo_normal);
+        fprintf(f, "  %-22s %-20s %12.4g %8.3gx %8.3gx %8.3gx %10.2g %6s %12s", row->name, kind_names[row->kind],
                 row->evals_per_s * 1e-9, row->ratio_to_fq2, row->ratio_to_phong, row->ratio_to_pow,
-                row->check_max_abs_of_peak, row->status, row->albedo_normal);
+                row->check_max_abs_of_peak, row->status, alb);
         if (isfinite(row->terms_mean))
             fprintf(f, "  He terms mean %.1f max %.0f", row->terms_mean, row->terms_max);
         fprintf(f, "\n");

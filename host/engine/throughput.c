@@ -516,6 +516,8 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
                                                           : r->s->is_cpu ? (int)r->s->compute_units : 0 };
         }
     }
+    if (n == 0)   /* nothing to time: say why rather than "every model failed" */
+        snprintf(r->sweep_reason, TP_REASON, "no model has a tuned C loop to compare with (user models have none)");
     struct runner run;
     runner_init(&run, items, n);
     run.rounds = o->sweep_reps;
