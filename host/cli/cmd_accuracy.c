@@ -160,6 +160,7 @@ static int write_documents(const struct accuracy_result *res, int nmodels, const
 
 /* The checks of the parsed flags: the models (into models; their count, or -1 with the message
  * in err), --pictures against the outputs, the grid, one document on standard output. */
+/* pictures: 1 for --pictures, plus 2 for --shared-scale. */
 static int check_args(const char *models_text, int models_given, struct model_spec *models, int pictures,
                       const char *out_dir, const char *json_path, const char *csv_path,
                       const struct accuracy_grid *grid, char *err, size_t errlen)
@@ -171,9 +172,13 @@ static int check_args(const char *models_text, int models_given, struct model_sp
         nmodels = cli_add_unlisted_user_models(models, nmodels, MAX_MODELS, err, errlen);
     if (nmodels < 0)
         return -1;
-    if (pictures && !out_dir && (json_path || csv_path)) {
+    if ((pictures & 1) && !out_dir && (json_path || csv_path)) {
         snprintf(err, errlen, "--pictures writes into the run folder: give --out DIR (with --json or --csv "
                               "and no --out there is none)");
+        return -1;
+    }
+    if (pictures == 2) {
+        snprintf(err, errlen, "--shared-scale scales the heatmaps of --pictures (accepted: with --pictures)");
         return -1;
     }
     if (accuracy_grid_check(grid, NULL, err, errlen))
@@ -251,9 +256,7 @@ int cmd_accuracy(int argc, char **argv)
 
     const struct cli_flag flags[] = {
         CLI_FLAG_MODELS(&models_text, &models_given, "all; with --model or --model-file, only the user models"),
-        CLI_FLAG_N_MIN(&grid.n_min),
-        CLI_FLAG_N_MAX(&grid.n_max),
-        CLI_FLAG_N_STEP(&grid.n_step),
+        CLI_FLAG_N_MIN(&grid.n_min), CLI_FLAG_N_MAX(&grid.n_max), CLI_FLAG_N_STEP(&grid.n_step),
         CLI_FLAG_SAMPLES(&grid.samples),
         CLI_FLAGS_DOCUMENTS(&out_dir, &json_path, &csv_path),
         CLI_FLAG_QUIET(&quiet),
@@ -275,14 +278,10 @@ int cmd_accuracy(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    int nmodels = check_args(models_text, models_given, models, pictures, out_dir, json_path, csv_path, &grid, err,
-                             sizeof err);
+    int nmodels = check_args(models_text, models_given, models, pictures + 2 * shared_scale, out_dir, json_path,
+                             csv_path, &grid, err, sizeof err);
     if (nmodels < 0)
         goto usage_error;
-    if (shared_scale && !pictures) {
-        snprintf(err, sizeof err, "--shared-scale scales the heatmaps of --pictures (accepted: with --pictures)");
-        goto usage_error;
-    }
     /* --json or --csv without --out: those files only, no run folder. A document on
        standard output leaves the table out. */
     int to_folder = out_dir || (!json_path && !csv_path);
