@@ -57,12 +57,73 @@ static void brdf_set_params(struct md_buf *epi, int has_n, const struct brdf_par
         md_printf(epi, "%s = brdfbench_p%d; ", prm[model_params[i]].name, i);
 }
 
-static int brdf_file(const char *text, size_t len, const char *path, const char *name, char **out, size_t *outlen,
-                     char *err, size_t errlen)
-{
+/* What a .brdf file declares: its parameters, where its shader block lies, and which
+   parameters take the shininess and the model's parameters. */
+struct brdf_doc {
     struct brdf_param prm[BRDF_MAX_FILE_PARAMS];
-    int nprm = 0, in_params = 0, in_shader = 0, shader_line = 0, seen_params = 0, line = 0;
-    size_t shader_start = 0, shader_end = 0;
+    int nprm, shader_line;
+    size_t shader_start, shader_end;
+    int shin, alpha, model_params[SL_MAX_PARAMS], nmp;
+};
+
+/* One line of the parameters block (t, trimmed, split in place): a float, bool or color. */
+static int brdf_param_line(char *t, int line, struct brdf_doc *D, const char *path, char *err, size_t errlen)
+{
+    struct brdf_param *prm = D->prm;
+    char *save = NULL, *w[6];
+    int nw = 0;
+    for (char *x = strtok_r(t, " \t", &save); x && nw < 6; x = strtok_r(NULL, " \t", &save))
+        w[nw++] = x;
+    if (D->nprm == BRDF_MAX_FILE_PARAMS)
+        return brdf_fail(err, errlen, path, line, "more than %d parameters", BRDF_MAX_FILE_PARAMS);
+    struct brdf_param *q = &prm[D->nprm];
+    memset(q, 0, sizeof *q);
+    q->line = line;
+    int want = 0;
+    if (strcmp(w[0], "float") == 0) {
+        q->type = 'f';
+        want = 5;
+    } else if (strcmp(w[0], "bool") == 0) {
+        q->type = 'b';
+        want = 3;
+    } else if (strcmp(w[0], "color") == 0) {
+        q->type = 'c';
+        want = 5;
+    } else {
+        return brdf_fail(err, errlen, path, line, "unknown parameter type '%.40s' (accepted: float NAME MIN "
+                         "MAX DEFAULT, bool NAME 0|1, color NAME R G B)", w[0]);
+    }
+    if (nw != want)
+        return brdf_fail(err, errlen, path, line, "%s takes %d values after its type (%s), found %d",
+                         w[0], want - 1, q->type == 'f' ? "NAME MIN MAX DEFAULT" : q->type == 'b' ? "NAME 0|1" :
+                         "NAME R G B", nw - 1);
+    if (!sl_valid_identifier(w[1]) || strncmp(w[1], "brdfbench_", 10) == 0 || strncmp(w[1], "u__", 3) == 0 ||
+        strncmp(w[1], "sl_", 3) == 0)
+        return brdf_fail(err, errlen, path, line, "parameter name '%.60s' is not an identifier of 1 to %d "
+                         "characters or is reserved (brdfbench_*, sl_*, u__*)", w[1], SL_NAME_MAX);
+    for (int k = 0; k < D->nprm; ++k)
+        if (strcmp(prm[k].name, w[1]) == 0)
+            return brdf_fail(err, errlen, path, line, "parameter '%s' is declared twice", w[1]);
+    snprintf(q->name, sizeof q->name, "%s", w[1]);
+    for (int k = 2; k < nw; ++k)
+        if (!parse_finite(w[k], &q->v[k - 2]))
+            return brdf_fail(err, errlen, path, line, "parameter '%s': '%.40s' is not a finite number",
+                             q->name, w[k]);
+    if (q->type == 'f' && !(q->v[0] < q->v[1] && q->v[2] >= q->v[0] && q->v[2] <= q->v[1]))
+        return brdf_fail(err, errlen, path, line, "parameter '%s': MIN < MAX and MIN <= DEFAULT <= MAX "
+                         "expected (found %g %g %g)", q->name, q->v[0], q->v[1], q->v[2]);
+    if (q->type == 'b' && q->v[0] != 0 && q->v[0] != 1)
+        return brdf_fail(err, errlen, path, line, "bool '%s' is 0 or 1, not %g", q->name, q->v[0]);
+    ++D->nprm;
+    return 0;
+}
+
+/* The file line by line: the ::begin/::end blocks, the parameters, and where the shader
+   block lies. */
+static int brdf_blocks(const char *text, size_t len, const char *path, struct brdf_doc *D, char *err,
+                       size_t errlen)
+{
+    int in_params = 0, in_shader = 0, seen_params = 0, line = 0;
     const char *p = text, *end = text + len;
     while (p < end) {
         const char *eol = memchr(p, '\n', (size_t)(end - p));
@@ -84,7 +145,7 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
         if (in_shader) {
             if (strcmp(t, "::end shader") == 0) {
                 in_shader = 2;
-                shader_end = (size_t)(p - text);
+                D->shader_end = (size_t)(p - text);
             }
         } else if (strncmp(t, "::", 2) == 0) {
             if (strcmp(t, "::begin parameters") == 0) {
@@ -98,140 +159,134 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
             } else if (strcmp(t, "::begin shader") == 0) {
                 if (in_params)
                     return brdf_fail(err, errlen, path, line, "::begin shader inside the parameters (no ::end parameters)");
-                if (shader_line)
+                if (D->shader_line)
                     return brdf_fail(err, errlen, path, line, "a second ::begin shader");
                 in_shader = 1;
-                shader_line = line + 1;
-                shader_start = (size_t)(eol - text) + (eol < end);
+                D->shader_line = line + 1;
+                D->shader_start = (size_t)(eol - text) + (eol < end);
             } else {
                 return brdf_fail(err, errlen, path, line, "unknown block line '%.60s' (accepted: ::begin/::end "
                                  "parameters, ::begin/::end shader)", t);
             }
         } else if (in_params && *t && *t != '#' && strncmp(t, "//", 2) != 0) {
-            char *save = NULL, *w[6];
-            int nw = 0;
-            for (char *x = strtok_r(t, " \t", &save); x && nw < 6; x = strtok_r(NULL, " \t", &save))
-                w[nw++] = x;
-            if (nprm == BRDF_MAX_FILE_PARAMS)
-                return brdf_fail(err, errlen, path, line, "more than %d parameters", BRDF_MAX_FILE_PARAMS);
-            struct brdf_param *q = &prm[nprm];
-            memset(q, 0, sizeof *q);
-            q->line = line;
-            int want = 0;
-            if (strcmp(w[0], "float") == 0) {
-                q->type = 'f';
-                want = 5;
-            } else if (strcmp(w[0], "bool") == 0) {
-                q->type = 'b';
-                want = 3;
-            } else if (strcmp(w[0], "color") == 0) {
-                q->type = 'c';
-                want = 5;
-            } else {
-                return brdf_fail(err, errlen, path, line, "unknown parameter type '%.40s' (accepted: float NAME MIN "
-                                 "MAX DEFAULT, bool NAME 0|1, color NAME R G B)", w[0]);
-            }
-            if (nw != want)
-                return brdf_fail(err, errlen, path, line, "%s takes %d values after its type (%s), found %d",
-                                 w[0], want - 1, q->type == 'f' ? "NAME MIN MAX DEFAULT" : q->type == 'b' ? "NAME 0|1" :
-                                 "NAME R G B", nw - 1);
-            if (!sl_valid_identifier(w[1]) || strncmp(w[1], "brdfbench_", 10) == 0 || strncmp(w[1], "u__", 3) == 0 ||
-                strncmp(w[1], "sl_", 3) == 0)
-                return brdf_fail(err, errlen, path, line, "parameter name '%.60s' is not an identifier of 1 to %d "
-                                 "characters or is reserved (brdfbench_*, sl_*, u__*)", w[1], SL_NAME_MAX);
-            for (int k = 0; k < nprm; ++k)
-                if (strcmp(prm[k].name, w[1]) == 0)
-                    return brdf_fail(err, errlen, path, line, "parameter '%s' is declared twice", w[1]);
-            snprintf(q->name, sizeof q->name, "%s", w[1]);
-            for (int k = 2; k < nw; ++k)
-                if (!parse_finite(w[k], &q->v[k - 2]))
-                    return brdf_fail(err, errlen, path, line, "parameter '%s': '%.40s' is not a finite number",
-                                     q->name, w[k]);
-            if (q->type == 'f' && !(q->v[0] < q->v[1] && q->v[2] >= q->v[0] && q->v[2] <= q->v[1]))
-                return brdf_fail(err, errlen, path, line, "parameter '%s': MIN < MAX and MIN <= DEFAULT <= MAX "
-                                 "expected (found %g %g %g)", q->name, q->v[0], q->v[1], q->v[2]);
-            if (q->type == 'b' && q->v[0] != 0 && q->v[0] != 1)
-                return brdf_fail(err, errlen, path, line, "bool '%s' is 0 or 1, not %g", q->name, q->v[0]);
-            ++nprm;
+            int rc = brdf_param_line(t, line, D, path, err, errlen);
+            if (rc)
+                return rc;
         }
         p = eol + (eol < end);
     }
     if (in_params)
         return brdf_fail(err, errlen, path, 0, "::begin parameters is not closed by ::end parameters");
-    if (!shader_line)
+    if (!D->shader_line)
         return brdf_fail(err, errlen, path, 0, "no ::begin shader block (a BRDF Explorer file holds vec3 BRDF(vec3 L, "
                          "vec3 V, vec3 N, vec3 X, vec3 Y) there)");
     if (in_shader != 2)
-        return brdf_fail(err, errlen, path, shader_line - 1, "::begin shader is not closed by ::end shader");
+        return brdf_fail(err, errlen, path, D->shader_line - 1, "::begin shader is not closed by ::end shader");
+    return 0;
+}
 
-    /* The shininess: a float parameter n takes the sweep's n; else one called alpha takes
-       sqrt(2 / (n + 2)), the microfacet built-ins' roughness. Up to two other floats become the
-       model's parameters; the rest, the bools and the colours keep their defaults. */
-    int shin = -1, alpha = -1, model_params[SL_MAX_PARAMS], nmp = 0;
-    for (int k = 0; k < nprm; ++k)
+/* The shininess: a float parameter n takes the sweep's n; else one called alpha takes
+   sqrt(2 / (n + 2)), the microfacet built-ins' roughness. Up to two other floats become the
+   model's parameters; the rest, the bools and the colours keep their defaults. */
+static int brdf_choose_params(struct brdf_doc *D, const char *path, char *err, size_t errlen)
+{
+    const struct brdf_param *prm = D->prm;
+    D->shin = D->alpha = -1;
+    D->nmp = 0;
+    for (int k = 0; k < D->nprm; ++k)
         if (prm[k].type == 'f' && strcmp(prm[k].name, "n") == 0)
-            shin = k;
-    for (int k = 0; k < nprm && shin < 0; ++k)
+            D->shin = k;
+    for (int k = 0; k < D->nprm && D->shin < 0; ++k)
         if (prm[k].type == 'f' && strcmp(prm[k].name, "alpha") == 0)
-            alpha = k;
-    if (shin < 0 && alpha < 0)
+            D->alpha = k;
+    if (D->shin < 0 && D->alpha < 0)
         return brdf_fail(err, errlen, path, 0, "no float parameter n or alpha: the sweep's shininess n goes to n, or "
                          "to alpha as sqrt(2/(n+2)) (docs/user-models.md)");
-    for (int k = 0; k < nprm; ++k) {
-        if (prm[k].type != 'f' || k == shin || k == alpha)
+    for (int k = 0; k < D->nprm; ++k) {
+        if (prm[k].type != 'f' || k == D->shin || k == D->alpha)
             continue;
-        if (nmp < SL_MAX_PARAMS)
-            model_params[nmp++] = k;
+        if (D->nmp < SL_MAX_PARAMS)
+            D->model_params[D->nmp++] = k;
     }
+    return 0;
+}
+
+/* The model's header comment: name, description, reference and its parameters. */
+static void brdf_header_text(struct md_buf *hb, const struct header *sh, const char *name, const struct brdf_doc *D)
+{
+    md_printf(hb, "/* brdfbench-model\n * name: %s\n * function: brdfbench_lobe\n", sh->name[0] ? sh->name : name);
+    md_printf(hb, " * description: %s\n", sh->description[0] ? sh->description
+               : "BRDF Explorer file: luminance of BRDF(L = N, V) with theta_h = acos(c)");
+    md_printf(hb, " * reference: %s\n * lobe: theta_h\n", sh->reference[0] ? sh->reference : "blinn");
+    for (int i = 0; i < D->nmp; ++i) {
+        const struct brdf_param *q = &D->prm[D->model_params[i]];
+        md_printf(hb, " * param: %s %.17g %.17g %.17g\n", q->name, q->v[0], q->v[1], q->v[2]);
+    }
+    md_printf(hb, " */\n");
+}
+
+/* The parameters as globals; the lobe function sets those it takes, the rest are constants. */
+static void brdf_prelude(struct md_buf *pre, const struct brdf_doc *D)
+{
+    for (int k = 0; k < D->nprm; ++k) {
+        const struct brdf_param *q = &D->prm[k];
+        int taken = k == D->shin || k == D->alpha;
+        for (int i = 0; i < D->nmp; ++i)
+            taken |= D->model_params[i] == k;
+        if (taken)
+            md_printf(pre, "float %s; ", q->name);
+        else if (q->type == 'f')
+            md_printf(pre, "const float %s = %.17g; ", q->name, q->v[2]);
+        else if (q->type == 'b')
+            md_printf(pre, "const bool %s = %s; ", q->name, q->v[0] != 0 ? "true" : "false");
+        else
+            md_printf(pre, "const vec3 %s = vec3(%.17g, %.17g, %.17g); ", q->name, q->v[0], q->v[1], q->v[2]);
+    }
+}
+
+/* The lobe function (BRDF's luminance at L = N) and the full function after the shader. */
+static void brdf_epilogue(struct md_buf *epi, const struct brdf_doc *D)
+{
+    int nmp = D->nmp;
+    md_printf(epi, "float brdfbench_lobe(float brdfbench_c, float brdfbench_n");
+    for (int i = 0; i < nmp; ++i)
+        md_printf(epi, ", float brdfbench_p%d", i);
+    md_printf(epi, ") { ");
+    brdf_set_params(epi, D->shin >= 0, D->prm, D->model_params, nmp);
+    /* L = N, V at 2 theta_h from N in the XZ plane: N.V = 2c^2 - 1, N.H = V.H = c */
+    md_printf(epi, "vec3 brdfbench_N = vec3(0.0, 0.0, 1.0); "
+                   "float brdfbench_nv = 2.0 * brdfbench_c * brdfbench_c - 1.0; "
+                   "vec3 brdfbench_V = vec3(2.0 * brdfbench_c * sqrt(max((1.0 - brdfbench_c) * (1.0 + brdfbench_c), 0.0)), "
+                   "0.0, brdfbench_nv); "
+                   "vec3 brdfbench_rgb = BRDF(brdfbench_N, brdfbench_V, brdfbench_N, vec3(1.0, 0.0, 0.0), "
+                   "vec3(0.0, 1.0, 0.0)); "
+                   "float brdfbench_y = dot(brdfbench_rgb, vec3(0.2126, 0.7152, 0.0722)); "
+                   "return brdfbench_nv > 0.0 ? brdfbench_y : 0.0; }");
+    sl_full_function_open(epi, nmp);
+    brdf_set_params(epi, D->shin >= 0, D->prm, D->model_params, nmp);
+    md_printf(epi, "return dot(BRDF(brdfbench_L, brdfbench_V, brdfbench_N, brdfbench_X, brdfbench_Y), "
+                   "vec3(0.2126, 0.7152, 0.0722)); }");
+}
+
+static int brdf_file(const char *text, size_t len, const char *path, const char *name, char **out, size_t *outlen,
+                     char *err, size_t errlen)
+{
+    struct brdf_doc D;
+    memset(&D, 0, sizeof D);
+    int rc = brdf_blocks(text, len, path, &D, err, errlen);
+    if (rc)
+        return rc;
+    if ((rc = brdf_choose_params(&D, path, err, errlen)) != 0)
+        return rc;
     struct header sh;
-    sl_read_header(text + shader_start, shader_end - shader_start, &sh);
+    sl_read_header(text + D.shader_start, D.shader_end - D.shader_start, &sh);
     struct md_buf hb, pre, epi;
     md_init(&hb);
     md_init(&pre);
     md_init(&epi);
-    md_printf(&hb, "/* brdfbench-model\n * name: %s\n * function: brdfbench_lobe\n", sh.name[0] ? sh.name : name);
-    md_printf(&hb, " * description: %s\n", sh.description[0] ? sh.description
-               : "BRDF Explorer file: luminance of BRDF(L = N, V) with theta_h = acos(c)");
-    md_printf(&hb, " * reference: %s\n * lobe: theta_h\n", sh.reference[0] ? sh.reference : "blinn");
-    for (int i = 0; i < nmp; ++i) {
-        const struct brdf_param *q = &prm[model_params[i]];
-        md_printf(&hb, " * param: %s %.17g %.17g %.17g\n", q->name, q->v[0], q->v[1], q->v[2]);
-    }
-    md_printf(&hb, " */\n");
-    /* the parameters as globals; the lobe function sets those it takes */
-    for (int k = 0; k < nprm; ++k) {
-        const struct brdf_param *q = &prm[k];
-        int taken = k == shin || k == alpha;
-        for (int i = 0; i < nmp; ++i)
-            taken |= model_params[i] == k;
-        if (taken)
-            md_printf(&pre, "float %s; ", q->name);
-        else if (q->type == 'f')
-            md_printf(&pre, "const float %s = %.17g; ", q->name, q->v[2]);
-        else if (q->type == 'b')
-            md_printf(&pre, "const bool %s = %s; ", q->name, q->v[0] != 0 ? "true" : "false");
-        else
-            md_printf(&pre, "const vec3 %s = vec3(%.17g, %.17g, %.17g); ", q->name, q->v[0], q->v[1], q->v[2]);
-    }
-    md_printf(&epi, "float brdfbench_lobe(float brdfbench_c, float brdfbench_n");
-    for (int i = 0; i < nmp; ++i)
-        md_printf(&epi, ", float brdfbench_p%d", i);
-    md_printf(&epi, ") { ");
-    brdf_set_params(&epi, shin >= 0, prm, model_params, nmp);
-    /* L = N, V at 2 theta_h from N in the XZ plane: N.V = 2c^2 - 1, N.H = V.H = c */
-    md_printf(&epi, "vec3 brdfbench_N = vec3(0.0, 0.0, 1.0); "
-                    "float brdfbench_nv = 2.0 * brdfbench_c * brdfbench_c - 1.0; "
-                    "vec3 brdfbench_V = vec3(2.0 * brdfbench_c * sqrt(max((1.0 - brdfbench_c) * (1.0 + brdfbench_c), 0.0)), "
-                    "0.0, brdfbench_nv); "
-                    "vec3 brdfbench_rgb = BRDF(brdfbench_N, brdfbench_V, brdfbench_N, vec3(1.0, 0.0, 0.0), "
-                    "vec3(0.0, 1.0, 0.0)); "
-                    "float brdfbench_y = dot(brdfbench_rgb, vec3(0.2126, 0.7152, 0.0722)); "
-                    "return brdfbench_nv > 0.0 ? brdfbench_y : 0.0; }");
-    sl_full_function_open(&epi, nmp);
-    brdf_set_params(&epi, shin >= 0, prm, model_params, nmp);
-    md_printf(&epi, "return dot(BRDF(brdfbench_L, brdfbench_V, brdfbench_N, brdfbench_X, brdfbench_Y), "
-                    "vec3(0.2126, 0.7152, 0.0722)); }");
-    int rc;
+    brdf_header_text(&hb, &sh, name, &D);
+    brdf_prelude(&pre, &D);
+    brdf_epilogue(&epi, &D);
     if (hb.failed || pre.failed || epi.failed) {
         rc = brdf_fail(err, errlen, path, 0, "out of memory");
     } else {
@@ -239,20 +294,20 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
         memset(&h, 0, sizeof h);
         h.present = 1;
         snprintf(h.function, sizeof h.function, "brdfbench_lobe");
-        h.nparams = nmp;
-        for (int i = 0; i < nmp; ++i)
-            snprintf(h.params[i], sizeof h.params[i], "%s", prm[model_params[i]].name);
+        h.nparams = D.nmp;
+        for (int i = 0; i < D.nmp; ++i)
+            snprintf(h.params[i], sizeof h.params[i], "%s", D.prm[D.model_params[i]].name);
         h.header_text = hb.s;
         h.prelude = pre.s ? pre.s : "";
         h.epilogue = epi.s;
-        h.first_line = shader_line;
+        h.first_line = D.shader_line;
         struct sl S;
         memset(&S, 0, sizeof S);
         S.err = err;
         S.errlen = errlen;
         S.origin = path;
-        rc = sl_translate(&S, text + shader_start, shader_end - shader_start, &h, sh.name[0] ? sh.name : name, out,
-                       outlen);
+        rc = sl_translate(&S, text + D.shader_start, D.shader_end - D.shader_start, &h, sh.name[0] ? sh.name : name,
+                          out, outlen);
         sl_free(&S);
     }
     md_free(&hb);

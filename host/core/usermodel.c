@@ -336,6 +336,103 @@ static int make_file_source(struct user_model *um, const char *text, size_t len)
     return 0;
 }
 
+/* The keys a model file's header has declared so far. */
+struct header_seen {
+    int name, reference, description, function, lobe;
+};
+
+/* One "key: value" line of a model file's header (s, trimmed, split in place). */
+static int header_line(struct user_model *um, char *s, struct header_seen *h, const char *path, int line,
+                       char *err, size_t errlen)
+{
+    char *colon = strchr(s, ':');
+    if (!colon)
+        return file_fail(err, errlen, path, line, "expected 'key: value' (keys: name, param, reference, "
+                                                  "lobe, function, description), found '%.40s'", s);
+    *colon = '\0';
+    char *key = trim(s), *value = trim(colon + 1);
+    if (strcmp(key, "name") == 0) {
+        if (h->name++)
+            return file_fail(err, errlen, path, line, "'name' is declared twice");
+        if (!is_identifier(value, USERMODEL_NAME_MAX) || is_reserved_name(value))
+            return file_fail(err, errlen, path, line,
+                             "name '%.60s' is not an identifier of 1 to %d characters (letters, digits, _) "
+                             "or is reserved", value, USERMODEL_NAME_MAX);
+        snprintf(um->name, sizeof um->name, "%s", value);
+    } else if (strcmp(key, "function") == 0) {
+        if (h->function++)
+            return file_fail(err, errlen, path, line, "'function' is declared twice");
+        if (!is_identifier(value, USERMODEL_NAME_MAX) || is_reserved_name(value))
+            return file_fail(err, errlen, path, line, "function '%.60s' is not an identifier of 1 to %d "
+                             "characters or is reserved", value, USERMODEL_NAME_MAX);
+        snprintf(um->function, sizeof um->function, "%s", value);
+    } else if (strcmp(key, "reference") == 0) {
+        const struct model_info *ref = models_find(value);
+        if (h->reference++ || !ref || ref->kernel_id == BRDF_USER)
+            return file_fail(err, errlen, path, line, h->reference > 1 ? "'reference' is declared twice"
+                             : "reference '%.40s' is not a built-in model (see brdfbench list)", value);
+        snprintf(um->reference, sizeof um->reference, "%s", ref->id);
+    } else if (strcmp(key, "lobe") == 0) {
+        if (h->lobe++ || (strcmp(value, "psi") != 0 && strcmp(value, "theta_h") != 0))
+            return file_fail(err, errlen, path, line, h->lobe > 1 ? "'lobe' is declared twice"
+                             : "lobe '%.40s' is unknown (accepted: psi, theta_h)", value);
+        um->info.lobe = strcmp(value, "psi") == 0 ? LOBE_PSI : LOBE_THETA_H;
+    } else if (strcmp(key, "description") == 0) {
+        if (h->description++)
+            return file_fail(err, errlen, path, line, "'description' is declared twice");
+        snprintf(um->description, sizeof um->description, "%s", value);
+    } else if (strcmp(key, "param") == 0) {
+        return parse_param_line(um, value, path, line, err, errlen);
+    } else {
+        return file_fail(err, errlen, path, line, "unknown key '%.40s' (accepted: name, param, reference, "
+                         "lobe, function, description)", key);
+    }
+    return 0;
+}
+
+/* The header: the first thing in the file (text, cut in place), a block comment opening with
+   brdfbench-model, then its keys line by line; *close at the comment's closing. */
+static int parse_header(struct user_model *um, char *text, char **close, struct header_seen *h, const char *path,
+                        char *err, size_t errlen)
+{
+    char *p = text;
+    int line = 1;
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') {
+        if (*p == '\n')
+            ++line;
+        ++p;
+    }
+    if (strncmp(p, "/*", 2) != 0 || !(*close = strstr(p + 2, "*/")))
+        return file_fail(err, errlen, path, line,
+                         "a model file begins with a header comment '/* brdfbench-model ... */' "
+                         "(see docs/user-models.md)");
+    **close = '\0';
+    p += 2;
+    for (int first = 1;; first = 0) {
+        char *eol = strchr(p, '\n');
+        if (eol)
+            *eol = '\0';
+        char *s = trim(p);
+        if (!first && *s == '*')
+            s = trim(s + 1);
+        if (first) {
+            if (strcmp(s, "brdfbench-model") != 0)
+                return file_fail(err, errlen, path, line,
+                                 "the header comment must open with 'brdfbench-model' on its first line (found "
+                                 "'%.40s')", s);
+        } else if (*s) {
+            int rc = header_line(um, s, h, path, line, err, errlen);
+            if (rc)
+                return rc;
+        }
+        if (!eol)
+            break;
+        p = eol + 1;
+        ++line;
+    }
+    return 0;
+}
+
 /* Set while the translation of a --model expression is parsed: machine-made text, whose own
    brdfbench_* names are not the user's (the expression itself was checked). */
 static int translating_expression;
@@ -382,111 +479,15 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
     um->from_file = 1;
     int rc = 0;
 
-    /* The header: the first thing in the file, a block comment opening with brdfbench-model. */
-    char *p = copy;
-    int line = 1;
-    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') {
-        if (*p == '\n')
-            ++line;
-        ++p;
-    }
     char *close = NULL;
-    if (strncmp(p, "/*", 2) != 0 || !(close = strstr(p + 2, "*/"))) {
-        rc = file_fail(err, errlen, path, line,
-                       "a model file begins with a header comment '/* brdfbench-model ... */' "
-                       "(see docs/user-models.md)");
+    struct header_seen seen = {0};
+    if ((rc = parse_header(um, copy, &close, &seen, path, err, errlen)) != 0)
         goto done;
-    }
-    *close = '\0';
-    p += 2;
-    int first = 1, have_name = 0, have_reference = 0, have_description = 0, have_function = 0, have_lobe = 0;
-    for (;;) {
-        char *eol = strchr(p, '\n');
-        if (eol)
-            *eol = '\0';
-        char *s = trim(p);
-        if (!first && *s == '*')
-            s = trim(s + 1);
-        if (first) {
-            if (strcmp(s, "brdfbench-model") != 0) {
-                rc = file_fail(err, errlen, path, line,
-                               "the header comment must open with 'brdfbench-model' on its first line (found '%.40s')",
-                               s);
-                goto done;
-            }
-            first = 0;
-        } else if (*s) {
-            char *colon = strchr(s, ':');
-            if (!colon) {
-                rc = file_fail(err, errlen, path, line, "expected 'key: value' (keys: name, param, reference, "
-                                                        "lobe, function, description), found '%.40s'", s);
-                goto done;
-            }
-            *colon = '\0';
-            char *key = trim(s), *value = trim(colon + 1);
-            if (strcmp(key, "name") == 0) {
-                if (have_name++) {
-                    rc = file_fail(err, errlen, path, line, "'name' is declared twice");
-                    goto done;
-                }
-                if (!is_identifier(value, USERMODEL_NAME_MAX) || is_reserved_name(value)) {
-                    rc = file_fail(err, errlen, path, line,
-                                   "name '%.60s' is not an identifier of 1 to %d characters (letters, digits, _) "
-                                   "or is reserved", value, USERMODEL_NAME_MAX);
-                    goto done;
-                }
-                snprintf(um->name, sizeof um->name, "%s", value);
-            } else if (strcmp(key, "function") == 0) {
-                if (have_function++) {
-                    rc = file_fail(err, errlen, path, line, "'function' is declared twice");
-                    goto done;
-                }
-                if (!is_identifier(value, USERMODEL_NAME_MAX) || is_reserved_name(value)) {
-                    rc = file_fail(err, errlen, path, line, "function '%.60s' is not an identifier of 1 to %d "
-                                   "characters or is reserved", value, USERMODEL_NAME_MAX);
-                    goto done;
-                }
-                snprintf(um->function, sizeof um->function, "%s", value);
-            } else if (strcmp(key, "reference") == 0) {
-                const struct model_info *ref = models_find(value);
-                if (have_reference++ || !ref || ref->kernel_id == BRDF_USER) {
-                    rc = file_fail(err, errlen, path, line, have_reference > 1 ? "'reference' is declared twice"
-                                   : "reference '%.40s' is not a built-in model (see brdfbench list)", value);
-                    goto done;
-                }
-                snprintf(um->reference, sizeof um->reference, "%s", ref->id);
-            } else if (strcmp(key, "lobe") == 0) {
-                if (have_lobe++ || (strcmp(value, "psi") != 0 && strcmp(value, "theta_h") != 0)) {
-                    rc = file_fail(err, errlen, path, line, have_lobe > 1 ? "'lobe' is declared twice"
-                                   : "lobe '%.40s' is unknown (accepted: psi, theta_h)", value);
-                    goto done;
-                }
-                um->info.lobe = strcmp(value, "psi") == 0 ? LOBE_PSI : LOBE_THETA_H;
-            } else if (strcmp(key, "description") == 0) {
-                if (have_description++) {
-                    rc = file_fail(err, errlen, path, line, "'description' is declared twice");
-                    goto done;
-                }
-                snprintf(um->description, sizeof um->description, "%s", value);
-            } else if (strcmp(key, "param") == 0) {
-                if ((rc = parse_param_line(um, value, path, line, err, errlen)) != 0)
-                    goto done;
-            } else {
-                rc = file_fail(err, errlen, path, line, "unknown key '%.40s' (accepted: name, param, reference, "
-                               "lobe, function, description)", key);
-                goto done;
-            }
-        }
-        if (!eol)
-            break;
-        p = eol + 1;
-        ++line;
-    }
-    if (!have_name) {
+    if (!seen.name) {
         rc = file_fail(err, errlen, path, 0, "the header declares no 'name: NAME'");
         goto done;
     }
-    if (!have_function)
+    if (!seen.function)
         snprintf(um->function, sizeof um->function, "%s", um->name);
     for (int k = 0; k < um->info.nparams; ++k)
         if (strcmp(um->param_names[k], um->name) == 0 || strcmp(um->param_names[k], um->function) == 0) {
@@ -508,7 +509,7 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
        header is a comment, which the scan skips. */
     if (!generated && (rc = usermodel_check_text(text, len, path, 1, err, errlen)) != 0)
         goto done;
-    if (!have_description)
+    if (!seen.description)
         snprintf(um->description, sizeof um->description, "user model from %.200s", path);
     snprintf(um->formula, sizeof um->formula, "%s(c, n%s) in %.200s", um->function,
              um->info.nparams ? ", ..." : "", path);

@@ -208,19 +208,10 @@ static void runs_header(struct md_buf *b, const struct compare_set *set, int md,
     md_printf(b, "\n");
 }
 
-char *compare_text(const struct compare_set *set, int md)
+/* The runs' context side by side: a line per key, "=" where a run has the first's value. */
+static void context_table(struct md_buf *b, const struct compare_set *set, int md)
 {
-    struct md_buf b;
-    md_init(&b);
     int R = set->nruns;
-    if (md)
-        md_printf(&b, "# Comparison of %d %s\n\n", R, set->by_device ? "devices of one run" : "runs");
-    for (int k = 0; k < R; ++k)
-        md_printf(&b, "%s%s = %s%s\n", md ? "- " : "", set->run[k].name, set->run[k].path,
-                  k == 0 ? (set->by_device ? " (baseline device)" : " (baseline)") : "");
-    md_printf(&b, "\n");
-
-    /* the context side by side */
     const char *keys[CMP_MAX_CTX + 16];
     int nk = ctx_keys(set, keys, (int)(sizeof keys / sizeof keys[0]));
     int w0 = 20, w = 12;
@@ -236,16 +227,16 @@ char *compare_text(const struct compare_set *set, int md)
     for (int k = 0; k < R; ++k)
         wk[k] = w;
     if (md)
-        md_printf(&b, "## Context\n\n");
-    runs_header(&b, set, md, md ? "" : "context", "---|", w0, wk, " ");
+        md_printf(b, "## Context\n\n");
+    runs_header(b, set, md, md ? "" : "context", "---|", w0, wk, " ");
     for (int i = 0; i < nk; ++i) {
         int differs = 0;
         for (int k = 1; k < R; ++k)
             differs |= ctx_differs(set, k, keys[i]);
         if (md)
-            md_printf(&b, "| %s%s%s |", differs ? "**" : "", keys[i], differs ? "**" : "");
+            md_printf(b, "| %s%s%s |", differs ? "**" : "", keys[i], differs ? "**" : "");
         else
-            md_printf(&b, "%c %-*s", differs ? '*' : ' ', w0, keys[i]);
+            md_printf(b, "%c %-*s", differs ? '*' : ' ', w0, keys[i]);
         for (int k = 0; k < R; ++k) {
             const char *v = ctx_value(set, k, keys[i]);
             char cell[CMP_TEXT + 8];
@@ -254,82 +245,107 @@ char *compare_text(const struct compare_set *set, int md)
             else
                 snprintf(cell, sizeof cell, "%s", v ? v : "-");
             if (md) {
-                md_printf(&b, " ");
-                md_cell_text(&b, cell);
-                md_printf(&b, "%s |", differs && k > 0 && strcmp(cell, "=") != 0 ? " (differs)" : "");
+                md_printf(b, " ");
+                md_cell_text(b, cell);
+                md_printf(b, "%s |", differs && k > 0 && strcmp(cell, "=") != 0 ? " (differs)" : "");
             } else {
-                md_printf(&b, " %-*.*s", w, 72, cell);
+                md_printf(b, " %-*.*s", w, 72, cell);
             }
         }
-        md_printf(&b, "\n");
+        md_printf(b, "\n");
     }
-    md_printf(&b, md ? "\n`=`: as the first column; **bold**: differs from it.\n\n"
-                     : "(* differs from the first column; = as the first column)\n\n");
+    md_printf(b, md ? "\n`=`: as the first column; **bold**: differs from it.\n\n"
+                    : "(* differs from the first column; = as the first column)\n\n");
+}
 
-    /* the rows, kind by kind; rows in every run first, then the others */
-    for (int kind = 0; kind < CMP_KIND_COUNT; ++kind) {
-        int nrows = 0, wl = 10, wc[CMP_MAX_RUNS];
-        for (int k = 0; k < R; ++k)
-            wc[k] = (int)strlen(set->run[k].name);
+/* One row of a kind's table: its label (marked when only in some runs) and a cell per run. */
+static void row_line(struct md_buf *b, const struct compare_set *set, int md, const struct cmp_row *r,
+                     int pass, int wl, const int *wc)
+{
+    char label[2 * CMP_TEXT + 80], cell[CMP_TEXT + 80];
+    row_label(label, sizeof label, r);
+    if (md) {
+        md_printf(b, "| ");
+        md_cell_text(b, label);
+        md_printf(b, "%s |", pass ? " (only in some runs)" : "");
+    } else {
+        md_printf(b, "  %-*.*s", wl, 70, label);
+    }
+    for (int k = 0; k < set->nruns; ++k) {
+        cell_text(cell, sizeof cell, set, r, k);
+        if (md) {
+            md_printf(b, " ");
+            md_cell_text(b, cell);
+            md_printf(b, " |");
+        } else {
+            md_printf(b, "  %-*.*s", wc[k], 70, cell);
+        }
+    }
+    md_printf(b, "\n");
+}
+
+/* The table of one kind of row (nothing when there is none): rows in every run first, then
+   the others, then the verdict counts. */
+static void kind_table(struct md_buf *b, const struct compare_set *set, int md, int kind)
+{
+    int R = set->nruns;
+    int nrows = 0, wl = 10, wc[CMP_MAX_RUNS];
+    for (int k = 0; k < R; ++k)
+        wc[k] = (int)strlen(set->run[k].name);
+    for (int i = 0; i < set->nrows; ++i) {
+        const struct cmp_row *r = &set->rows[i];
+        if (r->kind != kind)
+            continue;
+        ++nrows;
+        char label[2 * CMP_TEXT + 80], cell[CMP_TEXT + 80];
+        row_label(label, sizeof label, r);
+        wl = (int)fmax(wl, fmin(70, strlen(label)));
+        for (int k = 0; k < R; ++k) {
+            cell_text(cell, sizeof cell, set, r, k);
+            wc[k] = (int)fmax(wc[k], fmin(70, strlen(cell)));
+        }
+    }
+    if (!nrows)
+        return;
+    if (md)
+        md_printf(b, "## %s\n\n", cmp_kind_name(kind));
+    md_printf(b, md ? "%s (alpha %.3g).\n\n" : "%s (alpha %.3g)\n\n", kind_heading(kind), set->alpha);
+    runs_header(b, set, md, "row", "---:|", wl, wc, "  ");
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1) {
+            int some = 0;
+            for (int i = 0; i < set->nrows; ++i)
+                some |= set->rows[i].kind == kind && !set->rows[i].in_all;
+            if (!some)
+                break;
+            if (!md)
+                md_printf(b, "  rows found in only some of the runs:\n");
+        }
         for (int i = 0; i < set->nrows; ++i) {
             const struct cmp_row *r = &set->rows[i];
-            if (r->kind != kind)
-                continue;
-            ++nrows;
-            char label[2 * CMP_TEXT + 80], cell[CMP_TEXT + 80];
-            row_label(label, sizeof label, r);
-            wl = (int)fmax(wl, fmin(70, strlen(label)));
-            for (int k = 0; k < R; ++k) {
-                cell_text(cell, sizeof cell, set, r, k);
-                wc[k] = (int)fmax(wc[k], fmin(70, strlen(cell)));
-            }
+            if (r->kind == kind && r->in_all == (pass == 0))
+                row_line(b, set, md, r, pass, wl, wc);
         }
-        if (!nrows)
-            continue;
-        if (md)
-            md_printf(&b, "## %s\n\n", cmp_kind_name(kind));
-        md_printf(&b, md ? "%s (alpha %.3g).\n\n" : "%s (alpha %.3g)\n\n", kind_heading(kind), set->alpha);
-        runs_header(&b, set, md, "row", "---:|", wl, wc, "  ");
-        for (int pass = 0; pass < 2; ++pass) {
-            if (pass == 1) {
-                int some = 0;
-                for (int i = 0; i < set->nrows; ++i)
-                    some |= set->rows[i].kind == kind && !set->rows[i].in_all;
-                if (!some)
-                    break;
-                if (!md)
-                    md_printf(&b, "  rows found in only some of the runs:\n");
-            }
-            for (int i = 0; i < set->nrows; ++i) {
-                const struct cmp_row *r = &set->rows[i];
-                if (r->kind != kind || r->in_all != (pass == 0))
-                    continue;
-                char label[2 * CMP_TEXT + 80], cell[CMP_TEXT + 80];
-                row_label(label, sizeof label, r);
-                if (md) {
-                    md_printf(&b, "| ");
-                    md_cell_text(&b, label);
-                    md_printf(&b, "%s |", pass ? " (only in some runs)" : "");
-                } else {
-                    md_printf(&b, "  %-*.*s", wl, 70, label);
-                }
-                for (int k = 0; k < R; ++k) {
-                    cell_text(cell, sizeof cell, set, r, k);
-                    if (md) {
-                        md_printf(&b, " ");
-                        md_cell_text(&b, cell);
-                        md_printf(&b, " |");
-                    } else {
-                        md_printf(&b, "  %-*.*s", wc[k], 70, cell);
-                    }
-                }
-                md_printf(&b, "\n");
-            }
-        }
-        md_printf(&b, "\n");
-        counts_line(&b, set, kind);
-        md_printf(&b, "\n");
     }
+    md_printf(b, "\n");
+    counts_line(b, set, kind);
+    md_printf(b, "\n");
+}
+
+char *compare_text(const struct compare_set *set, int md)
+{
+    struct md_buf b;
+    md_init(&b);
+    int R = set->nruns;
+    if (md)
+        md_printf(&b, "# Comparison of %d %s\n\n", R, set->by_device ? "devices of one run" : "runs");
+    for (int k = 0; k < R; ++k)
+        md_printf(&b, "%s%s = %s%s\n", md ? "- " : "", set->run[k].name, set->run[k].path,
+                  k == 0 ? (set->by_device ? " (baseline device)" : " (baseline)") : "");
+    md_printf(&b, "\n");
+    context_table(&b, set, md);
+    for (int kind = 0; kind < CMP_KIND_COUNT; ++kind)
+        kind_table(&b, set, md, kind);
     if (b.failed) {
         md_free(&b);
         return NULL;

@@ -204,6 +204,117 @@ void fit_family_report_free(struct fit_family_report *r)
     r->have_sweep = 0;
 }
 
+/* The family to fit from the options: the power family's a and b, or the continuous
+   parameters of a registry or user model, with their bounds and names; EXIT_USAGE (after a
+   message) when there is nothing to fit. */
+static int fam_setup(const struct fit_options *o, struct fam_search *S, struct model_spec *family,
+                     struct fit_family_report *r)
+{
+    char err[1024];
+    if (o->power_m) {
+        S->power_m = o->power_m;
+        S->nparams = 2;
+        S->lo[0] = 0; S->hi[0] = 10; S->lo[1] = -10; S->hi[1] = 10;
+        /* start at the asymptotic minimax slope a m ~ 0.9 (docs/definitions.md) */
+        family->params[0] = 0.9 / o->power_m;
+        family->params[1] = 0.1;
+        snprintf(r->family, sizeof r->family, "power:m=%d", o->power_m);
+        snprintf(r->param_names[0], sizeof r->param_names[0], "a");
+        snprintf(r->param_names[1], sizeof r->param_names[1], "b");
+        return 0;
+    }
+    if (model_spec_parse(o->model, family, err, sizeof err)) {
+        fprintf(stderr, "brdfbench fit: --family: %s\n", err);
+        return EXIT_USAGE;
+    }
+    for (int k = 0; k < family->info->nparams; ++k) {
+        const struct model_param *mp = &family->info->params[k];
+        if (mp->integer)
+            continue;
+        if (S->nparams == 1 && k == 1 && family->info->params[0].integer) {
+            /* only the second is continuous: not supported by the parameter order */
+        }
+        S->lo[S->nparams] = mp->min;
+        S->hi[S->nparams] = mp->max;
+        snprintf(r->param_names[S->nparams], sizeof r->param_names[0], "%s", mp->name);
+        S->nparams++;
+    }
+    if (S->nparams == 0 || (family->info->nparams == 2 && family->info->params[0].integer)) {
+        fprintf(stderr, "brdfbench fit: --family %s: the model has no continuous parameter to fit "
+                        "(accepted: a model with one or two continuous parameters, e.g. gauss, pow3, pow4, fq)\n",
+                family->info->id);
+        return EXIT_USAGE;
+    }
+    S->family = family;
+    snprintf(r->family, sizeof r->family, "%s", family->info->id);
+    return 0;
+}
+
+/* The search's n: the first few grid values (the worst often sit at small n), then
+   log-spaced up to n_max; returns how many were written to ns. */
+static long fam_search_grid(const double *n, long count, int search_n, double *ns)
+{
+    long nsn = 0;
+    for (long i = 0; i < count && i < 6; ++i)
+        ns[nsn++] = n[i];
+    for (int j = 1; j <= search_n && count > 6; ++j) {
+        double v = n[5] * pow(n[count - 1] / n[5], (double)j / search_n);
+        ns[nsn++] = j == search_n ? n[count - 1] : v;
+    }
+    return nsn;
+}
+
+/* The fitted points: the two minima, the best under the options' cap, and (unless `slow`)
+   the trade-off: the best max delta for caps on max Delta between the two ends. */
+static void fam_fit_points(struct fam_search *S, const struct fit_options *o, const struct model_spec *family,
+                           const double *n, long count, int slow, struct fit_family_report *r)
+{
+    double start[2] = { family->params[0], family->params[1] };
+    fam_fit_point(S, start, FIT_MAX_REL, NAN, n, count, &r->min_rel);
+    fam_fit_point(S, start, FIT_MAX_ABS, NAN, n, count, &r->min_abs);
+    r->min_rel.ok = r->min_abs.ok = 1;
+    double cap = o->objective == FIT_MAX_ABS ? o->max_rel_cap : o->max_abs_cap;
+    const struct fit_point *from = o->objective == FIT_MAX_ABS ? &r->min_abs : &r->min_rel;
+    if (isfinite(cap))
+        fam_fit_point(S, from->params, o->objective, cap, n, count, &r->best);
+    else
+        r->best = *from;
+    double lo = r->min_abs.max_abs, hi = r->min_rel.max_abs;
+    for (int j = 1; j + 1 < FIT_TRADEOFF_POINTS && hi > lo && !slow; ++j) {
+        double c = lo + (hi - lo) * j / (FIT_TRADEOFF_POINTS - 1);
+        fam_fit_point(S, r->min_rel.params, FIT_MAX_REL, c, n, count, &r->tradeoff[r->tradeoff_count]);
+        if (r->tradeoff[r->tradeoff_count].ok)
+            r->tradeoff_count++;
+    }
+}
+
+/* The best point as --models text in r->spec_text (empty when the family has no model id),
+   parsed into *fitted; returns whether it parsed. */
+static int fam_fitted_spec(const struct fit_options *o, const struct model_spec *family,
+                           struct fit_family_report *r, struct model_spec *fitted)
+{
+    char err[1024];
+    const char *id = NULL;
+    if (o->power_m == 2) id = "quad";
+    else if (o->power_m == 3) id = "pow3";
+    else if (o->power_m == 4) id = "pow4";
+    if (id)
+        snprintf(r->spec_text, sizeof r->spec_text, "%s:a=%.10g,b=%.10g", id, r->best.params[0],
+                 r->best.params[1]);
+    else if (!o->power_m) {
+        struct model_spec t = *family;
+        int k2 = 0;
+        for (int k = 0; k < family->info->nparams; ++k)
+            if (!family->info->params[k].integer)
+                t.params[k] = r->best.params[k2++];
+        size_t used = (size_t)snprintf(r->spec_text, sizeof r->spec_text, "%s", family->info->id);
+        for (int k = 0; k < family->info->nparams && used < sizeof r->spec_text; ++k)
+            used += (size_t)snprintf(r->spec_text + used, sizeof r->spec_text - used, "%s%s=%.10g",
+                                     k ? "," : ":", family->info->params[k].name, t.params[k]);
+    }
+    return r->spec_text[0] && model_spec_parse(r->spec_text, fitted, err, sizeof err) == 0;
+}
+
 int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
                    struct fit_family_report *report)
 {
@@ -218,42 +329,8 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
     memset(&S, 0, sizeof S);
     struct model_spec family;
     memset(&family, 0, sizeof family);
-    if (o->power_m) {
-        S.power_m = o->power_m;
-        S.nparams = 2;
-        S.lo[0] = 0; S.hi[0] = 10; S.lo[1] = -10; S.hi[1] = 10;
-        /* start at the asymptotic minimax slope a m ~ 0.9 (docs/definitions.md) */
-        family.params[0] = 0.9 / o->power_m;
-        family.params[1] = 0.1;
-        snprintf(r->family, sizeof r->family, "power:m=%d", o->power_m);
-        snprintf(r->param_names[0], sizeof r->param_names[0], "a");
-        snprintf(r->param_names[1], sizeof r->param_names[1], "b");
-    } else {
-        if (model_spec_parse(o->model, &family, err, sizeof err)) {
-            fprintf(stderr, "brdfbench fit: --family: %s\n", err);
-            return EXIT_USAGE;
-        }
-        for (int k = 0; k < family.info->nparams; ++k) {
-            const struct model_param *mp = &family.info->params[k];
-            if (mp->integer)
-                continue;
-            if (S.nparams == 1 && k == 1 && family.info->params[0].integer) {
-                /* only the second is continuous: not supported by the parameter order */
-            }
-            S.lo[S.nparams] = mp->min;
-            S.hi[S.nparams] = mp->max;
-            snprintf(r->param_names[S.nparams], sizeof r->param_names[0], "%s", mp->name);
-            S.nparams++;
-        }
-        if (S.nparams == 0 || (family.info->nparams == 2 && family.info->params[0].integer)) {
-            fprintf(stderr, "brdfbench fit: --family %s: the model has no continuous parameter to fit "
-                            "(accepted: a model with one or two continuous parameters, e.g. gauss, pow3, pow4, fq)\n",
-                    family.info->id);
-            return EXIT_USAGE;
-        }
-        S.family = &family;
-        snprintf(r->family, sizeof r->family, "%s", family.info->id);
-    }
+    if (fam_setup(o, &S, &family, r))
+        return EXIT_USAGE;
     r->nparams = S.nparams;
     int slow = !o->power_m && model_eval_host_on_device(&family);
     fam_epi_samples = slow ? FAM_SLOW_EPI : FAM_EPI_SAMPLES;
@@ -282,61 +359,12 @@ int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_o
     }
     for (long i = 0; i < count; ++i)
         n[i] = accuracy_grid_n(&g, i);
-    /* The search's n: the first few grid values (the worst often sit at small n), then
-       log-spaced up to n_max. */
-    long nsn = 0;
-    for (long i = 0; i < count && i < 6; ++i)
-        ns[nsn++] = n[i];
-    for (int j = 1; j <= search_n && count > 6; ++j) {
-        double v = n[5] * pow(n[count - 1] / n[5], (double)j / search_n);
-        ns[nsn++] = j == search_n ? n[count - 1] : v;
-    }
     S.n = ns;
-    S.count = nsn;
-    double start[2] = { family.params[0], family.params[1] };
-    fam_fit_point(&S, start, FIT_MAX_REL, NAN, n, count, &r->min_rel);
-    fam_fit_point(&S, start, FIT_MAX_ABS, NAN, n, count, &r->min_abs);
-    r->min_rel.ok = r->min_abs.ok = 1;
-    double cap = o->objective == FIT_MAX_ABS ? o->max_rel_cap : o->max_abs_cap;
-    const struct fit_point *from = o->objective == FIT_MAX_ABS ? &r->min_abs : &r->min_rel;
-    if (isfinite(cap))
-        fam_fit_point(&S, from->params, o->objective, cap, n, count, &r->best);
-    else
-        r->best = *from;
-    /* The trade-off: the best max delta for caps on max Delta between the two ends. */
-    double lo = r->min_abs.max_abs, hi = r->min_rel.max_abs;
-    for (int j = 1; j + 1 < FIT_TRADEOFF_POINTS && hi > lo && !slow; ++j) {
-        double c = lo + (hi - lo) * j / (FIT_TRADEOFF_POINTS - 1);
-        fam_fit_point(&S, r->min_rel.params, FIT_MAX_REL, c, n, count, &r->tradeoff[r->tradeoff_count]);
-        if (r->tradeoff[r->tradeoff_count].ok)
-            r->tradeoff_count++;
-    }
+    S.count = fam_search_grid(n, count, search_n, ns);
+    fam_fit_points(&S, o, &family, n, count, slow, r);
     /* The fitted model as --models text, and its device sweep. */
     struct model_spec fitted;
-    int have_spec = 0;
-    if (r->best.ok) {
-        const char *id = NULL;
-        if (o->power_m == 2) id = "quad";
-        else if (o->power_m == 3) id = "pow3";
-        else if (o->power_m == 4) id = "pow4";
-        if (id)
-            snprintf(r->spec_text, sizeof r->spec_text, "%s:a=%.10g,b=%.10g", id, r->best.params[0],
-                     r->best.params[1]);
-        else if (!o->power_m) {
-            struct model_spec t = family;
-            int k2 = 0;
-            for (int k = 0; k < family.info->nparams; ++k)
-                if (!family.info->params[k].integer)
-                    t.params[k] = r->best.params[k2++];
-            size_t used = (size_t)snprintf(r->spec_text, sizeof r->spec_text, "%s", family.info->id);
-            for (int k = 0; k < family.info->nparams && used < sizeof r->spec_text; ++k)
-                used += (size_t)snprintf(r->spec_text + used, sizeof r->spec_text - used, "%s%s=%.10g",
-                                         k ? "," : ":", family.info->params[k].name, t.params[k]);
-        }
-        if (r->spec_text[0] && model_spec_parse(r->spec_text, &fitted, err, sizeof err) == 0)
-            have_spec = 1;
-    }
-    if (have_spec) {
+    if (r->best.ok && fam_fitted_spec(o, &family, r, &fitted)) {
         rc = accuracy_run(&actx, &fitted, &g, &r->sweep);
         if (!rc)
             r->have_sweep = 1;

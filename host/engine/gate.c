@@ -151,19 +151,13 @@ static int gate_user_model(const struct jr_doc *d, const char *where,
     return 0;
 }
 
-static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int index, const char *base_dir,
-                      struct gate *g, char *err, size_t errlen)
+/* Every member of a gate object is one of the known keys. */
+static int gate_known_members(const struct jr_doc *d, const struct jr_value *gv, const char *where, char *err,
+                              size_t errlen)
 {
     static const char *keys[] = { "model", "model_file", "expression", "metric", "n_min", "n_max", "n_step",
                                   "samples", "min", "max", "name", "claimed", "note", "accept_device_disagreement",
                                   "measured", NULL };
-    char where[32], msg[1024];
-    snprintf(where, sizeof where, "gate %d: ", index + 1);
-    memset(g, 0, sizeof *g);
-    g->line = gv->line;
-    g->col = gv->col;
-    if (gv->type != JR_OBJ)
-        return jr_fail(d, gv, err, errlen, "%sa gate is an object, found %s", where, type_word(gv->type));
     for (size_t k = 0; k < gv->count; ++k) {
         int known = 0;
         for (int j = 0; keys[j] && !known; ++j)
@@ -174,22 +168,16 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
                            "n_max, n_step, samples, min, max, name, claimed, note, accept_device_disagreement, measured)", where,
                            gv->keys[k]);
     }
-    const struct jr_value *model_v, *file_v, *expr_v, *metric_v, *v;
-    if (member(d, gv, "model", JR_STR, where, &model_v, err, errlen) ||
-        member(d, gv, "model_file", JR_STR, where, &file_v, err, errlen) ||
-        member(d, gv, "expression", JR_STR, where, &expr_v, err, errlen) ||
-        member(d, gv, "metric", JR_STR, where, &metric_v, err, errlen))
-        return EXIT_USAGE;
-    if (!model_v)
-        return jr_fail(d, gv, err, errlen, "%s\"model\" is missing (e.g. \"fq2\" or \"fq:Q=0.64\")", where);
-    if (!metric_v) {
-        list_metrics(msg, sizeof msg);
-        return jr_fail(d, gv, err, errlen, "%s\"metric\" is missing (accepted: %s)", where, msg);
-    }
-    if (gate_user_model(d, where, model_v, file_v, expr_v, base_dir, err, errlen))
-        return EXIT_USAGE;
-    if (model_spec_parse(model_v->str, &g->model, msg, sizeof msg))
-        return jr_fail(d, model_v, err, errlen, "%s%s", where, msg);
+    return 0;
+}
+
+/* The gate's metric (metric_v) and what it needs: a model albedo.max can take, and for
+   measured.rms the "measured" file. */
+static int gate_metric(const struct jr_doc *d, const struct jr_value *gv, const struct jr_value *metric_v,
+                       const char *where, const char *base_dir, struct gate *g, char *err, size_t errlen)
+{
+    char msg[1024];
+    const struct jr_value *v;
     int metric = -1;
     for (int m = 0; m < GATE_METRIC_COUNT; ++m)
         if (strcmp(metric_v->str, metrics[m].name) == 0)
@@ -213,8 +201,15 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
                        where);
     if (v && (!v->str[0] || resolve_path(g->measured_path, sizeof g->measured_path, base_dir, v->str)))
         return jr_fail(d, v, err, errlen, "%s\"measured\" is empty or too long", where);
+    return 0;
+}
 
-    /* The grid: the accuracy command's defaults. */
+/* The gate's grid (the accuracy command's defaults where not given), its bounds and the
+   claimed value. */
+static int gate_grid_bounds(const struct jr_doc *d, const struct jr_value *gv, const char *where, struct gate *g,
+                            char *err, size_t errlen)
+{
+    char msg[1024];
     g->grid.n_min = 2.0;
     g->grid.n_max = 1000.0;
     g->grid.n_step = 1.0;
@@ -256,7 +251,15 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     if (g->has_min && g->has_max && !(g->min <= g->max))
         return jr_fail(d, nv[4], err, errlen, "%s\"min\" (%.10g) is above \"max\" (%.10g)", where, g->min, g->max);
     if (nv[6]) { g->has_claimed = 1; g->claimed = nv[6]->num; }
+    return 0;
+}
 
+/* The gate's name (or one made of its model, metric and grid), note and
+   accept_device_disagreement. */
+static int gate_labels(const struct jr_doc *d, const struct jr_value *gv, const char *where, struct gate *g,
+                       char *err, size_t errlen)
+{
+    const struct jr_value *v;
     if (member(d, gv, "name", JR_STR, where, &v, err, errlen))
         return EXIT_USAGE;
     if (v) {
@@ -274,6 +277,40 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     if (member(d, gv, "accept_device_disagreement", JR_BOOL, where, &v, err, errlen))
         return EXIT_USAGE;
     g->accept_device_disagreement = v && v->num != 0;
+    return 0;
+}
+
+static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int index, const char *base_dir,
+                      struct gate *g, char *err, size_t errlen)
+{
+    char where[32], msg[1024];
+    snprintf(where, sizeof where, "gate %d: ", index + 1);
+    memset(g, 0, sizeof *g);
+    g->line = gv->line;
+    g->col = gv->col;
+    if (gv->type != JR_OBJ)
+        return jr_fail(d, gv, err, errlen, "%sa gate is an object, found %s", where, type_word(gv->type));
+    if (gate_known_members(d, gv, where, err, errlen))
+        return EXIT_USAGE;
+    const struct jr_value *model_v, *file_v, *expr_v, *metric_v;
+    if (member(d, gv, "model", JR_STR, where, &model_v, err, errlen) ||
+        member(d, gv, "model_file", JR_STR, where, &file_v, err, errlen) ||
+        member(d, gv, "expression", JR_STR, where, &expr_v, err, errlen) ||
+        member(d, gv, "metric", JR_STR, where, &metric_v, err, errlen))
+        return EXIT_USAGE;
+    if (!model_v)
+        return jr_fail(d, gv, err, errlen, "%s\"model\" is missing (e.g. \"fq2\" or \"fq:Q=0.64\")", where);
+    if (!metric_v) {
+        list_metrics(msg, sizeof msg);
+        return jr_fail(d, gv, err, errlen, "%s\"metric\" is missing (accepted: %s)", where, msg);
+    }
+    if (gate_user_model(d, where, model_v, file_v, expr_v, base_dir, err, errlen))
+        return EXIT_USAGE;
+    if (model_spec_parse(model_v->str, &g->model, msg, sizeof msg))
+        return jr_fail(d, model_v, err, errlen, "%s%s", where, msg);
+    if (gate_metric(d, gv, metric_v, where, base_dir, g, err, errlen) ||
+        gate_grid_bounds(d, gv, where, g, err, errlen) || gate_labels(d, gv, where, g, err, errlen))
+        return EXIT_USAGE;
     g->measured = g->at_n = g->at_x = NAN;
     g->invalid_n = g->invalid_x = NAN;
     g->baseline = g->baseline_change = NAN;

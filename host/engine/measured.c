@@ -335,26 +335,10 @@ done:
     return rc;
 }
 
-int measured_material_run(struct cl_session *s, const struct merl_material *mat, const struct measured_options *o,
-                          struct measured_material *out)
+/* The measured cells above the surface, with their luminance: written to cells, returns how
+   many (the cells below the horizon counted in out). */
+static long measured_cells(const struct merl_material *mat, struct cell_geo *cells, struct measured_material *out)
 {
-    memset(out, 0, sizeof *out);
-    snprintf(out->name, sizeof out->name, "%s", mat->name);
-    snprintf(out->path, sizeof out->path, "%s", mat->path);
-    out->cells = MERL_CELLS;
-    out->unmeasured = mat->unmeasured;
-    memcpy(out->negative, mat->negative, sizeof out->negative);
-    for (int i = 0; i < o->nlobes; ++i) {
-        int rc = programs_host(s, &o->lobes[i]);
-        if (rc)
-            return rc;
-    }
-
-    struct cell_geo *cells = malloc((size_t)MERL_CELLS * sizeof *cells);
-    if (!cells) {
-        fprintf(stderr, "brdfbench measured: out of memory\n");
-        return EXIT_RUNTIME;
-    }
     long used = 0;
     for (long idx = 0; idx < MERL_CELLS; ++idx) {
         double rgb[3], L[3], V[3];
@@ -370,21 +354,14 @@ int measured_material_run(struct cl_session *s, const struct merl_material *mat,
         g.log_y = log1p(g.nl * g.y);
         cells[used++] = g;
     }
-    out->used_cells = used;
-    if (used < MEASURED_MIN_FIT_CELLS) {
-        free(cells);
-        fprintf(stderr, "brdfbench measured: %s: only %ld measured cells above the surface (at least %d needed)\n",
-                mat->path, used, MEASURED_MIN_FIT_CELLS);
-        return EXIT_USAGE;
-    }
-    long npick = 0;
-    long *pick = fit_pick(used, o->fit_cells, &npick);
-    if (!pick) {
-        free(cells);
-        fprintf(stderr, "brdfbench measured: out of memory\n");
-        return EXIT_RUNTIME;
-    }
-    out->fit_cells = npick;
+    return used;
+}
+
+/* Each fit on the picked cells (the physical ones "not run" with skip_physical), and its rms
+   over every used cell. */
+static void measured_fits(const struct cell_geo *cells, long used, const long *pick, long npick,
+                          const struct measured_options *o, struct measured_material *out)
+{
     for (int k = 0; k < MFIT_COUNT; ++k) {
         if (k != MFIT_BLINN && o->skip_physical) {
             struct measured_fit *f = &out->fit[k];
@@ -402,17 +379,18 @@ int measured_material_run(struct cl_session *s, const struct merl_material *mat,
         }
         out->fit[k].rms = sqrt(sum / (double)used);
     }
+}
 
-    /* each lobe at the Blinn-Phong fit's n, ks, kd: against the measurement and the fitted lobe */
+/* Each lobe at the Blinn-Phong fit's n, ks, kd: against the measurement and the fitted lobe;
+   -1 when out of memory. */
+static int measured_lobes(const struct cell_geo *cells, long used, const struct measured_options *o,
+                          struct measured_material *out)
+{
     const struct measured_fit *bp = &out->fit[MFIT_BLINN];
     out->nlobes = o->nlobes;
     double *log_phong = malloc((size_t)used * sizeof *log_phong);
-    if (!log_phong) {
-        free(pick);
-        free(cells);
-        fprintf(stderr, "brdfbench measured: out of memory\n");
-        return EXIT_RUNTIME;
-    }
+    if (!log_phong)
+        return -1;
     for (long i = 0; i < used; ++i)
         log_phong[i] = log1p(cells[i].nl * (bp->ks * pow(fmax(cells[i].ch, 0.0), bp->n) + bp->kd));
     for (int l = 0; l < o->nlobes; ++l) {
@@ -432,8 +410,12 @@ int measured_material_run(struct cl_session *s, const struct merl_material *mat,
         lobe->ratio = lobe->err_phong > 0 ? lobe->err_measured / lobe->err_phong : NAN;
     }
     free(log_phong);
+    return 0;
+}
 
-    /* the slices: theta_h at phi_d = 90 degrees and a few theta_d */
+/* The slices: theta_h at phi_d = 90 degrees and a few theta_d, measured and fitted. */
+static void measured_slices(const struct merl_material *mat, struct measured_material *out)
+{
     for (int sl = 0; sl < MEASURED_SLICES; ++sl) {
         struct measured_slice *m = &out->slice[sl];
         for (int i = 0; i < MERL_TH; ++i) {
@@ -454,6 +436,52 @@ int measured_material_run(struct cl_session *s, const struct merl_material *mat,
             }
         }
     }
+}
+
+int measured_material_run(struct cl_session *s, const struct merl_material *mat, const struct measured_options *o,
+                          struct measured_material *out)
+{
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "%s", mat->name);
+    snprintf(out->path, sizeof out->path, "%s", mat->path);
+    out->cells = MERL_CELLS;
+    out->unmeasured = mat->unmeasured;
+    memcpy(out->negative, mat->negative, sizeof out->negative);
+    for (int i = 0; i < o->nlobes; ++i) {
+        int rc = programs_host(s, &o->lobes[i]);
+        if (rc)
+            return rc;
+    }
+
+    struct cell_geo *cells = malloc((size_t)MERL_CELLS * sizeof *cells);
+    if (!cells) {
+        fprintf(stderr, "brdfbench measured: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    long used = measured_cells(mat, cells, out);
+    out->used_cells = used;
+    if (used < MEASURED_MIN_FIT_CELLS) {
+        free(cells);
+        fprintf(stderr, "brdfbench measured: %s: only %ld measured cells above the surface (at least %d needed)\n",
+                mat->path, used, MEASURED_MIN_FIT_CELLS);
+        return EXIT_USAGE;
+    }
+    long npick = 0;
+    long *pick = fit_pick(used, o->fit_cells, &npick);
+    if (!pick) {
+        free(cells);
+        fprintf(stderr, "brdfbench measured: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    out->fit_cells = npick;
+    measured_fits(cells, used, pick, npick, o, out);
+    if (measured_lobes(cells, used, o, out) != 0) {
+        free(pick);
+        free(cells);
+        fprintf(stderr, "brdfbench measured: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    measured_slices(mat, out);
     free(pick);
     free(cells);
     return s ? device_check(s, mat, out) : 0;

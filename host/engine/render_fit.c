@@ -99,6 +99,101 @@ static int he_pictures(const char *scene_dir, const char *sc, const char *base, 
     return render_write_pictures(&ps, err, errlen);
 }
 
+/* The host images of the He pass: He's, Blinn-Phong's at the fitted n and the entry's being
+   shaded, with the error images and the 8-bit colours. */
+struct he_images {
+    unsigned *rgba_he, *rgba_b, *rgba_m;
+    float *spec_he, *spec_b, *spec_m, *errimg, *signed_img;
+    unsigned char *rgb_he, *rgb;
+};
+
+/* Allocates the pass's images and the fit's inputs for npix pixels; -1 when out of memory
+   (what was allocated is freed by he_free). */
+static int he_alloc(struct he_images *im, struct he_fit *fit, size_t npix)
+{
+    im->rgba_he = malloc(npix * sizeof *im->rgba_he);
+    im->rgba_b = malloc(npix * sizeof *im->rgba_b);
+    im->rgba_m = malloc(npix * sizeof *im->rgba_m);
+    im->spec_he = malloc(npix * sizeof *im->spec_he);
+    im->spec_b = malloc(npix * sizeof *im->spec_b);
+    im->spec_m = malloc(npix * sizeof *im->spec_m);
+    im->errimg = malloc(npix * sizeof *im->errimg);
+    im->signed_img = malloc(npix * sizeof *im->signed_img);
+    im->rgb_he = malloc(npix * 3);
+    im->rgb = malloc(npix * 3);
+    fit->a = malloc(npix * sizeof *fit->a);
+    fit->c = malloc(npix * sizeof *fit->c);
+    fit->h = malloc(npix * sizeof *fit->h);
+    if (!im->rgba_he || !im->rgba_b || !im->rgba_m || !im->spec_he || !im->spec_b || !im->spec_m || !im->errimg ||
+        !im->signed_img || !im->rgb_he || !im->rgb || !fit->a || !fit->c || !fit->h)
+        return -1;
+    return 0;
+}
+
+static void he_free(struct he_images *im, struct he_fit *fit)
+{
+    free(fit->a);
+    free(fit->c);
+    free(fit->h);
+    free(im->rgba_he);
+    free(im->rgba_b);
+    free(im->rgba_m);
+    free(im->spec_he);
+    free(im->spec_b);
+    free(im->spec_m);
+    free(im->signed_img);
+    free(im->errimg);
+    free(im->rgb_he);
+    free(im->rgb);
+}
+
+/* The fit's inputs: every lit foreground pixel, in double from the G-buffer, with He's
+   specular radiance there. */
+static void he_fit_inputs(const struct gbuffer *g, const struct render_light *lt, const struct render_options *o,
+                          const struct model_spec *blinn, const float *spec_he, struct he_fit *fit)
+{
+    const float *px = gbuffer_plane(g, GB_PX), *py = gbuffer_plane(g, GB_PY), *pz = gbuffer_plane(g, GB_PZ);
+    const float *nx = gbuffer_plane(g, GB_NX), *ny = gbuffer_plane(g, GB_NY), *nz = gbuffer_plane(g, GB_NZ);
+    const float *sh = gbuffer_plane(g, GB_SHIN);
+    for (size_t i = 0; i < g->npix; i++) {
+        if (!(sh[i] > 0))
+            continue;
+        double pos[3] = { px[i], py[i], pz[i] }, nrm[3] = { nx[i], ny[i], nz[i] }, spec1, rad;
+        /* Blinn-Phong at n = 1 gives E (N.L) ks c; with it and c the lobe at any n is A c^n */
+        render_shade_ref(blinn, SHADE_LOBE_THETA_H, lt, o, pos, nrm, 1.0, &spec1, &rad);
+        double v[3], l[3], hv[3];
+        for (int k = 0; k < 3; k++) {
+            v[k] = lt->eye[k] - pos[k];
+            l[k] = lt->point ? lt->light[k] - pos[k] : lt->light[k];
+        }
+        vec3_normalize(v);
+        vec3_normalize(l);
+        for (int k = 0; k < 3; k++)
+            hv[k] = l[k] + v[k];
+        vec3_normalize(hv);
+        double c = vec3_dot(nrm, hv);
+        if (!(spec1 > 0 && c > 0))
+            continue;
+        fit->a[fit->count] = spec1 / c;
+        fit->c[fit->count] = c;
+        fit->h[fit->count] = spec_he[i];
+        fit->hh += (double)spec_he[i] * spec_he[i];
+        fit->count++;
+    }
+}
+
+/* Writes He's image of the scene (he_<label>.png) and records its path in hc->he_image. */
+static int he_write_image(const char *scene_dir, const char *sc, int w, int h, const unsigned char *rgb_he,
+                          struct he_comparison *hc, char *err, size_t errlen)
+{
+    char base[MODEL_LABEL_MAX + 8], name[300], path[4600];
+    label_to_file(hc->he.label, base, sizeof base);
+    snprintf(name, sizeof name, "he_%s.png", base);
+    snprintf(hc->he_image, sizeof hc->he_image, "render/%s/he_%s.png", sc, base);
+    path_join(path, sizeof path, scene_dir, name);
+    return draw_png_rgb8(path, w, h, rgb_he, err, errlen) != 0 ? EXIT_RUNTIME : 0;
+}
+
 /* A mesh shaded by He's model (o->he_material), then by Blinn-Phong at the n (and scale) that
    fits He's specular radiance best, and by each cheap lobe of the run (quadratic and rational
    families) at that n in the Blinn variable; error images against He's. */
@@ -113,9 +208,7 @@ int he_pass(struct render_device *dev, const struct scene_data *sd, const struct
     struct render_light lt;
     struct he_fit fit = {0};
     cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
-    unsigned *rgba_he = NULL, *rgba_b = NULL, *rgba_m = NULL;
-    float *spec_he = NULL, *spec_b = NULL, *spec_m = NULL, *errimg = NULL, *signed_img = NULL;
-    unsigned char *rgb_he = NULL, *rgb = NULL;
+    struct he_images im = {0};
     int rc = 0;
     char text[64];
     memset(hc, 0, sizeof *hc);
@@ -127,59 +220,18 @@ int he_pass(struct render_device *dev, const struct scene_data *sd, const struct
     const size_t npix = g.npix;
     if ((rc = pass_buffers(s, &g, CL_MEM_READ_WRITE, "He ", &gbuf, &out_rgba, &out_spec)))
         goto fail;
-    rgba_he = malloc(npix * sizeof *rgba_he);
-    rgba_b = malloc(npix * sizeof *rgba_b);
-    rgba_m = malloc(npix * sizeof *rgba_m);
-    spec_he = malloc(npix * sizeof *spec_he);
-    spec_b = malloc(npix * sizeof *spec_b);
-    spec_m = malloc(npix * sizeof *spec_m);
-    errimg = malloc(npix * sizeof *errimg);
-    signed_img = malloc(npix * sizeof *signed_img);
-    rgb_he = malloc(npix * 3);
-    rgb = malloc(npix * 3);
-    fit.a = malloc(npix * sizeof *fit.a);
-    fit.c = malloc(npix * sizeof *fit.c);
-    fit.h = malloc(npix * sizeof *fit.h);
-    if (!rgba_he || !rgba_b || !rgba_m || !spec_he || !spec_b || !spec_m || !errimg || !signed_img || !rgb_he || !rgb || !fit.a ||
-        !fit.c || !fit.h) {
+    if (he_alloc(&im, &fit, npix) != 0) {
         set_err(err, errlen, "%s: out of memory for the He comparison", sc);
         rc = EXIT_RUNTIME;
         goto done;
     }
     if ((rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, &hc->he, SHADE_PHYSICAL, &lt, o,
-                                  rgba_he, spec_he, NULL)) != 0)
+                                  im.rgba_he, im.spec_he, NULL)) != 0)
         goto fail;
-    /* the fit's inputs: every lit foreground pixel, in double from the G-buffer */
-    const float *px = gbuffer_plane(&g, GB_PX), *py = gbuffer_plane(&g, GB_PY), *pz = gbuffer_plane(&g, GB_PZ);
-    const float *nx = gbuffer_plane(&g, GB_NX), *ny = gbuffer_plane(&g, GB_NY), *nz = gbuffer_plane(&g, GB_NZ);
     float *sh = gbuffer_plane(&g, GB_SHIN);
     struct model_spec blinn;
     model_spec_default(models_find("blinn"), &blinn);
-    for (size_t i = 0; i < npix; i++) {
-        if (!(sh[i] > 0))
-            continue;
-        double pos[3] = { px[i], py[i], pz[i] }, nrm[3] = { nx[i], ny[i], nz[i] }, spec1, rad;
-        /* Blinn-Phong at n = 1 gives E (N.L) ks c; with it and c the lobe at any n is A c^n */
-        render_shade_ref(&blinn, SHADE_LOBE_THETA_H, &lt, o, pos, nrm, 1.0, &spec1, &rad);
-        double v[3], l[3], hv[3];
-        for (int k = 0; k < 3; k++) {
-            v[k] = lt.eye[k] - pos[k];
-            l[k] = lt.point ? lt.light[k] - pos[k] : lt.light[k];
-        }
-        vec3_normalize(v);
-        vec3_normalize(l);
-        for (int k = 0; k < 3; k++)
-            hv[k] = l[k] + v[k];
-        vec3_normalize(hv);
-        double c = vec3_dot(nrm, hv);
-        if (!(spec1 > 0 && c > 0))
-            continue;
-        fit.a[fit.count] = spec1 / c;
-        fit.c[fit.count] = c;
-        fit.h[fit.count] = spec_he[i];
-        fit.hh += (double)spec_he[i] * spec_he[i];
-        fit.count++;
-    }
+    he_fit_inputs(&g, &lt, o, &blinn, im.spec_he, &fit);
     hc->fit_pixels = fit.count;
     render_he_fit(fit.a, fit.c, fit.h, fit.count, &hc->n_fit, &hc->k_fit, &hc->rel_rms);
     /* the fitted n in the G-buffer's shininess plane, ks scaled by k */
@@ -198,18 +250,9 @@ int he_pass(struct render_device *dev, const struct scene_data *sd, const struct
         rc = EXIT_RUNTIME;
         goto done;
     }
-    render_rgba_to_rgb(rgba_he, npix, rgb_he);
-    if (o->write_images) {
-        char base[MODEL_LABEL_MAX + 8], name[300], path[4600];
-        label_to_file(hc->he.label, base, sizeof base);
-        snprintf(name, sizeof name, "he_%s.png", base);
-        snprintf(hc->he_image, sizeof hc->he_image, "render/%s/he_%s.png", sc, base);
-        path_join(path, sizeof path, scene_dir, name);
-        if (draw_png_rgb8(path, w, h, rgb_he, err, errlen) != 0) {
-            rc = EXIT_RUNTIME;
-            goto done;
-        }
-    }
+    render_rgba_to_rgb(im.rgba_he, npix, im.rgb_he);
+    if (o->write_images && (rc = he_write_image(scene_dir, sc, w, h, im.rgb_he, hc, err, errlen)) != 0)
+        goto done;
     /* entry 0: Blinn-Phong at the fitted n; then the cheap lobes at that n */
     hc->count = 0;
     for (int mi = -1; mi < o->nmodels && hc->count < RENDER_MAX_MODELS + 1; mi++) {
@@ -217,23 +260,24 @@ int he_pass(struct render_device *dev, const struct scene_data *sd, const struct
         if (mi >= 0 && m->info->family != MODEL_FAMILY_QUADRATIC && m->info->family != MODEL_FAMILY_RATIONAL)
             continue;
         struct he_entry *en = &hc->e[hc->count];
-        unsigned *rg = mi < 0 ? rgba_b : rgba_m;
-        float *sp = mi < 0 ? spec_b : spec_m;
+        unsigned *rg = mi < 0 ? im.rgba_b : im.rgba_m;
+        float *sp = mi < 0 ? im.spec_b : im.spec_m;
         if ((rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, m, SHADE_LOBE_THETA_H, &lt, &of,
                                       rg, sp, NULL)) != 0)
             goto fail;
         snprintf(en->label, sizeof en->label, "%s@n=%.4g", m->label, hc->n_fit);
-        compute_metrics(&g, 0, h, rg, sp, rgba_he, spec_he, o->threshold, errimg, signed_img, &en->metrics);
+        compute_metrics(&g, 0, h, rg, sp, im.rgba_he, im.spec_he, o->threshold, im.errimg, im.signed_img,
+                        &en->metrics);
         en->max_abs_vs_blinn = 0;
         for (size_t i = 0; i < npix; i++)
             if (sh[i] > 0)
-                en->max_abs_vs_blinn = fmax(en->max_abs_vs_blinn, fabs((double)sp[i] - (double)spec_b[i]));
+                en->max_abs_vs_blinn = fmax(en->max_abs_vs_blinn, fabs((double)sp[i] - (double)im.spec_b[i]));
         if (o->write_images) {
             char base[MODEL_LABEL_MAX + 8];
             label_to_file(m->label, base, sizeof base);
             int all_pictures = mi < 0 || m->info->kernel_id == BRDF_FQ2;
-            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, rgb_he, rgb, errimg, signed_img, en, hc->he.label, all_pictures,
-                                  err, errlen)) != 0)
+            if ((rc = he_pictures(scene_dir, sc, base, w, h, rg, im.rgb_he, im.rgb, im.errimg, im.signed_img, en,
+                                  hc->he.label, all_pictures, err, errlen)) != 0)
                 goto done;
         }
         hc->count++;
@@ -247,19 +291,7 @@ fail:
         set_err(err, errlen, "%s: OpenCL error in the He comparison (see above)", sc);
     rc = rc ? rc : EXIT_RUNTIME;
 done:
-    free(fit.a);
-    free(fit.c);
-    free(fit.h);
-    free(rgba_he);
-    free(rgba_b);
-    free(rgba_m);
-    free(spec_he);
-    free(spec_b);
-    free(spec_m);
-    free(signed_img);
-    free(errimg);
-    free(rgb_he);
-    free(rgb);
+    he_free(&im, &fit);
     pass_release(out_spec, out_rgba, gbuf, &g);
     return rc;
 }

@@ -93,6 +93,120 @@ done:
     return rc;
 }
 
+/* The host images of the image pass: the model's shading, its error images and 8-bit colours,
+   and on the sphere grid the whole grid's colours and relative errors. */
+struct pass_images {
+    unsigned *rgba_m;
+    float *spec_m, *errimg, *signed_m, *grid_err;
+    unsigned char *rgb_m, *rgb_r, *grid_m, *grid_r;
+};
+
+/* Allocates the pass's images for npix pixels (the grid's only when `grid`); -1 when out of
+   memory (what was allocated is freed by pass_images_free). */
+static int pass_images_alloc(struct pass_images *im, size_t npix, int grid)
+{
+    im->rgba_m = malloc(npix * sizeof *im->rgba_m);
+    im->spec_m = malloc(npix * sizeof *im->spec_m);
+    im->errimg = malloc(npix * sizeof *im->errimg);
+    im->signed_m = malloc(npix * sizeof *im->signed_m);
+    im->rgb_m = malloc(npix * 3);
+    im->rgb_r = malloc(npix * 3);
+    if (!im->rgba_m || !im->spec_m || !im->errimg || !im->signed_m || !im->rgb_m || !im->rgb_r)
+        return -1;
+    if (grid) {
+        im->grid_err = malloc(npix * sizeof *im->grid_err);
+        im->grid_m = malloc(npix * 3);
+        im->grid_r = malloc(npix * 3);
+        if (!im->grid_err || !im->grid_m || !im->grid_r)
+            return -1;
+    }
+    return 0;
+}
+
+static void pass_images_free(struct pass_images *im)
+{
+    free(im->rgba_m);
+    free(im->spec_m);
+    free(im->errimg);
+    free(im->signed_m);
+    free(im->rgb_m);
+    free(im->rgb_r);
+    free(im->grid_err);
+    free(im->grid_m);
+    free(im->grid_r);
+}
+
+/* The reference of a model in its own shading mode, shaded once per scene: its index in the
+   cache in *ci. Returns 0, -1 when out of memory, or the shading's failure. */
+static int cached_reference(struct render_device *dev, cl_mem gbuf, const struct gbuffer *g, cl_mem out_rgba,
+                            cl_mem out_spec, const struct model_result *mr, const struct render_light *lt,
+                            const struct render_options *o, struct shaded_cache *cache, int *ci)
+{
+    int ref_mode = render_reference_mode(mr->mode, &mr->ref);
+    *ci = -1;
+    for (int k = 0; k < cache->n; k++)
+        if (cache->e[k].mode == ref_mode && strcmp(cache->e[k].label, mr->ref.label) == 0)
+            *ci = k;
+    if (*ci >= 0)
+        return 0;
+    int i = *ci = cache->n;
+    cache->e[i].mode = ref_mode;
+    snprintf(cache->e[i].label, sizeof cache->e[i].label, "%s", mr->ref.label);
+    cache->e[i].rgba = malloc(g->npix * sizeof(unsigned));
+    cache->e[i].spec = malloc(g->npix * sizeof(float));
+    cache->n++;
+    if (!cache->e[i].rgba || !cache->e[i].spec)
+        return -1;
+    return render_device_shade(dev, gbuf, g->stride, g->npix, out_rgba, out_spec, &mr->ref, ref_mode, lt, o,
+                               cache->e[i].rgba, cache->e[i].spec, NULL);
+}
+
+/* A model's rows in the sphere grid: its colours, its reference's and its error relative to
+   the reference's peak (rows differ in scale: normalised lobes peak near (n+2)/(2 pi)). */
+static void grid_add_rows(struct pass_images *im, size_t off, size_t n, double peak)
+{
+    memcpy(im->grid_m + 3 * off, im->rgb_m, 3 * n);
+    memcpy(im->grid_r + 3 * off, im->rgb_r, 3 * n);
+    for (size_t k = 0; k < n; k++)
+        im->grid_err[off + k] = peak > 0 ? (float)(im->errimg[k] / peak) : im->errimg[k];
+}
+
+/* A model's pictures of a scene: image, error images and contact sheet, rows y0..y1. */
+static int model_pictures(const char *scene_dir, int scene, const struct model_spec *m, struct model_result *mr,
+                          int w, const struct pass_images *im, char *err, size_t errlen)
+{
+    char base[MODEL_LABEL_MAX + 8], title[400], ctitle[400], stitle[400];
+    label_to_file(m->label, base, sizeof base);
+    const char *sc = render_scene_names[scene];
+    snprintf(title, sizeof title,
+             "%s: |%s - %s| specular radiance (%s), max %.3g mean %.3g", sc, m->label,
+             mr->ref.label, render_mode_names[mr->mode], mr->metrics.max_abs,
+             mr->metrics.mean_abs);
+    snprintf(ctitle, sizeof ctitle, "%s: reference %s | model %s | error (max %.3g)", sc,
+             mr->ref.label, m->label, mr->metrics.max_abs);
+    render_signed_title(stitle, sizeof stitle, sc, m->label, mr->ref.label, mr->metrics.max_abs);
+    struct render_picture_set ps = {scene_dir, sc, "", base, w, mr->y1 - mr->y0, im->rgb_m, im->rgb_r, im->errimg,
+                                    im->signed_m, mr->metrics.max_abs, title, stitle, ctitle, mr->image,
+                                    mr->error, mr->signed_error, mr->contact};
+    return render_write_pictures(&ps, err, errlen);
+}
+
+/* The whole sphere grid: row r holds model r, its reference and its error. */
+static int write_sphere_grid(const char *scene_dir, const struct render_options *o, int w, int h,
+                             const struct pass_images *im, struct scene_result *res, char *err, size_t errlen)
+{
+    double vmax = 0;
+    for (int mi = 0; mi < o->nmodels; mi++) {
+        const struct image_metrics *mt = &res->models[mi].metrics;
+        if (mt->peak_reference > 0)
+            vmax = fmax(vmax, mt->max_abs / mt->peak_reference);
+    }
+    if (render_write_grid(scene_dir, o, w, h, im->grid_r, im->grid_m, im->grid_err, vmax, err, errlen) != 0)
+        return -1;
+    snprintf(res->grid_contact, sizeof res->grid_contact, "render/spheres/contact.png");
+    return 0;
+}
+
 /* Image pass of one scene: every model and its reference shaded at o->width x o->height. */
 int image_pass(struct render_device *dev, const struct scene_data *sd,
                const struct render_options *o, const char *stage_dir,
@@ -103,9 +217,7 @@ int image_pass(struct render_device *dev, const struct scene_data *sd,
     struct gbuffer g;
     struct shaded_cache cache = {0};
     cl_mem gbuf = NULL, out_rgba = NULL, out_spec = NULL;
-    unsigned *rgba_m = NULL;
-    float *spec_m = NULL, *errimg = NULL, *signed_m = NULL, *grid_err = NULL;
-    unsigned char *rgb_m = NULL, *rgb_r = NULL, *grid_m = NULL, *grid_r = NULL;
+    struct pass_images im = {0};
     int rc = 0;
     double t0 = wall_seconds();
     rc = scene_gbuffer(sd, o, w, h, &g, &res->light, err, errlen);
@@ -116,21 +228,8 @@ int image_pass(struct render_device *dev, const struct scene_data *sd,
     const size_t npix = g.npix;
     if ((rc = pass_buffers(s, &g, CL_MEM_READ_ONLY, "", &gbuf, &out_rgba, &out_spec)))
         goto fail;
-    rgba_m = malloc(npix * sizeof *rgba_m);
-    spec_m = malloc(npix * sizeof *spec_m);
-    errimg = malloc(npix * sizeof *errimg);
-    signed_m = malloc(npix * sizeof *signed_m);
-    rgb_m = malloc(npix * 3);
-    rgb_r = malloc(npix * 3);
-    if (!rgba_m || !spec_m || !errimg || !signed_m || !rgb_m || !rgb_r)
+    if (pass_images_alloc(&im, npix, sd->kind == RENDER_SPHERES) != 0)
         goto oom;
-    if (sd->kind == RENDER_SPHERES) {
-        grid_err = malloc(npix * sizeof *grid_err);
-        grid_m = malloc(npix * 3);
-        grid_r = malloc(npix * 3);
-        if (!grid_err || !grid_m || !grid_r)
-            goto oom;
-    }
     char scene_dir[4200];
     path_join(scene_dir, sizeof scene_dir, stage_dir, render_scene_names[sd->kind]);
     if (o->write_images && outdir_prepare(scene_dir, NULL, err, errlen) != 0) {
@@ -144,80 +243,34 @@ int image_pass(struct render_device *dev, const struct scene_data *sd,
         mr->mode = render_shading_mode(m);
         model_reference_spec(m, &mr->ref);
         rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, m, mr->mode,
-                                 &res->light, o, rgba_m, spec_m, NULL);
+                                 &res->light, o, im.rgba_m, im.spec_m, NULL);
         if (rc)
             goto fail;
-        /* the reference in the model's own shading mode, shaded once per scene */
-        int ci = -1, ref_mode = render_reference_mode(mr->mode, &mr->ref);
-        for (int k = 0; k < cache.n; k++)
-            if (cache.e[k].mode == ref_mode && strcmp(cache.e[k].label, mr->ref.label) == 0)
-                ci = k;
-        if (ci < 0) {
-            ci = cache.n;
-            cache.e[ci].mode = ref_mode;
-            snprintf(cache.e[ci].label, sizeof cache.e[ci].label, "%s", mr->ref.label);
-            cache.e[ci].rgba = malloc(npix * sizeof(unsigned));
-            cache.e[ci].spec = malloc(npix * sizeof(float));
-            cache.n++;
-            if (!cache.e[ci].rgba || !cache.e[ci].spec)
-                goto oom;
-            rc = render_device_shade(dev, gbuf, g.stride, npix, out_rgba, out_spec, &mr->ref,
-                                     ref_mode, &res->light, o, cache.e[ci].rgba,
-                                     cache.e[ci].spec, NULL);
-            if (rc)
-                goto fail;
-        }
+        int ci;
+        rc = cached_reference(dev, gbuf, &g, out_rgba, out_spec, mr, &res->light, o, &cache, &ci);
+        if (rc < 0)
+            goto oom;
+        if (rc)
+            goto fail;
         const unsigned *rgba_r = cache.e[ci].rgba;
         const float *spec_r = cache.e[ci].spec;
         model_region(sd, o, h, mi, &mr->y0, &mr->y1);
         const int y0 = mr->y0, y1 = mr->y1;
-        compute_metrics(&g, y0, y1, rgba_m, spec_m, rgba_r, spec_r, o->threshold, errimg, signed_m,
+        compute_metrics(&g, y0, y1, im.rgba_m, im.spec_m, rgba_r, spec_r, o->threshold, im.errimg, im.signed_m,
                         &mr->metrics);
-        check_reference(&g, y0, y1, m, mr->mode, &res->light, o, rgba_m, spec_m, &mr->check);
+        check_reference(&g, y0, y1, m, mr->mode, &res->light, o, im.rgba_m, im.spec_m, &mr->check);
         size_t off = (size_t)y0 * w, n = (size_t)(y1 - y0) * w;
-        render_rgba_to_rgb(rgba_m + off, n, rgb_m);
-        render_rgba_to_rgb(rgba_r + off, n, rgb_r);
-        if (grid_m) {
-            memcpy(grid_m + 3 * off, rgb_m, 3 * n);
-            memcpy(grid_r + 3 * off, rgb_r, 3 * n);
-            /* rows differ in scale (normalised lobes peak near (n+2)/(2 pi)): the grid shows
-               each row's error relative to its reference's peak */
-            double peak = mr->metrics.peak_reference;
-            for (size_t k = 0; k < n; k++)
-                grid_err[off + k] = peak > 0 ? (float)(errimg[k] / peak) : errimg[k];
-        }
-        if (o->write_images) {
-            char base[MODEL_LABEL_MAX + 8], title[400], ctitle[400], stitle[400];
-            label_to_file(m->label, base, sizeof base);
-            const char *sc = render_scene_names[sd->kind];
-            snprintf(title, sizeof title,
-                     "%s: |%s - %s| specular radiance (%s), max %.3g mean %.3g", sc, m->label,
-                     mr->ref.label, render_mode_names[mr->mode], mr->metrics.max_abs,
-                     mr->metrics.mean_abs);
-            snprintf(ctitle, sizeof ctitle, "%s: reference %s | model %s | error (max %.3g)", sc,
-                     mr->ref.label, m->label, mr->metrics.max_abs);
-            render_signed_title(stitle, sizeof stitle, sc, m->label, mr->ref.label, mr->metrics.max_abs);
-            struct render_picture_set ps = {scene_dir, sc, "", base, w, y1 - y0, rgb_m, rgb_r, errimg,
-                                            signed_m, mr->metrics.max_abs, title, stitle, ctitle, mr->image,
-                                            mr->error, mr->signed_error, mr->contact};
-            if (render_write_pictures(&ps, err, errlen) != 0)
-                goto io_fail;
-        }
+        render_rgba_to_rgb(im.rgba_m + off, n, im.rgb_m);
+        render_rgba_to_rgb(rgba_r + off, n, im.rgb_r);
+        if (im.grid_m)
+            grid_add_rows(&im, off, n, mr->metrics.peak_reference);
+        if (o->write_images && model_pictures(scene_dir, sd->kind, m, mr, w, &im, err, errlen) != 0)
+            goto io_fail;
         if (o->verbose)
             render_print_model(sd->kind, m->label, mr);
     }
-    if (grid_m && o->write_images) {
-        /* the whole grid: row r holds model r, its reference and its error */
-        double vmax = 0;
-        for (int mi = 0; mi < o->nmodels; mi++) {
-            const struct image_metrics *mt = &res->models[mi].metrics;
-            if (mt->peak_reference > 0)
-                vmax = fmax(vmax, mt->max_abs / mt->peak_reference);
-        }
-        if (render_write_grid(scene_dir, o, w, h, grid_r, grid_m, grid_err, vmax, err, errlen) != 0)
-            goto io_fail;
-        snprintf(res->grid_contact, sizeof res->grid_contact, "render/spheres/contact.png");
-    }
+    if (im.grid_m && o->write_images && write_sphere_grid(scene_dir, o, w, h, &im, res, err, errlen) != 0)
+        goto io_fail;
     goto done;
 oom:
     set_err(err, errlen, "%s: out of memory for %dx%d images", render_scene_names[sd->kind], w, h);
@@ -233,15 +286,7 @@ fail:
     rc = rc ? rc : EXIT_RUNTIME;
 done:
     cache_free(&cache);
-    free(rgba_m);
-    free(spec_m);
-    free(errimg);
-    free(signed_m);
-    free(rgb_m);
-    free(rgb_r);
-    free(grid_err);
-    free(grid_m);
-    free(grid_r);
+    pass_images_free(&im);
     pass_release(out_spec, out_rgba, gbuf, &g);
     return rc;
 }

@@ -125,6 +125,160 @@ static void write_he_json(struct jw *w, const struct he_comparison *hc, double t
     jw_obj_end(w);
 }
 
+/* The options of the run in render.json. */
+static void write_options_json(struct jw *w, const struct render_options *o)
+{
+    jw_kv_obj(w, "options");
+    jw_kv_int_pair(w, "image_size", o->width, o->height);
+    jw_kv_arr(w, "timing_sizes");
+    for (int i = 0; i < o->ntime_sizes; i++) {
+        jw_arr_begin(w);
+        jw_int(w, o->time_w[i]);
+        jw_int(w, o->time_h[i]);
+        jw_arr_end(w);
+    }
+    jw_arr_end(w);
+    jw_kv_int(w, "reps", o->reps);
+    jw_kv_int(w, "warmup", o->warmup);
+    jw_kv_nums(w, "sphere_shininess", o->sphere_n, (size_t)o->ncols);
+    jw_kv_num(w, "mesh_shininess", o->mesh_n);
+    jw_kv_int(w, "teapot_tessellation", o->tess);
+    jw_kv_str(w, "light", o->point_light ? "point" : "directional");
+    jw_kv_num(w, "exposure", o->exposure);
+    jw_kv_num(w, "kd", o->kd);
+    jw_kv_num(w, "ks", o->ks);
+    jw_kv_num(w, "ambient", o->ambient);
+    jw_kv_num(w, "schlick_f0", o->f0);
+    jw_kv_nums(w, "tint", o->tint, 3);
+    jw_kv_int(w, "reference_samples_per_model", o->ref_samples);
+    jw_obj_end(w);
+}
+
+/* A scene's source, geometry, light and image in render.json. */
+static void write_scene_setup_json(struct jw *w, int si, const struct scene_result *sr,
+                                   const struct render_options *o)
+{
+    jw_kv_str(w, "scene", render_scene_names[si]);
+    jw_kv_str(w, "source", sr->source);
+    if (si == RENDER_TEAPOT) {
+        jw_kv_str(w, "package", RENDER_TEAPOT_PACKAGE);
+        jw_kv_int(w, "patches", (long long)sr->patches);
+    } else if (si == RENDER_BUNNY) {
+        jw_kv_str(w, "package", RENDER_BUNNY_PACKAGE);
+    }
+    if (si != RENDER_SPHERES)
+        jw_kv_int(w, "triangles", (long long)sr->triangles);
+    jw_kv_obj(w, "light");
+    jw_kv_str(w, "kind", sr->light.point ? "point" : "directional");
+    jw_kv_nums(w, sr->light.point ? "position" : "direction", sr->light.light, 3);
+    jw_kv_num(w, "intensity", sr->light.intensity);
+    jw_kv_nums(w, "eye", sr->light.eye, 3);
+    jw_obj_end(w);
+    jw_kv_obj(w, "image");
+    jw_kv_int(w, "width", o->width);
+    jw_kv_int(w, "height", o->height);
+    jw_kv_int(w, "foreground_pixels", (long long)sr->foreground);
+    jw_kv_num(w, "gbuffer_seconds", sr->raster_seconds);
+    if (sr->grid_contact[0])
+        jw_kv_str(w, "contact_sheet", sr->grid_contact);
+    jw_obj_end(w);
+}
+
+/* One model of a scene in render.json: its files, error figures and the double check. */
+static void write_model_json(struct jw *w, int si, const struct model_result *mr,
+                             const struct model_spec *m, double threshold)
+{
+    jw_obj_begin(w);
+    jw_kv_str(w, "model", m->label);
+    jw_kv_str(w, "family", model_family_name(m->info->family));
+    jw_kv_str(w, "reference", mr->ref.label);
+    jw_kv_str(w, "shading", render_mode_names[mr->mode]);
+    if (si == RENDER_SPHERES) {
+        jw_kv_int_pair(w, "grid_rows", mr->y0, mr->y1);
+    }
+    if (mr->image[0]) {
+        jw_kv_obj(w, "files");
+        jw_kv_str(w, "image", mr->image);
+        jw_kv_str(w, "error_image", mr->error);
+        if (mr->signed_error[0])
+            jw_kv_str(w, "signed_error_image", mr->signed_error);
+        jw_kv_str(w, "contact_sheet", mr->contact);
+        jw_obj_end(w);
+    }
+    write_metrics_json(w, &mr->metrics, threshold);
+    jw_kv_obj(w, "double_reference_check");
+    jw_kv_int(w, "samples", mr->check.samples);
+    jw_kv_num(w, "max_abs_specular_difference", mr->check.max_abs);
+    jw_kv_num(w, "double_value_there", mr->check.value_at_max);
+    jw_kv_num(w, "peak_specular", mr->check.peak);
+    jw_kv_num(w, "relative_to_peak", mr->check.relative_to_peak);
+    jw_kv_num(w, "bound", mr->check.bound);
+    jw_kv_str(w, "bound_rule", "1e-3 of the sampled peak specular radiance; 8-bit "
+              "colours within 2 codes of the exact curve");
+    jw_kv_int(w, "max_code_difference", mr->check.max_code);
+    jw_kv_bool(w, "within_bound", mr->check.within);
+    jw_obj_end(w);
+    jw_obj_end(w);
+}
+
+/* One timed entry of a size in render.json: its times, share of the copy and speed-up. */
+static void write_timed_entry_json(struct jw *w, const struct size_timing *st,
+                                   const struct timed_entry *te)
+{
+    const struct timed_entry *re = reference_entry(st, te);
+    double frac = te->copy_med / te->med;
+    jw_obj_begin(w);
+    jw_kv_str(w, "name", te->name);
+    jw_kv_str(w, "model", te->spec.label);
+    jw_kv_str(w, "shading", render_mode_names[te->mode]);
+    jw_kv_bool(w, "selected_model", te->is_model);
+    jw_kv_num(w, "median_ms", te->med * 1e3);
+    jw_kv_num(w, "min_ms", te->min * 1e3);
+    jw_kv_num(w, "max_ms", te->max * 1e3);
+    jw_kv_num(w, "mpixel_per_s", mpix(st, te->med));
+    jw_kv_arr(w, "mpixel_per_s_reps");
+    for (int k = 0; k < te->nreps; k++)
+        jw_num(w, mpix(st, te->rep_s[k]));
+    jw_arr_end(w);
+    jw_kv_num(w, "copy_median_ms_interleaved", te->copy_med * 1e3);
+    jw_kv_num(w, "fraction_of_copy", frac);
+    if (is_lobe_entry(te)) {
+        jw_kv_num(w, "target_fraction", SPEED_TARGET_FRACTION);
+        jw_kv_bool(w, "target_met", frac >= SPEED_TARGET_FRACTION);
+    }
+    if (re) {
+        jw_kv_str(w, "reference", re->name);
+        jw_kv_num(w, "speedup_vs_reference", re->med / te->med);
+    }
+    jw_obj_end(w);
+}
+
+/* A scene's timings in render.json: per size the copy kernel and every timed entry. */
+static void write_timings_json(struct jw *w, const struct scene_result *sr)
+{
+    jw_kv_arr(w, "timings");
+    for (int ti = 0; ti < sr->ntimings; ti++) {
+        const struct size_timing *st = &sr->timings[ti];
+        jw_obj_begin(w);
+        jw_kv_int(w, "width", st->w);
+        jw_kv_int(w, "height", st->h);
+        jw_kv_int(w, "foreground_pixels", (long long)st->foreground);
+        jw_kv_obj(w, "copy");
+        jw_kv_int(w, "bytes_per_pixel", RENDER_DEVICE_BYTES_PER_PIXEL);
+        jw_kv_num(w, "median_ms", st->copy_med * 1e3);
+        jw_kv_num(w, "mpixel_per_s", mpix(st, st->copy_med));
+        jw_kv_num(w, "gbyte_per_s",
+                  (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
+        jw_obj_end(w);
+        jw_kv_arr(w, "entries");
+        for (int k = 0; k < st->nentries; k++)
+            write_timed_entry_json(w, st, &st->entries[k]);
+        jw_arr_end(w);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+}
+
 int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
                       const struct scene_result *res, int display_code_error, char *err,
                       size_t errlen)
@@ -136,30 +290,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
               "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
     jw_obj_end(&w);
 
-    jw_kv_obj(&w, "options");
-    jw_kv_int_pair(&w, "image_size", o->width, o->height);
-    jw_kv_arr(&w, "timing_sizes");
-    for (int i = 0; i < o->ntime_sizes; i++) {
-        jw_arr_begin(&w);
-        jw_int(&w, o->time_w[i]);
-        jw_int(&w, o->time_h[i]);
-        jw_arr_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_kv_int(&w, "reps", o->reps);
-    jw_kv_int(&w, "warmup", o->warmup);
-    jw_kv_nums(&w, "sphere_shininess", o->sphere_n, (size_t)o->ncols);
-    jw_kv_num(&w, "mesh_shininess", o->mesh_n);
-    jw_kv_int(&w, "teapot_tessellation", o->tess);
-    jw_kv_str(&w, "light", o->point_light ? "point" : "directional");
-    jw_kv_num(&w, "exposure", o->exposure);
-    jw_kv_num(&w, "kd", o->kd);
-    jw_kv_num(&w, "ks", o->ks);
-    jw_kv_num(&w, "ambient", o->ambient);
-    jw_kv_num(&w, "schlick_f0", o->f0);
-    jw_kv_nums(&w, "tint", o->tint, 3);
-    jw_kv_int(&w, "reference_samples_per_model", o->ref_samples);
-    jw_obj_end(&w);
+    write_options_json(&w, o);
 
     jw_kv_obj(&w, "display");
     jw_kv_str(&w, "curve", "channel k: sRGB8(1 - exp(-exposure tint_k radiance))");
@@ -173,119 +304,16 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
         if (!sr->done)
             continue;
         jw_obj_begin(&w);
-        jw_kv_str(&w, "scene", render_scene_names[si]);
-        jw_kv_str(&w, "source", sr->source);
-        if (si == RENDER_TEAPOT) {
-            jw_kv_str(&w, "package", RENDER_TEAPOT_PACKAGE);
-            jw_kv_int(&w, "patches", (long long)sr->patches);
-        } else if (si == RENDER_BUNNY) {
-            jw_kv_str(&w, "package", RENDER_BUNNY_PACKAGE);
-        }
-        if (si != RENDER_SPHERES)
-            jw_kv_int(&w, "triangles", (long long)sr->triangles);
-        jw_kv_obj(&w, "light");
-        jw_kv_str(&w, "kind", sr->light.point ? "point" : "directional");
-        jw_kv_nums(&w, sr->light.point ? "position" : "direction", sr->light.light, 3);
-        jw_kv_num(&w, "intensity", sr->light.intensity);
-        jw_kv_nums(&w, "eye", sr->light.eye, 3);
-        jw_obj_end(&w);
-        jw_kv_obj(&w, "image");
-        jw_kv_int(&w, "width", o->width);
-        jw_kv_int(&w, "height", o->height);
-        jw_kv_int(&w, "foreground_pixels", (long long)sr->foreground);
-        jw_kv_num(&w, "gbuffer_seconds", sr->raster_seconds);
-        if (sr->grid_contact[0])
-            jw_kv_str(&w, "contact_sheet", sr->grid_contact);
-        jw_obj_end(&w);
+        write_scene_setup_json(&w, si, sr, o);
         jw_kv_arr(&w, "models");
-        for (int mi = 0; mi < o->nmodels; mi++) {
-            const struct model_result *mr = &sr->models[mi];
-            const struct model_spec *m = &o->models[mi];
-            jw_obj_begin(&w);
-            jw_kv_str(&w, "model", m->label);
-            jw_kv_str(&w, "family", model_family_name(m->info->family));
-            jw_kv_str(&w, "reference", mr->ref.label);
-            jw_kv_str(&w, "shading", render_mode_names[mr->mode]);
-            if (si == RENDER_SPHERES) {
-                jw_kv_int_pair(&w, "grid_rows", mr->y0, mr->y1);
-            }
-            if (mr->image[0]) {
-                jw_kv_obj(&w, "files");
-                jw_kv_str(&w, "image", mr->image);
-                jw_kv_str(&w, "error_image", mr->error);
-                if (mr->signed_error[0])
-                    jw_kv_str(&w, "signed_error_image", mr->signed_error);
-                jw_kv_str(&w, "contact_sheet", mr->contact);
-                jw_obj_end(&w);
-            }
-            write_metrics_json(&w, &mr->metrics, o->threshold);
-            jw_kv_obj(&w, "double_reference_check");
-            jw_kv_int(&w, "samples", mr->check.samples);
-            jw_kv_num(&w, "max_abs_specular_difference", mr->check.max_abs);
-            jw_kv_num(&w, "double_value_there", mr->check.value_at_max);
-            jw_kv_num(&w, "peak_specular", mr->check.peak);
-            jw_kv_num(&w, "relative_to_peak", mr->check.relative_to_peak);
-            jw_kv_num(&w, "bound", mr->check.bound);
-            jw_kv_str(&w, "bound_rule", "1e-3 of the sampled peak specular radiance; 8-bit "
-                      "colours within 2 codes of the exact curve");
-            jw_kv_int(&w, "max_code_difference", mr->check.max_code);
-            jw_kv_bool(&w, "within_bound", mr->check.within);
-            jw_obj_end(&w);
-            jw_obj_end(&w);
-        }
+        for (int mi = 0; mi < o->nmodels; mi++)
+            write_model_json(&w, si, &sr->models[mi], &o->models[mi], o->threshold);
         jw_arr_end(&w);
         if (sr->he.done)
             write_he_json(&w, &sr->he, o->threshold);
         if (sr->nmeasured)
             write_measured(&w, sr);
-        jw_kv_arr(&w, "timings");
-        for (int ti = 0; ti < sr->ntimings; ti++) {
-            const struct size_timing *st = &sr->timings[ti];
-            jw_obj_begin(&w);
-            jw_kv_int(&w, "width", st->w);
-            jw_kv_int(&w, "height", st->h);
-            jw_kv_int(&w, "foreground_pixels", (long long)st->foreground);
-            jw_kv_obj(&w, "copy");
-            jw_kv_int(&w, "bytes_per_pixel", RENDER_DEVICE_BYTES_PER_PIXEL);
-            jw_kv_num(&w, "median_ms", st->copy_med * 1e3);
-            jw_kv_num(&w, "mpixel_per_s", mpix(st, st->copy_med));
-            jw_kv_num(&w, "gbyte_per_s",
-                      (double)st->w * st->h * RENDER_DEVICE_BYTES_PER_PIXEL / st->copy_med * 1e-9);
-            jw_obj_end(&w);
-            jw_kv_arr(&w, "entries");
-            for (int k = 0; k < st->nentries; k++) {
-                const struct timed_entry *te = &st->entries[k];
-                const struct timed_entry *re = reference_entry(st, te);
-                double frac = te->copy_med / te->med;
-                jw_obj_begin(&w);
-                jw_kv_str(&w, "name", te->name);
-                jw_kv_str(&w, "model", te->spec.label);
-                jw_kv_str(&w, "shading", render_mode_names[te->mode]);
-                jw_kv_bool(&w, "selected_model", te->is_model);
-                jw_kv_num(&w, "median_ms", te->med * 1e3);
-                jw_kv_num(&w, "min_ms", te->min * 1e3);
-                jw_kv_num(&w, "max_ms", te->max * 1e3);
-                jw_kv_num(&w, "mpixel_per_s", mpix(st, te->med));
-                jw_kv_arr(&w, "mpixel_per_s_reps");
-                for (int k = 0; k < te->nreps; k++)
-                    jw_num(&w, mpix(st, te->rep_s[k]));
-                jw_arr_end(&w);
-                jw_kv_num(&w, "copy_median_ms_interleaved", te->copy_med * 1e3);
-                jw_kv_num(&w, "fraction_of_copy", frac);
-                if (is_lobe_entry(te)) {
-                    jw_kv_num(&w, "target_fraction", SPEED_TARGET_FRACTION);
-                    jw_kv_bool(&w, "target_met", frac >= SPEED_TARGET_FRACTION);
-                }
-                if (re) {
-                    jw_kv_str(&w, "reference", re->name);
-                    jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);
-                }
-                jw_obj_end(&w);
-            }
-            jw_arr_end(&w);
-            jw_obj_end(&w);
-        }
-        jw_arr_end(&w);
+        write_timings_json(&w, sr);
         jw_obj_end(&w);
     }
     jw_arr_end(&w);

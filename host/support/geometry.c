@@ -170,6 +170,159 @@ static long resolve_index(const char *s, size_t len, size_t defined)
     return (long)defined + v;
 }
 
+/* An OBJ file being read: its vertices and triangles so far, how many vt and vn it has
+ * defined, the line being read and where a message goes. */
+struct obj_state {
+    struct grow pos;   /* float x, y, z per vertex */
+    struct grow tri;   /* uint32_t corners per triangle */
+    size_t ntex, nnrm;
+    long line_no;
+    const char *name;
+    char *err;
+    size_t errlen;
+};
+
+/* Until a statement of the format is seen, a line that is not one means the file is
+ * something else (a binary mesh, a PLY): say which format is expected. */
+static const char *const obj_expected =
+    "not a Wavefront OBJ file (expected text lines of v, vt, vn and f statements)";
+
+/* Refuses a file with control bytes other than whitespace (2, with the line of the first). */
+static int obj_binary_check(const char *text, size_t len, const char *name, char *err, size_t errlen)
+{
+    for (size_t k = 0; k < len; ++k) {
+        unsigned char ch = (unsigned char)text[k];
+        if (ch == 0 || (ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r' && ch != '\v' && ch != '\f') || ch == 0x7f) {
+            long at = 1;
+            for (size_t j = 0; j < k; ++j)
+                at += text[j] == '\n';
+            set_err(err, errlen, "%s:%ld: %s; found binary data", name, at, obj_expected);
+            return 2;
+        }
+    }
+    return 0;
+}
+
+/* A v, vn or vt statement (kw) with its numbers after cur: a vertex is kept, the others
+ * counted. Returns 0, 2 (malformed) or 3 (out of memory). */
+static int obj_vertex(struct obj_state *S, const char *kw, char *cur)
+{
+    const char *name = S->name;
+    long line_no = S->line_no;
+    int want_min = kw[1] == 't' ? 1 : 3;
+    double val[3] = {0, 0, 0};
+    int count = 0;
+    char *tok;
+    while ((tok = next_token(&cur)) != NULL) {
+        double x;
+        if (parse_finite(tok, &x) != 0) {
+            set_err(S->err, S->errlen, "%s:%ld: '%s' statement: '%s' is not a finite number",
+                    name, line_no, kw, tok);
+            return 2;
+        }
+        if (count < 3)
+            val[count] = x;
+        count++;
+    }
+    /* v may carry w or an RGB colour after x y z; vt has 1 to 3 numbers */
+    int want_max = kw[1] == '\0' ? 7 : 3;
+    if (count < want_min || count > want_max) {
+        set_err(S->err, S->errlen, "%s:%ld: '%s' needs %d to %d numbers, found %d", name,
+                line_no, kw, want_min, want_max, count);
+        return 2;
+    }
+    if (kw[1] == '\0') {
+        if (S->pos.n / 3 >= UINT32_MAX) {
+            set_err(S->err, S->errlen, "%s:%ld: too many vertices", name, line_no);
+            return 2;
+        }
+        const float xyz[3] = { (float)val[0], (float)val[1], (float)val[2] };
+        if (vec_push3(&S->pos, sizeof xyz[0], xyz) != 0) {
+            set_err(S->err, S->errlen, "%s: out of memory", name);
+            return 3;
+        }
+    } else if (kw[1] == 'n') {
+        S->nnrm++;
+    } else {
+        S->ntex++;
+    }
+    return 0;
+}
+
+/* One face corner (v, v/vt, v/vt/vn or v//vn): its 0-based vertex in *vi; 2 when malformed
+ * or out of range. */
+static int obj_corner(struct obj_state *S, const char *tok, size_t nv, long *vi)
+{
+    const char *s1 = strchr(tok, '/');
+    size_t vlen = s1 ? (size_t)(s1 - tok) : strlen(tok);
+    *vi = resolve_index(tok, vlen, nv);
+    if (*vi < 0) {
+        set_err(S->err, S->errlen,
+                "%s:%ld: face corner '%s': vertex index must be a non-zero integer "
+                "referring to one of the %zu vertices defined so far",
+                S->name, S->line_no, tok, nv);
+        return 2;
+    }
+    if (s1) {
+        const char *s2 = strchr(s1 + 1, '/');
+        size_t tlen = s2 ? (size_t)(s2 - s1 - 1) : strlen(s1 + 1);
+        int bad = 0;
+        if (tlen > 0 && resolve_index(s1 + 1, tlen, S->ntex) < 0)
+            bad = 1;
+        if (!s2 && tlen == 0)
+            bad = 1; /* "v/" */
+        if (s2) {
+            size_t nlen = strlen(s2 + 1);
+            if (strchr(s2 + 1, '/') || resolve_index(s2 + 1, nlen, S->nnrm) < 0)
+                bad = 1;
+        }
+        if (bad) {
+            set_err(S->err, S->errlen,
+                    "%s:%ld: face corner '%s': malformed or out-of-range texture/"
+                    "normal index (%zu vt and %zu vn defined so far)",
+                    S->name, S->line_no, tok, S->ntex, S->nnrm);
+            return 2;
+        }
+    }
+    return 0;
+}
+
+/* An f statement with its corners after cur, kept as a fan of triangles. Returns 0, 2
+ * (malformed) or 3 (out of memory). */
+static int obj_face(struct obj_state *S, char *cur)
+{
+    /* Face corners of one polygon; polygons larger than this are unusual enough to refuse. */
+    enum { MAX_CORNERS = 256 };
+    uint32_t corner[MAX_CORNERS];
+    size_t nv = S->pos.n / 3;
+    int ncorner = 0;
+    char *tok;
+    while ((tok = next_token(&cur)) != NULL) {
+        if (ncorner == MAX_CORNERS) {
+            set_err(S->err, S->errlen, "%s:%ld: face has more than %d corners", S->name,
+                    S->line_no, MAX_CORNERS);
+            return 2;
+        }
+        long vi;
+        if (obj_corner(S, tok, nv, &vi) != 0)
+            return 2;
+        corner[ncorner++] = (uint32_t)vi;
+    }
+    if (ncorner < 3) {
+        set_err(S->err, S->errlen, "%s:%ld: face needs at least 3 corners, found %d", S->name,
+                S->line_no, ncorner);
+        return 2;
+    }
+    for (int k = 1; k + 1 < ncorner; k++) {
+        const uint32_t abc[3] = { corner[0], corner[k], corner[k + 1] };
+        if (vec_push3(&S->tri, sizeof abc[0], abc) != 0) {
+            set_err(S->err, S->errlen, "%s: out of memory", S->name);
+            return 3;
+        }
+    }
+    return 0;
+}
+
 int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, char *err,
               size_t errlen)
 {
@@ -182,28 +335,12 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
     memcpy(copy, text, len);
     copy[len] = '\0';
 
-    struct grow pos = {0};   /* float x, y, z per vertex */
-    struct grow tri = {0};   /* uint32_t corners per triangle */
-    size_t ntex = 0, nnrm = 0;
-    long line_no = 0;
+    struct obj_state S = { .name = name, .err = err, .errlen = errlen };
     int rc = 0;
-    /* Face corners of one polygon; polygons larger than this are unusual enough to refuse. */
-    enum { MAX_CORNERS = 256 };
-    uint32_t corner[MAX_CORNERS];
-    /* Until a statement of the format is seen, a line that is not one means the file is
-     * something else (a binary mesh, a PLY): say which format is expected. */
     int seen_obj = 0;
-    static const char *obj_expected = "not a Wavefront OBJ file (expected text lines of v, vt, vn and f statements)";
-    for (size_t k = 0; k < len; ++k) {
-        unsigned char ch = (unsigned char)text[k];
-        if (ch == 0 || (ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r' && ch != '\v' && ch != '\f') || ch == 0x7f) {
-            long at = 1;
-            for (size_t j = 0; j < k; ++j)
-                at += text[j] == '\n';
-            set_err(err, errlen, "%s:%ld: %s; found binary data", name, at, obj_expected);
-            free(copy);
-            return 2;
-        }
+    if (obj_binary_check(text, len, name, err, errlen) != 0) {
+        free(copy);
+        return 2;
     }
 
     char *line = copy;
@@ -213,16 +350,16 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
             *nl = '\0';
         else if (*line == '\0')
             break; /* nothing after the last newline */
-        line_no++;
+        S.line_no++;
         char *hash = strchr(line, '#');
         if (hash)
             *hash = '\0';
         if (strchr(line, '\\')) {
             if (!seen_obj)
-                set_err(err, errlen, "%s:%ld: %s", name, line_no, obj_expected);
+                set_err(err, errlen, "%s:%ld: %s", name, S.line_no, obj_expected);
             else
                 set_err(err, errlen, "%s:%ld: line continuation '\\' is not supported", name,
-                        line_no);
+                        S.line_no);
             rc = 2;
             break;
         }
@@ -232,140 +369,39 @@ int obj_parse(const char *text, size_t len, const char *name, struct mesh *out, 
             /* blank or comment line */
         } else if (strcmp(kw, "v") == 0 || strcmp(kw, "vn") == 0 || strcmp(kw, "vt") == 0) {
             seen_obj = 1;
-            int want_min = kw[1] == 't' ? 1 : 3;
-            double val[3] = {0, 0, 0};
-            int count = 0;
-            char *tok;
-            while ((tok = next_token(&cur)) != NULL) {
-                double x;
-                if (parse_finite(tok, &x) != 0) {
-                    set_err(err, errlen, "%s:%ld: '%s' statement: '%s' is not a finite number",
-                            name, line_no, kw, tok);
-                    rc = 2;
-                    break;
-                }
-                if (count < 3)
-                    val[count] = x;
-                count++;
-            }
-            if (rc)
-                break;
-            /* v may carry w or an RGB colour after x y z; vt has 1 to 3 numbers */
-            int want_max = kw[1] == '\0' ? 7 : 3;
-            if (count < want_min || count > want_max) {
-                set_err(err, errlen, "%s:%ld: '%s' needs %d to %d numbers, found %d", name,
-                        line_no, kw, want_min, want_max, count);
-                rc = 2;
-                break;
-            }
-            if (kw[1] == '\0') {
-                if (pos.n / 3 >= UINT32_MAX) {
-                    set_err(err, errlen, "%s:%ld: too many vertices", name, line_no);
-                    rc = 2;
-                    break;
-                }
-                const float xyz[3] = { (float)val[0], (float)val[1], (float)val[2] };
-                if (vec_push3(&pos, sizeof xyz[0], xyz) != 0) {
-                    set_err(err, errlen, "%s: out of memory", name);
-                    rc = 3;
-                }
-            } else if (kw[1] == 'n') {
-                nnrm++;
-            } else {
-                ntex++;
-            }
+            rc = obj_vertex(&S, kw, cur);
         } else if (strcmp(kw, "f") == 0) {
             seen_obj = 1;
-            size_t nv = pos.n / 3;
-            int ncorner = 0;
-            char *tok;
-            while ((tok = next_token(&cur)) != NULL) {
-                if (ncorner == MAX_CORNERS) {
-                    set_err(err, errlen, "%s:%ld: face has more than %d corners", name,
-                            line_no, MAX_CORNERS);
-                    rc = 2;
-                    break;
-                }
-                /* v, v/vt, v/vt/vn or v//vn */
-                const char *s1 = strchr(tok, '/');
-                size_t vlen = s1 ? (size_t)(s1 - tok) : strlen(tok);
-                long vi = resolve_index(tok, vlen, nv);
-                if (vi < 0) {
-                    set_err(err, errlen,
-                            "%s:%ld: face corner '%s': vertex index must be a non-zero integer "
-                            "referring to one of the %zu vertices defined so far",
-                            name, line_no, tok, nv);
-                    rc = 2;
-                    break;
-                }
-                if (s1) {
-                    const char *s2 = strchr(s1 + 1, '/');
-                    size_t tlen = s2 ? (size_t)(s2 - s1 - 1) : strlen(s1 + 1);
-                    int bad = 0;
-                    if (tlen > 0 && resolve_index(s1 + 1, tlen, ntex) < 0)
-                        bad = 1;
-                    if (!s2 && tlen == 0)
-                        bad = 1; /* "v/" */
-                    if (s2) {
-                        size_t nlen = strlen(s2 + 1);
-                        if (strchr(s2 + 1, '/') || resolve_index(s2 + 1, nlen, nnrm) < 0)
-                            bad = 1;
-                    }
-                    if (bad) {
-                        set_err(err, errlen,
-                                "%s:%ld: face corner '%s': malformed or out-of-range texture/"
-                                "normal index (%zu vt and %zu vn defined so far)",
-                                name, line_no, tok, ntex, nnrm);
-                        rc = 2;
-                        break;
-                    }
-                }
-                corner[ncorner++] = (uint32_t)vi;
-            }
-            if (rc)
-                break;
-            if (ncorner < 3) {
-                set_err(err, errlen, "%s:%ld: face needs at least 3 corners, found %d", name,
-                        line_no, ncorner);
-                rc = 2;
-                break;
-            }
-            for (int k = 1; k + 1 < ncorner && rc == 0; k++) {
-                const uint32_t abc[3] = { corner[0], corner[k], corner[k + 1] };
-                if (vec_push3(&tri, sizeof abc[0], abc) != 0) {
-                    set_err(err, errlen, "%s: out of memory", name);
-                    rc = 3;
-                }
-            }
+            rc = obj_face(&S, cur);
         } else if (strcmp(kw, "o") == 0 || strcmp(kw, "g") == 0 || strcmp(kw, "s") == 0 ||
                    strcmp(kw, "usemtl") == 0 || strcmp(kw, "mtllib") == 0 ||
                    strcmp(kw, "l") == 0 || strcmp(kw, "p") == 0 || strcmp(kw, "vp") == 0) {
             /* grouping, materials, points and lines: nothing to render from them */
             seen_obj = 1;
         } else if (!seen_obj) {
-            set_err(err, errlen, "%s:%ld: %s; found '%.40s'", name, line_no, obj_expected, kw);
+            set_err(err, errlen, "%s:%ld: %s; found '%.40s'", name, S.line_no, obj_expected, kw);
             rc = 2;
         } else {
-            set_err(err, errlen, "%s:%ld: unknown or unsupported statement '%s'", name, line_no,
+            set_err(err, errlen, "%s:%ld: unknown or unsupported statement '%s'", name, S.line_no,
                     kw);
             rc = 2;
         }
         line = nl ? nl + 1 : NULL;
     }
     free(copy);
-    if (rc == 0 && tri.n == 0) {
-        set_err(err, errlen, "%s:%ld: no faces ('f' statements) in the file", name, line_no);
+    if (rc == 0 && S.tri.n == 0) {
+        set_err(err, errlen, "%s:%ld: no faces ('f' statements) in the file", name, S.line_no);
         rc = 2;
     }
     if (rc != 0) {
-        free(pos.v);
-        free(tri.v);
+        free(S.pos.v);
+        free(S.tri.v);
         return rc;
     }
-    out->nverts = pos.n / 3;
-    out->ntris = tri.n / 3;
-    out->pos = pos.v;
-    out->tri = tri.v;
+    out->nverts = S.pos.n / 3;
+    out->ntris = S.tri.n / 3;
+    out->pos = S.pos.v;
+    out->tri = S.tri.v;
     out->nrm = calloc(out->nverts * 3, sizeof(float));
     if (!out->nrm) {
         mesh_free(out);
