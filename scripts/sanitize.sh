@@ -52,6 +52,13 @@ export ASAN_OPTIONS="exitcode=86:detect_leaks=1"
 export LSAN_OPTIONS="exitcode=86:suppressions=$supp:print_suppressions=0"
 export UBSAN_OPTIONS="exitcode=86:halt_on_error=1:print_stacktrace=1"
 
+# The kernels the suite builds are the same in both builds: start from the PoCL kernel cache
+# that scripts/test.sh's run filled (build/pocl-cache, the tests' POCL_CACHE_DIR), so the
+# sanitizer run does not compile every program again.
+if [ -d build/pocl-cache ] && [ ! -e "$B/pocl-cache" ]; then
+    cp -a build/pocl-cache "$B/pocl-cache"
+fi
+
 cd "$B"
 # LeakSanitizer's own stop-the-world tracer now and then crashes at a process's exit while
 # other threads (PoCL's workers) wind down: "Tracer caught signal 11 ... LeakSanitizer has
