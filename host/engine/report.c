@@ -76,17 +76,23 @@ static void add_image_picture(void *ctx, const char *file, const char *caption)
     add_picture(ctx, file, REPORT_IMAGES, caption, NULL);
 }
 
-static double num_at(const struct jr_value *o, const char *obj, const char *key)
+static double num_or_nan(const struct jr_value *o, const char *key)
 {
-    const struct jr_value *v = obj ? jr_get(o, obj) : o;
-    v = v ? jr_get(v, key) : NULL;
+    const struct jr_value *v = jr_get(o, key);
     return v && v->type == JR_NUM ? v->num : NAN;
 }
 
-static const char *str_at(const struct jr_value *o, const char *key)
+static const char *str_or(const struct jr_value *o, const char *key, const char *dflt)
 {
     const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_STR ? v->str : "";
+    return v && v->type == JR_STR ? v->str : dflt;
+}
+
+/* A number member of o, or of o's member obj (NULL: o itself); NAN when absent. */
+static double num_at(const struct jr_value *o, const char *obj, const char *key)
+{
+    const struct jr_value *v = obj ? jr_get(o, obj) : o;
+    return v ? num_or_nan(v, key) : NAN;
 }
 
 /* A result document of the run folder, checked against its schema. Returns 0, 1 when the file
@@ -113,7 +119,7 @@ static int read_doc(const char *run_dir, const char *name, const char *schema, s
 
 static const char *accuracy_status_text(struct md_buf *b, const struct jr_value *r)
 {
-    const char *status = str_at(r, "status"), *reason = str_at(r, "reason");
+    const char *status = str_or(r, "status", ""), *reason = str_or(r, "reason", "");
     if (strcmp(status, "failed") == 0 || strcmp(status, "device_disagrees") == 0) {
         md_printf(b, " %s: ", status);
         md_cell_text(b, reason);
@@ -124,7 +130,7 @@ static const char *accuracy_status_text(struct md_buf *b, const struct jr_value 
                   num_at(r, "invalid", "at_n"), num_at(r, "invalid", "at_x"));
         return " |\n";
     }
-    if (strcmp(str_at(r, "label"), str_at(r, "reference")) == 0) return " reference (zero by definition) |\n";
+    if (strcmp(str_or(r, "label", ""), str_or(r, "reference", "")) == 0) return " reference (zero by definition) |\n";
     return " ok |\n";
 }
 
@@ -156,9 +162,9 @@ static int accuracy_table(struct md_buf *b, const struct report_input *in, char 
     for (size_t i = 0; i < rows->count; i++) {
         const struct jr_value *r = &rows->items[i];
         md_printf(b, "| `");
-        md_cell_text(b, str_at(r, "label"));
+        md_cell_text(b, str_or(r, "label", ""));
         md_printf(b, "` | `");
-        md_cell_text(b, str_at(r, "reference"));
+        md_cell_text(b, str_or(r, "reference", ""));
         md_printf(b, "` |");
         md_pct(b, num_at(r, "epicentre", "max_rel"));
         md_num(b, num_at(r, "epicentre", "at_n"), "%.6g");
@@ -242,17 +248,17 @@ static int fit_block(struct md_buf *b, const struct report_input *in, char *err,
     static const char *const notes[2] = { " (best affine, uncapped)", " (max Δ capped at fq2's)" };
     size_t k = 0;
     for (int i = 0; i < 2; ++i) {
-        const char *model = fits[i] ? str_at(fits[i], "model") : "";
-        if (!model[0] || k >= cmp->count || strcmp(str_at(&cmp->items[k], "model"), model) != 0) continue;
+        const char *model = fits[i] ? str_or(fits[i], "model", "") : "";
+        if (!model[0] || k >= cmp->count || strcmp(str_or(&cmp->items[k], "model", ""), model) != 0) continue;
         md_printf(b, "| `%s`%s | %.4f%% | %.5f |\n", model, notes[i], 100 * num_at(&cmp->items[k], "epicentre", "max_rel"),
                   num_at(&cmp->items[k], "attenuation", "max_abs"));
         k++;
     }
     for (; k < cmp->count; ++k)
-        md_printf(b, "| %s | %.4f%% | %.5f |\n", str_at(&cmp->items[k], "model"),
+        md_printf(b, "| %s | %.4f%% | %.5f |\n", str_or(&cmp->items[k], "model", ""),
                   100 * num_at(&cmp->items[k], "epicentre", "max_rel"), num_at(&cmp->items[k], "attenuation", "max_abs"));
     const struct jr_value *verdict = jr_get(root, "verdict");
-    if (verdict && str_at(verdict, "text")[0]) md_printf(b, "\n%s\n", str_at(verdict, "text"));
+    if (verdict && str_or(verdict, "text", "")[0]) md_printf(b, "\n%s\n", str_or(verdict, "text", ""));
     md_printf(b, "\n\n");
     jr_free(&d);
     return 0;
@@ -344,11 +350,11 @@ static void steps(struct md_buf *b, const struct report_input *in)
     md_printf(b, "Steps:\n\n");
     for (size_t i = 0; i < st->count; i++) {
         const struct jr_value *s = &st->items[i];
-        if (strcmp(str_at(s, "status"), "ok") == 0)
-            md_printf(b, "%zu. **%s**: %s (%.1f s)\n", i + 1, str_at(s, "name"), str_at(s, "message"),
+        if (strcmp(str_or(s, "status", ""), "ok") == 0)
+            md_printf(b, "%zu. **%s**: %s (%.1f s)\n", i + 1, str_or(s, "name", ""), str_or(s, "message", ""),
                       num_at(s, NULL, "seconds"));
         else
-            md_printf(b, "%zu. **%s**: failed (exit %d)\n", i + 1, str_at(s, "name"), (int)num_at(s, NULL, "exit_code"));
+            md_printf(b, "%zu. **%s**: failed (exit %d)\n", i + 1, str_or(s, "name", ""), (int)num_at(s, NULL, "exit_code"));
     }
     md_printf(b, "%zu. **report**: report.md\n\n", st->count + 1);
 }
@@ -358,7 +364,7 @@ static int read_pictures(struct report_input *in)
     const struct jr_value *pics = in->run.pictures;
     for (size_t i = 0; i < pics->count; i++) {
         const struct jr_value *p = &pics->items[i], *nd = jr_get(p, "not_drawn");
-        add_picture(in, str_at(p, "file"), report_section_of(str_at(p, "section")), str_at(p, "caption"),
+        add_picture(in, str_or(p, "file", ""), report_section_of(str_or(p, "section", "")), str_or(p, "caption", ""),
                     nd && nd->type == JR_STR ? nd->str : NULL);
     }
     return in->out_of_memory ? 3 : 0;
@@ -433,18 +439,6 @@ int report_rebuild(const char *run_dir, const char *out, char *err, size_t errle
 }
 
 /* ---- image passes (render.json) ------------------------------------------------------ */
-
-static double num_or_nan(const struct jr_value *o, const char *key)
-{
-    const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_NUM ? v->num : NAN;
-}
-
-static const char *str_or(const struct jr_value *o, const char *key, const char *dflt)
-{
-    const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_STR ? v->str : dflt;
-}
 
 /* The timing entry of a selected model in a scene's first timing size, or NULL. */
 static const struct jr_value *timing_of(const struct jr_value *scene, const char *label, double *w, double *h)
