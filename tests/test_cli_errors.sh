@@ -160,7 +160,7 @@ t 2 "^brdfbench gate: --tolerance: '2' is not a finite number in \[0, 1\]" gate 
 t 2 "^brdfbench gate: --tolerance: only with --baseline" gate good.json --tolerance 0.01
 t 2 "^brdfbench gate: --baseline: cannot read /nonexistent: No such file" gate good.json --baseline /nonexistent
 t 2 "^brdfbench gate: --baseline: truncated_baseline.json:1:[0-9]+: unexpected end of file" gate good.json --baseline truncated_baseline.json
-t 2 "^brdfbench gate: --baseline: good.json:1:1: not an accuracy.json" gate good.json --baseline good.json
+t 2 "^brdfbench gate: --baseline: good.json: schema \"brdfbench.gates/1\" is not a result file with figures \(accepted: " gate good.json --baseline good.json
 t 3 "^brdfbench gate: --junit: folder /nonexistent/dir does not exist" gate good.json --junit /nonexistent/dir/x.xml
 t 3 "^brdfbench gate: --json: folder is a folder \(a file name is expected\)" gate good.json --json folder
 t 2 "^brdfbench gate: unknown option '--junit-file' \(see brdfbench gate --help\)" gate good.json --junit-file x
@@ -472,12 +472,12 @@ WHAT='C3/accuracy.json: empty'
 t 2 "^brdfbench compare: C3/accuracy.json: empty file" compare base C3 --out run
 t 2 "^brdfbench gate: --baseline: C1/accuracy.json: is a FIFO, not a regular file" gate good.json --baseline C1
 t 2 "^brdfbench gate: --baseline: /dev/zero: is a character device, not a regular file" gate good.json --baseline /dev/zero
-t 2 "^brdfbench gate: --baseline: R0/plots.json:2:13: not an accuracy.json \(schema brdfbench.accuracy/1 expected\)" gate good.json --baseline R0/plots.json
-t 2 "^brdfbench gate: --baseline: R0/throughput.json:2:13: not an accuracy.json" gate good.json --baseline R0/throughput.json
+t 2 "^brdfbench gate: --baseline: R0/plots.json: schema \"brdfbench.plots/1\" is not a result file with figures" gate good.json --baseline R0/plots.json
+t 2 "^brdfbench gate: --baseline: R0/throughput.json: the figures of throughput.json \(schema brdfbench.throughput/3\), not an accuracy.json \(schema brdfbench.accuracy/1 expected\)" gate good.json --baseline R0/throughput.json
 mkdir -p C4
 t 2 "^brdfbench gate: --baseline: C4/accuracy.json: cannot open: No such file" gate good.json --baseline C4
 python3 -c 'import json; d = json.load(open("base/accuracy.json")); d["results"] = {}; json.dump(d, open("bad_results.json", "w"))'
-t 2 "^brdfbench gate: --baseline: bad_results.json:1:1: member \"results\" \(an array\) is missing" gate good.json --baseline bad_results.json
+t 2 "^brdfbench gate: --baseline: bad_results.json:1:[0-9]+: member \"results\" is an object, an array expected" gate good.json --baseline bad_results.json
 # gates files: model files outside their folder, files that are not files, reserved names
 mkdir -p gd/sub && cp "$F/scaled.cl" gd/sub/ && cp "$F/scaled.cl" outside.cl && ln -sf ../outside.cl gd/link.cl && mkfifo gd/fifo.cl
 printf '{"gates":[{"model":"scaled","model_file":"../outside.cl","metric":"whole.max_abs","max":1}]}' >gd/up.json

@@ -237,7 +237,7 @@ expect 2 "unknown option '--bogus'" compare "$T/a" "$T/a2" --bogus
 expect 2 "--alpha" compare "$T/a" "$T/a2" --alpha 1.5
 expect 2 "--fail-if-slower" compare "$T/a" "$T/a2" --fail-if-slower 101
 echo '{"schema": "brdfbench.something/1"}' >"$T/other.json"
-expect 2 'schema "brdfbench.something/1" is not one compare reads' compare "$T/a" "$T/other.json" --out "$T/x6"
+expect 2 'schema "brdfbench.something/1" is not a result file with figures' compare "$T/a" "$T/other.json" --out "$T/x6"
 printf '{"schema": ' >"$T/broken.json"
 expect 2 "broken.json:1" compare "$T/a" "$T/broken.json" --out "$T/x7"
 for i in 1 2 3 4 5 6 7; do

@@ -2,7 +2,8 @@
  * baseline. A run is a run folder or a single result file of any command: throughput.json,
  * accuracy.json, render.json, fit.json, frontier.json.
  *
- * Every figure of every run becomes a cell of a row; rows are matched across runs by their
+ * The files are read as rows of the result document (rdoc_read.h), so compare knows no file's
+ * layout. Every figure of every run becomes a cell of a row; rows are matched across runs by their
  * keys (throughput: device, model with parameters, build-option variant, n mode; accuracy:
  * device, model, figure, grid; render: device, scene, model; fit: the fitted role or model,
  * grid; frontier: model). A row found in only some runs is kept, its missing cells marked.
@@ -21,6 +22,7 @@
 #ifndef BRDF_COMPARE_H
 #define BRDF_COMPARE_H
 
+#include "rdoc_read.h"
 #include "schemas.h"
 #include <stddef.h>
 
@@ -31,8 +33,15 @@
 #define CMP_DEFAULT_THRESHOLD 0.10   /* 10%: the smallest change a speed verdict calls (scripts/bench_compare.sh) */
 #define CMP_WARN_REPS 5             /* fewer repetitions per side: compare warns */
 
-/* The result files compare reads, with the schema version it reads of each. */
-enum cmp_kind { CMP_THROUGHPUT = 0, CMP_ACCURACY, CMP_RENDER, CMP_FIT, CMP_FRONTIER, CMP_KIND_COUNT };
+/* The kinds are the result documents' (rdoc_read.h), in their order. */
+enum cmp_kind {
+    CMP_THROUGHPUT = RD_KIND_THROUGHPUT,
+    CMP_ACCURACY = RD_KIND_ACCURACY,
+    CMP_RENDER = RD_KIND_RENDER,
+    CMP_FIT = RD_KIND_FIT,
+    CMP_FRONTIER = RD_KIND_FRONTIER,
+    CMP_KIND_COUNT = RD_KIND_COUNT
+};
 const char *cmp_kind_name(int kind);      /* "throughput", ... */
 
 /* What a figure means for a verdict. */

@@ -95,7 +95,8 @@ static const char *kind_heading(int kind)
     case CMP_THROUGHPUT: return "throughput: evaluations/s, median of the repetitions; against the baseline: the ratio "
                                 "(Hodges-Lehmann, on the normalised rates where both runs have them) with its "
                                 "confidence interval, and the Mann-Whitney test of the repetitions";
-    case CMP_ACCURACY: return "accuracy: max delta (epicentre), max Delta (attenuation, whole range); against the "
+    case CMP_ACCURACY: return "accuracy: max delta (epicentre), max Delta (attenuation, whole range), the count of invalid "
+                              "values; against the "
                               "baseline: the signed change, at the 4th significant digit";
     case CMP_RENDER: return "render: image error (max |error|, RMSE, PSNR: 4th significant digit) and Mpixel/s (the "
                             "min..max ranges overlap: same)";

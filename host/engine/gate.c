@@ -11,6 +11,7 @@
 #include "measured.h"
 #include "outdir.h"
 #include "programs.h"
+#include "rdoc_read.h"
 #include "usermodel.h"
 
 #include <errno.h>
@@ -445,22 +446,57 @@ int gate_same_number(double a, double b)
     return fabs(a - b) <= 1e-9 * fmax(1.0, fabs(a));
 }
 
-/* The figure of metric m in one result object of accuracy.json; NAN when not recorded. */
-static int baseline_value(const struct jr_value *res, enum gate_metric m, double *out)
+/* The metric of accuracy.json's rows that gate metric m bounds, or NULL when it is none of them. */
+static const char *baseline_metric(enum gate_metric m)
 {
-    const char *section = NULL, *key = NULL;
     switch (m) {
-    case GATE_EPICENTRE_MAX_REL:   section = "epicentre"; key = "max_rel"; break;
-    case GATE_ATTENUATION_MAX_ABS: section = "attenuation"; key = "max_abs"; break;
-    case GATE_WHOLE_MAX_ABS:       section = "whole"; key = "max_abs"; break;
-    case GATE_INVALID_COUNT:       section = "invalid"; key = "count"; break;
-    default: return -1;   /* not part of accuracy.json */
+    case GATE_EPICENTRE_MAX_REL: return "epicentre.max_rel";
+    case GATE_ATTENUATION_MAX_ABS: return "attenuation.max_abs";
+    case GATE_WHOLE_MAX_ABS: return "whole.max_abs";
+    case GATE_INVALID_COUNT: return "invalid.count";
+    default: return NULL;   /* not part of accuracy.json */
     }
-    const struct jr_value *sec = jr_get(res, section), *v = jr_get(sec, key);
-    if (!v || v->type != JR_NUM)
-        return -1;
-    *out = v->num;
-    return 0;
+}
+
+/* A row's attribute as a number (NAN when it has none). */
+static double row_number(const struct rd_row *r, const char *name)
+{
+    const char *v = rd_row_key_value(r, name);
+    return v ? strtod(v, NULL) : NAN;
+}
+
+/* The baseline's figure for gate gt, or why there is none (its baseline_note). */
+static void baseline_of(struct gate *gt, const struct rdoc *doc)
+{
+    gt->baseline_status = GATE_BASELINE_MISSING;
+    snprintf(gt->baseline_note, sizeof gt->baseline_note, "no entry for %s over n %g..%g", gt->model.label,
+             gt->grid.n_min, gt->grid.n_max);
+    /* every row of an accuracy.json is on the same grid: its step is the first row's */
+    double base_step = doc->nrows > 0 ? row_number(&doc->rows[0], "n_step") : NAN;
+    if (!gate_same_number(base_step, gt->grid.n_step)) {
+        snprintf(gt->baseline_note, sizeof gt->baseline_note, "its grid has n_step %g, the gate's %g", base_step,
+                 gt->grid.n_step);
+        return;
+    }
+    for (int k = 0; k < doc->nrows; ++k) {
+        const struct rd_row *r = &doc->rows[k];
+        const char *label = rd_row_key_value(r, "label");
+        if (!label || strcmp(label, gt->model.label) != 0 || !gate_same_number(row_number(r, "n_min"), gt->grid.n_min) ||
+            !gate_same_number(row_number(r, "n_max"), gt->grid.n_max))
+            continue;
+        const char *metric = baseline_metric(gt->metric);
+        const struct rd_metric *m = metric ? rd_row_find(r, metric) : NULL;
+        if (!r->ok)   /* a failed figure is no bound to hold a run to */
+            snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s is %.40s (line %d), not used",
+                     gt->model.label, r->status, r->line);
+        else if (m && isfinite(m->value)) {
+            gt->baseline = m->value;
+            gt->baseline_status = GATE_BASELINE_OK;   /* judged after the run */
+        } else
+            snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s (line %d) has no number for "
+                     "this metric, not used", gt->model.label, r->line);
+        return;
+    }
 }
 
 int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, char *err, size_t errlen)
@@ -479,64 +515,25 @@ int gate_set_baseline(struct gate_set *g, const char *path, double tolerance, ch
     } else {
         snprintf(file, sizeof file, "%s", path);
     }
-    struct jr_doc doc;
+    struct rdoc doc;
     char msg[1024];
-    if (jr_parse_file(file, &doc, msg, sizeof msg)) {
+    if (rdoc_read_file(file, &doc, msg, sizeof msg)) {
         snprintf(err, errlen, "--baseline: %s", msg);
         return EXIT_USAGE;
     }
     int rc = 0;
-    const struct jr_value *schema = jr_get(&doc.root, "schema"), *results = jr_get(&doc.root, "results");
-    if (!schema || schema->type != JR_STR || strcmp(schema->str, ACCURACY_SCHEMA) != 0) {
-        rc = jr_fail(&doc, schema ? schema : &doc.root, msg, sizeof msg,
-                     "not an accuracy.json (schema brdfbench.accuracy/1 expected)");
-        snprintf(err, errlen, "--baseline: %s", msg);
+    if (rd_kind_of_name(doc.kind) != RD_KIND_ACCURACY) {
+        snprintf(err, errlen, "--baseline: %s: the figures of %s (schema %s), not an accuracy.json (schema %s expected)",
+                 file, doc.file, doc.schema, ACCURACY_SCHEMA);
+        rc = EXIT_USAGE;
         goto done;
     }
-    if (!results || results->type != JR_ARR) {
-        rc = jr_fail(&doc, &doc.root, msg, sizeof msg, "member \"results\" (an array) is missing");
-        snprintf(err, errlen, "--baseline: %s", msg);
-        goto done;
-    }
-    const struct jr_value *grid = jr_get(jr_get(&doc.root, "context"), "grid");
-    const struct jr_value *step_v = jr_get(grid, "n_step");
-    double base_step = (step_v && step_v->type == JR_NUM) ? step_v->num : NAN;
     snprintf(g->baseline_path, sizeof g->baseline_path, "%s", file);
     g->tolerance = tolerance;
-    for (int i = 0; i < g->count; ++i) {
-        struct gate *gt = &g->gates[i];
-        gt->baseline_status = GATE_BASELINE_MISSING;
-        snprintf(gt->baseline_note, sizeof gt->baseline_note, "no entry for %s over n %g..%g", gt->model.label,
-                 gt->grid.n_min, gt->grid.n_max);
-        if (!gate_same_number(base_step, gt->grid.n_step)) {
-            snprintf(gt->baseline_note, sizeof gt->baseline_note, "its grid has n_step %g, the gate's %g", base_step,
-                     gt->grid.n_step);
-            continue;
-        }
-        for (size_t k = 0; k < results->count; ++k) {
-            const struct jr_value *r = &results->items[k];
-            const struct jr_value *label = jr_get(r, "label"), *a = jr_get(r, "n_min"), *b = jr_get(r, "n_max");
-            if (!label || label->type != JR_STR || strcmp(label->str, gt->model.label) != 0 || !a ||
-                a->type != JR_NUM || !b || b->type != JR_NUM || !gate_same_number(a->num, gt->grid.n_min) ||
-                !gate_same_number(b->num, gt->grid.n_max))
-                continue;
-            double v;
-            const struct jr_value *st = jr_get(r, "status");
-            const char *status = st && st->type == JR_STR ? st->str : "ok";
-            if (strcmp(status, "ok") != 0)   /* a failed figure is no bound to hold a run to */
-                snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s is %.40s (line %d), not used",
-                         gt->model.label, status, r->line);
-            else if (baseline_value(r, gt->metric, &v) == 0) {
-                gt->baseline = v;
-                gt->baseline_status = GATE_BASELINE_OK;   /* judged after the run */
-            } else
-                snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s (line %d) has no number for "
-                         "this metric, not used", gt->model.label, r->line);
-            break;
-        }
-    }
+    for (int i = 0; i < g->count; ++i)
+        baseline_of(&g->gates[i], &doc);
 done:
-    jr_free(&doc);
+    rdoc_free(&doc);
     return rc;
 }
 

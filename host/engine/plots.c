@@ -7,6 +7,7 @@
 #include "jsonr.h"
 #include "jsonw.h"
 #include "outdir.h"
+#include "rdoc_read.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -260,41 +261,29 @@ int plots_add_bars(struct plot_set *set, const char *file, const char *caption, 
 int plots_add_throughput(struct plot_set *set, const char *json_path, const char *n_mode, const char *file,
                          const char *caption, char *err, size_t errlen)
 {
-    struct jr_doc d;
-    if (jr_parse_file(json_path, &d, err, errlen)) return 2;
-    const struct jr_value *results;
-    const char *schema;
+    struct rdoc d;
+    if (rdoc_read_file(json_path, &d, err, errlen)) return 2;
     int rc = 2;
-    if (jr_need_str(&d, &d.root, "schema", &schema, err, errlen)) goto done;
-    /* the versions differ in what this reader does not use (repetitions, normalised rates) */
-    if (strcmp(schema, THROUGHPUT_SCHEMA_V1) != 0 && strcmp(schema, THROUGHPUT_SCHEMA_V2) != 0 &&
-        strcmp(schema, THROUGHPUT_SCHEMA) != 0) {
-        jr_fail(&d, jr_get(&d.root, "schema"), err, errlen,
-                "schema \"%s\", expected \"%s\" (or %s, %s)", schema, THROUGHPUT_SCHEMA,
-                THROUGHPUT_SCHEMA_V2, THROUGHPUT_SCHEMA_V1);
+    if (rd_kind_of_name(d.kind) != RD_KIND_THROUGHPUT) {
+        snprintf(err, errlen, "%s: the figures of %s (schema %s), expected \"%s\"", json_path, d.file, d.schema,
+                 THROUGHPUT_SCHEMA);
         goto done;
     }
-    if (jr_need(&d, &d.root, "results", JR_ARR, &results, err, errlen)) goto done;
     const char *labels[PLOT_MAX_BARS];
     double med[PLOT_MAX_BARS], lo[PLOT_MAX_BARS], hi[PLOT_MAX_BARS];
     int count = 0, highlight = -1;
-    for (size_t i = 0; i < results->count && count < PLOT_MAX_BARS; i++) {
-        const struct jr_value *row = &results->items[i], *rate;
-        const char *variant, *mode, *label, *kind;
-        if (jr_need_str(&d, row, "variant", &variant, err, errlen) || jr_need_str(&d, row, "n_mode", &mode, err, errlen) ||
-            jr_need_str(&d, row, "label", &label, err, errlen) || jr_need_str(&d, row, "kind", &kind, err, errlen))
-            goto done;
-        if (strcmp(variant, "default") != 0 || strcmp(mode, n_mode) != 0) continue;
-        if (jr_need(&d, row, "evals_per_s", JR_OBJ, &rate, err, errlen) ||
-            jr_need_num(&d, rate, "median", &med[count], err, errlen) ||
-            jr_need_num(&d, rate, "min", &lo[count], err, errlen) || jr_need_num(&d, rate, "max", &hi[count], err, errlen))
-            goto done;
+    for (int i = 0; i < d.nrows && count < PLOT_MAX_BARS; i++) {
+        const struct rd_row *row = &d.rows[i];
+        const char *variant = rd_row_key_value(row, "variant"), *mode = rd_row_key_value(row, "n_mode");
+        const struct rd_metric *rate = rd_row_find(row, "evals_per_s");
+        if (!variant || !mode || !rate || strcmp(variant, "default") != 0 || strcmp(mode, n_mode) != 0) continue;
         /* in G evaluations per second; a failed row stays as "n/a" */
-        med[count] *= 1e-9;
-        lo[count] *= 1e-9;
-        hi[count] *= 1e-9;
-        labels[count] = label;
-        if (strcmp(kind, "builtin") == 0) highlight = count;
+        med[count] = rate->value * 1e-9;
+        lo[count] = rate->lo * 1e-9;
+        hi[count] = rate->hi * 1e-9;
+        labels[count] = rd_row_key_value(row, "label");
+        const char *kind = rd_row_key_value(row, "kind");
+        if (kind && strcmp(kind, "builtin") == 0) highlight = count;
         count++;
     }
     if (count == 0) {
@@ -310,7 +299,7 @@ int plots_add_throughput(struct plot_set *set, const char *json_path, const char
     if (rc) snprintf(err, errlen, "%s: out of memory", json_path);
     else set->figs[set->count - 1].x_log = 1;   /* pow() and the cheap lobes are decades apart */
 done:
-    jr_free(&d);
+    rdoc_free(&d);
     return rc;
 }
 

@@ -1,0 +1,477 @@
+/* rdoc.c - the result document's rows, their writers, and the reader of brdfbench.rows/1. */
+#include "rdoc.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "jsonr.h"
+#include "jsonw.h"
+#include "schemas.h"
+
+static const char *const direction_names[] = { "higher", "lower", "neither" };
+
+const char *rd_direction_name(int d) { return d >= RD_HIGHER && d <= RD_NEITHER ? direction_names[d] : "?"; }
+
+int rd_direction_of(const char *name)
+{
+    for (int d = RD_HIGHER; d <= RD_NEITHER; ++d)
+        if (name && strcmp(name, direction_names[d]) == 0)
+            return d;
+    return -1;
+}
+
+void rdoc_init(struct rdoc *d, const char *schema, const char *kind, const char *file)
+{
+    memset(d, 0, sizeof *d);
+    snprintf(d->schema, sizeof d->schema, "%s", schema ? schema : "");
+    snprintf(d->kind, sizeof d->kind, "%s", kind ? kind : "");
+    snprintf(d->file, sizeof d->file, "%s", file ? file : "");
+}
+
+void rdoc_free(struct rdoc *d)
+{
+    for (int i = 0; i < d->nrows; ++i) {
+        for (int m = 0; m < d->rows[i].nmetrics; ++m) {
+            free(d->rows[i].metrics[m].reps);
+            free(d->rows[i].metrics[m].norm);
+        }
+        free(d->rows[i].metrics);
+    }
+    free(d->rows);
+    d->rows = NULL;
+    d->nrows = d->cap = 0;
+}
+
+void rd_ctx_put(struct rd_context *c, const char *key, const char *value)
+{
+    if (!value || rd_ctx_get(c, key) || c->count == RD_MAX_CTX)
+        return;
+    snprintf(c->key[c->count], sizeof c->key[0], "%s", key);
+    snprintf(c->value[c->count], sizeof c->value[0], "%s", value);
+    c->count++;
+}
+
+const char *rd_ctx_get(const struct rd_context *c, const char *key)
+{
+    for (int i = 0; i < c->count; ++i)
+        if (strcmp(c->key[i], key) == 0)
+            return c->value[i];
+    return NULL;
+}
+
+struct rd_device *rdoc_device(struct rdoc *d, const char *name)
+{
+    for (int i = 0; i < d->ndevices; ++i)
+        if (strcmp(d->devices[i].name, name) == 0)
+            return &d->devices[i];
+    if (d->ndevices == RD_MAX_DEVICES)
+        return NULL;
+    struct rd_device *dv = &d->devices[d->ndevices++];
+    memset(dv, 0, sizeof *dv);
+    snprintf(dv->name, sizeof dv->name, "%s", name);
+    return dv;
+}
+
+struct rd_row *rdoc_row(struct rdoc *d, const char *device, const char *model)
+{
+    if (d->nrows == d->cap) {
+        int cap = d->cap ? 2 * d->cap : 32;
+        struct rd_row *nr = realloc(d->rows, (size_t)cap * sizeof *nr);
+        if (!nr) {
+            d->oom = 1;
+            return NULL;
+        }
+        d->rows = nr;
+        d->cap = cap;
+    }
+    struct rd_row *r = &d->rows[d->nrows++];
+    memset(r, 0, sizeof *r);
+    r->ok = 1;
+    snprintf(r->status, sizeof r->status, "ok");
+    snprintf(r->device, sizeof r->device, "%s", device ? device : "");
+    snprintf(r->model, sizeof r->model, "%s", model ? model : "");
+    return r;
+}
+
+static struct rd_key *add_key(struct rd_row *r, const char *name, const char *value)
+{
+    if (r->nkeys == RD_MAX_KEYS)
+        return NULL;
+    struct rd_key *k = &r->keys[r->nkeys++];
+    snprintf(k->name, sizeof k->name, "%s", name);
+    snprintf(k->value, sizeof k->value, "%s", value ? value : "");
+    return k;
+}
+
+void rd_row_attr(struct rd_row *r, const char *name, const char *value) { add_key(r, name, value); }
+
+void rd_row_key(struct rd_row *r, const char *name, const char *prefix, const char *value)
+{
+    struct rd_key *k = add_key(r, name, value);
+    if (!k)
+        return;
+    k->in_label = 1;
+    size_t n = strlen(r->label);
+    snprintf(r->label + n, sizeof r->label - n, "%s%s%s", n ? " | " : "", prefix ? prefix : "", k->value);
+}
+
+void rd_row_fail(struct rd_row *r, const char *status, const char *reason)
+{
+    r->ok = 0;
+    snprintf(r->status, sizeof r->status, "%s", status && *status ? status : "failed");
+    snprintf(r->reason, sizeof r->reason, "%s", reason && *reason ? reason : "failed");
+}
+
+struct rd_metric *rd_row_metric(struct rdoc *d, struct rd_row *r, const char *name, const char *unit, int direction,
+                                int timed, double v)
+{
+    if (r->nmetrics == r->cap) {
+        int cap = r->cap ? 2 * r->cap : 4;
+        struct rd_metric *nm = realloc(r->metrics, (size_t)cap * sizeof *nm);
+        if (!nm) {
+            d->oom = 1;
+            return NULL;
+        }
+        r->metrics = nm;
+        r->cap = cap;
+    }
+    struct rd_metric *m = &r->metrics[r->nmetrics++];
+    memset(m, 0, sizeof *m);
+    snprintf(m->name, sizeof m->name, "%s", name);
+    snprintf(m->unit, sizeof m->unit, "%s", unit ? unit : "1");
+    m->direction = direction;
+    m->timed = timed;
+    m->value = v;
+    m->lo = m->hi = NAN;
+    return m;
+}
+
+struct rd_metric *rd_row_find(const struct rd_row *r, const char *name)
+{
+    for (int m = 0; m < r->nmetrics; ++m)
+        if (strcmp(r->metrics[m].name, name) == 0)
+            return &r->metrics[m];
+    return NULL;
+}
+
+const char *rd_row_key_value(const struct rd_row *r, const char *name)
+{
+    for (int k = 0; k < r->nkeys; ++k)
+        if (strcmp(r->keys[k].name, name) == 0)
+            return r->keys[k].value;
+    return NULL;
+}
+
+int rdoc_distinct_devices(const struct rdoc *d)
+{
+    const char *first = NULL;
+    for (int i = 0; i < d->nrows; ++i) {
+        const char *dv = d->rows[i].device;
+        if (!*dv)
+            continue;
+        if (!first)
+            first = dv;
+        else if (strcmp(first, dv) != 0)
+            return 2;
+    }
+    return first ? 1 : 0;
+}
+
+/* ---- writers ----------------------------------------------------------------------------- */
+
+static void json_context(struct jw *w, const char *key, const struct rd_context *c)
+{
+    jw_kv_obj(w, key);
+    for (int i = 0; i < c->count; ++i)
+        jw_kv_str(w, c->key[i], c->value[i]);
+    jw_obj_end(w);
+}
+
+static void json_metric(struct jw *w, const struct rd_metric *m)
+{
+    jw_obj_begin(w);
+    jw_kv_str(w, "name", m->name);
+    jw_kv_str(w, "unit", m->unit);
+    jw_kv_str(w, "direction", rd_direction_name(m->direction));
+    jw_kv_bool(w, "timed", m->timed);
+    jw_kv_num(w, "value", m->value);
+    if (isfinite(m->lo) || isfinite(m->hi)) {
+        jw_kv_num(w, "min", m->lo);
+        jw_kv_num(w, "max", m->hi);
+    }
+    if (m->reps)
+        jw_kv_nums(w, "reps", m->reps, (size_t)m->nreps);
+    if (m->norm) {
+        jw_kv_nums(w, "normalised_reps", m->norm, (size_t)m->nnorm);
+        jw_kv_bool(w, "normalised_per_cpu_second", m->norm_cpu);
+    }
+    jw_obj_end(w);
+}
+
+void rdoc_json(const struct rdoc *d, struct md_buf *out)
+{
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", ROWS_SCHEMA);
+    jw_kv_obj(&w, "source");
+    jw_kv_str(&w, "schema", d->schema);
+    jw_kv_str(&w, "kind", d->kind);
+    jw_kv_str(&w, "file", d->file);
+    jw_obj_end(&w);
+    json_context(&w, "context", &d->ctx);
+    jw_kv_int(&w, "disturbed_reps", d->disturbed);
+    jw_kv_arr(&w, "devices");
+    for (int i = 0; i < d->ndevices; ++i) {
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "name", d->devices[i].name);
+        json_context(&w, "context", &d->devices[i].ctx);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_kv_arr(&w, "rows");
+    for (int i = 0; i < d->nrows; ++i) {
+        const struct rd_row *r = &d->rows[i];
+        jw_obj_begin(&w);
+        jw_kv_str(&w, "device", r->device);
+        jw_kv_str(&w, "model", r->model);
+        for (int in_label = 1; in_label >= 0; --in_label) {
+            jw_kv_obj(&w, in_label ? "keys" : "attributes");
+            for (int k = 0; k < r->nkeys; ++k)
+                if (r->keys[k].in_label == in_label)
+                    jw_kv_str(&w, r->keys[k].name, r->keys[k].value);
+            jw_obj_end(&w);
+        }
+        jw_kv_str(&w, "label", r->label);
+        jw_kv_str(&w, "status", r->status);
+        if (!r->ok)
+            jw_kv_str(&w, "reason", r->reason);
+        jw_kv_int(&w, "preemption_retries", r->retries);
+        jw_kv_int(&w, "disturbed_reps", r->disturbed);
+        jw_kv_arr(&w, "metrics");
+        for (int m = 0; m < r->nmetrics; ++m)
+            json_metric(&w, &r->metrics[m]);
+        jw_arr_end(&w);
+        jw_obj_end(&w);
+    }
+    jw_arr_end(&w);
+    jw_obj_end(&w);
+    md_append(out, w.out.s ? w.out.s : "", w.out.len);
+    md_append(out, "\n", 1);
+    if (w.out.failed)
+        out->failed = 1;
+    jw_free(&w);
+}
+
+/* The names of the keys the rows carry, in the order they first appear. */
+static int key_names(const struct rdoc *d, const char *names[], int max)
+{
+    int n = 0;
+    for (int i = 0; i < d->nrows; ++i)
+        for (int k = 0; k < d->rows[i].nkeys; ++k) {
+            int j = 0;
+            while (j < n && strcmp(names[j], d->rows[i].keys[k].name) != 0)
+                ++j;
+            if (j == n && n < max)
+                names[n++] = d->rows[i].keys[k].name;
+        }
+    return n;
+}
+
+static void csv_num(struct md_buf *b, double v)
+{
+    if (isfinite(v))
+        md_printf(b, ",%.17g", v);
+    else
+        md_append(b, ",", 1);
+}
+
+void rdoc_csv(const struct rdoc *d, struct md_buf *out)
+{
+    const char *names[RD_MAX_KEYS * 4];
+    int nk = key_names(d, names, (int)(sizeof names / sizeof names[0]));
+    md_printf(out, "device");
+    for (int k = 0; k < nk; ++k) {
+        md_append(out, ",", 1);
+        md_csv_text(out, names[k]);
+    }
+    md_printf(out, ",status,reason,metric,unit,direction,value,min,max,reps\r\n");
+    for (int i = 0; i < d->nrows; ++i) {
+        const struct rd_row *r = &d->rows[i];
+        for (int m = 0; m < r->nmetrics; ++m) {
+            const struct rd_metric *mt = &r->metrics[m];
+            md_csv_text(out, r->device);
+            for (int k = 0; k < nk; ++k) {
+                md_append(out, ",", 1);
+                md_csv_text(out, rd_row_key_value(r, names[k]));
+            }
+            md_printf(out, ",");
+            md_csv_text(out, r->status);
+            md_append(out, ",", 1);
+            md_csv_text(out, r->ok ? "" : r->reason);
+            md_append(out, ",", 1);
+            md_csv_text(out, mt->name);
+            md_append(out, ",", 1);
+            md_csv_text(out, mt->unit);
+            md_printf(out, ",%s", rd_direction_name(mt->direction));
+            csv_num(out, mt->value);
+            csv_num(out, mt->lo);
+            csv_num(out, mt->hi);
+            md_printf(out, ",%d\r\n", mt->nreps);
+        }
+    }
+}
+
+void rdoc_markdown(const struct rdoc *d, struct md_buf *out)
+{
+    int several = rdoc_distinct_devices(d) > 1;
+    md_printf(out, "### %s (%s, %s)\n\n", d->kind, d->file, d->schema);
+    for (int i = 0; i < d->ctx.count; ++i) {
+        md_printf(out, "- %s: ", d->ctx.key[i]);
+        md_cell_text(out, d->ctx.value[i]);
+        md_printf(out, "\n");
+    }
+    md_printf(out, "\n|%s row | metric | value | unit | better | range | reps |\n", several ? " device |" : "");
+    md_printf(out, "|%s---|---|---:|---|---|---|---:|\n", several ? "---|" : "");
+    for (int i = 0; i < d->nrows; ++i) {
+        const struct rd_row *r = &d->rows[i];
+        for (int m = 0; m < r->nmetrics; ++m) {
+            const struct rd_metric *mt = &r->metrics[m];
+            md_printf(out, "|");
+            if (several) {
+                md_printf(out, " ");
+                md_cell_text(out, r->device);
+                md_printf(out, " |");
+            }
+            md_printf(out, " ");
+            md_cell_text(out, r->label);
+            md_printf(out, " | %s | ", mt->name);
+            if (!r->ok) {
+                md_printf(out, "not measured: ");
+                md_cell_text(out, r->reason);
+            } else if (isfinite(mt->value)) {
+                md_printf(out, "%.4g", mt->value);
+            } else {
+                md_printf(out, "-");
+            }
+            md_printf(out, " | %s | %s | ", mt->unit, rd_direction_name(mt->direction));
+            if (isfinite(mt->lo) && isfinite(mt->hi))
+                md_printf(out, "%.4g..%.4g", mt->lo, mt->hi);
+            md_printf(out, " | %d |\n", mt->nreps);
+        }
+    }
+    md_printf(out, "\n");
+}
+
+/* ---- reading brdfbench.rows/1 back --------------------------------------------------------- */
+
+static const char *str_of(const struct jr_value *o, const char *key, const char *dflt)
+{
+    const struct jr_value *v = jr_get(o, key);
+    return v && v->type == JR_STR ? v->str : dflt;
+}
+
+static double num_of(const struct jr_value *o, const char *key)
+{
+    const struct jr_value *v = jr_get(o, key);
+    return v && v->type == JR_NUM ? v->num : NAN;
+}
+
+static void read_ctx(const struct jr_value *o, struct rd_context *c)
+{
+    for (size_t i = 0; o && o->type == JR_OBJ && i < o->count; ++i)
+        if (o->items[i].type == JR_STR)
+            rd_ctx_put(c, o->keys[i], o->items[i].str);
+}
+
+static int read_metric(const struct jr_doc *j, const struct jr_value *mo, struct rdoc *d, struct rd_row *r, char *err,
+                       size_t errlen)
+{
+    const char *name, *dir;
+    if (jr_need_str(j, mo, "name", &name, err, errlen) || jr_need_str(j, mo, "direction", &dir, err, errlen))
+        return 2;
+    int direction = rd_direction_of(dir);
+    if (direction < 0)
+        return jr_fail(j, jr_get(mo, "direction"), err, errlen,
+                       "\"direction\" is \"%.40s\" (accepted: higher, lower, neither)", dir);
+    const struct jr_value *timed = jr_get(mo, "timed");
+    struct rd_metric *m = rd_row_metric(d, r, name, str_of(mo, "unit", "1"), direction,
+                                        timed && timed->type == JR_BOOL && timed->num != 0, num_of(mo, "value"));
+    if (!m)
+        return 0;
+    m->lo = num_of(mo, "min");
+    m->hi = num_of(mo, "max");
+    size_t n = 0;
+    if (jr_get(mo, "reps")) {
+        if (jr_need_num_array(j, mo, "reps", &m->reps, &n, err, errlen))
+            return 2;
+        m->nreps = (int)n;
+    }
+    if (jr_get(mo, "normalised_reps")) {
+        if (jr_need_num_array(j, mo, "normalised_reps", &m->norm, &n, err, errlen))
+            return 2;
+        m->nnorm = (int)n;
+        const struct jr_value *cpu = jr_get(mo, "normalised_per_cpu_second");
+        m->norm_cpu = cpu && cpu->type == JR_BOOL && cpu->num != 0;
+    }
+    return 0;
+}
+
+static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rdoc *d, char *err, size_t errlen)
+{
+    const struct jr_value *keys, *metrics;
+    if (jr_need(j, ro, "keys", JR_OBJ, &keys, err, errlen) || jr_need(j, ro, "metrics", JR_ARR, &metrics, err, errlen))
+        return 2;
+    struct rd_row *r = rdoc_row(d, str_of(ro, "device", ""), str_of(ro, "model", ""));
+    if (!r)
+        return 0;
+    const struct jr_value *attrs = jr_get(ro, "attributes");
+    for (int in_label = 1; in_label >= 0; --in_label) {
+        const struct jr_value *o = in_label ? keys : attrs;
+        for (size_t k = 0; o && o->type == JR_OBJ && k < o->count; ++k) {
+            if (o->items[k].type != JR_STR)
+                return jr_fail(j, &o->items[k], err, errlen, "key \"%.40s\" must be a string", o->keys[k]);
+            if (in_label)
+                rd_row_key(r, o->keys[k], NULL, o->items[k].str);
+            else
+                rd_row_attr(r, o->keys[k], o->items[k].str);
+        }
+    }
+    /* the label as written (it may carry prefixes the keys do not) */
+    snprintf(r->label, sizeof r->label, "%s", str_of(ro, "label", r->label));
+    const char *status = str_of(ro, "status", "ok");
+    if (strcmp(status, "ok") != 0)
+        rd_row_fail(r, status, str_of(ro, "reason", status));
+    r->line = ro->line;
+    r->retries = (int)fmax(0, num_of(ro, "preemption_retries"));
+    r->disturbed = (int)fmax(0, num_of(ro, "disturbed_reps"));
+    for (size_t m = 0; m < metrics->count; ++m)
+        if (read_metric(j, &metrics->items[m], d, r, err, errlen))
+            return 2;
+    return 0;
+}
+
+int rdoc_from_rows_json(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+{
+    const struct jr_value *src, *rows;
+    if (jr_need(j, &j->root, "source", JR_OBJ, &src, err, errlen) ||
+        jr_need(j, &j->root, "rows", JR_ARR, &rows, err, errlen))
+        return 2;
+    rdoc_init(d, str_of(src, "schema", ""), str_of(src, "kind", ""), str_of(src, "file", ""));
+    read_ctx(jr_get(&j->root, "context"), &d->ctx);
+    d->disturbed = (int)fmax(0, num_of(&j->root, "disturbed_reps"));
+    const struct jr_value *devs = jr_get(&j->root, "devices");
+    for (size_t i = 0; devs && devs->type == JR_ARR && i < devs->count; ++i) {
+        struct rd_device *dv = rdoc_device(d, str_of(&devs->items[i], "name", "?"));
+        if (dv)
+            read_ctx(jr_get(&devs->items[i], "context"), &dv->ctx);
+    }
+    for (size_t i = 0; i < rows->count; ++i)
+        if (read_row(j, &rows->items[i], d, err, errlen)) {
+            rdoc_free(d);
+            return 2;
+        }
+    return 0;
+}
