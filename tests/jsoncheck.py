@@ -134,6 +134,9 @@ BROKEN = [
     ("field", "no attenuation_abs", [("del", ["attenuation_abs"])]),
     ("plots", "kind not in its enum", [("set", ["figures", 0, "kind"], "pie")]),
     ("plots", "no figures", [("set", ["figures"], [])]),
+    ("rows", "direction not in its enum", [("set", ["rows", 1, "metrics", 0, "direction"], "up")]),
+    ("rows", "a failed row without its reason", [("set", ["rows", 1, "status"], "failed")]),
+    ("rows", "no rows", [("del", ["rows"])]),
 ]
 
 

@@ -55,6 +55,27 @@ head -c 8 "$T/c1/compare.png" | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a" 
 # CSV: one line per row and run, the ratio column as in the JSON
 jsoncheck compare_csv_rows "$T/c1/compare.csv" && ok || bad "compare.csv"
 
+# The slow run as a brdfbench.rows/1 document (brdfbench rows) carries all compare decides on:
+# the same factor and verdicts as the throughput.json it was made from.
+mkdir -p "$T/rows"   # the document named slow: the column's heading, as the folder's is
+"$BIN" rows "$T/slow/throughput.json" --format json --output "$T/rows/slow" 2>"$T/err" && ok ||
+    bad "rows --format json: $(cat "$T/err")"
+"$BIN" compare "$T/a" "$T/rows/slow" --out "$T/c1r" --quiet 2>"$T/err" && ok || bad "compare a rows: $(cat "$T/err")"
+jsoncheck compare_scaled_run_factor_verdicts "$T/c1r/compare.json" "$(cat "$T/slow/factor")" && ok ||
+    bad "the rows document of the scaled run: factor and verdicts"
+# rows --format csv: a header, then a line per metric: the peak's rate and one rate per result row
+"$BIN" rows "$T/a/throughput.json" --format csv --output "$T/rows.csv" 2>"$T/err" && ok || bad "rows csv: $(cat "$T/err")"
+python3 - "$T/a/throughput.json" "$T/rows.csv" <<'PY' && ok || bad "rows.csv: not one line per rate"
+import csv, json, sys
+d = json.load(open(sys.argv[1]))
+lines = list(csv.DictReader(open(sys.argv[2], newline="")))
+assert len(lines) == 1 + len(d["results"]), (len(lines), len(d["results"]))
+for r, line in zip(d["results"], lines[1:]):
+    assert line["label"] == r["label"] and line["variant"] == r["variant"] and line["n_mode"] == r["n_mode"], line
+    assert line["metric"] == "evals_per_s" and line["unit"] == "1/s" and line["direction"] == "higher", line
+    assert float(line["value"]) == r["evals_per_s"]["median"], (line["value"], r["evals_per_s"])
+    assert int(line["reps"]) == len(r["evals_per_s_reps"]), line
+PY
 # --fail-if-slower: the factor is far below 0.5, so 40% fails and names the rows; 100% cannot
 expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.[0-9]+x the baseline" compare "$T/a" "$T/slow" --out "$T/c2" --fail-if-slower 40
 "$BIN" compare "$T/a" "$T/slow" --out "$T/c3" --fail-if-slower 100 --quiet 2>"$T/err" && ok ||

@@ -93,8 +93,9 @@ cp "$T/allq/q_sweep.json" "$T/q_sweep.json" 2>/dev/null
 cp "$T/allq/measured.json" "$T/measured.json" 2>/dev/null
 cp "$T/allq/field_fq2.json" "$T/field.json" 2>/dev/null
 cp "$T/allq/plots.json" "$T/plots.json" 2>/dev/null
+"$BIN" rows "$T/throughput.json" --format json --output "$T/rows.json" >/dev/null 2>&1
 jsoncheck schemas_cover "$SRC/host/output/schemas.h" "$SRC/docs/schemas" && ok || bad "a schema string of schemas.h has no file in docs/schemas/"
-DOCS="acc throughput render frontier reproduce compare list fit fitfam gate gates q_sweep measured field plots"
+DOCS="acc throughput render frontier reproduce compare list fit fitfam gate gates q_sweep measured field plots rows"
 for n in $DOCS; do
     jsoncheck schema_docs "$SRC/docs/schemas" "$T/$n.json" && ok || bad "$n.json does not validate against its schema"
 done

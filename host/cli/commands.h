@@ -7,6 +7,7 @@ int cmd_accuracy(int argc, char **argv);
 int cmd_all(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_report(int argc, char **argv);
+int cmd_rows(int argc, char **argv);
 int cmd_heatmap(int argc, char **argv);
 int cmd_gate(int argc, char **argv);
 int cmd_render(int argc, char **argv);

@@ -32,6 +32,8 @@ static const struct command commands[] = {
       "brdfbench plot results/latest" },
     { "report", cmd_report, "rebuild report.md of a run folder from its files alone (no device)",
       "brdfbench report results/latest --output -" },
+    { "rows", cmd_rows, "the figures of result files as rows: keys, metrics with unit and direction (md, csv, json)",
+      "brdfbench rows results/latest/throughput.json --format csv" },
     { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)",
       "brdfbench heatmap results/latest --label fq2" },
     { "gate", cmd_gate, "accuracy gates for CI: checks figures of a gates file against bounds (JUnit, JSON)",

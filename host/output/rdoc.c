@@ -244,7 +244,7 @@ void rdoc_json(const struct rdoc *d, struct md_buf *out)
                     jw_kv_str(&w, r->keys[k].name, r->keys[k].value);
             jw_obj_end(&w);
         }
-        jw_kv_str(&w, "label", r->label);
+        jw_kv_str(&w, "row", r->label);   /* not "label": that member is one key of a file, never " | " */
         jw_kv_str(&w, "status", r->status);
         if (!r->ok)
             jw_kv_str(&w, "reason", r->reason);
@@ -440,7 +440,7 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
         }
     }
     /* the label as written (it may carry prefixes the keys do not) */
-    snprintf(r->label, sizeof r->label, "%s", str_of(ro, "label", r->label));
+    snprintf(r->label, sizeof r->label, "%s", str_of(ro, "row", r->label));
     const char *status = str_of(ro, "status", "ok");
     if (strcmp(status, "ok") != 0)
         rd_row_fail(r, status, str_of(ro, "reason", status));

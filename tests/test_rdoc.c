@@ -1,0 +1,244 @@
+/* test_rdoc.c - the result document (rdoc.h, rdoc_read.h): hand-written result files of each
+ * kind read as rows, and the rows written as CSV, markdown and brdfbench.rows/1 and read back.
+ * Every expected key, label, unit, direction and value below is written by hand from the file
+ * text in the same test, not taken from the program's output. No device. */
+#include "check.h"
+#include "mdbuf.h"
+#include "rdoc_read.h"
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char dir[4096];
+
+static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
+
+static const struct rd_row *row_labelled(const struct rdoc *d, const char *label)
+{
+    for (int i = 0; i < d->nrows; ++i)
+        if (strcmp(d->rows[i].label, label) == 0)
+            return &d->rows[i];
+    return NULL;
+}
+
+/* Lines of text ending in "\r\n" or "\n". */
+static int count_lines(const char *s)
+{
+    int n = 0;
+    for (; s && *s; ++s)
+        n += *s == '\n';
+    return n;
+}
+
+static void check_throughput(void)
+{
+    CHECK_CASE("throughput.json as rows");
+    char path[4200], err[512];
+    path_in(path, sizeof path, "throughput.json");
+    test_write_file(path,
+        "{\"schema\": \"brdfbench.throughput/3\",\n"
+        " \"context\": {\"device\": \"dev0\", \"throughput\": {\"reps\": 3, \"runner\": {\"disturbed_reps\": 2}}},\n"
+        " \"peak\": {\"status\": \"ok\", \"flops_per_s\": {\"min\": 1e10, \"median\": 2e10, \"max\": 3e10},\n"
+        "          \"flops_per_s_reps\": [1e10, 2e10, 3e10]},\n"
+        " \"results\": [\n"
+        "  {\"label\": \"pow\", \"kind\": \"builtin\", \"variant\": \"default\", \"n_mode\": \"uniform\", \"status\": \"ok\",\n"
+        "   \"evals_per_s\": {\"min\": 1e8, \"median\": 2e8, \"max\": 4e8}, \"evals_per_s_reps\": [4e8, 2e8, 1e8],\n"
+        "   \"normalised_reps\": [0.5, 0.25, 0.125], \"normalised_cpu_reps\": [0.75, 0.5, 0.25],\n"
+        "   \"preemption_retries\": 1, \"disturbed_reps\": 2},\n"
+        "  {\"label\": \"fq2\", \"kind\": \"model\", \"variant\": \"fast\", \"n_mode\": \"varying\", \"status\": \"failed\",\n"
+        "   \"reason\": \"the kernel failed\", \"evals_per_s\": {\"min\": null, \"median\": null, \"max\": null}}]}\n");
+    struct rdoc d;
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "read: %s", err);
+    CHECK(strcmp(d.kind, "throughput") == 0 && strcmp(d.file, "throughput.json") == 0, "kind %s file %s", d.kind,
+          d.file);
+    CHECK(d.nrows == 3, "the peak and two results: %d rows", d.nrows);
+    CHECK(d.disturbed == 2, "the runner's disturbed repetitions: %d", d.disturbed);
+    CHECK(rd_ctx_get(&d.ctx, "device") && strcmp(rd_ctx_get(&d.ctx, "device"), "dev0") == 0, "context device");
+    const struct rd_row *pk = row_labelled(&d, "peak (reference kernel)");
+    CHECK(pk && pk->nmetrics == 1 && strcmp(pk->metrics[0].name, "flops_per_s") == 0, "the peak's rate");
+    if (pk && pk->nmetrics == 1) {
+        CHECK(strcmp(pk->metrics[0].unit, "FLOP/s") == 0 && pk->metrics[0].direction == RD_HIGHER &&
+              pk->metrics[0].timed, "FLOP/s, higher is better, timed");
+        CHECK(pk->metrics[0].value == 2e10 && pk->metrics[0].lo == 1e10 && pk->metrics[0].hi == 3e10 &&
+              pk->metrics[0].nreps == 3, "median 2e10, range 1e10..3e10, 3 repetitions");
+    }
+    const struct rd_row *pw = row_labelled(&d, "pow | default | n uniform");
+    CHECK(pw != NULL, "the label joins label, variant and 'n ' + n_mode");
+    if (pw) {
+        const struct rd_metric *m = rd_row_find(pw, "evals_per_s");
+        CHECK(m && m->value == 2e8 && m->lo == 1e8 && m->hi == 4e8 && strcmp(m->unit, "1/s") == 0, "pow's rate");
+        CHECK(m && m->nreps == 3 && m->reps[0] == 4e8 && m->reps[2] == 1e8, "the repetitions in file order");
+        /* per CPU second first, where the file has them */
+        CHECK(m && m->norm_cpu && m->nnorm == 3 && m->norm[0] == 0.75, "normalised per CPU second");
+        CHECK(pw->ok && pw->retries == 1 && pw->disturbed == 2, "status ok, 1 retry, 2 disturbed");
+        CHECK(strcmp(rd_row_key_value(pw, "kind"), "builtin") == 0, "kind as an attribute");
+        CHECK(strcmp(pw->model, "pow") == 0, "model for grouping");
+    }
+    const struct rd_row *fq = row_labelled(&d, "fq2 | fast | n varying");
+    CHECK(fq && !fq->ok && strcmp(fq->reason, "the kernel failed") == 0 && strcmp(fq->status, "failed") == 0,
+          "a failed row keeps its status and reason");
+    CHECK(fq && fq->nmetrics == 1 && isnan(fq->metrics[0].value), "its rate is missing, not 0");
+
+    /* CSV: a header and one line per metric (1 + 1 + 1 metrics) */
+    struct md_buf b;
+    md_init(&b);
+    rdoc_csv(&d, &b);
+    CHECK(count_lines(b.s) == 1 + 3, "CSV lines: %d", count_lines(b.s));
+    CHECK(b.s && strncmp(b.s, "device,\"reference\",\"label\",\"variant\",\"n_mode\",\"kind\",status,", 60) == 0,
+          "CSV header: the device, every key in order of appearance: %.80s", b.s ? b.s : "");
+    CHECK(b.s && strstr(b.s, "\"failed\",\"the kernel failed\",\"evals_per_s\",\"1/s\",higher,,,,0\r\n"),
+          "a failed row: status, reason, empty value and range, no repetitions");
+    md_free(&b);
+
+    /* markdown: one table row per metric, the failed one says why */
+    md_init(&b);
+    rdoc_markdown(&d, &b);
+    CHECK(b.s && strstr(b.s, "| pow | default | n uniform | evals_per_s |") == NULL,
+          "a label's '|' is escaped in a markdown cell");
+    CHECK(b.s && strstr(b.s, "| pow \\| default \\| n uniform | evals_per_s | 2e+08 | 1/s | higher | 1e+08..4e+08 | 3 |"),
+          "pow's line: %s", b.s ? b.s : "");
+    CHECK(b.s && strstr(b.s, "not measured: the kernel failed"), "the failed row's reason");
+    md_free(&b);
+
+    /* brdfbench.rows/1 written and read back: the same rows, keys, values and repetitions */
+    md_init(&b);
+    rdoc_json(&d, &b);
+    path_in(path, sizeof path, "rows.json");
+    test_write_file(path, b.s ? b.s : "");
+    md_free(&b);
+    struct rdoc back;
+    CHECK(rdoc_read_file(path, &back, err, sizeof err) == 0, "rows/1 read back: %s", err);
+    CHECK(back.nrows == d.nrows && strcmp(back.kind, "throughput") == 0 && back.disturbed == 2, "same rows and kind");
+    for (int i = 0; i < back.nrows && i < d.nrows; ++i) {
+        const struct rd_row *x = &d.rows[i], *y = &back.rows[i];
+        CHECK(strcmp(x->label, y->label) == 0 && x->ok == y->ok && x->nkeys == y->nkeys &&
+              x->nmetrics == y->nmetrics && x->retries == y->retries, "row %d: %s / %s", i, x->label, y->label);
+        for (int m = 0; m < x->nmetrics && m < y->nmetrics; ++m) {
+            const struct rd_metric *p = &x->metrics[m], *q = &y->metrics[m];
+            int same = (p->value == q->value || (isnan(p->value) && isnan(q->value))) && p->nreps == q->nreps &&
+                       p->nnorm == q->nnorm && p->norm_cpu == q->norm_cpu && p->direction == q->direction &&
+                       p->timed == q->timed && strcmp(p->unit, q->unit) == 0;
+            for (int k = 0; same && k < p->nreps; ++k)
+                same = p->reps[k] == q->reps[k];
+            CHECK(same, "row %d metric %s round trip", i, p->name);
+        }
+    }
+    const struct rd_row *pw2 = row_labelled(&back, "pow | default | n uniform");
+    CHECK(pw2 && strcmp(rd_row_key_value(pw2, "n_mode"), "uniform") == 0 && rd_row_key_value(pw2, "kind") &&
+          strcmp(rd_row_key_value(pw2, "kind"), "builtin") == 0, "keys and attributes read back");
+    rdoc_free(&back);
+    rdoc_free(&d);
+}
+
+static void check_accuracy(void)
+{
+    CHECK_CASE("accuracy.json as rows");
+    char path[4200], err[512];
+    path_in(path, sizeof path, "accuracy.json");
+    test_write_file(path,
+        "{\"schema\": \"brdfbench.accuracy/1\",\n"
+        " \"context\": {\"grid\": {\"n_min\": 2, \"n_max\": 1000, \"n_step\": 1, \"samples_per_zone\": 4096}},\n"
+        " \"results\": [\n"
+        "  {\"label\": \"fq2\", \"n_min\": 2, \"n_max\": 1000, \"status\": \"ok\",\n"
+        "   \"epicentre\": {\"max_rel\": 0.01257}, \"attenuation\": {\"max_abs\": 0.0214},\n"
+        "   \"whole\": {\"max_abs\": 0.0214}, \"invalid\": {\"count\": 0}},\n"
+        "  {\"label\": \"cq2\", \"n_min\": 2, \"n_max\": 1000, \"status\": \"device_disagrees\",\n"
+        "   \"reason\": \"device and double disagree\", \"epicentre\": {\"max_rel\": null}}]}\n");
+    struct rdoc d;
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "read: %s", err);
+    CHECK(d.nrows == 2, "two rows: %d", d.nrows);
+    const char *grid = "n 2..1000 step 1, 4096 samples per zone";
+    CHECK(rd_ctx_get(&d.ctx, "accuracy grid") && strcmp(rd_ctx_get(&d.ctx, "accuracy grid"), grid) == 0,
+          "the grid as a context line");
+    char label[300];
+    snprintf(label, sizeof label, "fq2 | %s", grid);
+    const struct rd_row *fq = row_labelled(&d, label);
+    CHECK(fq && fq->nmetrics == 4, "fq2: the model and the grid, four figures");
+    if (fq && fq->nmetrics == 4) {
+        static const char *const names[4] = { "epicentre.max_rel", "attenuation.max_abs", "whole.max_abs",
+                                              "invalid.count" };
+        static const double values[4] = { 0.01257, 0.0214, 0.0214, 0 };
+        for (int k = 0; k < 4; ++k)
+            CHECK(strcmp(fq->metrics[k].name, names[k]) == 0 && fq->metrics[k].value == values[k] &&
+                  fq->metrics[k].direction == RD_LOWER && !fq->metrics[k].timed, "figure %d: %s = %g, lower is better",
+                  k, fq->metrics[k].name, fq->metrics[k].value);
+        CHECK(strcmp(rd_row_key_value(fq, "n_min"), "2") == 0 && strcmp(rd_row_key_value(fq, "n_max"), "1000") == 0 &&
+              strcmp(rd_row_key_value(fq, "n_step"), "1") == 0, "the n range and step as attributes");
+    }
+    snprintf(label, sizeof label, "cq2 | %s", grid);
+    const struct rd_row *cq = row_labelled(&d, label);
+    CHECK(cq && !cq->ok && strcmp(cq->status, "device_disagrees") == 0 &&
+          strcmp(cq->reason, "device and double disagree") == 0, "cq2's status word and reason");
+    /* lines: 1 schema, 2 context, 3 "results", 4-6 fq2, 7 cq2 */
+    CHECK(cq && cq->line == 7, "cq2's row starts on line 7 of the file: %d", cq ? cq->line : -1);
+    rdoc_free(&d);
+}
+
+static void check_render_fit(void)
+{
+    CHECK_CASE("render.json and fit.json as rows");
+    char path[4200], err[512];
+    path_in(path, sizeof path, "render.json");
+    test_write_file(path,
+        "{\"schema\": \"brdfbench.render/1\", \"scenes\": [{\"scene\": \"spheres\",\n"
+        " \"image\": {\"width\": 64, \"height\": 32},\n"
+        " \"models\": [{\"model\": \"fq2\", \"metrics\": {\"max_abs\": 0.5, \"rmse\": 0.25, \"psnr_db\": null}}],\n"
+        " \"timings\": [{\"width\": 128, \"height\": 128, \"entries\": [{\"name\": \"fq2\", \"model\": \"fq2\",\n"
+        "   \"mpixel_per_s\": 10, \"median_ms\": 2, \"min_ms\": 1, \"max_ms\": 4, \"mpixel_per_s_reps\": [5, 10, 20]}]}]}]}\n");
+    struct rdoc d;
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "render read: %s", err);
+    const struct rd_row *img = row_labelled(&d, "spheres 64x32 | fq2");
+    /* the null PSNR of an ok row is left out: identical images, nothing to compare */
+    CHECK(img && img->nmetrics == 2 && rd_row_find(img, "rmse") && rd_row_find(img, "rmse")->value == 0.25 &&
+          !rd_row_find(img, "psnr_db"), "max_abs and rmse, no PSNR");
+    const struct rd_row *tm = row_labelled(&d, "spheres | fq2");
+    const struct rd_metric *r = tm ? rd_row_find(tm, "mpixel_per_s@128x128") : NULL;
+    /* Mpixel/s = 10 at the median 2 ms: 10 * 2 / 4 = 5 at the slowest, 10 * 2 / 1 = 20 at the fastest */
+    CHECK(r && r->timed && r->value == 10 && r->lo == 5 && r->hi == 20 && r->nreps == 3 &&
+          strcmp(r->unit, "Mpixel/s") == 0, "the timing row: rate, range from the times, repetitions");
+    rdoc_free(&d);
+
+    path_in(path, sizeof path, "fit.json");
+    test_write_file(path,
+        "{\"schema\": \"brdfbench.fit/1\", \"context\": {\"grid\": {\"n_min\": 2, \"n_max\": 10, \"n_step\": 1,\n"
+        " \"samples_per_zone\": 64}}, \"a\": 0.25, \"b\": 0.5, \"max_rel\": 0.01, \"max_abs\": 0.02,\n"
+        " \"compare\": [{\"model\": \"quad:a=0.25,b=0.5\", \"max_rel\": 0.01}, {\"model\": \"fq2\", \"max_rel\": 0.02,\n"
+        "   \"max_abs\": 0.03}]}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "fit read: %s", err);
+    /* the fit itself (its coefficients and figures) and fq2; the quadratic's own compare row
+       is the fit again under a label that moves with its coefficients: left out */
+    CHECK(d.nrows == 2, "two rows: %d", d.nrows);
+    const struct rd_row *best = row_labelled(&d, "best affine k(n) | n 2..10 step 1, 64 samples per zone");
+    CHECK(best && best->nmetrics == 4 && rd_row_find(best, "a")->value == 0.25 &&
+          rd_row_find(best, "a")->direction == RD_NEITHER && rd_row_find(best, "max_abs")->value == 0.02,
+          "the best affine k(n): a, b (neither better), max_rel, max_abs");
+    rdoc_free(&d);
+}
+
+static void check_refused(void)
+{
+    CHECK_CASE("files that are not results");
+    char path[4200], err[512];
+    struct rdoc d;
+    path_in(path, sizeof path, "plots.json");
+    test_write_file(path, "{\"schema\": \"brdfbench.plots/1\", \"figures\": []}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, path) &&
+          strstr(err, "is not a result file with figures"), "another schema: %s", err);
+    test_write_file(path, "{\"schema\": \"brdfbench.accuracy/7\", \"results\": []}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "this version reads \"brdfbench.accuracy/1\""),
+          "another version: %s", err);
+    test_write_file(path, "{\"schema\": \"brdfbench.accuracy/1\", \"results\": [{\"label\": \"a|b\"}]}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "'|'"), "a label that breaks tables: %s", err);
+    test_write_file(path, "{\"schema\": \"brdfbench.rows/1\", \"source\": {\"kind\": \"accuracy\"}, \"rows\": [\n"
+                          " {\"keys\": {}, \"metrics\": [{\"name\": \"x\", \"direction\": \"up\"}]}]}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "accepted: higher, lower, neither"),
+          "a rows document with a direction of another word: %s", err);
+}
+
+int main(void)
+{
+    static void (*const tests[])(void) = { check_throughput, check_accuracy, check_render_fit, check_refused };
+    return test_run_in_tmpdir(dir, sizeof dir, "test_rdoc", tests, sizeof tests / sizeof tests[0]);
+}
