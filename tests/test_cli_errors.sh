@@ -160,7 +160,7 @@ t 2 "^brdfbench gate: --tolerance: '2' is not a finite number in \[0, 1\]" gate 
 t 2 "^brdfbench gate: --tolerance: only with --baseline" gate good.json --tolerance 0.01
 t 2 "^brdfbench gate: --baseline: cannot read /nonexistent: No such file" gate good.json --baseline /nonexistent
 t 2 "^brdfbench gate: --baseline: truncated_baseline.json:1:[0-9]+: unexpected end of file" gate good.json --baseline truncated_baseline.json
-t 2 "^brdfbench gate: --baseline: good.json: schema \"brdfbench.gates/1\" is not a result file with figures \(accepted: " gate good.json --baseline good.json
+t 2 "^brdfbench gate: --baseline: good.json:1:1: member \"schema\" is missing" gate good.json --baseline good.json
 t 3 "^brdfbench gate: --junit: folder /nonexistent/dir does not exist" gate good.json --junit /nonexistent/dir/x.xml
 t 3 "^brdfbench gate: --json: folder is a folder \(a file name is expected\)" gate good.json --json folder
 t 2 "^brdfbench gate: unknown option '--junit-file' \(see brdfbench gate --help\)" gate good.json --junit-file x
@@ -478,6 +478,27 @@ mkdir -p C4
 t 2 "^brdfbench gate: --baseline: C4/accuracy.json: cannot open: No such file" gate good.json --baseline C4
 python3 -c 'import json; d = json.load(open("base/accuracy.json")); d["results"] = {}; json.dump(d, open("bad_results.json", "w"))'
 t 2 "^brdfbench gate: --baseline: bad_results.json:1:[0-9]+: member \"results\" is an object, an array expected" gate good.json --baseline bad_results.json
+# rows: the files and folders it is given, its flags
+t 2 "^brdfbench rows: expected FILE\|RUN_DIR \(a result file or a run folder\)" rows
+t 2 "^brdfbench rows: unexpected argument 'b'" rows R0 b
+t 2 "^brdfbench rows: nothere: no such file or folder \(accepted: a result file or a run folder\)" rows nothere
+t 2 "^brdfbench rows: --format: 'xml' is not a format \(accepted: md, csv, json\)" rows R0 --format xml
+t 2 "^brdfbench rows: --kind: 'claims' is not a kind of result \(accepted: throughput, accuracy, render, fit, frontier\)" rows R0 --kind claims
+t 2 "^brdfbench rows: --format csv writes one document and R0 holds [0-9]+ \(name one with --kind: throughput, accuracy" rows R0 --format csv
+t 2 "^brdfbench rows: --format json writes one document" rows R0 --format json --output rows_out.json
+if [ -e rows_out.json ]; then fail=$((fail + 1)); echo "FAIL: rows: a refused run wrote its --output" >&2; fi
+t 2 "^brdfbench rows: base: no result file of kind render \(accepted: throughput.json, accuracy.json" rows base --kind render
+t 2 "^brdfbench rows: C4: no result file \(accepted: " rows C4
+t 2 "^brdfbench rows: C1/accuracy.json: is a FIFO, not a regular file" rows C1
+t 2 "^brdfbench rows: good.json:1:1: member \"schema\" is missing" rows good.json
+t 2 "^brdfbench rows: R0/plots.json: schema \"brdfbench.plots/1\" is not a result file with figures" rows R0/plots.json
+printf '{"schema": "brdfbench.rows/1", "source": {"kind": "accuracy"}, "rows": [{"keys": {}, "metrics": [{"name": "x", "direction": "up"}]}]}' >bad_rows.json
+t 2 "^brdfbench rows: bad_rows.json:1:[0-9]+: \"direction\" is \"up\" \(accepted: higher, lower, neither\)" rows bad_rows.json
+printf '{"schema": "brdfbench.rows/1", "source": {"kind": "accuracy"}, "rows": [{"keys": {"label": "a|b"}, "metrics": []}]}' >bad_rows.json
+t 2 "^brdfbench rows: bad_rows.json:1:[0-9]+: \"label\" holds '\|'" rows bad_rows.json
+printf '{"schema": "brdfbench.rows/1", "source": {"kind": "gates"}, "rows": []}' >bad_rows.json
+t 2 "^brdfbench compare: bad_rows.json: rows of kind \"gates\", compare reads throughput, accuracy, render, fit and frontier" compare base bad_rows.json --out run
+t 2 "^brdfbench rows: --output: " rows base --output /nonexistent/dir/x.md
 # gates files: model files outside their folder, files that are not files, reserved names
 mkdir -p gd/sub && cp "$F/scaled.cl" gd/sub/ && cp "$F/scaled.cl" outside.cl && ln -sf ../outside.cl gd/link.cl && mkfifo gd/fifo.cl
 printf '{"gates":[{"model":"scaled","model_file":"../outside.cl","metric":"whole.max_abs","max":1}]}' >gd/up.json
