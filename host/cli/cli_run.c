@@ -136,22 +136,36 @@ void cli_engine_init(struct cli_engine_run *e, const char *cmd, const char *docu
 int cli_run_engine(struct cli_engine_run *e)
 {
     struct cl_session s;
-    const int temp = e->json_path && !e->out_dir;
+    char err[1024];
+    const int temp = (e->json_path || e->csv_path) && !e->out_dir;
     e->run_dir[0] = e->tmp_dir[0] = '\0';
-    int rc = cli_run_check_documents(e->cmd, e->json_path, NULL);
+    int rc = cli_run_check_documents(e->cmd, e->json_path, e->csv_path);
     if (!rc)
-        rc = cli_run_open(e->cmd, &s, &e->dev, e->out_dir, temp, e->run_dir, sizeof e->run_dir, e->tmp_dir,
-                          sizeof e->tmp_dir);
+        rc = cli_run_session(e->cmd, &s, &e->dev);
     if (rc)
         return rc;
-    e->quiet = e->quiet || cli_is_stdout(e->json_path);   /* the tables stay off a document on stdout */
+    if (e->check && (rc = e->check(&s, e->ctx, err, sizeof err)) != 0) {
+        cli_run_error(e->cmd, err);
+        clsession_close(&s);
+        return rc;
+    }
+    rc = cli_run_folder(e->cmd, e->out_dir, temp, e->run_dir, sizeof e->run_dir, e->tmp_dir, sizeof e->tmp_dir);
+    if (rc) {
+        clsession_close(&s);
+        return rc;
+    }
+    /* the tables stay off a document on stdout */
+    e->quiet = e->quiet || cli_is_stdout(e->json_path) || cli_is_stdout(e->csv_path);
     rc = e->run(&s, e->run_dir, e->quiet, e->ctx);
     if (!rc || (e->complete_on && rc == e->complete_on)) {
-        int frc = cli_run_finish(e->cmd, e->out_dir, e->tmp_dir, e->run_dir, e->document, e->json_path);
+        int frc = cli_run_latest(e->cmd, e->out_dir, e->tmp_dir, e->run_dir);
+        if (!frc && e->json_path)
+            frc = cli_run_deliver(e->cmd, e->run_dir, e->document, "--json", e->json_path);
+        if (!frc && e->csv_path && e->csv_document)
+            frc = cli_run_deliver(e->cmd, e->run_dir, e->csv_document, "--csv", e->csv_path);
         if (frc) rc = frc;
-    } else {
-        cli_temp_dir_remove(e->tmp_dir);
     }
+    cli_temp_dir_remove(e->tmp_dir);
     clsession_close(&s);
     return rc;
 }

@@ -34,17 +34,26 @@ int cli_run_deliver(const char *cmd, const char *run_dir, const char *name, cons
 int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir, const char *name,
                    const char *json_path);
 
-/* The contract of a measuring command that writes one document: its engine's run as a
- * function of the session, the run folder and whether to keep its tables off standard output. */
+/* The contract of a measuring command: its engine's run as a function of the session, the
+ * run folder and whether to keep its tables off standard output. Every measuring command but
+ * accuracy (whose folder under results/ is named after its sweep and made after its kernel
+ * builds, cmd_accuracy.c) and all (its staged folder, cmd_all.c) goes through cli_run_engine;
+ * compare, which opens no device, makes its folder with cli_run_folder after the runs are read. */
 typedef int (*cli_engine_fn)(struct cl_session *s, const char *run_dir, int quiet, void *ctx);
+/* A check after the session opened and before any folder is made (sizes against the device):
+ * 0, or EXIT_USAGE with the message in err. */
+typedef int (*cli_engine_check_fn)(struct cl_session *s, void *ctx, char *err, size_t errlen);
 struct cli_engine_run {
     const char *cmd;                   /* "frontier": messages start "brdfbench frontier: " */
     struct device_options dev;         /* the device flags */
     const char *out_dir, *json_path;   /* --out and --json (either may be NULL) */
+    const char *csv_path;              /* --csv (NULL: none, or the command has none) */
     const char *document;              /* the run folder's file --json delivers: "frontier.json" */
-    int quiet;                         /* --quiet; out: also set when --json goes to standard output */
+    const char *csv_document;          /* the one --csv delivers: "throughput.csv" (NULL: no --csv) */
+    int quiet;                         /* --quiet; out: also set when --json or --csv goes to standard output */
     int complete_on;                   /* an exit code besides 0 after which the folder is complete and
                                           delivered (fit: EXIT_GATE_FAIL, its fit.json says why); 0: none */
+    cli_engine_check_fn check;         /* NULL: none */
     cli_engine_fn run;
     void *ctx;                         /* the engine's options */
     char run_dir[4096], tmp_dir[512];  /* out: where the run was written; tmp_dir "" unless temporary */
@@ -57,9 +66,9 @@ void cli_engine_init(struct cli_engine_run *e, const char *cmd, const char *docu
     CLI_FLAG_OUT(&(E)->out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"), CLI_FLAG_JSON(&(E)->json_path), \
         CLI_FLAG_QUIET(&(E)->quiet), CLI_FLAGS_DEVICE(&(E)->dev)
 
-/* Checks --json, opens the session and the run folder, runs the engine, points results/latest
- * at the folder, delivers the document to --json, removes a temporary folder, closes the
- * session. Every failure is reported as "brdfbench CMD: message". Returns the engine's exit
+/* Checks --json and --csv, opens the session, runs the check, makes the run folder (a temporary
+ * one for --json or --csv without --out), runs the engine, points results/latest at the folder,
+ * delivers the documents to --json and --csv, removes a temporary folder, closes the session. Every failure is reported as "brdfbench CMD: message". Returns the engine's exit
  * code, or that of the step that failed. */
 int cli_run_engine(struct cli_engine_run *e);
 

@@ -14,8 +14,30 @@
 #include <string.h>
 
 #define RENDER_MAX_MEASURED_FILES 4
-static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir,
-                              const char *json_path, char *err, size_t errlen);
+
+/* The image sizes against the device's memory, before any folder or buffer is made. */
+static int check_render(struct cl_session *s, void *ctx, char *err, size_t errlen)
+{
+    const struct render_options *o = ctx;
+    int rows = o->scene_on[RENDER_SPHERES] ? o->nmodels : 0;
+    int rc = render_check_size(s, "--size", o->width, o->height, rows, err, errlen);
+    for (int k = 0; rc == 0 && k < o->ntime_sizes; k++)
+        rc = render_check_size(s, "--time-sizes", o->time_w[k], o->time_h[k], rows, err, errlen);
+    return rc ? EXIT_USAGE : 0;
+}
+
+static int run_render(struct cl_session *s, const char *run_dir, int quiet, void *ctx)
+{
+    const struct render_options *o = ctx;
+    char err[1024];
+    (void)quiet;   /* o->verbose says it, with the document on stdout counted */
+    if (o->verbose)
+        printf("device: %s (%s)\n", s->device_name, s->platform_version);
+    int rc = render_run(s, o, run_dir, NULL, err, sizeof err);
+    if (rc)
+        fprintf(stderr, "brdfbench render: %s\n", err);
+    return rc;
+}
 
 static int parse_size(const char *arg, const char *text, int *w, int *h, char *err, size_t errlen)
 {
@@ -147,10 +169,11 @@ int cmd_render(int argc, char **argv)
     char err[1024];
     struct render_options o;
     render_options_default(&o);
-    struct device_options dev;
-    device_options_init(&dev);
-    const char *models_text = NULL, *out_dir = NULL, *measured_arg = NULL, *json_path = NULL;
-    int quiet = 0, models_given = 0;
+    struct cli_engine_run e;
+    cli_engine_init(&e, "render", "render.json", run_render, &o);
+    e.check = check_render;
+    const char *models_text = NULL, *measured_arg = NULL;
+    int models_given = 0;
     char size_range[64], shininess_range[64];
     snprintf(size_range, sizeof size_range, "W and H in [%d, %d]", RENDER_MIN_SIDE, RENDER_MAX_SIDE);
     snprintf(shininess_range, sizeof shininess_range, "each in [1, 10000], at most %d", RENDER_MAX_COLS);
@@ -188,11 +211,11 @@ int cmd_render(int argc, char **argv)
         CLI_FLAG_MEASURED(&measured_arg),
         { .name = "--no-images", .kind = CLI_SWITCH, .dest = &o.write_images, .set = 0,
           .help = "metrics and timings only, no PNGs" },
-        CLI_FLAG_OUT(&out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
-        CLI_FLAG_JSON(&json_path),
-        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAG_OUT(&e.out_dir, CLI_DEF_OUT "; with --json and no --out, no folder"),
+        CLI_FLAG_JSON(&e.json_path),
+        CLI_FLAG_QUIET(&e.quiet),
         CLI_FLAGS_USERMODEL,
-        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_DEVICE(&e.dev),
         { .name = "--n", .kind = CLI_RENAMED,
           .help = "the shininess of the teapot and the bunny is --mesh-n X (the sphere grid's is --shininess LIST)" },
         { .name = "--samples", .kind = CLI_RENAMED,
@@ -211,7 +234,7 @@ int cmd_render(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    o.verbose = !quiet && !cli_is_stdout(json_path);   /* stdout holds the document alone */
+    o.verbose = !e.quiet && !cli_is_stdout(e.json_path);   /* stdout holds the document alone */
     if (!models_text && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
@@ -234,7 +257,9 @@ int cmd_render(int argc, char **argv)
         for (int i = 0; i < o.nmeasured; ++i)
             o.measured[i] = &mats[i];
     }
-    int rc = cmd_render_session(&o, &dev, out_dir, json_path, err, sizeof err);
+    int rc = cli_run_engine(&e);
+    if (!rc && o.verbose && !e.tmp_dir[0])
+        printf("written: %s/render.json and %s/render/\n", e.run_dir, e.run_dir);
     for (int i = 0; i < o.nmeasured; ++i)
         merl_free(&mats[i]);
     return rc;
@@ -242,50 +267,4 @@ int cmd_render(int argc, char **argv)
 usage_error:
     fprintf(stderr, "brdfbench render: %s\n", err);
     return EXIT_USAGE;
-}
-
-/* The session, the run folder and the run of a parsed command line (*err: a usage message when
-   EXIT_USAGE is returned). */
-static int cmd_render_session(struct render_options *op, struct device_options *devp, const char *out_dir,
-                              const char *json_path, char *err, size_t errlen)
-{
-    struct render_options o = *op;
-    struct cl_session s;
-    int rc = cli_run_check_documents("render", json_path, NULL);
-    if (rc)
-        return rc;
-    rc = cli_run_session("render", &s, devp);
-    if (rc)
-        return rc;
-    /* sizes against the device's memory before anything is allocated */
-    int rows = o.scene_on[RENDER_SPHERES] ? o.nmodels : 0;
-    rc = render_check_size(&s, "--size", o.width, o.height, rows, err, errlen);
-    for (int k = 0; rc == 0 && k < o.ntime_sizes; k++)
-        rc = render_check_size(&s, "--time-sizes", o.time_w[k], o.time_h[k], rows, err,
-                               errlen);
-    if (rc) {
-        clsession_close(&s);
-        fprintf(stderr, "brdfbench render: %s\n", err);
-        return EXIT_USAGE;
-    }
-    char run_dir[4096], tmp_dir[512];
-    if (cli_run_folder("render", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
-        clsession_close(&s);
-        return EXIT_RUNTIME;
-    }
-    if (o.verbose)
-        printf("device: %s (%s)\n", s.device_name, s.platform_version);
-    rc = render_run(&s, &o, run_dir, NULL, err, errlen);
-    clsession_close(&s);
-    if (rc) {
-        fprintf(stderr, "brdfbench render: %s\n", err);
-        cli_temp_dir_remove(tmp_dir);
-        return rc;
-    }
-    rc = cli_run_finish("render", out_dir, tmp_dir, run_dir, "render.json", json_path);
-    if (rc)
-        return rc;
-    if (o.verbose && !tmp_dir[0])
-        printf("written: %s/render.json and %s/render/\n", run_dir, run_dir);
-    return EXIT_OK;
 }

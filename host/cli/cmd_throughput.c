@@ -140,15 +140,25 @@ static int run_physical(struct cl_session *s, const struct pbcost_options *po, c
     return 0;
 }
 
-/* results/latest, then the --json and --csv documents from the run folder. */
-static int deliver(const char *out_dir, const char *tmp_dir, const char *run_dir, const char *json_path,
-                   const char *csv_path)
+/* What the command runs in its run folder: the measurement, the A/B documents, the physically
+ * based models' table (not in a temporary folder: --json or --csv without --out delivers
+ * throughput's documents only). */
+struct throughput_job {
+    const struct throughput_options *o;
+    const struct pbcost_options *po;
+    const char *ab_options;
+    int physical;                          /* the default set, or full BRDFs or measured materials asked for */
+    const struct cli_engine_run *e;        /* its tmp_dir: a temporary folder */
+};
+
+static int run_throughput(struct cl_session *s, const char *run_dir, int quiet, void *ctx)
 {
-    int rc = cli_run_latest("throughput", out_dir, tmp_dir, run_dir);
-    if (!rc && json_path)
-        rc = cli_run_deliver("throughput", run_dir, "throughput.json", "--json", json_path);
-    if (!rc && csv_path)
-        rc = cli_run_deliver("throughput", run_dir, "throughput.csv", "--csv", csv_path);
+    const struct throughput_job *j = ctx;
+    int rc = throughput_run(s, j->o, run_dir, quiet);
+    if (!rc && j->ab_options)
+        rc = write_ab(run_dir, j->ab_options, quiet);
+    if (!rc && j->physical && !j->e->tmp_dir[0])
+        rc = run_physical(s, j->po, run_dir, quiet);
     return rc;
 }
 
@@ -161,10 +171,13 @@ int cmd_throughput(int argc, char **argv)
     char err[1024];
     struct throughput_options o;
     throughput_options_default(&o);
-    struct device_options dev;
-    device_options_init(&dev);
-    const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL, *ab_options = NULL;
-    int quiet = 0, models_given = 0;
+    struct throughput_job job = { .o = &o };
+    struct cli_engine_run e;
+    cli_engine_init(&e, "throughput", "throughput.json", run_throughput, &job);
+    e.csv_document = "throughput.csv";
+    job.e = &e;
+    const char *models_text = "all", *ab_options = NULL;
+    int models_given = 0;
     const char *measured_arg = NULL;
 
     const struct cli_flag flags[] = {
@@ -204,10 +217,10 @@ int cmd_throughput(int argc, char **argv)
         { .name = "--sweep-reps", .value = "N", .kind = CLI_INT, .dest = &o.sweep_reps, .min = 1, .max = TP_MAX_REPS,
           .help = "timed runs per model of the sweep" },
         CLI_FLAG_MEASURED(&measured_arg),
-        CLI_FLAGS_DOCUMENTS(&out_dir, &json_path, &csv_path),
-        CLI_FLAG_QUIET(&quiet),
+        CLI_FLAGS_DOCUMENTS(&e.out_dir, &e.json_path, &e.csv_path),
+        CLI_FLAG_QUIET(&e.quiet),
         CLI_FLAGS_USERMODEL,
-        CLI_FLAGS_DEVICE(&dev),
+        CLI_FLAGS_DEVICE(&e.dev),
         { .name = "--n", .kind = CLI_RENAMED, .help = "the uniform mode's shininess is --uniform-n X" },
         { .name = "--n-range", .kind = CLI_RENAMED,
           .help = "the varying mode's range of n is --n-min LO --n-max HI, as in the other commands" },
@@ -227,7 +240,7 @@ int cmd_throughput(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    if (check_args(&o, json_path, csv_path, models_text, models_given, ab_options, err, sizeof err))
+    if (check_args(&o, e.json_path, e.csv_path, models_text, models_given, ab_options, err, sizeof err))
         goto usage_error;
     /* the measured materials, read before anything is made */
     struct merl_material mats[PBCOST_MAX_MEASURED];
@@ -238,32 +251,13 @@ int cmd_throughput(int argc, char **argv)
         goto usage_error;
     if (lrc)
         return lrc;
-    int full_models = po.nfull;
+    job.po = &po;
+    job.ab_options = ab_options;
+    job.physical = (!models_given && usermodel_count() == 0) || po.nfull || po.nmeasured;
 
     /* PoCL reads this when the platform is first opened. */
     setenv("POCL_AFFINITY", "1", 0);
-    struct cl_session s;
-    /* --json or --csv without --out: those documents only, made in a temporary folder */
-    char run_dir[4096], tmp_dir[512];
-    int rc = cli_run_check_documents("throughput", json_path, csv_path);
-    if (rc)
-        goto free_measured;
-    rc = cli_run_open("throughput", &s, &dev, out_dir, (json_path || csv_path) && !out_dir, run_dir,
-                      sizeof run_dir, tmp_dir, sizeof tmp_dir);
-    if (rc)
-        goto free_measured;
-    /* a document on standard output: the engine's table (and its progress) stay off */
-    int tp_quiet = quiet || cli_is_stdout(json_path) || cli_is_stdout(csv_path);
-    rc = throughput_run(&s, &o, run_dir, tp_quiet);
-    if (!rc && ab_options)
-        rc = write_ab(run_dir, ab_options, tp_quiet);
-    if (!rc && ((!models_given && usermodel_count() == 0) || full_models || po.nmeasured) && !tmp_dir[0])
-        rc = run_physical(&s, &po, run_dir, tp_quiet);
-    if (!rc)
-        rc = deliver(out_dir, tmp_dir, run_dir, json_path, csv_path);
-    cli_temp_dir_remove(tmp_dir);
-    clsession_close(&s);
-free_measured:
+    int rc = cli_run_engine(&e);
     for (int i = 0; i < po.nmeasured; ++i)
         merl_free(&mats[i]);
     return rc;
