@@ -317,7 +317,8 @@ int main(void)
         o.reps = 1;
         o.min_time = 0.001;
         static struct pbcost_result r;
-        CHECK(pbcost_run(&s, &o, &r, 1) == 0, "pbcost_run");
+        o.io.quiet = 1;
+        CHECK(pbcost_run(&s, &o, &r) == 0, "pbcost_run");
         CHECK(r.count == 11, "rows: pow, phong, blinn, fq2, 2 x Cook-Torrance, Brady, 4 He presets (%d)", r.count);
         for (int i = 0; i < r.count; ++i) {
             CHECK(r.rows[i].check_max_abs_of_peak <= 1e-4, "%s: device vs double %.3g of the peak", r.rows[i].name,

@@ -259,7 +259,7 @@ static void test_render_run(struct cl_session *s)
 
     struct render_options o;
     render_options_default(&o);
-    o.verbose = 0;
+    o.io = (struct engine_io){ out, 1 };
     o.width = 240;
     o.height = 144;
     o.ntime_sizes = 0;
@@ -268,8 +268,10 @@ static void test_render_run(struct cl_session *s)
     o.tess = 4;
     o.nmodels = model_spec_list_parse("phong,cq2,fq2", o.models, RENDER_MAX_MODELS, err,
                                       sizeof err);
-    int rc = render_run(s, &o, out, NULL, err, sizeof err);
-    CHECK(rc == 0, "render_run: rc %d: %s", rc, err);
+    struct render_result rr;
+    int rc = render_run(s, &o, &rr);
+    render_result_free(&rr);
+    CHECK(rc == 0, "render_run: rc %d: %s", rc, rr.err);
     if (rc)
         return;
     snprintf(path, sizeof path, "%s/render.json", out);
@@ -316,11 +318,11 @@ static void test_render_run(struct cl_session *s)
     snprintf(path, sizeof path, "%s/render.json", out);
     char *before = test_read_file(path, &len0);
     o.bunny_path = bad;
-    err[0] = '\0';
-    rc = render_run(s, &o, out, NULL, err, sizeof err);
+    rc = render_run(s, &o, &rr);
+    render_result_free(&rr);
     char want[700];
     snprintf(want, sizeof want, "%s:4:", bad);
-    CHECK(rc == 2 && strstr(err, want) != NULL, "malformed OBJ: rc %d, message '%s'", rc, err);
+    CHECK(rc == 2 && strstr(rr.err, want) != NULL, "malformed OBJ: rc %d, message '%s'", rc, rr.err);
     char *after = test_read_file(path, &len1);
     CHECK(before && after && len0 == len1 && memcmp(before, after, len0) == 0,
           "a failed run changed render.json");
@@ -334,8 +336,9 @@ static void test_render_run(struct cl_session *s)
 
     /* a missing scene file given by the user */
     o.bunny_path = "/nonexistent/bunny.obj";
-    rc = render_run(s, &o, out, NULL, err, sizeof err);
-    CHECK(rc == 2 && strstr(err, "/nonexistent/bunny.obj"), "missing file: rc %d '%s'", rc, err);
+    rc = render_run(s, &o, &rr);
+    render_result_free(&rr);
+    CHECK(rc == 2 && strstr(rr.err, "/nonexistent/bunny.obj"), "missing file: rc %d '%s'", rc, rr.err);
 
     /* sizes: zero, too small for the grid, larger than the device's memory */
     CHECK(render_check_size(s, "--size", 0, 100, 0, err, sizeof err) == 2 &&

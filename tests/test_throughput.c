@@ -223,11 +223,12 @@ static void test_run(struct cl_session *s)
         CHECK(0, "mkdtemp");
         return;
     }
-    char *md = NULL;
-    int rc = throughput_run_md(s, &o, dir, 1, &md);
+    o.io = (struct engine_io){ dir, 1 };
+    struct throughput_result tr = { 0 };
+    int rc = throughput_run(s, &o, &tr);
     CHECK(rc == 0, "throughput_run returned %d", rc);
-    CHECK(md && strstr(md, "| fvol | uniform |"), "markdown table has the fvol row");
-    free(md);
+    CHECK(tr.markdown && strstr(tr.markdown, "| fvol | uniform |"), "markdown table has the fvol row");
+    throughput_result_free(&tr);
     char path[600], err[1024];
     snprintf(path, sizeof path, "%s/throughput.json", dir);
     struct jr_doc d;

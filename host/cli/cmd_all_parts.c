@@ -65,7 +65,8 @@ int all_step_claims(struct all_run *r)
     claims_options(r, &o);
     memset(&rep, 0, sizeof rep);
     all_progress(r, "claims", 0, 1, "reproduce");
-    int rc = reproduce_run_ex(&r->s, r->run_dir, &o, 1, &rep);
+    o.io = (struct engine_io){ r->run_dir, 1 };
+    int rc = reproduce_run(&r->s, &o, &rep);
     if (!rc && !rep.markdown)
         snprintf(r->parts[REPORT_PART_CLAIMS].missing, sizeof r->parts[0].missing,
                  "the claims check ran but gave no table.");
@@ -88,7 +89,8 @@ int all_step_fit(struct all_run *r)
     o.samples = r->set.quick ? 256 : o.samples;
     memset(&rep, 0, sizeof rep);
     all_progress(r, "fit", 0, 1, "fitting");
-    int rc = fit_run(&r->s, r->run_dir, &o, 1, &rep);
+    o.io = (struct engine_io){ r->run_dir, 1 };
+    int rc = fit_run(&r->s, &o, &rep);
     if (!rc) all_step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
     fit_report_free(&rep);
     return rc ? part_failed("the fit", rc) : 0;
@@ -111,20 +113,22 @@ int all_step_throughput(struct all_run *r)
         o.host_c = 0;
         o.sweep = 0;
     }
-    char err[1024], *md = NULL;
+    char err[1024];
+    o.io = (struct engine_io){ r->run_dir, 1 };
     if (throughput_options_check(&o, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: throughput: %s\n", err);
         return EXIT_USAGE;
     }
     all_progress(r, "throughput", 0, 1, "measuring");
-    int rc = throughput_run_md(&r->s, &o, r->run_dir, 1, &md);
+    struct throughput_result res = { 0 };
+    int rc = throughput_run(&r->s, &o, &res);
     if (rc) {
-        free(md);
+        throughput_result_free(&res);
         return part_failed("the throughput measurement", rc);
     }
-    if (md) {
-        rc = write_page(r, REPORT_PART_THROUGHPUT, md);
-        free(md);
+    if (res.markdown) {
+        rc = write_page(r, REPORT_PART_THROUGHPUT, res.markdown);
+        throughput_result_free(&res);
         if (rc) return rc;
     } else {
         snprintf(r->parts[REPORT_PART_THROUGHPUT].missing, sizeof r->parts[0].missing,
@@ -140,7 +144,7 @@ int all_step_throughput(struct all_run *r)
 int all_step_images(struct all_run *r)
 {
     double t = wall_seconds();
-    char err[1024], missing[512] = "";
+    char missing[512] = "";
     struct render_options o;
     render_options_default(&o);
     o.width = r->set.quick ? 320 : 960;
@@ -150,7 +154,7 @@ int all_step_images(struct all_run *r)
     o.time_h[0] = r->set.quick ? 180 : 1080;
     o.reps = r->set.quick ? 1 : 5;
     o.warmup = r->set.quick ? 1 : 2;
-    o.verbose = 0;
+    o.io = (struct engine_io){ r->run_dir, 1 };
     o.nmodels = 0;
     for (int m = 0; m < r->nmodels && o.nmodels < RENDER_MAX_MODELS; m++) o.models[o.nmodels++] = r->models[m];
     if (access(o.teapot_path, R_OK) != 0) {
@@ -164,9 +168,11 @@ int all_step_images(struct all_run *r)
                  " The bunny was left out: %s is missing (Debian package %s).", o.bunny_path, RENDER_BUNNY_PACKAGE);
     }
     all_progress(r, "images", 0, 1, "render");
-    int rc = render_run(&r->s, &o, r->run_dir, NULL, err, sizeof err);
+    struct render_result res;
+    int rc = render_run(&r->s, &o, &res);
+    render_result_free(&res);
     if (rc) {
-        fprintf(stderr, "brdfbench all: image passes: %s\n", err);
+        fprintf(stderr, "brdfbench all: image passes: %s\n", res.err);
         return rc;
     }
     snprintf(r->images_note, sizeof r->images_note, "%s", missing[0] ? missing + 1 : "");
@@ -204,13 +210,14 @@ int all_step_frontier(struct all_run *r)
         o.model_count = n;
     }
     all_progress(r, "frontier", 0, 1, "measuring");
-    char *md = NULL;
-    int rc = frontier_run(&r->s, &o, r->run_dir, 1, &md);
-    if (!rc && md) rc = write_page(r, REPORT_PART_FRONTIER, md);
+    struct frontier_result res = { 0 };
+    o.io = (struct engine_io){ r->run_dir, 1 };
+    int rc = frontier_run(&r->s, &o, &res);
+    if (!rc && res.markdown) rc = write_page(r, REPORT_PART_FRONTIER, res.markdown);
     else if (!rc)
         snprintf(r->parts[REPORT_PART_FRONTIER].missing, sizeof r->parts[0].missing,
                  "the frontier ran but gave no section.");
-    free(md);
+    frontier_result_free(&res);
     if (rc) return part_failed("the frontier", rc);
     all_step_done(r, "frontier", t, "cost against accuracy -> frontier.json, frontier.csv, frontier_*.png");
     return 0;
@@ -221,7 +228,7 @@ int all_step_frontier(struct all_run *r)
 int all_step_measured(struct all_run *r)
 {
     double t = wall_seconds();
-    char err[4600], path[4300];
+    char err[4600];
     char **files = NULL;
     int nfiles = 0;
     struct measured_options o;
@@ -231,12 +238,12 @@ int all_step_measured(struct all_run *r)
     int rc = measured_collect(r->measured_dir, &files, &nfiles, err, sizeof err);
     if (!rc) {
         all_progress(r, "measured", 0, 1, "fitting");
-        rc = measured_run(&r->s, files, nfiles, &o, NULL, &rep, err, sizeof err);
+        o.io = (struct engine_io){ r->run_dir, 1 };
+        o.paths = files;
+        o.count = nfiles;
+        rc = measured_run(&r->s, &o, &rep);
+        snprintf(err, sizeof err, "%s", rep.err);
     }
-    if (!rc && (path_join(path, sizeof path, r->run_dir, "measured.json") ||
-                measured_write_json(path, &rep, &r->s, err, sizeof err) ||
-                measured_write_plots(r->run_dir, &rep, err, sizeof err)))
-        rc = EXIT_RUNTIME;
     if (rc && err[0])
         fprintf(stderr, "brdfbench all: --measured: %s\n", err);
     if (!rc) {

@@ -27,7 +27,9 @@ static int fit_call_objective(const char *flag, const char *value, void *dest, c
 
 static int run_fit(struct cl_session *s, const char *run_dir, int quiet, void *opt)
 {
-    return fit_wants_family(opt) ? fit_family_run(s, run_dir, opt, quiet, NULL) : fit_run(s, run_dir, opt, quiet, NULL);
+    struct fit_options *o = opt;
+    o->io = (struct engine_io){ run_dir, quiet };
+    return fit_wants_family(o) ? fit_family_run(s, o, NULL) : fit_run(s, o, NULL);
 }
 
 int cmd_fit(int argc, char **argv)

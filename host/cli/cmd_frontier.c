@@ -12,7 +12,9 @@
 
 static int run_frontier(struct cl_session *s, const char *run_dir, int quiet, void *opt)
 {
-    return frontier_run(s, opt, run_dir, quiet, NULL);
+    struct frontier_options *o = opt;
+    o->io = (struct engine_io){ run_dir, quiet };
+    return frontier_run(s, o, NULL);
 }
 
 int cmd_frontier(int argc, char **argv)

@@ -15,7 +15,7 @@
 
 /* The measurement and its files: measured.json and the slices' pictures in the run folder. */
 struct measured_job {
-    const struct measured_options *opt;
+    struct measured_options *opt;
     char **files;
     int nfiles;
     struct measured_report rep;
@@ -24,14 +24,12 @@ struct measured_job {
 static int run_measured(struct cl_session *s, const char *run_dir, int quiet, void *ctx)
 {
     struct measured_job *job = ctx;
-    char err[4600] = "", path[4300];
-    int rc = measured_run(s, job->files, job->nfiles, job->opt, quiet ? NULL : stderr, &job->rep, err, sizeof err);
-    if (!rc && (path_join(path, sizeof path, run_dir, "measured.json") ||
-                measured_write_json(path, &job->rep, s, err, sizeof err) ||
-                measured_write_plots(run_dir, &job->rep, err, sizeof err)))
-        rc = EXIT_RUNTIME;
-    if (rc && err[0])
-        fprintf(stderr, "brdfbench measured: %s\n", err);
+    job->opt->io = (struct engine_io){ run_dir, quiet };
+    job->opt->paths = job->files;
+    job->opt->count = job->nfiles;
+    int rc = measured_run(s, job->opt, &job->rep);
+    if (rc && job->rep.err[0])
+        fprintf(stderr, "brdfbench measured: %s\n", job->rep.err);
     return rc;
 }
 
@@ -89,7 +87,6 @@ int cmd_measured(int argc, char **argv)
             measured_paths_free(files, nfiles);
             return cli_parse_exit(&cmd, EXIT_USAGE, err);
         }
-    opt.quiet = e.quiet;
 
     job.files = files;
     job.nfiles = nfiles;

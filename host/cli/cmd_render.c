@@ -28,14 +28,15 @@ static int check_render(struct cl_session *s, void *ctx, char *err, size_t errle
 
 static int run_render(struct cl_session *s, const char *run_dir, int quiet, void *ctx)
 {
-    const struct render_options *o = ctx;
-    char err[1024];
-    (void)quiet;   /* o->verbose says it, with the document on stdout counted */
-    if (o->verbose)
+    struct render_options *o = ctx;
+    o->io = (struct engine_io){ run_dir, quiet };
+    if (!quiet)
         printf("device: %s (%s)\n", s->device_name, s->platform_version);
-    int rc = render_run(s, o, run_dir, NULL, err, sizeof err);
+    struct render_result r;
+    int rc = render_run(s, o, &r);
     if (rc)
-        fprintf(stderr, "brdfbench render: %s\n", err);
+        fprintf(stderr, "brdfbench render: %s\n", r.err);
+    render_result_free(&r);
     return rc;
 }
 
@@ -234,7 +235,6 @@ int cmd_render(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    o.verbose = !e.quiet && !cli_is_stdout(e.json_path);   /* stdout holds the document alone */
     if (!models_text && usermodel_count() > 0)
         models_text = usermodel_names();   /* with a user model and no --models: the user models */
     if (models_text) {
@@ -258,7 +258,7 @@ int cmd_render(int argc, char **argv)
             o.measured[i] = &mats[i];
     }
     int rc = cli_run_engine(&e);
-    if (!rc && o.verbose && !e.tmp_dir[0])
+    if (!rc && !e.quiet && !e.tmp_dir[0])   /* e.quiet: also with the document on stdout */
         printf("written: %s/render.json and %s/render/\n", e.run_dir, e.run_dir);
     for (int i = 0; i < o.nmeasured; ++i)
         merl_free(&mats[i]);

@@ -12,7 +12,9 @@
 
 static int run_reproduce(struct cl_session *s, const char *run_dir, int quiet, void *opt)
 {
-    return reproduce_run_ex(s, run_dir, opt, quiet, NULL);
+    struct reproduce_options *o = opt;
+    o->io = (struct engine_io){ run_dir, quiet };
+    return reproduce_run(s, o, NULL);
 }
 
 int cmd_reproduce(int argc, char **argv)

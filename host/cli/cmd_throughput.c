@@ -131,8 +131,14 @@ static int load_materials(const char *measured_arg, const struct throughput_opti
  * with the user full BRDFs and measured materials. */
 static int run_physical(struct cl_session *s, const struct pbcost_options *po, const char *run_dir, int tp_quiet)
 {
-    if (!s->specialise)
-        return pbcost_run_write(s, po, run_dir, tp_quiet);
+    if (!s->specialise) {
+        struct pbcost_options o = *po;
+        o.io = (struct engine_io){ run_dir, tp_quiet };
+        struct pbcost_result *r = malloc(sizeof *r);
+        int rc = r ? pbcost_run(s, &o, r) : EXIT_RUNTIME;
+        free(r);
+        return rc;
+    }
     /* its kernels are float16 (kernels/throughput.cl, TP_W) */
     fprintf(stderr, "throughput: the physically based models' full-vector table is not run on %s: its kernels "
                     "are float16 only, which this driver compiles for minutes (PoCL runs it)\n",
@@ -144,7 +150,7 @@ static int run_physical(struct cl_session *s, const struct pbcost_options *po, c
  * based models' table (not in a temporary folder: --json or --csv without --out delivers
  * throughput's documents only). */
 struct throughput_job {
-    const struct throughput_options *o;
+    struct throughput_options *o;
     const struct pbcost_options *po;
     const char *ab_options;
     int physical;                          /* the default set, or full BRDFs or measured materials asked for */
@@ -154,7 +160,8 @@ struct throughput_job {
 static int run_throughput(struct cl_session *s, const char *run_dir, int quiet, void *ctx)
 {
     const struct throughput_job *j = ctx;
-    int rc = throughput_run(s, j->o, run_dir, quiet);
+    j->o->io = (struct engine_io){ run_dir, quiet };
+    int rc = throughput_run(s, j->o, NULL);
     if (!rc && j->ab_options)
         rc = write_ab(run_dir, j->ab_options, quiet);
     if (!rc && j->physical && !j->e->tmp_dir[0])

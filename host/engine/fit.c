@@ -32,6 +32,7 @@ static const double half_pi = 1.57079632679489661923;
 
 void fit_options_default(struct fit_options *o)
 {
+    memset(o, 0, sizeof *o);
     o->n_min = 2.0;
     o->n_max = 1000.0;
     o->n_step = 1.0;
@@ -520,9 +521,10 @@ int fit_start(struct cl_session *s, const struct fit_options *o, void *r, size_t
     return 0;
 }
 
-int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
-            struct fit_report *report)
+int fit_run(struct cl_session *s, const struct fit_options *o, struct fit_report *report)
 {
+    const char *out_dir = o->io.out_dir;
+    const int quiet = o->io.quiet;
     char err[1024];
     struct fit_report local;
     struct fit_report *r = report ? report : &local;

@@ -19,6 +19,7 @@
 
 #include "accuracy.h"
 #include "clsession.h"
+#include "engine.h"
 
 #define FIT_COMPARE_COUNT 3          /* fq2, fvol, cq2 */
 #define FIT_TRADEOFF_POINTS 5
@@ -27,6 +28,7 @@
 enum fit_objective { FIT_MAX_REL = 0, FIT_MAX_ABS };
 
 struct fit_options {
+    struct engine_io io;             /* the run folder (NULL: no fit.json) and --quiet (engine.h) */
     double n_min, n_max, n_step;     /* the n grid, as the accuracy sweep's */
     double max_abs_cap;              /* cap on the attenuation zone's max Delta; NAN: none */
     long samples;                    /* samples per zone of the device sweeps */
@@ -102,11 +104,10 @@ struct fit_report {
     double seconds;
 };
 
-/* Runs the fit and the device sweeps; writes out_dir/fit.json when out_dir is not NULL and
- * prints a summary unless quiet. The report is filled when `report` is not NULL (free it with
- * fit_report_free). Returns 0 or an exit code. */
-int fit_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
-            struct fit_report *report);
+/* Runs the fit and the device sweeps; writes o->io.out_dir/fit.json when out_dir is not NULL
+ * and prints a summary unless o->io.quiet. The report is filled when `report` is not NULL (free
+ * it with fit_report_free). Returns 0 or an exit code. */
+int fit_run(struct cl_session *s, const struct fit_options *o, struct fit_report *report);
 /* 1 when the options ask for more than the quadratic family's exact fit (another family, the
  * max_abs objective, a cap on max delta): fit_family_run serves them. */
 int fit_wants_family(const struct fit_options *o);
@@ -154,9 +155,8 @@ void fit_family_figures(const struct model_spec *family, int power_m, const doub
                         long count, struct fit_point *out);
 
 /* Runs a family fit (options with model or power_m set), the device sweep of the result when
- * it is a registry or user model, writes out_dir/fit.json, prints unless quiet. */
-int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
-                   struct fit_family_report *report);
+ * it is a registry or user model, writes o->io.out_dir/fit.json, prints unless o->io.quiet. */
+int fit_family_run(struct cl_session *s, const struct fit_options *o, struct fit_family_report *report);
 void fit_family_report_free(struct fit_family_report *r);
 
 /* Beaudoin and Guardado 2002: for f = max(0, A c + 1 - A)^m against c^n, the A that makes the

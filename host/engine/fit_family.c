@@ -315,9 +315,10 @@ static int fam_fitted_spec(const struct fit_options *o, const struct model_spec 
     return r->spec_text[0] && model_spec_parse(r->spec_text, fitted, err, sizeof err) == 0;
 }
 
-int fit_family_run(struct cl_session *s, const char *out_dir, const struct fit_options *o, int quiet,
-                   struct fit_family_report *report)
+int fit_family_run(struct cl_session *s, const struct fit_options *o, struct fit_family_report *report)
 {
+    const char *out_dir = o->io.out_dir;
+    const int quiet = o->io.quiet;
     char err[1024];
     struct fit_family_report local;
     struct fit_family_report *r = report ? report : &local;

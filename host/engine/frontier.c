@@ -6,8 +6,8 @@
 #include "frontier_report.h"
 #include "accuracy.h"
 #include "exitcodes.h"
-#include "jsonr.h"
 #include "outdir.h"
+#include "rdoc_read.h"
 #include "render.h"
 #include "throughput.h"
 
@@ -183,54 +183,64 @@ static int frontier_psnr(struct cl_session *s, struct frontier_report *r, const 
     ro.height = r->opt.image_h;
     ro.ntime_sizes = 0;
     ro.write_images = 0;
-    ro.verbose = 0;
+    char dir[4200], path[4300];
+    path_join(dir, sizeof dir, out_dir, "frontier_teapot");
+    ro.io = (struct engine_io){ dir, 1 };
     ro.nmodels = 0;
     for (int i = 0; i < r->count && ro.nmodels < RENDER_MAX_MODELS; ++i)
         ro.models[ro.nmodels++] = r->rows[i].spec;
-    char dir[4200], err[1024], path[4300];
-    path_join(dir, sizeof dir, out_dir, "frontier_teapot");
-    int rc = render_run(s, &ro, dir, NULL, err, sizeof err);
+    struct render_result res;
+    int rc = render_run(s, &ro, &res);
+    render_result_free(&res);
     if (rc) {
         for (int i = 0; i < r->count; ++i)
             snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason, "the teapot pass failed (exit %d)", rc);
-        fprintf(stderr, "brdfbench frontier: teapot pass: %s\n", err);
+        fprintf(stderr, "brdfbench frontier: teapot pass: %s\n", res.err);
         return rc == EXIT_USAGE ? 0 : (rc == EXIT_RUNTIME ? 0 : rc);   /* a missing scene file leaves the PSNR out */
     }
     path_join(path, sizeof path, dir, "render.json");
-    struct jr_doc doc;
-    if (jr_parse_file(path, &doc, err, sizeof err)) {
+    struct rdoc doc;
+    char err[1024];
+    if (rdoc_read_file(path, &doc, err, sizeof err)) {
         fprintf(stderr, "brdfbench frontier: %s\n", err);
         return 0;
     }
-    const struct jr_value *scenes = jr_get(&doc.root, "scenes");
-    for (size_t k = 0; scenes && scenes->type == JR_ARR && k < scenes->count; ++k) {
-        const struct jr_value *sc = &scenes->items[k], *name = jr_get(sc, "scene"), *models = jr_get(sc, "models");
-        if (!name || name->type != JR_STR || strcmp(name->str, "teapot") || !models || models->type != JR_ARR)
+    /* the teapot's image rows (keys scene "teapot WxH" and model; its timing rows have none) */
+    for (int k = 0; k < doc.nrows; ++k) {
+        const struct rd_row *row = &doc.rows[k];
+        const char *scene = rd_row_key_value(row, "scene"), *model = rd_row_key_value(row, "model");
+        if (!scene || !model || strncmp(scene, "teapot ", 7) != 0)
             continue;
-        for (size_t j = 0; j < models->count; ++j) {
-            const struct jr_value *m = &models->items[j], *label = jr_get(m, "model"), *met = jr_get(m, "metrics");
-            const struct jr_value *psnr = met ? jr_get(met, "psnr_db") : NULL;
-            if (!label || label->type != JR_STR)
+        const struct rd_metric *psnr = rd_row_find(row, "psnr_db");
+        for (int i = 0; i < r->count; ++i) {
+            if (strcmp(r->rows[i].spec.label, model) != 0)
                 continue;
-            for (int i = 0; i < r->count; ++i)
-                if (strcmp(r->rows[i].spec.label, label->str) == 0) {
-                    if (psnr && psnr->type == JR_NUM) {
-                        r->rows[i].psnr_db = psnr->num;
-                        r->rows[i].psnr_reason[0] = '\0';
-                    } else {
-                        snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason,
-                                 "identical to its reference: PSNR is infinite");
-                    }
-                }
+            if (!row->ok) {
+                snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason, "the teapot pass: %.200s",
+                         row->reason);
+            } else if (psnr && isfinite(psnr->value)) {
+                r->rows[i].psnr_db = psnr->value;
+                r->rows[i].psnr_reason[0] = '\0';
+            } else {
+                snprintf(r->rows[i].psnr_reason, sizeof r->rows[i].psnr_reason,
+                         "identical to its reference: PSNR is infinite");
+            }
         }
     }
-    jr_free(&doc);
+    rdoc_free(&doc);
     return 0;
 }
 
-int frontier_run(struct cl_session *s, const struct frontier_options *o, const char *out_dir, int quiet,
-                 char **markdown)
+void frontier_result_free(struct frontier_result *r)
 {
+    free(r->markdown);
+    r->markdown = NULL;
+}
+
+int frontier_run(struct cl_session *s, const struct frontier_options *o, struct frontier_result *res)
+{
+    const char *out_dir = o->io.out_dir;
+    const int quiet = o->io.quiet;
     char err[1024];
     double t0 = wall_seconds();
     struct frontier_report *r = calloc(1, sizeof *r);
@@ -300,8 +310,8 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, const c
     }
     if (!quiet)
         frontier_print(stdout, r);
-    if (markdown)
-        *markdown = frontier_markdown(r);
+    if (res)
+        res->markdown = frontier_markdown(r);
 done:
     free(r);
     return rc;

@@ -13,6 +13,7 @@
 #include <stddef.h>
 
 #include "clsession.h"
+#include "engine.h"
 #include "models.h"
 
 #define FRONTIER_MAX_MODELS 32
@@ -39,6 +40,7 @@ struct frontier_row {
 };
 
 struct frontier_options {
+    struct engine_io io;              /* the run folder and --quiet (engine.h) */
     struct model_spec models[FRONTIER_MAX_MODELS];
     int model_count;                  /* 0: frontier_default_models */
     long samples;                     /* accuracy sweep samples per zone */
@@ -71,10 +73,15 @@ struct model_ops frontier_ops_of(const struct model_info *info);
 void frontier_pareto(const double *rate_lo, const double *rate_hi, const double *max_rel, const double *max_abs,
                      int count, int *on_front);
 
-/* Measures, writes out_dir/frontier.json, frontier.csv, frontier_max_rel.png,
- * frontier_max_abs.png, prints the table unless quiet; *markdown (may be NULL) receives the
- * "Which lobe to ship" section (malloc'd). Returns 0 or an exit code. */
-int frontier_run(struct cl_session *s, const struct frontier_options *o, const char *out_dir, int quiet,
-                 char **markdown);
+/* What a run gives back: the "Which lobe to ship" section for report.md (malloc'd). */
+struct frontier_result {
+    char *markdown;
+};
+void frontier_result_free(struct frontier_result *r);
+
+/* Measures, writes o->io.out_dir's frontier.json, frontier.csv, frontier_max_rel.png and
+ * frontier_max_abs.png, prints the table unless o->io.quiet. Returns 0 or an exit code. res
+ * may be NULL. */
+int frontier_run(struct cl_session *s, const struct frontier_options *o, struct frontier_result *res);
 
 #endif

@@ -1,7 +1,9 @@
 /* measured.c - the measurement of `brdfbench measured` (measured.h): the fits by GSL's nonlinear
  * least squares, each lobe's error against the material and against the fitted Blinn-Phong, the
- * slices of the pictures and the device lookup's check. Writes no file (measured_report.c). */
+ * slices of the pictures and the device lookup's check. measured_run ends by writing measured.json and
+ * the pictures through measured_report.c's writers. */
 #include "measured.h"
+#include "measured_report.h"
 
 #include "exitcodes.h"
 #include "outdir.h"
@@ -223,7 +225,7 @@ static int fit_starts(const struct fit_data *d, double x[FIT_MAX_STARTS][4])
 
 /* Fits model d->model by gsl_multifit_nlinear (Levenberg-Marquardt on the trust-region
  * driver, finite-difference Jacobian) from each of fit_starts; the fit of least cost is kept. */
-static void fit_run(const struct fit_data *d, struct measured_fit *out)
+static void fit_material(const struct fit_data *d, struct measured_fit *out)
 {
     size_t p = d->model == MFIT_BLINN ? 3 : 4;
     double starts[FIT_MAX_STARTS][4];
@@ -370,7 +372,7 @@ static void measured_fits(const struct cell_geo *cells, long used, const long *p
             continue;
         }
         struct fit_data d = { cells, pick, npick, k };
-        fit_run(&d, &out->fit[k]);
+        fit_material(&d, &out->fit[k]);
         double sum = 0;
         const struct measured_fit *f = &out->fit[k];
         for (long i = 0; i < used; ++i) {
@@ -577,10 +579,14 @@ int measured_load(const char *flag, const char *arg, int max, struct merl_materi
     return rc;
 }
 
-int measured_run(struct cl_session *s, char *const *paths, int count, const struct measured_options *o,
-                 FILE *progress, struct measured_report *out, char *err, size_t errlen)
+int measured_run(struct cl_session *s, const struct measured_options *o, struct measured_report *out)
 {
     memset(out, 0, sizeof *out);
+    char *err = out->err;
+    const size_t errlen = sizeof out->err;
+    char *const *paths = o->paths;
+    const int count = o->count;
+    FILE *progress = o->io.quiet ? NULL : stderr;
     out->opt = *o;
     out->materials = calloc((size_t)(count > 0 ? count : 1), sizeof *out->materials);
     if (!out->materials) {
@@ -602,9 +608,16 @@ int measured_run(struct cl_session *s, char *const *paths, int count, const stru
         else
             out->count++;
     }
-    if (rc)
+    if (rc) {
         out->count = 0;
-    return rc;
+        return rc;
+    }
+    char path[4300];
+    if (o->io.out_dir && (path_join(path, sizeof path, o->io.out_dir, "measured.json") ||
+                          measured_write_json(path, out, s, err, errlen) ||
+                          measured_write_plots(o->io.out_dir, out, err, errlen)))
+        return EXIT_RUNTIME;
+    return 0;
 }
 
 void measured_report_free(struct measured_report *r)

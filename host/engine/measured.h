@@ -19,6 +19,7 @@
 #include <stdio.h>
 
 #include "clsession.h"
+#include "engine.h"
 #include "merl.h"
 #include "models.h"
 
@@ -42,7 +43,10 @@ struct measured_options {
     int skip_physical;                    /* 1: no Cook-Torrance fits (their entries NaN, "not run") */
     int nlobes;
     struct model_spec lobes[MEASURED_MAX_LOBES];
-    int quiet;
+    struct engine_io io;                  /* the run folder (measured.json, the slices' pictures; NULL:
+                                             none written) and --quiet: no progress (engine.h) */
+    char *const *paths;                   /* the MERL files of measured_run */
+    int count;
 };
 
 struct measured_fit {
@@ -97,6 +101,7 @@ struct measured_report {
     struct measured_options opt;
     int count;
     struct measured_material *materials;
+    char err[4600];                       /* measured_run's message (empty when it is on stderr already) */
 };
 
 /* Appends to *paths (count *count, malloc'd strings) arg itself, or when arg is a folder its
@@ -111,12 +116,14 @@ void measured_paths_free(char **paths, int count);
 int measured_load(const char *flag, const char *arg, int max, struct merl_material *out, int *count, char *err,
                   size_t errlen);
 
-/* Reads and measures each file in turn (one table in memory at a time) into out (its
- * materials allocated here; measured_report_free). progress (may be NULL) gets a line per
- * material. Returns 0, EXIT_USAGE with the reader's message in err when a file is malformed
- * (out then holds nothing), or an exit code (err empty when the message is already on stderr). */
-int measured_run(struct cl_session *s, char *const *paths, int count, const struct measured_options *o,
-                 FILE *progress, struct measured_report *out, char *err, size_t errlen);
+/* Reads and measures each file of o->paths in turn (one table in memory at a time) into out
+ * (its materials allocated here; measured_report_free), a progress line per material on stderr
+ * unless o->io.quiet, then writes measured.json and the slices' pictures into o->io.out_dir.
+ * Returns 0, EXIT_USAGE with the reader's message in out->err when a file is malformed (out
+ * then holds no material), or an exit code (out->err empty when the message is already on
+ * stderr). Like render's, the message is left to the caller, which runs it as a command or as
+ * a step of all. */
+int measured_run(struct cl_session *s, const struct measured_options *o, struct measured_report *out);
 void measured_report_free(struct measured_report *r);
 
 #endif

@@ -6,6 +6,7 @@
 #include "programs.h"
 
 #include "exitcodes.h"
+#include "outdir.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -437,8 +438,9 @@ done:
     return rc;
 }
 
-int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r, int quiet)
+static int pbcost_measure(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r)
 {
+    const int quiet = o->io.quiet;
     memset(r, 0, sizeof *r);
     r->o = *o;
     double t0 = wall_seconds();
@@ -555,4 +557,20 @@ done:
     if (prog)
         clReleaseProgram(prog);
     return rc;
+}
+
+int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r)
+{
+    int rc = pbcost_measure(s, o, r);
+    if (rc || !o->io.out_dir)
+        return rc;
+    char path[4200], err[512];
+    path_join(path, sizeof path, o->io.out_dir, "physical.json");
+    if (pbcost_write_json(path, s, r, err, sizeof err)) {
+        fprintf(stderr, "brdfbench: %s\n", err);
+        return EXIT_RUNTIME;
+    }
+    if (!o->io.quiet)
+        pbcost_print_table(stdout, r);
+    return 0;
 }

@@ -12,6 +12,7 @@
 #include <stdio.h>
 
 #include "clsession.h"
+#include "engine.h"
 #include "merl.h"
 #include "models.h"
 
@@ -23,6 +24,7 @@
 #define PBCOST_TERMS_RATIO 6     /* sigma0 / lambda = 0.01, 0.05, 0.1, 0.2, 0.5, 1 */
 
 struct pbcost_options {
+    struct engine_io io;         /* the run folder (physical.json; NULL: none written) and --quiet (engine.h) */
     double n;                    /* shininess of the lobes and of alpha(n) (default 100) */
     int reps;                    /* timed launches per row (default 9) */
     double min_time;             /* seconds one timed launch lasts at least (default 0.02) */
@@ -68,13 +70,11 @@ struct pbcost_result {
     double seconds;
 };
 
-/* Measures every row. Returns 0 or an exit code (a message on stderr). */
-int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r, int quiet);
-
-/* The default measurement with the user full BRDFs registered and the measured materials of
- * o (NULL: none), written to out_dir/physical.json, the table on stdout unless quiet
- * (`brdfbench throughput` runs it beside its own rows). Returns 0 or an exit code. */
-int pbcost_run_write(struct cl_session *s, const struct pbcost_options *o, const char *out_dir, int quiet);
+/* Measures every row (progress on stderr unless o->io.quiet); with o->io.out_dir, writes
+ * physical.json there and prints the table on stdout unless quiet (`brdfbench throughput` runs
+ * it beside its own rows; reproduce reads the rows alone). Returns 0 or an exit code (a message
+ * on stderr). */
+int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbcost_result *r);
 
 /* The number of terms He's directional-diffuse sum takes (double host, float-resolution
  * stopping rule) for unit vectors given by their cosines, with the rough aluminium preset's

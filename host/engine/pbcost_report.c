@@ -172,27 +172,3 @@ void pbcost_print_table(FILE *f, const struct pbcost_result *r)
     if (r->o.nmeasured)
         fprintf(f, "  note: %s\n", PBCOST_LOOKUP_NOTE);
 }
-
-int pbcost_run_write(struct cl_session *s, const struct pbcost_options *given, const char *out_dir, int quiet)
-{
-    struct pbcost_options o;
-    pbcost_options_default(&o);
-    if (given)
-        o = *given;
-    struct pbcost_result *r = malloc(sizeof *r);
-    if (!r)
-        return EXIT_RUNTIME;
-    int rc = pbcost_run(s, &o, r, quiet);
-    if (rc == 0) {
-        char path[4200], err[512];
-        path_join(path, sizeof path, out_dir, "physical.json");
-        if (pbcost_write_json(path, s, r, err, sizeof err)) {
-            fprintf(stderr, "brdfbench: %s\n", err);
-            rc = EXIT_RUNTIME;
-        } else if (!quiet) {
-            pbcost_print_table(stdout, r);
-        }
-    }
-    free(r);
-    return rc;
-}

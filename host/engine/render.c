@@ -66,8 +66,7 @@ void render_options_default(struct render_options *o)
     o->teapot_path = RENDER_TEAPOT_PATH;
     o->bunny_path = RENDER_BUNNY_PATH;
     o->write_images = 1;
-    o->verbose = 1;
-}
+    }
 
 int render_check_size(const struct cl_session *s, const char *what, long width, long height,
                       int nmodels_rows, char *err, size_t errlen)
@@ -171,10 +170,10 @@ static int run_scene(struct render_device *dev, const struct scene_data *scene, 
     snprintf(sr->source, sizeof sr->source, "%s", sd.source);
     sr->triangles = sd.mesh.ntris;
     sr->patches = sd.patches;
-    if (o->verbose)
+    if (!o->io.quiet)
         render_print_scene(sr);
     int rc = image_pass(dev, &sd, o, stage, sr, err, errlen);
-    if (rc == 0 && o->verbose)
+    if (rc == 0 && !o->io.quiet)
         render_print_check(sr, o->nmodels);
     if (rc == 0 && o->he_material >= 0 && si != RENDER_SPHERES)
         rc = he_pass(dev, &sd, o, stage, sr, err, errlen);
@@ -188,7 +187,7 @@ static int run_scene(struct render_device *dev, const struct scene_data *scene, 
     if (rc)
         return rc;
     sr->done = 1;
-    if (o->verbose) {
+    if (!o->io.quiet) {
         render_print_timings(sr);
         printf("  (%s: %.1f s)\n", render_scene_names[si], wall_seconds() - t0);
     }
@@ -223,13 +222,20 @@ static int stage_commit(const char *out_dir, char *stage, char *old_dir, size_t 
     return 0;
 }
 
-int render_run(struct cl_session *s, const struct render_options *o, const char *out_dir,
-               char **summary_md, char *err, size_t errlen)
+void render_result_free(struct render_result *r)
 {
+    free(r->summary_md);
+    r->summary_md = NULL;
+}
+
+int render_run(struct cl_session *s, const struct render_options *o, struct render_result *r)
+{
+    const char *out_dir = o->io.out_dir;
+    char *err = r->err;
+    const size_t errlen = sizeof r->err;
     int rc = 0;
     err[0] = '\0';
-    if (summary_md)
-        *summary_md = NULL;
+    r->summary_md = NULL;
     if ((rc = run_check(s, o, err, errlen)))
         return rc;
 
@@ -266,8 +272,7 @@ int render_run(struct cl_session *s, const struct render_options *o, const char 
         rc = EXIT_RUNTIME;
         goto done;
     }
-    if (summary_md)
-        *summary_md = render_summary_markdown(o, res, s);
+    r->summary_md = render_summary_markdown(o, res, s);
 done:
     for (int si = 0; si < RENDER_SCENE_COUNT; si++)
         mesh_free(&scenes[si].mesh);

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "clsession.h"
+#include "engine.h"
 #include "merl.h"
 #include "models.h"
 
@@ -29,6 +30,7 @@ enum render_scene { RENDER_SPHERES = 0, RENDER_TEAPOT, RENDER_BUNNY, RENDER_SCEN
 #define RENDER_BUNNY_PACKAGE "glmark2-data"
 
 struct render_options {
+    struct engine_io io;               /* the run folder and --quiet: progress and the table (engine.h) */
     int scene_on[RENDER_SCENE_COUNT];  /* which scenes to render */
     int width, height;                 /* image pass size */
     int ntime_sizes;                   /* timing sizes (0: no timing) */
@@ -48,7 +50,6 @@ struct render_options {
     const char *teapot_path, *bunny_path;
     int he_material;                   /* He comparison on the meshes: a preset of the model he, -1: none */
     int write_images;                  /* PNGs (image, error image, contact sheet) */
-    int verbose;                       /* progress and the table on stdout */
     int nmeasured;                     /* measured materials on the meshes (--measured) */
     const struct merl_material *measured[4];
 };
@@ -65,15 +66,23 @@ void render_options_default(struct render_options *o);
 int render_check_size(const struct cl_session *s, const char *what, long width, long height,
                       int nmodels_rows, char *err, size_t errlen);
 
+/* What a run gives back: a markdown summary (tables of metrics and speeds, the sphere grid's
+ * contact sheet) for a report (malloc'd), and the message of a failure. Unlike the other
+ * engines, render leaves its message to the caller (r->err), because it also runs inside them
+ * (the frontier's teapot pass, all's image passes), which name the pass. */
+struct render_result {
+    char *summary_md;
+    char err[1024];
+};
+void render_result_free(struct render_result *r);
+
 /* Runs every selected scene: images and metrics at width x height, timings at each timing
- * size; writes out_dir/render.json and out_dir/render/<scene>/ *.png. The files of a run
- * are staged and moved into place at the end, so a failed run leaves the previous results
- * as they were. summary_md (may be NULL) receives a malloc'd markdown summary (tables of
- * metrics and speeds, the sphere grid's contact sheet) for a report.
+ * size; writes o->io.out_dir/render.json and render/<scene>/ *.png, progress and the table
+ * on stdout unless o->io.quiet. The files of a run are staged and moved into place at the
+ * end, so a failed run leaves the previous results as they were.
  * Returns 0, 2 (bad input: size, malformed scene file), 3 (runtime, or a scene's Debian
- * file missing), with a one-line message in err. */
-int render_run(struct cl_session *s, const struct render_options *o, const char *out_dir,
-               char **summary_md, char *err, size_t errlen);
+ * file missing), with a one-line message in r->err. */
+int render_run(struct cl_session *s, const struct render_options *o, struct render_result *r);
 
 /* --- pieces exposed for the tests ------------------------------------------------------ */
 

@@ -283,7 +283,7 @@ int he_pass(struct render_device *dev, const struct scene_data *sd, const struct
         hc->count++;
     }
     hc->done = 1;
-    if (o->verbose)
+    if (!o->io.quiet)
         render_print_he(sd->kind, hc);
     goto done;
 fail:

@@ -266,7 +266,7 @@ int image_pass(struct render_device *dev, const struct scene_data *sd,
             grid_add_rows(&im, off, n, mr->metrics.peak_reference);
         if (o->write_images && model_pictures(scene_dir, sd->kind, m, mr, w, &im, err, errlen) != 0)
             goto io_fail;
-        if (o->verbose)
+        if (!o->io.quiet)
             render_print_model(sd->kind, m->label, mr);
     }
     if (im.grid_m && o->write_images && write_sphere_grid(scene_dir, o, w, h, &im, res, err, errlen) != 0)
@@ -305,7 +305,7 @@ int measured_scene(struct render_device *dev, const struct scene_data *sd, const
     for (int k = 0; rc == 0 && k < o->nmeasured && k < RENDER_MAX_MEASURED; ++k) {
         rc = render_measured_pass(dev, &g, &lt, o, o->measured[k], scene_dir, &res->measured[k], err, errlen);
         res->nmeasured = k + 1;
-        if (rc == 0 && o->verbose)
+        if (rc == 0 && !o->io.quiet)
             render_print_measured(sd->kind, &res->measured[k]);
     }
     gbuffer_free(&g);

@@ -158,7 +158,7 @@ int render_measured_pass(struct render_device *dev, const struct gbuffer *g, con
     struct measured_options mo;
     measured_options_default(&mo);
     mo.nlobes = 0;
-    mo.quiet = 1;
+    mo.io.quiet = 1;
     if ((rc = measured_material_run(s, mat, &mo, mm)) != 0 || (rc = merl_table_buffer(s, mat, &dev->merl_table)))
         goto done;
     gbuf = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, g->stride * GB_NPLANES * sizeof(float),

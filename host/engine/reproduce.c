@@ -19,6 +19,7 @@
 
 void reproduce_options_default(struct reproduce_options *o)
 {
+    memset(o, 0, sizeof *o);
     o->samples = ACC_DEFAULT_SAMPLES;
     o->grid_check = 1;
     o->q_min = 0.01;
@@ -466,9 +467,10 @@ static void repro_free(struct repro *p)
     energy_summary_free(&p->energy);
 }
 
-int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct reproduce_options *o, int quiet,
-                     struct reproduce_report *report)
+int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struct reproduce_report *report)
 {
+    const char *out_dir = o->io.out_dir;
+    const int quiet = o->io.quiet;
     char err[1024];
     struct reproduce_report local;
     struct reproduce_report *r = report ? report : &local;
@@ -505,7 +507,8 @@ int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct rep
             fprintf(stderr, "reproduce: cost of the physically based models...\n");
         struct pbcost_options po;
         pbcost_options_default(&po);
-        rc = pbcost_run(s, &po, &p.physical, quiet);
+        po.io.quiet = quiet;   /* no folder: reproduce writes the rows with its own files */
+        rc = pbcost_run(s, &po, &p.physical);
         p.have_physical = rc == 0;
     }
     if (!rc)

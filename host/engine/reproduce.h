@@ -16,9 +16,11 @@
 #include <stddef.h>
 
 #include "clsession.h"
+#include "engine.h"
 
 
 struct reproduce_options {
+    struct engine_io io;     /* the run folder and --quiet (engine.h) */
     long samples;            /* samples per zone of the claim sweeps (default 4096) */
     int grid_check;          /* re-run each claim sweep at twice the samples (default 1) */
     double q_min, q_max, q_step;   /* the Q sweep behind paper 2's figs. 2-3 */
@@ -54,10 +56,10 @@ struct reproduce_report {
     double seconds;
 };
 
-/* Same with options; fills `report` when not NULL (free with reproduce_report_free): the
- * rows and claims.md's markdown, for the main job's report. */
-int reproduce_run_ex(struct cl_session *s, const char *out_dir, const struct reproduce_options *o, int quiet,
-                     struct reproduce_report *report);
+/* Checks every claim and writes claims.json, claims.md, q_sweep.json (and energy.json) into
+ * o->io.out_dir, the table on stdout unless o->io.quiet; fills `report` when not NULL (free
+ * with reproduce_report_free): the rows and claims.md's markdown, for the main job's report. */
+int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struct reproduce_report *report);
 void reproduce_report_free(struct reproduce_report *r);
 
 

@@ -659,13 +659,13 @@ done:
     return rc;
 }
 
-int throughput_run(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet)
+int throughput_run(struct cl_session *s, const struct throughput_options *o, struct throughput_result *r)
 {
-    return tp_run_all(s, o, out_dir, quiet, NULL);
+    return tp_run_all(s, o, o->io.out_dir, o->io.quiet, r ? &r->markdown : NULL);
 }
 
-int throughput_run_md(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet,
-                      char **markdown)
+void throughput_result_free(struct throughput_result *r)
 {
-    return tp_run_all(s, o, out_dir, quiet, markdown);
+    free(r->markdown);
+    r->markdown = NULL;
 }

@@ -13,6 +13,7 @@
 
 #include "schemas.h"
 #include "accuracy.h"
+#include "engine.h"
 #include "clsession.h"
 #include "models.h"
 #include "brdf_shared.h"   /* TP_STREAMS, PEAK_CHAINS */
@@ -41,6 +42,7 @@ const char *tp_variant_options(int v);   /* "", "-cl-fast-relaxed-math", "-cl-de
 const char *tp_nmode_name(int m);        /* "uniform", "varying" */
 
 struct throughput_options {
+    struct engine_io io;         /* the run folder and --quiet (engine.h) */
     struct model_spec models[TP_MAX_MODELS];
     int model_count;             /* 0: every model of the default set */
     int reps;                    /* rounds of the runner: timed launches per figure, 1..TP_MAX_REPS */
@@ -67,15 +69,18 @@ void throughput_options_default(struct throughput_options *o);
 /* Checks every field against its domain. Returns 0 or EXIT_USAGE with a one-line message. */
 int throughput_options_check(const struct throughput_options *o, char *err, size_t errlen);
 
-/* Measures, prints a table on stdout unless quiet, and writes out_dir/throughput.json and
- * out_dir/throughput.csv. A figure that cannot be measured (build failure, timer error) is a
- * row with status and reason, not a failure of the run. Returns 0 or an exit code (EXIT_RUNTIME
- * when the results cannot be written or the device fails outright). */
-int throughput_run(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet);
-/* The same, and *markdown (malloc'd, caller frees; NULL on failure) receives the summary
- * tables as markdown, for report.md. */
-int throughput_run_md(struct cl_session *s, const struct throughput_options *o, const char *out_dir, int quiet,
-                      char **markdown);
+/* What a run gives back: the summary tables as markdown, for report.md (malloc'd; NULL on
+ * failure). */
+struct throughput_result {
+    char *markdown;
+};
+void throughput_result_free(struct throughput_result *r);
+
+/* Measures, prints a table on stdout unless o->io.quiet, and writes o->io.out_dir's
+ * throughput.json and throughput.csv. A figure that cannot be measured (build failure, timer
+ * error) is a row with status and reason, not a failure of the run. Returns 0 or an exit code
+ * (EXIT_RUNTIME when the results cannot be written or the device fails outright). r may be NULL. */
+int throughput_run(struct cl_session *s, const struct throughput_options *o, struct throughput_result *r);
 
 /* ---- lower level, for tests ------------------------------------------------------------ */
 
