@@ -4,10 +4,10 @@
 #include "throughput_report.h"
 #include "context.h"
 #include "jsonw.h"
+#include "mdbuf.h"
 #include "outdir.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -388,64 +388,27 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     return jw_write_file_free(&w, path, err, errlen);
 }
 
-/* A growable text buffer for the CSV and the markdown. */
-struct tp_text {
-    char *s;
-    size_t len, cap;
-    int failed;
-};
-
-static void tx_printf(struct tp_text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void tx_printf(struct tp_text *t, const char *fmt, ...)
-{
-    if (t->failed)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int n = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
-        va_end(ap);
-        if (n < 0) {
-            t->failed = 1;
-            return;
-        }
-        if (t->s && t->len + (size_t)n < t->cap) {
-            t->len += (size_t)n;
-            return;
-        }
-        size_t cap = t->cap ? t->cap : 4096;
-        while (cap <= t->len + (size_t)n)
-            cap *= 2;
-        char *ns = realloc(t->s, cap);
-        if (!ns) {
-            t->failed = 1;
-            return;
-        }
-        t->s = ns;
-        t->cap = cap;
-    }
-}
-
 /* A number for CSV: empty when missing. */
-static void tx_num(struct tp_text *t, double v)
+static void tx_num(struct md_buf *t, double v)
 {
     if (isfinite(v))
-        tx_printf(t, ",%.6g", v);
+        md_printf(t, ",%.6g", v);
     else
-        tx_printf(t, ",");
+        md_printf(t, ",");
 }
 
 int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t errlen)
 {
-    struct tp_text t = { 0 };
-    tx_printf(&t, "model,label,variant,build_options,n_mode,status,evals_per_s_min,evals_per_s_median,"
+    struct md_buf t;
+    md_init(&t);
+    md_printf(&t, "model,label,variant,build_options,n_mode,status,evals_per_s_min,evals_per_s_median,"
                   "evals_per_s_max,evals_per_s_wall_median,ratio_to_reference,ratio_to_model_reference,"
                   "ratio_to_host_c,fraction_of_peak,host_c_evals_per_s_median,max_diff_of_peak,reason\n");
     for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
         const struct tp_entry *e = &r->e[i];
         const struct tp_figure *f = &e->dev[v][m];
         struct tp_ratios q = ratios_of(r, i, v, m);
-        tx_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
+        md_printf(&t, "\"%s\",\"%s\",\"%s\",\"%s\",\"%s\",\"%s\"", e->m ? e->m->info->id : "pow", e->label,
                   tp_variant_name(v), r->options[v], nmode_names[m], f->ok ? "ok" : "failed");
         tx_num(&t, f->ok ? f->rate.min : NAN);
         tx_num(&t, f->ok ? f->rate.median : NAN);
@@ -458,13 +421,9 @@ int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t err
         tx_num(&t, e->hostc[m].ok ? e->hostc[m].rate.median : NAN);
         tx_num(&t, e->acc_max_diff[v]);
         /* reasons never hold a double quote: they are written by this program */
-        tx_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
+        md_printf(&t, ",\"%s\"\n", f->ok ? "" : f->reason);
     }
-    int rc = t.failed ? -1 : write_file_atomic(path, t.s, t.len, err, errlen);
-    if (t.failed)
-        snprintf(err, errlen, "out of memory writing %.900s", path);
-    free(t.s);
-    return rc;
+    return md_write_file_free(&t, path, err, errlen);
 }
 
 /* A figure in G/s with 3 significant digits, or a dash. */
@@ -510,24 +469,24 @@ static int variant_cell(const struct tp_entry *e, int vv, int m, char *cell, siz
 }
 
 /* The device peak and the default build options' table. */
-static void table_default(const struct tp_run *r, struct tp_text *t, int md)
+static void table_default(const struct tp_run *r, struct md_buf *t, int md)
 {
     const struct throughput_options *o = r->o;
     char a[32], b[32], c[32], d[32], e2[32], f2[32], g2[32], h2[32];
     if (r->peak.ok)
-        tx_printf(t, "%sdevice peak: %.4g GFLOP/s (float16 FMA chains) = %.4g G FMA/s; fraction of peak = evaluations/s "
+        md_printf(t, "%sdevice peak: %.4g GFLOP/s (float16 FMA chains) = %.4g G FMA/s; fraction of peak = evaluations/s "
                      "per FMA/s\n\n", md ? "" : "", r->peak.rate.median * 1e-9, peak_fma_per_s(r) * 1e-9);
     else
-        tx_printf(t, "device peak: not measured (%s)\n\n", r->peak.reason);
+        md_printf(t, "device peak: not measured (%s)\n\n", r->peak.reason);
     int v = TP_VARIANT_DEFAULT;
     if (variant_on(r, v)) {
-        tx_printf(t, "%sG evaluations/s, default build options (median of %d launches, profiling events; "
+        md_printf(t, "%sG evaluations/s, default build options (median of %d launches, profiling events; "
                      "tuned C: %d threads)%s\n\n", md ? "**" : "", o->reps, r->threads, md ? "**" : "");
         if (md)
-            tx_printf(t, "| model | n | G evals/s | min - max | x pow() | x model ref | x tuned C | of peak | C G evals/s |\n"
+            md_printf(t, "| model | n | G evals/s | min - max | x pow() | x model ref | x tuned C | of peak | C G evals/s |\n"
                          "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
         else
-            tx_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", "model", "n", "G evals/s", "min - max",
+            md_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", "model", "n", "G evals/s", "min - max",
                       "x pow()", "x ref", "x tuned C", "of peak", "C G/s");
         for (int m = 0; m < TP_NMODE_COUNT; ++m)
             for (int i = 0; i < r->nentries; ++i) {
@@ -542,42 +501,42 @@ static void table_default(const struct tp_run *r, struct tp_text *t, int md)
                 else
                     snprintf(range, sizeof range, "failed");
                 const char *label = e->m ? e->label : "pow() built-in";
-                tx_printf(t, md ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
+                md_printf(t, md ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
                                 : "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
                           gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
                           xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
                           xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
                           gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
             }
-        tx_printf(t, "\n");
+        md_printf(t, "\n");
     }
 }
 
 /* Build options: speed beside accuracy. */
-static void table_variants(const struct tp_run *r, struct tp_text *t, int md)
+static void table_variants(const struct tp_run *r, struct md_buf *t, int md)
 {
     int nvar = 0;
     for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
         nvar += variant_on(r, vv);
     if (nvar > 1 || !variant_on(r, TP_VARIANT_DEFAULT)) {
-        tx_printf(t, "%sbuild options: G evaluations/s (x default) | max |device - double| / reference peak%s\n\n",
+        md_printf(t, "%sbuild options: G evaluations/s (x default) | max |device - double| / reference peak%s\n\n",
                   md ? "**" : "", md ? "**" : "");
         if (md) {
-            tx_printf(t, "| model | n |");
+            md_printf(t, "| model | n |");
             for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
                 if (variant_on(r, vv))
-                    tx_printf(t, " %s | accuracy |", tp_variant_name(vv));
-            tx_printf(t, "\n|---|---|");
+                    md_printf(t, " %s | accuracy |", tp_variant_name(vv));
+            md_printf(t, "\n|---|---|");
             for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
                 if (variant_on(r, vv))
-                    tx_printf(t, "---:|---:|");
-            tx_printf(t, "\n");
+                    md_printf(t, "---:|---:|");
+            md_printf(t, "\n");
         } else {
-            tx_printf(t, "%-18s %-8s", "model", "n");
+            md_printf(t, "%-18s %-8s", "model", "n");
             for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
                 if (variant_on(r, vv))
-                    tx_printf(t, " %17s %9s", tp_variant_name(vv), "accuracy");
-            tx_printf(t, "\n");
+                    md_printf(t, " %17s %9s", tp_variant_name(vv), "accuracy");
+            md_printf(t, "\n");
         }
         int nonfinite = 0;
         for (int m = 0; m < TP_NMODE_COUNT; ++m)
@@ -589,24 +548,24 @@ static void table_variants(const struct tp_run *r, struct tp_text *t, int md)
                 if (!any)
                     continue;
                 const char *label = e->m ? e->label : "pow() built-in";
-                tx_printf(t, md ? "| %s | %s |" : "%-18s %-8s", label, nmode_names[m]);
+                md_printf(t, md ? "| %s | %s |" : "%-18s %-8s", label, nmode_names[m]);
                 for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv) {
                     if (!variant_on(r, vv))
                         continue;
                     char cell[64], accs[32];
                     nonfinite |= variant_cell(e, vv, m, cell, sizeof cell, accs, sizeof accs);
-                    tx_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
+                    md_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
                 }
-                tx_printf(t, "\n");
+                md_printf(t, "\n");
             }
         if (nonfinite)
-            tx_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
-        tx_printf(t, "\n");
+            md_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
+        md_printf(t, "\n");
     }
 }
 
 /* The accuracy sweep, device against tuned C. */
-static void table_sweep(const struct tp_run *r, struct tp_text *t)
+static void table_sweep(const struct tp_run *r, struct md_buf *t)
 {
     const struct throughput_options *o = r->o;
     if (r->sweep_ran) {
@@ -620,16 +579,16 @@ static void table_sweep(const struct tp_run *r, struct tp_text *t)
                 ++ok;
             }
         if (ok > 0)
-            tx_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
+            md_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
                          "(%.3g G points/s), tuned C %.3f s (%.3g G points/s): %.2fx\n",
                       o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, ok == 1 ? "" : "s", pts,
                       dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
         else
-            tx_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
+            md_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
     }
 }
 
-static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
+static void render_tables(const struct tp_run *r, struct md_buf *t, int md)
 {
     table_default(r, t, md);
     table_variants(r, t, md);
@@ -638,10 +597,11 @@ static void render_tables(const struct tp_run *r, struct tp_text *t, int md)
 
 char *tp_tables_text(const struct tp_run *r, int md)
 {
-    struct tp_text t = { 0 };
+    struct md_buf t;
+    md_init(&t);
     render_tables(r, &t, md);
     if (t.failed) {
-        free(t.s);
+        md_free(&t);
         return NULL;
     }
     return t.s;
