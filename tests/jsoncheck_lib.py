@@ -1,5 +1,5 @@
 """jsoncheck_lib.py - what the check modules of tests/jsoncheck.py share: the registry of named
-checks (@check), strict JSON (load), has_context and read_csv."""
+checks (@check), strict JSON (load), has_context, load_result and read_csv."""
 import csv
 import json
 
@@ -24,6 +24,14 @@ def has_context(d, schema, keys):
     assert d["schema"] == schema, d["schema"]
     for k in keys:
         assert k in d["context"], k
+
+
+def load_result(path, schema, keys):
+    """A result file, loaded strictly, with its schema and context keys checked (has_context):
+    the document and its context."""
+    d = load(path)
+    has_context(d, schema, keys)
+    return d, d["context"]
 
 
 def read_csv(path):

@@ -6,7 +6,7 @@ import math
 import os
 import sys
 
-from jsoncheck_lib import check, has_context, load, no_const, read_csv  # noqa: F401
+from jsoncheck_lib import check, has_context, load, load_result, no_const, read_csv  # noqa: F401
 
 # ---- test_render_cli.sh ------------------------------------------------------------------------
 
@@ -15,8 +15,8 @@ def render_cli_render_contract(*args):
     """check_json of test_render_cli.sh: render.json contract"""
     import os
     argv = ["check_json", *args]
-    d = load(argv[1])
-    has_context(d, "brdfbench.render/1", ("date", "device", "platform_version", "build_options", "git_revision"))
+    d, _ = load_result(argv[1], "brdfbench.render/1",
+                       ("date", "device", "platform_version", "build_options", "git_revision"))
     scenes = {s["scene"]: s for s in d["scenes"]}
     assert sorted(scenes) == ["spheres", "teapot"], sorted(scenes)
     for s in scenes.values():
@@ -113,8 +113,7 @@ def report_cli_frontier_all_models(*args):
 def measured_cli_measured(*args):
     """check_json of test_measured_cli.sh: measured.json"""
     argv = ["check_json", *args]
-    d = load(argv[1])
-    has_context(d, "brdfbench.measured/1", ["date", "device", "git_revision", "grid"])
+    d, _ = load_result(argv[1], "brdfbench.measured/1", ["date", "device", "git_revision", "grid"])
     m = d["materials"][0]
     assert m["name"] == "blinn64", m["name"]
     assert m["unmeasured_cells"] == 32400 and m["negative_cells_rgb"] == [0, 32400, 0], m["negative_cells_rgb"]
@@ -259,9 +258,8 @@ def cli_accuracy_accuracy_contract(*args):
     import subprocess
     import math
     argv = ["check_json", *args]
-    d = load(argv[1])
-    has_context(d, "brdfbench.accuracy/1", ("date", "device", "platform_version", "build_options", "git_revision", "grid"))
-    ctx = d["context"]
+    d, ctx = load_result(argv[1], "brdfbench.accuracy/1",
+                         ("date", "device", "platform_version", "build_options", "git_revision", "grid"))
     assert ctx["grid"]["n_min"] == 2 and ctx["grid"]["n_max"] == 50 and ctx["grid"]["samples_per_zone"] == 256
     res = d["results"]
     assert [r["model"] for r in res] == ["cq2", "fq", "lyon"]
@@ -322,9 +320,8 @@ def cli_accuracy_invalid_values_folded_into_maxima(*args):
 def throughput_cli_throughput_contract(*args):
     """check_json of test_throughput_cli.sh: throughput.json contract"""
     argv = ["check_json", *args]
-    d = load(argv[1])
-    has_context(d, "brdfbench.throughput/3", ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
-    ctx = d["context"]
+    d, ctx = load_result(argv[1], "brdfbench.throughput/3",
+                         ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
     assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
     assert [b["variant"] for b in d["builds"]] == ["default", "denorms-are-zero"]
     pk = d["peak"]

@@ -319,6 +319,11 @@ PY
 pj() { ej "$1" plots.json "$2"; }
 fj() { ej "$1" field_fq2.json "$2"; }
 rj() { ej "$1" run.json "$2"; }
+# ff DIR FILE: a copy of R0 as DIR with its FILE replaced by a FIFO
+ff() {
+    rm -rf "$1" && cp -r R0 "$1" && rm "$1/$2" && mkfifo "$1/$2"
+    WHAT="$1/$2: a FIFO"
+}
 # plots.json: a figure's file is a plain NAME.png, never a data file of the run or a path
 for name in accuracy.json plots.json report.md field_fq2.json x.PNG.json ../escape.png /tmp/abs.png .hidden.png \
             'a b.png' '' 'x.png/' 'new
@@ -420,11 +425,9 @@ rj Q "d['parts']['bogus'] = {'status': 'ok'}"
 t 2 "^brdfbench report: Q/run.json:1:[0-9]+: unknown part \"bogus\"" report Q
 rj Q "d['parts']['claims'] = {'status': 'missing'}"
 t 2 "^brdfbench report: Q/run.json:1:[0-9]+: member \"reason\" is missing" report Q
-rm -rf Q && cp -r R0 Q && rm Q/claims.md && mkfifo Q/claims.md
-WHAT='Q/claims.md: a FIFO'
+ff Q claims.md
 t 2 "^brdfbench report: Q/claims.md: is a FIFO, not a regular file \(run.json records its part as done\)" report Q
-rm -rf Q && cp -r R0 Q && rm Q/accuracy.json && mkfifo Q/accuracy.json
-WHAT='Q/accuracy.json: a FIFO'
+ff Q accuracy.json
 t 2 "^brdfbench report: Q/accuracy.json: is a FIFO, not a regular file" report Q
 # heatmap: field files fed back
 fj H "del d['model']"
@@ -442,8 +445,7 @@ fj H "d['grid']['n'] = d['grid']['n'][:-1]"
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: \"n\" has 40 values, rows is 41" heatmap H
 fj H "d['schema'] = 'brdfbench.field/0'"
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json:1:[0-9]+: schema \"brdfbench.field/0\", expected" heatmap H
-rm -rf H && cp -r R0 H && rm H/field_fq2.json && mkfifo H/field_fq2.json
-WHAT='H/field_fq2.json: a FIFO'
+ff H field_fq2.json
 t 2 "multi:^brdfbench heatmap: H/field_fq2.json: is a FIFO, not a regular file" heatmap H
 WHAT='H/field_fq2.json: a FIFO'
 t 2 "^brdfbench heatmap: --label fq2: H/field_fq2.json: is a FIFO, not a regular file" heatmap H --label fq2
@@ -684,36 +686,26 @@ t 0 "$W" compare R0 N $CF
 jd N fit.json "d['a'] = d['a'] * 1.00001"
 t 0 "$W" compare R0 N --fail-if-slower 90 --out cmpo --quiet
 # A row of the baseline that the new run lost: exit 1, the row named with what happened.
-jd N accuracy.json "rows[0]['status'] = 'failed'"
-t 1 "multi:^N: accuracy fq2 \| n 2\.\.1000 .* epicentre\.max_rel: failed \(the baseline has 0\.01" compare R0 N $CF
-jd N accuracy.json "rows[0]['status'] = 'device_disagrees'; rows[0]['reason'] = 'device and double disagree'"
-t 1 "multi:^N: accuracy fq2 .* attenuation\.max_abs: device and double disagree \(the baseline has" compare R0 N $CF
-jd N accuracy.json "rows[0]['status'] = 'device_disagrees'"
-t 1 "multi:^N: accuracy fq2 .* whole\.max_abs: device_disagrees" compare R0 N $CF
-jd N accuracy.json "del rows[0]"
-t 1 "multi:^N: accuracy fq2 .* epicentre\.max_rel: missing from this run" compare R0 N $CF
-jd N accuracy.json "rows[0]['epicentre']['max_rel'] = None"
-t 1 "multi:^N: accuracy fq2 .* epicentre\.max_rel: not a finite number" compare R0 N $CF
-jd N throughput.json "del rows[2]"
-t 1 "multi:^N: throughput fq2 \| default \| n uniform evals_per_s: missing from this run" compare R0 N $CF
-jd N throughput.json "rows[3]['status'] = 'failed'; rows[3]['reason'] = 'the kernel failed'"
-t 1 "multi:^N: throughput fq2 \| default \| n varying evals_per_s: the kernel failed" compare R0 N $CF
-jd N throughput.json "del d['peak']"
-t 1 "multi:^N: throughput peak \(reference kernel\) flops_per_s: missing from this run" compare R0 N $CF
-jd N render.json "rows[0]['models'] = []"
-t 1 "multi:^N: render spheres [0-9]+x[0-9]+ \| fq2 max_abs: missing from this run" compare R0 N $CF
-jd N render.json "rows[1]['models'][0]['metrics']['status'] = 'nonfinite'; rows[1]['models'][0]['metrics']['reason'] = 'NaN pixels'"
-t 1 "multi:^N: render teapot [0-9]+x[0-9]+ \| fq2 rmse: NaN pixels" compare R0 N $CF
-jd N render.json "rows[2]['timings'][0]['entries'] = [e for e in rows[2]['timings'][0]['entries'] if e.get('model') != 'fq2']"
-t 1 "multi:^N: render bunny \| fq2 mpixel_per_s@[0-9]+x[0-9]+: missing from this run" compare R0 N $CF
-jd N fit.json "d['compare'] = [c for c in rows if c['model'] != 'fq2']"
-t 1 "multi:^N: fit fq2 \| n .* max_rel: missing from this run" compare R0 N $CF
-jd N fit.json "d['status'] = 'failed'; d['reason'] = 'no fit'"
-t 1 "multi:^N: fit best affine k\(n\) \| n .* max_rel: no fit" compare R0 N $CF
-jd N frontier.json "d['models'] = []"
-t 1 "multi:^N: frontier fq2 n_2_1000\.max_rel: missing from this run" compare R0 N $CF
-jd N frontier.json "rows[0]['psnr_db'] = None"
-t 1 "multi:^N: frontier fq2 psnr_db: not a finite number" compare R0 N $CF
+# cl FILE PYTHON PATTERN: R0 against a copy whose FILE PYTHON edits: exit 1 and "N: PATTERN"
+cl() {
+    jd N "$1" "$2"
+    t 1 "multi:^N: $3" compare R0 N $CF
+}
+cl accuracy.json "rows[0]['status'] = 'failed'" "accuracy fq2 \| n 2\.\.1000 .* epicentre\.max_rel: failed \(the baseline has 0\.01"
+cl accuracy.json "rows[0]['status'] = 'device_disagrees'; rows[0]['reason'] = 'device and double disagree'" "accuracy fq2 .* attenuation\.max_abs: device and double disagree \(the baseline has"
+cl accuracy.json "rows[0]['status'] = 'device_disagrees'" "accuracy fq2 .* whole\.max_abs: device_disagrees"
+cl accuracy.json "del rows[0]" "accuracy fq2 .* epicentre\.max_rel: missing from this run"
+cl accuracy.json "rows[0]['epicentre']['max_rel'] = None" "accuracy fq2 .* epicentre\.max_rel: not a finite number"
+cl throughput.json "del rows[2]" "throughput fq2 \| default \| n uniform evals_per_s: missing from this run"
+cl throughput.json "rows[3]['status'] = 'failed'; rows[3]['reason'] = 'the kernel failed'" "throughput fq2 \| default \| n varying evals_per_s: the kernel failed"
+cl throughput.json "del d['peak']" "throughput peak \(reference kernel\) flops_per_s: missing from this run"
+cl render.json "rows[0]['models'] = []" "render spheres [0-9]+x[0-9]+ \| fq2 max_abs: missing from this run"
+cl render.json "rows[1]['models'][0]['metrics']['status'] = 'nonfinite'; rows[1]['models'][0]['metrics']['reason'] = 'NaN pixels'" "render teapot [0-9]+x[0-9]+ \| fq2 rmse: NaN pixels"
+cl render.json "rows[2]['timings'][0]['entries'] = [e for e in rows[2]['timings'][0]['entries'] if e.get('model') != 'fq2']" "render bunny \| fq2 mpixel_per_s@[0-9]+x[0-9]+: missing from this run"
+cl fit.json "d['compare'] = [c for c in rows if c['model'] != 'fq2']" "fit fq2 \| n .* max_rel: missing from this run"
+cl fit.json "d['status'] = 'failed'; d['reason'] = 'no fit'" "fit best affine k\(n\) \| n .* max_rel: no fit"
+cl frontier.json "d['models'] = []" "frontier fq2 n_2_1000\.max_rel: missing from this run"
+cl frontier.json "rows[0]['psnr_db'] = None" "frontier fq2 psnr_db: not a finite number"
 # ... but only under the condition that watches it, and only when the baseline had it
 jd N accuracy.json "del rows[0]"
 t 0 "$W" compare R0 N --fail-if-slower 90 --out cmpo --quiet

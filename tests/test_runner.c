@@ -57,17 +57,29 @@ static void slow_down(void *ctx, int done, int rounds)
         ((struct fake *)ctx)->slow = 2.0;
 }
 
-static void setup(struct runner *r, struct runner_item *items, struct fake_item *fi, int n, struct fake *m,
-                  const double *costs)
+/* A case's fake machine, its runner and up to 5 items. */
+struct rig {
+    struct fake m;
+    struct runner r;
+    struct runner_item items[5];
+    struct fake_item fi[5];
+};
+
+/* The runner over n fake items of the given costs on the rig's machine, item 0 the reference,
+   for `rounds` rounds (0: the runner's default). */
+static void setup(struct rig *g, int n, const double *costs, int rounds)
 {
     for (int i = 0; i < n; ++i) {
-        fi[i] = (struct fake_item){ m, costs[i], 0, 0, 0 };
-        items[i] = (struct runner_item){ .name = "fake", .launch = fake_launch, .ctx = &fi[i], .calibrate = 1,
-                                         .work_per_iter = 1000.0 * (i + 1), .cpu_threads = m->threads };
+        g->fi[i] = (struct fake_item){ &g->m, costs[i], 0, 0, 0 };
+        g->items[i] = (struct runner_item){ .name = "fake", .launch = fake_launch, .ctx = &g->fi[i], .calibrate = 1,
+                                            .work_per_iter = 1000.0 * (i + 1), .cpu_threads = g->m.threads };
     }
-    runner_init(r, items, n);
-    r->clock = (struct runner_clock){ fake_wall, fake_cpu, m };
-    r->min_time = 0.02;
+    runner_init(&g->r, g->items, n);
+    g->r.clock = (struct runner_clock){ fake_wall, fake_cpu, &g->m };
+    g->r.min_time = 0.02;
+    g->r.reference = 0;
+    if (rounds)
+        g->r.rounds = rounds;
 }
 
 int main(void)
@@ -76,27 +88,22 @@ int main(void)
 
     /* Orders and calibration. */
     {
-        struct fake m = { 0, 0, 1.0, 2, 0, 0, 0 };
-        struct runner r;
-        struct runner_item items[5];
-        struct fake_item fi[5];
-        setup(&r, items, fi, 5, &m, costs);
-        r.reference = 0;
-        r.rounds = 10;
-        CHECK(runner_run(&r) == 0, "runner_run");
+        struct rig g = { .m = { 0, 0, 1.0, 2, 0, 0, 0 } };
+        setup(&g, 5, costs, 10);
+        CHECK(runner_run(&g.r) == 0, "runner_run");
         /* 4 other items and the reference 3 times per round */
-        CHECK(r.round_len == 7, "round length %d, expected 4 + 3", r.round_len);
+        CHECK(g.r.round_len == 7, "round length %d, expected 4 + 3", g.r.round_len);
         int distinct_orders = 0;
-        for (int k = 0; k < r.rounds; ++k) {
-            const int *o = r.order + k * r.round_len;
+        for (int k = 0; k < g.r.rounds; ++k) {
+            const int *o = g.r.order + k * g.r.round_len;
             int seen[5] = { 0 };
-            for (int q = 0; q < r.round_len; ++q)
+            for (int q = 0; q < g.r.round_len; ++q)
                 seen[o[q]]++;
             CHECK(seen[0] == 3 && seen[1] == 1 && seen[2] == 1 && seen[3] == 1 && seen[4] == 1,
                   "round %d: every item once, the reference three times", k);
             /* the reference at the start, after the first m/2 = 2 others, and at the end */
             CHECK(o[0] == 0 && o[3] == 0 && o[6] == 0, "round %d: reference at positions 0, 3, 6", k);
-            if (k > 0 && memcmp(o, o - r.round_len, sizeof *o * (size_t)r.round_len) != 0)
+            if (k > 0 && memcmp(o, o - g.r.round_len, sizeof *o * (size_t)g.r.round_len) != 0)
                 ++distinct_orders;
         }
         CHECK(distinct_orders >= 5, "a fresh order each round: %d of 9 rounds differ from the one before",
@@ -104,130 +111,101 @@ int main(void)
         /* item 0, 1e-4 s per iteration, min_time 0.02: 1 iteration takes 1e-4 < 0.25 min_time;
            grown x min(max(0.5 x 0.02 / 1e-4, 2), 1000) = 100 -> 100 iterations take 0.01 >= 0.005;
            scaled to ceil(100 x 0.02 / 0.01) = 200, which takes 0.02 >= 0.01: 200 */
-        CHECK(items[0].iters == 200, "calibrated iterations %ld, by hand 200", items[0].iters);
+        CHECK(g.items[0].iters == 200, "calibrated iterations %ld, by hand 200", g.items[0].iters);
         /* item 2, 5e-5 s: 1 -> 200 (0.01) -> ceil(200 x 0.02 / 0.01) = 400 */
-        CHECK(items[2].iters == 400, "calibrated iterations %ld, by hand 400", items[2].iters);
-        CHECK(items[0].nreps == 30 && items[1].nreps == 10, "repetitions kept: %d and %d", items[0].nreps,
-              items[1].nreps);
+        CHECK(g.items[2].iters == 400, "calibrated iterations %ld, by hand 400", g.items[2].iters);
+        CHECK(g.items[0].nreps == 30 && g.items[1].nreps == 10, "repetitions kept: %d and %d", g.items[0].nreps,
+              g.items[1].nreps);
         /* the same seed replays the same orders */
-        int *first = malloc(sizeof(int) * (size_t)(r.rounds * r.round_len));
-        memcpy(first, r.order, sizeof(int) * (size_t)(r.rounds * r.round_len));
-        int len = r.rounds * r.round_len;
-        runner_release(&r);
-        setup(&r, items, fi, 5, &m, costs);
-        r.reference = 0;
-        r.rounds = 10;
-        runner_run(&r);
-        CHECK(memcmp(first, r.order, sizeof(int) * (size_t)len) == 0, "same seed, same orders");
-        runner_release(&r);
-        r.seed = 12345;
-        setup(&r, items, fi, 5, &m, costs);
-        r.reference = 0;
-        r.rounds = 10;
-        r.seed = 12345;
-        runner_run(&r);
-        CHECK(memcmp(first, r.order, sizeof(int) * (size_t)len) != 0, "another seed, other orders");
+        int *first = malloc(sizeof(int) * (size_t)(g.r.rounds * g.r.round_len));
+        memcpy(first, g.r.order, sizeof(int) * (size_t)(g.r.rounds * g.r.round_len));
+        int len = g.r.rounds * g.r.round_len;
+        runner_release(&g.r);
+        setup(&g, 5, costs, 10);
+        runner_run(&g.r);
+        CHECK(memcmp(first, g.r.order, sizeof(int) * (size_t)len) == 0, "same seed, same orders");
+        runner_release(&g.r);
+        setup(&g, 5, costs, 10);
+        g.r.seed = 12345;
+        runner_run(&g.r);
+        CHECK(memcmp(first, g.r.order, sizeof(int) * (size_t)len) != 0, "another seed, other orders");
         free(first);
-        runner_release(&r);
+        runner_release(&g.r);
     }
 
     /* Drift: from the third round on every launch takes twice as long. The absolute rates
        halve; the normalised rates stay (work_i / cost_i) / (work_ref / cost_ref) exactly. */
     {
-        struct fake m = { 0, 0, 1.0, 2, 0, 0, 0 };
-        struct runner r;
-        struct runner_item items[5];
-        struct fake_item fi[5];
-        setup(&r, items, fi, 5, &m, costs);
-        r.reference = 0;
-        r.rounds = 6;
-        r.progress = slow_down;
-        r.progress_ctx = &m;
-        CHECK(runner_run(&r) == 0, "runner_run with drift");
+        struct rig g = { .m = { 0, 0, 1.0, 2, 0, 0, 0 } };
+        setup(&g, 5, costs, 6);
+        g.r.progress = slow_down;
+        g.r.progress_ctx = &g.m;
+        CHECK(runner_run(&g.r) == 0, "runner_run with drift");
         for (int i = 1; i < 5; ++i) {
-            double expect = (items[i].work_per_iter / costs[i]) / (items[0].work_per_iter / costs[0]);
-            CHECK_NEAR(items[i].rate[0] / items[i].rate[5], 2.0, 1e-12, "absolute rate halved by the drift");
-            for (int k = 0; k < items[i].nreps; ++k) {
-                CHECK_NEAR(items[i].norm[k], expect, 1e-12 * expect, "normalised rate, drift cancelled");
-                CHECK_NEAR(items[i].cpu_norm[k], expect, 1e-9 * expect, "normalised rate per CPU second");
+            double expect = (g.items[i].work_per_iter / costs[i]) / (g.items[0].work_per_iter / costs[0]);
+            CHECK_NEAR(g.items[i].rate[0] / g.items[i].rate[5], 2.0, 1e-12, "absolute rate halved by the drift");
+            for (int k = 0; k < g.items[i].nreps; ++k) {
+                CHECK_NEAR(g.items[i].norm[k], expect, 1e-12 * expect, "normalised rate, drift cancelled");
+                CHECK_NEAR(g.items[i].cpu_norm[k], expect, 1e-9 * expect, "normalised rate per CPU second");
             }
         }
-        CHECK(r.retried == 0 && r.disturbed == 0, "no preemption: %ld retries", r.retried);
-        runner_release(&r);
+        CHECK(g.r.retried == 0 && g.r.disturbed == 0, "no preemption: %ld retries", g.r.retried);
+        runner_release(&g.r);
     }
 
     /* Preemption now and then: every 5th launch gets a tenth of its CPU time and is retried;
        the repetitions kept are all whole-CPU ones. */
     {
-        struct fake m = { 0, 0, 1.0, 2, 0, 5, 0 };
-        struct runner r;
-        struct runner_item items[3];
-        struct fake_item fi[3];
-        setup(&r, items, fi, 3, &m, costs);
-        r.reference = 0;
-        r.rounds = 8;
-        CHECK(runner_run(&r) == 0, "runner_run with preemption");
+        struct rig g = { .m = { 0, 0, 1.0, 2, 0, 5, 0 } };
+        setup(&g, 3, costs, 8);
+        CHECK(runner_run(&g.r) == 0, "runner_run with preemption");
         long kept = 0;
         for (int i = 0; i < 3; ++i)
-            kept += items[i].nreps;
-        CHECK(r.retried > 0, "preempted launches retried: %ld", r.retried);
-        CHECK(r.disturbed == 0, "every preempted repetition replaced (every 5th launch; 2 retries): %ld kept disturbed",
-              r.disturbed);
+            kept += g.items[i].nreps;
+        CHECK(g.r.retried > 0, "preempted launches retried: %ld", g.r.retried);
+        CHECK(g.r.disturbed == 0,
+              "every preempted repetition replaced (every 5th launch; 2 retries): %ld kept disturbed", g.r.disturbed);
         long retries = 0;
         for (int i = 0; i < 3; ++i)
-            retries += items[i].retries;
-        CHECK(retries == r.retried, "per-item retries add up: %ld vs %ld", retries, r.retried);
+            retries += g.items[i].retries;
+        CHECK(retries == g.r.retried, "per-item retries add up: %ld vs %ld", retries, g.r.retried);
         CHECK(kept == 8 * (3 + 2), "repetitions: 8 rounds x (2 items + 3 references) = %ld", kept);
-        runner_release(&r);
+        runner_release(&g.r);
     }
 
     /* Persistent contention: every launch preempted. Round 1 retries (2 per repetition), then
        the runner stops retrying; every repetition is kept and counted disturbed. */
     {
-        struct fake m = { 0, 0, 1.0, 2, 0, 0, 1 };
-        struct runner r;
-        struct runner_item items[3];
-        struct fake_item fi[3];
-        setup(&r, items, fi, 3, &m, costs);
-        r.reference = 0;
-        r.rounds = 4;
-        CHECK(runner_run(&r) == 0, "runner_run, persistent contention");
+        struct rig g = { .m = { 0, 0, 1.0, 2, 0, 0, 1 } };
+        setup(&g, 3, costs, 4);
+        CHECK(runner_run(&g.r) == 0, "runner_run, persistent contention");
         /* round 1: 5 repetitions x 2 retries */
-        CHECK(r.retried == 10, "retries only in the first round: %ld, by hand 10", r.retried);
-        CHECK(r.disturbed == 4 * 5, "all 20 repetitions disturbed: %ld", r.disturbed);
-        CHECK(r.persistent_rounds == 4, "persistent after every round: %d", r.persistent_rounds);
-        runner_release(&r);
+        CHECK(g.r.retried == 10, "retries only in the first round: %ld, by hand 10", g.r.retried);
+        CHECK(g.r.disturbed == 4 * 5, "all 20 repetitions disturbed: %ld", g.r.disturbed);
+        CHECK(g.r.persistent_rounds == 4, "persistent after every round: %d", g.r.persistent_rounds);
+        runner_release(&g.r);
     }
 
     /* No CPU check (a GPU: cpu_threads 0): nothing is preempted whatever the CPU time says. */
     {
-        struct fake m = { 0, 0, 1.0, 0, 0, 0, 1 };
-        struct runner r;
-        struct runner_item items[2];
-        struct fake_item fi[2];
-        setup(&r, items, fi, 2, &m, costs);
-        r.reference = 0;
-        CHECK(runner_run(&r) == 0, "runner_run, no CPU check");
-        CHECK(r.retried == 0 && r.disturbed == 0 && items[1].cpu_norm == NULL, "GPU: no retries, no CPU rates");
-        runner_release(&r);
+        struct rig g = { .m = { 0, 0, 1.0, 0, 0, 0, 1 } };
+        setup(&g, 2, costs, 0);
+        CHECK(runner_run(&g.r) == 0, "runner_run, no CPU check");
+        CHECK(g.r.retried == 0 && g.r.disturbed == 0 && g.items[1].cpu_norm == NULL, "GPU: no retries, no CPU rates");
+        runner_release(&g.r);
     }
 
     /* An item whose 7th launch fails (warm-up 1, calibration 3, then the rounds' 3rd) fails
        alone, with its reason; the others keep every round. */
     {
-        struct fake m = { 0, 0, 1.0, 2, 0, 0, 0 };
-        struct runner r;
-        struct runner_item items[3];
-        struct fake_item fi[3];
-        setup(&r, items, fi, 3, &m, costs);
-        fi[1].fail_after = 6;
-        r.reference = 0;
-        r.rounds = 5;
-        CHECK(runner_run(&r) == 0, "runner_run with a failing item");
-        CHECK(!items[1].ok && strstr(items[1].reason, "fake launch failed"), "the failing item says why: %s",
-              items[1].reason);
-        CHECK(items[2].ok && items[2].nreps == 5, "the others go on: %d reps", items[2].nreps);
-        runner_release(&r);
+        struct rig g = { .m = { 0, 0, 1.0, 2, 0, 0, 0 } };
+        setup(&g, 3, costs, 5);
+        g.fi[1].fail_after = 6;
+        CHECK(runner_run(&g.r) == 0, "runner_run with a failing item");
+        CHECK(!g.items[1].ok && strstr(g.items[1].reason, "fake launch failed"), "the failing item says why: %s",
+              g.items[1].reason);
+        CHECK(g.items[2].ok && g.items[2].nreps == 5, "the others go on: %d reps", g.items[2].nreps);
+        runner_release(&g.r);
     }
     return check_summary();
 }

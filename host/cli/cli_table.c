@@ -384,28 +384,30 @@ void cli_print_help(FILE *out, const struct cli_command *c)
 
 /* ---- shared flags ---------------------------------------------------------------------- */
 
-int cli_call_platform(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+/* A platform or device index, 0 to 63, into *index. */
+static int parse_device_index(const char *flag, const char *value, int *index, char *err, size_t errlen)
 {
     long v;
     if (cli_parse_long(flag, value, 0, 63, &v, err, errlen))
         return EXIT_USAGE;
-    ((struct device_options *)dest)->platform = (int)v;
+    *index = (int)v;
     return 0;
+}
+
+int cli_call_platform(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    return parse_device_index(flag, value, &((struct device_options *)dest)->platform, err, errlen);
 }
 
 int cli_call_device(const char *flag, const char *value, void *dest, char *err, size_t errlen)
 {
-    long v;
     /* all and lists reach here only in the commands that do not take them (cli_devices.c) */
     if (cli_is_device_list(value)) {
         snprintf(err, errlen, "%s: '%s': all and lists are taken by throughput, accuracy and render "
                  "(accepted here: 0 to 63)", flag, value);
         return EXIT_USAGE;
     }
-    if (cli_parse_long(flag, value, 0, 63, &v, err, errlen))
-        return EXIT_USAGE;
-    ((struct device_options *)dest)->device = (int)v;
-    return 0;
+    return parse_device_index(flag, value, &((struct device_options *)dest)->device, err, errlen);
 }
 
 int cli_call_kernel_dir(const char *flag, const char *value, void *dest, char *err, size_t errlen)

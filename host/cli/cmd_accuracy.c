@@ -22,13 +22,32 @@
 
 static int self_referenced(const struct model_spec *m) { return strcmp(m->info->id, m->info->reference_id) == 0; }
 
+/* A model's error field as field_LABEL.json and its heatmap as heatmap_LABEL.png in run_dir
+ * (LABEL made safe for a file name); 0, or EXIT_RUNTIME with the message on stderr. */
+static int write_field_files(struct cl_session *s, const struct field_result *fr, const char *label,
+                             const char *run_dir)
+{
+    char err[1024], name[200], path[4400], safe[96];
+    field_safe_label(label, safe, sizeof safe);
+    snprintf(name, sizeof name, "field_%s.json", safe);
+    path_join(path, sizeof path, run_dir, name);
+    if (field_write_json(path, fr, s, err, sizeof err) == 0) {
+        snprintf(name, sizeof name, "heatmap_%s.png", safe);
+        path_join(path, sizeof path, run_dir, name);
+        if (field_draw_heatmap(path, fr, NULL, err, sizeof err) == 0)
+            return 0;
+    }
+    fprintf(stderr, "brdfbench accuracy: %s\n", err);
+    return EXIT_RUNTIME;
+}
+
 /* --pictures: each model's error field and heatmap over the run's range of n, and the per-n
  * maxima of every model against n (plots.json and its pictures), in run_dir. */
 static int accuracy_pictures(struct cl_session *s, const struct model_spec *models,
                              const struct accuracy_result *res, int nmodels, const struct accuracy_grid *grid,
                              const char *run_dir, int quiet, int *drawn)
 {
-    char err[1024], name[200], path[4400], safe[96];
+    char err[1024], path[4400];
     int rc = 0;
     *drawn = 0;
     struct field_grid fg = { FIELD_DEFAULT_ROWS, FIELD_DEFAULT_COLS, grid->n_min, grid->n_max };
@@ -46,22 +65,8 @@ static int accuracy_pictures(struct cl_session *s, const struct model_spec *mode
             struct field_result fr;
             if ((rc = field_run(&f, &models[m], &fg, &fr)) != 0)
                 break;
-            field_safe_label(models[m].label, safe, sizeof safe);
-            snprintf(name, sizeof name, "field_%s.json", safe);
-            path_join(path, sizeof path, run_dir, name);
-            if (field_write_json(path, &fr, s, err, sizeof err)) {
-                fprintf(stderr, "brdfbench accuracy: %s\n", err);
-                rc = EXIT_RUNTIME;
-            } else {
-                snprintf(name, sizeof name, "heatmap_%s.png", safe);
-                path_join(path, sizeof path, run_dir, name);
-                if (field_draw_heatmap(path, &fr, NULL, err, sizeof err)) {
-                    fprintf(stderr, "brdfbench accuracy: %s\n", err);
-                    rc = EXIT_RUNTIME;
-                } else {
-                    ++*drawn;
-                }
-            }
+            if ((rc = write_field_files(s, &fr, models[m].label, run_dir)) == 0)
+                ++*drawn;
             field_result_free(&fr);
         }
         field_close(&f);

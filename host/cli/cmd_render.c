@@ -74,6 +74,18 @@ static int split_list(char *text, char **items, int max)
     return n;
 }
 
+/* A flag's comma-separated value v, copied into buf and split into at most max items; -1 with
+ * the message in err when it holds more (`what` names the items in the message). */
+static int split_flag_list(const char *flag, const char *v, char *buf, size_t buflen, char **items, int max,
+                           const char *what, char *err, size_t errlen)
+{
+    snprintf(buf, buflen, "%s", v);
+    int n = split_list(buf, items, max);
+    if (n < 0)
+        snprintf(err, errlen, "%s: at most %d %s (got '%s')", flag, max, what, v);
+    return n;
+}
+
 static int call_scene(const char *flag, const char *v, void *dest, char *err, size_t errlen)
 {
     struct render_options *o = dest;
@@ -117,12 +129,9 @@ static int call_time_sizes(const char *flag, const char *v, void *dest, char *er
         o->ntime_sizes = 0;
         return 0;
     }
-    snprintf(buf, sizeof buf, "%s", v);
-    int n = split_list(buf, items, RENDER_MAX_TIME_SIZES);
-    if (n < 0) {
-        snprintf(err, errlen, "%s: at most %d sizes (got '%s')", flag, RENDER_MAX_TIME_SIZES, v);
+    int n = split_flag_list(flag, v, buf, sizeof buf, items, RENDER_MAX_TIME_SIZES, "sizes", err, errlen);
+    if (n < 0)
         return EXIT_USAGE;
-    }
     for (int k = 0; k < n; k++)
         if (parse_size(flag, items[k], &o->time_w[k], &o->time_h[k], err, errlen))
             return EXIT_USAGE;
@@ -134,12 +143,9 @@ static int call_shininess(const char *flag, const char *v, void *dest, char *err
 {
     struct render_options *o = dest;
     char buf[1024], *items[RENDER_MAX_COLS + 1];
-    snprintf(buf, sizeof buf, "%s", v);
-    int n = split_list(buf, items, RENDER_MAX_COLS);
-    if (n < 0) {
-        snprintf(err, errlen, "%s: at most %d values (got '%s')", flag, RENDER_MAX_COLS, v);
+    int n = split_flag_list(flag, v, buf, sizeof buf, items, RENDER_MAX_COLS, "values", err, errlen);
+    if (n < 0)
         return EXIT_USAGE;
-    }
     for (int k = 0; k < n; k++)
         if (cli_parse_double(flag, items[k], 1, 10000, &o->sphere_n[k], err, errlen))
             return EXIT_USAGE;

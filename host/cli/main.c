@@ -155,6 +155,36 @@ static int is_path_value(const char *v)
 
 #define MAX_WORDS 96
 
+/* The case branches of a completion script: "    COMMAND)" for every command, then what `branch`
+ * writes for that shell from the command's flags. */
+static void print_command_branches(FILE *f, void (*branch)(FILE *f, const struct command *c,
+                                                           const struct flag_word *w, int n))
+{
+    struct flag_word w[MAX_WORDS];
+    for (size_t i = 0; i < NCOMMANDS; ++i) {
+        int n = command_words(&commands[i], w, MAX_WORDS);
+        fprintf(f, "    %s)\n", commands[i].name);
+        branch(f, &commands[i], w, n);
+    }
+}
+
+/* bash: the command's flags, and those that take a path. */
+static void bash_branch(FILE *f, const struct command *c, const struct flag_word *w, int n)
+{
+    (void)c;
+    fprintf(f, "        flags=\"");
+    for (int k = 0; k < n; ++k)
+        fprintf(f, "%s%s", k ? " " : "", w[k].name);
+    fprintf(f, "\"\n        paths=\"");
+    int first = 1;
+    for (int k = 0; k < n; ++k)
+        if (is_path_value(w[k].value)) {
+            fprintf(f, "%s%s", first ? "" : " ", w[k].name);
+            first = 0;
+        }
+    fprintf(f, "\" ;;\n");
+}
+
 static void print_bash_completion(FILE *f)
 {
     fprintf(f, "# bash completion for brdfbench: made by brdfbench help --completion bash from its flag tables\n");
@@ -165,21 +195,7 @@ static void print_bash_completion(FILE *f)
     fprintf(f, "\"\n");
     fprintf(f, "    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"$commands\" -- \"$cur\"))\n"
                "        return\n    fi\n    local flags=\"\" paths=\"\"\n    case \"${COMP_WORDS[1]}\" in\n");
-    struct flag_word w[MAX_WORDS];
-    for (size_t i = 0; i < NCOMMANDS; ++i) {
-        int n = command_words(&commands[i], w, MAX_WORDS);
-        fprintf(f, "    %s)\n        flags=\"", commands[i].name);
-        for (int k = 0; k < n; ++k)
-            fprintf(f, "%s%s", k ? " " : "", w[k].name);
-        fprintf(f, "\"\n        paths=\"");
-        int first = 1;
-        for (int k = 0; k < n; ++k)
-            if (is_path_value(w[k].value)) {
-                fprintf(f, "%s%s", first ? "" : " ", w[k].name);
-                first = 0;
-            }
-        fprintf(f, "\" ;;\n");
-    }
+    print_command_branches(f, bash_branch);
     fprintf(f, "    esac\n    if [ \"${COMP_WORDS[1]}\" = help ] && [[ \"$cur\" != -* ]]; then\n"
                "        COMPREPLY=($(compgen -W \"$commands\" -- \"$cur\"))\n        return\n    fi\n");
     fprintf(f, "    local p\n    for p in $paths; do\n        if [ \"$prev\" = \"$p\" ]; then\n"
@@ -203,6 +219,28 @@ static void zsh_desc(FILE *f, const char *s, int brackets)
     }
 }
 
+/* zsh: an _arguments spec per flag; help takes a command, the others files. */
+static void zsh_branch(FILE *f, const struct command *c, const struct flag_word *w, int n)
+{
+    fprintf(f, "        _arguments \\\n");
+    for (int k = 0; k < n; ++k) {
+        fprintf(f, "            '%s[", w[k].name);
+        zsh_desc(f, w[k].desc, 1);
+        fprintf(f, "]");
+        if (w[k].value[0])
+            fprintf(f, ":%s:%s", w[k].value, is_path_value(w[k].value) ? "_files" : "");
+        fprintf(f, "' \\\n");
+    }
+    if (strcmp(c->name, "help") == 0) {
+        fprintf(f, "            '1:command:(");
+        for (size_t j = 0; j < NCOMMANDS; ++j)
+            fprintf(f, "%s%s", j ? " " : "", commands[j].name);
+        fprintf(f, ")' ;;\n");
+    } else {
+        fprintf(f, "            '*:argument:_files' ;;\n");
+    }
+}
+
 static void print_zsh_completion(FILE *f)
 {
     fprintf(f, "#compdef brdfbench\n# zsh completion for brdfbench: made by brdfbench help --completion zsh from "
@@ -215,27 +253,7 @@ static void print_zsh_completion(FILE *f)
     fprintf(f, "    )\n");
     fprintf(f, "    if (( CURRENT == 2 )); then\n        _describe 'command' commands\n        return\n    fi\n"
                "    local cmd=$words[2]\n    shift words\n    (( CURRENT-- ))\n    case $cmd in\n");
-    struct flag_word w[MAX_WORDS];
-    for (size_t i = 0; i < NCOMMANDS; ++i) {
-        int n = command_words(&commands[i], w, MAX_WORDS);
-        fprintf(f, "    %s)\n        _arguments \\\n", commands[i].name);
-        for (int k = 0; k < n; ++k) {
-            fprintf(f, "            '%s[", w[k].name);
-            zsh_desc(f, w[k].desc, 1);
-            fprintf(f, "]");
-            if (w[k].value[0])
-                fprintf(f, ":%s:%s", w[k].value, is_path_value(w[k].value) ? "_files" : "");
-            fprintf(f, "' \\\n");
-        }
-        if (strcmp(commands[i].name, "help") == 0) {
-            fprintf(f, "            '1:command:(");
-            for (size_t j = 0; j < NCOMMANDS; ++j)
-                fprintf(f, "%s%s", j ? " " : "", commands[j].name);
-            fprintf(f, ")' ;;\n");
-        } else {
-            fprintf(f, "            '*:argument:_files' ;;\n");
-        }
-    }
+    print_command_branches(f, zsh_branch);
     fprintf(f, "    esac\n}\n_brdfbench \"$@\"\n");
 }
 

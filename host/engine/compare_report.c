@@ -412,6 +412,23 @@ static int write_csv(const struct compare_set *set, const char *path, char *err,
     return rc;
 }
 
+/* compare.json's "definitions": how each kind of row is decided. */
+static const char *const compare_definitions[][2] = {
+    { "speed", "a rate (higher is better): value = median of the repetitions; decided on the normalised "
+               "repetitions (rate / the run's reference kernel in the same round) where both runs have "
+               "them, else the absolute ones (basis); ratio = the Hodges-Lehmann estimate of the ratio of "
+               "the two samples, ratio_ci its distribution-free interval at 1 - alpha; faster or slower when "
+               "the two-sided Mann-Whitney p (p_adjusted: Holm over the run's rates, with --holm) < alpha "
+               "and the ratio is beyond 1 +- threshold; noisy when the interval is wider than that band; "
+               "same otherwise; undecided when the sample sizes cannot reach alpha; without repetitions, "
+               "same when the min..max ranges overlap" },
+    { "error", "an error figure (lower is better): unchanged when both round to the same 4 significant "
+               "digits, else changed, better or worse; change = value - baseline" },
+    { "score", "as error, higher is better (PSNR)" },
+    { "value", "as error, with no better or worse (a fitted coefficient)" },
+    { "ratio", "value / the baseline's value of the same row" },
+};
+
 static int write_json(const struct compare_set *set, const char *path, char *err, size_t errlen)
 {
     struct jw w;
@@ -425,21 +442,7 @@ static int write_json(const struct compare_set *set, const char *path, char *err
     jw_kv_num(&w, "alpha", set->alpha);
     jw_kv_num(&w, "threshold", set->threshold);
     jw_kv_bool(&w, "holm", set->holm);
-    jw_kv_obj(&w, "definitions");
-    jw_kv_str(&w, "speed", "a rate (higher is better): value = median of the repetitions; decided on the normalised "
-                           "repetitions (rate / the run's reference kernel in the same round) where both runs have "
-                           "them, else the absolute ones (basis); ratio = the Hodges-Lehmann estimate of the ratio of "
-                           "the two samples, ratio_ci its distribution-free interval at 1 - alpha; faster or slower when "
-                           "the two-sided Mann-Whitney p (p_adjusted: Holm over the run's rates, with --holm) < alpha "
-                           "and the ratio is beyond 1 +- threshold; noisy when the interval is wider than that band; "
-                           "same otherwise; undecided when the sample sizes cannot reach alpha; without repetitions, "
-                           "same when the min..max ranges overlap");
-    jw_kv_str(&w, "error", "an error figure (lower is better): unchanged when both round to the same 4 significant "
-                           "digits, else changed, better or worse; change = value - baseline");
-    jw_kv_str(&w, "score", "as error, higher is better (PSNR)");
-    jw_kv_str(&w, "value", "as error, with no better or worse (a fitted coefficient)");
-    jw_kv_str(&w, "ratio", "value / the baseline's value of the same row");
-    jw_obj_end(&w);
+    jw_kv_texts(&w, "definitions", JW_TEXTS(compare_definitions));
     jw_kv_arr(&w, "runs");
     const char *keys[CMP_MAX_CTX + 16];
     int nk = ctx_keys(set, keys, (int)(sizeof keys / sizeof keys[0]));

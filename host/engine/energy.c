@@ -288,45 +288,63 @@ static double quadratic_moment(double k)
     return k <= 1.0 ? 0.5 - k / 3.0 + k * k / 12.0 : 1.0 / (3.0 * k) - 1.0 / (12.0 * k * k);
 }
 
+static double albedo_one(double n)
+{
+    (void)n;
+    return 1.0;
+}
+
+/* Paper 2's coefficients (docs/definitions.md): coef(n) = 0.214 (0.807 + n), k(n) = 0.448 n + 0.099. */
+static double fq2n_albedo(double n)
+{
+    return 0.214 * (0.807 + n) * two_pi * quadratic_moment(0.448 * n + 0.099);
+}
+
+/* int_{theta_h < pi/4} D cos dw = 1 - exp(-tan^2(pi/4)/alpha^2), alpha^2 = 2/(n+2). */
+static double beckmann_albedo(double n)
+{
+    return -expm1(-(n + 2.0) / 2.0);
+}
+
+static double ggx_albedo(double n)
+{
+    return (n + 2.0) / (n + 4.0);
+}
+
+/* The models whose normal-incidence albedo has a closed form: its value at n and how it is derived. */
+static const struct {
+    const char *id;
+    double (*value)(double n);
+    const char *derivation;
+} closed_forms[] = {
+    { "phongn", albedo_one, "(n+2)/(2 pi) 2 pi int_0^1 u^(n+1) du = 1 (R = N, the lobe fits in the hemisphere)" },
+    { "blinnn", albedo_one,
+      "Giesen: 2 pi int_0^(pi/2) cos^n(theta_o/2) cos(theta_o) sin(theta_o) dtheta_o = "
+      "8 pi (2^(-n/2) + n)/((n+2)(n+4)), the normalisation's inverse" },
+    { "fq2n", fq2n_albedo,
+      "0.214 (0.807 + n) 2 pi int_0^1 ((0.448n + 0.099)(u-1) + 1)^2 u du, the quadratic "
+      "zeroed past its root: a polynomial integral" },
+    { "beckmann", beckmann_albedo,
+      "int over theta_h < pi/4 (V above the horizon) of D cos(theta_h) dw_h = "
+      "1 - exp(-1/alpha^2) = 1 - exp(-(n+2)/2)" },
+    { "ggx", ggx_albedo,
+      "int over theta_h < pi/4 of D cos(theta_h) dw_h = tan^2(pi/4)/(alpha^2 + tan^2(pi/4)) "
+      "= (n+2)/(n+4)" },
+};
+
 int albedo_closed_form_normal(const struct model_spec *m, int mode, double n, double *value, const char **derivation)
 {
-    const char *id = m->info->id;
     if (mode == ALBEDO_DCOS) {
         *value = 1.0;
         *derivation = "int D cos(theta_h) dw_h = 1: the normalisation of a microfacet distribution";
         return 1;
     }
-    if (strcmp(id, "phongn") == 0) {
-        *value = 1.0;
-        *derivation = "(n+2)/(2 pi) 2 pi int_0^1 u^(n+1) du = 1 (R = N, the lobe fits in the hemisphere)";
-        return 1;
-    }
-    if (strcmp(id, "blinnn") == 0) {
-        *value = 1.0;
-        *derivation = "Giesen: 2 pi int_0^(pi/2) cos^n(theta_o/2) cos(theta_o) sin(theta_o) dtheta_o = "
-                      "8 pi (2^(-n/2) + n)/((n+2)(n+4)), the normalisation's inverse";
-        return 1;
-    }
-    if (strcmp(id, "fq2n") == 0) {
-        /* Paper 2's coefficients (docs/definitions.md): coef(n) = 0.214 (0.807 + n), k(n) = 0.448 n + 0.099. */
-        *value = 0.214 * (0.807 + n) * two_pi * quadratic_moment(0.448 * n + 0.099);
-        *derivation = "0.214 (0.807 + n) 2 pi int_0^1 ((0.448n + 0.099)(u-1) + 1)^2 u du, the quadratic "
-                      "zeroed past its root: a polynomial integral";
-        return 1;
-    }
-    if (strcmp(id, "beckmann") == 0) {
-        /* int_{theta_h < pi/4} D cos dw = 1 - exp(-tan^2(pi/4)/alpha^2), alpha^2 = 2/(n+2). */
-        *value = -expm1(-(n + 2.0) / 2.0);
-        *derivation = "int over theta_h < pi/4 (V above the horizon) of D cos(theta_h) dw_h = "
-                      "1 - exp(-1/alpha^2) = 1 - exp(-(n+2)/2)";
-        return 1;
-    }
-    if (strcmp(id, "ggx") == 0) {
-        *value = (n + 2.0) / (n + 4.0);
-        *derivation = "int over theta_h < pi/4 of D cos(theta_h) dw_h = tan^2(pi/4)/(alpha^2 + tan^2(pi/4)) "
-                      "= (n+2)/(n+4)";
-        return 1;
-    }
+    for (size_t i = 0; i < sizeof closed_forms / sizeof closed_forms[0]; ++i)
+        if (strcmp(m->info->id, closed_forms[i].id) == 0) {
+            *value = closed_forms[i].value(n);
+            *derivation = closed_forms[i].derivation;
+            return 1;
+        }
     return 0;
 }
 

@@ -12,18 +12,34 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The keys of a worst pair's members: n, N, L, V and the value both ways. The two reciprocity
+ * sections write the same members under their own names. */
+struct worst_pair_keys {
+    const char *n, *nrm, *l, *v, *lv, *vl;
+};
+static const struct worst_pair_keys recip_keys = { "n", "N", "L", "V", "f_LV", "f_VL" };
+static const struct worst_pair_keys pass_keys = { "worst_n", "worst_N", "worst_L", "worst_V", "worst_S_LV",
+                                                  "worst_S_VL" };
+
+/* The pair a reciprocity check found worst: its n, its directions and the value each way. */
+static void jw_worst_pair(struct jw *w, const struct worst_pair_keys *k, double n, const double *nrm,
+                          const double *l, const double *v, double lv, double vl)
+{
+    jw_kv_num(w, k->n, n);
+    jw_kv_nums(w, k->nrm, nrm, 3);
+    jw_kv_nums(w, k->l, l, 3);
+    jw_kv_nums(w, k->v, v, 3);
+    jw_kv_num(w, k->lv, lv);
+    jw_kv_num(w, k->vl, vl);
+}
+
 static void jw_recip(struct jw *w, const char *key, const struct recip_worst *r)
 {
     jw_kv_obj(w, key);
     jw_kv_num(w, "max_diff_of_peak", r->diff);
     if (r->eval_error > 0)
         jw_kv_num(w, "max_eval_error_of_peak", r->eval_error);
-    jw_kv_num(w, "n", r->n);
-    jw_kv_nums(w, "N", r->nrm, 3);
-    jw_kv_nums(w, "L", r->l, 3);
-    jw_kv_nums(w, "V", r->v, 3);
-    jw_kv_num(w, "f_LV", r->f_lv);
-    jw_kv_num(w, "f_VL", r->f_vl);
+    jw_worst_pair(w, &recip_keys, r->n, r->nrm, r->l, r->v, r->f_lv, r->f_vl);
     jw_obj_end(w);
 }
 
@@ -104,64 +120,60 @@ static void json_albedo(struct jw *w, const struct energy_summary *sum)
     jw_obj_end(w);
 }
 
-/* A reciprocity section of energy.json: its pairs, what it compares, then its models. */
-static void recip_section_begin(struct jw *w, const char *name, long pairs, const char *what)
+/* A reciprocity section of energy.json: its pairs, what it compares, then a record per model,
+ * written by `model`. */
+static void json_recip_section(struct jw *w, const char *name, long pairs, const char *what, int count,
+                               const struct energy_summary *sum,
+                               void (*model)(struct jw *w, const struct energy_summary *sum, int i))
 {
     jw_kv_obj(w, name);
     jw_kv_int(w, "pairs", pairs);
     jw_kv_str(w, "what", what);
     jw_kv_arr(w, "models");
-}
-
-static void recip_section_end(struct jw *w)
-{
+    for (int i = 0; i < count; ++i) {
+        jw_obj_begin(w);
+        model(w, sum, i);
+        jw_obj_end(w);
+    }
     jw_arr_end(w);
     jw_obj_end(w);
 }
 
-static void json_reciprocity(struct jw *w, const struct energy_summary *sum)
+static void json_reciprocity_model(struct jw *w, const struct energy_summary *sum, int i)
 {
-    recip_section_begin(w, "reciprocity", sum->recip_pairs,
-                        "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
-                        "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
-                        "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
-                        "difference relative to the lobe's peak f(c = 1, n)");
-    for (int i = 0; i < sum->recip_count; ++i) {
-        const struct recip_summary *rs = &sum->recip[i];
-        jw_obj_begin(w);
-        jw_kv_str(w, "model", rs->spec.label);
-        jw_kv_str(w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
-        jw_recip(w, "device_worst", &rs->device);
-        jw_recip(w, "host_worst", &rs->host);
-        jw_obj_end(w);
-    }
-    recip_section_end(w);
+    const struct recip_summary *rs = &sum->recip[i];
+    jw_kv_str(w, "model", rs->spec.label);
+    jw_kv_str(w, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
+    jw_recip(w, "device_worst", &rs->device);
+    jw_recip(w, "host_worst", &rs->host);
 }
 
-static void json_reciprocity_pass(struct jw *w, const struct energy_summary *sum)
+static void json_reciprocity_pass_model(struct jw *w, const struct energy_summary *sum, int i)
 {
-    recip_section_begin(w, "reciprocity_image_pass", sum->recip_pairs,
-                        "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
-                        "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
-                        "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
-                        "reference (render_shade_ref)");
-    for (int i = 0; i < sum->pass_count; ++i) {
-        const struct recip_pass_summary *q = &sum->pass[i];
-        jw_obj_begin(w);
-        jw_kv_str(w, "model", q->spec.label);
-        jw_kv_int(w, "shading_mode", q->mode);
-        jw_kv_int(w, "pairs_lit_both_ways", q->lit);
-        jw_kv_num(w, "device_max_rel_diff", q->device_worst);
-        jw_kv_num(w, "host_max_rel_diff", q->host_worst);
-        jw_kv_num(w, "worst_n", q->n);
-        jw_kv_nums(w, "worst_N", q->nrm, 3);
-        jw_kv_nums(w, "worst_L", q->l, 3);
-        jw_kv_nums(w, "worst_V", q->v, 3);
-        jw_kv_num(w, "worst_S_LV", q->s_lv);
-        jw_kv_num(w, "worst_S_VL", q->s_vl);
-        jw_obj_end(w);
-    }
-    recip_section_end(w);
+    const struct recip_pass_summary *q = &sum->pass[i];
+    jw_kv_str(w, "model", q->spec.label);
+    jw_kv_int(w, "shading_mode", q->mode);
+    jw_kv_int(w, "pairs_lit_both_ways", q->lit);
+    jw_kv_num(w, "device_max_rel_diff", q->device_worst);
+    jw_kv_num(w, "host_max_rel_diff", q->host_worst);
+    jw_worst_pair(w, &pass_keys, q->n, q->nrm, q->l, q->v, q->s_lv, q->s_vl);
+}
+
+/* The two reciprocity sections: the lobes' formulas, then the image pass. */
+static void json_reciprocity(struct jw *w, const struct energy_summary *sum)
+{
+    json_recip_section(w, "reciprocity", sum->recip_pairs,
+                       "f(L, V) against f(V, L) at random (N, L, V), L and V in N's hemisphere (half of the V "
+                       "within 3 x_e(n) of L's mirror direction), n log-uniform in [2, 1000]; the lobe's cosine "
+                       "computed as an image pass does (R = 2(N.L)N - L, or H = normalize(L + V)); "
+                       "difference relative to the lobe's peak f(c = 1, n)",
+                       sum->recip_count, sum, json_reciprocity_model);
+    json_recip_section(w, "reciprocity_image_pass", sum->recip_pairs,
+                       "kernels/shade.cl (the image pass) shades each pixel twice with eye and point light "
+                       "swapped; S = specular / (E (N.L) ks) compared, relative to the larger value (floor: 1e-6 "
+                       "of the lobe's peak); Cook-Torrance for the microfacet models; host: the pass's double "
+                       "reference (render_shade_ref)",
+                       sum->pass_count, sum, json_reciprocity_pass_model);
 }
 
 int energy_write(const struct cl_session *s, struct energy_summary *sum, int keep_json, const char *out_dir)
@@ -172,7 +184,6 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
     jw_obj_end(&w);
     json_albedo(&w, sum);
     json_reciprocity(&w, sum);
-    json_reciprocity_pass(&w, sum);
     jw_kv_num(&w, "seconds", sum->seconds);
     jw_obj_end(&w);
     if (keep_json && !w.out.failed) {

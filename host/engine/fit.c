@@ -81,28 +81,30 @@ int fit_options_check(const struct fit_options *o, char *err, size_t errlen)
 
 /* ---- the family at one n ------------------------------------------------------------- */
 
+/* The registry's default spec of model `id`, made into *spec on the first call (*ready). */
+static const struct model_spec *default_spec_once(const char *id, struct model_spec *spec, int *ready)
+{
+    if (!*ready) {
+        model_spec_default(models_find(id), spec);
+        *ready = 1;
+    }
+    return spec;
+}
+
 /* f = (k(c-1)+1)^2 zeroed past its root is the registry's quad model with a = 0, b = k, so
  * the formula is the header's (kernels/brdf_models.h), evaluated in double. */
 static const struct model_spec *family_base(void)
 {
     static struct model_spec quad;
     static int ready;
-    if (!ready) {
-        model_spec_default(models_find("quad"), &quad);
-        ready = 1;
-    }
-    return &quad;
+    return default_spec_once("quad", &quad, &ready);
 }
 
 static const struct model_spec *reference_base(void)
 {
     static struct model_spec phong;
     static int ready;
-    if (!ready) {
-        model_spec_default(models_find("phong"), &phong);
-        ready = 1;
-    }
-    return &phong;
+    return default_spec_once("phong", &phong, &ready);
 }
 
 static double family_eval(double c, double n, double k)

@@ -19,16 +19,32 @@ static void jw_extreme_obj(struct jw *w, const char *key, const char *metric, co
     jw_obj_end(w);
 }
 
+/* The two zones' figures, each with the n where it is reached, as every fit record names them. */
+static void jw_zone_figures(struct jw *w, double max_rel, double max_rel_n, double max_abs, double max_abs_n)
+{
+    jw_kv_num(w, "max_rel", max_rel);
+    jw_kv_num(w, "max_rel_at_n", max_rel_n);
+    jw_kv_num(w, "max_abs", max_abs);
+    jw_kv_num(w, "max_abs_at_n", max_abs_n);
+}
+
+/* A device sweep's figures, and the whole range's max Delta; all NAN when there is no sweep
+ * (r NULL). */
+static void jw_sweep_figures(struct jw *w, const struct accuracy_result *r)
+{
+    if (r)
+        jw_zone_figures(w, r->epicentre.value, r->epicentre.n, r->attenuation.value, r->attenuation.n);
+    else
+        jw_zone_figures(w, NAN, NAN, NAN, NAN);
+    jw_kv_num(w, "max_abs_whole", r ? r->whole.value : NAN);
+}
+
 static void jw_sweep_summary(struct jw *w, const struct accuracy_result *r)
 {
     jw_obj_begin(w);
     jw_kv_str(w, "model", r->model.label);
     jw_kv_str(w, "reference", r->reference.label);
-    jw_kv_num(w, "max_rel", r->epicentre.value);
-    jw_kv_num(w, "max_rel_at_n", r->epicentre.n);
-    jw_kv_num(w, "max_abs", r->attenuation.value);
-    jw_kv_num(w, "max_abs_at_n", r->attenuation.n);
-    jw_kv_num(w, "max_abs_whole", r->whole.value);
+    jw_sweep_figures(w, r);
     jw_extreme_obj(w, "epicentre", "max_rel", &r->epicentre);
     jw_extreme_obj(w, "attenuation", "max_abs", &r->attenuation);
     jw_obj_end(w);
@@ -43,20 +59,12 @@ static void jw_fit_model(struct jw *w, const struct fit_model *m)
     jw_kv_str(w, "model", m->fit.feasible ? m->spec_text : "");
     jw_kv_num(w, "a", m->fit.feasible ? m->spec.params[0] : NAN);
     jw_kv_num(w, "b", m->fit.feasible ? m->spec.params[1] : NAN);
-    const struct accuracy_result *r = m->have_sweep ? &m->sweep : NULL;
-    jw_kv_num(w, "max_rel", r ? r->epicentre.value : NAN);
-    jw_kv_num(w, "max_rel_at_n", r ? r->epicentre.n : NAN);
-    jw_kv_num(w, "max_abs", r ? r->attenuation.value : NAN);
-    jw_kv_num(w, "max_abs_at_n", r ? r->attenuation.n : NAN);
-    jw_kv_num(w, "max_abs_whole", r ? r->whole.value : NAN);
+    jw_sweep_figures(w, m->have_sweep ? &m->sweep : NULL);
     jw_kv_num(w, "max_abs_cap", m->fit.cap);
     if (!isfinite(m->fit.cap))
         jw_kv_str(w, "max_abs_cap_reason", "no cap");
     jw_kv_obj(w, "host_check");
-    jw_kv_num(w, "max_rel", m->fit.max_rel);
-    jw_kv_num(w, "max_rel_at_n", m->fit.max_rel_n);
-    jw_kv_num(w, "max_abs", m->fit.max_abs);
-    jw_kv_num(w, "max_abs_at_n", m->fit.max_abs_n);
+    jw_zone_figures(w, m->fit.max_rel, m->fit.max_rel_n, m->fit.max_abs, m->fit.max_abs_n);
     jw_kv_str(w, "what", "the same figures from the fit's own double-precision evaluation (exact stationary point "
                          "in the epicentre; 256-sample grid + Brent in the attenuation zone)");
     jw_obj_end(w);
@@ -168,10 +176,7 @@ static void jw_fit_point(struct jw *w, const struct fit_family_report *r, const 
     jw_kv_num(w, "cap", p->cap);
     if (!isfinite(p->cap))
         jw_kv_str(w, "cap_reason", "no cap");
-    jw_kv_num(w, "max_rel", p->max_rel);
-    jw_kv_num(w, "max_rel_at_n", p->max_rel_n);
-    jw_kv_num(w, "max_abs", p->max_abs);
-    jw_kv_num(w, "max_abs_at_n", p->max_abs_n);
+    jw_zone_figures(w, p->max_rel, p->max_rel_n, p->max_abs, p->max_abs_n);
     jw_obj_end(w);
 }
 
@@ -210,10 +215,8 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
     if (r->have_sweep) {
         jw_obj_begin(&w);
         jw_kv_str(&w, "model", r->sweep.model.label);
-        jw_kv_num(&w, "max_rel", r->sweep.epicentre.value);
-        jw_kv_num(&w, "max_rel_at_n", r->sweep.epicentre.n);
-        jw_kv_num(&w, "max_abs", r->sweep.attenuation.value);
-        jw_kv_num(&w, "max_abs_at_n", r->sweep.attenuation.n);
+        jw_zone_figures(&w, r->sweep.epicentre.value, r->sweep.epicentre.n, r->sweep.attenuation.value,
+                        r->sweep.attenuation.n);
         jw_obj_end(&w);
     } else {
         jw_obj_begin(&w);

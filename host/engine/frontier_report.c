@@ -17,6 +17,23 @@
 
 static const char *const range_names[2] = { "n_2_1000", "n_16_1000" };
 
+/* frontier.json's "definitions": what each figure of a row means. */
+static const char *const frontier_definitions[][2] = {
+    { "rate", "device evaluations per second, throughput kernels with the default build options, timed "
+              "by the runner (host/core/runner.h): rounds x reps rounds over every model in a fresh random "
+              "order with the peak kernel as each round's reference; median, min and max over the rounds; "
+              "uniform: one n per launch, varying: n per evaluation" },
+    { "normalised", "rate / the peak kernel's rate in the same round (per CPU second on a CPU device "
+                    "where the runner keeps it): what the front is decided on" },
+    { "max_rel", "largest epicentre delta over the n range (device sweep polished in double)" },
+    { "max_abs", "largest attenuation-zone Delta over the n range" },
+    { "psnr_db", "teapot image pass against the model's reference, 8-bit sRGB, peak 255" },
+    { "front", "Pareto set over (uniform normalised rate, max_rel and max_abs over n in [2, 1000]); two "
+               "rates whose medians are within 10% of each other (compare's minimum change) count as equal" },
+    { "ops", "per evaluation: arith = FMA/mul/add/sub/conversions, minmax = min/max/select, div, "
+             "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)" },
+};
+
 int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
                         size_t errlen)
 {
@@ -30,21 +47,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     #undef F
     jw_kv_fields(&w, &r->opt, JW_FIELDS(options));
     jw_obj_end(&w);
-    jw_kv_obj(&w, "definitions");
-    jw_kv_str(&w, "rate", "device evaluations per second, throughput kernels with the default build options, timed "
-                          "by the runner (host/core/runner.h): rounds x reps rounds over every model in a fresh random "
-                          "order with the peak kernel as each round's reference; median, min and max over the rounds; "
-                          "uniform: one n per launch, varying: n per evaluation");
-    jw_kv_str(&w, "normalised", "rate / the peak kernel's rate in the same round (per CPU second on a CPU device "
-                                "where the runner keeps it): what the front is decided on");
-    jw_kv_str(&w, "max_rel", "largest epicentre delta over the n range (device sweep polished in double)");
-    jw_kv_str(&w, "max_abs", "largest attenuation-zone Delta over the n range");
-    jw_kv_str(&w, "psnr_db", "teapot image pass against the model's reference, 8-bit sRGB, peak 255");
-    jw_kv_str(&w, "front", "Pareto set over (uniform normalised rate, max_rel and max_abs over n in [2, 1000]); two "
-                           "rates whose medians are within 10% of each other (compare's minimum change) count as equal");
-    jw_kv_str(&w, "ops", "per evaluation: arith = FMA/mul/add/sub/conversions, minmax = min/max/select, div, "
-                         "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)");
-    jw_obj_end(&w);
+    jw_kv_texts(&w, "definitions", JW_TEXTS(frontier_definitions));
     jw_kv_arr(&w, "models");
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];

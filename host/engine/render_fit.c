@@ -107,44 +107,29 @@ struct he_images {
     unsigned char *rgb_he, *rgb;
 };
 
+/* The pass's images and the fit's inputs, npix pixels each. */
+static struct pixel_buffers he_buffers(struct he_images *im, struct he_fit *fit)
+{
+    return (struct pixel_buffers){
+        .rgba = { &im->rgba_he, &im->rgba_b, &im->rgba_m },
+        .floats = { &im->spec_he, &im->spec_b, &im->spec_m, &im->errimg, &im->signed_img },
+        .doubles = { &fit->a, &fit->c, &fit->h },
+        .rgb = { &im->rgb_he, &im->rgb },
+    };
+}
+
 /* Allocates the pass's images and the fit's inputs for npix pixels; -1 when out of memory
    (what was allocated is freed by he_free). */
 static int he_alloc(struct he_images *im, struct he_fit *fit, size_t npix)
 {
-    im->rgba_he = malloc(npix * sizeof *im->rgba_he);
-    im->rgba_b = malloc(npix * sizeof *im->rgba_b);
-    im->rgba_m = malloc(npix * sizeof *im->rgba_m);
-    im->spec_he = malloc(npix * sizeof *im->spec_he);
-    im->spec_b = malloc(npix * sizeof *im->spec_b);
-    im->spec_m = malloc(npix * sizeof *im->spec_m);
-    im->errimg = malloc(npix * sizeof *im->errimg);
-    im->signed_img = malloc(npix * sizeof *im->signed_img);
-    im->rgb_he = malloc(npix * 3);
-    im->rgb = malloc(npix * 3);
-    fit->a = malloc(npix * sizeof *fit->a);
-    fit->c = malloc(npix * sizeof *fit->c);
-    fit->h = malloc(npix * sizeof *fit->h);
-    if (!im->rgba_he || !im->rgba_b || !im->rgba_m || !im->spec_he || !im->spec_b || !im->spec_m || !im->errimg ||
-        !im->signed_img || !im->rgb_he || !im->rgb || !fit->a || !fit->c || !fit->h)
-        return -1;
-    return 0;
+    struct pixel_buffers b = he_buffers(im, fit);
+    return pixel_buffers_alloc(&b, npix);
 }
 
 static void he_free(struct he_images *im, struct he_fit *fit)
 {
-    free(fit->a);
-    free(fit->c);
-    free(fit->h);
-    free(im->rgba_he);
-    free(im->rgba_b);
-    free(im->rgba_m);
-    free(im->spec_he);
-    free(im->spec_b);
-    free(im->spec_m);
-    free(im->signed_img);
-    free(im->errimg);
-    free(im->rgb_he);
-    free(im->rgb);
+    struct pixel_buffers b = he_buffers(im, fit);
+    pixel_buffers_free(&b);
 }
 
 /* The fit's inputs: every lit foreground pixel, in double from the G-buffer, with He's

@@ -93,6 +93,36 @@ done:
     return rc;
 }
 
+int pixel_buffers_alloc(const struct pixel_buffers *b, size_t npix)
+{
+    int failed = 0;
+    for (int i = 0; i < PIXEL_BUFFERS_MAX; ++i) {
+        if (b->rgba[i] && !(*b->rgba[i] = malloc(npix * sizeof **b->rgba[i])))
+            failed = 1;
+        if (b->floats[i] && !(*b->floats[i] = malloc(npix * sizeof **b->floats[i])))
+            failed = 1;
+        if (b->doubles[i] && !(*b->doubles[i] = malloc(npix * sizeof **b->doubles[i])))
+            failed = 1;
+        if (b->rgb[i] && !(*b->rgb[i] = malloc(npix * 3)))
+            failed = 1;
+    }
+    return failed ? -1 : 0;
+}
+
+void pixel_buffers_free(const struct pixel_buffers *b)
+{
+    for (int i = 0; i < PIXEL_BUFFERS_MAX; ++i) {
+        if (b->rgba[i])
+            free(*b->rgba[i]);
+        if (b->floats[i])
+            free(*b->floats[i]);
+        if (b->doubles[i])
+            free(*b->doubles[i]);
+        if (b->rgb[i])
+            free(*b->rgb[i]);
+    }
+}
+
 /* The host images of the image pass: the model's shading, its error images and 8-bit colours,
    and on the sphere grid the whole grid's colours and relative errors. */
 struct pass_images {
@@ -101,39 +131,31 @@ struct pass_images {
     unsigned char *rgb_m, *rgb_r, *grid_m, *grid_r;
 };
 
+/* The pass's images, and apart the sphere grid's. */
+static void pass_image_lists(struct pass_images *im, struct pixel_buffers *pass, struct pixel_buffers *grid)
+{
+    *pass = (struct pixel_buffers){ .rgba = { &im->rgba_m }, .floats = { &im->spec_m, &im->errimg, &im->signed_m },
+                                    .rgb = { &im->rgb_m, &im->rgb_r } };
+    *grid = (struct pixel_buffers){ .floats = { &im->grid_err }, .rgb = { &im->grid_m, &im->grid_r } };
+}
+
 /* Allocates the pass's images for npix pixels (the grid's only when `grid`); -1 when out of
    memory (what was allocated is freed by pass_images_free). */
 static int pass_images_alloc(struct pass_images *im, size_t npix, int grid)
 {
-    im->rgba_m = malloc(npix * sizeof *im->rgba_m);
-    im->spec_m = malloc(npix * sizeof *im->spec_m);
-    im->errimg = malloc(npix * sizeof *im->errimg);
-    im->signed_m = malloc(npix * sizeof *im->signed_m);
-    im->rgb_m = malloc(npix * 3);
-    im->rgb_r = malloc(npix * 3);
-    if (!im->rgba_m || !im->spec_m || !im->errimg || !im->signed_m || !im->rgb_m || !im->rgb_r)
+    struct pixel_buffers pass, grid_images;
+    pass_image_lists(im, &pass, &grid_images);
+    if (pixel_buffers_alloc(&pass, npix))
         return -1;
-    if (grid) {
-        im->grid_err = malloc(npix * sizeof *im->grid_err);
-        im->grid_m = malloc(npix * 3);
-        im->grid_r = malloc(npix * 3);
-        if (!im->grid_err || !im->grid_m || !im->grid_r)
-            return -1;
-    }
-    return 0;
+    return grid ? pixel_buffers_alloc(&grid_images, npix) : 0;
 }
 
 static void pass_images_free(struct pass_images *im)
 {
-    free(im->rgba_m);
-    free(im->spec_m);
-    free(im->errimg);
-    free(im->signed_m);
-    free(im->rgb_m);
-    free(im->rgb_r);
-    free(im->grid_err);
-    free(im->grid_m);
-    free(im->grid_r);
+    struct pixel_buffers pass, grid_images;
+    pass_image_lists(im, &pass, &grid_images);
+    pixel_buffers_free(&pass);
+    pixel_buffers_free(&grid_images);
 }
 
 /* The reference of a model in its own shading mode, shaded once per scene: its index in the

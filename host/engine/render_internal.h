@@ -48,6 +48,19 @@ int device_copy(struct render_device *d, cl_mem gbuf, size_t stride, size_t npix
 
 /* A model label as a file name: "fq:Q=0.64" -> "fq_Q=0.64". */
 void label_to_file(const char *label, char *out, size_t len);
+/* A pass's host images of npix pixels each, named by element type (packed RGBA, float and double
+ * planes, 8-bit RGB of 3 bytes a pixel) so that one call allocates them and one frees them; an
+ * entry left NULL is skipped. */
+#define PIXEL_BUFFERS_MAX 6
+struct pixel_buffers {
+    unsigned **rgba[PIXEL_BUFFERS_MAX];
+    float **floats[PIXEL_BUFFERS_MAX];
+    double **doubles[PIXEL_BUFFERS_MAX];
+    unsigned char **rgb[PIXEL_BUFFERS_MAX];
+};
+/* -1 when out of memory (what was allocated is left for pixel_buffers_free). */
+int pixel_buffers_alloc(const struct pixel_buffers *b, size_t npix);
+void pixel_buffers_free(const struct pixel_buffers *b);
 /* A pass's device buffers, and their release (see render_images.c). */
 void pass_release(cl_mem out_spec, cl_mem out_rgba, cl_mem gbuf, struct gbuffer *g);
 int pass_buffers(struct cl_session *s, const struct gbuffer *g, cl_mem_flags gbuf_flags, const char *which,

@@ -110,7 +110,7 @@ static void jw_kernel_fingerprints(struct jw *w)
     jw_obj_end(w);
 }
 
-static const char *tp_definitions[][2] = {
+static const char *const tp_definitions[][2] = {
     { "evals_per_s", "model evaluations per second: work-items x iterations x 64 over the launch time (profiling events); min/median/max over the timed launches" },
     { "evals_per_s_wall", "the same over wall time, enqueue to clFinish" },
     { "evals_per_s_reps", "evals_per_s of every timed launch, in the order they ran (empty when the figure failed); brdfbench compare tests two runs' repetitions against each other" },
@@ -366,10 +366,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
     json_context(&w, r);
 
-    jw_kv_obj(&w, "definitions");
-    for (size_t i = 0; i < sizeof tp_definitions / sizeof tp_definitions[0]; ++i)
-        jw_kv_str(&w, tp_definitions[i][0], tp_definitions[i][1]);
-    jw_obj_end(&w);
+    jw_kv_texts(&w, "definitions", JW_TEXTS(tp_definitions));
 
     json_builds(&w, r);
     json_peak(&w, r);

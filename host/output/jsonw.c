@@ -151,6 +151,14 @@ void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count)
     jw_arr_end(w);
 }
 
+void jw_kv_texts(struct jw *w, const char *key, const char *const rows[][2], size_t count)
+{
+    jw_kv_obj(w, key);
+    for (size_t i = 0; i < count; ++i)
+        jw_kv_str(w, rows[i][0], rows[i][1]);
+    jw_obj_end(w);
+}
+
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
 {
     md_append(&w->out, "\n", 1);

@@ -44,6 +44,10 @@ void jw_kv_obj(struct jw *w, const char *key);
 void jw_kv_arr(struct jw *w, const char *key);
 /* "key": [v[0], ..., v[count-1]] with jw_num. */
 void jw_kv_nums(struct jw *w, const char *key, const double *v, size_t count);
+/* "key": { "name": "text", ... } from rows of { name, text }: a document's definitions, kept
+ * as one table of prose beside the writer. */
+void jw_kv_texts(struct jw *w, const char *key, const char *const rows[][2], size_t count);
+#define JW_TEXTS(TABLE) (TABLE), (sizeof(TABLE) / sizeof((TABLE)[0]))
 /* A record's members written from a table: each row names the key, the member's C type and
  * its offset, so a writer lists what a document holds instead of one call per member, and
  * the keys come out in the table's order. */

@@ -154,15 +154,21 @@ static void remove_contents_at(int fd, int depth)
 static volatile int swap_phase;
 static char swap_final[OUTDIR_PATH_MAX], swap_old[OUTDIR_PATH_MAX + 128];
 
-void outdir_remove_own(void)
+/* What an exit or a stop undoes first: the temporary file of the write in progress, and a swap
+ * caught half way (the earlier run goes back to its place). */
+static void undo_write_in_progress(void)
 {
     if (outdir_own_tmp_set)
         unlink(outdir_own_tmp);
     if (swap_phase == 1) {
-        /* the earlier run goes back to its place */
         rename(swap_old, swap_final);
         swap_phase = 0;
     }
+}
+
+void outdir_remove_own(void)
+{
+    undo_write_in_progress();
     for (int i = own_dir_count - 1; i >= 0; --i) {
         if (!own_dirs[i][0])
             continue;
@@ -636,12 +642,7 @@ void outdir_stage_abandon(void)
 
 void outdir_remove_unfinished(void)
 {
-    if (outdir_own_tmp_set)
-        unlink(outdir_own_tmp);
-    if (swap_phase == 1) {
-        rename(swap_old, swap_final);
-        swap_phase = 0;
-    }
+    undo_write_in_progress();
     if (stage_dir[0])
         remove_tree(stage_dir);
     for (int i = scratch_count - 1; i >= 0; --i)
