@@ -15,6 +15,15 @@ static char dir[4096];
 
 static void path_in(char *out, size_t len, const char *name) { snprintf(out, len, "%s/%s", dir, name); }
 
+/* Writes text as the file `name` of the test folder and reads it as rows: rdoc_read_file's code. */
+static int rows_of(const char *name, const char *text, struct rdoc *d, char *err, size_t errlen)
+{
+    char path[4200];
+    path_in(path, sizeof path, name);
+    test_write_file(path, text);
+    return rdoc_read_file(path, d, err, errlen);
+}
+
 static const struct rd_row *row_labelled(const struct rdoc *d, const char *label)
 {
     for (int i = 0; i < d->nrows; ++i)
@@ -36,8 +45,8 @@ static void check_throughput(void)
 {
     CHECK_CASE("throughput.json as rows");
     char path[4200], err[512];
-    path_in(path, sizeof path, "throughput.json");
-    test_write_file(path,
+    struct rdoc d;
+    CHECK(rows_of("throughput.json",
         "{\"schema\": \"brdfbench.throughput/3\",\n"
         " \"context\": {\"device\": \"dev0\", \"throughput\": {\"reps\": 3, \"runner\": {\"disturbed_reps\": 2}}},\n"
         " \"peak\": {\"status\": \"ok\", \"flops_per_s\": {\"min\": 1e10, \"median\": 2e10, \"max\": 3e10},\n"
@@ -48,9 +57,8 @@ static void check_throughput(void)
         "   \"normalised_reps\": [0.5, 0.25, 0.125], \"normalised_cpu_reps\": [0.75, 0.5, 0.25],\n"
         "   \"preemption_retries\": 1, \"disturbed_reps\": 2},\n"
         "  {\"label\": \"fq2\", \"kind\": \"model\", \"variant\": \"fast\", \"n_mode\": \"varying\", \"status\": \"failed\",\n"
-        "   \"reason\": \"the kernel failed\", \"evals_per_s\": {\"min\": null, \"median\": null, \"max\": null}}]}\n");
-    struct rdoc d;
-    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "read: %s", err);
+        "   \"reason\": \"the kernel failed\", \"evals_per_s\": {\"min\": null, \"median\": null, \"max\": null}}]}\n",
+                  &d, err, sizeof err) == 0, "read: %s", err);
     CHECK(strcmp(d.kind, "throughput") == 0 && strcmp(d.file, "throughput.json") == 0, "kind %s file %s", d.kind,
           d.file);
     CHECK(d.nrows == 3, "the peak and two results: %d rows", d.nrows);
@@ -135,9 +143,9 @@ static void check_throughput(void)
 static void check_accuracy(void)
 {
     CHECK_CASE("accuracy.json as rows");
-    char path[4200], err[512];
-    path_in(path, sizeof path, "accuracy.json");
-    test_write_file(path,
+    char err[512];
+    struct rdoc d;
+    CHECK(rows_of("accuracy.json",
         "{\"schema\": \"brdfbench.accuracy/1\",\n"
         " \"context\": {\"grid\": {\"n_min\": 2, \"n_max\": 1000, \"n_step\": 1, \"samples_per_zone\": 4096}},\n"
         " \"results\": [\n"
@@ -145,9 +153,8 @@ static void check_accuracy(void)
         "   \"epicentre\": {\"max_rel\": 0.01257}, \"attenuation\": {\"max_abs\": 0.0214},\n"
         "   \"whole\": {\"max_abs\": 0.0214}, \"invalid\": {\"count\": 0}},\n"
         "  {\"label\": \"cq2\", \"n_min\": 2, \"n_max\": 1000, \"status\": \"device_disagrees\",\n"
-        "   \"reason\": \"device and double disagree\", \"epicentre\": {\"max_rel\": null}}]}\n");
-    struct rdoc d;
-    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "read: %s", err);
+        "   \"reason\": \"device and double disagree\", \"epicentre\": {\"max_rel\": null}}]}\n",
+                  &d, err, sizeof err) == 0, "read: %s", err);
     CHECK(d.nrows == 2, "two rows: %d", d.nrows);
     const char *grid = "n 2..1000 step 1, 4096 samples per zone";
     CHECK(rd_ctx_get(&d.ctx, "accuracy grid") && strcmp(rd_ctx_get(&d.ctx, "accuracy grid"), grid) == 0,
@@ -179,16 +186,15 @@ static void check_accuracy(void)
 static void check_render_fit(void)
 {
     CHECK_CASE("render.json and fit.json as rows");
-    char path[4200], err[512];
-    path_in(path, sizeof path, "render.json");
-    test_write_file(path,
+    char err[512];
+    struct rdoc d;
+    CHECK(rows_of("render.json",
         "{\"schema\": \"brdfbench.render/1\", \"scenes\": [{\"scene\": \"spheres\",\n"
         " \"image\": {\"width\": 64, \"height\": 32},\n"
         " \"models\": [{\"model\": \"fq2\", \"metrics\": {\"max_abs\": 0.5, \"rmse\": 0.25, \"psnr_db\": null}}],\n"
         " \"timings\": [{\"width\": 128, \"height\": 128, \"entries\": [{\"name\": \"fq2\", \"model\": \"fq2\",\n"
-        "   \"mpixel_per_s\": 10, \"median_ms\": 2, \"min_ms\": 1, \"max_ms\": 4, \"mpixel_per_s_reps\": [5, 10, 20]}]}]}]}\n");
-    struct rdoc d;
-    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "render read: %s", err);
+        "   \"mpixel_per_s\": 10, \"median_ms\": 2, \"min_ms\": 1, \"max_ms\": 4, \"mpixel_per_s_reps\": [5, 10, 20]}]}]}]}\n",
+                  &d, err, sizeof err) == 0, "render read: %s", err);
     const struct rd_row *img = row_labelled(&d, "spheres 64x32 | fq2");
     /* the null PSNR of an ok row is left out: identical images, nothing to compare */
     CHECK(img && img->nmetrics == 2 && rd_row_find(img, "rmse") && rd_row_find(img, "rmse")->value == 0.25 &&
@@ -200,13 +206,12 @@ static void check_render_fit(void)
           strcmp(r->unit, "Mpixel/s") == 0, "the timing row: rate, range from the times, repetitions");
     rdoc_free(&d);
 
-    path_in(path, sizeof path, "fit.json");
-    test_write_file(path,
+    CHECK(rows_of("fit.json",
         "{\"schema\": \"brdfbench.fit/1\", \"context\": {\"grid\": {\"n_min\": 2, \"n_max\": 10, \"n_step\": 1,\n"
         " \"samples_per_zone\": 64}}, \"a\": 0.25, \"b\": 0.5, \"max_rel\": 0.01, \"max_abs\": 0.02,\n"
         " \"compare\": [{\"model\": \"quad:a=0.25,b=0.5\", \"max_rel\": 0.01}, {\"model\": \"fq2\", \"max_rel\": 0.02,\n"
-        "   \"max_abs\": 0.03}]}\n");
-    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "fit read: %s", err);
+        "   \"max_abs\": 0.03}]}\n",
+                  &d, err, sizeof err) == 0, "fit read: %s", err);
     /* the fit itself (its coefficients and figures) and fq2; the quadratic's own compare row
        is the fit again under a label that moves with its coefficients: left out */
     CHECK(d.nrows == 2, "two rows: %d", d.nrows);

@@ -25,6 +25,7 @@
 #include "jsonr.h"
 #include "heatmaps_shared.h"
 #include "report.h"
+#include "room.h"
 #include "usermodel.h"
 
 #include <math.h>
@@ -57,13 +58,9 @@ void all_progress(const struct all_run *r, const char *what, int done, int total
 /* A line of the report's step list (run.json). Out of memory, the line is lost, not the run. */
 static void add_step(struct all_run *r, const char *name, const char *msg, double secs, int exit_code)
 {
-    if (r->nsteps == r->capsteps) {
-        int nc = r->capsteps ? 2 * r->capsteps : 16;
-        struct report_step *ns = realloc(r->steps, (size_t)nc * sizeof *ns);
-        if (!ns) return;
-        r->steps = ns;
-        r->capsteps = nc;
-    }
+    struct report_step *steps = room_for_one(r->steps, r->nsteps, &r->capsteps, sizeof *steps, 16);
+    if (!steps) return;
+    r->steps = steps;
     struct report_step *st = &r->steps[r->nsteps++];
     snprintf(st->name, sizeof st->name, "%s", name);
     snprintf(st->message, sizeof st->message, "%s", msg);
@@ -93,13 +90,9 @@ static void add_picture(struct all_run *r, const char *file, int section, const 
     __attribute__((format(printf, 4, 5)));
 static void add_picture(struct all_run *r, const char *file, int section, const char *fmt, ...)
 {
-    if (r->npics == r->cappics) {
-        int nc = r->cappics ? 2 * r->cappics : 32;
-        struct report_picture *np = realloc(r->pics, (size_t)nc * sizeof *np);
-        if (!np) return; /* the picture stays on disk, only its report entry is lost */
-        r->pics = np;
-        r->cappics = nc;
-    }
+    struct report_picture *pics = room_for_one(r->pics, r->npics, &r->cappics, sizeof *pics, 32);
+    if (!pics) return; /* the picture stays on disk, only its report entry is lost */
+    r->pics = pics;
     struct report_picture *p = &r->pics[r->npics++];
     snprintf(p->file, sizeof p->file, "%s", file);
     va_list ap;

@@ -2,6 +2,7 @@
  * (see programs.h). */
 #include "programs.h"
 #include "exitcodes.h"
+#include "room.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,19 +34,13 @@ static int entry_count, entry_cap;
 static struct host_entry *hosts;
 static int host_count, host_cap;
 
-/* The table with room for one more element (doubling *cap), or NULL when memory is out
- * (the table is then unchanged). */
+/* The table with room for one more element (room.h), or NULL with a message when memory is
+ * out (the table is then unchanged). */
 static void *make_room(void *table, int count, int *cap, size_t size)
 {
-    if (count < *cap)
-        return table;
-    int grown_cap = *cap ? 2 * *cap : 8;
-    void *grown = realloc(table, (size_t)grown_cap * size);
-    if (!grown) {
+    void *grown = room_for_one(table, count, cap, size, 8);
+    if (!grown)
         fprintf(stderr, "brdfbench: out of memory\n");
-        return NULL;
-    }
-    *cap = grown_cap;
     return grown;
 }
 

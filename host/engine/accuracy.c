@@ -5,6 +5,7 @@
 #include "programs.h"
 #include "refine.h"
 #include "brdf_shared.h"
+#include "room.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -570,13 +571,9 @@ static int copy_result(struct accuracy_result *dst, const struct accuracy_result
 static void remember(const struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                      const struct accuracy_result *r)
 {
-    if (nmemo == capmemo) {
-        int nc = capmemo ? 2 * capmemo : 32;
-        struct sweep_memo *nm = realloc(memo, (size_t)nc * sizeof *nm);
-        if (!nm) return; /* not remembered: a later ask runs the sweep again */
-        memo = nm;
-        capmemo = nc;
-    }
+    struct sweep_memo *grown = room_for_one(memo, nmemo, &capmemo, sizeof *grown, 32);
+    if (!grown) return; /* not remembered: a later ask runs the sweep again */
+    memo = grown;
     struct sweep_memo *e = &memo[nmemo];
     memset(e, 0, sizeof *e);
     snprintf(e->device, sizeof e->device, "%s", a->s->device_name);

@@ -5,6 +5,7 @@
 #include "outdir.h"
 #include "ranktest.h"
 #include "rdoc_read.h"
+#include "room.h"
 #include "schemas.h"
 
 #include <errno.h>
@@ -66,16 +67,12 @@ static struct cmp_cell *cell_for(struct cmp_reader *rd, const char *device, cons
             strcmp(r->metric, metric) == 0)
             return &r->cell[rd->run];
     }
-    if (set->nrows == set->cap) {
-        int cap = set->cap ? 2 * set->cap : 64;
-        struct cmp_row *nr = realloc(set->rows, (size_t)cap * sizeof *nr);
-        if (!nr) {
-            rd->oom = 1;
-            return NULL;
-        }
-        set->rows = nr;
-        set->cap = cap;
+    struct cmp_row *rows = room_for_one(set->rows, set->nrows, &set->cap, sizeof *rows, 64);
+    if (!rows) {
+        rd->oom = 1;
+        return NULL;
     }
+    set->rows = rows;
     struct cmp_row *r = &set->rows[set->nrows++];
     memset(r, 0, sizeof *r);
     r->kind = rd->kind;

@@ -525,8 +525,6 @@ int fit_start(struct cl_session *s, const struct fit_options *o, void *r, size_t
 
 int fit_run(struct cl_session *s, const struct fit_options *o, struct fit_report *report)
 {
-    const char *out_dir = o->io.out_dir;
-    const int quiet = o->io.quiet;
     char err[1024];
     struct fit_report local;
     struct fit_report *r = report ? report : &local;
@@ -589,16 +587,16 @@ int fit_run(struct cl_session *s, const struct fit_options *o, struct fit_report
     }
     fit_verdict(r);
     r->seconds = wall_seconds() - t0;
-    if (out_dir) {
+    if (o->io.out_dir) {
         char path[4200];
-        path_join(path, sizeof path, out_dir, "fit.json");
+        path_join(path, sizeof path, o->io.out_dir, "fit.json");
         if (fit_write_json(path, r, s, actx.build_options, err, sizeof err)) {
             fprintf(stderr, "brdfbench fit: %s\n", err);
             rc = EXIT_RUNTIME;
             goto done;
         }
     }
-    if (!quiet)
+    if (!o->io.quiet)
         fit_print(stdout, r);
     /* A cap that no member of the family meets: fit.json says why, and the exit says so. */
     if (!r->main.fit.feasible) {

@@ -317,8 +317,6 @@ static int fam_fitted_spec(const struct fit_options *o, const struct model_spec 
 
 int fit_family_run(struct cl_session *s, const struct fit_options *o, struct fit_family_report *report)
 {
-    const char *out_dir = o->io.out_dir;
-    const int quiet = o->io.quiet;
     char err[1024];
     struct fit_family_report local;
     struct fit_family_report *r = report ? report : &local;
@@ -372,15 +370,15 @@ int fit_family_run(struct cl_session *s, const struct fit_options *o, struct fit
     }
     accuracy_close(&actx);
     r->seconds = wall_seconds() - t0;
-    if (!rc && out_dir) {
+    if (!rc && o->io.out_dir) {
         char path[4200];
-        path_join(path, sizeof path, out_dir, "fit.json");
+        path_join(path, sizeof path, o->io.out_dir, "fit.json");
         if (fit_family_write_json(path, r, s, err, sizeof err)) {
             fprintf(stderr, "brdfbench fit: %s\n", err);
             rc = EXIT_RUNTIME;
         }
     }
-    if (!rc && !quiet)
+    if (!rc && !o->io.quiet)
         fit_family_print(stdout, r);
     if (!rc && !r->best.ok) {
         fprintf(stderr, "brdfbench fit: infeasible: %s\n", r->best.reason);

@@ -239,8 +239,6 @@ void frontier_result_free(struct frontier_result *r)
 
 int frontier_run(struct cl_session *s, const struct frontier_options *o, struct frontier_result *res)
 {
-    const char *out_dir = o->io.out_dir;
-    const int quiet = o->io.quiet;
     char err[1024];
     double t0 = wall_seconds();
     struct frontier_report *r = calloc(1, sizeof *r);
@@ -267,9 +265,9 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, struct 
     }
     int rc = frontier_accuracy(s, r);
     if (!rc)
-        rc = frontier_cost(s, r, quiet);
+        rc = frontier_cost(s, r, o->io.quiet);
     if (!rc)
-        rc = frontier_psnr(s, r, out_dir);
+        rc = frontier_psnr(s, r, o->io.out_dir);
     if (rc)
         goto done;
     double lo[FRONTIER_MAX_MODELS] = { 0 }, hi[FRONTIER_MAX_MODELS] = { 0 }, rel[FRONTIER_MAX_MODELS] = { 0 },
@@ -293,13 +291,13 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, struct 
     for (int i = 0; i < r->count; ++i)
         r->rows[i].on_front = front[i];
     r->seconds = wall_seconds() - t0;
-    if (out_dir) {
+    if (o->io.out_dir) {
         char path[4300];
-        path_join(path, sizeof path, out_dir, "frontier.json");
+        path_join(path, sizeof path, o->io.out_dir, "frontier.json");
         if (frontier_write_json(path, r, s, err, sizeof err) == 0) {
-            path_join(path, sizeof path, out_dir, "frontier.csv");
+            path_join(path, sizeof path, o->io.out_dir, "frontier.csv");
             if (frontier_write_csv(path, r, err, sizeof err) == 0)
-                if (frontier_write_plots(out_dir, r, err, sizeof err) == 0)
+                if (frontier_write_plots(o->io.out_dir, r, err, sizeof err) == 0)
                     err[0] = '\0';
         }
         if (err[0]) {
@@ -308,7 +306,7 @@ int frontier_run(struct cl_session *s, const struct frontier_options *o, struct 
             goto done;
         }
     }
-    if (!quiet)
+    if (!o->io.quiet)
         frontier_print(stdout, r);
     if (res)
         res->markdown = frontier_markdown(r);

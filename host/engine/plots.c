@@ -8,6 +8,7 @@
 #include "jsonw.h"
 #include "outdir.h"
 #include "rdoc_read.h"
+#include "room.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -41,13 +42,9 @@ void plots_free(struct plot_set *set)
 
 struct plot_figure *plots_add(struct plot_set *set, int kind, const char *file, const char *caption)
 {
-    if (set->count == set->cap) {
-        int nc = set->cap ? set->cap * 2 : 8;
-        struct plot_figure *nf = realloc(set->figs, (size_t)nc * sizeof *nf);
-        if (!nf) return NULL;
-        set->figs = nf;
-        set->cap = nc;
-    }
+    struct plot_figure *figs = room_for_one(set->figs, set->count, &set->cap, sizeof *figs, 8);
+    if (!figs) return NULL;
+    set->figs = figs;
     struct plot_figure *f = &set->figs[set->count++];
     memset(f, 0, sizeof *f);
     f->kind = kind;

@@ -47,18 +47,6 @@ int rd_kind_of_name(const char *name)
 
 /* ---- members ------------------------------------------------------------------------------ */
 
-static const char *str_member(const struct jr_value *obj, const char *key, const char *dflt)
-{
-    const struct jr_value *v = jr_get(obj, key);
-    return v && v->type == JR_STR ? v->str : dflt;
-}
-
-static double num_member(const struct jr_value *obj, const char *key)
-{
-    const struct jr_value *v = jr_get(obj, key);
-    return v && v->type == JR_NUM ? v->num : NAN;
-}
-
 /* A dotted path of object members ("epicentre.max_rel"), or NULL. */
 static const struct jr_value *path_get(const struct jr_value *obj, const char *path)
 {
@@ -92,9 +80,9 @@ static int take_reps(const struct jr_doc *j, const struct jr_value *obj, const c
 /* A row's status: not ok with the reason (the status itself when no reason is given). */
 static void row_status(struct rd_row *r, const struct jr_value *obj)
 {
-    const char *status = str_member(obj, "status", "ok");
+    const char *status = jr_str_or(obj, "status", "ok");
     if (strcmp(status, "ok") != 0)
-        rd_row_fail(r, status, str_member(obj, "reason", status));
+        rd_row_fail(r, status, jr_str_or(obj, "reason", status));
     r->line = obj ? obj->line : 0;
 }
 
@@ -127,7 +115,7 @@ static void read_contexts(const struct jr_doc *j, struct rdoc *d)
     char all[RD_TEXT] = "";
     for (size_t i = 0; i < devices->count; ++i) {
         const struct jr_value *dv = &devices->items[i];
-        const char *tag = str_member(dv, "tag", str_member(dv, "device", "?"));
+        const char *tag = jr_str_or(dv, "tag", jr_str_or(dv, "device", "?"));
         snprintf(all + strlen(all), sizeof all - strlen(all), "%s%s", i ? "; " : "", tag);
         struct rd_device *rd = rdoc_device(d, tag);
         if (rd)
@@ -142,8 +130,8 @@ static void grid_text(const struct jr_value *ctx, char *out, size_t len)
     const struct jr_value *g = jr_get(ctx, "grid");
     out[0] = '\0';
     if (g)
-        snprintf(out, len, "n %g..%g step %g, %g samples per zone", num_member(g, "n_min"), num_member(g, "n_max"),
-                 num_member(g, "n_step"), num_member(g, "samples_per_zone"));
+        snprintf(out, len, "n %g..%g step %g, %g samples per zone", jr_num_or_nan(g, "n_min"), jr_num_or_nan(g, "n_max"),
+                 jr_num_or_nan(g, "n_step"), jr_num_or_nan(g, "samples_per_zone"));
 }
 
 /* ---- throughput.json ------------------------------------------------------------------------ */
@@ -152,19 +140,19 @@ static void grid_text(const struct jr_value *ctx, char *out, size_t len)
 static void throughput_context(struct rd_context *c, const struct jr_value *tp, int *disturbed)
 {
     char buf[RD_TEXT];
-    snprintf(buf, sizeof buf, "%g reps, min time %g s, %g work-items, n %g, n range %g:%g", num_member(tp, "reps"),
-             num_member(tp, "min_time_s"), num_member(tp, "work_items"), num_member(tp, "n_uniform"),
-             num_member(tp, "n_lo"), num_member(tp, "n_hi"));
+    snprintf(buf, sizeof buf, "%g reps, min time %g s, %g work-items, n %g, n range %g:%g", jr_num_or_nan(tp, "reps"),
+             jr_num_or_nan(tp, "min_time_s"), jr_num_or_nan(tp, "work_items"), jr_num_or_nan(tp, "n_uniform"),
+             jr_num_or_nan(tp, "n_lo"), jr_num_or_nan(tp, "n_hi"));
     rd_ctx_put(c, "throughput settings", buf);
     const struct jr_value *rn = jr_get(tp, "runner");
-    snprintf(buf, sizeof buf, "load %s -> %s", str_member(tp, "loadavg_start", "?"), str_member(tp, "loadavg_end", "?"));
+    snprintf(buf, sizeof buf, "load %s -> %s", jr_str_or(tp, "loadavg_start", "?"), jr_str_or(tp, "loadavg_end", "?"));
     if (rn)
         snprintf(buf + strlen(buf), sizeof buf - strlen(buf), ", steal %.3g s, %g of %g launches retried, %g reps disturbed",
-                 num_member(rn, "steal_seconds"), num_member(rn, "preemption_retries"), num_member(rn, "launches"),
-                 num_member(rn, "disturbed_reps"));
+                 jr_num_or_nan(rn, "steal_seconds"), jr_num_or_nan(rn, "preemption_retries"), jr_num_or_nan(rn, "launches"),
+                 jr_num_or_nan(rn, "disturbed_reps"));
     rd_ctx_put(c, "machine", buf);
-    if (disturbed && rn && num_member(rn, "disturbed_reps") > 0)
-        *disturbed = (int)num_member(rn, "disturbed_reps");
+    if (disturbed && rn && jr_num_or_nan(rn, "disturbed_reps") > 0)
+        *disturbed = (int)jr_num_or_nan(rn, "disturbed_reps");
 }
 
 /* A rate: "name" {min, median, max} of obj, with its repetitions in "name_reps". */
@@ -172,14 +160,14 @@ static struct rd_metric *rate_metric(const struct jr_doc *j, struct rdoc *d, str
                                      const char *name, const char *unit, char *err, size_t errlen, int *rc)
 {
     const struct jr_value *f = jr_get(obj, name);
-    struct rd_metric *m = rd_row_metric(d, r, name, unit, RD_HIGHER, 1, num_member(f, "median"));
+    struct rd_metric *m = rd_row_metric(d, r, name, unit, RD_HIGHER, 1, jr_num_or_nan(f, "median"));
     char reps[RD_NAME + 8];
     snprintf(reps, sizeof reps, "%s_reps", name);
     *rc = 0;
     if (!m)
         return NULL;
-    m->lo = num_member(f, "min");
-    m->hi = num_member(f, "max");
+    m->lo = jr_num_or_nan(f, "min");
+    m->hi = jr_num_or_nan(f, "max");
     if (jr_get(obj, reps))
         *rc = take_reps(j, obj, reps, &m->reps, &m->nreps, err, errlen);
     return m;
@@ -195,9 +183,9 @@ static int put_peak(const struct jr_doc *j, struct rdoc *d, const char *device, 
     if (!r)
         return 0;
     rd_row_key(r, "reference", NULL, "peak (reference kernel)");
-    const char *status = str_member(pk, "status", "ok");
+    const char *status = jr_str_or(pk, "status", "ok");
     if (strcmp(status, "ok") != 0)
-        rd_row_fail(r, status, str_member(pk, "reason", "failed"));
+        rd_row_fail(r, status, jr_str_or(pk, "reason", "failed"));
     int rc;
     rate_metric(j, d, r, pk, "flops_per_s", "FLOP/s", err, errlen, &rc);
     return rc;
@@ -226,7 +214,7 @@ static int throughput_peaks(const struct jr_doc *j, struct rdoc *d, char *err, s
         return put_peak(j, d, "", jr_get(&j->root, "peak"), err, errlen);
     for (size_t i = 0; i < devs->count; ++i) {
         const struct jr_value *dv = &devs->items[i];
-        const char *tag = str_member(dv, "tag", str_member(dv, "device", "?"));
+        const char *tag = jr_str_or(dv, "tag", jr_str_or(dv, "device", "?"));
         if (put_peak(j, d, tag, jr_get(dv, "peak"), err, errlen))
             return 2;
         struct rd_device *rd = rdoc_device(d, tag);
@@ -264,20 +252,20 @@ static int read_throughput(const struct jr_doc *j, struct rdoc *d, char *err, si
         if (jr_need_str(j, row, "label", &label, err, errlen) || jr_need_str(j, row, "variant", &variant, err, errlen) ||
             jr_need_str(j, row, "n_mode", &mode, err, errlen))
             return 2;
-        struct rd_row *r = rdoc_row(d, str_member(row, "device", ""), label);
+        struct rd_row *r = rdoc_row(d, jr_str_or(row, "device", ""), label);
         if (!r)
             continue;
         rd_row_key(r, "label", NULL, label);
         rd_row_key(r, "variant", NULL, variant);
         rd_row_key(r, "n_mode", "n ", mode);
-        rd_row_attr(r, "kind", str_member(row, "kind", ""));
+        rd_row_attr(r, "kind", jr_str_or(row, "kind", ""));
         row_status(r, row);
         int rc;
         struct rd_metric *m = rate_metric(j, d, r, row, "evals_per_s", "1/s", err, errlen, &rc);
         if (rc || (m && take_normalised(j, row, m, err, errlen)))
             return 2;
-        r->retries = (int)fmax(0, num_member(row, "preemption_retries"));
-        r->disturbed = (int)fmax(0, num_member(row, "disturbed_reps"));
+        r->retries = (int)fmax(0, jr_num_or_nan(row, "preemption_retries"));
+        r->disturbed = (int)fmax(0, jr_num_or_nan(row, "disturbed_reps"));
     }
     return 0;
 }
@@ -300,7 +288,7 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
         const char *label;
         if (jr_need_str(j, row, "label", &label, err, errlen))
             return 2;
-        struct rd_row *r = rdoc_row(d, str_member(row, "device", ""), label);
+        struct rd_row *r = rdoc_row(d, jr_str_or(row, "device", ""), label);
         if (!r)
             continue;
         snprintf(text, sizeof text, "%.120s", label);
@@ -308,11 +296,11 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
         snprintf(text, sizeof text, "%.120s", grid);
         rd_row_key(r, "grid", NULL, text);
         row_status(r, row);
-        snprintf(text, sizeof text, "%.17g", num_member(row, "n_min"));
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(row, "n_min"));
         rd_row_attr(r, "n_min", text);
-        snprintf(text, sizeof text, "%.17g", num_member(row, "n_max"));
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(row, "n_max"));
         rd_row_attr(r, "n_max", text);
-        snprintf(text, sizeof text, "%.17g", num_member(g, "n_step"));
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_step"));
         rd_row_attr(r, "n_step", text);
         for (size_t f = 0; f < sizeof figures / sizeof figures[0]; ++f) {
             const struct jr_value *v = path_get(row, figures[f]);
@@ -333,16 +321,16 @@ static void render_models(struct rdoc *d, const struct jr_value *sc, const char 
     char text[RD_TEXT];
     for (size_t m = 0; models && m < models->count; ++m) {
         const struct jr_value *mo = &models->items[m], *met = jr_get(mo, "metrics");
-        const char *model = str_member(mo, "model", "?");
+        const char *model = jr_str_or(mo, "model", "?");
         struct rd_row *r = rdoc_row(d, device, model);
         if (!r)
             return;
-        snprintf(text, sizeof text, "%s %gx%g", scene, num_member(img, "width"), num_member(img, "height"));
+        snprintf(text, sizeof text, "%s %gx%g", scene, jr_num_or_nan(img, "width"), jr_num_or_nan(img, "height"));
         rd_row_key(r, "scene", NULL, text);
         rd_row_key(r, "model", NULL, model);
         row_status(r, met);
         for (size_t k = 0; met && k < sizeof metrics / sizeof metrics[0]; ++k) {
-            double v = num_member(met, metrics[k].name);
+            double v = jr_num_or_nan(met, metrics[k].name);
             if (!isfinite(v) && r->ok)
                 continue;   /* a PSNR of identical images is null (infinite): nothing to compare */
             rd_row_metric(d, r, metrics[k].name, metrics[k].unit, metrics[k].direction, 0, v);
@@ -358,25 +346,25 @@ static int render_timings(const struct jr_doc *j, struct rdoc *d, const struct j
     for (size_t t = 0; timings && t < timings->count; ++t) {
         const struct jr_value *tm = &timings->items[t], *entries = jr_get(tm, "entries");
         char metric[64];
-        snprintf(metric, sizeof metric, "mpixel_per_s@%gx%g", num_member(tm, "width"), num_member(tm, "height"));
+        snprintf(metric, sizeof metric, "mpixel_per_s@%gx%g", jr_num_or_nan(tm, "width"), jr_num_or_nan(tm, "height"));
         for (size_t e = 0; entries && e < entries->count; ++e) {
             const struct jr_value *en = &entries->items[e];
-            const char *name = str_member(en, "name", str_member(en, "model", "?"));
-            struct rd_row *r = rdoc_row(d, device, str_member(en, "model", name));
+            const char *name = jr_str_or(en, "name", jr_str_or(en, "model", "?"));
+            struct rd_row *r = rdoc_row(d, device, jr_str_or(en, "model", name));
             if (!r)
                 return 0;
             rd_row_key(r, "scene", NULL, scene);
             rd_row_key(r, "entry", NULL, name);
-            const char *reason = str_member(en, "reason", NULL);
+            const char *reason = jr_str_or(en, "reason", NULL);
             if (reason && *reason)
                 rd_row_fail(r, "failed", reason);
-            double v = num_member(en, "mpixel_per_s"), med = num_member(en, "median_ms");
+            double v = jr_num_or_nan(en, "mpixel_per_s"), med = jr_num_or_nan(en, "median_ms");
             struct rd_metric *m = rd_row_metric(d, r, metric, "Mpixel/s", RD_HIGHER, 1, v);
             if (!m || !r->ok || !isfinite(v))
                 continue;
             /* Mpixel/s is inversely proportional to the time: the slowest run gives lo */
-            m->lo = v * med / num_member(en, "max_ms");
-            m->hi = v * med / num_member(en, "min_ms");
+            m->lo = v * med / jr_num_or_nan(en, "max_ms");
+            m->hi = v * med / jr_num_or_nan(en, "min_ms");
             /* the launches' own rates, for the rank test (an older render.json without them is
                compared by its min..max range) */
             if (jr_get(en, "mpixel_per_s_reps") &&
@@ -397,7 +385,7 @@ static int read_render(const struct jr_doc *j, struct rdoc *d, char *err, size_t
         const char *scene;
         if (jr_need_str(j, sc, "scene", &scene, err, errlen))
             return 2;
-        const char *device = str_member(sc, "device", "");   /* a --device all run tags its scenes */
+        const char *device = jr_str_or(sc, "device", "");   /* a --device all run tags its scenes */
         render_models(d, sc, scene, device);
         if (render_timings(j, d, sc, scene, device, err, errlen))
             return 2;
@@ -422,9 +410,9 @@ static void fit_row(struct rdoc *d, const struct jr_value *obj, const char *role
     rd_row_key(r, "grid", NULL, text);
     row_status(r, obj);
     for (int k = 0; with_coefs && k < 2; ++k)
-        rd_row_metric(d, r, coefs[k], "1", RD_NEITHER, 0, num_member(obj, coefs[k]));
+        rd_row_metric(d, r, coefs[k], "1", RD_NEITHER, 0, jr_num_or_nan(obj, coefs[k]));
     for (int k = 0; k < 2; ++k)
-        rd_row_metric(d, r, errs[k], "1", RD_LOWER, 0, num_member(obj, errs[k]));
+        rd_row_metric(d, r, errs[k], "1", RD_LOWER, 0, jr_num_or_nan(obj, errs[k]));
 }
 
 static int read_fit(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
@@ -440,7 +428,7 @@ static int read_fit(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
         fit_row(d, capped, "capped at fq2's max Delta", grid, 1);
     const struct jr_value *cmp = jr_get(&j->root, "compare");
     for (size_t i = 0; cmp && cmp->type == JR_ARR && i < cmp->count; ++i) {
-        const char *model = str_member(&cmp->items[i], "model", "?");
+        const char *model = jr_str_or(&cmp->items[i], "model", "?");
         if (strncmp(model, "quad:", 5) == 0)
             continue;   /* the fitted model itself: its label moves with its coefficients */
         fit_row(d, &cmp->items[i], model, grid, 0);
@@ -484,10 +472,10 @@ static void frontier_members(const struct jr_doc *j, struct rdoc *d, struct rd_r
         const char *unit;
         int dir = frontier_direction(name, &timed, &unit);
         if (v->type == JR_OBJ && dir >= 0 && timed && jr_get(v, "median")) {
-            struct rd_metric *m = pass ? NULL : rd_row_metric(d, r, name, unit, dir, 1, num_member(v, "median"));
+            struct rd_metric *m = pass ? NULL : rd_row_metric(d, r, name, unit, dir, 1, jr_num_or_nan(v, "median"));
             if (m) {
-                m->lo = num_member(v, "min");
-                m->hi = num_member(v, "max");
+                m->lo = jr_num_or_nan(v, "min");
+                m->hi = jr_num_or_nan(v, "max");
             }
         } else if (v->type == JR_OBJ && depth < 1) {
             frontier_members(j, d, r, v, name, depth + 1, pass);
@@ -521,10 +509,10 @@ static int read_frontier(const struct jr_doc *j, struct rdoc *d, char *err, size
         const struct jr_value *row = &rows->items[i];
         if (row->type != JR_OBJ)
             continue;
-        const char *model = str_member(row, "model", str_member(row, "label", NULL));
+        const char *model = jr_str_or(row, "model", jr_str_or(row, "label", NULL));
         if (!model)
             return jr_fail(j, row, err, errlen, "a row without \"model\" or \"label\"");
-        struct rd_row *r = rdoc_row(d, str_member(row, "device", ""), model);
+        struct rd_row *r = rdoc_row(d, jr_str_or(row, "device", ""), model);
         if (!r)
             return 0;
         rd_row_key(r, "model", NULL, model);

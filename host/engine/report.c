@@ -7,6 +7,7 @@
 #include "outdir.h"
 #include "plots.h"
 #include "report_run.h"
+#include "room.h"
 #include "schemas.h"
 
 
@@ -54,16 +55,12 @@ struct report_input {
 static void add_picture(struct report_input *in, const char *file, int section, const char *caption,
                         const char *not_drawn)
 {
-    if (in->npictures == in->cap) {
-        int nc = in->cap ? 2 * in->cap : 32;
-        struct report_picture *np = realloc(in->pictures, (size_t)nc * sizeof *np);
-        if (!np) {
-            in->out_of_memory = 1;
-            return;
-        }
-        in->pictures = np;
-        in->cap = nc;
+    struct report_picture *pictures = room_for_one(in->pictures, in->npictures, &in->cap, sizeof *pictures, 32);
+    if (!pictures) {
+        in->out_of_memory = 1;
+        return;
     }
+    in->pictures = pictures;
     struct report_picture *p = &in->pictures[in->npictures++];
     snprintf(p->file, sizeof p->file, "%s", file);
     snprintf(p->caption, sizeof p->caption, "%s", caption);
@@ -76,23 +73,11 @@ static void add_image_picture(void *ctx, const char *file, const char *caption)
     add_picture(ctx, file, REPORT_IMAGES, caption, NULL);
 }
 
-static double num_or_nan(const struct jr_value *o, const char *key)
-{
-    const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_NUM ? v->num : NAN;
-}
-
-static const char *str_or(const struct jr_value *o, const char *key, const char *dflt)
-{
-    const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_STR ? v->str : dflt;
-}
-
 /* A number member of o, or of o's member obj (NULL: o itself); NAN when absent. */
 static double num_at(const struct jr_value *o, const char *obj, const char *key)
 {
     const struct jr_value *v = obj ? jr_get(o, obj) : o;
-    return v ? num_or_nan(v, key) : NAN;
+    return v ? jr_num_or_nan(v, key) : NAN;
 }
 
 /* A result document of the run folder, checked against its schema. Returns 0, 1 when the file
@@ -119,7 +104,7 @@ static int read_doc(const char *run_dir, const char *name, const char *schema, s
 
 static const char *accuracy_status_text(struct md_buf *b, const struct jr_value *r)
 {
-    const char *status = str_or(r, "status", ""), *reason = str_or(r, "reason", "");
+    const char *status = jr_str_or(r, "status", ""), *reason = jr_str_or(r, "reason", "");
     if (strcmp(status, "failed") == 0 || strcmp(status, "device_disagrees") == 0) {
         md_printf(b, " %s: ", status);
         md_cell_text(b, reason);
@@ -130,7 +115,7 @@ static const char *accuracy_status_text(struct md_buf *b, const struct jr_value 
                   num_at(r, "invalid", "at_n"), num_at(r, "invalid", "at_x"));
         return " |\n";
     }
-    if (strcmp(str_or(r, "label", ""), str_or(r, "reference", "")) == 0) return " reference (zero by definition) |\n";
+    if (strcmp(jr_str_or(r, "label", ""), jr_str_or(r, "reference", "")) == 0) return " reference (zero by definition) |\n";
     return " ok |\n";
 }
 
@@ -162,9 +147,9 @@ static int accuracy_table(struct md_buf *b, const struct report_input *in, char 
     for (size_t i = 0; i < rows->count; i++) {
         const struct jr_value *r = &rows->items[i];
         md_printf(b, "| `");
-        md_cell_text(b, str_or(r, "label", ""));
+        md_cell_text(b, jr_str_or(r, "label", ""));
         md_printf(b, "` | `");
-        md_cell_text(b, str_or(r, "reference", ""));
+        md_cell_text(b, jr_str_or(r, "reference", ""));
         md_printf(b, "` |");
         md_pct(b, num_at(r, "epicentre", "max_rel"));
         md_num(b, num_at(r, "epicentre", "at_n"), "%.6g");
@@ -248,17 +233,17 @@ static int fit_block(struct md_buf *b, const struct report_input *in, char *err,
     static const char *const notes[2] = { " (best affine, uncapped)", " (max Δ capped at fq2's)" };
     size_t k = 0;
     for (int i = 0; i < 2; ++i) {
-        const char *model = fits[i] ? str_or(fits[i], "model", "") : "";
-        if (!model[0] || k >= cmp->count || strcmp(str_or(&cmp->items[k], "model", ""), model) != 0) continue;
+        const char *model = fits[i] ? jr_str_or(fits[i], "model", "") : "";
+        if (!model[0] || k >= cmp->count || strcmp(jr_str_or(&cmp->items[k], "model", ""), model) != 0) continue;
         md_printf(b, "| `%s`%s | %.4f%% | %.5f |\n", model, notes[i], 100 * num_at(&cmp->items[k], "epicentre", "max_rel"),
                   num_at(&cmp->items[k], "attenuation", "max_abs"));
         k++;
     }
     for (; k < cmp->count; ++k)
-        md_printf(b, "| %s | %.4f%% | %.5f |\n", str_or(&cmp->items[k], "model", ""),
+        md_printf(b, "| %s | %.4f%% | %.5f |\n", jr_str_or(&cmp->items[k], "model", ""),
                   100 * num_at(&cmp->items[k], "epicentre", "max_rel"), num_at(&cmp->items[k], "attenuation", "max_abs"));
     const struct jr_value *verdict = jr_get(root, "verdict");
-    if (verdict && str_or(verdict, "text", "")[0]) md_printf(b, "\n%s\n", str_or(verdict, "text", ""));
+    if (verdict && jr_str_or(verdict, "text", "")[0]) md_printf(b, "\n%s\n", jr_str_or(verdict, "text", ""));
     md_printf(b, "\n\n");
     jr_free(&d);
     return 0;
@@ -350,11 +335,11 @@ static void steps(struct md_buf *b, const struct report_input *in)
     md_printf(b, "Steps:\n\n");
     for (size_t i = 0; i < st->count; i++) {
         const struct jr_value *s = &st->items[i];
-        if (strcmp(str_or(s, "status", ""), "ok") == 0)
-            md_printf(b, "%zu. **%s**: %s (%.1f s)\n", i + 1, str_or(s, "name", ""), str_or(s, "message", ""),
+        if (strcmp(jr_str_or(s, "status", ""), "ok") == 0)
+            md_printf(b, "%zu. **%s**: %s (%.1f s)\n", i + 1, jr_str_or(s, "name", ""), jr_str_or(s, "message", ""),
                       num_at(s, NULL, "seconds"));
         else
-            md_printf(b, "%zu. **%s**: failed (exit %d)\n", i + 1, str_or(s, "name", ""), (int)num_at(s, NULL, "exit_code"));
+            md_printf(b, "%zu. **%s**: failed (exit %d)\n", i + 1, jr_str_or(s, "name", ""), (int)num_at(s, NULL, "exit_code"));
     }
     md_printf(b, "%zu. **report**: report.md\n\n", st->count + 1);
 }
@@ -364,7 +349,7 @@ static int read_pictures(struct report_input *in)
     const struct jr_value *pics = in->run.pictures;
     for (size_t i = 0; i < pics->count; i++) {
         const struct jr_value *p = &pics->items[i], *nd = jr_get(p, "not_drawn");
-        add_picture(in, str_or(p, "file", ""), report_section_of(str_or(p, "section", "")), str_or(p, "caption", ""),
+        add_picture(in, jr_str_or(p, "file", ""), report_section_of(jr_str_or(p, "section", "")), jr_str_or(p, "caption", ""),
                     nd && nd->type == JR_STR ? nd->str : NULL);
     }
     return in->out_of_memory ? 3 : 0;
@@ -446,14 +431,14 @@ static const struct jr_value *timing_of(const struct jr_value *scene, const char
     const struct jr_value *timings = jr_get(scene, "timings");
     if (!timings || timings->type != JR_ARR || timings->count < 1) return NULL;
     const struct jr_value *t = &timings->items[0];
-    *w = num_or_nan(t, "width");
-    *h = num_or_nan(t, "height");
+    *w = jr_num_or_nan(t, "width");
+    *h = jr_num_or_nan(t, "height");
     const struct jr_value *entries = jr_get(t, "entries");
     if (!entries || entries->type != JR_ARR) return NULL;
     for (size_t i = 0; i < entries->count; i++) {
         const struct jr_value *e = &entries->items[i];
         const struct jr_value *sel = jr_get(e, "selected_model");
-        if (strcmp(str_or(e, "model", ""), label) == 0 && sel && sel->type == JR_BOOL && sel->num) return e;
+        if (strcmp(jr_str_or(e, "model", ""), label) == 0 && sel && sel->type == JR_BOOL && sel->num) return e;
     }
     return NULL;
 }
@@ -471,24 +456,24 @@ static void report_he_comparison(const char *run_dir, struct md_buf *md, const s
                   "squares (n = %.4g, scale %.4g, relative rms residual %.3g) and the cheap lobes at that n, errors "
                   "against He's image:\n\n| shaded by | max abs error | mean abs error | max abs vs the fit |\n"
                   "|---|---:|---:|---:|\n",
-              name, str_or(hc, "model", "?"), num_or_nan(hc, "n_fit"), num_or_nan(hc, "k_fit"),
-              num_or_nan(hc, "relative_rms_residual"));
+              name, jr_str_or(hc, "model", "?"), jr_num_or_nan(hc, "n_fit"), jr_num_or_nan(hc, "k_fit"),
+              jr_num_or_nan(hc, "relative_rms_residual"));
     for (size_t k = 0; k < entries->count; k++) {
         const struct jr_value *e = &entries->items[k], *mt = jr_get(e, "metrics"), *files = jr_get(e, "files");
         md_printf(md, "| `");
-        md_cell_text(md, str_or(e, "name", "?"));
+        md_cell_text(md, jr_str_or(e, "name", "?"));
         md_printf(md, "` |");
-        md_num(md, mt ? num_or_nan(mt, "max_abs") : NAN, "%.4g");
-        md_num(md, mt ? num_or_nan(mt, "mean_abs") : NAN, "%.4g");
-        md_num(md, num_or_nan(e, "max_abs_vs_blinn_fit"), "%.4g");
+        md_num(md, mt ? jr_num_or_nan(mt, "max_abs") : NAN, "%.4g");
+        md_num(md, mt ? jr_num_or_nan(mt, "mean_abs") : NAN, "%.4g");
+        md_num(md, jr_num_or_nan(e, "max_abs_vs_blinn_fit"), "%.4g");
         md_printf(md, "\n");
-        const char *contact = files ? str_or(files, "contact_sheet", NULL) : NULL;
+        const char *contact = files ? jr_str_or(files, "contact_sheet", NULL) : NULL;
         /* the pictures of the fit and of fq2 (the others are in the run folder) */
         if (contact && add && file_exists(run_dir, contact) &&
-            (k == 0 || strncmp(str_or(e, "name", ""), "fq2@", 4) == 0)) {
+            (k == 0 || strncmp(jr_str_or(e, "name", ""), "fq2@", 4) == 0)) {
             char caption[400];
             snprintf(caption, sizeof caption, "%s: He's model, %s, |error| against He (max %.3g)", name,
-                     str_or(e, "name", "?"), mt ? num_or_nan(mt, "max_abs") : NAN);
+                     jr_str_or(e, "name", "?"), mt ? jr_num_or_nan(mt, "max_abs") : NAN);
             add(ctx, contact, caption);
         }
     }
@@ -519,17 +504,17 @@ int report_render_summary(const char *run_dir, struct md_buf *md,
                   "colours; timing: median kernel time at the timed size, as Mpixel/s and as a fraction of a copy "
                   "kernel moving the same bytes. Files: `render.json`, `render/<scene>/`.");
     if (size && size->type == JR_OBJ)
-        md_printf(md, " Images %.0f x %.0f.", num_or_nan(size, "width"), num_or_nan(size, "height"));
+        md_printf(md, " Images %.0f x %.0f.", jr_num_or_nan(size, "width"), jr_num_or_nan(size, "height"));
     md_printf(md, "\n\n");
     for (size_t si = 0; si < scenes->count; si++) {
         const struct jr_value *sc = &scenes->items[si];
-        const char *name = str_or(sc, "scene", "?");
+        const char *name = jr_str_or(sc, "scene", "?");
         const struct jr_value *models = jr_get(sc, "models"), *image = jr_get(sc, "image");
         md_printf(md, "### Scene: %s\n\n", name);
-        const char *src = str_or(sc, "source", NULL);
+        const char *src = jr_str_or(sc, "source", NULL);
         if (src) md_printf(md, "Source: `%s`.\n\n", src);
         if (!models || models->type != JR_ARR) continue;
-        const char *grid = image ? str_or(image, "contact_sheet", NULL) : NULL;
+        const char *grid = image ? jr_str_or(image, "contact_sheet", NULL) : NULL;
         if (grid && add) {
             char caption[200];
             snprintf(caption, sizeof caption, "%s: every model (rows) at each shininess (columns), with its error image",
@@ -543,37 +528,37 @@ int report_render_summary(const char *run_dir, struct md_buf *md,
         for (size_t mi = 0; mi < models->count; mi++) {
             const struct jr_value *m = &models->items[mi], *mt = jr_get(m, "metrics");
             const struct jr_value *chk = jr_get(m, "double_reference_check"), *files = jr_get(m, "files");
-            const char *label = str_or(m, "model", "?");
+            const char *label = jr_str_or(m, "model", "?");
             md_printf(md, "| `");
             md_cell_text(md, label);
             md_printf(md, "` | `");
-            md_cell_text(md, str_or(m, "reference", "?"));
+            md_cell_text(md, jr_str_or(m, "reference", "?"));
             md_printf(md, "` |");
-            md_num(md, mt ? num_or_nan(mt, "max_abs") : NAN, "%.4g");
-            md_num(md, mt ? num_or_nan(mt, "rmse") : NAN, "%.4g");
-            md_num(md, mt ? num_or_nan(mt, "psnr_db") : NAN, "%.1f");
-            md_pct(md, mt ? num_or_nan(mt, "share_above_threshold") : NAN);
+            md_num(md, mt ? jr_num_or_nan(mt, "max_abs") : NAN, "%.4g");
+            md_num(md, mt ? jr_num_or_nan(mt, "rmse") : NAN, "%.4g");
+            md_num(md, mt ? jr_num_or_nan(mt, "psnr_db") : NAN, "%.1f");
+            md_pct(md, mt ? jr_num_or_nan(mt, "share_above_threshold") : NAN);
             const struct jr_value *within = chk ? jr_get(chk, "within_bound") : NULL;
             md_printf(md, " %s |", within && within->type == JR_BOOL ? (within->num ? "within bound" : "**outside bound**")
                                                                    : "n/a");
             const struct jr_value *te = timing_of(sc, label, &tw, &th);
-            md_num(md, te ? num_or_nan(te, "mpixel_per_s") : NAN, "%.0f");
-            md_num(md, te ? num_or_nan(te, "fraction_of_copy") : NAN, "%.2f");
-            md_num(md, te ? num_or_nan(te, "speedup_vs_reference") : NAN, "%.2f");
-            const char *img = files ? str_or(files, "image", NULL) : NULL;
-            const char *errimg = files ? str_or(files, "error_image", NULL) : NULL;
-            const char *contact = files ? str_or(files, "contact_sheet", NULL) : NULL;
+            md_num(md, te ? jr_num_or_nan(te, "mpixel_per_s") : NAN, "%.0f");
+            md_num(md, te ? jr_num_or_nan(te, "fraction_of_copy") : NAN, "%.2f");
+            md_num(md, te ? jr_num_or_nan(te, "speedup_vs_reference") : NAN, "%.2f");
+            const char *img = files ? jr_str_or(files, "image", NULL) : NULL;
+            const char *errimg = files ? jr_str_or(files, "error_image", NULL) : NULL;
+            const char *contact = files ? jr_str_or(files, "contact_sheet", NULL) : NULL;
             if (img && file_exists(run_dir, img)) md_printf(md, " [image](%s)", img);
             if (errimg && file_exists(run_dir, errimg)) md_printf(md, " [error](%s)", errimg);
-            const char *signed_img = files ? str_or(files, "signed_error_image", NULL) : NULL;
+            const char *signed_img = files ? jr_str_or(files, "signed_error_image", NULL) : NULL;
             if (signed_img && file_exists(run_dir, signed_img)) md_printf(md, " [signed error](%s)", signed_img);
             md_printf(md, " |\n");
             /* a model against itself has a black error image: its contact sheet shows nothing new */
-            if (contact && strcmp(label, str_or(m, "reference", "")) != 0 && add) {
+            if (contact && strcmp(label, jr_str_or(m, "reference", "")) != 0 && add) {
                 char caption[400];
                 snprintf(caption, sizeof caption, "%s, %s against %s: reference, model, |error| (max %.3g, PSNR %.1f dB)",
-                         name, label, str_or(m, "reference", "?"), mt ? num_or_nan(mt, "max_abs") : NAN,
-                         mt ? num_or_nan(mt, "psnr_db") : NAN);
+                         name, label, jr_str_or(m, "reference", "?"), mt ? jr_num_or_nan(mt, "max_abs") : NAN,
+                         mt ? jr_num_or_nan(mt, "psnr_db") : NAN);
                 add(ctx, contact, caption);
             }
         }

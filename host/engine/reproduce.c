@@ -10,6 +10,7 @@
 #include "models.h"
 #include "outdir.h"
 #include "refine.h"
+#include "room.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -57,14 +58,10 @@ int reproduce_options_check(const struct reproduce_options *o, char *err, size_t
 struct claim *claim_add(struct reproduce_report *r, const char *kind, const char *id, const char *source,
                         const char *text)
 {
-    if (r->count == r->cap) {
-        int cap = r->cap ? 2 * r->cap : 64;
-        struct claim *nr = realloc(r->rows, (size_t)cap * sizeof *nr);
-        if (!nr)
-            return NULL;
-        r->rows = nr;
-        r->cap = cap;
-    }
+    struct claim *rows = room_for_one(r->rows, r->count, &r->cap, sizeof *rows, 64);
+    if (!rows)
+        return NULL;
+    r->rows = rows;
     struct claim *c = &r->rows[r->count++];
     memset(c, 0, sizeof *c);
     snprintf(c->kind, sizeof c->kind, "%s", kind);
@@ -469,8 +466,6 @@ static void repro_free(struct repro *p)
 
 int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struct reproduce_report *report)
 {
-    const char *out_dir = o->io.out_dir;
-    const int quiet = o->io.quiet;
     char err[1024];
     struct reproduce_report local;
     struct reproduce_report *r = report ? report : &local;
@@ -488,26 +483,26 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
     int rc = accuracy_open(&p.actx, s, "");
     if (!rc)
         rc = integrate_open(&p.ic, s);
-    if (!rc && !quiet)
+    if (!rc && !o->io.quiet)
         fprintf(stderr, "reproduce: claim sweeps...\n");
     if (!rc)
         rc = run_sweeps(&p);
-    if (!rc && !quiet)
+    if (!rc && !o->io.quiet)
         fprintf(stderr, "reproduce: Q sweep (%g..%g step %g)...\n", o->q_min, o->q_max, o->q_step);
     if (!rc)
         rc = run_q_sweep(&p);
     if (!rc && o->energy) {
-        if (!quiet)
+        if (!o->io.quiet)
             fprintf(stderr, "reproduce: albedo and reciprocity...\n");
         rc = energy_run(s, NULL, 1, &p.energy);   /* energy.json is written with the other files */
         p.have_energy = rc == 0;
     }
     if (!rc && o->physical) {
-        if (!quiet)
+        if (!o->io.quiet)
             fprintf(stderr, "reproduce: cost of the physically based models...\n");
         struct pbcost_options po;
         pbcost_options_default(&po);
-        po.io.quiet = quiet;   /* no folder: reproduce writes the rows with its own files */
+        po.io.quiet = o->io.quiet;   /* no folder: reproduce writes the rows with its own files */
         rc = pbcost_run(s, &po, &p.physical);
         p.have_physical = rc == 0;
     }
@@ -533,21 +528,21 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
         rc = EXIT_RUNTIME;
         goto done;
     }
-    if (out_dir) {
+    if (o->io.out_dir) {
         char path[4200];
-        path_join(path, sizeof path, out_dir, "claims.json");
+        path_join(path, sizeof path, o->io.out_dir, "claims.json");
         if (reproduce_write_claims_json(&p, path, err, sizeof err) == 0) {
-            path_join(path, sizeof path, out_dir, "claims.md");
+            path_join(path, sizeof path, o->io.out_dir, "claims.md");
             if (write_file_atomic(path, r->markdown, strlen(r->markdown), err, sizeof err) == 0) {
-                path_join(path, sizeof path, out_dir, "q_sweep.json");
+                path_join(path, sizeof path, o->io.out_dir, "q_sweep.json");
                 if (reproduce_write_q_sweep_json(&p, path, err, sizeof err) == 0) {
                     err[0] = '\0';
                     if (p.have_energy && p.energy.json) {
-                        path_join(path, sizeof path, out_dir, "energy.json");
+                        path_join(path, sizeof path, o->io.out_dir, "energy.json");
                         write_file_atomic(path, p.energy.json, strlen(p.energy.json), err, sizeof err);
                     }
                     if (!err[0] && p.have_physical) {
-                        path_join(path, sizeof path, out_dir, "physical.json");
+                        path_join(path, sizeof path, o->io.out_dir, "physical.json");
                         pbcost_write_json(path, s, &p.physical, err, sizeof err);
                     }
                 }
@@ -559,7 +554,7 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
             goto done;
         }
     }
-    if (!quiet)
+    if (!o->io.quiet)
         reproduce_print_table(stdout, &p);
     if (p.consistency_failed) {
         fprintf(stderr, "brdfbench reproduce: host and device quadrature of eq. 11 disagree (row C-eq11-device)\n");

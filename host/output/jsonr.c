@@ -298,6 +298,18 @@ const struct jr_value *jr_get(const struct jr_value *obj, const char *key)
     return NULL;
 }
 
+const char *jr_str_or(const struct jr_value *obj, const char *key, const char *dflt)
+{
+    const struct jr_value *v = jr_get(obj, key);
+    return v && v->type == JR_STR ? v->str : dflt;
+}
+
+double jr_num_or_nan(const struct jr_value *obj, const char *key)
+{
+    const struct jr_value *v = jr_get(obj, key);
+    return v && v->type == JR_NUM ? v->num : NAN;
+}
+
 int jr_fail(const struct jr_doc *d, const struct jr_value *v, char *err, size_t errlen, const char *fmt, ...)
 {
     char msg[300];

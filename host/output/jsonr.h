@@ -41,6 +41,11 @@ void jr_free(struct jr_doc *doc);
 /* The member `key` of an object, or NULL (also when obj is not an object). */
 const struct jr_value *jr_get(const struct jr_value *obj, const char *key);
 
+/* Lenient access, for members a reader can do without: the string member `key` of obj, or dflt
+ * when it is missing or not a string; the number member, or NAN (null reads as NAN too). */
+const char *jr_str_or(const struct jr_value *obj, const char *key, const char *dflt);
+double jr_num_or_nan(const struct jr_value *obj, const char *key);
+
 /* Typed access with messages. Each returns 0, or 2 with "file:line:col: member \"key\" ..."
  * in err. A number member may be null (written for a non-finite value): it reads as NAN. */
 int jr_need(const struct jr_doc *d, const struct jr_value *obj, const char *key, enum jr_type type,

@@ -8,6 +8,7 @@
 
 #include "jsonr.h"
 #include "jsonw.h"
+#include "room.h"
 #include "schemas.h"
 
 static const char *const direction_names[] = { "higher", "lower", "neither" };
@@ -74,18 +75,19 @@ struct rd_device *rdoc_device(struct rdoc *d, const char *name)
     return dv;
 }
 
+/* Out of memory: the document is incomplete, and no row or metric is given. */
+static void *out_of_memory(struct rdoc *d)
+{
+    d->oom = 1;
+    return NULL;
+}
+
 struct rd_row *rdoc_row(struct rdoc *d, const char *device, const char *model)
 {
-    if (d->nrows == d->cap) {
-        int cap = d->cap ? 2 * d->cap : 32;
-        struct rd_row *nr = realloc(d->rows, (size_t)cap * sizeof *nr);
-        if (!nr) {
-            d->oom = 1;
-            return NULL;
-        }
-        d->rows = nr;
-        d->cap = cap;
-    }
+    struct rd_row *rows = room_for_one(d->rows, d->nrows, &d->cap, sizeof *rows, 32);
+    if (!rows)
+        return out_of_memory(d);
+    d->rows = rows;
     struct rd_row *r = &d->rows[d->nrows++];
     memset(r, 0, sizeof *r);
     r->ok = 1;
@@ -127,16 +129,10 @@ void rd_row_fail(struct rd_row *r, const char *status, const char *reason)
 struct rd_metric *rd_row_metric(struct rdoc *d, struct rd_row *r, const char *name, const char *unit, int direction,
                                 int timed, double v)
 {
-    if (r->nmetrics == r->cap) {
-        int cap = r->cap ? 2 * r->cap : 4;
-        struct rd_metric *nm = realloc(r->metrics, (size_t)cap * sizeof *nm);
-        if (!nm) {
-            d->oom = 1;
-            return NULL;
-        }
-        r->metrics = nm;
-        r->cap = cap;
-    }
+    struct rd_metric *metrics = room_for_one(r->metrics, r->nmetrics, &r->cap, sizeof *metrics, 4);
+    if (!metrics)
+        return out_of_memory(d);
+    r->metrics = metrics;
     struct rd_metric *m = &r->metrics[r->nmetrics++];
     memset(m, 0, sizeof *m);
     snprintf(m->name, sizeof m->name, "%s", name);
@@ -367,18 +363,6 @@ void rdoc_markdown(const struct rdoc *d, struct md_buf *out)
 
 /* ---- reading brdfbench.rows/1 back --------------------------------------------------------- */
 
-static const char *str_of(const struct jr_value *o, const char *key, const char *dflt)
-{
-    const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_STR ? v->str : dflt;
-}
-
-static double num_of(const struct jr_value *o, const char *key)
-{
-    const struct jr_value *v = jr_get(o, key);
-    return v && v->type == JR_NUM ? v->num : NAN;
-}
-
 static void read_ctx(const struct jr_value *o, struct rd_context *c)
 {
     for (size_t i = 0; o && o->type == JR_OBJ && i < o->count; ++i)
@@ -397,12 +381,12 @@ static int read_metric(const struct jr_doc *j, const struct jr_value *mo, struct
         return jr_fail(j, jr_get(mo, "direction"), err, errlen,
                        "\"direction\" is \"%.40s\" (accepted: higher, lower, neither)", dir);
     const struct jr_value *timed = jr_get(mo, "timed");
-    struct rd_metric *m = rd_row_metric(d, r, name, str_of(mo, "unit", "1"), direction,
-                                        timed && timed->type == JR_BOOL && timed->num != 0, num_of(mo, "value"));
+    struct rd_metric *m = rd_row_metric(d, r, name, jr_str_or(mo, "unit", "1"), direction,
+                                        timed && timed->type == JR_BOOL && timed->num != 0, jr_num_or_nan(mo, "value"));
     if (!m)
         return 0;
-    m->lo = num_of(mo, "min");
-    m->hi = num_of(mo, "max");
+    m->lo = jr_num_or_nan(mo, "min");
+    m->hi = jr_num_or_nan(mo, "max");
     size_t n = 0;
     if (jr_get(mo, "reps")) {
         if (jr_need_num_array(j, mo, "reps", &m->reps, &n, err, errlen))
@@ -424,7 +408,7 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
     const struct jr_value *keys, *metrics;
     if (jr_need(j, ro, "keys", JR_OBJ, &keys, err, errlen) || jr_need(j, ro, "metrics", JR_ARR, &metrics, err, errlen))
         return 2;
-    struct rd_row *r = rdoc_row(d, str_of(ro, "device", ""), str_of(ro, "model", ""));
+    struct rd_row *r = rdoc_row(d, jr_str_or(ro, "device", ""), jr_str_or(ro, "model", ""));
     if (!r)
         return 0;
     const struct jr_value *attrs = jr_get(ro, "attributes");
@@ -440,13 +424,13 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
         }
     }
     /* the label as written (it may carry prefixes the keys do not) */
-    snprintf(r->label, sizeof r->label, "%s", str_of(ro, "row", r->label));
-    const char *status = str_of(ro, "status", "ok");
+    snprintf(r->label, sizeof r->label, "%s", jr_str_or(ro, "row", r->label));
+    const char *status = jr_str_or(ro, "status", "ok");
     if (strcmp(status, "ok") != 0)
-        rd_row_fail(r, status, str_of(ro, "reason", status));
+        rd_row_fail(r, status, jr_str_or(ro, "reason", status));
     r->line = ro->line;
-    r->retries = (int)fmax(0, num_of(ro, "preemption_retries"));
-    r->disturbed = (int)fmax(0, num_of(ro, "disturbed_reps"));
+    r->retries = (int)fmax(0, jr_num_or_nan(ro, "preemption_retries"));
+    r->disturbed = (int)fmax(0, jr_num_or_nan(ro, "disturbed_reps"));
     for (size_t m = 0; m < metrics->count; ++m)
         if (read_metric(j, &metrics->items[m], d, r, err, errlen))
             return 2;
@@ -459,12 +443,12 @@ int rdoc_from_rows_json(const struct jr_doc *j, struct rdoc *d, char *err, size_
     if (jr_need(j, &j->root, "source", JR_OBJ, &src, err, errlen) ||
         jr_need(j, &j->root, "rows", JR_ARR, &rows, err, errlen))
         return 2;
-    rdoc_init(d, str_of(src, "schema", ""), str_of(src, "kind", ""), str_of(src, "file", ""));
+    rdoc_init(d, jr_str_or(src, "schema", ""), jr_str_or(src, "kind", ""), jr_str_or(src, "file", ""));
     read_ctx(jr_get(&j->root, "context"), &d->ctx);
-    d->disturbed = (int)fmax(0, num_of(&j->root, "disturbed_reps"));
+    d->disturbed = (int)fmax(0, jr_num_or_nan(&j->root, "disturbed_reps"));
     const struct jr_value *devs = jr_get(&j->root, "devices");
     for (size_t i = 0; devs && devs->type == JR_ARR && i < devs->count; ++i) {
-        struct rd_device *dv = rdoc_device(d, str_of(&devs->items[i], "name", "?"));
+        struct rd_device *dv = rdoc_device(d, jr_str_or(&devs->items[i], "name", "?"));
         if (dv)
             read_ctx(jr_get(&devs->items[i], "context"), &dv->ctx);
     }
