@@ -498,6 +498,8 @@ printf '{"schema": "brdfbench.rows/1", "source": {"kind": "accuracy"}, "rows": [
 t 2 "^brdfbench rows: bad_rows.json:1:[0-9]+: \"direction\" is \"up\" \(accepted: higher, lower, neither\)" rows bad_rows.json
 printf '{"schema": "brdfbench.rows/1", "source": {"kind": "accuracy"}, "rows": [{"keys": {"label": "a|b"}, "metrics": []}]}' >bad_rows.json
 t 2 "^brdfbench rows: bad_rows.json:1:[0-9]+: \"label\" holds '\|'" rows bad_rows.json
+printf '{"schema": "brdfbench.rows/1", "source": {"kind": "throughput"}, "rows": [{"keys": {}, "metrics": [{"name": "evals_per_s", "direction": "higher", "timed": true, "value": -1}]}]}' >bad_rows.json
+t 2 "^brdfbench rows: bad_rows.json:1:[0-9]+: \"value\" is -1 \(accepted: a rate in \[0, 1e\+18\], or null when not measured\)" rows bad_rows.json
 printf '{"schema": "brdfbench.rows/1", "source": {"kind": "gates"}, "rows": []}' >bad_rows.json
 t 2 "^brdfbench compare: bad_rows.json: rows of kind \"gates\", compare reads throughput, accuracy, render, fit and frontier" compare base bad_rows.json --out run
 t 2 "^brdfbench rows: --output: " rows base --output /nonexistent/dir/x.md

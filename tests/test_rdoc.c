@@ -240,6 +240,22 @@ static void check_refused(void)
                           " {\"keys\": {}, \"metrics\": [{\"name\": \"x\", \"direction\": \"up\"}]}]}\n");
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "accepted: higher, lower, neither"),
           "a rows document with a direction of another word: %s", err);
+    /* what compare would decide on: a timed rate below 0, a repetition that is no number, a
+       figure past 1e100, a unit that breaks a table */
+    static const struct { const char *metric, *want; } bad[] = {
+        { "{\"name\": \"r\", \"direction\": \"higher\", \"timed\": true, \"value\": -5}", "\"value\" is -5 (accepted: a rate" },
+        { "{\"name\": \"r\", \"direction\": \"higher\", \"timed\": true, \"value\": 5, \"reps\": [1, \"x\"]}",
+          "\"reps\" is not a number" },
+        { "{\"name\": \"e\", \"direction\": \"lower\", \"timed\": false, \"value\": 1e200}", "\"value\" is 1e+200" },
+        { "{\"name\": \"e\", \"direction\": \"lower\", \"unit\": \"a|b\", \"value\": 1}", "\"unit\" holds '|'" },
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
+        char text[600];
+        snprintf(text, sizeof text, "{\"schema\": \"brdfbench.rows/1\", \"source\": {\"kind\": \"accuracy\"}, "
+                 "\"rows\": [{\"keys\": {}, \"metrics\": [%s]}]}\n", bad[k].metric);
+        CHECK(rows_of("rows_bad.json", text, &d, err, sizeof err) == 2 && strstr(err, bad[k].want),
+              "rows document %zu refused with %s: %s", k, bad[k].want, err);
+    }
 }
 
 int main(void)

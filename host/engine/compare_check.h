@@ -9,8 +9,10 @@
 
 #include "jsonr.h"
 
-#define CMP_MAX_RATE 1e18    /* evaluations, pixels or FLOPs per second: above an exa per second is no measurement */
-#define CMP_MAX_ERROR 1e100  /* an error (max_rel, max_abs, rmse): beyond this no float model computed it */
+#include "rdoc.h"
+
+#define CMP_MAX_RATE RD_MAX_RATE    /* a rate: evaluations, pixels or FLOPs per second */
+#define CMP_MAX_ERROR RD_MAX_VALUE  /* an error (max_rel, max_abs, rmse) */
 
 /* Checks every member of d. Returns 0, or 2 with "FILE:LINE:COL: problem (accepted: ...)". */
 int compare_check_doc(const struct jr_doc *d, char *err, size_t errlen);

@@ -370,6 +370,43 @@ static void read_ctx(const struct jr_value *o, struct rd_context *c)
             rd_ctx_put(c, o->keys[i], o->items[i].str);
 }
 
+/* A number of a metric: a timed rate in [0, RD_MAX_RATE], any other figure within
+   +-RD_MAX_VALUE; null (not measured) or absent reads as NAN. */
+static int figure_ok(const struct jr_doc *j, const struct jr_value *v, const char *key, int timed, char *err,
+                     size_t errlen)
+{
+    if (!v || v->type == JR_NULL)
+        return 0;
+    if (v->type != JR_NUM)
+        return jr_fail(j, v, err, errlen, "\"%s\" is not a number (accepted: a number, or null when not measured)", key);
+    if (timed ? v->num >= 0 && v->num <= RD_MAX_RATE : fabs(v->num) <= RD_MAX_VALUE)
+        return 0;
+    return jr_fail(j, v, err, errlen, "\"%s\" is %.6g (accepted: %s, or null when not measured)", key, v->num,
+                   timed ? "a rate in [0, 1e+18]" : "a number in [-1e+100, 1e+100]");
+}
+
+/* The metric's numbers, and its unit as one line of table-safe text. */
+static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int timed, char *err, size_t errlen)
+{
+    static const char *const figures[] = { "value", "min", "max" };
+    for (size_t k = 0; k < sizeof figures / sizeof figures[0]; ++k)
+        if (figure_ok(j, jr_get(mo, figures[k]), figures[k], timed, err, errlen))
+            return 2;
+    static const char *const arrays[] = { "reps", "normalised_reps" };
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
+        const struct jr_value *a = jr_get(mo, arrays[k]);
+        for (size_t i = 0; a && a->type == JR_ARR && i < a->count; ++i)
+            if (figure_ok(j, &a->items[i], arrays[k], 1, err, errlen))
+                return 2;
+    }
+    const char *unit = jr_str_or(mo, "unit", "");
+    for (const char *p = unit; *p; ++p)
+        if ((unsigned char)*p < 0x20 || *p == '|' || *p == 0x7f)
+            return jr_fail(j, jr_get(mo, "unit"), err, errlen,
+                           "\"unit\" holds '%s' (accepted: one line of text without '|')", *p == '|' ? "|" : "a control character");
+    return 0;
+}
+
 static int read_metric(const struct jr_doc *j, const struct jr_value *mo, struct rdoc *d, struct rd_row *r, char *err,
                        size_t errlen)
 {
@@ -380,9 +417,12 @@ static int read_metric(const struct jr_doc *j, const struct jr_value *mo, struct
     if (direction < 0)
         return jr_fail(j, jr_get(mo, "direction"), err, errlen,
                        "\"direction\" is \"%.40s\" (accepted: higher, lower, neither)", dir);
-    const struct jr_value *timed = jr_get(mo, "timed");
-    struct rd_metric *m = rd_row_metric(d, r, name, jr_str_or(mo, "unit", "1"), direction,
-                                        timed && timed->type == JR_BOOL && timed->num != 0, jr_num_or_nan(mo, "value"));
+    const struct jr_value *tv = jr_get(mo, "timed");
+    const int timed = tv && tv->type == JR_BOOL && tv->num != 0;
+    if (metric_ok(j, mo, timed, err, errlen))
+        return 2;
+    struct rd_metric *m = rd_row_metric(d, r, name, jr_str_or(mo, "unit", "1"), direction, timed,
+                                        jr_num_or_nan(mo, "value"));
     if (!m)
         return 0;
     m->lo = jr_num_or_nan(mo, "min");

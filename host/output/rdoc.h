@@ -24,6 +24,8 @@
 #define RD_MAX_KEYS 8
 #define RD_MAX_CTX 32
 #define RD_MAX_DEVICES 16
+#define RD_MAX_RATE 1e18     /* evaluations, pixels or FLOPs per second: above an exa per second is no measurement */
+#define RD_MAX_VALUE 1e100   /* any other figure: beyond this no float model computed it */
 
 enum rd_direction {
     RD_HIGHER = 0,   /* a speed, a PSNR */
