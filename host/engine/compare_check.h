@@ -1,4 +1,5 @@
-/* compare_check.h - what compare accepts in a result file before it reads a figure: the
+/* compare_check.h - what every reader of results (rdoc_read.h: compare, gate --baseline, plot,
+ * rows) accepts in a result file before it reads a figure: the
  * figures are numbers (or null, "not measured") in their range, the labels are one line of
  * table-safe text. A hand-edited or corrupted file is refused with exit 2 naming the file, the
  * line and column and the member, instead of reading as "failed" or as a better figure. */

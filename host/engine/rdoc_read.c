@@ -525,7 +525,7 @@ static int read_frontier(const struct jr_doc *j, struct rdoc *d, char *err, size
 /* ---- files --------------------------------------------------------------------------------- */
 
 /* The kind a schema string names, by its name before the '/' ("brdfbench.fit/1" -> fit), or
-   -1; *current: it is the version written now or an older one the kind still reads. */
+   -1; *accepted: it is the version written now or an older one the kind still reads. */
 static int kind_of_schema(const char *schema, int *accepted)
 {
     for (int k = 0; k < RD_KIND_COUNT; ++k) {
