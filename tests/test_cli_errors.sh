@@ -301,8 +301,14 @@ t 2 "^brdfbench accuracy: --timeout: 'inf' is not a finite number in \[0.01, 604
 # model texts, limits and environments. A real run folder R0 (all --quick) and an accuracy run
 # are the fixtures; each row edits a copy. tests/test_hostile.sh checks the same inputs'
 # effects (no file replaced outside the run folder, the earlier run kept, no hang).
-"$BIN" all --quick --models fq2 --out R0 --quiet >/dev/null 2>&1
-"$BIN" accuracy --models fq2,cq2 --n-max 50 --samples 256 --out base --quiet >/dev/null 2>&1
+# Both are made once by tests/fixture_runs.sh (`all --quick --models fq2 --out R0 --quiet` and
+# `accuracy --models fq2,cq2 --n-max 50 --samples 256 --out base --quiet`; under ctest the
+# fixture brdf_runs, in $BRDF_RUNS) and copied here; run by hand, the script makes them here.
+if [ -n "${BRDF_RUNS:-}" ] && [ -f "$BRDF_RUNS/done" ]; then
+    cp -r "$BRDF_RUNS/R0" "$BRDF_RUNS/base" .
+else
+    bash "$SRC/tests/fixture_runs.sh" "$T" >/dev/null 2>&1
+fi
 # ej DIR FILE PYTHON: a copy of R0 as DIR with PYTHON run on its JSON file FILE (as d; for
 # plots.json, figure 0 also as f); pj, fj and rj name plots.json, field_fq2.json and run.json
 ej() {

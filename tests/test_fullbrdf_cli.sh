@@ -9,7 +9,9 @@ set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
 SYN=${MERL_SYNTH:?MERL_SYNTH must name the merl_synth writer}
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T}/test_fullbrdf_cli"
+# the kernel cache the other tests share (POCL_CACHE_DIR of tests/CMakeLists.txt), whose builds of
+# the built-in kernels this test reuses; one of its own under T when run without it
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T/pocl-cache}"
 mkdir -p "$POCL_CACHE_DIR"
 
 # Blinn-Phong as BRDF Explorer writes it; its colour is grey, and the luminance weights

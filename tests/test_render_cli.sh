@@ -6,7 +6,9 @@ set -u
 BIN=${BRDFBENCH:?BRDFBENCH must name the brdfbench binary}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T}/test_render_cli"
+# the kernel cache the other tests share (POCL_CACHE_DIR of tests/CMakeLists.txt), whose builds of
+# the built-in kernels this test reuses; one of its own under T when run without it
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T/pocl-cache}"
 mkdir -p "$POCL_CACHE_DIR"
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 
