@@ -300,11 +300,21 @@ python3 - <<'PY'
 import json
 d = json.load(open("gb/accuracy.json"))
 d["results"][0]["status"] = "ok"
+d["results"][0]["epicentre"]["max_rel"] = None
+json.dump(d, open("gb/accuracy.json", "w"))
+PY
+run 120 gate gbase.json --baseline gb
+[ $rc -eq 0 ] && grep -q 'baseline: the entry of fq2 (line 1) has no number for this metric, not used' out && ok || bad "gate --baseline, a figure not measured: exit $rc: $(head -c 300 out)"
+# a figure no run writes (a string) is a corrupted baseline: refused before the gates run, as
+# compare refuses it (the rows reader's check), naming the file, the line and the member
+python3 - <<'PY'
+import json
+d = json.load(open("gb/accuracy.json"))
 d["results"][0]["epicentre"]["max_rel"] = "small"
 json.dump(d, open("gb/accuracy.json", "w"))
 PY
 run 120 gate gbase.json --baseline gb
-[ $rc -eq 0 ] && grep -q 'baseline: the entry of fq2 (line 1) has no number for this metric, not used' out && ok || bad "gate --baseline, a string figure: exit $rc: $(head -c 300 out)"
+[ $rc -eq 2 ] && grep -q 'gate: --baseline: gb/accuracy.json:1:[0-9]*: "max_rel" is a string' err && ok || bad "gate --baseline, a string figure: exit $rc: $(head -c 300 err)"
 # base was made with the default n step, 1 (accuracy --help)
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_max":50,"n_step":2,"samples":256,"max":0.1}]}' >gstep.json
 run 120 gate gstep.json --baseline base

@@ -36,7 +36,7 @@ int cmd_report(int argc, char **argv)
     char err[1024];
     const struct cli_flag flags[] = {
         { .name = "--output", .value = "FILE|-", .kind = CLI_PATH, .dest = &out,
-          .help = "write the page to FILE ('-': standard output) instead of RUN_DIR/report.md",
+          .help = "write to FILE ('-': standard output)",
           .def = "RUN_DIR/report.md" },
     };
     const struct cli_command cmd = {
