@@ -144,6 +144,10 @@ void cli_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
     { .name = "--quiet", .kind = CLI_SWITCH, .dest = CLI_DEST(int, DEST), .set = 1, \
       .help = "no progress lines, tables or summaries (files are written as without it; warnings "              \
               "and errors are still shown)" }
+/* --output of the commands that write one text (report, rows); DEF: where it goes without the flag */
+#define CLI_FLAG_OUTPUT(DEST, DEF)                                                                           \
+    { .name = "--output", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
+      .help = "write to FILE ('-': standard output)", .def = (DEF) }
 #define CLI_FLAG_JSON(DEST)                                                                                  \
     { .name = "--json", .value = "FILE|-", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST), \
       .help = "write the results as JSON to FILE ('-': standard output)", .def = "" }

@@ -35,9 +35,7 @@ int cmd_report(int argc, char **argv)
     const char *out = NULL;
     char err[1024];
     const struct cli_flag flags[] = {
-        { .name = "--output", .value = "FILE|-", .kind = CLI_PATH, .dest = &out,
-          .help = "write to FILE ('-': standard output)",
-          .def = "RUN_DIR/report.md" },
+        CLI_FLAG_OUTPUT(&out, "RUN_DIR/report.md"),
     };
     const struct cli_command cmd = {
         .name = "report",

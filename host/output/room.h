@@ -1,4 +1,5 @@
-/* room.h - a growable array's room for one more item: the one place the doubling is written. */
+/* room.h - room for one more item in a malloc'd growable array counted by an int: the one place
+ * its doubling is written (the shader translator's arrays live in its arena and grow there). */
 #ifndef BRDF_ROOM_H
 #define BRDF_ROOM_H
 
