@@ -76,6 +76,12 @@ for r, line in zip(d["results"], lines[1:]):
     assert float(line["value"]) == r["evals_per_s"]["median"], (line["value"], r["evals_per_s"])
     assert int(line["reps"]) == len(r["evals_per_s_reps"]), line
 PY
+# rows --kind reads the one file it names: a broken file of another kind beside it is not read
+mkdir -p "$T/rk" && cp "$T/a/throughput.json" "$T/rk/" && echo '{' >"$T/rk/accuracy.json"
+"$BIN" rows "$T/rk" --kind throughput --format csv --output "$T/rk.csv" 2>"$T/err" && cmp -s "$T/rk.csv" "$T/rows.csv" &&
+    ok || bad "rows --kind throughput beside a broken accuracy.json: $(cat "$T/err")"
+"$BIN" rows "$T/rk" --output "$T/rk.md" 2>"$T/err"
+[ $? -eq 2 ] && grep -q "rk/accuracy.json:2:1: " "$T/err" && ok || bad "rows of the whole folder: the broken file is not named: $(cat "$T/err")"
 # --fail-if-slower: the factor is far below 0.5, so 40% fails and names the rows; 100% cannot
 expect 1 "throughput cq2 \| default \| n uniform evals_per_s: 0\\.[0-9]+x the baseline" compare "$T/a" "$T/slow" --out "$T/c2" --fail-if-slower 40
 "$BIN" compare "$T/a" "$T/slow" --out "$T/c3" --fail-if-slower 100 --quiet 2>"$T/err" && ok ||

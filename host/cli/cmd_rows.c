@@ -39,8 +39,8 @@ static int call_kind(const char *flag, const char *value, void *dest, char *err,
     return 0;
 }
 
-/* The documents of path (a file: one; a folder: its kinds' files), only those of kind `only`
- * when it is >= 0. Returns 0 with *n, or EXIT_USAGE with a message. */
+/* The documents of path (a file: one; a folder: its kinds' files, only the one of kind `only`
+ * when it is >= 0). Returns 0 with *n, or EXIT_USAGE with a message. */
 static int read_docs(const char *path, int only, struct rdoc docs[RD_KIND_COUNT], int *n, char *err, size_t errlen)
 {
     struct stat st;
@@ -49,21 +49,19 @@ static int read_docs(const char *path, int only, struct rdoc docs[RD_KIND_COUNT]
         snprintf(err, errlen, "%s: no such file or folder (accepted: a result file or a run folder)", path);
         return EXIT_USAGE;
     }
-    int rc = S_ISDIR(st.st_mode) ? rdoc_read_folder(path, docs, n, err, errlen)
-                                 : rdoc_read_file(path, &docs[0], err, errlen);
-    if (rc)
-        return EXIT_USAGE;
-    if (!S_ISDIR(st.st_mode))
+    if (S_ISDIR(st.st_mode)) {
+        if (rdoc_read_folder(path, only, docs, n, err, errlen))
+            return EXIT_USAGE;
+    } else {
+        if (rdoc_read_file(path, &docs[0], err, errlen))
+            return EXIT_USAGE;
         *n = 1;
-    int kept = 0;
-    for (int i = 0; i < *n; ++i) {
-        if (only < 0 || rd_kind_of_name(docs[i].kind) == only)
-            docs[kept++] = docs[i];
-        else
-            rdoc_free(&docs[i]);
+        if (only >= 0 && rd_kind_of_name(docs[0].kind) != only) {   /* a file of another kind */
+            rdoc_free(&docs[0]);
+            *n = 0;
+        }
     }
-    *n = kept;
-    if (kept == 0) {
+    if (*n == 0) {
         snprintf(err, errlen, "%s: no result file%s%s (accepted: %s, %s, %s, %s, %s, or a brdfbench.rows/1 document)",
                  path, only >= 0 ? " of kind " : "", only >= 0 ? rd_kind_name(only) : "", rd_kind_file(0),
                  rd_kind_file(1), rd_kind_file(2), rd_kind_file(3), rd_kind_file(4));
@@ -85,8 +83,7 @@ int cmd_rows(int argc, char **argv)
           .range = "throughput, accuracy, render, fit or frontier", .def = "every kind found",
           .help = "only the file of this kind in RUN_DIR (csv and json write one document: with a folder of "
                   "several kinds, name one)" },
-        { .name = "--output", .value = "FILE|-", .kind = CLI_PATH, .dest = &out, .def = "-",
-          .help = "write to FILE ('-': standard output)" },
+        CLI_FLAG_OUTPUT(&out, "-"),
     };
     const struct cli_command cmd = {
         .name = "rows",

@@ -586,13 +586,13 @@ int rdoc_read_file(const char *path, struct rdoc *d, char *err, size_t errlen)
     return rc;
 }
 
-int rdoc_read_folder(const char *dir, struct rdoc d[RD_KIND_COUNT], int *found, char *err, size_t errlen)
+int rdoc_read_folder(const char *dir, int only, struct rdoc d[RD_KIND_COUNT], int *found, char *err, size_t errlen)
 {
     *found = 0;
     for (int k = 0; k < RD_KIND_COUNT; ++k) {
         char file[4200];
         struct stat st;
-        if (path_join(file, sizeof file, dir, kinds[k].file) || stat(file, &st) != 0)
+        if ((only >= 0 && k != only) || path_join(file, sizeof file, dir, kinds[k].file) || stat(file, &st) != 0)
             continue;
         if (rdoc_read_file(file, &d[*found], err, errlen)) {
             for (int i = 0; i < *found; ++i)

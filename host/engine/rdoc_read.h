@@ -26,8 +26,9 @@ int rd_kind_of_name(const char *name);  /* the inverse of rd_kind_name; -1 for a
  * brdfbench.rows/1, an older version than the kind's table takes, a member out of its range. */
 int rdoc_read_file(const char *path, struct rdoc *d, char *err, size_t errlen);
 
-/* The kinds' files in a run folder, read in the table's order into d[0..found); a missing
- * file is skipped. Returns 0 with *found (0: none there), or 2 with a reason. */
-int rdoc_read_folder(const char *dir, struct rdoc d[RD_KIND_COUNT], int *found, char *err, size_t errlen);
+/* The kinds' files in a run folder (only the file of kind `only` when it is >= 0, no other
+ * opened), read in the table's order into d[0..found); a missing file is skipped. Returns 0
+ * with *found (0: none there), or 2 with a reason. */
+int rdoc_read_folder(const char *dir, int only, struct rdoc d[RD_KIND_COUNT], int *found, char *err, size_t errlen);
 
 #endif
