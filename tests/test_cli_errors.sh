@@ -835,6 +835,14 @@ t 1 "multi:^ub: accuracy um \| n 2\.\.20 .* epicentre\.max_rel: no finite error 
 head -n 1 "$T/err" | grep -qE "^[^ ]*bad_syntax.cl:6:[0-9]+: error: expected ';'" && pass=$((pass + 1)) ||
     { fail=$((fail + 1)); echo "FAIL: a compile error starts with: $(head -n 1 "$T/err")" >&2; }
 
+# The rows of each area in files of their own (tests/bad_inputs/*.sh, sourced in name order):
+# they use t, WHAT and the fixtures above, and write only into this test's folder.
+for rows_file in "$SRC"/tests/bad_inputs/*.sh; do
+    [ -f "$rows_file" ] || continue
+    # shellcheck source=/dev/null
+    . "$rows_file"
+done
+
 # One more check: no refused run above wrote its output folder.
 [ ! -e "$T/run" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: a refused run wrote $T/run" >&2; }
 
