@@ -4,7 +4,8 @@
 # (regenerated here and compared), each man page lists exactly the flags of the command's
 # --help, `brdfbench help COMMAND` is the command's --help, every --help shows an example, the
 # bash completion completes commands and flags, and cpack -G DEB builds a package holding the
-# same files, whose extracted binary runs.
+# same files, whose extracted binary runs; both install the drawing module, through which the
+# installed binaries draw.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -28,6 +29,18 @@ for f in share/bash-completion/completions/brdfbench share/zsh/vendor-completion
          share/doc/brdfbench/README.md share/doc/brdfbench/user-models.md; do
     [ -s "$P/$f" ] && ok || bad "not installed: $f"
 done
+
+# 1b. The drawing module is installed (LIBDIR/brdfbench) and the installed binary draws through
+# it: plot of the run folder that test_cli_errors reads too (the fixture brdf_runs).
+installed_draws() {   # BINARY LABEL
+    [ -n "${BRDF_RUNS:-}" ] && [ -f "$BRDF_RUNS/done" ] || { echo "no fixture run (BRDF_RUNS): $2 draws unchecked"; return; }
+    rm -rf "$T/draw" && cp -r "$BRDF_RUNS/R0" "$T/draw"
+    "$1" plot "$T/draw" >"$T/plot.out" 2>"$T/plot.err"
+    local rc=$?
+    [ $rc -eq 0 ] && grep -q '\.png$' "$T/plot.out" && ok || bad "$2 plot: exit $rc: $(head -3 "$T/plot.err")"
+}
+find "$P" -name libbrdfbench-draw.so -path '*/brdfbench/*' | grep -q . && ok || bad "the drawing module is not installed under $P"
+installed_draws "$P/bin/brdfbench" "installed brdfbench"
 
 # 2. Regenerated now, they are the installed files, byte for byte.
 mkdir -p "$T/regen/man1"
@@ -63,6 +76,8 @@ comp() {
 deb=$(ls "$T"/pkg/*.deb 2>/dev/null | head -1)
 if [ -n "$deb" ]; then
     dpkg-deb -c "$deb" >"$T/contents"
+    grep -qE " ./usr/lib/([^ ]*/)?brdfbench/libbrdfbench-draw.so\$" "$T/contents" && ok || bad "the package lacks the drawing module"
+    dpkg-deb -f "$deb" Depends | grep -q "libopencv-imgcodecs" && ok || bad "the package does not depend on OpenCV (its drawing module's)"
     for f in ./usr/bin/brdfbench ./usr/share/man/man1/brdfbench-accuracy.1 \
              ./usr/share/bash-completion/completions/brdfbench ./usr/share/doc/brdfbench/README.md; do
         grep -q " $f\$" "$T/contents" && ok || bad "the package lacks $f"
@@ -72,6 +87,7 @@ if [ -n "$deb" ]; then
     "$T/x/usr/bin/brdfbench" list >"$T/list2.out" 2>&1
     rc=$?
     { [ $rc -eq 0 ] || [ $rc -eq 77 ]; } && grep -q "fq2" "$T/list2.out" && ok || bad "the package's brdfbench list: exit $rc"
+    installed_draws "$T/x/usr/bin/brdfbench" "the package's brdfbench"
 else
     bad "no .deb in $T/pkg"
 fi

@@ -9,6 +9,7 @@
 #include "accuracy.h"
 #include "accuracy_report.h"
 #include "cli_table.h"
+#include "draw.h"
 #include "commands.h"
 #include "context.h"
 #include "exitcodes.h"
@@ -671,6 +672,11 @@ int cmd_all(int argc, char **argv)
         used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
     int rc = parse_all(r, argc, argv);
     if (rc >= 0) return rc;
+    char err[1024];
+    if (draw_module_check(err, sizeof err)) {   /* the pictures would fail after the long run */
+        fprintf(stderr, "brdfbench all: %s\n", err);
+        return EXIT_RUNTIME;
+    }
     if ((rc = open_run(r)) != 0) return rc;
     rc = run_steps(r);
     if (!rc) rc = finish_run(r);

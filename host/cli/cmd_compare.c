@@ -146,6 +146,16 @@ int cmd_compare(int argc, char **argv)
         free(t);
     }
     print_warnings(set);
+    /* --json - alone: the document straight onto stdout; no folder (and no chart) is made */
+    if (json_path && !out_dir && cli_is_stdout(json_path)) {
+        if (compare_print_json(set, stdout, "--json -", err, sizeof err)) {
+            fprintf(stderr, "brdfbench compare: %s\n", err);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+        rc = report_failures(set, slower_pct, less_accurate);
+        goto done;
+    }
     char run_dir[4096], tmp_dir[512];
     if (cli_run_folder("compare", out_dir, json_path && !out_dir, run_dir, sizeof run_dir, tmp_dir, sizeof tmp_dir)) {
         rc = EXIT_RUNTIME;

@@ -4,6 +4,7 @@
  * picture that cannot be written is reported (exit 3) and the other pictures are still drawn. */
 #define _POSIX_C_SOURCE 200809L
 #include "cli_table.h"
+#include "draw.h"
 #include "jsonr.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -158,6 +159,10 @@ static int redraw(int argc, char **argv, int heatmaps_only)
         fprintf(stderr, "brdfbench %s: RUN_DIR '%s' is not a folder (accepted: a run folder of brdfbench all)\n", name,
                 dir);
         return EXIT_USAGE;
+    }
+    if (draw_module_check(err, sizeof err)) {   /* one line, not one per picture */
+        fprintf(stderr, "brdfbench %s: %s\n", name, err);
+        return EXIT_RUNTIME;
     }
     /* the run folder is input: the pictures written into it never follow a link out of it */
     outdir_confine(dir);

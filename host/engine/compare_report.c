@@ -429,7 +429,8 @@ static const char *const compare_definitions[][2] = {
     { "ratio", "value / the baseline's value of the same row" },
 };
 
-static int write_json(const struct compare_set *set, const char *path, char *err, size_t errlen)
+/* compare.json into path, or (stream not NULL) onto stream, path then naming it in a message */
+static int write_json(const struct compare_set *set, const char *path, FILE *stream, char *err, size_t errlen)
 {
     struct jw w;
     jw_init(&w);
@@ -528,7 +529,11 @@ static int write_json(const struct compare_set *set, const char *path, char *err
         }
     jw_arr_end(&w);
     jw_obj_end(&w);
-    return jw_write_file_free(&w, path, err, errlen);
+    if (!stream)
+        return jw_write_file_free(&w, path, err, errlen);
+    int rc = jw_write_stream(&w, stream, path, err, errlen);
+    jw_free(&w);
+    return rc;
 }
 
 /* A verdict as the chart's mark. */
@@ -653,8 +658,13 @@ int compare_write(const struct compare_set *set, const char *out_dir, char *err,
     int rc = path_join(path, sizeof path, out_dir, "compare.md") ||
              write_file_atomic(path, md, strlen(md), err, errlen) ||
              path_join(path, sizeof path, out_dir, "compare.csv") || write_csv(set, path, err, errlen) ||
-             path_join(path, sizeof path, out_dir, "compare.json") || write_json(set, path, err, errlen) ||
+             path_join(path, sizeof path, out_dir, "compare.json") || write_json(set, path, NULL, err, errlen) ||
              path_join(path, sizeof path, out_dir, "compare.png") || write_chart(set, path, err, errlen);
     free(md);
     return rc ? 3 : 0;
+}
+
+int compare_print_json(const struct compare_set *set, FILE *f, const char *name, char *err, size_t errlen)
+{
+    return write_json(set, name, f, err, errlen) ? 3 : 0;
 }

@@ -16,4 +16,8 @@ char *compare_text(const struct compare_set *set, int md);
  * with a message naming the file (earlier files of that name are left as they were). */
 int compare_write(const struct compare_set *set, const char *out_dir, char *err, size_t errlen);
 
+/* compare.json's document written onto f (--json - without --out: no folder, no tables, no
+ * chart); name is what a message calls it. Returns 0, or 3 with a message. */
+int compare_print_json(const struct compare_set *set, FILE *f, const char *name, char *err, size_t errlen);
+
 #endif

@@ -1,8 +1,9 @@
 /* draw.h - every picture brdfbench writes: error heatmaps, line plots, bar charts,
  * image-pass pictures (false-colour error images, contact sheets) and plain RGB PNGs.
  *
- * The implementation (draw.cpp) is the only place that uses OpenCV; this interface is
- * plain C. All text is ASCII (OpenCV's built-in Hershey fonts have no Greek), so
+ * The implementation (draw.cpp and its siblings, built as the module libbrdfbench-draw.so,
+ * draw_module.h) is the only place that uses OpenCV; this interface is plain C, and a new
+ * function of it is also listed in draw_module.h and forwarded in draw_load.c. All text is ASCII (OpenCV's built-in Hershey fonts have no Greek), so
  * callers spell "delta"/"Delta" out.
  *
  * Every function that writes a file returns 0 on success and -1 with a one-line message
@@ -18,6 +19,14 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ---- the drawing module ---------------------------------------------------------------- */
+
+/* The pictures are drawn by the module libbrdfbench-draw.so (draw_module.h), opened on the first
+ * call below. 0 when it is there (it is opened now), else -1 with the one line why not: a command
+ * that draws many pictures asks first, so that a missing module stops it once, before any work,
+ * instead of failing picture by picture. Any draw_* that fails for that reason gives that line. */
+int draw_module_check(char *err, size_t errlen);
 
 /* ---- image-pass pictures ------------------------------------------------------- */
 

@@ -2,6 +2,7 @@
 #include "jsonw.h"
 #include "outdir.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -159,24 +160,45 @@ void jw_kv_texts(struct jw *w, const char *key, const char *const rows[][2], siz
     jw_obj_end(w);
 }
 
-int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
+/* Appends the closing newline and checks the document: 0, or -1 with a message naming `name`
+ * (the newline taken off again). */
+static int jw_finish(struct jw *w, const char *name, char *err, size_t errlen)
 {
     md_append(&w->out, "\n", 1);
     /* Checked after the newline: its own append may be the one that runs out of memory. */
     if (w->out.failed) {
-        snprintf(err, errlen, "%s: out of memory while formatting JSON", path);
+        snprintf(err, errlen, "%s: out of memory while formatting JSON", name);
         return -1;
     }
     /* a writer's bug never reaches the disk as a truncated or mismatched document */
     if (w->malformed || w->depth != 0 || w->after_key) {
         w->out.len--;
         w->out.s[w->out.len] = '\0';
-        snprintf(err, errlen, "%s: not written: the JSON document is unbalanced (%d containers left open%s)", path,
+        snprintf(err, errlen, "%s: not written: the JSON document is unbalanced (%d containers left open%s)", name,
                  w->depth, w->malformed ? ", a container closed that was not open" : "");
         return -1;
     }
+    return 0;
+}
+
+int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen)
+{
+    if (jw_finish(w, path, err, errlen)) return -1;
     int rc = write_file_atomic(path, w->out.s, w->out.len, err, errlen);
     w->out.len--; /* the newline is not part of the document */
+    w->out.s[w->out.len] = '\0';
+    return rc;
+}
+
+int jw_write_stream(struct jw *w, FILE *f, const char *name, char *err, size_t errlen)
+{
+    if (jw_finish(w, name, err, errlen)) return -1;
+    int rc = 0;
+    if (fwrite(w->out.s, 1, w->out.len, f) != w->out.len || fflush(f) != 0) {
+        snprintf(err, errlen, "%s: writing failed: %s", name, strerror(errno));
+        rc = -1;
+    }
+    w->out.len--;
     w->out.s[w->out.len] = '\0';
     return rc;
 }

@@ -6,6 +6,7 @@
 #define BRDF_JSONW_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "mdbuf.h"
 
@@ -78,6 +79,9 @@ void jw_kv_records(struct jw *w, const char *key, const void *records, size_t co
  * of memory, when the write fails, or when the document is unbalanced (a container left open or
  * closed twice: a writer's bug, which never reaches the disk). */
 int jw_write_file(struct jw *w, const char *path, char *err, size_t errlen);
+/* The same checks, the document (plus a newline) written to f and flushed; name is what a
+ * message calls it ("--json -"). Returns 0 or -1 with a message. */
+int jw_write_stream(struct jw *w, FILE *f, const char *name, char *err, size_t errlen);
 /* jw_write_file, then jw_free: the end of every writer that builds one document. */
 int jw_write_file_free(struct jw *w, const char *path, char *err, size_t errlen);
 
