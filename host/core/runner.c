@@ -2,6 +2,7 @@
  * with a reference item, preemption retries, every repetition kept. */
 #define _POSIX_C_SOURCE 200809L
 #include "runner.h"
+#include "stats.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -179,25 +180,6 @@ static int calibrate(struct runner *r, struct runner_item *it)
     return 0;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The median of v's finite values, NAN when none (sorts v). */
-static double median_finite(double *v, int n)
-{
-    int good = 0;
-    for (int j = 0; j < n; ++j)
-        if (isfinite(v[j]))
-            v[good++] = v[j];
-    if (good == 0)
-        return NAN;
-    qsort(v, (size_t)good, sizeof *v, cmp_double);
-    return good % 2 ? v[good / 2] : 0.5 * (v[good / 2 - 1] + v[good / 2]);
-}
-
 /* One timed repetition of item i, kept in its arrays; its rate, or NAN when it failed. */
 static double take_rep(struct runner *r, int i)
 {
@@ -293,7 +275,8 @@ int runner_run(struct runner *r)
             }
         }
         if (has_ref) {
-            double ref = median_finite(ref_rates, nref), refc = median_finite(ref_cpu, nref);
+            double ref = stats_median_finite(ref_rates, (size_t)nref);
+            double refc = stats_median_finite(ref_cpu, (size_t)nref);
             for (int i = 0; i < n; ++i) {
                 struct runner_item *it = &r->items[i];
                 int first = i == r->reference ? it->nreps - nref : it->nreps - 1;

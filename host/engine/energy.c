@@ -7,6 +7,7 @@
 #include "context.h"
 #include "exitcodes.h"
 #include "outdir.h"
+#include "stats.h"
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
@@ -144,12 +145,6 @@ static double lobe_zero(const struct model_spec *m, double n)
     return NAN;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Panels of the polar angle for one configuration: graded from the lobe's width (the
  * epicentre end x_e(n)) by doublings to pi/2, plus the kinks of the integrand. Writes
  * ENERGY_MAX_NODES nodes and weights (unused ones with weight 0). refine splits every panel. */
@@ -171,7 +166,7 @@ static int polar_nodes(const struct model_spec *m, int mode, double n, double th
     }
     double z = lobe_zero(m, n);
     if (isfinite(z)) edges[ne++] = z;
-    qsort(edges, (size_t)ne, sizeof edges[0], cmp_double);
+    qsort(edges, (size_t)ne, sizeof edges[0], stats_cmp_double);
     int kept = 0;
     for (int i = 0; i < ne; ++i)
         if (edges[i] >= 0 && edges[i] <= half_pi && (kept == 0 || edges[i] - edges[kept - 1] > 1e-9))

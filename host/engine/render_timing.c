@@ -7,22 +7,19 @@
 #include "raster.h"
 #include "render_report.h"
 #include "runner.h"
+#include "stats.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
+/* (all of v sorted, as before the median was shared: the copy's and the entries' times are
+   finite or a launch failed, which stops the pass before this) */
 static double median(double *v, int n)
 {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    qsort(v, (size_t)n, sizeof *v, stats_cmp_double);
+    return stats_median_sorted(v, (size_t)n);
 }
 
 /* The models and their references, each once per shading mode, in the order timed. */

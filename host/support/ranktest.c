@@ -2,6 +2,7 @@
  * are integers, and the exact null distribution of the rank sum of x is counted over all
  * C(N, nx) draws from the pooled ranks. Counts are kept in doubles: C(40, 20) < 2^53. */
 #include "ranktest.h"
+#include "stats.h"
 
 #include <gsl/gsl_cdf.h>
 
@@ -159,12 +160,6 @@ static long u_null_critical(int m, int n, double tail)
     return c;
 }
 
-static int dbl_cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int ranktest_shift_ci(const double *x, int nx, const double *y, int ny, double alpha, double *est, double *lo,
                       double *hi)
 {
@@ -185,8 +180,8 @@ int ranktest_shift_ci(const double *x, int nx, const double *y, int ny, double a
         for (int j = 0; j < ny; ++j)
             if (isfinite(x[i]) && isfinite(y[j]))
                 d[k++] = x[i] - y[j];
-    qsort(d, mn, sizeof *d, dbl_cmp);
-    *est = (mn % 2) ? d[mn / 2] : 0.5 * (d[mn / 2 - 1] + d[mn / 2]);
+    qsort(d, mn, sizeof *d, stats_cmp_double);
+    *est = stats_median_sorted(d, mn);
     /* c: the largest count with P(U <= c) <= alpha / 2; the interval runs from the (c+1)-th
        smallest difference to the (c+1)-th largest */
     long c = -1;
