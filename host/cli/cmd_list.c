@@ -33,23 +33,26 @@ static int find_devices(struct platform_entry *plat, int max)
     cl_platform_id ids[16];
     if (nplat > (cl_uint)max)
         nplat = (cl_uint)max;
-    clGetPlatformIDs(nplat, ids, NULL);
+    if (clGetPlatformIDs(nplat, ids, NULL) != CL_SUCCESS)
+        return 0;
+    /* a query that fails shows as "?" (a number as 0): the list goes on */
     for (cl_uint p = 0; p < nplat; ++p) {
         struct platform_entry *e = &plat[p];
         memset(e, 0, sizeof *e);
-        clGetPlatformInfo(ids[p], CL_PLATFORM_NAME, sizeof e->name, e->name, NULL);
-        clGetPlatformInfo(ids[p], CL_PLATFORM_VERSION, sizeof e->version, e->version, NULL);
+        if (cl_platform_string(ids[p], CL_PLATFORM_NAME, e->name, sizeof e->name) != CL_SUCCESS)
+            snprintf(e->name, sizeof e->name, "?");
+        if (cl_platform_string(ids[p], CL_PLATFORM_VERSION, e->version, sizeof e->version) != CL_SUCCESS)
+            snprintf(e->version, sizeof e->version, "?");
         cl_device_id devs[16];
         if (clGetDeviceIDs(ids[p], CL_DEVICE_TYPE_ALL, 16, devs, &e->ndev) != CL_SUCCESS)
             e->ndev = 0;
         if (e->ndev > 16)
             e->ndev = 16;
         for (cl_uint d = 0; d < e->ndev; ++d) {
-            clGetDeviceInfo(devs[d], CL_DEVICE_NAME, sizeof e->dev[d].name, e->dev[d].name, NULL);
-            clGetDeviceInfo(devs[d], CL_DEVICE_MAX_COMPUTE_UNITS, sizeof e->dev[d].compute_units,
-                            &e->dev[d].compute_units, NULL);
-            clGetDeviceInfo(devs[d], CL_DEVICE_GLOBAL_MEM_SIZE, sizeof e->dev[d].global_mem, &e->dev[d].global_mem,
-                            NULL);
+            if (cl_device_string(devs[d], CL_DEVICE_NAME, e->dev[d].name, sizeof e->dev[d].name) != CL_SUCCESS)
+                snprintf(e->dev[d].name, sizeof e->dev[d].name, "?");
+            cl_device_value(devs[d], CL_DEVICE_MAX_COMPUTE_UNITS, &e->dev[d].compute_units, sizeof e->dev[d].compute_units);
+            cl_device_value(devs[d], CL_DEVICE_GLOBAL_MEM_SIZE, &e->dev[d].global_mem, sizeof e->dev[d].global_mem);
         }
     }
     return (int)nplat;

@@ -282,9 +282,7 @@ int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const 
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points n)", done);
     bo = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points out)", done);
-    CL_CHECK_GOTO(clSetKernelArg(k, first_arg, sizeof bc, &bc), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 1, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, first_arg + 2, sizeof bo, &bo), done);
+    CL_CHECK_GOTO(CL_SET_ARGS(k, first_arg, CL_ARG(bc), CL_ARG(bn), CL_ARG(bo)), done);
     size_t global = padded / 16;
     if ((rc = clsession_launch(s, k, 1, &global, NULL, NULL, NULL)) != 0)
         goto done;
@@ -298,6 +296,71 @@ done:
     free(pn);
     free(pc);
     return rc;
+}
+
+/* A string query of either kind, by its function (clGetPlatformInfo, clGetDeviceInfo). */
+typedef cl_int (*info_fn)(void *object, cl_uint what, size_t size, void *value, size_t *size_ret);
+
+static cl_int info_string(info_fn fn, void *object, cl_uint what, char *buf, size_t buflen)
+{
+    size_t need = 0;
+    if (buflen == 0)
+        return CL_INVALID_VALUE;
+    buf[0] = '\0';
+    cl_int e = fn(object, what, 0, NULL, &need);
+    if (e != CL_SUCCESS)
+        return e;
+    if (need <= buflen) {
+        e = fn(object, what, buflen, buf, NULL);
+    } else {   /* longer than buf: read whole, keep the head */
+        char *all = malloc(need);
+        if (!all)
+            return CL_OUT_OF_HOST_MEMORY;
+        e = fn(object, what, need, all, NULL);
+        if (e == CL_SUCCESS)
+            memcpy(buf, all, buflen - 1);
+        free(all);
+    }
+    buf[e == CL_SUCCESS ? buflen - 1 : 0] = '\0';
+    return e;
+}
+
+static cl_int platform_info_fn(void *o, cl_uint what, size_t size, void *value, size_t *ret)
+{
+    return clGetPlatformInfo((cl_platform_id)o, what, size, value, ret);
+}
+
+static cl_int device_info_fn(void *o, cl_uint what, size_t size, void *value, size_t *ret)
+{
+    return clGetDeviceInfo((cl_device_id)o, what, size, value, ret);
+}
+
+cl_int cl_platform_string(cl_platform_id p, cl_platform_info what, char *buf, size_t buflen)
+{
+    return info_string(platform_info_fn, p, what, buf, buflen);
+}
+
+cl_int cl_device_string(cl_device_id d, cl_device_info what, char *buf, size_t buflen)
+{
+    return info_string(device_info_fn, d, what, buf, buflen);
+}
+
+cl_int cl_device_value(cl_device_id d, cl_device_info what, void *value, size_t size)
+{
+    cl_int e = clGetDeviceInfo(d, what, size, value, NULL);
+    if (e != CL_SUCCESS)
+        memset(value, 0, size);
+    return e;
+}
+
+cl_int cl_set_args(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n)
+{
+    for (cl_uint i = 0; i < n; ++i) {
+        cl_int e = clSetKernelArg(k, first + i, args[i].size, args[i].value);
+        if (e != CL_SUCCESS)
+            return e;
+    }
+    return CL_SUCCESS;
 }
 
 static const char *no_device_hint =
@@ -349,7 +412,10 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
     cl_platform_id plats[16];
     if (nplat > 16)
         nplat = 16;
-    clGetPlatformIDs(nplat, plats, NULL);
+    if ((e = clGetPlatformIDs(nplat, plats, NULL)) != CL_SUCCESS) {
+        snprintf(err, errlen, "clGetPlatformIDs failed with %s; %s", cl_error_name(e), no_device_hint);
+        return EXIT_NO_DEVICE;
+    }
     if (platform_index >= (int)nplat) {
         snprintf(err, errlen, "--platform: %d is out of range (accepted: 0 to %u; see brdfbench list)",
                  platform_index, nplat - 1);
@@ -365,7 +431,8 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
         cl_device_id devs[16];
         if (ndev > 16)
             ndev = 16;
-        clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, ndev, devs, NULL);
+        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, ndev, devs, NULL) != CL_SUCCESS)
+            continue;
         if (device_index >= (int)ndev) {
             snprintf(err, errlen, "--device: %d is out of range for platform %u (accepted: 0 to %u)",
                      device_index, p, ndev - 1);
@@ -381,31 +448,48 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
     if (!found) {
         /* a platform is there but has no device: say what is known to cause that before the
            install hint, which does not help when the driver is installed */
-        char why[1024], name[128] = "?";
-        clGetPlatformInfo(plats[platform_index >= 0 ? platform_index : 0], CL_PLATFORM_NAME, sizeof name, name, NULL);
+        char why[1024], name[128];
+        if (cl_platform_string(plats[platform_index >= 0 ? platform_index : 0], CL_PLATFORM_NAME, name, sizeof name) !=
+            CL_SUCCESS)
+            snprintf(name, sizeof name, "?");
         env_hints(why, sizeof why);
         snprintf(err, errlen, "no OpenCL device found%s: platform '%s' reports none%s; if no driver is installed, %s",
                  platform_index >= 0 ? " on the chosen platform" : "", name, why, no_device_hint);
         return EXIT_NO_DEVICE;
     }
-    clGetPlatformInfo(s->platform, CL_PLATFORM_NAME, sizeof s->platform_name, s->platform_name, NULL);
-    clGetPlatformInfo(s->platform, CL_PLATFORM_VERSION, sizeof s->platform_version, s->platform_version, NULL);
-    clGetDeviceInfo(s->device, CL_DEVICE_NAME, sizeof s->device_name, s->device_name, NULL);
-    clGetDeviceInfo(s->device, CL_DEVICE_VERSION, sizeof s->device_version, s->device_version, NULL);
-    clGetDeviceInfo(s->device, CL_DRIVER_VERSION, sizeof s->driver_version, s->driver_version, NULL);
-    clGetDeviceInfo(s->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof s->compute_units, &s->compute_units, NULL);
+    /* What the run records and decides by: a driver that cannot say it is not used. */
+#define SESSION_INFO(call, what)                                                                                    \
+    if ((e = (call)) != CL_SUCCESS) {                                                                              \
+        snprintf(err, errlen, "%s of the chosen device failed with %s", what, cl_error_name(e));                    \
+        return EXIT_RUNTIME;                                                                                       \
+    }
     cl_device_type dtype = 0;
-    clGetDeviceInfo(s->device, CL_DEVICE_TYPE, sizeof dtype, &dtype, NULL);
+    char ext[8192];
+    SESSION_INFO(cl_platform_string(s->platform, CL_PLATFORM_NAME, s->platform_name, sizeof s->platform_name),
+                 "clGetPlatformInfo(CL_PLATFORM_NAME)")
+    SESSION_INFO(cl_platform_string(s->platform, CL_PLATFORM_VERSION, s->platform_version, sizeof s->platform_version),
+                 "clGetPlatformInfo(CL_PLATFORM_VERSION)")
+    SESSION_INFO(cl_device_string(s->device, CL_DEVICE_NAME, s->device_name, sizeof s->device_name),
+                 "clGetDeviceInfo(CL_DEVICE_NAME)")
+    SESSION_INFO(cl_device_string(s->device, CL_DEVICE_VERSION, s->device_version, sizeof s->device_version),
+                 "clGetDeviceInfo(CL_DEVICE_VERSION)")
+    SESSION_INFO(cl_device_string(s->device, CL_DRIVER_VERSION, s->driver_version, sizeof s->driver_version),
+                 "clGetDeviceInfo(CL_DRIVER_VERSION)")
+    SESSION_INFO(cl_device_value(s->device, CL_DEVICE_MAX_COMPUTE_UNITS, &s->compute_units, sizeof s->compute_units),
+                 "clGetDeviceInfo(CL_DEVICE_MAX_COMPUTE_UNITS)")
+    SESSION_INFO(cl_device_value(s->device, CL_DEVICE_TYPE, &dtype, sizeof dtype), "clGetDeviceInfo(CL_DEVICE_TYPE)")
+    SESSION_INFO(cl_device_value(s->device, CL_DEVICE_GLOBAL_MEM_SIZE, &s->global_mem, sizeof s->global_mem),
+                 "clGetDeviceInfo(CL_DEVICE_GLOBAL_MEM_SIZE)")
+    SESSION_INFO(cl_device_value(s->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, &s->max_alloc, sizeof s->max_alloc),
+                 "clGetDeviceInfo(CL_DEVICE_MAX_MEM_ALLOC_SIZE)")
+    SESSION_INFO(cl_device_string(s->device, CL_DEVICE_EXTENSIONS, ext, sizeof ext), "clGetDeviceInfo(CL_DEVICE_EXTENSIONS)")
+#undef SESSION_INFO
     s->is_cpu = (dtype & CL_DEVICE_TYPE_CPU) != 0;
     /* One program per built-in model where the driver compiles a program whole at build time
        (every driver but PoCL, which compiles each kernel at its first launch and so pays only
        for what a run launches); BRDFBENCH_SPECIALISE=0/1 overrides. */
     const char *spec = getenv("BRDFBENCH_SPECIALISE");
     s->specialise = spec && *spec ? atoi(spec) != 0 : strstr(s->platform_name, "Portable Computing Language") == NULL;
-    clGetDeviceInfo(s->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof s->global_mem, &s->global_mem, NULL);
-    clGetDeviceInfo(s->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof s->max_alloc, &s->max_alloc, NULL);
-    char ext[8192] = "";
-    clGetDeviceInfo(s->device, CL_DEVICE_EXTENSIONS, sizeof ext, ext, NULL);
     s->has_fp64 = strstr(ext, "cl_khr_fp64") != NULL;
 
     s->ctx = clCreateContext(NULL, 1, &s->device, NULL, NULL, &e);
@@ -638,11 +722,12 @@ static int build_common(struct cl_session *s, const char *kernel_file, const cha
     s->builds++;
     if (e != CL_SUCCESS) {
         size_t loglen = 0;
-        clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &loglen);
-        char *log = malloc(loglen + 1);
-        if (log) {
+        char *log = NULL;   /* NULL: "(unavailable)" below */
+        if (clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &loglen) == CL_SUCCESS &&
+            (log = malloc(loglen + 1)) != NULL) {
             log[0] = '\0';
-            clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, loglen, log, NULL);
+            if (clGetProgramBuildInfo(prog, s->device, CL_PROGRAM_BUILD_LOG, loglen, log, NULL) != CL_SUCCESS)
+                loglen = 0;
             log[loglen] = '\0';
         }
         /* What the compiler said on stderr comes after the first diagnostic and the log. */
@@ -735,7 +820,8 @@ static int device_counts(cl_uint *nplat, cl_uint ndev[16])
         return -1;
     if (*nplat > 16)
         *nplat = 16;
-    clGetPlatformIDs(*nplat, plats, NULL);
+    if (clGetPlatformIDs(*nplat, plats, NULL) != CL_SUCCESS)
+        return -1;
     for (cl_uint p = 0; p < *nplat; ++p) {
         if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 0, NULL, &ndev[p]) != CL_SUCCESS)
             ndev[p] = 0;

@@ -58,6 +58,27 @@ void cl_report(const char *call, cl_int err, const char *file, int line);
         }                                                                      \
     } while (0)
 
+/* Information queries, every one checked. A string goes into buf, cut to buflen - 1 bytes when
+ * longer (a driver's extension list can be), always NUL-terminated: CL_SUCCESS, or the call's
+ * error with buf empty. A value of a fixed size (a number, a bit field): CL_SUCCESS, or the
+ * error with the value zeroed. */
+cl_int cl_platform_string(cl_platform_id p, cl_platform_info what, char *buf, size_t buflen);
+cl_int cl_device_string(cl_device_id d, cl_device_info what, char *buf, size_t buflen);
+cl_int cl_device_value(cl_device_id d, cl_device_info what, void *value, size_t size);
+
+/* One kernel argument: its size and where its value is (CL_ARG(x) for a variable x). */
+struct cl_arg {
+    size_t size;
+    const void *value;
+};
+#define CL_ARG(x) ((struct cl_arg){ sizeof(x), &(x) })
+/* Sets n arguments as the kernel's arguments first, first + 1, ...: CL_SUCCESS or the first
+ * failure's error. CL_SET_ARGS(k, first, CL_ARG(a), CL_ARG(b), ...) counts them. */
+cl_int cl_set_args(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n);
+#define CL_SET_ARGS(k, first, ...)                                                                                   \
+    cl_set_args((k), (first), (const struct cl_arg[]){ __VA_ARGS__ },                                                \
+                (cl_uint)(sizeof((struct cl_arg[]){ __VA_ARGS__ }) / sizeof(struct cl_arg)))
+
 /* Opens platform/device (indices; -1 = first with a device). Returns 0, EXIT_USAGE for an
  * index out of range, EXIT_RUNTIME, or EXIT_NO_DEVICE with a hint in err. */
 int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen);

@@ -284,12 +284,9 @@ int merl_eval_device(struct cl_session *s, const struct merl_material *m, const 
     buf[4] = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, count * sizeof(int), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(merl cell)", done);
     cl_uint n = (cl_uint)count;
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 0, sizeof(cl_mem), &buf[0]), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 1, sizeof(cl_mem), &buf[1]), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 2, sizeof(cl_mem), &buf[2]), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 3, sizeof n, &n), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 4, sizeof(cl_mem), &buf[3]), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 5, sizeof(cl_mem), &buf[4]), done);
+    CL_CHECK_GOTO(CL_SET_ARGS(kernel, 0, CL_ARG(buf[0]), CL_ARG(buf[1]), CL_ARG(buf[2]), CL_ARG(n), CL_ARG(buf[3]),
+                              CL_ARG(buf[4])),
+                  done);
     size_t global = (count + 63) / 64 * 64;
     rc = clsession_launch(s, kernel, 1, &global, NULL, m->name, NULL);
     if (rc)
