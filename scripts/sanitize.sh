@@ -69,7 +69,21 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 set +e
 # The tests labelled no_sanitizer (tests/CMakeLists.txt says why each) run in scripts/test.sh
-# only.
+# only. Besides the drivers', packaging and timing tests listed there, four are left out so that
+# CI's two passes fit its time on a 2-core machine; what each checks is not memory safety of code
+# that no other test runs under the sanitizers:
+#   test_deadline         most of its time is the deadlines it waits out (sleeping); the launch
+#                         watchdog and the stop paths it reaches run in every device test here,
+#                         and a stopped run's tidy-up in test_hostile and test_atomic;
+#   test_throughput_cli   timed runs of the throughput engine; its host code (the runner, the
+#                         writers) runs here in test_throughput and test_runner;
+#   test_ln_unit          the kernels' log against the C library's, every 61st float in [2^-24, 1]: device
+#                         arithmetic, with a plain loop on the host;
+#   test_accuracy_pictures  accuracy --pictures and plot of user models: the drawing code runs
+#                         here in test_draw, test_redraw and test_draw_module (plot), accuracy's
+#                         in test_accuracy and test_cli_accuracy, user models' in test_usermodel.
+# Every unit and device C test and the bad-input and hostile-input tables (test_cli_errors,
+# test_hostile) run under the sanitizers.
 ctest --output-on-failure -j2 --timeout 900 -LE no_sanitizer 2>&1 | tee "$log"
 rc=${PIPESTATUS[0]}
 set -e
