@@ -19,45 +19,10 @@ struct command {
     const char *example;   /* one command line, shown by --help and the man page */
 };
 
-static int cmd_help(int argc, char **argv);
-
-static const struct command commands[] = {
-    { "list", cmd_list, "the models (formulas, parameters, references) and the OpenCL devices",
-      "brdfbench list --json -" },
-    { "accuracy", cmd_accuracy, "dense-grid accuracy sweep of models on the OpenCL device",
-      "brdfbench accuracy --models fq2,cq2,lyon:k=2 --n-min 2 --n-max 1000 --out results/acc" },
-    { "all", cmd_all, "the main job: every sweep, heatmap, plot and report.md in results/<date-time>/",
-      "brdfbench all --quick --models fq2,cq2,phong" },
-    { "plot", cmd_plot, "redraw every picture of a run folder from its JSON (no device)",
-      "brdfbench plot results/latest" },
-    { "report", cmd_report, "rebuild report.md of a run folder from its files alone (no device)",
-      "brdfbench report results/latest --output -" },
-    { "rows", cmd_rows, "the figures of result files as rows: keys, metrics with unit and direction (md, csv, json)",
-      "brdfbench rows results/latest/throughput.json --format csv" },
-    { "heatmap", cmd_heatmap, "redraw the heatmaps of a run folder from its field JSON (no device)",
-      "brdfbench heatmap results/latest --label fq2" },
-    { "gate", cmd_gate, "accuracy gates for CI: checks figures of a gates file against bounds (JUnit, JSON)",
-      "brdfbench gate gates.json --junit gates.xml" },
-    { "render", cmd_render, "full-image shading passes (spheres, teapot, bunny): error images, metrics, Mpixel/s",
-      "brdfbench render --scene spheres --models phong,fq2,cq2" },
-    { "reproduce", cmd_reproduce, "re-derive every claim of both papers: claims.json, claims.md and a table",
-      "brdfbench reproduce --out results/claims" },
-    { "fit", cmd_fit, "the cosine-quadratic family's accuracy limit and its best affine k(n) (quad:a=..,b=..)",
-      "brdfbench fit --n-min 2 --n-max 1000" },
-    { "throughput", cmd_throughput, "evaluations/s of every model vs pow(), tuned C and the device peak; build-option variants",
-      "brdfbench throughput --models fq2,phong,phongpow" },
-    { "version", cmd_version, "the program's version and git revision (also --version after any command)",
-      "brdfbench version" },
-    { "compare", cmd_compare, "runs side by side against a baseline: faster/slower/same, accuracy changes (no device)",
-      "brdfbench compare results/before results/after" },
-    /* more commands below, one per line */
-    { "frontier", cmd_frontier, "cost against accuracy of every lobe approximation: the Pareto front, plots, which to ship",
-      "brdfbench frontier --out results/frontier" },
-    { "measured", cmd_measured, "measured materials (MERL files): Blinn-Phong and Cook-Torrance fits, every cheap lobe against them",
-      "brdfbench measured merl/gold-metallic-paint.binary" },
-    { "help", cmd_help, "a command's options (help COMMAND), its man page, or the shell completions",
-      "brdfbench help accuracy" },
-};
+/* the table, from the one list of commands.h */
+#define BRDF_COMMAND_ENTRY(name, help, example) { #name, cmd_##name, help, example },
+static const struct command commands[] = { BRDF_COMMANDS(BRDF_COMMAND_ENTRY) };
+#undef BRDF_COMMAND_ENTRY
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
 static void usage(FILE *f)
@@ -287,7 +252,7 @@ static void write_bash(FILE *f, const void *arg) { (void)arg; print_bash_complet
 static void write_zsh(FILE *f, const void *arg) { (void)arg; print_zsh_completion(f); }
 
 /* brdfbench help [COMMAND | --man [COMMAND] | --man-dir DIR | --completion bash|zsh [FILE]] */
-static int cmd_help(int argc, char **argv)
+int cmd_help(int argc, char **argv)
 {
     int man = 0;
     const char *man_dir = NULL, *shell = NULL;
