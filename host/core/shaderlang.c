@@ -13,6 +13,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "shaderlang.h"
 #include "shaderlang_internal.h"
+#include "clsession.h"
 #include "exitcodes.h"
 #include "mdbuf.h"
 
@@ -423,14 +424,27 @@ int sl_translate(struct sl *S, const char *text, size_t len, const struct header
                  char **out, size_t *outlen)
 {
     md_init(&S->out);
+    S->started = wall_seconds();
+    S->fail_code = EXIT_USAGE;
     if (setjmp(S->fail)) {
         md_free(&S->out);
-        return EXIT_USAGE;
+        return S->fail_code;
     }
     translate_text(S, text, len, h, name);
     *out = S->out.s;
     *outlen = S->out.len;
     return 0;
+}
+
+/* Translation is bounded (SL_MAX_UNROLL_TOTAL, SL_MAX_OUTPUT), and the launch deadline covers
+ * it all the same: a text that takes longer than a launch may is stopped as a launch would be. */
+void sl_check_deadline(struct sl *S)
+{
+    double limit = clsession_timeout();
+    if (limit > 0 && wall_seconds() - S->started > limit) {
+        S->fail_code = EXIT_RUNTIME;
+        sl_fail_at(S, S->stmt_line, -1, "the translation took longer than the deadline of %g s (--timeout)", limit);
+    }
 }
 
 void sl_free(struct sl *S)

@@ -66,25 +66,67 @@ void sl_out_line(struct sl *S, const char *fmt, ...)
     ++S->line_next;
     if (S->out.failed)
         sl_fail_at(S, 0, 0, "out of memory");
+    if (S->out.len > SL_MAX_OUTPUT)
+        sl_fail_at(S, S->stmt_line, -1, "the translation is larger than %zu MiB (loops unrolled and helper functions "
+                   "inlined): write the loop with fewer iterations or fewer statements", SL_MAX_OUTPUT >> 20);
+    if ((S->line_next & 1023) == 0)
+        sl_check_deadline(S);
 }
 
-/* A C name for a user variable, unique in the output. */
+static unsigned name_hash(const char *s)
+{
+    unsigned h = 2166136261u; /* FNV-1a */
+    for (; *s; ++s)
+        h = (h ^ (unsigned char)*s) * 16777619u;
+    return h;
+}
+
+/* The slot of s in the table: its own, or the empty one where it would go. */
+static struct name_slot *name_slot(struct name_table *tb, const char *s, unsigned h)
+{
+    size_t i = h & (tb->cap - 1);
+    while (tb->v[i].s && (tb->v[i].hash != h || strcmp(tb->v[i].s, s) != 0))
+        i = (i + 1) & (tb->cap - 1);
+    return &tb->v[i];
+}
+
+/* The slot of s, added (with next_suffix 2) if it was not there. */
+static struct name_slot *name_intern(struct sl *S, struct name_table *tb, const char *s)
+{
+    if (2 * (tb->n + 1) > tb->cap) {
+        struct name_table grown = { NULL, tb->n, tb->cap ? 2 * tb->cap : 64 };
+        grown.v = sl_arena_alloc(S, sizeof *grown.v * grown.cap);
+        for (size_t i = 0; i < tb->cap; ++i)
+            if (tb->v[i].s)
+                *name_slot(&grown, tb->v[i].s, tb->v[i].hash) = tb->v[i];
+        *tb = grown;
+    }
+    unsigned h = name_hash(s);
+    struct name_slot *slot = name_slot(tb, s, h);
+    if (!slot->s) {
+        slot->s = s;
+        slot->hash = h;
+        slot->next_suffix = 2;
+        tb->n++;
+    }
+    return slot;
+}
+
+static int name_taken(struct name_table *tb, const char *s)
+{
+    return tb->cap && name_slot(tb, s, name_hash(s))->s != NULL;
+}
+
+/* A C name for a user variable, unique in the output: u__NAME, then u__NAME_2, u__NAME_3, ...
+ * Each base remembers where its suffixes stopped, so a name declared in every iteration of an
+ * unrolled loop costs the same each time. */
 static const char *c_name(struct sl *S, const char *base)
 {
+    struct name_slot *b = name_intern(S, &S->bases, base);
     const char *s = sl_sfmt(S, "u__%s", base);
-    for (int k = 2;; ++k) {
-        int taken = 0;
-        for (struct used_name *u = S->used; u; u = u->next)
-            if (strcmp(u->s, s) == 0)
-                taken = 1;
-        if (!taken)
-            break;
-        s = sl_sfmt(S, "u__%s_%d", base, k);
-    }
-    struct used_name *u = sl_arena_alloc(S, sizeof *u);
-    u->s = s;
-    u->next = S->used;
-    S->used = u;
+    while (name_taken(&S->used, s))
+        s = sl_sfmt(S, "u__%s_%d", base, b->next_suffix++);
+    name_intern(S, &S->used, s);
     return s;
 }
 

@@ -603,6 +603,10 @@ static void emit_for(struct sl *S, struct stmt *st, const char *pred)
             break;
         if (++count > SL_MAX_UNROLL)
             FAIL(S, st->t, "a for loop of more than %d iterations", SL_MAX_UNROLL);
+        /* nested loops multiply: the bodies emitted in all are bounded too */
+        if (++S->unrolled > SL_MAX_UNROLL_TOTAL)
+            FAIL(S, st->t, "the loops unroll to more than %d iterations in all (nested loops multiply; "
+                 "one loop may have %d)", SL_MAX_UNROLL_TOTAL, SL_MAX_UNROLL);
         sl_push_scope(S, 0);
         struct sym *s = sl_declare(S, S->scope, d->name, d->ty);
         s->is_const = 1;

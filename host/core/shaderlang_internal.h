@@ -17,6 +17,8 @@
 #define SL_MAX_PARAMS 2      /* as MODEL_MAX_PARAMS */
 #define SL_MAX_ARGS 8
 #define SL_MAX_UNROLL 256    /* iterations of one unrolled for loop */
+#define SL_MAX_UNROLL_TOTAL 8192 /* loop bodies emitted in all (nested loops multiply) */
+#define SL_MAX_OUTPUT ((size_t)4 << 20) /* bytes of translated text (loops unrolled, helpers inlined) */
 #define SL_MAX_INLINE 16     /* nested calls of helper functions */
 #define SL_MAX_MACRO_DEPTH 16
 #define SL_MAX_NESTING 200   /* parentheses, operators and statements inside each other */
@@ -121,9 +123,17 @@ struct fnctx {
     int returned;          /* the model function has returned (a plain return was written) */
 };
 
-struct used_name {
+/* The C names given out (c_name), in an open-addressing hash table: a name's lookup does not
+ * grow with the number of declarations, so unrolled loops translate in linear time. A base
+ * keeps the next suffix to try (u__x, u__x_2, ...). */
+struct name_slot {
     const char *s;
-    struct used_name *next;
+    unsigned hash;
+    int next_suffix;
+};
+struct name_table {
+    struct name_slot *v;
+    size_t n, cap;
 };
 
 struct sl {
@@ -144,7 +154,11 @@ struct sl {
     int line_next;             /* the line number the next output line has */
     int stmt_line;
     int ntemp;
-    struct used_name *used;
+    struct name_table used;    /* C names given out */
+    struct name_table bases;   /* user names declared, with their next suffix */
+    long unrolled;             /* loop bodies emitted by unrolling, all loops together */
+    double started;            /* wall clock at the start, for the deadline */
+    int fail_code;             /* EXIT_USAGE, or EXIT_RUNTIME past the deadline */
     struct scope *scope, *globals;
     struct func *funcs;
     const struct func *inlining[SL_MAX_INLINE];
@@ -235,6 +249,8 @@ void sl_full_function_open(struct md_buf *w, int nparams);
 int sl_translate(struct sl *S, const char *text, size_t len, const struct header *h, const char *name,
                  char **out, size_t *outlen);
 void sl_free(struct sl *S);
+/* Fails with exit 3 once the translation has run past the launch deadline (clsession.h). */
+void sl_check_deadline(struct sl *S);
 int sl_uses_word(const char *text, size_t len, const char *w);
 
 #endif
