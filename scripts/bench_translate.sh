@@ -15,7 +15,9 @@ repeats=${2:-21}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 ${CC:-cc} -O2 -Ihost/core -Ihost/output scripts/bench_translate.c "$build/libbrdfcore.a" \
-    -lOpenCL -ltcc -lm -lpthread -ldl -lstdc++ -o "$tmp/bench_translate"
+    -lOpenCL -ltcc -lglslang -lMachineIndependent -lOSDependent -lHLSL -lOGLCompiler -lGenericCodeGen \
+    -lglslang-default-resource-limits -lglslang -lMachineIndependent -lm -lpthread -ldl -lstdc++ \
+    -o "$tmp/bench_translate"
 
 # The 300-line shader: 27 helpers of 10 lines each, then the model function.
 {
@@ -47,6 +49,10 @@ GLSL
   echo "    return s;"
   echo "}"
 } >"$tmp/long300.glsl"
+# the same text through the preprocessor (glslang): an #if around it and a function-like macro
+{ echo "#define SCALE(x) ((x) * 0.037)"; echo "#if 1"; sed 's/\* 0\.037;/;/' "$tmp/long300.glsl" | sed '/^\/\*/,/\*\//d'; echo "#endif"; } >"$tmp/long300pp.glsl"
+sed -i 's/    s += \(helper[0-9]*(c, n)\);/    s += SCALE(\1);/' "$tmp/long300pp.glsl"
+sed -i 's/long300(/long300pp(/' "$tmp/long300pp.glsl"
 # two nested constant loops of 32: 1024 bodies
 cat >"$tmp/nested32.glsl" <<'GLSL'
 float nested32(float c, float n) {
@@ -63,7 +69,7 @@ GLSL
 
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else printf "%.6f\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 printf '%-16s %6s %12s %14s\n' shader lines "median s" "output bytes"
-for f in long300 nested32; do
+for f in long300 long300pp nested32; do
   "$tmp/bench_translate" "$tmp/$f.glsl" "$repeats" >"$tmp/$f.t"
   printf '%-16s %6d %12s %14s\n' "$f.glsl" "$(wc -l <"$tmp/$f.glsl")" "$(cut -d' ' -f1 "$tmp/$f.t" | median)" \
     "$(head -1 "$tmp/$f.t" | cut -d' ' -f2)"

@@ -371,6 +371,96 @@ int main(void)
         CHECK(rc == 2 && strstr(err, "nested256.glsl:4:9: the loops unroll to more than 8192 iterations in all"),
               "256 x 256 loops: %d %s", rc, err);
     }
+    /* 10. The preprocessor (glslang's, host/core/shaderlang_pp.c). */
+    if (!shaderlang_has_preprocessor()) {
+        printf("built without glslang: the preprocessor's checks are skipped\n");
+    } else {
+        /* A Filament-style D_GGX chosen by #if, a function-like macro, a header define: GGX's
+           D = a^2 / (pi (c^2 (a^2 - 1) + 1)^2) with a = sqrt(2 / (n + 2)), written here in C;
+           with -D SPEC_GGX=0 the #else branch, Beckmann's exp((c^2 - 1) / (a^2 c^2)) / (pi a^2 c^4). */
+        static const char dggx[] =
+            "/* brdfbench-model\n * name: dggx\n * define: SPEC_GGX=1\n */\n"
+            "#define PI 3.14159265358979323846\n"
+            "#define MEDIUMP_FLT_MAX 65504.0\n"
+            "#define saturateMediump(x) min(x, MEDIUMP_FLT_MAX)\n"
+            "#if SPEC_GGX\n"
+            "float D_GGX(float roughness, float NoH) {\n"
+            "    float oneMinusNoHSquared = 1.0 - NoH * NoH;\n"
+            "    float a = NoH * roughness;\n"
+            "    float k = roughness / (oneMinusNoHSquared + a * a);\n"
+            "    float d = k * k * (1.0 / PI);\n"
+            "    return saturateMediump(d);\n"
+            "}\n"
+            "#elif defined(SPEC_BECKMANN) || !SPEC_GGX\n"
+            "float D_GGX(float roughness, float NoH) {\n"
+            "    float a2 = roughness * roughness, c2 = NoH * NoH;\n"
+            "    return exp((c2 - 1.0) / (a2 * c2)) / (PI * a2 * c2 * c2);\n"
+            "}\n"
+            "#endif\n"
+            "float dggx(float c, float n) { return D_GGX(sqrt(2.0 / (n + 2.0)), c); }\n";
+        for (int variant = 0; variant < 2; ++variant) {
+            if (variant == 1)
+                CHECK(shaderlang_define("SPEC_GGX=0", err, sizeof err) == 0, "-D SPEC_GGX=0: %s", err);
+            struct user_model *um = NULL;
+            int rc = usermodel_parse_file_text(dggx, strlen(dggx), "dggx.glsl", &um, err, sizeof err);
+            CHECK(rc == 0, "dggx.glsl (variant %d): %s", variant, err);
+            if (rc == 0 && usermodel_host_ready(um)) {
+                double worst = 0;
+                for (double n = 2; n <= 2000; n *= 1.7)
+                    for (int i = 1; i <= 100; ++i) {
+                        double c = i / 100.0, a2 = 2.0 / (n + 2.0), c2 = c * c, e;
+                        if (variant == 0) {
+                            double t = c2 * (a2 - 1.0) + 1.0;
+                            e = fmin(a2 / (M_PI * t * t), 65504.0);
+                        } else {
+                            e = exp((c2 - 1.0) / (a2 * c2)) / (M_PI * a2 * c2 * c2);
+                        }
+                        double v = hostjit_function(um->host)(c, n, 0, 0);
+                        double rel = fabs(v - e) / (e > 1e-300 ? e : 1.0);
+                        if (!(rel <= worst))
+                            worst = rel;
+                    }
+                CHECK(worst <= 1e-12, "dggx.glsl variant %d: largest relative difference %g", variant, worst);
+            }
+            usermodel_free(um);
+        }
+        shaderlang_clear_defines();
+        /* #undef, __LINE__ (line 5 here) and a function-like macro of two arguments */
+        static const char m1[] = "#define K 3.0\n#undef K\n#define K 2.0\n#define MUL(a, b) ((a) * (b))\n"
+                                 "float m1(float c, float n) { return MUL(c, c) * K + float(__LINE__); }\n";
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_file_text(m1, strlen(m1), "m1.hlsl", &um, err, sizeof err);
+        CHECK(rc == 0, "m1.hlsl: %s", err);
+        if (rc == 0 && usermodel_host_ready(um))
+            CHECK(hostjit_function(um->host)(0.5, 10.0, 0, 0) == 0.25 * 2.0 + 5.0, "m1 at c = 0.5: %g",
+                  hostjit_function(um->host)(0.5, 10.0, 0, 0));
+        usermodel_free(um);
+        /* Errors at the user's line and column through the preprocessor (counted by hand). */
+        static const struct { const char *text, *path, *message; } pp_errors[] = {
+            /* line 4 "    float t = SQ(c) *   q;": q is in column 25, after a macro call */
+            { "#define SQ(x) ((x) * (x))\n#if 1\nfloat e(float c, float n) {\n    float t = SQ(c) *   q;\n"
+              "    return t;\n}\n#endif\n", "e1.glsl", "e1.glsl:4:25: use of undeclared identifier 'q'" },
+            /* #line 50: the next line is line 50, as a C compiler numbers it */
+            { "float e(float c, float n) {\n#line 50\n  return c + zz;\n}\n", "e2.glsl",
+              "e2.glsl:50:14: use of undeclared identifier 'zz'" },
+            { "#ifndef X\n#error X is needed\n#endif\nfloat e(float c, float n) { return c; }\n", "e3.glsl",
+              "e3.glsl:2: #error: X is needed (glslang's preprocessor)" },
+            { "#if 1\nfloat e(float c, float n) { return c; }\n", "e4.glsl", "e4.glsl:3: missing #endif" },
+            { "float e(float c, float n) { return c; }\n  #include \"other.glsl\"\n", "e5.glsl",
+              "e5.glsl:2:3: #include is not accepted: a model file reads no other file" },
+            { "/* brdfbench-model\n * name: e\n * define: 9X=1\n */\nfloat e(float c, float n) { return c; }\n",
+              "e6.glsl", "e6.glsl:3: define: '9X=1': expected NAME or NAME=VALUE" },
+            { NULL, NULL, NULL } };
+        for (int i = 0; pp_errors[i].text; ++i) {
+            um = NULL;
+            rc = usermodel_parse_file_text(pp_errors[i].text, strlen(pp_errors[i].text), pp_errors[i].path, &um, err,
+                                           sizeof err);
+            CHECK(rc == 2 && strstr(err, pp_errors[i].message), "%s: got %d '%s', expected '%s'", pp_errors[i].path,
+                  rc, err, pp_errors[i].message);
+            if (rc == 0)
+                usermodel_free(um);
+        }
+    }
     usermodel_clear_all();
     return check_summary();
 }

@@ -22,6 +22,8 @@
 #define SL_MAX_INLINE 16     /* nested calls of helper functions */
 #define SL_MAX_MACRO_DEPTH 16
 #define SL_MAX_NESTING 200   /* parentheses, operators and statements inside each other */
+#define SL_MAX_DEFINES 16    /* -D on the command line; define: lines of a header */
+#define SL_DEFINE_MAX 120    /* "NAME VALUE" of one define */
 
 /* ---- memory: one arena per translation ------------------------------------------------ */
 
@@ -136,6 +138,16 @@ struct name_table {
     size_t n, cap;
 };
 
+/* The user's text as the preprocessor read it, for the columns of what it wrote (shaderlang_pp.c). */
+struct sl_pp {
+    const char *src;
+    size_t src_len;
+    size_t *line_start;
+    int nlines;
+    int first_line;            /* the user's line of src's first line */
+    int cur_line, cursor;      /* where sl_pp_column looks next */
+};
+
 struct sl {
     jmp_buf fail;
     char *err;
@@ -159,6 +171,9 @@ struct sl {
     long unrolled;             /* loop bodies emitted by unrolling, all loops together */
     double started;            /* wall clock at the start, for the deadline */
     int fail_code;             /* EXIT_USAGE, or EXIT_RUNTIME past the deadline */
+    struct sl_pp pp;
+    int pp_active;             /* the lexer reads the preprocessor's output: columns through sl_pp_column */
+    int line_delta;            /* #line N: the user's numbering minus the text's */
     struct scope *scope, *globals;
     struct func *funcs;
     const struct func *inlining[SL_MAX_INLINE];
@@ -188,6 +203,10 @@ struct header {
     char reference[SL_NAME_MAX + 1];
     char lobe[16];
     char description[200];
+    int ndefines;               /* define: NAME[=VALUE] lines, as "NAME VALUE" */
+    char defines[SL_MAX_DEFINES][SL_DEFINE_MAX + 1];
+    char define_error[300];     /* a define: line that is not one, for the translation to report */
+    int define_line;
     /* A .brdf file: the header written for it, code lexed before and after the user's text
        (no position of their own), and the line the user's text starts on. */
     const char *header_text, *prelude, *epilogue;
@@ -210,6 +229,14 @@ int sl_tok_is(const struct tok *t, const char *s);
 /* ---- the lexer (shaderlang_lex.c) ---- */
 void sl_tokv_push(struct sl *S, struct tokv *v, struct tok t);
 void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col, struct tokv *into);
+
+/* ---- the preprocessor (shaderlang_pp.c) ---- */
+/* The text preprocessed by glslang (kept in the arena, *outlen its length) when it has
+ * directives the lexer does not read or there are defines; NULL when it needs none. */
+const char *sl_preprocess(struct sl *S, const char *text, size_t len, int first_line, const struct header *h,
+                          size_t *outlen);
+int sl_pp_column(struct sl *S, const struct tok *t, int out_line);
+int sl_define_text(const char *arg, char *out, size_t outlen, char *err, size_t errlen, const char *what);
 
 /* ---- the parser (shaderlang_parse.c) ---- */
 const struct tok *sl_peek(struct sl *S);

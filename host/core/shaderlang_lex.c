@@ -95,6 +95,11 @@ static const char *lex_directive(struct sl *S, const char *p, const char *end, i
     if ((wl == 7 && strncmp(w, "version", 7) == 0) || (wl == 9 && strncmp(w, "extension", 9) == 0) ||
         (wl == 6 && strncmp(w, "pragma", 6) == 0)) {
         /* nothing for a lobe: skipped */
+    } else if (wl == 4 && strncmp(w, "line", 4) == 0 && S->pp_active) {
+        /* passed through by the preprocessor: the next line is line N */
+        long n = strtol(q, NULL, 10);
+        if (n > 0 && n < 100000000)
+            S->line_delta = (int)n - (line + 1);
     } else if (wl == 6 && strncmp(w, "define", 6) == 0) {
         while (q < eol && (*q == ' ' || *q == '\t'))
             ++q;
@@ -230,6 +235,11 @@ void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col
             lex_number(S, p, end, &t);
         } else {
             lex_operator(S, p, end, &t);
+        }
+        if (S->pp_active && !into) {
+            /* the preprocessor's output: the user's column and line (#line as written) */
+            t.col = sl_pp_column(S, &t, line);
+            t.line = line + S->line_delta;
         }
         if (into)
             sl_tokv_push(S, into, t);
