@@ -461,6 +461,101 @@ int main(void)
                 usermodel_free(um);
         }
     }
+    /* 11. Overloads, out and inout, the user's names. */
+    {
+        /* A three.js-style BRDF_BlinnPhong (threejs_blinnphong.glsl, written for this test): F_Schlick
+           overloaded for float and vec3, G = 1/4, D = (s/2 + 1)/pi c^s, F = 1 for a white specular
+           colour; so the model is phongn / 4 ((n + 2)/(2 pi) c^n, docs/definitions.md) at every
+           point, and its delta against phongn is 0.75. */
+        struct model_spec ph;
+        CHECK(model_spec_parse("phongn", &ph, err, sizeof err) == 0, "%s", err);
+        if (load("threejs_blinnphong.glsl", "threeblinn", &m)) {
+            double worst = 0;
+            for (double n = 2; n <= 1000; n *= 1.6)
+                for (int k = 1; k <= 100; ++k) {
+                    double c = k / 100.0;
+                    double v = model_eval_host(&m, c, n), r = model_eval_host(&ph, c, n);
+                    double e = 0.25 * (n * 0.5 + 1.0) / M_PI * pow(c, n);
+                    double rel = fabs(v - 0.25 * r) / (r > 1e-300 ? 0.25 * r : 1.0);
+                    double rel2 = fabs(v - e) / (e > 1e-300 ? e : 1.0);
+                    if (!(rel <= worst))
+                        worst = rel;
+                    if (!(rel2 <= worst))
+                        worst = rel2;
+                }
+            /* V = 2c H - N makes L + V's z 1 + (2c^2 - 1): a cancellation of about eps / c^2 in N.H,
+               which c^n multiplies by n (up to 1000 here) */
+            CHECK(worst <= 1e-10, "threejs_blinnphong.glsl against phongn / 4: largest relative difference %g", worst);
+        }
+        /* out and inout (a swizzle as the argument too), a call as a statement, a void function
+           with an early return, a call under if (written back only where the condition holds);
+           blinn, brdf, BRDF_x, c and n are the user's names. In C: h = 2c, a = 1 + c + (c > 0.5 ?
+           c : 0), v = (c, 2c, 0) then v.x += 1 where c < 0.25; the result h + a n + v.x + v.y. */
+        static const char io[] =
+            "void split(float x, out float hi, inout float acc) { hi = x * 2.0; acc += x; }\n"
+            "void bump(inout vec3 v, float c) { if (c >= 0.25) return; v.x += 1.0; }\n"
+            "float blinn(float c, float n) { return c; }\n"
+            "float io(float c, float n) {\n"
+            "    float h; float a = 1.0; float BRDF_x = blinn(c, n); float brdf = 0.0;\n"
+            "    split(c, h, a);\n"
+            "    if (c > 0.5) split(BRDF_x, h, a);\n"
+            "    vec3 v = vec3(0.0);\n"
+            "    split(c, v.y, v.x);\n"
+            "    bump(v, c);\n"
+            "    return h + a * n + v.x + v.y + brdf;\n"
+            "}\n";
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_file_text(io, strlen(io), "io.glsl", &um, err, sizeof err);
+        CHECK(rc == 0, "io.glsl: %s", err);
+        if (rc == 0 && usermodel_host_ready(um)) {
+            double worst = 0;
+            for (double n = 1; n <= 100; n *= 3)
+                for (int k = 0; k <= 64; ++k) {
+                    double c = k / 64.0;
+                    double h = 2 * c, a = 1 + c + (c > 0.5 ? c : 0), vx = c + (c < 0.25 ? 1 : 0), vy = 2 * c;
+                    double e = h + a * n + vx + vy, v = hostjit_function(um->host)(c, n, 0, 0);
+                    if (!(fabs(v - e) <= worst))
+                        worst = fabs(v - e);
+                }
+            CHECK(worst <= 1e-13, "io.glsl: largest difference %g", worst);
+        }
+        usermodel_free(um);
+        /* overloads by argument types: f(1) takes f(float) (an int converts), f(vec2(..)) the vec2
+           one, f(c, c) the two-float one: c + (c + 2c) + c c */
+        static const char ov[] = "float f(float x) { return x; }\nfloat f(vec2 v) { return v.x + v.y; }\n"
+                                 "float f(float x, float y) { return x * y; }\n"
+                                 "float ov(float c, float n) { return f(1) * c + f(vec2(c, 2.0 * c)) + f(c, c); }\n";
+        um = NULL;
+        rc = usermodel_parse_file_text(ov, strlen(ov), "ov.hlsl", &um, err, sizeof err);
+        CHECK(rc == 0, "ov.hlsl: %s", err);
+        if (rc == 0 && usermodel_host_ready(um))
+            CHECK(hostjit_function(um->host)(0.5, 3.0, 0, 0) == 0.5 + 1.5 + 0.25, "ov at c = 0.5: %g",
+                  hostjit_function(um->host)(0.5, 3.0, 0, 0));
+        usermodel_free(um);
+        static const struct { const char *text, *path, *message; } ov_errors[] = {
+            /* both overloads need one conversion (column 40: the call) */
+            { "float g(float x, vec2 y) { return x; }\nfloat g(vec2 x, float y) { return y; }\n"
+              "float e(float c, float n) { return g(1.0, 1.0); }\n", "o1.glsl",
+              "o1.glsl:3:36: the call of g is ambiguous" },
+            { "float g(float x) { return x; }\nfloat g(float y) { return y; }\n"
+              "float e(float c, float n) { return g(c); }\n", "o2.glsl",
+              "o2.glsl:2:7: function 'g' is defined twice with the same parameter types (line 1)" },
+            { "float g(float x) { return x; }\nfloat g(vec2 y) { return y.x; }\n"
+              "float e(float c, float n) { return g(vec3(c)); }\n", "o3.glsl",
+              "o3.glsl:3:36: no function g takes (vec3)" },
+            { "void s(out float x) { x = 1.0; }\nfloat e(float c, float n) { s(c + 1.0); return c; }\n", "o4.glsl",
+              "o4.glsl:2:33: an out or inout argument must be a variable or its components" },
+            { NULL, NULL, NULL } };
+        for (int i = 0; ov_errors[i].text; ++i) {
+            um = NULL;
+            rc = usermodel_parse_file_text(ov_errors[i].text, strlen(ov_errors[i].text), ov_errors[i].path, &um, err,
+                                           sizeof err);
+            CHECK(rc == 2 && strstr(err, ov_errors[i].message), "%s: got %d '%s', expected '%s'", ov_errors[i].path,
+                  rc, err, ov_errors[i].message);
+            if (rc == 0)
+                usermodel_free(um);
+        }
+    }
     usermodel_clear_all();
     return check_summary();
 }

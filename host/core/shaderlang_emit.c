@@ -16,8 +16,89 @@
 
 static int const_int(struct sl *S, struct expr *e, long *out);
 
-static struct val call_user(struct sl *S, struct func *f, struct expr *e)
+static void assign_sym(struct sl *S, struct sym *s, const int *comp, int ncomp, struct val v, const char *pred,
+                       const struct tok *where);
+static const char *effective(struct sl *S, const char *pred);
+
+/* The variable (and its components) an out or inout argument names. */
+static struct sym *out_target(struct sl *S, struct expr *a, int *comp, int *ncomp)
 {
+    const struct tok *nt = a->k == E_SWZ ? a->a->t : a->t;
+    if (!(a->k == E_VAR || (a->k == E_SWZ && a->a->k == E_VAR)))
+        FAIL(S, a->t, "an out or inout argument must be a variable or its components");
+    struct sym *s = sl_lookup(S, nt);
+    if (!s)
+        FAIL(S, nt, "use of undeclared identifier '%.*s'", nt->len, nt->p);
+    if (s->is_const)
+        FAIL(S, nt, "'%.*s' is const: it cannot take an out or inout argument", nt->len, nt->p);
+    *ncomp = s->t.n;
+    for (int i = 0; i < 4; ++i)
+        comp[i] = i;
+    if (a->k == E_SWZ) {
+        *ncomp = a->nswz;
+        for (int i = 0; i < a->nswz; ++i) {
+            comp[i] = a->swz[i];
+            if (comp[i] >= s->t.n)
+                FAIL(S, a->t, "component %c of a %s", "xyzw"[comp[i]], sl_type_name(S, s->t));
+        }
+    }
+    return s;
+}
+
+/* How far an argument of type a is from a parameter of type p: 0 the same, 1 an int to a float,
+ * 2 more for a scalar made a vector (HLSL's promotion), -1 not at all. */
+static int conversion_cost(struct type a, struct type p, int mode)
+{
+    if (a.b == p.b && a.n == p.n)
+        return 0;
+    if (mode != PM_IN)
+        return -1;
+    if (p.b == B_FLOAT && (a.b == B_INT || a.b == B_FLOAT) && (a.n == p.n || a.n == 1))
+        return (a.b == B_INT) + 2 * (a.n != p.n);
+    return -1;
+}
+
+/* A call of a function of the text: the overload whose parameters take the arguments with
+ * the fewest conversions (a tie is an ambiguous call), inlined. */
+static struct val call_user(struct sl *S, struct func *first, struct expr *e)
+{
+    struct val args[SL_MAX_ARGS];
+    for (int i = 0; i < e->nargs; ++i)
+        args[i] = sl_ev(S, e->args[i]);
+    struct func *f = NULL;
+    int best = -1, tie = 0, candidates = 0;
+    for (struct func *g = first; g; g = g->next) {
+        if (!(g->name->len == first->name->len && strncmp(g->name->p, first->name->p, (size_t)g->name->len) == 0))
+            continue;
+        ++candidates;
+        if (g->nparams != e->nargs)
+            continue;
+        int cost = 0;
+        for (int i = 0; i < e->nargs && cost >= 0; ++i) {
+            int c = conversion_cost(args[i].t, g->pty[i], g->pmode[i]);
+            cost = c < 0 ? -1 : cost + c;
+        }
+        if (cost < 0)
+            continue;
+        if (best < 0 || cost < best) {
+            best = cost;
+            f = g;
+            tie = 0;
+        } else if (cost == best) {
+            tie = 1;
+        }
+    }
+    if (!f && candidates == 1)
+        f = first; /* its own message: the count, or the argument that does not convert */
+    if (!f) {
+        const char *types = "";
+        for (int i = 0; i < e->nargs; ++i)
+            types = sl_sfmt(S, "%s%s%s", types, i ? ", " : "", sl_type_name(S, args[i].t));
+        FAIL(S, e->t, "no function %.*s takes (%s)", first->name->len, first->name->p, types);
+    }
+    if (tie)
+        FAIL(S, e->t, "the call of %.*s is ambiguous: two of its overloads take these arguments equally well",
+             f->name->len, f->name->p);
     if (e->nargs != f->nparams)
         FAIL(S, e->t, "%.*s takes %d argument%s, not %d", f->name->len, f->name->p, f->nparams,
              f->nparams == 1 ? "" : "s", e->nargs);
@@ -26,21 +107,33 @@ static struct val call_user(struct sl *S, struct func *f, struct expr *e)
             FAIL(S, e->t, "%.*s calls itself: recursion is not supported", f->name->len, f->name->p);
     if (S->ninline >= SL_MAX_INLINE)
         FAIL(S, e->t, "calls nested more than %d deep", SL_MAX_INLINE);
-    if (f->ret.b == B_VOID || f->ret.b == B_BOOL)
+    if (f->ret.b == B_BOOL)
         FAIL(S, f->name, "a helper function must return a number or a vector (this one returns %s)",
              sl_type_name(S, f->ret));
-    if (!sl_stmt_returns(f->body))
+    if (f->ret.b != B_VOID && !sl_stmt_returns(f->body))
         FAIL(S, f->close, "%.*s can reach its end without returning a value", f->name->len, f->name->p);
-    struct val args[SL_MAX_ARGS];
-    for (int i = 0; i < e->nargs; ++i)
-        args[i] = sl_convert(S, sl_ev(S, e->args[i]), f->pty[i], e->args[i]->t,
-                          sl_sfmt(S, "argument %d of %.*s", i + 1, f->name->len, f->name->p));
+    for (int i = 0; i < e->nargs; ++i) {
+        if (f->pmode[i] != PM_IN) {
+            int comp[4], ncomp;
+            out_target(S, e->args[i], comp, &ncomp);
+            if (args[i].t.b != f->pty[i].b || args[i].t.n != f->pty[i].n)
+                FAIL(S, e->args[i]->t, "argument %d of %.*s is %s: it takes a %s exactly", i + 1, f->name->len,
+                     f->name->p, f->pmode[i] == PM_OUT ? "out" : "inout", sl_type_name(S, f->pty[i]));
+            /* a copy in: the callee's writes must not be read through the caller's name */
+            args[i] = sl_temp_val(S, args[i]);
+        } else {
+            args[i] = sl_convert(S, args[i], f->pty[i], e->args[i]->t,
+                                 sl_sfmt(S, "argument %d of %.*s", i + 1, f->name->len, f->name->p));
+        }
+    }
     int saved_line = S->stmt_line;
     struct scope *saved_scope = S->scope;
     struct fnctx *saved_fn = S->fn;
     struct fnctx fc = { f->ret, { NULL }, NULL, NULL, 0, 0 };
     int k = ++S->ntemp;
-    if (f->ret.b == B_INT) {
+    if (f->ret.b == B_VOID) {
+        /* nothing returned */
+    } else if (f->ret.b == B_INT) {
         fc.ret_c[0] = sl_sfmt(S, "sl_r%d", k);
         sl_out_line(S, "int %s = 0;", fc.ret_c[0]);
     } else {
@@ -52,13 +145,19 @@ static struct val call_user(struct sl *S, struct func *f, struct expr *e)
     S->scope = S->globals;
     sl_push_scope(S, 1);
     S->stmt_line = f->name->line;
+    struct sym *psym[SL_MAX_ARGS];
     for (int i = 0; i < f->nparams; ++i) {
         struct sym *p = sl_declare(S, S->scope, f->pname[i], f->pty[i]);
-        for (int c = 0; c < f->pty[i].n; ++c)
-            sl_out_line(S, "%s %s = %s;", f->pty[i].b == B_INT ? "int" : f->pty[i].b == B_BOOL ? "REAL" : "REAL",
-                        p->c[c], f->pty[i].b == B_BOOL ? sl_sfmt(S, "(%s) ? RSPLAT(1.0) : RSPLAT(0.0)", args[i].c[c])
-                                                      : args[i].c[c]);
+        psym[i] = p;
+        for (int c = 0; c < f->pty[i].n; ++c) {
+            const char *init = f->pmode[i] == PM_OUT ? (f->pty[i].b == B_INT ? "0" : "RSPLAT(0.0)")
+                               : f->pty[i].b == B_BOOL ? sl_sfmt(S, "(%s) ? RSPLAT(1.0) : RSPLAT(0.0)", args[i].c[c])
+                                                       : args[i].c[c];
+            sl_out_line(S, "%s %s = %s;", f->pty[i].b == B_INT ? "int" : "REAL", p->c[c], init);
+        }
     }
+    const char *saved_pred = S->cur_pred;
+    S->cur_pred = NULL;
     S->inlining[S->ninline++] = f;
     S->fn = &fc;
     sl_emit_block(S, f->body, NULL, 0);
@@ -66,8 +165,19 @@ static struct val call_user(struct sl *S, struct func *f, struct expr *e)
     --S->ninline;
     S->scope = saved_scope;
     S->stmt_line = saved_line;
+    S->cur_pred = saved_pred;
+    /* out and inout: the values written back, under the calling statement's condition */
+    for (int i = 0; i < f->nparams; ++i)
+        if (f->pmode[i] != PM_IN) {
+            int comp[4], ncomp;
+            struct sym *dst = out_target(S, e->args[i], comp, &ncomp);
+            struct val v = sl_sym_val(psym[i]);
+            if (psym[i]->t.b == B_BOOL)
+                v.c[0] = sl_sfmt(S, "(%s != RSPLAT(0.0))", psym[i]->c[0]);
+            assign_sym(S, dst, comp, ncomp, v, S->cur_pred, e->args[i]->t);
+        }
     struct val r = { f->ret, { NULL }, f->ret.b == B_INT };
-    for (int i = 0; i < f->ret.n; ++i)
+    for (int i = 0; i < f->ret.n && f->ret.b != B_VOID; ++i)
         r.c[i] = fc.ret_c[i];
     return r;
 }
@@ -499,9 +609,24 @@ static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
 static void emit_return(struct sl *S, struct stmt *st, const char *pred)
 {
     struct fnctx *fc = S->fn;
+    const char *E = effective(S, pred);
+    if (fc->ret.b == B_VOID || !st->e) {
+        if (fc->ret.b != B_VOID)
+            FAIL(S, st->t, "return needs a value");
+        if (st->e)
+            FAIL(S, st->e->t, "a void function returns no value");
+        if (!E)
+            return; /* every lane returns: what follows is never reached (sl_emit_block stops there) */
+        if (!fc->live_var) {
+            fc->live_var = sl_sfmt(S, "sl_live%d", ++S->ntemp);
+            sl_out_line(S, "REAL %s = RSPLAT(1.0);", fc->live_var);
+            fc->live = sl_sfmt(S, "(%s != RSPLAT(0.0))", fc->live_var);
+        }
+        sl_out_line(S, "%s = %s ? RSPLAT(0.0) : %s;", fc->live_var, E, fc->live_var);
+        return;
+    }
     struct val v = sl_ev(S, st->e);
     v = sl_convert(S, v, fc->ret, st->e->t, "the returned value");
-    const char *E = effective(S, pred);
     if (!E && fc->is_model && !fc->ret_c[0]) {
         sl_out_line(S, "return %s;", v.c[0]);
         fc->returned = 1;
@@ -619,11 +744,23 @@ static void emit_for(struct sl *S, struct stmt *st, const char *pred)
     }
 }
 
+static void emit_stmt_inner(struct sl *S, struct stmt *st, const char *pred);
 static void emit_stmt(struct sl *S, struct stmt *st, const char *pred)
+{
+    const char *saved = S->cur_pred;
+    S->cur_pred = pred;
+    emit_stmt_inner(S, st, pred);
+    S->cur_pred = saved;
+}
+
+static void emit_stmt_inner(struct sl *S, struct stmt *st, const char *pred)
 {
     S->stmt_line = st->t->line;
     switch (st->k) {
     case S_EMPTY:
+        return;
+    case S_CALL:
+        (void)sl_ev(S, st->e);
         return;
     case S_DECL:
         emit_decl(S, st);

@@ -73,7 +73,7 @@ struct expr {
     int is_cast;
 };
 
-enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY };
+enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL };
 struct stmt {
     int k;
     const struct tok *t;
@@ -88,12 +88,14 @@ struct stmt {
     int n, cap;
 };
 
+enum param_mode { PM_IN, PM_OUT, PM_INOUT };
 struct func {
     const struct tok *name;
     struct type ret;
     int nparams;
     struct type pty[SL_MAX_ARGS];
     const struct tok *pname[SL_MAX_ARGS];
+    int pmode[SL_MAX_ARGS];  /* PM_IN, PM_OUT, PM_INOUT */
     struct stmt *body;
     const struct tok *close;
     struct func *next;
@@ -179,6 +181,7 @@ struct sl {
     const struct func *inlining[SL_MAX_INLINE];
     int ninline;
     struct fnctx *fn;
+    const char *cur_pred;      /* the predicate of the statement being emitted (out parameters' write-back) */
     int depth;                 /* of the parser's recursion */
 };
 

@@ -108,8 +108,6 @@ static void check_unsupported_word(struct sl *S, const struct tok *t)
         { "struct", "structs are not supported" },
         { "uniform", "uniforms are not supported: declare the model's parameters in the header "
                      "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
-        { "out", "out parameters are not supported" },
-        { "inout", "inout parameters are not supported" },
         { "double", "double is not supported (write float: the reference is double anyway)" },
         { "mat2", "matrices are not supported" }, { "mat3", "matrices are not supported" },
         { "mat4", "matrices are not supported" }, { "float3x3", "matrices are not supported" },
@@ -452,6 +450,11 @@ static struct stmt *parse_simple(struct sl *S, int top_body, int need_semicolon)
         struct stmt *r = sl_new_stmt(S, S_RET, e->t);
         r->e = e;
         return r;
+    } else if (e->k == E_CALL && !e->is_cast && sl_tok_is(a, ";")) {
+        /* a call on its own: a function with out parameters, or of void */
+        s->k = S_CALL;
+        s->e = e;
+        s->t = e->t;
     } else {
         if (sl_tok_is(a, ";"))
             FAIL(S, e->t, "this expression is computed and then dropped (assign it, or return it)");
@@ -498,8 +501,8 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
         next(S);
         S->statement_form = 1;
         struct stmt *s = sl_new_stmt(S, S_RET, t);
-        if (sl_tok_is(sl_peek(S), ";"))
-            FAIL(S, sl_peek(S), "return needs a value");
+        if (accept(S, ";"))
+            return s; /* of a void function; a value is asked for where one is due */
         s->e = parse_expr(S);
         if (!(top_body && sl_peek(S)->k == K_EOF))
             expect(S, ";");
@@ -591,14 +594,21 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
         struct func *f = sl_arena_alloc(S, sizeof *f);
         f->name = name;
         f->ret = t;
-        if (sl_find_func(S, name))
-            FAIL(S, name, "function '%.*s' is defined twice (overloads are not supported)", name->len, name->p);
         if (accept(S, "void")) {
             expect(S, ")");
         } else if (!accept(S, ")")) {
             for (;;) {
                 struct type pt;
-                int pc;
+                int pc, mode = PM_IN;
+                for (;;) {
+                    /* in, out, inout (const and the precision are parse_decl_type's) */
+                    if (accept(S, "out"))
+                        mode = PM_OUT;
+                    else if (accept(S, "inout"))
+                        mode = PM_INOUT;
+                    else if (!accept(S, "in"))
+                        break;
+                }
                 const struct tok *pt0 = sl_peek(S);
                 if (!parse_decl_type(S, &pt, &pc))
                     FAIL(S, pt0, "expected a parameter type, found %s", tok_desc(S, pt0));
@@ -612,7 +622,10 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
                     FAIL(S, sl_peek(S), "HLSL semantics (': NAME') are not supported on a model's parameters");
                 if (f->nparams == SL_MAX_ARGS)
                     FAIL(S, pn, "more than %d parameters", SL_MAX_ARGS);
+                if (mode != PM_IN && pc)
+                    FAIL(S, pt0, "an %s parameter cannot be const", mode == PM_OUT ? "out" : "inout");
                 f->pty[f->nparams] = pt;
+                f->pmode[f->nparams] = mode;
                 f->pname[f->nparams++] = pn;
                 if (accept(S, ")"))
                     break;
@@ -621,6 +634,16 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
         }
         if (accept(S, ";"))
             continue; /* a prototype */
+        /* overloads differ in their parameters' types */
+        for (struct func *g = S->funcs; g; g = g->next) {
+            int same = g->name->len == name->len && strncmp(g->name->p, name->p, (size_t)name->len) == 0 &&
+                       g->nparams == f->nparams;
+            for (int i = 0; same && i < f->nparams; ++i)
+                same = g->pty[i].b == f->pty[i].b && g->pty[i].n == f->pty[i].n;
+            if (same)
+                FAIL(S, name, "function '%.*s' is defined twice with the same parameter types (line %d)", name->len,
+                     name->p, g->name->line);
+        }
         f->body = parse_block(S);
         f->close = &S->toks.v[S->pos - 1];
         *tail = f;
