@@ -107,6 +107,10 @@ static double f_mix(double c, double n) { (void)n; return 0.0 + (c - 0.0) * c; }
 static double f_bool(double c, double n) { return (c > 0.3 && !(c > 0.8)) || n > 100 ? 1.0 : 0.0; }
 static double f_frac(double c, double n) { double x = c * n; return x - floor(x); }
 
+static double f_brace(double c, double n) { (void)n; return c * 2.0 + 1.0; }
+static double f_int_of_float(double c, double n) { (void)n; return trunc(c * 10.0) / 10.0; }
+static double f_faceforward(double c, double n) { (void)n; return c - 0.5 < 0 ? c + 1.0 : -(c + 1.0); }
+
 static const struct feature features[] = {
     { "f1=saturate(c*1.5)", f_saturate },
     { "f2=lerp(c, 1.0, 0.25)", f_lerp },
@@ -135,6 +139,12 @@ static const struct feature features[] = {
     { "f25=fract(c*n)", f_frac },
     /* integers chosen by a condition on c become floats (a lane's int would differ from its neighbour's) */
     { "f26=c < 0.5 ? 0 : 1", f_step },
+    /* an HLSL brace initialiser (an int among the floats, a trailing comma), int() of a lane's value
+       (its integer part), faceforward (N where dot(Nref, I) < 0, else -N) */
+    { "f27=float3 v = { c, 1, 2.0, }; return v.x * v.z + v.y;", f_brace },
+    { "f28=return float(int(c * 10.0)) / 10.0;", f_int_of_float },
+    { "f29=vec3 f = faceforward(vec3(c, 1.0, 0.0), vec3(0.0, 0.0, c - 0.5), vec3(0.0, 0.0, 1.0)); return f.x + f.y;",
+      f_faceforward },
     { NULL, NULL } };
 
 int main(void)

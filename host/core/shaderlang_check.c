@@ -352,7 +352,7 @@ struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const stru
 
 /* ---- built-in functions ------------------------------------------------------------------ */
 
-enum builtin_kind { BK_CW, BK_DOT, BK_LENGTH, BK_DISTANCE, BK_NORMALIZE, BK_REFLECT, BK_CROSS, BK_ATAN };
+enum builtin_kind { BK_CW, BK_DOT, BK_LENGTH, BK_DISTANCE, BK_NORMALIZE, BK_REFLECT, BK_CROSS, BK_ATAN, BK_FACEFORWARD };
 struct builtin {
     const char *name;
     int nargs;
@@ -389,6 +389,7 @@ static const struct builtin builtins[] = {
     { "dot", 2, BK_DOT, NULL, 1 },               { "length", 1, BK_LENGTH, NULL, 1 },
     { "distance", 2, BK_DISTANCE, NULL, 1 },     { "normalize", 1, BK_NORMALIZE, NULL, 1 },
     { "reflect", 2, BK_REFLECT, NULL, 1 },       { "cross", 2, BK_CROSS, NULL, 1 },
+    { "faceforward", 3, BK_FACEFORWARD, NULL, 1 },
     { NULL, 0, 0, NULL, 0 } };
 
 const struct builtin *sl_find_builtin(const struct tok *t)
@@ -476,6 +477,10 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
         }
         return width > 1 ? sl_temp_val(S, r) : r;
     }
+    case BK_FACEFORWARD:
+        if (a[0].t.n != a[1].t.n || a[0].t.n != a[2].t.n)
+            FAIL(S, e->t, "faceforward of vectors of different sizes");
+        break;
     case BK_DOT:
     case BK_DISTANCE:
     case BK_REFLECT:
@@ -514,6 +519,15 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
         r.t.n = x.t.n;
         for (int i = 0; i < x.t.n; ++i)
             r.c[i] = sl_sfmt(S, "(%s - RSPLAT(2.0) * %s * %s)", x.c[i], d, nn.c[i]);
+        return sl_temp_val(S, r);
+    }
+    case BK_FACEFORWARD: {
+        /* N where dot(Nref, I) < 0, else -N (GLSL's definition) */
+        const char *d = sl_temp_cond(S, sl_sfmt(S, "(%s < RSPLAT(0.0))", dot_of(S, sl_temp_val(S, a[2]),
+                                                                                sl_temp_val(S, a[1]))), 0);
+        r.t.n = x.t.n;
+        for (int i = 0; i < x.t.n; ++i)
+            r.c[i] = sl_sfmt(S, "(%s ? %s : -%s)", d, x.c[i], x.c[i]);
         return sl_temp_val(S, r);
     }
     case BK_CROSS: {

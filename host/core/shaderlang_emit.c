@@ -200,8 +200,15 @@ static struct val construct(struct sl *S, struct type t, struct expr *e)
         struct val v = sl_ev(S, x);
         if (v.t.b == B_INT)
             return v;
-        FAIL(S, x->t, "int of a %s: only an int or a literal number becomes an int (an int is the same in "
-                      "every lane of a sweep; keep the value a float)", sl_type_name(S, v.t));
+        if (v.t.b == B_FLOAT && v.t.n == 1) {
+            /* a value that may differ between lanes: its integer part, kept as a float (an int
+               of C is the same in every lane) */
+            r.t = (struct type){ B_FLOAT, 1 };
+            r.uniform = 0;
+            r.c[0] = sl_sfmt(S, "trunc(%s)", v.c[0]);
+            return r;
+        }
+        FAIL(S, x->t, "int of a %s: a number is expected", sl_type_name(S, v.t));
     }
     struct val parts[SL_MAX_ARGS];
     int total = 0;
@@ -393,6 +400,8 @@ static struct val ev_call(struct sl *S, struct expr *e)
 {
     struct type t;
     int so;
+    if (e->has_ctor)
+        return construct(S, e->ctor, e);
     if (sl_type_of_name(e->t, &t, &so))
         return construct(S, t, e);
     struct func *f = sl_find_func(S, e->t);

@@ -71,6 +71,8 @@ struct expr {
     int nargs;
     int swz[4], nswz;
     int is_cast;
+    int has_ctor;          /* an initialiser list: a constructor of ctor */
+    struct type ctor;
 };
 
 enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL };

@@ -386,9 +386,36 @@ static struct stmt *parse_declaration(struct sl *S, struct type ty, int is_const
         d->name = name;
         if (sl_tok_is(sl_peek(S), "["))
             FAIL(S, sl_peek(S), "arrays are not supported");
-        if (accept(S, "="))
-            d->e = parse_expr(S);
-        else if (is_const)
+        if (accept(S, "=")) {
+            const struct tok *brace = sl_peek(S);
+            if (accept(S, "{")) {
+                /* HLSL's float3 v = { 1, 2, 3 }: the type's constructor of the listed values */
+                struct expr *e = new_expr(S, E_CALL, brace);
+                struct expr *args[SL_MAX_ARGS];
+                int n = 0;
+                if (!sl_tok_is(sl_peek(S), "}"))
+                    for (;;) {
+                        if (n == SL_MAX_ARGS)
+                            FAIL(S, sl_peek(S), "more than %d values in braces", SL_MAX_ARGS);
+                        args[n++] = parse_expr(S);
+                        if (!accept(S, ","))
+                            break;
+                        if (sl_tok_is(sl_peek(S), "}"))
+                            break; /* a trailing comma */
+                    }
+                expect(S, "}");
+                if (n == 0)
+                    FAIL(S, brace, "empty braces: an initialiser lists the values");
+                e->args = sl_arena_alloc(S, sizeof *e->args * (size_t)n);
+                memcpy(e->args, args, sizeof *args * (size_t)n);
+                e->nargs = n;
+                e->has_ctor = 1;
+                e->ctor = ty;
+                d->e = e;
+            } else {
+                d->e = parse_expr(S);
+            }
+        } else if (is_const)
             FAIL(S, name, "const '%.*s' needs a value", name->len, name->p);
         block_add(S, list, d);
         if (accept(S, ";"))
