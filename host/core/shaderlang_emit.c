@@ -410,7 +410,9 @@ static struct val ev_call(struct sl *S, struct expr *e)
     const struct builtin *bi = sl_find_builtin(e->t);
     if (bi)
         return sl_call_builtin(S, bi, e);
-    fail_unknown(S, e->t, "function");
+    S->unknown_name = 1;
+    FAIL(S, e->t, "use of undeclared function '%.*s' (a model calls only its own functions and the math "
+         "built-ins of docs/user-models.md)", e->t->len, e->t->p);
 }
 
 struct val sl_ev(struct sl *S, struct expr *e)

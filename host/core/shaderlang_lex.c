@@ -181,6 +181,12 @@ static void lex_operator(struct sl *S, const char *p, const char *end, struct to
     if (!t->len && strchr(ops1, ch) && ch)
         t->len = 1;
     if (!t->len) {
+        if (ch == '&')
+            sl_fail_at(S, t->line, t->col, "'&' takes an address (or is a bitwise and): pointers and bit "
+                       "operations are not accepted in a model");
+        if (ch == '"' || ch == '\'')
+            sl_fail_at(S, t->line, t->col, "a string or character literal: a model has none (and calls only the "
+                       "math built-ins and its own functions)");
         if (ch < 0x20 || ch > 0x7e)
             sl_fail_at(S, t->line, t->col, "character 0x%02x is not allowed in a model", ch);
         sl_fail_at(S, t->line, t->col, "'%c' is not an operator of a model (+ - * / %% comparisons && || ! ?: "
@@ -231,6 +237,11 @@ void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col
                 ++q;
             t.k = K_ID;
             t.len = (int)(q - p);
+            /* before its operand's string is read as one */
+            if ((t.len == 3 && strncmp(p, "asm", 3) == 0) || (t.len == 5 && strncmp(p, "__asm", 5) == 0) ||
+                (t.len == 7 && strncmp(p, "__asm__", 7) == 0))
+                sl_fail_at(S, line, S->pp_active ? sl_pp_column(S, &t, line) : col,
+                           "inline assembly is not accepted in a model");
         } else if (isdigit(ch) || (ch == '.' && p + 1 < end && isdigit((unsigned char)p[1]))) {
             lex_number(S, p, end, &t);
         } else {

@@ -109,6 +109,12 @@ static void check_unsupported_word(struct sl *S, const struct tok *t)
         { "uniform", "uniforms are not supported: declare the model's parameters in the header "
                      "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
         { "double", "double is not supported (write float: the reference is double anyway)" },
+        /* what a shader cannot do, and a model may not either */
+        { "asm", "inline assembly is not accepted in a model" },
+        { "__asm__", "inline assembly is not accepted in a model" },
+        { "volatile", "volatile is not accepted in a model (a model has no memory but its own values)" },
+        { "sizeof", "sizeof is not accepted in a model (a model has no memory but its own values)" },
+        { "goto", "goto is not accepted in a model" },
         { "mat2", "matrices are not supported" }, { "mat3", "matrices are not supported" },
         { "mat4", "matrices are not supported" }, { "float3x3", "matrices are not supported" },
         { "float4x4", "matrices are not supported" },
@@ -192,8 +198,12 @@ static struct expr *parse_primary(struct sl *S)
                  t->len, t->p);
         return new_expr(S, E_VAR, t);
     }
+    if (sl_tok_is(t, "*"))
+        FAIL(S, t, "'*' before a value reads through a pointer: pointers are not accepted in a model");
     if (sl_tok_is(t, "(")) {
         const struct tok *t1 = peek_at(S, 1);
+        if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), "*"))
+            FAIL(S, peek_at(S, 2), "a cast to a pointer type: pointers are not accepted in a model");
         if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), ")")) {
             /* a cast: (float)x, (int)x, (float3)x */
             next(S);
@@ -376,6 +386,8 @@ static struct stmt *parse_declaration(struct sl *S, struct type ty, int is_const
     list->op = 1; /* no scope */
     for (;;) {
         const struct tok *name = sl_peek(S);
+        if (sl_tok_is(name, "*"))
+            FAIL(S, name, "a pointer declaration: pointers are not accepted in a model");
         if (name->k != K_ID)
             FAIL(S, name, "expected a variable name, found %s", tok_desc(S, name));
         check_unsupported_word(S, name);
@@ -642,6 +654,8 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
                 if (pt.b == B_VOID)
                     FAIL(S, pt0, "a parameter cannot be void");
                 const struct tok *pn = sl_peek(S);
+                if (sl_tok_is(pn, "*"))
+                    FAIL(S, pn, "a pointer parameter: pointers are not accepted in a model");
                 if (pn->k != K_ID)
                     FAIL(S, pn, "expected a parameter name, found %s", tok_desc(S, pn));
                 next(S);
