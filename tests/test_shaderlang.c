@@ -111,6 +111,12 @@ static double f_brace(double c, double n) { (void)n; return c * 2.0 + 1.0; }
 static double f_int_of_float(double c, double n) { (void)n; return trunc(c * 10.0) / 10.0; }
 static double f_faceforward(double c, double n) { (void)n; return c - 0.5 < 0 ? c + 1.0 : -(c + 1.0); }
 
+static double f_arr_const(double c, double n) { (void)n; return 0.5 * c + 0.25 * c + 0.125 * c; }
+static double f_arr_runtime(double c, double n) { (void)n; return 3.0 * c + 1.0; }
+static double f_vec_index(double c, double n) { (void)n; return (c + 3.0) * (c + 3.0); }
+static double f_arr_write(double c, double n) { (void)n; return 1.0 + c * (2.0 * c); }
+static double f_vec_pow(double c, double n) { (void)n; return pow(c, 2.2) + pow(0.5, 2.2); }
+
 static const struct feature features[] = {
     { "f1=saturate(c*1.5)", f_saturate },
     { "f2=lerp(c, 1.0, 0.25)", f_lerp },
@@ -143,6 +149,15 @@ static const struct feature features[] = {
        (its integer part), faceforward (N where dot(Nref, I) < 0, else -N) */
     { "f27=float3 v = { c, 1, 2.0, }; return v.x * v.z + v.y;", f_brace },
     { "f28=return float(int(c * 10.0)) / 10.0;", f_int_of_float },
+    /* arrays (constant and run-time indices, a GLSL constructor, an HLSL list with a trailing
+       comma, a local array written by index) and vectors indexed like arrays */
+    { "f30=const float w[3] = float[3](0.5, 0.25, 0.125); float s = 0.0; for (int i = 0; i < 3; i++) s += w[i] * c; "
+      "return s;", f_arr_const },
+    { "f31=static const float w[] = { 1.0, 2.0, 3.0, }; int k = 2; return w[k] * c + w[0];", f_arr_runtime },
+    { "f32=vec3 v = vec3(c, 2.0 * c, 3.0); v[1] = v[0] + v[2]; return v[1] * v.y;", f_vec_index },
+    { "f33=float a[4]; int j = 1; a[j] = c; a[j + 1] = 2.0 * c; a[0] += 1.0; return a[0] + a[1] * a[2];",
+      f_arr_write },
+    { "f34=vec3 x = vec3(c, 0.5, 1.0); return pow(x[0], 2.2) + pow(x[1], 2.2);", f_vec_pow },
     { "f29=vec3 f = faceforward(vec3(c, 1.0, 0.0), vec3(0.0, 0.0, c - 0.5), vec3(0.0, 0.0, 1.0)); return f.x + f.y;",
       f_faceforward },
     { NULL, NULL } };
@@ -471,6 +486,24 @@ int main(void)
                 usermodel_free(um);
         }
     }
+    /* 10b. Indices out of range: a constant one at translation (its column), one known only when
+           the model runs gives NaN. */
+    {
+        const char *e = expr_error("ix1=const float w[2] = { 1.0, 2.0 }; return w[2] * c;");
+        /* "const float w[2] = { 1.0, 2.0 }; return w[2] * c;": the index 2 is character 43 */
+        CHECK(strstr(e, "--model ix1:1:43: index 2 is out of range: 'w' has 2 elements (0 to 1)") != NULL, "%s", e);
+        /* "vec3 v = vec3(c); return v[3];": the 3 is character 28 */
+        e = expr_error("ix2=vec3 v = vec3(c); return v[3];");
+        CHECK(strstr(e, "--model ix2:1:28: index 3 is out of range: a vec3 has 3 elements (0 to 2)") != NULL, "%s", e);
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_expression("ix3=float w[2] = { 1.0, 2.0 }; int k = 3; return w[k] + c;", &um, err,
+                                            sizeof err);
+        CHECK(rc == 0, "ix3: %s", err);
+        if (rc == 0 && usermodel_host_ready(um))
+            CHECK(isnan(hostjit_function(um->host)(0.5, 2.0, 0, 0)), "ix3: w[3] is not NaN");
+        usermodel_free(um);
+    }
+
     /* 11. Overloads, out and inout, the user's names. */
     {
         /* A three.js-style BRDF_BlinnPhong (threejs_blinnphong.glsl, written for this test): F_Schlick

@@ -120,15 +120,31 @@ static int name_taken(struct name_table *tb, const char *s)
 /* A C name for a user variable, unique in the output: u__NAME, then u__NAME_2, u__NAME_3, ...
  * Each base remembers where its suffixes stopped, so a name declared in every iteration of an
  * unrolled loop costs the same each time. */
-static const char *c_name(struct sl *S, const char *base)
+static int vec_names_taken(struct sl *S, const char *root, int n)
+{
+    if (name_taken(&S->used, root))
+        return 1;
+    for (int i = 0; i < n && n > 1; ++i)
+        if (name_taken(&S->used, sl_sfmt(S, "%s_%c", root, "xyzw"[i])))
+            return 1;
+    return 0;
+}
+
+/* n > 1: a vector's root, whose components ROOT_x .. are free and given out too (a float
+ * called v_x and a vec3 called v must not meet). */
+static const char *c_name_n(struct sl *S, const char *base, int n)
 {
     struct name_slot *b = name_intern(S, &S->bases, base);
     const char *s = sl_sfmt(S, "u__%s", base);
-    while (name_taken(&S->used, s))
+    while (vec_names_taken(S, s, n))
         s = sl_sfmt(S, "u__%s_%d", base, b->next_suffix++);
     name_intern(S, &S->used, s);
+    for (int i = 0; i < n && n > 1; ++i)
+        name_intern(S, &S->used, sl_sfmt(S, "%s_%c", s, "xyzw"[i]));
     return s;
 }
+
+static const char *c_name(struct sl *S, const char *base) { return c_name_n(S, base, 1); }
 
 static int is_simple(const char *s)
 {
@@ -277,7 +293,7 @@ struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, s
     s->t = t;
     const char *base = sl_tok_str(S, name);
     if (t.b == B_FLOAT && t.n > 1) {
-        const char *root = c_name(S, base);
+        const char *root = c_name_n(S, base, t.n);
         for (int i = 0; i < t.n; ++i)
             s->c[i] = sl_sfmt(S, "%s_%c", root, "xyzw"[i]);
     } else {
@@ -285,6 +301,27 @@ struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, s
     }
     s->next = sc->syms;
     sc->syms = s;
+    return s;
+}
+
+/* An array NAME[n] of t in scope sc: a sym with n element syms, each with C names of its own. */
+struct sym *sl_declare_array(struct sl *S, struct scope *sc, const struct tok *name, struct type t, int n)
+{
+    struct sym *s = sl_declare(S, sc, name, t);
+    s->arr_n = n;
+    s->elem = sl_arena_alloc(S, sizeof *s->elem * (size_t)n);
+    const char *base = sl_tok_str(S, name);
+    for (int k = 0; k < n; ++k) {
+        struct sym *e = sl_arena_alloc(S, sizeof *e);
+        *e = *s;
+        e->arr_n = 0;
+        e->elem = NULL;
+        e->next = NULL;
+        const char *root = c_name_n(S, sl_sfmt(S, "%s__%d", base, k), t.n);
+        for (int i = 0; i < t.n; ++i)
+            e->c[i] = t.n > 1 ? sl_sfmt(S, "%s_%c", root, "xyzw"[i]) : root;
+        s->elem[k] = e;
+    }
     return s;
 }
 

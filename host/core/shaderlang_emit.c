@@ -289,6 +289,8 @@ static struct val ev_var(struct sl *S, struct expr *e)
     struct sym *s = sl_lookup(S, e->t);
     if (!s)
         fail_unknown(S, e->t, "identifier");
+    if (s->arr_n)
+        FAIL(S, e->t, "'%.*s' is an array: take one of its elements (%.*s[0])", e->t->len, e->t->p, e->t->len, e->t->p);
     if (s->t.b == B_BOOL) {
         r.t = s->t;
         r.c[0] = sl_sfmt(S, "(%s != RSPLAT(0.0))", s->c[0]);
@@ -395,6 +397,66 @@ static struct val ev_ternary(struct sl *S, struct expr *e)
     return n > 1 ? sl_temp_val(S, r) : r;
 }
 
+/* ---- arrays and indexing ---------------------------------------------------------------- */
+
+/* An index: constant (*k, returns 1; checked against count) or an int of C (*idx). */
+static int index_of(struct sl *S, struct expr *x, int count, const char *what, long *k, const char **idx)
+{
+    if (const_int(S, x, k)) {
+        if (*k < 0 || *k >= count)
+            FAIL(S, x->t, "index %ld is out of range: %s has %d element%s (0 to %d)", *k, what, count,
+                 count == 1 ? "" : "s", count - 1);
+        return 1;
+    }
+    struct val v = sl_ev(S, x);
+    if (v.t.b != B_INT)
+        FAIL(S, x->t, "an index is an int, not a %s", sl_type_name(S, v.t));
+    *idx = sl_temp_val(S, v).c[0];
+    return 0;
+}
+
+/* "I == 0 ? e0 : I == 1 ? e1 : ... : NaN": an element chosen by an int that is known only when
+ * the model runs (the same in every lane); out of range, NaN, which the accuracy figures show. */
+static const char *select_by(struct sl *S, const char *idx, const char **elems, int count)
+{
+    const char *r = "(RSPLAT(0.0) / RSPLAT(0.0))";
+    for (int j = count - 1; j >= 0; --j)
+        r = sl_sfmt(S, "((%s == %d) ? %s : %s)", idx, j, elems[j], r);
+    return r;
+}
+
+static struct val ev_index(struct sl *S, struct expr *e)
+{
+    struct val r = val_float();
+    r.uniform = 0;
+    struct sym *s = e->a->k == E_VAR ? sl_lookup(S, e->a->t) : NULL;
+    long k = 0;
+    const char *idx = NULL;
+    if (s && s->arr_n) {
+        const char *what = sl_sfmt(S, "'%.*s'", e->a->t->len, e->a->t->p);
+        if (index_of(S, e->b, s->arr_n, what, &k, &idx))
+            return sl_sym_val(s->elem[k]);
+        r.t = s->t;
+        for (int i = 0; i < s->t.n; ++i) {
+            const char **col = sl_arena_alloc(S, sizeof *col * (size_t)s->arr_n);
+            for (int j = 0; j < s->arr_n; ++j)
+                col[j] = s->elem[j]->c[i];
+            r.c[i] = select_by(S, idx, col, s->arr_n);
+        }
+        return r.t.n > 1 ? sl_temp_val(S, r) : r;
+    }
+    struct val v = sl_ev(S, e->a);
+    if (v.t.b != B_FLOAT || v.t.n < 2)
+        FAIL(S, e->t, "indexing a %s (a vector or an array is indexed)", sl_type_name(S, v.t));
+    if (index_of(S, e->b, v.t.n, sl_sfmt(S, "a %s", sl_type_name(S, v.t)), &k, &idx)) {
+        r.c[0] = v.c[k];
+        return r;
+    }
+    v = sl_temp_val(S, v);
+    r.c[0] = select_by(S, idx, v.c, v.t.n);
+    return r;
+}
+
 /* A call: a constructor or cast, a function of the text, or a built-in. */
 static struct val ev_call(struct sl *S, struct expr *e)
 {
@@ -440,6 +502,10 @@ struct val sl_ev(struct sl *S, struct expr *e)
         return ev_ternary(S, e);
     case E_CALL:
         return ev_call(S, e);
+    case E_IDX:
+        return ev_index(S, e);
+    case E_ARR:
+        FAIL(S, e->t, "a list of values is an array's initialiser (TYPE NAME[N] = ...;), not a value");
     }
     FAIL(S, e->t, "internal: unknown expression");
 }
@@ -515,10 +581,113 @@ static void assign_sym(struct sl *S, struct sym *s, const int *comp, int ncomp, 
     }
 }
 
+static void emit_array_decl(struct sl *S, struct stmt *d)
+{
+    struct type t = d->ty;
+    if (t.b != B_FLOAT)
+        FAIL(S, d->name, "an array of %s: arrays hold floats or vectors", sl_type_name(S, t));
+    long n = -1, m;
+    if (d->arr_len) {
+        if (!const_int(S, d->arr_len, &n))
+            FAIL(S, d->arr_len->t, "an array's length is a constant integer");
+        if (n < 1 || n > SL_MAX_ARRAY)
+            FAIL(S, d->arr_len->t, "an array of %ld elements (1 to %d are accepted)", n, SL_MAX_ARRAY);
+    }
+    struct expr *init = d->e;
+    if (init && init->k != E_ARR)
+        FAIL(S, init->t, "an array is set from a list of values ({ a, b } or %s[N](a, b))", sl_type_name(S, t));
+    if (init && init->has_ctor && (init->ctor.b != t.b || init->ctor.n != t.n))
+        FAIL(S, init->t, "an array of %s set from values of %s[]", sl_type_name(S, t), sl_type_name(S, init->ctor));
+    if (init && init->a && (!const_int(S, init->a, &m) || m != init->nargs))
+        FAIL(S, init->a->t, "the constructor's length is not the count of its values (%d)", init->nargs);
+    if (n < 0) {
+        if (!init)
+            FAIL(S, d->name, "an array without a length needs its values");
+        n = init->nargs;
+    }
+    if (init && init->nargs != n)
+        FAIL(S, init->t, "%d value%s for an array of %ld", init->nargs, init->nargs == 1 ? "" : "s", n);
+    struct val *v = sl_arena_alloc(S, sizeof *v * (size_t)n);
+    for (long k = 0; k < n; ++k) {
+        if (init) {
+            v[k] = sl_convert(S, sl_ev(S, init->args[k]), t, init->args[k]->t,
+                              sl_sfmt(S, "element %ld of '%.*s'", k, d->name->len, d->name->p));
+        } else {
+            v[k].t = t;
+            for (int i = 0; i < t.n; ++i)
+                v[k].c[i] = "RSPLAT(0.0)";
+        }
+    }
+    struct sym *s = sl_declare_array(S, S->scope, d->name, t, (int)n);
+    s->is_const = d->is_const;
+    for (long k = 0; k < n; ++k) {
+        s->elem[k]->is_const = d->is_const;
+        for (int i = 0; i < t.n; ++i)
+            sl_out_line(S, "REAL %s = %s;", s->elem[k]->c[i], v[k].c[i]);
+    }
+}
+
+/* An assignment to an element of an array or a component of a vector by index (a[i] = v,
+ * a[i].x += v, v[2] = x): with an index known only when the model runs, every element is
+ * assigned where the index is its own. */
+static void emit_assign_indexed(struct sl *S, struct stmt *st, const char *pred)
+{
+    struct expr *l = st->lhs;
+    struct expr *ix = l->k == E_IDX ? l : l->a;
+    if (ix->a->k != E_VAR)
+        FAIL(S, ix->t, "the left of an assignment must be a variable, its components or an element");
+    struct sym *s = sl_lookup(S, ix->a->t);
+    if (!s)
+        fail_unknown(S, ix->a->t, "identifier");
+    if (s->is_const)
+        FAIL(S, ix->a->t, "'%.*s' is const", ix->a->t->len, ix->a->t->p);
+    if (!s->arr_n && (s->t.b != B_FLOAT || s->t.n < 2))
+        FAIL(S, ix->t, "indexing a %s (a vector or an array is indexed)", sl_type_name(S, s->t));
+    if (!s->arr_n && l->k == E_SWZ)
+        FAIL(S, l->t, "a swizzle of one component");
+    struct val rhs = sl_ev(S, st->e);
+    int count = s->arr_n ? s->arr_n : s->t.n;
+    long k = 0;
+    const char *idx = NULL;
+    int fixed = index_of(S, ix->b, count, sl_sfmt(S, "'%.*s'", ix->a->t->len, ix->a->t->p), &k, &idx);
+    if (!fixed)
+        rhs = sl_temp_val(S, rhs);
+    for (int j = fixed ? (int)k : 0; j < (fixed ? (int)k + 1 : count); ++j) {
+        struct sym *ts = s->arr_n ? s->elem[j] : s;
+        int comp[4] = { 0, 1, 2, 3 }, ncomp = s->arr_n ? ts->t.n : 1;
+        if (!s->arr_n)
+            comp[0] = j;
+        if (l->k == E_SWZ) {
+            ncomp = l->nswz;
+            for (int i = 0; i < ncomp; ++i) {
+                comp[i] = l->swz[i];
+                if (comp[i] >= ts->t.n)
+                    FAIL(S, l->t, "component %c of a %s", "xyzw"[comp[i]], sl_type_name(S, ts->t));
+            }
+        }
+        struct type target = { B_FLOAT, ncomp };
+        struct val v = rhs;
+        if (st->op != '=') {
+            struct val cur = sl_sym_val(ts), part = cur;
+            part.t = target;
+            for (int i = 0; i < ncomp; ++i)
+                part.c[i] = cur.c[comp[i]];
+            v = sl_arith(S, st->op, part, rhs, st->t);
+        }
+        v = sl_convert(S, v, target, st->e->t, sl_sfmt(S, "'%.*s[%d]'", ix->a->t->len, ix->a->t->p, j));
+        const char *p = fixed ? pred : and_cond(S, pred, sl_sfmt(S, "(%s == %d)", idx, j));
+        assign_sym(S, ts, comp, ncomp, v, p, st->t);
+    }
+}
+
 static void emit_decl(struct sl *S, struct stmt *d)
 {
     struct type t = d->ty;
     struct val v;
+    if (d->is_array) {
+        emit_array_decl(S, d);
+        return;
+    }
     if (d->e) {
         v = sl_ev(S, d->e);
         if (t.b == B_BOOL) {
@@ -558,6 +727,10 @@ static void emit_decl(struct sl *S, struct stmt *d)
 static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
 {
     struct expr *l = st->lhs;
+    if (l->k == E_IDX || (l->k == E_SWZ && l->a->k == E_IDX)) {
+        emit_assign_indexed(S, st, pred);
+        return;
+    }
     const struct tok *nt = l->k == E_SWZ ? l->a->t : l->t;
     if (!(l->k == E_VAR || (l->k == E_SWZ && l->a->k == E_VAR)))
         FAIL(S, l->t, "the left of an assignment must be a variable or its components");
@@ -582,6 +755,8 @@ static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
     }
     if (s->is_const)
         FAIL(S, nt, "'%.*s' is const", nt->len, nt->p);
+    if (s->arr_n)
+        FAIL(S, nt, "'%.*s' is an array: assign its elements (%.*s[0] = ...)", nt->len, nt->p, nt->len, nt->p);
     int comp[4] = { 0, 1, 2, 3 }, ncomp = s->t.n;
     struct type target = s->t;
     if (l->k == E_SWZ) {

@@ -20,6 +20,7 @@
 #define SL_MAX_UNROLL_TOTAL 8192 /* loop bodies emitted in all (nested loops multiply) */
 #define SL_MAX_OUTPUT ((size_t)4 << 20) /* bytes of translated text (loops unrolled, helpers inlined) */
 #define SL_MAX_INLINE 16     /* nested calls of helper functions */
+#define SL_MAX_ARRAY 256     /* elements of an array */
 #define SL_MAX_MACRO_DEPTH 16
 #define SL_MAX_NESTING 200   /* parentheses, operators and statements inside each other */
 #define SL_MAX_DEFINES 16    /* -D on the command line; define: lines of a header */
@@ -61,7 +62,7 @@ struct type {
     int n; /* components: 1 to 4 (vectors of float only) */
 };
 
-enum expr_kind { E_FLT, E_INT, E_BOOL, E_VAR, E_UN, E_BIN, E_TER, E_CALL, E_SWZ };
+enum expr_kind { E_FLT, E_INT, E_BOOL, E_VAR, E_UN, E_BIN, E_TER, E_CALL, E_SWZ, E_IDX, E_ARR };
 struct expr {
     int k;
     const struct tok *t;   /* where it is, for messages; the name of a variable or a call */
@@ -82,6 +83,8 @@ struct stmt {
     struct type ty;        /* S_DECL */
     int is_const;
     const struct tok *name;
+    int is_array;          /* S_DECL of NAME[LEN] (arr_len NULL: the initialiser's count) */
+    struct expr *arr_len;
     struct expr *e;        /* init, rhs, condition, returned value */
     struct expr *lhs;
     int op;
@@ -111,6 +114,8 @@ struct sym {
     int is_const;
     int has_value;        /* a constant int: its value */
     long value;
+    int arr_n;            /* an array: its length and its elements (each a sym of type t) */
+    struct sym **elem;
     struct sym *next;
 };
 
@@ -262,6 +267,7 @@ struct sym *sl_lookup(struct sl *S, const struct tok *t);
 void sl_push_scope(struct sl *S, int function_level);
 struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, struct type t);
 struct val sl_sym_val(struct sym *s);
+struct sym *sl_declare_array(struct sl *S, struct scope *sc, const struct tok *name, struct type t, int n);
 const char *sl_op_text(int op);
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where);
 /* The built-in function a call names, or NULL. */

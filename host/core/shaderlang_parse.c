@@ -167,6 +167,34 @@ static struct expr *parse_call_args(struct sl *S, struct expr *e)
 
 static struct expr *parse_unary(struct sl *S);
 
+/* Values up to `close` (after the opening), a trailing comma allowed: an E_ARR at t. */
+static struct expr *parse_value_list(struct sl *S, const struct tok *t, const char *close, int max)
+{
+    struct expr *e = new_expr(S, E_ARR, t);
+    int cap = 8;
+    e->args = sl_arena_alloc(S, sizeof *e->args * (size_t)cap);
+    if (!sl_tok_is(sl_peek(S), close))
+        for (;;) {
+            if (e->nargs == max)
+                FAIL(S, sl_peek(S), "more than %d values", max);
+            if (e->nargs == cap) {
+                struct expr **v = sl_arena_alloc(S, sizeof *v * (size_t)(2 * cap));
+                memcpy(v, e->args, sizeof *v * (size_t)cap);
+                e->args = v;
+                cap *= 2;
+            }
+            e->args[e->nargs++] = parse_expr(S);
+            if (!accept(S, ","))
+                break;
+            if (sl_tok_is(sl_peek(S), close))
+                break; /* a trailing comma */
+        }
+    expect(S, close);
+    if (e->nargs == 0)
+        FAIL(S, t, "an empty list of values");
+    return e;
+}
+
 static struct expr *parse_primary(struct sl *S)
 {
     const struct tok *t = sl_peek(S);
@@ -188,6 +216,18 @@ static struct expr *parse_primary(struct sl *S)
             return new_expr(S, E_BOOL, t);
         }
         next(S);
+        if (sl_type_of_name(t, &ty, &so) && sl_tok_is(sl_peek(S), "[")) {
+            /* GLSL's array constructor float[3](a, b, c) (or float[](...)) */
+            next(S);
+            struct expr *len = sl_tok_is(sl_peek(S), "]") ? NULL : parse_expr(S);
+            expect(S, "]");
+            const struct tok *open = expect(S, "(");
+            struct expr *e = parse_value_list(S, open, ")", SL_MAX_ARRAY);
+            e->ctor = ty;
+            e->has_ctor = 1;
+            e->a = len;
+            return e;
+        }
         if (sl_tok_is(sl_peek(S), "(")) {
             if (sl_type_of_name(t, &ty, &so))
                 S->shader_only = 1;
@@ -228,7 +268,17 @@ static struct expr *parse_primary(struct sl *S)
 static struct expr *parse_postfix(struct sl *S)
 {
     struct expr *e = parse_primary(S);
-    while (sl_tok_is(sl_peek(S), ".")) {
+    while (sl_tok_is(sl_peek(S), ".") || sl_tok_is(sl_peek(S), "[")) {
+        if (sl_tok_is(sl_peek(S), "[")) {
+            const struct tok *open = next(S);
+            struct expr *x = new_expr(S, E_IDX, open);
+            x->a = e;
+            x->b = parse_expr(S);
+            expect(S, "]");
+            S->shader_only = 1;
+            e = x;
+            continue;
+        }
         const struct tok *dot = next(S);
         const struct tok *f = sl_peek(S);
         if (f->k != K_ID)
@@ -248,8 +298,6 @@ static struct expr *parse_postfix(struct sl *S)
         S->shader_only = 1;
         e = s;
     }
-    if (sl_tok_is(sl_peek(S), "["))
-        FAIL(S, sl_peek(S), "indexing with [] is not supported (use .x, .y, ...)");
     return e;
 }
 
@@ -396,11 +444,19 @@ static struct stmt *parse_declaration(struct sl *S, struct type ty, int is_const
         d->ty = ty;
         d->is_const = is_const;
         d->name = name;
-        if (sl_tok_is(sl_peek(S), "["))
-            FAIL(S, sl_peek(S), "arrays are not supported");
+        if (accept(S, "[")) {
+            d->is_array = 1;
+            d->arr_len = sl_tok_is(sl_peek(S), "]") ? NULL : parse_expr(S);
+            expect(S, "]");
+        }
         if (accept(S, "=")) {
             const struct tok *brace = sl_peek(S);
-            if (accept(S, "{")) {
+            if (d->is_array) {
+                if (accept(S, "{"))
+                    d->e = parse_value_list(S, brace, "}", SL_MAX_ARRAY);
+                else
+                    d->e = parse_expr(S);
+            } else if (accept(S, "{")) {
                 /* HLSL's float3 v = { 1, 2, 3 }: the type's constructor of the listed values */
                 struct expr *e = new_expr(S, E_CALL, brace);
                 struct expr *args[SL_MAX_ARGS];
