@@ -30,8 +30,9 @@ rows=$(awk '$1 ~ /^(lyon:k=2|quartic_cl:k=0.25|quartic_glsl:k=0.25|quartic_hlsl:
 $(cat "$T/out")"
 jsoncheck shaderlang_cli_five_writings_lyon_k2 "$T/a/accuracy.json" && ok || bad "the five writings have lyon:k=2's figures in accuracy.json"
 
-# 2. An error in line 3 of a GLSL file is reported at line 3 (and its column), exit 2.
-expect 2 "line3.glsl:3:27: use of undeclared identifier 'undefined_thing'" accuracy \
+# 2. An error in line 3 of a GLSL file is reported at line 3 (and its column), exit 2: the message
+#    of the GLSL reference compiler (glslang), which checks a .glsl file before it is translated.
+expect 2 "line3.glsl:3:27: 'undefined_thing': undeclared identifier \\(glslang, the GLSL reference compiler\\)" accuracy \
     --model-file "$F/line3.glsl" --n-max 4 --samples 16 --out "$T/e1"
 [ ! -e "$T/e1" ] && ok || bad "a failed model still wrote $T/e1"
 

@@ -385,6 +385,10 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
     struct stmt *globals = sl_new_stmt(S, S_BLOCK, sl_peek(S));
     globals->op = 1;
     struct stmt *body = sl_parse_program(S, globals);
+    /* a file of functions (not a body, not a .brdf file's shader) is checked by the reference
+       compiler first: its error is the one the engine's compiler would print */
+    if (!body && !h->header_text)
+        sl_validate(S, text, len, first_line, h);
 
     const char *fname = h->function[0] ? h->function : name;
     struct func *model = NULL;

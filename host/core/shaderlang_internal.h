@@ -246,6 +246,9 @@ void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col
 const char *sl_preprocess(struct sl *S, const char *text, size_t len, int first_line, const struct header *h,
                           size_t *outlen);
 int sl_pp_column(struct sl *S, const struct tok *t, int out_line);
+/* A GLSL or HLSL file (by its name) parsed by glslang, the languages' reference compiler, with
+ * the same defines: its first error, at the user's line (and the column of the token it names). */
+void sl_validate(struct sl *S, const char *text, size_t len, int first_line, const struct header *h);
 int sl_define_text(const char *arg, char *out, size_t outlen, char *err, size_t errlen, const char *what);
 
 /* ---- the parser (shaderlang_parse.c) ---- */

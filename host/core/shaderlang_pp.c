@@ -188,6 +188,158 @@ static void __attribute__((noreturn)) fail_from_log(struct sl *S, const char *lo
 }
 #endif
 
+/* 1 for an HLSL file name, 0 for GLSL, -1 for neither (a --model text, another extension). */
+static int language_of(const char *origin)
+{
+    const char *ext = strrchr(origin, '.');
+    if (!ext || strchr(ext, '/'))
+        return -1;
+    if (strcmp(ext, ".hlsl") == 0 || strcmp(ext, ".fx") == 0 || strcmp(ext, ".fxh") == 0 || strcmp(ext, ".hlsli") == 0)
+        return 1;
+    if (strcmp(ext, ".glsl") == 0 || strcmp(ext, ".frag") == 0)
+        return 0;
+    return -1;
+}
+
+#ifdef BRDF_HAVE_GLSLANG
+/* The defines as glslang's preamble: the command line's, then the header's it does not override. */
+static void write_preamble(struct md_buf *pre, const struct header *h)
+{
+    for (int i = 0; i < cli_ndefines; ++i)
+        md_printf(pre, "#define %s\n", cli_defines[i]);
+    /* the command line's value wins over the header's (a header gives a default) */
+    for (int i = 0; h && i < h->ndefines; ++i) {
+        size_t nl = strcspn(h->defines[i], " ");
+        int overridden = 0;
+        for (int k = 0; k < cli_ndefines; ++k)
+            if (strcspn(cli_defines[k], " ") == nl && strncmp(cli_defines[k], h->defines[i], nl) == 0)
+                overridden = 1;
+        if (!overridden)
+            md_printf(pre, "#define %s\n", h->defines[i]);
+    }
+}
+
+static void set_input(glslang_input_t *in, int hlsl, const char *code)
+{
+    memset(in, 0, sizeof *in);
+    in->language = hlsl ? GLSLANG_SOURCE_HLSL : GLSLANG_SOURCE_GLSL;
+    in->stage = GLSLANG_STAGE_FRAGMENT;
+    in->client = GLSLANG_CLIENT_NONE;
+    in->target_language = GLSLANG_TARGET_NONE;
+    in->code = code;
+    in->default_version = 450;
+    in->default_profile = GLSLANG_NO_PROFILE;
+    in->messages = GLSLANG_MSG_SUPPRESS_WARNINGS_BIT;
+    in->resource = glslang_default_resource();
+}
+
+static void start_glslang(struct sl *S)
+{
+    static int initialised;
+    if (!initialised) {
+        if (!glslang_initialize_process())
+            sl_fail_at(S, 0, 0, "glslang could not start");
+        initialised = 1;
+    }
+}
+#endif
+
+void sl_validate(struct sl *S, const char *text, size_t len, int first_line, const struct header *h)
+{
+    int lang = language_of(S->origin);
+#ifndef BRDF_HAVE_GLSLANG
+    (void)text;
+    (void)len;
+    (void)first_line;
+    (void)h;
+    (void)lang;
+#else
+    if (lang < 0)
+        return;
+    start_glslang(S);
+    struct md_buf pre;
+    md_init(&pre);
+    write_preamble(&pre, h);
+    char *code = malloc(len + 1);
+    if (!code || pre.failed) {
+        free(code);
+        md_free(&pre);
+        sl_fail_at(S, 0, 0, "out of memory");
+    }
+    memcpy(code, text, len);
+    code[len] = '\0';
+    glslang_input_t in;
+    set_input(&in, lang, code);
+    glslang_shader_t *sh = glslang_shader_create(&in);
+    char log[600] = "";
+    int ok = 1;
+    if (sh) {
+        if (pre.len)
+            glslang_shader_set_preamble(sh, pre.s);
+        /* the C interface parses what its preprocessing step kept */
+        ok = glslang_shader_preprocess(sh, &in) && glslang_shader_parse(sh, &in);
+        if (!ok) {
+            const char *l = glslang_shader_get_info_log(sh);
+            snprintf(log, sizeof log, "%s", l ? l : "");
+        }
+        glslang_shader_delete(sh);
+    }
+    free(code);
+    md_free(&pre);
+    if (ok)
+        return;
+    /* "ERROR: 0:3: 'undefined_thing' : undeclared identifier": the line, the token, the message */
+    const char *e = strstr(log, "ERROR: ");
+    if (!e)
+        sl_fail_at(S, 0, 0, "glslang refused the shader without a message");
+    e += 7;
+    int string_no = 0, line = 0, used = 0;
+    if (!(sscanf(e, "%d:%d: %n", &string_no, &line, &used) >= 2 && used > 0))
+        line = 0;
+    e += used;
+    const char *eol = strchr(e, '\n');
+    int elen = eol ? (int)(eol - e) : (int)strlen(e);
+    while (elen > 0 && isspace((unsigned char)e[elen - 1]))
+        --elen;
+    char tokbuf[80] = "";
+    const char *msg = e;
+    int mlen = elen;
+    const char *sep = elen > 2 && e[0] == '\'' ? strstr(e, "' : ") : NULL;
+    if (sep && sep - e < elen) {
+        snprintf(tokbuf, sizeof tokbuf, "%.*s", (int)(sep - e - 1), e + 1);
+        msg = sep + 4;
+        mlen = elen - (int)(sep + 4 - e);
+    }
+    /* the column: the token looked for in the user's line, as a whole word */
+    int col = -1;
+    if (line > 0 && tokbuf[0]) {
+        const char *ls = text;
+        for (int l = 1; l < line && ls; ++l) {
+            ls = memchr(ls, '\n', len - (size_t)(ls - text));
+            ls = ls ? ls + 1 : NULL;
+        }
+        if (ls) {
+            const char *le = memchr(ls, '\n', len - (size_t)(ls - text));
+            if (!le)
+                le = text + len;
+            size_t tl = strlen(tokbuf);
+            for (const char *p = ls; p + tl <= le; ++p)
+                if (memcmp(p, tokbuf, tl) == 0 && !(p > ls && (isalnum((unsigned char)p[-1]) || p[-1] == '_')) &&
+                    !(p + tl < le && (isalnum((unsigned char)p[tl]) || p[tl] == '_'))) {
+                    col = (int)(p - ls) + 1;
+                    break;
+                }
+        }
+    }
+    S->unknown_name = strstr(msg, "undeclared identifier") != NULL;
+    if (tokbuf[0])
+        sl_fail_at(S, line > 0 ? line + first_line - 1 : 0, col, "'%s': %.*s (glslang, the %s reference compiler)", tokbuf,
+                   mlen, msg, lang ? "HLSL" : "GLSL");
+    sl_fail_at(S, line > 0 ? line + first_line - 1 : 0, col, "%.*s (glslang, the %s reference compiler)", mlen, msg,
+               lang ? "HLSL" : "GLSL");
+#endif
+}
+
 const char *sl_preprocess(struct sl *S, const char *text, size_t len, int first_line, const struct header *h,
                           size_t *outlen)
 {
@@ -201,26 +353,10 @@ const char *sl_preprocess(struct sl *S, const char *text, size_t len, int first_
                "this text needs a preprocessor (#if, #ifdef, function-like macros, defines), and brdfbench was "
                "built without glslang (Debian's glslang-dev; scripts/setup.sh installs it)");
 #else
-    static int initialised;
-    if (!initialised) {
-        if (!glslang_initialize_process())
-            sl_fail_at(S, 0, 0, "glslang's preprocessor could not start");
-        initialised = 1;
-    }
+    start_glslang(S);
     struct md_buf pre;
     md_init(&pre);
-    for (int i = 0; i < cli_ndefines; ++i)
-        md_printf(&pre, "#define %s\n", cli_defines[i]);
-    /* the command line's value wins over the header's (a header gives a default) */
-    for (int i = 0; h && i < h->ndefines; ++i) {
-        size_t nl = strcspn(h->defines[i], " ");
-        int overridden = 0;
-        for (int k = 0; k < cli_ndefines; ++k)
-            if (strcspn(cli_defines[k], " ") == nl && strncmp(cli_defines[k], h->defines[i], nl) == 0)
-                overridden = 1;
-        if (!overridden)
-            md_printf(&pre, "#define %s\n", h->defines[i]);
-    }
+    write_preamble(&pre, h);
     char *code = malloc(len + 1);
     if (!code || pre.failed) {
         free(code);
@@ -230,19 +366,7 @@ const char *sl_preprocess(struct sl *S, const char *text, size_t len, int first_
     memcpy(code, text, len);
     code[len] = '\0';
     glslang_input_t in;
-    memset(&in, 0, sizeof in);
-    const char *ext = strrchr(S->origin, '.');
-    int hlsl = ext && (strcmp(ext, ".hlsl") == 0 || strcmp(ext, ".fx") == 0 || strcmp(ext, ".fxh") == 0 ||
-                       strcmp(ext, ".hlsli") == 0);
-    in.language = hlsl ? GLSLANG_SOURCE_HLSL : GLSLANG_SOURCE_GLSL;
-    in.stage = GLSLANG_STAGE_FRAGMENT;
-    in.client = GLSLANG_CLIENT_NONE;
-    in.target_language = GLSLANG_TARGET_NONE;
-    in.code = code;
-    in.default_version = 450;
-    in.default_profile = GLSLANG_NO_PROFILE;
-    in.messages = GLSLANG_MSG_SUPPRESS_WARNINGS_BIT;
-    in.resource = glslang_default_resource();
+    set_input(&in, language_of(S->origin) == 1, code);
     glslang_shader_t *sh = glslang_shader_create(&in);
     if (!sh) {
         free(code);

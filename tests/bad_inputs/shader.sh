@@ -1,6 +1,8 @@
 # shader.sh - bad-input rows of the shader-language models (host/core/shaderlang*.c): what a
 # shader cannot do is refused at parse, at the user's file, line and column, with exit 2, before
-# anything is compiled or run; the preprocessor's refusals; -D's form and place; translation
+# anything is compiled or run (in a .glsl/.hlsl file, what brdfbench's parser accepts is then
+# checked by glslang, the reference compiler, whose message it prints; a file of another name,
+# *.shader here, shows brdfbench's own check); the preprocessor's refusals; -D's form and place; translation
 # bounded. Sourced by tests/test_cli_errors.sh (its `t` helper; the working folder is its $T).
 mkdir -p shader_in
 w() { printf '%s\n' "$2" >"shader_in/$1"; }
@@ -11,8 +13,11 @@ w ptr_param.glsl 'float g(float *p) { return 1.0; } float f(float c, float n) { 
 w asm.glsl 'float f(float c, float n) { asm("nop"); return c; }'
 w volatile.hlsl 'float f(float c, float n) { volatile float x = c; return x; }'
 w printf.glsl 'float f(float c, float n) { printf(1); return c; }'
+w printf.shader 'float f(float c, float n) { printf(1); return c; }'
 w string.glsl 'float f(float c, float n) { return c + "a"; }'
-w clcall.glsl 'float f(float c, float n) { return native_powr(c, n); }'
+w clcall.hlsl 'float f(float c, float n) { return native_powr(c, n); }'
+w clcall.shader 'float f(float c, float n) { return native_powr(c, n); }'
+w dialect.glsl 'float f(float c, float n) { return saturate(c); }'
 w include.glsl '#include "other.glsl"'
 w error.glsl '#error not for this target'
 w noendif.glsl '#if 1'
@@ -26,9 +31,12 @@ t 2 "^brdfbench accuracy: shader_in/ptr_addr.hlsl:1:54: '&' takes an address" ac
 t 2 "^brdfbench accuracy: shader_in/ptr_param.glsl:1:15: a pointer parameter: pointers are not accepted" accuracy --model-file shader_in/ptr_param.glsl
 t 2 "^brdfbench accuracy: shader_in/asm.glsl:1:29: inline assembly is not accepted in a model$" accuracy --model-file shader_in/asm.glsl
 t 2 "^brdfbench accuracy: shader_in/volatile.hlsl:1:29: volatile is not accepted in a model" accuracy --model-file shader_in/volatile.hlsl
-t 2 "^brdfbench accuracy: shader_in/printf.glsl:1:29: use of undeclared function 'printf' \(a model calls only its own functions and the math built-ins" accuracy --model-file shader_in/printf.glsl
+t 2 "^brdfbench accuracy: shader_in/printf.glsl:1:29: 'printf': no matching overloaded function found \(glslang, the GLSL reference compiler\)$" accuracy --model-file shader_in/printf.glsl
+t 2 "^brdfbench accuracy: shader_in/printf.shader:1:29: use of undeclared function 'printf' \(a model calls only its own functions and the math built-ins" accuracy --model-file shader_in/printf.shader
 t 2 "^brdfbench accuracy: shader_in/string.glsl:1:40: a string or character literal: a model has none" accuracy --model-file shader_in/string.glsl
-t 2 "^brdfbench accuracy: shader_in/clcall.glsl:1:36: use of undeclared function 'native_powr'" accuracy --model-file shader_in/clcall.glsl
+t 2 "^brdfbench accuracy: shader_in/clcall.hlsl:1:36: 'native_powr': no matching overloaded function found \(glslang, the HLSL reference compiler\)$" accuracy --model-file shader_in/clcall.hlsl
+t 2 "^brdfbench accuracy: shader_in/clcall.shader:1:36: use of undeclared function 'native_powr'" accuracy --model-file shader_in/clcall.shader
+t 2 "^brdfbench accuracy: shader_in/dialect.glsl:1:36: 'saturate': no matching overloaded function found \(glslang, the GLSL reference compiler\)$" accuracy --model-file shader_in/dialect.glsl
 t 2 "^brdfbench accuracy: shader_in/include.glsl:1:1: #include is not accepted: a model file reads no other file$" accuracy --model-file shader_in/include.glsl
 t 2 "^brdfbench accuracy: shader_in/error.glsl:1: #error: not for this target \(glslang's preprocessor\)$" accuracy --model-file shader_in/error.glsl
 t 2 "^brdfbench accuracy: shader_in/noendif.glsl:2: missing #endif \(glslang's preprocessor\)$" accuracy --model-file shader_in/noendif.glsl
