@@ -611,6 +611,64 @@ int main(void)
                 usermodel_free(um);
         }
     }
+    /* 12. Structs: fields of numbers, vectors and structs; locals (zeroed when not set), a
+           constructor, a brace initialiser, parameters (in and inout), a returned struct (with an
+           early return), fields and their components assigned. In C: k = (c, (0, 2c)); m = (ma,
+           (c, 3)) with ma = 1 where c > 0.5 else 0.25; o.inner = m with b.x + 1; q.a = 2c. */
+    {
+        static const char st[] =
+            "struct Ctx { float a; vec2 b; };\n"
+            "struct Outer { Ctx inner; float w; };\n"
+            "void init(inout Ctx k, float c) { k.a = c; k.b.y = 2.0 * c; }\n"
+            "Ctx make(float c) { Ctx k = Ctx(1.0, vec2(c, 3.0)); if (c > 0.5) return k; k.a = 0.25; return k; }\n"
+            "float sum(Ctx k) { return k.a + k.b.x + k.b.y; }\n"
+            "float st(float c, float n) {\n"
+            "    Ctx k;\n"
+            "    init(k, c);\n"
+            "    Ctx m = make(c);\n"
+            "    Outer o = { m, n };\n"
+            "    o.inner.b.x += 1.0;\n"
+            "    Ctx q = k; q.a *= 2.0;\n"
+            "    return sum(k) + sum(o.inner) * o.w + q.a;\n"
+            "}\n";
+        for (int lang = 0; lang < 2; ++lang) {
+            /* as GLSL (checked by glslang too) and under a name only brdfbench reads */
+            const char *path = lang ? "st.shader" : "st.glsl";
+            struct user_model *um = NULL;
+            int rc = usermodel_parse_file_text(st, strlen(st), path, &um, err, sizeof err);
+            CHECK(rc == 0, "%s: %s", path, err);
+            if (rc == 0 && usermodel_host_ready(um)) {
+                double worst = 0;
+                for (double n = 1; n <= 100; n *= 3)
+                    for (int k = 0; k <= 64; ++k) {
+                        double c = k / 64.0, ma = c > 0.5 ? 1.0 : 0.25;
+                        double e = 3 * c + (ma + c + 1 + 3) * n + 2 * c, v = hostjit_function(um->host)(c, n, 0, 0);
+                        if (!(fabs(v - e) <= worst))
+                            worst = fabs(v - e);
+                    }
+                CHECK(worst <= 1e-12, "%s: largest difference %g", path, worst);
+            }
+            usermodel_free(um);
+        }
+        /* columns counted by hand: "float e(float c, float n) { " is 28 characters */
+        static const struct { const char *text, *path, *message; } st_errors[] = {
+            { "struct P { float a; };\nfloat e(float c, float n) { P p; return p.z; }\n", "s1.shader",
+              "s1.shader:2:43: P has no field 'z'" },
+            { "struct P { float a; vec2 b; };\nfloat e(float c, float n) { P p = P(c); return p.a; }\n", "s2.shader",
+              "s2.shader:2:35: P has 2 fields, 1 value given" },
+            { "struct P { float a; };\nfloat e(float c, float n) { P p; return p + c; }\n", "s3.shader",
+              "s3.shader:2:43: '+' needs numbers, not P and float" },
+            { NULL, NULL, NULL } };
+        for (int i = 0; st_errors[i].text; ++i) {
+            struct user_model *um = NULL;
+            int rc = usermodel_parse_file_text(st_errors[i].text, strlen(st_errors[i].text), st_errors[i].path, &um,
+                                               err, sizeof err);
+            CHECK(rc == 2 && strstr(err, st_errors[i].message), "%s: got %d '%s', expected '%s'", st_errors[i].path,
+                  rc, err, st_errors[i].message);
+            if (rc == 0)
+                usermodel_free(um);
+        }
+    }
     usermodel_clear_all();
     return check_summary();
 }

@@ -256,7 +256,7 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
     S->line_next = fline + 2;
     sl_push_scope(S, 1);
     S->globals = S->scope;
-    struct fnctx fc = { { B_FLOAT, 1 }, { NULL }, NULL, NULL, 1, 0 };
+    struct fnctx fc = { .ret = { .b = B_FLOAT, .n = 1 }, .is_model = 1 };
     S->fn = &fc;
     /* The arguments: in the function form in a scope of their own under the globals (a helper
        sees the globals, not the model's arguments); in the body form among the globals. */
@@ -281,7 +281,7 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
     }
     for (int i = 0; i < 2 + h->nparams && !full; ++i) {
         const struct tok *pn;
-        struct type ty = { B_FLOAT, 1 };
+        struct type ty = { .b = B_FLOAT, .n = 1 };
         if (model) {
             pn = model->pname[i];
             ty = model->pty[i];

@@ -21,8 +21,14 @@ const char *sl_type_name(struct sl *S, struct type t)
     case B_VOID: return "void";
     case B_BOOL: return "bool";
     case B_INT: return "int";
+    case B_STRUCT: return sl_sfmt(S, "%.*s", t.st->name->len, t.st->name->p);
     default: return t.n == 1 ? "float" : sl_sfmt(S, "vec%d", t.n);
     }
+}
+
+int sl_same_type(struct type a, struct type b)
+{
+    return a.b == b.b && a.n == b.n && (a.b != B_STRUCT || a.st == b.st);
 }
 
 /* Output lines carry the user's line: a #line directive wherever the next line's number differs. */
@@ -192,6 +198,13 @@ const char *sl_temp_cond(struct sl *S, const char *cond, int uniform)
 
 struct val sl_temp_val(struct sl *S, struct val v)
 {
+    if (v.t.b == B_STRUCT) {
+        struct val *f = sl_arena_alloc(S, sizeof *f * (size_t)v.t.st->nfields);
+        for (int i = 0; i < v.t.st->nfields; ++i)
+            f[i] = sl_temp_val(S, v.f[i]);
+        v.f = f;
+        return v;
+    }
     if (v.t.b == B_FLOAT)
         for (int i = 0; i < v.t.n; ++i)
             v.c[i] = sl_temp_real(S, v.c[i]);
@@ -236,7 +249,7 @@ struct val sl_to_float(struct sl *S, struct val v, const struct tok *where)
             if (!isdigit((unsigned char)*p))
                 digits = 0;
         v.c[0] = digits ? sl_sfmt(S, "RSPLAT(%s.0)", s) : sl_sfmt(S, "RSPLAT((RSCALAR)(%s))", s);
-        v.t = (struct type){ B_FLOAT, 1 };
+        v.t = (struct type){ .b = B_FLOAT, .n = 1 };
         return v;
     }
     FAIL(S, where, "a %s where a number is expected", sl_type_name(S, v.t));
@@ -246,8 +259,10 @@ struct val sl_to_float(struct sl *S, struct val v, const struct tok *where)
  * (HLSL's float3 v = 0). */
 struct val sl_convert(struct sl *S, struct val v, struct type t, const struct tok *where, const char *what)
 {
-    if (t.b == v.t.b && t.n == v.t.n)
+    if (sl_same_type(t, v.t))
         return v;
+    if (t.b == B_STRUCT || v.t.b == B_STRUCT)
+        FAIL(S, where, "%s: a %s cannot become a %s", what, sl_type_name(S, v.t), sl_type_name(S, t));
     if (t.b == B_FLOAT && (v.t.b == B_INT || v.t.b == B_FLOAT)) {
         v = sl_to_float(S, v, where);
         if (v.t.n == t.n)
@@ -280,6 +295,30 @@ void sl_push_scope(struct sl *S, int function_level)
     S->scope = sc;
 }
 
+/* The C names of s (of type s->t) from base: its components', or its fields' syms. */
+static void sym_names(struct sl *S, struct sym *s, const char *base)
+{
+    struct type t = s->t;
+    if (t.b == B_STRUCT) {
+        s->fields = sl_arena_alloc(S, sizeof *s->fields * (size_t)t.st->nfields);
+        s->fvals = sl_arena_alloc(S, sizeof *s->fvals * (size_t)t.st->nfields);
+        for (int i = 0; i < t.st->nfields; ++i) {
+            struct sym *f = sl_arena_alloc(S, sizeof *f);
+            f->name = t.st->fname[i]->p;
+            f->len = t.st->fname[i]->len;
+            f->t = t.st->fty[i];
+            sym_names(S, f, sl_sfmt(S, "%s__%.*s", base, f->len, f->name));
+            s->fields[i] = f;
+        }
+    } else if (t.b == B_FLOAT && t.n > 1) {
+        const char *root = c_name_n(S, base, t.n);
+        for (int i = 0; i < t.n; ++i)
+            s->c[i] = sl_sfmt(S, "%s_%c", root, "xyzw"[i]);
+    } else {
+        s->c[0] = c_name(S, base);
+    }
+}
+
 struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, struct type t)
 {
     for (struct sym *s = sc->syms; s; s = s->next)
@@ -291,14 +330,7 @@ struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, s
     s->name = name->p;
     s->len = name->len;
     s->t = t;
-    const char *base = sl_tok_str(S, name);
-    if (t.b == B_FLOAT && t.n > 1) {
-        const char *root = c_name_n(S, base, t.n);
-        for (int i = 0; i < t.n; ++i)
-            s->c[i] = sl_sfmt(S, "%s_%c", root, "xyzw"[i]);
-    } else {
-        s->c[0] = c_name(S, base);
-    }
+    sym_names(S, s, sl_tok_str(S, name));
     s->next = sc->syms;
     sc->syms = s;
     return s;
@@ -328,9 +360,16 @@ struct sym *sl_declare_array(struct sl *S, struct scope *sc, const struct tok *n
 /* The value of a variable. */
 struct val sl_sym_val(struct sym *s)
 {
-    struct val v = { s->t, { NULL, NULL, NULL, NULL }, 0 };
+    struct val v = { s->t, { NULL, NULL, NULL, NULL }, 0, NULL };
+    if (s->t.b == B_STRUCT) {
+        /* the fields' values are their syms' names, kept with the sym (sym_names) */
+        v.f = s->fvals;
+        for (int i = 0; i < s->t.st->nfields; ++i)
+            s->fvals[i] = sl_sym_val(s->fields[i]);
+        return v;
+    }
     if (s->t.b == B_BOOL) {
-        return (struct val){ s->t, { s->c[0] }, 0 }; /* replaced by the caller */
+        return (struct val){ .t = s->t, .c = { s->c[0] } }; /* replaced by the caller */
     }
     for (int i = 0; i < s->t.n; ++i)
         v.c[i] = s->c[i];
@@ -361,9 +400,10 @@ const char *sl_op_text(int op)
 /* a OP b for the arithmetic operators, with int promotion and scalar broadcast. */
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where)
 {
-    if (a.t.b == B_BOOL || b.t.b == B_BOOL || a.t.b == B_VOID || b.t.b == B_VOID)
+    if (a.t.b == B_BOOL || b.t.b == B_BOOL || a.t.b == B_VOID || b.t.b == B_VOID || a.t.b == B_STRUCT ||
+        b.t.b == B_STRUCT)
         FAIL(S, where, "'%s' needs numbers, not %s and %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));
-    struct val r = { { B_INT, 1 }, { NULL }, a.uniform && b.uniform };
+    struct val r = { .t = { .b = B_INT, .n = 1 }, .uniform = a.uniform && b.uniform };
     if (a.t.b == B_INT && b.t.b == B_INT) {
         r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
         return r;
@@ -379,7 +419,7 @@ struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const stru
         if (b.t.n == 1)
             b.c[0] = sl_temp_real(S, b.c[0]);
     }
-    r.t = (struct type){ B_FLOAT, n };
+    r.t = (struct type){ .b = B_FLOAT, .n = n };
     for (int i = 0; i < n; ++i) {
         const char *x = a.c[a.t.n == 1 ? 0 : i], *y = b.c[b.t.n == 1 ? 0 : i];
         r.c[i] = op == '%' ? sl_sfmt(S, "fmod(%s, %s)", x, y) : sl_sfmt(S, "(%s %s %s)", x, sl_op_text(op), y);
@@ -497,7 +537,7 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
             width = a[i].t.n;
         }
     }
-    struct val r = { { B_FLOAT, 1 }, { NULL }, 0 };
+    struct val r = { .t = { .b = B_FLOAT, .n = 1 } };
     switch (bi->kind) {
     case BK_CW:
     case BK_ATAN: {

@@ -16,32 +16,127 @@
 
 static int const_int(struct sl *S, struct expr *e, long *out);
 
+static int field_index(const struct sdef *d, const struct tok *f)
+{
+    for (int i = 0; i < d->nfields; ++i)
+        if (d->fname[i]->len == f->len && strncmp(d->fname[i]->p, f->p, (size_t)f->len) == 0)
+            return i;
+    return -1;
+}
+
+/* The declarations of s's C names, set from v (of s's type). */
+static void store_val(struct sl *S, struct sym *s, struct val v)
+{
+    if (s->t.b == B_STRUCT) {
+        for (int i = 0; i < s->t.st->nfields; ++i)
+            store_val(S, s->fields[i], v.f[i]);
+    } else if (s->t.b == B_INT) {
+        sl_out_line(S, "int %s = %s;", s->c[0], v.c[0]);
+    } else if (s->t.b == B_BOOL) {
+        sl_out_line(S, "REAL %s = (%s) ? RSPLAT(1.0) : RSPLAT(0.0);", s->c[0], v.c[0]);
+    } else {
+        for (int i = 0; i < s->t.n; ++i)
+            sl_out_line(S, "REAL %s = %s;", s->c[i], v.c[i]);
+    }
+}
+
+/* A value of type t that is zero in every component. */
+static struct val zero_val(struct sl *S, struct type t)
+{
+    struct val v = { t, { NULL }, 1, NULL };
+    if (t.b == B_STRUCT) {
+        v.f = sl_arena_alloc(S, sizeof *v.f * (size_t)t.st->nfields);
+        for (int i = 0; i < t.st->nfields; ++i)
+            v.f[i] = zero_val(S, t.st->fty[i]);
+        return v;
+    }
+    for (int i = 0; i < t.n; ++i)
+        v.c[i] = t.b == B_INT || t.b == B_BOOL ? "0" : "RSPLAT(0.0)";
+    return v;
+}
+
 static void assign_sym(struct sl *S, struct sym *s, const int *comp, int ncomp, struct val v, const char *pred,
                        const struct tok *where);
+
+/* A whole struct assigned field by field (under pred). */
+static void assign_struct(struct sl *S, struct sym *s, struct val v, const char *pred, const struct tok *where)
+{
+    static const int all[4] = { 0, 1, 2, 3 };
+    for (int i = 0; i < s->t.st->nfields; ++i) {
+        struct sym *f = s->fields[i];
+        if (f->t.b == B_STRUCT)
+            assign_struct(S, f, v.f[i], pred, where);
+        else
+            assign_sym(S, f, all, f->t.n, v.f[i], pred, where);
+    }
+}
+
+/* What the left of an assignment (or an out argument) names: a variable, a struct's field (to
+ * any depth), then maybe a swizzle: the sym and its components. */
+static struct sym *lvalue(struct sl *S, struct expr *l, int *comp, int *ncomp, int *swizzled)
+{
+    *swizzled = 0;
+    if (l->k == E_VAR) {
+        struct sym *s = sl_lookup(S, l->t);
+        if (!s)
+            FAIL(S, l->t, "use of undeclared identifier '%.*s'", l->t->len, l->t->p);
+        *ncomp = s->t.n;
+        for (int i = 0; i < 4; ++i)
+            comp[i] = i;
+        return s;
+    }
+    if (l->k != E_SWZ)
+        FAIL(S, l->t, "the left of an assignment must be a variable, its components, a field or an element");
+    int inner;
+    struct sym *b = lvalue(S, l->a, comp, ncomp, &inner);
+    if (b->t.b == B_STRUCT && !inner) {
+        int k = field_index(b->t.st, l->field);
+        if (k < 0)
+            FAIL(S, l->field, "%s has no field '%.*s'", sl_type_name(S, b->t), l->field->len, l->field->p);
+        struct sym *f = b->fields[k];
+        f->is_const = b->is_const;
+        *ncomp = f->t.n;
+        for (int i = 0; i < 4; ++i)
+            comp[i] = i;
+        return f;
+    }
+    if (inner)
+        FAIL(S, l->t, "a swizzle of a swizzle on the left of an assignment");
+    if (b->t.b != B_FLOAT || l->nswz == 0)
+        FAIL(S, l->t, "a swizzle of a %s", sl_type_name(S, b->t));
+    *ncomp = l->nswz;
+    for (int i = 0; i < l->nswz; ++i) {
+        comp[i] = l->swz[i];
+        if (comp[i] >= b->t.n)
+            FAIL(S, l->t, "component %c of a %s", "xyzw"[comp[i]], sl_type_name(S, b->t));
+        for (int j = 0; j < i; ++j)
+            if (comp[j] == comp[i])
+                FAIL(S, l->t, "component %c is written twice", "xyzw"[comp[i]]);
+    }
+    *swizzled = 1;
+    return b;
+}
+
+/* The variable an expression ends in (through fields and swizzles), or NULL. */
+static const struct tok *root_name(struct expr *l)
+{
+    while (l->k == E_SWZ)
+        l = l->a;
+    return l->k == E_VAR ? l->t : NULL;
+}
+
 static const char *effective(struct sl *S, const char *pred);
 
 /* The variable (and its components) an out or inout argument names. */
 static struct sym *out_target(struct sl *S, struct expr *a, int *comp, int *ncomp)
 {
-    const struct tok *nt = a->k == E_SWZ ? a->a->t : a->t;
-    if (!(a->k == E_VAR || (a->k == E_SWZ && a->a->k == E_VAR)))
+    if (!root_name(a))
         FAIL(S, a->t, "an out or inout argument must be a variable or its components");
-    struct sym *s = sl_lookup(S, nt);
-    if (!s)
-        FAIL(S, nt, "use of undeclared identifier '%.*s'", nt->len, nt->p);
+    int swz;
+    struct sym *s = lvalue(S, a, comp, ncomp, &swz);
     if (s->is_const)
-        FAIL(S, nt, "'%.*s' is const: it cannot take an out or inout argument", nt->len, nt->p);
-    *ncomp = s->t.n;
-    for (int i = 0; i < 4; ++i)
-        comp[i] = i;
-    if (a->k == E_SWZ) {
-        *ncomp = a->nswz;
-        for (int i = 0; i < a->nswz; ++i) {
-            comp[i] = a->swz[i];
-            if (comp[i] >= s->t.n)
-                FAIL(S, a->t, "component %c of a %s", "xyzw"[comp[i]], sl_type_name(S, s->t));
-        }
-    }
+        FAIL(S, root_name(a), "'%.*s' is const: it cannot take an out or inout argument", root_name(a)->len,
+             root_name(a)->p);
     return s;
 }
 
@@ -49,9 +144,9 @@ static struct sym *out_target(struct sl *S, struct expr *a, int *comp, int *ncom
  * 2 more for a scalar made a vector (HLSL's promotion), -1 not at all. */
 static int conversion_cost(struct type a, struct type p, int mode)
 {
-    if (a.b == p.b && a.n == p.n)
+    if (sl_same_type(a, p))
         return 0;
-    if (mode != PM_IN)
+    if (mode != PM_IN || a.b == B_STRUCT || p.b == B_STRUCT)
         return -1;
     if (p.b == B_FLOAT && (a.b == B_INT || a.b == B_FLOAT) && (a.n == p.n || a.n == 1))
         return (a.b == B_INT) + 2 * (a.n != p.n);
@@ -116,11 +211,12 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
         if (f->pmode[i] != PM_IN) {
             int comp[4], ncomp;
             out_target(S, e->args[i], comp, &ncomp);
-            if (args[i].t.b != f->pty[i].b || args[i].t.n != f->pty[i].n)
+            if (!sl_same_type(args[i].t, f->pty[i]))
                 FAIL(S, e->args[i]->t, "argument %d of %.*s is %s: it takes a %s exactly", i + 1, f->name->len,
                      f->name->p, f->pmode[i] == PM_OUT ? "out" : "inout", sl_type_name(S, f->pty[i]));
             /* a copy in: the callee's writes must not be read through the caller's name */
-            args[i] = sl_temp_val(S, args[i]);
+            if (args[i].t.b != B_STRUCT)
+                args[i] = sl_temp_val(S, args[i]);
         } else {
             args[i] = sl_convert(S, args[i], f->pty[i], e->args[i]->t,
                                  sl_sfmt(S, "argument %d of %.*s", i + 1, f->name->len, f->name->p));
@@ -129,10 +225,14 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
     int saved_line = S->stmt_line;
     struct scope *saved_scope = S->scope;
     struct fnctx *saved_fn = S->fn;
-    struct fnctx fc = { f->ret, { NULL }, NULL, NULL, 0, 0 };
+    struct fnctx fc = { .ret = f->ret };
     int k = ++S->ntemp;
     if (f->ret.b == B_VOID) {
         /* nothing returned */
+    } else if (f->ret.b == B_STRUCT) {
+        static const struct tok ret_tok = { K_ID, 0, 0, "ret", 3 };
+        fc.ret_sym = sl_declare(S, S->scope, &ret_tok, f->ret);
+        store_val(S, fc.ret_sym, zero_val(S, f->ret));
     } else if (f->ret.b == B_INT) {
         fc.ret_c[0] = sl_sfmt(S, "sl_r%d", k);
         sl_out_line(S, "int %s = 0;", fc.ret_c[0]);
@@ -149,6 +249,10 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
     for (int i = 0; i < f->nparams; ++i) {
         struct sym *p = sl_declare(S, S->scope, f->pname[i], f->pty[i]);
         psym[i] = p;
+        if (f->pty[i].b == B_STRUCT) {
+            store_val(S, p, f->pmode[i] == PM_OUT ? zero_val(S, f->pty[i]) : args[i]);
+            continue;
+        }
         for (int c = 0; c < f->pty[i].n; ++c) {
             const char *init = f->pmode[i] == PM_OUT ? (f->pty[i].b == B_INT ? "0" : "RSPLAT(0.0)")
                                : f->pty[i].b == B_BOOL ? sl_sfmt(S, "(%s) ? RSPLAT(1.0) : RSPLAT(0.0)", args[i].c[c])
@@ -172,11 +276,17 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
             int comp[4], ncomp;
             struct sym *dst = out_target(S, e->args[i], comp, &ncomp);
             struct val v = sl_sym_val(psym[i]);
+            if (dst->t.b == B_STRUCT) {
+                assign_struct(S, dst, v, S->cur_pred, e->args[i]->t);
+                continue;
+            }
             if (psym[i]->t.b == B_BOOL)
                 v.c[0] = sl_sfmt(S, "(%s != RSPLAT(0.0))", psym[i]->c[0]);
             assign_sym(S, dst, comp, ncomp, v, S->cur_pred, e->args[i]->t);
         }
-    struct val r = { f->ret, { NULL }, f->ret.b == B_INT };
+    if (f->ret.b == B_STRUCT)
+        return sl_sym_val(fc.ret_sym);
+    struct val r = { f->ret, { NULL }, f->ret.b == B_INT, NULL };
     for (int i = 0; i < f->ret.n && f->ret.b != B_VOID; ++i)
         r.c[i] = fc.ret_c[i];
     return r;
@@ -184,7 +294,19 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
 
 static struct val construct(struct sl *S, struct type t, struct expr *e)
 {
-    struct val r = { t, { NULL }, 1 };
+    struct val r = { t, { NULL }, 1, NULL };
+    if (t.b == B_STRUCT) {
+        /* NAME(a, b, ...) or { a, b, ... }: one value per field, in order */
+        const struct sdef *d = t.st;
+        if (e->nargs != d->nfields)
+            FAIL(S, e->t, "%.*s has %d field%s, %d value%s given", d->name->len, d->name->p, d->nfields,
+                 d->nfields == 1 ? "" : "s", e->nargs, e->nargs == 1 ? "" : "s");
+        r.f = sl_arena_alloc(S, sizeof *r.f * (size_t)d->nfields);
+        for (int i = 0; i < d->nfields; ++i)
+            r.f[i] = sl_temp_val(S, sl_convert(S, sl_ev(S, e->args[i]), d->fty[i], e->args[i]->t,
+                                               sl_sfmt(S, "field '%.*s'", d->fname[i]->len, d->fname[i]->p)));
+        return r;
+    }
     if (t.b == B_VOID)
         FAIL(S, e->t, "void is not a value");
     if (t.b == B_BOOL)
@@ -203,7 +325,7 @@ static struct val construct(struct sl *S, struct type t, struct expr *e)
         if (v.t.b == B_FLOAT && v.t.n == 1) {
             /* a value that may differ between lanes: its integer part, kept as a float (an int
                of C is the same in every lane) */
-            r.t = (struct type){ B_FLOAT, 1 };
+            r.t = (struct type){ .b = B_FLOAT, .n = 1 };
             r.uniform = 0;
             r.c[0] = sl_sfmt(S, "trunc(%s)", v.c[0]);
             return r;
@@ -215,8 +337,9 @@ static struct val construct(struct sl *S, struct type t, struct expr *e)
     for (int i = 0; i < e->nargs; ++i) {
         parts[i] = sl_ev(S, e->args[i]);
         if (parts[i].t.b == B_BOOL) {
-            parts[i] = (struct val){ { B_FLOAT, 1 },
-                                     { sl_sfmt(S, "((%s) ? RSPLAT(1.0) : RSPLAT(0.0))", parts[i].c[0]) }, parts[i].uniform };
+            parts[i] = (struct val){ .t = { .b = B_FLOAT, .n = 1 },
+                                     .c = { sl_sfmt(S, "((%s) ? RSPLAT(1.0) : RSPLAT(0.0))", parts[i].c[0]) },
+                                     .uniform = parts[i].uniform };
         }
         parts[i] = sl_to_float(S, parts[i], e->args[i]->t);
         total += parts[i].t.n;
@@ -262,14 +385,14 @@ static __attribute__((noreturn)) void fail_unknown(struct sl *S, const struct to
 /* A value of a float kind with no components yet (what each kind of expression starts from). */
 static struct val val_float(void)
 {
-    struct val r = { { B_FLOAT, 1 }, { NULL }, 1 };
+    struct val r = { .t = { .b = B_FLOAT, .n = 1 }, .uniform = 1 };
     return r;
 }
 
 static struct val ev_int(struct sl *S, struct expr *e)
 {
     struct val r = val_float();
-    r.t = (struct type){ B_INT, 1 };
+    r.t = (struct type){ .b = B_INT, .n = 1 };
     if (e->op == 1) {
         r.c[0] = "1";
         return r;
@@ -309,12 +432,21 @@ static struct val ev_swizzle(struct sl *S, struct expr *e)
 {
     struct val r = val_float();
     struct val v = sl_ev(S, e->a);
+    if (v.t.b == B_STRUCT) {
+        int k = field_index(v.t.st, e->field);
+        if (k < 0)
+            FAIL(S, e->field, "%s has no field '%.*s'", sl_type_name(S, v.t), e->field->len, e->field->p);
+        return v.f[k];
+    }
     if (v.t.b != B_FLOAT)
         FAIL(S, e->t, "a swizzle of a %s", sl_type_name(S, v.t));
+    if (e->nswz == 0)
+        FAIL(S, e->field, "'%.*s' is not a swizzle (1 to 4 of x y z w, r g b a or s t p q)", e->field->len,
+             e->field->p);
     for (int i = 0; i < e->nswz; ++i)
         if (e->swz[i] >= v.t.n)
             FAIL(S, e->t, "component %c of a %s", "xyzw"[e->swz[i]], sl_type_name(S, v.t));
-    r.t = (struct type){ B_FLOAT, e->nswz };
+    r.t = (struct type){ .b = B_FLOAT, .n = e->nswz };
     r.uniform = v.uniform;
     for (int i = 0; i < e->nswz; ++i)
         r.c[i] = v.c[e->swz[i]];
@@ -361,7 +493,7 @@ static struct val ev_binary(struct sl *S, struct expr *e)
             a = sl_to_float(S, a, e->t);
             b = sl_to_float(S, b, e->t);
         }
-        r.t = (struct type){ B_BOOL, 1 };
+        r.t = (struct type){ .b = B_BOOL, .n = 1 };
         r.uniform = a.uniform && b.uniform;
         r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
         return r;
@@ -390,7 +522,7 @@ static struct val ev_ternary(struct sl *S, struct expr *e)
         FAIL(S, e->t, "?: between a %s and a %s", sl_type_name(S, a.t), sl_type_name(S, b.t));
     if (n > 1)
         c.c[0] = sl_temp_cond(S, c.c[0], c.uniform);
-    r.t = (struct type){ B_FLOAT, n };
+    r.t = (struct type){ .b = B_FLOAT, .n = n };
     r.uniform = 0;
     for (int i = 0; i < n; ++i)
         r.c[i] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[a.t.n == 1 ? 0 : i], b.c[b.t.n == 1 ? 0 : i]);
@@ -466,6 +598,9 @@ static struct val ev_call(struct sl *S, struct expr *e)
         return construct(S, e->ctor, e);
     if (sl_type_of_name(e->t, &t, &so))
         return construct(S, t, e);
+    const struct sdef *sd = sl_find_struct(S, e->t);
+    if (sd)
+        return construct(S, (struct type){ B_STRUCT, 1, sd }, e);
     struct func *f = sl_find_func(S, e->t);
     if (f)
         return call_user(S, f, e);
@@ -487,7 +622,7 @@ struct val sl_ev(struct sl *S, struct expr *e)
     case E_INT:
         return ev_int(S, e);
     case E_BOOL:
-        r.t = (struct type){ B_BOOL, 1 };
+        r.t = (struct type){ .b = B_BOOL, .n = 1 };
         r.c[0] = sl_tok_is(e->t, "true") ? "1" : "0";
         return r;
     case E_VAR:
@@ -665,7 +800,7 @@ static void emit_assign_indexed(struct sl *S, struct stmt *st, const char *pred)
                     FAIL(S, l->t, "component %c of a %s", "xyzw"[comp[i]], sl_type_name(S, ts->t));
             }
         }
-        struct type target = { B_FLOAT, ncomp };
+        struct type target = { .b = B_FLOAT, .n = ncomp };
         struct val v = rhs;
         if (st->op != '=') {
             struct val cur = sl_sym_val(ts), part = cur;
@@ -686,6 +821,14 @@ static void emit_decl(struct sl *S, struct stmt *d)
     struct val v;
     if (d->is_array) {
         emit_array_decl(S, d);
+        return;
+    }
+    if (t.b == B_STRUCT) {
+        struct val sv = d->e ? sl_convert(S, sl_ev(S, d->e), t, d->e->t, sl_sfmt(S, "'%.*s'", d->name->len, d->name->p))
+                             : zero_val(S, t);
+        struct sym *ss = sl_declare(S, S->scope, d->name, t);
+        ss->is_const = d->is_const;
+        store_val(S, ss, sv);
         return;
     }
     if (d->e) {
@@ -731,6 +874,33 @@ static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
         emit_assign_indexed(S, st, pred);
         return;
     }
+    const struct tok *rn = root_name(l);
+    struct sym *root = rn ? sl_lookup(S, rn) : NULL;
+    if (root && root->t.b == B_STRUCT) {
+        /* a struct, a field (to any depth), a field's components */
+        int comp[4], ncomp, swz;
+        struct sym *s = lvalue(S, l, comp, &ncomp, &swz);
+        if (root->is_const)
+            FAIL(S, rn, "'%.*s' is const", rn->len, rn->p);
+        struct val v = sl_ev(S, st->e);
+        if (s->t.b == B_STRUCT) {
+            if (st->op != '=')
+                FAIL(S, st->t, "a compound assignment to a struct");
+            assign_struct(S, s, sl_convert(S, v, s->t, st->e->t, "the struct assigned"), pred, st->t);
+            return;
+        }
+        struct type target = s->t.b == B_FLOAT ? (struct type){ .b = B_FLOAT, .n = ncomp } : s->t;
+        if (st->op != '=') {
+            struct val cur = sl_sym_val(s), part = cur;
+            part.t = target;
+            for (int i = 0; i < ncomp; ++i)
+                part.c[i] = cur.c[comp[i]];
+            v = sl_arith(S, st->op, part, v, st->t);
+        }
+        v = sl_convert(S, v, target, st->e->t, sl_sfmt(S, "'%.*s'", s->len, s->name));
+        assign_sym(S, s, comp, ncomp, v, pred, st->t);
+        return;
+    }
     const struct tok *nt = l->k == E_SWZ ? l->a->t : l->t;
     if (!(l->k == E_VAR || (l->k == E_SWZ && l->a->k == E_VAR)))
         FAIL(S, l->t, "the left of an assignment must be a variable or its components");
@@ -743,7 +913,7 @@ static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
         struct scope *sc = S->scope;
         while (!sc->function_level)
             sc = sc->up;
-        struct type t = v.t.b == B_INT ? (struct type){ B_FLOAT, 1 } : v.t;
+        struct type t = v.t.b == B_INT ? (struct type){ .b = B_FLOAT, .n = 1 } : v.t;
         if (t.b == B_VOID)
             FAIL(S, st->e->t, "a void value");
         s = sl_declare(S, sc, nt, t);
@@ -771,7 +941,7 @@ static void emit_assign(struct sl *S, struct stmt *st, const char *pred)
                 if (comp[j] == comp[i])
                     FAIL(S, l->t, "component %c is written twice", "xyzw"[comp[i]]);
         }
-        target = (struct type){ B_FLOAT, ncomp };
+        target = (struct type){ .b = B_FLOAT, .n = ncomp };
     }
     if (st->op != '=') {
         if (s->t.b == B_BOOL)
@@ -813,6 +983,18 @@ static void emit_return(struct sl *S, struct stmt *st, const char *pred)
     }
     struct val v = sl_ev(S, st->e);
     v = sl_convert(S, v, fc->ret, st->e->t, "the returned value");
+    if (fc->ret.b == B_STRUCT) {
+        assign_struct(S, fc->ret_sym, v, E, st->t);
+        if (E) {
+            if (!fc->live_var) {
+                fc->live_var = sl_sfmt(S, "sl_live%d", ++S->ntemp);
+                sl_out_line(S, "REAL %s = RSPLAT(1.0);", fc->live_var);
+                fc->live = sl_sfmt(S, "(%s != RSPLAT(0.0))", fc->live_var);
+            }
+            sl_out_line(S, "%s = %s ? RSPLAT(0.0) : %s;", fc->live_var, E, fc->live_var);
+        }
+        return;
+    }
     if (!E && fc->is_model && !fc->ret_c[0]) {
         sl_out_line(S, "return %s;", v.c[0]);
         fc->returned = 1;

@@ -56,10 +56,22 @@ struct macro {
     struct macro *next;
 };
 
-enum base { B_VOID, B_BOOL, B_INT, B_FLOAT };
+enum base { B_VOID, B_BOOL, B_INT, B_FLOAT, B_STRUCT };
+struct sdef;
 struct type {
     int b;
     int n; /* components: 1 to 4 (vectors of float only) */
+    const struct sdef *st; /* B_STRUCT: its definition */
+};
+
+#define SL_MAX_FIELDS 16
+/* struct NAME { TYPE field; ... }; */
+struct sdef {
+    const struct tok *name;
+    int nfields;
+    const struct tok *fname[SL_MAX_FIELDS];
+    struct type fty[SL_MAX_FIELDS];
+    struct sdef *next;
 };
 
 enum expr_kind { E_FLT, E_INT, E_BOOL, E_VAR, E_UN, E_BIN, E_TER, E_CALL, E_SWZ, E_IDX, E_ARR };
@@ -70,7 +82,8 @@ struct expr {
     struct expr *a, *b, *c;
     struct expr **args;
     int nargs;
-    int swz[4], nswz;
+    int swz[4], nswz;      /* nswz 0: a name that is no swizzle (a struct's field) */
+    const struct tok *field;
     int is_cast;
     int has_ctor;          /* an initialiser list: a constructor of ctor */
     struct type ctor;
@@ -106,6 +119,7 @@ struct func {
     struct func *next;
 };
 
+struct val;
 struct sym {
     const char *name;
     int len;
@@ -116,6 +130,8 @@ struct sym {
     long value;
     int arr_n;            /* an array: its length and its elements (each a sym of type t) */
     struct sym **elem;
+    struct sym **fields;  /* a struct: one sym per field */
+    struct val *fvals;    /* and their values (sl_sym_val) */
     struct sym *next;
 };
 
@@ -132,6 +148,7 @@ struct fnctx {
     const char *live_var;
     int is_model;
     int returned;          /* the model function has returned (a plain return was written) */
+    struct sym *ret_sym;   /* a struct returned: where it is kept */
 };
 
 /* The C names given out (c_name), in an open-addressing hash table: a name's lookup does not
@@ -185,6 +202,7 @@ struct sl {
     int line_delta;            /* #line N: the user's numbering minus the text's */
     struct scope *scope, *globals;
     struct func *funcs;
+    struct sdef *structs;
     const struct func *inlining[SL_MAX_INLINE];
     int ninline;
     struct fnctx *fn;
@@ -197,6 +215,7 @@ struct val {
     struct type t;
     const char *c[4];
     int uniform;   /* the same in every lane (literals, ints, uniform booleans) */
+    struct val *f; /* a struct: its fields' values */
 };
 
 struct builtin;
@@ -254,6 +273,9 @@ int sl_define_text(const char *arg, char *out, size_t outlen, char *err, size_t 
 /* ---- the parser (shaderlang_parse.c) ---- */
 const struct tok *sl_peek(struct sl *S);
 int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only);
+/* The struct a name defines, or NULL. */
+const struct sdef *sl_find_struct(struct sl *S, const struct tok *t);
+int sl_same_type(struct type a, struct type b);
 struct stmt *sl_new_stmt(struct sl *S, int k, const struct tok *t);
 struct stmt *sl_parse_program(struct sl *S, struct stmt *globals);
 

@@ -59,19 +59,19 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     w[t->len] = '\0';
     *shader_only = 0;
     if (strcmp(w, "float") == 0 || strcmp(w, "half") == 0 || strcmp(w, "min16float") == 0) {
-        *ty = (struct type){ B_FLOAT, 1 };
+        *ty = (struct type){ .b = B_FLOAT, .n = 1 };
         return 1;
     }
     if (strcmp(w, "int") == 0 || strcmp(w, "uint") == 0) {
-        *ty = (struct type){ B_INT, 1 };
+        *ty = (struct type){ .b = B_INT, .n = 1 };
         return 1;
     }
     if (strcmp(w, "bool") == 0) {
-        *ty = (struct type){ B_BOOL, 1 };
+        *ty = (struct type){ .b = B_BOOL, .n = 1 };
         return 1;
     }
     if (strcmp(w, "void") == 0) {
-        *ty = (struct type){ B_VOID, 1 };
+        *ty = (struct type){ .b = B_VOID, .n = 1 };
         return 1;
     }
     size_t l = strlen(w);
@@ -79,12 +79,22 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     if (last >= '2' && last <= '4') {
         w[l - 1] = '\0';
         if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0) {
-            *ty = (struct type){ B_FLOAT, last - '0' };
+            *ty = (struct type){ .b = B_FLOAT, .n = last - '0' };
             *shader_only = 1;
             return 1;
         }
     }
     return 0;
+}
+
+const struct sdef *sl_find_struct(struct sl *S, const struct tok *t)
+{
+    if (t->k != K_ID)
+        return NULL;
+    for (const struct sdef *d = S->structs; d; d = d->next)
+        if (d->name->len == t->len && strncmp(d->name->p, t->p, (size_t)t->len) == 0)
+            return d;
+    return NULL;
 }
 
 static int is_qualifier(const struct tok *t)
@@ -105,7 +115,6 @@ static void check_unsupported_word(struct sl *S, const struct tok *t)
         { "break", "break is not supported" },
         { "continue", "continue is not supported" },
         { "discard", "discard is not supported" },
-        { "struct", "structs are not supported" },
         { "uniform", "uniforms are not supported: declare the model's parameters in the header "
                      "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
         { "double", "double is not supported (write float: the reference is double anyway)" },
@@ -286,15 +295,17 @@ static struct expr *parse_postfix(struct sl *S)
         next(S);
         struct expr *s = new_expr(S, E_SWZ, dot);
         s->a = e;
-        if (f->len > 4)
-            FAIL(S, f, "a swizzle has 1 to 4 components, '%.*s' has %d", f->len, f->p, f->len);
-        for (int i = 0; i < f->len; ++i) {
+        s->field = f;
+        /* a swizzle, or (no swizzle's letters) a struct's field: which one, the value's type says */
+        s->nswz = f->len <= 4 ? f->len : 0;
+        for (int i = 0; i < s->nswz; ++i) {
             int k = swizzle_index(f->p[i]);
-            if (k < 0)
-                FAIL(S, f, "'%c' is not a component (x y z w, r g b a or s t p q)", f->p[i]);
+            if (k < 0) {
+                s->nswz = 0;
+                break;
+            }
             s->swz[i] = k;
         }
-        s->nswz = f->len;
         S->shader_only = 1;
         e = s;
     }
@@ -418,6 +429,13 @@ static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
     if (sl_type_of_name(t, ty, &so) && !sl_tok_is(peek_at(S, 1), "(")) {
         if (so)
             S->shader_only = 1;
+        next(S);
+        return 1;
+    }
+    const struct sdef *st = sl_find_struct(S, t);
+    if (st && !sl_tok_is(peek_at(S, 1), "(")) {
+        *ty = (struct type){ B_STRUCT, 1, st };
+        S->shader_only = 1;
         next(S);
         return 1;
     }
@@ -626,6 +644,55 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
 
 
 
+/* struct NAME { TYPE field[, field]; ... }; (fields of numbers, vectors and structs). */
+static void parse_struct(struct sl *S)
+{
+    next(S);
+    const struct tok *name = sl_peek(S);
+    if (name->k != K_ID)
+        FAIL(S, name, "expected the struct's name, found %s", tok_desc(S, name));
+    struct type dummy;
+    int so;
+    if (sl_type_of_name(name, &dummy, &so) || sl_find_struct(S, name))
+        FAIL(S, name, "'%.*s' is already a type", name->len, name->p);
+    next(S);
+    struct sdef *d = sl_arena_alloc(S, sizeof *d);
+    d->name = name;
+    expect(S, "{");
+    while (!accept(S, "}")) {
+        struct type ft;
+        int fc;
+        const struct tok *t0 = sl_peek(S);
+        if (!parse_decl_type(S, &ft, &fc))
+            FAIL(S, t0, "expected a field's type, found %s", tok_desc(S, t0));
+        if (ft.b == B_VOID || ft.b == B_BOOL)
+            FAIL(S, t0, "a struct's field is a number, a vector or a struct, not %s", ft.b == B_VOID ? "void" : "bool");
+        for (;;) {
+            const struct tok *fn = sl_peek(S);
+            if (fn->k != K_ID)
+                FAIL(S, fn, "expected a field's name, found %s", tok_desc(S, fn));
+            next(S);
+            if (sl_tok_is(sl_peek(S), "[") || sl_tok_is(sl_peek(S), ":"))
+                FAIL(S, sl_peek(S), "a struct's field is one value (no arrays, no semantics)");
+            for (int i = 0; i < d->nfields; ++i)
+                if (d->fname[i]->len == fn->len && strncmp(d->fname[i]->p, fn->p, (size_t)fn->len) == 0)
+                    FAIL(S, fn, "field '%.*s' is declared twice", fn->len, fn->p);
+            if (d->nfields == SL_MAX_FIELDS)
+                FAIL(S, fn, "a struct of more than %d fields", SL_MAX_FIELDS);
+            d->fname[d->nfields] = fn;
+            d->fty[d->nfields++] = ft;
+            if (accept(S, ";"))
+                break;
+            expect(S, ",");
+        }
+    }
+    if (d->nfields == 0)
+        FAIL(S, name, "struct '%.*s' has no fields", name->len, name->p);
+    expect(S, ";");
+    d->next = S->structs;
+    S->structs = d;
+}
+
 /* The function form: somewhere outside braces and parentheses a type, a name and '('. */
 static int is_function_start(struct sl *S)
 {
@@ -660,6 +727,10 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
         const struct tok *start = sl_peek(S);
         if (accept(S, ";"))
             continue;
+        if (sl_tok_is(start, "struct")) {
+            parse_struct(S);
+            continue;
+        }
         if (sl_tok_is(start, "precision")) {
             while (sl_peek(S)->k != K_EOF && !accept(S, ";"))
                 next(S);
