@@ -669,6 +669,70 @@ int main(void)
                 usermodel_free(um);
         }
     }
+    /* 13. Matrices: GLSL's mat3 (columns; *, transpose, m[i] a column, a diagonal constructor) and
+           HLSL's float3x3 (rows; mul, component-wise *, m[i] a row, a brace list), against the
+           same products written in C with A[r][c]. */
+    {
+        static const char glsl[] =
+            "float mt(float c, float n) {\n"
+            "    mat3 m = mat3(1.0, 2.0, 3.0,  4.0, 5.0, 6.0,  7.0, 8.0, c);\n"
+            "    vec3 v = vec3(c, 1.0, 2.0);\n"
+            "    vec3 w = m * v;\n"
+            "    vec3 u = v * m;\n"
+            "    mat3 p = m * transpose(m);\n"
+            "    mat2 d = mat2(2.0);\n"
+            "    m[1] = vec3(c);\n"
+            "    return w.x + u.y + p[2][1] + d[1][1] + m[1].z + (2.0 * m)[0][2];\n"
+            "}\n";
+        static const char hlsl[] =
+            "float mh(float c, float n) {\n"
+            "    float3x3 m = { 1, 2, 3,  4, 5, 6,  7, 8, c };\n"
+            "    float3 v = float3(c, 1, 2);\n"
+            "    float3 w = mul(m, v);\n"
+            "    float3 u = mul(v, m);\n"
+            "    float3x3 p = mul(m, transpose(m));\n"
+            "    float3x3 h = m * m;\n"
+            "    return w.x + u.y + p[2][1] + h[2][2] + m[0].y + mul(v, v);\n"
+            "}\n";
+        for (int lang = 0; lang < 2; ++lang) {
+            const char *text = lang ? hlsl : glsl, *path = lang ? "mh.hlsl" : "mt.glsl";
+            struct user_model *um = NULL;
+            int rc = usermodel_parse_file_text(text, strlen(text), path, &um, err, sizeof err);
+            CHECK(rc == 0, "%s: %s", path, err);
+            if (rc == 0 && usermodel_host_ready(um)) {
+                double worst = 0;
+                for (int k = 0; k <= 32; ++k) {
+                    double c = k / 32.0, A[3][3], e;
+                    double v[3] = { c, 1, 2 };
+                    if (!lang) {
+                        /* column-major: column j is (A[0][j], A[1][j], A[2][j]) */
+                        double cols[3][3] = { { 1, 2, 3 }, { 4, 5, 6 }, { 7, 8, c } };
+                        for (int r = 0; r < 3; ++r)
+                            for (int j = 0; j < 3; ++j)
+                                A[r][j] = cols[j][r];
+                        double wx = A[0][0] * v[0] + A[0][1] * v[1] + A[0][2] * v[2];
+                        double uy = v[0] * A[0][1] + v[1] * A[1][1] + v[2] * A[2][1];
+                        /* p = A A^T; p[2][1] is column 2, row 1: P(1, 2) */
+                        double p21 = A[1][0] * A[2][0] + A[1][1] * A[2][1] + A[1][2] * A[2][2];
+                        e = wx + uy + p21 + 2.0 + c + 2.0 * A[2][0];
+                    } else {
+                        double rows[3][3] = { { 1, 2, 3 }, { 4, 5, 6 }, { 7, 8, c } };
+                        memcpy(A, rows, sizeof A);
+                        double wx = A[0][0] * v[0] + A[0][1] * v[1] + A[0][2] * v[2];
+                        double uy = v[0] * A[0][1] + v[1] * A[1][1] + v[2] * A[2][1];
+                        /* p = A A^T; p[2][1] is row 2, column 1: P(2, 1) */
+                        double p21 = A[2][0] * A[1][0] + A[2][1] * A[1][1] + A[2][2] * A[1][2];
+                        e = wx + uy + p21 + c * c + 2.0 + (c * c + 1.0 + 4.0);
+                    }
+                    double got = hostjit_function(um->host)(c, 10.0, 0, 0);
+                    if (!(fabs(got - e) <= worst))
+                        worst = fabs(got - e);
+                }
+                CHECK(worst <= 1e-12, "%s: largest difference %g", path, worst);
+            }
+            usermodel_free(um);
+        }
+    }
     usermodel_clear_all();
     return check_summary();
 }

@@ -400,6 +400,9 @@ const char *sl_op_text(int op)
 /* a OP b for the arithmetic operators, with int promotion and scalar broadcast. */
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where)
 {
+    if ((sl_is_matrix(a.t) && (b.t.b == B_FLOAT || b.t.b == B_INT || sl_is_matrix(b.t))) ||
+        (sl_is_matrix(b.t) && (a.t.b == B_FLOAT || a.t.b == B_INT)))
+        return sl_matrix_arith(S, op, a, b, where);
     if (a.t.b == B_BOOL || b.t.b == B_BOOL || a.t.b == B_VOID || b.t.b == B_VOID || a.t.b == B_STRUCT ||
         b.t.b == B_STRUCT)
         FAIL(S, where, "'%s' needs numbers, not %s and %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));

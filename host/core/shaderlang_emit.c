@@ -295,6 +295,14 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
 static struct val construct(struct sl *S, struct type t, struct expr *e)
 {
     struct val r = { t, { NULL }, 1, NULL };
+    if (sl_is_matrix(t)) {
+        struct val parts[SL_MAX_ARGS];
+        if (e->nargs == 0)
+            FAIL(S, e->t, "%s() needs its values", sl_type_name(S, t));
+        for (int i = 0; i < e->nargs; ++i)
+            parts[i] = sl_ev(S, e->args[i]);
+        return sl_matrix_construct(S, t, parts, e->nargs, e->t);
+    }
     if (t.b == B_STRUCT) {
         /* NAME(a, b, ...) or { a, b, ... }: one value per field, in order */
         const struct sdef *d = t.st;
@@ -578,6 +586,21 @@ static struct val ev_index(struct sl *S, struct expr *e)
         return r.t.n > 1 ? sl_temp_val(S, r) : r;
     }
     struct val v = sl_ev(S, e->a);
+    if (sl_is_matrix(v.t)) {
+        /* a column (GLSL) or a row (HLSL) */
+        int n = v.t.st->nfields;
+        if (index_of(S, e->b, n, sl_sfmt(S, "a %s", sl_type_name(S, v.t)), &k, &idx))
+            return v.f[k];
+        v = sl_temp_val(S, v);
+        r.t = (struct type){ .b = B_FLOAT, .n = n };
+        for (int i = 0; i < n; ++i) {
+            const char *col[4];
+            for (int j = 0; j < n; ++j)
+                col[j] = v.f[j].c[i];
+            r.c[i] = select_by(S, idx, col, n);
+        }
+        return sl_temp_val(S, r);
+    }
     if (v.t.b != B_FLOAT || v.t.n < 2)
         FAIL(S, e->t, "indexing a %s (a vector or an array is indexed)", sl_type_name(S, v.t));
     if (index_of(S, e->b, v.t.n, sl_sfmt(S, "a %s", sl_type_name(S, v.t)), &k, &idx)) {
@@ -604,6 +627,31 @@ static struct val ev_call(struct sl *S, struct expr *e)
     struct func *f = sl_find_func(S, e->t);
     if (f)
         return call_user(S, f, e);
+    if (sl_tok_is(e->t, "mul") || sl_tok_is(e->t, "transpose")) {
+        int two = sl_tok_is(e->t, "mul");
+        if (e->nargs != (two ? 2 : 1))
+            FAIL(S, e->t, "%s takes %d argument%s, not %d", two ? "mul" : "transpose", two ? 2 : 1, two ? "s" : "",
+                 e->nargs);
+        struct val a = sl_ev(S, e->args[0]);
+        if (!two)
+            return sl_matrix_transpose(S, a, e->t);
+        struct val b = sl_ev(S, e->args[1]);
+        if (sl_is_matrix(a.t) || sl_is_matrix(b.t))
+            return sl_matrix_mul(S, a, b, e->t);
+        /* HLSL's mul of vectors is their dot product; of numbers, the product */
+        if (a.t.b == B_FLOAT && b.t.b == B_FLOAT && a.t.n > 1 && a.t.n == b.t.n) {
+            a = sl_temp_val(S, a);
+            b = sl_temp_val(S, b);
+            const char *d = sl_sfmt(S, "%s * %s", a.c[0], b.c[0]);
+            for (int i = 1; i < a.t.n; ++i)
+                d = sl_sfmt(S, "%s + %s * %s", d, a.c[i], b.c[i]);
+            struct val r = val_float();
+            r.uniform = 0;
+            r.c[0] = sl_sfmt(S, "(%s)", d);
+            return r;
+        }
+        return sl_arith(S, '*', a, b, e->t);
+    }
     const struct builtin *bi = sl_find_builtin(e->t);
     if (bi)
         return sl_call_builtin(S, bi, e);
@@ -776,21 +824,23 @@ static void emit_assign_indexed(struct sl *S, struct stmt *st, const char *pred)
         fail_unknown(S, ix->a->t, "identifier");
     if (s->is_const)
         FAIL(S, ix->a->t, "'%.*s' is const", ix->a->t->len, ix->a->t->p);
-    if (!s->arr_n && (s->t.b != B_FLOAT || s->t.n < 2))
+    struct sym **els = s->arr_n ? s->elem : sl_is_matrix(s->t) ? s->fields : NULL;
+    int nels = s->arr_n ? s->arr_n : sl_is_matrix(s->t) ? s->t.st->nfields : 0;
+    if (!els && (s->t.b != B_FLOAT || s->t.n < 2))
         FAIL(S, ix->t, "indexing a %s (a vector or an array is indexed)", sl_type_name(S, s->t));
-    if (!s->arr_n && l->k == E_SWZ)
+    if (!els && l->k == E_SWZ)
         FAIL(S, l->t, "a swizzle of one component");
     struct val rhs = sl_ev(S, st->e);
-    int count = s->arr_n ? s->arr_n : s->t.n;
+    int count = els ? nels : s->t.n;
     long k = 0;
     const char *idx = NULL;
     int fixed = index_of(S, ix->b, count, sl_sfmt(S, "'%.*s'", ix->a->t->len, ix->a->t->p), &k, &idx);
     if (!fixed)
         rhs = sl_temp_val(S, rhs);
     for (int j = fixed ? (int)k : 0; j < (fixed ? (int)k + 1 : count); ++j) {
-        struct sym *ts = s->arr_n ? s->elem[j] : s;
-        int comp[4] = { 0, 1, 2, 3 }, ncomp = s->arr_n ? ts->t.n : 1;
-        if (!s->arr_n)
+        struct sym *ts = els ? els[j] : s;
+        int comp[4] = { 0, 1, 2, 3 }, ncomp = els ? ts->t.n : 1;
+        if (!els)
             comp[0] = j;
         if (l->k == E_SWZ) {
             ncomp = l->nswz;

@@ -15,7 +15,7 @@
 
 #define SL_NAME_MAX 48       /* as USERMODEL_NAME_MAX */
 #define SL_MAX_PARAMS 2      /* as MODEL_MAX_PARAMS */
-#define SL_MAX_ARGS 8
+#define SL_MAX_ARGS 16       /* arguments of a call; values of a constructor (a mat4 has 16) */
 #define SL_MAX_UNROLL 256    /* iterations of one unrolled for loop */
 #define SL_MAX_UNROLL_TOTAL 8192 /* loop bodies emitted in all (nested loops multiply) */
 #define SL_MAX_OUTPUT ((size_t)4 << 20) /* bytes of translated text (loops unrolled, helpers inlined) */
@@ -71,6 +71,7 @@ struct sdef {
     int nfields;
     const struct tok *fname[SL_MAX_FIELDS];
     struct type fty[SL_MAX_FIELDS];
+    int is_matrix;         /* 1: GLSL's matN (fields are columns), 2: HLSL's floatNxN (rows) */
     struct sdef *next;
 };
 
@@ -298,6 +299,15 @@ struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const stru
 /* The built-in function a call names, or NULL. */
 const struct builtin *sl_find_builtin(const struct tok *t);
 struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *e);
+
+/* ---- square matrices, structs of vectors (shaderlang_matrix.c) ---- */
+const struct sdef *sl_matrix_def(int n, int rows);
+int sl_is_matrix(struct type t);
+int sl_matrix_of_name(const char *w, int *n, int *rows);
+struct val sl_matrix_transpose(struct sl *S, struct val a, const struct tok *where);
+struct val sl_matrix_mul(struct sl *S, struct val a, struct val b, const struct tok *where);
+struct val sl_matrix_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where);
+struct val sl_matrix_construct(struct sl *S, struct type t, struct val *parts, int nparts, const struct tok *where);
 
 /* ---- constructors, calls, expressions and statements, emitted as C (shaderlang_emit.c) ---- */
 struct func *sl_find_func(struct sl *S, const struct tok *t);

@@ -74,6 +74,12 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
         *ty = (struct type){ .b = B_VOID, .n = 1 };
         return 1;
     }
+    int mn, rows;
+    if (sl_matrix_of_name(w, &mn, &rows)) {
+        *ty = (struct type){ .b = B_STRUCT, .n = 1, .st = sl_matrix_def(mn, rows) };
+        *shader_only = 1;
+        return 1;
+    }
     size_t l = strlen(w);
     char last = w[l - 1];
     if (last >= '2' && last <= '4') {
@@ -124,9 +130,6 @@ static void check_unsupported_word(struct sl *S, const struct tok *t)
         { "volatile", "volatile is not accepted in a model (a model has no memory but its own values)" },
         { "sizeof", "sizeof is not accepted in a model (a model has no memory but its own values)" },
         { "goto", "goto is not accepted in a model" },
-        { "mat2", "matrices are not supported" }, { "mat3", "matrices are not supported" },
-        { "mat4", "matrices are not supported" }, { "float3x3", "matrices are not supported" },
-        { "float4x4", "matrices are not supported" },
         { NULL, NULL } };
     for (int i = 0; words[i].w; ++i)
         if (sl_tok_is(t, words[i].w))
