@@ -117,6 +117,16 @@ static double f_vec_index(double c, double n) { (void)n; return (c + 3.0) * (c +
 static double f_arr_write(double c, double n) { (void)n; return 1.0 + c * (2.0 * c); }
 static double f_vec_pow(double c, double n) { (void)n; return pow(c, 2.2) + pow(0.5, 2.2); }
 
+static double f_while_halve(double c, double n)
+{
+    (void)n;
+    double x = c + 0.05;
+    while (x > 0.1)
+        x = x * 0.5;
+    return x;
+}
+static double f_do_three(double c, double n) { (void)n; return c + c + c; }
+
 static const struct feature features[] = {
     { "f1=saturate(c*1.5)", f_saturate },
     { "f2=lerp(c, 1.0, 0.25)", f_lerp },
@@ -158,6 +168,10 @@ static const struct feature features[] = {
     { "f33=float a[4]; int j = 1; a[j] = c; a[j + 1] = 2.0 * c; a[0] += 1.0; return a[0] + a[1] * a[2];",
       f_arr_write },
     { "f34=vec3 x = vec3(c, 0.5, 1.0); return pow(x[0], 2.2) + pow(x[1], 2.2);", f_vec_pow },
+    /* while and do loops, lane by lane (each lane stops when its condition fails), an int counter
+       stepped by a condition that is the same in every lane */
+    { "f35=float x = c + 0.05; while (x > 0.1) x = x * 0.5; return x;", f_while_halve },
+    { "f36=float s = 0.0; int i = 0; do { s += c; i++; } while (i < 3); return s;", f_do_three },
     { "f29=vec3 f = faceforward(vec3(c, 1.0, 0.0), vec3(0.0, 0.0, c - 0.5), vec3(0.0, 0.0, 1.0)); return f.x + f.y;",
       f_faceforward },
     { NULL, NULL } };
@@ -253,7 +267,8 @@ int main(void)
         { "e3=float t = c;", "--model e3:1:13: the model ends without returning a value" },
         { "e4=saturate(c) * q", "--model e4:1:15: use of undeclared identifier 'q'" },
         { "e5=return dot(vec3(c), vec2(c));", "--model e5:1:21: dot of vectors of different sizes" },
-        { "e6=while (c > 0.5) c = c * 0.5; return c;", "--model e6:1:1: while loops are not supported" },
+        /* "float x = c; while (x > 0.5) { x = x * 0.5; break; } return x;": break is character 45 */
+        { "e6=float x = c; while (x > 0.5) { x = x * 0.5; break; } return x;", "--model e6:1:45: break is not supported" },
         { "e7=vec3 v = vec3(c, n); return v.x;", "--model e7:1:10: vec3(...) needs 3 components, these give 2" },
         { NULL, NULL } };
     for (int i = 0; errors[i].arg; ++i) {
@@ -509,6 +524,17 @@ int main(void)
         CHECK(rc == 0, "ix3: %s", err);
         if (rc == 0 && usermodel_host_ready(um))
             CHECK(isnan(hostjit_function(um->host)(0.5, 2.0, 0, 0)), "ix3: w[3] is not NaN");
+        usermodel_free(um);
+    }
+
+    /* 10c. A loop that has not ended after the unrolled copies leaves NaN in what it wrote. */
+    {
+        struct user_model *um = NULL;
+        int rc = usermodel_parse_expression("wl=float x = c + 1.0; while (x > 0.0) x = x + 1.0; return x;", &um, err,
+                                            sizeof err);
+        CHECK(rc == 0, "wl: %s", err);
+        if (rc == 0 && usermodel_host_ready(um))
+            CHECK(isnan(hostjit_function(um->host)(0.5, 2.0, 0, 0)), "wl: an endless loop's value is not NaN");
         usermodel_free(um);
     }
 

@@ -729,11 +729,35 @@ static const char *and_cond(struct sl *S, const char *a, const char *b)
     return sl_sfmt(S, "(%s && %s)", a, b);
 }
 
+/* A float variable a while/do loop writes (emit_while makes it NaN where the loop did not end). */
+static void loop_note(struct sl *S, struct sym *s)
+{
+    for (int i = 0; i < S->nloop_syms; ++i)
+        if (S->loop_syms[i] == s)
+            return;
+    if (S->nloop_syms == S->loop_syms_cap) {
+        int cap = S->loop_syms_cap ? 2 * S->loop_syms_cap : 16;
+        struct sym **v = sl_arena_alloc(S, sizeof *v * (size_t)cap);
+        if (S->nloop_syms)
+            memcpy(v, S->loop_syms, sizeof *v * (size_t)S->nloop_syms);
+        S->loop_syms = v;
+        S->loop_syms_cap = cap;
+    }
+    S->loop_syms[S->nloop_syms++] = s;
+}
+
 static void assign_sym(struct sl *S, struct sym *s, const int *comp, int ncomp, struct val v, const char *pred,
                        const struct tok *where)
 {
     const char *E = effective(S, pred);
+    if (S->loop_syms && s->t.b == B_FLOAT)
+        loop_note(S, s);
     if (s->t.b == B_INT) {
+        if (E && !strstr(E, "RSPLAT")) {
+            /* a condition the same in every lane (ints only): the int may follow it */
+            sl_out_line(S, "%s = (%s) ? %s : %s;", s->c[0], E, v.c[0], s->c[0]);
+            return;
+        }
         if (E)
             FAIL(S, where, "the int '%s' is assigned under a condition: make it a float", sl_sfmt(S, "%.*s", s->len, s->name));
         sl_out_line(S, "%s = %s;", s->c[0], v.c[0]);
@@ -1115,6 +1139,68 @@ static int const_int(struct sl *S, struct expr *e, long *out)
 
 static void emit_stmt(struct sl *S, struct stmt *st, const char *pred);
 
+/* while (COND) BODY and do BODY while (COND): unrolled SL_MAX_WHILE times, lane by lane. A
+ * lane runs the body while it has not left the loop (its mask); a condition the same in every
+ * lane (ints) keeps the mask an int, so an int counter may step. A lane still in the loop after
+ * the last copy has not finished: what the loop wrote is NaN there, which the figures show. */
+static void emit_while(struct sl *S, struct stmt *st, const char *pred, int is_do)
+{
+    if (sl_stmt_returns(st->s3))
+        FAIL(S, st->t, "a return inside a %s loop is not supported", is_do ? "do" : "while");
+    int k = ++S->ntemp;
+    /* the condition's kind, from its first evaluation: uniform (an int mask) or not (a REAL one) */
+    int uniform = -1;
+    const char *w = NULL, *wc = NULL;
+    struct sym **saved = S->loop_syms;
+    int saved_n = S->nloop_syms, saved_cap = S->loop_syms_cap;
+    S->loop_syms = sl_arena_alloc(S, sizeof *S->loop_syms * 16);
+    S->nloop_syms = 0;
+    S->loop_syms_cap = 16;
+    for (int it = 0; it <= SL_MAX_WHILE; ++it) {
+        if (++S->unrolled > SL_MAX_UNROLL_TOTAL)
+            FAIL(S, st->t, "the loops unroll to more than %d iterations in all (nested loops multiply; "
+                 "a while or do loop is unrolled %d times)", SL_MAX_UNROLL_TOTAL, SL_MAX_WHILE);
+        S->stmt_line = st->t->line;
+        if (!is_do || it > 0) {
+            struct val c = sl_ev(S, st->e);
+            if (c.t.b != B_BOOL)
+                FAIL(S, st->e->t, "the condition of %s is a %s, not a comparison", is_do ? "do ... while" : "while",
+                     sl_type_name(S, c.t));
+            if (uniform < 0) {
+                uniform = c.uniform && (!pred || !strstr(pred, "RSPLAT")) && !S->fn->live;
+                w = sl_sfmt(S, uniform ? "sl_bw%d" : "sl_w%d", k);
+                sl_out_line(S, uniform ? "int %s = 1;" : "REAL %s = RSPLAT(1.0);", w);
+                wc = uniform ? w : sl_sfmt(S, "(%s != RSPLAT(0.0))", w);
+            }
+            if (uniform)
+                sl_out_line(S, "%s = %s && %s;", w, w, c.c[0]);
+            else
+                sl_out_line(S, "%s = (%s && %s) ? RSPLAT(1.0) : RSPLAT(0.0);", w, wc, c.c[0]);
+        }
+        if (it == SL_MAX_WHILE)
+            break; /* the last evaluation: lanes still in the loop */
+        const char *bp = pred;
+        if (wc)
+            bp = sl_temp_cond(S, and_cond(S, pred, wc), uniform > 0);
+        sl_emit_block(S, st->s3, bp, 1);
+    }
+    /* lanes that did not finish: what the loop wrote becomes NaN */
+    const char *E = effective(S, and_cond(S, pred, wc));
+    for (int i = 0; i < S->nloop_syms; ++i) {
+        struct sym *s = S->loop_syms[i];
+        for (int c = 0; c < s->t.n; ++c)
+            sl_out_line(S, "%s = %s ? (RSPLAT(0.0) / RSPLAT(0.0)) : %s;", s->c[c], E, s->c[c]);
+    }
+    struct sym **inner = S->loop_syms;
+    int ninner = S->nloop_syms;
+    S->loop_syms = saved;
+    S->nloop_syms = saved_n;
+    S->loop_syms_cap = saved_cap;
+    /* an enclosing loop also wrote what this one wrote */
+    for (int i = 0; saved && i < ninner; ++i)
+        loop_note(S, inner[i]);
+}
+
 /* for (int i = A; i < B; i++) with constant A and B: unrolled. */
 static void emit_for(struct sl *S, struct stmt *st, const char *pred)
 {
@@ -1194,6 +1280,10 @@ static void emit_stmt_inner(struct sl *S, struct stmt *st, const char *pred)
         return;
     case S_FOR:
         emit_for(S, st, pred);
+        return;
+    case S_WHILE:
+    case S_DO:
+        emit_while(S, st, pred, st->k == S_DO);
         return;
     case S_IF: {
         struct val c = sl_ev(S, st->e);

@@ -17,6 +17,7 @@
 #define SL_MAX_PARAMS 2      /* as MODEL_MAX_PARAMS */
 #define SL_MAX_ARGS 16       /* arguments of a call; values of a constructor (a mat4 has 16) */
 #define SL_MAX_UNROLL 256    /* iterations of one unrolled for loop */
+#define SL_MAX_WHILE 32      /* iterations of a while or do loop (unrolled, lane by lane) */
 #define SL_MAX_UNROLL_TOTAL 8192 /* loop bodies emitted in all (nested loops multiply) */
 #define SL_MAX_OUTPUT ((size_t)4 << 20) /* bytes of translated text (loops unrolled, helpers inlined) */
 #define SL_MAX_INLINE 16     /* nested calls of helper functions */
@@ -90,7 +91,7 @@ struct expr {
     struct type ctor;
 };
 
-enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL };
+enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL, S_WHILE, S_DO };
 struct stmt {
     int k;
     const struct tok *t;
@@ -208,6 +209,8 @@ struct sl {
     int ninline;
     struct fnctx *fn;
     const char *cur_pred;      /* the predicate of the statement being emitted (out parameters' write-back) */
+    struct sym **loop_syms;    /* inside a while/do loop: the float variables it writes */
+    int nloop_syms, loop_syms_cap;
     int depth;                 /* of the parser's recursion */
 };
 

@@ -115,8 +115,6 @@ static int is_qualifier(const struct tok *t)
 static void check_unsupported_word(struct sl *S, const struct tok *t)
 {
     static const struct { const char *w, *why; } words[] = {
-        { "while", "while loops are not supported (a for loop with constant bounds is)" },
-        { "do", "do loops are not supported (a for loop with constant bounds is)" },
         { "switch", "switch is not supported (use if/else)" },
         { "break", "break is not supported" },
         { "continue", "continue is not supported" },
@@ -622,6 +620,25 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
         s->e = parse_expr(S);
         if (!(top_body && sl_peek(S)->k == K_EOF))
             expect(S, ";");
+        return s;
+    }
+    if (sl_tok_is(t, "while") || sl_tok_is(t, "do")) {
+        /* while (COND) BODY; do BODY while (COND); */
+        int is_do = sl_tok_is(t, "do");
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, is_do ? S_DO : S_WHILE, t);
+        if (is_do) {
+            s->s3 = parse_statement(S, 0);
+            expect(S, "while");
+        }
+        expect(S, "(");
+        s->e = parse_expr(S);
+        expect(S, ")");
+        if (is_do)
+            expect(S, ";");
+        else
+            s->s3 = parse_statement(S, 0);
         return s;
     }
     if (sl_tok_is(t, "for")) {
