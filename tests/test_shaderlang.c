@@ -126,6 +126,7 @@ static double f_while_halve(double c, double n)
     return x;
 }
 static double f_do_three(double c, double n) { (void)n; return c + c + c; }
+static double f_min16(double c, double n) { (void)n; return c * 2.0; }
 
 static const struct feature features[] = {
     { "f1=saturate(c*1.5)", f_saturate },
@@ -171,6 +172,8 @@ static const struct feature features[] = {
     /* while and do loops, lane by lane (each lane stops when its condition fails), an int counter
        stepped by a condition that is the same in every lane */
     { "f35=float x = c + 0.05; while (x > 0.1) x = x * 0.5; return x;", f_while_halve },
+    /* HLSL's min16float vectors and precision qualifiers are floats here */
+    { "f37=min16float2 v = min16float2(c, 2.0); mediump float t = v.x * v.y; return t;", f_min16 },
     { "f36=float s = 0.0; int i = 0; do { s += c; i++; } while (i < 3); return s;", f_do_three },
     { "f29=vec3 f = faceforward(vec3(c, 1.0, 0.0), vec3(0.0, 0.0, c - 0.5), vec3(0.0, 0.0, 1.0)); return f.x + f.y;",
       f_faceforward },

@@ -84,7 +84,8 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     char last = w[l - 1];
     if (last >= '2' && last <= '4') {
         w[l - 1] = '\0';
-        if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0) {
+        if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0 ||
+            strcmp(w, "min16float") == 0) {
             *ty = (struct type){ .b = B_FLOAT, .n = last - '0' };
             *shader_only = 1;
             return 1;
