@@ -181,9 +181,17 @@ static void lex_operator(struct sl *S, const char *p, const char *end, struct to
     if (!t->len && strchr(ops1, ch) && ch)
         t->len = 1;
     if (!t->len) {
-        if (ch == '&')
+        if (ch == '&') {
+            /* after a value it is a bitwise and (an OpenCL C expression may have one); anywhere
+               else it takes an address, refused for good */
+            const struct tok *prev = S->toks.n > 0 ? &S->toks.v[S->toks.n - 1] : NULL;
+            int after_value = prev && (prev->k == K_ID || prev->k == K_INT || prev->k == K_FLT ||
+                                       sl_tok_is(prev, ")") || sl_tok_is(prev, "]"));
+            if (!after_value)
+                S->shader_only = 1;
             sl_fail_at(S, t->line, t->col, "'&' takes an address (or is a bitwise and): pointers and bit "
                        "operations are not accepted in a model");
+        }
         if (ch == '"' || ch == '\'')
             sl_fail_at(S, t->line, t->col, "a string or character literal: a model has none (and calls only the "
                        "math built-ins and its own functions)");

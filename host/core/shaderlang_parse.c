@@ -131,8 +131,13 @@ static void check_unsupported_word(struct sl *S, const struct tok *t)
         { "goto", "goto is not accepted in a model" },
         { NULL, NULL } };
     for (int i = 0; words[i].w; ++i)
-        if (sl_tok_is(t, words[i].w))
+        if (sl_tok_is(t, words[i].w)) {
+            /* what no model may do is refused for good: not left to the OpenCL C reading of a
+               --model expression */
+            if (strstr(words[i].why, "not accepted in a model"))
+                S->shader_only = 1;
             FAIL(S, t, "%s", words[i].why);
+        }
 }
 
 static struct expr *new_expr(struct sl *S, int k, const struct tok *t)
@@ -249,12 +254,16 @@ static struct expr *parse_primary(struct sl *S)
                  t->len, t->p);
         return new_expr(S, E_VAR, t);
     }
-    if (sl_tok_is(t, "*"))
+    if (sl_tok_is(t, "*")) {
+        S->shader_only = 1; /* refused for good, not left to OpenCL C */
         FAIL(S, t, "'*' before a value reads through a pointer: pointers are not accepted in a model");
+    }
     if (sl_tok_is(t, "(")) {
         const struct tok *t1 = peek_at(S, 1);
-        if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), "*"))
+        if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), "*")) {
+            S->shader_only = 1;
             FAIL(S, peek_at(S, 2), "a cast to a pointer type: pointers are not accepted in a model");
+        }
         if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), ")")) {
             /* a cast: (float)x, (int)x, (float3)x */
             next(S);

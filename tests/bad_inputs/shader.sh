@@ -45,3 +45,8 @@ t 2 "^brdfbench accuracy: shader_in/define_key.glsl:3: define: '1X': expected NA
 t 2 "^brdfbench accuracy: -D '1X': expected NAME or NAME=VALUE with NAME an identifier of 1 to 48 characters" accuracy -D 1X --model-file shader_in/define_key.glsl
 t 2 "^brdfbench accuracy: -D X: given after --model-file shader_in/ok.glsl; put -D before" accuracy --model-file shader_in/ok.glsl -D X
 t 2 "^brdfbench throughput: -D 'X=': the value must have 1 to" throughput -D X= --model-file shader_in/unroll.glsl
+# --model texts: a pointer construct is refused by the shader-language parser for good, not
+# compiled as OpenCL C (the first ran and wrote its outputs before)
+t 2 "^brdfbench accuracy: --model z:1:5: '\*' before a value reads through a pointer: pointers are not accepted in a model$" accuracy --model 'z=c + *(float*)8' --n-max 3 --samples 16 --out shader_ze
+t 2 "^brdfbench accuracy: --model z:1:5: sizeof is not accepted in a model" accuracy --model 'z=c + sizeof(c)' --n-max 3 --samples 16 --out shader_ze
+t 2 "^brdfbench accuracy: --model z:1:2: '&' takes an address" accuracy --model 'z=(&c)[0]' --n-max 3 --samples 16 --out shader_ze
