@@ -174,6 +174,9 @@ static const struct feature features[] = {
     { "f35=float x = c + 0.05; while (x > 0.1) x = x * 0.5; return x;", f_while_halve },
     /* HLSL's min16float vectors and precision qualifiers are floats here */
     { "f37=min16float2 v = min16float2(c, 2.0); mediump float t = v.x * v.y; return t;", f_min16 },
+    /* HLSL attributes before loops and branches are hints, nothing to the value */
+    { "f38=float b = c; [unroll] for (int i = 0; i < 3; i++) b *= b; [branch] if (c < 0.0) b = 0.0; "
+      "[unroll(4)] for (int j = 0; j < 0; j++) b = 0.0; return b;", f_loop },
     { "f36=float s = 0.0; int i = 0; do { s += c; i++; } while (i < 3); return s;", f_do_three },
     { "f29=vec3 f = faceforward(vec3(c, 1.0, 0.0), vec3(0.0, 0.0, c - 0.5), vec3(0.0, 0.0, 1.0)); return f.x + f.y;",
       f_faceforward },

@@ -106,7 +106,7 @@ const struct sdef *sl_find_struct(struct sl *S, const struct tok *t)
 
 static int is_qualifier(const struct tok *t)
 {
-    static const char *q[] = { "highp", "mediump", "lowp", "precise", "in", NULL };
+    static const char *q[] = { "highp", "mediump", "lowp", "precise", "in", "inline", NULL };
     for (int i = 0; q[i]; ++i)
         if (sl_tok_is(t, q[i]))
             return 1;
@@ -601,6 +601,19 @@ static struct stmt *parse_statement(struct sl *S, int top_body)
 
 static struct stmt *parse_statement_inner(struct sl *S, int top_body)
 {
+    /* HLSL's attributes before a statement ([unroll], [loop], [branch], [flatten], [unroll(4)]):
+       hints to a compiler, nothing to a lobe's value (loops are unrolled here anyway) */
+    while (sl_tok_is(sl_peek(S), "[") && peek_at(S, 1)->k == K_ID &&
+           (sl_tok_is(peek_at(S, 2), "]") || sl_tok_is(peek_at(S, 2), "("))) {
+        next(S);
+        next(S);
+        if (accept(S, "(")) {
+            while (!sl_tok_is(sl_peek(S), ")") && sl_peek(S)->k != K_EOF)
+                next(S);
+            expect(S, ")");
+        }
+        expect(S, "]");
+    }
     const struct tok *t = sl_peek(S);
     check_unsupported_word(S, t);
     if (sl_tok_is(t, "{"))
