@@ -496,7 +496,7 @@ int main(void)
             { "float e(float c, float n) {\n#line 50\n  return c + zz;\n}\n", "e2.txt",
               "e2.txt:50:14: use of undeclared identifier 'zz'" },
             { "float e(float c, float n) {\n#line 50\n  return c + zz;\n}\n", "e2.glsl",
-              "e2.glsl:50: 'zz': undeclared identifier (glslang" },
+              "e2.glsl:50:14: 'zz': undeclared identifier (glslang" },
             { "#ifndef X\n#error X is needed\n#endif\nfloat e(float c, float n) { return c; }\n", "e3.glsl",
               "e3.glsl:2: #error: X is needed (glslang's preprocessor)" },
             { "#if 1\nfloat e(float c, float n) { return c; }\n", "e4.glsl", "e4.glsl:3: missing #endif" },

@@ -244,6 +244,33 @@ static void start_glslang(struct sl *S)
 }
 #endif
 
+/* The line of the text that a compiler numbers `logical` (#line N numbers the next line N), or 0. */
+static int physical_line(const char *text, size_t len, int logical)
+{
+    int phys = 1, num = 1;
+    for (size_t i = 0; i < len;) {
+        if (num == logical)
+            return phys;
+        const char *eol = memchr(text + i, '\n', len - i);
+        size_t e = eol ? (size_t)(eol - text) : len;
+        size_t k = i;
+        while (k < e && (text[k] == ' ' || text[k] == '\t'))
+            ++k;
+        int next_num = num + 1;
+        if (k < e && text[k] == '#') {
+            ++k;
+            while (k < e && (text[k] == ' ' || text[k] == '\t'))
+                ++k;
+            if (e - k > 4 && strncmp(text + k, "line", 4) == 0 && (text[k + 4] == ' ' || text[k + 4] == '\t'))
+                next_num = atoi(text + k + 5);
+        }
+        num = next_num;
+        ++phys;
+        i = e + 1;
+    }
+    return num == logical ? phys : 0;
+}
+
 void sl_validate(struct sl *S, const char *text, size_t len, int first_line, const struct header *h)
 {
     int lang = language_of(S->origin);
@@ -310,11 +337,13 @@ void sl_validate(struct sl *S, const char *text, size_t len, int first_line, con
         msg = sep + 4;
         mlen = elen - (int)(sep + 4 - e);
     }
-    /* the column: the token looked for in the user's line, as a whole word */
+    /* the column: the token looked for in the user's line, as a whole word (the text's own
+       line, where a #line renumbered those after it) */
     int col = -1;
-    if (line > 0 && tokbuf[0]) {
+    int phys = physical_line(text, len, line);
+    if (phys > 0 && tokbuf[0]) {
         const char *ls = text;
-        for (int l = 1; l < line && ls; ++l) {
+        for (int l = 1; l < phys && ls; ++l) {
             ls = memchr(ls, '\n', len - (size_t)(ls - text));
             ls = ls ? ls + 1 : NULL;
         }
