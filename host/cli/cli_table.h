@@ -183,7 +183,11 @@ int cli_call_timeout(const char *flag, const char *value, void *dest, char *err,
 /* User models (host/core/usermodel.h): registered as they are read. */
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_define(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 #define CLI_FLAGS_USERMODEL                                                                                        \
+    { .name = "-D", .value = "NAME[=VALUE]", .kind = CLI_CALL, .call = cli_call_define, .def = "",                 \
+      .help = "define NAME (as VALUE, else 1) for the preprocessor of the GLSL/HLSL model files given after "    \
+              "it (#if, #ifdef; docs/user-models.md); repeatable, at most 16" },                                   \
     { .name = "--model-file", .value = "FILE", .kind = CLI_CALL, .call = cli_call_model_file, .def = "",           \
       .help = "add the user model of FILE: OpenCL C (FILE.cl) or GLSL/HLSL (FILE.glsl, FILE.hlsl; see "         \
               "docs/user-models.md); repeatable; the same file twice is read once" },                            \
