@@ -15,11 +15,11 @@
 
 #if TARGET_MOBILE
 float distribution(float linearRoughness, float NoH) {
-    // the mobile form: 1 - NoH^2 through a cross product, in half precision on a GPU
-    float oneMinusNoHSquared = 1.0 - NoH * NoH;
-    float a = NoH * linearRoughness;
-    float k = linearRoughness / (oneMinusNoHSquared + a * a);
-    return clampMediump(k * k * (1.0 / PI_F));
+    // the form written for half precision: sin^2 theta_h kept apart from the cosine term
+    float sin2 = 1.0 - NoH * NoH;
+    float ac = NoH * linearRoughness;
+    float ratio = linearRoughness / (sin2 + ac * ac);
+    return clampMediump(ratio * ratio * (1.0 / PI_F));
 }
 #elif defined(SPECULAR_AMBIENT_OCCLUSION)
 float distribution(float roughness, float NoH) {
