@@ -28,7 +28,7 @@ const char *model_family_name(enum model_family f)
 {
     static const char *const names[MODEL_FAMILY_COUNT] = {
         "reference", "quadratic", "rational", "normalised", "microfacet", "gaussian",
-        "power", "angular", "bits", "physical", "user" };
+        "power", "angular", "bits", "physical", "user", "term" };
     return f >= 0 && f < MODEL_FAMILY_COUNT ? names[f] : "?";
 }
 

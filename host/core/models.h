@@ -24,6 +24,7 @@ enum model_family {
     MODEL_FAMILY_BITS,
     MODEL_FAMILY_PHYSICAL,
     MODEL_FAMILY_USER,
+    MODEL_FAMILY_TERM,      /* a term of a microfacet BRDF: Fresnel, shadowing-masking */
     MODEL_FAMILY_COUNT
 };
 const char *model_family_name(enum model_family f);
