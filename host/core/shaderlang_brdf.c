@@ -4,6 +4,7 @@
 #include "shaderlang_internal.h"
 #include "exitcodes.h"
 #include "mdbuf.h"
+#include "models.h"
 
 #include <ctype.h>
 #include <setjmp.h>
@@ -325,6 +326,12 @@ static int brdf_check_header(const char *text, size_t len, int line, const char 
                              BRDF_HEADER_KEYS "; its parameters are those of ::begin parameters)", a);
         if (seen[k]++)
             return brdf_fail(err, errlen, path, line, "'%s' is declared twice", keys[k]);
+        /* the rule of a model file's reference (usermodel.c), said here at the file's own line:
+           the translation's header has lines of its own */
+        const struct model_info *ref = k == 1 ? models_find(v) : NULL;
+        if (k == 1 && (!ref || !model_is_builtin(ref)))
+            return brdf_fail(err, errlen, path, line, "reference '%.40s' is not a built-in model (see brdfbench "
+                             "list)", v);
         if (k == 2) {
             if (strcmp(v, "theta_h") == 0)
                 D->geom = GEOM_THETA_H;
@@ -358,9 +365,10 @@ static void brdf_header_text(struct md_buf *hb, const struct header *sh, const c
         }
         md_printf(hb, "\n");
     }
-    /* psi is the lobe variable of a Phong lobe; the others are theta_h for the registry (a full
-       BRDF is shaded from its vectors) */
-    md_printf(hb, " * reference: %s\n * lobe: %s\n", sh->reference[0] ? sh->reference : "blinn",
+    /* psi is the lobe variable of a Phong lobe, whose reference is phong; the others are theta_h
+       for the registry (a full BRDF is shaded from its vectors) */
+    md_printf(hb, " * reference: %s\n * lobe: %s\n",
+              sh->reference[0] ? sh->reference : D->geom == GEOM_PSI ? "phong" : "blinn",
               D->geom == GEOM_PSI ? "psi" : "theta_h");
     for (int i = 0; i < D->nmp; ++i) {
         const struct brdf_param *q = &D->prm[D->model_params[i]];

@@ -670,11 +670,11 @@ int usermodel_register(struct user_model *um, char *err, size_t errlen)
     const struct model_info *taken = models_find(um->name);
     /* A .brdf file's model whose name is taken lives in its file's namespace: phong.brdf's phong
        is phong@phong.brdf beside the built-in phong. */
-    if (taken && um->qualified[0] && !models_find(um->qualified)) {
+    if (taken && um->qualified[0]) {
+        taken = models_find(um->qualified);   /* NULL, or another file of the same name */
         snprintf(um->name, sizeof um->name, "%s", um->qualified);
         um->qualified[0] = '\0';
         snprintf(um->what, sizeof um->what, "user model '%s' (%s)", um->name, um->origin);
-        taken = NULL;
     }
     if (um->qualified[0] && models_find(um->qualified))
         um->qualified[0] = '\0';   /* that name is another model's: the model keeps its own alone */
