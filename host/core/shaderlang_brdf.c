@@ -54,15 +54,19 @@ enum brdf_conv { CONV_N, CONV_ALPHA, CONV_ROUGHNESS, CONV_F0 };
 static const struct {
     const char *name;
     enum brdf_conv conv;
+    int alone;   /* taken only when it is the file's one float parameter (a Fresnel term's) */
 } brdf_lobe_params[] = {
-    { "n", CONV_N },                 /* a Phong / Blinn-Phong exponent */
-    { "alpha", CONV_ALPHA },         /* alpha = sqrt(2 / (n + 2)), the microfacet built-ins' width */
-    { "alphaG", CONV_ALPHA },        /* Walter et al.'s GGX width */
-    { "m", CONV_ALPHA },             /* Beckmann's rms slope m = alpha */
-    { "roughness", CONV_ROUGHNESS }, /* the engines' roughness: alpha = roughness^2 */
-    { "ior", CONV_N },               /* a Fresnel term's index of refraction: the axis of the built-in fresnel */
-    { "f0", CONV_F0 },               /* Fresnel at normal incidence of that index: ((n - 1) / (n + 1))^2 */
-    { "F0", CONV_F0 },
+    { "n", CONV_N, 0 },                 /* a Phong / Blinn-Phong exponent */
+    { "alpha", CONV_ALPHA, 0 },         /* alpha = sqrt(2 / (n + 2)), the microfacet built-ins' width */
+    { "alphaG", CONV_ALPHA, 0 },        /* Walter et al.'s GGX width */
+    { "m", CONV_ALPHA, 0 },             /* Beckmann's rms slope m = alpha */
+    { "roughness", CONV_ROUGHNESS, 0 }, /* the engines' roughness: alpha = roughness^2 */
+    /* a Fresnel term's index of refraction, the axis of the built-in fresnel, and the reflectance
+       at normal incidence of that index, ((n - 1) / (n + 1))^2; beside other floats (a full
+       BRDF's F0) they keep their defaults */
+    { "ior", CONV_N, 1 },
+    { "f0", CONV_F0, 1 },
+    { "F0", CONV_F0, 1 },
 };
 
 /* Where L and V lie for the lobe's cosine c (the header's lobe: key). */
@@ -237,10 +241,13 @@ static int brdf_blocks(const char *text, size_t len, const char *path, struct br
 static void brdf_choose_params(struct brdf_doc *D)
 {
     const struct brdf_param *prm = D->prm;
+    int nfloat = 0;
+    for (int k = 0; k < D->nprm; ++k)
+        nfloat += prm[k].type == 'f';
     D->lobe_param = -1;
     D->nmp = 0;
     for (size_t t = 0; t < sizeof brdf_lobe_params / sizeof brdf_lobe_params[0] && D->lobe_param < 0; ++t)
-        for (int k = 0; k < D->nprm; ++k)
+        for (int k = 0; k < D->nprm && (!brdf_lobe_params[t].alone || nfloat == 1); ++k)
             if (prm[k].type == 'f' && strcmp(prm[k].name, brdf_lobe_params[t].name) == 0) {
                 D->lobe_param = k;
                 D->conv = brdf_lobe_params[t].conv;
