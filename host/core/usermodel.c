@@ -225,8 +225,9 @@ static int file_fail(char *err, size_t errlen, const char *path, int line, const
 }
 
 /* One "param: NAME MIN MAX DEFAULT [integer]" line. generated: the header was written by the
-   translator (shaderlang.h) for a file whose names it checked; there NAME only labels the value
-   (the code takes it as p0 or p1), so c and n are names like others (BRDF Explorer's c). */
+   translator (shaderlang.h) for a .brdf file, whose parameter names it checked; there NAME only
+   labels the value (the code takes it as p0 or p1), so c and n are names like others (BRDF
+   Explorer's c). */
 static int parse_param_line(struct user_model *um, char *value, const char *path, int line, char *err,
                             size_t errlen, int generated)
 {
@@ -499,7 +500,9 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
 
     char *close = NULL;
     struct header_seen seen = {0};
-    seen.generated = sl == 0;
+    /* a .brdf file's parameters come from its ::begin parameters block, checked by the translator */
+    size_t pl = strlen(path);
+    seen.generated = sl == 0 && pl > 5 && strcmp(path + pl - 5, ".brdf") == 0;
     if ((rc = parse_header(um, copy, &close, &seen, path, err, errlen)) != 0)
         goto done;
     if (!seen.name) {
