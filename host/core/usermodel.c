@@ -447,9 +447,12 @@ static void brdf_qualified_name(struct user_model *um, const char *path)
     um->qualified[0] = '\0';
     if (bl < 6 || strcmp(base + bl - 5, ".brdf") != 0 || strcspn(base, ",:= \t\r\n@") != bl)
         return;
-    if (strlen(um->name) + 1 + bl > USERMODEL_NAME_MAX)
+    size_t nl = strlen(um->name);
+    if (nl + 1 + bl > USERMODEL_NAME_MAX)
         return;
-    snprintf(um->qualified, sizeof um->qualified, "%s@%s", um->name, base);
+    memcpy(um->qualified, um->name, nl);
+    um->qualified[nl] = '@';
+    memcpy(um->qualified + nl + 1, base, bl + 1);
 }
 
 /* Set while the translation of a --model expression is parsed: machine-made text, whose own
