@@ -132,6 +132,15 @@ static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_ke
     return rc;
 }
 
+/* The reference model m is measured against: --reference's, or its own. */
+static void reference_of(const struct accuracy_ctx *a, const struct model_spec *m, struct model_spec *ref)
+{
+    if (a->reference)
+        *ref = *a->reference;
+    else
+        model_reference_spec(m, ref);
+}
+
 int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m)
 {
     cl_kernel sweep, probe;
@@ -428,7 +437,7 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
     if ((rc = accuracy_prepare(a, m)) != 0)   /* a user model's compile error before any allocation */
         return rc;
     out->model = *m;
-    model_reference_spec(m, &out->reference);
+    reference_of(a, m, &out->reference);
     out->grid = *g;
     out->n_count = accuracy_grid_count(g);
     long count = out->n_count;
@@ -538,7 +547,7 @@ done:
  * frontier, the gates of `all` or `gate`) that ask for the same sweep get the first one's
  * result instead of running it again. */
 struct sweep_memo {
-    char device[256], driver[256], platform[256], options[256];
+    char device[256], driver[256], platform[256], options[256], reference[MODEL_LABEL_MAX];
     int specialise;
     struct model_spec model;
     struct accuracy_grid grid;
@@ -555,7 +564,8 @@ static int same_sweep(const struct sweep_memo *e, const struct accuracy_ctx *a, 
            memcmp(e->model.params, m->params, sizeof m->params) == 0 && strcmp(e->model.label, m->label) == 0 &&
            memcmp(&e->grid, g, sizeof *g) == 0 && strcmp(e->options, a->build_options) == 0 &&
            strcmp(e->device, a->s->device_name) == 0 && strcmp(e->driver, a->s->driver_version) == 0 &&
-           strcmp(e->platform, a->s->platform_version) == 0;
+           strcmp(e->platform, a->s->platform_version) == 0 &&
+           strcmp(e->reference, a->reference ? a->reference->label : "") == 0;
 }
 
 /* A deep copy: dst owns its per-n table. Returns 0, or -1 when out of memory. */
@@ -580,6 +590,7 @@ static void remember(const struct accuracy_ctx *a, const struct model_spec *m, c
     snprintf(e->driver, sizeof e->driver, "%s", a->s->driver_version);
     snprintf(e->options, sizeof e->options, "%s", a->build_options);
     snprintf(e->platform, sizeof e->platform, "%s", a->s->platform_version);
+    snprintf(e->reference, sizeof e->reference, "%s", a->reference ? a->reference->label : "");
     e->specialise = a->s->specialise;
     e->model = *m;
     e->grid = *g;
@@ -626,7 +637,7 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     if ((rc = kernels_for(a, m, &sweep, &probe_unused)) != 0)
         return rc;
     struct model_spec ref;
-    model_reference_spec(m, &ref);
+    reference_of(a, m, &ref);
     long count = accuracy_grid_count(g);
     nv = malloc((size_t)count * sizeof *nv);
     if (!nv) {

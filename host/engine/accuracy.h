@@ -95,6 +95,7 @@ struct accuracy_ctx {
     cl_kernel sweep, probe;
     char build_options[256];
     int timer_wall;                /* the driver's profiling events gave no time: wall time used */
+    const struct model_spec *reference;   /* NULL: each model's own reference; else this one (--reference) */
 };
 
 
