@@ -314,7 +314,7 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
         plan->models[k] = models[m];
         if (reference_text)
             plan->refs[k] = named_ref;
-        else if (hemisphere_default_reference(&models[m], &plan->refs[k], err, errlen))
+        else if (hemisphere_default_reference(&models[m], &axis, &plan->refs[k], err, errlen))
             return -1;
         plan->axes[k] = axis;
         if (hemisphere_axis_check(&plan->axes[k], fixed->v, fixed->count, &models[m], &plan->refs[k],

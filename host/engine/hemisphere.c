@@ -248,8 +248,7 @@ static double slot_value(const struct model_spec *m, enum hemi_quantity axis_q, 
     return hemi_from_alpha(HQ_N, hemi_to_alpha(axis_q, v));
 }
 
-/* The model's and the reference's (n, p0, p1) at one axis value, rounded to float as the
-   device sees them. */
+/* The model's and the reference's (n, p0, p1) at one axis value v (already a float). */
 static void values_at(const struct hemi_axis *a, const struct hemi_fixed *fixed, int nfixed,
                       const struct model_spec *m, const struct model_spec *ref, double v, double mv[3], double rv[3])
 {
@@ -278,10 +277,10 @@ static void values_at(const struct hemi_axis *a, const struct hemi_fixed *fixed,
         if (rk >= 0)   /* the same parameter of the reference follows the axis (like with like) */
             rv[rk + 1] = v;
     }
-    for (int k = 0; k < 3; ++k) {
-        mv[k] = (double)(float)mv[k];
-        rv[k] = (double)(float)rv[k];
-    }
+    /* v is a float, as the device sees it; the converted values stay double here: the reference's
+       converted n in double gives the model's own alpha exactly, so a model equal to its
+       reference through a conversion measures 0 in double, and the device's rounding of the
+       converted values is float noise that the check's floor covers */
 }
 
 /* ---- double evaluation ---------------------------------------------------------------------- */
@@ -452,7 +451,8 @@ static int kernels_for(struct hemi_ctx *h, const struct hemi_result *r, cl_kerne
 
 /* ---- the run --------------------------------------------------------------------------------- */
 
-int hemisphere_default_reference(const struct model_spec *m, struct model_spec *ref, char *err, size_t errlen)
+int hemisphere_default_reference(const struct model_spec *m, const struct hemi_axis *axis, struct model_spec *ref,
+                                 char *err, size_t errlen)
 {
     model_reference_spec(m, ref);
     if (strcmp(ref->info->id, m->info->id) == 0 && model_is_builtin(m->info)) {
@@ -465,14 +465,21 @@ int hemisphere_default_reference(const struct model_spec *m, struct model_spec *
                               "--reference (e.g. --reference blinn)", m->label, ref->label);
         return EXIT_USAGE;
     }
-    /* the lobe's peak, L = V = N, at the model's default shininess (n = 100 when the slot is not n) */
-    double L[3] = { 0, 0, 1 }, mv[3] = { 100, m->params[0], m->params[1] }, rv[3] = { 100, ref->params[0], ref->params[1] };
+    /* the lobe's peak, L = V = N, at the middle of the axis (n = 100 for a parameter's axis) */
+    struct hemi_axis a = *axis;
+    double lo = a.min, hi = a.max;
+    if (a.q != HQ_PARAM && isnan(lo))
+        quantity_range(a.q, 2.0, 1000.0, &lo, &hi);
+    double v = a.q == HQ_PARAM ? 100.0 : sqrt(lo * hi);
+    a.q = a.q == HQ_PARAM ? HQ_N : a.q;
+    double L[3] = { 0, 0, 1 }, mv[3], rv[3];
+    values_at(&a, NULL, 0, m, ref, v, mv, rv);
     double f = hemisphere_eval_host(m, mk, L, L, mv), fr = hemisphere_eval_host(ref, rk, L, L, rv);
     double ratio = f / fr;
     if (!(fabs(ratio - 1.0) <= 0.01)) {
-        snprintf(err, errlen, "%s: no --reference named, and its family's reference %s differs at the lobe's peak "
-                              "(L = V = N, n = 100) by the ratio %.6g (accepted: within 1%%): name one with "
-                              "--reference", m->label, ref->label, ratio);
+        snprintf(err, errlen, "%s: no --reference named, and its family's reference %s differs from it at the lobe's "
+                              "peak (L = V = N, %s = %.4g) by the ratio %.6g (accepted: within 1%%): name one with "
+                              "--reference", m->label, ref->label, a.q == HQ_N ? "n" : a.name, v, ratio);
         return EXIT_USAGE;
     }
     return 0;
@@ -694,7 +701,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
     out->peak_ratio = 1.0;
     for (int i = 0; i < P; ++i) {
         struct hemi_per_p *pp = &out->per_p[i];
-        pp->p = axis_value(axis, i);
+        pp->p = (double)(float)axis_value(axis, i);   /* the axis value as the device sees it */
         values_at(axis, fixed, nfixed, m, ref, pp->p, pp->mvals, pp->rvals);
         for (int k = 0; k < 3; ++k) {
             pv[6 * i + k] = (float)pp->mvals[k];

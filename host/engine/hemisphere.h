@@ -50,7 +50,7 @@ struct hemi_extreme {
 
 struct hemi_per_p {
     double p;                          /* the axis value */
-    double mvals[3], rvals[3];         /* the model's and the reference's n, p0, p1 (as the device sees them) */
+    double mvals[3], rvals[3];         /* the model's and the reference's n, p0, p1 (in double; the device's are these rounded to float) */
     double peak;                       /* max f_ref over the samples (device) */
     /* as the device found them (float values, double angles of the grid point) */
     struct hemi_extreme dev_epi_rel, dev_att_abs, dev_whole_abs;
@@ -117,7 +117,8 @@ double hemi_from_alpha(enum hemi_quantity q, double alpha);
 /* The reference a full model is measured against when none is named: its family's (the user
  * model's header, or itself for a built-in). Refused (EXIT_USAGE, naming --reference and the
  * ratio) when model and reference differ by more than 1% at the lobe's peak L = V = N. */
-int hemisphere_default_reference(const struct model_spec *m, struct model_spec *ref, char *err, size_t errlen);
+int hemisphere_default_reference(const struct model_spec *m, const struct hemi_axis *axis, struct model_spec *ref,
+                                 char *err, size_t errlen);
 
 void hemisphere_open(struct hemi_ctx *h, struct cl_session *s, const char *build_options);
 void hemisphere_close(struct hemi_ctx *h);
