@@ -20,6 +20,9 @@
  */
 #define REAL float
 #define RSCALAR float
+/* The lobes' c^n from s = 1 - c (brdf_pow_lobe_s), as the lobe sweep takes it: a sharp lobe's
+   float cosine has no digits left near c = 1, its s keeps them (s = 2 sin^2(theta_h/2) here). */
+#define BRDF_POW_LOBE_CS(c, s, n) brdf_pow_lobe_s((s), (n))
 #include "brdf_models.h"
 #include "hemisphere_geom.h"
 
@@ -134,8 +137,8 @@ __kernel void hemisphere_sweep(const int pass, __global const float *pvals, __gl
     o[HEMI_O_REF_PEAK] = ref_peak;
 }
 
-/* The model's value at given samples (the float-cancellation figure: host/engine/hemisphere.c
-   compares them with double). pts holds 4 floats per sample: theta_h, theta_d, phi_d and the
+/* The model's and the reference's values at given samples (out: 2 floats per sample), which
+   host/engine/hemisphere.c compares with double: the float-cancellation figures. pts holds 4 floats per sample: theta_h, theta_d, phi_d and the
    parameter value's index into pvals. */
 __kernel void hemisphere_probe(__global const float *pvals, __global const float *pts, const int count,
                                __global float *out)
@@ -149,6 +152,9 @@ __kernel void hemisphere_probe(__global const float *pvals, __global const float
     float L[3], V[3];
     hemi_dirs(sth, cth, sd, cd, sin(pd), cos(pd), L, V);
     const float sh = 2.0f * sin(0.5f * th) * sin(0.5f * th);
-    out[i] = hemi_eval(HEMI_M_KIND, HEMI_M_ID, HEMI_M_PSI, L, V, L[2], V[2], 2.0f * cd * cd - 1.0f, cth, sh, cd,
-                       pvals[6 * ip], pvals[6 * ip + 1], pvals[6 * ip + 2]);
+    const float lv = 2.0f * cd * cd - 1.0f;
+    out[2 * i] = hemi_eval(HEMI_M_KIND, HEMI_M_ID, HEMI_M_PSI, L, V, L[2], V[2], lv, cth, sh, cd, pvals[6 * ip],
+                           pvals[6 * ip + 1], pvals[6 * ip + 2]);
+    out[2 * i + 1] = hemi_eval(HEMI_R_KIND, HEMI_R_ID, HEMI_R_PSI, L, V, L[2], V[2], lv, cth, sh, cd, pvals[6 * ip + 3],
+                               pvals[6 * ip + 4], pvals[6 * ip + 5]);
 }

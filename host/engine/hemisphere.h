@@ -79,6 +79,8 @@ struct hemi_result {
     struct hemi_extreme grid_epicentre, grid_attenuation, grid_whole;   /* as the device found them */
     long long used, below, invalid, eval_below;
     double float_cancellation;         /* max |f_device - f_double| / peak at random samples */
+    double ref_float_error;            /* the same of the reference */
+    int checks_at_float_noise;         /* figures the device resolves only to its float noise */
     double peak_ratio;                 /* f / f_ref at L = V = N (farthest from 1 over the axis) */
     struct hemi_check check;
     double device_seconds, points;
