@@ -1,0 +1,158 @@
+#!/usr/bin/env bash
+# test_hemisphere_cli.sh - full BRDFs over the hemisphere (accuracy; docs/definitions.md, "Full
+# BRDFs over the hemisphere"), each expectation derived outside the program:
+#   - k times Cook-Torrance GGX (written out here in GLSL) against ct-ggx: delta = |k - 1| everywhere;
+#   - the horizon: the grid points with N.L <= 0 or N.V <= 0, counted here a second time from the
+#     half/difference formulas, are the kernel's below_horizon count, and no sample is evaluated there;
+#   - Blinn-Phong's exact full form against blinn: float-rounding figures, status ok (the lobe
+#     sweep of old put V below the horizon and reported 0.5 at x = pi/4);
+#   - blinn + 1/4 against blinn: RMS of cos(theta_i) (f - f_ref) = (1/4) sqrt(int cos^2 / (2 pi)) = 1/(4 sqrt 3)
+#     (the hemisphere pair's closed form), and max delta = (1/4) / e^-0.511 at the epicentre's edge;
+#   - no --reference and a reference that differs at the peak: refused (exit 2) naming --reference;
+#   - a roughness sweep of an engine's D_GGX (alpha = r^2) against ggx: float-rounding figures, ok;
+#   - the lobe sweep with --reference: a user copy of c^n against blinn is ok, with its
+#     float_cancellation figure written.
+set -u
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T/pocl-cache}"
+mkdir -p "$POCL_CACHE_DIR"
+GRID=(--hemisphere-grid 16x16x32 --sweep-points 3)
+
+# value FILE PYTHON-EXPRESSION: the expression over r (the first hemisphere row of the JSON)
+value() {
+    python3 -c "
+import json, sys, math
+d = json.load(open(sys.argv[1]))
+rows = [x for x in d['results'] if x.get('sweep') == 'hemisphere']
+r = rows[0] if rows else None
+h = r['hemisphere'] if r else None
+print($2)" "$1"
+}
+# holds FILE PYTHON-CONDITION WHAT
+holds() {
+    local v
+    v=$(value "$1" "$2" 2>&1)
+    if [ "$v" = "True" ]; then ok; else bad "$3: $2 -> $v"; fi
+}
+
+# ---- k x Cook-Torrance GGX, written out from its definition (docs/definitions.md) ---------------
+cat >"$T/ctk.glsl" <<'EOF2'
+/* brdfbench-model
+ * name: ctk
+ * reference: ct-ggx
+ * lobe: theta_h
+ * param: F0 0 1 0.5
+ */
+float ctk(vec3 L, vec3 V, vec3 N, float n, float F0)
+{
+    vec3 H = normalize(L + V);
+    float nh = dot(N, H), vh = dot(V, H);
+    float nl = max(dot(N, L), 1e-6), nv = max(dot(N, V), 1e-6);
+    float a2 = 2.0 / (n + 2.0);
+    float d = (1.0 - nh) * (1.0 + nh) + nh * nh * a2;
+    float D = a2 / (3.14159265358979 * d * d);
+    float F = F0 + (1.0 - F0) * pow(1.0 - vh, 5.0);
+    float G = 2.0 * nl / (nl + sqrt(a2 + (1.0 - a2) * nl * nl)) * 2.0 * nv / (nv + sqrt(a2 + (1.0 - a2) * nv * nv));
+    return 1.25 * D * F * G / (4.0 * nl * nv);
+}
+EOF2
+"$BIN" accuracy --model-file "$T/ctk.glsl" --reference ct-ggx:F0=0.04 --param F0=0.04 "${GRID[@]}" \
+    --json "$T/ctk.json" >"$T/out" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "k x ct-ggx: exit $rc: $(head -c 300 "$T/err")"
+holds "$T/ctk.json" "abs(h['epicentre']['max_rel'] - 0.25) < 1e-9" "k x ct-ggx: max delta = |k - 1| = 0.25"
+# Delta over the whole domain: 0.25 f_ref at f_ref's largest, at least 0.25 of the grid's peak
+holds "$T/ctk.json" "h['whole']['max_abs'] >= 0.25 * max(p['peak'] for p in h['per_p']) * (1 - 1e-9)" \
+    "k x ct-ggx: max Delta >= 0.25 peak"
+holds "$T/ctk.json" "r['status'] == 'ok'" "k x ct-ggx: status"
+
+# ---- the horizon -----------------------------------------------------------------------------------
+# the grid of kernels/hemisphere_geom.h written again: theta_h = pi/2 ((i+1/2)/16)^2, theta_d =
+# pi/2 (j+1/2)/16, phi_d = pi (k+1/2)/32; N.L = cos td cos th - sin td cos pd sin th, N.V with +
+below=$(python3 -c "
+import math
+nb = 0
+for i in range(16):
+    th = math.pi / 2 * ((i + 0.5) / 16) ** 2
+    for j in range(16):
+        td = math.pi / 2 * (j + 0.5) / 16
+        for k in range(32):
+            pd = math.pi * (k + 0.5) / 32
+            a, b = math.cos(td) * math.cos(th), math.sin(td) * math.cos(pd) * math.sin(th)
+            nb += (a - b <= 0) or (a + b <= 0)
+print(nb * 3)")
+holds "$T/ctk.json" "h['samples']['below_horizon'] == $below" "below-horizon grid points (expected $below)"
+holds "$T/ctk.json" "h['samples']['used'] + h['samples']['below_horizon'] == 3 * 16 * 16 * 32" "samples + below = grid"
+holds "$T/ctk.json" "h['samples']['evaluated_below_horizon'] == 0" "no sample evaluated below the horizon"
+
+# ---- Blinn-Phong's exact full form against blinn ---------------------------------------------------
+cat >"$T/bp.glsl" <<'EOF2'
+float bp(vec3 L, vec3 V, vec3 N, float n)
+{
+    return pow(max(dot(N, normalize(L + V)), 0.0), n);
+}
+EOF2
+"$BIN" accuracy --model-file "$T/bp.glsl" "${GRID[@]}" --json "$T/bp.json" >"$T/out" 2>"$T/err" && ok ||
+    bad "blinn full: $(head -c 300 "$T/err")"
+holds "$T/bp.json" "r['reference'] == 'blinn' and r['status'] == 'ok'" "blinn full: against blinn, status ok"
+holds "$T/bp.json" "h['epicentre']['max_rel'] < 1e-12 and h['whole']['max_abs'] < 1e-12" \
+    "blinn full: float-rounding figures (double)"
+
+# ---- blinn + 1/4: the RMS and delta by hand ------------------------------------------------------------
+cat >"$T/plus.glsl" <<'EOF2'
+float plus(vec3 L, vec3 V, vec3 N, float n)
+{
+    return pow(max(dot(N, normalize(L + V)), 0.0), n) + 0.25;
+}
+EOF2
+"$BIN" accuracy --model-file "$T/plus.glsl" --reference blinn "${GRID[@]}" --json "$T/plus.json" >"$T/out" \
+    2>"$T/err" && ok || bad "blinn + 1/4: $(head -c 300 "$T/err")"
+# (1/(4 pi^2)) int int cos^2(ti) (1/4)^2 dw_i dw_o = (1/16)(2 pi/3)(2 pi)/(4 pi^2) = 1/48: RMS = 1/(4 sqrt 3);
+# the midpoint rule of a 16x16x32 grid with the horizon's curved edge is within 0.5% of it
+holds "$T/plus.json" "abs(h['rms'] / (0.25 / math.sqrt(3)) - 1) < 5e-3" "blinn + 1/4: RMS = 1/(4 sqrt 3)"
+# delta = (1/4) / f_ref, largest where f_ref is smallest in the epicentre: e^-0.511 of the peak 1
+holds "$T/plus.json" "abs(h['epicentre']['max_rel'] - 0.25 / math.exp(-0.511)) < 1e-6" \
+    "blinn + 1/4: max delta = 0.25 e^0.511"
+holds "$T/plus.json" "abs(h['whole']['max_abs'] - 0.25) < 1e-9" "blinn + 1/4: max Delta = 0.25"
+
+# ---- the family's reference refused --------------------------------------------------------------------
+cat >"$T/bpn.glsl" <<'EOF2'
+float bpn(vec3 L, vec3 V, vec3 N, float n)
+{
+    return (n + 2.0) / 6.28318530717959 * pow(max(dot(N, normalize(L + V)), 0.0), n);
+}
+EOF2
+# (n + 2)/(2 pi) at the axis middle n = sqrt(2 x 1000) = 44.72: 7.436
+expect 2 "--reference.*ratio 7\.43|ratio 7\.43.*--reference" accuracy --model-file "$T/bpn.glsl" "${GRID[@]}" \
+    --json "$T/never.json"
+[ ! -e "$T/never.json" ] && ok || bad "a refused run wrote its document"
+
+# ---- a roughness sweep of an engine's D_GGX against ggx -----------------------------------------------
+cat >"$T/dggx.glsl" <<'EOF2'
+float D(vec3 L, vec3 V, vec3 N, float roughness)
+{
+    float a = roughness * roughness;
+    float a2 = a * a;
+    float c = max(dot(N, normalize(L + V)), 0.0);
+    float d = (c * a2 - c) * c + 1.0;
+    return a2 / (3.14159265358979 * d * d);
+}
+EOF2
+"$BIN" accuracy --model-file "$T/dggx.glsl" --reference ggx --sweep roughness=0.2:0.8 "${GRID[@]}" \
+    --json "$T/dggx.json" >"$T/out" 2>"$T/err" && ok || bad "D_GGX roughness: $(head -c 300 "$T/err")"
+holds "$T/dggx.json" "r['status'] == 'ok' and h['axis']['name'] == 'roughness'" "D_GGX roughness: status ok"
+holds "$T/dggx.json" "h['epicentre']['max_rel'] < 1e-9" "D_GGX roughness: float-rounding delta"
+
+# ---- the lobe sweep with --reference -------------------------------------------------------------------
+"$BIN" accuracy --model 'b=pow(c,n)' --reference blinn --n-min 2 --n-max 1000 --n-step 50 --samples 256 \
+    --json "$T/lobe.json" >"$T/out" 2>"$T/err" && ok || bad "lobe --reference: $(head -c 300 "$T/err")"
+python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))['results'][0]
+sys.exit(0 if r['reference'] == 'blinn' and r['status'] == 'ok' and r['epicentre']['max_rel'] < 1e-12
+         and 0 <= r['float_cancellation'] < 1e-5 else 1)" "$T/lobe.json" && ok || bad "lobe sweep: b against blinn"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
