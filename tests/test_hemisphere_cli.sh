@@ -11,7 +11,9 @@
 #   - no --reference and a reference that differs at the peak: refused (exit 2) naming --reference;
 #   - a roughness sweep of an engine's D_GGX (alpha = r^2) against ggx: float-rounding figures, ok;
 #   - the lobe sweep with --reference: a user copy of c^n against blinn is ok, with its
-#     float_cancellation figure written.
+#     float_cancellation figure written; Unreal's D_GGX form against ggx is ok (it was
+#     device_disagrees: its float cancellation was counted as a search failure), with a
+#     float_cancellation above float rounding.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -57,7 +59,9 @@ float ctk(vec3 L, vec3 V, vec3 N, float n, float F0)
     return 1.25 * D * F * G / (4.0 * nl * nv);
 }
 EOF2
-"$BIN" accuracy --model-file "$T/ctk.glsl" --reference ct-ggx:F0=0.04 --param F0=0.04 "${GRID[@]}" \
+# n up to 300: at n = 1000 this written-out form's float noise near grazing angles is more than half
+# a unit of delta's 4th digit, which the device check reports (device_disagrees), as it should
+"$BIN" accuracy --model-file "$T/ctk.glsl" --reference ct-ggx:F0=0.04 --param F0=0.04 --n-max 300 "${GRID[@]}" \
     --json "$T/ctk.json" >"$T/out" 2>"$T/err"
 rc=$?
 if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed"; exit 77; fi
@@ -66,7 +70,7 @@ holds "$T/ctk.json" "abs(h['epicentre']['max_rel'] - 0.25) < 1e-9" "k x ct-ggx: 
 # Delta over the whole domain: 0.25 f_ref at f_ref's largest, at least 0.25 of the grid's peak
 holds "$T/ctk.json" "h['whole']['max_abs'] >= 0.25 * max(p['peak'] for p in h['per_p']) * (1 - 1e-9)" \
     "k x ct-ggx: max Delta >= 0.25 peak"
-holds "$T/ctk.json" "r['status'] == 'ok'" "k x ct-ggx: status"
+holds "$T/ctk.json" "r['status'] == 'ok' and r['label'] == 'ctk:F0=0.04'" "k x ct-ggx: status, label"
 
 # ---- the horizon -----------------------------------------------------------------------------------
 # the grid of kernels/hemisphere_geom.h written again: theta_h = pi/2 ((i+1/2)/16)^2, theta_d =
@@ -153,6 +157,20 @@ import json, sys
 r = json.load(open(sys.argv[1]))['results'][0]
 sys.exit(0 if r['reference'] == 'blinn' and r['status'] == 'ok' and r['epicentre']['max_rel'] < 1e-12
          and 0 <= r['float_cancellation'] < 1e-5 else 1)" "$T/lobe.json" && ok || bad "lobe sweep: b against blinn"
+
+# ---- a form that cancels in float: Unreal's D_GGX as a lobe against ggx ------------------------------
+# D = a2 / (pi ((c a2 - c) c + 1)^2), a2 = 2/(n+2): equal to ggx in double, but (c a2 - c) c + 1 loses
+# digits in float near c = 1; the device's difference is that float error, reported as the
+# float_cancellation figure (above float rounding), not as device_disagrees
+"$BIN" accuracy --model 'ue=(2/(n+2))/(3.14159265358979*((c*(2/(n+2))-c)*c+1)*((c*(2/(n+2))-c)*c+1))' \
+    --reference ggx --n-min 2 --n-max 1000 --n-step 10 --samples 1024 --json "$T/ue.json" >"$T/out" 2>"$T/err" &&
+    ok || bad "ue lobe: $(head -c 300 "$T/err")"
+python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))['results'][0]
+print(r['status'], r['float_cancellation'], r['epicentre']['max_rel'])
+sys.exit(0 if r['status'] == 'ok' and r['float_cancellation'] > 1e-6 and r['epicentre']['max_rel'] < 1e-9 else 1)" \
+    "$T/ue.json" >"$T/ue.txt" && ok || bad "ue lobe against ggx: status, float_cancellation, delta: $(cat "$T/ue.txt")"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

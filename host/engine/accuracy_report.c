@@ -82,7 +82,9 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
         jw_kv_str(&w, "what", "every per-n device figure recomputed in double at the device's own input (s = 1 - cos x), "
                               "in units of the 4th significant digit of the reported figure it stands behind; the bound "
                               "is half a unit (then the device's choice of grid point costs at most one unit), and "
-                              "differences below float_floor_of_peak times the reference's peak are float rounding; "
+                              "differences below float_floor_of_peak times the reference's peak are float rounding, and "
+                              "differences within twice float_cancellation (brought to the figure's scale) are the "
+                              "model's own float error; "
                               "probe: model values at 4096 points against double, relative to the reference's peak");
         jw_obj_end(&w);
         jw_kv_obj(&w, "invalid");

@@ -200,8 +200,8 @@ int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, i
     if (isnan(a->min))
         quantity_range(a->q, n_min, n_max, &a->min, &a->max);
     else if (a->min < lo || a->max > hi || !(a->min > 0)) {
-        snprintf(err, errlen, "--sweep: %s=%g:%g is out of range (accepted: %g < %s <= %g)", a->name, a->min, a->max,
-                 lo > 0 ? lo : 0.0, a->name, hi);
+        snprintf(err, errlen, "--sweep: %s=%g:%g is out of range (accepted: %g <= %s <= %g)", a->name, a->min, a->max,
+                 lo, a->name, hi);
         return EXIT_USAGE;
     }
     a->geometric = a->min > 0 && a->max / a->min > 10;
@@ -571,12 +571,12 @@ static void one_figure(struct hemi_result *r, struct hemi_per_p *pp, const float
 }
 
 /* Folds one check into the verdict: the device's figure at its grid point against the double
-   one there. Within half a unit of the figure's 4th significant digit it is ok; so it is where the
-   difference is no more than the float evaluation allows (docs/definitions.md, Device check):
-   below float resolution of the peak (a double figure under 2^-23 peak) within a few units of
-   2^-24 peak, and anywhere within twice the float noise of the model and reference values there
-   (noise: their float-cancellation figures at this scale); the figure itself is the double
-   refinement's. Beyond that the device computed something else, or missed the maximum. */
+   one there. Within half a unit of the figure's 4th significant digit it is ok; below float
+   resolution of the peak (a double figure under 2^-23 peak: nothing a float device could
+   resolve, no maximum to miss) it is ok within a few units of 2^-24 peak or within twice the
+   float noise of the model and reference values there (their float-cancellation figures at this
+   scale), docs/definitions.md, Device check. Beyond that the device computed something else, or
+   its float noise is more than half a unit of the figure: it could have missed the maximum. */
 static void fold_check(struct hemi_result *r, double d, double dbl_at, double figure, double scale, double noise,
                        double p, const char *name)
 {
@@ -584,7 +584,7 @@ static void fold_check(struct hemi_result *r, double d, double dbl_at, double fi
         return;
     double unit = fourth_digit_unit(figure);
     int below_resolution = dbl_at < 0x1p-23 * scale;
-    int within_noise = d <= 2.0 * noise || (below_resolution && d <= HEMI_FLOOR_UNITS * 0x1p-24 * scale) ||
+    int within_noise = (below_resolution && d <= fmax(HEMI_FLOOR_UNITS * 0x1p-24 * scale, 2.0 * noise)) ||
                        d <= ACC_CHECK_FLOAT_FLOOR * scale;
     int exceeded = (isnan(d) || d > 0.5 * unit) && !within_noise;
     double units = isnan(d) ? INFINITY : unit > 0 ? d / unit : 0.0;
@@ -688,6 +688,21 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
     memset(out, 0, sizeof *out);
     out->model = *m;
     out->reference = *ref;
+    /* --param values are the model's parameters in its label too (as models.c writes labels) */
+    int changed = 0;
+    for (int i = 0; i < nfixed; ++i) {
+        int k = param_index(m, fixed[i].name);
+        if (k >= 0) {
+            out->model.params[k] = fixed[i].value;
+            changed = 1;
+        }
+    }
+    if (changed) {
+        size_t used = (size_t)snprintf(out->model.label, sizeof out->model.label, "%s", m->info->id);
+        for (int k = 0; k < m->info->nparams && used < sizeof out->model.label; ++k)
+            used += (size_t)snprintf(out->model.label + used, sizeof out->model.label - used, "%s%s=%.10g",
+                                     k ? "," : ":", m->info->params[k].name, out->model.params[k]);
+    }
     out->model_kind = model_kind(m);
     out->ref_kind = model_kind(ref);
     out->axis = *axis;

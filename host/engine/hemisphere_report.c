@@ -73,10 +73,10 @@ void hemisphere_json_rows(struct jw *w, const struct hemi_result *res, int count
         jw_kv_int(w, "figures_at_float_noise", r->checks_at_float_noise);
         jw_kv_str(w, "what", "each per-p device maximum recomputed in double at its grid point: within half a unit of "
                              "the figure's 4th significant digit; a figure whose double value is below 2^-23 of the "
-                             "reference's peak is ok within 8 x 2^-24 of the peak, and any figure within twice the "
-                             "float noise of the model and reference values (float_cancellation + "
-                             "reference_float_error: max |f_device - f_double| / peak at 4096 random samples); "
-                             "figures_at_float_noise counts those the device resolves only to that noise");
+                             "reference's peak is ok within 8 x 2^-24 of the peak or within twice the float noise of "
+                             "the model and reference values (float_cancellation + reference_float_error: max "
+                             "|f_device - f_double| / peak at 4096 random samples); figures_at_float_noise counts "
+                             "those ok only by that floor");
         jw_obj_end(w);
         jw_kv_arr(w, "per_p");
         for (int k = 0; k < r->p_count; ++k) {
