@@ -172,5 +172,23 @@ print(r['status'], r['float_cancellation'], r['epicentre']['max_rel'])
 sys.exit(0 if r['status'] == 'ok' and r['float_cancellation'] > 1e-6 and r['epicentre']['max_rel'] < 1e-9 else 1)" \
     "$T/ue.json" >"$T/ue.txt" && ok || bad "ue lobe against ggx: status, float_cancellation, delta: $(cat "$T/ue.txt")"
 
+# ---- compare reads the hemisphere rows: the same run twice, every hemisphere metric unchanged --------
+for run in c1 c2; do
+    "$BIN" accuracy --models ct-ggx --reference ct-ggx:F0=0.04 "${GRID[@]}" --quiet --out "$T/$run" >/dev/null 2>&1 ||
+        bad "ct-ggx run $run"
+done
+"$BIN" compare "$T/c1" "$T/c2" --json "$T/cmp.json" >"$T/cmp" 2>&1 && ok ||
+    bad "compare of two hemisphere runs: $(head -c 300 "$T/cmp")"
+python3 -c "
+import json, sys
+rows = json.load(open(sys.argv[1]))['rows']
+want = ['hemisphere.epicentre.max_rel', 'hemisphere.attenuation.max_abs', 'hemisphere.whole.max_abs',
+        'hemisphere.rms', 'hemisphere.float_cancellation']
+got = {r['metric']: r['cells'][1]['verdict'] for r in rows if 'vs ct-ggx:F0=0.04' in r['key']}
+bad = [m for m in want if got.get(m) != 'unchanged']
+print(got)
+sys.exit(1 if bad else 0)" "$T/cmp.json" >"$T/cmp.txt" && ok || bad "compare: hemisphere metrics not all unchanged: $(cat "$T/cmp.txt")"
+[ ! -e results ] && ok || bad "compare --json wrote a results folder in the working directory"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
