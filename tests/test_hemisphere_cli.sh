@@ -190,5 +190,23 @@ print(got)
 sys.exit(1 if bad else 0)" "$T/cmp.json" >"$T/cmp.txt" && ok || bad "compare: hemisphere metrics not all unchanged: $(cat "$T/cmp.txt")"
 [ ! -e results ] && ok || bad "compare --json wrote a results folder in the working directory"
 
+# ---- gate: the hemisphere metrics -------------------------------------------------------------------
+# Blinn-Phong's exact full form (bp.glsl above) equals blinn: its max delta is float rounding in
+# double (bound 1e-9); ct-ggx against itself has an RMS of 0; a lobe model is refused (exit 2)
+mkdir -p "$T/gdir" && cp "$T/bp.glsl" "$T/gdir/"
+cat >"$T/gdir/gates.json" <<'EOF2'
+{"gates": [
+  {"model": "bp", "model_file": "bp.glsl", "metric": "hemisphere.epicentre.max_rel", "n_min": 2, "n_max": 200, "max": 1e-9},
+  {"model": "ct-ggx", "metric": "hemisphere.rms", "n_min": 2, "n_max": 200, "max": 1e-12}
+]}
+EOF2
+"$BIN" gate "$T/gdir/gates.json" --json "$T/gates.out.json" >"$T/gout" 2>&1 && ok || bad "hemisphere gates: $(cat "$T/gout")"
+python3 -c "
+import json, sys
+g = json.load(open(sys.argv[1]))['gates']
+sys.exit(0 if [x['status'] for x in g] == ['pass', 'pass'] else 1)" "$T/gates.out.json" && ok || bad "hemisphere gates' statuses"
+echo '{"gates": [{"model": "fvol", "metric": "hemisphere.rms", "max": 1}]}' >"$T/gdir/lobe.json"
+expect 2 "hemisphere.rms needs a full BRDF" gate "$T/gdir/lobe.json"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
