@@ -239,11 +239,23 @@ static double axis_value(const struct hemi_axis *a, int i)
     return a->geometric ? a->min * pow(a->max / a->min, t) : a->min + (a->max - a->min) * t;
 }
 
-/* The shininess slot of a model: a built-in takes n; a user model's slot takes the axis's
-   quantity as it is (its function names what its parameter is: n, alpha, roughness, m). */
+/* 1 when a model's shininess argument is n: a built-in, or a BRDF Explorer file (its wrapper
+   hands n to its `n`, or alpha(n) to its `alpha`: docs/user-models.md). */
+static int slot_is_n(const struct model_spec *m)
+{
+    if (model_is_builtin(m->info))
+        return 1;
+    const struct user_model *um = usermodel_of(m);
+    size_t len = um ? strlen(um->origin) : 0;
+    return len > 5 && strcmp(um->origin + len - 5, ".brdf") == 0;
+}
+
+/* The shininess slot of a model: n, converted from the axis, for a built-in or a .brdf file; a
+   shader function's own argument takes the axis's quantity as it is (the user names what the
+   argument is with --sweep: n, alpha, roughness, m). */
 static double slot_value(const struct model_spec *m, enum hemi_quantity axis_q, double v)
 {
-    if (!model_is_builtin(m->info) || axis_q == HQ_N)
+    if (!slot_is_n(m) || axis_q == HQ_N)
         return v;
     return hemi_from_alpha(HQ_N, hemi_to_alpha(axis_q, v));
 }
@@ -811,7 +823,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
         fold_check(out, pp->chk_whole_abs, pp->dbl_whole_abs, pp->whole_abs.value, pp->peak, noise, pp->p,
                    "hemisphere.whole.max_abs");
     }
-    out->points = 2.0 * (double)out->used / 1.0;   /* model and reference at every sample of pass 1 */
+    out->points = (double)out->used;   /* samples (each: the model and its reference), as the lobe sweep counts them */
     range_max(out, offsetof(struct hemi_per_p, epi_rel), &out->epicentre);
     range_max(out, offsetof(struct hemi_per_p, att_abs), &out->attenuation);
     range_max(out, offsetof(struct hemi_per_p, whole_abs), &out->whole);
