@@ -47,11 +47,11 @@ BRDF_FN RSCALAR hemi_theta_h(int i, int nh)
 BRDF_FN RSCALAR hemi_theta_d(int j, int nd) { return RC(HEMI_HALF_PI) * ((RSCALAR)j + RC(0.5)) / (RSCALAR)nd; }
 BRDF_FN RSCALAR hemi_phi_d(int k, int np) { return RC(2.0 * HEMI_HALF_PI) * ((RSCALAR)k + RC(0.5)) / (RSCALAR)np; }
 
-/* L and V about N = z from the sines and cosines of theta_h, theta_d and phi_d. */
-BRDF_FN void hemi_dirs(RSCALAR sth, RSCALAR cth, RSCALAR sd, RSCALAR cd, RSCALAR spd, RSCALAR cpd, RSCALAR *L,
-                       RSCALAR *V)
+/* L and V about N = z from the sines and cosines of theta_h, theta_d and phi_d (REAL: a lane per
+   sample on the device, double on the host). */
+BRDF_FN void hemi_dirs(REAL sth, REAL cth, REAL sd, REAL cd, REAL spd, REAL cpd, REAL *L, REAL *V)
 {
-    RSCALAR dx = sd * cpd, dy = sd * spd;
+    REAL dx = sd * cpd, dy = sd * spd;
     L[0] = dx * cth + cd * sth;
     L[1] = dy;
     L[2] = cd * cth - dx * sth;

@@ -208,5 +208,21 @@ sys.exit(0 if [x['status'] for x in g] == ['pass', 'pass'] else 1)" "$T/gates.ou
 echo '{"gates": [{"model": "fvol", "metric": "hemisphere.rms", "max": 1}]}' >"$T/gdir/lobe.json"
 expect 2 "hemisphere.rms needs a full BRDF" gate "$T/gdir/lobe.json"
 
+# ---- a session that specialises its builds (Mesa's rusticl): --reference is built into the program -------
+# (a build specialised to a model and its own reference gave NaN for another reference: status failed)
+P=$(RUSTICL_ENABLE=llvmpipe "$BIN" list 2>/dev/null | sed -n 's/^  platform \([0-9]*\): rusticl.*/\1/p' | head -1)
+if [ -n "$P" ]; then
+    export MESA_SHADER_CACHE_DIR="$T/mesa-cache"
+    RUSTICL_ENABLE=llvmpipe "$BIN" accuracy --model 'b=pow(c,n)' --reference blinn --n-step 50 --samples 256 \
+        --platform "$P" --json "$T/rl.json" >"$T/out" 2>"$T/err" && ok || bad "rusticl lobe: $(head -c 300 "$T/err")"
+    python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))['results'][0]
+sys.exit(0 if r['status'] == 'ok' and r['reference'] == 'blinn' else 1)" "$T/rl.json" && ok ||
+        bad "rusticl: b against blinn is not ok"
+else
+    echo "rusticl is not installed here: its rows skipped"
+fi
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

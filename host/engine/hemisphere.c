@@ -426,13 +426,18 @@ void hemisphere_close(struct hemi_ctx *h)
     h->nprogs = 0;
 }
 
+/* Lanes per step of the kernel's loop (kernels/hemisphere.cl, HEMI_W). */
+static int hemi_lanes(const struct hemi_ctx *h) { return h->s->specialise ? 1 : 16; }
+
 static int kernels_for(struct hemi_ctx *h, const struct hemi_result *r, cl_kernel *sweep, cl_kernel *probe)
 {
     char options[256];
+    /* a session that specialises (a driver that vectorises across work-items itself) gets the
+       scalar loop, as the lobe sweep's ACC_W */
     snprintf(options, sizeof options, "%.120s%s-DHEMI_M_KIND=%d -DHEMI_M_ID=%d -DHEMI_M_PSI=%d -DHEMI_R_KIND=%d "
-             "-DHEMI_R_ID=%d -DHEMI_R_PSI=%d", h->build_options, h->build_options[0] ? " " : "", r->model_kind,
-             r->model.info->kernel_id, r->model.info->lobe == LOBE_PSI, r->ref_kind, r->reference.info->kernel_id,
-             r->reference.info->lobe == LOBE_PSI);
+             "-DHEMI_R_ID=%d -DHEMI_R_PSI=%d -DHEMI_W=%d", h->build_options, h->build_options[0] ? " " : "",
+             r->model_kind, r->model.info->kernel_id, r->model.info->lobe == LOBE_PSI, r->ref_kind,
+             r->reference.info->kernel_id, r->reference.info->lobe == LOBE_PSI, hemi_lanes(h));
     if (!model_is_builtin(r->model.info)) {
         int rc = programs_kernel(h->s, "hemisphere.cl", options, &r->model, "hemisphere_sweep", NULL, sweep);
         if (!rc)
@@ -623,18 +628,22 @@ static void range_max(const struct hemi_result *r, size_t off, struct hemi_extre
     }
 }
 
-/* The model on the device at random samples against double: the float-cancellation figure. */
+/* The model and its reference on the device at random samples against double: their
+   float-cancellation figures. Each run of 16 samples shares one parameter value. */
 static int probe(struct hemi_ctx *h, cl_kernel k, cl_mem bp, struct hemi_result *r)
 {
-    int rc = 0, count = HEMI_PROBE_POINTS;
+    int rc = 0, count = HEMI_PROBE_POINTS, groups = HEMI_PROBE_POINTS / 16;
     cl_int e, cnt = count;
-    cl_mem bpts = NULL, bo = NULL;
-    float *pts = malloc((size_t)count * 4 * sizeof *pts), *out = malloc((size_t)count * 2 * sizeof *out);
-    if (!pts || !out) {
+    cl_mem bth = NULL, btd = NULL, bpd = NULL, bpv = NULL, bo = NULL;
+    float *pts = malloc((size_t)count * 3 * sizeof *pts), *out = malloc((size_t)count * 2 * sizeof *out);
+    int *pv = malloc((size_t)groups * sizeof *pv);
+    if (!pts || !out || !pv) {
         rc = EXIT_RUNTIME;
         goto done;
     }
     uint64_t state = 0x2545f4914f6cdd1dULL;
+    for (int g = 0; g < groups; ++g)
+        pv[g] = g % r->p_count;
     for (int i = 0; i < count; ++i) {
         float th, td, pd;
         double L[3], V[3];
@@ -644,45 +653,56 @@ static int probe(struct hemi_ctx *h, cl_kernel k, cl_mem bp, struct hemi_result 
             pd = (float)(pi * lcg_unit(&state));
             hemisphere_dirs(th, td, pd, L, V);
         } while (!(L[2] > 1e-3 && V[2] > 1e-3));
-        pts[4 * i] = th;
-        pts[4 * i + 1] = td;
-        pts[4 * i + 2] = pd;
-        pts[4 * i + 3] = (float)(i % r->p_count);
+        pts[i] = th;
+        pts[count + i] = td;
+        pts[2 * count + i] = pd;
     }
-    bpts = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * 4 * sizeof(float), pts,
-                          &e);
-    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe points)", done);
+    bth = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), pts, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe theta_h)", done);
+    btd = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float),
+                         pts + count, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe theta_d)", done);
+    bpd = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float),
+                         pts + 2 * count, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe phi_d)", done);
+    bpv = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)groups * sizeof(int), pv, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe parameters)", done);
     bo = clCreateBuffer(h->s->ctx, CL_MEM_WRITE_ONLY, (size_t)count * 2 * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe out)", done);
     CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof bp, &bp), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof bpts, &bpts), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof cnt, &cnt), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof bo, &bo), done);
-    size_t global = (size_t)count;
+    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof bth, &bth), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof btd, &btd), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof bpd, &bpd), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof bpv, &bpv), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 5, sizeof cnt, &cnt), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof bo, &bo), done);
+    size_t global = (size_t)count / (size_t)hemi_lanes(h);
     if ((rc = clsession_launch(h->s, k, 1, &global, NULL, r->model.label, NULL)) != 0)
         goto done;
     CL_CHECK_GOTO(clEnqueueReadBuffer(h->s->queue, bo, CL_TRUE, 0, (size_t)count * 2 * sizeof(float), out, 0, NULL,
                                       NULL), done);
     r->float_cancellation = r->ref_float_error = 0;
     for (int i = 0; i < count; ++i) {
-        const struct hemi_per_p *pp = &r->per_p[(int)pts[4 * i + 3]];
+        const struct hemi_per_p *pp = &r->per_p[pv[i / 16]];
         double L[3], V[3];
-        hemisphere_dirs(pts[4 * i], pts[4 * i + 1], pts[4 * i + 2], L, V);
+        hemisphere_dirs(pts[i], pts[count + i], pts[2 * count + i], L, V);
         double f = hemisphere_eval_host(&r->model, r->model_kind, L, V, pp->mvals);
         double fr = hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
         if (!(pp->peak > 0))
             continue;
-        double d = fabs((double)out[2 * i] - f) / pp->peak, dr = fabs((double)out[2 * i + 1] - fr) / pp->peak;
-        if (isfinite(f) && isfinite(out[2 * i]) && d > r->float_cancellation)
+        double d = fabs((double)out[i] - f) / pp->peak, dr = fabs((double)out[count + i] - fr) / pp->peak;
+        if (isfinite(f) && isfinite(out[i]) && d > r->float_cancellation)
             r->float_cancellation = d;
-        if (isfinite(fr) && isfinite(out[2 * i + 1]) && dr > r->ref_float_error)
+        if (isfinite(fr) && isfinite(out[count + i]) && dr > r->ref_float_error)
             r->ref_float_error = dr;
     }
 done:
-    if (bo)
-        clReleaseMemObject(bo);
-    if (bpts)
-        clReleaseMemObject(bpts);
+    if (bo) clReleaseMemObject(bo);
+    if (bpv) clReleaseMemObject(bpv);
+    if (bpd) clReleaseMemObject(bpd);
+    if (btd) clReleaseMemObject(btd);
+    if (bth) clReleaseMemObject(bth);
+    free(pv);
     free(out);
     free(pts);
     return rc;
