@@ -190,6 +190,14 @@ print(got)
 sys.exit(1 if bad else 0)" "$T/cmp.json" >"$T/cmp.txt" && ok || bad "compare: hemisphere metrics not all unchanged: $(cat "$T/cmp.txt")"
 [ ! -e results ] && ok || bad "compare --json wrote a results folder in the working directory"
 
+# ---- --pictures: the heatmap over (theta_h, theta_d) and the maxima against the axis, as PNG files ----
+"$BIN" accuracy --model-file "$T/plus.glsl" --reference blinn "${GRID[@]}" --pictures --out "$T/pic" >"$T/out" \
+    2>"$T/err" && ok || bad "pictures: $(head -c 300 "$T/err")"
+for f in hemisphere_heatmap_plus hemisphere_max_rel_vs_p_plus hemisphere_max_abs_vs_p_plus; do
+    [ "$(head -c 8 "$T/pic/$f.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] && ok ||
+        bad "pictures: $f.png is not a PNG"
+done
+
 # ---- gate: the hemisphere metrics -------------------------------------------------------------------
 # Blinn-Phong's exact full form (bp.glsl above) equals blinn: its max delta is float rounding in
 # double (bound 1e-9); ct-ggx against itself has an RMS of 0; a lobe model is refused (exit 2)

@@ -9,6 +9,7 @@
 #include "field.h"
 #include "field_report.h"
 #include "hemisphere.h"
+#include "hemisphere_pictures.h"
 #include "heatmaps_shared.h"
 #include "outdir.h"
 #include "plots.h"
@@ -247,7 +248,8 @@ static void print_summary(const struct accuracy_result *res, int nmodels, const 
         printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
     if (npictures)
         printf("written: %d pictures in %s (heatmap_<model>.png, max_rel_error_epicentre_vs_n.png, "
-               "max_abs_error_vs_n.png)\n", npictures, run_dir);
+               "max_abs_error_vs_n.png; full BRDFs: hemisphere_heatmap_<model>.png, "
+               "hemisphere_max_rel_vs_p_<model>.png, hemisphere_max_abs_vs_p_<model>.png)\n", npictures, run_dir);
     if (json_path)
         printf("written: %s\n", json_path);
     if (csv_path)
@@ -457,11 +459,20 @@ int cmd_accuracy(int argc, char **argv)
         goto cleanup;
     }
     int npictures = 0;
-    if (pictures && to_folder && (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet,
-                                                         &npictures)) != 0)
+    if (pictures && to_folder && nmodels > 0 &&
+        (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet, &npictures)) != 0)
         goto cleanup;
-    if (pictures && to_folder && (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
+    if (pictures && to_folder && nmodels > 0 &&
+        (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
         goto cleanup;
+    if (pictures && to_folder && hdone > 0) {
+        int hdrawn = 0;
+        if ((rc = hemisphere_draw(hres, hdone, run_dir, &hdrawn, err, sizeof err)) != 0) {
+            fprintf(stderr, "brdfbench accuracy: %s\n", err);
+            goto cleanup;
+        }
+        npictures += hdrawn;
+    }
     if (!quiet && !doc_on_stdout)
         print_summary(res, nmodels, &grid, to_folder ? run_dir : NULL, npictures, json_path, csv_path);
 cleanup:
