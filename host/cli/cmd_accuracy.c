@@ -299,6 +299,12 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
         snprintf(err, errlen, "--reference: %s", inner);
         return -1;
     }
+    if (reference_text && !model_is_builtin(named_ref.info)) {
+        /* a program holds one user model's text: a user reference would be the model itself */
+        snprintf(err, errlen, "--reference: %s is a user model (accepted: a built-in model with parameters, e.g. "
+                              "blinn, ggx or ct-ggx:F0=0.04)", named_ref.label);
+        return -1;
+    }
     if (reference_text)
         plan->lobe_reference = named_ref;
     struct hemi_axis axis;

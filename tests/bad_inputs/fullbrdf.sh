@@ -22,3 +22,5 @@ t 2 "^brdfbench accuracy: --hemisphere-grid: 2x2x2 is out of range \(accepted: e
     accuracy --models ct-ggx --hemisphere-grid 2x2x2
 t 2 "^brdfbench accuracy: --hemisphere-grid: 'abc' is not NHxNDxNP" accuracy --models ct-ggx --hemisphere-grid abc
 t 2 "^brdfbench accuracy: --sweep-points" accuracy --models ct-ggx --sweep-points 0
+t 2 "^brdfbench accuracy: --reference: b is a user model \(accepted: a built-in model with parameters" \
+    accuracy --model 'a=pow(c,n)' --model 'b=c' --reference b
