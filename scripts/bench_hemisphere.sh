@@ -36,10 +36,10 @@ run_platform() {
         "$B" accuracy --model 'b=pow(c,n)' --reference blinn --n-step 10 --samples 4096 "$@" --json "$out/l.json" \
             >/dev/null 2>&1
         lobe+=("$(per_point "$out/l.json")")
-        "$B" accuracy --model-file "$out/blinn_full.glsl" --reference blinn --sweep-points 16 "$@" \
+        "$B" accuracy --model-file "$out/blinn_full.glsl" --reference blinn --axis-points 16 "$@" \
             --json "$out/h.json" >/dev/null 2>&1
         hemi+=("$(per_point "$out/h.json")")
-        "$B" accuracy --models ct-ggx --reference ct-ggx:F0=0.04 --sweep-points 16 "$@" --json "$out/c.json" \
+        "$B" accuracy --models ct-ggx --reference ct-ggx:F0=0.04 --axis-points 16 "$@" --json "$out/c.json" \
             >/dev/null 2>&1
         ct+=("$(per_point "$out/c.json")")
     done

@@ -19,7 +19,7 @@ set -u
 brdf_test_init
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T/pocl-cache}"
 mkdir -p "$POCL_CACHE_DIR"
-GRID=(--hemisphere-grid 16x16x32 --sweep-points 3)
+GRID=(--hemisphere-grid 16x16x32 --axis-points 3)
 
 # value FILE PYTHON-EXPRESSION: the expression over r (the first hemisphere row of the JSON)
 value() {
@@ -144,7 +144,7 @@ float D(vec3 L, vec3 V, vec3 N, float roughness)
     return a2 / (3.14159265358979 * d * d);
 }
 EOF2
-"$BIN" accuracy --model-file "$T/dggx.glsl" --reference ggx --sweep roughness=0.2:0.8 "${GRID[@]}" \
+"$BIN" accuracy --model-file "$T/dggx.glsl" --reference ggx --axis roughness=0.2:0.8 "${GRID[@]}" \
     --json "$T/dggx.json" >"$T/out" 2>"$T/err" && ok || bad "D_GGX roughness: $(head -c 300 "$T/err")"
 holds "$T/dggx.json" "r['status'] == 'ok' and h['axis']['name'] == 'roughness'" "D_GGX roughness: status ok"
 holds "$T/dggx.json" "h['epicentre']['max_rel'] < 1e-9" "D_GGX roughness: float-rounding delta"

@@ -75,7 +75,7 @@ static void test_conversions(void)
 
 static void test_axis_parse(void)
 {
-    CHECK_CASE("--sweep and --param parsing");
+    CHECK_CASE("--axis and --param parsing");
     struct hemi_axis a;
     char err[256];
     CHECK(hemisphere_axis_parse("roughness=0.1:0.9", &a, err, sizeof err) == 0 && a.q == HQ_ROUGHNESS &&

@@ -332,7 +332,7 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     if (plan->count == 0 && (sweep_text || fixed->count > 0)) {
         snprintf(err, errlen, "%s applies to the hemisphere sweep of full BRDFs, and none is among the models "
                               "(accepted: with a full user model, ct-ggx, ct-beckmann, brady or he)",
-                 sweep_text ? "--sweep" : "--param");
+                 sweep_text ? "--axis" : "--param");
         return -1;
     }
     return kept;

@@ -126,11 +126,17 @@ void accuracy_close(struct accuracy_ctx *a)
  * or those of a build with the model's text, cached for the session). */
 static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
 {
-    int rc = programs_kernel_ref(a->s, "accuracy.cl", a->build_options, m, a->reference, "accuracy_sweep", a->sweep,
-                                 sweep);
+    if (a->reference) {   /* --reference: a build with that reference's case where builds are specialised */
+        int rc = programs_kernel_ref(a->s, "accuracy.cl", a->build_options, m, a->reference, "accuracy_sweep",
+                                     a->sweep, sweep);
+        if (rc == 0)
+            rc = programs_kernel_ref(a->s, "accuracy.cl", a->build_options, m, a->reference, "models_probe", a->probe,
+                                     probe);
+        return rc;
+    }
+    int rc = programs_kernel(a->s, "accuracy.cl", a->build_options, m, "accuracy_sweep", a->sweep, sweep);
     if (rc == 0)
-        rc = programs_kernel_ref(a->s, "accuracy.cl", a->build_options, m, a->reference, "models_probe", a->probe,
-                                 probe);
+        rc = programs_kernel(a->s, "accuracy.cl", a->build_options, m, "models_probe", a->probe, probe);
     return rc;
 }
 

@@ -6,7 +6,6 @@
 #include "exitcodes.h"
 #include "lcg.h"
 #include "programs.h"
-#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -94,8 +93,8 @@ int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size
     const char *eq = strchr(text, '=');
     size_t nlen = eq ? (size_t)(eq - text) : strlen(text);
     if (!valid_name(text, nlen)) {
-        snprintf(err, errlen, "--sweep: '%.60s' is not NAME or NAME=MIN:MAX (accepted: n, alpha, roughness, m or a "
-                              "parameter of the model, e.g. --sweep roughness=0.1:0.9)", text);
+        snprintf(err, errlen, "--axis: '%.60s' is not NAME or NAME=MIN:MAX (accepted: n, alpha, roughness, m or a "
+                              "parameter of the model, e.g. --axis roughness=0.1:0.9)", text);
         return EXIT_USAGE;
     }
     memcpy(a->name, text, nlen);
@@ -109,8 +108,8 @@ int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size
         const char *colon = strchr(eq + 1, ':');
         if (!colon || parse_number(eq + 1, colon, &a->min) || parse_number(colon + 1, colon + strlen(colon), &a->max) ||
             !(a->min < a->max)) {
-            snprintf(err, errlen, "--sweep: '%.60s': the range is MIN:MAX, two numbers with MIN < MAX (e.g. "
-                                  "--sweep roughness=0.1:0.9)", text);
+            snprintf(err, errlen, "--axis: '%.60s': the range is MIN:MAX, two numbers with MIN < MAX (e.g. "
+                                  "--axis roughness=0.1:0.9)", text);
             return EXIT_USAGE;
         }
     }
@@ -177,7 +176,7 @@ int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, i
     if (a->q == HQ_PARAM) {
         int k = param_index(m, a->name);
         if (k < 0) {
-            snprintf(err, errlen, "--sweep: %s has no parameter '%s' (accepted: n, alpha, roughness, m%s%s%s%s)",
+            snprintf(err, errlen, "--axis: %s has no parameter '%s' (accepted: n, alpha, roughness, m%s%s%s%s)",
                      m->label, a->name, m->info->nparams > 0 ? ", " : "",
                      m->info->nparams > 0 ? m->info->params[0].name : "", m->info->nparams > 1 ? ", " : "",
                      m->info->nparams > 1 ? m->info->params[1].name : "");
@@ -188,7 +187,7 @@ int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, i
             a->min = pp->min;
             a->max = pp->max;
         } else if (a->min < pp->min || a->max > pp->max) {
-            snprintf(err, errlen, "--sweep: %s=%g:%g is outside the declared range of %s (accepted: %g to %g)",
+            snprintf(err, errlen, "--axis: %s=%g:%g is outside the declared range of %s (accepted: %g to %g)",
                      a->name, a->min, a->max, a->name, pp->min, pp->max);
             return EXIT_USAGE;
         }
@@ -200,7 +199,7 @@ int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, i
     if (isnan(a->min))
         quantity_range(a->q, n_min, n_max, &a->min, &a->max);
     else if (a->min < lo || a->max > hi || !(a->min > 0)) {
-        snprintf(err, errlen, "--sweep: %s=%g:%g is out of range (accepted: %g <= %s <= %g)", a->name, a->min, a->max,
+        snprintf(err, errlen, "--axis: %s=%g:%g is out of range (accepted: %g <= %s <= %g)", a->name, a->min, a->max,
                  lo, a->name, hi);
         return EXIT_USAGE;
     }
@@ -222,7 +221,7 @@ int hemisphere_grid_check(const struct hemi_grid *g, int points, char *err, size
         return EXIT_USAGE;
     }
     if (points < 1 || points > HEMI_MAX_POINTS) {
-        snprintf(err, errlen, "--sweep-points: %d is out of range (accepted: 1 to %d)", points, HEMI_MAX_POINTS);
+        snprintf(err, errlen, "--axis-points: %d is out of range (accepted: 1 to %d)", points, HEMI_MAX_POINTS);
         return EXIT_USAGE;
     }
     return 0;
@@ -245,14 +244,15 @@ static int slot_is_n(const struct model_spec *m)
 {
     if (model_is_builtin(m->info))
         return 1;
-    const struct user_model *um = usermodel_of(m);
-    size_t len = um ? strlen(um->origin) : 0;
-    return len > 5 && strcmp(um->origin + len - 5, ".brdf") == 0;
+    /* the registry's words for a run-time model: "user model 'NAME' (ORIGIN)" */
+    const struct model_runtime *rt = models_runtime(m->info);
+    size_t len = rt && rt->what ? strlen(rt->what) : 0;
+    return len > 6 && strcmp(rt->what + len - 6, ".brdf)") == 0;
 }
 
 /* The shininess slot of a model: n, converted from the axis, for a built-in or a .brdf file; a
    shader function's own argument takes the axis's quantity as it is (the user names what the
-   argument is with --sweep: n, alpha, roughness, m). */
+   argument is with --axis: n, alpha, roughness, m). */
 static double slot_value(const struct model_spec *m, enum hemi_quantity axis_q, double v)
 {
     if (!slot_is_n(m) || axis_q == HQ_N)

@@ -100,7 +100,7 @@ struct hemi_ctx {
  * physical model (its lobe sweep puts V below the horizon past 45 degrees). */
 int hemisphere_applies(const struct model_spec *m);
 
-/* Parses --sweep NAME[=MIN:MAX] into *a (count and n range from the caller). 0 or EXIT_USAGE. */
+/* Parses --axis NAME[=MIN:MAX] into *a (count and n range from the caller). 0 or EXIT_USAGE. */
 int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size_t errlen);
 /* Parses --param NAME=VALUE (appended to fixed; *count updated). 0 or EXIT_USAGE. */
 int hemisphere_fixed_parse(const char *text, struct hemi_fixed *fixed, int *count, char *err, size_t errlen);

@@ -333,9 +333,9 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
             const struct jr_value *v = path_get(row, figures[f]);
             rd_row_metric(d, r, figures[f], "1", RD_LOWER, 0, v && v->type == JR_NUM ? v->num : NAN);
         }
-        const struct jr_value *fc = jr_get(row, "float_cancellation");
+        const struct jr_value *fc = path_get(row, "check.float_cancellation");
         if (fc && fc->type == JR_NUM)   /* written since the device check's float floor */
-            rd_row_metric(d, r, "float_cancellation", "1", RD_LOWER, 0, fc->num);
+            rd_row_metric(d, r, "check.float_cancellation", "1", RD_LOWER, 0, fc->num);
     }
     return 0;
 }
