@@ -618,6 +618,37 @@ static void fold_check(struct hemi_result *r, double d, double dbl_at, double fi
     }
 }
 
+/* The RMS of cos(theta_i) (f - f_ref) at one p in double, over the grid's samples (the kernel's
+   quadrature: midpoints, the Jacobian 4 cos td sin td sin th, phi_h's 2 pi, phi_d folded onto
+   [0, pi) with the weight cos^2 ti + cos^2 to), divided by the measure (2 pi)^2 of the pair of
+   hemispheres. An invalid model value adds nothing, as on the device. */
+static double rms_double(const struct hemi_result *r, const struct hemi_per_p *pp)
+{
+    const struct hemi_grid *g = &r->grid;
+    double sum = 0;
+    for (int i = 0; i < g->nh; ++i) {
+        double th = hemi_theta_h(i, g->nh), u = (i + 0.5) / g->nh;
+        double row = 0;
+        for (int j = 0; j < g->nd; ++j) {
+            double td = hemi_theta_d(j, g->nd), part = 0;
+            for (int k = 0; k < g->np; ++k) {
+                double L[3], V[3];
+                hemisphere_dirs(th, td, hemi_phi_d(k, g->np), L, V);
+                if (!(L[2] > 0 && V[2] > 0))
+                    continue;
+                double f = hemisphere_eval_host(&r->model, r->model_kind, L, V, pp->mvals);
+                double fr = hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
+                if (!(f >= 0) || !isfinite(f) || !isfinite(fr))
+                    continue;
+                part += (L[2] * L[2] + V[2] * V[2]) * (f - fr) * (f - fr);
+            }
+            row += sin(td) * cos(td) * part;
+        }
+        sum += row * sin(th) * pi * u / g->nh;
+    }
+    return sqrt(sum * 8.0 * pi * (pi / 2 / g->nd) * (pi / g->np) / (4.0 * pi * pi));
+}
+
 static void range_max(const struct hemi_result *r, size_t off, struct hemi_extreme *out)
 {
     out->value = out->p = out->th = out->td = out->pd = NAN;
@@ -814,7 +845,8 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
             pp->invalid += (long long)o[HEMI_O_INVALID];
             pp->eval_below += (long long)o[HEMI_O_EVAL_BELOW];
         }
-        pp->rms = sqrt(sumsq * rms_scale);
+        pp->rms_device = sqrt(sumsq * rms_scale);
+        pp->rms = rms_double(out, pp);
         out->used += pp->used;
         out->below += pp->below;
         out->invalid += pp->invalid;

@@ -58,7 +58,8 @@ struct hemi_per_p {
     struct hemi_extreme epi_rel, att_abs, whole_abs;
     double chk_epi_rel, chk_att_abs, chk_whole_abs;   /* |device - double| at the device's point */
     double dbl_epi_rel, dbl_att_abs, dbl_whole_abs;   /* the double figure at the device's point */
-    double rms;                        /* RMS of cos(theta_i) (f - f_ref) over dw_i dw_o */
+    double rms;                        /* RMS of cos(theta_i) (f - f_ref) over dw_i dw_o, in double */
+    double rms_device;                 /* the same quadrature summed by the device in float */
     long long used, below, invalid, eval_below;
 };
 

@@ -90,6 +90,7 @@ void hemisphere_json_rows(struct jw *w, const struct hemi_result *res, int count
             extreme(w, "attenuation", "max_abs", &pp->att_abs, &pp->dev_att_abs);
             extreme(w, "whole", "max_abs", &pp->whole_abs, &pp->dev_whole_abs);
             jw_kv_num(w, "rms", pp->rms);
+            jw_kv_num(w, "rms_device", pp->rms_device);
             jw_kv_int(w, "samples", pp->used);
             jw_obj_end(w);
         }
