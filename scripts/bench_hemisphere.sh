@@ -3,9 +3,9 @@
 # (a benchmark, never a test; the goal is at most 2x), on PoCL and on Mesa's rusticl (llvmpipe)
 # where it is installed. Per platform and REPS runs interleaved, the median device seconds per
 # sample (each sample evaluates a model and its reference) of
-#   lobe:        brdfbench accuracy --model 'b=pow(c,n)' --reference blinn --samples 4096 (n 2..1000 step 10)
+#   lobe:        brdfbench accuracy --model 'b=pow(c,n)' --reference blinn --samples 16384 (n 2..1000 step 2)
 #   hemisphere:  brdfbench accuracy --model-file blinn_full.glsl --reference blinn, pow(N.H, n) of
-#                normalised vectors, 16 values of n over 48x48x96 (both passes and the probe's launch
+#                normalised vectors, 32 values of n over 48x48x96 (its passes, not the probe's launch,
 #                counted in its device time; the samples of the figures pass counted as points)
 #   hemisphere built-in: --models ct-ggx against ct-ggx:F0=0.04 (a heavier BRDF, for scale)
 # and their ratio. usage: scripts/bench_hemisphere.sh [REPS]   (default 5)
@@ -33,13 +33,13 @@ run_platform() {
     local name=$1; shift
     local lobe=() hemi=() ct=()
     for i in $(seq "$REPS"); do
-        "$B" accuracy --model 'b=pow(c,n)' --reference blinn --n-step 10 --samples 4096 "$@" --json "$out/l.json" \
+        "$B" accuracy --model 'b=pow(c,n)' --reference blinn --n-step 2 --samples 16384 "$@" --json "$out/l.json" \
             >/dev/null 2>&1
         lobe+=("$(per_point "$out/l.json")")
-        "$B" accuracy --model-file "$out/blinn_full.glsl" --reference blinn --axis-points 16 "$@" \
+        "$B" accuracy --model-file "$out/blinn_full.glsl" --reference blinn --axis-points 32 "$@" \
             --json "$out/h.json" >/dev/null 2>&1
         hemi+=("$(per_point "$out/h.json")")
-        "$B" accuracy --models ct-ggx --reference ct-ggx:F0=0.04 --axis-points 16 "$@" --json "$out/c.json" \
+        "$B" accuracy --models ct-ggx --reference ct-ggx:F0=0.04 --axis-points 32 "$@" --json "$out/c.json" \
             >/dev/null 2>&1
         ct+=("$(per_point "$out/c.json")")
     done
