@@ -220,6 +220,13 @@ int hemisphere_grid_check(const struct hemi_grid *g, int points, char *err, size
                  g->nd, g->np);
         return EXIT_USAGE;
     }
+    /* every sample is also summed in double on the host (the RMS): beyond this a run takes minutes */
+    if ((double)points * g->nh * g->nd * g->np > HEMI_MAX_WORK) {
+        snprintf(err, errlen, "--hemisphere-grid: %dx%dx%d cells x %d axis values is %.3g grid points (accepted: at "
+                              "most %.0e; fewer cells or --axis-points)", g->nh, g->nd, g->np, points,
+                 (double)points * g->nh * g->nd * g->np, HEMI_MAX_WORK);
+        return EXIT_USAGE;
+    }
     if (points < 1 || points > HEMI_MAX_POINTS) {
         snprintf(err, errlen, "--axis-points: %d is out of range (accepted: 1 to %d)", points, HEMI_MAX_POINTS);
         return EXIT_USAGE;

@@ -18,6 +18,7 @@
 #define HEMI_DEFAULT_POINTS 8
 #define HEMI_MAX_POINTS 4096
 #define HEMI_PROBE_POINTS 4096
+#define HEMI_MAX_WORK 5e8          /* grid points x axis values of one run */
 /* "a few units of 2^-24 peak" (docs/definitions.md, Device check) */
 #define HEMI_FLOOR_UNITS 8.0
 

@@ -24,3 +24,5 @@ t 2 "^brdfbench accuracy: --hemisphere-grid: 'abc' is not NHxNDxNP" accuracy --m
 t 2 "^brdfbench accuracy: --axis-points" accuracy --models ct-ggx --axis-points 0
 t 2 "^brdfbench accuracy: --reference: b is a user model \(accepted: a built-in model with parameters" \
     accuracy --model 'a=pow(c,n)' --model 'b=c' --reference b
+t 2 "^brdfbench accuracy: --hemisphere-grid: 1024x1024x1024 cells x 8 axis values is 8.59e\+09 grid points \(accepted: at most 5e\+08" \
+    accuracy --models ct-ggx --hemisphere-grid 1024x1024x1024
