@@ -371,3 +371,44 @@ BRDF_MODEL(HE, 0,
     .in_default_set = 0, .colour = "black",
     .kind = MODEL_KIND_OTHER,
     .ops = { 0, 0, 0, 0, 0, "not counted: not a cheap lobe" })
+
+/* Terms of a microfacet BRDF (family term): lobes of the cosine c of the angle of incidence with
+   L and V mirrored about N (H = N), against an exact term of their kind over (angle, n); n is the
+   term's own axis (brdf_models.h, "terms of a microfacet BRDF"). At c = 0 L and V lie on the
+   horizon, outside the BRDF's domain: the terms are 0 there, as a .brdf file's lobe is
+   (host/core/shaderlang_brdf.c) and the physical models' are. Not in the default sets. */
+BRDF_MODEL(FRESNEL, 0,
+    BRDF_SELECT(brdf_fresnel_dielectric(c, n), RSPLAT(0.0), c <= RC(0.0)),
+    .id = "fresnel", .family = MODEL_FAMILY_TERM, .lobe = LOBE_THETA_H, .reference_id = "fresnel",
+    .formula = "(g-c)^2/(2(g+c)^2) (1 + ((c(g+c)-1)/(c(g-c)+1))^2), g = sqrt(n^2 - 1 + c^2), n = index of refraction, c = L.H",
+    .description = "exact Fresnel reflectance of unpolarised light at a dielectric (n: its index of refraction): the reference of Fresnel terms",
+    .in_default_set = 0, .colour = "black",
+    .kind = MODEL_KIND_REFERENCE,
+    .ops = { 0, 0, 0, 0, 0, "not counted: not a cheap lobe" })
+
+BRDF_MODEL(FRESNEL_SCHLICK, 0,
+    BRDF_SELECT(brdf_fresnel_schlick_eta(s, n), RSPLAT(0.0), c <= RC(0.0)),
+    .id = "fresnel-schlick", .family = MODEL_FAMILY_TERM, .lobe = LOBE_THETA_H, .reference_id = "fresnel",
+    .formula = "F0 + (1 - F0)(1 - c)^5, F0 = ((n-1)/(n+1))^2, n = index of refraction, c = L.H",
+    .description = "Schlick's approximation of the Fresnel reflectance, against the exact one",
+    .in_default_set = 0, .colour = "blue",
+    .kind = MODEL_KIND_OTHER,
+    .ops = { 0, 0, 0, 0, 0, "not counted: not a cheap lobe" })
+
+BRDF_MODEL(SMITH_GGX, 0,
+    brdf_smith_ggx_separable(c, c, brdf_alpha_from_n(n)),
+    .id = "smith-ggx", .family = MODEL_FAMILY_TERM, .lobe = LOBE_THETA_H, .reference_id = "smith-ggx-hc",
+    .formula = "G1(c)^2, G1(x) = 2x/(x + sqrt(a^2 + (1-a^2)x^2)), a = sqrt(2/(n+2)), c = N.L = N.V (H = N)",
+    .description = "separable Smith masking-shadowing of GGX, against the height-correlated form",
+    .in_default_set = 0, .colour = "red",
+    .kind = MODEL_KIND_OTHER,
+    .ops = { 0, 0, 0, 0, 0, "not counted: not a cheap lobe" })
+
+BRDF_MODEL(SMITH_GGX_HC, 0,
+    brdf_smith_ggx_correlated(c, c, brdf_alpha_from_n(n)),
+    .id = "smith-ggx-hc", .family = MODEL_FAMILY_TERM, .lobe = LOBE_THETA_H, .reference_id = "smith-ggx-hc",
+    .formula = "1/(1 + 2 Lambda(c)), Lambda(x) = (sqrt(1 + a^2 tan^2)-1)/2, a = sqrt(2/(n+2)), c = N.L = N.V (H = N)",
+    .description = "height-correlated Smith masking-shadowing of GGX (Heitz 2014): the reference of G terms",
+    .in_default_set = 0, .colour = "black",
+    .kind = MODEL_KIND_REFERENCE,
+    .ops = { 0, 0, 0, 0, 0, "not counted: not a cheap lobe" })

@@ -373,6 +373,49 @@ BRDF_FN REAL brdf_fresnel_schlick(REAL vdoth, RSCALAR f0)
     return f0 + (RC(1.0) - f0) * (m2 * m2 * m);
 }
 
+/* ---- terms of a microfacet BRDF as lobes of one cosine (the TERM rows of brdf_model_list.h) ----
+ * c is the cosine of the angle of incidence with L and V mirrored about N (H = N, so
+ * N.L = N.V = L.H = c), the geometry where F and G show; n is the term's own axis: the index of
+ * refraction for a Fresnel term, the shininess of alpha = sqrt(2/(n+2)) for a G term. */
+
+/* Exact Fresnel reflectance of unpolarised light at a dielectric of relative index eta, for the
+ * cosine c of the angle of incidence (Cook and Torrance 1982's form): with g^2 = eta^2 - 1 + c^2,
+ * F = (g - c)^2 / (2 (g + c)^2) (1 + ((c (g + c) - 1) / (c (g - c) + 1))^2); 1 where g^2 < 0
+ * (eta < 1 past the critical angle: total internal reflection). */
+BRDF_FN REAL brdf_fresnel_dielectric(REAL c, REAL eta)
+{
+    REAL g2 = eta * eta - RC(1.0) + c * c;
+    REAL g = sqrt(fmax(g2, RC(0.0)));
+    REAL a = (g - c) / fmax(g + c, RC(1e-30));
+    REAL b = (c * (g + c) - RC(1.0)) / (c * (g - c) + RC(1.0));
+    return BRDF_SELECT(RC(0.5) * a * a * (RC(1.0) + b * b), RSPLAT(1.0), g2 < RC(0.0));
+}
+
+/* Schlick's approximation of it: F0 + (1 - F0) (1 - c)^5 with F0 = ((eta - 1) / (eta + 1))^2, the
+ * exact value at normal incidence; s = 1 - c. */
+BRDF_FN REAL brdf_fresnel_schlick_eta(REAL s, REAL eta)
+{
+    REAL r = (eta - RC(1.0)) / (eta + RC(1.0));
+    REAL f0 = r * r;
+    REAL s2 = s * s;
+    return f0 + (RC(1.0) - f0) * (s2 * s2 * s);
+}
+
+/* Smith's masking-shadowing of GGX for light and view cosines nl, nv (both > 0), with
+ * q(x) = sqrt(a^2 + (1 - a^2) x^2) = x sqrt(1 + a^2 tan^2): separable, G1(nl) G1(nv) with
+ * G1(x) = 2x / (x + q(x)) (Walter et al. 2007), and height-correlated, 1 / (1 + Lambda(nl) +
+ * Lambda(nv)) with Lambda(x) = (q(x)/x - 1)/2, i.e. 2 nl nv / (nv q(nl) + nl q(nv)) (Heitz 2014). */
+BRDF_FN REAL brdf_smith_ggx_separable(REAL nl, REAL nv, REAL alpha)
+{
+    return brdf_smith_g1_ggx(nl, alpha) * brdf_smith_g1_ggx(nv, alpha);
+}
+BRDF_FN REAL brdf_smith_ggx_correlated(REAL nl, REAL nv, REAL alpha)
+{
+    REAL a2 = alpha * alpha;
+    REAL ql = sqrt(a2 + (RC(1.0) - a2) * nl * nl), qv = sqrt(a2 + (RC(1.0) - a2) * nv * nv);
+    return RC(2.0) * nl * nv / fmax(nv * ql + nl * qv, RC(1e-30));   /* 0, not 0/0, at nl = nv = 0 */
+}
+
 /* Fresnel reflectance of unpolarised light, (F_s + F_p) / 2, at an interface with complex index
  * n_re + i n_im, for the cosine c of the angle of incidence (Born & Wolf's a, b form:
  * 2a^2 = sqrt(A^2 + 4 n^2 k^2) + A, 2b^2 = sqrt(A^2 + 4 n^2 k^2) - A, A = n^2 - k^2 - sin^2). */

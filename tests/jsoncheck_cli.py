@@ -145,7 +145,9 @@ def compare_accuracy_verdicts(*args):
         assert c["verdict"] == want, (r["key"], r["metric"], c["verdict"], want)
         assert math.isclose(c["change"], vb - va, rel_tol=1e-9, abs_tol=1e-300), (c["change"], vb - va)
         seen += 1
-    assert seen == 2 * 4, seen   # cq2 and fq2, each: epicentre, attenuation, whole range, invalid count
+    # cq2 and fq2, each: epicentre, attenuation, whole range, invalid count, and the float-cancellation
+    # figure (check.float_cancellation, a metric of its own since the device check's float floor)
+    assert seen == 2 * 5, seen
     verd = {(r["key"].split(" | ")[0], r["metric"]): r["cells"][1]["verdict"] for r in d["rows"]}
     assert verd[("cq2", "epicentre.max_rel")] == "changed, worse"
     assert verd[("cq2", "attenuation.max_abs")] == "changed, better"

@@ -126,6 +126,19 @@ static inline double lf_physical(const char *id, double c, double s, double n, d
     return NAN;
 }
 
+/* Fresnel reflectance of unpolarised light from Snell's law: sin t = sin i / n, r_s = (cos i - n
+ * cos t) / (cos i + n cos t), r_p = (n cos i - cos t) / (n cos i + cos t), F = (r_s^2 + r_p^2) / 2;
+ * 1 past the critical angle (sin t > 1). */
+static inline double lf_fresnel_snell(double ci, double n)
+{
+    double st = sqrt(1 - ci * ci) / n;
+    if (st >= 1)
+        return 1.0;
+    double ct = sqrt(1 - st * st);
+    double rs = (ci - n * ct) / (ci + n * ct), rp = (n * ci - ct) / (n * ci + ct);
+    return (rs * rs + rp * rp) / 2;
+}
+
 /* One model at cosine c (s = 1 - c, both given), shininess n, parameters p0, p1.
  * Returns NAN for an id this table does not know. */
 static inline double lf_eval(const char *id, double c, double s, double n, double p0, double p1)
@@ -225,6 +238,25 @@ static inline double lf_eval(const char *id, double c, double s, double n, doubl
     }
     if (!strcmp(id, "ct-beckmann") || !strcmp(id, "ct-ggx") || !strcmp(id, "brady") || !strcmp(id, "he"))
         return lf_physical(id, c, s, n, p0, p1);
+    /* The terms (c = cos of the angle of incidence, L and V mirrored about N), written here from the
+       polarised reflectances and the tangent form of Smith's Lambda, not from brdf_models.h's forms. */
+    if ((!strcmp(id, "fresnel") || !strcmp(id, "fresnel-schlick")) && c <= 0)
+        return 0.0;                                            /* on the horizon: outside the domain */
+    if (!strcmp(id, "fresnel"))
+        return lf_fresnel_snell(c, n);
+    if (!strcmp(id, "fresnel-schlick")) {
+        double f0 = (n - 1) * (n - 1) / ((n + 1) * (n + 1));
+        return f0 + (1 - f0) * pow(s, 5);
+    }
+    if (!strcmp(id, "smith-ggx") || !strcmp(id, "smith-ggx-hc")) {
+        double a2 = lf_alpha2(n);
+        if (c <= 0)
+            return 0.0;                                        /* both vanish at grazing */
+        if (!strcmp(id, "smith-ggx"))
+            return lf_g1_ggx(c, a2) * lf_g1_ggx(c, a2);
+        double lambda = (-1 + sqrt(1 + a2 * (1 - c * c) / (c * c))) / 2;
+        return 1 / (1 + 2 * lambda);
+    }
     return NAN;
 }
 

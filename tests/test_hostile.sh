@@ -200,6 +200,15 @@ ls -A | grep -q 'partial' && bad "a staging folder was left: $(ls -A | grep part
 # a new run under --results-root: stopped, it leaves no half run (results/latest untouched)
 timeout -s TERM 2 "$BIN" all --quick --models fq2 --results-root rs >out 2>err
 [ ! -e rs ] || [ -z "$(ls -A rs)" ] && ok || bad "a stopped all left $(ls -A rs)"
+# ... also when the signal comes between the run folder's mkdir and its record as the run's own
+# (BRDFBENCH_TEST_PAUSE_AFTER_MKDIR holds the process there): the stop waits for the record.
+rm -rf rs2
+BRDFBENCH_TEST_PAUSE_AFTER_MKDIR=3000 "$BIN" all --quick --models fq2 --results-root rs2 >out 2>err &
+pid=$!
+for _ in $(seq 600); do [ -n "$(ls -A rs2 2>/dev/null)" ] && break; sleep 0.1; done
+kill -TERM "$pid" 2>/dev/null
+wait "$pid"
+[ -z "$(ls -A rs2 2>/dev/null)" ] && ok || bad "an all stopped right after its run folder was made left $(ls -A rs2)"
 # a completed run replaces the earlier one as a whole: nothing of it stays
 echo stale >mix/stale.json
 run 300 all --quick --models fq2 --out mix --quiet

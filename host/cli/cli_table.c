@@ -9,6 +9,7 @@
 #include "frontier.h"
 #include "infile.h"
 #include "outdir.h"
+#include "shaderlang.h"
 #include "usermodel.h"
 
 #include <dirent.h>
@@ -468,6 +469,18 @@ int cli_call_model_file(const char *flag, const char *value, void *dest, char *e
         model_files[model_file_count++].as_given = value;
     }
     return 0;
+}
+
+int cli_call_define(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    (void)dest;
+    /* a define changes the files read after it: one after every file would change nothing */
+    if (model_file_count > 0) {
+        snprintf(err, errlen, "%s %.60s: given after --model-file %s; put -D before the --model-file flags it is "
+                 "for", flag, value, model_files[model_file_count - 1].as_given);
+        return EXIT_USAGE;
+    }
+    return shaderlang_define(value, err, errlen);
 }
 
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen)

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "accuracy.h"
+#include "hemisphere.h"
 #include "cli.h"
 #include "models.h"
 
@@ -183,7 +184,11 @@ int cli_call_timeout(const char *flag, const char *value, void *dest, char *err,
 /* User models (host/core/usermodel.h): registered as they are read. */
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+int cli_call_define(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 #define CLI_FLAGS_USERMODEL                                                                                        \
+    { .name = "-D", .value = "NAME[=VALUE]", .kind = CLI_CALL, .call = cli_call_define, .def = "",                 \
+      .help = "define NAME (as VALUE, else 1) for the preprocessor of the GLSL/HLSL model files given after "    \
+              "it (#if, #ifdef; docs/user-models.md); repeatable, at most 16" },                                   \
     { .name = "--model-file", .value = "FILE", .kind = CLI_CALL, .call = cli_call_model_file, .def = "",           \
       .help = "add the user model of FILE: OpenCL C (FILE.cl) or GLSL/HLSL (FILE.glsl, FILE.hlsl; see "         \
               "docs/user-models.md); repeatable; the same file twice is read once" },                            \
@@ -226,5 +231,25 @@ void cli_temp_dir_remove(const char *dir);
 int cli_deliver(const char *src, const char *flag, const char *dest, char *err, size_t errlen);
 /* 1 when path means standard output. */
 int cli_is_stdout(const char *path);
+
+
+/* The hemisphere sweep of full BRDFs (accuracy; host/engine/hemisphere.h), and the reference of
+ * any sweep. PARAM_CALL stores one --param NAME=VALUE (repeatable) into PARAM_DEST. */
+#define CLI_FLAGS_FULLBRDF(REF, SWEEP, PARAM_CALL, PARAM_DEST, POINTS, GRID)                                        \
+    { .name = "--reference", .value = "SPEC", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, REF), .def = "",    \
+      .help = "the reference every model is measured against: a built-in with parameters, e.g. ct-ggx:F0=0.04 "    \
+              "(default: each model's own; a full BRDF's family reference only where it agrees with the model "   \
+              "within 1% at the lobe's peak, else refused)" },                                                      \
+    { .name = "--axis", .value = "NAME[=MIN:MAX]", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, SWEEP),        \
+      .def = "n", .help = "the parameter axis of the hemisphere sweep: n, alpha, roughness or m (converted: "       \
+              "alpha = sqrt(2/(n+2)), alpha = roughness^2, Beckmann m = alpha; a user model's own parameter takes "\
+              "the value as named), or a parameter of the model over its declared range" },                        \
+    { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = (PARAM_CALL), .dest = (PARAM_DEST),       \
+      .def = "", .help = "a fixed value of a model parameter (or of n) in the hemisphere sweep; repeatable" },      \
+    { .name = "--axis-points", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, POINTS), .min = 1,             \
+      .max = HEMI_MAX_POINTS, .help = "values of the hemisphere sweep's axis, ends included" },                    \
+    { .name = "--hemisphere-grid", .value = "NHxNDxNP", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, GRID),     \
+      .def = "48x48x96", .help = "cells of the hemisphere sweep in theta_h (square-root spaced), theta_d and "      \
+              "phi_d" }
 
 #endif

@@ -8,6 +8,8 @@
 #include "exitcodes.h"
 #include "field.h"
 #include "field_report.h"
+#include "hemisphere.h"
+#include "hemisphere_pictures.h"
 #include "heatmaps_shared.h"
 #include "outdir.h"
 #include "plots.h"
@@ -118,11 +120,15 @@ static int prepare_run_dir(int to_folder, const char *out_dir, char *run_dir, si
 }
 
 /* accuracy.json (csv 0) or accuracy.csv (csv 1) at path. */
+/* The hemisphere sweep's results, written after the lobe sweep's rows (set once the sweeps ran). */
+static const struct hemi_result *doc_hres;
+static int doc_hcount;
+
 static int write_document(int csv, const char *path, const struct accuracy_result *res, int nmodels,
                           const struct cl_session *s, const char *build_options, char *err, size_t errlen)
 {
-    return csv ? accuracy_write_csv(path, res, nmodels, err, errlen)
-               : accuracy_write_json(path, res, nmodels, s, build_options, err, errlen);
+    return csv ? accuracy_write_csv_full(path, res, nmodels, doc_hres, doc_hcount, err, errlen)
+               : accuracy_write_json_full(path, res, nmodels, doc_hres, doc_hcount, s, build_options, err, errlen);
 }
 
 /* --json or --csv: one document where the flag says (a file, or standard output). */
@@ -216,7 +222,9 @@ static int sweep_models(struct accuracy_ctx *actx, const struct model_spec *mode
 static void print_summary(const struct accuracy_result *res, int nmodels, const struct accuracy_grid *g,
                           const char *run_dir, int npictures, const char *json_path, const char *csv_path)
 {
-    accuracy_print_table(stdout, res, nmodels);
+    if (nmodels > 0)
+        accuracy_print_table(stdout, res, nmodels);
+    hemisphere_print_table(stdout, doc_hres, doc_hcount);
     double worst = 0, dev_s = 0, pts = 0;
     int beyond = 0;
     for (int m = 0; m < nmodels; ++m) {
@@ -225,24 +233,109 @@ static void print_summary(const struct accuracy_result *res, int nmodels, const 
         dev_s += res[m].device_seconds;
         pts += res[m].points;
     }
-    printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
+    if (nmodels > 0)
+        printf("\ndevice vs double reference: every per-n figure recomputed in double at the device's inputs;\n"
            "largest difference = %.3g of one unit in the 4th significant digit of its figure (bound %g; "
            "%d models beyond it)\n", worst, ACC_CHECK_BOUND_UNITS, beyond);
     int wall = 0;
     for (int m = 0; m < nmodels; ++m)
         wall |= res[m].timer_wall;
-    printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)%s\n",
+    if (nmodels > 0)
+        printf("device time %.3f s for %.3g points (%.3g G points/s; grid: n in [%g, %g] step %g, %ld samples per zone)%s\n",
            dev_s, pts, pts / dev_s * 1e-9, g->n_min, g->n_max, g->n_step, g->samples,
            wall ? "; wall time: the driver's profiling events gave no time" : "");
     if (run_dir)
         printf("written: %s/accuracy.json, %s/accuracy.csv\n", run_dir, run_dir);
     if (npictures)
         printf("written: %d pictures in %s (heatmap_<model>.png, max_rel_error_epicentre_vs_n.png, "
-               "max_abs_error_vs_n.png)\n", npictures, run_dir);
+               "max_abs_error_vs_n.png; full BRDFs: hemisphere_heatmap_<model>.png, "
+               "hemisphere_max_rel_vs_p_<model>.png, hemisphere_max_abs_vs_p_<model>.png)\n", npictures, run_dir);
     if (json_path)
         printf("written: %s\n", json_path);
     if (csv_path)
         printf("written: %s\n", csv_path);
+}
+
+/* --param NAME=VALUE, repeatable. */
+struct fixed_params {
+    struct hemi_fixed v[HEMI_MAX_FIXED];
+    int count;
+};
+
+static int call_param(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    (void)flag;
+    struct fixed_params *f = dest;
+    return hemisphere_fixed_parse(value, f->v, &f->count, err, errlen);
+}
+
+/* The hemisphere sweep's part of a run: its models with their references and axes. */
+struct full_plan {
+    struct model_spec models[MAX_MODELS], refs[MAX_MODELS];
+    struct hemi_axis axes[MAX_MODELS];
+    int count;
+    struct hemi_grid grid;
+    struct model_spec lobe_reference;   /* --reference for the lobe models */
+};
+
+/* Moves the full BRDFs of models[] into plan (their references and axes checked); returns the
+ * count of lobe models left, or -1 with the message in err. */
+static int plan_full_models(struct model_spec *models, int nmodels, struct full_plan *plan, const char *reference_text,
+                            const char *sweep_text, const struct fixed_params *fixed, int points,
+                            const char *grid_text, const struct accuracy_grid *lobe_grid, char *err, size_t errlen)
+{
+    char tail;
+    if (sscanf(grid_text, "%dx%dx%d%c", &plan->grid.nh, &plan->grid.nd, &plan->grid.np, &tail) != 3) {
+        snprintf(err, errlen, "--hemisphere-grid: '%.40s' is not NHxNDxNP (accepted: three integers in [%d, %d], "
+                              "e.g. 48x48x96)", grid_text, HEMI_MIN_CELLS, HEMI_MAX_CELLS);
+        return -1;
+    }
+    if (hemisphere_grid_check(&plan->grid, points, err, errlen))
+        return -1;
+    struct model_spec named_ref;
+    if (reference_text && model_spec_parse(reference_text, &named_ref, err, errlen)) {
+        char inner[400];
+        snprintf(inner, sizeof inner, "%.399s", err);
+        snprintf(err, errlen, "--reference: %s", inner);
+        return -1;
+    }
+    if (reference_text && !model_is_builtin(named_ref.info)) {
+        /* a program holds one user model's text: a user reference would be the model itself */
+        snprintf(err, errlen, "--reference: %s is a user model (accepted: a built-in model with parameters, e.g. "
+                              "blinn, ggx or ct-ggx:F0=0.04)", named_ref.label);
+        return -1;
+    }
+    if (reference_text)
+        plan->lobe_reference = named_ref;
+    struct hemi_axis axis;
+    memset(&axis, 0, sizeof axis);
+    if (hemisphere_axis_parse(sweep_text ? sweep_text : "n", &axis, err, errlen))
+        return -1;
+    axis.count = points;
+    int kept = 0;
+    for (int m = 0; m < nmodels; ++m) {
+        if (!hemisphere_applies(&models[m])) {
+            models[kept++] = models[m];
+            continue;
+        }
+        int k = plan->count++;
+        plan->models[k] = models[m];
+        if (reference_text)
+            plan->refs[k] = named_ref;
+        else if (hemisphere_default_reference(&models[m], &axis, &plan->refs[k], err, errlen))
+            return -1;
+        plan->axes[k] = axis;
+        if (hemisphere_axis_check(&plan->axes[k], fixed->v, fixed->count, &models[m], &plan->refs[k],
+                                  lobe_grid->n_min, lobe_grid->n_max, err, errlen))
+            return -1;
+    }
+    if (plan->count == 0 && (sweep_text || fixed->count > 0)) {
+        snprintf(err, errlen, "%s applies to the hemisphere sweep of full BRDFs, and none is among the models "
+                              "(accepted: with a full user model, ct-ggx, ct-beckmann, brady or he)",
+                 sweep_text ? "--axis" : "--param");
+        return -1;
+    }
+    return kept;
 }
 
 int cmd_accuracy(int argc, char **argv)
@@ -258,6 +351,9 @@ int cmd_accuracy(int argc, char **argv)
     const char *models_text = "all", *out_dir = NULL, *json_path = NULL, *csv_path = NULL;
     int quiet = 0, models_given = 0, pictures = 0, shared_scale = 0;
     struct model_spec models[MAX_MODELS];
+    const char *reference_text = NULL, *sweep_text = NULL, *hgrid_text = "48x48x96";
+    struct fixed_params fixed = { .count = 0 };
+    int sweep_points = HEMI_DEFAULT_POINTS;
 
     const struct cli_flag flags[] = {
         CLI_FLAG_MODELS(&models_text, &models_given, "all; with --model or --model-file, only the user models"),
@@ -271,13 +367,16 @@ int cmd_accuracy(int argc, char **argv)
                   "of every model (plots.json and two PNGs), user models included; brdfbench plot and heatmap "
                   "redraw them" },
         CLI_FLAG_SHARED_SCALE(&shared_scale),
+        CLI_FLAGS_FULLBRDF(&reference_text, &sweep_text, call_param, &fixed, &sweep_points, &hgrid_text),
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };
     const struct cli_command cmd = {
         .name = "accuracy",
         .about = "  Sweeps every model over (angle, n): max relative error in the epicentre zone, max absolute\n"
-                 "  error in the attenuation zone and over the whole range, each with where it occurs.\n",
+                 "  error in the attenuation zone and over the whole range, each with where it occurs.\n"
+                 "  A full BRDF (a user model of L, V, N; ct-ggx, ct-beckmann, brady, he) is measured over the\n"
+                 "  hemisphere instead: (theta_h, theta_d, phi_d) where N.L > 0 and N.V > 0, along one parameter axis.\n",
         CLI_TABLE(flags),
     };
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
@@ -285,6 +384,13 @@ int cmd_accuracy(int argc, char **argv)
         return cli_parse_exit(&cmd, prc, err);
     int nmodels = check_args(models_text, models_given, models, pictures + 2 * shared_scale, out_dir, json_path,
                              csv_path, &grid, err, sizeof err);
+    if (nmodels < 0)
+        goto usage_error;
+    /* the full BRDFs leave the lobe list for the hemisphere sweep */
+    struct full_plan plan;
+    memset(&plan, 0, sizeof plan);
+    nmodels = plan_full_models(models, nmodels, &plan, reference_text, sweep_text, &fixed, sweep_points, hgrid_text,
+                               &grid, err, sizeof err);
     if (nmodels < 0)
         goto usage_error;
     /* --json or --csv without --out: those files only, no run folder. A document on
@@ -309,15 +415,21 @@ int cmd_accuracy(int argc, char **argv)
         goto usage_error;
     }
     struct accuracy_ctx actx;
-    struct accuracy_result *res = calloc((size_t)nmodels, sizeof *res);
+    struct accuracy_result *res = calloc((size_t)nmodels + 1, sizeof *res);
     int done = 0;
     if (!res) {
         clsession_close(&s);
         return EXIT_RUNTIME;
     }
+    struct hemi_ctx hctx;
+    hemisphere_open(&hctx, &s, "");
+    struct hemi_result hres[MAX_MODELS];
+    int hdone = 0;
     rc = accuracy_open(&actx, &s, "");
     if (rc)
         goto cleanup;
+    if (reference_text && nmodels > 0)
+        actx.reference = &plan.lobe_reference;
     for (int m = 0; m < nmodels && !rc; ++m)
         rc = accuracy_prepare(&actx, &models[m]);   /* a user model's compile error before any sweep */
     if (rc)
@@ -333,6 +445,13 @@ int cmd_accuracy(int argc, char **argv)
                 s.specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
     if ((rc = sweep_models(&actx, models, nmodels, &grid, res, &done, quiet)))
         goto cleanup;
+    for (; hdone < plan.count; ++hdone) {
+        if ((rc = hemisphere_run(&hctx, &plan.models[hdone], &plan.refs[hdone], &plan.axes[hdone], fixed.v, fixed.count,
+                                 &plan.grid, &hres[hdone])) != 0)
+            goto cleanup;
+    }
+    doc_hres = hres;
+    doc_hcount = hdone;
     if (to_folder && !out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
@@ -346,14 +465,28 @@ int cmd_accuracy(int argc, char **argv)
         goto cleanup;
     }
     int npictures = 0;
-    if (pictures && to_folder && (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet,
-                                                         &npictures)) != 0)
+    if (pictures && to_folder && nmodels > 0 &&
+        (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet, &npictures)) != 0)
         goto cleanup;
-    if (pictures && to_folder && (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
+    if (pictures && to_folder && nmodels > 0 &&
+        (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
         goto cleanup;
+    if (pictures && to_folder && hdone > 0) {
+        int hdrawn = 0;
+        if ((rc = hemisphere_draw(hres, hdone, run_dir, &hdrawn, err, sizeof err)) != 0) {
+            fprintf(stderr, "brdfbench accuracy: %s\n", err);
+            goto cleanup;
+        }
+        npictures += hdrawn;
+    }
     if (!quiet && !doc_on_stdout)
         print_summary(res, nmodels, &grid, to_folder ? run_dir : NULL, npictures, json_path, csv_path);
 cleanup:
+    for (int m = 0; m < hdone; ++m)
+        hemisphere_result_free(&hres[m]);
+    doc_hres = NULL;
+    doc_hcount = 0;
+    hemisphere_close(&hctx);
     for (int m = 0; m < done; ++m)
         accuracy_result_free(&res[m]);
     free(res);

@@ -28,7 +28,7 @@ const char *model_family_name(enum model_family f)
 {
     static const char *const names[MODEL_FAMILY_COUNT] = {
         "reference", "quadratic", "rational", "normalised", "microfacet", "gaussian",
-        "power", "angular", "bits", "physical", "user" };
+        "power", "angular", "bits", "physical", "user", "term" };
     return f >= 0 && f < MODEL_FAMILY_COUNT ? names[f] : "?";
 }
 
@@ -85,7 +85,8 @@ const struct model_info *models_find(const char *id)
         if (strcmp(registry[i].id, id) == 0)
             return &registry[i];
     for (int i = 0; i < user_model_count; ++i)
-        if (strcmp(user_models[i].info->id, id) == 0)
+        if (strcmp(user_models[i].info->id, id) == 0 ||
+            (user_models[i].rt->alias && strcmp(user_models[i].rt->alias, id) == 0))
             return user_models[i].info;
     return NULL;
 }

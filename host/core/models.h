@@ -24,6 +24,7 @@ enum model_family {
     MODEL_FAMILY_BITS,
     MODEL_FAMILY_PHYSICAL,
     MODEL_FAMILY_USER,
+    MODEL_FAMILY_TERM,      /* a term of a microfacet BRDF: Fresnel, shadowing-masking */
     MODEL_FAMILY_COUNT
 };
 const char *model_family_name(enum model_family f);
@@ -113,6 +114,7 @@ struct model_runtime {
     const char *device_source;    /* placed after a kernel file: defines brdf_user_eval */
     const char *device_options;   /* options its float builds add to the kernel file's */
     const char *what;             /* names the model in messages: "user model 'sq' (--model sq)" */
+    const char *alias;            /* NULL, or a second name models_find knows it by (NAME@FILE.brdf) */
     /* The value at (c, n) with spec's parameters, in double. */
     double (*eval_host)(const struct model_runtime *rt, const struct model_spec *spec, double c, double n);
     /* Makes eval_host ready where it needs a device (NULL: it never does); idempotent.

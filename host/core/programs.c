@@ -161,8 +161,10 @@ static int entry_add(struct cl_session *s, const char *kernel_file, const char *
 
 /* The build a model needs beyond the shared program: a user model's, or in a session that
  * specialises a built-in model's own. *e stays NULL when the shared program serves. */
-static int model_entry(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
-                       const struct model_spec *m, struct program_entry **e)
+/* ref_given: the reference the build evaluates besides m (NULL: m's own, model_reference_spec). */
+static int model_entry_ref(struct cl_session *s, const char *kernel_file, const char *extra_before,
+                           const char *options, const struct model_spec *m, const struct model_spec *ref_given,
+                           struct program_entry **e)
 {
     const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
     *e = NULL;
@@ -170,7 +172,21 @@ static int model_entry(struct cl_session *s, const char *kernel_file, const char
         return 0;
     struct model_spec ref;
     model_reference_spec(m, &ref);
+    if (ref_given && ref_given->info != ref.info && s->specialise) {
+        /* another reference than the model's own: a build of its own, which the options tell
+           apart in the cache (the macro itself is read by no kernel) */
+        char opts[1024];
+        snprintf(opts, sizeof opts, "%.900s%s-DBRDF_REF_GIVEN=%d", options ? options : "",
+                 options && *options ? " " : "", ref_given->info->kernel_id);
+        return entry_for(s, kernel_file, extra_before, opts, rt, m->info->kernel_id, ref_given->info->kernel_id, e);
+    }
     return entry_for(s, kernel_file, extra_before, options, rt, m->info->kernel_id, ref.info->kernel_id, e);
+}
+
+static int model_entry(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
+                       const struct model_spec *m, struct program_entry **e)
+{
+    return model_entry_ref(s, kernel_file, extra_before, options, m, NULL, e);
 }
 
 int programs_program(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
@@ -188,9 +204,15 @@ int programs_program(struct cl_session *s, const char *kernel_file, const char *
 int programs_kernel(struct cl_session *s, const char *kernel_file, const char *options, const struct model_spec *m,
                     const char *kernel_name, cl_kernel shared, cl_kernel *out)
 {
+    return programs_kernel_ref(s, kernel_file, options, m, NULL, kernel_name, shared, out);
+}
+
+int programs_kernel_ref(struct cl_session *s, const char *kernel_file, const char *options, const struct model_spec *m,
+                        const struct model_spec *ref, const char *kernel_name, cl_kernel shared, cl_kernel *out)
+{
     struct program_entry *e;
     *out = shared;
-    int rc = model_entry(s, kernel_file, NULL, options, m, &e);
+    int rc = model_entry_ref(s, kernel_file, NULL, options, m, ref, &e);
     if (rc || !e)
         return rc;
     for (int k = 0; k < e->kernel_count; ++k)

@@ -29,6 +29,11 @@
 int programs_kernel(struct cl_session *s, const char *kernel_file, const char *options, const struct model_spec *m,
                     const char *kernel_name, cl_kernel shared, cl_kernel *out);
 
+/* The same, for a build that evaluates m against ref (--reference) instead of m's own reference
+ * (a specialised build keeps that reference's case: -DBRDF_ONLY_REF). ref NULL: m's own. */
+int programs_kernel_ref(struct cl_session *s, const char *kernel_file, const char *options, const struct model_spec *m,
+                        const struct model_spec *ref, const char *kernel_name, cl_kernel shared, cl_kernel *out);
+
 /* The program of kernel_file with extra_before (text placed between the kernel file and the
  * model's text; may be NULL) and options that evaluates m: `shared` when m is built-in, else
  * the cached build with m's text. The cache owns it (do not release it). Same returns. */

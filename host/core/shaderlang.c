@@ -13,6 +13,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "shaderlang.h"
 #include "shaderlang_internal.h"
+#include "clsession.h"
 #include "exitcodes.h"
 #include "mdbuf.h"
 
@@ -45,6 +46,9 @@ void sl_read_header(const char *text, size_t len, struct header *h)
         return;
     const char *p = start;
     int first = 1;
+    int line = 1;
+    for (size_t k = 0; k < i; ++k)
+        line += text[k] == '\n';
     while (p < close) {
         const char *eol = memchr(p, '\n', (size_t)(close - p));
         if (!eol)
@@ -87,6 +91,18 @@ void sl_read_header(const char *text, size_t len, struct header *h)
                     snprintf(h->lobe, sizeof h->lobe, "%.*s", (int)(vl < 15 ? vl : 15), v);
                 else if (kl == 11 && strncmp(k, "description", 11) == 0)
                     snprintf(h->description, sizeof h->description, "%.*s", (int)(b - v), v);
+                else if (kl == 6 && strncmp(k, "define", 6) == 0 && !h->define_error[0]) {
+                    /* define: NAME[=VALUE] (the shader-language preprocessor's, shaderlang_pp.c) */
+                    char arg[SL_DEFINE_MAX + 2];
+                    snprintf(arg, sizeof arg, "%.*s", (int)(b - v), v);
+                    h->define_line = line;
+                    if (h->ndefines == SL_MAX_DEFINES)
+                        snprintf(h->define_error, sizeof h->define_error, "more than %d define: lines",
+                                 SL_MAX_DEFINES);
+                    else if (sl_define_text(arg, h->defines[h->ndefines], sizeof h->defines[0], h->define_error,
+                                            sizeof h->define_error, "define:") == 0)
+                        h->ndefines++;
+                }
                 else if (kl == 5 && strncmp(k, "param", 5) == 0 && h->nparams < SL_MAX_PARAMS) {
                     snprintf(h->params[h->nparams], sizeof h->params[0], "%.*s", (int)vl, v);
                     const char *rest = ve;
@@ -99,6 +115,7 @@ void sl_read_header(const char *text, size_t len, struct header *h)
             }
         }
         p = eol + 1;
+        ++line;
     }
     h->present = 1;
     h->end = (size_t)(close + 2 - text);
@@ -239,7 +256,7 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
     S->line_next = fline + 2;
     sl_push_scope(S, 1);
     S->globals = S->scope;
-    struct fnctx fc = { { B_FLOAT, 1 }, { NULL }, NULL, NULL, 1, 0 };
+    struct fnctx fc = { .ret = { .b = B_FLOAT, .n = 1 }, .is_model = 1 };
     S->fn = &fc;
     /* The arguments: in the function form in a scope of their own under the globals (a helper
        sees the globals, not the model's arguments); in the body form among the globals. */
@@ -264,7 +281,7 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
     }
     for (int i = 0; i < 2 + h->nparams && !full; ++i) {
         const struct tok *pn;
-        struct type ty = { B_FLOAT, 1 };
+        struct type ty = { .b = B_FLOAT, .n = 1 };
         if (model) {
             pn = model->pname[i];
             ty = model->pty[i];
@@ -298,13 +315,54 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
     md_printf(&S->out, "}\n");
 }
 
+/* The header as written, less its define: lines (the preprocessor's, not usermodel.c's keys),
+ * each left as an empty line of the comment so that the lines keep their numbers. */
+static void append_header(struct sl *S, const char *text, size_t n)
+{
+    for (size_t i = 0; i < n;) {
+        const char *eol = memchr(text + i, '\n', n - i);
+        size_t e = eol ? (size_t)(eol - text) + 1 : n;
+        size_t k = i;
+        while (k < e && (isspace((unsigned char)text[k]) || text[k] == '*'))
+            ++k;
+        size_t w = k;
+        while (k < e && isalpha((unsigned char)text[k]))
+            ++k;
+        size_t wl = k - w;
+        while (k < e && (text[k] == ' ' || text[k] == '\t'))
+            ++k;
+        if (wl == 6 && strncmp(text + w, "define", 6) == 0 && k < e && text[k] == ':') {
+            int closes = 0;
+            for (size_t q = i; q + 1 < e; ++q)
+                if (text[q] == '*' && text[q + 1] == '/')
+                    closes = 1;
+            md_printf(&S->out, closes ? " */" : " *");
+            if (eol && e <= n)
+                md_append(&S->out, "\n", 1);
+        } else {
+            md_append(&S->out, text + i, e - i);
+        }
+        i = e;
+    }
+}
+
 static __attribute__((noinline)) void translate_text(struct sl *S, const char *text, size_t len, const struct header *h, const char *name)
 {
     S->src = text;
+    if (h->define_error[0])
+        sl_fail_at(S, h->define_line, -1, "%s", h->define_error);
     int first_line = h->first_line > 0 ? h->first_line : 1;
     if (h->prelude)
         sl_lex_span(S, h->prelude, h->prelude + strlen(h->prelude), 0, 0, NULL);
-    sl_lex_span(S, text, text + len, first_line, 1, NULL);
+    size_t pp_len = 0;
+    const char *pp = sl_preprocess(S, text, len, first_line, h, &pp_len);
+    if (pp) {
+        S->pp_active = 1;
+        sl_lex_span(S, pp, pp + pp_len, first_line, 1, NULL);
+        S->pp_active = 0;
+    } else {
+        sl_lex_span(S, text, text + len, first_line, 1, NULL);
+    }
     if (h->epilogue)
         sl_lex_span(S, h->epilogue, h->epilogue + strlen(h->epilogue), 0, 0, NULL);
     sl_tokv_push(S, &S->toks, (struct tok){ K_EOF, 0, 0, text + len, 0 });
@@ -327,6 +385,10 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
     struct stmt *globals = sl_new_stmt(S, S_BLOCK, sl_peek(S));
     globals->op = 1;
     struct stmt *body = sl_parse_program(S, globals);
+    /* a file of functions (not a body, not a .brdf file's shader) is checked by the reference
+       compiler first: its error is the one the engine's compiler would print */
+    if (!body && !h->header_text)
+        sl_validate(S, text, len, first_line, h);
 
     const char *fname = h->function[0] ? h->function : name;
     struct func *model = NULL;
@@ -391,13 +453,13 @@ static __attribute__((noinline)) void translate_text(struct sl *S, const char *t
             if (!isspace((unsigned char)text[i]) && text[i] != '*')
                 bare = 0;
         if (h->function[0]) {
-            md_append(&S->out, text, h->end);
+            append_header(S, text, h->end);
         } else if (bare) {
             /* "function: ..." on the closing line, so the header keeps its lines */
-            md_append(&S->out, text, line_start);
+            append_header(S, text, line_start);
             md_printf(&S->out, " * function: %s */", emit_name);
         } else {
-            md_append(&S->out, text, h->end);
+            append_header(S, text, h->end);
             emit_name = name;
         }
         md_append(&S->out, "\n", 1);
@@ -423,14 +485,27 @@ int sl_translate(struct sl *S, const char *text, size_t len, const struct header
                  char **out, size_t *outlen)
 {
     md_init(&S->out);
+    S->started = wall_seconds();
+    S->fail_code = EXIT_USAGE;
     if (setjmp(S->fail)) {
         md_free(&S->out);
-        return EXIT_USAGE;
+        return S->fail_code;
     }
     translate_text(S, text, len, h, name);
     *out = S->out.s;
     *outlen = S->out.len;
     return 0;
+}
+
+/* Translation is bounded (SL_MAX_UNROLL_TOTAL, SL_MAX_OUTPUT), and the launch deadline covers
+ * it all the same: a text that takes longer than a launch may is stopped as a launch would be. */
+void sl_check_deadline(struct sl *S)
+{
+    double limit = clsession_timeout();
+    if (limit > 0 && wall_seconds() - S->started > limit) {
+        S->fail_code = EXIT_RUNTIME;
+        sl_fail_at(S, S->stmt_line, -1, "the translation took longer than the deadline of %g s (--timeout)", limit);
+    }
 }
 
 void sl_free(struct sl *S)

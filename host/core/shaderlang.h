@@ -38,4 +38,11 @@ int shaderlang_file(const char *text, size_t len, const char *path, char **out, 
 int shaderlang_expression(const char *name, const char *expr, const char *origin, char **out, size_t *outlen,
                           char *err, size_t errlen);
 
+/* -D NAME[=VALUE] of the command line: a define for every shader-language file read after it
+ * (its preprocessor, shaderlang_pp.c). Returns 0, or EXIT_USAGE with a one-line message. */
+int shaderlang_define(const char *arg, char *err, size_t errlen);
+void shaderlang_clear_defines(void);
+/* 1 when the preprocessor (glslang) was linked in: #if, function-like macros, -D. */
+int shaderlang_has_preprocessor(void);
+
 #endif

@@ -4,6 +4,7 @@
 #include "shaderlang_internal.h"
 #include "exitcodes.h"
 #include "mdbuf.h"
+#include "models.h"
 
 #include <ctype.h>
 #include <setjmp.h>
@@ -43,27 +44,75 @@ static int parse_finite(const char *t, double *v)
 
 /* A BRDF Explorer file: "::begin parameters" (float NAME MIN MAX DEFAULT, bool NAME 0|1,
  * color NAME R G B) and "::begin shader" with vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y),
- * as a full BRDF reduced to a lobe (docs/user-models.md, "BRDF Explorer files"). */
-/* The statements that open a .brdf file's functions: the shininess to n (or alpha) and the model
- * parameters to their globals. */
-static void brdf_set_params(struct md_buf *epi, int has_n, const struct brdf_param *prm, const int *model_params,
-                            int nmp)
+ * as a full BRDF reduced to a lobe of one cosine c (docs/user-models.md, "BRDF Explorer files"). */
+
+/* How the lobe's n reaches a parameter of the file: the first float parameter named in this
+   table takes it, converted as the engines convert their roughness axes (docs/user-models.md,
+   "Roughness, alpha, m and n"); a file with none of these names is evaluated at its defaults
+   and its lobe does not depend on n. */
+enum brdf_conv { CONV_N, CONV_ALPHA, CONV_ROUGHNESS, CONV_F0 };
+static const struct {
+    const char *name;
+    enum brdf_conv conv;
+    int alone;   /* taken only when it is the file's one float parameter (a Fresnel term's) */
+} brdf_lobe_params[] = {
+    { "n", CONV_N, 0 },                 /* a Phong / Blinn-Phong exponent */
+    { "alpha", CONV_ALPHA, 0 },         /* alpha = sqrt(2 / (n + 2)), the microfacet built-ins' width */
+    { "alphaG", CONV_ALPHA, 0 },        /* Walter et al.'s GGX width */
+    { "m", CONV_ALPHA, 0 },             /* Beckmann's rms slope m = alpha */
+    { "roughness", CONV_ROUGHNESS, 0 }, /* the engines' roughness: alpha = roughness^2 */
+    /* a Fresnel term's index of refraction, the axis of the built-in fresnel, and the reflectance
+       at normal incidence of that index, ((n - 1) / (n + 1))^2; beside other floats (a full
+       BRDF's F0) they keep their defaults */
+    { "ior", CONV_N, 1 },
+    { "f0", CONV_F0, 1 },
+    { "F0", CONV_F0, 1 },
+};
+
+/* Where L and V lie for the lobe's cosine c (the header's lobe: key). */
+enum brdf_geom {
+    GEOM_THETA_H,   /* L = N, V at 2 theta_h from N: N.H = c (a D term, a full BRDF's highlight) */
+    GEOM_PSI,       /* L = N, V at psi from R = N: N.V = R.V = c (a Phong lobe) */
+    GEOM_THETA_D    /* L and V mirrored about N at theta = acos c: H = N, N.L = N.V = L.H = c (F, G and
+                       diffuse terms, which L = N hides) */
+};
+
+/* The statement that opens a .brdf file's functions: the lobe parameter from n and the model
+ * parameters from their arguments. */
+static void brdf_set_params(struct md_buf *epi, int lobe_param, enum brdf_conv conv, const struct brdf_param *prm,
+                            const int *model_params, int nmp)
 {
-    if (has_n)
-        md_printf(epi, "n = brdfbench_n; ");
-    else
-        md_printf(epi, "alpha = sqrt(2.0 / (brdfbench_n + 2.0)); ");
+    if (lobe_param >= 0) {
+        const char *v = prm[lobe_param].name;
+        switch (conv) {
+        case CONV_N:
+            md_printf(epi, "%s = brdfbench_n; ", v);
+            break;
+        case CONV_ALPHA:
+            md_printf(epi, "%s = sqrt(2.0 / (brdfbench_n + 2.0)); ", v);
+            break;
+        case CONV_ROUGHNESS:
+            md_printf(epi, "%s = sqrt(sqrt(2.0 / (brdfbench_n + 2.0))); ", v);
+            break;
+        case CONV_F0:
+            md_printf(epi, "%s = ((brdfbench_n - 1.0) / (brdfbench_n + 1.0)) * ((brdfbench_n - 1.0) / "
+                           "(brdfbench_n + 1.0)); ", v);
+            break;
+        }
+    }
     for (int i = 0; i < nmp; ++i)
         md_printf(epi, "%s = brdfbench_p%d; ", prm[model_params[i]].name, i);
 }
 
-/* What a .brdf file declares: its parameters, where its shader block lies, and which
-   parameters take the shininess and the model's parameters. */
+/* What a .brdf file declares: its parameters, where its shader block lies, which parameters take
+   the lobe's n and the model's parameters, and the lobe's geometry. */
 struct brdf_doc {
     struct brdf_param prm[BRDF_MAX_FILE_PARAMS];
     int nprm, shader_line;
     size_t shader_start, shader_end;
-    int shin, alpha, model_params[SL_MAX_PARAMS], nmp;
+    int lobe_param, model_params[SL_MAX_PARAMS], nmp;
+    enum brdf_conv conv;
+    enum brdf_geom geom;
 };
 
 /* One line of the parameters block (t, trimmed, split in place): a float, bool or color. */
@@ -185,28 +234,122 @@ static int brdf_blocks(const char *text, size_t len, const char *path, struct br
     return 0;
 }
 
-/* The shininess: a float parameter n takes the sweep's n; else one called alpha takes
-   sqrt(2 / (n + 2)), the microfacet built-ins' roughness. Up to two other floats become the
-   model's parameters; the rest, the bools and the colours keep their defaults. */
-static int brdf_choose_params(struct brdf_doc *D, const char *path, char *err, size_t errlen)
+/* The lobe parameter (brdf_lobe_params: the first name of the table the file declares as a
+   float), then up to two other floats as the model's parameters; the rest, the bools and the
+   colours keep their defaults. A file without a lobe parameter is accepted: its lobe is the
+   BRDF at its defaults, whatever n. */
+static void brdf_choose_params(struct brdf_doc *D)
 {
     const struct brdf_param *prm = D->prm;
-    D->shin = D->alpha = -1;
-    D->nmp = 0;
+    int nfloat = 0;
     for (int k = 0; k < D->nprm; ++k)
-        if (prm[k].type == 'f' && strcmp(prm[k].name, "n") == 0)
-            D->shin = k;
-    for (int k = 0; k < D->nprm && D->shin < 0; ++k)
-        if (prm[k].type == 'f' && strcmp(prm[k].name, "alpha") == 0)
-            D->alpha = k;
-    if (D->shin < 0 && D->alpha < 0)
-        return brdf_fail(err, errlen, path, 0, "no float parameter n or alpha: the sweep's shininess n goes to n, or "
-                         "to alpha as sqrt(2/(n+2)) (docs/user-models.md)");
+        nfloat += prm[k].type == 'f';
+    D->lobe_param = -1;
+    D->nmp = 0;
+    for (size_t t = 0; t < sizeof brdf_lobe_params / sizeof brdf_lobe_params[0] && D->lobe_param < 0; ++t)
+        for (int k = 0; k < D->nprm && (!brdf_lobe_params[t].alone || nfloat == 1); ++k)
+            if (prm[k].type == 'f' && strcmp(prm[k].name, brdf_lobe_params[t].name) == 0) {
+                D->lobe_param = k;
+                D->conv = brdf_lobe_params[t].conv;
+                break;
+            }
     for (int k = 0; k < D->nprm; ++k) {
-        if (prm[k].type != 'f' || k == D->shin || k == D->alpha)
+        if (prm[k].type != 'f' || k == D->lobe_param)
             continue;
         if (D->nmp < SL_MAX_PARAMS)
             D->model_params[D->nmp++] = k;
+    }
+}
+
+/* The keys a .brdf file's header comment (the brdfbench-model comment that opens its shader
+   block) may hold: its parameters are those of the ::begin parameters block and its function is
+   BRDF, so param and function are not among them. */
+#define BRDF_HEADER_KEYS "name, reference, lobe, description"
+
+/* Checks the header comment at the start of the shader block, if it is one, key by key (the
+   reader of headers, sl_read_header, skips what it does not know), and reads its lobe. line is
+   the file's line of the shader block's first line. */
+static int brdf_check_header(const char *text, size_t len, int line, const char *path, struct brdf_doc *D,
+                             char *err, size_t errlen)
+{
+    D->geom = GEOM_THETA_H;
+    size_t i = 0;
+    while (i < len && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n'))
+        if (text[i++] == '\n')
+            ++line;
+    if (i + 2 > len || text[i] != '/' || text[i + 1] != '*')
+        return 0;
+    const char *p = text + i + 2, *end = text + len;
+    const char *close = NULL;
+    for (const char *q = p; q + 1 < end && !close; ++q)
+        if (q[0] == '*' && q[1] == '/')
+            close = q;
+    if (!close)
+        return 0;
+    int seen[4] = { 0, 0, 0, 0 };
+    static const char *keys[4] = { "name", "reference", "lobe", "description" };
+    for (int first = 1; p < close; first = 0, ++line) {
+        const char *eol = memchr(p, '\n', (size_t)(close - p));
+        if (!eol)
+            eol = close;
+        char buf[256];
+        size_t n = (size_t)(eol - p) < sizeof buf - 1 ? (size_t)(eol - p) : sizeof buf - 1;
+        memcpy(buf, p, n);
+        buf[n] = '\0';
+        p = eol + 1;
+        char *a = buf;
+        while (*a == ' ' || *a == '\t' || *a == '\r')
+            ++a;
+        if (!first && *a == '*')
+            ++a;
+        while (*a == ' ' || *a == '\t')
+            ++a;
+        size_t al = strlen(a);
+        while (al > 0 && (a[al - 1] == ' ' || a[al - 1] == '\t' || a[al - 1] == '\r'))
+            a[--al] = '\0';
+        if (first) {
+            if (strcmp(a, "brdfbench-model") != 0)
+                return 0; /* an ordinary comment */
+            continue;
+        }
+        if (!*a)
+            continue;
+        char *colon = strchr(a, ':');
+        if (!colon)
+            return brdf_fail(err, errlen, path, line, "expected 'key: value' in the brdfbench-model header "
+                             "(keys of a .brdf file: " BRDF_HEADER_KEYS "), found '%.40s'", a);
+        char *ke = colon;
+        while (ke > a && (ke[-1] == ' ' || ke[-1] == '\t'))
+            --ke;
+        *ke = '\0';
+        char *v = colon + 1;
+        while (*v == ' ' || *v == '\t')
+            ++v;
+        int k = 0;
+        while (k < 4 && strcmp(a, keys[k]) != 0)
+            ++k;
+        if (k == 4)
+            return brdf_fail(err, errlen, path, line, "unknown header key '%.40s' (accepted in a .brdf file: "
+                             BRDF_HEADER_KEYS "; its parameters are those of ::begin parameters)", a);
+        if (seen[k]++)
+            return brdf_fail(err, errlen, path, line, "'%s' is declared twice", keys[k]);
+        /* the rule of a model file's reference (usermodel.c), said here at the file's own line:
+           the translation's header has lines of its own */
+        const struct model_info *ref = k == 1 ? models_find(v) : NULL;
+        if (k == 1 && (!ref || !model_is_builtin(ref)))
+            return brdf_fail(err, errlen, path, line, "reference '%.40s' is not a built-in model (see brdfbench "
+                             "list)", v);
+        if (k == 2) {
+            if (strcmp(v, "theta_h") == 0)
+                D->geom = GEOM_THETA_H;
+            else if (strcmp(v, "psi") == 0)
+                D->geom = GEOM_PSI;
+            else if (strcmp(v, "theta_d") == 0)
+                D->geom = GEOM_THETA_D;
+            else
+                return brdf_fail(err, errlen, path, line, "lobe '%.40s' is unknown (accepted in a .brdf file: "
+                                 "theta_h, psi, theta_d)", v);
+        }
     }
     return 0;
 }
@@ -214,10 +357,26 @@ static int brdf_choose_params(struct brdf_doc *D, const char *path, char *err, s
 /* The model's header comment: name, description, reference and its parameters. */
 static void brdf_header_text(struct md_buf *hb, const struct header *sh, const char *name, const struct brdf_doc *D)
 {
+    static const char *geom_text[] = { "L = N, theta_h = acos(c)", "L = N, psi = acos(N.V) = acos(c)",
+                                       "L and V mirrored about N at acos(c)" };
     md_printf(hb, "/* brdfbench-model\n * name: %s\n * function: brdfbench_lobe\n", sh->name[0] ? sh->name : name);
-    md_printf(hb, " * description: %s\n", sh->description[0] ? sh->description
-               : "BRDF Explorer file: luminance of BRDF(L = N, V) with theta_h = acos(c)");
-    md_printf(hb, " * reference: %s\n * lobe: theta_h\n", sh->reference[0] ? sh->reference : "blinn");
+    if (sh->description[0]) {
+        md_printf(hb, " * description: %s\n", sh->description);
+    } else {
+        md_printf(hb, " * description: BRDF Explorer file: luminance of BRDF at %s", geom_text[D->geom]);
+        if (D->lobe_param >= 0) {
+            static const char *conv_text[] = { "n", "sqrt(2/(n+2))", "(2/(n+2))^(1/4)", "((n-1)/(n+1))^2" };
+            md_printf(hb, ", %s = %s", D->prm[D->lobe_param].name, conv_text[D->conv]);
+        } else {
+            md_printf(hb, ", at its defaults (no parameter takes n)");
+        }
+        md_printf(hb, "\n");
+    }
+    /* psi is the lobe variable of a Phong lobe, whose reference is phong; the others are theta_h
+       for the registry (a full BRDF is shaded from its vectors) */
+    md_printf(hb, " * reference: %s\n * lobe: %s\n",
+              sh->reference[0] ? sh->reference : D->geom == GEOM_PSI ? "phong" : "blinn",
+              D->geom == GEOM_PSI ? "psi" : "theta_h");
     for (int i = 0; i < D->nmp; ++i) {
         const struct brdf_param *q = &D->prm[D->model_params[i]];
         md_printf(hb, " * param: %s %.17g %.17g %.17g\n", q->name, q->v[0], q->v[1], q->v[2]);
@@ -230,7 +389,7 @@ static void brdf_prelude(struct md_buf *pre, const struct brdf_doc *D)
 {
     for (int k = 0; k < D->nprm; ++k) {
         const struct brdf_param *q = &D->prm[k];
-        int taken = k == D->shin || k == D->alpha;
+        int taken = k == D->lobe_param;
         for (int i = 0; i < D->nmp; ++i)
             taken |= D->model_params[i] == k;
         if (taken)
@@ -244,7 +403,8 @@ static void brdf_prelude(struct md_buf *pre, const struct brdf_doc *D)
     }
 }
 
-/* The lobe function (BRDF's luminance at L = N) and the full function after the shader. */
+/* The lobe function (BRDF's luminance at the geometry of D->geom) and the full function after
+   the shader. */
 static void brdf_epilogue(struct md_buf *epi, const struct brdf_doc *D)
 {
     int nmp = D->nmp;
@@ -252,18 +412,36 @@ static void brdf_epilogue(struct md_buf *epi, const struct brdf_doc *D)
     for (int i = 0; i < nmp; ++i)
         md_printf(epi, ", float brdfbench_p%d", i);
     md_printf(epi, ") { ");
-    brdf_set_params(epi, D->shin >= 0, D->prm, D->model_params, nmp);
-    /* L = N, V at 2 theta_h from N in the XZ plane: N.V = 2c^2 - 1, N.H = V.H = c */
+    brdf_set_params(epi, D->lobe_param, D->conv, D->prm, D->model_params, nmp);
     md_printf(epi, "vec3 brdfbench_N = vec3(0.0, 0.0, 1.0); "
-                   "float brdfbench_nv = 2.0 * brdfbench_c * brdfbench_c - 1.0; "
-                   "vec3 brdfbench_V = vec3(2.0 * brdfbench_c * sqrt(max((1.0 - brdfbench_c) * (1.0 + brdfbench_c), 0.0)), "
-                   "0.0, brdfbench_nv); "
-                   "vec3 brdfbench_rgb = BRDF(brdfbench_N, brdfbench_V, brdfbench_N, vec3(1.0, 0.0, 0.0), "
+                   "float brdfbench_sn = sqrt(max((1.0 - brdfbench_c) * (1.0 + brdfbench_c), 0.0)); ");
+    switch (D->geom) {
+    case GEOM_THETA_H:
+        /* L = N, V at 2 theta_h from N in the XZ plane: N.V = 2c^2 - 1, N.H = V.H = c */
+        md_printf(epi, "float brdfbench_nv = 2.0 * brdfbench_c * brdfbench_c - 1.0; "
+                       "vec3 brdfbench_L = brdfbench_N; "
+                       "vec3 brdfbench_V = vec3(2.0 * brdfbench_c * brdfbench_sn, 0.0, brdfbench_nv); ");
+        break;
+    case GEOM_PSI:
+        /* L = N, so R = N and V at psi from it: N.V = c */
+        md_printf(epi, "float brdfbench_nv = brdfbench_c; "
+                       "vec3 brdfbench_L = brdfbench_N; "
+                       "vec3 brdfbench_V = vec3(brdfbench_sn, 0.0, brdfbench_c); ");
+        break;
+    case GEOM_THETA_D:
+        /* L and V mirrored about N in the XZ plane: H = N, N.L = N.V = L.H = c */
+        md_printf(epi, "float brdfbench_nv = brdfbench_c; "
+                       "vec3 brdfbench_L = vec3(-brdfbench_sn, 0.0, brdfbench_c); "
+                       "vec3 brdfbench_V = vec3(brdfbench_sn, 0.0, brdfbench_c); ");
+        break;
+    }
+    /* V on or below the horizon is outside the BRDF's domain: the lobe is 0 there */
+    md_printf(epi, "vec3 brdfbench_rgb = BRDF(brdfbench_L, brdfbench_V, brdfbench_N, vec3(1.0, 0.0, 0.0), "
                    "vec3(0.0, 1.0, 0.0)); "
                    "float brdfbench_y = dot(brdfbench_rgb, vec3(0.2126, 0.7152, 0.0722)); "
                    "return brdfbench_nv > 0.0 ? brdfbench_y : 0.0; }");
     sl_full_function_open(epi, nmp);
-    brdf_set_params(epi, D->shin >= 0, D->prm, D->model_params, nmp);
+    brdf_set_params(epi, D->lobe_param, D->conv, D->prm, D->model_params, nmp);
     md_printf(epi, "return dot(BRDF(brdfbench_L, brdfbench_V, brdfbench_N, brdfbench_X, brdfbench_Y), "
                    "vec3(0.2126, 0.7152, 0.0722)); }");
 }
@@ -276,7 +454,9 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
     int rc = brdf_blocks(text, len, path, &D, err, errlen);
     if (rc)
         return rc;
-    if ((rc = brdf_choose_params(&D, path, err, errlen)) != 0)
+    brdf_choose_params(&D);
+    if ((rc = brdf_check_header(text + D.shader_start, D.shader_end - D.shader_start, D.shader_line, path, &D, err,
+                                errlen)) != 0)
         return rc;
     struct header sh;
     sl_read_header(text + D.shader_start, D.shader_end - D.shader_start, &sh);

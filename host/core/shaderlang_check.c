@@ -21,8 +21,14 @@ const char *sl_type_name(struct sl *S, struct type t)
     case B_VOID: return "void";
     case B_BOOL: return "bool";
     case B_INT: return "int";
+    case B_STRUCT: return sl_sfmt(S, "%.*s", t.st->name->len, t.st->name->p);
     default: return t.n == 1 ? "float" : sl_sfmt(S, "vec%d", t.n);
     }
+}
+
+int sl_same_type(struct type a, struct type b)
+{
+    return a.b == b.b && a.n == b.n && (a.b != B_STRUCT || a.st == b.st);
 }
 
 /* Output lines carry the user's line: a #line directive wherever the next line's number differs. */
@@ -66,27 +72,85 @@ void sl_out_line(struct sl *S, const char *fmt, ...)
     ++S->line_next;
     if (S->out.failed)
         sl_fail_at(S, 0, 0, "out of memory");
+    if (S->out.len > SL_MAX_OUTPUT)
+        sl_fail_at(S, S->stmt_line, -1, "the translation is larger than %zu MiB (loops unrolled and helper functions "
+                   "inlined): write the loop with fewer iterations or fewer statements", SL_MAX_OUTPUT >> 20);
+    if ((S->line_next & 1023) == 0)
+        sl_check_deadline(S);
 }
 
-/* A C name for a user variable, unique in the output. */
-static const char *c_name(struct sl *S, const char *base)
+static unsigned name_hash(const char *s)
 {
-    const char *s = sl_sfmt(S, "u__%s", base);
-    for (int k = 2;; ++k) {
-        int taken = 0;
-        for (struct used_name *u = S->used; u; u = u->next)
-            if (strcmp(u->s, s) == 0)
-                taken = 1;
-        if (!taken)
-            break;
-        s = sl_sfmt(S, "u__%s_%d", base, k);
+    unsigned h = 2166136261u; /* FNV-1a */
+    for (; *s; ++s)
+        h = (h ^ (unsigned char)*s) * 16777619u;
+    return h;
+}
+
+/* The slot of s in the table: its own, or the empty one where it would go. */
+static struct name_slot *name_slot(struct name_table *tb, const char *s, unsigned h)
+{
+    size_t i = h & (tb->cap - 1);
+    while (tb->v[i].s && (tb->v[i].hash != h || strcmp(tb->v[i].s, s) != 0))
+        i = (i + 1) & (tb->cap - 1);
+    return &tb->v[i];
+}
+
+/* The slot of s, added (with next_suffix 2) if it was not there. */
+static struct name_slot *name_intern(struct sl *S, struct name_table *tb, const char *s)
+{
+    if (2 * (tb->n + 1) > tb->cap) {
+        struct name_table grown = { NULL, tb->n, tb->cap ? 2 * tb->cap : 64 };
+        grown.v = sl_arena_alloc(S, sizeof *grown.v * grown.cap);
+        for (size_t i = 0; i < tb->cap; ++i)
+            if (tb->v[i].s)
+                *name_slot(&grown, tb->v[i].s, tb->v[i].hash) = tb->v[i];
+        *tb = grown;
     }
-    struct used_name *u = sl_arena_alloc(S, sizeof *u);
-    u->s = s;
-    u->next = S->used;
-    S->used = u;
+    unsigned h = name_hash(s);
+    struct name_slot *slot = name_slot(tb, s, h);
+    if (!slot->s) {
+        slot->s = s;
+        slot->hash = h;
+        slot->next_suffix = 2;
+        tb->n++;
+    }
+    return slot;
+}
+
+static int name_taken(struct name_table *tb, const char *s)
+{
+    return tb->cap && name_slot(tb, s, name_hash(s))->s != NULL;
+}
+
+/* A C name for a user variable, unique in the output: u__NAME, then u__NAME_2, u__NAME_3, ...
+ * Each base remembers where its suffixes stopped, so a name declared in every iteration of an
+ * unrolled loop costs the same each time. */
+static int vec_names_taken(struct sl *S, const char *root, int n)
+{
+    if (name_taken(&S->used, root))
+        return 1;
+    for (int i = 0; i < n && n > 1; ++i)
+        if (name_taken(&S->used, sl_sfmt(S, "%s_%c", root, "xyzw"[i])))
+            return 1;
+    return 0;
+}
+
+/* n > 1: a vector's root, whose components ROOT_x .. are free and given out too (a float
+ * called v_x and a vec3 called v must not meet). */
+static const char *c_name_n(struct sl *S, const char *base, int n)
+{
+    struct name_slot *b = name_intern(S, &S->bases, base);
+    const char *s = sl_sfmt(S, "u__%s", base);
+    while (vec_names_taken(S, s, n))
+        s = sl_sfmt(S, "u__%s_%d", base, b->next_suffix++);
+    name_intern(S, &S->used, s);
+    for (int i = 0; i < n && n > 1; ++i)
+        name_intern(S, &S->used, sl_sfmt(S, "%s_%c", s, "xyzw"[i]));
     return s;
 }
+
+static const char *c_name(struct sl *S, const char *base) { return c_name_n(S, base, 1); }
 
 static int is_simple(const char *s)
 {
@@ -134,6 +198,13 @@ const char *sl_temp_cond(struct sl *S, const char *cond, int uniform)
 
 struct val sl_temp_val(struct sl *S, struct val v)
 {
+    if (v.t.b == B_STRUCT) {
+        struct val *f = sl_arena_alloc(S, sizeof *f * (size_t)v.t.st->nfields);
+        for (int i = 0; i < v.t.st->nfields; ++i)
+            f[i] = sl_temp_val(S, v.f[i]);
+        v.f = f;
+        return v;
+    }
     if (v.t.b == B_FLOAT)
         for (int i = 0; i < v.t.n; ++i)
             v.c[i] = sl_temp_real(S, v.c[i]);
@@ -178,7 +249,7 @@ struct val sl_to_float(struct sl *S, struct val v, const struct tok *where)
             if (!isdigit((unsigned char)*p))
                 digits = 0;
         v.c[0] = digits ? sl_sfmt(S, "RSPLAT(%s.0)", s) : sl_sfmt(S, "RSPLAT((RSCALAR)(%s))", s);
-        v.t = (struct type){ B_FLOAT, 1 };
+        v.t = (struct type){ .b = B_FLOAT, .n = 1 };
         return v;
     }
     FAIL(S, where, "a %s where a number is expected", sl_type_name(S, v.t));
@@ -188,8 +259,10 @@ struct val sl_to_float(struct sl *S, struct val v, const struct tok *where)
  * (HLSL's float3 v = 0). */
 struct val sl_convert(struct sl *S, struct val v, struct type t, const struct tok *where, const char *what)
 {
-    if (t.b == v.t.b && t.n == v.t.n)
+    if (sl_same_type(t, v.t))
         return v;
+    if (t.b == B_STRUCT || v.t.b == B_STRUCT)
+        FAIL(S, where, "%s: a %s cannot become a %s", what, sl_type_name(S, v.t), sl_type_name(S, t));
     if (t.b == B_FLOAT && (v.t.b == B_INT || v.t.b == B_FLOAT)) {
         v = sl_to_float(S, v, where);
         if (v.t.n == t.n)
@@ -222,6 +295,30 @@ void sl_push_scope(struct sl *S, int function_level)
     S->scope = sc;
 }
 
+/* The C names of s (of type s->t) from base: its components', or its fields' syms. */
+static void sym_names(struct sl *S, struct sym *s, const char *base)
+{
+    struct type t = s->t;
+    if (t.b == B_STRUCT) {
+        s->fields = sl_arena_alloc(S, sizeof *s->fields * (size_t)t.st->nfields);
+        s->fvals = sl_arena_alloc(S, sizeof *s->fvals * (size_t)t.st->nfields);
+        for (int i = 0; i < t.st->nfields; ++i) {
+            struct sym *f = sl_arena_alloc(S, sizeof *f);
+            f->name = t.st->fname[i]->p;
+            f->len = t.st->fname[i]->len;
+            f->t = t.st->fty[i];
+            sym_names(S, f, sl_sfmt(S, "%s__%.*s", base, f->len, f->name));
+            s->fields[i] = f;
+        }
+    } else if (t.b == B_FLOAT && t.n > 1) {
+        const char *root = c_name_n(S, base, t.n);
+        for (int i = 0; i < t.n; ++i)
+            s->c[i] = sl_sfmt(S, "%s_%c", root, "xyzw"[i]);
+    } else {
+        s->c[0] = c_name(S, base);
+    }
+}
+
 struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, struct type t)
 {
     for (struct sym *s = sc->syms; s; s = s->next)
@@ -233,25 +330,46 @@ struct sym *sl_declare(struct sl *S, struct scope *sc, const struct tok *name, s
     s->name = name->p;
     s->len = name->len;
     s->t = t;
-    const char *base = sl_tok_str(S, name);
-    if (t.b == B_FLOAT && t.n > 1) {
-        const char *root = c_name(S, base);
-        for (int i = 0; i < t.n; ++i)
-            s->c[i] = sl_sfmt(S, "%s_%c", root, "xyzw"[i]);
-    } else {
-        s->c[0] = c_name(S, base);
-    }
+    sym_names(S, s, sl_tok_str(S, name));
     s->next = sc->syms;
     sc->syms = s;
+    return s;
+}
+
+/* An array NAME[n] of t in scope sc: a sym with n element syms, each with C names of its own. */
+struct sym *sl_declare_array(struct sl *S, struct scope *sc, const struct tok *name, struct type t, int n)
+{
+    struct sym *s = sl_declare(S, sc, name, t);
+    s->arr_n = n;
+    s->elem = sl_arena_alloc(S, sizeof *s->elem * (size_t)n);
+    const char *base = sl_tok_str(S, name);
+    for (int k = 0; k < n; ++k) {
+        struct sym *e = sl_arena_alloc(S, sizeof *e);
+        *e = *s;
+        e->arr_n = 0;
+        e->elem = NULL;
+        e->next = NULL;
+        const char *root = c_name_n(S, sl_sfmt(S, "%s__%d", base, k), t.n);
+        for (int i = 0; i < t.n; ++i)
+            e->c[i] = t.n > 1 ? sl_sfmt(S, "%s_%c", root, "xyzw"[i]) : root;
+        s->elem[k] = e;
+    }
     return s;
 }
 
 /* The value of a variable. */
 struct val sl_sym_val(struct sym *s)
 {
-    struct val v = { s->t, { NULL, NULL, NULL, NULL }, 0 };
+    struct val v = { s->t, { NULL, NULL, NULL, NULL }, 0, NULL };
+    if (s->t.b == B_STRUCT) {
+        /* the fields' values are their syms' names, kept with the sym (sym_names) */
+        v.f = s->fvals;
+        for (int i = 0; i < s->t.st->nfields; ++i)
+            s->fvals[i] = sl_sym_val(s->fields[i]);
+        return v;
+    }
     if (s->t.b == B_BOOL) {
-        return (struct val){ s->t, { s->c[0] }, 0 }; /* replaced by the caller */
+        return (struct val){ .t = s->t, .c = { s->c[0] } }; /* replaced by the caller */
     }
     for (int i = 0; i < s->t.n; ++i)
         v.c[i] = s->c[i];
@@ -282,9 +400,13 @@ const char *sl_op_text(int op)
 /* a OP b for the arithmetic operators, with int promotion and scalar broadcast. */
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where)
 {
-    if (a.t.b == B_BOOL || b.t.b == B_BOOL || a.t.b == B_VOID || b.t.b == B_VOID)
+    if ((sl_is_matrix(a.t) && (b.t.b == B_FLOAT || b.t.b == B_INT || sl_is_matrix(b.t))) ||
+        (sl_is_matrix(b.t) && (a.t.b == B_FLOAT || a.t.b == B_INT)))
+        return sl_matrix_arith(S, op, a, b, where);
+    if (a.t.b == B_BOOL || b.t.b == B_BOOL || a.t.b == B_VOID || b.t.b == B_VOID || a.t.b == B_STRUCT ||
+        b.t.b == B_STRUCT)
         FAIL(S, where, "'%s' needs numbers, not %s and %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));
-    struct val r = { { B_INT, 1 }, { NULL }, a.uniform && b.uniform };
+    struct val r = { .t = { .b = B_INT, .n = 1 }, .uniform = a.uniform && b.uniform };
     if (a.t.b == B_INT && b.t.b == B_INT) {
         r.c[0] = sl_sfmt(S, "(%s %s %s)", a.c[0], sl_op_text(op), b.c[0]);
         return r;
@@ -300,7 +422,7 @@ struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const stru
         if (b.t.n == 1)
             b.c[0] = sl_temp_real(S, b.c[0]);
     }
-    r.t = (struct type){ B_FLOAT, n };
+    r.t = (struct type){ .b = B_FLOAT, .n = n };
     for (int i = 0; i < n; ++i) {
         const char *x = a.c[a.t.n == 1 ? 0 : i], *y = b.c[b.t.n == 1 ? 0 : i];
         r.c[i] = op == '%' ? sl_sfmt(S, "fmod(%s, %s)", x, y) : sl_sfmt(S, "(%s %s %s)", x, sl_op_text(op), y);
@@ -310,7 +432,7 @@ struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const stru
 
 /* ---- built-in functions ------------------------------------------------------------------ */
 
-enum builtin_kind { BK_CW, BK_DOT, BK_LENGTH, BK_DISTANCE, BK_NORMALIZE, BK_REFLECT, BK_CROSS, BK_ATAN };
+enum builtin_kind { BK_CW, BK_DOT, BK_LENGTH, BK_DISTANCE, BK_NORMALIZE, BK_REFLECT, BK_CROSS, BK_ATAN, BK_FACEFORWARD };
 struct builtin {
     const char *name;
     int nargs;
@@ -347,6 +469,7 @@ static const struct builtin builtins[] = {
     { "dot", 2, BK_DOT, NULL, 1 },               { "length", 1, BK_LENGTH, NULL, 1 },
     { "distance", 2, BK_DISTANCE, NULL, 1 },     { "normalize", 1, BK_NORMALIZE, NULL, 1 },
     { "reflect", 2, BK_REFLECT, NULL, 1 },       { "cross", 2, BK_CROSS, NULL, 1 },
+    { "faceforward", 3, BK_FACEFORWARD, NULL, 1 },
     { NULL, 0, 0, NULL, 0 } };
 
 const struct builtin *sl_find_builtin(const struct tok *t)
@@ -417,7 +540,7 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
             width = a[i].t.n;
         }
     }
-    struct val r = { { B_FLOAT, 1 }, { NULL }, 0 };
+    struct val r = { .t = { .b = B_FLOAT, .n = 1 } };
     switch (bi->kind) {
     case BK_CW:
     case BK_ATAN: {
@@ -434,6 +557,10 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
         }
         return width > 1 ? sl_temp_val(S, r) : r;
     }
+    case BK_FACEFORWARD:
+        if (a[0].t.n != a[1].t.n || a[0].t.n != a[2].t.n)
+            FAIL(S, e->t, "faceforward of vectors of different sizes");
+        break;
     case BK_DOT:
     case BK_DISTANCE:
     case BK_REFLECT:
@@ -472,6 +599,15 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
         r.t.n = x.t.n;
         for (int i = 0; i < x.t.n; ++i)
             r.c[i] = sl_sfmt(S, "(%s - RSPLAT(2.0) * %s * %s)", x.c[i], d, nn.c[i]);
+        return sl_temp_val(S, r);
+    }
+    case BK_FACEFORWARD: {
+        /* N where dot(Nref, I) < 0, else -N (GLSL's definition) */
+        const char *d = sl_temp_cond(S, sl_sfmt(S, "(%s < RSPLAT(0.0))", dot_of(S, sl_temp_val(S, a[2]),
+                                                                                sl_temp_val(S, a[1]))), 0);
+        r.t.n = x.t.n;
+        for (int i = 0; i < x.t.n; ++i)
+            r.c[i] = sl_sfmt(S, "(%s ? %s : -%s)", d, x.c[i], x.c[i]);
         return sl_temp_val(S, r);
     }
     case BK_CROSS: {

@@ -95,6 +95,11 @@ static const char *lex_directive(struct sl *S, const char *p, const char *end, i
     if ((wl == 7 && strncmp(w, "version", 7) == 0) || (wl == 9 && strncmp(w, "extension", 9) == 0) ||
         (wl == 6 && strncmp(w, "pragma", 6) == 0)) {
         /* nothing for a lobe: skipped */
+    } else if (wl == 4 && strncmp(w, "line", 4) == 0 && S->pp_active) {
+        /* passed through by the preprocessor: the next line is line N */
+        long n = strtol(q, NULL, 10);
+        if (n > 0 && n < 100000000)
+            S->line_delta = (int)n - (line + 1);
     } else if (wl == 6 && strncmp(w, "define", 6) == 0) {
         while (q < eol && (*q == ' ' || *q == '\t'))
             ++q;
@@ -176,6 +181,20 @@ static void lex_operator(struct sl *S, const char *p, const char *end, struct to
     if (!t->len && strchr(ops1, ch) && ch)
         t->len = 1;
     if (!t->len) {
+        if (ch == '&') {
+            /* after a value it is a bitwise and (an OpenCL C expression may have one); anywhere
+               else it takes an address, refused for good */
+            const struct tok *prev = S->toks.n > 0 ? &S->toks.v[S->toks.n - 1] : NULL;
+            int after_value = prev && (prev->k == K_ID || prev->k == K_INT || prev->k == K_FLT ||
+                                       sl_tok_is(prev, ")") || sl_tok_is(prev, "]"));
+            if (!after_value)
+                S->shader_only = 1;
+            sl_fail_at(S, t->line, t->col, "'&' takes an address (or is a bitwise and): pointers and bit "
+                       "operations are not accepted in a model");
+        }
+        if (ch == '"' || ch == '\'')
+            sl_fail_at(S, t->line, t->col, "a string or character literal: a model has none (and calls only the "
+                       "math built-ins and its own functions)");
         if (ch < 0x20 || ch > 0x7e)
             sl_fail_at(S, t->line, t->col, "character 0x%02x is not allowed in a model", ch);
         sl_fail_at(S, t->line, t->col, "'%c' is not an operator of a model (+ - * / %% comparisons && || ! ?: "
@@ -226,10 +245,20 @@ void sl_lex_span(struct sl *S, const char *p, const char *end, int line, int col
                 ++q;
             t.k = K_ID;
             t.len = (int)(q - p);
+            /* before its operand's string is read as one */
+            if ((t.len == 3 && strncmp(p, "asm", 3) == 0) || (t.len == 5 && strncmp(p, "__asm", 5) == 0) ||
+                (t.len == 7 && strncmp(p, "__asm__", 7) == 0))
+                sl_fail_at(S, line, S->pp_active ? sl_pp_column(S, &t, line) : col,
+                           "inline assembly is not accepted in a model");
         } else if (isdigit(ch) || (ch == '.' && p + 1 < end && isdigit((unsigned char)p[1]))) {
             lex_number(S, p, end, &t);
         } else {
             lex_operator(S, p, end, &t);
+        }
+        if (S->pp_active && !into) {
+            /* the preprocessor's output: the user's column and line (#line as written) */
+            t.col = sl_pp_column(S, &t, line);
+            t.line = line + S->line_delta;
         }
         if (into)
             sl_tokv_push(S, into, t);

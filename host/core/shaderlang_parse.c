@@ -59,27 +59,34 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     w[t->len] = '\0';
     *shader_only = 0;
     if (strcmp(w, "float") == 0 || strcmp(w, "half") == 0 || strcmp(w, "min16float") == 0) {
-        *ty = (struct type){ B_FLOAT, 1 };
+        *ty = (struct type){ .b = B_FLOAT, .n = 1 };
         return 1;
     }
     if (strcmp(w, "int") == 0 || strcmp(w, "uint") == 0) {
-        *ty = (struct type){ B_INT, 1 };
+        *ty = (struct type){ .b = B_INT, .n = 1 };
         return 1;
     }
     if (strcmp(w, "bool") == 0) {
-        *ty = (struct type){ B_BOOL, 1 };
+        *ty = (struct type){ .b = B_BOOL, .n = 1 };
         return 1;
     }
     if (strcmp(w, "void") == 0) {
-        *ty = (struct type){ B_VOID, 1 };
+        *ty = (struct type){ .b = B_VOID, .n = 1 };
+        return 1;
+    }
+    int mn, rows;
+    if (sl_matrix_of_name(w, &mn, &rows)) {
+        *ty = (struct type){ .b = B_STRUCT, .n = 1, .st = sl_matrix_def(mn, rows) };
+        *shader_only = 1;
         return 1;
     }
     size_t l = strlen(w);
     char last = w[l - 1];
     if (last >= '2' && last <= '4') {
         w[l - 1] = '\0';
-        if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0) {
-            *ty = (struct type){ B_FLOAT, last - '0' };
+        if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0 ||
+            strcmp(w, "min16float") == 0) {
+            *ty = (struct type){ .b = B_FLOAT, .n = last - '0' };
             *shader_only = 1;
             return 1;
         }
@@ -87,9 +94,19 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     return 0;
 }
 
+const struct sdef *sl_find_struct(struct sl *S, const struct tok *t)
+{
+    if (t->k != K_ID)
+        return NULL;
+    for (const struct sdef *d = S->structs; d; d = d->next)
+        if (d->name->len == t->len && strncmp(d->name->p, t->p, (size_t)t->len) == 0)
+            return d;
+    return NULL;
+}
+
 static int is_qualifier(const struct tok *t)
 {
-    static const char *q[] = { "highp", "mediump", "lowp", "precise", "in", NULL };
+    static const char *q[] = { "highp", "mediump", "lowp", "precise", "in", "inline", NULL };
     for (int i = 0; q[i]; ++i)
         if (sl_tok_is(t, q[i]))
             return 1;
@@ -99,25 +116,28 @@ static int is_qualifier(const struct tok *t)
 static void check_unsupported_word(struct sl *S, const struct tok *t)
 {
     static const struct { const char *w, *why; } words[] = {
-        { "while", "while loops are not supported (a for loop with constant bounds is)" },
-        { "do", "do loops are not supported (a for loop with constant bounds is)" },
         { "switch", "switch is not supported (use if/else)" },
         { "break", "break is not supported" },
         { "continue", "continue is not supported" },
         { "discard", "discard is not supported" },
-        { "struct", "structs are not supported" },
         { "uniform", "uniforms are not supported: declare the model's parameters in the header "
                      "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
-        { "out", "out parameters are not supported" },
-        { "inout", "inout parameters are not supported" },
         { "double", "double is not supported (write float: the reference is double anyway)" },
-        { "mat2", "matrices are not supported" }, { "mat3", "matrices are not supported" },
-        { "mat4", "matrices are not supported" }, { "float3x3", "matrices are not supported" },
-        { "float4x4", "matrices are not supported" },
+        /* what a shader cannot do, and a model may not either */
+        { "asm", "inline assembly is not accepted in a model" },
+        { "__asm__", "inline assembly is not accepted in a model" },
+        { "volatile", "volatile is not accepted in a model (a model has no memory but its own values)" },
+        { "sizeof", "sizeof is not accepted in a model (a model has no memory but its own values)" },
+        { "goto", "goto is not accepted in a model" },
         { NULL, NULL } };
     for (int i = 0; words[i].w; ++i)
-        if (sl_tok_is(t, words[i].w))
+        if (sl_tok_is(t, words[i].w)) {
+            /* what no model may do is refused for good: not left to the OpenCL C reading of a
+               --model expression */
+            if (strstr(words[i].why, "not accepted in a model"))
+                S->shader_only = 1;
             FAIL(S, t, "%s", words[i].why);
+        }
 }
 
 static struct expr *new_expr(struct sl *S, int k, const struct tok *t)
@@ -163,6 +183,34 @@ static struct expr *parse_call_args(struct sl *S, struct expr *e)
 
 static struct expr *parse_unary(struct sl *S);
 
+/* Values up to `close` (after the opening), a trailing comma allowed: an E_ARR at t. */
+static struct expr *parse_value_list(struct sl *S, const struct tok *t, const char *close, int max)
+{
+    struct expr *e = new_expr(S, E_ARR, t);
+    int cap = 8;
+    e->args = sl_arena_alloc(S, sizeof *e->args * (size_t)cap);
+    if (!sl_tok_is(sl_peek(S), close))
+        for (;;) {
+            if (e->nargs == max)
+                FAIL(S, sl_peek(S), "more than %d values", max);
+            if (e->nargs == cap) {
+                struct expr **v = sl_arena_alloc(S, sizeof *v * (size_t)(2 * cap));
+                memcpy(v, e->args, sizeof *v * (size_t)cap);
+                e->args = v;
+                cap *= 2;
+            }
+            e->args[e->nargs++] = parse_expr(S);
+            if (!accept(S, ","))
+                break;
+            if (sl_tok_is(sl_peek(S), close))
+                break; /* a trailing comma */
+        }
+    expect(S, close);
+    if (e->nargs == 0)
+        FAIL(S, t, "an empty list of values");
+    return e;
+}
+
 static struct expr *parse_primary(struct sl *S)
 {
     const struct tok *t = sl_peek(S);
@@ -184,6 +232,18 @@ static struct expr *parse_primary(struct sl *S)
             return new_expr(S, E_BOOL, t);
         }
         next(S);
+        if (sl_type_of_name(t, &ty, &so) && sl_tok_is(sl_peek(S), "[")) {
+            /* GLSL's array constructor float[3](a, b, c) (or float[](...)) */
+            next(S);
+            struct expr *len = sl_tok_is(sl_peek(S), "]") ? NULL : parse_expr(S);
+            expect(S, "]");
+            const struct tok *open = expect(S, "(");
+            struct expr *e = parse_value_list(S, open, ")", SL_MAX_ARRAY);
+            e->ctor = ty;
+            e->has_ctor = 1;
+            e->a = len;
+            return e;
+        }
         if (sl_tok_is(sl_peek(S), "(")) {
             if (sl_type_of_name(t, &ty, &so))
                 S->shader_only = 1;
@@ -194,8 +254,16 @@ static struct expr *parse_primary(struct sl *S)
                  t->len, t->p);
         return new_expr(S, E_VAR, t);
     }
+    if (sl_tok_is(t, "*")) {
+        S->shader_only = 1; /* refused for good, not left to OpenCL C */
+        FAIL(S, t, "'*' before a value reads through a pointer: pointers are not accepted in a model");
+    }
     if (sl_tok_is(t, "(")) {
         const struct tok *t1 = peek_at(S, 1);
+        if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), "*")) {
+            S->shader_only = 1;
+            FAIL(S, peek_at(S, 2), "a cast to a pointer type: pointers are not accepted in a model");
+        }
         if (sl_type_of_name(t1, &ty, &so) && sl_tok_is(peek_at(S, 2), ")")) {
             /* a cast: (float)x, (int)x, (float3)x */
             next(S);
@@ -220,7 +288,17 @@ static struct expr *parse_primary(struct sl *S)
 static struct expr *parse_postfix(struct sl *S)
 {
     struct expr *e = parse_primary(S);
-    while (sl_tok_is(sl_peek(S), ".")) {
+    while (sl_tok_is(sl_peek(S), ".") || sl_tok_is(sl_peek(S), "[")) {
+        if (sl_tok_is(sl_peek(S), "[")) {
+            const struct tok *open = next(S);
+            struct expr *x = new_expr(S, E_IDX, open);
+            x->a = e;
+            x->b = parse_expr(S);
+            expect(S, "]");
+            S->shader_only = 1;
+            e = x;
+            continue;
+        }
         const struct tok *dot = next(S);
         const struct tok *f = sl_peek(S);
         if (f->k != K_ID)
@@ -228,20 +306,20 @@ static struct expr *parse_postfix(struct sl *S)
         next(S);
         struct expr *s = new_expr(S, E_SWZ, dot);
         s->a = e;
-        if (f->len > 4)
-            FAIL(S, f, "a swizzle has 1 to 4 components, '%.*s' has %d", f->len, f->p, f->len);
-        for (int i = 0; i < f->len; ++i) {
+        s->field = f;
+        /* a swizzle, or (no swizzle's letters) a struct's field: which one, the value's type says */
+        s->nswz = f->len <= 4 ? f->len : 0;
+        for (int i = 0; i < s->nswz; ++i) {
             int k = swizzle_index(f->p[i]);
-            if (k < 0)
-                FAIL(S, f, "'%c' is not a component (x y z w, r g b a or s t p q)", f->p[i]);
+            if (k < 0) {
+                s->nswz = 0;
+                break;
+            }
             s->swz[i] = k;
         }
-        s->nswz = f->len;
         S->shader_only = 1;
         e = s;
     }
-    if (sl_tok_is(sl_peek(S), "["))
-        FAIL(S, sl_peek(S), "indexing with [] is not supported (use .x, .y, ...)");
     return e;
 }
 
@@ -365,6 +443,13 @@ static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
         next(S);
         return 1;
     }
+    const struct sdef *st = sl_find_struct(S, t);
+    if (st && !sl_tok_is(peek_at(S, 1), "(")) {
+        *ty = (struct type){ B_STRUCT, 1, st };
+        S->shader_only = 1;
+        next(S);
+        return 1;
+    }
     S->pos = save;
     return 0;
 }
@@ -378,6 +463,8 @@ static struct stmt *parse_declaration(struct sl *S, struct type ty, int is_const
     list->op = 1; /* no scope */
     for (;;) {
         const struct tok *name = sl_peek(S);
+        if (sl_tok_is(name, "*"))
+            FAIL(S, name, "a pointer declaration: pointers are not accepted in a model");
         if (name->k != K_ID)
             FAIL(S, name, "expected a variable name, found %s", tok_desc(S, name));
         check_unsupported_word(S, name);
@@ -386,11 +473,46 @@ static struct stmt *parse_declaration(struct sl *S, struct type ty, int is_const
         d->ty = ty;
         d->is_const = is_const;
         d->name = name;
-        if (sl_tok_is(sl_peek(S), "["))
-            FAIL(S, sl_peek(S), "arrays are not supported");
-        if (accept(S, "="))
-            d->e = parse_expr(S);
-        else if (is_const)
+        if (accept(S, "[")) {
+            d->is_array = 1;
+            d->arr_len = sl_tok_is(sl_peek(S), "]") ? NULL : parse_expr(S);
+            expect(S, "]");
+        }
+        if (accept(S, "=")) {
+            const struct tok *brace = sl_peek(S);
+            if (d->is_array) {
+                if (accept(S, "{"))
+                    d->e = parse_value_list(S, brace, "}", SL_MAX_ARRAY);
+                else
+                    d->e = parse_expr(S);
+            } else if (accept(S, "{")) {
+                /* HLSL's float3 v = { 1, 2, 3 }: the type's constructor of the listed values */
+                struct expr *e = new_expr(S, E_CALL, brace);
+                struct expr *args[SL_MAX_ARGS];
+                int n = 0;
+                if (!sl_tok_is(sl_peek(S), "}"))
+                    for (;;) {
+                        if (n == SL_MAX_ARGS)
+                            FAIL(S, sl_peek(S), "more than %d values in braces", SL_MAX_ARGS);
+                        args[n++] = parse_expr(S);
+                        if (!accept(S, ","))
+                            break;
+                        if (sl_tok_is(sl_peek(S), "}"))
+                            break; /* a trailing comma */
+                    }
+                expect(S, "}");
+                if (n == 0)
+                    FAIL(S, brace, "empty braces: an initialiser lists the values");
+                e->args = sl_arena_alloc(S, sizeof *e->args * (size_t)n);
+                memcpy(e->args, args, sizeof *args * (size_t)n);
+                e->nargs = n;
+                e->has_ctor = 1;
+                e->ctor = ty;
+                d->e = e;
+            } else {
+                d->e = parse_expr(S);
+            }
+        } else if (is_const)
             FAIL(S, name, "const '%.*s' needs a value", name->len, name->p);
         block_add(S, list, d);
         if (accept(S, ";"))
@@ -452,6 +574,11 @@ static struct stmt *parse_simple(struct sl *S, int top_body, int need_semicolon)
         struct stmt *r = sl_new_stmt(S, S_RET, e->t);
         r->e = e;
         return r;
+    } else if (e->k == E_CALL && !e->is_cast && sl_tok_is(a, ";")) {
+        /* a call on its own: a function with out parameters, or of void */
+        s->k = S_CALL;
+        s->e = e;
+        s->t = e->t;
     } else {
         if (sl_tok_is(a, ";"))
             FAIL(S, e->t, "this expression is computed and then dropped (assign it, or return it)");
@@ -474,6 +601,19 @@ static struct stmt *parse_statement(struct sl *S, int top_body)
 
 static struct stmt *parse_statement_inner(struct sl *S, int top_body)
 {
+    /* HLSL's attributes before a statement ([unroll], [loop], [branch], [flatten], [unroll(4)]):
+       hints to a compiler, nothing to a lobe's value (loops are unrolled here anyway) */
+    while (sl_tok_is(sl_peek(S), "[") && peek_at(S, 1)->k == K_ID &&
+           (sl_tok_is(peek_at(S, 2), "]") || sl_tok_is(peek_at(S, 2), "("))) {
+        next(S);
+        next(S);
+        if (accept(S, "(")) {
+            while (!sl_tok_is(sl_peek(S), ")") && sl_peek(S)->k != K_EOF)
+                next(S);
+            expect(S, ")");
+        }
+        expect(S, "]");
+    }
     const struct tok *t = sl_peek(S);
     check_unsupported_word(S, t);
     if (sl_tok_is(t, "{"))
@@ -498,11 +638,30 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
         next(S);
         S->statement_form = 1;
         struct stmt *s = sl_new_stmt(S, S_RET, t);
-        if (sl_tok_is(sl_peek(S), ";"))
-            FAIL(S, sl_peek(S), "return needs a value");
+        if (accept(S, ";"))
+            return s; /* of a void function; a value is asked for where one is due */
         s->e = parse_expr(S);
         if (!(top_body && sl_peek(S)->k == K_EOF))
             expect(S, ";");
+        return s;
+    }
+    if (sl_tok_is(t, "while") || sl_tok_is(t, "do")) {
+        /* while (COND) BODY; do BODY while (COND); */
+        int is_do = sl_tok_is(t, "do");
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, is_do ? S_DO : S_WHILE, t);
+        if (is_do) {
+            s->s3 = parse_statement(S, 0);
+            expect(S, "while");
+        }
+        expect(S, "(");
+        s->e = parse_expr(S);
+        expect(S, ")");
+        if (is_do)
+            expect(S, ";");
+        else
+            s->s3 = parse_statement(S, 0);
         return s;
     }
     if (sl_tok_is(t, "for")) {
@@ -527,6 +686,55 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
 }
 
 
+
+/* struct NAME { TYPE field[, field]; ... }; (fields of numbers, vectors and structs). */
+static void parse_struct(struct sl *S)
+{
+    next(S);
+    const struct tok *name = sl_peek(S);
+    if (name->k != K_ID)
+        FAIL(S, name, "expected the struct's name, found %s", tok_desc(S, name));
+    struct type dummy;
+    int so;
+    if (sl_type_of_name(name, &dummy, &so) || sl_find_struct(S, name))
+        FAIL(S, name, "'%.*s' is already a type", name->len, name->p);
+    next(S);
+    struct sdef *d = sl_arena_alloc(S, sizeof *d);
+    d->name = name;
+    expect(S, "{");
+    while (!accept(S, "}")) {
+        struct type ft;
+        int fc;
+        const struct tok *t0 = sl_peek(S);
+        if (!parse_decl_type(S, &ft, &fc))
+            FAIL(S, t0, "expected a field's type, found %s", tok_desc(S, t0));
+        if (ft.b == B_VOID || ft.b == B_BOOL)
+            FAIL(S, t0, "a struct's field is a number, a vector or a struct, not %s", ft.b == B_VOID ? "void" : "bool");
+        for (;;) {
+            const struct tok *fn = sl_peek(S);
+            if (fn->k != K_ID)
+                FAIL(S, fn, "expected a field's name, found %s", tok_desc(S, fn));
+            next(S);
+            if (sl_tok_is(sl_peek(S), "[") || sl_tok_is(sl_peek(S), ":"))
+                FAIL(S, sl_peek(S), "a struct's field is one value (no arrays, no semantics)");
+            for (int i = 0; i < d->nfields; ++i)
+                if (d->fname[i]->len == fn->len && strncmp(d->fname[i]->p, fn->p, (size_t)fn->len) == 0)
+                    FAIL(S, fn, "field '%.*s' is declared twice", fn->len, fn->p);
+            if (d->nfields == SL_MAX_FIELDS)
+                FAIL(S, fn, "a struct of more than %d fields", SL_MAX_FIELDS);
+            d->fname[d->nfields] = fn;
+            d->fty[d->nfields++] = ft;
+            if (accept(S, ";"))
+                break;
+            expect(S, ",");
+        }
+    }
+    if (d->nfields == 0)
+        FAIL(S, name, "struct '%.*s' has no fields", name->len, name->p);
+    expect(S, ";");
+    d->next = S->structs;
+    S->structs = d;
+}
 
 /* The function form: somewhere outside braces and parentheses a type, a name and '('. */
 static int is_function_start(struct sl *S)
@@ -562,6 +770,10 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
         const struct tok *start = sl_peek(S);
         if (accept(S, ";"))
             continue;
+        if (sl_tok_is(start, "struct")) {
+            parse_struct(S);
+            continue;
+        }
         if (sl_tok_is(start, "precision")) {
             while (sl_peek(S)->k != K_EOF && !accept(S, ";"))
                 next(S);
@@ -591,20 +803,29 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
         struct func *f = sl_arena_alloc(S, sizeof *f);
         f->name = name;
         f->ret = t;
-        if (sl_find_func(S, name))
-            FAIL(S, name, "function '%.*s' is defined twice (overloads are not supported)", name->len, name->p);
         if (accept(S, "void")) {
             expect(S, ")");
         } else if (!accept(S, ")")) {
             for (;;) {
                 struct type pt;
-                int pc;
+                int pc, mode = PM_IN;
+                for (;;) {
+                    /* in, out, inout (const and the precision are parse_decl_type's) */
+                    if (accept(S, "out"))
+                        mode = PM_OUT;
+                    else if (accept(S, "inout"))
+                        mode = PM_INOUT;
+                    else if (!accept(S, "in"))
+                        break;
+                }
                 const struct tok *pt0 = sl_peek(S);
                 if (!parse_decl_type(S, &pt, &pc))
                     FAIL(S, pt0, "expected a parameter type, found %s", tok_desc(S, pt0));
                 if (pt.b == B_VOID)
                     FAIL(S, pt0, "a parameter cannot be void");
                 const struct tok *pn = sl_peek(S);
+                if (sl_tok_is(pn, "*"))
+                    FAIL(S, pn, "a pointer parameter: pointers are not accepted in a model");
                 if (pn->k != K_ID)
                     FAIL(S, pn, "expected a parameter name, found %s", tok_desc(S, pn));
                 next(S);
@@ -612,7 +833,10 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
                     FAIL(S, sl_peek(S), "HLSL semantics (': NAME') are not supported on a model's parameters");
                 if (f->nparams == SL_MAX_ARGS)
                     FAIL(S, pn, "more than %d parameters", SL_MAX_ARGS);
+                if (mode != PM_IN && pc)
+                    FAIL(S, pt0, "an %s parameter cannot be const", mode == PM_OUT ? "out" : "inout");
                 f->pty[f->nparams] = pt;
+                f->pmode[f->nparams] = mode;
                 f->pname[f->nparams++] = pn;
                 if (accept(S, ")"))
                     break;
@@ -621,6 +845,16 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
         }
         if (accept(S, ";"))
             continue; /* a prototype */
+        /* overloads differ in their parameters' types */
+        for (struct func *g = S->funcs; g; g = g->next) {
+            int same = g->name->len == name->len && strncmp(g->name->p, name->p, (size_t)name->len) == 0 &&
+                       g->nparams == f->nparams;
+            for (int i = 0; same && i < f->nparams; ++i)
+                same = g->pty[i].b == f->pty[i].b && g->pty[i].n == f->pty[i].n;
+            if (same)
+                FAIL(S, name, "function '%.*s' is defined twice with the same parameter types (line %d)", name->len,
+                     name->p, g->name->line);
+        }
         f->body = parse_block(S);
         f->close = &S->toks.v[S->pos - 1];
         *tail = f;

@@ -224,9 +224,12 @@ static int file_fail(char *err, size_t errlen, const char *path, int line, const
     return EXIT_USAGE;
 }
 
-/* One "param: NAME MIN MAX DEFAULT [integer]" line. */
+/* One "param: NAME MIN MAX DEFAULT [integer]" line. generated: the header was written by the
+   translator (shaderlang.h) for a .brdf file, whose parameter names it checked; there NAME only
+   labels the value (the code takes it as p0 or p1), so c and n are names like others (BRDF
+   Explorer's c). */
 static int parse_param_line(struct user_model *um, char *value, const char *path, int line, char *err,
-                            size_t errlen)
+                            size_t errlen, int generated)
 {
     static const char *form = "expected 'param: NAME MIN MAX DEFAULT [integer]'";
     char *tok[6];
@@ -242,7 +245,7 @@ static int parse_param_line(struct user_model *um, char *value, const char *path
     if (um->info.nparams >= MODEL_MAX_PARAMS)
         return file_fail(err, errlen, path, line, "more than %d parameters (accepted: 0 to %d)",
                          MODEL_MAX_PARAMS, MODEL_MAX_PARAMS);
-    if (!is_identifier(tok[0], USERMODEL_NAME_MAX) || is_reserved_name(tok[0]))
+    if (!is_identifier(tok[0], USERMODEL_NAME_MAX) || (!generated && is_reserved_name(tok[0])))
         return file_fail(err, errlen, path, line,
                          "parameter name '%.60s' is not an identifier of 1 to %d characters or is reserved "
                          "(c, n, p0, p1, brdf_*)", tok[0], USERMODEL_NAME_MAX);
@@ -339,6 +342,7 @@ static int make_file_source(struct user_model *um, const char *text, size_t len)
 /* The keys a model file's header has declared so far. */
 struct header_seen {
     int name, reference, description, function, lobe;
+    int generated;   /* the header is the translator's (parse_param_line) */
 };
 
 /* One "key: value" line of a model file's header (s, trimmed, split in place). */
@@ -382,7 +386,7 @@ static int header_line(struct user_model *um, char *s, struct header_seen *h, co
             return file_fail(err, errlen, path, line, "'description' is declared twice");
         snprintf(um->description, sizeof um->description, "%s", value);
     } else if (strcmp(key, "param") == 0) {
-        return parse_param_line(um, value, path, line, err, errlen);
+        return parse_param_line(um, value, path, line, err, errlen, h->generated);
     } else {
         return file_fail(err, errlen, path, line, "unknown key '%.40s' (accepted: name, param, reference, "
                          "lobe, function, description)", key);
@@ -433,6 +437,24 @@ static int parse_header(struct user_model *um, char *text, char **close, struct 
     return 0;
 }
 
+/* A .brdf file's NAME@FILE.brdf (usermodel.h, qualified), when it fits a model name and the
+   --models list can name it (no ',', ':', '=' or blank in the file's name). */
+static void brdf_qualified_name(struct user_model *um, const char *path)
+{
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    size_t bl = strlen(base);
+    um->qualified[0] = '\0';
+    if (bl < 6 || strcmp(base + bl - 5, ".brdf") != 0 || strcspn(base, ",:= \t\r\n@") != bl)
+        return;
+    size_t nl = strlen(um->name);
+    if (nl + 1 + bl > USERMODEL_NAME_MAX)
+        return;
+    memcpy(um->qualified, um->name, nl);
+    um->qualified[nl] = '@';
+    memcpy(um->qualified + nl + 1, base, bl + 1);
+}
+
 /* Set while the translation of a --model expression is parsed: machine-made text, whose own
    brdfbench_* names are not the user's (the expression itself was checked). */
 static int translating_expression;
@@ -457,11 +479,11 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
         return sl;
     int generated = translating_expression;
     if (sl == 0) {
-        int rc0 = usermodel_check_text(own, own_len, path, 1, err, errlen);
-        if (rc0) {
-            free(translated);
-            return rc0;
-        }
+        /* The user's names are the user's: the translation renames every one (u__NAME) and calls
+           only the file's own functions and the math built-ins, so BRDF_GGX or brdf in a shader
+           never meets brdfbench's code, and the reserved-name check is for OpenCL C texts. */
+        (void)own;
+        (void)own_len;
         text = translated;
         generated = 1;
     }
@@ -481,6 +503,9 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
 
     char *close = NULL;
     struct header_seen seen = {0};
+    /* a .brdf file's parameters come from its ::begin parameters block, checked by the translator */
+    size_t pl = strlen(path);
+    seen.generated = sl == 0 && pl > 5 && strcmp(path + pl - 5, ".brdf") == 0;
     if ((rc = parse_header(um, copy, &close, &seen, path, err, errlen)) != 0)
         goto done;
     if (!seen.name) {
@@ -513,6 +538,8 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
         snprintf(um->description, sizeof um->description, "user model from %.200s", path);
     snprintf(um->formula, sizeof um->formula, "%s(c, n%s) in %.200s", um->function,
              um->info.nparams ? ", ..." : "", path);
+    if (sl == 0)
+        brdf_qualified_name(um, path);
     usermodel_fill_info(um);
     if (make_file_source(um, text, len)) {
         rc = file_fail(err, errlen, path, 0, "out of memory");
@@ -647,6 +674,17 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
 int usermodel_register(struct user_model *um, char *err, size_t errlen)
 {
     const struct model_info *taken = models_find(um->name);
+    /* A .brdf file's model whose name is taken lives in its file's namespace: phong.brdf's phong
+       is phong@phong.brdf beside the built-in phong. */
+    if (taken && um->qualified[0]) {
+        taken = models_find(um->qualified);   /* NULL, or another file of the same name */
+        snprintf(um->name, sizeof um->name, "%s", um->qualified);
+        um->qualified[0] = '\0';
+        snprintf(um->what, sizeof um->what, "user model '%s' (%s)", um->name, um->origin);
+    }
+    if (um->qualified[0] && models_find(um->qualified))
+        um->qualified[0] = '\0';   /* that name is another model's: the model keeps its own alone */
+    um->runtime.alias = um->qualified[0] ? um->qualified : NULL;
     if (taken) {
         if (usermodel_of_info(taken))
             snprintf(err, errlen, "%s: user model '%s' is already defined by %s", um->origin, um->name,

@@ -48,6 +48,10 @@ struct user_model {
     char formula[USERMODEL_MAX_EXPR + 8];
     char param_names[MODEL_MAX_PARAMS][USERMODEL_NAME_MAX + 1];
     char origin[512];              /* the file's path, or "--model NAME" */
+    /* A .brdf file's model in its file's namespace, NAME@FILE.brdf (FILE.brdf: the file's name
+       without its folder): its name when NAME is a built-in's or another model's, else a
+       second name it answers to; "" when NAME@FILE.brdf would not be a model name. */
+    char qualified[USERMODEL_NAME_MAX + 1];
     int from_file;
     int full;                      /* a full BRDF: its text defines brdfbench_full (shaderlang.h) */
     char *device_source;           /* appended after a kernel file: #line, the user's text, a wrapper */

@@ -22,9 +22,15 @@
  * the 4th significant digit of the reported figure: the device then picks a grid point whose
  * true value is within one unit of the grid's best, and the double polish only climbs from
  * there. Differences below ACC_CHECK_FLOAT_FLOOR times the reference's peak (16 float ulps of
- * 1) are float rounding, which no float device can do better than, and are never flagged. */
+ * 1) are float rounding, which no float device can do better than, and are never flagged; nor
+ * are, for a figure below float resolution of the peak (2^-23), differences within twice the
+ * model's own float error at that point (its float-cancellation figure, probe_rel_diff, brought to
+ * the figure's scale): one form of a formula losing digits in float is reported as that figure,
+ * not as a search failure. */
 #define ACC_CHECK_BOUND_UNITS 0.5
 #define ACC_CHECK_FLOAT_FLOOR 1.9073486328125e-06   /* 2^-19 */
+/* "a few units of 2^-24 of the peak" below float resolution (docs/definitions.md, Device check) */
+#define ACC_CHECK_FLOOR_UNITS 8.0
 #define ACC_MAX_N_COUNT 10000000L
 #define ACC_MAX_WORK 1e12        /* n values x samples: beyond this a sweep would run for hours */
 
@@ -95,6 +101,7 @@ struct accuracy_ctx {
     cl_kernel sweep, probe;
     char build_options[256];
     int timer_wall;                /* the driver's profiling events gave no time: wall time used */
+    const struct model_spec *reference;   /* NULL: each model's own reference; else this one (--reference) */
 };
 
 

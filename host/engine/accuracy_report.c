@@ -27,6 +27,13 @@ static void jw_extreme(struct jw *w, const char *key, const char *metric, const 
 int accuracy_write_json(const char *path, const struct accuracy_result *res, int count,
                         const struct cl_session *s, const char *build_options, char *err, size_t errlen)
 {
+    return accuracy_write_json_full(path, res, count, NULL, 0, s, build_options, err, errlen);
+}
+
+int accuracy_write_json_full(const char *path, const struct accuracy_result *res, int count,
+                             const struct hemi_result *hres, int hcount, const struct cl_session *s,
+                             const char *build_options, char *err, size_t errlen)
+{
     struct jw w;
     jw_doc_begin(&w, ACCURACY_SCHEMA, s, build_options);
     if (count > 0) {
@@ -65,6 +72,7 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_num(&w, "max_abs_diff", r->check_abs_diff);
         jw_kv_num(&w, "probe_max_diff_of_peak", r->probe_rel_diff);
         jw_kv_num(&w, "in_4th_digit_units", accuracy_check_in_digits(r));
+        jw_kv_num(&w, "float_cancellation", r->probe_rel_diff);
         jw_kv_num(&w, "bound_4th_digit_units", ACC_CHECK_BOUND_UNITS);
         jw_kv_num(&w, "float_floor_of_peak", ACC_CHECK_FLOAT_FLOOR);
         jw_kv_str(&w, "worst_figure", r->check.figure);
@@ -74,7 +82,9 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_str(&w, "what", "every per-n device figure recomputed in double at the device's own input (s = 1 - cos x), "
                               "in units of the 4th significant digit of the reported figure it stands behind; the bound "
                               "is half a unit (then the device's choice of grid point costs at most one unit), and "
-                              "differences below float_floor_of_peak times the reference's peak are float rounding; "
+                              "differences below float_floor_of_peak times the reference's peak are float rounding, and "
+                              "differences within twice float_cancellation (brought to the figure's scale) are the "
+                              "model's own float error; "
                               "probe: model values at 4096 points against double, relative to the reference's peak");
         jw_obj_end(&w);
         jw_kv_obj(&w, "invalid");
@@ -89,14 +99,24 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
         jw_kv_str(&w, "timer", r->timer_wall ? "wall time: the driver's profiling events gave no time"
                                              : "profiling events");
         jw_obj_end(&w);
+        /* the largest |device - double| of single model values over the reference's peak: float
+           cancellation in the model's form, a figure of its own */
+        jw_kv_num(&w, "float_cancellation", r->probe_rel_diff);
         jw_obj_end(&w);
     }
+    hemisphere_json_rows(&w, hres, hcount);
     jw_arr_end(&w);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
 
 int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen)
+{
+    return accuracy_write_csv_full(path, res, count, NULL, 0, err, errlen);
+}
+
+int accuracy_write_csv_full(const char *path, const struct accuracy_result *res, int count,
+                            const struct hemi_result *hres, int hcount, char *err, size_t errlen)
 {
     struct md_buf b;
     md_init(&b);
@@ -114,6 +134,7 @@ int accuracy_write_csv(const char *path, const struct accuracy_result *res, int 
                       p->invalid_count);
         }
     }
+    hemisphere_csv_lines(&b, hres, hcount);
     return md_write_file_free(&b, path, err, errlen);
 }
 

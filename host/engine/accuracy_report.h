@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "accuracy.h"
+#include "hemisphere_report.h"
 
 
 /* The largest device-vs-double difference of a result, in units of the 4th significant
@@ -14,6 +15,12 @@ double accuracy_check_in_digits(const struct accuracy_result *r);
 
 int accuracy_write_json(const char *path, const struct accuracy_result *res, int count,
                         const struct cl_session *s, const char *build_options, char *err, size_t errlen);
+/* The same documents with the hemisphere sweep's rows after the lobe sweep's (hres may be NULL). */
+int accuracy_write_json_full(const char *path, const struct accuracy_result *res, int count,
+                             const struct hemi_result *hres, int hcount, const struct cl_session *s,
+                             const char *build_options, char *err, size_t errlen);
+int accuracy_write_csv_full(const char *path, const struct accuracy_result *res, int count,
+                            const struct hemi_result *hres, int hcount, char *err, size_t errlen);
 int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen);
 void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count);
 

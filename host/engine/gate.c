@@ -13,6 +13,7 @@
 #include "programs.h"
 #include "rdoc_read.h"
 #include "usermodel.h"
+#include "hemisphere.h"
 
 #include <errno.h>
 #include <gsl/gsl_errno.h>
@@ -36,13 +37,25 @@ static const struct {
     { "invalid.count", "model values that were NaN, Inf or negative in the sweep" },
     { "measured.rms", "the lobe's RMS error against the measured material of \"measured\" (a MERL file), at the "
                       "Blinn-Phong fit's n and scale (brdfbench measured's err_measured)" },
+    { "hemisphere.epicentre.max_rel", "a full BRDF over the hemisphere (N.L > 0, N.V > 0): max relative error where "
+                                      "f_ref >= e^-0.511 of its peak, over n in the gate's range (8 values)" },
+    { "hemisphere.attenuation.max_abs", "a full BRDF over the hemisphere: max absolute error where f_ref is below "
+                                        "e^-0.511 of its peak" },
+    { "hemisphere.whole.max_abs", "a full BRDF over the hemisphere: max absolute error over every sample" },
+    { "hemisphere.rms", "a full BRDF over the hemisphere: RMS of cos(theta_i) (f - f_ref) over dw_i dw_o, its "
+                        "largest over n" },
 };
 
 const char *gate_metric_name(enum gate_metric m) { return metrics[m].name; }
 
+int gate_metric_is_hemisphere(enum gate_metric m)
+{
+    return m == GATE_HEMI_EPI_REL || m == GATE_HEMI_ATT_ABS || m == GATE_HEMI_WHOLE_ABS || m == GATE_HEMI_RMS;
+}
+
 int gate_metric_needs_sweep(enum gate_metric m)
 {
-    return m != GATE_ENERGY_MAX_DEV && m != GATE_ALBEDO_MAX && m != GATE_MEASURED_RMS;
+    return m != GATE_ENERGY_MAX_DEV && m != GATE_ALBEDO_MAX && m != GATE_MEASURED_RMS && !gate_metric_is_hemisphere(m);
 }
 
 #define GATE_ALBEDO_MAX_N 1000       /* values of n of an albedo gate (each costs 18 quadratures) */
@@ -188,6 +201,9 @@ static int gate_metric(const struct jr_doc *d, const struct jr_value *gv, const 
         return jr_fail(d, metric_v, err, errlen, "%sunknown metric '%.60s' (accepted: %s)", where, metric_v->str, msg);
     }
     g->metric = (enum gate_metric)metric;
+    if (gate_metric_is_hemisphere(g->metric) && !hemisphere_applies(&g->model))
+        return jr_fail(d, metric_v, err, errlen, "%s%s needs a full BRDF (a user model of L, V, N, ct-ggx, "
+                       "ct-beckmann, brady or he; %s is a lobe)", where, metrics[g->metric].name, g->model.label);
     if (g->metric == GATE_ALBEDO_MAX && albedo_mode_of(g->model.info) < 0)
         return jr_fail(d, metric_v, err, errlen, "%salbedo.max needs a normalised or microfacet model (%s is %s)",
                        where, g->model.info->id, model_family_name(g->model.info->family));

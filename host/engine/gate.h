@@ -24,9 +24,15 @@ enum gate_metric {
     GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/engine/energy.h) */
     GATE_INVALID_COUNT,       /* model values that were NaN, Inf or negative in the sweep */
     GATE_MEASURED_RMS,        /* the lobe's error against a measured material (host/engine/measured.h) */
+    GATE_HEMI_EPI_REL,        /* a full BRDF over the hemisphere (host/engine/hemisphere.h): max delta, epicentre */
+    GATE_HEMI_ATT_ABS,        /* ... max Delta over the attenuation samples */
+    GATE_HEMI_WHOLE_ABS,      /* ... max Delta over every sample */
+    GATE_HEMI_RMS,            /* ... RMS of cos(theta_i) (f - f_ref), its largest over the axis */
     GATE_METRIC_COUNT
 };
 
+/* 1 for the metrics of the hemisphere sweep (hemisphere.*). */
+int gate_metric_is_hemisphere(enum gate_metric m);
 /* The name of a metric in a gates file ("epicentre.max_rel") and what it measures. */
 const char *gate_metric_name(enum gate_metric m);
 

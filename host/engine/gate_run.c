@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "gate.h"
 #include "gate_internal.h"
+#include "hemisphere.h"
 #include "energy.h"
 #include "exitcodes.h"
 #include "infile.h"
@@ -253,6 +254,45 @@ static int gate_measured(struct gate *g, struct cl_session *s)
     return rc;
 }
 
+/* A hemisphere.* gate: the full BRDF against its family reference (refused references fail the
+   gate with the refusal's words) over n in the gate's range, 8 values, the default grid. */
+static int gate_hemisphere(struct gate *g, struct hemi_ctx *h)
+{
+    struct hemi_axis axis = { .name = "n", .q = HQ_N, .min = g->grid.n_min, .max = g->grid.n_max,
+                              .count = HEMI_DEFAULT_POINTS };
+    struct hemi_grid grid = { HEMI_DEFAULT_NH, HEMI_DEFAULT_ND, HEMI_DEFAULT_NP };
+    struct model_spec ref;
+    char err[512];
+    g->measured = g->at_n = g->at_x = NAN;
+    if (hemisphere_default_reference(&g->model, &axis, &ref, err, sizeof err) ||
+        hemisphere_axis_check(&axis, NULL, 0, &g->model, &ref, g->grid.n_min, g->grid.n_max, err, sizeof err)) {
+        snprintf(g->reason, sizeof g->reason, "%s", err);
+        return 0;
+    }
+    axis.geometric = axis.min > 0 && axis.max / axis.min > 10;
+    struct hemi_result r;
+    int rc = hemisphere_run(h, &g->model, &ref, &axis, NULL, 0, &grid, &r);
+    if (rc)
+        return rc;
+    const struct hemi_extreme *e = g->metric == GATE_HEMI_EPI_REL ? &r.epicentre
+                                   : g->metric == GATE_HEMI_ATT_ABS ? &r.attenuation
+                                   : g->metric == GATE_HEMI_WHOLE_ABS ? &r.whole : &r.rms;
+    g->measured = e->value;
+    g->at_n = e->p;
+    g->at_x = e->th;
+    g->invalid_count = r.invalid;
+    g->invalid_n = g->invalid_x = NAN;
+    g->check.exceeded = r.check.exceeded;
+    g->check.figure = r.check.figure ? r.check.figure : "";
+    g->check.units = r.check.units;
+    g->check.diff = r.check.diff;
+    g->check.n = r.check.p;
+    if (r.reason[0])
+        snprintf(g->reason, sizeof g->reason, "%s", r.reason);
+    hemisphere_result_free(&r);
+    return 0;
+}
+
 /* PASS/FAIL against the bounds and the baseline. */
 static void gate_judge(struct gate *g, double tolerance)
 {
@@ -321,6 +361,8 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
     memset(&actx, 0, sizeof actx);
     struct integrate_ctx ic;
     int ic_open = 0;
+    struct hemi_ctx hctx;
+    int hctx_open = 0;
     struct gate_sweep *sweeps = calloc((size_t)gs->count, sizeof *sweeps);
     int *plan = malloc((size_t)gs->count * sizeof *plan), *order = malloc((size_t)gs->count * sizeof *order);
     int nsweeps = 0, sweeps_done = 0;
@@ -383,6 +425,16 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
             gate_from_sweep(g, &sw->result);
             if (sw->result.reason[0] && sw->result.invalid_count == 0)
                 snprintf(g->reason, sizeof g->reason, "%s", sw->result.reason);
+        } else if (gate_metric_is_hemisphere(g->metric)) {
+            if (!hctx_open) {
+                hemisphere_open(&hctx, s, "");
+                hctx_open = 1;
+            }
+            if ((rc = gate_hemisphere(g, &hctx)) != 0)
+                goto done;
+            if (progress)
+                fprintf(progress, "hemisphere: %s n=[%g,%g] (%.2f s)\n", g->model.label, g->grid.n_min,
+                        g->grid.n_max, wall_seconds() - t0);
         } else if (g->metric == GATE_MEASURED_RMS) {
             if ((rc = gate_measured(g, s)) != 0)
                 goto done;
@@ -412,6 +464,8 @@ int gate_set_run(struct gate_set *gs, struct cl_session *s, FILE *progress)
         gate_judge(g, gs->tolerance);
     }
 done:
+    if (hctx_open)
+        hemisphere_close(&hctx);
     if (ic_open)
         integrate_close(&ic);
     accuracy_close(&actx);

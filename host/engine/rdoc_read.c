@@ -293,7 +293,16 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
             continue;
         snprintf(text, sizeof text, "%.120s", label);
         rd_row_key(r, "label", NULL, text);
-        snprintf(text, sizeof text, "%.120s", grid);
+        const struct jr_value *hemi = jr_get(row, "hemisphere");
+        if (hemi) {   /* a full BRDF's row: its axis and hemisphere grid are its grid */
+            const struct jr_value *axis = jr_get(hemi, "axis"), *hg = jr_get(hemi, "grid");
+            snprintf(text, sizeof text, "vs %.60s, hemisphere %.40s %.9g..%.9g x%.0f, %.0fx%.0fx%.0f",
+                     jr_str_or(row, "reference", "?"), jr_str_or(axis, "name", "?"), jr_num_or_nan(axis, "min"),
+                     jr_num_or_nan(axis, "max"), jr_num_or_nan(axis, "count"), jr_num_or_nan(hg, "theta_h"),
+                     jr_num_or_nan(hg, "theta_d"), jr_num_or_nan(hg, "phi_d"));
+        } else {
+            snprintf(text, sizeof text, "%.120s", grid);
+        }
         rd_row_key(r, "grid", NULL, text);
         row_status(r, row);
         snprintf(text, sizeof text, "%.17g", jr_num_or_nan(row, "n_min"));
@@ -302,10 +311,31 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
         rd_row_attr(r, "n_max", text);
         snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_step"));
         rd_row_attr(r, "n_step", text);
+        if (hemi) {
+            /* a full BRDF's row of the hemisphere sweep (host/engine/hemisphere_report.c): its own
+               metrics, never the lobe sweep's names */
+            static const char *const hfigures[][2] = {
+                { "epicentre.max_rel", "hemisphere.epicentre.max_rel" },
+                { "attenuation.max_abs", "hemisphere.attenuation.max_abs" },
+                { "whole.max_abs", "hemisphere.whole.max_abs" },
+                { "rms", "hemisphere.rms" },
+                { "float_cancellation", "hemisphere.float_cancellation" },
+                { "samples.evaluated_below_horizon", "hemisphere.evaluated_below_horizon" },
+            };
+            rd_row_attr(r, "reference", jr_str_or(row, "reference", ""));
+            for (size_t f = 0; f < sizeof hfigures / sizeof hfigures[0]; ++f) {
+                const struct jr_value *v = path_get(hemi, hfigures[f][0]);
+                rd_row_metric(d, r, hfigures[f][1], "1", RD_LOWER, 0, v && v->type == JR_NUM ? v->num : NAN);
+            }
+            continue;
+        }
         for (size_t f = 0; f < sizeof figures / sizeof figures[0]; ++f) {
             const struct jr_value *v = path_get(row, figures[f]);
             rd_row_metric(d, r, figures[f], "1", RD_LOWER, 0, v && v->type == JR_NUM ? v->num : NAN);
         }
+        const struct jr_value *fc = path_get(row, "check.float_cancellation");
+        if (fc && fc->type == JR_NUM)   /* written since the device check's float floor */
+            rd_row_metric(d, r, "check.float_cancellation", "1", RD_LOWER, 0, fc->num);
     }
     return 0;
 }

@@ -73,6 +73,8 @@ int render_check_size(const struct cl_session *s, const char *what, long width, 
 {
     double global_mib = s ? (double)s->global_mem / 1048576.0 : 0;
     double alloc_mib = s ? (double)s->max_alloc / 1048576.0 : 0;
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    double phys_mib = pages > 0 && page > 0 ? (double)pages * (double)page / 1048576.0 : 0;
     int ok = width >= RENDER_MIN_SIDE && height >= RENDER_MIN_SIDE && width <= RENDER_MAX_SIDE &&
              height <= RENDER_MAX_SIDE;
     size_t gbytes = ok ? gbuffer_bytes(width, height) : 0;
@@ -84,6 +86,17 @@ int render_check_size(const struct cl_session *s, const char *what, long width, 
         double dev = (double)gbytes * RENDER_DEVICE_BYTES_PER_PIXEL / (GB_NPLANES * 4.0);
         if (dev > 0.5 * (double)s->global_mem || (double)gbytes > (double)s->max_alloc)
             ok = 0;
+        /* the host's own images, and on a CPU device the device's buffers too, in this
+           machine's memory: a size past it would end the run by the kernel's OOM killer */
+        double host = (double)gbytes * RENDER_HOST_BYTES_PER_PIXEL / (GB_NPLANES * 4.0) + (s->is_cpu ? dev : 0.0);
+        if (ok && phys_mib > 0 && host > 0.75 * phys_mib * 1048576.0) {
+            set_err(err, errlen,
+                    "%s: %ldx%ld is outside the accepted range: W*H*%d bytes of host images%s within "
+                    "three quarters of this machine's memory (%.0f MiB)",
+                    what, width, height, RENDER_HOST_BYTES_PER_PIXEL,
+                    s->is_cpu ? " and the CPU device's buffers" : "", 0.75 * phys_mib);
+            return EXIT_USAGE;
+        }
     }
     if (!ok) {
         if (s)

@@ -20,6 +20,10 @@
 #define RENDER_MAX_SIDE 16384
 /* Device bytes per pixel: seven G-buffer floats in, RGBA8 and one float out. */
 #define RENDER_DEVICE_BYTES_PER_PIXEL 36
+/* Host bytes per pixel, at least: the G-buffer (28), the pass's RGBA8 and three float images
+ * (16), the contact sheet's error float and two RGB8 images (10), a model's cached RGBA8 and
+ * specular float (8). */
+#define RENDER_HOST_BYTES_PER_PIXEL 62
 
 enum render_scene { RENDER_SPHERES = 0, RENDER_TEAPOT, RENDER_BUNNY, RENDER_SCENE_COUNT };
 

@@ -31,6 +31,40 @@ static volatile int own_dir_count;
 char outdir_own_tmp[OUTDIR_PATH_MAX];
 volatile int outdir_own_tmp_set;
 
+/* The stop-signal thread tidies up while the main thread may still be working: a folder made
+ * but not yet recorded as this process's own would outlive the run. The main thread holds this
+ * lock from each mkdir to its record (and through a commit); the stop thread takes it before it
+ * tidies up and never gives it back, so the main thread makes nothing more after that. */
+static pthread_mutex_t tidy_lock = PTHREAD_MUTEX_INITIALIZER;
+static void own_dir_add(const char *dir);
+
+/* A test hook: BRDFBENCH_TEST_PAUSE_AFTER_MKDIR=MS sleeps that long between making a run folder
+ * and recording it, so that a test can stop the process there (tests/test_hostile.sh). */
+static void test_pause_after_mkdir(void)
+{
+    const char *v = getenv("BRDFBENCH_TEST_PAUSE_AFTER_MKDIR");
+    long ms = v ? strtol(v, NULL, 10) : 0;
+    if (ms > 0 && ms <= 10000) {
+        struct timespec ts = { ms / 1000, (ms % 1000) * 1000000L };
+        nanosleep(&ts, NULL);
+    }
+}
+
+/* mkdir, and the folder recorded as this process's own when it was made, under tidy_lock */
+static int mkdir_own(const char *dir)
+{
+    pthread_mutex_lock(&tidy_lock);
+    int rc = mkdir(dir, 0755);
+    int saved = errno;
+    if (rc == 0) {
+        test_pause_after_mkdir();
+        own_dir_add(dir);
+    }
+    pthread_mutex_unlock(&tidy_lock);
+    errno = saved;
+    return rc;
+}
+
 static void own_dir_add(const char *dir)
 {
     if (own_dir_count >= OWN_DIRS_MAX || strlen(dir) >= OUTDIR_PATH_MAX)
@@ -199,16 +233,12 @@ static int mkdir_p(const char *dir)
     for (char *p = buf + 1; *p; ++p) {
         if (*p == '/') {
             *p = '\0';
-            if (mkdir(buf, 0755) == 0)
-                own_dir_add(buf);
-            else if (errno != EEXIST)
+            if (mkdir_own(buf) != 0 && errno != EEXIST)
                 return -1;
             *p = '/';
         }
     }
-    if (mkdir(buf, 0755) == 0)
-        own_dir_add(buf);
-    else if (errno != EEXIST)
+    if (mkdir_own(buf) != 0 && errno != EEXIST)
         return -1;
     return 0;
 }
@@ -290,8 +320,7 @@ int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err
             snprintf(err, errlen, "results folder path too long");
             return -1;
         }
-        if (mkdir(out, 0755) == 0) {
-            own_dir_add(out);
+        if (mkdir_own(out) == 0) {
             outdir_confine(out);
             return 0;
         }
@@ -500,11 +529,10 @@ int outdir_stage_begin(const char *final_dir, const char *arg, char *stage, size
         close(old);
         rmdir(stage_dir);
     }
-    if (mkdir(stage_dir, 0755) != 0) {
+    if (mkdir_own(stage_dir) != 0) {
         snprintf(err, errlen, "%s: cannot create folder %s: %s", arg, stage_dir, strerror(errno));
         return 3;
     }
-    own_dir_add(stage_dir);
     outdir_confine(stage_dir);
     snprintf(stage_final, sizeof stage_final, "%s", fin);
     snprintf(stage, stagelen, "%s", stage_dir);
@@ -578,7 +606,19 @@ static int commit_inside(char *err, size_t errlen)
     return rc;
 }
 
+static int stage_commit_locked(char *err, size_t errlen);
+
+/* The swap and the forgetting of the folders it completes under tidy_lock: a stop signal's
+ * tidy-up comes before it or after it, never in between. */
 int outdir_stage_commit(char *err, size_t errlen)
+{
+    pthread_mutex_lock(&tidy_lock);
+    int rc = stage_commit_locked(err, errlen);
+    pthread_mutex_unlock(&tidy_lock);
+    return rc;
+}
+
+static int stage_commit_locked(char *err, size_t errlen)
 {
     if (!stage_dir[0]) {
         snprintf(err, errlen, "no staged run folder");
@@ -709,7 +749,9 @@ static void *stop_signal_thread(void *unused)
         int sig = 0;
         if (sigwait(&stop_set, &sig) != 0)
             continue;
-        /* as the handler: the line, the tidy-up, then the default action of the signal */
+        /* as the handler: the line, the tidy-up, then the default action of the signal; after
+           any folder the main thread is making has been recorded (tidy_lock, kept) */
+        pthread_mutex_lock(&tidy_lock);
         on_stop_signal_body(sig);
         sigset_t one;
         sigemptyset(&one);
