@@ -52,7 +52,7 @@ diff -r "$T/regen/man1" "$P/share/man/man1" >"$T/diff" && ok || bad "installed m
 # 3. Each man page's options are the command's --help flags; help COMMAND is COMMAND --help; an example each.
 for c in $commands; do
     "$BIN" "$c" --help >"$T/h" 2>&1
-    help_flags=$(grep -oE '^  --[a-z0-9-]+' "$T/h" | tr -d ' ' | sort -u)
+    help_flags=$(grep -oE '^  --?[A-Za-z0-9][A-Za-z0-9-]*' "$T/h" | tr -d ' ' | sort -u)
     man_flags=$(grep -A1 '^\.TP' "$P/share/man/man1/brdfbench-$c.1" | grep '^\.B ' \
                 | sed 's/^\.B //; s/\\f.*//; s/ .*//; s/\\-/-/g' | sort -u)
     [ -n "$help_flags" ] && [ "$help_flags" = "$man_flags" ] && ok || bad "$c: man page flags differ from --help:
