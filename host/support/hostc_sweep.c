@@ -21,6 +21,8 @@ static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a
 
 #define REAL float
 #define RSCALAR float
+/* the model dispatch inlined into each per-id loop, where its switch folds to one case */
+#define BRDF_EVAL_FN __attribute__((always_inline)) static inline
 #include "brdf_models.h"
 
 #include "hostc_baseline.h"
