@@ -70,7 +70,7 @@ BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-BRDF_ZONE_K) / n);
  * exp(n log c) costs about 1.6; the literal pow() stays available as the model phongpow.
  * In float, exp(n ln c) has a relative error of about |n ln c| ulp: below 1 ulp where
  * c^n > e^-1, and the double host reference checks every figure. c = 0 gives exp(-inf) = 0.
- * The host's tuned C baseline defines BRDF_POW_LOBE as powf. */
+ * The host's tuned C baseline evaluates the same exp(n ln c), as the kernels do. */
 #ifndef BRDF_POW_LOBE
 #define BRDF_POW_LOBE(c, n) exp((n) * log(c))
 #endif

@@ -238,6 +238,18 @@ static void json_host_c(struct jw *w, const struct tp_run *r, const struct tp_en
         jw_kv_int(w, "iterations_per_work_item", e->hostc[m].iters);
         jw_kv_num(w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
         jw_kv_int(w, "threads", r->threads);
+        if (e->hostc[m].checked) {   /* the C loop's sums against the device's, same inputs */
+            const struct tp_sums_check *k = &e->hostc[m].check;
+            jw_kv_obj(w, "sums_check");
+            jw_kv_str(w, "status", k->agree ? "agree" : "differ");
+            jw_kv_int(w, "iterations_per_work_item", k->iters);
+            jw_kv_int(w, "work_items", k->work_items);
+            jw_kv_num(w, "device_sum", k->device_sum);
+            jw_kv_num(w, "c_sum", k->c_sum);
+            jw_kv_num(w, "relative_difference", k->rel_diff);
+            jw_kv_num(w, "tolerance", TP_CHECK_TOL);
+            jw_obj_end(w);
+        }
     }
     jw_obj_end(w);
 }

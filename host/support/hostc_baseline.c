@@ -9,17 +9,19 @@
  *    fmaxf out of line unless NaNs are ruled out, which stops the loops from vectorising;
  *  - each loop keeps 4 x 16 independent sums and inputs, the layout of the kernels, which GCC
  *    vectorises to 512 bits without reassociating anything.
- * Transcendental functions are glibc's scalar ones (libmvec's vector forms are only declared
- * under -ffast-math), and the lobe power c^n is powf (BRDF_POW_LOBE), the C programmer's pow.
+ * Transcendental functions are glibc's vector forms (libmvec, declared in hostc_vecmath.h), as
+ * the kernels call SLEEF's; every model is the kernels' formula (the lobe c^n as exp(n log c),
+ * brdf_models.h), and the pow() row is powf. The sums of each loop are checked against the
+ * device's (throughput.h, tp_check_host_c) before its rate is a baseline.
  */
 #define _GNU_SOURCE
 #include <tgmath.h>
+#include "hostc_vecmath.h"
 
 /* IEEE fmax as a compare: a when b is NaN, b when a is NaN, else the larger. */
 static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a : b; }
 #undef fmax
 #define fmax(a, b) hostc_fmaxf((a), (b))
-#define BRDF_POW_LOBE(c, n) powf((c), (n))
 
 #define REAL float
 #define RSCALAR float
