@@ -565,6 +565,14 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
                 if (!(x <= w->agree))
                     w->agree = x;
             }
+        /* The C sweep must do the device's work: per-n maxima apart by more than float noise
+           (a figure of float rounding's size, ~1e-7, is compared relative to at least 1e-4:
+           up to ~2e-3) mean other samples or another formula, and its time is no baseline. */
+        if (!(w->agree <= TP_SWEEP_AGREE_TOL)) {
+            snprintf(w->reason, TP_REASON, "the C sweep's per-n figures differ from the device's by %.3g (relative; "
+                     "accepted: %g): not the same work; no ratio", w->agree, TP_SWEEP_AGREE_TOL);
+            continue;
+        }
         w->ok = 1;
         if (!quiet)
             fprintf(stderr, "throughput: sweep %-18s device %.3f s, C %.3f s\n", w->label, w->dev_s.median,

@@ -139,6 +139,8 @@ int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struc
  * Another result means the C loop does other work than the kernel and its rate is no baseline.
  * Returns 0 with *agree, or an exit code (a launch failed: err says which). */
 #define TP_CHECK_ITERS 16
+/* The C sweep's per-n figures against the device's (throughput.c, rel_diff): agreed up to this. */
+#define TP_SWEEP_AGREE_TOL 1e-2
 #define TP_CHECK_TOL 1e-4
 struct tp_sums_check {
     long iters, work_items;

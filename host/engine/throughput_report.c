@@ -344,7 +344,9 @@ static void json_sweep_ran(struct jw *w, const struct tp_run *r)
     if (r->sweep_reason[0])
         jw_kv_str(w, "reason", r->sweep_reason);
     jw_kv_str(w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
-                         "(the same samples in s = 1 - cos x, expf(n log1pf(-s)) for c^n), per model: median of the timed runs");
+                         "(the same samples in s = 1 - cos x, the reference lobe as the device's exp(n ln(1 - s))), per model: "
+                         "median of the timed runs; a model whose C figures differ from the device's by more "
+                         "than 1e-2 (agreement_max_rel_diff) is failed, with no ratio");
     jw_kv_num(w, "n_min", o->sweep_grid.n_min);
     jw_kv_num(w, "n_max", o->sweep_grid.n_max);
     jw_kv_num(w, "n_step", o->sweep_grid.n_step);
@@ -361,9 +363,8 @@ static void json_sweep_ran(struct jw *w, const struct tp_run *r)
     jw_kv_num(w, "agreement_max_rel_diff", agree);
     jw_kv_str(w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
                                    "relative to at least 1e-4 (their sample cosines differ by float rounding), "
-                                   "over the models but those in agreement_excludes: a second formula of a "
-                                   "reference lobe (phongpow: the pow() built-in, which C's expf(n log1pf(-s)) "
-                                   "is not meant to match); every model's own figure is in models");
+                                   "over the models but those in agreement_excludes (a second formula of a "
+                                   "reference lobe, such as phongpow); every model's own figure is in models");
     jw_kv_arr(w, "agreement_excludes");
     for (int k = 0; k < r->nsw; ++k)
         if (sweep_alternative(r->sw[k].label))
