@@ -43,6 +43,23 @@ for i in ids:
 for r, d in enumerate(docs, 1):
     s = d["summary"]
     print(f"run {r}: " + ", ".join(f"{k} {v}" for k, v in s.items() if isinstance(v, int)))
+# the cost rows' ratios run by run (physical.json): how far identical runs move them
+phys = []
+for r in range(1, runs + 1):
+    try:
+        phys.append({x["model"]: x for x in json.load(open(f"{w}/run{r}/physical.json"))["cost"]["rows"]})
+    except OSError:
+        phys = []
+        break
+if phys:
+    print("\nphysically based rows, evaluations/s over Phong's per run (min-max spread: max/min):")
+    for name, row in phys[0].items():
+        if not row.get("physically_based"):
+            continue
+        v = [p[name]["ratio_to_phong"] for p in phys if name in p]
+        verd = [p[name].get("vs_phong", {}).get("verdict", "") for p in phys if name in p]
+        print(f"  {name:20} " + " ".join(f"{x:7.3f}" for x in v) + f"   spread {max(v) / min(v):.3f}"
+              + (f"   verdicts {','.join(sorted(set(verd)))}" if any(verd) else ""))
 print(f"{len(ids)} rows, {len(ids) - len(flipping)} agree in all {runs} runs"
       + (f"; differing: {', '.join(flipping)}" if flipping else "; every row agrees"))
 PY
