@@ -8,6 +8,7 @@
 #ifndef BRDF_HOSTC_VECMATH_H
 #define BRDF_HOSTC_VECMATH_H
 
+/* the same condition as CMakeLists.txt's link with libmvec (BRDF_MVEC) */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define HOSTC_VEC __attribute__((__simd__("notinbranch")))
 HOSTC_VEC float expf(float);
