@@ -518,6 +518,12 @@ static void table_default(const struct tp_run *r, struct md_buf *t, int md)
                           xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
                           gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
             }
+        /* a C loop whose sums are not the device's has no ratio: say so where the ratio is missing */
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int i = 0; i < r->nentries; ++i)
+                if (r->e[i].measured[v][m] && r->e[i].hostc[m].checked && !r->e[i].hostc[m].ok)
+                    md_printf(t, "%sx tuned C, %s %s: none: %s\n", md ? "- " : "! ",
+                              r->e[i].m ? r->e[i].label : "pow()", nmode_names[m], r->e[i].hostc[m].reason);
         md_printf(t, "\n");
     }
 }
