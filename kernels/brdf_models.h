@@ -35,8 +35,10 @@
    alone, and the other models' code is never generated (a driver that inlines every case into
    every call, such as Mesa's rusticl, spends minutes and gigabytes on the full dispatch). */
 
-/* The dispatch over model ids (brdf_eval_cs, brdf_eval_s): a kernel may define BRDF_EVAL_FN to
- * force it inline (accuracy.cl does; see there). */
+/* The dispatch over model ids (brdf_eval, brdf_eval_cs, brdf_eval_s): a kernel may define
+ * BRDF_EVAL_FN to force it inline (accuracy.cl does; see there), and so does the host's tuned C
+ * (host/support/hostc_baseline.c): left to itself, GCC calls the whole switch out of line once
+ * per evaluation, with the model id an argument, and nothing is vectorised. */
 #ifndef BRDF_EVAL_FN
 #define BRDF_EVAL_FN BRDF_FN
 #endif
@@ -68,7 +70,7 @@ BRDF_FN REAL brdf_zone_epicentre_cos(REAL n) { return exp(RC(-BRDF_ZONE_K) / n);
  * exp(n log c) costs about 1.6; the literal pow() stays available as the model phongpow.
  * In float, exp(n ln c) has a relative error of about |n ln c| ulp: below 1 ulp where
  * c^n > e^-1, and the double host reference checks every figure. c = 0 gives exp(-inf) = 0.
- * The host's tuned C baseline defines BRDF_POW_LOBE as powf. */
+ * The host's tuned C baseline evaluates the same exp(n ln c), as the kernels do. */
 #ifndef BRDF_POW_LOBE
 #define BRDF_POW_LOBE(c, n) exp((n) * log(c))
 #endif
@@ -696,7 +698,7 @@ BRDF_FN int brdf_sees_only_c(int id)
 }
 
 /* Evaluate model `id` at cosine c and shininess n with parameters p0, p1. */
-BRDF_FN REAL brdf_eval(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
+BRDF_EVAL_FN REAL brdf_eval(int id, REAL c, REAL n, RSCALAR p0, RSCALAR p1)
 {
     c = fmax(c, RC(0.0));
     return brdf_eval_cs(id, c, RC(1.0) - c, n, p0, p1);

@@ -132,8 +132,43 @@ static double fresnel_unpolarised_test(double c, double n, double k)
     return 0.5 * (pow(cabs(rs), 2) + pow(cabs(rp), 2));
 }
 
+/* compare's rule as the cost claims use it (compare_speed_rule), on samples built here: x is y
+   scaled by a known factor, so the Hodges-Lehmann ratio is that factor exactly (every pairwise
+   difference of logarithms is shifted by its log, and the unscaled differences are symmetric
+   about 0); the verdict follows from the factor against the 10% minimum effect, and from the
+   spread against the band. */
+static void test_speed_rule(void)
+{
+    const double base[9] = { 1.0, 1.01, 0.99, 1.02, 0.98, 1.0, 1.005, 0.995, 1.0 };
+    double y[9], half[9], near[9], wide[9], wide2[9];
+    const double spread[9] = { 0.5, 2.0, 1.0, 0.6, 1.8, 0.7, 1.5, 0.9, 1.2 };
+    for (int i = 0; i < 9; ++i) {
+        y[i] = 3.0 * base[i];
+        half[i] = 0.5 * y[i];
+        near[i] = 1.05 * y[i];
+        wide[i] = spread[i];
+        wide2[i] = spread[(i + 4) % 9];
+    }
+    struct compare_speed c;
+    CHECK(compare_speed_rule(half, 9, y, 9, 0.05, 0.10, &c) == 0, "rule ran");
+    CHECK(fabs(c.ratio - 0.5) < 1e-12 && c.verdict == CMP_V_SLOWER && c.p < 0.05 && c.ci_hi < 1,
+          "half the rate: ratio %.15g (0.5), slower (%s), p %.3g", c.ratio, cmp_verdict_name(c.verdict), c.p);
+    CHECK(compare_speed_rule(y, 9, half, 9, 0.05, 0.10, &c) == 0 && fabs(c.ratio - 2.0) < 1e-12 &&
+          c.verdict == CMP_V_FASTER, "twice the rate: faster (%s)", cmp_verdict_name(c.verdict));
+    /* 5% apart, a tight spread: beyond noise but below the minimum effect */
+    CHECK(compare_speed_rule(near, 9, y, 9, 0.05, 0.10, &c) == 0 && fabs(c.ratio - 1.05) < 1e-12 &&
+          c.verdict == CMP_V_SAME, "5%% apart: same (%s), ratio %.15g", cmp_verdict_name(c.verdict), c.ratio);
+    /* a spread of 4x: the interval is wider than the band 1/1.1..1.1, so it cannot decide */
+    CHECK(compare_speed_rule(wide, 9, wide2, 9, 0.05, 0.10, &c) == 0 && c.verdict == CMP_V_NOISY,
+          "a 4x spread: noisy (%s), interval %.3g..%.3g", cmp_verdict_name(c.verdict), c.ci_lo, c.ci_hi);
+    /* one repetition a side cannot reach alpha = 0.05 */
+    CHECK(compare_speed_rule(half, 1, y, 1, 0.05, 0.10, &c) == 0 && c.verdict == CMP_V_UNDECIDED,
+          "one repetition each: undecided (%s)", cmp_verdict_name(c.verdict));
+}
+
 int main(void)
 {
+    test_speed_rule();
     /* Lambert W against GSL's gsl_sf_lambert_W0. */
     const double wx[] = { 0, 1e-8, 1e-3, 0.5, 1, 10, 300, 1.3e4, 1e6 };
     for (size_t i = 0; i < sizeof wx / sizeof wx[0]; ++i)

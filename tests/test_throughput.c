@@ -3,7 +3,8 @@
  *     the values of the accuracy kernels' probe (runtime id) and of the double reference;
  *   - the timed kernels' sums (tp_uniform_X, tp_varying_X) equal the sum of the double
  *     reference over the inputs they generate, regenerated here one by one (tp_input_at);
- *   - the tuned C baseline's sums equal the same double sums;
+ *   - the tuned C baseline's sums equal the same double sums, the device's on a small launch
+ *     (tp_check_host_c, the check before a "x tuned C" ratio), and fvol and fq2 written here;
  *   - the C sweep reports the device sweep's per-n maxima;
  *   - a whole run on a tiny configuration writes a throughput.json with every figure finite.
  * Expected values come from the double-precision host reference (model_eval_host, pow); no
@@ -159,6 +160,75 @@ static void test_sums(struct tp_program *p, const struct model_spec *models, int
         }
     }
     printf("largest relative difference of a timed kernel's sum from the double reference: %.3g\n", worst_rel);
+}
+
+/* The C baseline's sums check (tp_check_host_c, which decides whether a "x tuned C" ratio is
+   printed): on a small launch of every model the device's sums and the C loop's agree; and a few
+   of the C loop's lane sums equal fvol and fq2 evaluated here, from their definitions
+   (docs/definitions.md: (0.463 n (c - 1) + 1)^2 and ((0.448 n + 0.099)(c - 1) + 1)^2, zeroed
+   where the base is <= 0), at inputs generated here from the kernel's rules
+   (kernels/throughput.cl: c = ((16 u + lane) + phase) dc, phase = (gid mod 64)/64, then
+   c += 64 dc per iteration; dc = 1 / (64 iters)). */
+static double written_fvol(double c, double n)
+{
+    double b = 0.463 * n * (c - 1.0) + 1.0;
+    return b > 0 ? b * b : 0.0;
+}
+static double written_fq2(double c, double n)
+{
+    double b = (0.448 * n + 0.099) * (c - 1.0) + 1.0;
+    return b > 0 ? b * b : 0.0;
+}
+
+static void test_c_sums_check(struct tp_program *p, const struct model_spec *models, int count)
+{
+    struct throughput_options o;
+    throughput_options_default(&o);
+    const long work_items = 5;
+    for (int k = -1; k < count; ++k) {
+        const struct model_spec *m = k < 0 ? NULL : &models[k];
+        for (int mode = 0; mode < TP_NMODE_COUNT; ++mode) {
+            struct tp_sums_check chk;
+            char err[256];
+            if (tp_check_host_c(p, m, mode, &o, work_items, 2, &chk, err, sizeof err)) {
+                CHECK(0, "%s: sums check ran: %s", m ? m->label : "pow", err);
+                continue;
+            }
+            CHECK(chk.agree && chk.iters == TP_CHECK_ITERS, "%s %s: device sum %.9g, C sum %.9g (rel %.3g)",
+                  m ? m->label : "pow", tp_nmode_name(mode), chk.device_sum, chk.c_sum, chk.rel_diff);
+        }
+    }
+    /* a few lanes of the C loop against the formulas written above, uniform n = 5 (a wide lobe:
+       most of the 64 values of a lane are inside it) */
+    const char *names[2] = { "fvol", "fq2" };
+    for (int f = 0; f < 2; ++f) {
+        struct model_spec m = spec(names[f]);
+        const long iters = TP_CHECK_ITERS, items = 3;
+        const double n = 5.0;
+        const float dc = (float)(1.0 / (64.0 * (double)iters));
+        struct tp_inputs in = { .varying = 0, .n_uniform = (float)n, .dc = dc, .iters = iters, .work_items = items };
+        float sums[3 * 16];
+        double t;
+        char err[256];
+        if (hostc_throughput(m.info->kernel_id, 0, 0, &in, 1, sums, &t, err, sizeof err)) {
+            CHECK(0, "%s: C loop ran: %s", names[f], err);
+            continue;
+        }
+        for (long g = 0; g < items; ++g)
+            for (int lane = 0; lane < 16; lane += 5) {
+                double expect = 0;
+                for (int u = 0; u < TP_STREAMS; ++u) {
+                    /* the float steps as the kernel takes them (the start is exact; each step rounds) */
+                    float c = ((float)(16 * u + lane) + (float)(g % 64) / 64.0f) * dc;
+                    for (long i = 0; i < iters; ++i, c += 64.0f * dc)
+                        expect += f == 0 ? written_fvol(c, n) : written_fq2(c, n);
+                }
+                /* 64 float values in [0, 1], each within a few ulp of its double, summed in float:
+                   64 roundings of at most 2^-24 of the sum each, 1e-5 of it leaves room */
+                CHECK(fabs((double)sums[g * 16 + lane] - expect) <= 1e-5 * expect && expect > 1.0, "%s lane sum, work-item %ld lane %d: C %.9g, "
+                      "written here %.9g", names[f], g, lane, sums[g * 16 + lane], expect);
+            }
+    }
 }
 
 /* The C sweep does the sweep's work: each per-n figure it reports is the model's error in
@@ -347,6 +417,7 @@ int main(void)
     }
     test_points(&p, &a, models, count);
     test_sums(&p, models, count);
+    test_c_sums_check(&p, models, count);
     test_sweep(&a);
     tp_program_release(&p);
     accuracy_close(&a);

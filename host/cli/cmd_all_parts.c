@@ -71,8 +71,9 @@ int all_step_claims(struct all_run *r)
         snprintf(r->parts[REPORT_PART_CLAIMS].missing, sizeof r->parts[0].missing,
                  "the claims check ran but gave no table.");
     if (!rc)
-        all_step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced -> claims.json, claims.md, q_sweep.json%s",
-                  rep.count, rep.reproduced, rep.not_reproduced, o.energy ? ", energy.json" : "");
+        all_step_done(r, "claims", t, "%d rows: %d reproduced, %d not reproduced, %d within noise -> claims.json, "
+                      "claims.md, q_sweep.json%s", rep.count, rep.reproduced, rep.not_reproduced, rep.within_noise,
+                      o.energy ? ", energy.json" : "");
     reproduce_report_free(&rep);
     return rc ? part_failed("the claims check", rc) : 0;
 }

@@ -158,6 +158,18 @@ int compare_load(struct compare_set *set, const char *const *paths, int npaths, 
  * (the repetitions cannot tell such a change from noise); "same" otherwise; "undecided" when
  * the sample sizes cannot reach alpha at all. */
 void compare_evaluate(struct compare_set *set, double alpha);
+/* compare's rule for a speed, on two samples outside a compare set: rates x (the one judged)
+ * against rates y (its baseline), each a repetition (normalised or absolute, both alike). The
+ * rank test on their logarithms at level alpha, the Hodges-Lehmann ratio x/y with its interval
+ * at 1 - alpha, and the minimum effect threshold, as compare_evaluate decides a cell (without
+ * Holm): verdict CMP_V_FASTER, CMP_V_SLOWER, CMP_V_SAME, CMP_V_NOISY or CMP_V_UNDECIDED.
+ * Returns 0, or -1 when a side has no finite positive value. */
+struct compare_speed {
+    int verdict;
+    double ratio, ci_lo, ci_hi, p;
+};
+int compare_speed_rule(const double *x, int nx, const double *y, int ny, double alpha, double threshold,
+                       struct compare_speed *out);
 /* The fewest repetitions of a measured speed cell when below set->min_reps, else 0. */
 int compare_few_reps(const struct compare_set *set);
 

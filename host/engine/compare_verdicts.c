@@ -73,6 +73,18 @@ static void judge_speed(const struct compare_set *set, const struct cmp_cell *b,
     free(ly);
 }
 
+/* The rule itself, once: faster or slower when p is below alpha and the ratio is beyond the
+   band 1 +- threshold; noisy when not and the interval is wider than the band; same otherwise. */
+static int speed_verdict(int above, double p, double ratio, double ci_lo, double ci_hi, double alpha, double threshold)
+{
+    double band = log1p(threshold);
+    if (p < alpha && fabs(log(ratio)) > band)
+        return above ? CMP_V_FASTER : CMP_V_SLOWER;
+    if (!(log(ci_hi) - log(ci_lo) <= 2 * band))
+        return CMP_V_NOISY;
+    return CMP_V_SAME;
+}
+
 /* The verdict of a tested speed cell, from its (adjusted) p, ratio and interval. */
 static void decide_speed(const struct compare_set *set, struct cmp_cell *c)
 {
@@ -82,13 +94,31 @@ static void decide_speed(const struct compare_set *set, struct cmp_cell *c)
         c->verdict = v;
         return;
     }
-    double band = log1p(set->threshold);
-    if (c->p_adj < set->alpha && fabs(log(c->ratio)) > band)
-        c->verdict = above ? CMP_V_FASTER : CMP_V_SLOWER;
-    else if (!(log(c->ci_hi) - log(c->ci_lo) <= 2 * band))
-        c->verdict = CMP_V_NOISY;
-    else
-        c->verdict = CMP_V_SAME;
+    c->verdict = speed_verdict(above, c->p_adj, c->ratio, c->ci_lo, c->ci_hi, set->alpha, set->threshold);
+}
+
+int compare_speed_rule(const double *x, int nx, const double *y, int ny, double alpha, double threshold,
+                       struct compare_speed *out)
+{
+    struct ranktest_result t;
+    double *lx = logs_of(x, nx), *ly = logs_of(y, ny), est, lo, hi;
+    int rc = -1;
+    out->verdict = CMP_V_UNDECIDED;
+    out->ratio = out->ci_lo = out->ci_hi = out->p = NAN;
+    if (lx && ly && ranktest_mann_whitney(lx, nx, ly, ny, &t) == 0 &&
+        ranktest_shift_ci(lx, nx, ly, ny, alpha, &est, &lo, &hi) == 0) {
+        out->p = t.p;
+        out->ratio = exp(est);
+        out->ci_lo = exp(lo);
+        out->ci_hi = exp(hi);
+        out->verdict = t.p_min > alpha ? CMP_V_UNDECIDED
+                                       : speed_verdict(t.u > 0.5 * nx * ny, t.p, out->ratio, out->ci_lo, out->ci_hi,
+                                                       alpha, threshold);
+        rc = 0;
+    }
+    free(lx);
+    free(ly);
+    return rc;
 }
 
 static void judge(const struct compare_set *set, const struct cmp_row *row, const struct cmp_cell *b,

@@ -508,6 +508,9 @@ static int pbcost_measure(struct cl_session *s, const struct pbcost_options *o, 
         runner_init(&run, items, r->count);
         run.rounds = o->reps;
         run.min_time = o->min_time;
+        /* the pow() row is every round's reference: the rows' rates over its rate in the same
+           round cancel the machine's drift, and the ratios between rows are taken on those */
+        run.reference = r->pow_row;
         if (runner_run(&run)) {
             runner_release(&run);
             rc = EXIT_RUNTIME;
@@ -529,20 +532,33 @@ static int pbcost_measure(struct cl_session *s, const struct pbcost_options *o, 
             row->min_s = v[0];
             row->max_s = v[k - 1];
             row->med_s = k % 2 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
-            /* the rate of the fastest launch: on a shared machine other work only ever slows a
-               launch down, so the minimum time is the steadiest estimate of the cost */
-            row->evals_per_s = row->min_s > 0 ? row->evals_per_launch / row->min_s : NAN;
-            row->evals_per_s_median = row->med_s > 0 ? row->evals_per_launch / row->med_s : NAN;
+            row->evals_per_s = row->med_s > 0 ? row->evals_per_launch / row->med_s : NAN;
+            row->evals_per_s_fastest = row->min_s > 0 ? row->evals_per_launch / row->min_s : NAN;
+            /* per CPU second where the runner keeps it (a CPU device: another process's share of
+               the cores stretches a launch's wall time but hardly its CPU time) */
+            const double *norm = it->cpu_norm ? it->cpu_norm : it->norm;
+            row->nnorm = norm ? (k < PBCOST_MAX_REPS ? k : PBCOST_MAX_REPS) : 0;
+            for (int j = 0; j < row->nnorm; ++j)
+                row->norm_reps[j] = norm[j];
         }
         runner_release(&run);
         if (rc)
             goto done;
     }
+    /* compare's rule on the normalised repetitions: each row against fq2 and against Phong */
     for (int i = 0; i < r->count; ++i) {
         struct pbcost_row *row = &r->rows[i];
-        row->ratio_to_fq2 = row->evals_per_s / r->rows[r->fq2].evals_per_s;
-        row->ratio_to_phong = row->evals_per_s / r->rows[r->phong].evals_per_s;
-        row->ratio_to_pow = row->evals_per_s / r->rows[r->pow_row].evals_per_s;
+        const struct pbcost_row *fq2 = &r->rows[r->fq2], *ph = &r->rows[r->phong], *pw = &r->rows[r->pow_row];
+        struct compare_speed to_pow;
+        compare_speed_rule(row->norm_reps, row->nnorm, fq2->norm_reps, fq2->nnorm, CMP_DEFAULT_ALPHA,
+                           CMP_DEFAULT_THRESHOLD, &row->vs_fq2);
+        compare_speed_rule(row->norm_reps, row->nnorm, ph->norm_reps, ph->nnorm, CMP_DEFAULT_ALPHA,
+                           CMP_DEFAULT_THRESHOLD, &row->vs_phong);
+        compare_speed_rule(row->norm_reps, row->nnorm, pw->norm_reps, pw->nnorm, CMP_DEFAULT_ALPHA,
+                           CMP_DEFAULT_THRESHOLD, &to_pow);
+        row->ratio_to_fq2 = row->vs_fq2.ratio;
+        row->ratio_to_phong = row->vs_phong.ratio;
+        row->ratio_to_pow = to_pow.ratio;
     }
     r->seconds = wall_seconds() - t0;
 done:

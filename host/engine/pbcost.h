@@ -12,6 +12,7 @@
 #include <stdio.h>
 
 #include "clsession.h"
+#include "compare.h"
 #include "engine.h"
 #include "merl.h"
 #include "models.h"
@@ -22,6 +23,7 @@
 #define PBCOST_CHECK_POINTS 4096
 #define PBCOST_TERMS_THETA 5     /* theta = 0, 30, 60, 75, 85 degrees */
 #define PBCOST_TERMS_RATIO 6     /* sigma0 / lambda = 0.01, 0.05, 0.1, 0.2, 0.5, 1 */
+#define PBCOST_MAX_REPS 64       /* normalised repetitions kept per row */
 
 struct pbcost_options {
     struct engine_io io;         /* the run folder (physical.json; NULL: none written) and --quiet (engine.h) */
@@ -47,9 +49,16 @@ struct pbcost_row {
     long iters;
     double evals_per_launch;
     double med_s, min_s, max_s;  /* per launch, profiling events */
-    double evals_per_s;          /* evals_per_launch / min_s: the fastest launch */
-    double evals_per_s_median;   /* evals_per_launch / med_s */
+    double evals_per_s;          /* evals_per_launch / med_s: the median launch */
+    double evals_per_s_fastest;  /* evals_per_launch / min_s */
+    /* Each repetition's rate over the reference's (the pow() row, timed at the start, middle and
+       end of every round: host/core/runner.h), per CPU second on a CPU device; the ratios are
+       compare's Hodges-Lehmann estimates on them, each with compare's verdict (rank test, the
+       interval, the minimum effect CMP_DEFAULT_THRESHOLD at CMP_DEFAULT_ALPHA). */
+    int nnorm;
+    double norm_reps[PBCOST_MAX_REPS];
     double ratio_to_fq2, ratio_to_phong, ratio_to_pow;   /* this row's evaluations/s over theirs */
+    struct compare_speed vs_fq2, vs_phong;
     double check_max_abs_of_peak;   /* |device - double| / largest double value of the sample */
     double terms_mean, terms_max;    /* He: terms of the directional-diffuse sum (double host) */
     double albedo_normal;        /* white-furnace albedo at normal incidence (double); NAN: lobe */

@@ -33,12 +33,24 @@ static void jw_terms(struct jw *w, const char *key, const struct pbcost_result *
     (void)r;
 }
 
+/* compare's verdict on a row against another (compare.h, compare_speed_rule). */
+static void jw_speed(struct jw *w, const char *key, const struct compare_speed *c)
+{
+    jw_kv_obj(w, key);
+    jw_kv_str(w, "verdict", cmp_verdict_name(c->verdict));
+    jw_kv_num(w, "ratio", c->ratio);
+    jw_kv_num(w, "ci_lo", c->ci_lo);
+    jw_kv_num(w, "ci_hi", c->ci_hi);
+    jw_kv_num(w, "p", c->p);
+    jw_obj_end(w);
+}
+
 /* A cost row's figures, in the order physical.json holds them. */
 #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct pbcost_row, MEMBER, KEY)
 static const struct jw_field row_figures[] = {
     F(JWF_LONG, iters, "iterations"), F(JWF_NUM, evals_per_launch, "evaluations_per_launch"),
     F(JWF_NUM, med_s, "median_s"), F(JWF_NUM, min_s, "min_s"), F(JWF_NUM, max_s, "max_s"),
-    F(JWF_NUM, evals_per_s, "evaluations_per_s"), F(JWF_NUM, evals_per_s_median, "evaluations_per_s_median"),
+    F(JWF_NUM, evals_per_s, "evaluations_per_s"), F(JWF_NUM, evals_per_s_fastest, "evaluations_per_s_fastest"),
     F(JWF_NUM, ratio_to_fq2, "ratio_to_fq2"), F(JWF_NUM, ratio_to_phong, "ratio_to_phong"),
     F(JWF_NUM, ratio_to_pow, "ratio_to_pow"), F(JWF_NUM, check_max_abs_of_peak, "check_max_abs_of_peak"),
 };
@@ -53,9 +65,13 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
     jw_kv_obj(&w, "cost");
     jw_kv_str(&w, "what", "evaluations per second from full vectors made in registers (kernels/throughput.cl, "
                           "tp_vec_*): per evaluation three normalisations, N.L, N.V, L.V and the model; float16, two "
-                          "streams per work-item, outputs summed; rows interleaved; evaluations_per_s and the "
-                          "ratios from each row's fastest launch (other work on the machine only slows a launch), "
-                          "evaluations_per_s_median beside it");
+                          "streams per work-item, outputs summed; the rows timed by the runner in interleaved "
+                          "rounds with the pow() row as every round's reference; evaluations_per_s from the median "
+                          "launch; the ratios are compare's Hodges-Lehmann estimates on the normalised repetitions, "
+                          "each with compare's verdict (vs_fq2, vs_phong: rank test at alpha, the interval, the "
+                          "minimum effect)");
+    jw_kv_num(&w, "alpha", CMP_DEFAULT_ALPHA);
+    jw_kv_num(&w, "minimum_effect", CMP_DEFAULT_THRESHOLD);
     jw_kv_num(&w, "n", r->o.n);
     jw_kv_int(&w, "reps", r->o.reps);
     jw_kv_num(&w, "min_time", r->o.min_time);
@@ -68,6 +84,9 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
         jw_kv_str(&w, "evaluates", kind_names[row->kind]);
         jw_kv_bool(&w, "physically_based", row->physical);
         jw_kv_fields(&w, row, JW_FIELDS(row_figures));
+        jw_kv_nums(&w, "normalised_reps", row->norm_reps, row->nnorm);
+        jw_speed(&w, "vs_fq2", &row->vs_fq2);
+        jw_speed(&w, "vs_phong", &row->vs_phong);
         jw_kv_int(&w, "check_points", PBCOST_CHECK_POINTS);
         jw_kv_str(&w, "status", row->status);
         if (row->physical) {
@@ -109,15 +128,17 @@ char *pbcost_markdown(const struct pbcost_result *r)
     md_init(&b);
     md_printf(&b, "\n## Physically based models: cost, terms, albedo\n\n"
                   "Evaluations per second from full vectors (N, L, V) made in registers, per evaluation three "
-                  "normalisations, three dot products and the model (float16, n = %g, the fastest of %d launches, rows "
-                  "interleaved); ratios are this row's evaluations/s over fq2's, Phong's and pow()'s in the same "
-                  "run. Check: largest |device - double| over %d random (N, L, V), relative to the sample's peak. "
+                  "normalisations, three dot products and the model (float16, n = %g, the median of %d launches, rows "
+                  "interleaved with pow() as every round's reference); ratios are this row's evaluations/s over "
+                  "fq2's, Phong's and pow()'s in the same run, compare's estimates on the normalised repetitions, "
+                  "with compare's verdict against fq2 and Phong. Check: largest |device - double| over %d random (N, L, V), relative to the sample's peak. "
                   "Albedo: white-furnace albedo at normal incidence (double quadrature).\n\n",
               r->o.n, r->o.reps, PBCOST_CHECK_POINTS);
     if (r->o.nmeasured)
         md_printf(&b, "Note: %s.\n\n", PBCOST_LOOKUP_NOTE);
     md_printf(&b, "| model | evaluates | G evaluations/s | vs fq2 | vs Phong | vs pow() | check | He terms "
                   "(mean, max) | albedo at normal incidence |\n|---|---|---|---|---|---|---|---|---|\n");
+    /* "0.78x (slower)": the ratio and compare's verdict on it */
     for (int i = 0; i < r->count; ++i) {
         const struct pbcost_row *row = &r->rows[i];
         char terms[64] = "", alb[64] = "";
@@ -125,9 +146,9 @@ char *pbcost_markdown(const struct pbcost_result *r)
             snprintf(terms, sizeof terms, "%.1f, %.0f", row->terms_mean, row->terms_max);
         if (row->physical)
             snprintf(alb, sizeof alb, "%.4f", row->albedo_normal);
-        md_printf(&b, "| %s | %s | %.3g | %.3gx | %.3gx | %.3gx | %.2g %s | %s | %s |\n", row->name,
-                  kind_names[row->kind], row->evals_per_s * 1e-9, row->ratio_to_fq2, row->ratio_to_phong,
-                  row->ratio_to_pow, row->check_max_abs_of_peak, row->status, terms, alb);
+        md_printf(&b, "| %s | %s | %.3g | %.3gx (%s) | %.3gx (%s) | %.3gx | %.2g %s | %s | %s |\n", row->name,
+                  kind_names[row->kind], row->evals_per_s * 1e-9, row->ratio_to_fq2, cmp_verdict_name(row->vs_fq2.verdict),
+                  row->ratio_to_phong, cmp_verdict_name(row->vs_phong.verdict), row->ratio_to_pow, row->check_max_abs_of_peak, row->status, terms, alb);
     }
     md_printf(&b, "\nTerms of He's directional-diffuse sum per evaluation (stopped at float resolution), "
                   "rough aluminium's lambda, tau and index, sigma0 = ratio x lambda; mirror direction / 20 "
@@ -153,8 +174,8 @@ char *pbcost_markdown(const struct pbcost_result *r)
 
 void pbcost_print_table(FILE *f, const struct pbcost_result *r)
 {
-    fprintf(f, "physically based models from full vectors (N, L, V), n = %g, fastest of %d launches:\n", r->o.n,
-            r->o.reps);
+    fprintf(f, "physically based models from full vectors (N, L, V), n = %g, median of %d launches; ratios: "
+               "compare's estimates on repetitions normalised by pow() in each round, (verdict):\n", r->o.n, r->o.reps);
     fprintf(f, "  %-22s %-20s %12s %9s %9s %9s %10s %6s %12s\n", "model", "evaluates", "G evals/s", "vs fq2",
             "vs Phong", "vs pow()", "check", "status", "albedo(0)");
     for (int i = 0; i < r->count; ++i) {

@@ -201,11 +201,12 @@ static int model_pictures(const char *scene_dir, int scene, const struct model_s
     label_to_file(m->label, base, sizeof base);
     const char *sc = render_scene_names[scene];
     snprintf(title, sizeof title,
-             "%s: |%s - %s| specular radiance (%s), max %.3g mean %.3g", sc, m->label,
-             mr->ref.label, render_mode_names[mr->mode], mr->metrics.max_abs,
-             mr->metrics.mean_abs);
-    snprintf(ctitle, sizeof ctitle, "%s: reference %s | model %s | error (max %.3g)", sc,
-             mr->ref.label, m->label, mr->metrics.max_abs);
+             "%s: |%s - %s| specular radiance (%s), max %.3g (%.3g of the reference's peak) mean %.3g", sc,
+             m->label, mr->ref.label, render_mode_names[mr->mode], mr->metrics.max_abs,
+             render_max_of_peak(&mr->metrics), mr->metrics.mean_abs);
+    snprintf(ctitle, sizeof ctitle, "%s: reference %s | model %s | error, scale 0..max |err| %.3g radiance (%.3g of "
+             "the reference's peak)", sc, mr->ref.label, m->label, mr->metrics.max_abs, render_max_of_peak(&mr->metrics));
+    snprintf(mr->contact_caption, sizeof mr->contact_caption, "%s", ctitle);
     render_signed_title(stitle, sizeof stitle, sc, m->label, mr->ref.label, mr->metrics.max_abs);
     struct render_picture_set ps = {scene_dir, sc, "", base, w, mr->y1 - mr->y0, im->rgb_m, im->rgb_r, im->errimg,
                                     im->signed_m, mr->metrics.max_abs, title, stitle, ctitle, mr->image,
@@ -223,7 +224,9 @@ static int write_sphere_grid(const char *scene_dir, const struct render_options 
         if (mt->peak_reference > 0)
             vmax = fmax(vmax, mt->max_abs / mt->peak_reference);
     }
-    if (render_write_grid(scene_dir, o, w, h, im->grid_r, im->grid_m, im->grid_err, vmax, err, errlen) != 0)
+    res->grid_max_of_peak = vmax;
+    if (render_write_grid(scene_dir, o, w, h, im->grid_r, im->grid_m, im->grid_err, vmax, res->grid_caption,
+                          sizeof res->grid_caption, err, errlen) != 0)
         return -1;
     snprintf(res->grid_contact, sizeof res->grid_contact, "render/spheres/contact.png");
     return 0;

@@ -28,7 +28,7 @@ void render_signed_title(char *out, size_t len, const char *scene, const char *m
                          double max_abs)
 {
     snprintf(out, len, "%s: %s - %s specular radiance\nblue: model under the reference, red: over, white: equal; "
-             "scale +-%.3g", scene, model, reference, max_abs);
+             "scale +-%.3g radiance (absolute)", scene, model, reference, max_abs);
 }
 
 int render_write_pictures(const struct render_picture_set *p, char *err, size_t errlen)
@@ -57,7 +57,7 @@ int render_write_pictures(const struct render_picture_set *p, char *err, size_t 
 
 int render_write_grid(const char *scene_dir, const struct render_options *o, int w, int h,
                       const unsigned char *grid_r, const unsigned char *grid_m, const float *grid_err, double vmax,
-                      char *err, size_t errlen)
+                      char *caption, size_t caption_len, char *err, size_t errlen)
 {
     const char *rows[RENDER_MAX_MODELS], *cols[RENDER_MAX_COLS];
     char col_text[RENDER_MAX_COLS][32];
@@ -67,11 +67,14 @@ int render_write_grid(const char *scene_dir, const struct render_options *o, int
         cols[c] = col_text[c];
     }
     struct draw_grid_labels labels = {o->nmodels, o->ncols, rows, cols};
-    char path[4600], title[300];
+    char path[4600], title[300];   /* render_report.h: grid_caption[300] */
     path_join(path, sizeof path, scene_dir, "contact.png");
     snprintf(title, sizeof title,
              "spheres: a row per model (named at the left), a column per shininess n; references | "
-             "models | error / the row's reference peak (max %.3g)", vmax);
+             "models | error relative to the row's reference peak, scale 0..%.3g of the peak (the largest "
+             "over the grid; not radiance)", vmax);
+    if (caption)
+        snprintf(caption, caption_len, "%s", title);
     if (draw_contact_grid(path, w, h, grid_r, grid_m, grid_err, (float)vmax, title, &labels, err, errlen) != 0)
         return EXIT_RUNTIME;
     return stamp(path, err, errlen);

@@ -30,9 +30,11 @@ void render_signed_title(char *out, size_t len, const char *scene, const char *m
                          double max_abs);
 
 /* The sphere grid's contact sheet (scene_dir/contact.png): a row per model of o, labelled with
- * its name, a column per shininess, labelled "n = ...". */
+ * its name, a column per shininess, labelled "n = ...". caption (may be NULL) receives the
+ * caption drawn: the error scale vmax is relative to each row's reference peak. */
 int render_write_grid(const char *scene_dir, const struct render_options *o, int w, int h,
                       const unsigned char *grid_r, const unsigned char *grid_m, const float *grid_err, double vmax,
+                      char *caption, size_t caption_len,
                       char *err, size_t errlen);
 
 #endif

@@ -58,6 +58,11 @@ static struct image_metrics shown(const struct image_metrics *mt)
     return s;
 }
 
+double render_max_of_peak(const struct image_metrics *mt)
+{
+    return mt->peak_reference > 0 ? mt->max_abs / mt->peak_reference : NAN;
+}
+
 static void write_metrics_json(struct jw *w, const struct image_metrics *mt_in, double threshold)
 {
     struct image_metrics sm = shown(mt_in);
@@ -66,7 +71,9 @@ static void write_metrics_json(struct jw *w, const struct image_metrics *mt_in, 
     jw_kv_str(w, "quantity", "specular radiance |model - reference| (linear, E = 1 units)");
     jw_kv_int(w, "pixels", (long long)mt->pixels);
     jw_kv_num(w, "max_abs", mt->max_abs);
-    jw_kv_int_pair(w, "max_at_pixel", mt->max_x, mt->max_y);
+    jw_kv_str(w, "max_abs_unit", "specular radiance, absolute (light irradiance E = 1)");
+    /* the same maximum relative to the reference's peak: the scale of the sphere grid */
+    jw_kv_num(w, "max_abs_of_reference_peak", render_max_of_peak(mt));
     jw_kv_num(w, "mean_abs", mt->mean_abs);
     jw_kv_num(w, "rmse", mt->rmse);
     jw_kv_num(w, "psnr_db", mt->psnr_db);
@@ -179,8 +186,11 @@ static void write_scene_setup_json(struct jw *w, int si, const struct scene_resu
     jw_kv_int(w, "height", o->height);
     jw_kv_int(w, "foreground_pixels", (long long)sr->foreground);
     jw_kv_num(w, "gbuffer_seconds", sr->raster_seconds);
-    if (sr->grid_contact[0])
+    if (sr->grid_contact[0]) {
         jw_kv_str(w, "contact_sheet", sr->grid_contact);
+        jw_kv_str(w, "contact_sheet_caption", sr->grid_caption);
+        jw_kv_num(w, "contact_sheet_error_scale_of_reference_peak", sr->grid_max_of_peak);
+    }
     jw_obj_end(w);
 }
 
@@ -204,6 +214,7 @@ static void write_model_json(struct jw *w, int si, const struct model_result *mr
             jw_kv_str(w, "signed_error_image", mr->signed_error);
         jw_kv_str(w, "contact_sheet", mr->contact);
         jw_obj_end(w);
+        jw_kv_str(w, "contact_sheet_caption", mr->contact_caption);   /* as drawn */
     }
     write_metrics_json(w, &mr->metrics, threshold);
     jw_kv_obj(w, "double_reference_check");
@@ -339,11 +350,11 @@ char *render_summary_markdown(const struct render_options *o, const struct scene
         if (sr->grid_contact[0])
             md_printf(&b, "![%s contact sheet](%s)\n\n", render_scene_names[si], sr->grid_contact);
         const struct size_timing *big = sr->ntimings ? &sr->timings[sr->ntimings - 1] : NULL;
-        md_printf(&b, "| model | reference | max abs error | mean abs error | PSNR (dB) | > %g | "
-                  "ref check |", o->threshold);
+        md_printf(&b, "| model | reference | max abs error (radiance) | of reference peak | mean abs error | "
+                  "PSNR (dB) | > %g | ref check |", o->threshold);
         if (big)
             md_printf(&b, " Mpixel/s at %dx%d | of copy | vs reference |", big->w, big->h);
-        md_printf(&b, "\n|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
+        md_printf(&b, "\n|---|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
         for (int mi = 0; mi < o->nmodels; mi++) {
             const struct model_result *mr = &sr->models[mi];
             char psnr[32];
@@ -352,8 +363,8 @@ char *render_summary_markdown(const struct render_options *o, const struct scene
                 snprintf(psnr, sizeof psnr, "%.1f", sm.psnr_db);
             else
                 snprintf(psnr, sizeof psnr, "%s", sm.nonfinite ? "not finite" : "identical");
-            md_printf(&b, "| %s | %s | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
-                      mr->ref.label, sm.max_abs, sm.mean_abs, psnr,
+            md_printf(&b, "| %s | %s | %.4g | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
+                      mr->ref.label, sm.max_abs, render_max_of_peak(&sm), sm.mean_abs, psnr,
                       100.0 * sm.share_above, mr->check.within ? "ok" : "out of bound");
             if (big) {
                 const struct timed_entry *te = NULL;
@@ -407,8 +418,11 @@ void render_print_scene(const struct scene_result *sr)
 void render_print_model(int scene, const char *label, const struct model_result *mr)
 {
     struct image_metrics sm = shown(&mr->metrics);
-    printf("  %-8s %-12s max %-9.3g mean %-9.3g psnr %5.1f dB%s  ref-check %s (%.2g of peak)\n",
-           render_scene_names[scene], label, sm.max_abs, sm.mean_abs,
+    /* |model - reference|: absolute radiance first, then relative to the reference's peak (the
+       sphere grid's scale); the device-vs-double check is a third figure, of its own peak */
+    printf("  %-8s %-12s max |err| %-9.3g radiance (%.3g of ref peak %.3g)  mean %-9.3g psnr %5.1f dB%s  "
+           "device vs double %s (%.2g of peak)\n",
+           render_scene_names[scene], label, sm.max_abs, render_max_of_peak(&sm), sm.peak_reference, sm.mean_abs,
            isfinite(sm.psnr_db) || sm.nonfinite ? sm.psnr_db : INFINITY, sm.nonfinite ? " (NOT FINITE)" : "", mr->check.within ? "ok" : "OUT OF BOUND",
            mr->check.relative_to_peak);
     fflush(stdout);

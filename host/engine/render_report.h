@@ -39,6 +39,11 @@ struct image_metrics {
                                   above; any makes the model's figures not figures: written as null) */
 };
 
+/* The largest |model - reference| relative to the reference's peak radiance in the same
+   region (what the sphere grid's error scale shows); NAN without a peak. max_abs itself is
+   absolute: specular radiance in units of the light's irradiance E = 1. */
+double render_max_of_peak(const struct image_metrics *mt);
+
 struct reference_check {
     int samples;
     double max_abs;            /* |device - double| of the specular radiance */
@@ -58,6 +63,7 @@ struct model_result {
     struct reference_check check;
     char image[256], error[256], contact[256];  /* paths relative to out_dir */
     char signed_error[256];    /* the signed error image, beside error */
+    char contact_caption[400]; /* the contact sheet's caption, as drawn (render.json has it) */
 };
 
 /* Launch times kept per entry, in launch order, for a rank test between runs (compare). */
@@ -132,6 +138,8 @@ struct scene_result {
     struct render_light light;
     struct model_result models[RENDER_MAX_MODELS];
     char grid_contact[256];
+    char grid_caption[300];    /* the sphere grid's caption, as drawn */
+    double grid_max_of_peak;   /* its error scale: the largest |model - reference| / the row's reference peak */
     int ntimings;
     struct size_timing timings[RENDER_MAX_TIME_SIZES];
     struct he_comparison he;

@@ -44,6 +44,7 @@ struct claim {
     double measured;
     char tolerance[160];
     int reproduced;
+    int undecided;           /* a timing that cannot decide it: "within noise" (reproduced is then 0) */
     char note[768];          /* where it was measured, and why it differs */
     char method[192];
 };
@@ -51,7 +52,7 @@ struct claim {
 struct reproduce_report {
     struct claim *rows;
     int count, cap;
-    int reproduced, not_reproduced;
+    int reproduced, not_reproduced, within_noise;
     char *markdown;          /* claims.md's text (malloc'd) */
     double seconds;
 };

@@ -19,19 +19,25 @@ static void md_cell(struct md_buf *b, const char *s)
     md_printf(b, " |");
 }
 
-static const char *verdict_text(const struct claim *c) { return c->reproduced ? "reproduced" : "not reproduced"; }
+static const char *verdict_text(const struct claim *c)
+{
+    return c->reproduced ? "reproduced" : c->undecided ? "within noise" : "not reproduced";
+}
 
 char *reproduce_claims_markdown(const struct repro *p)
 {
     const struct reproduce_report *r = p->r;
     struct md_buf b;
     md_init(&b);
+    char noise[48] = "";   /* a verdict decided by timings that cannot decide it */
+    if (r->within_noise)
+        snprintf(noise, sizeof noise, ", %d within noise", r->within_noise);
     md_printf(&b,
               "# Claims of the papers, re-derived\n\n"
-              "%d rows: %d reproduced, %d not reproduced. A printed number is reproduced when the measured value is "
+              "%d rows: %d reproduced, %d not reproduced%s. A printed number is reproduced when the measured value is "
               "within one unit of its last printed digit (which accepts rounding or truncation); every other "
               "tolerance is stated in its row. Rows of kind `check` are closed forms the harness itself must meet.\n\n",
-              r->count, r->reproduced, r->not_reproduced);
+              r->count, r->reproduced, r->not_reproduced, noise);
     for (int pass = 0; pass < 2; ++pass) {
         md_printf(&b, pass == 0 ? "## Claims\n\n" : "\n## Harness checks\n\n");
         md_printf(&b,
@@ -48,7 +54,7 @@ char *reproduce_claims_markdown(const struct repro *p)
             md_cell(&b, c->claimed_text);
             md_cell(&b, c->measured_text);
             md_cell(&b, c->tolerance);
-            md_cell(&b, c->reproduced ? "**reproduced**" : "**not reproduced**");
+            md_cell(&b, c->reproduced ? "**reproduced**" : c->undecided ? "**within noise**" : "**not reproduced**");
             char why[1024];
             snprintf(why, sizeof why, "%s%s(%s)", c->note, c->note[0] ? " " : "", c->method);
             md_cell(&b, why);
@@ -115,6 +121,7 @@ int reproduce_write_claims_json(const struct repro *p, const char *path, char *e
     #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct reproduce_report, MEMBER, KEY)
     static const struct jw_field summary[] = {
         F(JWF_INT, count, "rows"), F(JWF_INT, reproduced, "reproduced"), F(JWF_INT, not_reproduced, "not_reproduced"),
+        F(JWF_INT, within_noise, "within_noise"),
     };
     #undef F
     jw_kv_fields(&w, r, JW_FIELDS(summary));
@@ -177,11 +184,13 @@ void reproduce_print_table(FILE *f, const struct repro *p)
     for (int i = 0; i < r->count; ++i) {
         const struct claim *c = &r->rows[i];
         fprintf(f, "%-15s %-30s %-22s %-44s %s\n", c->id, c->source, c->claimed_text, c->measured_text,
-                c->reproduced ? "REPRODUCED" : "NOT REPRODUCED");
+                c->reproduced ? "REPRODUCED" : c->undecided ? "WITHIN NOISE" : "NOT REPRODUCED");
         fprintf(f, "    claim: %s\n    tolerance: %s\n", c->text, c->tolerance);
         if (c->note[0])
             fprintf(f, "    why: %s\n", c->note);
     }
-    fprintf(f, "\n%d rows: %d reproduced, %d not reproduced (%.1f s)\n", r->count, r->reproduced, r->not_reproduced,
-            r->seconds);
+    fprintf(f, "\n%d rows: %d reproduced, %d not reproduced", r->count, r->reproduced, r->not_reproduced);
+    if (r->within_noise)
+        fprintf(f, ", %d within noise", r->within_noise);
+    fprintf(f, " (%.1f s)\n", r->seconds);
 }

@@ -410,6 +410,24 @@ static void tp_measure_models(struct tp_run *r, int quiet)
                         f->ok ? "" : f->reason);
             }
     free(jobs);
+    /* The C loop's work must be the kernel's: its sums against the device's at one small
+       launch of each, before any ratio is printed (a C figure of other work is no baseline). */
+    for (int i = 0; r->o->host_c && r->built[TP_VARIANT_DEFAULT] && i < r->nentries; ++i)
+        for (int m = 0; m < TP_NMODE_COUNT; ++m) {
+            struct tp_figure *hc = &r->e[i].hostc[m];
+            if (!hc->ok)
+                continue;
+            char err[256] = "";
+            hc->checked = 1;
+            if (tp_check_host_c(&prog[TP_VARIANT_DEFAULT], r->e[i].m, m, r->o, r->work_items, r->threads, &hc->check,
+                                err, sizeof err))
+                tp_fig_fail(hc, "its sums could not be checked against the device's (%.200s); no ratio", err);
+            else if (!hc->check.agree)
+                tp_fig_fail(hc, "its sums differ from the device's on the same inputs (device %.9g, C %.9g, "
+                                "relative difference %.3g over %ld iterations x %ld work-items): not the same work; "
+                                "no ratio", hc->check.device_sum, hc->check.c_sum, hc->check.rel_diff,
+                            hc->check.iters, hc->check.work_items);
+        }
     float *c = malloc(TP_ACC_POINTS * sizeof *c), *n = malloc(TP_ACC_POINTS * sizeof *n);
     float *vals = malloc(TP_ACC_POINTS * sizeof *vals);
     if (c && n && vals)
@@ -547,6 +565,14 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
                 if (!(x <= w->agree))
                     w->agree = x;
             }
+        /* The C sweep must do the device's work: per-n maxima apart by more than float noise
+           (a figure of float rounding's size, ~1e-7, is compared relative to at least 1e-4:
+           up to ~2e-3) mean other samples or another formula, and its time is no baseline. */
+        if (!(w->agree <= TP_SWEEP_AGREE_TOL)) {
+            snprintf(w->reason, TP_REASON, "the C sweep's per-n figures differ from the device's by %.3g (relative; "
+                     "accepted: %g): not the same work; no ratio", w->agree, TP_SWEEP_AGREE_TOL);
+            continue;
+        }
         w->ok = 1;
         if (!quiet)
             fprintf(stderr, "throughput: sweep %-18s device %.3f s, C %.3f s\n", w->label, w->dev_s.median,

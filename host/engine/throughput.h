@@ -132,6 +132,23 @@ struct tp_timed {
  * cannot be measured has ok 0 and its reason), or EXIT_RUNTIME when out of memory. */
 int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struct throughput_options *o,
                 long work_items, int quiet);
+/* The C baseline's sums against the device's: model m (NULL: pow) in n mode nmode, one launch of
+ * each over work_items work-items and TP_CHECK_ITERS iterations, the same inputs. The two add the
+ * same values in the same order, so they differ only by the float functions' last bits (libm
+ * against the device's): agreed when |device - C| <= TP_CHECK_TOL x the sum of |C's sums|.
+ * Another result means the C loop does other work than the kernel and its rate is no baseline.
+ * Returns 0 with *agree, or an exit code (a launch failed: err says which). */
+#define TP_CHECK_ITERS 16
+/* The C sweep's per-n figures against the device's (throughput.c, rel_diff): agreed up to this. */
+#define TP_SWEEP_AGREE_TOL 1e-2
+#define TP_CHECK_TOL 1e-4
+struct tp_sums_check {
+    long iters, work_items;
+    double device_sum, c_sum, c_abs_sum, rel_diff;
+    int agree;
+};
+int tp_check_host_c(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                    long work_items, int threads, struct tp_sums_check *out, char *err, size_t errlen);
 /* The inputs of such a launch, for tp_input_at (host/support/hostc_baseline.h). */
 struct tp_inputs;
 void tp_inputs_for(const struct throughput_options *o, int nmode, long work_items, long iters, struct tp_inputs *in);

@@ -238,6 +238,18 @@ static void json_host_c(struct jw *w, const struct tp_run *r, const struct tp_en
         jw_kv_int(w, "iterations_per_work_item", e->hostc[m].iters);
         jw_kv_num(w, "checksum", e->hostc[m].ok ? e->hostc[m].checksum : NAN);
         jw_kv_int(w, "threads", r->threads);
+        if (e->hostc[m].checked) {   /* the C loop's sums against the device's, same inputs */
+            const struct tp_sums_check *k = &e->hostc[m].check;
+            jw_kv_obj(w, "sums_check");
+            jw_kv_str(w, "status", k->agree ? "agree" : "differ");
+            jw_kv_int(w, "iterations_per_work_item", k->iters);
+            jw_kv_int(w, "work_items", k->work_items);
+            jw_kv_num(w, "device_sum", k->device_sum);
+            jw_kv_num(w, "c_sum", k->c_sum);
+            jw_kv_num(w, "relative_difference", k->rel_diff);
+            jw_kv_num(w, "tolerance", TP_CHECK_TOL);
+            jw_obj_end(w);
+        }
     }
     jw_obj_end(w);
 }
@@ -332,7 +344,9 @@ static void json_sweep_ran(struct jw *w, const struct tp_run *r)
     if (r->sweep_reason[0])
         jw_kv_str(w, "reason", r->sweep_reason);
     jw_kv_str(w, "what", "kernels/accuracy.cl (as brdfbench accuracy runs it) against the same sweep in tuned C "
-                         "(the same samples in s = 1 - cos x, expf(n log1pf(-s)) for c^n), per model: median of the timed runs");
+                         "(the same samples in s = 1 - cos x, the reference lobe as the device's exp(n ln(1 - s))), per model: "
+                         "median of the timed runs; a model whose C figures differ from the device's by more "
+                         "than 1e-2 (agreement_max_rel_diff) is failed, with no ratio");
     jw_kv_num(w, "n_min", o->sweep_grid.n_min);
     jw_kv_num(w, "n_max", o->sweep_grid.n_max);
     jw_kv_num(w, "n_step", o->sweep_grid.n_step);
@@ -349,9 +363,8 @@ static void json_sweep_ran(struct jw *w, const struct tp_run *r)
     jw_kv_num(w, "agreement_max_rel_diff", agree);
     jw_kv_str(w, "agreement_what", "largest relative difference between the device's and C's per-n maxima, "
                                    "relative to at least 1e-4 (their sample cosines differ by float rounding), "
-                                   "over the models but those in agreement_excludes: a second formula of a "
-                                   "reference lobe (phongpow: the pow() built-in, which C's expf(n log1pf(-s)) "
-                                   "is not meant to match); every model's own figure is in models");
+                                   "over the models but those in agreement_excludes (a second formula of a "
+                                   "reference lobe, such as phongpow); every model's own figure is in models");
     jw_kv_arr(w, "agreement_excludes");
     for (int k = 0; k < r->nsw; ++k)
         if (sweep_alternative(r->sw[k].label))
@@ -505,6 +518,12 @@ static void table_default(const struct tp_run *r, struct md_buf *t, int md)
                           xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
                           gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
             }
+        /* a C loop whose sums are not the device's has no ratio: say so where the ratio is missing */
+        for (int m = 0; m < TP_NMODE_COUNT; ++m)
+            for (int i = 0; i < r->nentries; ++i)
+                if (r->e[i].measured[v][m] && r->e[i].hostc[m].checked && !r->e[i].hostc[m].ok)
+                    md_printf(t, "%sx tuned C, %s %s: none: %s\n", md ? "- " : "! ",
+                              r->e[i].m ? r->e[i].label : "pow()", nmode_names[m], r->e[i].hostc[m].reason);
         md_printf(t, "\n");
     }
 }

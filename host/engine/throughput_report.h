@@ -39,6 +39,8 @@ struct tp_figure {
     struct tp_stats norm;
     int retries, disturbed;            /* launches retried for preemption; reps kept disturbed */
     int timer_wall;                    /* the driver gave no profiling time: wall time used */
+    int checked;                       /* C figures: its sums compared with the device's (check) */
+    struct tp_sums_check check;
 };
 
 /* A measured thing: a model of the run, or the pow() built-in (m = NULL). */

@@ -499,3 +499,45 @@ int tp_time_set(struct tp_program *p, struct tp_timed *t, int count, const struc
     free(f);
     return rc;
 }
+
+int tp_check_host_c(struct tp_program *p, const struct model_spec *m, int nmode, const struct throughput_options *o,
+                    long work_items, int threads, struct tp_sums_check *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    out->iters = TP_CHECK_ITERS;
+    out->work_items = work_items;
+    size_t nout = (size_t)work_items * 16;
+    float *dev = malloc(nout * sizeof *dev), *host = malloc(nout * sizeof *host);
+    int rc = 0;
+    double t;
+    if (!dev || !host) {
+        snprintf(err, errlen, "out of memory");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if (tp_program_launch(p, m, nmode, o, work_items, TP_CHECK_ITERS, dev, &t)) {
+        snprintf(err, errlen, "the device launch of the sums check failed (see stderr)");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    struct tp_inputs in;
+    tp_inputs_for(o, nmode, work_items, TP_CHECK_ITERS, &in);
+    if (hostc_throughput(m ? m->info->kernel_id : -1, m ? (float)m->params[0] : 0.0f, m ? (float)m->params[1] : 0.0f,
+                         &in, threads, host, &t, err, errlen)) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    for (size_t i = 0; i < nout; ++i) {
+        out->device_sum += dev[i];
+        out->c_sum += host[i];
+        out->c_abs_sum += fabs((double)host[i]);
+    }
+    double d = fabs(out->device_sum - out->c_sum);
+    out->rel_diff = out->c_abs_sum > 0 ? d / out->c_abs_sum : (d == 0 ? 0 : INFINITY);
+    /* !(a > b): a NaN sum never agrees */
+    out->agree = isfinite(out->device_sum) && isfinite(out->c_sum) && out->rel_diff <= TP_CHECK_TOL;
+done:
+    free(host);
+    free(dev);
+    return rc;
+}

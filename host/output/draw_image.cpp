@@ -353,7 +353,7 @@ extern "C" int draw_signed_error_image(const char *path, int width, int height, 
 
 static int contact(const char *path, int width, int height, const unsigned char *ref_rgb,
                    const unsigned char *model_rgb, const float *abs_err, float vmax, const char *title,
-                   const draw_grid_labels *labels, char *err, size_t errlen)
+                   const draw_grid_labels *labels, char *err, size_t errlen, bool of_peak = false)
 {
     if (!check_image_args(path, width, height, abs_err, "error", err, errlen)) return -1;
     if (!ref_rgb || !model_rgb) {
@@ -361,7 +361,14 @@ static int contact(const char *path, int width, int height, const unsigned char 
         return -1;
     }
     return draw_png(path, err, errlen,
-                    [&]() { return image_row(abs_row(width, height, ref_rgb, model_rgb, abs_err, vmax, title, labels)); });
+                    [&]() {
+                        RowSpec r = abs_row(width, height, ref_rgb, model_rgb, abs_err, vmax, title, labels);
+                        if (of_peak) {   /* the errors are relative to each row's reference peak, not radiance */
+                            r.err_caption = "error / peak";
+                            r.bar_caption = "error / reference peak";
+                        }
+                        return image_row(r);
+                    });
 }
 
 extern "C" int draw_contact_sheet(const char *path, int width, int height, const unsigned char *ref_rgb,
@@ -380,7 +387,7 @@ extern "C" int draw_contact_grid(const char *path, int width, int height, const 
         set_err(err, errlen, "%s: a contact grid needs 1..%d rows and 1..%d columns, each labelled", path, height, width);
         return -1;
     }
-    return contact(path, width, height, ref_rgb, model_rgb, abs_err, vmax, title, labels, err, errlen);
+    return contact(path, width, height, ref_rgb, model_rgb, abs_err, vmax, title, labels, err, errlen, true);
 }
 
 extern "C" int draw_heatmap_figure(const char *path, const char *title, int npanels,

@@ -9,20 +9,24 @@
  *    fmaxf out of line unless NaNs are ruled out, which stops the loops from vectorising;
  *  - each loop keeps 4 x 16 independent sums and inputs, the layout of the kernels, which GCC
  *    vectorises to 512 bits without reassociating anything.
- * Transcendental functions are glibc's scalar ones (libmvec's vector forms are only declared
- * under -ffast-math), and the lobe power c^n is powf (BRDF_POW_LOBE), the C programmer's pow.
+ * Transcendental functions are glibc's vector forms (libmvec, declared in hostc_vecmath.h), as
+ * the kernels call SLEEF's; every model is the kernels' formula (the lobe c^n as exp(n log c),
+ * brdf_models.h), and the pow() row is powf. The sums of each loop are checked against the
+ * device's (throughput.h, tp_check_host_c) before its rate is a baseline.
  */
 #define _GNU_SOURCE
 #include <tgmath.h>
+#include "hostc_vecmath.h"
 
 /* IEEE fmax as a compare: a when b is NaN, b when a is NaN, else the larger. */
 static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a : b; }
 #undef fmax
 #define fmax(a, b) hostc_fmaxf((a), (b))
-#define BRDF_POW_LOBE(c, n) powf((c), (n))
 
 #define REAL float
 #define RSCALAR float
+/* the model dispatch inlined into each per-id loop, where its switch folds to one case */
+#define BRDF_EVAL_FN __attribute__((always_inline)) static inline
 #include "brdf_models.h"
 
 #include "hostc_baseline.h"
@@ -110,18 +114,38 @@ static inline __attribute__((always_inline)) void hostc_work_item(const int id, 
         sum16[l] = (acc[0][l] + acc[1][l]) + (acc[2][l] + acc[3][l]);
 }
 
-/* Per-id instances with the id a constant (the model's switch folds away inside). */
+/* Per-id instances with the id a constant (the model's switch folds away inside: brdf_eval is
+   forced inline above), each a function of its own that runs a thread's whole share of the
+   work-items. Left to its heuristics, GCC kept brdf_eval out of line in the one function that
+   held all 40 copies: a call and a run-time switch per evaluation, nothing vectorised, about
+   100x slower than the same loop with the model inlined (perf: 66% of the time in brdf_eval). */
 #define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) \
     X(17) X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
     X(34) X(35) X(36) X(37) X(38) X(39)
 
-static void hostc_work_item_any(int id, float p0, float p1, const struct tp_inputs *in, long gid, float *sum16)
+typedef void (*hostc_items_fn)(float p0, float p1, const struct tp_inputs *in, long first, long step, float *sums);
+
+#define HOSTC_ITEMS_FN(name, k)                                                                             \
+    static __attribute__((noinline)) void name(float p0, float p1, const struct tp_inputs *in,  \
+                                                          long first, long step, float *sums)             \
+    {                                                                                                     \
+        float local[TP_LANES];                                                                            \
+        for (long gid = first; gid < in->work_items; gid += step)                                         \
+            hostc_work_item(k, p0, p1, in, gid, sums ? sums + gid * TP_LANES : local);                    \
+    }
+#define HOSTC_ID_ITEMS(k) HOSTC_ITEMS_FN(hostc_items_##k, k)
+HOSTC_IDS(HOSTC_ID_ITEMS)
+HOSTC_ITEMS_FN(hostc_items_pow, -1)   /* the powf built-in */
+#undef HOSTC_ID_ITEMS
+#undef HOSTC_ITEMS_FN
+
+static hostc_items_fn hostc_items_of(int id)
 {
     switch (id) {
-#define HOSTC_CASE(k) case k: hostc_work_item(k, p0, p1, in, gid, sum16); return;
+#define HOSTC_CASE(k) case k: return hostc_items_##k;
     HOSTC_IDS(HOSTC_CASE)
 #undef HOSTC_CASE
-    default: hostc_work_item(-1, p0, p1, in, gid, sum16); return;
+    default: return hostc_items_pow;
     }
 }
 
@@ -143,9 +167,7 @@ static void *hostc_thread(void *arg)
 {
     struct hostc_job *j = arg;
     if (!j->sweep) {
-        float local[TP_LANES];
-        for (long gid = j->thread; gid < j->in->work_items; gid += j->threads)
-            hostc_work_item_any(j->id, j->p0, j->p1, j->in, gid, j->sums ? j->sums + gid * TP_LANES : local);
+        hostc_items_of(j->id)(j->p0, j->p1, j->in, j->thread, j->threads, j->sums);
     } else {
         for (long i = j->thread; i < j->n_count; i += j->threads)
             hostc_sweep_n_any(j->id, j->p0, j->p1, j->ref, j->rp0, j->rp1, j->n_values[i], j->samples,

@@ -1,14 +1,15 @@
 /* hostc_sweep.c - the accuracy sweep of kernels/accuracy.cl in tuned C, one n at a time: the
  * baseline of the sweep's speed (host/support/hostc_baseline.c runs it on every CPU).
  *
- * A file of its own because the sweep evaluates the reference lobe in s = 1 - cos x, as
- * exp(n log1p(-s)) (BRDF_POW_LOBE_CS), where the throughput baseline evaluates c^n with powf:
- * brdf_models.h is compiled once per file, with one choice each. Same flags as
- * hostc_baseline.c (CMakeLists.txt): -O3 -march=native -fno-math-errno, <tgmath.h> float
- * functions, fmax as a compare.
+ * A file of its own because the sweep evaluates the reference lobe in s = 1 - cos x
+ * (BRDF_POW_LOBE_CS as brdf_pow_lobe_s, as kernels/accuracy.cl), where the throughput
+ * baseline evaluates it in c: brdf_models.h is compiled once per file, with one choice
+ * each. Same flags as hostc_baseline.c (CMakeLists.txt): -O3 -march=native -fno-math-errno, <tgmath.h> float
+ * functions in libmvec's vector forms (hostc_vecmath.h), fmax as a compare.
  */
 #define _GNU_SOURCE
 #include <tgmath.h>
+#include "hostc_vecmath.h"
 
 static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a : b; }
 static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a : b; }
@@ -16,11 +17,14 @@ static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a
 #define fmax(a, b) hostc_fmaxf((a), (b))
 #undef fmin
 #define fmin(a, b) hostc_fminf((a), (b))
-#define BRDF_POW_LOBE(c, n) powf((c), (n))
-#define BRDF_POW_LOBE_CS(c, s, n) expf((n) * log1pf(-(s)))
+/* the reference lobe in s as the device's sweep evaluates it: exp(n (ln u + e/u)), u = 1 - s
+   (brdf_models.h, brdf_pow_lobe_s), with logf for ln u */
+#define BRDF_POW_LOBE_CS(c, s, n) brdf_pow_lobe_s((s), (n))
 
 #define REAL float
 #define RSCALAR float
+/* the model dispatch inlined into each per-id loop, where its switch folds to one case */
+#define BRDF_EVAL_FN __attribute__((always_inline)) static inline
 #include "brdf_models.h"
 
 #include "hostc_baseline.h"
@@ -28,63 +32,145 @@ static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a
 #define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) \
     X(17) X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
     X(34) X(35) X(36) X(37) X(38) X(39)
-_Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_sweep_n_any covers model ids 0..39");
+_Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_block_of covers model ids 0..39");
 
-/* One n of accuracy_sweep (kernels/accuracy.cl), sample by sample, in s = 1 - cos x as the
- * kernel places and evaluates them. */
-static inline __attribute__((always_inline)) void hostc_sweep_n(const int id, float p0, float p1, int ref,
-                                                                float rp0, float rp1, float n, long samples,
-                                                                float *o)
+/* Samples per block: each block's inputs are made, then the model and its reference are
+   evaluated over the whole block by their own loops (a function per id, its switch folded,
+   vectorised), then the block is reduced lane by lane. A multiple of 16. */
+#define HOSTC_BLOCK 256
+
+typedef void (*hostc_block_fn)(const float *s, float *f, int count, float n, float p0, float p1);
+
+#define HOSTC_BLOCK_FN(k)                                                                                  \
+    static __attribute__((noinline)) void hostc_block_##k(const float *s, float *f, int count, float n,   \
+                                                          float p0, float p1)                            \
+    {                                                                                                    \
+        for (int j = 0; j < count; ++j)                                                                  \
+            f[j] = brdf_eval_s(k, s[j], n, p0, p1);                                                      \
+    }
+HOSTC_IDS(HOSTC_BLOCK_FN)
+#undef HOSTC_BLOCK_FN
+
+static hostc_block_fn hostc_block_of(int id)
 {
+    switch (id) {
+#define HOSTC_CASE(k) case k: return hostc_block_##k;
+    HOSTC_IDS(HOSTC_CASE)
+#undef HOSTC_CASE
+    default: return NULL;
+    }
+}
+
+/* The 16 lanes of the kernel's reductions: each lane keeps its own maxima and where they occur,
+   so the figures are the kernel's (on ties the first lane wins, kernels/accuracy.cl). */
+struct hostc_lanes {
+    float epi_rel[16], epi_rel_s[16], epi_abs[16], epi_abs_s[16], att_abs[16], att_abs_s[16], bad_s[16];
+    int bad[16];
+};
+
+/* Folds count samples (a multiple of 16) of one zone into the lanes: f the model, r the
+   reference at s. An invalid model value (NaN, Inf, negative) is counted, and its error is NaN,
+   which never wins a maximum (comparisons with >, as isgreater). */
+static inline __attribute__((always_inline)) void hostc_fold(struct hostc_lanes *L, int epicentre, const float *s,
+                                                             const float *f, const float *r, int count)
+{
+    for (int q = 0; q < count; q += 16)
+        for (int l = 0; l < 16; ++l) {
+            float fv = f[q + l], sv = s[q + l];
+            int invalid = fv < 0.0f || !isfinite(fv);
+            L->bad_s[l] = invalid && isnan(L->bad_s[l]) ? sv : L->bad_s[l];
+            L->bad[l] += invalid;
+            float d = invalid ? NAN : fabs(fv - r[q + l]);
+            if (epicentre) {
+                float rel = d / r[q + l];
+                int m = rel > L->epi_rel[l];
+                L->epi_rel[l] = m ? rel : L->epi_rel[l];
+                L->epi_rel_s[l] = m ? sv : L->epi_rel_s[l];
+                m = d > L->epi_abs[l];
+                L->epi_abs[l] = m ? d : L->epi_abs[l];
+                L->epi_abs_s[l] = m ? sv : L->epi_abs_s[l];
+            } else {
+                int m = d > L->att_abs[l];
+                L->att_abs[l] = m ? d : L->att_abs[l];
+                L->att_abs_s[l] = m ? sv : L->att_abs_s[l];
+            }
+        }
+}
+
+/* The largest lane of v (the first one on ties) and its s, into o[0], o[1]. */
+static void hostc_lane_max(const float *v, const float *s, float *o)
+{
+    int k = 0;
+    for (int l = 1; l < 16; ++l)
+        if (v[l] > v[k])
+            k = l;
+    o[0] = v[k];
+    o[1] = s[k];
+}
+
+/* One n of accuracy_sweep (kernels/accuracy.cl): the same samples in s = 1 - cos x, the same
+   evaluations and the same lane-wise reductions. */
+void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1, float n, long samples, float *o)
+{
+    hostc_block_fn model = hostc_block_of(id), reference = hostc_block_of(ref);
+    if (!model || !reference)
+        return;
     const float s_e = -expm1(-(float)BRDF_ZONE_K / n);
     const float epi_step = s_e / (float)(samples - 1);
     const float log2_r = -log2(s_e) / (float)samples;
+    const int c_only = brdf_sees_only_c(id);
     float att_lane[16];
     for (int l = 0; l < 16; ++l)
-        att_lane[l] = s_e * exp2((float)(l + 1) * log2_r);
-    float epi_rel = -1.0f, epi_rel_s = 0.0f, epi_abs = -1.0f, epi_abs_s = 0.0f, att_abs = -1.0f, att_abs_s = 0.0f;
-    long bad = 0;
-    float bad_s = NAN;
-    for (long i = 0; i < samples; i += 16) {
-        const float att_base = exp2((float)i * log2_r);
-        for (int l = 0; l < 16; ++l) {
-            /* Epicentre: s uniform over [0, s_e]. Comparisons with > keep NaN out, as isgreater. */
-            float s = fmin(((float)i + (float)l) * epi_step, s_e);
-            float f = brdf_eval_s(id, s, n, p0, p1), r = brdf_eval_s(ref, s, n, rp0, rp1);
-            /* An invalid model value (NaN, Inf, negative) is counted and kept out of the maxima. */
-            if (f < 0.0f || !isfinite(f)) {
-                if (bad++ == 0) bad_s = s;
-            } else {
-                float d = fabs(f - r), rel = d / r;
-                if (rel > epi_rel) { epi_rel = rel; epi_rel_s = s; }
-                if (d > epi_abs) { epi_abs = d; epi_abs_s = s; }
+        att_lane[l] = s_e * exp2(((float)l + 1.0f) * log2_r);
+    struct hostc_lanes L;
+    for (int l = 0; l < 16; ++l) {
+        L.epi_rel[l] = L.epi_abs[l] = L.att_abs[l] = -1.0f;
+        L.epi_rel_s[l] = L.epi_abs_s[l] = L.att_abs_s[l] = 0.0f;
+        L.bad_s[l] = NAN;
+        L.bad[l] = 0;
+    }
+    float s[HOSTC_BLOCK], f[HOSTC_BLOCK], r[HOSTC_BLOCK];
+    for (long i0 = 0; i0 < samples; i0 += HOSTC_BLOCK) {
+        /* whole steps of 16, as the kernel's loop (i < samples, 16 lanes a step) */
+        const long left = (samples - i0 + 15) / 16 * 16;
+        const int count = (int)(left < HOSTC_BLOCK ? left : HOSTC_BLOCK);
+        /* Epicentre: s uniform over [0, s_e], the last sample s_e itself up to rounding. */
+        for (int q = 0; q < count; q += 16)
+            for (int l = 0; l < 16; ++l)
+                s[q + l] = fmin(((float)(i0 + q) + (float)l) * epi_step, s_e);
+        if (c_only)   /* onto the float cosines, never past the zone's end (as the kernel) */
+            for (int j = 0; j < count; ++j) {
+                const float c = 1.0f - s[j];
+                s[j] = 1.0f - c > s_e ? 1.0f - nextafterf(c, 2.0f) : 1.0f - c;
             }
-            /* Attenuation: s geometric from s_e to 1. */
-            s = fmin(att_lane[l] * att_base, 1.0f);
-            f = brdf_eval_s(id, s, n, p0, p1);
-            r = brdf_eval_s(ref, s, n, rp0, rp1);
-            if (f < 0.0f || !isfinite(f)) {
-                if (bad++ == 0) bad_s = s;
-            } else if (fabs(f - r) > att_abs) {
-                att_abs = fabs(f - r);
-                att_abs_s = s;
-            }
+        model(s, f, count, n, p0, p1);
+        reference(s, r, count, n, rp0, rp1);
+        hostc_fold(&L, 1, s, f, r, count);
+        /* Attenuation: s geometric from s_e to 1, a per-lane factor times one exp2 per 16. */
+        for (int q = 0; q < count; q += 16) {
+            const float base = exp2((float)(i0 + q) * log2_r);
+            for (int l = 0; l < 16; ++l)
+                s[q + l] = fmin(att_lane[l] * base, 1.0f);
         }
+        if (c_only)   /* never before the zone's start */
+            for (int j = 0; j < count; ++j) {
+                const float c = 1.0f - s[j];
+                s[j] = 1.0f - c < s_e ? 1.0f - nextafterf(c, 0.0f) : 1.0f - c;
+            }
+        model(s, f, count, n, p0, p1);
+        reference(s, r, count, n, rp0, rp1);
+        hostc_fold(&L, 0, s, f, r, count);
     }
-    o[0] = epi_rel; o[1] = epi_rel_s;
-    o[2] = att_abs; o[3] = att_abs_s;
-    o[4] = epi_abs; o[5] = epi_abs_s;
-    o[6] = (float)bad;  o[7] = bad_s;
-}
-
-void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1, float n, long samples,
-                              float *o)
-{
-    switch (id) {
-#define HOSTC_CASE(k) case k: hostc_sweep_n(k, p0, p1, ref, rp0, rp1, n, samples, o); return;
-    HOSTC_IDS(HOSTC_CASE)
-#undef HOSTC_CASE
-    default: return;
+    hostc_lane_max(L.epi_rel, L.epi_rel_s, o);
+    hostc_lane_max(L.att_abs, L.att_abs_s, o + 2);
+    hostc_lane_max(L.epi_abs, L.epi_abs_s, o + 4);
+    long bad = 0;
+    float first_bad = NAN;
+    for (int l = 0; l < 16; ++l) {
+        bad += L.bad[l];
+        if (isnan(first_bad) && !isnan(L.bad_s[l]))
+            first_bad = L.bad_s[l];
     }
+    o[6] = (float)bad;
+    o[7] = first_bad;
 }
-
