@@ -546,21 +546,25 @@ def shaderlang_cli_five_writings_lyon_k2(*args):
 
 @check
 def shaderlang_cli_brdf_blinn_phong_cook_torrance(*args):
-    """check_json of test_shaderlang_cli.sh: .brdf Blinn-Phong and Cook-Torrance are the built-in models"""
+    """check_json of test_shaderlang_cli.sh: .brdf Blinn-Phong and Cook-Torrance are the built-in models
+
+    Full BRDFs are measured over the hemisphere where N.L > 0 and N.V > 0 (docs/definitions.md):
+    each file's formula is algebraically its reference's, so every figure is rounding (below
+    1e-9), no sample is taken below the horizon, and the status is ok. (Measured as a lobe with
+    L = N, the Blinn-Phong file used to show a max Delta of 0.5 at n = 2, x = pi/4: the reference
+    there was not zeroed below the horizon, the BRDF was.)"""
     argv = ["check_json", *args]
     d = load(argv[1])
     r = {x["model"]: x for x in d["results"]}
-    bp, ct = r["blinnphong"], r["ct_ggx"]
-    full = r["ct_full"]
-    assert full["reference"] == "ct-ggx:F0=0.5", full["reference"]
-    for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
-        assert full[zone][key] < 1e-9, (zone, full[zone])
-    assert bp["reference"] == "blinn" and ct["reference"] == "ct-ggx:F0=0.5", (bp["reference"], ct["reference"])
-    assert bp["epicentre"]["max_rel"] < 1e-9, bp["epicentre"]
-    for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
-        assert ct[zone][key] < 1e-9, (zone, ct[zone])
-    assert abs(bp["whole"]["max_abs"] - 0.5) < 1e-9 and bp["whole"]["at_n"] == 2, bp["whole"]
-    assert abs(bp["whole"]["at_x"] - math.pi / 4) < 1e-6, bp["whole"]
+    bp, ct, full = r["blinnphong"], r["ct_ggx"], r["ct_full"]
+    assert bp["reference"] == "blinn", bp["reference"]
+    assert ct["reference"] == "ct-ggx:F0=0.5" and full["reference"] == "ct-ggx:F0=0.5", (ct["reference"], full["reference"])
+    for x in (bp, ct, full):
+        assert x["sweep"] == "hemisphere" and x["status"] == "ok", (x["model"], x.get("sweep"), x["status"])
+        h = x["hemisphere"]
+        for zone, key in (("epicentre", "max_rel"), ("attenuation", "max_abs"), ("whole", "max_abs")):
+            assert h[zone][key] < 1e-9, (x["model"], zone, h[zone])
+        assert h["samples"]["evaluated_below_horizon"] == 0 and h["samples"]["used"] > 0, (x["model"], h["samples"])
 
 
 @check

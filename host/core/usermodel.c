@@ -381,6 +381,7 @@ static int header_line(struct user_model *um, char *s, struct header_seen *h, co
             return file_fail(err, errlen, path, line, h->lobe > 1 ? "'lobe' is declared twice"
                              : "lobe '%.40s' is unknown (accepted: psi, theta_h)", value);
         um->info.lobe = strcmp(value, "psi") == 0 ? LOBE_PSI : LOBE_THETA_H;
+        um->lobe_declared = 1;
     } else if (strcmp(key, "description") == 0) {
         if (h->description++)
             return file_fail(err, errlen, path, line, "'description' is declared twice");

@@ -54,6 +54,7 @@ struct user_model {
     char qualified[USERMODEL_NAME_MAX + 1];
     int from_file;
     int full;                      /* a full BRDF: its text defines brdfbench_full (shaderlang.h) */
+    int lobe_declared;             /* its header names its lobe (a .brdf file's psi is always declared) */
     char *device_source;           /* appended after a kernel file: #line, the user's text, a wrapper */
     char what[600];                /* "user model 'NAME' (ORIGIN)", for messages */
     struct model_runtime runtime;  /* what the registry and host/core/programs.c use */

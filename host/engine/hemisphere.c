@@ -6,6 +6,7 @@
 #include "exitcodes.h"
 #include "lcg.h"
 #include "programs.h"
+#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -21,9 +22,19 @@
 
 static const double pi = 3.14159265358979323846;
 
+/* A full BRDF is measured over the hemisphere, except where its file declares it a lobe of one
+ * angle that the hemisphere's reference cannot take: a Phong lobe in psi (its reference's variable
+ * is the angle between R and V, not theta_h), and a Fresnel or shadowing-masking term measured
+ * against a built-in term (a function of one angle and its parameter: docs/user-models.md). */
 int hemisphere_applies(const struct model_spec *m)
 {
-    return model_is_full(m->info) || (model_is_builtin(m->info) && m->info->family == MODEL_FAMILY_PHYSICAL);
+    if (model_is_full(m->info)) {
+        const struct model_info *ref = m->info->reference_id ? models_find(m->info->reference_id) : NULL;
+        const struct user_model *um = usermodel_of(m);
+        int psi_declared = um && um->lobe_declared && m->info->lobe == LOBE_PSI;
+        return !psi_declared && !(ref && ref->family == MODEL_FAMILY_TERM);
+    }
+    return model_is_builtin(m->info) && m->info->family == MODEL_FAMILY_PHYSICAL;
 }
 
 /* HEMI_KIND_* of a model, or -1 when the sweep cannot evaluate it (a user lobe model). */
