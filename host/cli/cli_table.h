@@ -181,6 +181,24 @@ int cli_call_timeout(const char *flag, const char *value, void *dest, char *err,
       .help = "deadline of each kernel launch; past it the run stops with exit 3 and its unfinished outputs " \
               "removed", .range = "in [0.01, 604800]", .def = "300" }
 
+/* --param NAME=VALUE of the commands without a hemisphere sweep (throughput, render): each sets
+ * NAME on every listed model that has a parameter NAME (e.g. a .brdf file's bool), checked
+ * against the model's range as in a --models spec. */
+#define CLI_MAX_MODEL_PARAMS 8
+struct cli_model_params {
+    char text[CLI_MAX_MODEL_PARAMS][128];
+    int count;
+};
+int cli_call_model_param(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+/* Applies the values to models[0..count). 0, or EXIT_USAGE with a one-line message (a value out of
+ * a model's range, or a NAME no listed model has). */
+int cli_apply_model_params(struct model_spec *models, int count, const struct cli_model_params *p, char *err,
+                           size_t errlen);
+#define CLI_FLAG_MODEL_PARAM(DEST)                                                                                 \
+    { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = cli_call_model_param, .dest = (DEST),  \
+      .def = "", .help = "a value of a model parameter, set on every listed model that has it (e.g. a .brdf "     \
+              "file's bool: --param divide_by_NdotL=0); repeatable" }
+
 /* User models (host/core/usermodel.h): registered as they are read. */
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen);
