@@ -261,9 +261,12 @@ int cli_is_stdout(const char *path);
     { .name = "--axis", .value = "NAME[=MIN:MAX]", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, SWEEP),        \
       .def = "n", .help = "the parameter axis of the hemisphere sweep: n, alpha, roughness or m (converted: "       \
               "alpha = sqrt(2/(n+2)), alpha = roughness^2, Beckmann m = alpha; a user model's own parameter takes "\
-              "the value as named), or a parameter of the model over its declared range" },                        \
+              "the value as named), or a parameter of the model over its declared range; PARAM:ROLE gives the "   \
+              "model's parameter PARAM the axis of ROLE (n, alpha, roughness or m; the reference converted), "      \
+              "e.g. --axis c:alpha for a .brdf file whose c is GGX's alpha" },                                     \
     { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = (PARAM_CALL), .dest = (PARAM_DEST),       \
-      .def = "", .help = "a fixed value of a model parameter (or of n) in the hemisphere sweep; repeatable" },      \
+      .def = "", .help = "a fixed value of a model parameter (or of n) in the hemisphere sweep, in the model's "  \
+              "range (a .brdf file's bool: 0 or 1, e.g. divide_by_NdotL=0); repeatable" },                         \
     { .name = "--axis-points", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, POINTS), .min = 1,             \
       .max = HEMI_MAX_POINTS, .help = "values of the hemisphere sweep's axis, ends included" },                    \
     { .name = "--hemisphere-grid", .value = "NHxNDxNP", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, GRID),     \

@@ -97,9 +97,9 @@ int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size
     const char *role = memchr(text, ':', nlen);
     size_t plen = role ? (size_t)(role - text) : nlen;
     if (!valid_name(text, plen) || (role && !valid_name(role + 1, nlen - plen - 1))) {
-        snprintf(err, errlen, "--axis: '%.60s' is not NAME, PARAM:ROLE or either with =MIN:MAX (accepted: n, alpha, "
-                              "roughness, m or a parameter of the model, e.g. --axis roughness=0.1:0.9 or --axis "
-                              "c:alpha)", text);
+        snprintf(err, errlen, "--axis: '%.60s' is not NAME or NAME=MIN:MAX (accepted: n, alpha, roughness, m or a "
+                              "parameter of the model, e.g. --axis roughness=0.1:0.9; or PARAM:ROLE[=MIN:MAX], e.g. "
+                              "--axis c:alpha)", text);
         return EXIT_USAGE;
     }
     memcpy(a->name, text, nlen);
