@@ -185,6 +185,10 @@ int cli_call_timeout(const char *flag, const char *value, void *dest, char *err,
  * NAME on every listed model that has a parameter NAME (e.g. a .brdf file's bool), checked
  * against the model's range as in a --models spec. */
 #define CLI_MAX_MODEL_PARAMS 8
+/* one text for --param wherever it is (a flag reads alike in every command) */
+#define CLI_HELP_PARAM                                                                                             \
+    "a value of a model parameter in its declared range (a .brdf file's bool: 0 or 1, e.g. divide_by_NdotL=0), "  \
+    "given to the listed models that have it (accuracy: to each full BRDF, which must have it, or n); repeatable"
 struct cli_model_params {
     char text[CLI_MAX_MODEL_PARAMS][128];
     int count;
@@ -196,8 +200,7 @@ int cli_apply_model_params(struct model_spec *models, int count, const struct cl
                            size_t errlen);
 #define CLI_FLAG_MODEL_PARAM(DEST)                                                                                 \
     { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = cli_call_model_param, .dest = (DEST),  \
-      .def = "", .help = "a value of a model parameter, set on every listed model that has it (e.g. a .brdf "     \
-              "file's bool: --param divide_by_NdotL=0); repeatable" }
+      .def = "", .help = CLI_HELP_PARAM }
 
 /* User models (host/core/usermodel.h): registered as they are read. */
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);
@@ -265,8 +268,7 @@ int cli_is_stdout(const char *path);
               "model's parameter PARAM the axis of ROLE (n, alpha, roughness or m; the reference converted), "      \
               "e.g. --axis c:alpha for a .brdf file whose c is GGX's alpha" },                                     \
     { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = (PARAM_CALL), .dest = (PARAM_DEST),       \
-      .def = "", .help = "a fixed value of a model parameter (or of n) in the hemisphere sweep, in the model's "  \
-              "range (a .brdf file's bool: 0 or 1, e.g. divide_by_NdotL=0); repeatable" },                         \
+      .def = "", .help = CLI_HELP_PARAM },                                                                      \
     { .name = "--axis-points", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, POINTS), .min = 1,             \
       .max = HEMI_MAX_POINTS, .help = "values of the hemisphere sweep's axis, ends included" },                    \
     { .name = "--hemisphere-grid", .value = "NHxNDxNP", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, GRID),     \
