@@ -326,14 +326,16 @@ int main(void)
     /* 8. BRDF Explorer files: the full BRDF with L = N and V at 2 theta_h (N.H = c), its
           luminance, against the built-in models that write the same BRDFs (and 0 past
           theta_h = 45 degrees, where V is below the horizon, as for the built-ins). */
-    static const struct { const char *file, *builtin; double p0; } brdfs[] = {
-        { "blinnphong.brdf", "blinn", 0 },
-        { "ct_ggx.brdf", "ct-ggx:F0=0.5", 0.5 },
-        { "everytype.brdf", "blinnn", 2.0 },
+    /* p0, p1: the model's parameters at the file's defaults (everytype's bool `normalized` is its
+       second parameter, an integer in [0, 1], default 1) */
+    static const struct { const char *file, *builtin; double p0, p1; } brdfs[] = {
+        { "blinnphong.brdf", "blinn", 0, 0 },
+        { "ct_ggx.brdf", "ct-ggx:F0=0.5", 0.5, 0 },
+        { "everytype.brdf", "blinnn", 2.0, 1.0 },
         /* full BRDFs of (L, V, N) in GLSL and HLSL files, reduced the same way */
-        { "blinn_full.glsl", "blinn", 0 },
-        { "ct_full.hlsl", "ct-ggx:F0=0.7", 0.7 },
-        { NULL, NULL, 0 } };
+        { "blinn_full.glsl", "blinn", 0, 0 },
+        { "ct_full.hlsl", "ct-ggx:F0=0.7", 0.7, 0 },
+        { NULL, NULL, 0, 0 } };
     for (int i = 0; brdfs[i].file; ++i) {
         char path[1024], text[8192];
         const char *src = getenv("SRC_DIR");
@@ -350,13 +352,19 @@ int main(void)
         struct model_spec ref;
         CHECK(model_spec_parse(brdfs[i].builtin, &ref, err, sizeof err) == 0, "%s", err);
         CHECK(um->info.lobe == LOBE_THETA_H, "%s: lobe theta_h", brdfs[i].file);
+        if (strcmp(brdfs[i].file, "everytype.brdf") == 0) {
+            /* its bool (declared `bool normalized 1`) is a parameter: an integer in [0, 1], default 1 */
+            const struct model_param *q = &um->info.params[1];
+            CHECK(um->info.nparams == 2 && strcmp(q->name, "normalized") == 0 && q->integer && q->min == 0 &&
+                      q->max == 1 && q->def == 1, "everytype.brdf: bool normalized as parameter 2");
+        }
         CHECK(usermodel_host_ready(um), "%s on the host: %s", brdfs[i].file, um->host_error);
         if (usermodel_host_ready(um)) {
             double worst = 0;
             for (double n = 2; n <= 1000; n *= 1.6)
                 for (int k = 0; k <= 200; ++k) {
                     double c = k / 200.0;
-                    double v = hostjit_function(um->host)(c, n, brdfs[i].p0, 0), r = model_eval_host(&ref, c, n);
+                    double v = hostjit_function(um->host)(c, n, brdfs[i].p0, brdfs[i].p1), r = model_eval_host(&ref, c, n);
                     if (2 * c * c - 1 <= 0)
                         r = 0; /* V below the horizon: the reduced BRDF is 0 (blinn, blinnn are lobes of any c) */
                     double rel = fabs(v - r) / (fabs(r) > 1e-300 ? fabs(r) : 1.0);

@@ -483,6 +483,65 @@ int cli_call_define(const char *flag, const char *value, void *dest, char *err, 
     return shaderlang_define(value, err, errlen);
 }
 
+int cli_call_model_param(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    struct cli_model_params *p = dest;
+    const char *eq = strchr(value, '=');
+    if (!eq || eq == value || !eq[1] || strlen(value) >= sizeof p->text[0]) {
+        snprintf(err, errlen, "%s: '%.60s' is not NAME=VALUE (e.g. %s divide_by_NdotL=0)", flag, value, flag);
+        return EXIT_USAGE;
+    }
+    if (p->count >= CLI_MAX_MODEL_PARAMS) {
+        snprintf(err, errlen, "%s: more than %d values (accepted: at most %d)", flag, CLI_MAX_MODEL_PARAMS,
+                 CLI_MAX_MODEL_PARAMS);
+        return EXIT_USAGE;
+    }
+    snprintf(p->text[p->count++], sizeof p->text[0], "%s", value);
+    return 0;
+}
+
+int cli_apply_model_params(struct model_spec *models, int count, const struct cli_model_params *p, char *err,
+                           size_t errlen)
+{
+    for (int i = 0; i < p->count; ++i) {
+        const char *eq = strchr(p->text[i], '=');
+        size_t nlen = (size_t)(eq - p->text[i]);
+        int found = 0;
+        for (int m = 0; m < count; ++m) {
+            const struct model_info *info = models[m].info;
+            int k = -1;
+            for (int j = 0; j < info->nparams; ++j)
+                if (strlen(info->params[j].name) == nlen && strncmp(info->params[j].name, p->text[i], nlen) == 0)
+                    k = j;
+            if (k < 0)
+                continue;
+            /* the model's spec again with this value: the spec parser checks the range */
+            char spec[512];
+            int len = snprintf(spec, sizeof spec, "%s", info->id);
+            for (int j = 0; j < info->nparams && len > 0 && (size_t)len < sizeof spec; ++j) {
+                if (j == k)
+                    len += snprintf(spec + len, sizeof spec - (size_t)len, "%c%s", j ? ',' : ':', p->text[i]);
+                else
+                    len += snprintf(spec + len, sizeof spec - (size_t)len, "%c%s=%.17g", j ? ',' : ':',
+                                    info->params[j].name, models[m].params[j]);
+            }
+            char inner[400];
+            if (len <= 0 || (size_t)len >= sizeof spec || model_spec_parse(spec, &models[m], inner, sizeof inner)) {
+                snprintf(err, errlen, "--param %s: %s", p->text[i], len > 0 && (size_t)len < sizeof spec ? inner :
+                         "too long");
+                return EXIT_USAGE;
+            }
+            found = 1;
+        }
+        if (!found) {
+            snprintf(err, errlen, "--param: no listed model has a parameter '%.*s' (accepted: a parameter of a "
+                                  "model of --models or --model-file; see brdfbench list)", (int)nlen, p->text[i]);
+            return EXIT_USAGE;
+        }
+    }
+    return 0;
+}
+
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen)
 {
     (void)flag;

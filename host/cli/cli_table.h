@@ -181,6 +181,27 @@ int cli_call_timeout(const char *flag, const char *value, void *dest, char *err,
       .help = "deadline of each kernel launch; past it the run stops with exit 3 and its unfinished outputs " \
               "removed", .range = "in [0.01, 604800]", .def = "300" }
 
+/* --param NAME=VALUE of the commands without a hemisphere sweep (throughput, render): each sets
+ * NAME on every listed model that has a parameter NAME (e.g. a .brdf file's bool), checked
+ * against the model's range as in a --models spec. */
+#define CLI_MAX_MODEL_PARAMS 8
+/* one text for --param wherever it is (a flag reads alike in every command) */
+#define CLI_HELP_PARAM                                                                                             \
+    "a value of a model parameter in its declared range (a .brdf file's bool: 0 or 1, e.g. divide_by_NdotL=0), "  \
+    "given to the listed models that have it (accuracy: to each full BRDF, which must have it, or n); repeatable"
+struct cli_model_params {
+    char text[CLI_MAX_MODEL_PARAMS][128];
+    int count;
+};
+int cli_call_model_param(const char *flag, const char *value, void *dest, char *err, size_t errlen);
+/* Applies the values to models[0..count). 0, or EXIT_USAGE with a one-line message (a value out of
+ * a model's range, or a NAME no listed model has). */
+int cli_apply_model_params(struct model_spec *models, int count, const struct cli_model_params *p, char *err,
+                           size_t errlen);
+#define CLI_FLAG_MODEL_PARAM(DEST)                                                                                 \
+    { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = cli_call_model_param, .dest = (DEST),  \
+      .def = "", .help = CLI_HELP_PARAM }
+
 /* User models (host/core/usermodel.h): registered as they are read. */
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen);
 int cli_call_model_expr(const char *flag, const char *value, void *dest, char *err, size_t errlen);
@@ -243,9 +264,11 @@ int cli_is_stdout(const char *path);
     { .name = "--axis", .value = "NAME[=MIN:MAX]", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, SWEEP),        \
       .def = "n", .help = "the parameter axis of the hemisphere sweep: n, alpha, roughness or m (converted: "       \
               "alpha = sqrt(2/(n+2)), alpha = roughness^2, Beckmann m = alpha; a user model's own parameter takes "\
-              "the value as named), or a parameter of the model over its declared range" },                        \
+              "the value as named), or a parameter of the model over its declared range; PARAM:ROLE gives the "   \
+              "model's parameter PARAM the axis of ROLE (n, alpha, roughness or m; the reference converted), "      \
+              "e.g. --axis c:alpha for a .brdf file whose c is GGX's alpha" },                                     \
     { .name = "--param", .value = "NAME=VALUE", .kind = CLI_CALL, .call = (PARAM_CALL), .dest = (PARAM_DEST),       \
-      .def = "", .help = "a fixed value of a model parameter (or of n) in the hemisphere sweep; repeatable" },      \
+      .def = "", .help = CLI_HELP_PARAM },                                                                      \
     { .name = "--axis-points", .value = "N", .kind = CLI_INT, .dest = CLI_DEST(int, POINTS), .min = 1,             \
       .max = HEMI_MAX_POINTS, .help = "values of the hemisphere sweep's axis, ends included" },                    \
     { .name = "--hemisphere-grid", .value = "NHxNDxNP", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, GRID),     \

@@ -179,6 +179,7 @@ int cmd_render(int argc, char **argv)
     struct cli_engine_run e;
     cli_engine_init(&e, "render", "render.json", run_render, &o);
     e.check = check_render;
+    struct cli_model_params mparams = { .count = 0 };
     const char *models_text = NULL, *measured_arg = NULL;
     int models_given = 0;
     char size_range[64], shininess_range[64];
@@ -222,6 +223,7 @@ int cmd_render(int argc, char **argv)
         CLI_FLAG_JSON(&e.json_path),
         CLI_FLAG_QUIET(&e.quiet),
         CLI_FLAGS_USERMODEL,
+        CLI_FLAG_MODEL_PARAM(&mparams),
         CLI_FLAGS_DEVICE(&e.dev),
         { .name = "--n", .kind = CLI_RENAMED,
           .help = "the shininess of the teapot and the bunny is --mesh-n X (the sphere grid's is --shininess LIST)" },
@@ -251,6 +253,8 @@ int cmd_render(int argc, char **argv)
             goto usage_error;
         o.nmodels = n;
     }
+    if (mparams.count > 0 && cli_apply_model_params(o.models, o.nmodels, &mparams, err, sizeof err))
+        goto usage_error;
 
     struct merl_material mats[RENDER_MAX_MEASURED_FILES];
     if (measured_arg) {

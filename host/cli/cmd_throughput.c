@@ -185,6 +185,7 @@ int cmd_throughput(int argc, char **argv)
     job.e = &e;
     const char *models_text = "all", *ab_options = NULL;
     int models_given = 0;
+    struct cli_model_params mparams = { .count = 0 };
     const char *measured_arg = NULL;
 
     const struct cli_flag flags[] = {
@@ -227,6 +228,7 @@ int cmd_throughput(int argc, char **argv)
         CLI_FLAGS_DOCUMENTS(&e.out_dir, &e.json_path, &e.csv_path),
         CLI_FLAG_QUIET(&e.quiet),
         CLI_FLAGS_USERMODEL,
+        CLI_FLAG_MODEL_PARAM(&mparams),
         CLI_FLAGS_DEVICE(&e.dev),
         { .name = "--n", .kind = CLI_RENAMED, .help = "the uniform mode's shininess is --uniform-n X" },
         { .name = "--n-range", .kind = CLI_RENAMED,
@@ -247,7 +249,8 @@ int cmd_throughput(int argc, char **argv)
     int prc = cli_parse(&cmd, argc, argv, NULL, err, sizeof err);
     if (prc)
         return cli_parse_exit(&cmd, prc, err);
-    if (check_args(&o, e.json_path, e.csv_path, models_text, models_given, ab_options, err, sizeof err))
+    if (check_args(&o, e.json_path, e.csv_path, models_text, models_given, ab_options, err, sizeof err) ||
+        cli_apply_model_params(o.models, o.model_count, &mparams, err, sizeof err))
         goto usage_error;
     /* the measured materials, read before anything is made */
     struct merl_material mats[PBCOST_MAX_MEASURED];

@@ -101,7 +101,8 @@ static void brdf_set_params(struct md_buf *epi, int lobe_param, enum brdf_conv c
         }
     }
     for (int i = 0; i < nmp; ++i)
-        md_printf(epi, "%s = brdfbench_p%d; ", prm[model_params[i]].name, i);
+        md_printf(epi, prm[model_params[i]].type == 'b' ? "%s = brdfbench_p%d != 0.0; " : "%s = brdfbench_p%d; ",
+                  prm[model_params[i]].name, i);
 }
 
 /* What a .brdf file declares: its parameters, where its shader block lies, which parameters take
@@ -235,8 +236,9 @@ static int brdf_blocks(const char *text, size_t len, const char *path, struct br
 }
 
 /* The lobe parameter (brdf_lobe_params: the first name of the table the file declares as a
-   float), then up to two other floats as the model's parameters; the rest, the bools and the
-   colours keep their defaults. A file without a lobe parameter is accepted: its lobe is the
+   float), then up to two other floats as the model's parameters, then bools while there is room
+   (an integer parameter in [0, 1], so that a user can switch a file's option, e.g. blinnphong's
+   divide_by_NdotL); the rest, and the colours, keep their defaults. A file without a lobe parameter is accepted: its lobe is the
    BRDF at its defaults, whatever n. */
 static void brdf_choose_params(struct brdf_doc *D)
 {
@@ -259,6 +261,9 @@ static void brdf_choose_params(struct brdf_doc *D)
         if (D->nmp < SL_MAX_PARAMS)
             D->model_params[D->nmp++] = k;
     }
+    for (int k = 0; k < D->nprm && D->nmp < SL_MAX_PARAMS; ++k)
+        if (prm[k].type == 'b')
+            D->model_params[D->nmp++] = k;
 }
 
 /* The keys a .brdf file's header comment (the brdfbench-model comment that opens its shader
@@ -379,7 +384,10 @@ static void brdf_header_text(struct md_buf *hb, const struct header *sh, const c
               D->geom == GEOM_PSI ? "psi" : "theta_h");
     for (int i = 0; i < D->nmp; ++i) {
         const struct brdf_param *q = &D->prm[D->model_params[i]];
-        md_printf(hb, " * param: %s %.17g %.17g %.17g\n", q->name, q->v[0], q->v[1], q->v[2]);
+        if (q->type == 'b')
+            md_printf(hb, " * param: %s 0 1 %d integer\n", q->name, q->v[0] != 0);
+        else
+            md_printf(hb, " * param: %s %.17g %.17g %.17g\n", q->name, q->v[0], q->v[1], q->v[2]);
     }
     md_printf(hb, " */\n");
 }
@@ -393,7 +401,7 @@ static void brdf_prelude(struct md_buf *pre, const struct brdf_doc *D)
         for (int i = 0; i < D->nmp; ++i)
             taken |= D->model_params[i] == k;
         if (taken)
-            md_printf(pre, "float %s; ", q->name);
+            md_printf(pre, "%s %s; ", q->type == 'b' ? "bool" : "float", q->name);
         else if (q->type == 'f')
             md_printf(pre, "const float %s = %.17g; ", q->name, q->v[2]);
         else if (q->type == 'b')
@@ -475,8 +483,10 @@ static int brdf_file(const char *text, size_t len, const char *path, const char 
         h.present = 1;
         snprintf(h.function, sizeof h.function, "brdfbench_lobe");
         h.nparams = D.nmp;
-        for (int i = 0; i < D.nmp; ++i)
+        for (int i = 0; i < D.nmp; ++i) {
             snprintf(h.params[i], sizeof h.params[i], "%s", D.prm[D.model_params[i]].name);
+            h.integer[i] = D.prm[D.model_params[i]].type == 'b';
+        }
         h.header_text = hb.s;
         h.prelude = pre.s ? pre.s : "";
         h.epilogue = epi.s;

@@ -103,17 +103,34 @@ int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size
 {
     const char *eq = strchr(text, '=');
     size_t nlen = eq ? (size_t)(eq - text) : strlen(text);
-    if (!valid_name(text, nlen)) {
+    /* PARAM:ROLE: a model parameter under another name than the engines' (e.g. a .brdf file's c
+       that is GGX's alpha) */
+    const char *role = memchr(text, ':', nlen);
+    size_t plen = role ? (size_t)(role - text) : nlen;
+    if (!valid_name(text, plen) || (role && !valid_name(role + 1, nlen - plen - 1))) {
         snprintf(err, errlen, "--axis: '%.60s' is not NAME or NAME=MIN:MAX (accepted: n, alpha, roughness, m or a "
-                              "parameter of the model, e.g. --axis roughness=0.1:0.9)", text);
+                              "parameter of the model, e.g. --axis roughness=0.1:0.9; or PARAM:ROLE[=MIN:MAX], e.g. "
+                              "--axis c:alpha)", text);
         return EXIT_USAGE;
     }
     memcpy(a->name, text, nlen);
     a->name[nlen] = '\0';
+    a->target[0] = '\0';
+    const char *qname = a->name;
+    if (role) {
+        memcpy(a->target, text, plen);
+        a->target[plen] = '\0';
+        qname = a->name + plen + 1;
+    }
     a->q = HQ_PARAM;
     for (size_t i = 0; i < sizeof quantities / sizeof quantities[0]; ++i)
-        if (strcmp(a->name, quantities[i].name) == 0)
+        if (strcmp(qname, quantities[i].name) == 0)
             a->q = quantities[i].q;
+    if (role && a->q == HQ_PARAM) {
+        snprintf(err, errlen, "--axis: '%.60s': the role '%s' is unknown (accepted roles: n, alpha, roughness, m, "
+                              "e.g. --axis c:alpha)", text, qname);
+        return EXIT_USAGE;
+    }
     a->min = a->max = NAN;
     if (eq) {
         const char *colon = strchr(eq + 1, ':');
@@ -184,6 +201,50 @@ int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, i
                      m->info->nparams > 1 ? ", " : "", m->info->nparams > 1 ? m->info->params[1].name : "");
             return EXIT_USAGE;
         }
+    for (int i = 0; i < nfixed; ++i) {
+        /* a value the model's own range refuses is refused here too (a bool of a .brdf file is an
+           integer parameter in [0, 1]) */
+        int k = param_index(m, fixed[i].name);
+        if (k < 0)
+            continue;
+        const struct model_param *pp = &m->info->params[k];
+        double v = fixed[i].value;
+        if (!(v >= pp->min && v <= pp->max) || (pp->integer && v != floor(v))) {
+            if (pp->integer && pp->min == 0 && pp->max == 1)
+                snprintf(err, errlen, "--param: %s=%g is out of range (accepted: 0 or 1)", fixed[i].name, v);
+            else
+                snprintf(err, errlen, "--param: %s=%g is out of range (accepted: %s in [%g, %g])", fixed[i].name, v,
+                         pp->integer ? "an integer" : "a number", pp->min, pp->max);
+            return EXIT_USAGE;
+        }
+    }
+    if (a->target[0]) {
+        int k = param_index(m, a->target);
+        if (k < 0) {
+            snprintf(err, errlen, "--axis: %s has no parameter '%s' (accepted: %s%s%s)", m->label, a->target,
+                     m->info->nparams > 0 ? m->info->params[0].name : "none",
+                     m->info->nparams > 1 ? ", " : "", m->info->nparams > 1 ? m->info->params[1].name : "");
+            return EXIT_USAGE;
+        }
+        const struct model_param *pp = &m->info->params[k];
+        double lo, hi;
+        quantity_range(a->q, 0.0, 1e6, &lo, &hi);
+        lo = fmax(lo, pp->min);
+        hi = fmin(hi, pp->max);
+        if (isnan(a->min)) {
+            quantity_range(a->q, n_min, n_max, &a->min, &a->max);
+            a->min = fmax(a->min, lo);
+            a->max = fmin(a->max, hi);
+        }
+        if (!(a->min >= lo && a->max <= hi && a->min > 0 && a->min < a->max)) {
+            snprintf(err, errlen, "--axis: %s=%g:%g is out of range (accepted: %g <= %s <= %g, the range of both "
+                                  "%s and %s)", a->name, a->min, a->max, lo, a->target, hi, a->target, a->name +
+                                  strlen(a->target) + 1);
+            return EXIT_USAGE;
+        }
+        a->geometric = a->max / a->min > 10;
+        return 0;
+    }
     if (a->q == HQ_PARAM) {
         int k = param_index(m, a->name);
         if (k < 0) {
@@ -300,6 +361,13 @@ static void values_at(const struct hemi_axis *a, const struct hemi_fixed *fixed,
         int k = param_index(m, fixed[i].name);
         if (k >= 0)
             mv[k + 1] = fixed[i].value;
+    }
+    if (a->target[0]) {
+        /* the model's parameter takes the axis's values as they are (it is the role's quantity);
+           the reference's slot got them converted above */
+        int k = param_index(m, a->target);
+        if (k >= 0)
+            mv[k + 1] = v;
     }
     if (a->q == HQ_PARAM) {
         int k = param_index(m, a->name), rk = param_index(ref, a->name);

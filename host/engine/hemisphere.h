@@ -26,8 +26,10 @@
 enum hemi_quantity { HQ_N, HQ_ALPHA, HQ_ROUGHNESS, HQ_M, HQ_PARAM };
 
 struct hemi_axis {
-    char name[64];              /* n, alpha, roughness, m, or a parameter's name */
+    char name[64];              /* n, alpha, roughness, m, a parameter's name, or PARAM:ROLE */
     enum hemi_quantity q;
+    char target[64];            /* --axis PARAM:ROLE: the model's parameter PARAM takes the axis's values,
+                                   which are ROLE's (q); "" otherwise */
     double min, max;
     int count;                  /* values of the axis, ends included */
     int geometric;              /* spacing: 1 geometric, 0 uniform */
@@ -102,7 +104,7 @@ struct hemi_ctx {
  * physical model (its lobe sweep puts V below the horizon past 45 degrees). */
 int hemisphere_applies(const struct model_spec *m);
 
-/* Parses --axis NAME[=MIN:MAX] into *a (count and n range from the caller). 0 or EXIT_USAGE. */
+/* Parses --axis NAME[=MIN:MAX] or PARAM:ROLE[=MIN:MAX] into *a (count and n range from the caller). 0 or EXIT_USAGE. */
 int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size_t errlen);
 /* Parses --param NAME=VALUE (appended to fixed; *count updated). 0 or EXIT_USAGE. */
 int hemisphere_fixed_parse(const char *text, struct hemi_fixed *fixed, int *count, char *err, size_t errlen);
