@@ -166,7 +166,7 @@ run 60 gate g4/up.json --quiet --allow-outside-model-files
 [ $rc -eq 0 ] && ok || bad "gate up.json --allow-outside-model-files: exit $rc: $(head -c 300 err)"
 
 # ---- Medium 6: a host reference that never returns: progress, then the deadline ----------
-printf '/* brdfbench-model\n * name: hostloop\n */\nREAL hostloop(REAL c, REAL n)\n{\n    while (sizeof(REAL) == 8) { }\n    return c;\n}\n' >hostloop.cl
+printf '/* brdfbench-model\n * name: hostloop\n */\nREAL hostloop(REAL c, REAL n)\n{\n    while (1.0 + 1e-10 != 1.0) { }\n    return c;\n}\n' >hostloop.cl
 # (--timeout 8: the launch deadline covers a cold PoCL cache's compile of the first launch too)
 t0=$(date +%s)
 run 60 accuracy --model-file hostloop.cl --n-max 20 --samples 16 --out m6run --timeout 8
@@ -183,7 +183,7 @@ rm -rf mix && cp -r "$R" mix
 before=$(tree_sum mix)
 # a model that loops only in scalar float: the sweep (float16), the claims, the fit and the
 # throughput steps have written their files when the heatmaps' kernel runs past its deadline
-printf '/* brdfbench-model\n * name: floatloop\n */\nREAL floatloop(REAL c, REAL n)\n{\n    while (sizeof(REAL) == 4) { }\n    return c;\n}\n' >floatloop.cl
+printf '/* brdfbench-model\n * name: floatloop\n */\nREAL floatloop(REAL c, REAL n)\n{\n    while (1.0 + 1e-10 == 1.0) { }\n    return c;\n}\n' >floatloop.cl
 run 180 all --quick --model-file floatloop.cl --models fq2,floatloop --out mix --timeout 8
 [ $rc -eq 3 ] && grep -q "ran past its deadline" err && ok || bad "all with a float-only loop: exit $rc: $(tail -c 300 err)"
 [ "$(tree_sum mix)" = "$before" ] && ok || bad "all with a float-only loop: mix changed: $(tree_sum mix | diff - <(echo "$before") | head -5)"

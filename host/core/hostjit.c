@@ -2,11 +2,21 @@
 #define _GNU_SOURCE   /* exp10 */
 #include "hostjit.h"
 
+#include <errno.h>
 #include <libtcc.h>
+#include <linux/seccomp.h>
 #include <math.h>
+#include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 /* OpenCL C's scalar built-in functions for double, as C. Those of C99 come from the host's
  * libm (declared here, bound in bind_libm); the others follow the OpenCL C 1.2 specification
@@ -127,6 +137,11 @@ struct hostjit {
     TCCState *tcc;
     hostjit_fn fn;
     hostjit_full_fn full;
+    /* the sandbox (hostjit_eval): a child process and the socket to it */
+    pid_t child;
+    int sock;
+    int dead;                  /* the child is gone: every evaluation fails */
+    char why[256];
 };
 
 struct jit_errors {
@@ -219,6 +234,7 @@ struct hostjit *hostjit_compile(const char *models_header, const char *model_tex
     if (full)
         memcpy(&j->full, &full, sizeof j->full);
     j->tcc = s;
+    j->sock = -1;
     free(src);
     return j;
 fail:
@@ -234,10 +250,237 @@ fail:
 hostjit_fn hostjit_function(const struct hostjit *j) { return j ? j->fn : NULL; }
 hostjit_full_fn hostjit_full_function(const struct hostjit *j) { return j ? j->full : NULL; }
 
+/* ---- the sandbox ------------------------------------------------------------------------ */
+
+/* A request: kind (HJ_SCALAR: 4 doubles per value, c n p0 p1; HJ_FULL: 12, L V N n p0 p1)
+   and count (at most HJ_BATCH), then the arguments; the answer is count doubles. */
+enum { HJ_SCALAR = 1, HJ_FULL = 2, HJ_BATCH = 512 };
+struct hj_head {
+    uint32_t kind, count;
+};
+
+/* The child's buffers: static, so that the child, which runs on after a fork of a process
+   with threads, never calls malloc. */
+static double hj_args[HJ_BATCH * 12];
+static double hj_vals[HJ_BATCH];
+
+/* read/write as the child may: strict mode allows no other system call. */
+static int child_read_all(int fd, void *buf, size_t len)
+{
+    char *p = buf;
+    while (len) {
+        ssize_t r = read(fd, p, len);
+        if (r <= 0) {
+            if (r < 0 && errno == EINTR)
+                continue;
+            return -1;
+        }
+        p += r;
+        len -= (size_t)r;
+    }
+    return 0;
+}
+
+static int child_write_all(int fd, const void *buf, size_t len)
+{
+    const char *p = buf;
+    while (len) {
+        ssize_t r = write(fd, p, len);
+        if (r <= 0) {
+            if (r < 0 && errno == EINTR)
+                continue;
+            return -1;
+        }
+        p += r;
+        len -= (size_t)r;
+    }
+    return 0;
+}
+
+static _Noreturn void child_exit(int code)
+{
+    /* _exit calls exit_group, which strict mode kills: the plain exit system call */
+    for (;;)
+        syscall(SYS_exit, code);
+}
+
+static _Noreturn void child_main(const struct hostjit *j, int fd, pid_t parent)
+{
+    /* Die with brdfbench; take no signal handler of brdfbench's along; leave no core file. */
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent)
+        _exit(1);
+    for (int sig = 1; sig < NSIG; ++sig)
+        signal(sig, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
+    struct rlimit zero = { 0, 0 };
+    setrlimit(RLIMIT_CORE, &zero);
+    /* The socket becomes descriptor 0; every other descriptor (the terminal, the run's output
+       files, PoCL's) is closed, so that even code that got past the check could write nowhere
+       but into this socket. */
+    if (fd != 0 && dup2(fd, 0) != 0)
+        _exit(1);
+    if (syscall(SYS_close_range, 1u, ~0u, 0u) != 0)
+        for (int k = 1; k < 65536; ++k)
+            close(k);
+    if (prctl(PR_SET_SECCOMP, SECCOMP_MODE_STRICT) != 0)
+        _exit(1);
+    for (;;) {
+        struct hj_head h;
+        if (child_read_all(0, &h, sizeof h) != 0 || h.count > HJ_BATCH || (h.kind != HJ_SCALAR && h.kind != HJ_FULL))
+            child_exit(0);
+        size_t per = h.kind == HJ_SCALAR ? 4 : 12;
+        if (child_read_all(0, hj_args, h.count * per * sizeof(double)) != 0)
+            child_exit(0);
+        for (uint32_t i = 0; i < h.count; ++i) {
+            const double *a = hj_args + i * per;
+            hj_vals[i] = h.kind == HJ_SCALAR ? j->fn(a[0], a[1], a[2], a[3])
+                       : j->full ? j->full(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11])
+                                 : NAN;
+        }
+        if (child_write_all(0, hj_vals, h.count * sizeof(double)) != 0)
+            child_exit(0);
+    }
+}
+
+/* How the child ended, in j->why. */
+static void child_gone(struct hostjit *j)
+{
+    j->dead = 1;
+    int status = 0;
+    pid_t r;
+    do
+        r = waitpid(j->child, &status, 0);
+    while (r < 0 && errno == EINTR);
+    if (r == j->child && WIFSIGNALED(status))
+        snprintf(j->why, sizeof j->why, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
+                 strsignal(WTERMSIG(status)),
+                 WTERMSIG(status) == SIGKILL ? ": a system call, which the sandbox does not allow, or an outside kill"
+                 : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
+                     ? ": the model's code read or wrote memory outside its own variables"
+                     : "");
+    else if (r == j->child && WIFEXITED(status))
+        snprintf(j->why, sizeof j->why, "its process ended (status %d) instead of answering", WEXITSTATUS(status));
+    else
+        snprintf(j->why, sizeof j->why, "its process stopped answering");
+    j->child = 0;
+    if (j->sock >= 0)
+        close(j->sock);
+    j->sock = -1;
+}
+
+static int start_child(struct hostjit *j)
+{
+    int sv[2];
+    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
+        snprintf(j->why, sizeof j->why, "no socket for its sandbox: %s", strerror(errno));
+        j->dead = 1;
+        return -1;
+    }
+    pid_t parent = getpid();
+    fflush(NULL);   /* no buffered output of brdfbench's is written twice */
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(j->why, sizeof j->why, "no process for its sandbox: %s", strerror(errno));
+        close(sv[0]);
+        close(sv[1]);
+        j->dead = 1;
+        return -1;
+    }
+    if (pid == 0) {
+        close(sv[0]);
+        child_main(j, sv[1], parent);
+    }
+    close(sv[1]);
+    j->child = pid;
+    j->sock = sv[0];
+    return 0;
+}
+
+static int send_all(int fd, const void *buf, size_t len)
+{
+    const char *p = buf;
+    while (len) {
+        ssize_t r = send(fd, p, len, MSG_NOSIGNAL);
+        if (r <= 0) {
+            if (r < 0 && errno == EINTR)
+                continue;
+            return -1;
+        }
+        p += r;
+        len -= (size_t)r;
+    }
+    return 0;
+}
+
+static int recv_all(int fd, void *buf, size_t len)
+{
+    char *p = buf;
+    while (len) {
+        ssize_t r = recv(fd, p, len, 0);
+        if (r <= 0) {
+            if (r < 0 && errno == EINTR)
+                continue;
+            return -1;
+        }
+        p += r;
+        len -= (size_t)r;
+    }
+    return 0;
+}
+
+static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, size_t count, double *out)
+{
+    if (!j || j->dead)
+        return -1;
+    if (!j->child && start_child(j) != 0)
+        return -1;
+    size_t per = kind == HJ_SCALAR ? 4 : 12;
+    while (count) {
+        uint32_t now = count > HJ_BATCH ? HJ_BATCH : (uint32_t)count;
+        struct hj_head h = { kind, now };
+        if (send_all(j->sock, &h, sizeof h) != 0 || send_all(j->sock, args, now * per * sizeof(double)) != 0 ||
+            recv_all(j->sock, out, now * sizeof(double)) != 0) {
+            child_gone(j);
+            return -1;
+        }
+        args += now * per;
+        out += now;
+        count -= now;
+    }
+    return 0;
+}
+
+int hostjit_eval_many(struct hostjit *j, const double *args, size_t count, double *out)
+{
+    return eval_in_child(j, HJ_SCALAR, args, count, out);
+}
+
+int hostjit_eval(struct hostjit *j, double c, double n, double p0, double p1, double *out)
+{
+    double a[4] = { c, n, p0, p1 };
+    return eval_in_child(j, HJ_SCALAR, a, 1, out);
+}
+
+int hostjit_eval_full(struct hostjit *j, const double args[12], double *out)
+{
+    return eval_in_child(j, HJ_FULL, args, 1, out);
+}
+
+const char *hostjit_failure(const struct hostjit *j) { return j && j->dead ? j->why : NULL; }
+
 void hostjit_free(struct hostjit *j)
 {
     if (!j)
         return;
+    if (j->child) {
+        close(j->sock);
+        kill(j->child, SIGKILL);
+        while (waitpid(j->child, NULL, 0) < 0 && errno == EINTR)
+            ;
+    }
     tcc_delete(j->tcc);
     free(j);
 }

@@ -5,6 +5,7 @@
 #include "exitcodes.h"
 #include "infile.h"
 #include "mdbuf.h"
+#include "outdir.h"
 #include "shaderlang.h"
 #include "usermodel_check.h"
 
@@ -17,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* The model ids (BRDF_USER); the header's functions are not used here. */
 #define REAL double
@@ -122,6 +124,19 @@ static void usermodel_fill_info(struct user_model *um)
     }
 }
 
+/* The host reference's sandbox (hostjit.h) lost its process: the model's code crashed it.
+   Its values are gone, so the run ends as at a runaway kernel: one line, the unfinished
+   outputs removed, exit 3. */
+static _Noreturn void host_reference_died(const struct user_model *um, double c, double n)
+{
+    fprintf(stderr, "brdfbench: the host reference of %s failed near c = %.9g, n = %.9g: %s; the run is "
+            "stopped and its unfinished outputs removed\n", um->what, c, n,
+            hostjit_failure(um->host) ? hostjit_failure(um->host) : "its sandbox failed");
+    outdir_remove_own();
+    fflush(NULL);
+    _exit(EXIT_RUNTIME);
+}
+
 /* ---- the runtime that the registry sees ----------------------------------------------- */
 
 #define UM_OF_RUNTIME(rt) ((struct user_model *)((char *)(rt) - offsetof(struct user_model, runtime)))
@@ -158,8 +173,10 @@ static double runtime_eval_full(const struct model_runtime *rt, const struct mod
     if (!usermodel_host_ready(um) || !hostjit_full_function(um->host))
         return NAN;
     usermodel_watch_begin(um, NAN, n);   /* the host reference's deadline (usermodel_check.h) */
-    double v = hostjit_full_function(um->host)(L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n,
-                                               spec->params[0], spec->params[1]);
+    double a[12] = { L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n, spec->params[0], spec->params[1] };
+    double v = NAN;
+    if (hostjit_eval_full(um->host, a, &v) != 0)
+        host_reference_died(um, NAN, n);
     usermodel_watch_end();
     return v;
 }
@@ -509,6 +526,9 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
        header is a comment, which the scan skips. */
     if (!generated && (rc = usermodel_check_text(text, len, path, 1, err, errlen)) != 0)
         goto done;
+    /* No pointer, no memory but the model's own variables (usermodel_code.c). */
+    if (!generated && (rc = usermodel_check_code(text, len, path, 1, err, errlen)) != 0)
+        goto done;
     if (!seen.description)
         snprintf(um->description, sizeof um->description, "user model from %.200s", path);
     snprintf(um->formula, sizeof um->formula, "%s(c, n%s) in %.200s", um->function,
@@ -602,6 +622,8 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
         char what[USERMODEL_NAME_MAX + 16];
         snprintf(what, sizeof what, "--model %s", name);
         int r = usermodel_check_text(expr, elen, what, 0, err, errlen);
+        if (!r)
+            r = usermodel_check_code(expr, elen, what, 0, err, errlen);
         if (r)
             return r;
     }
@@ -836,7 +858,9 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
         return NAN;
     if (usermodel_host_ready(um)) {
         usermodel_watch_begin(um, c, n);   /* the host reference's deadline (usermodel_check.h) */
-        double v = hostjit_function(um->host)(c, n, m->params[0], m->params[1]);
+        double v = NAN;
+        if (hostjit_eval(um->host, c, n, m->params[0], m->params[1], &v) != 0)
+            host_reference_died(um, c, n);
         usermodel_watch_end();
         return v;
     }
