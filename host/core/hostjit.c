@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <libtcc.h>
+#include <linux/audit.h>
 #include <linux/seccomp.h>
 #include <math.h>
 #include <signal.h>
@@ -13,7 +14,12 @@
 #include <string.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
-#include <sys/socket.h>
+#include <linux/filter.h>
+#include <linux/futex.h>
+#include <stdatomic.h>
+#include <stddef.h>
+#include <sys/mman.h>
+#include <time.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -133,13 +139,24 @@ static const char epilogue[] =
     "{\n    return brdf_eval(BRDF_USER, c, n, p0, p1);\n}\n";
 
 
+#if defined(__x86_64__)
+#define HJ_AUDIT_ARCH AUDIT_ARCH_X86_64
+#elif defined(__aarch64__)
+#define HJ_AUDIT_ARCH AUDIT_ARCH_AARCH64
+#else
+#error "the host reference's sandbox knows the seccomp architecture of x86-64 and aarch64 only"
+#endif
+
+struct hj_shared;
+
 struct hostjit {
     TCCState *tcc;
     hostjit_fn fn;
     hostjit_full_fn full;
-    /* the sandbox (hostjit_eval): a child process and the socket to it */
+    /* the sandbox (hostjit_eval): a child process and the memory it shares with brdfbench */
     pid_t child;
-    int sock;
+    struct hj_shared *shared;
+    uint32_t seq;
     int dead;                  /* the child is gone: every evaluation fails */
     char why[256];
 };
@@ -234,7 +251,6 @@ struct hostjit *hostjit_compile(const char *models_header, const char *model_tex
     if (full)
         memcpy(&j->full, &full, sizeof j->full);
     j->tcc = s;
-    j->sock = -1;
     free(src);
     return j;
 fail:
@@ -252,59 +268,63 @@ hostjit_full_fn hostjit_full_function(const struct hostjit *j) { return j ? j->f
 
 /* ---- the sandbox ------------------------------------------------------------------------ */
 
-/* A request: kind (HJ_SCALAR: 4 doubles per value, c n p0 p1; HJ_FULL: 12, L V N n p0 p1)
-   and count (at most HJ_BATCH), then the arguments; the answer is count doubles. */
-enum { HJ_SCALAR = 1, HJ_FULL = 2, HJ_BATCH = 512 };
-struct hj_head {
+/* The child and brdfbench share one page-aligned block (struct hj_shared, mapped before the
+   fork): brdfbench writes a request's arguments and bumps req; the child computes, writes the
+   values and bumps done. Each side spins a few microseconds for the other, then sleeps on a
+   futex, so that the refinement's one-value requests cost about a cache line's trip, not a
+   system call each. brdfbench reads only done and the values from the block: whatever the
+   child writes there is at worst wrong values, never a way into brdfbench's memory. */
+enum { HJ_SCALAR = 1, HJ_FULL = 2, HJ_BATCH = 512, HJ_SPIN = 20000 };
+struct hj_shared {
+    _Atomic uint32_t req, done;        /* request counter; the last one answered */
+    _Atomic uint32_t child_sleeps, parent_sleeps;
     uint32_t kind, count;
+    double args[HJ_BATCH * 12];
+    double vals[HJ_BATCH];
 };
 
-/* The child's buffers: static, so that the child, which runs on after a fork of a process
-   with threads, never calls malloc. */
-static double hj_args[HJ_BATCH * 12];
-static double hj_vals[HJ_BATCH];
-
-/* read/write as the child may: strict mode allows no other system call. */
-static int child_read_all(int fd, void *buf, size_t len)
+static long hj_futex(_Atomic uint32_t *addr, int op, uint32_t val, const struct timespec *timeout)
 {
-    char *p = buf;
-    while (len) {
-        ssize_t r = read(fd, p, len);
-        if (r <= 0) {
-            if (r < 0 && errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += r;
-        len -= (size_t)r;
-    }
-    return 0;
+    return syscall(SYS_futex, (uint32_t *)addr, op, val, timeout, NULL, 0);
 }
 
-static int child_write_all(int fd, const void *buf, size_t len)
+static inline void hj_pause(void)
 {
-    const char *p = buf;
-    while (len) {
-        ssize_t r = write(fd, p, len);
-        if (r <= 0) {
-            if (r < 0 && errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += r;
-        len -= (size_t)r;
-    }
-    return 0;
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
 }
 
 static _Noreturn void child_exit(int code)
 {
-    /* _exit calls exit_group, which strict mode kills: the plain exit system call */
+    /* _exit calls exit_group: the plain exit system call, which the filter allows too */
     for (;;)
         syscall(SYS_exit, code);
 }
 
-static _Noreturn void child_main(const struct hostjit *j, int fd, pid_t parent)
+/* seccomp's filter: exit, exit_group, futex and sched_yield; any other system call kills the
+   child. (Strict mode would allow read and write instead of futex.) */
+static int enter_seccomp(void)
+{
+    struct sock_filter f[] = {
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, arch)),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, HJ_AUDIT_ARCH, 1, 0),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_futex, 4, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit, 3, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit_group, 2, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_sched_yield, 1, 0),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
+    };
+    struct sock_fprog prog = { (unsigned short)(sizeof f / sizeof f[0]), f };
+    if (prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0)
+        return -1;
+    return prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &prog);
+}
+
+static _Noreturn void child_main(const struct hostjit *j, struct hj_shared *sh, pid_t parent)
 {
     /* Die with brdfbench; take no signal handler of brdfbench's along; leave no core file. */
     prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -317,31 +337,40 @@ static _Noreturn void child_main(const struct hostjit *j, int fd, pid_t parent)
     sigprocmask(SIG_SETMASK, &none, NULL);
     struct rlimit zero = { 0, 0 };
     setrlimit(RLIMIT_CORE, &zero);
-    /* The socket becomes descriptor 0; every other descriptor (the terminal, the run's output
-       files, PoCL's) is closed, so that even code that got past the check could write nowhere
-       but into this socket. */
-    if (fd != 0 && dup2(fd, 0) != 0)
-        _exit(1);
-    if (syscall(SYS_close_range, 1u, ~0u, 0u) != 0)
-        for (int k = 1; k < 65536; ++k)
+    /* Every descriptor (the terminal, the run's output files, PoCL's) is closed: no system
+       call could reach one anyway, this makes it so twice. */
+    if (syscall(SYS_close_range, 0u, ~0u, 0u) != 0)
+        for (int k = 0; k < 65536; ++k)
             close(k);
-    if (prctl(PR_SET_SECCOMP, SECCOMP_MODE_STRICT) != 0)
-        _exit(1);
+    if (enter_seccomp() != 0)
+        child_exit(1);
+    uint32_t seen = 0;
     for (;;) {
-        struct hj_head h;
-        if (child_read_all(0, &h, sizeof h) != 0 || h.count > HJ_BATCH || (h.kind != HJ_SCALAR && h.kind != HJ_FULL))
-            child_exit(0);
-        size_t per = h.kind == HJ_SCALAR ? 4 : 12;
-        if (child_read_all(0, hj_args, h.count * per * sizeof(double)) != 0)
-            child_exit(0);
-        for (uint32_t i = 0; i < h.count; ++i) {
-            const double *a = hj_args + i * per;
-            hj_vals[i] = h.kind == HJ_SCALAR ? j->fn(a[0], a[1], a[2], a[3])
-                       : j->full ? j->full(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11])
-                                 : NAN;
+        uint32_t r;
+        int spins = 0;
+        while ((r = atomic_load_explicit(&sh->req, memory_order_acquire)) == seen) {
+            if (++spins < HJ_SPIN) {
+                hj_pause();
+                continue;
+            }
+            atomic_store(&sh->child_sleeps, 1);
+            if (atomic_load(&sh->req) == seen)
+                hj_futex(&sh->req, FUTEX_WAIT, seen, NULL);
+            atomic_store(&sh->child_sleeps, 0);
+            spins = 0;
         }
-        if (child_write_all(0, hj_vals, h.count * sizeof(double)) != 0)
-            child_exit(0);
+        seen = r;
+        uint32_t count = sh->count > HJ_BATCH ? HJ_BATCH : sh->count;
+        size_t per = sh->kind == HJ_SCALAR ? 4 : 12;
+        for (uint32_t i = 0; i < count; ++i) {
+            const double *a = sh->args + i * per;
+            sh->vals[i] = sh->kind == HJ_SCALAR ? j->fn(a[0], a[1], a[2], a[3])
+                        : j->full ? j->full(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11])
+                                  : NAN;
+        }
+        atomic_store(&sh->done, r);
+        if (atomic_load(&sh->parent_sleeps))
+            hj_futex(&sh->done, FUTEX_WAKE, 1, NULL);
     }
 }
 
@@ -357,7 +386,8 @@ static void child_gone(struct hostjit *j)
     if (r == j->child && WIFSIGNALED(status))
         snprintf(j->why, sizeof j->why, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
                  strsignal(WTERMSIG(status)),
-                 WTERMSIG(status) == SIGKILL ? ": a system call, which the sandbox does not allow, or an outside kill"
+                 WTERMSIG(status) == SIGSYS || WTERMSIG(status) == SIGKILL
+                     ? ": a system call, which the sandbox does not allow, or an outside kill"
                  : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
                      ? ": the model's code read or wrote memory outside its own variables"
                      : "");
@@ -366,16 +396,13 @@ static void child_gone(struct hostjit *j)
     else
         snprintf(j->why, sizeof j->why, "its process stopped answering");
     j->child = 0;
-    if (j->sock >= 0)
-        close(j->sock);
-    j->sock = -1;
 }
 
 static int start_child(struct hostjit *j)
 {
-    int sv[2];
-    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
-        snprintf(j->why, sizeof j->why, "no socket for its sandbox: %s", strerror(errno));
+    struct hj_shared *sh = mmap(NULL, sizeof *sh, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (sh == MAP_FAILED) {
+        snprintf(j->why, sizeof j->why, "no memory for its sandbox: %s", strerror(errno));
         j->dead = 1;
         return -1;
     }
@@ -384,49 +411,59 @@ static int start_child(struct hostjit *j)
     pid_t pid = fork();
     if (pid < 0) {
         snprintf(j->why, sizeof j->why, "no process for its sandbox: %s", strerror(errno));
-        close(sv[0]);
-        close(sv[1]);
+        munmap(sh, sizeof *sh);
         j->dead = 1;
         return -1;
     }
-    if (pid == 0) {
-        close(sv[0]);
-        child_main(j, sv[1], parent);
-    }
-    close(sv[1]);
+    if (pid == 0)
+        child_main(j, sh, parent);
     j->child = pid;
-    j->sock = sv[0];
+    j->shared = sh;
     return 0;
 }
 
-static int send_all(int fd, const void *buf, size_t len)
+/* Waits for the child's answer to request r: spins, then sleeps 50 ms at a time, looking
+   between sleeps whether the child is still there. */
+static int wait_answer(struct hostjit *j, uint32_t r)
 {
-    const char *p = buf;
-    while (len) {
-        ssize_t r = send(fd, p, len, MSG_NOSIGNAL);
-        if (r <= 0) {
-            if (r < 0 && errno == EINTR)
-                continue;
+    struct hj_shared *sh = j->shared;
+    int spins = 0;
+    while (atomic_load_explicit(&sh->done, memory_order_acquire) != r) {
+        if (++spins < HJ_SPIN) {
+            hj_pause();
+            continue;
+        }
+        spins = 0;
+        atomic_store(&sh->parent_sleeps, 1);
+        uint32_t d = atomic_load(&sh->done);
+        if (d != r) {
+            struct timespec ts = { 0, 50000000L };
+            hj_futex(&sh->done, FUTEX_WAIT, d, &ts);
+        }
+        atomic_store(&sh->parent_sleeps, 0);
+        int status;
+        pid_t w = waitpid(j->child, &status, WNOHANG);
+        if (w == j->child || (w < 0 && errno != EINTR)) {
+            /* gone: child_gone reads its status, so put it back in the way of waitpid */
+            j->dead = 1;
+            if (w == j->child) {
+                if (WIFSIGNALED(status))
+                    snprintf(j->why, sizeof j->why, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
+                             strsignal(WTERMSIG(status)),
+                             WTERMSIG(status) == SIGSYS || WTERMSIG(status) == SIGKILL
+                                 ? ": a system call, which the sandbox does not allow, or an outside kill"
+                             : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
+                                 ? ": the model's code read or wrote memory outside its own variables"
+                                 : "");
+                else
+                    snprintf(j->why, sizeof j->why, "its process ended (status %d) instead of answering",
+                             WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+                j->child = 0;
+            } else {
+                child_gone(j);
+            }
             return -1;
         }
-        p += r;
-        len -= (size_t)r;
-    }
-    return 0;
-}
-
-static int recv_all(int fd, void *buf, size_t len)
-{
-    char *p = buf;
-    while (len) {
-        ssize_t r = recv(fd, p, len, 0);
-        if (r <= 0) {
-            if (r < 0 && errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += r;
-        len -= (size_t)r;
     }
     return 0;
 }
@@ -437,15 +474,20 @@ static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, s
         return -1;
     if (!j->child && start_child(j) != 0)
         return -1;
+    struct hj_shared *sh = j->shared;
     size_t per = kind == HJ_SCALAR ? 4 : 12;
     while (count) {
         uint32_t now = count > HJ_BATCH ? HJ_BATCH : (uint32_t)count;
-        struct hj_head h = { kind, now };
-        if (send_all(j->sock, &h, sizeof h) != 0 || send_all(j->sock, args, now * per * sizeof(double)) != 0 ||
-            recv_all(j->sock, out, now * sizeof(double)) != 0) {
-            child_gone(j);
+        sh->kind = kind;
+        sh->count = now;
+        memcpy(sh->args, args, now * per * sizeof(double));
+        uint32_t r = ++j->seq;
+        atomic_store(&sh->req, r);
+        if (atomic_load(&sh->child_sleeps))
+            hj_futex(&sh->req, FUTEX_WAKE, 1, NULL);
+        if (wait_answer(j, r) != 0)
             return -1;
-        }
+        memcpy(out, sh->vals, now * sizeof(double));
         args += now * per;
         out += now;
         count -= now;
@@ -476,11 +518,12 @@ void hostjit_free(struct hostjit *j)
     if (!j)
         return;
     if (j->child) {
-        close(j->sock);
         kill(j->child, SIGKILL);
         while (waitpid(j->child, NULL, 0) < 0 && errno == EINTR)
             ;
     }
+    if (j->shared)
+        munmap(j->shared, sizeof *j->shared);
     tcc_delete(j->tcc);
     free(j);
 }

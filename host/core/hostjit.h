@@ -36,11 +36,11 @@ hostjit_full_fn hostjit_full_function(const struct hostjit *j);
 void hostjit_free(struct hostjit *j);
 
 /* The sandbox. The compiled text is a user's code: the evaluations of a run go through a
- * child process, forked on the first one, that has closed every descriptor but a socket to
- * brdfbench and then entered seccomp's strict mode (read, write, exit: nothing else), so
- * that a wild write, had one got past the parse check (usermodel_check_code), lands in the
- * child's copy of memory and no system call can follow it. Values go in batches of up to 512
- * over the socket. Each returns 0, or -1 when the child is gone (a crash, a kill):
+ * child process, forked on the first one, that has closed every descriptor and entered a
+ * seccomp filter (exit, futex, sched_yield: nothing else), so that a wild write, had one got
+ * past the parse check (usermodel_check_code), lands in the child's copy of memory and no
+ * system call can follow it. Requests and values, up to 512 at a time, pass through one
+ * shared block of memory, the only memory the two share (hostjit.c). Each returns 0, or -1 when the child is gone (a crash, a kill):
  * hostjit_failure then says how, and every later call fails too. hostjit_function and
  * hostjit_full_function call the code in this process, for tests only. */
 int hostjit_eval(struct hostjit *j, double c, double n, double p0, double p1, double *out);

@@ -38,6 +38,7 @@
 #define USERMODEL_MAX_FILE (64 * 1024)
 #define USERMODEL_MAX_EXPR 1000            /* characters of a --model expression */
 #define USERMODEL_NAME_MAX 48
+#define USERMODEL_CACHE 64                 /* points of the host reference's value cache */
 
 struct user_model {
     struct model_info info;        /* first member: spec->info of a user model points here */
@@ -54,8 +55,11 @@ struct user_model {
     char what[600];                /* "user model 'NAME' (ORIGIN)", for messages */
     struct model_runtime runtime;  /* what the registry and host/core/programs.c use */
 
-    /* The reference on the host (hostjit.h), compiled on first use. */
+    /* The reference on the host (hostjit.h), compiled on first use, and the values of the
+       last points asked of it (usermodel_eval_host). */
     struct hostjit *host;
+    struct usermodel_cached { double key[4], value; int valid; } cache[USERMODEL_CACHE];
+    long long cache_hits, cache_misses;
     int host_tried;
     char host_error[512];          /* why the text does not compile as C */
 
