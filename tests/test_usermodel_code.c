@@ -12,7 +12,9 @@
  * it says; called through the sandbox (hostjit_eval) the variable keeps its value. A text
  * that dereferences address 8 ends the child with SIGSEGV and hostjit_eval returns -1 with
  * the signal named; values of a plain text equal the formula written again here, one by one
- * and in a batch. */
+ * and in a batch. A whole phase in the sandbox (hostjit_isolated) hands back its values
+ * (0.5 x 2, ...), not its store into the canary; a wild write there, and a write(2) the
+ * filter does not allow, end it with SIGSEGV and SIGSYS. */
 #include "check.h"
 #include "clsession.h"
 #include "exitcodes.h"
@@ -24,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static void refused(const char *text, int is_file, const char *where, const char *what)
 {
@@ -42,6 +45,27 @@ static void accepted(const char *text, int is_file)
 }
 
 static volatile long canary;
+
+struct phase_ctx {
+    struct hostjit *j;
+    double p0, p1;
+};
+
+static void phase_fn(void *ctx, void *out)
+{
+    struct phase_ctx *pc = ctx;
+    double *o = out;
+    for (int i = 0; i < 3; ++i)
+        hostjit_eval(pc->j, 0.5 / (1 << i), 2.0 * (1 << i), pc->p0, pc->p1, &o[i]);
+}
+
+static void phase_write(void *ctx, void *out)
+{
+    (void)ctx;
+    (void)out;
+    ssize_t w = write(2, "x", 1);
+    (void)w;
+}
 
 int main(void)
 {
@@ -128,6 +152,30 @@ int main(void)
         const char *why = hostjit_failure(j);
         CHECK(why && strstr(why, "signal 11"), "the failure does not name SIGSEGV: %s", why ? why : "(none)");
         CHECK(hostjit_eval(j, 0.25, 4.0, 0, 0, &v) == -1, "a dead sandbox answered again");
+        hostjit_free(j);
+    }
+    /* a phase in the sandbox (hostjit_isolated): its values come back, its writes do not */
+    j = hostjit_compile(header, "REAL brdf_user_eval(REAL c, REAL n, RSCALAR p0, RSCALAR p1)\n"
+                                "{\n    if (p1 > 0) *(volatile long *)(unsigned long)p1 = 7;\n"
+                                "    if (p0 > 0) *(volatile long *)8 = 1;\n    return c * n;\n}\n", err, sizeof err);
+    CHECK(j != NULL, "the phase text does not compile: %s", err);
+    if (j) {
+        struct phase_ctx pc = { j, 0, 0 };
+        double out[3] = { 0, 0, 0 };
+        char why[256] = "";
+        canary = 0;
+        pc.p1 = (double)(uintptr_t)&canary;
+        int rc = hostjit_isolated(phase_fn, &pc, out, sizeof out, NULL, NULL, why, sizeof why);
+        /* 0.5 * 2, 0.25 * 4, 0.125 * 8 */
+        CHECK(rc == 0 && out[0] == 1.0 && out[1] == 1.0 && out[2] == 1.0, "phase: rc %d, %g %g %g: %s", rc, out[0],
+              out[1], out[2], why);
+        CHECK(canary == 0, "a phase's write reached this process: canary = %ld", canary);
+        pc.p0 = 1;   /* the store to address 8 */
+        rc = hostjit_isolated(phase_fn, &pc, out, sizeof out, NULL, NULL, why, sizeof why);
+        CHECK(rc == -1 && strstr(why, "signal 11"), "a phase's wild write: rc %d: %s", rc, why);
+        /* a system call the filter does not allow (write) ends the child by SIGSYS */
+        rc = hostjit_isolated(phase_write, NULL, out, sizeof out, NULL, NULL, why, sizeof why);
+        CHECK(rc == -1 && strstr(why, "signal 31"), "a phase's write(2): rc %d: %s", rc, why);
         hostjit_free(j);
     }
     /* values: the formula again, one by one and in a batch larger than one request (512) */

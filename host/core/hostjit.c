@@ -274,7 +274,7 @@ hostjit_full_fn hostjit_full_function(const struct hostjit *j) { return j ? j->f
    futex, so that the refinement's one-value requests cost about a cache line's trip, not a
    system call each. brdfbench reads only done and the values from the block: whatever the
    child writes there is at worst wrong values, never a way into brdfbench's memory. */
-enum { HJ_SCALAR = 1, HJ_FULL = 2, HJ_BATCH = 512, HJ_SPIN = 20000 };
+enum { HJ_SCALAR = 1, HJ_FULL = 2, HJ_BATCH = 512, HJ_SPIN = 2000 };
 struct hj_shared {
     _Atomic uint32_t req, done;        /* request counter; the last one answered */
     _Atomic uint32_t child_sleeps, parent_sleeps;
@@ -295,6 +295,16 @@ static inline void hj_pause(void)
 #endif
 }
 
+/* One step of a wait for the other side: a pause at first, then the core handed over, so
+   that on a busy machine the other process, when it waits for this core, runs at once. */
+static void hj_relax(int spins)
+{
+    if (spins < 256)
+        hj_pause();
+    else
+        syscall(SYS_sched_yield);
+}
+
 static _Noreturn void child_exit(int code)
 {
     /* _exit calls exit_group: the plain exit system call, which the filter allows too */
@@ -304,17 +314,29 @@ static _Noreturn void child_exit(int code)
 
 /* seccomp's filter: exit, exit_group, futex and sched_yield; any other system call kills the
    child. (Strict mode would allow read and write instead of futex.) */
-static int enter_seccomp(void)
+static int enter_seccomp(int memory)
 {
+    /* memory (a phase's child, which runs brdfbench's own code around the model's): brk,
+       munmap, mremap, madvise and mmap without PROT_EXEC too, for malloc; never mprotect,
+       so no page it writes becomes code. */
     struct sock_filter f[] = {
         BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, arch)),
         BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, HJ_AUDIT_ARCH, 1, 0),
         BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
         BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
-        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_futex, 4, 0),
-        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit, 3, 0),
-        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit_group, 2, 0),
-        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_sched_yield, 1, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_futex, 12, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit, 11, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit_group, 10, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_sched_yield, 9, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_brk : SYS_exit, 8, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_munmap : SYS_exit, 7, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_mremap : SYS_exit, 6, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_madvise : SYS_exit, 5, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_mmap : SYS_exit, 1, 0),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+        /* mmap: not with PROT_EXEC (its third argument) */
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, args[2])),
+        BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, PROT_EXEC, 0, 1),
         BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
         BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
     };
@@ -324,7 +346,8 @@ static int enter_seccomp(void)
     return prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &prog);
 }
 
-static _Noreturn void child_main(const struct hostjit *j, struct hj_shared *sh, pid_t parent)
+/* A child's setup before it runs any of the model's code. */
+static void child_harden(pid_t parent, int memory)
 {
     /* Die with brdfbench; take no signal handler of brdfbench's along; leave no core file. */
     prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -342,15 +365,20 @@ static _Noreturn void child_main(const struct hostjit *j, struct hj_shared *sh, 
     if (syscall(SYS_close_range, 0u, ~0u, 0u) != 0)
         for (int k = 0; k < 65536; ++k)
             close(k);
-    if (enter_seccomp() != 0)
+    if (enter_seccomp(memory) != 0)
         child_exit(1);
+}
+
+static _Noreturn void child_main(const struct hostjit *j, struct hj_shared *sh, pid_t parent)
+{
+    child_harden(parent, 0);
     uint32_t seen = 0;
     for (;;) {
         uint32_t r;
         int spins = 0;
         while ((r = atomic_load_explicit(&sh->req, memory_order_acquire)) == seen) {
             if (++spins < HJ_SPIN) {
-                hj_pause();
+                hj_relax(spins);
                 continue;
             }
             atomic_store(&sh->child_sleeps, 1);
@@ -430,7 +458,7 @@ static int wait_answer(struct hostjit *j, uint32_t r)
     int spins = 0;
     while (atomic_load_explicit(&sh->done, memory_order_acquire) != r) {
         if (++spins < HJ_SPIN) {
-            hj_pause();
+            hj_relax(spins);
             continue;
         }
         spins = 0;
@@ -468,10 +496,32 @@ static int wait_answer(struct hostjit *j, uint32_t r)
     return 0;
 }
 
+/* Inside a phase's child (hostjit_isolated): the evaluations call the code directly, and
+   mark their progress in the block shared with brdfbench, whose deadline watches it. */
+struct hj_phase {
+    _Atomic uint64_t progress;
+    double c, n;
+    unsigned char out[];
+};
+static struct hj_phase *hj_inside;
+
 static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, size_t count, double *out)
 {
     if (!j || j->dead)
         return -1;
+    if (hj_inside) {
+        size_t per = kind == HJ_SCALAR ? 4 : 12;
+        for (size_t i = 0; i < count; ++i) {
+            const double *a = args + i * per;
+            hj_inside->c = kind == HJ_SCALAR ? a[0] : NAN;
+            hj_inside->n = kind == HJ_SCALAR ? a[1] : a[9];
+            atomic_fetch_add(&hj_inside->progress, 1);
+            out[i] = kind == HJ_SCALAR ? j->fn(a[0], a[1], a[2], a[3])
+                   : j->full ? j->full(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11])
+                             : NAN;
+        }
+        return 0;
+    }
     if (!j->child && start_child(j) != 0)
         return -1;
     struct hj_shared *sh = j->shared;
@@ -493,6 +543,77 @@ static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, s
         count -= now;
     }
     return 0;
+}
+
+static void describe_status(int status, char *why, size_t whylen)
+{
+    if (WIFSIGNALED(status))
+        snprintf(why, whylen, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
+                 strsignal(WTERMSIG(status)),
+                 WTERMSIG(status) == SIGSYS || WTERMSIG(status) == SIGKILL
+                     ? ": a system call, which the sandbox does not allow, or an outside kill"
+                 : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
+                     ? ": the model's code read or wrote memory outside its own variables"
+                     : "");
+    else
+        snprintf(why, whylen, "its process ended with status %d", WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+}
+
+int hostjit_isolated(void (*fn)(void *ctx, void *out), void *ctx, void *out, size_t outlen,
+                     void (*tick)(void *tctx, double c, double n), void *tctx, char *why, size_t whylen)
+{
+    size_t bytes = sizeof(struct hj_phase) + outlen;
+    struct hj_phase *ph = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (ph == MAP_FAILED) {
+        snprintf(why, whylen, "no memory for its sandbox: %s", strerror(errno));
+        return -1;
+    }
+    pid_t parent = getpid();
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(why, whylen, "no process for its sandbox: %s", strerror(errno));
+        munmap(ph, bytes);
+        return -1;
+    }
+    if (pid == 0) {
+        child_harden(parent, 1);
+        hj_inside = ph;
+        fn(ctx, ph->out);
+        child_exit(0);
+    }
+    /* Waits, looking every few milliseconds whether the child ended and whether it went on
+       to another value (tick: brdfbench's deadline counts from the last one). */
+    uint64_t seen = 0;
+    int status = 0, rc = -1;
+    long sleep_ns = 200000;
+    for (;;) {
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid)
+            break;
+        if (w < 0 && errno != EINTR) {
+            snprintf(why, whylen, "its process was lost: %s", strerror(errno));
+            munmap(ph, bytes);
+            return -1;
+        }
+        uint64_t p = atomic_load(&ph->progress);
+        if (p != seen && tick) {
+            seen = p;
+            tick(tctx, ph->c, ph->n);
+        }
+        struct timespec ts = { 0, sleep_ns };
+        nanosleep(&ts, NULL);
+        if (sleep_ns < 10000000L)
+            sleep_ns *= 2;
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        memcpy(out, ph->out, outlen);
+        rc = 0;
+    } else {
+        describe_status(status, why, whylen);
+    }
+    munmap(ph, bytes);
+    return rc;
 }
 
 int hostjit_eval_many(struct hostjit *j, const double *args, size_t count, double *out)

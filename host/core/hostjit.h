@@ -49,6 +49,16 @@ int hostjit_eval_many(struct hostjit *j, const double *args, size_t count, doubl
 /* args: L, V, N (3 each), n, p0, p1 */
 int hostjit_eval_full(struct hostjit *j, const double args[12], double *out);
 const char *hostjit_failure(const struct hostjit *j);
+/* A whole phase of brdfbench's own work that evaluates the model value after value (a
+ * search that asks for one point at a time, where a round trip per value would cost more
+ * than the formula): fn(ctx, out) runs in a forked child under the same filter, widened to
+ * the memory calls malloc needs (never PROT_EXEC), where the model's code is called
+ * directly; the outlen bytes it leaves in out come back to out, nothing else does. Every
+ * hostjit it uses must have been compiled before. tick(tctx, c, n), when given, is called
+ * in brdfbench whenever the child has gone on to another value (the deadline's mark).
+ * Returns 0, or -1 with why (the child's crash, a signal). */
+int hostjit_isolated(void (*fn)(void *ctx, void *out), void *ctx, void *out, size_t outlen,
+                     void (*tick)(void *tctx, double c, double n), void *tctx, char *why, size_t whylen);
 
 
 #endif

@@ -782,6 +782,36 @@ int usermodel_load_file(const char *path, const struct user_model **out, char *e
     return 0;
 }
 
+/* ---- a phase in the sandbox ------------------------------------------------------------- */
+
+static void isolated_tick(void *tctx, double c, double n) { usermodel_watch_begin(tctx, c, n); }
+
+int usermodel_isolated(const struct model_spec *m, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                       size_t outlen)
+{
+    struct user_model *um = (struct user_model *)usermodel_of(m);
+    const char *off = getenv("BRDFBENCH_TEST_PHASE_IN_PROCESS");
+    if (!um || !usermodel_host_ready(um) || (off && strcmp(off, "1") == 0)) {
+        fn(ctx, out);
+        return 0;
+    }
+    /* one value first, in the per-value sandbox: the deadline's watcher thread starts here,
+       not in the child, which may start no thread */
+    (void)usermodel_eval_host(m, 1.0, 1.0);
+    char why[256];
+    usermodel_watch_begin(um, NAN, NAN);
+    int rc = hostjit_isolated(fn, ctx, out, outlen, isolated_tick, um, why, sizeof why);
+    usermodel_watch_end();
+    if (rc) {
+        fprintf(stderr, "brdfbench: the host reference of %s failed: %s; the run is stopped and its unfinished "
+                "outputs removed\n", um->what, why);
+        outdir_remove_own();
+        fflush(NULL);
+        _exit(EXIT_RUNTIME);
+    }
+    return 0;
+}
+
 /* ---- the reference on the device (fallback) -------------------------------------------- */
 
 int usermodel_reference_open(const struct user_model *cum, struct cl_session *s)

@@ -131,4 +131,13 @@ const char *usermodel_reference_note(const struct user_model *um);
  * failed: reported once on stderr). */
 double usermodel_eval_host(const struct model_spec *m, double c, double n);
 
+/* Runs fn(ctx, out), a phase of work that evaluates model m's host reference value after
+ * value (a search), in the sandbox's child as a whole (hostjit_isolated), so that the phase
+ * costs no round trip per value; the outlen bytes of out come back. For a built-in model, or
+ * a user model evaluated on the device, fn runs here. A crash in the child ends the run as a
+ * crash of the per-value sandbox does (exit 3). BRDFBENCH_TEST_PHASE_IN_PROCESS=1 runs fn here
+ * always (scripts/bench_hostref_sandbox.sh compares the two). Returns 0. */
+int usermodel_isolated(const struct model_spec *m, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                       size_t outlen);
+
 #endif
