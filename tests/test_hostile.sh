@@ -361,5 +361,11 @@ before=$(md5sum <base/accuracy.json)
 run 60 rows acc31.json --output base/accuracy.json
 [ $rc -eq 2 ] && [ "$(md5sum <base/accuracy.json)" = "$before" ] && ok || bad "rows --output on its input through a link: exit $rc"
 
+# ---- issue 31, Medium 8: all --models LIST keeps a --model that LIST does not name, with a note
+run 300 all --quick --models fq2 --model 'sq31=c*c' --out allm31 --quiet
+[ $rc -eq 0 ] && grep -q "note: user model 'sq31' (--model sq31) is not in --models: measured as well" err &&
+    python3 -c 'import json, sys; d = json.load(open("allm31/accuracy.json")); sys.exit(0 if any(r.get("model", "").startswith("sq31") for r in d["results"]) else 1)' &&
+    ok || bad "all --models fq2 --model sq31: exit $rc, sq31 dropped? $(head -c 300 err)"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

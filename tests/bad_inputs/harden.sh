@@ -52,3 +52,6 @@ t 2 "^brdfbench accuracy: --json: 'm31\.cl' is 'm31\.cl', an input of this comma
 
 # Low: "--" ends the options (a file named like a flag)
 t 2 "^brdfbench rows: --weird: no such file or folder" rows -- --weird
+
+# Medium 7: a kernel cache PoCL cannot write makes it report no device: exit 3 naming the cache, not 77 ("skipped")
+t 3 "^brdfbench accuracy: PoCL's kernel cache /proc/pocl-cache cannot be written or made \(set by POCL_CACHE_DIR\)" POCL_CACHE_DIR=/proc/pocl-cache accuracy --models fq2 --n-max 5 --samples 16 --out run
