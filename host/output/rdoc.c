@@ -385,13 +385,48 @@ static int figure_ok(const struct jr_doc *j, const struct jr_value *v, const cha
                    timed ? "a rate in [0, 1e+18]" : "a number in [-1e+100, 1e+100]");
 }
 
+/* An error figure (the last part of the metric's name: max_rel, max_abs, rmse, ...) is never
+   negative, as in the result files it stands for (compare_check.c): -1 would read as "better". */
+static int is_error_metric(const char *name)
+{
+    static const char *const errs[] = { "max_rel", "max_abs", "rmse", "mean_abs", "max_abs_whole", NULL };
+    const char *last = strrchr(name, '.');
+    last = last ? last + 1 : name;
+    for (int i = 0; errs[i]; ++i)
+        if (strcmp(last, errs[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* A text of the document that reaches the terminal or a table: one line, no control
+   character (an escape sequence would drive the terminal). */
+static int text_ok(const struct jr_doc *j, const struct jr_value *v, const char *key, char *err, size_t errlen)
+{
+    if (!v || v->type != JR_STR)
+        return 0;
+    for (const char *p = v->str; *p; ++p)
+        if ((unsigned char)*p < 0x20 || *p == 0x7f)
+            return jr_fail(j, v, err, errlen, "\"%.40s\" holds %s (accepted: one line of text without control "
+                           "characters, as brdfbench writes it)", key,
+                           *p == '\n' ? "a newline" : *p == 0x1b ? "an escape character" : "a control character");
+    return 0;
+}
+
 /* The metric's numbers, and its unit as one line of table-safe text. */
 static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int timed, char *err, size_t errlen)
 {
     static const char *const figures[] = { "value", "min", "max" };
-    for (size_t k = 0; k < sizeof figures / sizeof figures[0]; ++k)
-        if (figure_ok(j, jr_get(mo, figures[k]), figures[k], timed, err, errlen))
+    const char *name = jr_str_or(mo, "name", "");
+    if (text_ok(j, jr_get(mo, "name"), "name", err, errlen))
+        return 2;
+    for (size_t k = 0; k < sizeof figures / sizeof figures[0]; ++k) {
+        const struct jr_value *v = jr_get(mo, figures[k]);
+        if (figure_ok(j, v, figures[k], timed, err, errlen))
             return 2;
+        if (v && v->type == JR_NUM && !timed && is_error_metric(name) && !(v->num >= 0))
+            return jr_fail(j, v, err, errlen, "\"%s\" of %.60s is %.6g (accepted: an error in [0, 1e+100], or null "
+                           "when not measured)", figures[k], name, v->num);
+    }
     static const char *const arrays[] = { "reps", "normalised_reps" };
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
         const struct jr_value *a = jr_get(mo, arrays[k]);
@@ -462,6 +497,16 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
             else
                 rd_row_attr(r, o->keys[k], o->items[k].str);
         }
+    }
+    static const char *const texts[] = { "row", "status", "reason", "model", "device" };
+    for (size_t t = 0; t < sizeof texts / sizeof texts[0]; ++t)
+        if (text_ok(j, jr_get(ro, texts[t]), texts[t], err, errlen))
+            return 2;
+    for (int in_label = 1; in_label >= 0; --in_label) {
+        const struct jr_value *o = in_label ? keys : attrs;
+        for (size_t k = 0; o && o->type == JR_OBJ && k < o->count; ++k)
+            if (text_ok(j, &o->items[k], o->keys[k], err, errlen))
+                return 2;
     }
     /* the label as written (it may carry prefixes the keys do not) */
     snprintf(r->label, sizeof r->label, "%s", jr_str_or(ro, "row", r->label));

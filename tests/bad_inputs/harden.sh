@@ -55,3 +55,21 @@ t 2 "^brdfbench rows: --weird: no such file or folder" rows -- --weird
 
 # Medium 7: a kernel cache PoCL cannot write makes it report no device: exit 3 naming the cache, not 77 ("skipped")
 t 3 "^brdfbench accuracy: PoCL's kernel cache /proc/pocl-cache cannot be written or made \(set by POCL_CACHE_DIR\)" POCL_CACHE_DIR=/proc/pocl-cache accuracy --models fq2 --n-max 5 --samples 16 --out run
+
+# Medium 4: a hand-written rows document is checked as strictly as the file it stands for
+"$BIN" rows base --format json --output rows31.json >/dev/null 2>&1
+python3 -c '
+import json
+d = json.load(open("rows31.json"))
+for m in d["rows"][0]["metrics"]:
+    if m["name"] == "epicentre.max_rel":
+        m["value"] = -1
+json.dump(d, open("rows31_neg.json", "w"), indent=1)
+d = json.load(open("rows31.json"))
+d["rows"][0]["status"] = "failed"
+d["rows"][0]["reason"] = "bad \u001b[31mred\u001b[0m"
+json.dump(d, open("rows31_esc.json", "w"), indent=1)'
+WHAT="rows31_neg.json: a rows document whose first row's epicentre.max_rel is -1"
+t 2 "^brdfbench compare: rows31_neg\.json:[0-9]+:[0-9]+: \"value\" of epicentre\.max_rel is -1 \(accepted: an error in \[0, 1e\+100\]" compare rows31.json rows31_neg.json --fail-if-less-accurate
+WHAT="rows31_esc.json: a rows document whose first row's reason holds terminal escape sequences"
+t 2 "^brdfbench compare: rows31_esc\.json:[0-9]+:[0-9]+: \"reason\" holds an escape character" compare rows31.json rows31_esc.json
