@@ -362,10 +362,28 @@ run 60 rows acc31.json --output base/accuracy.json
 [ $rc -eq 2 ] && [ "$(md5sum <base/accuracy.json)" = "$before" ] && ok || bad "rows --output on its input through a link: exit $rc"
 
 # ---- issue 31, Medium 8: all --models LIST keeps a --model that LIST does not name, with a note
+# (and, Low: the staging folder of a killed run, .allm31.partial-PID with no process, is
+# removed with a note)
+mkdir -p .allm31.partial-999999
 run 300 all --quick --models fq2 --model 'sq31=c*c' --out allm31 --quiet
 [ $rc -eq 0 ] && grep -q "note: user model 'sq31' (--model sq31) is not in --models: measured as well" err &&
     python3 -c 'import json, sys; d = json.load(open("allm31/accuracy.json")); sys.exit(0 if any(r.get("model", "").startswith("sq31") for r in d["results"]) else 1)' &&
     ok || bad "all --models fq2 --model sq31: exit $rc, sq31 dropped? $(head -c 300 err)"
+[ ! -e .allm31.partial-999999 ] && grep -q "note: removed .*allm31.partial-999999, the unfinished folder of an earlier run" err &&
+    ok || bad "a killed run's staging folder was left or not mentioned: $(head -c 300 err)"
+
+# ---- issue 31, Medium 6: two runs into one --out at once: the second is refused naming the first
+"$BIN" accuracy --models fq2 --n-max 1000 --n-step 0.05 --out lock31 --quiet >/dev/null 2>&1 &
+first=$!
+for _ in $(seq 120); do grep -q "FLOCK .* $first " /proc/locks 2>/dev/null && break; sleep 0.5; done
+run 60 accuracy --models cq2 --n-max 10 --samples 64 --out lock31 --quiet
+[ $rc -eq 3 ] && grep -q -- "--out: lock31 is being written by another run (process $first)" err && ok ||
+    bad "a second run into a locked --out: exit $rc: $(head -c 300 err)"
+run 60 all --quick --models cq2 --out lock31 --quiet
+[ $rc -eq 2 ] && grep -q "is being written by another run (process $first)" err && ok ||
+    bad "all into a locked --out: exit $rc: $(head -c 300 err)"
+kill "$first" 2>/dev/null
+wait "$first" 2>/dev/null
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
