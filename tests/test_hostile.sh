@@ -385,5 +385,23 @@ run 60 all --quick --models cq2 --out lock31 --quiet
 kill "$first" 2>/dev/null
 wait "$first" 2>/dev/null
 
+# ---- issue 31, Medium 3: what a file brings reaches report.md as text, not markdown or HTML ----
+cp -r "$R" esc31
+python3 - <<'PY'
+import json
+d = json.load(open("esc31/run.json"))
+d["command"] = "brdfbench all <script>alert(1)</script> \u001b[31m`x`"
+d["folder"] = "esc31\n# injected heading"
+d["steps"][0]["message"] = "<img src=x onerror=alert(1)> [link](http://example.com) \u001b]0;title\u0007"
+json.dump(d, open("esc31/run.json", "w"))
+PY
+run 60 report esc31 --output esc31.md
+# (the command stands in a code span, where nothing is markup; everywhere else '<' is "&lt;" and
+# a link's brackets are escaped)
+[ $rc -eq 0 ] && grep -q '^| command | `` brdfbench all <script>' esc31.md && ! grep -v '^| command | `' esc31.md | grep -q '<script' &&
+    ! grep -q '<img' esc31.md && ! grep -q $'\x1b' esc31.md && ! grep -q '^# injected heading' esc31.md &&
+    ! grep -qE '[^\\]\]\(http://example.com\)' esc31.md && ok ||
+    bad "report.md carries a file's markdown, HTML or escape bytes: exit $rc: $(grep -n 'script\|img\|injected\|example' esc31.md | head -5)"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

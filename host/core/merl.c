@@ -49,6 +49,11 @@ static void material_name(const char *path, char *name, size_t len)
     if (n > 7 && strcmp(base + n - 7, ".binary") == 0)
         n -= 7;
     snprintf(name, len, "%.*s", (int)(n < len ? n : len - 1), base);
+    /* a control character of a file name (a newline, ESC) never reaches a terminal, a table
+       or a heading as it is */
+    for (char *p = name; *p; ++p)
+        if ((unsigned char)*p < 0x20 || *p == 0x7f)
+            *p = '?';
 }
 
 /* Reads up to cap bytes of f into buf; the count read. */

@@ -398,6 +398,11 @@ static int header_line(struct user_model *um, char *s, struct header_seen *h, co
     } else if (strcmp(key, "description") == 0) {
         if (h->description++)
             return file_fail(err, errlen, path, line, "'description' is declared twice");
+        /* one line of text: an escape sequence would drive the terminal of whoever lists it */
+        for (const char *c = value; *c; ++c)
+            if (((unsigned char)*c < 0x20 && *c != '\t') || *c == 0x7f)
+                return file_fail(err, errlen, path, line, "'description' holds a control character (accepted: "
+                                 "one line of printable text)");
         snprintf(um->description, sizeof um->description, "%s", value);
     } else if (strcmp(key, "param") == 0) {
         return parse_param_line(um, value, path, line, err, errlen);
