@@ -249,6 +249,18 @@ int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
     /* the user's --out: one run writes it at a time */
     if (strcmp(arg, "--out") == 0 && outdir_lock(dir, arg, err, errlen) != 0)
         return -1;
+    /* a folder of `brdfbench all` (its run.json) holds one run: another command's files there
+       would be reported under all's command line, mixed with all's own */
+    if (strcmp(arg, "--out") == 0) {
+        char runjson[OUTDIR_PATH_MAX + 16];
+        struct stat st;
+        if (snprintf(runjson, sizeof runjson, "%s/run.json", dir) < (int)sizeof runjson && lstat(runjson, &st) == 0) {
+            snprintf(err, errlen, "%s: %s is a run folder of `brdfbench all` (it holds run.json); another command's "
+                     "results there would be reported as that run's (accepted: a new folder, or `all --out` "
+                     "again)", arg, dir);
+            return -1;
+        }
+    }
     outdir_confine(dir);
     return 0;
 }

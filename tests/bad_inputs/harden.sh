@@ -73,3 +73,6 @@ WHAT="rows31_neg.json: a rows document whose first row's epicentre.max_rel is -1
 t 2 "^brdfbench compare: rows31_neg\.json:[0-9]+:[0-9]+: \"value\" of epicentre\.max_rel is -1 \(accepted: an error in \[0, 1e\+100\]" compare rows31.json rows31_neg.json --fail-if-less-accurate
 WHAT="rows31_esc.json: a rows document whose first row's reason holds terminal escape sequences"
 t 2 "^brdfbench compare: rows31_esc\.json:[0-9]+:[0-9]+: \"reason\" holds an escape character" compare rows31.json rows31_esc.json
+
+# Medium 6: another command's results into a folder of `all` would be reported as all's run
+t 3 "^brdfbench accuracy: --out: R0 is a run folder of .brdfbench all. \(it holds run\.json\)" accuracy --models fq2 --n-max 5 --samples 16 --out R0
