@@ -403,5 +403,10 @@ run 60 report esc31 --output esc31.md
     ! grep -qE '[^\\]\]\(http://example.com\)' esc31.md && ok ||
     bad "report.md carries a file's markdown, HTML or escape bytes: exit $rc: $(grep -n 'script\|img\|injected\|example' esc31.md | head -5)"
 
+# ---- issue 31, Low: plot takes --quiet as every other command does (nothing on stdout or stderr)
+cp -r "$R" q31
+run 60 plot q31 --quiet
+[ $rc -eq 0 ] && [ ! -s out ] && [ ! -s err ] && ok || bad "plot --quiet: exit $rc: $(head -c 200 err)"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
