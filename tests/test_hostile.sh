@@ -373,7 +373,7 @@ run 300 all --quick --models fq2 --model 'sq31=c*c' --out allm31 --quiet
     ok || bad "a killed run's staging folder was left or not mentioned: $(head -c 300 err)"
 
 # ---- issue 31, Medium 6: two runs into one --out at once: the second is refused naming the first
-"$BIN" accuracy --models fq2 --n-max 1000 --n-step 0.05 --out lock31 --quiet >/dev/null 2>&1 &
+"$BIN" accuracy --models fq2 --n-max 100000 --n-step 0.5 --out lock31 --quiet >/dev/null 2>&1 &
 first=$!
 for _ in $(seq 120); do grep -q "FLOCK .* $first " /proc/locks 2>/dev/null && break; sleep 0.5; done
 run 60 accuracy --models cq2 --n-max 10 --samples 64 --out lock31 --quiet
