@@ -506,7 +506,7 @@ static int other_stager(const char *dir, const char *prefix, const char *mine, l
     if (!d)
         return 0;
     struct stat ms;
-    char mine_path[OUTDIR_PATH_MAX];
+    char mine_path[2 * OUTDIR_PATH_MAX + 2];
     snprintf(mine_path, sizeof mine_path, "%s/%s", dir, mine);
     if (stat(mine_path, &ms) != 0) {
         closedir(d);
