@@ -506,9 +506,9 @@ static int other_stager(const char *dir, const char *prefix, const char *mine, l
     if (!d)
         return 0;
     struct stat ms;
-    char mine_path[2 * OUTDIR_PATH_MAX + 2];
-    snprintf(mine_path, sizeof mine_path, "%s/%s", dir, mine);
-    if (stat(mine_path, &ms) != 0) {
+    char mine_path[OUTDIR_PATH_MAX];
+    int made = snprintf(mine_path, sizeof mine_path, "%s/%s", dir, mine);
+    if (made < 0 || (size_t)made >= sizeof mine_path || stat(mine_path, &ms) != 0) {
         closedir(d);
         return 0;
     }
