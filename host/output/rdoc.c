@@ -99,11 +99,14 @@ struct rd_row *rdoc_row(struct rdoc *d, const char *device, const char *model)
 
 static struct rd_key *add_key(struct rd_row *r, const char *name, const char *value)
 {
-    if (r->nkeys == RD_MAX_KEYS)
+    if (r->nkeys == RD_MAX_KEYS) {
+        r->truncated = 1;
         return NULL;
+    }
     struct rd_key *k = &r->keys[r->nkeys++];
-    snprintf(k->name, sizeof k->name, "%s", name);
-    snprintf(k->value, sizeof k->value, "%s", value ? value : "");
+    if ((size_t)snprintf(k->name, sizeof k->name, "%s", name) >= sizeof k->name ||
+        (size_t)snprintf(k->value, sizeof k->value, "%s", value ? value : "") >= sizeof k->value)
+        r->truncated = 1;
     return k;
 }
 
@@ -116,7 +119,9 @@ void rd_row_key(struct rd_row *r, const char *name, const char *prefix, const ch
         return;
     k->in_label = 1;
     size_t n = strlen(r->label);
-    snprintf(r->label + n, sizeof r->label - n, "%s%s%s", n ? " | " : "", prefix ? prefix : "", k->value);
+    if ((size_t)snprintf(r->label + n, sizeof r->label - n, "%s%s%s", n ? " | " : "", prefix ? prefix : "",
+                         k->value) >= sizeof r->label - n)
+        r->truncated = 1;
 }
 
 void rd_row_fail(struct rd_row *r, const char *status, const char *reason)
@@ -516,6 +521,9 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
     r->line = ro->line;
     r->retries = (int)fmax(0, jr_num_or_nan(ro, "preemption_retries"));
     r->disturbed = (int)fmax(0, jr_num_or_nan(ro, "disturbed_reps"));
+    if (r->truncated || strlen(jr_str_or(ro, "row", "")) >= sizeof r->label)
+        return jr_fail(j, ro, err, errlen, "a row whose keys do not fit (at most %d keys, a label and each key of at "
+                       "most %d bytes): two distinct rows could read as one", RD_MAX_KEYS, RD_TEXT - 1);
     for (size_t m = 0; m < metrics->count; ++m)
         if (read_metric(j, &metrics->items[m], d, r, err, errlen))
             return 2;

@@ -76,3 +76,23 @@ t 2 "^brdfbench compare: rows31_esc\.json:[0-9]+:[0-9]+: \"reason\" holds an esc
 
 # Medium 6: another command's results into a folder of `all` would be reported as all's run
 t 3 "^brdfbench accuracy: --out: R0 is a run folder of .brdfbench all. \(it holds run\.json\)" accuracy --models fq2 --n-max 5 --samples 16 --out R0
+
+# Low: a rows document whose label or keys do not fit is refused (cut at 255 bytes, two rows would read as one)
+python3 -c '
+import copy, json
+d = json.load(open("rows31.json"))
+rows = []
+for i in range(2):
+    r = copy.deepcopy(d["rows"][0])
+    r["row"] = r["model"] = "m" * 300 + str(i)
+    r["keys"] = {"model": r["row"]}
+    rows.append(r)
+d["rows"] = rows
+json.dump(d, open("rows31_long.json", "w"))
+d = json.load(open("rows31.json"))
+d["rows"][0]["keys"] = {"k%d" % i: str(i) for i in range(10)}
+json.dump(d, open("rows31_keys.json", "w"))'
+WHAT="rows31_long.json: two rows whose labels differ only after byte 300"
+t 2 "^brdfbench rows: rows31_long\.json:[0-9]+:[0-9]+: a row whose keys do not fit \(at most 8 keys, a label and each key of at most 255 bytes\)" rows rows31_long.json --output run31.md
+WHAT="rows31_keys.json: a row with 10 keys"
+t 2 "^brdfbench compare: rows31_keys\.json:[0-9]+:[0-9]+: a row whose keys do not fit" compare rows31.json rows31_keys.json
