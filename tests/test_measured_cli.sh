@@ -62,5 +62,17 @@ expect 2 'gate 1: "measured" is read only by the metric measured\.rms' gate "$T/
 printf '{"gates": [{"model": "fq2", "metric": "measured.rms", "measured": "dims.binary", "max": 1}]}' >"$T/g_bad.json"
 expect 2 'dims\.binary: dimensions 90 90 360' gate "$T/g_bad.json"
 
+# issue 31, Medium 2: two materials whose names give one picture name (a/gold and b/gold) get
+# distinct pictures, the later one gold-2, and report.md's section names each one's own
+mkdir -p "$T/m2a" "$T/m2b"
+cp "$T/mats/blinn64.binary" "$T/m2a/gold.binary"
+"$SYN" "$T/m2b/gold.binary" blinn 16 1.5 0.05 >/dev/null
+"$BIN" measured "$T/m2a/gold.binary" "$T/m2b/gold.binary" --out "$T/run2" --fit-cells 2000 --quiet >/dev/null 2>"$T/err"
+rc=$?
+[ "$rc" -eq 0 ] && ok || bad "measured a/gold b/gold: exit $rc: $(head -c 300 "$T/err")"
+for f in measured_errors_gold.png measured_slice_gold.png measured_errors_gold-2.png measured_slice_gold-2.png; do
+    [ -s "$T/run2/$f" ] && ok || bad "$f not written (two materials named gold)"
+done
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

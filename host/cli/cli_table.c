@@ -81,13 +81,93 @@ static int store_value(const struct cli_flag *f, const char *v, char *err, size_
     }
 }
 
+static int parse_one(const struct cli_command *c, int argc, char **argv, int *ip, struct cli_args *args,
+                     int *options_end, char **inputs, int *ninputs, const char **outputs, const char **output_flags,
+                     int *noutputs, char *err, size_t errlen);
+
+/* The flags whose value is a file the command writes (or, --out, a folder it writes into). */
+static int is_output_flag(const char *name)
+{
+    return strcmp(name, "--json") == 0 || strcmp(name, "--csv") == 0 || strcmp(name, "--junit") == 0 ||
+           strcmp(name, "--output") == 0 || strcmp(name, "--out") == 0;
+}
+
+/* An output that names an input of the same command line replaces what the command reads:
+   the same file (however reached: a link, a hard link, ./a and a), or a file that exists in
+   a folder given as input (compare A B --json A/throughput.json). report's RUN_DIR/report.md
+   is its own output, which report checks itself. Returns 0 or EXIT_USAGE with the message. */
+static int output_names_input(const struct cli_command *c, const char *flag, const char *out, char *const *inputs,
+                              int ninputs, char *err, size_t errlen)
+{
+    struct stat so, si;
+    if (strcmp(flag, "--out") == 0 || strcmp(out, "-") == 0 || stat(out, &so) != 0 || !S_ISREG(so.st_mode))
+        return 0;
+    char out_real[PATH_MAX];
+    int have_real = realpath(out, out_real) != NULL;
+    for (int k = 0; k < ninputs; ++k) {
+        if (stat(inputs[k], &si) != 0)
+            continue;
+        if (S_ISREG(si.st_mode) && si.st_dev == so.st_dev && si.st_ino == so.st_ino) {
+            snprintf(err, errlen, "%s: '%s' is '%s', an input of this command (the same file): an output may not "
+                     "replace what the command reads (accepted: another file name)", flag, out, inputs[k]);
+            return EXIT_USAGE;
+        }
+        char in_real[PATH_MAX];
+        if (S_ISDIR(si.st_mode) && have_real && strcmp(c->name, "report") != 0 && realpath(inputs[k], in_real)) {
+            size_t n = strlen(in_real);
+            if (strncmp(out_real, in_real, n) == 0 && (out_real[n] == '/' || (n == 1 && in_real[0] == '/'))) {
+                snprintf(err, errlen, "%s: '%s' is a file in '%s', an input folder of this command: an output may "
+                         "not replace what the command reads (accepted: a file outside the input folders, or a new "
+                         "name)", flag, out, inputs[k]);
+                return EXIT_USAGE;
+            }
+        }
+    }
+    return 0;
+}
+
 int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_args *args, char *err, size_t errlen)
 {
     current_command = c->name;
     if (args)
         args->npositional = 0;
-    for (int i = 1; i < argc; ++i) {
+    /* the values of the command line: inputs (bare arguments, values of other flags) and
+       outputs, checked against each other once all are known */
+    char **inputs = calloc((size_t)argc + 1, sizeof *inputs);
+    const char **outputs = calloc((size_t)argc + 1, sizeof *outputs);
+    const char **output_flags = calloc((size_t)argc + 1, sizeof *output_flags);
+    int ninputs = 0, noutputs = 0, rc = 0, options_end = 0;
+    if (!inputs || !outputs || !output_flags) {
+        free(inputs);
+        free(outputs);
+        free(output_flags);
+        snprintf(err, errlen, "out of memory");
+        return EXIT_USAGE;
+    }
+    for (int i = 1; i < argc && rc == 0; ++i)
+        rc = parse_one(c, argc, argv, &i, args, &options_end, inputs, &ninputs, outputs, output_flags, &noutputs, err,
+                       errlen);
+    for (int k = 0; k < noutputs && rc == 0; ++k)
+        rc = output_names_input(c, output_flags[k], outputs[k], inputs, ninputs, err, errlen);
+    free(inputs);
+    free(outputs);
+    free(output_flags);
+    return rc;
+}
+
+/* One argument of cli_parse (and its value): 0, CLI_ANSWERED or EXIT_USAGE. */
+static int parse_one(const struct cli_command *c, int argc, char **argv, int *ip, struct cli_args *args,
+                     int *options_end, char **inputs, int *ninputs, const char **outputs, const char **output_flags,
+                     int *noutputs, char *err, size_t errlen)
+{
+    int i = *ip;
+    {
         const char *a = argv[i];
+        /* "--" ends the options: every later argument is a bare one, even "-x" */
+        if (!*options_end && strcmp(a, "--") == 0) {
+            *options_end = 1;
+            return 0;
+        }
         if (strcmp(a, "--help") == 0) {
             cli_print_help(stdout, c);
             return CLI_ANSWERED;
@@ -96,13 +176,14 @@ int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_arg
             cli_print_version(stdout);
             return CLI_ANSWERED;
         }
-        if (a[0] != '-' || a[1] == '\0') {   /* a bare argument ("-" included) */
+        if (*options_end || a[0] != '-' || a[1] == '\0') {   /* a bare argument ("-" included) */
             if (!args || args->npositional >= c->max_positional || args->npositional >= CLI_MAX_POSITIONAL) {
                 snprintf(err, errlen, "unexpected argument '%s' (see brdfbench %s --help)", a, c->name);
                 return EXIT_USAGE;
             }
             args->positional[args->npositional++] = a;
-            continue;
+            inputs[(*ninputs)++] = argv[i];
+            return 0;
         }
         const struct cli_flag *f = find_flag(c, a);
         if (!f) {
@@ -123,15 +204,22 @@ int cli_parse(const struct cli_command *c, int argc, char **argv, struct cli_arg
             *(int *)f->dest = f->set;
             if (strcmp(f->name, "--quiet") == 0)
                 clsession_set_progress(0);   /* no progress lines of long builds either */
-            continue;
+            return 0;
         }
         if (a[strlen(f->name)] != '=' && i + 1 >= argc) {
             snprintf(err, errlen, "%s: missing value (expected %s %s)", f->name, f->name, f->value);
             return EXIT_USAGE;
         }
         const char *v = cli_flag_value(argc, argv, &i, f->name, err, errlen);
+        *ip = i;
         if (!v || store_value(f, v, err, errlen))
             return EXIT_USAGE;
+        if (is_output_flag(f->name)) {
+            output_flags[*noutputs] = f->name;
+            outputs[(*noutputs)++] = v;
+        } else {
+            inputs[(*ninputs)++] = (char *)v;
+        }
     }
     return 0;
 }

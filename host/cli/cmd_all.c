@@ -537,8 +537,12 @@ static int parse_all(struct all_run *r, int argc, char **argv)
     r->nmodels = cli_model_list(models_text, r->models, ALL_MAX_MODELS, err, sizeof err);
     if (r->nmodels < 0) goto usage_error;
     r->models_given = strcmp(models_text, "all") != 0;
-    /* User models join the default set (with --models they are named there). */
+    /* User models join the default set; with --models, one the list does not name is measured
+       as well, with a note, as accuracy, render and throughput do. */
     if (strcmp(models_text, "all") == 0 && usermodel_append_all(r->models, &r->nmodels, ALL_MAX_MODELS, err, sizeof err))
+        goto usage_error;
+    if (strcmp(models_text, "all") != 0 &&
+        (r->nmodels = cli_add_unlisted_user_models(r->models, r->nmodels, ALL_MAX_MODELS, err, sizeof err)) < 0)
         goto usage_error;
     if (accuracy_grid_check(&r->set.grid, NULL, err, sizeof err)) goto usage_error;
     if (r->measured_dir) {   /* a missing folder fails before the long run, not after it */

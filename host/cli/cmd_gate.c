@@ -120,8 +120,8 @@ int cmd_gate(int argc, char **argv)
           .given = &tolerance_given, .help = "relative tolerance of --baseline" },
         CLI_FLAG_QUIET(&quiet),
         { .name = "--allow-outside-model-files", .kind = CLI_SWITCH, .dest = &outside_model_files, .set = 1,
-          .help = "let the gates file name model files outside its own folder (a model file is a program run on "
-                  "the host: only for gates files you trust)" },
+          .help = "let the gates file name model files and measured materials outside its own folder (a model "
+                  "file is a program run on the host: only for gates files you trust)" },
         CLI_FLAGS_USERMODEL,
         CLI_FLAGS_DEVICE(&dev),
     };

@@ -22,6 +22,9 @@
 
 /* Redraws one field file; returns 0, 2 (input) or 3 (picture). Messages start with
    "brdfbench CMD: " and, for a model the user named, "--label LABEL: ". */
+/* --quiet: no list of the pictures drawn (errors are still said) */
+static int plot_quiet;
+
 static int redraw_field(const char *cmd, const char *model, const char *dir, const char *json_name, int *drawn)
 {
     char path[4096], png[4096], name[512], err[1024], what[320] = "";
@@ -45,7 +48,8 @@ static int redraw_field(const char *cmd, const char *model, const char *dir, con
         fprintf(stderr, "brdfbench %s: %s\n", cmd, err);
         rc = EXIT_RUNTIME;
     } else {
-        printf("%s\n", png);
+        if (!plot_quiet)
+            printf("%s\n", png);
         ++*drawn;
     }
     field_result_free(&fr);
@@ -120,9 +124,10 @@ static int redraw(int argc, char **argv, int heatmaps_only)
     const char *dir = NULL, *model = NULL;
     int shared = 0;
     char err[1024];
-    const struct cli_flag plot_flags[] = { CLI_FLAG_SHARED_SCALE(&shared) };
+    const struct cli_flag plot_flags[] = { CLI_FLAG_SHARED_SCALE(&shared), CLI_FLAG_QUIET(&plot_quiet) };
     const struct cli_flag heatmap_flags[] = {
         CLI_FLAG_SHARED_SCALE(&shared),
+        CLI_FLAG_QUIET(&plot_quiet),
         { .name = "--label", .value = "LABEL", .kind = CLI_TEXT, .dest = &model,
           .help = "redraw only the model of this label, as the run names it (e.g. fvol or fq:Q=0.64)",
           .def = "every model of the run" },
@@ -132,7 +137,7 @@ static int redraw(int argc, char **argv, int heatmaps_only)
     };
     const struct cli_command cmd = {
         .name = name,
-        .synopsis = heatmaps_only ? "[RUN_DIR] [--label LABEL] [--shared-scale]" : "[RUN_DIR] [--shared-scale]",
+        .synopsis = heatmaps_only ? "[RUN_DIR] [--label LABEL] [--shared-scale] [--quiet]" : "[RUN_DIR] [--shared-scale] [--quiet]",
         .about = heatmaps_only
                      ? "  Redraws heatmap_<model>.png from field_<model>.json in RUN_DIR (default: results/latest),\n"
                        "  every model or only one. No device is used.\n"
@@ -185,7 +190,8 @@ static int redraw(int argc, char **argv, int heatmaps_only)
                 fprintf(stderr, "brdfbench %s: %s\n", name, err);
                 worst = EXIT_RUNTIME;
             } else {
-                printf("%s\n", png);
+                if (!plot_quiet)
+                    printf("%s\n", png);
                 drawn++;
             }
         }
@@ -205,10 +211,12 @@ static int redraw(int argc, char **argv, int heatmaps_only)
             fprintf(stderr, "brdfbench %s: %s\n", name, err);
             if (rc > worst) worst = rc;
         } else {
-            printf("%s/%s\n", dir, HEATMAPS_SHARED_FILE);
+            if (!plot_quiet)
+                printf("%s/%s\n", dir, HEATMAPS_SHARED_FILE);
         }
     }
-    fprintf(stderr, "brdfbench %s: %d picture(s) redrawn in %s\n", name, drawn, dir);
+    if (!plot_quiet)
+        fprintf(stderr, "brdfbench %s: %d picture(s) redrawn in %s\n", name, drawn, dir);
     return worst;
 }
 

@@ -11,6 +11,7 @@
 #include <pthread.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -385,6 +386,41 @@ static void env_hints(char *why, size_t len)
                  "little to load the driver", (unsigned long long)(rl.rlim_cur >> 20));
 }
 
+/* PoCL's kernel cache: POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else $HOME/.cache/pocl. Where
+   it can be neither written nor made (HOME=/proc, a POCL_CACHE_DIR under a read-only folder),
+   PoCL reports no device at all. 1 and the folder in dir when so. */
+static int pocl_cache_unusable(char *dir, size_t len)
+{
+    const char *cache = getenv("POCL_CACHE_DIR"), *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (cache && *cache)
+        snprintf(dir, len, "%s", cache);
+    else if (xdg && *xdg)
+        snprintf(dir, len, "%s/pocl", xdg);
+    else if (home && *home)
+        snprintf(dir, len, "%s/.cache/pocl", home);
+    else
+        return 0;
+    /* the folder itself, or the nearest existing folder above it, must take new entries */
+    char probe[PATH_MAX];
+    snprintf(probe, sizeof probe, "%s", dir);
+    for (;;) {
+        struct stat st;
+        if (stat(probe, &st) == 0)
+            return !S_ISDIR(st.st_mode) || access(probe, W_OK | X_OK) != 0 || strncmp(probe, "/proc", 5) == 0 ||
+                   strncmp(probe, "/sys", 4) == 0;
+        char *slash = strrchr(probe, '/');
+        if (!slash)
+            return access(".", W_OK | X_OK) != 0;
+        if (slash == probe) {
+            probe[1] = '\0';
+            if (stat(probe, &st) == 0)
+                return access(probe, W_OK | X_OK) != 0;
+            return 0;
+        }
+        *slash = '\0';
+    }
+}
+
 int clsession_open(struct cl_session *s, int platform_index, int device_index, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
@@ -448,10 +484,18 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
     if (!found) {
         /* a platform is there but has no device: say what is known to cause that before the
            install hint, which does not help when the driver is installed */
-        char why[1024], name[128];
+        char why[1024], name[128], cache_dir[PATH_MAX];
         if (cl_platform_string(plats[platform_index >= 0 ? platform_index : 0], CL_PLATFORM_NAME, name, sizeof name) !=
             CL_SUCCESS)
             snprintf(name, sizeof name, "?");
+        /* an unusable kernel cache is a runtime error, not "no device" (77 reads as skipped) */
+        if (strstr(name, "Portable Computing Language") && pocl_cache_unusable(cache_dir, sizeof cache_dir)) {
+            snprintf(err, errlen, "PoCL's kernel cache %.300s cannot be written or made (set by %s), so the driver "
+                     "reports no device; set POCL_CACHE_DIR to a folder you can write", cache_dir,
+                     getenv("POCL_CACHE_DIR") && *getenv("POCL_CACHE_DIR") ? "POCL_CACHE_DIR"
+                     : getenv("XDG_CACHE_HOME") && *getenv("XDG_CACHE_HOME") ? "XDG_CACHE_HOME" : "HOME");
+            return EXIT_RUNTIME;
+        }
         env_hints(why, sizeof why);
         snprintf(err, errlen, "no OpenCL device found%s: platform '%s' reports none%s; if no driver is installed, %s",
                  platform_index >= 0 ? " on the chosen platform" : "", name, why, no_device_hint);

@@ -2,11 +2,27 @@
 #define _GNU_SOURCE   /* exp10 */
 #include "hostjit.h"
 
+#include <errno.h>
 #include <libtcc.h>
+#include <linux/audit.h>
+#include <linux/seccomp.h>
 #include <math.h>
+#include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <linux/filter.h>
+#include <linux/futex.h>
+#include <stdatomic.h>
+#include <stddef.h>
+#include <sys/mman.h>
+#include <time.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 /* OpenCL C's scalar built-in functions for double, as C. Those of C99 come from the host's
  * libm (declared here, bound in bind_libm); the others follow the OpenCL C 1.2 specification
@@ -123,10 +139,26 @@ static const char epilogue[] =
     "{\n    return brdf_eval(BRDF_USER, c, n, p0, p1);\n}\n";
 
 
+#if defined(__x86_64__)
+#define HJ_AUDIT_ARCH AUDIT_ARCH_X86_64
+#elif defined(__aarch64__)
+#define HJ_AUDIT_ARCH AUDIT_ARCH_AARCH64
+#else
+#error "the host reference's sandbox knows the seccomp architecture of x86-64 and aarch64 only"
+#endif
+
+struct hj_shared;
+
 struct hostjit {
     TCCState *tcc;
     hostjit_fn fn;
     hostjit_full_fn full;
+    /* the sandbox (hostjit_eval): a child process and the memory it shares with brdfbench */
+    pid_t child;
+    struct hj_shared *shared;
+    uint32_t seq;
+    int dead;                  /* the child is gone: every evaluation fails */
+    char why[256];
 };
 
 struct jit_errors {
@@ -234,10 +266,385 @@ fail:
 hostjit_fn hostjit_function(const struct hostjit *j) { return j ? j->fn : NULL; }
 hostjit_full_fn hostjit_full_function(const struct hostjit *j) { return j ? j->full : NULL; }
 
+/* ---- the sandbox ------------------------------------------------------------------------ */
+
+/* The child and brdfbench share one page-aligned block (struct hj_shared, mapped before the
+   fork): brdfbench writes a request's arguments and bumps req; the child computes, writes the
+   values and bumps done. Each side spins a few microseconds for the other, then sleeps on a
+   futex, so that the refinement's one-value requests cost about a cache line's trip, not a
+   system call each. brdfbench reads only done and the values from the block: whatever the
+   child writes there is at worst wrong values, never a way into brdfbench's memory. */
+enum { HJ_SCALAR = 1, HJ_FULL = 2, HJ_BATCH = 512, HJ_SPIN = 2000 };
+struct hj_shared {
+    _Atomic uint32_t req, done;        /* request counter; the last one answered */
+    _Atomic uint32_t child_sleeps, parent_sleeps;
+    uint32_t kind, count;
+    double args[HJ_BATCH * 12];
+    double vals[HJ_BATCH];
+};
+
+static long hj_futex(_Atomic uint32_t *addr, int op, uint32_t val, const struct timespec *timeout)
+{
+    return syscall(SYS_futex, (uint32_t *)addr, op, val, timeout, NULL, 0);
+}
+
+static inline void hj_pause(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+/* One step of a wait for the other side: a pause at first, then the core handed over, so
+   that on a busy machine the other process, when it waits for this core, runs at once. */
+static void hj_relax(int spins)
+{
+    if (spins < 256)
+        hj_pause();
+    else
+        syscall(SYS_sched_yield);
+}
+
+static _Noreturn void child_exit(int code)
+{
+    /* _exit calls exit_group: the plain exit system call, which the filter allows too */
+    for (;;)
+        syscall(SYS_exit, code);
+}
+
+/* seccomp's filter: exit, exit_group, futex and sched_yield; any other system call kills the
+   child. (Strict mode would allow read and write instead of futex.) */
+static int enter_seccomp(int memory)
+{
+    /* memory (a phase's child, which runs brdfbench's own code around the model's): brk,
+       munmap, mremap, madvise and mmap without PROT_EXEC too, for malloc; never mprotect,
+       so no page it writes becomes code. */
+    struct sock_filter f[] = {
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, arch)),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, HJ_AUDIT_ARCH, 1, 0),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_futex, 12, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit, 11, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_exit_group, 10, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, SYS_sched_yield, 9, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_brk : SYS_exit, 8, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_munmap : SYS_exit, 7, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_mremap : SYS_exit, 6, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_madvise : SYS_exit, 5, 0),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, memory ? SYS_mmap : SYS_exit, 1, 0),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+        /* mmap: not with PROT_EXEC (its third argument) */
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, args[2])),
+        BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, PROT_EXEC, 0, 1),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
+    };
+    struct sock_fprog prog = { (unsigned short)(sizeof f / sizeof f[0]), f };
+    if (prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0)
+        return -1;
+    return prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &prog);
+}
+
+/* A child's setup before it runs any of the model's code. */
+static void child_harden(pid_t parent, int memory)
+{
+    /* Die with brdfbench; take no signal handler of brdfbench's along; leave no core file. */
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent)
+        _exit(1);
+    for (int sig = 1; sig < NSIG; ++sig)
+        signal(sig, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
+    struct rlimit zero = { 0, 0 };
+    setrlimit(RLIMIT_CORE, &zero);
+    /* Every descriptor (the terminal, the run's output files, PoCL's) is closed: no system
+       call could reach one anyway, this makes it so twice. */
+    if (syscall(SYS_close_range, 0u, ~0u, 0u) != 0)
+        for (int k = 0; k < 65536; ++k)
+            close(k);
+    if (enter_seccomp(memory) != 0)
+        child_exit(1);
+}
+
+static _Noreturn void child_main(const struct hostjit *j, struct hj_shared *sh, pid_t parent)
+{
+    child_harden(parent, 0);
+    uint32_t seen = 0;
+    for (;;) {
+        uint32_t r;
+        int spins = 0;
+        while ((r = atomic_load_explicit(&sh->req, memory_order_acquire)) == seen) {
+            if (++spins < HJ_SPIN) {
+                hj_relax(spins);
+                continue;
+            }
+            atomic_store(&sh->child_sleeps, 1);
+            if (atomic_load(&sh->req) == seen)
+                hj_futex(&sh->req, FUTEX_WAIT, seen, NULL);
+            atomic_store(&sh->child_sleeps, 0);
+            spins = 0;
+        }
+        seen = r;
+        uint32_t count = sh->count > HJ_BATCH ? HJ_BATCH : sh->count;
+        size_t per = sh->kind == HJ_SCALAR ? 4 : 12;
+        for (uint32_t i = 0; i < count; ++i) {
+            const double *a = sh->args + i * per;
+            sh->vals[i] = sh->kind == HJ_SCALAR ? j->fn(a[0], a[1], a[2], a[3])
+                        : j->full ? j->full(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11])
+                                  : NAN;
+        }
+        atomic_store(&sh->done, r);
+        if (atomic_load(&sh->parent_sleeps))
+            hj_futex(&sh->done, FUTEX_WAKE, 1, NULL);
+    }
+}
+
+/* How the child ended, in j->why. */
+static void child_gone(struct hostjit *j)
+{
+    j->dead = 1;
+    int status = 0;
+    pid_t r;
+    do
+        r = waitpid(j->child, &status, 0);
+    while (r < 0 && errno == EINTR);
+    if (r == j->child && WIFSIGNALED(status))
+        snprintf(j->why, sizeof j->why, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
+                 strsignal(WTERMSIG(status)),
+                 WTERMSIG(status) == SIGSYS || WTERMSIG(status) == SIGKILL
+                     ? ": a system call, which the sandbox does not allow, or an outside kill"
+                 : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
+                     ? ": the model's code read or wrote memory outside its own variables"
+                     : "");
+    else if (r == j->child && WIFEXITED(status))
+        snprintf(j->why, sizeof j->why, "its process ended (status %d) instead of answering", WEXITSTATUS(status));
+    else
+        snprintf(j->why, sizeof j->why, "its process stopped answering");
+    j->child = 0;
+}
+
+static int start_child(struct hostjit *j)
+{
+    struct hj_shared *sh = mmap(NULL, sizeof *sh, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (sh == MAP_FAILED) {
+        snprintf(j->why, sizeof j->why, "no memory for its sandbox: %s", strerror(errno));
+        j->dead = 1;
+        return -1;
+    }
+    pid_t parent = getpid();
+    fflush(NULL);   /* no buffered output of brdfbench's is written twice */
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(j->why, sizeof j->why, "no process for its sandbox: %s", strerror(errno));
+        munmap(sh, sizeof *sh);
+        j->dead = 1;
+        return -1;
+    }
+    if (pid == 0)
+        child_main(j, sh, parent);
+    j->child = pid;
+    j->shared = sh;
+    return 0;
+}
+
+/* Waits for the child's answer to request r: spins, then sleeps 50 ms at a time, looking
+   between sleeps whether the child is still there. */
+static int wait_answer(struct hostjit *j, uint32_t r)
+{
+    struct hj_shared *sh = j->shared;
+    int spins = 0;
+    while (atomic_load_explicit(&sh->done, memory_order_acquire) != r) {
+        if (++spins < HJ_SPIN) {
+            hj_relax(spins);
+            continue;
+        }
+        spins = 0;
+        atomic_store(&sh->parent_sleeps, 1);
+        uint32_t d = atomic_load(&sh->done);
+        if (d != r) {
+            struct timespec ts = { 0, 50000000L };
+            hj_futex(&sh->done, FUTEX_WAIT, d, &ts);
+        }
+        atomic_store(&sh->parent_sleeps, 0);
+        int status;
+        pid_t w = waitpid(j->child, &status, WNOHANG);
+        if (w == j->child || (w < 0 && errno != EINTR)) {
+            /* gone: child_gone reads its status, so put it back in the way of waitpid */
+            j->dead = 1;
+            if (w == j->child) {
+                if (WIFSIGNALED(status))
+                    snprintf(j->why, sizeof j->why, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
+                             strsignal(WTERMSIG(status)),
+                             WTERMSIG(status) == SIGSYS || WTERMSIG(status) == SIGKILL
+                                 ? ": a system call, which the sandbox does not allow, or an outside kill"
+                             : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
+                                 ? ": the model's code read or wrote memory outside its own variables"
+                                 : "");
+                else
+                    snprintf(j->why, sizeof j->why, "its process ended (status %d) instead of answering",
+                             WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+                j->child = 0;
+            } else {
+                child_gone(j);
+            }
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Inside a phase's child (hostjit_isolated): the evaluations call the code directly, and
+   mark their progress in the block shared with brdfbench, whose deadline watches it. */
+struct hj_phase {
+    _Atomic uint64_t progress;
+    double c, n;
+    unsigned char out[];
+};
+static struct hj_phase *hj_inside;
+
+static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, size_t count, double *out)
+{
+    if (!j || j->dead)
+        return -1;
+    if (hj_inside) {
+        size_t per = kind == HJ_SCALAR ? 4 : 12;
+        for (size_t i = 0; i < count; ++i) {
+            const double *a = args + i * per;
+            hj_inside->c = kind == HJ_SCALAR ? a[0] : NAN;
+            hj_inside->n = kind == HJ_SCALAR ? a[1] : a[9];
+            atomic_fetch_add(&hj_inside->progress, 1);
+            out[i] = kind == HJ_SCALAR ? j->fn(a[0], a[1], a[2], a[3])
+                   : j->full ? j->full(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11])
+                             : NAN;
+        }
+        return 0;
+    }
+    if (!j->child && start_child(j) != 0)
+        return -1;
+    struct hj_shared *sh = j->shared;
+    size_t per = kind == HJ_SCALAR ? 4 : 12;
+    while (count) {
+        uint32_t now = count > HJ_BATCH ? HJ_BATCH : (uint32_t)count;
+        sh->kind = kind;
+        sh->count = now;
+        memcpy(sh->args, args, now * per * sizeof(double));
+        uint32_t r = ++j->seq;
+        atomic_store(&sh->req, r);
+        if (atomic_load(&sh->child_sleeps))
+            hj_futex(&sh->req, FUTEX_WAKE, 1, NULL);
+        if (wait_answer(j, r) != 0)
+            return -1;
+        memcpy(out, sh->vals, now * sizeof(double));
+        args += now * per;
+        out += now;
+        count -= now;
+    }
+    return 0;
+}
+
+static void describe_status(int status, char *why, size_t whylen)
+{
+    if (WIFSIGNALED(status))
+        snprintf(why, whylen, "its process was killed by signal %d (%s)%s", WTERMSIG(status),
+                 strsignal(WTERMSIG(status)),
+                 WTERMSIG(status) == SIGSYS || WTERMSIG(status) == SIGKILL
+                     ? ": a system call, which the sandbox does not allow, or an outside kill"
+                 : WTERMSIG(status) == SIGSEGV || WTERMSIG(status) == SIGBUS
+                     ? ": the model's code read or wrote memory outside its own variables"
+                     : "");
+    else
+        snprintf(why, whylen, "its process ended with status %d", WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+}
+
+int hostjit_isolated(void (*fn)(void *ctx, void *out), void *ctx, void *out, size_t outlen,
+                     void (*tick)(void *tctx, double c, double n), void *tctx, char *why, size_t whylen)
+{
+    size_t bytes = sizeof(struct hj_phase) + outlen;
+    struct hj_phase *ph = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (ph == MAP_FAILED) {
+        snprintf(why, whylen, "no memory for its sandbox: %s", strerror(errno));
+        return -1;
+    }
+    pid_t parent = getpid();
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(why, whylen, "no process for its sandbox: %s", strerror(errno));
+        munmap(ph, bytes);
+        return -1;
+    }
+    if (pid == 0) {
+        child_harden(parent, 1);
+        hj_inside = ph;
+        fn(ctx, ph->out);
+        child_exit(0);
+    }
+    /* Waits, looking every few milliseconds whether the child ended and whether it went on
+       to another value (tick: brdfbench's deadline counts from the last one). */
+    uint64_t seen = 0;
+    int status = 0, rc = -1;
+    long sleep_ns = 200000;
+    for (;;) {
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid)
+            break;
+        if (w < 0 && errno != EINTR) {
+            snprintf(why, whylen, "its process was lost: %s", strerror(errno));
+            munmap(ph, bytes);
+            return -1;
+        }
+        uint64_t p = atomic_load(&ph->progress);
+        if (p != seen && tick) {
+            seen = p;
+            tick(tctx, ph->c, ph->n);
+        }
+        struct timespec ts = { 0, sleep_ns };
+        nanosleep(&ts, NULL);
+        if (sleep_ns < 10000000L)
+            sleep_ns *= 2;
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        memcpy(out, ph->out, outlen);
+        rc = 0;
+    } else {
+        describe_status(status, why, whylen);
+    }
+    munmap(ph, bytes);
+    return rc;
+}
+
+int hostjit_eval_many(struct hostjit *j, const double *args, size_t count, double *out)
+{
+    return eval_in_child(j, HJ_SCALAR, args, count, out);
+}
+
+int hostjit_eval(struct hostjit *j, double c, double n, double p0, double p1, double *out)
+{
+    double a[4] = { c, n, p0, p1 };
+    return eval_in_child(j, HJ_SCALAR, a, 1, out);
+}
+
+int hostjit_eval_full(struct hostjit *j, const double args[12], double *out)
+{
+    return eval_in_child(j, HJ_FULL, args, 1, out);
+}
+
+const char *hostjit_failure(const struct hostjit *j) { return j && j->dead ? j->why : NULL; }
+
 void hostjit_free(struct hostjit *j)
 {
     if (!j)
         return;
+    if (j->child) {
+        kill(j->child, SIGKILL);
+        while (waitpid(j->child, NULL, 0) < 0 && errno == EINTR)
+            ;
+    }
+    if (j->shared)
+        munmap(j->shared, sizeof *j->shared);
     tcc_delete(j->tcc);
     free(j);
 }

@@ -35,5 +35,30 @@ typedef double (*hostjit_full_fn)(double lx, double ly, double lz, double vx, do
 hostjit_full_fn hostjit_full_function(const struct hostjit *j);
 void hostjit_free(struct hostjit *j);
 
+/* The sandbox. The compiled text is a user's code: the evaluations of a run go through a
+ * child process, forked on the first one, that has closed every descriptor and entered a
+ * seccomp filter (exit, futex, sched_yield: nothing else), so that a wild write, had one got
+ * past the parse check (usermodel_check_code), lands in the child's copy of memory and no
+ * system call can follow it. Requests and values, up to 512 at a time, pass through one
+ * shared block of memory, the only memory the two share (hostjit.c). Each returns 0, or -1 when the child is gone (a crash, a kill):
+ * hostjit_failure then says how, and every later call fails too. hostjit_function and
+ * hostjit_full_function call the code in this process, for tests only. */
+int hostjit_eval(struct hostjit *j, double c, double n, double p0, double p1, double *out);
+/* count values, args holding c, n, p0, p1 for each */
+int hostjit_eval_many(struct hostjit *j, const double *args, size_t count, double *out);
+/* args: L, V, N (3 each), n, p0, p1 */
+int hostjit_eval_full(struct hostjit *j, const double args[12], double *out);
+const char *hostjit_failure(const struct hostjit *j);
+/* A whole phase of brdfbench's own work that evaluates the model value after value (a
+ * search that asks for one point at a time, where a round trip per value would cost more
+ * than the formula): fn(ctx, out) runs in a forked child under the same filter, widened to
+ * the memory calls malloc needs (never PROT_EXEC), where the model's code is called
+ * directly; the outlen bytes it leaves in out come back to out, nothing else does. Every
+ * hostjit it uses must have been compiled before. tick(tctx, c, n), when given, is called
+ * in brdfbench whenever the child has gone on to another value (the deadline's mark).
+ * Returns 0, or -1 with why (the child's crash, a signal). */
+int hostjit_isolated(void (*fn)(void *ctx, void *out), void *ctx, void *out, size_t outlen,
+                     void (*tick)(void *tctx, double c, double n), void *tctx, char *why, size_t whylen);
+
 
 #endif

@@ -3,14 +3,17 @@
 #include "merl.h"
 
 #include "exitcodes.h"
+#include "infile.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define REAL double
 #define RSCALAR double
@@ -46,6 +49,11 @@ static void material_name(const char *path, char *name, size_t len)
     if (n > 7 && strcmp(base + n - 7, ".binary") == 0)
         n -= 7;
     snprintf(name, len, "%.*s", (int)(n < len ? n : len - 1), base);
+    /* a control character of a file name (a newline, ESC) never reaches a terminal, a table
+       or a heading as it is */
+    for (char *p = name; *p; ++p)
+        if ((unsigned char)*p < 0x20 || *p == 0x7f)
+            *p = '?';
 }
 
 /* Reads up to cap bytes of f into buf; the count read. */
@@ -64,9 +72,16 @@ static size_t read_all(FILE *f, unsigned char *buf, size_t cap)
 int merl_read(const char *path, struct merl_material *m, char *err, size_t errlen)
 {
     memset(m, 0, sizeof *m);
-    FILE *f = fopen(path, "rb");
+    /* A regular file only: a FIFO, /dev/stdin or a device would block or flood the read
+       (infile.h). */
+    char why[256];
+    int fd = infile_open(path, 0, NULL, why, sizeof why);
+    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
     if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s (expected a MERL .binary file)", path, strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        snprintf(err, errlen, "%s: cannot open: %s (expected a MERL .binary file)", path,
+                 fd >= 0 ? strerror(errno) : why);
         return EXIT_USAGE;
     }
     struct stat st;
@@ -89,8 +104,15 @@ int merl_read(const char *path, struct merl_material *m, char *err, size_t errle
     }
     uint32_t dims[3] = { le32(head), le32(head + 4), le32(head + 8) };
     if (dims[0] != MERL_TH || dims[1] != MERL_TD || dims[2] != MERL_PD) {
-        snprintf(err, errlen, "%s: dimensions %d %d %d (expected 90 90 180, product 1458000)", path, (int32_t)dims[0],
-                 (int32_t)dims[1], (int32_t)dims[2]);
+        /* The dimensions are said only where they look like a table's: the first bytes of
+           another kind of file (a text, a key) never reach the message, or a CI log. */
+        if (dims[0] >= 1 && dims[0] <= 100000 && dims[1] >= 1 && dims[1] <= 100000 && dims[2] >= 1 &&
+            dims[2] <= 100000)
+            snprintf(err, errlen, "%s: dimensions %d %d %d (expected 90 90 180, product 1458000)", path,
+                     (int32_t)dims[0], (int32_t)dims[1], (int32_t)dims[2]);
+        else
+            snprintf(err, errlen, "%s: not a MERL file: it does not begin with three table dimensions (expected "
+                     "90 90 180, product 1458000)", path);
         goto done;
     }
     size_t body_bytes = (size_t)(MERL_FILE_BYTES - 12);
@@ -128,6 +150,15 @@ int merl_read(const char *path, struct merl_material *m, char *err, size_t errle
                 snprintf(err, errlen, "%s: the %s block's cell %ld (theta_h %ld, theta_d %ld, phi_d %ld) is %s", path,
                          channel_name[c], i, i / (MERL_TD * MERL_PD), i / MERL_PD % MERL_TD, i % MERL_PD,
                          isnan(v) ? "NaN" : (v > 0 ? "+Inf" : "-Inf"));
+                goto done;
+            }
+            /* The device holds the table in float: a cell beyond float's range would be +Inf
+               there, and every figure made of it inf or NaN. */
+            if (!(fabs(v * merl_channel_scale[c]) <= FLT_MAX)) {
+                snprintf(err, errlen, "%s: the %s block's cell %ld (theta_h %ld, theta_d %ld, phi_d %ld) is %.3g, "
+                         "beyond float's range once scaled (accepted: |value x %g| <= %.4g)", path,
+                         channel_name[c], i, i / (MERL_TD * MERL_PD), i / MERL_PD % MERL_TD, i % MERL_PD, v,
+                         merl_channel_scale[c], (double)FLT_MAX);
                 goto done;
             }
             if (v < 0)

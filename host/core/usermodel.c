@@ -5,6 +5,7 @@
 #include "exitcodes.h"
 #include "infile.h"
 #include "mdbuf.h"
+#include "outdir.h"
 #include "shaderlang.h"
 #include "usermodel_check.h"
 
@@ -12,11 +13,13 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* The model ids (BRDF_USER); the header's functions are not used here. */
 #define REAL double
@@ -122,6 +125,19 @@ static void usermodel_fill_info(struct user_model *um)
     }
 }
 
+/* The host reference's sandbox (hostjit.h) lost its process: the model's code crashed it.
+   Its values are gone, so the run ends as at a runaway kernel: one line, the unfinished
+   outputs removed, exit 3. */
+static _Noreturn void host_reference_died(const struct user_model *um, double c, double n)
+{
+    fprintf(stderr, "brdfbench: the host reference of %s failed near c = %.9g, n = %.9g: %s; the run is "
+            "stopped and its unfinished outputs removed\n", um->what, c, n,
+            hostjit_failure(um->host) ? hostjit_failure(um->host) : "its sandbox failed");
+    outdir_remove_own();
+    fflush(NULL);
+    _exit(EXIT_RUNTIME);
+}
+
 /* ---- the runtime that the registry sees ----------------------------------------------- */
 
 #define UM_OF_RUNTIME(rt) ((struct user_model *)((char *)(rt) - offsetof(struct user_model, runtime)))
@@ -158,8 +174,10 @@ static double runtime_eval_full(const struct model_runtime *rt, const struct mod
     if (!usermodel_host_ready(um) || !hostjit_full_function(um->host))
         return NAN;
     usermodel_watch_begin(um, NAN, n);   /* the host reference's deadline (usermodel_check.h) */
-    double v = hostjit_full_function(um->host)(L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n,
-                                               spec->params[0], spec->params[1]);
+    double a[12] = { L[0], L[1], L[2], V[0], V[1], V[2], N[0], N[1], N[2], n, spec->params[0], spec->params[1] };
+    double v = NAN;
+    if (hostjit_eval_full(um->host, a, &v) != 0)
+        host_reference_died(um, NAN, n);
     usermodel_watch_end();
     return v;
 }
@@ -385,6 +403,11 @@ static int header_line(struct user_model *um, char *s, struct header_seen *h, co
     } else if (strcmp(key, "description") == 0) {
         if (h->description++)
             return file_fail(err, errlen, path, line, "'description' is declared twice");
+        /* one line of text: an escape sequence would drive the terminal of whoever lists it */
+        for (const char *c = value; *c; ++c)
+            if (((unsigned char)*c < 0x20 && *c != '\t') || *c == 0x7f)
+                return file_fail(err, errlen, path, line, "'description' holds a control character (accepted: "
+                                 "one line of printable text)");
         snprintf(um->description, sizeof um->description, "%s", value);
     } else if (strcmp(key, "param") == 0) {
         return parse_param_line(um, value, path, line, err, errlen, h->generated);
@@ -535,6 +558,9 @@ int usermodel_parse_file_text(const char *text, size_t len, const char *path, st
        header is a comment, which the scan skips. */
     if (!generated && (rc = usermodel_check_text(text, len, path, 1, err, errlen)) != 0)
         goto done;
+    /* No pointer, no memory but the model's own variables (usermodel_code.c). */
+    if (!generated && (rc = usermodel_check_code(text, len, path, 1, err, errlen)) != 0)
+        goto done;
     if (!seen.description)
         snprintf(um->description, sizeof um->description, "user model from %.200s", path);
     snprintf(um->formula, sizeof um->formula, "%s(c, n%s) in %.200s", um->function,
@@ -630,6 +656,8 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
         char what[USERMODEL_NAME_MAX + 16];
         snprintf(what, sizeof what, "--model %s", name);
         int r = usermodel_check_text(expr, elen, what, 0, err, errlen);
+        if (!r)
+            r = usermodel_check_code(expr, elen, what, 0, err, errlen);
         if (r)
             return r;
     }
@@ -798,6 +826,36 @@ int usermodel_load_file(const char *path, const struct user_model **out, char *e
     return 0;
 }
 
+/* ---- a phase in the sandbox ------------------------------------------------------------- */
+
+static void isolated_tick(void *tctx, double c, double n) { usermodel_watch_begin(tctx, c, n); }
+
+int usermodel_isolated(const struct model_spec *m, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                       size_t outlen)
+{
+    struct user_model *um = (struct user_model *)usermodel_of(m);
+    const char *off = getenv("BRDFBENCH_TEST_PHASE_IN_PROCESS");
+    if (!um || !usermodel_host_ready(um) || (off && strcmp(off, "1") == 0)) {
+        fn(ctx, out);
+        return 0;
+    }
+    /* one value first, in the per-value sandbox: the deadline's watcher thread starts here,
+       not in the child, which may start no thread */
+    (void)usermodel_eval_host(m, 1.0, 1.0);
+    char why[256];
+    usermodel_watch_begin(um, NAN, NAN);
+    int rc = hostjit_isolated(fn, ctx, out, outlen, isolated_tick, um, why, sizeof why);
+    usermodel_watch_end();
+    if (rc) {
+        fprintf(stderr, "brdfbench: the host reference of %s failed: %s; the run is stopped and its unfinished "
+                "outputs removed\n", um->what, why);
+        outdir_remove_own();
+        fflush(NULL);
+        _exit(EXIT_RUNTIME);
+    }
+    return 0;
+}
+
 /* ---- the reference on the device (fallback) -------------------------------------------- */
 
 int usermodel_reference_open(const struct user_model *cum, struct cl_session *s)
@@ -874,9 +932,30 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
     if (!um)
         return NAN;
     if (usermodel_host_ready(um)) {
+        /* The sandbox's round trip costs more than the formula: the value of a point asked
+           for again (a search asks for its best point twice, an error for the model's value
+           after its validity check) comes from a small cache of the last points. */
+        double key[4] = { c, n, m->params[0], m->params[1] };
+        uint64_t h = 1469598103934665603ull;
+        for (int k = 0; k < 4; ++k) {
+            uint64_t bits;
+            memcpy(&bits, &key[k], sizeof bits);
+            h = (h ^ bits) * 1099511628211ull;
+        }
+        struct usermodel_cached *e = &um->cache[(h >> 17) % USERMODEL_CACHE];
+        if (e->valid && memcmp(e->key, key, sizeof key) == 0) {
+            um->cache_hits++;
+            return e->value;
+        }
         usermodel_watch_begin(um, c, n);   /* the host reference's deadline (usermodel_check.h) */
-        double v = hostjit_function(um->host)(c, n, m->params[0], m->params[1]);
+        double v = NAN;
+        if (hostjit_eval(um->host, c, n, m->params[0], m->params[1], &v) != 0)
+            host_reference_died(um, c, n);
         usermodel_watch_end();
+        memcpy(e->key, key, sizeof key);
+        e->value = v;
+        e->valid = 1;
+        um->cache_misses++;
         return v;
     }
     if (!um->ref_point)

@@ -38,6 +38,7 @@
 #define USERMODEL_MAX_FILE (64 * 1024)
 #define USERMODEL_MAX_EXPR 1000            /* characters of a --model expression */
 #define USERMODEL_NAME_MAX 48
+#define USERMODEL_CACHE 64                 /* points of the host reference's value cache */
 
 struct user_model {
     struct model_info info;        /* first member: spec->info of a user model points here */
@@ -59,8 +60,11 @@ struct user_model {
     char what[600];                /* "user model 'NAME' (ORIGIN)", for messages */
     struct model_runtime runtime;  /* what the registry and host/core/programs.c use */
 
-    /* The reference on the host (hostjit.h), compiled on first use. */
+    /* The reference on the host (hostjit.h), compiled on first use, and the values of the
+       last points asked of it (usermodel_eval_host). */
     struct hostjit *host;
+    struct usermodel_cached { double key[4], value; int valid; } cache[USERMODEL_CACHE];
+    long long cache_hits, cache_misses;
     int host_tried;
     char host_error[512];          /* why the text does not compile as C */
 
@@ -131,5 +135,14 @@ const char *usermodel_reference_note(const struct user_model *um);
  * the device where the text is not C; NAN when that reference is not open (or the device
  * failed: reported once on stderr). */
 double usermodel_eval_host(const struct model_spec *m, double c, double n);
+
+/* Runs fn(ctx, out), a phase of work that evaluates model m's host reference value after
+ * value (a search), in the sandbox's child as a whole (hostjit_isolated), so that the phase
+ * costs no round trip per value; the outlen bytes of out come back. For a built-in model, or
+ * a user model evaluated on the device, fn runs here. A crash in the child ends the run as a
+ * crash of the per-value sandbox does (exit 3). BRDFBENCH_TEST_PHASE_IN_PROCESS=1 runs fn here
+ * always (scripts/bench_hostref_sandbox.sh compares the two). Returns 0. */
+int usermodel_isolated(const struct model_spec *m, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                       size_t outlen);
 
 #endif

@@ -27,6 +27,16 @@
  * EXIT_USAGE with the message (EXIT_RUNTIME when out of memory). */
 int usermodel_check_text(const char *text, size_t len, const char *what, int is_file, char *err, size_t errlen);
 
+/* Checks an OpenCL C model's text (a model file, a --model or gates-file expression) for
+ * what a lobe's formula has no use for and what would reach memory outside the model's own
+ * variables: pointers ('*' as a dereference or declarator, '&' as address-of, casts to a
+ * pointer type, '->'), arrays and subscripts, asm, volatile, sizeof, address spaces, string
+ * literals, calls of anything but a math built-in that takes no pointer or the model's own
+ * functions and macros, and directives other than #define, #undef, #if..., #pragma, #error
+ * (usermodel_code.c says how). Messages name PATH:LINE:COLUMN or "--model NAME:COLUMN".
+ * Returns 0, or EXIT_USAGE with the message (EXIT_RUNTIME when out of memory). */
+int usermodel_check_code(const char *text, size_t len, const char *what, int is_file, char *err, size_t errlen);
+
 /* A user model's name against every model known so far: two names that give one file name
  * (field_NAME.json and heatmap_NAME.png drop '_': x_y and xy; render's NAME_error.png and
  * NAME_contact.png: fq2_error and fq2) and render's own stems (contact, he_*) are refused.

@@ -6,6 +6,7 @@
 #include "refine.h"
 #include "brdf_shared.h"
 #include "room.h"
+#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -265,6 +266,26 @@ static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone 
     return e;
 }
 
+static void check_per_n(struct accuracy_result *r);
+
+/* The per-n figures in double (run by usermodel_isolated; out is r->per_n's copy to fill). */
+static void double_stage(void *ctx, void *out_v)
+{
+    struct accuracy_result *r = ctx;
+    struct acc_per_n *out = out_v;
+    check_per_n(r);
+    for (long i = 0; i < r->n_count; ++i) {
+        struct acc_per_n *p = &r->per_n[i];
+        /* A zone where the device met no valid model value has no figure: the double stage
+           does not search it on its own (a model can overflow in float and not in double). */
+        p->epi_rel_d = refine_one(r, ZONE_EPICENTRE, 1, p->n, p->epi_rel >= 0 ? p->epi_rel_s : NAN);
+        p->att_abs_d = refine_one(r, ZONE_ATTENUATION, 0, p->n, p->att_abs >= 0 ? p->att_abs_s : NAN);
+        p->epi_abs_d = refine_one(r, ZONE_EPICENTRE, 0, p->n, p->epi_abs >= 0 ? p->epi_abs_s : NAN);
+    }
+    if (out != r->per_n)
+        memcpy(out, r->per_n, (size_t)r->n_count * sizeof *out);
+}
+
 /* The largest of a per-n figure over the n grid. */
 static void range_max_double(const struct accuracy_result *r, size_t offset, struct acc_extreme *out)
 {
@@ -304,13 +325,21 @@ static double check_one(const struct accuracy_result *r, float value, float s, d
 /* Recomputes every per-n figure in double at the device's own inputs. */
 static void check_per_n(struct accuracy_result *r)
 {
-    r->check_rel_diff = r->check_abs_diff = 0;
     for (long i = 0; i < r->n_count; ++i) {
         struct acc_per_n *p = &r->per_n[i];
         p->ref_peak = fabs(model_eval_host(&r->reference, 1.0, p->n));
         p->chk_epi_rel = check_one(r, p->epi_rel, p->epi_rel_s, p->n, 1);
         p->chk_att_abs = check_one(r, p->att_abs, p->att_abs_s, p->n, 0);
         p->chk_epi_abs = check_one(r, p->epi_abs, p->epi_abs_s, p->n, 0);
+    }
+}
+
+/* The largest device-vs-double differences over n, from the per-n ones. */
+static void check_maxima(struct accuracy_result *r)
+{
+    r->check_rel_diff = r->check_abs_diff = 0;
+    for (long i = 0; i < r->n_count; ++i) {
+        const struct acc_per_n *p = &r->per_n[i];
         if (p->epi_rel >= 0 && !(p->chk_epi_rel <= r->check_rel_diff)) r->check_rel_diff = p->chk_epi_rel;
         if (p->att_abs >= 0 && !(p->chk_att_abs <= r->check_abs_diff)) r->check_abs_diff = p->chk_att_abs;
         if (p->epi_abs >= 0 && !(p->chk_epi_abs <= r->check_abs_diff)) r->check_abs_diff = p->chk_epi_abs;
@@ -496,15 +525,13 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
         }
     }
 
-    check_per_n(out);
-    for (long i = 0; i < count; ++i) {
-        struct acc_per_n *p = &out->per_n[i];
-        /* A zone where the device met no valid model value has no figure: the double stage
-           does not search it on its own (a model can overflow in float and not in double). */
-        p->epi_rel_d = refine_one(out, ZONE_EPICENTRE, 1, p->n, p->epi_rel >= 0 ? p->epi_rel_s : NAN);
-        p->att_abs_d = refine_one(out, ZONE_ATTENUATION, 0, p->n, p->att_abs >= 0 ? p->att_abs_s : NAN);
-        p->epi_abs_d = refine_one(out, ZONE_EPICENTRE, 0, p->n, p->epi_abs >= 0 ? p->epi_abs_s : NAN);
+    /* The double stage asks a user model for one value at a time: it runs as one phase in
+       the host reference's sandbox (usermodel_isolated), which hands back the per-n figures. */
+    if (usermodel_isolated(&out->model, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
     }
+    check_maxima(out);
     struct acc_extreme epi_abs, grid_epi_abs;
     range_max_double(out, offsetof(struct acc_per_n, epi_rel_d), &out->epicentre);
     range_max_double(out, offsetof(struct acc_per_n, att_abs_d), &out->attenuation);

@@ -139,6 +139,10 @@ struct compare_set {
     int ndevices;
     /* counts after compare_evaluate */
     int rows_in_all, rows_in_some;
+    /* rows by (kind, device, key, metric) while files are read: an open-addressing table of
+       row indices + 1 (0: empty), rebuilt when nrows changed behind it (compare.c) */
+    int *index;
+    int index_cap, index_n;
 };
 
 /* Reads the runs at paths[0..npaths) (the first is the baseline). Returns 0, or 2 with a

@@ -617,8 +617,21 @@ static int chart_fill(const struct compare_set *set, struct chart_data *d)
     return 0;
 }
 
+/* The most bars a verdict chart draws (draw_compare.cpp): past it the chart would be
+   unreadable and is not drawn, with a note, while the tables hold every row. */
+#define CHART_MAX_BARS 20000
+
 static int write_chart(const struct compare_set *set, const char *path, char *err, size_t errlen)
 {
+    if (set->nrows > 0 && (long)set->nrows * set->nruns > CHART_MAX_BARS) {
+        fprintf(stderr, "brdfbench compare: note: %d rows in %d runs are more than the %d bars a chart shows: no "
+                "compare.png (compare.md, .csv and .json hold every row)\n", set->nrows, set->nruns, CHART_MAX_BARS);
+        if (unlink(path) != 0 && errno != ENOENT) {
+            snprintf(err, errlen, "%s: cannot remove the chart of an earlier compare: %s", path, strerror(errno));
+            return -1;
+        }
+        return 0;
+    }
     if (set->nrows == 0) {
         /* nothing to chart: no chart, and none of an earlier compare left beside this one's tables */
         if (unlink(path) != 0 && errno != ENOENT) {

@@ -317,6 +317,9 @@ void compare_free(struct compare_set *set)
         for (int k = 0; k < CMP_MAX_RUNS; ++k)
             free(set->rows[i].cell[k].reps), free(set->rows[i].cell[k].norm);
     free(set->rows);
+    free(set->index);
+    set->index = NULL;
+    set->index_cap = set->index_n = 0;
     set->rows = NULL;
     set->nrows = set->cap = 0;
 }

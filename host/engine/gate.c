@@ -218,6 +218,15 @@ static int gate_metric(const struct jr_doc *d, const struct jr_value *gv, const 
                        where);
     if (v && (!v->str[0] || resolve_path(g->measured_path, sizeof g->measured_path, base_dir, v->str)))
         return jr_fail(d, v, err, errlen, "%s\"measured\" is empty or too long", where);
+    /* A gates file reads only the materials of its own folder, as it runs only the model
+       files there: a CI's gates file from a pull request may not read /etc/passwd into the log. */
+    struct stat st;
+    if (v && !outside_allowed && stat(g->measured_path, &st) == 0 &&
+        !lies_inside(g->measured_path, base_dir && *base_dir ? base_dir : "."))
+        return jr_fail(d, v, err, errlen,
+                       "%s\"measured\" '%.200s' lies outside the gates file's folder %s; a gates file reads only "
+                       "the materials in its own folder (--allow-outside-model-files lifts this)", where, v->str,
+                       base_dir && *base_dir ? base_dir : ".");
     return 0;
 }
 

@@ -74,6 +74,7 @@ struct measured_slice {
 
 struct measured_material {
     char name[256], path[4096];
+    char stem[300];                       /* its pictures' name part, unique in the run (measured_run) */
     long cells, unmeasured, negative[3];
     long below_horizon;                   /* measured cells whose L or V lies below the surface */
     long used_cells, fit_cells;

@@ -161,7 +161,10 @@ void measured_print(FILE *f, const struct measured_report *r)
 static int plots_of(const char *dir, const struct measured_material *m, char *err, size_t errlen)
 {
     char fname[300], file[400], path[4500];
-    measured_file_name(m->name, fname, sizeof fname);
+    if (m->stem[0])
+        snprintf(fname, sizeof fname, "%s", m->stem);
+    else
+        measured_file_name(m->name, fname, sizeof fname);
 
     /* each lobe: its error against the material (y) beside its error against Blinn-Phong (x) */
     double x[MEASURED_MAX_LOBES], y[MEASURED_MAX_LOBES];
@@ -238,8 +241,10 @@ void measured_markdown(struct md_buf *md, const struct measured_report *r)
         const struct measured_material *m = &r->materials[i];
         const struct measured_fit *bp = &m->fit[MFIT_BLINN], *be = &m->fit[MFIT_CT_BECKMANN],
                                   *gg = &m->fit[MFIT_CT_GGX];
-        md_printf(md, "### %s\n\n%ld cells used (%ld unmeasured, %ld below the surface); device lookup %s.\n\n",
-                  m->name, m->used_cells, m->unmeasured, m->below_horizon,
+        md_printf(md, "### ");
+        md_text(md, m->name);   /* a file's name: no markdown or HTML of its own */
+        md_printf(md, "\n\n%ld cells used (%ld unmeasured, %ld below the surface); device lookup %s.\n\n",
+                  m->used_cells, m->unmeasured, m->below_horizon,
                   m->device_points == 0 ? "not run" : m->device_ok ? "ok at every cell" : "**disagrees**");
         md_printf(md, "| fit | parameters | RMS error |\n|---|---|---|\n");
         md_printf(md, "| blinn-phong | n = %.5g, ks = %.5g, kd = %.5g | %.4g |\n", bp->n, bp->ks, bp->kd, bp->rms);
@@ -253,9 +258,12 @@ void measured_markdown(struct md_buf *md, const struct measured_report *r)
             md_printf(md, "| %s | %.5g | %.5g | %.4g |\n", lb->spec.label, lb->err_measured, lb->err_phong, lb->ratio);
         }
         char fname[300];
-        measured_file_name(m->name, fname, sizeof fname);
+        if (m->stem[0])
+            snprintf(fname, sizeof fname, "%s", m->stem);
+        else
+            measured_file_name(m->name, fname, sizeof fname);
         md_printf(md, "\n![%s: each lobe's error against the material and against Blinn-Phong](measured_errors_%s.png)"
                       "\n\n![%s: the measured slice with the fitted curves](measured_slice_%s.png)\n\n",
-                  m->name, fname, m->name, fname);
+                  fname, fname, fname, fname);
     }
 }

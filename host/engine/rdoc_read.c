@@ -602,6 +602,14 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
         rdoc_free(d);
         return 2;
     }
+    for (int i = 0; i < d->nrows; ++i)
+        if (d->rows[i].truncated) {
+            snprintf(err, errlen, "%s: row '%.60s...': its keys do not fit (at most %d keys, a label and each key of "
+                     "at most %d bytes): two distinct rows could read as one", j->name, d->rows[i].label, RD_MAX_KEYS,
+                     RD_TEXT - 1);
+            rdoc_free(d);
+            return 2;
+        }
     return 0;
 }
 

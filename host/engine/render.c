@@ -159,7 +159,8 @@ static int run_check(struct cl_session *s, const struct render_options *o, char 
 static int stage_open(const char *out_dir, char *stage, size_t stage_len, char *err, size_t errlen)
 {
     stage[0] = '\0';
-    if (outdir_prepare(out_dir, NULL, err, errlen) != 0)
+    /* one run writes a folder at a time (outdir_lock): a second render there is refused */
+    if (outdir_prepare(out_dir, NULL, err, errlen) != 0 || outdir_lock(out_dir, "--out", err, errlen) != 0)
         return EXIT_RUNTIME;
     char name[64];
     snprintf(name, sizeof name, ".render-staging-%ld", (long)getpid());

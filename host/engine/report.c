@@ -262,6 +262,15 @@ static int images_block(struct md_buf *b, struct report_input *in, char *err, si
     return 0;
 }
 
+/* A picture's file name that can stand as a markdown link target and alt text as it is. */
+static int safe_link(const char *f)
+{
+    for (const char *p = f; *p; ++p)
+        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || strchr("._-/", *p)))
+            return 0;
+    return *f != '\0';
+}
+
 static void pictures(struct md_buf *b, const struct report_input *in, int section)
 {
     int any = 0;
@@ -270,15 +279,19 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
         if (p->section != section) continue;
         any = 1;
         if (p->not_drawn[0]) {
-            md_printf(b, "Not drawn, `%s`: ", p->file);
+            md_printf(b, "Not drawn, ");
+            md_code(b, p->file);
+            md_printf(b, ": ");
             md_cell_text(b, p->not_drawn);
             md_printf(b, "\n\n");
-        } else if (file_exists(in->run_dir, p->file)) {
+        } else if (file_exists(in->run_dir, p->file) && safe_link(p->file)) {
             md_printf(b, "![%s](%s)\n\n*", p->file, p->file);
             md_cell_text(b, p->caption);
             md_printf(b, "*\n\n");
         } else {
-            md_printf(b, "Picture `%s` was not written (see the run's error output): ", p->file);
+            md_printf(b, "Picture ");
+            md_code(b, p->file);
+            md_printf(b, " was not written, or its name is no plain file name (see the run's error output): ");
             md_cell_text(b, p->caption);
             md_printf(b, "\n\n");
         }
@@ -291,8 +304,11 @@ static void header(struct md_buf *b, const struct report_input *in)
     const struct report_run_doc *run = &in->run;
     md_printf(b, "# brdfbench report\n\n");
     md_printf(b, "| | |\n|---|---|\n");
-    md_printf(b, "| command | `%s` |\n", run->command);
-    md_printf(b, "| date (UTC) | %s |\n", run->date);
+    md_printf(b, "| command | ");
+    md_code(b, run->command);
+    md_printf(b, " |\n| date (UTC) | ");
+    md_cell_text(b, run->date);
+    md_printf(b, " |\n");
     if (run->device) {
         md_printf(b, "| OpenCL device | ");
         md_cell_text(b, run->device);
@@ -303,7 +319,9 @@ static void header(struct md_buf *b, const struct report_input *in)
     md_printf(b, "| host CPU | ");
     md_cell_text(b, run->host_cpu);
     md_printf(b, " |\n");
-    md_printf(b, "| git revision | `%s` |\n", run->git_revision);
+    md_printf(b, "| git revision | ");
+    md_code(b, run->git_revision);
+    md_printf(b, " |\n");
     if (run->wall_seconds >= 0) md_printf(b, "| wall time | %.1f s |\n", run->wall_seconds);
     static const struct { const char *file, *what; } data[] = {
         {"run.json", "what this page is made from with the files below (`brdfbench report` rebuilds it)"},
@@ -324,9 +342,14 @@ static void header(struct md_buf *b, const struct report_input *in)
     md_printf(b, "\nData files beside this page:");
     for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
         if (file_exists(in->run_dir, data[i].file)) md_printf(b, " `%s`: %s;", data[i].file, data[i].what);
-    md_printf(b, " `field_<model>.json`: every heatmap's grid. `brdfbench plot %s` redraws the plots and heatmaps "
-                 "from them without recomputing.\n\n",
-              run->folder);
+    md_printf(b, " `field_<model>.json`: every heatmap's grid. ");
+    {
+        /* the folder as the user named it: inline code, whatever it holds */
+        char cmd[4200];
+        snprintf(cmd, sizeof cmd, "brdfbench plot %s", run->folder);
+        md_code(b, cmd);
+    }
+    md_printf(b, " redraws the plots and heatmaps from them without recomputing.\n\n");
 }
 
 static void steps(struct md_buf *b, const struct report_input *in)
@@ -335,11 +358,15 @@ static void steps(struct md_buf *b, const struct report_input *in)
     md_printf(b, "Steps:\n\n");
     for (size_t i = 0; i < st->count; i++) {
         const struct jr_value *s = &st->items[i];
-        if (strcmp(jr_str_or(s, "status", ""), "ok") == 0)
-            md_printf(b, "%zu. **%s**: %s (%.1f s)\n", i + 1, jr_str_or(s, "name", ""), jr_str_or(s, "message", ""),
-                      num_at(s, NULL, "seconds"));
-        else
-            md_printf(b, "%zu. **%s**: failed (exit %d)\n", i + 1, jr_str_or(s, "name", ""), (int)num_at(s, NULL, "exit_code"));
+        md_printf(b, "%zu. **", i + 1);
+        md_text(b, jr_str_or(s, "name", ""));
+        md_printf(b, "**: ");
+        if (strcmp(jr_str_or(s, "status", ""), "ok") == 0) {
+            md_text(b, jr_str_or(s, "message", ""));
+            md_printf(b, " (%.1f s)\n", num_at(s, NULL, "seconds"));
+        } else {
+            md_printf(b, "failed (exit %d)\n", (int)num_at(s, NULL, "exit_code"));
+        }
     }
     md_printf(b, "%zu. **report**: report.md\n\n", st->count + 1);
 }

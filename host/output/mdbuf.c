@@ -74,11 +74,53 @@ void md_csv_text(struct md_buf *b, const char *s)
 
 void md_cell_text(struct md_buf *b, const char *s)
 {
+    /* HTML's own characters as entities (a file name "<img onerror=...>" stays text), control
+       characters (newlines, ESC) as spaces */
     for (; s && *s; s++) {
-        if (*s == '|') md_printf(b, "\\|");
-        else if (*s == '\n') md_printf(b, " ");
+        unsigned char c = (unsigned char)*s;
+        if (c == '|') md_printf(b, "\\|");
+        else if (c < 0x20 || c == 0x7f) md_printf(b, " ");
+        else if (c == '<') md_printf(b, "&lt;");
+        else if (c == '>') md_printf(b, "&gt;");
+        else if (c == '&') md_printf(b, "&amp;");
         else md_printf(b, "%c", *s);
     }
+}
+
+void md_text(struct md_buf *b, const char *s)
+{
+    for (; s && *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c < 0x20 || c == 0x7f) md_printf(b, " ");
+        else if (c == '<') md_printf(b, "&lt;");
+        else if (c == '>') md_printf(b, "&gt;");
+        else if (c == '&') md_printf(b, "&amp;");
+        else if (strchr("\\`*_[]#!|{}", c)) md_printf(b, "\\%c", c);
+        else md_printf(b, "%c", *s);
+    }
+}
+
+void md_code(struct md_buf *b, const char *s)
+{
+    /* a fence one backtick longer than the longest run inside; a space pads a text that
+       begins or ends with a backtick */
+    int longest = 0, run = 0;
+    size_t n = s ? strlen(s) : 0;
+    for (size_t i = 0; i < n; ++i) {
+        run = s[i] == '`' ? run + 1 : 0;
+        if (run > longest) longest = run;
+    }
+    char fence[16];
+    int f = longest + 1 < (int)sizeof fence - 1 ? longest + 1 : (int)sizeof fence - 1;
+    memset(fence, '`', (size_t)f);
+    fence[f] = '\0';
+    int pad = n && (s[0] == '`' || s[n - 1] == '`');
+    md_printf(b, "%s%s", fence, pad ? " " : "");
+    for (size_t i = 0; i < n; ++i) {
+        unsigned char c = (unsigned char)s[i];
+        md_printf(b, "%c", c < 0x20 || c == 0x7f ? ' ' : s[i]);
+    }
+    md_printf(b, "%s%s", pad ? " " : "", fence);
 }
 
 void md_embed(struct md_buf *b, const char *page)

@@ -16,8 +16,16 @@ void md_init(struct md_buf *b);
 void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Appends n bytes of text as they are. */
 void md_append(struct md_buf *b, const char *text, size_t n);
-/* Text for a markdown table cell: '|' escaped, line breaks as spaces (NULL: nothing). */
+/* Text for a markdown table cell: '|' escaped, '<', '>', '&' as HTML entities, control
+ * characters (line breaks, ESC) as spaces (NULL: nothing). */
 void md_cell_text(struct md_buf *b, const char *s);
+/* Text a file or a name brings, as plain text in a markdown paragraph or heading: markdown's
+ * own characters (\ ` * _ [ ] # ! | { }) backslash-escaped, HTML's as entities, control
+ * characters as spaces. */
+void md_text(struct md_buf *b, const char *s);
+/* The same as inline code: in backticks (more of them than any run inside), control
+ * characters as spaces; nothing in it is markdown or HTML. */
+void md_code(struct md_buf *b, const char *s);
 /* Appends a markdown page as a section of another: its title line (# ...) is dropped and
  * every other heading goes one level down. */
 void md_embed(struct md_buf *b, const char *page);

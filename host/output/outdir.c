@@ -13,7 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -274,6 +276,21 @@ int outdir_prepare(const char *dir, const char *arg, char *err, size_t errlen)
     }
     if (folder_usable(dir, arg, sep, err, errlen))
         return -1;
+    /* the user's --out: one run writes it at a time */
+    if (strcmp(arg, "--out") == 0 && outdir_lock(dir, arg, err, errlen) != 0)
+        return -1;
+    /* a folder of `brdfbench all` (its run.json) holds one run: another command's files there
+       would be reported under all's command line, mixed with all's own */
+    if (strcmp(arg, "--out") == 0) {
+        char runjson[OUTDIR_PATH_MAX + 16];
+        struct stat st;
+        if (snprintf(runjson, sizeof runjson, "%s/run.json", dir) < (int)sizeof runjson && lstat(runjson, &st) == 0) {
+            snprintf(err, errlen, "%s: %s is a run folder of `brdfbench all` (it holds run.json); another command's "
+                     "results there would be reported as that run's (accepted: a new folder, or `all --out` "
+                     "again)", arg, dir);
+            return -1;
+        }
+    }
     outdir_confine(dir);
     return 0;
 }
@@ -333,12 +350,75 @@ int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err
     return -1;
 }
 
+/* The process holding an flock on the file of inode ino on device dev, from /proc/locks; 0 when
+   it cannot be told. */
+static long flock_holder(dev_t dev, ino_t ino)
+{
+    FILE *f = fopen("/proc/locks", "r");
+    if (!f)
+        return 0;
+    char line[256];
+    long holder = 0;
+    while (!holder && fgets(line, sizeof line, f)) {
+        char kind[16], mode[16], rw[16];
+        long pid;
+        unsigned maj, min;
+        unsigned long long in;
+        if (sscanf(line, "%*d: %15s %15s %15s %ld %x:%x:%llu", kind, mode, rw, &pid, &maj, &min, &in) == 7 &&
+            strcmp(kind, "FLOCK") == 0 && in == (unsigned long long)ino && maj == major(dev) && min == minor(dev))
+            holder = pid;
+    }
+    fclose(f);
+    return holder;
+}
+
+/* The folders this process holds (an flock is per open descriptor: a second one of the same
+   folder here would refuse this process itself). */
+#define LOCKS_MAX 64
+static struct { dev_t dev; ino_t ino; } locks_held[LOCKS_MAX];
+static int nlocks_held;
+
+int outdir_lock(const char *dir, const char *arg, char *err, size_t errlen)
+{
+    /* the descriptor stays open, and the lock held, until the process ends */
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0)
+        return 0;   /* no folder yet: nothing to hold */
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        close(fd);
+        return 0;
+    }
+    for (int i = 0; i < nlocks_held; ++i)
+        if (locks_held[i].dev == st.st_dev && locks_held[i].ino == st.st_ino) {
+            close(fd);
+            return 0;
+        }
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
+        if (nlocks_held < LOCKS_MAX) {
+            locks_held[nlocks_held].dev = st.st_dev;
+            locks_held[nlocks_held++].ino = st.st_ino;
+        }
+        return 0;
+    }
+    long holder = flock_holder(st.st_dev, st.st_ino);
+    close(fd);
+    if (holder > 0)
+        snprintf(err, errlen, "%s: %s is being written by another run (process %ld); wait for it to end or choose "
+                 "another folder", arg ? arg : "run folder", dir, holder);
+    else
+        snprintf(err, errlen, "%s: %s is being written by another run; wait for it to end or choose another folder",
+                 arg ? arg : "run folder", dir);
+    return -1;
+}
+
 int outdir_for_command(const char *out_dir, char *run_dir, size_t run_dir_len, char *err, size_t errlen)
 {
     if (!out_dir)
         return outdir_new_run("results", run_dir, run_dir_len, err, errlen);
     if (outdir_prepare(out_dir, "--out", err, errlen) != 0)
         return -1;
+
     snprintf(run_dir, run_dir_len, "%s", out_dir);
     return 0;
 }
@@ -424,6 +504,77 @@ static int check_run_folder(const char *dir, const char *arg, char *err, size_t 
     }
     closedir(d);
     return rc;
+}
+
+static void remove_tree(const char *path);
+static void remove_tree_at_path(const char *path) { remove_tree(path); }
+
+/* Is process pid a brdfbench (the same program as this one)? A staging folder whose process
+   is gone, or whose id now belongs to another program, is stale. */
+static int same_program_alive(long pid)
+{
+    if (kill((pid_t)pid, 0) != 0 && errno != EPERM)
+        return 0;
+    char self[PATH_MAX], other[PATH_MAX], link[64];
+    ssize_t a = readlink("/proc/self/exe", self, sizeof self - 1);
+    snprintf(link, sizeof link, "/proc/%ld/exe", pid);
+    ssize_t b = readlink(link, other, sizeof other - 1);
+    if (a <= 0 || b <= 0)
+        return 1;   /* no /proc to tell: a live process is taken as a run */
+    self[a] = other[b] = '\0';
+    return strcmp(self, other) == 0;
+}
+
+/* Other runs staging the same folder: the staging folders named like this run's (PREFIX then a
+   process id) in dir. A stale one (its process gone: a run killed by SIGKILL) is removed, with
+   a note; a live one that began before this run's (or at the same time, with a lower process
+   id) holds the folder: its id goes to *holder and 1 is returned. */
+static int other_stager(const char *dir, const char *prefix, const char *mine, long *holder)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    struct stat ms;
+    char mine_path[OUTDIR_PATH_MAX];
+    int made = snprintf(mine_path, sizeof mine_path, "%s/%s", dir, mine);
+    if (made < 0 || (size_t)made >= sizeof mine_path || stat(mine_path, &ms) != 0) {
+        closedir(d);
+        return 0;
+    }
+    int held = 0;
+    size_t pl = strlen(prefix);
+    long my_pid = (long)getpid();
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        if (strncmp(e->d_name, prefix, pl) != 0 || !e->d_name[pl] || strcmp(e->d_name, mine) == 0)
+            continue;
+        char *end = NULL;
+        long pid = strtol(e->d_name + pl, &end, 10);
+        if (!end || *end || pid <= 0)
+            continue;
+        char path[OUTDIR_PATH_MAX];
+        if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= sizeof path)
+            continue;
+        struct stat os;
+        if (lstat(path, &os) != 0 || !S_ISDIR(os.st_mode))
+            continue;
+        if (!same_program_alive(pid)) {
+            fprintf(stderr, "brdfbench: note: removed %s, the unfinished folder of an earlier run that was stopped "
+                    "(process %ld)\n", path, pid);
+            remove_tree_at_path(path);
+            continue;
+        }
+        /* the earlier staging folder holds the run folder */
+        int earlier = os.st_ctim.tv_sec < ms.st_ctim.tv_sec ||
+                      (os.st_ctim.tv_sec == ms.st_ctim.tv_sec && (os.st_ctim.tv_nsec < ms.st_ctim.tv_nsec ||
+                                                                  (os.st_ctim.tv_nsec == ms.st_ctim.tv_nsec &&
+                                                                   pid < my_pid)));
+        if (earlier) {
+            *holder = pid;
+            held = 1;
+        }
+    }
+    closedir(d);
+    return held;
 }
 
 int outdir_stage_begin(const char *final_dir, const char *arg, char *stage, size_t stagelen, char *err,
@@ -532,6 +683,32 @@ int outdir_stage_begin(const char *final_dir, const char *arg, char *stage, size
     if (mkdir_own(stage_dir) != 0) {
         snprintf(err, errlen, "%s: cannot create folder %s: %s", arg, stage_dir, strerror(errno));
         return 3;
+    }
+    if (!stage_inside && outdir_lock(fin, arg, err, errlen) != 0) {
+        remove_tree_at_path(stage_dir);
+        return 2;
+    }
+    /* Two runs into one folder at once: the later one is refused (only one run's files could
+       remain, and both would say "written"); a staging folder left by a killed run is removed. */
+    {
+        char sdir[OUTDIR_PATH_MAX], prefix[OUTDIR_PATH_MAX];
+        const char *sl = strrchr(stage_dir, '/');
+        const char *sname = sl ? sl + 1 : stage_dir;
+        if (sl == stage_dir)
+            snprintf(sdir, sizeof sdir, "/");
+        else if (sl)
+            snprintf(sdir, sizeof sdir, "%.*s", (int)(sl - stage_dir), stage_dir);
+        else
+            snprintf(sdir, sizeof sdir, ".");
+        const char *dash = strrchr(sname, '-');
+        snprintf(prefix, sizeof prefix, "%.*s", dash ? (int)(dash - sname + 1) : 0, sname);
+        long holder = 0;
+        if (dash && other_stager(sdir, prefix, sname, &holder)) {
+            remove_tree_at_path(stage_dir);
+            snprintf(err, errlen, "%s: %s is being written by another run (process %ld); wait for it to end or "
+                     "choose another folder", arg, final_dir, holder);
+            return 2;
+        }
     }
     outdir_confine(stage_dir);
     snprintf(stage_final, sizeof stage_final, "%s", fin);

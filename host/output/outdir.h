@@ -50,6 +50,10 @@ int outdir_new_run(const char *results_root, char *out, size_t outlen, char *err
 /* The folder a command writes into: out_dir (--out) prepared as it is, or when out_dir is NULL
  * a new run folder under "results". Its path goes to run_dir. Returns 0, or -1 with a message. */
 int outdir_for_command(const char *out_dir, char *run_dir, size_t run_dir_len, char *err, size_t errlen);
+/* Holds an exclusive flock on folder dir until the process ends, so that two runs never write
+ * one --out at once (outdir_for_command and outdir_stage_begin take it). Returns 0 (also when
+ * dir does not exist), or -1 with "ARG: DIR is being written by another run (process PID)". */
+int outdir_lock(const char *dir, const char *arg, char *err, size_t errlen);
 /* Points results_root/latest at run_dir (atomically: a new link renamed over the old). */
 int outdir_set_latest(const char *results_root, const char *run_dir, char *err, size_t errlen);
 

@@ -99,11 +99,14 @@ struct rd_row *rdoc_row(struct rdoc *d, const char *device, const char *model)
 
 static struct rd_key *add_key(struct rd_row *r, const char *name, const char *value)
 {
-    if (r->nkeys == RD_MAX_KEYS)
+    if (r->nkeys == RD_MAX_KEYS) {
+        r->truncated = 1;
         return NULL;
+    }
     struct rd_key *k = &r->keys[r->nkeys++];
-    snprintf(k->name, sizeof k->name, "%s", name);
-    snprintf(k->value, sizeof k->value, "%s", value ? value : "");
+    if ((size_t)snprintf(k->name, sizeof k->name, "%s", name) >= sizeof k->name ||
+        (size_t)snprintf(k->value, sizeof k->value, "%s", value ? value : "") >= sizeof k->value)
+        r->truncated = 1;
     return k;
 }
 
@@ -116,7 +119,9 @@ void rd_row_key(struct rd_row *r, const char *name, const char *prefix, const ch
         return;
     k->in_label = 1;
     size_t n = strlen(r->label);
-    snprintf(r->label + n, sizeof r->label - n, "%s%s%s", n ? " | " : "", prefix ? prefix : "", k->value);
+    if ((size_t)snprintf(r->label + n, sizeof r->label - n, "%s%s%s", n ? " | " : "", prefix ? prefix : "",
+                         k->value) >= sizeof r->label - n)
+        r->truncated = 1;
 }
 
 void rd_row_fail(struct rd_row *r, const char *status, const char *reason)
@@ -385,13 +390,48 @@ static int figure_ok(const struct jr_doc *j, const struct jr_value *v, const cha
                    timed ? "a rate in [0, 1e+18]" : "a number in [-1e+100, 1e+100]");
 }
 
+/* An error figure (the last part of the metric's name: max_rel, max_abs, rmse, ...) is never
+   negative, as in the result files it stands for (compare_check.c): -1 would read as "better". */
+static int is_error_metric(const char *name)
+{
+    static const char *const errs[] = { "max_rel", "max_abs", "rmse", "mean_abs", "max_abs_whole", NULL };
+    const char *last = strrchr(name, '.');
+    last = last ? last + 1 : name;
+    for (int i = 0; errs[i]; ++i)
+        if (strcmp(last, errs[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* A text of the document that reaches the terminal or a table: one line, no control
+   character (an escape sequence would drive the terminal). */
+static int text_ok(const struct jr_doc *j, const struct jr_value *v, const char *key, char *err, size_t errlen)
+{
+    if (!v || v->type != JR_STR)
+        return 0;
+    for (const char *p = v->str; *p; ++p)
+        if ((unsigned char)*p < 0x20 || *p == 0x7f)
+            return jr_fail(j, v, err, errlen, "\"%.40s\" holds %s (accepted: one line of text without control "
+                           "characters, as brdfbench writes it)", key,
+                           *p == '\n' ? "a newline" : *p == 0x1b ? "an escape character" : "a control character");
+    return 0;
+}
+
 /* The metric's numbers, and its unit as one line of table-safe text. */
 static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int timed, char *err, size_t errlen)
 {
     static const char *const figures[] = { "value", "min", "max" };
-    for (size_t k = 0; k < sizeof figures / sizeof figures[0]; ++k)
-        if (figure_ok(j, jr_get(mo, figures[k]), figures[k], timed, err, errlen))
+    const char *name = jr_str_or(mo, "name", "");
+    if (text_ok(j, jr_get(mo, "name"), "name", err, errlen))
+        return 2;
+    for (size_t k = 0; k < sizeof figures / sizeof figures[0]; ++k) {
+        const struct jr_value *v = jr_get(mo, figures[k]);
+        if (figure_ok(j, v, figures[k], timed, err, errlen))
             return 2;
+        if (v && v->type == JR_NUM && !timed && is_error_metric(name) && !(v->num >= 0))
+            return jr_fail(j, v, err, errlen, "\"%s\" of %.60s is %.6g (accepted: an error in [0, 1e+100], or null "
+                           "when not measured)", figures[k], name, v->num);
+    }
     static const char *const arrays[] = { "reps", "normalised_reps" };
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
         const struct jr_value *a = jr_get(mo, arrays[k]);
@@ -463,6 +503,16 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
                 rd_row_attr(r, o->keys[k], o->items[k].str);
         }
     }
+    static const char *const texts[] = { "row", "status", "reason", "model", "device" };
+    for (size_t t = 0; t < sizeof texts / sizeof texts[0]; ++t)
+        if (text_ok(j, jr_get(ro, texts[t]), texts[t], err, errlen))
+            return 2;
+    for (int in_label = 1; in_label >= 0; --in_label) {
+        const struct jr_value *o = in_label ? keys : attrs;
+        for (size_t k = 0; o && o->type == JR_OBJ && k < o->count; ++k)
+            if (text_ok(j, &o->items[k], o->keys[k], err, errlen))
+                return 2;
+    }
     /* the label as written (it may carry prefixes the keys do not) */
     snprintf(r->label, sizeof r->label, "%s", jr_str_or(ro, "row", r->label));
     const char *status = jr_str_or(ro, "status", "ok");
@@ -471,6 +521,9 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
     r->line = ro->line;
     r->retries = (int)fmax(0, jr_num_or_nan(ro, "preemption_retries"));
     r->disturbed = (int)fmax(0, jr_num_or_nan(ro, "disturbed_reps"));
+    if (r->truncated || strlen(jr_str_or(ro, "row", "")) >= sizeof r->label)
+        return jr_fail(j, ro, err, errlen, "a row whose keys do not fit (at most %d keys, a label and each key of at "
+                       "most %d bytes): two distinct rows could read as one", RD_MAX_KEYS, RD_TEXT - 1);
     for (size_t m = 0; m < metrics->count; ++m)
         if (read_metric(j, &metrics->items[m], d, r, err, errlen))
             return 2;

@@ -68,6 +68,8 @@ struct rd_row {
     struct rd_metric *metrics;
     int nmetrics, cap;
     int retries, disturbed;        /* preemption retries and disturbed repetitions behind the row */
+    int truncated;                 /* a key past RD_MAX_KEYS was dropped, or the label or a key was cut
+                                      (two distinct rows could then read as one: the readers refuse it) */
 };
 
 struct rd_context {
