@@ -357,7 +357,7 @@ rc=$?
 [ $rc -eq 3 ] && grep -q "the host reference of user model 'wild' (wild.cl) failed .*killed by signal 11" err && [ ! -e w31 ] && ok ||
     bad "a wild write past the check: exit $rc (139: brdfbench crashed), expected 3: $(tail -c 300 err)"
 run 60 accuracy --model 'z=c + *(float*)8' --n-max 5 --samples 16 --out w31
-[ $rc -eq 2 ] && grep -q -- "--model z:5: '\*' as a dereference" err && ok || bad "--model with a dereference: exit $rc: $(head -c 300 err)"
+[ $rc -eq 2 ] && grep -q -- "--model z:1:5: '\*' before a value reads through a pointer" err && ok || bad "--model with a dereference: exit $rc: $(head -c 300 err)"
 
 # ---- issue 31, High 2: a gate's "measured" never echoes another file's bytes, never blocks ---
 mkdir -p g31 && cp /etc/passwd g31/pw.binary && mkfifo g31/f.binary

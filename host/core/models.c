@@ -313,3 +313,19 @@ double model_eval_full_host(const struct model_spec *spec, const double L[3], co
     const struct model_runtime *rt = spec ? models_runtime(spec->info) : NULL;
     return rt && rt->eval_full_host ? rt->eval_full_host(rt, spec, L, V, N, n) : NAN;
 }
+
+int model_run_isolated(const struct model_spec *spec, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                       size_t outlen)
+{
+    const struct model_runtime *rt = models_runtime(spec->info);
+    if (rt && rt->isolated)
+        return rt->isolated(spec, fn, ctx, out, outlen);
+    fn(ctx, out);
+    return 0;
+}
+
+int model_lobe_declared(const struct model_info *info)
+{
+    const struct model_runtime *rt = models_runtime(info);
+    return rt && rt->lobe_declared;
+}

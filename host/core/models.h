@@ -130,6 +130,11 @@ struct model_runtime {
        vectors in double; NULL for a lobe. */
     double (*eval_full_host)(const struct model_runtime *rt, const struct model_spec *spec, const double L[3],
                              const double V[3], const double N[3], double n);
+    /* Runs fn(ctx, out) where a wild write of the model's host code cannot reach this process
+       (outlen bytes of out handed back); NULL: fn runs in place. Returns 0 or an exit code. */
+    int (*isolated)(const struct model_spec *spec, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                    size_t outlen);
+    int lobe_declared;            /* the model's file names its lobe (psi or theta_h) */
 };
 #define MODELS_MAX_USER 8
 /* Returns 0, or -1 when the table is full. */
@@ -137,6 +142,12 @@ int models_register(const struct model_info *info, const struct model_runtime *r
 void models_unregister_all(void);
 /* The runtime of a model registered with models_register, or NULL for a built-in model. */
 const struct model_runtime *models_runtime(const struct model_info *info);
+/* fn(ctx, out) through spec's runtime's isolation (models of run-time code), else in place.
+ * Returns 0 or an exit code. */
+int model_run_isolated(const struct model_spec *spec, void (*fn)(void *ctx, void *out), void *ctx, void *out,
+                       size_t outlen);
+/* 1 when a model registered at run time declares its lobe in its file's header. */
+int model_lobe_declared(const struct model_info *info);
 /* The note of spec's runtime (NULL for a built-in model or a double evaluation). */
 const char *model_eval_note(const struct model_spec *spec);
 /* 1 when the model sees only c, not s = 1 - c (brdf_sees_only_c of kernels/brdf_models.h: the

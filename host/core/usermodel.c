@@ -195,6 +195,8 @@ static void usermodel_fill_runtime(struct user_model *um)
     um->runtime.note = runtime_note;
     um->runtime.eval_on_device = runtime_on_device;
     um->runtime.eval_full_host = um->full ? runtime_eval_full : NULL;
+    um->runtime.isolated = usermodel_isolated;
+    um->runtime.lobe_declared = um->lobe_declared;
 }
 
 int usermodel_host_ready(const struct user_model *cum)

@@ -6,7 +6,6 @@
 #include "refine.h"
 #include "brdf_shared.h"
 #include "room.h"
-#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -268,7 +267,8 @@ static struct acc_extreme refine_one(const struct accuracy_result *r, enum zone 
 
 static void check_per_n(struct accuracy_result *r);
 
-/* The per-n figures in double (run by usermodel_isolated; out is r->per_n's copy to fill). */
+/* The per-n figures in double (run by model_run_isolated: in the host reference's sandbox for a
+ * user model; out is r->per_n's copy to fill). */
 static void double_stage(void *ctx, void *out_v)
 {
     struct accuracy_result *r = ctx;
@@ -526,8 +526,8 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
     }
 
     /* The double stage asks a user model for one value at a time: it runs as one phase in
-       the host reference's sandbox (usermodel_isolated), which hands back the per-n figures. */
-    if (usermodel_isolated(&out->model, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
+       the host reference's sandbox (model_run_isolated), which hands back the per-n figures. */
+    if (model_run_isolated(&out->model, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }

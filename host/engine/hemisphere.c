@@ -6,7 +6,6 @@
 #include "exitcodes.h"
 #include "lcg.h"
 #include "programs.h"
-#include "usermodel.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -30,8 +29,7 @@ int hemisphere_applies(const struct model_spec *m)
 {
     if (model_is_full(m->info)) {
         const struct model_info *ref = m->info->reference_id ? models_find(m->info->reference_id) : NULL;
-        const struct user_model *um = usermodel_of(m);
-        int psi_declared = um && um->lobe_declared && m->info->lobe == LOBE_PSI;
+        int psi_declared = model_lobe_declared(m->info) && m->info->lobe == LOBE_PSI;
         return !psi_declared && !(ref && ref->family == MODEL_FAMILY_TERM);
     }
     return model_is_builtin(m->info) && m->info->family == MODEL_FAMILY_PHYSICAL;

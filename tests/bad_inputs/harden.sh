@@ -3,10 +3,10 @@
 # MERL cells beyond float's range, outputs that name an input, "--" ending the options.
 
 # High 1: every pointer construct refused at parse, with file:line:column or --model NAME:column
-t 2 "^brdfbench accuracy: --model z:5: '\*' as a dereference is not accepted in a model" accuracy --model 'z=c + *(float*)8' --out run
+t 2 "^brdfbench accuracy: --model z:1:5: '\*' before a value reads through a pointer: pointers are not accepted in a model" accuracy --model 'z=c + *(float*)8' --out run
 t 2 "^brdfbench accuracy: --model z:1: 'sizeof' is not accepted in a model" accuracy --model 'z=sizeof(c)==8 ? (((long*)&c)[2]=0x414141414141, c) : c' --out run
-t 2 "^brdfbench accuracy: --model z:5: '&' as an address-of is not accepted" accuracy --model 'z=c + &n' --out run
-t 2 "^brdfbench accuracy: --model z:6: '\[' is not accepted in a model: no arrays or subscripts" accuracy --model 'z=c + n[2]' --out run
+t 2 "^brdfbench accuracy: --model z:1:5: '&' takes an address \(or is a bitwise and\): pointers and bit operations are not accepted" accuracy --model 'z=c + &n' --out run
+t 2 "^brdfbench accuracy: --model z:1:6: indexing a float \(a vector or an array is indexed\)" accuracy --model 'z=c + n[2]' --out run
 t 2 "^brdfbench accuracy: --model z:5: 'memcpy' is called, which is neither an OpenCL C math built-in" accuracy --model 'z=c + memcpy(c, n, 8)' --out run
 printf '{"gates":[{"model":"r","expression":"sizeof(c)==8 ? (((long*)&c)[2]=0x414141414141, c) : c","metric":"whole.max_abs","max":1}]}' >g31ptr.json
 WHAT="g31ptr.json: the issue's gates-file expression"
