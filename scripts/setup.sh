@@ -12,6 +12,7 @@ packages=(
   glmark2-data povray-examples
   clang libclang-rt-14-dev
   libtcc-dev
+  libsqlite3-dev libbenchmark-tools python3-scipy python3-yaml
 )
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 
