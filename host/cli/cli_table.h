@@ -227,4 +227,9 @@ int cli_deliver(const char *src, const char *flag, const char *dest, char *err, 
 /* 1 when path means standard output. */
 int cli_is_stdout(const char *path);
 
+/* The store of runs (store.h): store and history. */
+#define CLI_FLAG_DB(DEST)                                                                                          \
+    { .name = "--db", .value = "FILE", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST),                    \
+      .help = "the store of runs, an SQLite file (brdfbench store add makes it)", .def = "results/history.sqlite" }
+
 #endif

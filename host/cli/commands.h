@@ -8,6 +8,8 @@ int cmd_all(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_report(int argc, char **argv);
 int cmd_rows(int argc, char **argv);
+int cmd_store(int argc, char **argv);
+int cmd_history(int argc, char **argv);
 int cmd_heatmap(int argc, char **argv);
 int cmd_gate(int argc, char **argv);
 int cmd_render(int argc, char **argv);

@@ -1,0 +1,269 @@
+/* cmd_store.c - `brdfbench store add|list|export`: run folders and result files put into the
+ * SQLite store of runs (store.h), listed, and written back as rows documents. No device. */
+#define _POSIX_C_SOURCE 200809L
+#include "cli_table.h"
+#include "commands.h"
+#include "exitcodes.h"
+#include "mdbuf.h"
+#include "outdir.h"
+#include "rdoc_read.h"
+#include "store.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define STORE_MAX_DOCS 512   /* documents one add takes (a run folder gives up to RD_KIND_COUNT) */
+
+static int call_kind(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    if (rd_kind_of_name(value) < 0) {
+        snprintf(err, errlen, "%s: '%s' is not a kind of result (accepted: %s, %s, %s, %s, %s)", flag, value,
+                 rd_kind_name(0), rd_kind_name(1), rd_kind_name(2), rd_kind_name(3), rd_kind_name(4));
+        return EXIT_USAGE;
+    }
+    *(const char **)dest = value;
+    return 0;
+}
+
+#define FLAG_KIND(DEST, HELP)                                                                                     \
+    { .name = "--kind", .value = "KIND", .kind = CLI_CALL, .dest = (DEST), .call = call_kind,                    \
+      .range = "throughput, accuracy, render, fit or frontier", .def = "every kind", .help = (HELP) }
+
+static const char about[] =
+    "  The store of runs: an SQLite database (results/history.sqlite unless --db) of result\n"
+    "  documents with their context (commit, date, device, driver, build options, machine load),\n"
+    "  that brdfbench history reads. add: each RUN_DIR's result files (or a result file or rows\n"
+    "  document), stored once by a content hash (adding a run again stores nothing), in one\n"
+    "  transaction that two CI jobs may run at once. list: the stored runs in date order. export:\n"
+    "  each stored run as a rows document (brdfbench.rows/1) in DIR. A file that is not a\n"
+    "  brdfbench store is refused (exit 2; 3 for a damaged one). No device is used.\n";
+
+/* The name a run is stored under: the folder's last component, or the file's path. */
+static void run_name(const char *path, int is_dir, char *out, size_t len)
+{
+    char p[1024];
+    snprintf(p, sizeof p, "%s", path);
+    size_t n = strlen(p);
+    while (n > 1 && p[n - 1] == '/')
+        p[--n] = 0;
+    const char *slash = strrchr(p, '/');
+    snprintf(out, len, "%s", is_dir && slash ? slash + 1 : p);
+}
+
+static int store_add_cmd(int argc, char **argv)
+{
+    const char *db = STORE_DEFAULT_PATH, *kind = NULL;
+    char err[1400];
+    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the files of this kind") };
+    const struct cli_command cmd = { .name = "store add", .synopsis = "RUN_DIR|FILE... [--db FILE] [--kind KIND]",
+                                     .about = about, CLI_TABLE(flags), .max_positional = CLI_MAX_POSITIONAL };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc)
+        return cli_parse_exit(&cmd, prc, err);
+    if (args.npositional < 1) {
+        fprintf(stderr, "brdfbench store add: expected RUN_DIR|FILE... (run folders or result files)\n");
+        return EXIT_USAGE;
+    }
+    int only = kind ? rd_kind_of_name(kind) : -1;
+    struct rdoc *docs = calloc(STORE_MAX_DOCS, sizeof *docs);
+    char(*names)[256] = calloc(STORE_MAX_DOCS, sizeof *names);
+    const char **name_ptrs = calloc(STORE_MAX_DOCS, sizeof *name_ptrs);
+    int *added = calloc(STORE_MAX_DOCS, sizeof *added);
+    int n = 0, rc = EXIT_OK;
+    struct store *s = NULL;
+    if (!docs || !names || !name_ptrs || !added) {
+        fprintf(stderr, "brdfbench store add: out of memory\n");
+        rc = EXIT_RUNTIME;
+        goto cleanup;
+    }
+    /* every input read and checked before the store is opened: a bad one adds nothing */
+    for (int a = 0; a < args.npositional; ++a) {
+        const char *path = args.positional[a];
+        struct stat st;
+        int found = 0;
+        if (stat(path, &st) != 0) {
+            fprintf(stderr, "brdfbench store add: %s: no such file or folder (accepted: a run folder, a result file "
+                            "or a rows document)\n", path);
+            rc = EXIT_USAGE;
+            goto cleanup;
+        }
+        if (n + RD_KIND_COUNT > STORE_MAX_DOCS) {
+            fprintf(stderr, "brdfbench store add: more than %d documents in one add (add them in parts)\n",
+                    STORE_MAX_DOCS);
+            rc = EXIT_USAGE;
+            goto cleanup;
+        }
+        if (S_ISDIR(st.st_mode)) {
+            if (rdoc_read_folder(path, only, &docs[n], &found, err, sizeof err)) {
+                fprintf(stderr, "brdfbench store add: %s\n", err);
+                rc = EXIT_USAGE;
+                goto cleanup;
+            }
+        } else {
+            if (rdoc_read_file(path, &docs[n], err, sizeof err)) {
+                fprintf(stderr, "brdfbench store add: %s\n", err);
+                rc = EXIT_USAGE;
+                goto cleanup;
+            }
+            found = 1;
+            if (only >= 0 && rd_kind_of_name(docs[n].kind) != only) {
+                rdoc_free(&docs[n]);
+                found = 0;
+            }
+        }
+        if (found == 0) {
+            fprintf(stderr, "brdfbench store add: %s: no result file%s%s (accepted: a run folder with %s, %s, %s, %s "
+                            "or %s, or such a file or a rows document)\n", path, only >= 0 ? " of kind " : "",
+                    only >= 0 ? kind : "", rd_kind_file(0), rd_kind_file(1), rd_kind_file(2), rd_kind_file(3),
+                    rd_kind_file(4));
+            rc = EXIT_USAGE;
+            goto cleanup;
+        }
+        for (int i = 0; i < found; ++i) {
+            if (docs[n + i].oom) {
+                fprintf(stderr, "brdfbench store add: %s: out of memory\n", path);
+                n += found;
+                rc = EXIT_RUNTIME;
+                goto cleanup;
+            }
+            run_name(path, S_ISDIR(st.st_mode), names[n + i], sizeof names[0]);
+            name_ptrs[n + i] = names[n + i];
+        }
+        n += found;
+    }
+    rc = store_open(db, 1, &s, err, sizeof err);
+    if (!rc)
+        rc = store_add(s, docs, name_ptrs, n, added, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench store add: %s\n", err);
+        goto cleanup;
+    }
+    int news = 0;
+    for (int i = 0; i < n; ++i) {
+        news += added[i];
+        printf("%-14s %-10s %s (%d rows)\n", added[i] ? "added" : "already stored", docs[i].kind, names[i],
+               docs[i].nrows);
+    }
+    printf("%s: %d added, %d already stored\n", db, news, n - news);
+cleanup:
+    store_close(s);
+    for (int i = 0; docs && i < n; ++i)
+        rdoc_free(&docs[i]);
+    free(docs);
+    free(names);
+    free(name_ptrs);
+    free(added);
+    return rc;
+}
+
+static int store_list_cmd(int argc, char **argv)
+{
+    const char *db = STORE_DEFAULT_PATH, *kind = NULL;
+    char err[1400];
+    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the runs of this kind") };
+    const struct cli_command cmd = { .name = "store list", .synopsis = "[--db FILE] [--kind KIND]", .about = about,
+                                     CLI_TABLE(flags), .max_positional = 0 };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc)
+        return cli_parse_exit(&cmd, prc, err);
+    struct store *s = NULL;
+    struct store_run *runs = NULL;
+    int n = 0;
+    int rc = store_open(db, 0, &s, err, sizeof err);
+    if (!rc)
+        rc = store_list(s, kind, &runs, &n, err, sizeof err);
+    if (rc) {
+        fprintf(stderr, "brdfbench store list: %s\n", err);
+    } else {
+        printf("%4s  %-12s  %-10s  %-20s  %-12s  %5s  %s\n", "id", "hash", "kind", "date", "commit", "rows",
+               "run | device");
+        for (int i = 0; i < n; ++i)
+            printf("%4lld  %.12s  %-10s  %-20s  %-12.12s  %5d  %s | %s\n", runs[i].id, runs[i].hash, runs[i].kind,
+                   runs[i].date, runs[i].commit, runs[i].nrows, runs[i].name, runs[i].device);
+        printf("%s: %d stored run%s\n", db, n, n == 1 ? "" : "s");
+    }
+    free(runs);
+    store_close(s);
+    return rc;
+}
+
+static int store_export_cmd(int argc, char **argv)
+{
+    const char *db = STORE_DEFAULT_PATH, *kind = NULL, *out = NULL;
+    char err[1400];
+    const struct cli_flag flags[] = {
+        CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the runs of this kind"),
+        { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = &out, .def = "",
+          .help = "the folder the rows documents go to (made when missing): ID-KIND.rows.json each" },
+    };
+    const struct cli_command cmd = { .name = "store export", .synopsis = "--out DIR [--db FILE] [--kind KIND]",
+                                     .about = about, CLI_TABLE(flags), .max_positional = 0 };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc)
+        return cli_parse_exit(&cmd, prc, err);
+    if (!out) {
+        fprintf(stderr, "brdfbench store export: --out DIR is required (the folder the rows documents go to)\n");
+        return EXIT_USAGE;
+    }
+    struct store *s = NULL;
+    struct store_run *runs = NULL;
+    int n = 0;
+    int rc = store_open(db, 0, &s, err, sizeof err);
+    if (!rc)
+        rc = store_list(s, kind, &runs, &n, err, sizeof err);
+    if (!rc && outdir_prepare(out, "--out", err, sizeof err))
+        rc = EXIT_USAGE;
+    for (int i = 0; !rc && i < n; ++i) {
+        char *text = NULL, name[96], path[4200];
+        rc = store_text(s, runs[i].id, &text, err, sizeof err);
+        if (rc)
+            break;
+        snprintf(name, sizeof name, "%lld-%s.rows.json", runs[i].id, runs[i].kind);
+        if (path_join(path, sizeof path, out, name) || write_file_atomic(path, text, strlen(text), err, sizeof err))
+            rc = EXIT_RUNTIME;
+        else
+            printf("%s\n", path);
+        free(text);
+    }
+    if (rc)
+        fprintf(stderr, "brdfbench store export: %s\n", err);
+    free(runs);
+    store_close(s);
+    return rc;
+}
+
+int cmd_store(int argc, char **argv)
+{
+    if (argc >= 2 && strcmp(argv[1], "add") == 0)
+        return store_add_cmd(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "list") == 0)
+        return store_list_cmd(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "export") == 0)
+        return store_export_cmd(argc - 1, argv + 1);
+    /* no subcommand: --help (and the man page, the completions) lists every flag of the three */
+    const char *db = STORE_DEFAULT_PATH, *kind = NULL, *out = NULL;
+    char err[1400];
+    const struct cli_flag flags[] = {
+        CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the files (add) or stored runs (list, export) of this kind"),
+        { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = &out, .def = "",
+          .help = "export: the folder the rows documents go to (ID-KIND.rows.json each)" },
+    };
+    const struct cli_command cmd = {
+        .name = "store", .synopsis = "add RUN_DIR|FILE... | list | export --out DIR  [--db FILE] [--kind KIND]",
+        .about = about, CLI_TABLE(flags), .max_positional = 1 };
+    struct cli_args args;
+    int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
+    if (prc)
+        return cli_parse_exit(&cmd, prc, err);
+    if (args.npositional == 1)
+        fprintf(stderr, "brdfbench store: '%s' is not a store command (accepted: add, list, export)\n",
+                args.positional[0]);
+    else
+        fprintf(stderr, "brdfbench store: expected a store command (accepted: add, list, export)\n");
+    return EXIT_USAGE;
+}
