@@ -1,0 +1,145 @@
+/* changepoint.c - binary segmentation of a series of runs with compare's rule (see
+ * changepoint.h). */
+#include "changepoint.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "ranktest.h"
+
+void cp_defaults(struct cp_settings *s)
+{
+    s->alpha = 0.05;
+    s->min_change = 0.10;   /* compare's CMP_DEFAULT_THRESHOLD */
+    s->min_seg = 2;
+}
+
+/* The logs of runs [a, b)'s positive finite values into out; returns the count. */
+static int pool(const struct cp_sample *runs, int a, int b, double *out)
+{
+    int n = 0;
+    for (int r = a; r < b; ++r)
+        for (int i = 0; runs[r].v && i < runs[r].n; ++i)
+            if (isfinite(runs[r].v[i]) && runs[r].v[i] > 0)
+                out[n++] = log(runs[r].v[i]);
+    return n;
+}
+
+static int has_values(const struct cp_sample *s)
+{
+    for (int i = 0; s->v && i < s->n; ++i)
+        if (isfinite(s->v[i]) && s->v[i] > 0)
+            return 1;
+    return 0;
+}
+
+struct cp_state {
+    const struct cp_sample *runs;
+    int T, last;                 /* last: the latest run with values */
+    const struct cp_settings *s;
+    double *before, *after;      /* room for every value of the series */
+    struct cp_change *out;
+    int n;
+};
+
+/* Searches [a, b) and, when a split passes, both halves. Returns 0 or -1 (no memory). */
+static int segment(struct cp_state *st, int a, int b)
+{
+    /* the runs with values in [a, b) */
+    int with = 0;
+    for (int r = a; r < b; ++r)
+        with += has_values(&st->runs[r]);
+    if (with < 2)
+        return 0;
+    int m = 0;   /* the splits this segment offers: the ones whose sides both hold enough runs */
+    int best = -1;
+    double best_p = INFINITY, best_shift = 0, best_lo = NAN, best_hi = NAN;
+    for (int pass = 0; pass < 2; ++pass) {   /* pass 0 counts the splits, pass 1 tests them */
+        for (int k = a + 1; k < b; ++k) {
+            if (!has_values(&st->runs[k]))
+                continue;   /* a split falls just before a run that was measured */
+            int nl = 0, nr = 0;
+            for (int r = a; r < k; ++r)
+                nl += has_values(&st->runs[r]);
+            for (int r = k; r < b; ++r)
+                nr += has_values(&st->runs[r]);
+            /* a side holds min_seg runs, except a last segment that ends with the latest run */
+            int right_min = b > st->last ? 1 : st->s->min_seg;
+            if (nl < st->s->min_seg || nr < right_min)
+                continue;
+            if (pass == 0) {
+                ++m;
+                continue;
+            }
+            int ny = pool(st->runs, a, k, st->before), nx = pool(st->runs, k, b, st->after);
+            struct ranktest_result t;
+            double est, lo, hi;
+            if (ranktest_mann_whitney(st->after, nx, st->before, ny, &t) != 0)
+                return -1;
+            if (ranktest_shift_ci(st->after, nx, st->before, ny, st->s->alpha / m, &est, &lo, &hi) != 0)
+                return -1;
+            double p = fmin(1.0, t.p * m);
+            if (!(p < st->s->alpha) || !(fabs(est) > log1p(st->s->min_change)))
+                continue;
+            if (p < best_p || (p == best_p && fabs(est) > fabs(best_shift))) {
+                best = k;
+                best_p = p;
+                best_shift = est;
+                best_lo = lo;
+                best_hi = hi;
+            }
+        }
+        if (m == 0)
+            return 0;
+    }
+    if (best < 0)
+        return 0;
+    if (segment(st, a, best))
+        return -1;
+    if (st->n < CP_MAX_CHANGES) {
+        struct cp_change *c = &st->out[st->n++];
+        c->at = best;
+        c->ratio = exp(best_shift);
+        c->lo = exp(best_lo);
+        c->hi = exp(best_hi);
+        c->p = best_p;
+        c->m = m;
+    }
+    return segment(st, best, b);
+}
+
+int cp_find(const struct cp_sample *runs, int T, const struct cp_settings *s, struct cp_change *out)
+{
+    int total = 0, last = -1;
+    for (int r = 0; r < T; ++r) {
+        total += runs[r].v ? runs[r].n : 0;
+        if (has_values(&runs[r]))
+            last = r;
+    }
+    struct cp_state st = { .runs = runs, .T = T, .last = last, .s = s, .out = out, .n = 0 };
+    st.before = malloc((size_t)(total > 0 ? total : 1) * sizeof(double));
+    st.after = malloc((size_t)(total > 0 ? total : 1) * sizeof(double));
+    int rc = st.before && st.after ? segment(&st, 0, T) : -1;
+    /* each change's ratio and interval between the segments on either side of it (the search
+       found it against a wider segment, which may hold other changes) */
+    for (int i = 0; !rc && i < st.n; ++i) {
+        int a = i > 0 ? out[i - 1].at : 0, b = i + 1 < st.n ? out[i + 1].at : T;
+        int ny = pool(runs, a, out[i].at, st.before), nx = pool(runs, out[i].at, b, st.after);
+        struct ranktest_result t;
+        double est, lo, hi;
+        if (ranktest_mann_whitney(st.after, nx, st.before, ny, &t) != 0 ||
+            ranktest_shift_ci(st.after, nx, st.before, ny, s->alpha / out[i].m, &est, &lo, &hi) != 0) {
+            rc = -1;
+            break;
+        }
+        out[i].ratio = exp(est);
+        out[i].lo = exp(lo);
+        out[i].hi = exp(hi);
+        out[i].p = fmin(1.0, t.p * out[i].m);
+    }
+    free(st.before);
+    free(st.after);
+    return rc ? -1 : st.n;   /* segment recurses left first: the changes come in order of at */
+}
+
+double cp_latest_ratio(const struct cp_change *c, int n) { return n > 0 ? c[n - 1].ratio : NAN; }
