@@ -24,7 +24,8 @@ static int call_format(const char *flag, const char *value, void *dest, char *er
             *(int *)dest = f;
             return 0;
         }
-    snprintf(err, errlen, "%s: '%s' is not a format (accepted: md, csv, json, gbench, bmf, action, action-smaller)", flag, value);
+    snprintf(err, errlen, "%s: '%s' is not a format (accepted: md, csv, json) nor an export (gbench, bmf, action, "
+                          "action-smaller)", flag, value);
     return EXIT_USAGE;
 }
 
