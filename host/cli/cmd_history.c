@@ -131,23 +131,22 @@ int cmd_history(int argc, char **argv)
 {
     const char *db = NULL, *out = "results/history";
     int kind = RD_KIND_THROUGHPUT;
-    double slower_pct = -1, alpha = 0.05, min_change_pct = 10;
+    double slower_pct = -1, alpha = 0.05, min_change_pct = -1;
     char err[1600];
     const struct cli_flag flags[] = {
         CLI_FLAG_DB(&db),
         { .name = "--kind", .value = "KIND", .kind = CLI_CALL, .dest = &kind, .call = call_kind,
           .range = "throughput, accuracy, render, fit or frontier", .def = "throughput",
-          .help = "the kind of result followed" },
-        { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = &out,
-          .help = "the folder history.json, history.md, history.png and history_normalised.png go to" },
+          .help = "only the results of this kind" },
+        CLI_FLAG_OUT(&out, "results/history"),
+        /* the same words as compare's flags: here the baseline is the segment before the latest run's */
         { .name = "--fail-if-slower", .value = "PCT", .kind = CLI_DOUBLE, .dest = &slower_pct, .min = 0, .max = 100,
-          .def = "",
-          .help = "exit 1 when the latest run of a timed row sits in a segment more than PCT percent slower than "
-                  "the segment before (the rows named on stderr)" },
+          .help = "exit 1 naming every rate that is slower than the baseline (by the test) by more than PCT percent",
+          .def = "" },
         { .name = "--alpha", .value = "P", .kind = CLI_DOUBLE, .dest = &alpha, .min = 1e-6, .max = 0.5,
-          .help = "the level of a change's test, Bonferroni-corrected over a segment's splits" },
+          .help = "the rank test's level", .range = "1e-6 to 0.5" },
         { .name = "--min-change", .value = "PCT", .kind = CLI_DOUBLE, .dest = &min_change_pct, .min = 0, .max = 100,
-          .help = "the smallest change called, in percent (compare's --min-change)" },
+          .help = "the smallest change a rate's verdict calls (default: --fail-if-slower's PCT, else 10)", .def = "" },
     };
     const struct cli_command cmd = {
         .name = "history",
@@ -159,7 +158,8 @@ int cmd_history(int argc, char **argv)
                  "  the Mann-Whitney test of the repetitions after against before, Bonferroni-corrected over\n"
                  "  the segment's splits, gives p < --alpha and the Hodges-Lehmann ratio is beyond\n"
                  "  --min-change. Writes history.json (changes: label, run, commit, ratio, interval, p),\n"
-                 "  history.md and the trend pictures into --out. No device is used.\n",
+                 "  history.md and the trend pictures into --out. --fail-if-slower: the baseline is the\n"
+                 "  segment before the latest run's. No device is used.\n",
         CLI_TABLE(flags),
         .max_positional = CLI_MAX_POSITIONAL,
     };
@@ -175,7 +175,8 @@ int cmd_history(int argc, char **argv)
     memset(&h, 0, sizeof h);
     cp_defaults(&h.cp);
     h.cp.alpha = alpha;
-    h.cp.min_change = min_change_pct / 100;
+    /* as compare: the minimum change is --fail-if-slower's when only that is given */
+    h.cp.min_change = (min_change_pct >= 0 ? min_change_pct : slower_pct >= 0 ? slower_pct : 10) / 100;
     char source[1100];
     int rc;
     if (args.npositional > 0) {

@@ -86,8 +86,7 @@ int cmd_rows(int argc, char **argv)
                   "action-smaller (customSmallerIsBetter: errors)" },
         { .name = "--kind", .value = "KIND", .kind = CLI_CALL, .dest = &only, .call = call_kind,
           .range = "throughput, accuracy, render, fit or frontier", .def = "every kind found",
-          .help = "only the file of this kind in RUN_DIR (csv and json write one document: with a folder of "
-                  "several kinds, name one)" },
+          .help = "only the results of this kind" },
         CLI_FLAG_OUTPUT(&out, "-"),
     };
     const struct cli_command cmd = {
@@ -98,7 +97,8 @@ int cmd_rows(int argc, char **argv)
                  "  metrics with unit and direction (higher or lower is better), range and repetitions. These\n"
                  "  are the rows compare matches across runs and gate --baseline reads. No device is used.\n"
                  "  gbench, bmf and action write them for google/benchmark's compare.py, Bencher and\n"
-                 "  github-action-benchmark (docs/ci.md, \"Exports\").\n",
+                 "  github-action-benchmark (docs/ci.md, \"Exports\"). --kind with RUN_DIR opens that kind's file\n"
+                 "  only; csv, json and the exports write one document, so a folder of several kinds needs it.\n",
         CLI_TABLE(flags),
         .max_positional = 1,
     };

@@ -27,9 +27,9 @@ static int call_kind(const char *flag, const char *value, void *dest, char *err,
     return 0;
 }
 
-#define FLAG_KIND(DEST, HELP)                                                                                     \
+#define FLAG_KIND(DEST)                                                                                     \
     { .name = "--kind", .value = "KIND", .kind = CLI_CALL, .dest = (DEST), .call = call_kind,                    \
-      .range = "throughput, accuracy, render, fit or frontier", .def = "every kind", .help = (HELP) }
+      .range = "throughput, accuracy, render, fit or frontier", .def = "every kind", .help = "only the results of this kind" }
 
 static const char about[] =
     "  The store of runs: an SQLite database (results/history.sqlite unless --db) of result\n"
@@ -37,7 +37,8 @@ static const char about[] =
     "  that brdfbench history reads. add: each RUN_DIR's result files (or a result file or rows\n"
     "  document), stored once by a content hash (adding a run again stores nothing), in one\n"
     "  transaction that two CI jobs may run at once. list: the stored runs in date order. export:\n"
-    "  each stored run as a rows document (brdfbench.rows/1) in DIR. A file that is not a\n"
+    "  each stored run as a rows document (brdfbench.rows/1) in --out DIR, ID-KIND.rows.json\n"
+    "  each. --kind: add only the files, list or export only the runs, of that kind. A file that is not a\n"
     "  brdfbench store is refused (exit 2; 3 for a damaged one). No device is used.\n";
 
 /* The name a run is stored under: the folder's last component, or the file's path. */
@@ -56,7 +57,7 @@ static int store_add_cmd(int argc, char **argv)
 {
     const char *db = STORE_DEFAULT_PATH, *kind = NULL;
     char err[1400];
-    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the files of this kind") };
+    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind) };
     const struct cli_command cmd = { .name = "store add", .synopsis = "RUN_DIR|FILE... [--db FILE] [--kind KIND]",
                                      .about = about, CLI_TABLE(flags), .max_positional = CLI_MAX_POSITIONAL };
     struct cli_args args;
@@ -163,7 +164,7 @@ static int store_list_cmd(int argc, char **argv)
 {
     const char *db = STORE_DEFAULT_PATH, *kind = NULL;
     char err[1400];
-    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the runs of this kind") };
+    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind) };
     const struct cli_command cmd = { .name = "store list", .synopsis = "[--db FILE] [--kind KIND]", .about = about,
                                      CLI_TABLE(flags), .max_positional = 0 };
     struct cli_args args;
@@ -196,9 +197,8 @@ static int store_export_cmd(int argc, char **argv)
     const char *db = STORE_DEFAULT_PATH, *kind = NULL, *out = NULL;
     char err[1400];
     const struct cli_flag flags[] = {
-        CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the runs of this kind"),
-        { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = &out, .def = "",
-          .help = "the folder the rows documents go to (made when missing): ID-KIND.rows.json each" },
+        CLI_FLAG_DB(&db), FLAG_KIND(&kind),
+        CLI_FLAG_OUT(&out, ""),
     };
     const struct cli_command cmd = { .name = "store export", .synopsis = "--out DIR [--db FILE] [--kind KIND]",
                                      .about = about, CLI_TABLE(flags), .max_positional = 0 };
@@ -249,9 +249,8 @@ int cmd_store(int argc, char **argv)
     const char *db = STORE_DEFAULT_PATH, *kind = NULL, *out = NULL;
     char err[1400];
     const struct cli_flag flags[] = {
-        CLI_FLAG_DB(&db), FLAG_KIND(&kind, "only the files (add) or stored runs (list, export) of this kind"),
-        { .name = "--out", .value = "DIR", .kind = CLI_PATH, .dest = &out, .def = "",
-          .help = "export: the folder the rows documents go to (ID-KIND.rows.json each)" },
+        CLI_FLAG_DB(&db), FLAG_KIND(&kind),
+        CLI_FLAG_OUT(&out, ""),
     };
     const struct cli_command cmd = {
         .name = "store", .synopsis = "add RUN_DIR|FILE... | list | export --out DIR  [--db FILE] [--kind KIND]",
