@@ -60,6 +60,9 @@ check(any(s.get("uses", "").startswith("actions/cache/restore") for s in hist["s
 ART, CACHE = T + "/artifacts", T + "/cache"
 os.makedirs(ART, exist_ok=True)
 os.makedirs(CACHE, exist_ok=True)
+# the commits the two workflow runs measured: the second one committed first (a re-run of an
+# older commit), so the commit dates, not the run dates, must order the history
+COMMIT_DATES = {"1001": "2026-03-02T12:00:00+01:00", "1002": "2026-03-01T09:00:00+00:00"}
 TINY = "--models cq2 --reps 5 --min-time 0.002 --work-items 8 --variants default --no-host-c --no-sweep"
 
 def subst(s, matrix, run_id):
@@ -95,6 +98,11 @@ def run_job(name, job, ws, matrix, run_id):
         w = {k: subst(str(v), matrix, run_id) for k, v in step.get("with", {}).items()}
         u = step.get("uses", "")
         if u.startswith("actions/checkout"):
+            # a checkout: a git repository whose HEAD is the workflow run's commit, at its date
+            cenv = dict(env, GIT_COMMITTER_DATE=COMMIT_DATES[run_id], GIT_AUTHOR_DATE=COMMIT_DATES[run_id])
+            for cmd in (["git", "init", "-q"], ["git", "-c", "user.name=ci", "-c", "user.email=ci@localhost",
+                                                 "commit", "-q", "--allow-empty", "-m", "run " + run_id]):
+                subprocess.run(cmd, cwd=ws, env=cenv, check=True, capture_output=True)
             continue
         if u.startswith("actions/upload-artifact"):
             for p in w["path"].split():
@@ -155,6 +163,10 @@ devices = {r["device"] for r in h["rows"]}
 check(len(devices) == len(drivers), "history rows of %d devices: %s" % (len(drivers), devices))
 check(any(r["label"] == "cq2 | default | n uniform" for r in h["rows"]), "cq2's row is in the history")
 check(h["changes"] == [], "two runs of a row make no change")
+# ordered by commit date (in UTC): the second workflow run's pocl run first
+check(h["order"] == "commit date", "history ordered by %s" % h["order"])
+check([r["commit_date"] for r in h["runs"]] == ["2026-03-01T09:00:00Z"] + ["2026-03-02T11:00:00Z"] * len(drivers),
+      "commit dates %s" % [r["commit_date"] for r in h["runs"]])
 check(os.path.isfile(ART + "/history/history/history.md") and os.path.isfile(ART + "/history/history-store/history.sqlite"),
       "the history artefact holds history.md and the store")
 print("%d checks failed" % len(fails))

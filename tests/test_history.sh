@@ -98,6 +98,30 @@ rc=$?
 grep -q "history: 12 runs (by run date), 6 rows, 2 changes" "$T/out" && ok || bad "history --db: $(head -4 "$T/out")"
 [ "$(grep -c 'from run 7 ([^)]*run07.json): 0\.[67]' "$T/out")" -eq 2 ] && ok || bad "history --db: $(cat "$T/out")"
 
+# Commit dates order the history where every run has one: the step series stored with commit
+# dates in the reverse order of its run dates (run k committed on day 13 - k) reads backwards,
+# so the slow runs 7..12 come first and the change is at the 7th run in commit order, run06,
+# a speed-up of 1 / 0.7 = 1.43.
+for i in $(seq -w 1 12); do
+    day=$(printf '%02d' $((13 - 10#$i)))
+    "$BIN" store add "$T/step/run$i.json" --db "$T/c.sqlite" --commit-date "2026-04-${day}T12:00:00+02:00" >/dev/null 2>"$T/err" ||
+        bad "store add --commit-date: $(cat "$T/err")"
+done
+"$BIN" history --db "$T/c.sqlite" --out "$T/h_c" >"$T/out" 2>"$T/err" && ok || bad "history by commit date: $(cat "$T/err")"
+"$PY" - "$T/h_c/history.json" <<'EOF' && ok || bad "history by commit date: history.json"
+import json, sys
+h = json.load(open(sys.argv[1]))
+assert h["order"] == "commit date", h["order"]
+# +02:00 in UTC: 10:00Z, days 01..12 in order
+assert [r["commit_date"] for r in h["runs"]] == ["2026-04-%02dT10:00:00Z" % d for d in range(1, 13)], h["runs"]
+assert [r["name"].rsplit("/", 1)[-1] for r in h["runs"]] == ["run%02d.json" % (13 - d) for d in range(1, 13)]
+ch = h["changes"]
+assert sorted(c["label"] for c in ch) == ["m2 | default | n uniform", "m2 | default | n varying"], ch
+for c in ch:
+    assert c["index"] == 7 and c["run"].endswith("run06.json") and 1.35 < c["ratio"] < 1.51, c
+EOF
+expect 2 "--commit-date: 'yesterday' is not a date and time with its zone" store add "$T/step/run01.json" --db "$T/c.sqlite" --commit-date yesterday
+
 # Bad input: one line, exit 2, nothing written.
 expect 2 "--db and run folders or files given together" history --db "$T/h.sqlite" "$T/step/run01.json" --out "$T/x1"
 expect 2 "holds 1 run of kind throughput \(a history takes 2 or more\)" history "$T/step/run01.json" --out "$T/x2"

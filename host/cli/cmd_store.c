@@ -1,6 +1,7 @@
 /* cmd_store.c - `brdfbench store add|list|export`: run folders and result files put into the
  * SQLite store of runs (store.h), listed, and written back as rows documents. No device. */
 #define _POSIX_C_SOURCE 200809L
+#define _DEFAULT_SOURCE   /* timegm */
 #include "cli_table.h"
 #include "commands.h"
 #include "exitcodes.h"
@@ -13,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #define STORE_MAX_DOCS 512   /* documents one add takes (a run folder gives up to RD_KIND_COUNT) */
 
@@ -27,9 +29,43 @@ static int call_kind(const char *flag, const char *value, void *dest, char *err,
     return 0;
 }
 
+/* --commit-date: an ISO 8601 time (git show -s --format=%cI) with a zone, kept in UTC so that
+   dates of several zones order as text. */
+static int call_commit_date(const char *flag, const char *value, void *dest, char *err, size_t errlen)
+{
+    int y, mo, d, h, mi, sec, n = 0, zh = 0, zm = 0;
+    char sign = 0;
+    const char *z = NULL;
+    if (sscanf(value, "%4d-%2d-%2dT%2d:%2d:%2d%n", &y, &mo, &d, &h, &mi, &sec, &n) == 6 && n == 19) {
+        z = value + n;
+        if (strcmp(z, "Z") == 0)
+            sign = '+';
+        else if ((z[0] == '+' || z[0] == '-') && strlen(z) == 6 && sscanf(z + 1, "%2d:%2d", &zh, &zm) == 2 &&
+                 z[3] == ':' && zh <= 14 && zm < 60)
+            sign = z[0];
+    }
+    if (!sign || y < 1970 || y > 9999 || mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 || sec > 60) {
+        snprintf(err, errlen, "%s: '%s' is not a date and time with its zone (accepted: ISO 8601 as "
+                              "2026-03-01T10:00:00Z or 2026-03-01T11:00:00+01:00, git show -s --format=%%cI)", flag, value);
+        return EXIT_USAGE;
+    }
+    struct tm tm = { .tm_year = y - 1900, .tm_mon = mo - 1, .tm_mday = d, .tm_hour = h, .tm_min = mi, .tm_sec = sec };
+    time_t t = timegm(&tm) - (sign == '-' ? -1 : 1) * (time_t)(zh * 3600 + zm * 60);
+    struct tm u;
+    gmtime_r(&t, &u);
+    strftime((char *)dest, 32, "%Y-%m-%dT%H:%M:%SZ", &u);
+    return 0;
+}
+
 #define FLAG_KIND(DEST)                                                                                     \
     { .name = "--kind", .value = "KIND", .kind = CLI_CALL, .dest = (DEST), .call = call_kind,                    \
       .range = "throughput, accuracy, render, fit or frontier", .def = "every kind", .help = "only the results of this kind" }
+
+#define FLAG_COMMIT_DATE(DEST)                                                                               \
+    { .name = "--commit-date", .value = "DATE", .kind = CLI_CALL, .dest = (DEST), .call = call_commit_date,       \
+      .range = "ISO 8601 with a zone, e.g. 2026-03-01T10:00:00Z", .def = "none",                                   \
+      .help = "add: the date of the commit the runs measured (git show -s --format=%cI), kept in each run's "       \
+              "context where it has none; history orders runs by it when every run has one" }
 
 static const char about[] =
     "  The store of runs: an SQLite database (results/history.sqlite unless --db) of result\n"
@@ -56,9 +92,10 @@ static void run_name(const char *path, int is_dir, char *out, size_t len)
 static int store_add_cmd(int argc, char **argv)
 {
     const char *db = STORE_DEFAULT_PATH, *kind = NULL;
-    char err[1400];
-    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind) };
-    const struct cli_command cmd = { .name = "store add", .synopsis = "RUN_DIR|FILE... [--db FILE] [--kind KIND]",
+    char err[1400], commit_date[32] = "";
+    const struct cli_flag flags[] = { CLI_FLAG_DB(&db), FLAG_KIND(&kind), FLAG_COMMIT_DATE(commit_date) };
+    const struct cli_command cmd = { .name = "store add",
+                                     .synopsis = "RUN_DIR|FILE... [--db FILE] [--kind KIND] [--commit-date DATE]",
                                      .about = about, CLI_TABLE(flags), .max_positional = CLI_MAX_POSITIONAL };
     struct cli_args args;
     int prc = cli_parse(&cmd, argc, argv, &args, err, sizeof err);
@@ -131,6 +168,8 @@ static int store_add_cmd(int argc, char **argv)
                 goto cleanup;
             }
             run_name(path, S_ISDIR(st.st_mode), names[n + i], sizeof names[0]);
+            if (*commit_date)
+                rd_ctx_put(&docs[n + i].ctx, "commit_date", commit_date);
             name_ptrs[n + i] = names[n + i];
         }
         n += found;
@@ -247,9 +286,9 @@ int cmd_store(int argc, char **argv)
         return store_export_cmd(argc - 1, argv + 1);
     /* no subcommand: --help (and the man page, the completions) lists every flag of the three */
     const char *db = STORE_DEFAULT_PATH, *kind = NULL, *out = NULL;
-    char err[1400];
+    char err[1400], commit_date[32] = "";
     const struct cli_flag flags[] = {
-        CLI_FLAG_DB(&db), FLAG_KIND(&kind),
+        CLI_FLAG_DB(&db), FLAG_KIND(&kind), FLAG_COMMIT_DATE(commit_date),
         CLI_FLAG_OUT(&out, ""),
     };
     const struct cli_command cmd = {

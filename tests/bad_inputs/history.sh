@@ -29,3 +29,6 @@ t 2 "^brdfbench history: --min-change: '-1' is (not|out)" history R0 R0 --min-ch
 t 2 "^brdfbench history: --alpha: '0.9' is (not|out)" history R0 R0 --alpha 0.9
 t 2 "^brdfbench history: nostore.sqlite: no such store" history --db nostore.sqlite
 t 2 "^brdfbench history: junk.sqlite: not an SQLite database" history --db junk.sqlite
+t 2 "^brdfbench store add: --commit-date: 'yesterday' is not a date and time with its zone \(accepted: ISO 8601" store add R0 --db st.sqlite --commit-date yesterday
+t 2 "^brdfbench store add: --commit-date: '2026-13-01T00:00:00Z' is not a date and time with its zone" store add R0 --db st.sqlite --commit-date 2026-13-01T00:00:00Z
+t 2 "^brdfbench store add: --commit-date: '2026-03-01T10:00:00' is not a date and time with its zone" store add R0 --db st.sqlite --commit-date 2026-03-01T10:00:00
