@@ -58,6 +58,15 @@ for i in 1 3 21 22 40; do
     grep -qE " rev$i +2 +" "$T/list" && ok || bad "run $i not listed: $(head -3 "$T/list")"
 done
 
+# Two writers at once on a store that is not there yet: both make it (one makes the layout, the
+# other waits for it), and both runs land.
+"$BIN" store add "$T/runs/1/rows.json" --db "$T/new.sqlite" >/dev/null 2>"$T/err_c" &
+pc=$!
+"$BIN" store add "$T/runs/2/rows.json" --db "$T/new.sqlite" >/dev/null 2>"$T/err_d" &
+pd=$!
+wait $pc && wait $pd && ok || bad "two first adds at once: $(cat "$T/err_c" "$T/err_d")"
+"$BIN" store list --db "$T/new.sqlite" 2>&1 | grep -q ": 2 stored runs" && ok || bad "two first adds at once: not 2 runs"
+
 # Export: each stored document back as a rows document with the same rows.
 "$BIN" store export --db "$DB" --out "$T/exp" >"$T/out" 2>"$T/err" && ok || bad "export: $(cat "$T/err")"
 [ "$(ls "$T/exp" | wc -l)" = 40 ] && ok || bad "export wrote $(ls "$T/exp" | wc -l) files, expected 40"

@@ -119,7 +119,8 @@ static int evaluate_row(struct hist_set *h, struct hist_row *hr)
     hr->median = malloc((size_t)(T > 0 ? T : 1) * sizeof(double));
     hr->lo = malloc((size_t)(T > 0 ? T : 1) * sizeof(double));
     hr->hi = malloc((size_t)(T > 0 ? T : 1) * sizeof(double));
-    if (!samples || !hr->median || !hr->lo || !hr->hi) {
+    hr->nmedian = malloc((size_t)(T > 0 ? T : 1) * sizeof(double));
+    if (!samples || !hr->median || !hr->lo || !hr->hi || !hr->nmedian) {
         free(samples);
         return 3;
     }
@@ -145,9 +146,13 @@ static int evaluate_row(struct hist_set *h, struct hist_row *hr)
                                                 : hr->timed && reps_all ? "absolute" : "value");
     for (int k = 0; k < T; ++k) {
         const struct rd_metric *m = lookup(h, k, hr);
-        hr->median[k] = hr->lo[k] = hr->hi[k] = NAN;
+        hr->median[k] = hr->lo[k] = hr->hi[k] = hr->nmedian[k] = NAN;
         if (!m)
             continue;
+        if (m->norm && m->nnorm > 0) {
+            double nlo, nhi;
+            hr->nmedian[k] = median_of(m->norm, m->nnorm, &nlo, &nhi);
+        }
         if (!strcmp(hr->basis, "normalised"))
             samples[k].v = m->norm, samples[k].n = m->nnorm;
         else if (!strcmp(hr->basis, "absolute"))
@@ -418,7 +423,7 @@ static int write_md(const struct hist_set *h, const char *dir, const char *sourc
     return md_write_file_free(&b, path, err, errlen) ? 3 : 0;
 }
 
-#define PANEL_W 480
+#define PANEL_W 540
 #define PANEL_H 300
 #define PANEL_COLS 3
 #define MAX_PANELS 48
@@ -433,9 +438,10 @@ static int write_multiples(const struct hist_set *h, const char *dir, char *err,
     unsigned char *img = malloc((size_t)W * (size_t)H * 3);
     double *x = malloc((size_t)(h->nruns > 0 ? h->nruns : 1) * sizeof *x);
     double *vl = malloc(CP_MAX_CHANGES * sizeof *vl);
+    double *scaled = malloc((size_t)(h->nruns > 0 ? h->nruns : 1) * sizeof *scaled);
     char tmp[4200], path[4200];
     int rc = 0;
-    if (!img || !x || !vl) {
+    if (!img || !x || !vl || !scaled) {
         snprintf(err, errlen, "%s: out of memory drawing history.png", dir);
         rc = 3;
         goto done;
@@ -452,13 +458,23 @@ static int write_multiples(const struct hist_set *h, const char *dir, char *err,
     }
     for (int i = 0; i < n && !rc; ++i) {
         const struct hist_row *r = &h->rows[i];
-        struct draw_series s[3];
+        struct draw_series s[4];
         memset(s, 0, sizeof s);
-        s[0] = (struct draw_series){ .x = x, .y = r->median, .count = h->nruns, .label = "median", .colour = 0,
+        s[0] = (struct draw_series){ .x = x, .y = r->median, .count = h->nruns, .label = "absolute", .colour = 0,
                                      .markers = 1 };
         s[1] = (struct draw_series){ .x = x, .y = r->lo, .count = h->nruns, .label = "min, max", .colour = 7,
                                      .dashed = 1 };
         s[2] = (struct draw_series){ .x = x, .y = r->hi, .count = h->nruns, .label = NULL, .colour = 7, .dashed = 1 };
+        /* the normalised rate (over the reference kernel) at the absolute rate's level of the
+           first run with both: where the machine drifted, the two part */
+        double f = NAN;
+        for (int k = 0; k < h->nruns && !isfinite(f); ++k)
+            if (isfinite(r->median[k]) && isfinite(r->nmedian[k]) && r->nmedian[k] > 0)
+                f = r->median[k] / r->nmedian[k];
+        for (int k = 0; k < h->nruns; ++k)
+            scaled[k] = r->nmedian[k] * f;
+        s[3] = (struct draw_series){ .x = x, .y = scaled, .count = h->nruns, .label = "normalised", .colour = 1,
+                                     .markers = 1 };
         for (int c = 0; c < r->nchanges; ++c)
             vl[c] = r->changes[c].at + 0.5;   /* between the last run before and the first after */
         char title[RD_TEXT * 2 + 80], ylabel[RD_NAME + 40];
@@ -475,7 +491,7 @@ static int write_multiples(const struct hist_set *h, const char *dir, char *err,
         p.y_label = ylabel;
         p.x_min = 0.5;
         p.x_max = h->nruns + 0.5;
-        p.nseries = r->timed ? 3 : 1;
+        p.nseries = !r->timed ? 1 : isfinite(f) ? 4 : 3;
         p.series = s;
         p.nvlines = r->nchanges;
         p.vlines = vl;
@@ -500,6 +516,7 @@ done:
     free(img);
     free(x);
     free(vl);
+    free(scaled);
     return rc;
 }
 
@@ -577,6 +594,7 @@ void history_free(struct hist_set *h)
         free(h->rows[i].median);
         free(h->rows[i].lo);
         free(h->rows[i].hi);
+        free(h->rows[i].nmedian);
     }
     free(h->rows);
     memset(h, 0, sizeof *h);

@@ -14,7 +14,8 @@
  *
  * Written: history.json (brdfbench.history/1: the runs, each row's medians and changes, and
  * every change as {label, run, commit, ratio, interval, p}), history.md, history.png (small
- * multiples: each row's absolute rate per run, a dotted line at each change) and
+ * multiples: each row's absolute rate per run with its min and max, its normalised rate
+ * scaled to the absolute one's level at its first run, a dotted line at each change) and
  * history_normalised.png (every row's rate over its first segment's, one plot). */
 #ifndef BRDF_HISTORY_H
 #define BRDF_HISTORY_H
@@ -43,6 +44,7 @@ struct hist_row {
     char basis[16];        /* "normalised", "absolute" or "value" */
     double *median;        /* per run: the sample's median, NAN where the run lacks the row */
     double *lo, *hi;       /* per run: the sample's min and max */
+    double *nmedian;       /* per run: the normalised repetitions' median (NAN: none) */
     struct hist_change changes[CP_MAX_CHANGES];
     int nchanges;
 };
