@@ -59,7 +59,7 @@ done
 "$BIN" history $(shuffled "$T/step") --out "$T/h_step" --fail-if-slower 10 >"$T/out" 2>"$T/err"
 rc=$?
 [ $rc -eq 1 ] && ok || bad "step from run 7: exit $rc, expected 1 (the latest run's segment is 0.7x): $(cat "$T/err")"
-"$PY" - "$T/h_step/history.json" <<'EOF' && ok || bad "step from run 7: history.json"
+"$PY" - "$T/h_step/history.json" "$SRC/docs/schemas/brdfbench.history-1.schema.json" <<'EOF' && ok || bad "step from run 7: history.json"
 import json, sys
 h = json.load(open(sys.argv[1]))
 assert h["schema"] == "brdfbench.history/1"
@@ -74,6 +74,16 @@ for c in ch:
     assert 0.66 < c["ratio"] < 0.74, c
     assert c["interval"][0] <= 0.7 <= c["interval"][1], c
     assert 0 <= c["p"] < 0.05, c
+import jsonschema   # python3-jsonschema: the document against docs/schemas (and a broken copy refused)
+schema = json.load(open(sys.argv[2]))
+jsonschema.validate(h, schema)
+broken = json.loads(json.dumps(h))
+broken["changes"][0]["p"] = 2
+try:
+    jsonschema.validate(broken, schema)
+    raise AssertionError("a p of 2 passed the schema")
+except jsonschema.ValidationError:
+    pass
 rows = {r["label"]: r for r in h["rows"]}
 assert len(rows) == 6 and all(r["basis"] == "normalised" for r in rows.values())
 assert all(not r["changes"] for l, r in rows.items() if not l.startswith("m2"))

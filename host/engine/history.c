@@ -14,6 +14,7 @@
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
+#include "schemas.h"
 
 /* ---- order --------------------------------------------------------------------------------- */
 

@@ -25,7 +25,6 @@
 #include "changepoint.h"
 #include "rdoc.h"
 
-#define HISTORY_SCHEMA "brdfbench.history/1"
 
 struct hist_run {
     char name[256];        /* the run folder's name, the file, or the store's name for it */
