@@ -108,6 +108,14 @@ f = open(sys.argv[1], 'r+b'); f.seek(4096); f.write(b'\xff' * 8192); f.close()" 
 rc=$?
 { [ $rc -eq 3 ] || [ $rc -eq 2 ]; } && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "damaged.sqlite" "$T/err" && ok ||
     bad "damaged store: exit $rc: $(cat "$T/err")"
+# a rows document naming a kind that is none of the kinds (a path, here) is refused
+sed 's/"kind": "throughput"/"kind": "..\/..\/evil"/' "$T/runs/1/rows.json" >"$T/evil.json"
+expect 2 "evil.json: a document of kind '../../evil' \(accepted: throughput, accuracy" store add "$T/evil.json" --db "$T/evil.sqlite"
+# and a store whose kind column holds one (written by another program) exports under a plain name
+cp "$DB" "$T/edited.sqlite"
+"$PY" -c "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); c.execute(\"update runs set kind='../../evil' where id=1\"); c.commit()" "$T/edited.sqlite"
+"$BIN" store export --db "$T/edited.sqlite" --out "$T/exp2" >/dev/null 2>"$T/err" && [ -f "$T/exp2/1-other.rows.json" ] &&
+    [ ! -e "$T/evil.rows.json" ] && ok || bad "export of an edited kind: $(cat "$T/err"; ls "$T/exp2" | head -3)"
 # a bad input among good ones adds nothing
 echo '{' >"$T/broken.json"
 expect 2 "broken.json" store add "$T/runs/1/rows.json" "$T/broken.json" --db "$T/fresh.sqlite"

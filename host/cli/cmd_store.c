@@ -161,6 +161,14 @@ static int store_add_cmd(int argc, char **argv)
             goto cleanup;
         }
         for (int i = 0; i < found; ++i) {
+            if (rd_kind_of_name(docs[n + i].kind) < 0) {   /* a rows document names its kind itself */
+                fprintf(stderr, "brdfbench store add: %s: a document of kind '%.40s' (accepted: %s, %s, %s, %s, %s)\n",
+                        path, docs[n + i].kind, rd_kind_name(0), rd_kind_name(1), rd_kind_name(2), rd_kind_name(3),
+                        rd_kind_name(4));
+                n += found;
+                rc = EXIT_USAGE;
+                goto cleanup;
+            }
             if (docs[n + i].oom) {
                 fprintf(stderr, "brdfbench store add: %s: out of memory\n", path);
                 n += found;
@@ -262,7 +270,10 @@ static int store_export_cmd(int argc, char **argv)
         rc = store_text(s, runs[i].id, &text, err, sizeof err);
         if (rc)
             break;
-        snprintf(name, sizeof name, "%lld-%s.rows.json", runs[i].id, runs[i].kind);
+        /* the kind names the file only when it is one of the kinds (a store written by another
+           program could hold any text there) */
+        snprintf(name, sizeof name, "%lld-%s.rows.json", runs[i].id,
+                 rd_kind_of_name(runs[i].kind) >= 0 ? runs[i].kind : "other");
         if (path_join(path, sizeof path, out, name) || write_file_atomic(path, text, strlen(text), err, sizeof err))
             rc = EXIT_RUNTIME;
         else
