@@ -132,6 +132,30 @@ for c in ch:
 EOF
 expect 2 "--commit-date: 'yesterday' is not a date and time with its zone" store add "$T/step/run01.json" --db "$T/c.sqlite" --commit-date yesterday
 
+# Accuracy figures (not timed): a change where the 4th significant digit moves. Runs 1, 2 give
+# max_rel 0.01234 and 0.012341 (the same to 4 digits), run 3 gives 0.01300: one change, at run
+# 3, ratio 0.013 / 0.012341 = 1.0534, no interval and no p; no trend picture of rates.
+for i in 1 2 3; do
+    v=$(echo "0.01234 0.012341 0.013" | cut -d' ' -f$i)
+    cat >"$T/acc$i.json" <<EOF
+{"schema": "brdfbench.rows/1", "source": {"schema": "brdfbench.accuracy/1", "kind": "accuracy", "file": "accuracy.json"},
+ "context": {"device": "cpu0", "git_revision": "a$i", "date": "2026-05-0${i}T00:00:00Z"},
+ "rows": [{"device": "", "model": "fq2", "keys": {"label": "fq2"}, "row": "fq2", "status": "ok",
+   "metrics": [{"name": "max_rel", "unit": "1", "direction": "lower", "timed": false, "value": $v}]}]}
+EOF
+done
+"$BIN" history "$T/acc1.json" "$T/acc2.json" "$T/acc3.json" --kind accuracy --out "$T/h_acc" >"$T/out" 2>"$T/err" && ok ||
+    bad "history --kind accuracy: $(cat "$T/err")"
+"$PY" - "$T/h_acc/history.json" <<'EOF' && ok || bad "history --kind accuracy: history.json"
+import json, sys
+h = json.load(open(sys.argv[1]))
+ch = h["changes"]
+assert len(ch) == 1 and ch[0]["label"] == "fq2" and ch[0]["index"] == 3 and ch[0]["commit"] == "a3", ch
+assert abs(ch[0]["ratio"] - 0.013 / 0.012341) < 1e-9 and ch[0]["interval"] is None and ch[0]["p"] is None, ch
+assert h["rows"][0]["basis"] == "value" and h["rows"][0]["direction"] == "lower"
+EOF
+[ ! -e "$T/h_acc/history_normalised.png" ] && [ -s "$T/h_acc/history.png" ] && ok || bad "history --kind accuracy: pictures"
+
 # Bad input: one line, exit 2, nothing written.
 expect 2 "--db and run folders or files given together" history --db "$T/h.sqlite" "$T/step/run01.json" --out "$T/x1"
 expect 2 "holds 1 run of kind throughput \(a history takes 2 or more\)" history "$T/step/run01.json" --out "$T/x2"

@@ -221,7 +221,10 @@ int cmd_history(int argc, char **argv)
                 printf(" [%.3g, %.3g], p = %.2g", x->lo, x->hi, x->p);
             printf("\n");
         }
-    printf("written: %s/history.json, history.md, history.png, history_normalised.png\n", out);
+    int timed = 0;
+    for (int i = 0; i < h.nrows; ++i)
+        timed += h.rows[i].timed;
+    printf("written: %s/history.json, history.md, history.png%s\n", out, timed ? ", history_normalised.png" : "");
     if (slower_pct >= 0) {
         char *lines = NULL;
         int n = history_slower(&h, slower_pct, &lines);

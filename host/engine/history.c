@@ -414,7 +414,9 @@ static int write_md(const struct hist_set *h, const char *dir, const char *sourc
         md_cell_text(&b, h->runs[k].commit);
         md_printf(&b, " |\n");
     }
-    md_printf(&b, "\n![each row over the runs](history.png)\n\n![every row over its first runs](history_normalised.png)\n");
+    md_printf(&b, "\n![each row over the runs](history.png)\n");
+    if (timed > 0)
+        md_printf(&b, "\n![every timed row over its first segment](history_normalised.png)\n");
     char path[4200];
     if (path_join(path, sizeof path, dir, "history.md")) {
         md_free(&b);
@@ -571,6 +573,8 @@ static int write_normalised(const struct hist_set *h, const char *dir, char *err
     p.vlines = vl;
     if (n > 0 && draw_line_plot(path, &p, err, errlen))
         rc = 3;
+    else if (n == 0)
+        unlink(path);   /* no timed row: no picture, and none an earlier history left */
 done:
     free(x);
     free(y);
