@@ -42,56 +42,83 @@ struct cp_state {
     int n;
 };
 
-/* Searches [a, b) and, when a split passes, both halves. Returns 0 or -1 (no memory). */
+struct cp_split {
+    int k;
+    double p;   /* Bonferroni-adjusted */
+};
+
+static int cmp_split(const void *x, const void *y)
+{
+    const struct cp_split *a = x, *b = y;
+    return (a->p > b->p) - (a->p < b->p);
+}
+
+/* Whether a split at k of [a, b) leaves each side enough runs with values. */
+static int split_allowed(const struct cp_state *st, int a, int b, int k)
+{
+    if (!has_values(&st->runs[k]))
+        return 0;   /* a split falls just before a run that was measured */
+    int nl = 0, nr = 0;
+    for (int r = a; r < k; ++r)
+        nl += has_values(&st->runs[r]);
+    for (int r = k; r < b; ++r)
+        nr += has_values(&st->runs[r]);
+    /* a side holds min_seg runs, except a last segment that ends with the latest run */
+    int right_min = b > st->last ? 1 : st->s->min_seg;
+    return nl >= st->s->min_seg && nr >= right_min;
+}
+
+/* Searches [a, b) and, when a split passes, both halves. Returns 0 or -1 (no memory).
+ * Every split's rank test first (cheap); the Hodges-Lehmann shift (every pair of values) only
+ * for the splits in order of p while p < alpha, until the ones of the smallest p that pass are
+ * known: the same choice as testing every split fully, without the pairs of the others. */
 static int segment(struct cp_state *st, int a, int b)
 {
-    /* the runs with values in [a, b) */
-    int with = 0;
-    for (int r = a; r < b; ++r)
-        with += has_values(&st->runs[r]);
-    if (with < 2)
+    int m = 0;
+    for (int k = a + 1; k < b; ++k)
+        m += split_allowed(st, a, b, k);
+    if (m == 0)
         return 0;
-    int m = 0;   /* the splits this segment offers: the ones whose sides both hold enough runs */
+    struct cp_split *sp = malloc((size_t)m * sizeof *sp);
+    if (!sp)
+        return -1;
+    int n = 0;
+    for (int k = a + 1; k < b; ++k) {
+        if (!split_allowed(st, a, b, k))
+            continue;
+        int ny = pool(st->runs, a, k, st->before), nx = pool(st->runs, k, b, st->after);
+        struct ranktest_result t;
+        if (ranktest_mann_whitney(st->after, nx, st->before, ny, &t) != 0) {
+            free(sp);
+            return -1;
+        }
+        sp[n].k = k;
+        sp[n++].p = fmin(1.0, t.p * m);
+    }
+    qsort(sp, (size_t)n, sizeof *sp, cmp_split);
     int best = -1;
     double best_p = INFINITY, best_shift = 0, best_lo = NAN, best_hi = NAN;
-    for (int pass = 0; pass < 2; ++pass) {   /* pass 0 counts the splits, pass 1 tests them */
-        for (int k = a + 1; k < b; ++k) {
-            if (!has_values(&st->runs[k]))
-                continue;   /* a split falls just before a run that was measured */
-            int nl = 0, nr = 0;
-            for (int r = a; r < k; ++r)
-                nl += has_values(&st->runs[r]);
-            for (int r = k; r < b; ++r)
-                nr += has_values(&st->runs[r]);
-            /* a side holds min_seg runs, except a last segment that ends with the latest run */
-            int right_min = b > st->last ? 1 : st->s->min_seg;
-            if (nl < st->s->min_seg || nr < right_min)
-                continue;
-            if (pass == 0) {
-                ++m;
-                continue;
-            }
-            int ny = pool(st->runs, a, k, st->before), nx = pool(st->runs, k, b, st->after);
-            struct ranktest_result t;
-            double est, lo, hi;
-            if (ranktest_mann_whitney(st->after, nx, st->before, ny, &t) != 0)
-                return -1;
-            if (ranktest_shift_ci(st->after, nx, st->before, ny, st->s->alpha / m, &est, &lo, &hi) != 0)
-                return -1;
-            double p = fmin(1.0, t.p * m);
-            if (!(p < st->s->alpha) || !(fabs(est) > log1p(st->s->min_change)))
-                continue;
-            if (p < best_p || (p == best_p && fabs(est) > fabs(best_shift))) {
-                best = k;
-                best_p = p;
-                best_shift = est;
-                best_lo = lo;
-                best_hi = hi;
-            }
+    for (int i = 0; i < n && sp[i].p < st->s->alpha; ++i) {
+        if (best >= 0 && sp[i].p > best_p)
+            break;   /* a larger p can no longer be chosen */
+        int k = sp[i].k;
+        int ny = pool(st->runs, a, k, st->before), nx = pool(st->runs, k, b, st->after);
+        double est, lo, hi;
+        if (ranktest_shift_ci(st->after, nx, st->before, ny, st->s->alpha / m, &est, &lo, &hi) != 0) {
+            free(sp);
+            return -1;
         }
-        if (m == 0)
-            return 0;
+        if (!(fabs(est) > log1p(st->s->min_change)))
+            continue;
+        if (best < 0 || fabs(est) > fabs(best_shift)) {
+            best = k;
+            best_p = sp[i].p;
+            best_shift = est;
+            best_lo = lo;
+            best_hi = hi;
+        }
     }
+    free(sp);
     if (best < 0)
         return 0;
     if (segment(st, a, best))
