@@ -156,6 +156,12 @@ assert h["rows"][0]["basis"] == "value" and h["rows"][0]["direction"] == "lower"
 EOF
 [ ! -e "$T/h_acc/history_normalised.png" ] && [ -s "$T/h_acc/history.png" ] && ok || bad "history --kind accuracy: pictures"
 
+# --out: a folder made with its parents; a file there is refused before anything is read.
+"$BIN" history "$T/step/run01.json" "$T/step/run02.json" --out "$T/deep/a/b" >/dev/null 2>"$T/err" &&
+    [ -s "$T/deep/a/b/history.json" ] && ok || bad "history --out with missing parents: $(cat "$T/err")"
+touch "$T/afile"
+expect 2 "--out: .*afile is not a folder" history "$T/step/run01.json" "$T/step/run02.json" --out "$T/afile"
+
 # Bad input: one line, exit 2, nothing written.
 expect 2 "--db and run folders or files given together" history --db "$T/h.sqlite" "$T/step/run01.json" --out "$T/x1"
 expect 2 "holds 1 run of kind throughput \(a history takes 2 or more\)" history "$T/step/run01.json" --out "$T/x2"

@@ -193,7 +193,7 @@ int cmd_history(int argc, char **argv)
                  h.nruns == 1 ? "" : "s", rd_kind_name(kind));
         rc = EXIT_USAGE;
     }
-    if (!rc && output_file_check("--out", out, err, sizeof err) == 0 && outdir_prepare(out, "--out", err, sizeof err))
+    if (!rc && outdir_prepare(out, "--out", err, sizeof err))
         rc = EXIT_USAGE;
     if (!rc && history_evaluate(&h)) {
         snprintf(err, sizeof err, "out of memory");

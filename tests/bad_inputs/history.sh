@@ -32,3 +32,5 @@ t 2 "^brdfbench history: junk.sqlite: not an SQLite database" history --db junk.
 t 2 "^brdfbench store add: --commit-date: 'yesterday' is not a date and time with its zone \(accepted: ISO 8601" store add R0 --db st.sqlite --commit-date yesterday
 t 2 "^brdfbench store add: --commit-date: '2026-13-01T00:00:00Z' is not a date and time with its zone" store add R0 --db st.sqlite --commit-date 2026-13-01T00:00:00Z
 t 2 "^brdfbench store add: --commit-date: '2026-03-01T10:00:00' is not a date and time with its zone" store add R0 --db st.sqlite --commit-date 2026-03-01T10:00:00
+printf 'not a folder\n' >hist_file
+t 2 "^brdfbench history: --out: hist_file is not a folder" history R0 R0 --out hist_file
