@@ -71,11 +71,12 @@ static const char about[] =
     "  The store of runs: an SQLite database (results/history.sqlite unless --db) of result\n"
     "  documents with their context (commit, date, device, driver, build options, machine load),\n"
     "  that brdfbench history reads. add: each RUN_DIR's result files (or a result file or rows\n"
-    "  document), stored once by a content hash (adding a run again stores nothing), in one\n"
-    "  transaction that two CI jobs may run at once. list: the stored runs in date order. export:\n"
-    "  each stored run as a rows document (brdfbench.rows/1) in --out DIR, ID-KIND.rows.json\n"
-    "  each. --kind: add only the files, list or export only the runs, of that kind. A file that is not a\n"
-    "  brdfbench store is refused (exit 2; 3 for a damaged one). No device is used.\n";
+    "  document; 64 names a call), stored once by a content hash (adding a run again stores\n"
+    "  nothing), in one transaction that two CI jobs may run at once. list: the stored runs in\n"
+    "  date order. export: each stored run as a rows document (brdfbench.rows/1) in --out DIR,\n"
+    "  ID-KIND.rows.json each. --kind: add only the files, list or export only the runs, of\n"
+    "  that kind. A file that is not a brdfbench store is refused (exit 2; 3 for a damaged\n"
+    "  one). No device is used.\n";
 
 /* The name a run is stored under: the folder's last component, or the file's path. */
 static void run_name(const char *path, int is_dir, char *out, size_t len)
