@@ -404,7 +404,30 @@ static int write_md(const struct hist_set *h, const char *dir, const char *sourc
             }
         md_printf(&b, "\n");
     }
-    md_printf(&b, "## Runs\n\n| # | run | date | commit |\n|---|---|---|---|\n");
+    md_printf(&b, "## Rows\n\n| row | metric | changes decided on | runs | changes | figure, latest / first run |\n|---|---|---|---|---|---|\n");
+    for (int i = 0; i < h->nrows; ++i) {
+        const struct hist_row *r = &h->rows[i];
+        int first = -1, last = -1, n = 0;
+        for (int k = 0; k < h->nruns; ++k)
+            if (isfinite(r->median[k])) {
+                if (first < 0)
+                    first = k;
+                last = k;
+                ++n;
+            }
+        md_printf(&b, "| ");
+        if (*r->device) {
+            md_cell_text(&b, r->device);
+            md_printf(&b, " \\| ");
+        }
+        md_cell_text(&b, r->label);
+        md_printf(&b, " | %s | %s | %d | %d | ", r->metric, r->basis, n, r->nchanges);
+        if (first >= 0 && r->median[first] != 0)
+            md_printf(&b, "%.3f |\n", r->median[last] / r->median[first]);
+        else
+            md_printf(&b, " |\n");
+    }
+    md_printf(&b, "\n## Runs\n\n| # | run | date | commit |\n|---|---|---|---|\n");
     for (int k = 0; k < h->nruns; ++k) {
         md_printf(&b, "| %d | ", k + 1);
         md_cell_text(&b, h->runs[k].name);
