@@ -114,6 +114,29 @@ int main(void)
     CHECK(n == 1 && cp_latest_ratio(c, n) > 0.66 && cp_latest_ratio(c, n) < 0.74, "latest ratio %g",
           cp_latest_ratio(c, n));
 
+    /* Whole runs that differ from each other by about 8% (the offsets below, on a log scale:
+       their successive differences have a median of 0.08, a spread of 0.08 / (0.6745 sqrt 2) =
+       0.084 per run), the latest one 12% under the mean of the others (0.003): pooled, its ten
+       repetitions are far from the other 110 and the shift passes 10%, but by whole runs it is
+       1.4 spreads off (0.123 / (0.084 sqrt(1 + 1/11))), p about 0.19: no change. */
+    static const double offs[T] = { 0.05, -0.06, 0.02, 0.07, -0.04, -0.07, 0.06, -0.02, 0.04, -0.05, 0.03, -0.12 };
+    CHECK_CASE("the latest run within the runs' spread");
+    for (int r = 0; r < T; ++r)
+        scale[r] = exp(offs[r]);
+    make(scale);
+    n = find(c);
+    CHECK(n == 0, "%d changes (first at %d, ratio %g) for a run within the runs' own spread", n, n ? c[0].at : -1,
+          n ? c[0].ratio : 0);
+
+    CHECK_CASE("a 30% step among runs that spread");
+    /* the same runs with the step from run 7: (0.357 + the offsets' difference) over 0.084
+       sqrt(1/6 + 1/6), about 7 spreads: called, at 6 */
+    for (int r = 0; r < T; ++r)
+        scale[r] = exp(offs[r]) * (r >= 6 ? 0.7 : 1);
+    make(scale);
+    n = find(c);
+    CHECK(n == 1 && c[0].at == 6, "%d changes, at %d", n, n ? c[0].at : -1);
+
     CHECK_CASE("up 40% from run 4, back from run 8");
     for (int r = 0; r < T; ++r)
         scale[r] = r >= 4 && r < 8 ? 1.4 : 1;

@@ -155,8 +155,9 @@ int cmd_history(int argc, char **argv)
                  "  --db (results/history.sqlite when no run is named) or the run folders, result files and\n"
                  "  rows documents named, ordered by commit date (where every run's context has one) or run\n"
                  "  date. A timed row changes where binary segmentation splits its runs by compare's rule:\n"
-                 "  the Mann-Whitney test of the repetitions after against before, Bonferroni-corrected over\n"
-                 "  the segment's splits, gives p < --alpha and the Hodges-Lehmann ratio is beyond\n"
+                 "  the Mann-Whitney test of the repetitions after against before, and a t test of the\n"
+                 "  runs' levels against how much whole runs differ, both Bonferroni-corrected over the\n"
+                 "  segment's splits, give p < --alpha and the Hodges-Lehmann ratio is beyond\n"
                  "  --min-change. Writes history.json (changes: label, run, commit, ratio, interval, p),\n"
                  "  history.md and the trend pictures into --out. --fail-if-slower: the baseline is the\n"
                  "  segment before the latest run's. No device is used.\n",

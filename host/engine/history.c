@@ -309,8 +309,9 @@ static int write_json(const struct hist_set *h, const char *dir, const char *sou
     jw_kv_str(&w, "source", source);
     jw_kv_str(&w, "order", h->order);
     jw_kv_obj(&w, "method");
-    jw_kv_str(&w, "name", "binary segmentation, Mann-Whitney test of the pooled repetitions with a Bonferroni "
-                          "correction over a segment's splits, and a Hodges-Lehmann shift beyond min_change");
+    jw_kv_str(&w, "name", "binary segmentation: the Mann-Whitney test of the pooled repetitions and a t test of "
+                          "the runs' levels over their run-to-run spread, both with a Bonferroni correction over "
+                          "a segment's splits, and a Hodges-Lehmann shift beyond min_change");
     jw_kv_num(&w, "alpha", h->cp.alpha);
     jw_kv_num(&w, "min_change", h->cp.min_change);
     jw_kv_int(&w, "min_segment_runs", h->cp.min_seg);
@@ -373,8 +374,9 @@ static int write_md(const struct hist_set *h, const char *dir, const char *sourc
     md_printf(&b, "# History\n\n%d runs from %s, ordered by %s; %d rows (%d timed), %d change%s.\n\n", h->nruns, source,
               h->order, h->nrows, timed, nchanges, nchanges == 1 ? "" : "s");
     md_printf(&b, "A timed row changes where binary segmentation splits its runs: the Mann-Whitney test of the "
-                  "repetitions after against those before gives p < %g after a Bonferroni correction over the "
-                  "segment's splits, and the Hodges-Lehmann ratio is beyond %g%%. A segment inside the series "
+                  "repetitions after against those before, and a t test of the runs' levels against how much "
+                  "whole runs differ, both give p < %g after a Bonferroni correction over the segment's splits, "
+                  "and the Hodges-Lehmann ratio is beyond %g%%. A segment inside the series "
                   "holds %d runs or more; the latest run may stand alone. Other figures change where their 4th "
                   "significant digit moves.\n\n",
               h->cp.alpha, 100 * h->cp.min_change, h->cp.min_seg);

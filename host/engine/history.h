@@ -8,8 +8,8 @@
  * normalised by the reference kernel where every run has them (the machine's drift cancels,
  * as in compare), else the absolute repetitions, else the figure alone.
  *
- * Timed figures get change points by binary segmentation with compare's rule
- * (changepoint.h); other figures (accuracy) a change wherever the figure moves in its 4th
+ * Timed figures get change points by binary segmentation with compare's rule and a run-level
+ * test (changepoint.h); other figures (accuracy) a change wherever the figure moves in its 4th
  * significant digit from the run before, as compare calls an accuracy figure changed.
  *
  * Written: history.json (brdfbench.history/1: the runs, each row's medians and changes, and

@@ -2,11 +2,16 @@
  *
  * A series is one row's figure over T runs in order, each run a sample (its repetitions, on a
  * log scale: a ratio is a shift). A segment [a, b) of runs is split at k (the runs a..k-1
- * before, k..b-1 after) when the Mann-Whitney test of the pooled repetitions after against
- * those before gives p * m < alpha, m = b - a - 1 the splits the segment offers (Bonferroni
- * over the splits tried), AND the Hodges-Lehmann shift, a ratio, is beyond the minimum
- * change: |log ratio| > log(1 + min_change). Both, as compare decides faster or slower: a
- * large shift the repetitions cannot tell from noise is no change, and neither is a small
+ * before, k..b-1 after) when
+ *  - the Mann-Whitney test of the pooled repetitions after against those before, and
+ *  - the run-level test: the mean of the runs' levels (each run's median) after against
+ *    before, over the spread of whole runs (Student's t; the spread from the series'
+ *    successive differences, which a step moves only once), since the repetitions of one run
+ *    share its drift and are not independent across runs,
+ * both give p * m < alpha, m the splits the segment offers (Bonferroni over the splits tried),
+ * AND the Hodges-Lehmann shift of the repetitions, a ratio, is beyond the minimum change:
+ * |log ratio| > log(1 + min_change). Significance and size, as compare decides faster or
+ * slower: a large shift the runs cannot tell from noise is no change, and neither is a small
  * real one. Of the splits that pass, the one with the smallest p (then the largest shift) is
  * taken, and both halves are searched again, until no split passes.
  *
@@ -39,7 +44,7 @@ struct cp_change {
     int at;              /* the first run after the change */
     double ratio;        /* after / before (Hodges-Lehmann on the logs, exponentiated) */
     double lo, hi;       /* its interval */
-    double p;            /* Bonferroni-adjusted p of the split */
+    double p;            /* Bonferroni-adjusted p of the split: the larger of the two tests' */
     int m;               /* the splits tried in the segment where it was found (the correction) */
 };
 
