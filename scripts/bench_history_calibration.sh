@@ -20,8 +20,9 @@
 #               N(0, REP_SD); 20 of the rows with the 30% step from STEP_FROM. Seeded: the same
 #               figures every time. It shows the rule's error rates under a stated noise model.
 # Printed per condition: the rows, the share of rows with no change called (the calibration
-# goal: at least 95% on flat and flat-load), and for planted the share of STEP_MODEL's rows
-# whose one change is called at STEP_FROM, and the share of the other rows with any change.
+# goal: at least 95% on flat and flat-load), and for planted and synthetic the share of the
+# planted rows (STEP_MODEL's; synthetic's s00..s19) whose one change is called at STEP_FROM,
+# and the share of the other rows with any change (for synthetic the calibration figure).
 #
 # Environment: BRDFBENCH (default build/brdfbench), MODELS (default cq2,fq2,phong), TP_FLAGS
 # (default below), STEP_MODEL (default fq2), STEP_FROM (default 7), CONDITIONS (default
@@ -157,7 +158,7 @@ for s in $(seq 1 "$SERIES"); do
 done
 
 echo "history calibration: $SERIES series of $RUNS runs, models $MODELS, $TP_FLAGS"
-printf '%-10s %6s %22s %30s %24s\n' condition rows "no change called" "$STEP_MODEL rows: one change at $STEP_FROM" "other rows: a change"
+printf '%-10s %6s %22s %30s %24s\n' condition rows "no change called" "planted rows: one change at $STEP_FROM" "other rows: a change"
 for c in synthetic flat flat-load planted; do
     [ -n "${rows[$c]:-}" ] || continue
     share() { [ "$2" -gt 0 ] && python3 -c "print('%d/%d = %.1f%%' % ($1, $2, 100.0 * $1 / $2))" || echo "-"; }
