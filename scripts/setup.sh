@@ -13,6 +13,7 @@ packages=(
   clang libclang-rt-14-dev
   libtcc-dev
   glslang-dev
+  libsqlite3-dev libbenchmark-tools python3-scipy python3-yaml
 )
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 

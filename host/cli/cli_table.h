@@ -275,4 +275,9 @@ int cli_is_stdout(const char *path);
       .def = "48x48x96", .help = "cells of the hemisphere sweep in theta_h (square-root spaced), theta_d and "      \
               "phi_d" }
 
+/* The store of runs (store.h): store and history. */
+#define CLI_FLAG_DB(DEST)                                                                                          \
+    { .name = "--db", .value = "FILE", .kind = CLI_PATH, .dest = CLI_DEST(const char *, DEST),                    \
+      .help = "the store of runs, an SQLite file (brdfbench store add makes it)", .def = "results/history.sqlite" }
+
 #endif

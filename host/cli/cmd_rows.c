@@ -7,23 +7,25 @@
 #include "exitcodes.h"
 #include "mdbuf.h"
 #include "outdir.h"
+#include "rdoc_export.h"
 #include "rdoc_read.h"
 
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 
-enum rows_format { ROWS_MD = 0, ROWS_CSV, ROWS_JSON };
+enum rows_format { ROWS_MD = 0, ROWS_CSV, ROWS_JSON, ROWS_GBENCH, ROWS_BMF, ROWS_ACTION, ROWS_ACTION_SMALLER, ROWS_NFORMATS };
 
 static int call_format(const char *flag, const char *value, void *dest, char *err, size_t errlen)
 {
-    static const char *const names[] = { "md", "csv", "json" };
-    for (int f = 0; f < 3; ++f)
+    static const char *const names[] = { "md", "csv", "json", "gbench", "bmf", "action", "action-smaller" };
+    for (int f = 0; f < ROWS_NFORMATS; ++f)
         if (strcmp(value, names[f]) == 0) {
             *(int *)dest = f;
             return 0;
         }
-    snprintf(err, errlen, "%s: '%s' is not a format (accepted: md, csv, json)", flag, value);
+    snprintf(err, errlen, "%s: '%s' is not a format (accepted: md, csv, json) nor an export (gbench, bmf, action, "
+                          "action-smaller)", flag, value);
     return EXIT_USAGE;
 }
 
@@ -77,21 +79,26 @@ int cmd_rows(int argc, char **argv)
     char err[1024];
     const struct cli_flag flags[] = {
         { .name = "--format", .value = "FMT", .kind = CLI_CALL, .dest = &format, .call = call_format,
-          .range = "md, csv or json", .def = "md",
-          .help = "markdown tables, CSV (one line per metric of a row) or JSON (brdfbench.rows/1)" },
+          .range = "md, csv, json, gbench, bmf, action or action-smaller", .def = "md",
+          .help = "markdown tables, CSV (one line per metric of a row), JSON (brdfbench.rows/1); for other tools: "
+                  "gbench (google/benchmark JSON of the rates, for its compare.py), bmf (Bencher Metric Format, "
+                  "every figure), action (github-action-benchmark customBiggerIsBetter: rates, PSNR) or "
+                  "action-smaller (customSmallerIsBetter: errors)" },
         { .name = "--kind", .value = "KIND", .kind = CLI_CALL, .dest = &only, .call = call_kind,
           .range = "throughput, accuracy, render, fit or frontier", .def = "every kind found",
-          .help = "only the file of this kind in RUN_DIR (csv and json write one document: with a folder of "
-                  "several kinds, name one)" },
+          .help = "only the results of this kind" },
         CLI_FLAG_OUTPUT(&out, "-"),
     };
     const struct cli_command cmd = {
         .name = "rows",
-        .synopsis = "FILE|RUN_DIR [--format md|csv|json] [--kind KIND] [--output FILE|-]",
+        .synopsis = "FILE|RUN_DIR [--format md|csv|json|gbench|bmf|action|action-smaller] [--kind KIND] [--output FILE|-]",
         .about = "  The figures of a result file (throughput.json, accuracy.json, render.json, fit.json,\n"
                  "  frontier.json) or of a run folder's files, as rows: each row's keys, its status and its\n"
                  "  metrics with unit and direction (higher or lower is better), range and repetitions. These\n"
-                 "  are the rows compare matches across runs and gate --baseline reads. No device is used.\n",
+                 "  are the rows compare matches across runs and gate --baseline reads. No device is used.\n"
+                 "  gbench, bmf and action write them for google/benchmark's compare.py, Bencher and\n"
+                 "  github-action-benchmark (docs/ci.md, \"Exports\"). --kind with RUN_DIR opens that kind's file\n"
+                 "  only; csv, json and the exports write one document, so a folder of several kinds needs it.\n",
         CLI_TABLE(flags),
         .max_positional = 1,
     };
@@ -114,22 +121,34 @@ int cmd_rows(int argc, char **argv)
     }
     int rc = EXIT_OK;
     if (format != ROWS_MD && n > 1) {
+        static const char *const fnames[] = { "md", "csv", "json", "gbench", "bmf", "action", "action-smaller" };
         fprintf(stderr, "brdfbench rows: --format %s writes one document and %s holds %d (name one with --kind: %s, "
-                        "%s%s)\n", format == ROWS_CSV ? "csv" : "json", args.positional[0], n, docs[0].kind,
+                        "%s%s)\n", fnames[format], args.positional[0], n, docs[0].kind,
                 docs[1].kind, n > 2 ? ", ..." : "");
         rc = EXIT_USAGE;
     } else {
         struct md_buf b;
         md_init(&b);
-        for (int i = 0; i < n; ++i) {
-            if (format == ROWS_JSON)
+        int xrc = 0;
+        for (int i = 0; i < n && !xrc; ++i) {
+            if (format == ROWS_GBENCH)
+                xrc = rdoc_gbench(&docs[i], &b, err, sizeof err);
+            else if (format == ROWS_BMF)
+                xrc = rdoc_bmf(&docs[i], &b, err, sizeof err);
+            else if (format == ROWS_ACTION || format == ROWS_ACTION_SMALLER)
+                xrc = rdoc_action(&docs[i], format == ROWS_ACTION ? RD_HIGHER : RD_LOWER, &b, err, sizeof err);
+            else if (format == ROWS_JSON)
                 rdoc_json(&docs[i], &b);
             else if (format == ROWS_CSV)
                 rdoc_csv(&docs[i], &b);
             else
                 rdoc_markdown(&docs[i], &b);
         }
-        if (md_write_file_free(&b, out, err, sizeof err)) {
+        if (xrc) {   /* nothing the format takes: nothing written */
+            md_free(&b);
+            fprintf(stderr, "brdfbench rows: %s\n", err);
+            rc = xrc;
+        } else if (md_write_file_free(&b, out, err, sizeof err)) {
             fprintf(stderr, "brdfbench rows: %s\n", err);
             rc = EXIT_RUNTIME;
         }

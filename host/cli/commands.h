@@ -39,6 +39,10 @@
       "brdfbench frontier --out results/frontier") \
     X(measured, "measured materials (MERL files): Blinn-Phong and Cook-Torrance fits, every cheap lobe against them", \
       "brdfbench measured merl/gold-metallic-paint.binary") \
+    X(store, "the store of runs (SQLite): add run folders, list them, export them as rows documents", \
+      "brdfbench store add results/latest --db results/history.sqlite") \
+    X(history, "each row's series over stored runs or run folders: change points, trend picture, CI check", \
+      "brdfbench history --db results/history.sqlite --fail-if-slower 10") \
     X(help, "a command's options (help COMMAND), its man page, or the shell completions", \
       "brdfbench help accuracy")
 

@@ -21,6 +21,7 @@
 #define PLOTS_SCHEMA "brdfbench.plots/1"
 #define Q_SWEEP_SCHEMA "brdfbench.q_sweep/1"
 #define RENDER_SCHEMA "brdfbench.render/1"
+#define HISTORY_SCHEMA "brdfbench.history/1"  /* `brdfbench history` (history.h) */
 #define ROWS_SCHEMA "brdfbench.rows/1"        /* `brdfbench rows`: any result file as rows (rdoc.h) */
 #define RUN_SCHEMA "brdfbench.run/1"          /* run.json of `all`: what report.md is made of */
 #define THROUGHPUT_SCHEMA "brdfbench.throughput/3"
