@@ -166,6 +166,12 @@ expect 2 "--out: .*afile is not a folder" history "$T/step/run01.json" "$T/step/
 expect 2 "--db and run folders or files given together" history --db "$T/h.sqlite" "$T/step/run01.json" --out "$T/x1"
 expect 2 "holds 1 run of kind throughput \(a history takes 2 or more\)" history "$T/step/run01.json" --out "$T/x2"
 expect 2 "no such store" history --db "$T/none.sqlite" --out "$T/x3"
+# ... but a store's first run (a CI workflow's first day, docs/ci.md) is no error: a note, exit 0,
+# --fail-if-slower included, and no folder written
+"$BIN" store add "$T/step/run01.json" --db "$T/one.sqlite" >/dev/null 2>"$T/err" || bad "store add of one run: $(cat "$T/err")"
+"$BIN" history --db "$T/one.sqlite" --fail-if-slower 10 --out "$T/x5" >"$T/out" 2>"$T/err" &&
+    grep -q "holds 1 run of kind throughput: no series yet" "$T/out" && [ ! -e "$T/x5" ] && ok ||
+    bad "history of a store with one run: $(cat "$T/out" "$T/err")"
 expect 2 "--fail-if-slower" history "$T/step/run01.json" "$T/step/run02.json" --fail-if-slower -5 --out "$T/x4"
 [ ! -e "$T/x1" ] && [ ! -e "$T/x2" ] && [ ! -e "$T/x3" ] && [ ! -e "$T/x4" ] && ok || bad "a refused history wrote its folder"
 

@@ -189,6 +189,13 @@ int cmd_history(int argc, char **argv)
         snprintf(source, sizeof source, "%s", db);
         rc = runs_from_store(&h, db, kind, err, sizeof err);
     }
+    if (!rc && h.nruns == 1 && args.npositional == 0) {
+        /* a store's first run (a CI job's first day): no series yet, nothing to compare or fail */
+        printf("history: %s holds 1 run of kind %s: no series yet (a history takes 2 or more); nothing written\n",
+               source, rd_kind_name(kind));
+        history_free(&h);
+        return 0;
+    }
     if (!rc && h.nruns < 2) {
         snprintf(err, sizeof err, "%s holds %d run%s of kind %s (a history takes 2 or more)", source, h.nruns,
                  h.nruns == 1 ? "" : "s", rd_kind_name(kind));
