@@ -44,6 +44,9 @@ leak:libtbb
 leak:libgomp
 leak:_dl_resize_dtv
 leak:_dl_allocate_tls
+# the C library's dlerror text, held in thread storage (the ICD loader's failed dlopen)
+leak:_dlerror_run
+leak:_dl_exception_create_format
 EOF
 # The suite runs against PoCL alone here. Mesa's OpenCL drivers (mesa-opencl-icd, which CI
 # installs for test_rusticl) are otherwise loaded into every process by the ICD loader; they
