@@ -850,6 +850,7 @@ grep -vE '^brdfbench: building .*: [0-9]+ s so far \(deadline' "$T/err" | head -
 
 # The rows of each area in files of their own (tests/bad_inputs/*.sh, sourced in name order):
 # they use t, WHAT and the fixtures above, and write only into this test's folder.
+first_area_row=$((row + 1))
 for rows_file in "$SRC"/tests/bad_inputs/*.sh; do
     [ -f "$rows_file" ] || continue
     # shellcheck source=/dev/null
@@ -869,7 +870,9 @@ if [ -n "${BAD_INPUTS_MD:-}" ]; then
         echo "or output error, 77 no OpenCL device (docs/architecture.md). Rows 155 on are the hostile inputs of"
         echo "issue 23: result files fed back, names that become file names, model texts, limits, environments;"
         echo "rows 341 on its rest: rows a run lost (compare exits 1 naming them), figures and labels compare"
-        echo "refuses, user models whose files would be another model's."
+        echo "refuses, user models whose files would be another model's; rows $first_area_row on, those of"
+        echo "tests/bad_inputs/*.sh, one file per area (the .brdf corpus, exact corpus files, full BRDFs,"
+        echo "hardening, the store and history, shader code)."
         echo "Made with \`BAD_INPUTS_MD=docs/bad-inputs.md bash tests/test_cli_errors.sh\`"
         echo "(BRDFBENCH and SRC_DIR set as ctest sets them): $row cases, one check that no refused run"
         echo "wrote an output folder and one that a compile error's first line is FILE:LINE:COL; $pass passed, $fail failed."
