@@ -413,13 +413,13 @@ d["folder"] = "esc31\n# injected heading"
 d["steps"][0]["message"] = "<img src=x onerror=alert(1)> [link](http://example.com) \u001b]0;title\u0007"
 json.dump(d, open("esc31/run.json", "w"))
 PY
-run 60 report esc31 --output esc31.md
+run 60 report esc31 --output esc31_report.txt
 # (the command stands in a code span, where nothing is markup; everywhere else '<' is "&lt;" and
 # a link's brackets are escaped)
-[ $rc -eq 0 ] && grep -q '^| command | `` brdfbench all <script>' esc31.md && ! grep -v '^| command | `' esc31.md | grep -q '<script' &&
-    ! grep -q '<img' esc31.md && ! grep -q $'\x1b' esc31.md && ! grep -q '^# injected heading' esc31.md &&
-    ! grep -qE '[^\\]\]\(http://example.com\)' esc31.md && ok ||
-    bad "report.md carries a file's markdown, HTML or escape bytes: exit $rc: $(grep -n 'script\|img\|injected\|example' esc31.md | head -5)"
+[ $rc -eq 0 ] && grep -q '^| command | `` brdfbench all <script>' esc31_report.txt && ! grep -v '^| command | `' esc31_report.txt | grep -q '<script' &&
+    ! grep -q '<img' esc31_report.txt && ! grep -q $'\x1b' esc31_report.txt && ! grep -q '^# injected heading' esc31_report.txt &&
+    ! grep -qE '[^\\]\]\(http://example.com\)' esc31_report.txt && ok ||
+    bad "report.md carries a file's markdown, HTML or escape bytes: exit $rc: $(grep -n 'script\|img\|injected\|example' esc31_report.txt | head -5)"
 
 # ---- issue 31, Low: plot takes --quiet as every other command does (nothing on stdout or stderr)
 cp -r "$R" q31

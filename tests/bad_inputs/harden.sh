@@ -93,6 +93,6 @@ d = json.load(open("rows31.json"))
 d["rows"][0]["keys"] = {"k%d" % i: str(i) for i in range(10)}
 json.dump(d, open("rows31_keys.json", "w"))'
 WHAT="rows31_long.json: two rows whose labels differ only after byte 300"
-t 2 "^brdfbench rows: rows31_long\.json:[0-9]+:[0-9]+: a row whose keys do not fit \(at most 8 keys, a label and each key of at most 255 bytes\)" rows rows31_long.json --output run31.md
+t 2 "^brdfbench rows: rows31_long\.json:[0-9]+:[0-9]+: a row whose keys do not fit \(at most 8 keys, a label and each key of at most 255 bytes\)" rows rows31_long.json --output run31_rows.txt
 WHAT="rows31_keys.json: a row with 10 keys"
 t 2 "^brdfbench compare: rows31_keys\.json:[0-9]+:[0-9]+: a row whose keys do not fit" compare rows31.json rows31_keys.json
