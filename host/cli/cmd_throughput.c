@@ -209,7 +209,7 @@ int cmd_throughput(int argc, char **argv)
         CLI_FLAG_N_MIN(&o.n_lo),
         CLI_FLAG_N_MAX(&o.n_hi),
         { .name = "--work-items", .value = "N", .kind = CLI_LONG, .dest = &o.work_items, .min = 1,
-          .max = TP_MAX_WORK_ITEMS, .help = "device work-items per launch", .def = "32 per compute unit" },
+          .max = TP_MAX_WORK_ITEMS, .help = "device work-items per launch", .def = "32 per compute unit on a CPU device, 512 on others" },
         { .name = "--threads", .value = "N", .kind = CLI_INT, .dest = &o.threads, .min = 1, .max = 256,
           .help = "threads of the C baseline", .def = "the online CPUs" },
         { .name = "--no-host-c", .kind = CLI_SWITCH, .dest = &o.host_c, .set = 0, .help = "skip the C baseline" },

@@ -949,3 +949,26 @@ int clsession_device_list(const char *text, int platform, struct cl_device_ref *
     }
     return n;
 }
+
+const size_t *clsession_group_size(const struct cl_session *s, size_t global, size_t *buf)
+{
+    if (s->is_cpu) {
+        *buf = 1;
+        return buf;
+    }
+    static const size_t sizes[] = { 256, 128, 64, 32 };
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; ++i)
+        if (global % sizes[i] == 0) {
+            *buf = sizes[i];
+            return buf;
+        }
+    *buf = 0;
+    return NULL;
+}
+
+long clsession_default_work_items(const struct cl_session *s, long max)
+{
+    long per_cu = s->is_cpu ? 32 : 512;
+    long n = per_cu * (long)(s->compute_units ? s->compute_units : 1);
+    return n > max ? max : n;
+}

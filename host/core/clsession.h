@@ -143,6 +143,18 @@ double clsession_timeout(void);
  * name goes into the message), `model` the model it evaluates (NULL when none). Returns
  * clFinish's result. */
 cl_int clsession_finish(struct cl_session *s, cl_kernel kernel, const char *model);
+/* The work-group size of a launch of `global` long-looping work-items (throughput, render): 1 on a
+   CPU device (PoCL and llvmpipe spread the groups over their threads; a size of the driver's own
+   choosing can put every work-item on one thread), else the largest of 256, 128, 64, 32 that
+   divides `global`, so that a GPU's warps run full (a group of 1 runs one lane of 32), or 0 where
+   none divides it: then *local_or_null is NULL and the driver chooses. Returns the local size
+   pointer for clEnqueueNDRangeKernel (buf or NULL). */
+const size_t *clsession_group_size(const struct cl_session *s, size_t global, size_t *buf);
+/* The default number of long-looping work-items of a throughput launch: 32 per compute unit on a
+   CPU device, 512 per compute unit elsewhere (a GPU needs many warps per multiprocessor to hide
+   latency), at most `max`. */
+long clsession_default_work_items(const struct cl_session *s, long max);
+
 /* Enqueues kernel over global (and local, or NULL) in `dims` dimensions and waits for it under
  * the deadline. ev (or NULL) receives the launch's event, for its profiling times; the caller
  * releases it. Returns 0, or EXIT_RUNTIME with the failed call reported. */

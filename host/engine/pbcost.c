@@ -302,12 +302,11 @@ static int launch(struct cl_session *s, cl_kernel k, long iters, double *seconds
     cl_event ev = NULL;
     CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof step, &step), done);
     CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof it, &it), done);
-    /* one float16 work-item per group (each is a long loop already): PoCL spreads the groups
-       over its threads, where a size of its own choosing can put every work-item in one group
-       on one thread */
-    size_t local = 1;
+    /* each work-item is a long loop already (clsession_group_size: 1 on a CPU device) */
+    size_t local;
+    const size_t *lp = clsession_group_size(s, global, &local);
     double t0 = wall_seconds();
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev), done);
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, lp, 0, NULL, &ev), done);
     CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
     *seconds = cl_event_seconds_or_wall(ev, wall_seconds() - t0, NULL);
 done:
@@ -481,7 +480,7 @@ static int pbcost_measure(struct cl_session *s, const struct pbcost_options *o, 
         fprintf(stderr, "physical: building the full-vector kernels...\n");
     if ((rc = clsession_build(s, "throughput.cl", extra, "", &prog)) != 0)
         return rc;
-    r->work_items = o->work_items > 0 ? o->work_items : 32L * (long)(s->compute_units ? s->compute_units : 1);
+    r->work_items = o->work_items > 0 ? o->work_items : clsession_default_work_items(s, 65536);   /* throughput.h TP_MAX_WORK_ITEMS */
     size_t global = (size_t)r->work_items;
     cl_int e;
     out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, global * PBCOST_LANES * sizeof(float), NULL, &e);

@@ -30,7 +30,7 @@ struct pbcost_options {
     double n;                    /* shininess of the lobes and of alpha(n) (default 100) */
     int reps;                    /* timed launches per row (default 9) */
     double min_time;             /* seconds one timed launch lasts at least (default 0.02) */
-    long work_items;             /* 0: 32 per compute unit */
+    long work_items;             /* 0: clsession_default_work_items */
     int nfull;                   /* full BRDFs of (L, V, N) given by the user (model_is_full) */
     struct model_spec full[PBCOST_MAX_MEASURED];
     int nmeasured;               /* measured materials timed as rows (table lookups) */

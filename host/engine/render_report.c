@@ -296,7 +296,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
 {
     struct jw w;
     jw_doc_begin(&w, RENDER_SCHEMA, s, "");
-    jw_kv_int(&w, "work_items_per_launch", RENDER_WORK_ITEMS);
+    jw_kv_int(&w, "work_items_per_launch", render_work_items(s));
     jw_kv_str(&w, "timing", "OpenCL profiling events (kernel start to end); median of reps after "
               "warm-up launches of the same NDRange; each timed launch follows a copy-kernel launch");
     jw_obj_end(&w);

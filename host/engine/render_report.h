@@ -26,6 +26,11 @@
    balance the load without barriers; the same count for every size keeps one launch
    shape (PoCL compiles per shape). */
 #define RENDER_WORK_ITEMS 256
+/* The work-items of a render launch on device s: RENDER_WORK_ITEMS on a CPU device; on a GPU, 512
+   per compute unit (256 work-items would fill two of a GPU's multiprocessors and leave the rest
+   idle). Pixels are independent: the images do not depend on it. */
+struct cl_session;
+long render_work_items(const struct cl_session *s);
 
 struct image_metrics {
     size_t pixels;             /* foreground pixels in the region */

@@ -150,6 +150,11 @@ static void display_table_build(const struct render_options *o, uint32_t *table,
 
 /* ------------------------------------------------------------------ device */
 
+long render_work_items(const struct cl_session *s)
+{
+    return s->is_cpu ? RENDER_WORK_ITEMS : clsession_default_work_items(s, 1L << 20);
+}
+
 int render_device_open(struct render_device *d, struct cl_session *s,
                        const struct render_options *o, char *err, size_t errlen)
 {
@@ -157,7 +162,7 @@ int render_device_open(struct render_device *d, struct cl_session *s,
     cl_int e;
     memset(d, 0, sizeof *d);
     d->s = s;
-    d->global_size = RENDER_WORK_ITEMS;
+    d->global_size = (size_t)render_work_items(s);
     uint32_t *table = malloc(DISPLAY_BINS * sizeof *table);
     if (!table) {
         set_err(err, errlen, "out of memory");
@@ -202,8 +207,9 @@ static int launch(struct render_device *d, cl_kernel k, const char *model, doubl
 {
     int rc = 0;
     cl_event ev = NULL;
-    size_t global = d->global_size, local = 1;
-    CL_CHECK_GOTO(clEnqueueNDRangeKernel(d->s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev),
+    size_t global = d->global_size, local;
+    const size_t *lp = clsession_group_size(d->s, global, &local);
+    CL_CHECK_GOTO(clEnqueueNDRangeKernel(d->s->queue, k, 1, NULL, &global, lp, 0, NULL, &ev),
                   done);
     CL_CHECK_GOTO(clsession_finish(d->s, k, model), done);
     if (seconds)

@@ -614,9 +614,7 @@ static int tp_run_all(struct cl_session *s, const struct throughput_options *o, 
     } else {
         r->nmodels = model_spec_list_default(r->models, TP_MAX_MODELS);
     }
-    r->work_items = o->work_items > 0 ? o->work_items : 32L * (long)(s->compute_units ? s->compute_units : 1);
-    if (r->work_items > TP_MAX_WORK_ITEMS)
-        r->work_items = TP_MAX_WORK_ITEMS;
+    r->work_items = o->work_items > 0 ? o->work_items : clsession_default_work_items(s, TP_MAX_WORK_ITEMS);
     r->threads = o->threads > 0 ? o->threads : hostc_default_threads();
     r->nentries = r->nmodels + 1;
     r->e = calloc((size_t)r->nentries, sizeof *r->e);

@@ -52,7 +52,7 @@ struct throughput_options {
     unsigned variant_n_modes;    /* n modes measured under the non-default variants */
     int host_c;                  /* time the C baseline too */
     int threads;                 /* C baseline threads; 0: the online CPUs */
-    long work_items;             /* device work-items per launch (0: 32 per compute unit) */
+    long work_items;             /* device work-items per launch (0: clsession_default_work_items) */
     double n_uniform;            /* n of the uniform mode */
     double n_lo, n_hi;           /* range of n in the varying mode */
     int sweep;                   /* also time the accuracy sweep against the same sweep in C */

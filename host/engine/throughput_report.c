@@ -12,6 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* the tuned C baseline's flags (CMakeLists.txt, BRDFBENCH_HOSTC_MARCH) */
+#ifndef BRDF_HOSTC_FLAGS
+#define BRDF_HOSTC_FLAGS "-O3 -march=native -fno-math-errno"
+#endif
+
 static const char *const nmode_names[TP_NMODE_COUNT] = { "uniform", "varying" };
 
 static double ratio(double a, double b) { return (a > 0 && b > 0 && isfinite(a) && isfinite(b)) ? a / b : NAN; }
@@ -116,7 +121,7 @@ static const char *const tp_definitions[][2] = {
     { "evals_per_s_reps", "evals_per_s of every timed launch, in the order they ran (empty when the figure failed); brdfbench compare tests two runs' repetitions against each other" },
     { "ratio_to_reference", "evals_per_s / evals_per_s of the pow(c, n) built-in, same build options and n mode, same run" },
     { "ratio_to_model_reference", "evals_per_s / evals_per_s of the model's own reference (phong, phongn, blinnn) as brdf_models.h evaluates it" },
-    { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/support/hostc_baseline.c: -O3 -march=native, pthreads over the online CPUs, powf for c^n)" },
+    { "ratio_to_host_c", "evals_per_s / evals_per_s of tuned C doing the same evaluations (host/support/hostc_baseline.c: \"host_c_flags\", pthreads over the online CPUs, powf for c^n)" },
     { "fraction_of_peak", "evals_per_s / the device's measured peak in FMA per second (peak_fma float16 chains; flops / 2): the inverse is the model's cost in FMA slots" },
     { "inputs", "c sweeps [0, 1) per work-item in steps of 1/(64 iters), made in registers; n uniform = a kernel argument, n varying = a different n in [n_lo, n_hi] for every evaluation" },
     { "accuracy.max_diff_of_peak", "largest |device value - double reference value| / |reference lobe at c = 1| over 4096 probe points, half in the epicentre, half out to 4 x_e, n over [n_lo, n_hi]" },
@@ -167,7 +172,7 @@ static void json_context(struct jw *w, const struct tp_run *r)
     jw_kv_num(w, "n_lo", o->n_lo);
     jw_kv_num(w, "n_hi", o->n_hi);
     jw_kv_int(w, "host_c_threads", o->host_c ? r->threads : 0);
-    jw_kv_str(w, "host_c_flags", "-O3 -march=native -fno-math-errno");
+    jw_kv_str(w, "host_c_flags", BRDF_HOSTC_FLAGS);
     jw_kv_str(w, "loadavg_start", r->load_start);
     jw_kv_str(w, "loadavg_end", r->load_end);
     jw_kv_obj(w, "runner");

@@ -88,7 +88,7 @@ static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_
         return e;
     double t0 = wall_seconds();
     *call = "clEnqueueNDRangeKernel";
-    e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, &r->local, 0, NULL, &ev);
+    e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, r->local ? &r->local : NULL, 0, NULL, &ev);
     if (e == CL_SUCCESS) {
         *call = "clFinish";
         e = clsession_finish(r->s, r->k, NULL);
@@ -215,7 +215,7 @@ static int tp_peak_setup(struct cl_session *s, const char *options, long work_it
     d->kr.o = o;
     d->kr.kind = 2;
     d->kr.global = (size_t)work_items;
-    d->kr.local = 1;
+    clsession_group_size(s, d->kr.global, &d->kr.local);   /* 0: the driver chooses */
     d->kr.work_per_iter = (double)work_items * PEAK_UNROLL * PEAK_CHAINS * lanes * 2;
     d->kr.k = clsession_create_kernel(*prog, "peak_fma", &e);
     if (e != CL_SUCCESS) {
@@ -255,7 +255,7 @@ static int tp_dev_item(struct tp_bench *b, struct tp_job *j, struct tp_dev_ctx *
     d->kr.o = b->o;
     d->kr.kind = j->nmode == TP_N_VARYING ? 1 : 0;
     d->kr.global = (size_t)b->work_items;
-    d->kr.local = 1;   /* one float16 work-item per group: each is a long loop already */
+    clsession_group_size(s, d->kr.global, &d->kr.local);   /* each work-item is a long loop already */
     d->kr.work_per_iter = (double)b->work_items * TP_EVALS_PER_ITER;
     if (!tp_has(j->prog, j->m)) {
         tp_fig_fail(j->f, "model %s is not in the throughput program", j->m ? j->m->label : "pow");
@@ -431,7 +431,7 @@ static struct tp_kernel_run tp_program_run(const struct tp_program *p, int nmode
     r.o = o;
     r.kind = nmode == TP_N_VARYING ? 1 : 0;
     r.global = (size_t)work_items;
-    r.local = 1;
+    clsession_group_size(p->s, r.global, &r.local);
     return r;
 }
 
