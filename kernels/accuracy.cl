@@ -29,7 +29,7 @@
 /* ACC_W samples per step of the loop: 16 (float16, for PoCL, which vectorises explicit vectors
    to 512 bits) or 1 (scalar float: a driver that vectorises across work-items itself, as
    Mesa's llvmpipe and GPU compilers do, and for which sixteen-lane code is sixteen times the
-   program; host/engine/accuracy.c picks it). The samples are the same either way. */
+   program; host/measure/accuracy/accuracy.c picks it). The samples are the same either way. */
 #ifndef ACC_W
 #define ACC_W 16
 #endif

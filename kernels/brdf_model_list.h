@@ -18,7 +18,7 @@
  *            what is counted } as docs/frontier.md explains (counted 0: not a cheap lobe);
  *   frontier_rank  the position in the frontier's default set (0 or absent: not in it), and
  *            frontier_variants more specs of the model placed right after it there;
- *   colour   the plot colour by name (host/engine/plots.c; "black" is a reference's).
+ *   colour   the plot colour by name (host/results/plots.c; "black" is a reference's).
  * A new model is one row here (its place decides its id) plus its functions in
  * kernels/brdf_models.h; docs/architecture.md has the recipe. */
 
@@ -376,7 +376,7 @@ BRDF_MODEL(HE, 0,
    L and V mirrored about N (H = N), against an exact term of their kind over (angle, n); n is the
    term's own axis (brdf_models.h, "terms of a microfacet BRDF"). At c = 0 L and V lie on the
    horizon, outside the BRDF's domain: the terms are 0 there, as a .brdf file's lobe is
-   (host/core/shaderlang_brdf.c) and the physical models' are. Not in the default sets. */
+   (host/core/shader/shaderlang_brdf.c) and the physical models' are. Not in the default sets. */
 BRDF_MODEL(FRESNEL, 0,
     BRDF_SELECT(brdf_fresnel_dielectric(c, n), RSPLAT(0.0), c <= RC(0.0)),
     .id = "fresnel", .family = MODEL_FAMILY_TERM, .lobe = LOBE_THETA_H, .reference_id = "fresnel",

@@ -217,7 +217,7 @@ BRDF_FN REAL brdf_power(REAL c, REAL k, int m)
 }
 
 /* Beaudoin and Guardado 2002: max(0, A c + B)^m with B = 1 - A, i.e. the power family with
- * k = A. Their A comes from a per-n bisection (host/engine/fit.c, bg_exact_a, for the claim);
+ * k = A. Their A comes from a per-n bisection (host/measure/fit/fit.c, bg_exact_a, for the claim);
  * the device gets it from the affine fit A(n) = alpha_m n + beta_m of those bisection values
  * over n in [2, 1000] (least squares in relative terms), within 2.4% of the bisection A
  * (at n = 2) for every m. m = 2^j, j = 1..4 (the registry's parameter j). */

@@ -9,7 +9,7 @@
    x_e(n) = acos(exp(-0.511/n)), as s = 1 - cos x: s_e(n) = -expm1(-0.511/n). */
 #define BRDF_ZONE_K 0.511
 
-/* accuracy_sweep's output: floats per n (kernels/accuracy.cl writes them, host/engine/accuracy.c
+/* accuracy_sweep's output: floats per n (kernels/accuracy.cl writes them, host/measure/accuracy/accuracy.c
    reads them) */
 #define ACC_OUT_STRIDE 8
 

@@ -1,6 +1,6 @@
 /*
  * hemisphere.cl - the hemisphere sweep of a full BRDF f(L, V; p) against its reference
- * (docs/definitions.md, "Full BRDFs over the hemisphere"; host/engine/hemisphere.c runs it).
+ * (docs/definitions.md, "Full BRDFs over the hemisphere"; host/measure/accuracy/hemisphere.c runs it).
  *
  * One work-item owns one parameter value p and one theta_h row of the grid of
  * kernels/hemisphere_geom.h and loops over theta_d and, HEMI_W lanes at a time, phi_d. A grid
@@ -189,7 +189,7 @@ __kernel void hemisphere_sweep(const int pass, __global const float *pvals, __gl
 }
 
 /* The model's and the reference's values at given samples, HEMI_W per work-item (out: the
-   model's count values, then the reference's), which host/engine/hemisphere.c compares with
+   model's count values, then the reference's), which host/measure/accuracy/hemisphere.c compares with
    double: the float-cancellation figures. th, td, pd: count angles each; every run of 16
    consecutive samples shares one parameter value, pv[i / 16]. */
 #if HEMI_W == 16

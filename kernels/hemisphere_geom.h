@@ -1,6 +1,6 @@
 /*
  * hemisphere_geom.h - the hemisphere sweep's geometry, written once for the device (REAL = float,
- * kernels/hemisphere.cl) and the host's double check (REAL = double, host/engine/hemisphere.c).
+ * kernels/hemisphere.cl) and the host's double check (REAL = double, host/measure/accuracy/hemisphere.c).
  *
  * Rusinkiewicz's half/difference angles about N = z (docs/definitions.md, "Full BRDFs over the
  * hemisphere"), with phi_h = 0: the difference vector D = (sin td cos pd, sin td sin pd, cos td)

@@ -16,7 +16,7 @@
 
 #define INT_PI_F 3.14159265358979324f
 
-/* Modes of albedo_partial (must match host/engine/energy.h). */
+/* Modes of albedo_partial (must match host/measure/energy/energy.h). */
 #define ALBEDO_PSI 0       /* lobe f(cos psi) around R: phong family                        */
 #define ALBEDO_HALF 1      /* lobe f(cos theta_h) used as the BRDF: blinn family            */
 #define ALBEDO_MICRO 2     /* D(theta_h) / (4 cos theta_i cos theta_o): F = G = 1          */

@@ -10,7 +10,7 @@
 #include "brdf_shared.h"   /* PEAK_CHAINS, PEAK_UNROLL */
 /* Lanes per chain: 16 (float16) for PoCL, which vectorises explicit vectors; 1 (float) for a
    driver that vectorises across work-items itself (Mesa's llvmpipe, GPU compilers), where a
-   float16 chain is sixteen times the program (host/engine/throughput.c passes -DPEAK_W=1). */
+   float16 chain is sixteen times the program (host/measure/throughput/throughput.c passes -DPEAK_W=1). */
 #ifndef PEAK_W
 #define PEAK_W 16
 #endif

@@ -29,9 +29,9 @@
  * i.e. diffuse and specular reflectance both scaled by the tint (a coloured metal). One
  * scalar radiance per pixel then needs one table look-up for its display colour instead
  * of three transcendental tone curves, which would cost more than most models do.
- * The table (built by the host, host/engine/render.c) is indexed by the float's exponent and 8
+ * The table (built by the host, host/measure/render/render.c) is indexed by the float's exponent and 8
  * leading mantissa bits: relative bins of 2^-8, within one 8-bit code of the exact curve.
- * The double-precision host reference (host/engine/render.c) recomputes both outputs on a sample.
+ * The double-precision host reference (host/measure/render/render.c) recomputes both outputs on a sample.
  */
 #define REAL float16
 #define RSCALAR float

@@ -1,5 +1,5 @@
 /* bench_translate.c - the driver of scripts/bench_translate.sh: translates one shader file
- * (shaderlang_file, host/core/shaderlang.h) REPEATS times and prints each translation's wall
+ * (shaderlang_file, host/core/shader/shaderlang.h) REPEATS times and prints each translation's wall
  * time in seconds, one a line. Only the translation is timed: no compiler, no device. */
 #define _POSIX_C_SOURCE 200809L
 #include "shaderlang.h"

@@ -57,13 +57,13 @@ mutant negative-cos      '    c = fmax(c, RC(0.0));
     return brdf_eval_cs(' '    return brdf_eval_cs('
 
 # ---- zone ends, on the host and on the device; sample placement
-in_files 'host/engine/accuracy*.c' "$T_ACC"
+in_files 'host/measure/accuracy/accuracy*.c' "$T_ACC"
 mutant zone-end-host       "$ZONE_HOST" "$ZONE_HOST_BUG"
 in_files kernels/accuracy.cl "$T_ACC"
 mutant zone-end-device     "$ZONE_DEV" "$ZONE_DEV_BUG"
 in_files kernels/field.cl '^test_report$'
 mutant zone-end-field      "$ZONE_DEV" "$ZONE_DEV_BUG"
-in_files 'host/engine/field*.c' '^test_report$'
+in_files 'host/measure/accuracy/field*.c' '^test_report$'
 mutant zone-end-field-host "$ZONE_HOST" "$ZONE_HOST_BUG"
 in_files kernels/accuracy.cl "$T_ACC"
 mutant samples-att-ratio 'const float log2_r = -log2(s_e) / (float)samples;' \
@@ -72,16 +72,16 @@ mutant samples-epi-short 'const float epi_step = s_e / (float)(samples - 1);' \
                          'const float epi_step = 0.9f * s_e / (float)(samples - 1);'
 
 # ---- comparison directions: the range maxima and the gates
-in_files 'host/engine/accuracy*.c' "$T_ACC"
+in_files 'host/measure/accuracy/accuracy*.c' "$T_ACC"
 mutant range-max-dir     'if (e->value > out->value || (isnan(out->value) && isfinite(e->value)))' \
                          'if (e->value < out->value || (isnan(out->value) && isfinite(e->value)))'
-in_files 'host/engine/gate*.c' "$T_GATE"
+in_files 'host/results/gate*.c' "$T_GATE"
 mutant gate-margin-dir   'if (g->margin < 0) {' 'if (g->margin > 0) {'
 mutant gate-max-side     'double m_hi = g->has_max ? g->max - g->measured : INFINITY;' \
                          'double m_hi = g->has_max ? g->measured - g->max : INFINITY;'
 
 # ---- tolerances and verdicts
-in_files 'host/engine/reproduce*.c' "$T_REP"
+in_files 'host/measure/reproduce/reproduce*.c' "$T_REP"
 mutant claims-tol-x2     "$CLAIM_TOL" "${CLAIM_TOL/<= tol/<= 2 * tol}"
 mutant claims-tol-strict "$CLAIM_TOL" 'c->reproduced = isfinite(measured) && fabs(measured - claimed) < 0.7 * tol;'
 mutant coef-tol-4        'coef_tol[4] = { 0.001, 0.001, 0.01, 0.001 };' 'coef_tol[4] = { 0.001, 0.001, 0.001, 0.001 };'
@@ -90,7 +90,7 @@ mutant fig4-fit          'double e = fabs((0.448 * n + 0.099) / brdf_k_q(n, 0.64
                          'double e = fabs((0.448 * n + 0.0995) / brdf_k_q(n, 0.64) - 1.0);'
 
 # ---- fit.json
-in_files 'host/engine/fit*.c' '^test_reproduce_cli$'
+in_files 'host/measure/fit/fit*.c' '^test_reproduce_cli$'
 mutant fit-a-0.45        'jw_kv_num(w, "a", m->fit.feasible ? m->spec.params[0] : NAN);' \
                          'jw_kv_num(w, "a", m->fit.feasible ? 0.45 : NAN);'
 mutant fit-spec-digits   '"quad:a=%.10g,b=%.10g"' '"quad:a=%.4g,b=%.4g"'
@@ -101,14 +101,14 @@ mutant json-digits       'void jw_num(struct jw *w, double v) { jw_numf(w, v, 17
                          'void jw_num(struct jw *w, double v) { jw_numf(w, v, 6); }'
 
 # ---- ratio formulas
-in_files 'host/engine/throughput*.c' "$T_TP"
+in_files 'host/measure/throughput/throughput*.c' "$T_TP"
 mutant host-c-inverted   'q.to_host_c = ratio(f->rate.median, e->hostc[m].rate.median);' \
                          'q.to_host_c = ratio(e->hostc[m].rate.median, f->rate.median);'
 mutant peak-flops        'q.of_peak = ratio(f->rate.median, peak_fma_per_s(r));' \
                          'q.of_peak = ratio(f->rate.median, r->peak.rate.median);'
 mutant sweep-speedup     'jw_ratio(&w, "speedup_vs_host_c", ratio(hsum, dsum), ' \
                          'jw_ratio(&w, "speedup_vs_host_c", ratio(dsum, hsum), '
-in_files 'host/engine/render*.c' '^test_render_cli$'
+in_files 'host/measure/render/render*.c' '^test_render_cli$'
 mutant render-speedup    'jw_kv_num(&w, "speedup_vs_reference", re->med / te->med);' \
                          'jw_kv_num(&w, "speedup_vs_reference", te->med / re->med);'
 

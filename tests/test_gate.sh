@@ -124,7 +124,7 @@ assert d["description"].startswith("bounds either side")
     || bad "printed PASS/FAIL lines: $(cat "$T/out")"
 grep -qE '^10 gates: 7 passed, 3 failed' "$T/out" && ok || bad "summary line: $(tail -1 "$T/out")"
 
-# 2b. albedo.max (the device quadrature of host/engine/energy.h, stated tolerance 2e-5): for a lobe
+# 2b. albedo.max (the device quadrature of host/measure/energy/energy.h, stated tolerance 2e-5): for a lobe
 #    around the mirror direction the albedo is largest at normal incidence (the horizon clips
 #    the lobe elsewhere), where it is 2 pi int_0^1 f c dc: exactly 1 for phongn, and for fq2n
 #    the closed form above. n = 2, 113, ..., 893, 1000.

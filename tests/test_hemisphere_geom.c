@@ -1,5 +1,5 @@
 /* test_hemisphere_geom.c - the hemisphere sweep's geometry and axis conversions, no device:
- * (theta_h, theta_d, phi_d) -> (L, V) of host/engine/hemisphere.c against host/core/merl.c's
+ * (theta_h, theta_d, phi_d) -> (L, V) of host/measure/accuracy/hemisphere.c against host/core/merl.c's
  * merl_half_diff (the MERL lookup's conversion, its inverse) at random angles; the identities
  * of Rusinkiewicz's coordinates (N.H = cos theta_h, V.H = cos theta_d, L.V = cos 2 theta_d,
  * unit vectors); the conversions of docs/definitions.md at values worked by hand. */

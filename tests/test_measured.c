@@ -1,4 +1,4 @@
-/* test_measured.c - the fits of `brdfbench measured` (host/engine/measured.c) on materials the
+/* test_measured.c - the fits of `brdfbench measured` (host/measure/measured/measured.c) on materials the
  * test writes itself in the MERL format (tests/merl_synth.h, the BRDFs written a second time
  * from their definitions):
  *   - Blinn-Phong with n = 64, ks = 2.5, kd = 0.08: the Blinn-Phong fit recovers all three

@@ -1,4 +1,4 @@
-/* test_shaderlang.c - user models written as GLSL or HLSL (host/core/shaderlang.c), through
+/* test_shaderlang.c - user models written as GLSL or HLSL (host/core/shader/shaderlang.c), through
  * the user-model parser and their double reference on the host; no device needed.
  *
  * Expected values are each formula written a second time here in C (the shader functions by
@@ -427,7 +427,7 @@ int main(void)
         CHECK(rc == 2 && strstr(err, "nested256.glsl:4:9: the loops unroll to more than 8192 iterations in all"),
               "256 x 256 loops: %d %s", rc, err);
     }
-    /* 10. The preprocessor (glslang's, host/core/shaderlang_pp.c). */
+    /* 10. The preprocessor (glslang's, host/core/shader/shaderlang_pp.c). */
     if (!shaderlang_has_preprocessor()) {
         printf("built without glslang: the preprocessor's checks are skipped\n");
     } else {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_shaderlang_cli.sh - shader-language models (host/core/shaderlang.c) through the accuracy
+# test_shaderlang_cli.sh - shader-language models (host/core/shader/shaderlang.c) through the accuracy
 # command: the same lobe written in OpenCL C, GLSL and HLSL, and the pasted GLSL
 # statements (Lyon's lobe with k = 2 written in GLSL) give the same printed figures as the
 # built-in lyon:k=2, and an error in line 3 of a GLSL file is reported at line 3. (Each user

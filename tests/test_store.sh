@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_store.sh - `brdfbench store add|list|export` (host/engine/store.c): a run added twice is
+# test_store.sh - `brdfbench store add|list|export` (host/results/store.c): a run added twice is
 # stored once (the content hash); two processes adding different runs at the same time lose
 # nothing; the export gives back each stored document as it was; a file that is not an SQLite
 # database, another program's database and a damaged store are refused with one line and exit

@@ -254,7 +254,7 @@ int cli_deliver(const char *src, const char *flag, const char *dest, char *err, 
 int cli_is_stdout(const char *path);
 
 
-/* The hemisphere sweep of full BRDFs (accuracy; host/engine/hemisphere.h), and the reference of
+/* The hemisphere sweep of full BRDFs (accuracy; host/measure/accuracy/hemisphere.h), and the reference of
  * any sweep. PARAM_CALL stores one --param NAME=VALUE (repeatable) into PARAM_DEST. */
 #define CLI_FLAGS_FULLBRDF(REF, SWEEP, PARAM_CALL, PARAM_DEST, POINTS, GRID)                                        \
     { .name = "--reference", .value = "SPEC", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, REF), .def = "",    \

@@ -1,6 +1,6 @@
 /* cmd_measured.c - `brdfbench measured FILE|DIR ...`: measured materials (MERL .binary files, a
  * folder's .binary files) fitted by Blinn-Phong and Cook-Torrance, and every cheap lobe measured
- * against them and against the fitted Blinn-Phong (host/engine/measured.h). */
+ * against them and against the fitted Blinn-Phong (host/measure/measured/measured.h). */
 #include "cli_run.h"
 #include "cli_table.h"
 #include "commands.h"

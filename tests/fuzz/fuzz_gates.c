@@ -1,4 +1,4 @@
-/* fuzz_gates.c - libFuzzer target of the gates-file parser (host/engine/gate.c on host/output/jsonr.c):
+/* fuzz_gates.c - libFuzzer target of the gates-file parser (host/results/gate.c on host/output/jsonr.c):
  * any input must be accepted or refused with a message, never crash, hang, leak or read out
  * of bounds. Model files named in the input are looked up in a folder that does not exist.
  * Built and run by scripts/fuzz.sh. */

@@ -1,5 +1,5 @@
 /* render_measured.c - a mesh shaded with a measured material (MERL table, render --measured)
- * beside the same mesh shaded with the lobes fitted to it by host/engine/measured.c: Blinn-Phong
+ * beside the same mesh shaded with the lobes fitted to it by host/measure/measured/measured.c: Blinn-Phong
  * ks cos^n(theta_h) + kd and Cook-Torrance Beckmann / GGX kd + ks D F G / (4 N.L N.V) at their
  * fitted roughness and F0. Every image is the radiance E (N.L) f of the whole BRDF (the
  * measured table holds the diffuse part too, so the pass's own diffuse and ambient terms are

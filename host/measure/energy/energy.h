@@ -67,7 +67,7 @@ struct recip_worst {
 int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long pairs, struct recip_worst *device,
                       struct recip_worst *host);
 
-/* Reciprocity of the image pass itself (kernels/shade.cl through host/engine/render.h), for every
+/* Reciprocity of the image pass itself (kernels/shade.cl through host/measure/render/render.h), for every
  * model the image passes shade, Cook-Torrance included: each pair (L, V) is one pixel shaded
  * twice, with eye and point light swapped; S = specular / (E (N.L) ks) must agree. diff is
  * |S(L,V) - S(V,L)| / max(|S(L,V)|, |S(V,L)|, 1e-6 f(c = 1, n)). */

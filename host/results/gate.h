@@ -21,10 +21,10 @@ enum gate_metric {
     GATE_ATTENUATION_MAX_ABS, /* max absolute error over the attenuation zone (docs/definitions.md Delta) */
     GATE_WHOLE_MAX_ABS,       /* max absolute error over x in [0, pi/2] */
     GATE_ENERGY_MAX_DEV,      /* max over n of |2 pi int_0^(pi/2) f cos x sin x dx - 1| */
-    GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/engine/energy.h) */
+    GATE_ALBEDO_MAX,          /* max directional albedo over n and theta_i (host/measure/energy/energy.h) */
     GATE_INVALID_COUNT,       /* model values that were NaN, Inf or negative in the sweep */
-    GATE_MEASURED_RMS,        /* the lobe's error against a measured material (host/engine/measured.h) */
-    GATE_HEMI_EPI_REL,        /* a full BRDF over the hemisphere (host/engine/hemisphere.h): max delta, epicentre */
+    GATE_MEASURED_RMS,        /* the lobe's error against a measured material (host/measure/measured/measured.h) */
+    GATE_HEMI_EPI_REL,        /* a full BRDF over the hemisphere (host/measure/accuracy/hemisphere.h): max delta, epicentre */
     GATE_HEMI_ATT_ABS,        /* ... max Delta over the attenuation samples */
     GATE_HEMI_WHOLE_ABS,      /* ... max Delta over every sample */
     GATE_HEMI_RMS,            /* ... RMS of cos(theta_i) (f - f_ref), its largest over the axis */

@@ -1,4 +1,4 @@
-/* engine.h - the contract every measuring engine of host/engine keeps, one shape for all:
+/* engine.h - the contract every measuring engine of host/measure keeps, one shape for all:
  *
  *   void X_options_default(struct X_options *o);   what the command starts from
  *   int  X_options_check(const struct X_options *o, char *err, size_t errlen);

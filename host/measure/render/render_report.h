@@ -115,7 +115,7 @@ struct he_comparison {
 };
 
 /* A mesh shaded with a measured material (render --measured) beside the lobes fitted to it
- * (host/engine/measured.c): entry 0 the measured table, then Blinn-Phong, Cook-Torrance
+ * (host/measure/measured/measured.c): entry 0 the measured table, then Blinn-Phong, Cook-Torrance
  * Beckmann and GGX at their fits; radiance E (N.L) f with the fit's Lambertian term. */
 #define RENDER_MAX_MEASURED 4
 #define RENDER_MEASURED_ENTRIES 4

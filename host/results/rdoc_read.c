@@ -312,7 +312,7 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
         snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_step"));
         rd_row_attr(r, "n_step", text);
         if (hemi) {
-            /* a full BRDF's row of the hemisphere sweep (host/engine/hemisphere_report.c): its own
+            /* a full BRDF's row of the hemisphere sweep (host/measure/accuracy/hemisphere_report.c): its own
                metrics, never the lobe sweep's names */
             static const char *const hfigures[][2] = {
                 { "epicentre.max_rel", "hemisphere.epicentre.max_rel" },

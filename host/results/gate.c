@@ -33,7 +33,7 @@ static const struct {
     { "whole.max_abs", "max absolute error |f - f_ref| over x in [0, pi/2]" },
     { "energy.max_abs_dev", "max over n of |2 pi int_0^(pi/2) f(cos x, n) cos x sin x dx - 1|" },
     { "albedo.max", "max directional albedo over n and theta_i = 0, 5, ..., 85 degrees (normalised and "
-                    "microfacet models; device quadrature of host/engine/energy.h)" },
+                    "microfacet models; device quadrature of host/measure/energy/energy.h)" },
     { "invalid.count", "model values that were NaN, Inf or negative in the sweep" },
     { "measured.rms", "the lobe's RMS error against the measured material of \"measured\" (a MERL file), at the "
                       "Blinn-Phong fit's n and scale (brdfbench measured's err_measured)" },
