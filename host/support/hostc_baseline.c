@@ -40,8 +40,6 @@ static inline float hostc_fmaxf(float a, float b) { return (a > b || b != b) ? a
 
 #define HOSTC_MAX_THREADS 256
 
-_Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_dispatch covers model ids 0..39");
-
 static double hostc_now(void)
 {
     struct timespec ts;
@@ -114,15 +112,11 @@ static inline __attribute__((always_inline)) void hostc_work_item(const int id, 
         sum16[l] = (acc[0][l] + acc[1][l]) + (acc[2][l] + acc[3][l]);
 }
 
-/* Per-id instances with the id a constant (the model's switch folds away inside: brdf_eval is
+/* Per-model instances (one per row of kernels/brdf_model_list.h) with the id a constant (the model's switch folds away inside: brdf_eval is
    forced inline above), each a function of its own that runs a thread's whole share of the
    work-items. Left to its heuristics, GCC kept brdf_eval out of line in the one function that
-   held all 40 copies: a call and a run-time switch per evaluation, nothing vectorised, about
+   held all the models' copies: a call and a run-time switch per evaluation, nothing vectorised, about
    100x slower than the same loop with the model inlined (perf: 66% of the time in brdf_eval). */
-#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) \
-    X(17) X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
-    X(34) X(35) X(36) X(37) X(38) X(39)
-
 typedef void (*hostc_items_fn)(float p0, float p1, const struct tp_inputs *in, long first, long step, float *sums);
 
 #define HOSTC_ITEMS_FN(name, k)                                                                             \
@@ -133,18 +127,19 @@ typedef void (*hostc_items_fn)(float p0, float p1, const struct tp_inputs *in, l
         for (long gid = first; gid < in->work_items; gid += step)                                         \
             hostc_work_item(k, p0, p1, in, gid, sums ? sums + gid * TP_LANES : local);                    \
     }
-#define HOSTC_ID_ITEMS(k) HOSTC_ITEMS_FN(hostc_items_##k, k)
-HOSTC_IDS(HOSTC_ID_ITEMS)
+/* one instance per row of the model list (its descriptors: kernels/brdf_model_list.h) */
+#define BRDF_MODEL(ENUM, C_ONLY, EVAL, ...) HOSTC_ITEMS_FN(hostc_items_##ENUM, BRDF_##ENUM)
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
 HOSTC_ITEMS_FN(hostc_items_pow, -1)   /* the powf built-in */
-#undef HOSTC_ID_ITEMS
 #undef HOSTC_ITEMS_FN
 
 static hostc_items_fn hostc_items_of(int id)
 {
     switch (id) {
-#define HOSTC_CASE(k) case k: return hostc_items_##k;
-    HOSTC_IDS(HOSTC_CASE)
-#undef HOSTC_CASE
+#define BRDF_MODEL(ENUM, C_ONLY, EVAL, ...) case BRDF_##ENUM: return hostc_items_##ENUM;
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
     default: return hostc_items_pow;
     }
 }

@@ -29,11 +29,6 @@ static inline float hostc_fminf(float a, float b) { return (a < b || b != b) ? a
 
 #include "hostc_baseline.h"
 
-#define HOSTC_IDS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) \
-    X(17) X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
-    X(34) X(35) X(36) X(37) X(38) X(39)
-_Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_block_of covers model ids 0..39");
-
 /* Samples per block: each block's inputs are made, then the model and its reference are
    evaluated over the whole block by their own loops (a function per id, its switch folded,
    vectorised), then the block is reduced lane by lane. A multiple of 16. */
@@ -41,22 +36,25 @@ _Static_assert(BRDF_MODEL_COUNT <= 40, "hostc_block_of covers model ids 0..39");
 
 typedef void (*hostc_block_fn)(const float *s, float *f, int count, float n, float p0, float p1);
 
-#define HOSTC_BLOCK_FN(k)                                                                                  \
-    static __attribute__((noinline)) void hostc_block_##k(const float *s, float *f, int count, float n,   \
+#define HOSTC_BLOCK_FN(name, k)                                                                            \
+    static __attribute__((noinline)) void hostc_block_##name(const float *s, float *f, int count, float n,\
                                                           float p0, float p1)                            \
     {                                                                                                    \
         for (int j = 0; j < count; ++j)                                                                  \
             f[j] = brdf_eval_s(k, s[j], n, p0, p1);                                                      \
     }
-HOSTC_IDS(HOSTC_BLOCK_FN)
+/* one instance per row of the model list (its descriptors: kernels/brdf_model_list.h) */
+#define BRDF_MODEL(ENUM, C_ONLY, EVAL, ...) HOSTC_BLOCK_FN(ENUM, BRDF_##ENUM)
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
 #undef HOSTC_BLOCK_FN
 
 static hostc_block_fn hostc_block_of(int id)
 {
     switch (id) {
-#define HOSTC_CASE(k) case k: return hostc_block_##k;
-    HOSTC_IDS(HOSTC_CASE)
-#undef HOSTC_CASE
+#define BRDF_MODEL(ENUM, C_ONLY, EVAL, ...) case BRDF_##ENUM: return hostc_block_##ENUM;
+#include "brdf_model_list.h"
+#undef BRDF_MODEL
     default: return NULL;
     }
 }
