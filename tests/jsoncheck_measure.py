@@ -323,6 +323,10 @@ def throughput_cli_throughput_contract(*args):
     d, ctx = load_result(argv[1], "brdfbench.throughput/3",
                          ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
     assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
+    # the recorded work-group size is the launch's: 1 on a CPU device (PoCL spreads groups over
+    # threads), else the largest of 256, 128, 64, 32 dividing the launch (4 work-items: none, 0)
+    cpu = "pthread" in ctx["device"] or "cpu" in ctx["device"].lower() or "llvmpipe" in ctx["device"]
+    assert ctx["throughput"]["local_size"] == (1 if cpu else 0), ctx["throughput"]
     assert [b["variant"] for b in d["builds"]] == ["default", "denorms-are-zero"]
     pk = d["peak"]
     # an FMA is 2 flops (kernels/peak.cl counts 2 flops per lane and step)

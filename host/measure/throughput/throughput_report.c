@@ -166,7 +166,9 @@ static void json_context(struct jw *w, const struct tp_run *r)
     jw_kv_int(w, "reps", o->reps);
     jw_kv_num(w, "min_time_s", o->min_time);
     jw_kv_int(w, "work_items", r->work_items);
-    jw_kv_int(w, "local_size", 1);
+    size_t local;   /* the launches' work-group size (clsession_group_size; 0: the driver's choice) */
+    clsession_group_size(r->s, (size_t)r->work_items, &local);
+    jw_kv_int(w, "local_size", (long)local);
     jw_kv_int(w, "evaluations_per_iteration", TP_EVALS_PER_ITER);
     jw_kv_num(w, "n_uniform", (float)o->n_uniform);
     jw_kv_num(w, "n_lo", o->n_lo);
@@ -215,7 +217,8 @@ static void json_peak(struct jw *w, const struct tp_run *r)
     jw_kv_str(w, "status", r->peak.ok ? "ok" : "failed");
     if (!r->peak.ok)
         jw_kv_str(w, "reason", r->peak.reason);
-    jw_kv_str(w, "kernel", "kernels/peak.cl: 16 independent float16 FMA chains per work-item, 2 flops per lane and step");
+    jw_kv_str(w, "kernel", r->s->specialise ? "kernels/peak.cl: 16 independent float FMA chains per work-item (PEAK_W=1), 2 flops per step"
+                                            : "kernels/peak.cl: 16 independent float16 FMA chains per work-item, 2 flops per lane and step");
     jw_kv_str(w, "build_options", r->peak_options);
     jw_kv_num(w, "build_seconds", r->peak_build_seconds);
     jw_stats(w, "flops_per_s", r->peak.rate);
