@@ -256,7 +256,7 @@ d["schema"] = "brdfbench.throughput/1"
 os.makedirs(sys.argv[2])
 json.dump(d, open(os.path.join(sys.argv[2], "throughput.json"), "w"))
 PY
-expect 2 'schema "brdfbench.throughput/1", compare reads "brdfbench.throughput/3"' compare "$T/a" "$T/old" --out "$T/x3"
+expect 2 'schema "brdfbench.throughput/1", compare reads "brdfbench.throughput/4"' compare "$T/a" "$T/old" --out "$T/x3"
 expect 2 "no row in common" compare "$T/a" "$T/acc" --out "$T/x4"
 expect 2 "one run holds one device" compare "$T/a" --out "$T/x5"
 expect 2 "expected BASELINE RUN" compare

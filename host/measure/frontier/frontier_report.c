@@ -6,6 +6,7 @@
 #include "plots.h"
 #include "jsonw.h"
 #include "mdbuf.h"
+#include "rdoc.h"
 #include "outdir.h"
 
 #include <math.h>
@@ -34,9 +35,43 @@ static const char *const frontier_definitions[][2] = {
              "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)" },
 };
 
+/* frontier.json's rows: one per model with its accuracy over each n range (max delta and max
+   Delta, lower is better) and its teapot PSNR. */
+static void frontier_rows(struct rdoc *d, const struct frontier_report *r)
+{
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        struct rd_row *rr = rdoc_row(d, "", row->spec.label);
+        if (!rr)
+            return;
+        rd_row_key(rr, "model", NULL, row->spec.label);
+        for (int k = 0; k < 2; ++k) {
+            char name[RD_NAME];
+            snprintf(name, sizeof name, "%s.max_rel", range_names[k]);
+            rd_row_metric(d, rr, name, "1", RD_LOWER, 0, row->max_rel[k]);
+            snprintf(name, sizeof name, "%s.max_abs", range_names[k]);
+            rd_row_metric(d, rr, name, "1", RD_LOWER, 0, row->max_abs[k]);
+        }
+        rd_row_metric(d, rr, "psnr_db", "dB", RD_HIGHER, 0, row->psnr_db);
+    }
+}
+
 int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
                         size_t errlen)
 {
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    rdoc_init(d, FRONTIER_SCHEMA, "frontier", "frontier.json");
+    frontier_rows(d, r);
+    if (d->oom) {
+        rdoc_free(d);
+        free(d);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     struct jw w;
     jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
     #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct frontier_options, MEMBER, KEY)
@@ -100,6 +135,9 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     }
     jw_arr_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
+    rdoc_json_rows_member(&w, d);
+    rdoc_free(d);
+    free(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
