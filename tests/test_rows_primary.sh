@@ -73,6 +73,25 @@ if a != b:
 assert a["rows"] and all(r["metrics"] for r in a["rows"]), "no rows, or a row without metrics"
 PY
 done
+# rows not measured: a model whose values are NaN has its rows failed, with the reason, in the
+# rows member as in the layout (status and reason are part of the mapping)
+mkdir -p nan
+"$BIN" throughput --model 'nanm=c*NAN' --models fq2,nanm --variants default --n-modes uniform --no-sweep --no-host-c \
+    --reps 3 --min-time 0.001 --json nan/throughput.json >/dev/null 2>"$T/err" || bad "throughput nanm: $(cat "$T/err")"
+"$BIN" frontier --model 'nanm=c*NAN' --models phong,nanm --samples 64 --reps 1 --rounds 1 --no-image \
+    --json nan/frontier.json >/dev/null 2>"$T/err" || bad "frontier nanm: $(cat "$T/err")"
+for k in throughput frontier; do
+    "$BIN" rows "nan/$k.json" --format json --output "$T/nan_$k.rows.json" 2>"$T/err" && ok || bad "rows nan $k: $(cat "$T/err")"
+    python3 "$LAYOUTS" "nan/$k.json" "$T/nan_$k.rows.json" && ok || bad "nan $k.json: rows member differs from its layout's"
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if any(r["status"] == "failed" and r["reason"] for r in d["rows"]) else 1)' \
+        "$T/nan_$k.rows.json" && ok || bad "nan $k.json: no failed row with its reason"
+    # the same file in the previous version's form: the upgrade function gives the same status
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); del d["rows"]; d["schema"]=sys.argv[3]; json.dump(d, open(sys.argv[2], "w"))' \
+        "nan/$k.json" "nan/up_$k.json" "${PREV[$k]}"
+    "$BIN" rows "nan/up_$k.json" --format json --output "$T/nan_up_$k.rows.json" 2>"$T/err" && ok || bad "rows nan up $k: $(cat "$T/err")"
+    python3 "$LAYOUTS" "nan/up_$k.json" "$T/nan_up_$k.rows.json" && ok || bad "nan $k.json (previous form): upgrade differs from its layout's"
+done
+
 # the check bites: a value changed in the rows member is what the reader reports
 python3 - new/throughput.json tampered.json <<'PY'
 import json, sys
@@ -97,7 +116,7 @@ c = json.load(open(sys.argv[1]))
 want = set()
 for k in ("throughput", "render", "fit", "frontier"):
     for row, metrics in rows_layouts.expected(json.load(open(os.path.join(sys.argv[3], k + ".json")))).items():
-        want |= {(k, row, m) for m in metrics}
+        want |= {(k, row, m) for m in metrics if m != rows_layouts.STATUS}
 got = {(r["kind"], r["key"], r["metric"]) for r in c["rows"]}
 assert got == want, (sorted(want - got)[:5], sorted(got - want)[:5])
 assert all(r["in_all_runs"] for r in c["rows"]), [r["key"] for r in c["rows"] if not r["in_all_runs"]][:5]

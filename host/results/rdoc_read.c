@@ -558,8 +558,8 @@ static void frontier_members(const struct jr_doc *j, struct rdoc *d, struct rd_r
     }
 }
 
-/* The upgrade of brdfbench.frontier/1: a row per model with the figures its members' names
- * say (frontier_direction). */
+/* The upgrade of brdfbench.frontier/1: a row per model, with its status and reason, and the
+ * figures its members' names say (frontier_direction). */
 static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     static const char *const arrays[] = { "results", "models", "points", "rows" };
@@ -582,6 +582,7 @@ static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err
         if (!r)
             return 0;
         rd_row_key(r, "model", NULL, model);
+        row_status(r, row);   /* a model with no finite error figure: failed, with the reason */
         for (int pass = 0; pass < 2; ++pass)
             frontier_members(j, d, r, row, "", 0, pass);
     }

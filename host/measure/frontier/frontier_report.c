@@ -18,6 +18,8 @@
 
 static const char *const range_names[2] = { "n_2_1000", "n_16_1000" };
 
+#define FRONTIER_UNMEASURED "no finite error figure (the model's values are NaN or Inf): not a point of the front"
+
 /* frontier.json's "definitions": what each figure of a row means. */
 static const char *const frontier_definitions[][2] = {
     { "rate", "device evaluations per second, throughput kernels with the default build options, timed "
@@ -45,6 +47,8 @@ static void frontier_rows(struct rdoc *d, const struct frontier_report *r)
         if (!rr)
             return;
         rd_row_key(rr, "model", NULL, row->spec.label);
+        if (!(isfinite(row->max_rel[0]) && isfinite(row->max_abs[0])))
+            rd_row_fail(rr, "failed", FRONTIER_UNMEASURED);
         for (int k = 0; k < 2; ++k) {
             char name[RD_NAME];
             snprintf(name, sizeof name, "%s.max_rel", range_names[k]);
@@ -94,7 +98,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
         int measured = isfinite(row->max_rel[0]) && isfinite(row->max_abs[0]);
         jw_kv_str(&w, "status", measured ? "ok" : "failed");
         if (!measured)
-            jw_kv_str(&w, "reason", "no finite error figure (the model's values are NaN or Inf): not a point of the front");
+            jw_kv_str(&w, "reason", FRONTIER_UNMEASURED);
         for (int m = 0; m < 2; ++m) {
             jw_kv_obj(&w, m ? "rate_varying" : "rate_uniform");
             jw_kv_num(&w, "min", row->rate[m][0]);
