@@ -112,6 +112,8 @@ BROKEN = [
     ("frontier", "on_front a string", [("set", ["models", 0, "on_front"], "yes")]),
     ("throughput", "negative rate", [("set", ["results", 0, "evals_per_s", "median"], -1)]),
     ("render", "no scenes", [("del", ["scenes"])]),
+    ("render", "no rows member", [("del", ["rows"])]),
+    ("throughput", "a row's direction not in its enum", [("set", ["rows", "rows", 1, "metrics", 0, "direction"], "up")]),
     ("reproduce", "no claims", [("set", ["claims"], [])]),
     ("compare", "bad sense", [("set", ["rows", 0, "sense"], "faster")]),
     ("list", "wrong version", [("set", ["schema"], "brdfbench.list/2")]),

@@ -237,7 +237,7 @@ def compare_device_0_0_rows_tagged(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
-    assert d["schema"] == "brdfbench.throughput/3"
+    assert d["schema"] == "brdfbench.throughput/4"
     devs = d["context"]["devices"]
     assert [x["index"] for x in devs] == ["0:0", "0:0"], devs
     name = devs[0]["device"]
@@ -245,6 +245,12 @@ def compare_device_0_0_rows_tagged(*args):
     assert [x["tag"] for x in devs] == [name, name + " #2"], devs
     tags = [r["device"] for r in d["results"]]
     assert tags == [name] * 8 + [name + " #2"] * 8, tags
+    # the rows member gathered the same way: each device's peak row and its 8 result rows,
+    # tagged; each device's own context lines under devices (two, as in context.devices)
+    rows = d["rows"]
+    assert [r["device"] for r in rows["rows"]] == [name] * 9 + [name + " #2"] * 9, [r["device"] for r in rows["rows"]]
+    assert [x["name"] for x in rows["devices"]] == [name, name + " #2"], rows["devices"]
+    assert all("throughput settings" in x["context"] for x in rows["devices"]), rows["devices"]
 
 
 @check
@@ -411,7 +417,7 @@ def reproduce_cli_fit_against_indep(*args):
     argv = ["-", *args]
     f = load(argv[1])
     indep = argv[2]
-    assert f["schema"] == "brdfbench.fit/1"
+    assert f["schema"] == "brdfbench.fit/2"
     for k in ("a", "b", "max_rel", "max_abs", "limit", "model"):
         assert k in f, k
     lim = f["limit"]

@@ -15,7 +15,7 @@ def render_cli_render_contract(*args):
     """check_json of test_render_cli.sh: render.json contract"""
     import os
     argv = ["check_json", *args]
-    d, _ = load_result(argv[1], "brdfbench.render/1",
+    d, _ = load_result(argv[1], "brdfbench.render/2",
                        ("date", "device", "platform_version", "build_options", "git_revision"))
     scenes = {s["scene"]: s for s in d["scenes"]}
     assert sorted(scenes) == ["spheres", "teapot"], sorted(scenes)
@@ -178,7 +178,7 @@ def frontier_cli_frontier_contract_bounds(*args):
     argv = ["-", *args]
     d = argv[1]
     j = load(d + "/frontier.json")
-    has_context(j, "brdfbench.frontier/1", ("date", "device", "git_revision"))
+    has_context(j, "brdfbench.frontier/2", ("date", "device", "git_revision"))
     m = {r["model"]: r for r in j["models"]}
     assert set(m) == {"phong", "fq2", "pow4fit"}
     p4, fq2 = m["pow4fit"]["n_2_1000"], m["fq2"]["n_2_1000"]
@@ -320,7 +320,7 @@ def cli_accuracy_invalid_values_folded_into_maxima(*args):
 def throughput_cli_throughput_contract(*args):
     """check_json of test_throughput_cli.sh: throughput.json contract"""
     argv = ["check_json", *args]
-    d, ctx = load_result(argv[1], "brdfbench.throughput/3",
+    d, ctx = load_result(argv[1], "brdfbench.throughput/4",
                          ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
     assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
     # the recorded work-group size is the launch's: 1 on a CPU device (PoCL spreads groups over

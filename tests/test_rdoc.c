@@ -3,8 +3,10 @@
  * Every expected key, label, unit, direction and value below is written by hand from the file
  * text in the same test, not taken from the program's output. No device. */
 #include "check.h"
+#include "jsonw.h"
 #include "mdbuf.h"
 #include "rdoc_read.h"
+#include "schemas.h"
 #include "testutil.h"
 
 #include <math.h>
@@ -222,6 +224,75 @@ static void check_render_fit(void)
     rdoc_free(&d);
 }
 
+/* A file of the version written now carries its rows: the "rows" member, written by
+   rdoc_json_rows_member from rows built by hand, is what the reader returns (its layout,
+   here an empty "models", is not read); that version without the member is refused. */
+static void check_rows_member(void)
+{
+    CHECK_CASE("a result file's rows member");
+    char path[4200], err[512];
+    struct rdoc built, d;
+    rdoc_init(&built, FRONTIER_SCHEMA, "frontier", "frontier.json");
+    rd_ctx_put(&built.ctx, "frontier note", "by hand");
+    struct rd_row *r = rdoc_row(&built, "", "fq2");
+    rd_row_key(r, "model", NULL, "fq2");
+    rd_row_metric(&built, r, "n_2_1000.max_rel", "1", RD_LOWER, 0, 0.004);
+    struct rd_metric *rate = rd_row_metric(&built, r, "evals_per_s", "1/s", RD_HIGHER, 1, 3e9);
+    const double reps[3] = { 2e9, 3e9, 4e9 }, norm[3] = { 0.5, 0.75, 1 };
+    rate->lo = 2e9;
+    rate->hi = 4e9;
+    CHECK(rd_metric_reps(&built, rate, reps, 3) == 0 && rd_metric_normalised(&built, rate, norm, 3, 1) == 0,
+          "repetitions kept");
+    struct rd_row *bad = rdoc_row(&built, "", "nanm");
+    rd_row_key(bad, "model", NULL, "nanm");
+    rd_row_fail(bad, NULL, "no finite error figure");
+    rd_row_metric(&built, bad, "psnr_db", "dB", RD_HIGHER, 0, NAN);
+    struct jw w;
+    jw_init(&w);
+    jw_obj_begin(&w);
+    jw_kv_str(&w, "schema", FRONTIER_SCHEMA);
+    jw_kv_obj(&w, "context");
+    jw_kv_str(&w, "device", "dev0");
+    jw_obj_end(&w);
+    jw_kv_arr(&w, "models");
+    jw_arr_end(&w);
+    rdoc_json_rows_member(&w, &built);
+    jw_obj_end(&w);
+    path_in(path, sizeof path, "frontier.json");
+    CHECK(jw_write_file_free(&w, path, err, sizeof err) == 0, "written: %s", err);
+    rdoc_free(&built);
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "read: %s", err);
+    CHECK(d.nrows == 2 && strcmp(d.kind, "frontier") == 0 && strcmp(d.schema, FRONTIER_SCHEMA) == 0,
+          "two rows of kind frontier: %d %s", d.nrows, d.kind);
+    /* the file's context block first (device), then the member's own lines */
+    CHECK(d.ctx.count == 2 && strcmp(d.ctx.key[0], "device") == 0 && strcmp(d.ctx.key[1], "frontier note") == 0 &&
+          strcmp(d.ctx.value[1], "by hand") == 0, "context: device, then the kind's line");
+    const struct rd_row *fq = row_labelled(&d, "fq2");
+    const struct rd_metric *m = fq ? rd_row_find(fq, "evals_per_s") : NULL;
+    CHECK(fq && fq->ok && fq->nmetrics == 2 && rd_row_find(fq, "n_2_1000.max_rel")->value == 0.004 &&
+          rd_row_find(fq, "n_2_1000.max_rel")->direction == RD_LOWER, "fq2's error, lower is better");
+    CHECK(m && m->timed && m->value == 3e9 && m->lo == 2e9 && m->hi == 4e9 && m->nreps == 3 && m->reps[2] == 4e9 &&
+          m->nnorm == 3 && m->norm[1] == 0.75 && m->norm_cpu && strcmp(m->unit, "1/s") == 0, "the rate as declared");
+    const struct rd_row *nm = row_labelled(&d, "nanm");
+    CHECK(nm && !nm->ok && strcmp(nm->status, "failed") == 0 && strcmp(nm->reason, "no finite error figure") == 0 &&
+          nm->nmetrics == 1 && isnan(nm->metrics[0].value), "the failed row, its reason and its missing PSNR");
+    rdoc_free(&d);
+
+    test_write_file(path, "{\"schema\": \"brdfbench.frontier/2\", \"models\": []}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "without its \"rows\""),
+          "the current version without its rows: %s", err);
+    /* the previous version of the same layout reads by that layout (its upgrade function) */
+    test_write_file(path, "{\"schema\": \"brdfbench.frontier/1\", \"models\": [{\"model\": \"fq2\",\n"
+                          " \"n_2_1000\": {\"max_rel\": 0.004, \"max_rel_at_n\": 2, \"max_abs\": 0.01}, \"psnr_db\": 40}]}\n");
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "frontier/1 read: %s", err);
+    fq = row_labelled(&d, "fq2");
+    /* max_rel, max_abs and the PSNR; the n where a maximum is reached is no figure */
+    CHECK(fq && fq->nmetrics == 3 && rd_row_find(fq, "n_2_1000.max_abs")->value == 0.01 &&
+          rd_row_find(fq, "psnr_db")->direction == RD_HIGHER && strcmp(rd_row_find(fq, "psnr_db")->unit, "dB") == 0,
+          "frontier/1: three figures");
+    rdoc_free(&d);
+}
+
 static void check_refused(void)
 {
     CHECK_CASE("files that are not results");
@@ -260,6 +331,7 @@ static void check_refused(void)
 
 int main(void)
 {
-    static void (*const tests[])(void) = { check_throughput, check_accuracy, check_render_fit, check_refused };
+    static void (*const tests[])(void) = { check_throughput, check_accuracy, check_render_fit, check_rows_member,
+                                                  check_refused };
     return test_run_in_tmpdir(dir, sizeof dir, "test_rdoc", tests, sizeof tests / sizeof tests[0]);
 }

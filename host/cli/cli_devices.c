@@ -74,6 +74,52 @@ static const char *member_str(const struct jr_value *obj, const char *key)
 
 typedef char device_tag[300];
 
+/* The gathered file's "rows" member (rdoc.h): the first device's context lines, as the file's
+   other sections are the first device's; each device's own lines (its settings, its machine
+   record) under "devices" where there are several; every device's rows, each tagged with its
+   device. */
+static void merged_rows_member(struct jw *w, const struct jr_doc *docs, int n, const device_tag *tags)
+{
+    const struct jr_value *first = jr_get(&docs[0].root, "rows");
+    jw_obj_begin(w);
+    for (size_t i = 0; i < first->count; ++i)
+        if (strcmp(first->keys[i], "devices") != 0 && strcmp(first->keys[i], "rows") != 0) {
+            jw_key(w, first->keys[i]);
+            jw_value(w, &first->items[i]);
+        }
+    jw_kv_arr(w, "devices");
+    for (int k = 0; n >= 2 && k < n; ++k) {
+        const struct jr_value *ctx = jr_get(jr_get(&docs[k].root, "rows"), "context");
+        jw_obj_begin(w);
+        jw_kv_str(w, "name", tags[k]);
+        jw_kv_obj(w, "context");
+        for (size_t c = 0; ctx && ctx->type == JR_OBJ && c < ctx->count; ++c) {
+            jw_key(w, ctx->keys[c]);
+            jw_value(w, &ctx->items[c]);
+        }
+        jw_obj_end(w);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+    jw_kv_arr(w, "rows");
+    for (int k = 0; k < n; ++k) {
+        const struct jr_value *rows = jr_get(jr_get(&docs[k].root, "rows"), "rows");
+        for (size_t r = 0; rows && rows->type == JR_ARR && r < rows->count; ++r) {
+            const struct jr_value *row = &rows->items[r];
+            jw_obj_begin(w);
+            jw_kv_str(w, "device", tags[k]);
+            for (size_t m = 0; row->type == JR_OBJ && m < row->count; ++m)
+                if (strcmp(row->keys[m], "device") != 0) {
+                    jw_key(w, row->keys[m]);
+                    jw_value(w, &row->items[m]);
+                }
+            jw_obj_end(w);
+        }
+    }
+    jw_arr_end(w);
+    jw_obj_end(w);
+}
+
 /* RUN/<file> from RUN/devices/<k>/<file>: the first file with its rows replaced by every
    file's rows, each tagged, and context.devices; tags[k] receives device k's tag. */
 static int merge_devices(const char *run_dir, const char *file, const char *rows_key, const struct cl_device_ref *refs,
@@ -157,6 +203,8 @@ static int merge_devices(const char *run_dir, const char *file, const char *rows
                                           "here are all of theirs, tagged with \"device\"; each device's settings and "
                                           "peak are in its entry; other sections are the first device's");
             jw_obj_end(&w);
+        } else if (strcmp(root->keys[i], "rows") == 0 && root->items[i].type == JR_OBJ) {
+            merged_rows_member(&w, docs, n, tags);
         } else if (strcmp(root->keys[i], rows_key) == 0) {
             jw_arr_begin(&w);
             for (int k = 0; k < n; ++k) {

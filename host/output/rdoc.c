@@ -149,6 +149,33 @@ struct rd_metric *rd_row_metric(struct rdoc *d, struct rd_row *r, const char *na
     return m;
 }
 
+static double *copy_of(struct rdoc *d, const double *v, int n)
+{
+    double *c = n > 0 ? malloc((size_t)n * sizeof *c) : NULL;
+    if (n > 0 && !c)
+        return out_of_memory(d);
+    if (c)
+        memcpy(c, v, (size_t)n * sizeof *c);
+    return c;
+}
+
+int rd_metric_reps(struct rdoc *d, struct rd_metric *m, const double *v, int n)
+{
+    free(m->reps);
+    m->reps = copy_of(d, v, n);
+    m->nreps = m->reps ? n : 0;
+    return n > 0 && !m->reps ? -1 : 0;
+}
+
+int rd_metric_normalised(struct rdoc *d, struct rd_metric *m, const double *v, int n, int per_cpu_second)
+{
+    free(m->norm);
+    m->norm = copy_of(d, v, n);
+    m->nnorm = m->norm ? n : 0;
+    m->norm_cpu = m->norm && per_cpu_second;
+    return n > 0 && !m->norm ? -1 : 0;
+}
+
 struct rd_metric *rd_row_find(const struct rd_row *r, const char *name)
 {
     for (int m = 0; m < r->nmetrics; ++m)
@@ -211,6 +238,48 @@ static void json_metric(struct jw *w, const struct rd_metric *m)
     jw_obj_end(w);
 }
 
+/* The context, the devices and the rows: what a brdfbench.rows/1 document and a result file's
+   "rows" member hold alike. */
+static void json_rows_body(struct jw *w, const struct rdoc *d)
+{
+    json_context(w, "context", &d->ctx);
+    jw_kv_int(w, "disturbed_reps", d->disturbed);
+    jw_kv_arr(w, "devices");
+    for (int i = 0; i < d->ndevices; ++i) {
+        jw_obj_begin(w);
+        jw_kv_str(w, "name", d->devices[i].name);
+        json_context(w, "context", &d->devices[i].ctx);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+    jw_kv_arr(w, "rows");
+    for (int i = 0; i < d->nrows; ++i) {
+        const struct rd_row *r = &d->rows[i];
+        jw_obj_begin(w);
+        jw_kv_str(w, "device", r->device);
+        jw_kv_str(w, "model", r->model);
+        for (int in_label = 1; in_label >= 0; --in_label) {
+            jw_kv_obj(w, in_label ? "keys" : "attributes");
+            for (int k = 0; k < r->nkeys; ++k)
+                if (r->keys[k].in_label == in_label)
+                    jw_kv_str(w, r->keys[k].name, r->keys[k].value);
+            jw_obj_end(w);
+        }
+        jw_kv_str(w, "row", r->label);   /* not "label": that member is one key of a file, never " | " */
+        jw_kv_str(w, "status", r->status);
+        if (!r->ok)
+            jw_kv_str(w, "reason", r->reason);
+        jw_kv_int(w, "preemption_retries", r->retries);
+        jw_kv_int(w, "disturbed_reps", r->disturbed);
+        jw_kv_arr(w, "metrics");
+        for (int m = 0; m < r->nmetrics; ++m)
+            json_metric(w, &r->metrics[m]);
+        jw_arr_end(w);
+        jw_obj_end(w);
+    }
+    jw_arr_end(w);
+}
+
 void rdoc_json(const struct rdoc *d, struct md_buf *out)
 {
     struct jw w;
@@ -222,48 +291,20 @@ void rdoc_json(const struct rdoc *d, struct md_buf *out)
     jw_kv_str(&w, "kind", d->kind);
     jw_kv_str(&w, "file", d->file);
     jw_obj_end(&w);
-    json_context(&w, "context", &d->ctx);
-    jw_kv_int(&w, "disturbed_reps", d->disturbed);
-    jw_kv_arr(&w, "devices");
-    for (int i = 0; i < d->ndevices; ++i) {
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "name", d->devices[i].name);
-        json_context(&w, "context", &d->devices[i].ctx);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
-    jw_kv_arr(&w, "rows");
-    for (int i = 0; i < d->nrows; ++i) {
-        const struct rd_row *r = &d->rows[i];
-        jw_obj_begin(&w);
-        jw_kv_str(&w, "device", r->device);
-        jw_kv_str(&w, "model", r->model);
-        for (int in_label = 1; in_label >= 0; --in_label) {
-            jw_kv_obj(&w, in_label ? "keys" : "attributes");
-            for (int k = 0; k < r->nkeys; ++k)
-                if (r->keys[k].in_label == in_label)
-                    jw_kv_str(&w, r->keys[k].name, r->keys[k].value);
-            jw_obj_end(&w);
-        }
-        jw_kv_str(&w, "row", r->label);   /* not "label": that member is one key of a file, never " | " */
-        jw_kv_str(&w, "status", r->status);
-        if (!r->ok)
-            jw_kv_str(&w, "reason", r->reason);
-        jw_kv_int(&w, "preemption_retries", r->retries);
-        jw_kv_int(&w, "disturbed_reps", r->disturbed);
-        jw_kv_arr(&w, "metrics");
-        for (int m = 0; m < r->nmetrics; ++m)
-            json_metric(&w, &r->metrics[m]);
-        jw_arr_end(&w);
-        jw_obj_end(&w);
-    }
-    jw_arr_end(&w);
+    json_rows_body(&w, d);
     jw_obj_end(&w);
     md_append(out, w.out.s ? w.out.s : "", w.out.len);
     md_append(out, "\n", 1);
     if (w.out.failed)
         out->failed = 1;
     jw_free(&w);
+}
+
+void rdoc_json_rows_member(struct jw *w, const struct rdoc *d)
+{
+    jw_kv_obj(w, "rows");
+    json_rows_body(w, d);
+    jw_obj_end(w);
 }
 
 /* The names of the keys the rows carry, in the order they first appear. */
@@ -530,25 +571,46 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
     return 0;
 }
 
-int rdoc_from_rows_json(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+/* The context, devices and rows of obj (a rows document's root, or a result file's "rows"
+   member) added to d. */
+static int read_rows_body(const struct jr_doc *j, const struct jr_value *obj, struct rdoc *d, char *err, size_t errlen)
 {
-    const struct jr_value *src, *rows;
-    if (jr_need(j, &j->root, "source", JR_OBJ, &src, err, errlen) ||
-        jr_need(j, &j->root, "rows", JR_ARR, &rows, err, errlen))
+    const struct jr_value *rows;
+    if (jr_need(j, obj, "rows", JR_ARR, &rows, err, errlen))
         return 2;
-    rdoc_init(d, jr_str_or(src, "schema", ""), jr_str_or(src, "kind", ""), jr_str_or(src, "file", ""));
-    read_ctx(jr_get(&j->root, "context"), &d->ctx);
-    d->disturbed = (int)fmax(0, jr_num_or_nan(&j->root, "disturbed_reps"));
-    const struct jr_value *devs = jr_get(&j->root, "devices");
+    read_ctx(jr_get(obj, "context"), &d->ctx);
+    if (!d->disturbed)
+        d->disturbed = (int)fmax(0, jr_num_or_nan(obj, "disturbed_reps"));
+    const struct jr_value *devs = jr_get(obj, "devices");
     for (size_t i = 0; devs && devs->type == JR_ARR && i < devs->count; ++i) {
         struct rd_device *dv = rdoc_device(d, jr_str_or(&devs->items[i], "name", "?"));
         if (dv)
             read_ctx(jr_get(&devs->items[i], "context"), &dv->ctx);
     }
     for (size_t i = 0; i < rows->count; ++i)
-        if (read_row(j, &rows->items[i], d, err, errlen)) {
-            rdoc_free(d);
+        if (read_row(j, &rows->items[i], d, err, errlen))
             return 2;
-        }
     return 0;
+}
+
+int rdoc_from_rows_json(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+{
+    const struct jr_value *src;
+    if (jr_need(j, &j->root, "source", JR_OBJ, &src, err, errlen))
+        return 2;
+    rdoc_init(d, jr_str_or(src, "schema", ""), jr_str_or(src, "kind", ""), jr_str_or(src, "file", ""));
+    if (read_rows_body(j, &j->root, d, err, errlen)) {
+        rdoc_free(d);
+        return 2;
+    }
+    return 0;
+}
+
+int rdoc_from_rows_member(const struct jr_doc *j, const struct jr_value *member, struct rdoc *d, char *err,
+                          size_t errlen)
+{
+    if (!member || member->type != JR_OBJ)
+        return jr_fail(j, member ? member : &j->root, err, errlen, "\"rows\" is not an object (accepted: the "
+                       "context, devices and rows of a brdfbench.rows/1 document)");
+    return read_rows_body(j, member, d, err, errlen);
 }

@@ -9,9 +9,12 @@
  * throughput bars from them, and `brdfbench rows` writes them as JSON (brdfbench.rows/1),
  * CSV or markdown.
  *
- * The rows come from each kind's own file (rdoc_read.h) or from a brdfbench.rows/1 document,
- * which this module reads back: the timing is kept once, in the kind's file, and every
- * rows document is a view of it. */
+ * The rows are the primary record: each engine builds them from what it measured (the keys,
+ * each metric's unit, direction and repetitions declared there, where the figure is made) and
+ * writes them into its result file as its "rows" member (rdoc_json_rows_member), beside the
+ * kind's own detail. Every reader (rdoc_read.h) takes them from there, or from a
+ * brdfbench.rows/1 document; only a file of a kind's previous version, written before the
+ * files carried rows, is read by its layout (the upgrade functions of rdoc_read.c). */
 #ifndef BRDF_RDOC_H
 #define BRDF_RDOC_H
 
@@ -119,6 +122,12 @@ void rd_row_fail(struct rd_row *r, const char *status, const char *reason);
  * repetitions. */
 struct rd_metric *rd_row_metric(struct rdoc *d, struct rd_row *r, const char *name, const char *unit, int direction,
                                 int timed, double v);
+/* The metric's repetitions, in the order they ran (copied; none kept when n <= 0): each one's
+ * rate for a timed metric. Returns 0, or -1 out of memory (d->oom set). */
+int rd_metric_reps(struct rdoc *d, struct rd_metric *m, const double *v, int n);
+/* The same repetitions normalised by the run's reference kernel in the same round (per CPU
+ * second on a CPU device: per_cpu_second). */
+int rd_metric_normalised(struct rdoc *d, struct rd_metric *m, const double *v, int n, int per_cpu_second);
 /* The metric named name of the row, or NULL. */
 struct rd_metric *rd_row_find(const struct rd_row *r, const char *name);
 /* The key named name of the row, or NULL. */
@@ -134,8 +143,20 @@ void rdoc_json(const struct rdoc *d, struct md_buf *out);
 void rdoc_csv(const struct rdoc *d, struct md_buf *out);
 void rdoc_markdown(const struct rdoc *d, struct md_buf *out);
 
+struct jw;
+/* A result file's "rows" member: {"context", "disturbed_reps", "devices", "rows"} as in a
+ * brdfbench.rows/1 document (the source is the file itself; its context block keeps the
+ * run's device and build, this context only the kind's own lines). */
+void rdoc_json_rows_member(struct jw *w, const struct rdoc *d);
+
 struct jr_doc;
+struct jr_value;
 /* Reads a parsed brdfbench.rows/1 document back. Returns 0, or 2 with "FILE:LINE:COL: ...". */
 int rdoc_from_rows_json(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+/* Adds a result file's "rows" member (its context lines, devices and rows) to d, which the
+ * caller has initialised (rdoc_init) with the file's schema and kind. Returns 0, or 2 with
+ * "FILE:LINE:COL: ..." (the caller frees d). */
+int rdoc_from_rows_member(const struct jr_doc *j, const struct jr_value *member, struct rdoc *d, char *err,
+                          size_t errlen);
 
 #endif

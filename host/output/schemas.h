@@ -1,7 +1,7 @@
 /* schemas.h - every schema string brdfbench writes or reads, once. A writer opens its document
  * with its kind's string (jw_doc_begin); a reader (compare, gate --baseline, plot, report)
- * checks against the same string, and accepts the older versions listed here where it still
- * reads them. A change of a document's layout bumps its version here and nowhere else. */
+ * checks against the same string, and accepts the older versions listed here (*_V<k>) where it
+ * still reads them. A change of a document's layout bumps its version here and nowhere else. */
 #ifndef BRDF_SCHEMAS_H
 #define BRDF_SCHEMAS_H
 
@@ -10,9 +10,11 @@
 #define COMPARE_SCHEMA "brdfbench.compare/1"
 #define ENERGY_SCHEMA "brdfbench.energy/1"
 #define FIELD_SCHEMA "brdfbench.field/1"
-#define FIT_SCHEMA "brdfbench.fit/1"
+#define FIT_SCHEMA "brdfbench.fit/2"              /* /2: the file carries its rows (rdoc.h) */
+#define FIT_SCHEMA_V1 "brdfbench.fit/1"           /* before the rows: read by its layout */
 #define FIT_FAMILY_SCHEMA "brdfbench.fit_family/1"
-#define FRONTIER_SCHEMA "brdfbench.frontier/1"
+#define FRONTIER_SCHEMA "brdfbench.frontier/2"    /* /2: the file carries its rows */
+#define FRONTIER_SCHEMA_V1 "brdfbench.frontier/1" /* before the rows: read by its layout */
 #define GATES_SCHEMA "brdfbench.gates/1"        /* the gates file (input) */
 #define GATE_RESULT_SCHEMA "brdfbench.gate/1"   /* gate's --json result (output) */
 #define LIST_SCHEMA "brdfbench.list/1"
@@ -20,13 +22,16 @@
 #define PBCOST_SCHEMA "brdfbench.physical/1"
 #define PLOTS_SCHEMA "brdfbench.plots/1"
 #define Q_SWEEP_SCHEMA "brdfbench.q_sweep/1"
-#define RENDER_SCHEMA "brdfbench.render/1"
+#define RENDER_SCHEMA "brdfbench.render/2"        /* /2: the file carries its rows */
+#define RENDER_SCHEMA_V1 "brdfbench.render/1"     /* before the rows: read by its layout */
 #define HISTORY_SCHEMA "brdfbench.history/1"  /* `brdfbench history` (history.h) */
 #define ROWS_SCHEMA "brdfbench.rows/1"        /* `brdfbench rows`: any result file as rows (rdoc.h) */
 #define RUN_SCHEMA "brdfbench.run/1"          /* run.json of `all`: what report.md is made of */
-#define THROUGHPUT_SCHEMA "brdfbench.throughput/3"
-/* older throughput documents the readers still take: /2 has the same rows without the
-   runner's normalised rates; /1 (plot only) has the rates alone */
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/4"   /* /4: the file carries its rows (rdoc.h) */
+/* older throughput documents the readers still take, by their layout: /3 is /4 without the
+   rows member; /2 has the same results without the runner's normalised rates; /1 (plot only)
+   has the rates alone */
+#define THROUGHPUT_SCHEMA_V3 "brdfbench.throughput/3"
 #define THROUGHPUT_SCHEMA_V2 "brdfbench.throughput/2"
 #define THROUGHPUT_SCHEMA_V1 "brdfbench.throughput/1"
 

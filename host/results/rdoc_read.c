@@ -1,4 +1,10 @@
-/* rdoc_read.c - each kind's result file as rows: the one place that knows their layouts. */
+/* rdoc_read.c - each kind's result file as rows. A file of the version written now carries its
+ * rows (its "rows" member, written where the figures are measured: rdoc_json_rows_member) and
+ * is read by one generic path, the same as a brdfbench.rows/1 document. A file of a previous
+ * version, written before the files carried rows, is read by the upgrade function of its schema
+ * (one per old schema, below): the one place that still knows those layouts, so a baseline
+ * kept from an earlier version keeps working. accuracy.json does not carry rows yet: its
+ * current layout is read by read_accuracy. */
 #include "rdoc_read.h"
 
 #include <errno.h>
@@ -13,24 +19,42 @@
 #include "outdir.h"
 #include "schemas.h"
 
-typedef int (*kind_reader)(const struct jr_doc *, struct rdoc *, char *, size_t);
-static int read_throughput(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+typedef int (*layout_reader)(const struct jr_doc *, struct rdoc *, char *, size_t);
+static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
-static int read_render(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
-static int read_fit(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
-static int read_frontier(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 
-/* The kinds: what they are called, their file, the version written now and the older ones
- * still read (their rows are a subset of the current one's). */
+/* The kinds: what they are called, their file and the version written now. */
 static const struct {
-    const char *name, *file, *schema, *older[2];
-    kind_reader read;
+    const char *name, *file, *schema;
 } kinds[RD_KIND_COUNT] = {
-    { "throughput", "throughput.json", THROUGHPUT_SCHEMA, { THROUGHPUT_SCHEMA_V2, THROUGHPUT_SCHEMA_V1 }, read_throughput },
-    { "accuracy", "accuracy.json", ACCURACY_SCHEMA, { NULL, NULL }, read_accuracy },
-    { "render", "render.json", RENDER_SCHEMA, { NULL, NULL }, read_render },
-    { "fit", "fit.json", FIT_SCHEMA, { NULL, NULL }, read_fit },
-    { "frontier", "frontier.json", FRONTIER_SCHEMA, { NULL, NULL }, read_frontier },
+    { "throughput", "throughput.json", THROUGHPUT_SCHEMA },
+    { "accuracy", "accuracy.json", ACCURACY_SCHEMA },
+    { "render", "render.json", RENDER_SCHEMA },
+    { "fit", "fit.json", FIT_SCHEMA },
+    { "frontier", "frontier.json", FRONTIER_SCHEMA },
+};
+
+/* The schemas read by their layout: each previous version of a kind, with the function that
+ * turns it into rows (its rows are those the version written now carries), and accuracy.json's
+ * current version, which carries no rows yet. */
+static const struct {
+    const char *schema;
+    int kind;
+    layout_reader read;
+} layouts[] = {
+    { THROUGHPUT_SCHEMA_V3, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
+    /* /2 is /3 without the normalised rates, /1 without the repetitions (compare refuses it:
+       nothing to decide a verdict on; plot draws its rates): the same function, which takes
+       what is there */
+    { THROUGHPUT_SCHEMA_V2, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
+    { THROUGHPUT_SCHEMA_V1, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
+    { ACCURACY_SCHEMA, RD_KIND_ACCURACY, read_accuracy },
+    { RENDER_SCHEMA_V1, RD_KIND_RENDER, upgrade_render_v1 },
+    { FIT_SCHEMA_V1, RD_KIND_FIT, upgrade_fit_v1 },
+    { FRONTIER_SCHEMA_V1, RD_KIND_FRONTIER, upgrade_frontier_v1 },
 };
 
 const char *rd_kind_name(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].name : "?"; }
@@ -134,7 +158,7 @@ static void grid_text(const struct jr_value *ctx, char *out, size_t len)
                  jr_num_or_nan(g, "n_step"), jr_num_or_nan(g, "samples_per_zone"));
 }
 
-/* ---- throughput.json ------------------------------------------------------------------------ */
+/* ---- brdfbench.throughput/3 (and /2, /1) ---------------------------------------------------- */
 
 /* A throughput context block's settings and machine record, as context lines. */
 static void throughput_context(struct rd_context *c, const struct jr_value *tp, int *disturbed)
@@ -236,7 +260,11 @@ static void kernel_sources(struct rdoc *d, const struct jr_value *tp)
         rd_ctx_put(&d->ctx, "kernel sources", buf);
 }
 
-static int read_throughput(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+/* The upgrade of brdfbench.throughput/3 (and of /2 and /1, which hold less of the same): a row
+ * for each device's peak kernel (flops_per_s), then one per result (keys label, variant, n mode;
+ * attribute kind) with its evals_per_s, its range, repetitions and normalised repetitions; the
+ * context lines "throughput settings", "machine" and "kernel sources". */
+static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     const struct jr_value *rows;
     if (jr_need(j, &j->root, "results", JR_ARR, &rows, err, errlen) || throughput_peaks(j, d, err, errlen))
@@ -405,7 +433,10 @@ static int render_timings(const struct jr_doc *j, struct rdoc *d, const struct j
     return 0;
 }
 
-static int read_render(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+/* The upgrade of brdfbench.render/1: per scene a row per model (keys scene "NAME WxH", model;
+ * max_abs, rmse, psnr_db) and a row per timed entry and image size (keys scene, entry;
+ * mpixel_per_s@WxH with its range and repetitions). */
+static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     const struct jr_value *scenes;
     if (jr_need(j, &j->root, "scenes", JR_ARR, &scenes, err, errlen))
@@ -423,7 +454,7 @@ static int read_render(const struct jr_doc *j, struct rdoc *d, char *err, size_t
     return 0;
 }
 
-/* ---- fit.json ------------------------------------------------------------------------------ */
+/* ---- brdfbench.fit/1 ------------------------------------------------------------------------- */
 
 /* A row of fit figures: the coefficients where the row is the fit itself, then its errors. */
 static void fit_row(struct rdoc *d, const struct jr_value *obj, const char *role, const char *grid, int with_coefs)
@@ -445,7 +476,10 @@ static void fit_row(struct rdoc *d, const struct jr_value *obj, const char *role
         rd_row_metric(d, r, errs[k], "1", RD_LOWER, 0, jr_num_or_nan(obj, errs[k]));
 }
 
-static int read_fit(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+/* The upgrade of brdfbench.fit/1: the best affine fit and the fit capped at fq2's max Delta
+ * (a, b, max_rel, max_abs), then each compared model (max_rel, max_abs); the context line
+ * "fit grid". */
+static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     (void)err;
     (void)errlen;
@@ -466,7 +500,7 @@ static int read_fit(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
     return 0;
 }
 
-/* ---- frontier.json ------------------------------------------------------------------------- */
+/* ---- brdfbench.frontier/1 -------------------------------------------------------------------- */
 
 /* frontier.json: rows keyed by model; every number of a row (and of its objects, one level
    down) whose name says what it is: a rate (per_s; an object of min/median/max gives its
@@ -524,7 +558,9 @@ static void frontier_members(const struct jr_doc *j, struct rdoc *d, struct rd_r
     }
 }
 
-static int read_frontier(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+/* The upgrade of brdfbench.frontier/1: a row per model, with its status and reason, and the
+ * figures its members' names say (frontier_direction). */
+static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     static const char *const arrays[] = { "results", "models", "points", "rows" };
     const struct jr_value *rows = NULL;
@@ -546,6 +582,7 @@ static int read_frontier(const struct jr_doc *j, struct rdoc *d, char *err, size
         if (!r)
             return 0;
         rd_row_key(r, "model", NULL, model);
+        row_status(r, row);   /* a model with no finite error figure: failed, with the reason */
         for (int pass = 0; pass < 2; ++pass)
             frontier_members(j, d, r, row, "", 0, pass);
     }
@@ -555,17 +592,18 @@ static int read_frontier(const struct jr_doc *j, struct rdoc *d, char *err, size
 /* ---- files --------------------------------------------------------------------------------- */
 
 /* The kind a schema string names, by its name before the '/' ("brdfbench.fit/1" -> fit), or
-   -1; *accepted: it is the version written now or an older one the kind still reads. */
-static int kind_of_schema(const char *schema, int *accepted)
+   -1; *layout: the reader of that version by its layout (NULL: none, which for the version
+   written now means the file carries its rows). */
+static int kind_of_schema(const char *schema, layout_reader *layout)
 {
+    *layout = NULL;
+    for (size_t i = 0; i < sizeof layouts / sizeof layouts[0]; ++i)
+        if (strcmp(schema, layouts[i].schema) == 0)
+            *layout = layouts[i].read;
     for (int k = 0; k < RD_KIND_COUNT; ++k) {
         size_t n = (size_t)(strchr(kinds[k].schema, '/') - kinds[k].schema) + 1;
-        if (strncmp(schema, kinds[k].schema, n) != 0)
-            continue;
-        *accepted = strcmp(schema, kinds[k].schema) == 0;
-        for (int o = 0; o < 2 && kinds[k].older[o]; ++o)
-            *accepted |= strcmp(schema, kinds[k].older[o]) == 0;
-        return k;
+        if (strncmp(schema, kinds[k].schema, n) == 0)
+            return k;
     }
     return -1;
 }
@@ -577,23 +615,35 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
         return 2;
     if (strcmp(schema, ROWS_SCHEMA) == 0)
         return compare_check_doc(j, err, errlen) || rdoc_from_rows_json(j, d, err, errlen) ? 2 : 0;
-    int accepted = 0, kind = kind_of_schema(schema, &accepted);
+    layout_reader layout;
+    int kind = kind_of_schema(schema, &layout);
     if (kind < 0) {
         snprintf(err, errlen, "%s: schema \"%.60s\" is not a result file with figures (accepted: %s, %s, %s, %s, %s, %s)",
                  j->name, schema, kinds[0].schema, kinds[1].schema, kinds[2].schema, kinds[3].schema,
                  kinds[4].schema, ROWS_SCHEMA);
         return 2;
     }
-    if (!accepted) {
+    const int current = strcmp(schema, kinds[kind].schema) == 0;
+    if (!current && !layout) {
         snprintf(err, errlen, "%s: schema \"%.60s\", this version reads \"%s\" (run the command again with this version)",
                  j->name, schema, kinds[kind].schema);
+        return 2;
+    }
+    const struct jr_value *rows = jr_get(&j->root, "rows");
+    if (rows && rows->type != JR_OBJ && layout)
+        rows = NULL;   /* an old frontier layout's array of rows: read by that layout */
+    if (!layout && !rows) {
+        snprintf(err, errlen, "%s: schema \"%.60s\" without its \"rows\" (accepted: the file as brdfbench writes it, "
+                 "which carries its rows)", j->name, schema);
         return 2;
     }
     if (compare_check_doc(j, err, errlen))
         return 2;
     rdoc_init(d, schema, kinds[kind].name, kinds[kind].file);
     read_contexts(j, d);
-    if (kinds[kind].read(j, d, err, errlen)) {
+    /* a file that carries its rows is read by them, whatever its version; one without, by the
+       layout of its version */
+    if (rows ? rdoc_from_rows_member(j, rows, d, err, errlen) : layout(j, d, err, errlen)) {
         rdoc_free(d);
         return 2;
     }

@@ -1,10 +1,11 @@
 /* rdoc_read.h - every result file with figures, read as rows (rdoc.h).
  *
- * One table names the kinds: their schema, file name and the older versions still read. One
- * function per kind turns its file's layout into rows, keys and metrics (with unit and
- * direction), so each layout is known here and nowhere else: compare, `gate --baseline`,
- * `plot` and `brdfbench rows` read results only through rdoc_read_file. A brdfbench.rows/1
- * document (what `brdfbench rows --format json` writes) is read back as the rows it holds.
+ * One table names the kinds: their schema and file name. A file of the version written now
+ * carries its rows (its "rows" member, made by the engine where it measures: rdoc.h) and is read
+ * by them, as a brdfbench.rows/1 document (what `brdfbench rows --format json` writes) is; a
+ * file of a previous version is turned into the same rows by the upgrade function of its
+ * schema, and accuracy.json, which carries no rows yet, by its layout. compare,
+ * `gate --baseline`, `plot` and `brdfbench rows` read results only through rdoc_read_file.
  *
  * Before a figure is read the whole file is checked (compare_check.h): figures are numbers in
  * their range, labels one line of table-safe text. */
@@ -23,7 +24,8 @@ int rd_kind_of_name(const char *name);  /* the inverse of rd_kind_name; -1 for a
 
 /* Reads the result file at path (a regular file) into d. Returns 0, or 2 with a one-line
  * reason naming the file: unreadable, not strict JSON, a schema that is none of the kinds or
- * brdfbench.rows/1, an older version than the kind's table takes, a member out of its range. */
+ * brdfbench.rows/1, a version this one does not read, a current file without its rows, a member
+ * out of its range. */
 int rdoc_read_file(const char *path, struct rdoc *d, char *err, size_t errlen);
 
 /* The kinds' files in a run folder (only the file of kind `only` when it is >= 0, no other

@@ -80,10 +80,11 @@ static double num_at(const struct jr_value *o, const char *obj, const char *key)
     return v ? jr_num_or_nan(v, key) : NAN;
 }
 
-/* A result document of the run folder, checked against its schema. Returns 0, 1 when the file
- * does not exist, or 2 with a message. */
-static int read_doc(const char *run_dir, const char *name, const char *schema, struct jr_doc *d, char *err,
-                    size_t errlen)
+/* A result document of the run folder, checked against its schema (or `older`, a previous
+ * version with the same members, when not NULL). Returns 0, 1 when the file does not exist, or
+ * 2 with a message. */
+static int read_doc(const char *run_dir, const char *name, const char *schema, const char *older, struct jr_doc *d,
+                    char *err, size_t errlen)
 {
     char path[4200];
     const char *have;
@@ -95,7 +96,7 @@ static int read_doc(const char *run_dir, const char *name, const char *schema, s
     if (stat(path, &st) != 0 && errno == ENOENT) return 1;
     if (jr_parse_file(path, d, err, errlen)) return 2;
     if (jr_need_str(d, &d->root, "schema", &have, err, errlen) ||
-        (strcmp(have, schema) != 0 && jr_fail(d, &d->root, err, errlen, "schema \"%s\" is not %s", have, schema))) {
+        (strcmp(have, schema) != 0 && !(older && strcmp(have, older) == 0) && jr_fail(d, &d->root, err, errlen, "schema \"%s\" is not %s", have, schema))) {
         jr_free(d);
         return 2;
     }
@@ -123,7 +124,7 @@ static int accuracy_table(struct md_buf *b, const struct report_input *in, char 
 {
     struct jr_doc d;
     md_printf(b, "## Accuracy per model\n\n");
-    int rc = read_doc(in->run_dir, "accuracy.json", ACCURACY_SCHEMA, &d, err, errlen);
+    int rc = read_doc(in->run_dir, "accuracy.json", ACCURACY_SCHEMA, NULL, &d, err, errlen);
     const struct jr_value *rows = rc ? NULL : jr_get(&d.root, "results");
     if (rc == 2) return 2;
     if (!rows || rows->type != JR_ARR || rows->count < 1) {
@@ -214,7 +215,7 @@ static int fit_block(struct md_buf *b, const struct report_input *in, char *err,
     struct jr_doc d;
     md_printf(b, "## Beyond the papers: the best affine cosine-quadratic model\n\n");
     if (part_unavailable(b, in, REPORT_PART_FIT)) return 0;
-    int rc = read_doc(in->run_dir, "fit.json", FIT_SCHEMA, &d, err, errlen);
+    int rc = read_doc(in->run_dir, "fit.json", FIT_SCHEMA, FIT_SCHEMA_V1, &d, err, errlen);
     if (rc == 1) snprintf(err, errlen, "%s/fit.json: missing (run.json records its part as done)", in->run_dir);
     if (rc) return 2;
     const struct jr_value *root = &d.root, *cmp = jr_get(root, "compare"), *ctx = jr_get(root, "context");

@@ -3,9 +3,11 @@
 #include "fit_report.h"
 #include "context.h"
 #include "jsonw.h"
+#include "rdoc.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void jw_extreme_obj(struct jw *w, const char *key, const char *metric, const struct acc_extreme *e)
@@ -70,9 +72,71 @@ static void jw_fit_model(struct jw *w, const struct fit_model *m)
     jw_obj_end(w);
 }
 
+/* A row of fit figures: its role (the fit, or the model compared) and the grid; the fitted
+   coefficients (neither better higher nor lower) where the row is a fit; its device sweep's
+   max delta and max Delta. */
+static struct rd_row *fit_row(struct rdoc *d, const char *role, const char *grid, int with_coefs, double a, double b,
+                              double max_rel, double max_abs)
+{
+    struct rd_row *row = rdoc_row(d, "", "fit");
+    if (!row)
+        return NULL;
+    char text[RD_TEXT];
+    snprintf(text, sizeof text, "%.120s", role);
+    rd_row_key(row, "role", NULL, text);
+    snprintf(text, sizeof text, "%.*s", with_coefs ? 200 : 120, grid);
+    rd_row_key(row, "grid", NULL, text);
+    if (with_coefs) {
+        rd_row_metric(d, row, "a", "1", RD_NEITHER, 0, a);
+        rd_row_metric(d, row, "b", "1", RD_NEITHER, 0, b);
+    }
+    rd_row_metric(d, row, "max_rel", "1", RD_LOWER, 0, max_rel);
+    rd_row_metric(d, row, "max_abs", "1", RD_LOWER, 0, max_abs);
+    return row;
+}
+
+/* A fitted model's row: infeasible (no coefficients) with the fit's reason. */
+static void fitted_row(struct rdoc *d, const char *role, const char *grid, const struct fit_model *m)
+{
+    const int ok = m->fit.feasible;
+    struct rd_row *row = fit_row(d, role, grid, 1, ok ? m->spec.params[0] : NAN, ok ? m->spec.params[1] : NAN,
+                                 m->have_sweep ? m->sweep.epicentre.value : NAN,
+                                 m->have_sweep ? m->sweep.attenuation.value : NAN);
+    if (row && !ok)
+        rd_row_fail(row, "infeasible", m->fit.reason[0] ? m->fit.reason : "no fit");
+}
+
+/* fit.json's rows: the best affine fit, the fit capped at fq2's max Delta, and the models the
+   fits are compared with (fq2 first), over the run's grid. */
+static void fit_rows(struct rdoc *d, const struct fit_report *r)
+{
+    char grid[RD_TEXT];
+    snprintf(grid, sizeof grid, "n %g..%g step %g, %g samples per zone", r->grid.n_min, r->grid.n_max, r->grid.n_step,
+             (double)r->grid.samples);
+    rd_ctx_put(&d->ctx, "fit grid", grid);
+    fitted_row(d, "best affine k(n)", grid, &r->main);
+    fitted_row(d, "capped at fq2's max Delta", grid, &r->at_fq2_cap);
+    for (int i = 0; i < r->compare_count; ++i)
+        fit_row(d, r->compare[i].model.label, grid, 0, NAN, NAN, r->compare[i].epicentre.value,
+                r->compare[i].attenuation.value);
+}
+
 int fit_write_json(const char *path, const struct fit_report *r, const struct cl_session *s,
                           const char *build_options, char *err, size_t errlen)
 {
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    rdoc_init(d, FIT_SCHEMA, "fit", "fit.json");
+    fit_rows(d, r);
+    if (d->oom) {
+        rdoc_free(d);
+        free(d);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     struct jw w;
     jw_doc_begin(&w, FIT_SCHEMA, s, build_options);
     jw_kv_obj(&w, "grid");
@@ -125,6 +189,9 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     jw_kv_str(&w, "text", r->verdict);
     jw_obj_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
+    rdoc_json_rows_member(&w, d);
+    rdoc_free(d);
+    free(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

@@ -6,6 +6,7 @@
 #include "plots.h"
 #include "jsonw.h"
 #include "mdbuf.h"
+#include "rdoc.h"
 #include "outdir.h"
 
 #include <math.h>
@@ -16,6 +17,8 @@
 #include <string.h>
 
 static const char *const range_names[2] = { "n_2_1000", "n_16_1000" };
+
+#define FRONTIER_UNMEASURED "no finite error figure (the model's values are NaN or Inf): not a point of the front"
 
 /* frontier.json's "definitions": what each figure of a row means. */
 static const char *const frontier_definitions[][2] = {
@@ -34,9 +37,45 @@ static const char *const frontier_definitions[][2] = {
              "transc = exp/log/pow/acos/sqrt/expm1 calls (docs/frontier.md)" },
 };
 
+/* frontier.json's rows: one per model with its accuracy over each n range (max delta and max
+   Delta, lower is better) and its teapot PSNR. */
+static void frontier_rows(struct rdoc *d, const struct frontier_report *r)
+{
+    for (int i = 0; i < r->count; ++i) {
+        const struct frontier_row *row = &r->rows[i];
+        struct rd_row *rr = rdoc_row(d, "", row->spec.label);
+        if (!rr)
+            return;
+        rd_row_key(rr, "model", NULL, row->spec.label);
+        if (!(isfinite(row->max_rel[0]) && isfinite(row->max_abs[0])))
+            rd_row_fail(rr, "failed", FRONTIER_UNMEASURED);
+        for (int k = 0; k < 2; ++k) {
+            char name[RD_NAME];
+            snprintf(name, sizeof name, "%s.max_rel", range_names[k]);
+            rd_row_metric(d, rr, name, "1", RD_LOWER, 0, row->max_rel[k]);
+            snprintf(name, sizeof name, "%s.max_abs", range_names[k]);
+            rd_row_metric(d, rr, name, "1", RD_LOWER, 0, row->max_abs[k]);
+        }
+        rd_row_metric(d, rr, "psnr_db", "dB", RD_HIGHER, 0, row->psnr_db);
+    }
+}
+
 int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
                         size_t errlen)
 {
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    rdoc_init(d, FRONTIER_SCHEMA, "frontier", "frontier.json");
+    frontier_rows(d, r);
+    if (d->oom) {
+        rdoc_free(d);
+        free(d);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     struct jw w;
     jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
     #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct frontier_options, MEMBER, KEY)
@@ -59,7 +98,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
         int measured = isfinite(row->max_rel[0]) && isfinite(row->max_abs[0]);
         jw_kv_str(&w, "status", measured ? "ok" : "failed");
         if (!measured)
-            jw_kv_str(&w, "reason", "no finite error figure (the model's values are NaN or Inf): not a point of the front");
+            jw_kv_str(&w, "reason", FRONTIER_UNMEASURED);
         for (int m = 0; m < 2; ++m) {
             jw_kv_obj(&w, m ? "rate_varying" : "rate_uniform");
             jw_kv_num(&w, "min", row->rate[m][0]);
@@ -100,6 +139,9 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     }
     jw_arr_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
+    rdoc_json_rows_member(&w, d);
+    rdoc_free(d);
+    free(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

@@ -5,6 +5,7 @@
 #include "context.h"
 #include "jsonw.h"
 #include "mdbuf.h"
+#include "rdoc.h"
 #include "report.h"
 #include "schemas.h"
 
@@ -290,10 +291,74 @@ static void write_timings_json(struct jw *w, const struct scene_result *sr)
     jw_arr_end(w);
 }
 
+/* A scene's rows: one per model with its image's error figures against its reference (none
+   where they are not finite: a NaN pixel, or the PSNR of identical images), then one per
+   timed entry and image size with its speed, range and launches. */
+static void scene_rows(struct rdoc *d, int si, const struct scene_result *sr, const struct render_options *o)
+{
+    static const struct { const char *name, *unit; int direction; } errs[] = {
+        { "max_abs", "1", RD_LOWER }, { "rmse", "1", RD_LOWER }, { "psnr_db", "dB", RD_HIGHER } };
+    char text[RD_TEXT];
+    for (int mi = 0; mi < o->nmodels; mi++) {
+        struct image_metrics sm = shown(&sr->models[mi].metrics);
+        struct rd_row *r = rdoc_row(d, "", o->models[mi].label);
+        if (!r)
+            return;
+        snprintf(text, sizeof text, "%s %gx%g", render_scene_names[si], (double)o->width, (double)o->height);
+        rd_row_key(r, "scene", NULL, text);
+        rd_row_key(r, "model", NULL, o->models[mi].label);
+        if (sm.nonfinite)
+            rd_row_fail(r, "nonfinite", "the model's radiance is NaN or Inf at some foreground pixels: no error figure");
+        const double v[3] = { sm.max_abs, sm.rmse, sm.psnr_db };
+        for (int k = 0; k < 3; ++k)
+            if (isfinite(v[k]) || !r->ok)
+                rd_row_metric(d, r, errs[k].name, errs[k].unit, errs[k].direction, 0, v[k]);
+    }
+    for (int ti = 0; ti < sr->ntimings; ti++) {
+        const struct size_timing *st = &sr->timings[ti];
+        char metric[64];
+        snprintf(metric, sizeof metric, "mpixel_per_s@%gx%g", (double)st->w, (double)st->h);
+        for (int k = 0; k < st->nentries; k++) {
+            const struct timed_entry *te = &st->entries[k];
+            struct rd_row *r = rdoc_row(d, "", te->spec.label);
+            if (!r)
+                return;
+            rd_row_key(r, "scene", NULL, render_scene_names[si]);
+            rd_row_key(r, "entry", NULL, te->name);
+            const double v = mpix(st, te->med);
+            struct rd_metric *m = rd_row_metric(d, r, metric, "Mpixel/s", RD_HIGHER, 1, v);
+            if (!m || !isfinite(v))
+                continue;
+            /* Mpixel/s is inversely proportional to the time: the slowest launch gives lo */
+            m->lo = v * (te->med * 1e3) / (te->max * 1e3);
+            m->hi = v * (te->med * 1e3) / (te->min * 1e3);
+            double reps[RENDER_MAX_KEPT_REPS];
+            for (int q = 0; q < te->nreps; q++)
+                reps[q] = mpix(st, te->rep_s[q]);
+            rd_metric_reps(d, m, reps, te->nreps);
+        }
+    }
+}
+
 int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
                       const struct scene_result *res, int display_code_error, char *err,
                       size_t errlen)
 {
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    rdoc_init(d, RENDER_SCHEMA, "render", "render.json");
+    for (int si = 0; si < RENDER_SCENE_COUNT; si++)
+        if (res[si].done)
+            scene_rows(d, si, &res[si], o);
+    if (d->oom) {
+        rdoc_free(d);
+        free(d);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     struct jw w;
     jw_doc_begin(&w, RENDER_SCHEMA, s, "");
     jw_kv_int(&w, "work_items_per_launch", render_work_items(s));
@@ -328,6 +393,9 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
         jw_obj_end(&w);
     }
     jw_arr_end(&w);
+    rdoc_json_rows_member(&w, d);
+    rdoc_free(d);
+    free(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

@@ -6,6 +6,7 @@
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
+#include "rdoc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -91,27 +92,33 @@ static void jw_runner_fields(struct jw *w, const struct tp_figure *f)
     jw_kv_str(w, "timer", f->timer_wall ? "wall time: the driver's profiling events gave no time" : "profiling events");
 }
 
-/* A fingerprint of the kernel sources the run compiled (embedded, or --kernel-dir's): a kernel
-   changed without a commit still shows in the context that compare lays side by side. */
-static void jw_kernel_fingerprints(struct jw *w)
+/* The kernel sources the run compiled (embedded, or --kernel-dir's), fingerprinted. */
+static const char *const fingerprinted[] = { "brdf_models.h", "throughput.cl", "accuracy.cl", "peak.cl" };
+#define FINGERPRINTED (sizeof fingerprinted / sizeof fingerprinted[0])
+
+/* The FNV-1a 64-bit hash of a kernel source in hex, or "unreadable". */
+static void kernel_fingerprint(const char *file, char hex[24])
 {
-    static const char *const files[] = { "brdf_models.h", "throughput.cl", "accuracy.cl", "peak.cl" };
-    jw_kv_obj(w, "kernel_sources_fnv1a64");
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
-        size_t len = 0;
-        char *src = clsession_kernel_source(files[i], &len);
-        if (!src) {
-            jw_kv_str(w, files[i], "unreadable");
-            continue;
-        }
-        unsigned long long h = 0xcbf29ce484222325ULL;   /* FNV-1a, 64 bits */
-        for (size_t k = 0; k < len; ++k)
-            h = (h ^ (unsigned char)src[k]) * 0x100000001b3ULL;
-        char hex[24];
-        snprintf(hex, sizeof hex, "%016llx", h);
-        jw_kv_str(w, files[i], hex);
-        free(src);
+    size_t len = 0;
+    char *src = clsession_kernel_source(file, &len);
+    if (!src) {
+        snprintf(hex, 24, "unreadable");
+        return;
     }
+    unsigned long long h = 0xcbf29ce484222325ULL;   /* FNV-1a, 64 bits */
+    for (size_t k = 0; k < len; ++k)
+        h = (h ^ (unsigned char)src[k]) * 0x100000001b3ULL;
+    snprintf(hex, 24, "%016llx", h);
+    free(src);
+}
+
+/* A fingerprint of the kernel sources the run compiled: a kernel changed without a commit
+   still shows in the context that compare lays side by side. */
+static void jw_kernel_fingerprints(struct jw *w, char hex[][24])
+{
+    jw_kv_obj(w, "kernel_sources_fnv1a64");
+    for (size_t i = 0; i < FINGERPRINTED; ++i)
+        jw_kv_str(w, fingerprinted[i], hex[i]);
     jw_obj_end(w);
 }
 
@@ -157,7 +164,7 @@ static int next_measured(const struct tp_run *r, int *v, int *i, int *m)
 }
 
 /* throughput.json, part by part (tp_write_json). */
-static void json_context(struct jw *w, const struct tp_run *r)
+static void json_context(struct jw *w, const struct tp_run *r, char hex[][24])
 {
     const struct throughput_options *o = r->o;
     const char *aff = getenv("POCL_AFFINITY");
@@ -187,7 +194,7 @@ static void json_context(struct jw *w, const struct tp_run *r)
     jw_kv_int(w, "disturbed_reps", r->disturbed);
     jw_kv_num(w, "steal_seconds", r->steal_start >= 0 && r->steal_end >= 0 ? r->steal_end - r->steal_start : NAN);
     jw_obj_end(w);
-    jw_kernel_fingerprints(w);
+    jw_kernel_fingerprints(w, hex);
     jw_obj_end(w);
     jw_obj_end(w);   /* context */
 
@@ -381,11 +388,103 @@ static void json_sweep_ran(struct jw *w, const struct tp_run *r)
     json_sweep_models(w, r);
 }
 
+/* The per-launch rates of a figure's timed launches, in the order they ran (NAN for a launch
+   with no time), into rates; their count (0 for a failed figure). */
+static int launch_rates(const struct tp_figure *f, double rates[TP_MAX_REPS])
+{
+    for (int k = 0; f->ok && k < f->nreps; ++k)
+        rates[k] = f->rep_seconds[k] > 0 ? f->per_launch / f->rep_seconds[k] : NAN;
+    return f->ok ? f->nreps : 0;
+}
+
+/* A timed rate as a metric: the median over the launches, its min..max and every launch's
+   rate (the rank test of compare reads these). */
+static struct rd_metric *rate_metric(struct rdoc *d, struct rd_row *row, const char *name, const char *unit,
+                                     const struct tp_figure *f, struct tp_stats s)
+{
+    double rates[TP_MAX_REPS];
+    struct rd_metric *m = rd_row_metric(d, row, name, unit, RD_HIGHER, 1, s.median);
+    if (!m)
+        return NULL;
+    m->lo = s.min;
+    m->hi = s.max;
+    rd_metric_reps(d, m, rates, launch_rates(f, rates));
+    return m;
+}
+
+/* The run's rows (rdoc.h): the peak kernel's (its reference), then one per measured model,
+   build variant and n mode, in the order of "results"; the run's settings and machine record
+   as context lines. What compare, gate --baseline, plot and rows read. */
+static void tp_rows(const struct tp_run *r, char hex[][24], struct rdoc *d)
+{
+    const struct throughput_options *o = r->o;
+    char buf[RD_TEXT];
+    snprintf(buf, sizeof buf, "%g reps, min time %g s, %g work-items, n %g, n range %g:%g", (double)o->reps,
+             o->min_time, (double)r->work_items, (double)(float)o->n_uniform, o->n_lo, o->n_hi);
+    rd_ctx_put(&d->ctx, "throughput settings", buf);
+    snprintf(buf, sizeof buf, "load %s -> %s, steal %.3g s, %g of %g launches retried, %g reps disturbed",
+             r->load_start, r->load_end, r->steal_start >= 0 && r->steal_end >= 0 ? r->steal_end - r->steal_start : NAN,
+             (double)r->retried, (double)r->launches, (double)r->disturbed);
+    rd_ctx_put(&d->ctx, "machine", buf);
+    d->disturbed = r->disturbed > 0 ? (int)r->disturbed : 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < FINGERPRINTED; ++i)
+        snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s %.8s", i ? ", " : "", fingerprinted[i], hex[i]);
+    rd_ctx_put(&d->ctx, "kernel sources", buf);
+
+    struct rd_row *row = rdoc_row(d, "", "peak");
+    if (!row)
+        return;
+    rd_row_key(row, "reference", NULL, "peak (reference kernel)");
+    if (!r->peak.ok)
+        rd_row_fail(row, "failed", r->peak.reason);
+    rate_metric(d, row, "flops_per_s", "FLOP/s", &r->peak, r->peak.rate);
+
+    for (int v = 0, i = 0, m = -1; next_measured(r, &v, &i, &m);) {
+        const struct tp_entry *e = &r->e[i];
+        const struct tp_figure *f = &e->dev[v][m];
+        if (!(row = rdoc_row(d, "", e->label)))
+            return;
+        rd_row_key(row, "label", NULL, e->label);
+        rd_row_key(row, "variant", NULL, tp_variant_name(v));
+        rd_row_key(row, "n_mode", "n ", nmode_names[m]);
+        rd_row_attr(row, "kind", e->m ? "model" : "builtin");
+        if (!f->ok)
+            rd_row_fail(row, "failed", f->reason);
+        struct rd_metric *mt = rate_metric(d, row, "evals_per_s", "1/s", f,
+                                           f->ok ? f->rate : (struct tp_stats){ NAN, NAN, NAN });
+        /* normalised per CPU second where the runner kept them (a CPU device), else per the
+           reference's rate */
+        if (mt && f->ok && f->has_cpu_norm)
+            rd_metric_normalised(d, mt, f->rep_cpu_norm, f->nreps, 1);
+        else if (mt && f->ok && f->has_norm)
+            rd_metric_normalised(d, mt, f->rep_norm, f->nreps, 0);
+        row->retries = f->retries > 0 ? f->retries : 0;
+        row->disturbed = f->disturbed > 0 ? f->disturbed : 0;
+    }
+}
+
 int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
 {
+    char hex[FINGERPRINTED][24];
+    for (size_t i = 0; i < FINGERPRINTED; ++i)
+        kernel_fingerprint(fingerprinted[i], hex[i]);
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    rdoc_init(d, THROUGHPUT_SCHEMA, "throughput", "throughput.json");
+    tp_rows(r, hex, d);
+    if (d->oom) {
+        rdoc_free(d);
+        free(d);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     struct jw w;
     jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
-    json_context(&w, r);
+    json_context(&w, r, hex);
 
     jw_kv_texts(&w, "definitions", JW_TEXTS(tp_definitions));
 
@@ -402,6 +501,9 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     else
         json_sweep_ran(&w, r);
     jw_obj_end(&w);
+    rdoc_json_rows_member(&w, d);
+    rdoc_free(d);
+    free(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

@@ -1,0 +1,135 @@
+"""rows_layouts.py - the rows of throughput, render, fit and frontier result files written a
+second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
+tests/test_rows_primary.sh: what the program reads from a file's "rows" member and from an old
+file's layout (host/results/rdoc_read.c) is checked against this independent mapping.
+
+expected(doc) -> {row label: {metric name: (unit, direction, timed, value, reps)}}; a value of
+None stands for a figure not measured (null); each row's status and reason (None when ok) are
+its entry STATUS."""
+import json
+import math
+import sys
+
+
+STATUS = "(status)"
+
+
+def _status(obj, word="status"):
+    """A row's status and reason from the layout's object: ("ok", None), or the word and its
+    reason (the word itself when none is given)."""
+    st = obj.get(word, "ok") if obj else "ok"
+    return ("ok", None) if st == "ok" else (st, obj.get("reason") or st)
+
+
+def _g(x):
+    return "%g" % x
+
+
+def _throughput(d):
+    out = {}
+    pk = d["peak"]
+    f = pk["flops_per_s"]
+    out["peak (reference kernel)"] = {"flops_per_s": ("FLOP/s", "higher", True, f["median"], pk["flops_per_s_reps"]),
+                                      STATUS: _status(pk)}
+    for r in d["results"]:
+        label = "%s | %s | n %s" % (r["label"], r["variant"], r["n_mode"])
+        out[label] = {"evals_per_s": ("1/s", "higher", True, r["evals_per_s"]["median"], r["evals_per_s_reps"]),
+                      STATUS: _status(r)}
+    return out
+
+
+def _render(d):
+    out = {}
+    for sc in d["scenes"]:
+        size = "%s %sx%s" % (sc["scene"], _g(sc["image"]["width"]), _g(sc["image"]["height"]))
+        for mo in sc["models"]:
+            met = mo["metrics"]
+            ok = met.get("status", "ok") == "ok"
+            row = {STATUS: _status(met)}
+            for name, unit, direction in (("max_abs", "1", "lower"), ("rmse", "1", "lower"), ("psnr_db", "dB", "higher")):
+                if met[name] is not None or not ok:   # the PSNR of identical images is left out
+                    row[name] = (unit, direction, False, met[name], [])
+            out["%s | %s" % (size, mo["model"])] = row
+        for tm in sc["timings"]:
+            metric = "mpixel_per_s@%sx%s" % (_g(tm["width"]), _g(tm["height"]))
+            for en in tm["entries"]:
+                key = "%s | %s" % (sc["scene"], en["name"])
+                out.setdefault(key, {STATUS: ("ok", None)})[metric] = ("Mpixel/s", "higher", True, en["mpixel_per_s"],
+                                                                     en["mpixel_per_s_reps"])
+    return out
+
+
+def _fit(d):
+    g = d["context"]["grid"]
+    grid = "n %s..%s step %s, %s samples per zone" % (_g(g["n_min"]), _g(g["n_max"]), _g(g["n_step"]),
+                                                      _g(g["samples_per_zone"]))
+    out = {}
+    for role, obj in (("best affine k(n)", d), ("capped at fq2's max Delta", d["capped_at_fq2"])):
+        out["%s | %s" % (role, grid)] = {
+            "a": ("1", "neither", False, obj["a"], []), "b": ("1", "neither", False, obj["b"], []),
+            "max_rel": ("1", "lower", False, obj["max_rel"], []), "max_abs": ("1", "lower", False, obj["max_abs"], []),
+            STATUS: _status(obj)}
+    for c in d["compare"]:
+        if c["model"].startswith("quad:"):   # the fitted models themselves: their rows are above
+            continue
+        out["%s | %s" % (c["model"], grid)] = {"max_rel": ("1", "lower", False, c["max_rel"], []),
+                                              "max_abs": ("1", "lower", False, c["max_abs"], []), STATUS: ("ok", None)}
+    return out
+
+
+def _frontier(d):
+    out = {}
+    for m in d["models"]:
+        row = {STATUS: _status(m)}
+        for rng in ("n_2_1000", "n_16_1000"):
+            for fig in ("max_rel", "max_abs"):
+                row["%s.%s" % (rng, fig)] = ("1", "lower", False, m[rng][fig], [])
+        row["psnr_db"] = ("dB", "higher", False, m["psnr_db"], [])
+        out[m["model"]] = row
+    return out
+
+
+KINDS = {"throughput": _throughput, "render": _render, "fit": _fit, "frontier": _frontier}
+
+
+def expected(doc):
+    kind = doc["schema"].split(".")[1].split("/")[0]
+    return KINDS[kind](doc)
+
+
+def as_read(rows_doc):
+    """The same mapping of a brdfbench.rows/1 document (what `brdfbench rows --format json` printed)."""
+    out = {}
+    for r in rows_doc["rows"]:
+        out[r["row"]] = {m["name"]: (m["unit"], m["direction"], m["timed"], m["value"], m.get("reps", []))
+                         for m in r["metrics"]}
+        out[r["row"]][STATUS] = (r["status"], r.get("reason"))
+    return out
+
+
+def same(want, got):
+    """The differences between two mappings (empty when they agree; values compared exactly: both
+    come from the same 17-digit numbers of the file)."""
+    diffs = []
+    for k in sorted(set(want) | set(got)):
+        if k not in want or k not in got:
+            diffs.append("row %r only in %s" % (k, "the program's rows" if k in got else "the expected rows"))
+            continue
+        for m in sorted(set(want[k]) | set(got[k])):
+            a, b = want[k].get(m), got[k].get(m)
+            if m == STATUS:
+                if a != b:
+                    diffs.append("%s: status expected %r, read %r" % (k, a, b))
+                continue
+            if a != b and not (a and b and a[:3] == b[:3] and a[4] == b[4] and
+                               isinstance(a[3], float) and isinstance(b[3], float) and math.isnan(a[3]) and math.isnan(b[3])):
+                diffs.append("%s / %s: expected %r, read %r" % (k, m, a, b))
+    return diffs
+
+
+if __name__ == "__main__":
+    # rows_layouts.py RESULT_FILE ROWS_JSON: the rows the program read agree with the layout's
+    result, rows = (json.load(open(p)) for p in sys.argv[1:3])
+    d = same(expected(result), as_read(rows))
+    print("\n".join(d[:10]), file=sys.stderr) if d else None
+    sys.exit(1 if d else 0)

@@ -1,0 +1,148 @@
+#!/usr/bin/env bash
+# test_rows_primary.sh - throughput.json, render.json, fit.json and frontier.json carry their
+# rows (a "rows" member, built by the engine where it measures), and every reader reads them;
+# files of the previous versions (written before the files carried rows) are read by their
+# layout, so kept baselines still work.
+#
+# Where the expectations come from:
+# - tests/rows_layouts.py maps each kind's own layout (results, scenes, compare, models: the
+#   members docs/schemas/ describes) to rows a second time, in Python: the rows the program
+#   reads, from a new file's rows member and from an old file's layout, must be those.
+# - the same new file read twice, once through its rows member and once with the member taken
+#   out and its schema set to the previous version (the upgrade function's path): the two
+#   derivations are independent (one from the engine's memory, one from the file's detail) and
+#   must give the same rows document, context lines included.
+# - tests/fixtures/rows-v-previous/: a run of the version before rows (commit 099c3f9, the
+#   commands in its README.md); compare of it against a new run of the same commands pairs every
+#   row (the row set of both is the layout mapping's).
+set -u
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+cd "$T" || exit 1
+LAYOUTS="$SRC/tests/rows_layouts.py"
+OLD="$SRC/tests/fixtures/rows-v-previous"
+
+# 1. an old run (previous schemas, no rows member) reads through the upgrade functions: rows
+#    as the layout mapping says, the schema named as the file's
+declare -A PREV=([throughput]=brdfbench.throughput/3 [render]=brdfbench.render/1 [fit]=brdfbench.fit/1
+                 [frontier]=brdfbench.frontier/1)
+declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/2 [fit]=brdfbench.fit/2
+                [frontier]=brdfbench.frontier/2)
+for k in throughput render fit frontier; do
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if d["schema"] == sys.argv[2] and "rows" not in d else 1)' \
+        "$OLD/$k.json" "${PREV[$k]}" && ok || bad "fixture $k.json is not a ${PREV[$k]} file without rows"
+    "$BIN" rows "$OLD/$k.json" --format json --output "$T/old_$k.rows.json" 2>"$T/err" && ok || bad "rows $k (old): $(cat "$T/err")"
+    python3 "$LAYOUTS" "$OLD/$k.json" "$T/old_$k.rows.json" && ok || bad "old $k.json: the upgrade's rows differ from its layout's"
+done
+
+# 2. a new run of the same commands: each file carries its rows under its new schema
+mkdir -p new
+"$BIN" throughput --models fq2 --variants default --n-modes uniform,varying --no-sweep --no-host-c --reps 3 \
+    --min-time 0.001 --json new/throughput.json >/dev/null 2>"$T/err" || bad "throughput: $(cat "$T/err")"
+"$BIN" render --scene spheres --models phong,fq2 --size 64x32 --time-sizes 64x32 --reps 3 --warmup 0 \
+    --json new/render.json >/dev/null 2>"$T/err" || bad "render: $(cat "$T/err")"
+"$BIN" fit --n-min 2 --n-max 6 --samples 16 --json new/fit.json --quiet >/dev/null 2>"$T/err" || bad "fit: $(cat "$T/err")"
+"$BIN" frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image --json new/frontier.json \
+    >/dev/null 2>"$T/err" || bad "frontier: $(cat "$T/err")"
+for k in throughput render fit frontier; do
+    python3 - "new/$k.json" "${NOW[$k]}" "${PREV[$k]}" "up_$k.json" <<'PY' && ok || bad "new $k.json: schema or rows member"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == sys.argv[2], d["schema"]
+rows = d["rows"]
+assert set(rows) >= {"context", "disturbed_reps", "devices", "rows"} and rows["rows"], sorted(rows)
+# the same file as the previous version wrote it: the rows member taken out
+del d["rows"]
+d["schema"] = sys.argv[3]
+json.dump(d, open(sys.argv[4], "w"))
+PY
+    "$BIN" rows "new/$k.json" --format json --output "$T/new_$k.rows.json" 2>"$T/err" && ok || bad "rows $k: $(cat "$T/err")"
+    "$BIN" rows "up_$k.json" --format json --output "$T/up_$k.rows.json" 2>"$T/err" && ok || bad "rows $k (upgrade): $(cat "$T/err")"
+    # the rows member against the layout mapping, and against the upgrade function's reading
+    python3 "$LAYOUTS" "new/$k.json" "$T/new_$k.rows.json" && ok || bad "new $k.json: its rows member differs from its layout's"
+    python3 - "$T/new_$k.rows.json" "$T/up_$k.rows.json" "${NOW[$k]}" "${PREV[$k]}" <<'PY' && ok || bad "new $k.json: rows member and upgrade function read differently"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a["source"]["schema"] == sys.argv[3] and b["source"]["schema"] == sys.argv[4], (a["source"], b["source"])
+del a["source"]["schema"], b["source"]["schema"]
+if a != b:
+    for key in a:
+        if a[key] != b[key]:
+            print(key, json.dumps(a[key])[:300], "|", json.dumps(b[key])[:300], file=sys.stderr)
+    sys.exit(1)
+assert a["rows"] and all(r["metrics"] for r in a["rows"]), "no rows, or a row without metrics"
+PY
+done
+# rows not measured: a model whose values are NaN has its rows failed, with the reason, in the
+# rows member as in the layout (status and reason are part of the mapping)
+mkdir -p nan
+"$BIN" throughput --model 'nanm=c*NAN' --models fq2,nanm --variants default --n-modes uniform --no-sweep --no-host-c \
+    --reps 3 --min-time 0.001 --json nan/throughput.json >/dev/null 2>"$T/err" || bad "throughput nanm: $(cat "$T/err")"
+"$BIN" frontier --model 'nanm=c*NAN' --models phong,nanm --samples 64 --reps 1 --rounds 1 --no-image \
+    --json nan/frontier.json >/dev/null 2>"$T/err" || bad "frontier nanm: $(cat "$T/err")"
+for k in throughput frontier; do
+    "$BIN" rows "nan/$k.json" --format json --output "$T/nan_$k.rows.json" 2>"$T/err" && ok || bad "rows nan $k: $(cat "$T/err")"
+    python3 "$LAYOUTS" "nan/$k.json" "$T/nan_$k.rows.json" && ok || bad "nan $k.json: rows member differs from its layout's"
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if any(r["status"] == "failed" and r["reason"] for r in d["rows"]) else 1)' \
+        "$T/nan_$k.rows.json" && ok || bad "nan $k.json: no failed row with its reason"
+    # the same file in the previous version's form: the upgrade function gives the same status
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); del d["rows"]; d["schema"]=sys.argv[3]; json.dump(d, open(sys.argv[2], "w"))' \
+        "nan/$k.json" "nan/up_$k.json" "${PREV[$k]}"
+    "$BIN" rows "nan/up_$k.json" --format json --output "$T/nan_up_$k.rows.json" 2>"$T/err" && ok || bad "rows nan up $k: $(cat "$T/err")"
+    python3 "$LAYOUTS" "nan/up_$k.json" "$T/nan_up_$k.rows.json" && ok || bad "nan $k.json (previous form): upgrade differs from its layout's"
+done
+
+# the check bites: a value changed in the rows member is what the reader reports
+python3 - new/throughput.json tampered.json <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["rows"]["rows"][1]["metrics"][0]["value"] *= 2
+json.dump(d, open(sys.argv[2], "w"))
+PY
+"$BIN" rows tampered.json --format json --output "$T/tampered.rows.json" 2>/dev/null
+python3 "$LAYOUTS" tampered.json "$T/tampered.rows.json" 2>/dev/null && bad "a changed rows member went unnoticed" || ok
+# a new schema without its rows member is refused, naming the file and what is missing
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); del d["rows"]; json.dump(d, open(sys.argv[2], "w"))' \
+    new/fit.json norows.json
+expect 2 'norows.json: schema "brdfbench.fit/2" without its "rows"' rows norows.json
+
+# 3. compare of the old run and the new run pairs every row (the metrics of the layout mapping)
+"$BIN" compare "$OLD" new --json "$T/cmp.json" >/dev/null 2>"$T/err" && ok || bad "compare old new: $(cat "$T/err")"
+python3 - "$T/cmp.json" "$LAYOUTS" "$OLD" <<'PY' && ok || bad "compare old new: rows not paired"
+import json, os, sys
+sys.path.insert(0, os.path.dirname(sys.argv[2]))
+import rows_layouts
+c = json.load(open(sys.argv[1]))
+want = set()
+for k in ("throughput", "render", "fit", "frontier"):
+    for row, metrics in rows_layouts.expected(json.load(open(os.path.join(sys.argv[3], k + ".json")))).items():
+        want |= {(k, row, m) for m in metrics if m != rows_layouts.STATUS}
+got = {(r["kind"], r["key"], r["metric"]) for r in c["rows"]}
+assert got == want, (sorted(want - got)[:5], sorted(got - want)[:5])
+assert all(r["in_all_runs"] for r in c["rows"]), [r["key"] for r in c["rows"] if not r["in_all_runs"]][:5]
+PY
+
+# 4. compare's and rows' outputs are the same read through the rows members or the upgrade
+#    functions: the same files compared with themselves both ways
+mkdir -p up && for k in throughput render fit frontier; do cp "up_$k.json" "up/$k.json"; done
+"$BIN" compare new new --json "$T/cmp_new.json" >/dev/null 2>&1
+"$BIN" compare up up --json "$T/cmp_up.json" >/dev/null 2>&1
+"$BIN" rows new >"$T/rows_new.md" 2>&1
+"$BIN" rows up >"$T/rows_up.md" 2>&1
+python3 - "$T/cmp_new.json" "$T/cmp_up.json" <<'PY' && ok || bad "compare reads the rows member and the upgrade differently"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for d in (a, b):
+    d.pop("date", None)
+    d.pop("runs", None)   # the folders' names and schemas
+# the run's name is its folder's: the rest is the same
+a_text = json.dumps(a).replace('"new"', '"RUN"')
+b_text = json.dumps(b).replace('"up"', '"RUN"')
+assert a_text == b_text and len(a["rows"]) > 30, "compare differs"
+PY
+# the markdown names each file's schema in its heading: the rest is the same
+diff <(sed 's#brdfbench\.[a-z]*/[0-9]*#SCHEMA#g' "$T/rows_new.md") <(sed 's#brdfbench\.[a-z]*/[0-9]*#SCHEMA#g' "$T/rows_up.md") >/dev/null \
+    && ok || bad "rows (markdown) reads the rows member and the upgrade differently"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
