@@ -1,0 +1,172 @@
+#!/usr/bin/env bash
+# test_reference_cli.sh - accuracy --reference naming a user model or a measured material for the
+# hemisphere sweep (docs/user-models.md, "References"), each expectation derived outside the program:
+#   - k f against a user reference f (a second file written here): delta = |k - 1| = 0.25 at every
+#     sample of the epicentre, Delta over the attenuation zone below 0.25 of its threshold;
+#   - a model against itself given as a reference file: every figure 0 in double (the same function
+#     on both sides), the device's within float rounding, status ok;
+#   - a measured material written by tests/merl_synth from GGX Cook-Torrance (alpha 1/4, F0 0.04,
+#     no diffuse term) as the reference of ct-ggx at n = 30 (alpha = sqrt(2/32) = 1/4):
+#       on the table's own grid (90x90x180, every grid point a cell's centre) the figures are the
+#       table's double rounding;
+#       on a 16x16x32 grid, with the table's cells of theta_h index 0..44 marked unmeasured, the
+#       samples, the uncovered points and the figures are worked out here in Python from the
+#       format's cell mapping and the formula at each point and at its cell's centre (the table's
+#       quantisation; a cell whose centre is below the horizon holds 0, the formula's value there).
+set -u
+. "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
+brdf_test_init
+SYN=${MERL_SYNTH:?MERL_SYNTH must name the merl_synth writer}
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T/pocl-cache}"
+mkdir -p "$POCL_CACHE_DIR"
+GRID=(--hemisphere-grid 16x16x32 --axis-points 3 --n-max 300)
+
+# value FILE PYTHON-EXPRESSION: the expression over r (the first hemisphere row of the JSON), h = r['hemisphere']
+value() {
+    python3 -c "
+import json, sys, math
+d = json.load(open(sys.argv[1]))
+rows = [x for x in d['results'] if x.get('sweep') == 'hemisphere']
+r = rows[0] if rows else None
+h = r['hemisphere'] if r else None
+print($2)" "$1"
+}
+holds() {
+    local v
+    v=$(value "$1" "$2" 2>&1)
+    if [ "$v" = "True" ]; then ok; else bad "$3: $2 -> $v"; fi
+}
+
+# ---- k f against f, f a user file --------------------------------------------------------------
+# f: Cook-Torrance GGX written out from its definition (docs/definitions.md), F0 0.04
+cat >"$T/fref.glsl" <<'EOF2'
+/* brdfbench-model
+ * name: fref
+ * reference: ct-ggx
+ * lobe: theta_h
+ * param: F0 0 1 0.04
+ */
+float fref(vec3 L, vec3 V, vec3 N, float n, float F0)
+{
+    vec3 H = normalize(L + V);
+    float nh = dot(N, H), vh = dot(V, H);
+    float nl = max(dot(N, L), 1e-6), nv = max(dot(N, V), 1e-6);
+    float a2 = 2.0 / (n + 2.0);
+    float d = (1.0 - nh) * (1.0 + nh) + nh * nh * a2;
+    float D = a2 / (3.14159265358979 * d * d);
+    float F = F0 + (1.0 - F0) * pow(1.0 - vh, 5.0);
+    float G = 2.0 * nl / (nl + sqrt(a2 + (1.0 - a2) * nl * nl)) * 2.0 * nv / (nv + sqrt(a2 + (1.0 - a2) * nv * nv));
+    return D * F * G / (4.0 * nl * nv);
+}
+EOF2
+sed 's/fref/kf/g; s/return D/return 1.25 * D/' "$T/fref.glsl" >"$T/kf.glsl"
+"$BIN" accuracy --model-file "$T/kf.glsl" --reference "$T/fref.glsl" "${GRID[@]}" --json "$T/kf.json" >"$T/out" 2>"$T/err"
+rc=$?
+if [ $rc -eq 77 ]; then echo "no OpenCL device"; echo "0 passed, 0 failed"; exit 77; fi
+[ $rc -eq 0 ] && ok || bad "k f against f.glsl: exit $rc: $(head -c 300 "$T/err")"
+holds "$T/kf.json" "r['reference'] == 'fref:F0=0.04' and r['reference_source'] == 'host double values' and r['status'] == 'ok'" \
+    "k f against f: the reference named, read from the host's values, ok"
+holds "$T/kf.json" "all(abs(p['epicentre']['max_rel'] - 0.25) < 1e-9 for p in h['per_p'])" \
+    "k f against f: delta = |k - 1| = 0.25 at every parameter value"
+# Delta in the attenuation zone: 0.25 f_ref where f_ref < e^-0.511 peak
+holds "$T/kf.json" "all(p['attenuation']['max_abs'] <= 0.25 * math.exp(-0.511) * p['peak'] * (1 + 1e-6) for p in h['per_p'])" \
+    "k f against f: Delta (attenuation) below 0.25 of the zone's threshold"
+# the user file's name works as well as its path, once the file is a --model-file
+"$BIN" accuracy --model-file "$T/kf.glsl" --model-file "$T/fref.glsl" --models kf --reference user:fref "${GRID[@]}" \
+    --json "$T/kf2.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "--reference user:fref: exit $rc: $(head -c 300 "$T/err")"
+holds "$T/kf2.json" "abs(h['epicentre']['max_rel'] - 0.25) < 1e-9 and r['reference'] == 'fref:F0=0.04'" \
+    "--reference user:fref: delta 0.25"
+
+# ---- a model against itself as a reference file ----------------------------------------------
+"$BIN" accuracy --model-file "$T/fref.glsl" --reference "$T/fref.glsl" "${GRID[@]}" --json "$T/self.json" \
+    >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "f against itself: exit $rc: $(head -c 300 "$T/err")"
+holds "$T/self.json" "r['status'] == 'ok' and h['whole']['max_abs'] == 0 and h['epicentre']['max_rel'] == 0 and h['rms'] == 0" \
+    "f against itself: every double figure 0, status ok"
+# the device's own figure: the model's float rounding against the reference's double values rounded
+# to float, far below the peak (a float formula of a few operations: under 1e-3 of the peak)
+holds "$T/self.json" "all(p['whole']['grid_value'] <= 1e-3 * p['peak'] for p in h['per_p'])" \
+    "f against itself: the device's Delta at float rounding"
+
+# ---- a measured material as the reference -------------------------------------------------------
+"$SYN" "$T/g.binary" ggx 0.25 0.04 1 0 >/dev/null || { echo "cannot write the material"; exit 3; }
+"$BIN" accuracy --models ct-ggx:F0=0.04 --reference "merl:$T/g.binary" --axis n=30:40 --axis-points 1 \
+    --hemisphere-grid 90x90x180 --json "$T/m90.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "ct-ggx against merl:g.binary on the table's grid: exit $rc: $(head -c 300 "$T/err")"
+holds "$T/m90.json" "r['reference'] == 'merl:g' and r['reference_source'] == 'measured table' and r['status'] == 'ok'" \
+    "measured reference: named, ok"
+# every grid point is a cell's centre, where the table holds the formula (stored / scale x scale,
+# weighted by luminance weights that sum to 1 in double): double rounding
+holds "$T/m90.json" "h['per_p'][0]['p'] == 30 and h['whole']['max_abs'] < 1e-11 * h['per_p'][0]['peak'] and h['epicentre']['max_rel'] < 1e-11" \
+    "measured reference on its own grid: figures at double rounding"
+# the grid's points above the horizon: all of them covered
+holds "$T/m90.json" "h['samples']['uncovered'] == 0 and h['samples']['used'] + h['samples']['below_horizon'] == 90 * 90 * 180" \
+    "measured reference on its own grid: every point covered"
+
+"$SYN" "$T/gneg.binary" ggx 0.25 0.04 1 0 neg 0 45 >/dev/null || { echo "cannot write the material"; exit 3; }
+"$BIN" accuracy --models ct-ggx:F0=0.04 --reference "merl:$T/gneg.binary" --axis n=30:40 --axis-points 1 \
+    --hemisphere-grid 16x16x32 --json "$T/m16.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "ct-ggx against merl:gneg.binary: exit $rc: $(head -c 300 "$T/err")"
+expect_m16=$(python3 - <<'EOF2'
+import math
+# ct-ggx written again (docs/definitions.md): D_GGX Schlick-F separable-Smith G1 G1 / (4 N.L N.V), 0 below the horizon
+def ctggx(L, V, a, f0):
+    nl, nv = L[2], V[2]
+    if nl <= 0 or nv <= 0:
+        return 0.0
+    h = [L[i] + V[i] for i in range(3)]
+    hl = math.sqrt(sum(x * x for x in h))
+    ch, vh = h[2] / hl, sum(V[i] * h[i] for i in range(3)) / hl
+    a2 = a * a
+    D = a2 / (math.pi * ((a2 - 1) * ch * ch + 1) ** 2)
+    F = f0 + (1 - f0) * (1 - vh) ** 5
+    g = lambda x: 2 * x / (x + math.sqrt(a2 + (1 - a2) * x * x))
+    return D * F * g(nl) * g(nv) / (4 * nl * nv)
+# Rusinkiewicz's angles to L, V about N = z (phi_h = 0)
+def dirs(th, td, pd):
+    D = [math.sin(td) * math.cos(pd), math.sin(td) * math.sin(pd), math.cos(td)]
+    L = [math.cos(th) * D[0] + math.sin(th) * D[2], D[1], -math.sin(th) * D[0] + math.cos(th) * D[2]]
+    H = [math.sin(th), 0, math.cos(th)]
+    lh = sum(L[i] * H[i] for i in range(3))
+    return L, [2 * lh * H[i] - L[i] for i in range(3)]
+nh, nd, np_, a, f0 = 16, 16, 32, 0.25, 0.04
+pts, uncovered = [], 0
+for i in range(nh):
+    th = math.pi / 2 * ((i + .5) / nh) ** 2
+    for j in range(nd):
+        td = math.pi / 2 * (j + .5) / nd
+        for k in range(np_):
+            pd = math.pi * (k + .5) / np_
+            L, V = dirs(th, td, pd)
+            if L[2] <= 0 or V[2] <= 0:
+                continue
+            # the MERL cell of the point: theta_h index sqrt(th / (pi/2)) 90, theta_d td / (pi/2) 90, phi_d pd / pi 180
+            ci, cj, ck = int(math.sqrt(th / (math.pi / 2)) * 90), int(td / (math.pi / 2) * 90), int(pd / math.pi * 180)
+            if ci < 45:   # written unmeasured (green channel negative)
+                uncovered += 1
+                continue
+            Lc, Vc = dirs(math.pi / 2 * ((ci + .5) / 90) ** 2, math.pi / 2 * (cj + .5) / 90, math.pi * (ck + .5) / 180)
+            pts.append((ctggx(L, V, a, f0), ctggx(Lc, Vc, a, f0)))
+peak = max(t for f, t in pts)
+thr = math.exp(-0.511) * peak
+print(len(pts), uncovered, repr(peak), repr(max(abs(f - t) / t for f, t in pts if t >= thr)),
+      repr(max(abs(f - t) for f, t in pts)))
+EOF2
+)
+read -r e_used e_unc e_peak e_rel e_abs <<<"$expect_m16"
+holds "$T/m16.json" "h['samples']['used'] == $e_used and h['samples']['uncovered'] == $e_unc and $e_unc > 0" \
+    "measured reference, cells unmeasured: samples $e_used, uncovered $e_unc (worked out here)"
+holds "$T/m16.json" "abs(h['per_p'][0]['peak'] / $e_peak - 1) < 1e-6" "measured reference: its peak over the samples $e_peak"
+holds "$T/m16.json" "abs(h['epicentre']['max_rel'] / $e_rel - 1) < 1e-6" \
+    "measured reference: max delta is the table's quantisation $e_rel"
+holds "$T/m16.json" "abs(h['whole']['max_abs'] / $e_abs - 1) < 1e-6" \
+    "measured reference: max Delta is the table's quantisation $e_abs"
+holds "$T/m16.json" "r['status'] == 'ok'" "measured reference: status ok"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
