@@ -12,7 +12,13 @@
 #       on a 16x16x32 grid, with the table's cells of theta_h index 0..44 marked unmeasured, the
 #       samples, the uncovered points and the figures are worked out here in Python from the
 #       format's cell mapping and the formula at each point and at its cell's centre (the table's
-#       quantisation; a cell whose centre is below the horizon holds 0, the formula's value there).
+#       quantisation; a cell whose centre is below the horizon holds 0, the formula's value there);
+#   - GGX with the height-correlated Smith term (a GLSL file written here) against ct-ggx (separable
+#     Smith), point by point: render's worst pixel difference equals e (N.L) ks (f_corr - f_sep) at
+#     that pixel's L, V, N, the two formulas written again here in Python (the correlated one in its
+#     visibility form, another algebraic form than the file's); the same difference at the pixel's
+#     (theta_h, theta_d, phi_d) rebuilt here from the sweep's geometry; and the hemisphere sweep's
+#     max Delta at the pixel's n bounds it.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -167,6 +173,100 @@ holds "$T/m16.json" "abs(h['epicentre']['max_rel'] / $e_rel - 1) < 1e-6" \
 holds "$T/m16.json" "abs(h['whole']['max_abs'] / $e_abs - 1) < 1e-6" \
     "measured reference: max Delta is the table's quantisation $e_abs"
 holds "$T/m16.json" "r['status'] == 'ok'" "measured reference: status ok"
+
+# ---- correlated GGX against ct-ggx: render's worst pixel and the hemisphere sweep ----------------
+cat >"$T/ggxcorr.glsl" <<'EOF2'
+/* brdfbench-model
+ * name: ggxcorr
+ * reference: ct-ggx
+ * lobe: theta_h
+ * param: F0 0 1 0.5
+ */
+/* Smith's Lambda of GGX for a direction at cosine c to the normal: (sqrt(1 + a^2 tan^2) - 1) / 2 */
+float smith_lambda(float c, float a2)
+{
+    float t2 = (1.0 - c * c) / (c * c);
+    return 0.5 * (sqrt(1.0 + a2 * t2) - 1.0);
+}
+/* GGX microfacet BRDF with the height-correlated Smith term G2 = 1 / (1 + Lambda(L) + Lambda(V)) */
+float ggxcorr(vec3 L, vec3 V, vec3 N, float n, float F0)
+{
+    vec3 H = normalize(L + V);
+    float nh = dot(N, H), vh = dot(V, H);
+    float nl = max(dot(N, L), 1e-6), nv = max(dot(N, V), 1e-6);
+    float a2 = 2.0 / (n + 2.0);
+    float q = 1.0 + (a2 - 1.0) * nh * nh;
+    float D = a2 / (3.14159265358979 * q * q);
+    float F = F0 + (1.0 - F0) * pow(1.0 - vh, 5.0);
+    float G2 = 1.0 / (1.0 + smith_lambda(nl, a2) + smith_lambda(nv, a2));
+    return D * F * G2 / (4.0 * nl * nv);
+}
+EOF2
+"$BIN" render --scene teapot --model-file "$T/ggxcorr.glsl" --mesh-n 64 --size 160x120 --time-sizes none --tess 4 \
+    --no-images --quiet --json "$T/corr_render.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "render ggxcorr.glsl: exit $rc: $(head -c 300 "$T/err")"
+"$BIN" accuracy --model-file "$T/ggxcorr.glsl" --reference ct-ggx:F0=0.5 --axis n=64:65 --axis-points 1 \
+    --hemisphere-grid 24x24x48 --json "$T/corr_acc.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "accuracy ggxcorr.glsl against ct-ggx: exit $rc: $(head -c 300 "$T/err")"
+corr=$(python3 - "$T/corr_render.json" "$T/corr_acc.json" <<'EOF2'
+import json, math, sys
+rd, ad = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+m = rd['scenes'][0]['models'][0]
+w, ks, f0 = m['worst_pixel'], rd['options']['ks'], 0.5
+h = [x for x in ad['results'] if x.get('sweep') == 'hemisphere'][0]['hemisphere']
+dot = lambda a, b: sum(x * y for x, y in zip(a, b))
+def unit(a):
+    l = math.sqrt(dot(a, a))
+    return [x / l for x in a]
+# the two BRDFs from their definitions at cosines nl, nv, nh, vh and alpha^2 = 2 / (n + 2):
+# D_GGX Schlick F, separable Smith G1(L) G1(V) / (4 nl nv), height-correlated in its visibility
+# form 1 / (2 (nl sqrt(nv^2 (1 - a^2) + a^2) + nv sqrt(nl^2 (1 - a^2) + a^2)))
+def both(nl, nv, nh, vh, n):
+    a2 = 2.0 / (n + 2.0)
+    D = a2 / (math.pi * (nh * nh * (a2 - 1) + 1) ** 2)
+    F = f0 + (1 - f0) * (1 - vh) ** 5
+    g1 = lambda x: 2 * x / (x + math.sqrt(a2 + (1 - a2) * x * x))
+    sep = D * F * g1(nl) * g1(nv) / (4 * nl * nv)
+    corr = D * F * 0.5 / (nl * math.sqrt(nv * nv * (1 - a2) + a2) + nv * math.sqrt(nl * nl * (1 - a2) + a2))
+    return corr, sep
+L, V, N = unit(w['L']), unit(w['V']), unit(w['N'])
+H = unit([a + b for a, b in zip(L, V)])
+nl, nv, nh, vh = dot(N, L), dot(N, V), dot(N, H), dot(V, H)
+corr, sep = both(nl, nv, nh, vh, w['n'])
+expected = w['irradiance'] * nl * ks * (corr - sep)
+got = w['specular_model'] - w['specular_reference']
+# the pixel's half/difference angles: theta_h = acos N.H, theta_d = acos L.H, and phi_d from
+# N.L = cos th cos td - sin th sin td cos phi_d (kernels/hemisphere_geom.h's L); L', V' rebuilt there
+th, td = math.acos(nh), math.acos(dot(L, H))
+pd = math.acos(max(-1.0, min(1.0, (math.cos(th) * math.cos(td) - nl) / (math.sin(th) * math.sin(td)))))
+Dv = [math.sin(td) * math.cos(pd), math.sin(td) * math.sin(pd), math.cos(td)]
+L2 = [math.cos(th) * Dv[0] + math.sin(th) * Dv[2], Dv[1], -math.sin(th) * Dv[0] + math.cos(th) * Dv[2]]
+H2 = [math.sin(th), 0.0, math.cos(th)]
+V2 = [2 * dot(L2, H2) * H2[i] - L2[i] for i in range(3)]
+corr2, sep2 = both(L2[2], V2[2], H2[2], dot(V2, H2), w['n'])
+checks = [
+    ('render: the worst pixel differs (non-zero)', got > 1e-4),
+    ('render: its difference %.9g = e (N.L) ks (f_corr - f_sep) = %.9g' % (got, expected), abs(got / expected - 1) < 1e-4),
+    ('the pixel at (theta_h, theta_d, phi_d) = (%.6g, %.6g, %.6g): N.L, N.V as at the pixel' % (th, td, pd),
+     abs(L2[2] - nl) < 1e-9 and abs(V2[2] - nv) < 1e-9),
+    ('f_corr - f_sep there = %.9g, at the pixel %.9g' % (corr2 - sep2, corr - sep), abs((corr2 - sep2) / (corr - sep) - 1) < 1e-9),
+    ('the sweep at the pixel n = %g: p %g, status %s' % (w['n'], h['per_p'][0]['p'], h['per_p'][0]['p'] == w['n']), h['per_p'][0]['p'] == w['n']),
+    ('the sweep max Delta %.6g bounds the pixel f_corr - f_sep %.6g' % (h['whole']['max_abs'], corr - sep),
+     h['whole']['max_abs'] >= corr - sep),
+    ('the sweep max delta (epicentre) %.4g non-zero' % h['epicentre']['max_rel'], h['epicentre']['max_rel'] > 0.01),
+]
+for what, good in checks:
+    print(('ok ' if good else 'BAD ') + what)
+EOF2
+)
+while IFS= read -r line; do
+    case "$line" in ok\ *) ok ;; *) bad "correlated GGX point by point: $line" ;; esac
+done <<<"$corr"
+printf "%s\n" "$corr"
+[ -n "$corr" ] || bad "correlated GGX point by point: no checks ran"
+holds "$T/corr_acc.json" "r['status'] == 'ok'" "ggxcorr against ct-ggx at n = 64: status ok"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
