@@ -18,7 +18,11 @@
 #     that pixel's L, V, N, the two formulas written again here in Python (the correlated one in its
 #     visibility form, another algebraic form than the file's); the same difference at the pixel's
 #     (theta_h, theta_d, phi_d) rebuilt here from the sweep's geometry; and the hemisphere sweep's
-#     max Delta at the pixel's n bounds it.
+#     max Delta at the pixel's n bounds it;
+#   - a gates file's hemisphere gate naming its "reference": k f (k = 1.25) against ct-ggx:F0=0.04 and
+#     against the user model f declared by an earlier gate measure delta = 0.25 and pass; without
+#     it the family reference ct-ggx (F0 0.5) is refused, the ratio at L = V = N being
+#     k F0 / 0.5 = 1.25 x 0.04 / 0.5 = 0.1 (D equal, G = 1, F = F0 there).
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -267,6 +271,30 @@ done <<<"$corr"
 printf "%s\n" "$corr"
 [ -n "$corr" ] || bad "correlated GGX point by point: no checks ran"
 holds "$T/corr_acc.json" "r['status'] == 'ok'" "ggxcorr against ct-ggx at n = 64: status ok"
+
+# ---- a gates file's hemisphere gates with their reference ----------------------------------------
+mkdir -p "$T/g"
+cp "$T/fref.glsl" "$T/kf.glsl" "$T/g/"
+cat >"$T/g/gates.json" <<'EOF2'
+{"schema": "brdfbench.gates/1",
+ "gates": [
+  {"model": "fref", "model_file": "fref.glsl", "metric": "hemisphere.rms", "reference": "ct-ggx:F0=0.04", "n_max": 100, "max": 1e-12},
+  {"model": "kf", "model_file": "kf.glsl", "metric": "hemisphere.epicentre.max_rel", "reference": "ct-ggx:F0=0.04", "n_max": 100, "min": 0.2499999, "max": 0.2500001},
+  {"model": "kf", "model_file": "kf.glsl", "metric": "hemisphere.epicentre.max_rel", "reference": "fref", "n_max": 100, "min": 0.2499999, "max": 0.2500001},
+  {"model": "kf", "model_file": "kf.glsl", "metric": "hemisphere.epicentre.max_rel", "n_max": 100, "max": 1}
+ ]}
+EOF2
+"$BIN" gate "$T/g/gates.json" --json "$T/g/out.json" --quiet >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 1 ] && ok || bad "gates with references: exit $rc (expected 1: the last gate fails): $(head -c 300 "$T/err")"
+gates=$(python3 -c "
+import json, sys
+g = json.load(open(sys.argv[1]))['gates']
+print([x['status'] for x in g] == ['pass', 'pass', 'pass', 'fail'],
+      [x['reference'] for x in g[:3]] == ['ct-ggx:F0=0.04', 'ct-ggx:F0=0.04', 'fref:F0=0.04'],
+      all(abs(x['measured'] - 0.25) < 1e-9 for x in g[1:3]),
+      'ct-ggx:F0=0.5 differs from it' in g[3]['reason'] and 'by the ratio 0.1 ' in g[3]['reason'])" "$T/g/out.json" 2>&1)
+[ "$gates" = "True True True True" ] && ok || bad "gates with references: statuses, references, delta 0.25, the refusal's ratio 0.1: $gates"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

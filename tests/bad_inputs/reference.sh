@@ -37,3 +37,13 @@ t 2 "^brdfbench accuracy: --reference: rfull is the reference of full BRDFs only
     accuracy --models blinn --reference "$T/rfull.glsl"
 t 2 "^brdfbench accuracy: --reference: rfull is evaluated by the host at each of 1.342e\+08 grid points x axis values \(accepted: at most 33554432" \
     accuracy --model-file "$T/rfull.glsl" --reference "$T/rfull.glsl" --hemisphere-grid 512x512x512 --axis-points 1
+# a gates file's "reference" (docs/gates.md): hemisphere.* gates only, a known model, no lobe
+printf '{"gates": [{"model": "fq2", "metric": "epicentre.max_rel", "reference": "ggx", "max": 1}]}' >"$T/rgate1.json"
+printf '{"gates": [{"model": "ct-ggx", "metric": "hemisphere.rms", "reference": "nosuch", "max": 1}]}' >"$T/rgate2.json"
+printf '{"gates": [{"model": "sq", "expression": "c", "metric": "epicentre.max_rel", "max": 1}, {"model": "ct-ggx", "metric": "hemisphere.rms", "reference": "sq", "max": 1}]}' >"$T/rgate3.json"
+t 2 "^brdfbench gate: $T/rgate1.json:1:73: gate 1: \"reference\" is read only by the hemisphere.\* metrics \(this gate's is epicentre.max_rel\)" \
+    gate "$T/rgate1.json"
+t 2 "^brdfbench gate: $T/rgate2.json:1:73: gate 1: \"reference\": unknown model 'nosuch' \(accepted: phong, blinn," \
+    gate "$T/rgate2.json"
+t 2 "^brdfbench gate: $T/rgate3.json:1:150: gate 2: \"reference\": sq is a lobe of c and n, not a BRDF of \(L, V\)" \
+    gate "$T/rgate3.json"
