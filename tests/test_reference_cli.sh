@@ -22,7 +22,12 @@
 #   - a gates file's hemisphere gate naming its "reference": k f (k = 1.25) against ct-ggx:F0=0.04 and
 #     against the user model f declared by an earlier gate measure delta = 0.25 and pass; without
 #     it the family reference ct-ggx (F0 0.5) is refused, the ratio at L = V = N being
-#     k F0 / 0.5 = 1.25 x 0.04 / 0.5 = 0.1 (D equal, G = 1, F = F0 there).
+#     k F0 / 0.5 = 1.25 x 0.04 / 0.5 = 0.1 (D equal, G = 1, F = F0 there);
+#   - a Schlick Fresnel file (lobe: theta_d, no reference in its header) with --reference fresnel is
+#     measured as the term's lobe of one angle, as its header naming fresnel would have it (it was
+#     measured over the hemisphere as a theta_h lobe): max Delta over n in 1.1..2.5 step 0.1 and the
+#     angle is the maximum of |Schlick(F0(n)) - Fresnel(n)| worked out here on a fine grid of theta,
+#     and the figures are those of the header's route.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -295,6 +300,55 @@ print([x['status'] for x in g] == ['pass', 'pass', 'pass', 'fail'],
       all(abs(x['measured'] - 0.25) < 1e-9 for x in g[1:3]),
       'ct-ggx:F0=0.5 differs from it' in g[3]['reason'] and 'by the ratio 0.1 ' in g[3]['reason'])" "$T/g/out.json" 2>&1)
 [ "$gates" = "True True True True" ] && ok || bad "gates with references: statuses, references, delta 0.25, the refusal's ratio 0.1: $gates"
+
+# ---- a term file with --reference naming a built-in term ---------------------------------------------
+cat >"$T/fs.brdf" <<'EOF2'
+::begin parameters
+float f0 0 1 0.04
+::end parameters
+::begin shader
+/* brdfbench-model
+ * lobe: theta_d
+ */
+vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)
+{
+    float u = dot(L, normalize(L + V));
+    return vec3(f0 + (1 - f0) * pow(1 - u, 5));
+}
+::end shader
+EOF2
+sed 's/^ \* lobe: theta_d/ * reference: fresnel\n * lobe: theta_d/' "$T/fs.brdf" >"$T/fsr.brdf"
+TERMS=(--n-min 1.1 --n-max 2.5 --n-step 0.1)
+"$BIN" accuracy --model-file "$T/fs.brdf" --reference fresnel "${TERMS[@]}" --json "$T/fs.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "fs.brdf --reference fresnel: exit $rc: $(head -c 300 "$T/err")"
+"$BIN" accuracy --model-file "$T/fsr.brdf" "${TERMS[@]}" --json "$T/fsr.json" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 0 ] && ok || bad "fsr.brdf (header reference: fresnel): exit $rc: $(head -c 300 "$T/err")"
+# Schlick with F0 = ((n - 1)/(n + 1))^2 (the file's f0 takes it from n) against the exact dielectric
+# Fresnel (docs/user-models.md), the largest difference over theta in [0, pi/2] (20001 angles) and
+# n = 1.1, 1.2, ..., 2.5 as floats
+expect_fs=$(python3 -c "
+import math, struct
+f32 = lambda x: struct.unpack('f', struct.pack('f', x))[0]
+def fresnel(c, n):
+    g2 = n * n - 1 + c * c
+    if g2 < 0: return 1.0
+    g = math.sqrt(g2)
+    return (g - c) ** 2 / (2 * (g + c) ** 2) * (1 + ((c * (g + c) - 1) / (c * (g - c) + 1)) ** 2)
+def schlick(c, n):
+    f0 = ((n - 1) / (n + 1)) ** 2
+    return f0 + (1 - f0) * (1 - c) ** 5
+print(repr(max(abs(schlick(math.cos(t), n) - fresnel(math.cos(t), n))
+               for n in (f32(1.1 + 0.1 * i) for i in range(15)) for t in (math.pi / 2 * k / 20000 for k in range(20001)))))")
+fs_row=$(python3 -c "
+import json, sys
+a, b = (json.load(open(p))['results'][0] for p in sys.argv[1:3])
+print(a.get('sweep') != 'hemisphere', a['reference'] == 'fresnel', abs(a['whole']['max_abs'] / $expect_fs - 1) < 1e-6,
+      a['epicentre'] == b['epicentre'] and a['whole'] == b['whole'] and a['attenuation'] == b['attenuation'])" \
+    "$T/fs.json" "$T/fsr.json" 2>&1)
+[ "$fs_row" = "True True True True" ] && ok ||
+    bad "fs.brdf --reference fresnel: the term's lobe row, max Delta $expect_fs, the header route's figures: $fs_row"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -386,7 +386,7 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     axis.count = points;
     int kept = 0;
     for (int m = 0; m < nmodels; ++m) {
-        if (!hemisphere_applies(&models[m])) {
+        if (!hemisphere_applies_against(&models[m], reference_text ? &named_ref : NULL)) {
             models[kept++] = models[m];
             continue;
         }

@@ -38,6 +38,14 @@ int hemisphere_applies(const struct model_spec *m)
 /* A measured reference's kernel_id: no row of the registry has it. */
 #define HEMI_MEASURED_ID (-2)
 
+int hemisphere_applies_against(const struct model_spec *m, const struct model_spec *named_ref)
+{
+    if (named_ref && model_is_full(m->info) && model_is_builtin(named_ref->info) &&
+        named_ref->info->family == MODEL_FAMILY_TERM)
+        return 0;
+    return hemisphere_applies(m);
+}
+
 /* HEMI_KIND_* of a model, or -1 when the sweep cannot evaluate it (a user lobe model). */
 static int model_kind(const struct model_spec *m)
 {

@@ -128,6 +128,11 @@ int hemisphere_reference_ok(const struct model_spec *ref);
  * physical model (its lobe sweep puts V below the horizon past 45 degrees). */
 int hemisphere_applies(const struct model_spec *m);
 
+/* hemisphere_applies, with the reference named on the command line (NULL: none): a full BRDF
+ * measured against a built-in Fresnel or shadowing-masking term is that term's lobe of one angle,
+ * as when its header names the term. */
+int hemisphere_applies_against(const struct model_spec *m, const struct model_spec *named_ref);
+
 /* Parses --axis NAME[=MIN:MAX] or PARAM:ROLE[=MIN:MAX] into *a (count and n range from the caller). 0 or EXIT_USAGE. */
 int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size_t errlen);
 /* Parses --param NAME=VALUE (appended to fixed; *count updated). 0 or EXIT_USAGE. */
