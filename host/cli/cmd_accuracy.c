@@ -301,11 +301,12 @@ static int names_file(const char *text)
     return 0;
 }
 
-/* --reference SPEC (docs/user-models.md, "References"): merl:FILE (or FILE.binary), a measured
- * material; user:NAME, a user model of the command line by its name; a model file (a path, or a
- * .brdf, .glsl, .hlsl or .cl file name), read as --model-file reads it (the same file as a
- * --model-file is the same model); else a built-in with parameters (ct-ggx:F0=0.04) or a user
- * model's name. 0, or -1 with the message in err. */
+/* --reference SPEC (docs/user-models.md, "Measured over the hemisphere"): merl:FILE (or
+ * FILE.binary), a measured material; user:NAME[:p=v,...], a user model of the command line by its
+ * name; a model file (a path, or a .brdf, .glsl, .hlsl or .cl file name that names no model),
+ * read as --model-file reads it (the same file as a --model-file is the same model); else a
+ * built-in with parameters (ct-ggx:F0=0.04) or a user model's name (NAME@FILE.brdf included).
+ * 0, or -1 with the message in err. */
 static int resolve_reference(const char *text, struct model_spec *out, char *err, size_t errlen)
 {
     char inner[700];
@@ -326,18 +327,21 @@ static int resolve_reference(const char *text, struct model_spec *out, char *err
         measured_ref_open = 1;
         return 0;
     }
+    /* the model's id: the text up to its parameters (NAME:p=v) */
+    char id[MODEL_LABEL_MAX];
+    const char *name = strncmp(text, "user:", 5) == 0 ? text + 5 : text;
+    snprintf(id, sizeof id, "%.*s", (int)strcspn(name, ":"), name);
     if (strncmp(text, "user:", 5) == 0) {
-        const struct model_info *info = models_find(text + 5);
+        const struct model_info *info = models_find(id);
         if (!info || model_is_builtin(info)) {
             const char *names = usermodel_names();
             snprintf(err, errlen, "--reference: %.60s: no user model of that name (accepted: %s)", text,
                      *names ? names : "none given: --model-file FILE or --model NAME=EXPR first, or --reference FILE");
             return -1;
         }
-        model_spec_default(info, out);
-        return 0;
     }
-    if (names_file(text)) {
+    /* a file name that is also a model's name (NAME@FILE.brdf, a .brdf file's model) is the model */
+    if (names_file(text) && !models_find(id)) {
         const struct user_model *um = NULL;
         if (usermodel_load_file(text, &um, inner, sizeof inner)) {
             const char *why = strncmp(inner, "--model-file: ", 14) == 0 ? inner + 14 : inner;
@@ -345,7 +349,7 @@ static int resolve_reference(const char *text, struct model_spec *out, char *err
             return -1;
         }
         model_spec_default(&um->info, out);
-    } else if (model_spec_parse(text, out, inner, sizeof inner)) {
+    } else if (model_spec_parse(name, out, inner, sizeof inner)) {
         snprintf(err, errlen, "--reference: %.*s", (int)errlen - 16, inner);
         return -1;
     }
