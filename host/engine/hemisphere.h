@@ -23,8 +23,9 @@
 /* "a few units of 2^-24 peak" (docs/definitions.md, Device check) */
 #define HEMI_FLOOR_UNITS 8.0
 /* Values of a table reference (a user model or a measured material as the reference: one per
-   grid point and axis value, kernels/hemisphere.cl's rtab): 128 MiB of floats at most */
-#define HEMI_MAX_TABLE (1L << 25)
+   grid point and axis value, kernels/hemisphere.cl's rtab): 64 MiB of floats on the device and
+   128 MiB of doubles on the host at most (8 axis values of the MERL tables' 90x90x180 fit) */
+#define HEMI_MAX_TABLE (1L << 24)
 
 /* What an axis sweeps: the shininess slot under one of its engine names, or a named parameter. */
 enum hemi_quantity { HQ_N, HQ_ALPHA, HQ_ROUGHNESS, HQ_M, HQ_PARAM };
