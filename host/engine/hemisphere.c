@@ -692,6 +692,31 @@ int hemisphere_table_check(const struct model_spec *ref, const struct hemi_grid 
     return 0;
 }
 
+/* The reference's double values at every grid point above the horizon (NAN elsewhere) into out,
+   per (p, theta_h, theta_d, phi_d): run through model_run_isolated, so that a user model's code
+   is called directly in its sandbox's child for the whole table, not a round trip per value. */
+static void fill_values(void *vctx, void *vout)
+{
+    const struct hemi_result *r = vctx;
+    const struct hemi_grid *g = &r->grid;
+    double *out = vout;
+    for (int ip = 0; ip < r->p_count; ++ip)
+        for (int i = 0; i < g->nh; ++i) {
+            double th = hemi_theta_h(i, g->nh);
+            for (int j = 0; j < g->nd; ++j) {
+                double td = hemi_theta_d(j, g->nd);
+                double *row = out + (((size_t)ip * g->nh + i) * g->nd + j) * g->np;
+                for (int k = 0; k < g->np; ++k) {
+                    double L[3], V[3];
+                    hemisphere_dirs(th, td, hemi_phi_d(k, g->np), L, V);
+                    row[k] = L[2] > 0 && V[2] > 0
+                                 ? hemisphere_eval_host(&r->reference, r->ref_kind, L, V, r->per_p[ip].rvals)
+                                 : NAN;
+                }
+            }
+        }
+}
+
 /* A table reference's values (hemisphere.h, ref_table): each grid point's above the horizon in
    double (r->ref_values, kept for the RMS), and as floats in a device buffer, phi_d's rows padded
    to the kernel's lanes; *buf is a one-float buffer for other references (the kernel's rtab). */
@@ -714,24 +739,11 @@ static int reference_table(struct hemi_ctx *h, struct hemi_result *r, float **ft
         fprintf(stderr, "brdfbench: out of memory for the values of the reference %s\n", r->reference.label);
         return EXIT_RUNTIME;
     }
-    for (int ip = 0; ip < r->p_count; ++ip)
-        for (int i = 0; i < g->nh; ++i) {
-            double th = hemi_theta_h(i, g->nh);
-            for (int j = 0; j < g->nd; ++j) {
-                size_t row = ((size_t)ip * g->nh + i) * g->nd + j;
-                double td = hemi_theta_d(j, g->nd);
-                for (int k = 0; k < np_pad; ++k) {
-                    double v = NAN, L[3], V[3];
-                    if (k < g->np) {
-                        hemisphere_dirs(th, td, hemi_phi_d(k, g->np), L, V);
-                        if (L[2] > 0 && V[2] > 0)
-                            v = hemisphere_eval_host(&r->reference, r->ref_kind, L, V, r->per_p[ip].rvals);
-                        r->ref_values[row * g->np + k] = v;
-                    }
-                    (*ftab)[row * np_pad + k] = (float)v;
-                }
-            }
-        }
+    if ((rc = model_run_isolated(&r->reference, fill_values, r, r->ref_values, cells * sizeof *r->ref_values)) != 0)
+        return rc;
+    for (size_t row = 0; row < rows; ++row)
+        for (int k = 0; k < np_pad; ++k)
+            (*ftab)[row * np_pad + k] = k < g->np ? (float)r->ref_values[row * g->np + k] : NAN;
     *buf = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, rows * (size_t)np_pad * sizeof(float),
                           *ftab, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(hemisphere reference table)", done);
