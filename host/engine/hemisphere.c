@@ -819,7 +819,6 @@ static void one_figure(struct hemi_result *r, struct hemi_per_p *pp, const float
     if (!(*dbl_at > -INFINITY))
         *dbl_at = NAN;   /* the double finds no sample of the figure there: a disagreement below */
     *chk = fabs(dev->value - *dbl_at);
-    /* the box: one grid cell either side (theta_h's cells widen as u^2 does) */
     if (r->ref_kind == HEMI_KIND_MEASURED) {
         /* the table is constant over each of its cells: a refined maximum would walk to a cell's
            edge and measure the table's step, not the model; the figure is the grid's maximum,
@@ -830,6 +829,7 @@ static void one_figure(struct hemi_result *r, struct hemi_per_p *pp, const float
         dbl->pd = dev->pd;
         return;
     }
+    /* the box: one grid cell either side (theta_h's cells widen as u^2 does) */
     double u = (row + 0.5) / r->grid.nh;
     double hth = 2.0 * (pi / 2) * (u + 1.0 / r->grid.nh) / r->grid.nh;
     *dbl = refine(&c, dev->th, dev->td, dev->pd, hth, 2.0 * (pi / 2) / r->grid.nd, 2.0 * pi / r->grid.np);
