@@ -10,7 +10,8 @@
 #       on the table's own grid (90x90x180, every grid point a cell's centre) the figures are the
 #       table's double rounding;
 #       on a 16x16x32 grid, with the table's cells of theta_h index 0..44 marked unmeasured, the
-#       samples, the uncovered points and the figures are worked out here in Python from the
+#       samples, the uncovered points and the figures (max delta, max Delta, the RMS of
+#       cos(theta_i) (f - f_ref) by docs/definitions.md's quadrature) are worked out here in Python from the
 #       format's cell mapping and the formula at each point and at its cell's centre (the table's
 #       quantisation; a cell whose centre is below the horizon holds 0, the formula's value there);
 #   - GGX with the height-correlated Smith term (a GLSL file written here) against ct-ggx (separable
@@ -184,7 +185,7 @@ def dirs(th, td, pd):
     lh = sum(L[i] * H[i] for i in range(3))
     return L, [2 * lh * H[i] - L[i] for i in range(3)]
 nh, nd, np_, a, f0 = 16, 16, 32, 0.25, 0.04
-pts, uncovered = [], 0
+pts, uncovered, wsum = [], 0, 0.0
 for i in range(nh):
     th = math.pi / 2 * ((i + .5) / nh) ** 2
     for j in range(nd):
@@ -200,14 +201,21 @@ for i in range(nh):
                 uncovered += 1
                 continue
             Lc, Vc = dirs(math.pi / 2 * ((ci + .5) / 90) ** 2, math.pi / 2 * (cj + .5) / 90, math.pi * (ck + .5) / 180)
-            pts.append((ctggx(L, V, a, f0), ctggx(Lc, Vc, a, f0)))
+            f, t = ctggx(L, V, a, f0), ctggx(Lc, Vc, a, f0)
+            pts.append((f, t))
+            # docs/definitions.md's RMS: (1/(4 pi^2)) sum of cos^2(ti) (f - t)^2 dw_i dw_o, dw_i dw_o =
+            # 4 cos td sin td sin th dth dtd dphi_d dphi_h, phi_h giving 2 pi, phi_d folded onto
+            # [0, pi) with cos^2 ti + cos^2 to; dth = pi u du (th = pi/2 u^2), du = 1/NH
+            u = (i + .5) / nh
+            wsum += (4 * math.cos(td) * math.sin(td) * math.sin(th) * 2 * math.pi * (math.pi * u / nh) *
+                     (math.pi / 2 / nd) * (math.pi / np_) * (L[2] ** 2 + V[2] ** 2) * (f - t) ** 2)
 peak = max(t for f, t in pts)
 thr = math.exp(-0.511) * peak
 print(len(pts), uncovered, repr(peak), repr(max(abs(f - t) / t for f, t in pts if t >= thr)),
-      repr(max(abs(f - t) for f, t in pts)))
+      repr(max(abs(f - t) for f, t in pts)), repr(math.sqrt(wsum / (4 * math.pi ** 2))))
 EOF2
 )
-read -r e_used e_unc e_peak e_rel e_abs <<<"$expect_m16"
+read -r e_used e_unc e_peak e_rel e_abs e_rms <<<"$expect_m16"
 holds "$T/m16.json" "h['samples']['used'] == $e_used and h['samples']['uncovered'] == $e_unc and $e_unc > 0" \
     "measured reference, cells unmeasured: samples $e_used, uncovered $e_unc (worked out here)"
 holds "$T/m16.json" "abs(h['per_p'][0]['peak'] / $e_peak - 1) < 1e-6" "measured reference: its peak over the samples $e_peak"
@@ -215,6 +223,7 @@ holds "$T/m16.json" "abs(h['epicentre']['max_rel'] / $e_rel - 1) < 1e-6" \
     "measured reference: max delta is the table's quantisation $e_rel"
 holds "$T/m16.json" "abs(h['whole']['max_abs'] / $e_abs - 1) < 1e-6" \
     "measured reference: max Delta is the table's quantisation $e_abs"
+holds "$T/m16.json" "abs(h['rms'] / $e_rms - 1) < 1e-6" "measured reference: the RMS of cos(ti) (f - f_ref) $e_rms"
 holds "$T/m16.json" "r['status'] == 'ok'" "measured reference: status ok"
 
 # ---- correlated GGX against ct-ggx: render's worst pixel and the hemisphere sweep ----------------
