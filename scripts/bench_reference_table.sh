@@ -8,8 +8,9 @@
 #
 #   bash scripts/bench_reference_table.sh [RUNS]          (default 5 runs per case)
 #
-# Printed per case: the median wall seconds of a whole `accuracy` run at the default grid
-# (48x48x96, 8 axis values) and the ratio to the built-in reference's median. Environment:
+# Printed per case: the median wall seconds and the median CPU seconds (user + system, the
+# sandbox's children included) of a whole `accuracy` run at the default grid (48x48x96, 8 axis
+# values), each with its ratio to the built-in reference's median, and the machine's load. Environment:
 # BRDFBENCH (default build/brdfbench), MERL_SYNTH (default build/tests/merl_synth). A benchmark,
 # not a test: its figures go into notes, never into assertions.
 set -euo pipefail
@@ -46,20 +47,27 @@ time_case() {   # NAME ARGS...
     local name=$1
     shift
     "$B" accuracy "$@" --json "$W/warm.json" --quiet   # kernel builds out of the timing
+    : >"$W/$name.wall"
+    : >"$W/$name.cpu"
     for _ in $(seq "$RUNS"); do
-        local t0 t1
-        t0=$(date +%s.%N)
-        "$B" accuracy "$@" --json "$W/out.json" --quiet
-        t1=$(date +%s.%N)
-        echo "$t1 - $t0" | bc -l
-    done | median >"$W/$name.med"
+        # wall seconds, and user + system CPU seconds of brdfbench and its sandbox's children
+        /usr/bin/time -f "%e %U %S" -o "$W/t" "$B" accuracy "$@" --json "$W/out.json" --quiet
+        read -r wall user sys <"$W/t"
+        echo "$wall" >>"$W/$name.wall"
+        echo "$user + $sys" | bc -l >>"$W/$name.cpu"
+    done
+    median <"$W/$name.wall" >"$W/$name.med"
+    median <"$W/$name.cpu" >"$W/$name.cmed"
 }
 time_case builtin --model-file "$W/kf.glsl" --reference ct-ggx:F0=0.04
 time_case userfile --model-file "$W/kf.glsl" --reference "$W/f.glsl"
 time_case measured --models ct-ggx:F0=0.04 --reference "merl:$W/g.binary"
 base=$(cat "$W/builtin.med")
+cbase=$(cat "$W/builtin.cmed")
 for c in builtin userfile measured; do
     m=$(cat "$W/$c.med")
-    printf '%-9s median %.3f s over %d runs, ratio to the built-in reference %.2f\n' "$c" "$m" "$RUNS" \
-        "$(echo "$m / $base" | bc -l)"
+    cm=$(cat "$W/$c.cmed")
+    printf '%-9s median wall %.3f s (ratio %.2f), median CPU %.3f s (ratio %.2f), %d runs\n' "$c" "$m" \
+        "$(echo "$m / $base" | bc -l)" "$cm" "$(echo "$cm / $cbase" | bc -l)" "$RUNS"
 done
+uptime
