@@ -18,6 +18,10 @@
  * HEMI_M_KIND / HEMI_M_ID / HEMI_M_PSI and HEMI_R_KIND / HEMI_R_ID / HEMI_R_PSI, kinds of
  * hemisphere_geom.h; so the compiler emits those two models' code alone.
  * pvals holds 6 floats per parameter value: the model's n, p0, p1, then the reference's.
+ * With HEMI_R_KIND == HEMI_KIND_TABLE the reference's values are read from rtab instead: one
+ * float per (parameter value, theta_h row, theta_d, phi_d), each row of phi_d padded to a
+ * multiple of HEMI_W; a value that is not finite marks a point the reference does not cover
+ * (counted in HEMI_O_UNCOVERED, not a sample). Other kinds ignore rtab.
  */
 /* HEMI_W lanes per step: 16 (float16, for PoCL, which vectorises explicit vectors to 512 bits
    and calls the vector forms of sin, cos, exp, pow) or 1 (scalar float, for a driver that
@@ -39,6 +43,11 @@
 #define HEMI_LANES 0.0f
 #else
 #error "HEMI_W must be 16 or 1"
+#endif
+#if HEMI_W == 16
+#define HEMI_TAB_LOAD(p) vload16(0, (p))
+#else
+#define HEMI_TAB_LOAD(p) (*(p))
 #endif
 #define RSCALAR float
 /* The lobes' c^n from s = 1 - c (brdf_pow_lobe_s), as the lobe sweep takes it: a sharp lobe's
@@ -113,7 +122,8 @@ static int lane_isum(int v) { return v; }
 #endif
 
 __kernel void hemisphere_sweep(const int pass, __global const float *pvals, __global const float *threshold,
-                               const int p_count, const int nh, const int nd, const int np, __global float *out)
+                               const int p_count, const int nh, const int nd, const int np, __global float *out,
+                               __global const float *rtab)
 {
     const int gid = (int)get_global_id(0);
     if (gid >= p_count * nh)
@@ -132,6 +142,8 @@ __kernel void hemisphere_sweep(const int pass, __global const float *pvals, __gl
     REAL epi_rel = (REAL)(-1.0f), epi_abs = (REAL)(-1.0f), att_abs = (REAL)(-1.0f), ref_peak = (REAL)(0.0f);
     REAL epi_rel_at = (REAL)(-1.0f), epi_abs_at = (REAL)(-1.0f), att_abs_at = (REAL)(-1.0f);
     HEMI_IVEC used = (HEMI_IVEC)(0), below = (HEMI_IVEC)(0), invalid = (HEMI_IVEC)(0), eval_below = (HEMI_IVEC)(0);
+    HEMI_IVEC uncovered = (HEMI_IVEC)(0);
+    const int np_pad = (np + HEMI_W - 1) / HEMI_W * HEMI_W;   /* rtab's row length */
     float sumsq = 0.0f;
     for (int j = 0; j < nd; ++j) {
         const float td = hemi_theta_d(j, nd);
@@ -145,11 +157,18 @@ __kernel void hemisphere_sweep(const int pass, __global const float *pvals, __gl
             hemi_dirs(sth, cth, sd, cd, sin(pd), cos(pd), L, V);
             const REAL nl = L[2], nv = V[2];
             const HEMI_IVEC in_grid = isless(kk, (float)np);
-            const HEMI_IVEC above = isgreater(nl, 0.0f) & isgreater(nv, 0.0f) & in_grid;
-            below += HEMI_COUNT(in_grid & !above);
+            const HEMI_IVEC over = isgreater(nl, 0.0f) & isgreater(nv, 0.0f) & in_grid;
+            below += HEMI_COUNT(in_grid & !over);
+#if HEMI_R_KIND == HEMI_KIND_TABLE
+            const REAL r = HEMI_TAB_LOAD(rtab + ((size_t)(ip * nh + ih) * (size_t)nd + (size_t)j) * (size_t)np_pad + k);
+            const HEMI_IVEC above = over & isfinite(r);
+            uncovered += HEMI_COUNT(over & !isfinite(r));
+#else
+            const HEMI_IVEC above = over;
+            const REAL r = hemi_eval(HEMI_R_KIND, HEMI_R_ID, HEMI_R_PSI, L, V, nl, nv, lv, cth, sh, cd, rn, rp0, rp1);
+#endif
             used += HEMI_COUNT(above);
             eval_below += HEMI_COUNT(above & !(isgreater(L[2], 0.0f) & isgreater(V[2], 0.0f)));
-            const REAL r = hemi_eval(HEMI_R_KIND, HEMI_R_ID, HEMI_R_PSI, L, V, nl, nv, lv, cth, sh, cd, rn, rp0, rp1);
             ref_peak = select(ref_peak, fmax(ref_peak, r), above);
             if (!pass)
                 continue;
@@ -186,6 +205,7 @@ __kernel void hemisphere_sweep(const int pass, __global const float *pvals, __gl
     o[HEMI_O_EVAL_BELOW] = (float)lane_isum(eval_below);
     float unused;
     o[HEMI_O_REF_PEAK] = lane_max(ref_peak, (REAL)(0.0f), &unused);
+    o[HEMI_O_UNCOVERED] = (float)lane_isum(uncovered);
 }
 
 /* The model's and the reference's values at given samples, HEMI_W per work-item (out: the

@@ -16,7 +16,7 @@
 #define BRDF_HEMISPHERE_GEOM_H
 
 /* The kernel's output per (parameter value, theta_h row): HEMI_OUT_STRIDE floats. */
-#define HEMI_OUT_STRIDE 12
+#define HEMI_OUT_STRIDE 13
 #define HEMI_O_EPI_REL 0       /* max relative error over the epicentre samples */
 #define HEMI_O_EPI_REL_AT 1    /* its sample index j NP + k within the row */
 #define HEMI_O_ATT_ABS 2       /* max absolute error over the other samples */
@@ -29,12 +29,19 @@
 #define HEMI_O_INVALID 9       /* model values NaN, Inf or negative (excluded from the maxima) */
 #define HEMI_O_EVAL_BELOW 10   /* evaluated samples whose vectors the model saw below the horizon: 0 */
 #define HEMI_O_REF_PEAK 11     /* the row's largest reference value */
+#define HEMI_O_UNCOVERED 12    /* grid points above the horizon where a table reference has no value
+                                  (a measured material's unmeasured cell): not samples */
 
 /* Where a model's value comes from in the sweep (the kernel is built with the kind and id of
    the model and of its reference as constants). */
 #define HEMI_KIND_LOBE 0       /* a lobe model f(c, n) lifted: c = N.H (theta_h lobe) or R.V (psi lobe) */
 #define HEMI_KIND_PHYSICAL 1   /* a built-in physical model (brdf_pb_eval_h) */
 #define HEMI_KIND_USER_FULL 2  /* a user full BRDF of (L, V, N) (brdf_user_full) */
+#define HEMI_KIND_MEASURED 3   /* a measured material's table (the host's lookup, hemisphere.c) */
+/* A reference the device reads from a buffer of its values at the grid's points, computed by the
+   host in double (a user model as the reference of another: a program holds one user model's
+   text; a measured material): HEMI_R_KIND only. */
+#define HEMI_KIND_TABLE 4
 
 #define HEMI_HALF_PI 1.57079632679489661923
 

@@ -258,7 +258,9 @@ int cli_is_stdout(const char *path);
  * any sweep. PARAM_CALL stores one --param NAME=VALUE (repeatable) into PARAM_DEST. */
 #define CLI_FLAGS_FULLBRDF(REF, SWEEP, PARAM_CALL, PARAM_DEST, POINTS, GRID)                                        \
     { .name = "--reference", .value = "SPEC", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, REF), .def = "",    \
-      .help = "the reference every model is measured against: a built-in with parameters, e.g. ct-ggx:F0=0.04 "    \
+      .help = "the reference every model is measured against: a built-in with parameters, e.g. ct-ggx:F0=0.04; "  \
+              "for full BRDFs also a full user model (its file, user:NAME or its name) or a measured material "     \
+              "(merl:FILE.binary) "                                                                                 \
               "(default: each model's own; a full BRDF's family reference only where it agrees with the model "   \
               "within 1% at the lobe's peak, else refused)" },                                                      \
     { .name = "--axis", .value = "NAME[=MIN:MAX]", .kind = CLI_TEXT, .dest = CLI_DEST(const char *, SWEEP),        \

@@ -278,6 +278,92 @@ struct full_plan {
     struct model_spec lobe_reference;   /* --reference for the lobe models */
 };
 
+/* A measured material named by --reference, open for the run (closed by cmd_accuracy). */
+static struct hemi_measured measured_ref;
+static int measured_ref_open;
+
+static int ends_with(const char *s, const char *tail)
+{
+    size_t a = strlen(s), b = strlen(tail);
+    return a >= b && strcmp(s + a - b, tail) == 0;
+}
+
+/* 1 when --reference names a model file rather than a model: a path (a '/') or a file name of the
+   kinds --model-file reads. */
+static int names_file(const char *text)
+{
+    static const char *const tails[] = { ".brdf", ".glsl", ".hlsl", ".cl" };
+    if (strchr(text, '/'))
+        return 1;
+    for (size_t i = 0; i < sizeof tails / sizeof tails[0]; ++i)
+        if (ends_with(text, tails[i]))
+            return 1;
+    return 0;
+}
+
+/* --reference SPEC (docs/user-models.md, "Measured over the hemisphere"): merl:FILE (or
+ * FILE.binary), a measured material; user:NAME[:p=v,...], a user model of the command line by its
+ * name; a model file (a path, or a .brdf, .glsl, .hlsl or .cl file name that names no model),
+ * read as --model-file reads it (the same file as a --model-file is the same model); else a
+ * built-in with parameters (ct-ggx:F0=0.04) or a user model's name (NAME@FILE.brdf included).
+ * 0, or -1 with the message in err. */
+static int resolve_reference(const char *text, struct model_spec *out, char *err, size_t errlen)
+{
+    char inner[700];
+    if (strncmp(text, "merl:", 5) == 0 || ends_with(text, ".binary")) {
+        const char *path = strncmp(text, "merl:", 5) == 0 ? text + 5 : text;
+        if (!*path) {
+            snprintf(err, errlen, "--reference: merl: names no file (accepted: merl:FILE.binary, a MERL file)");
+            return -1;
+        }
+        if (measured_ref_open) {
+            hemisphere_measured_close(&measured_ref);
+            measured_ref_open = 0;
+        }
+        if (hemisphere_measured_open(path, &measured_ref, out, inner, sizeof inner)) {
+            snprintf(err, errlen, "--reference: %.*s", (int)errlen - 16, inner);
+            return -1;
+        }
+        measured_ref_open = 1;
+        return 0;
+    }
+    /* the model's id: the text up to its parameters (NAME:p=v) */
+    char id[MODEL_LABEL_MAX];
+    const char *name = strncmp(text, "user:", 5) == 0 ? text + 5 : text;
+    snprintf(id, sizeof id, "%.*s", (int)strcspn(name, ":"), name);
+    if (strncmp(text, "user:", 5) == 0) {
+        const struct model_info *info = models_find(id);
+        if (!info || model_is_builtin(info)) {
+            const char *names = usermodel_names();
+            snprintf(err, errlen, "--reference: %.60s: no user model of that name (accepted: %s)", text,
+                     *names ? names : "none given: --model-file FILE or --model NAME=EXPR first, or --reference FILE");
+            return -1;
+        }
+    }
+    /* a file name that is also a model's name (NAME@FILE.brdf, a .brdf file's model) is the model */
+    if (names_file(text) && !models_find(id)) {
+        const struct user_model *um = NULL;
+        if (usermodel_load_file(text, &um, inner, sizeof inner)) {
+            const char *why = strncmp(inner, "--model-file: ", 14) == 0 ? inner + 14 : inner;
+            snprintf(err, errlen, "--reference: %.*s", (int)errlen - 16, why);
+            return -1;
+        }
+        model_spec_default(&um->info, out);
+    } else if (model_spec_parse(name, out, inner, sizeof inner)) {
+        snprintf(err, errlen, "--reference: %.*s", (int)errlen - 16, inner);
+        return -1;
+    }
+    const struct user_model *um = usermodel_of(out);
+    if (um && um->full && !usermodel_host_ready(um)) {
+        /* the sweep compares with the reference's double values, computed on the host */
+        snprintf(err, errlen, "--reference: %s: its text does not compile as C for the host's double evaluation "
+                              "(%.200s), so it cannot be a reference (accepted: a model file whose text is C, a "
+                              "built-in, merl:FILE.binary)", out->label, um->host_error);
+        return -1;
+    }
+    return 0;
+}
+
 /* Moves the full BRDFs of models[] into plan (their references and axes checked); returns the
  * count of lobe models left, or -1 with the message in err. */
 static int plan_full_models(struct model_spec *models, int nmodels, struct full_plan *plan, const char *reference_text,
@@ -293,18 +379,8 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     if (hemisphere_grid_check(&plan->grid, points, err, errlen))
         return -1;
     struct model_spec named_ref;
-    if (reference_text && model_spec_parse(reference_text, &named_ref, err, errlen)) {
-        char inner[400];
-        snprintf(inner, sizeof inner, "%.399s", err);
-        snprintf(err, errlen, "--reference: %s", inner);
+    if (reference_text && resolve_reference(reference_text, &named_ref, err, errlen))
         return -1;
-    }
-    if (reference_text && !model_is_builtin(named_ref.info)) {
-        /* a program holds one user model's text: a user reference would be the model itself */
-        snprintf(err, errlen, "--reference: %s is a user model (accepted: a built-in model with parameters, e.g. "
-                              "blinn, ggx or ct-ggx:F0=0.04)", named_ref.label);
-        return -1;
-    }
     if (reference_text)
         plan->lobe_reference = named_ref;
     struct hemi_axis axis;
@@ -314,7 +390,7 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     axis.count = points;
     int kept = 0;
     for (int m = 0; m < nmodels; ++m) {
-        if (!hemisphere_applies(&models[m])) {
+        if (!hemisphere_applies_against(&models[m], reference_text ? &named_ref : NULL)) {
             models[kept++] = models[m];
             continue;
         }
@@ -326,8 +402,17 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
             return -1;
         plan->axes[k] = axis;
         if (hemisphere_axis_check(&plan->axes[k], fixed->v, fixed->count, &models[m], &plan->refs[k],
-                                  lobe_grid->n_min, lobe_grid->n_max, err, errlen))
+                                  lobe_grid->n_min, lobe_grid->n_max, err, errlen) ||
+            hemisphere_table_check(&plan->refs[k], &plan->grid, points, err, errlen))
             return -1;
+    }
+    if (reference_text && kept > 0 && !model_is_builtin(named_ref.info)) {
+        /* the lobe sweep compares on the device, where a program holds one user model's text (the
+           model's); a user model or a measured material is a reference of the hemisphere sweep */
+        snprintf(err, errlen, "--reference: %s is the reference of full BRDFs only, and %s is a lobe model of c and n "
+                              "(accepted for a lobe model: a built-in, e.g. blinn or ggx)", named_ref.label,
+                 models[0].label);
+        return -1;
     }
     if (plan->count == 0 && (sweep_text || fixed->count > 0)) {
         snprintf(err, errlen, "%s applies to the hemisphere sweep of full BRDFs, and none is among the models "
@@ -338,7 +423,19 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     return kept;
 }
 
+static int accuracy_main(int argc, char **argv);
+
 int cmd_accuracy(int argc, char **argv)
+{
+    int rc = accuracy_main(argc, argv);
+    if (measured_ref_open) {
+        hemisphere_measured_close(&measured_ref);
+        measured_ref_open = 0;
+    }
+    return rc;
+}
+
+static int accuracy_main(int argc, char **argv)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
     int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results", "accuracy.csv");

@@ -171,7 +171,7 @@ static int gate_known_members(const struct jr_doc *d, const struct jr_value *gv,
 {
     static const char *keys[] = { "model", "model_file", "expression", "metric", "n_min", "n_max", "n_step",
                                   "samples", "min", "max", "name", "claimed", "note", "accept_device_disagreement",
-                                  "measured", NULL };
+                                  "measured", "reference", NULL };
     for (size_t k = 0; k < gv->count; ++k) {
         int known = 0;
         for (int j = 0; keys[j] && !known; ++j)
@@ -179,7 +179,8 @@ static int gate_known_members(const struct jr_doc *d, const struct jr_value *gv,
         if (!known)
             return jr_fail(d, &gv->items[k], err, errlen,
                            "%sunknown member \"%.40s\" (accepted: model, model_file, expression, metric, n_min, "
-                           "n_max, n_step, samples, min, max, name, claimed, note, accept_device_disagreement, measured)", where,
+                           "n_max, n_step, samples, min, max, name, claimed, note, accept_device_disagreement, measured, "
+                           "reference)", where,
                            gv->keys[k]);
     }
     return 0;
@@ -208,6 +209,22 @@ static int gate_metric(const struct jr_doc *d, const struct jr_value *gv, const 
         return jr_fail(d, metric_v, err, errlen, "%salbedo.max needs a normalised or microfacet model (%s is %s)",
                        where, g->model.info->id, model_family_name(g->model.info->family));
 
+    /* "reference": what a hemisphere.* gate measures its full BRDF against (as accuracy's
+       --reference: a built-in with parameters, or a full user model the gates file declares) */
+    if (member(d, gv, "reference", JR_STR, where, &v, err, errlen))
+        return EXIT_USAGE;
+    if (v && !gate_metric_is_hemisphere(g->metric))
+        return jr_fail(d, v, err, errlen, "%s\"reference\" is read only by the hemisphere.* metrics (this gate's is %s)",
+                       where, metrics[g->metric].name);
+    if (v) {
+        if (model_spec_parse(v->str, &g->reference, msg, sizeof msg))
+            return jr_fail(d, v, err, errlen, "%s\"reference\": %s", where, msg);
+        if (!hemisphere_reference_ok(&g->reference))
+            return jr_fail(d, v, err, errlen, "%s\"reference\": %s is a lobe of c and n, not a BRDF of (L, V) "
+                           "(accepted: a built-in, e.g. ct-ggx:F0=0.04 or ggx, or a full user model of the gates "
+                           "file)", where, g->reference.label);
+        g->has_reference = 1;
+    }
     if (member(d, gv, "measured", JR_STR, where, &v, err, errlen))
         return EXIT_USAGE;
     if (v && g->metric != GATE_MEASURED_RMS)

@@ -54,6 +54,8 @@ struct gate {
     int line, col;             /* where the gate is in the gates file */
     int accept_device_disagreement; /* "accept_device_disagreement": true: judged on the figure alone */
     char measured_path[4096];  /* "measured": the MERL file of a measured.rms gate, resolved */
+    int has_reference;         /* "reference": a hemisphere.* gate's reference, named (else the family's) */
+    struct model_spec reference;
 
     /* Measured. */
     enum gate_status status;

@@ -189,7 +189,7 @@ int gate_set_write_json(const struct gate_set *gs, const char *path, const struc
         jw_kv_str(&w, "name", g->name);
         jw_kv_str(&w, "model", g->model.info->id);
         jw_kv_str(&w, "label", g->model.label);
-        jw_kv_str(&w, "reference", g->model.info->reference_id);
+        jw_kv_str(&w, "reference", g->has_reference ? g->reference.label : g->model.info->reference_id);
         jw_kv_bool(&w, "user_model", models_runtime(g->model.info) != NULL);
         jw_kv_str(&w, "metric", gate_metric_name(g->metric));
         jw_kv_fields(&w, &g->grid, accuracy_grid_n_fields, ACCURACY_GRID_N_FIELDS);

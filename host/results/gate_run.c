@@ -264,7 +264,9 @@ static int gate_hemisphere(struct gate *g, struct hemi_ctx *h)
     struct model_spec ref;
     char err[512];
     g->measured = g->at_n = g->at_x = NAN;
-    if (hemisphere_default_reference(&g->model, &axis, &ref, err, sizeof err) ||
+    if (g->has_reference)
+        ref = g->reference;
+    if ((!g->has_reference && hemisphere_default_reference(&g->model, &axis, &ref, err, sizeof err)) ||
         hemisphere_axis_check(&axis, NULL, 0, &g->model, &ref, g->grid.n_min, g->grid.n_max, err, sizeof err)) {
         snprintf(g->reason, sizeof g->reason, "%s", err);
         return 0;

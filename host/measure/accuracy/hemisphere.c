@@ -35,14 +35,82 @@ int hemisphere_applies(const struct model_spec *m)
     return model_is_builtin(m->info) && m->info->family == MODEL_FAMILY_PHYSICAL;
 }
 
+/* A measured reference's kernel_id: no row of the registry has it. */
+#define HEMI_MEASURED_ID (-2)
+
+int hemisphere_applies_against(const struct model_spec *m, const struct model_spec *named_ref)
+{
+    if (named_ref && model_is_full(m->info) && model_is_builtin(named_ref->info) &&
+        named_ref->info->family == MODEL_FAMILY_TERM)
+        return 0;
+    return hemisphere_applies(m);
+}
+
 /* HEMI_KIND_* of a model, or -1 when the sweep cannot evaluate it (a user lobe model). */
 static int model_kind(const struct model_spec *m)
 {
+    if (m->info->kernel_id == HEMI_MEASURED_ID && !model_is_builtin(m->info) && !models_runtime(m->info))
+        return HEMI_KIND_MEASURED;
     if (model_is_full(m->info))
         return HEMI_KIND_USER_FULL;
     if (!model_is_builtin(m->info))
         return -1;
     return m->info->family == MODEL_FAMILY_PHYSICAL ? HEMI_KIND_PHYSICAL : HEMI_KIND_LOBE;
+}
+
+int hemisphere_reference_ok(const struct model_spec *ref)
+{
+    int k = model_kind(ref);
+    return k == HEMI_KIND_LOBE || k == HEMI_KIND_PHYSICAL || k == HEMI_KIND_USER_FULL || k == HEMI_KIND_MEASURED;
+}
+
+/* 1 when the device reads the reference's values from the host's table (kernels/hemisphere.cl):
+   a user model (a program holds one user model's text, the measured model's) or a measured one. */
+static int kind_is_table(int kind) { return kind == HEMI_KIND_USER_FULL || kind == HEMI_KIND_MEASURED; }
+
+/* ---- a measured reference ------------------------------------------------------------------ */
+
+int hemisphere_measured_open(const char *path, struct hemi_measured *hm, struct model_spec *spec, char *err,
+                             size_t errlen)
+{
+    memset(hm, 0, sizeof *hm);
+    int rc = merl_read(path, &hm->mat, err, errlen);
+    if (rc)
+        return rc;
+    snprintf(hm->id, sizeof hm->id, "merl:%.290s", hm->mat.name);
+    hm->info.id = hm->id;
+    hm->info.kernel_id = HEMI_MEASURED_ID;
+    hm->info.family = MODEL_FAMILY_REFERENCE;
+    hm->info.lobe = LOBE_THETA_H;
+    hm->info.nparams = 0;
+    hm->info.reference_id = hm->id;
+    hm->info.formula = "the luminance of the measured table's cell (nearest, no interpolation)";
+    hm->info.description = "a measured material (MERL format)";
+    hm->info.kind = MODEL_KIND_OTHER;
+    memset(spec, 0, sizeof *spec);
+    spec->info = &hm->info;
+    snprintf(spec->label, sizeof spec->label, "%.*s", (int)sizeof spec->label - 1, hm->id);
+    return 0;
+}
+
+void hemisphere_measured_close(struct hemi_measured *hm)
+{
+    merl_free(&hm->mat);
+}
+
+/* The measured reference's value at L, V about N = z: its cell's luminance, NAN where a channel
+   of the cell was not measured (that grid point is no sample). */
+static double measured_eval(const struct model_spec *m, const double L[3], const double V[3])
+{
+    static const double N[3] = { 0, 0, 1 };
+    const struct hemi_measured *hm = (const struct hemi_measured *)m->info;   /* info is its first member */
+    double th, td, pd, rgb[3];
+    merl_half_diff(L, V, N, &th, &td, &pd);
+    if (!isfinite(th) || !isfinite(td) || !isfinite(pd))
+        return NAN;
+    if (!merl_cell(&hm->mat, merl_index(th, td, pd, NULL, NULL, NULL), rgb))
+        return NAN;
+    return brdf_merl_luminance(rgb[0], rgb[1], rgb[2]);
 }
 
 /* ---- the axis ------------------------------------------------------------------------------ */
@@ -187,9 +255,11 @@ int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, i
                           const struct model_spec *m, const struct model_spec *ref, double n_min, double n_max,
                           char *err, size_t errlen)
 {
-    if (model_kind(ref) < 0 || model_kind(ref) == HEMI_KIND_USER_FULL) {
-        snprintf(err, errlen, "--reference: %s cannot be the reference of the hemisphere sweep (accepted: a built-in "
-                              "model, e.g. blinn, ggx or ct-ggx:F0=0.04)", ref->label);
+    if (!hemisphere_reference_ok(ref)) {
+        snprintf(err, errlen, "--reference: %s is a lobe of c and n, not a BRDF of (L, V), so it cannot be the "
+                              "reference of the full BRDF %s (accepted: a built-in model, e.g. blinn, ggx or "
+                              "ct-ggx:F0=0.04, a full user model or its file, or merl:FILE.binary)", ref->label,
+                 m->label);
         return EXIT_USAGE;
     }
     for (int i = 0; i < nfixed; ++i)
@@ -412,6 +482,8 @@ double hemisphere_eval_host(const struct model_spec *m, int kind, const double L
         s.params[1] = vals[2];
         return model_eval_full_host(&s, L, V, N, vals[0]);
     }
+    case HEMI_KIND_MEASURED:
+        return measured_eval(m, L, V);
     default:
         return NAN;
     }
@@ -520,8 +592,9 @@ static int kernels_for(struct hemi_ctx *h, const struct hemi_result *r, cl_kerne
        scalar loop, as the lobe sweep's ACC_W */
     snprintf(options, sizeof options, "%.120s%s-DHEMI_M_KIND=%d -DHEMI_M_ID=%d -DHEMI_M_PSI=%d -DHEMI_R_KIND=%d "
              "-DHEMI_R_ID=%d -DHEMI_R_PSI=%d -DHEMI_W=%d", h->build_options, h->build_options[0] ? " " : "",
-             r->model_kind, r->model.info->kernel_id, r->model.info->lobe == LOBE_PSI, r->ref_kind,
-             r->reference.info->kernel_id, r->reference.info->lobe == LOBE_PSI, hemi_lanes(h));
+             r->model_kind, r->model.info->kernel_id, r->model.info->lobe == LOBE_PSI,
+             r->ref_table ? HEMI_KIND_TABLE : r->ref_kind, r->ref_table ? 0 : r->reference.info->kernel_id,
+             r->reference.info->lobe == LOBE_PSI, hemi_lanes(h));
     if (!model_is_builtin(r->model.info)) {
         int rc = programs_kernel(h->s, "hemisphere.cl", options, &r->model, "hemisphere_sweep", NULL, sweep);
         if (!rc)
@@ -591,14 +664,95 @@ const char *hemisphere_status(const struct hemi_result *r)
     return !r->ok ? "failed" : r->device_disagrees ? "device_disagrees" : r->invalid ? "invalid_values" : "ok";
 }
 
+const char *hemisphere_reference_source(const struct hemi_result *r)
+{
+    return r->ref_kind == HEMI_KIND_MEASURED ? "measured table" : r->ref_table ? "host double values" : "device code";
+}
+
 void hemisphere_result_free(struct hemi_result *r)
 {
     free(r->per_p);
     r->per_p = NULL;
+    free(r->ref_values);
+    r->ref_values = NULL;
+}
+
+int hemisphere_table_check(const struct model_spec *ref, const struct hemi_grid *g, int points, char *err,
+                           size_t errlen)
+{
+    if (!kind_is_table(model_kind(ref)))
+        return 0;
+    double values = (double)points * g->nh * g->nd * (double)((g->np + 15) / 16 * 16);
+    if (values > (double)HEMI_MAX_TABLE) {
+        snprintf(err, errlen, "--reference: %s is evaluated by the host at each of %.4g grid points x axis values "
+                              "(accepted: at most %ld; fewer --hemisphere-grid cells or --axis-points)", ref->label,
+                 values, HEMI_MAX_TABLE);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* The reference's double values at every grid point above the horizon (NAN elsewhere) into out,
+   per (p, theta_h, theta_d, phi_d): run through model_run_isolated, so that a user model's code
+   is called directly in its sandbox's child for the whole table, not a round trip per value. */
+static void fill_values(void *vctx, void *vout)
+{
+    const struct hemi_result *r = vctx;
+    const struct hemi_grid *g = &r->grid;
+    double *out = vout;
+    for (int ip = 0; ip < r->p_count; ++ip)
+        for (int i = 0; i < g->nh; ++i) {
+            double th = hemi_theta_h(i, g->nh);
+            for (int j = 0; j < g->nd; ++j) {
+                double td = hemi_theta_d(j, g->nd);
+                double *row = out + (((size_t)ip * g->nh + i) * g->nd + j) * g->np;
+                for (int k = 0; k < g->np; ++k) {
+                    double L[3], V[3];
+                    hemisphere_dirs(th, td, hemi_phi_d(k, g->np), L, V);
+                    row[k] = L[2] > 0 && V[2] > 0
+                                 ? hemisphere_eval_host(&r->reference, r->ref_kind, L, V, r->per_p[ip].rvals)
+                                 : NAN;
+                }
+            }
+        }
+}
+
+/* A table reference's values (hemisphere.h, ref_table): each grid point's above the horizon in
+   double (r->ref_values, kept for the RMS), and as floats in a device buffer, phi_d's rows padded
+   to the kernel's lanes; *buf is a one-float buffer for other references (the kernel's rtab). */
+static int reference_table(struct hemi_ctx *h, struct hemi_result *r, float **ftab, cl_mem *buf)
+{
+    int rc = 0;
+    cl_int e;
+    const struct hemi_grid *g = &r->grid;
+    if (!r->ref_table) {
+        float zero = 0;
+        *buf = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof zero, &zero, &e);
+        CL_CHECK_ERR_GOTO(e, "clCreateBuffer(hemisphere reference table)", done);
+        return 0;
+    }
+    int lanes = hemi_lanes(h), np_pad = (g->np + lanes - 1) / lanes * lanes;
+    size_t rows = (size_t)r->p_count * g->nh * g->nd, cells = rows * (size_t)g->np;
+    r->ref_values = malloc(cells * sizeof *r->ref_values);
+    *ftab = malloc(rows * (size_t)np_pad * sizeof **ftab);
+    if (!r->ref_values || !*ftab) {
+        fprintf(stderr, "brdfbench: out of memory for the values of the reference %s\n", r->reference.label);
+        return EXIT_RUNTIME;
+    }
+    if ((rc = model_run_isolated(&r->reference, fill_values, r, r->ref_values, cells * sizeof *r->ref_values)) != 0)
+        return rc;
+    for (size_t row = 0; row < rows; ++row)
+        for (int k = 0; k < np_pad; ++k)
+            (*ftab)[row * np_pad + k] = k < g->np ? (float)r->ref_values[row * g->np + k] : NAN;
+    *buf = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, rows * (size_t)np_pad * sizeof(float),
+                          *ftab, &e);
+    CL_CHECK_ERR_GOTO(e, "clCreateBuffer(hemisphere reference table)", done);
+done:
+    return rc;
 }
 
 static int launch_pass(struct hemi_ctx *h, cl_kernel k, int pass, cl_mem bp, cl_mem bt, int p_count,
-                       const struct hemi_grid *g, cl_mem bo, const char *label, double *seconds)
+                       const struct hemi_grid *g, cl_mem bo, cl_mem brt, const char *label, double *seconds)
 {
     int rc = 0;
     cl_event ev = NULL;
@@ -611,6 +765,7 @@ static int launch_pass(struct hemi_ctx *h, cl_kernel k, int pass, cl_mem bp, cl_
     CL_CHECK_GOTO(clSetKernelArg(k, 5, sizeof nd, &nd), done);
     CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof np, &np), done);
     CL_CHECK_GOTO(clSetKernelArg(k, 7, sizeof bo, &bo), done);
+    CL_CHECK_GOTO(clSetKernelArg(k, 8, sizeof brt, &brt), done);
     size_t local = 4, global = ((size_t)p_count * (size_t)g->nh + local - 1) / local * local;
     double t0 = wall_seconds();
     if ((rc = clsession_launch(h->s, k, 1, &global, &local, label, &ev)) != 0)
@@ -664,6 +819,16 @@ static void one_figure(struct hemi_result *r, struct hemi_per_p *pp, const float
     if (!(*dbl_at > -INFINITY))
         *dbl_at = NAN;   /* the double finds no sample of the figure there: a disagreement below */
     *chk = fabs(dev->value - *dbl_at);
+    if (r->ref_kind == HEMI_KIND_MEASURED) {
+        /* the table is constant over each of its cells: a refined maximum would walk to a cell's
+           edge and measure the table's step, not the model; the figure is the grid's maximum,
+           recomputed in double at its point (docs/definitions.md) */
+        dbl->value = *dbl_at;
+        dbl->th = dev->th;
+        dbl->td = dev->td;
+        dbl->pd = dev->pd;
+        return;
+    }
     /* the box: one grid cell either side (theta_h's cells widen as u^2 does) */
     double u = (row + 0.5) / r->grid.nh;
     double hth = 2.0 * (pi / 2) * (u + 1.0 / r->grid.nh) / r->grid.nh;
@@ -721,7 +886,9 @@ static double rms_double(const struct hemi_result *r, const struct hemi_per_p *p
                 if (!(L[2] > 0 && V[2] > 0))
                     continue;
                 double f = hemisphere_eval_host(&r->model, r->model_kind, L, V, pp->mvals);
-                double fr = hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
+                double fr = r->ref_values
+                                ? r->ref_values[(((size_t)(pp - r->per_p) * g->nh + i) * g->nd + j) * g->np + k]
+                                : hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
                 if (!(f >= 0) || !isfinite(f) || !isfinite(fr))
                     continue;
                 part += (L[2] * L[2] + V[2] * V[2]) * (f - fr) * (f - fr);
@@ -829,8 +996,8 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
 {
     int rc = 0;
     cl_int e;
-    cl_mem bp = NULL, bt = NULL, bo = NULL;
-    float *pv = NULL, *thr = NULL, *raw = NULL;
+    cl_mem bp = NULL, bt = NULL, bo = NULL, brt = NULL;
+    float *pv = NULL, *thr = NULL, *raw = NULL, *ftab = NULL;
     cl_kernel sweep, probe_k;
     memset(out, 0, sizeof *out);
     out->model = *m;
@@ -852,6 +1019,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
     }
     out->model_kind = model_kind(m);
     out->ref_kind = model_kind(ref);
+    out->ref_table = kind_is_table(out->ref_kind);
     out->axis = *axis;
     out->grid = *g;
     out->p_count = axis->count;
@@ -885,6 +1053,8 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
     }
     bp = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)P * 6 * sizeof(float), pv, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(hemisphere parameters)", done);
+    if ((rc = reference_table(h, out, &ftab, &brt)) != 0)
+        goto done;
     bt = clCreateBuffer(h->s->ctx, CL_MEM_READ_ONLY, (size_t)P * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(hemisphere thresholds)", done);
     bo = clCreateBuffer(h->s->ctx, CL_MEM_WRITE_ONLY, rows * HEMI_OUT_STRIDE * sizeof(float), NULL, &e);
@@ -895,7 +1065,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
        takes below in double: no pass is needed for it. */
     int lobe_ref = out->ref_kind == HEMI_KIND_LOBE;
     if (!lobe_ref) {
-        if ((rc = launch_pass(h, sweep, 0, bp, bt, P, g, bo, m->label, &out->device_seconds)) != 0)
+        if ((rc = launch_pass(h, sweep, 0, bp, bt, P, g, bo, brt, m->label, &out->device_seconds)) != 0)
             goto done;
         CL_CHECK_GOTO(clEnqueueReadBuffer(h->s->queue, bo, CL_TRUE, 0, rows * HEMI_OUT_STRIDE * sizeof(float), raw,
                                           0, NULL, NULL), done);
@@ -906,7 +1076,8 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
             peak = fmax(peak, raw[((size_t)i * g->nh + ih) * HEMI_OUT_STRIDE + HEMI_O_REF_PEAK]);
         /* the peak of a lobe lies at L = V = N, between the grid's first cells: taken there in double */
         double N[3] = { 0, 0, 1 };
-        double at_normal = hemisphere_eval_host(ref, out->ref_kind, N, N, out->per_p[i].rvals);
+        double at_normal = out->ref_kind == HEMI_KIND_MEASURED   /* a table's cell there, which no sample holds */
+                               ? NAN : hemisphere_eval_host(ref, out->ref_kind, N, N, out->per_p[i].rvals);
         if (at_normal > peak)
             peak = at_normal;
         out->per_p[i].peak = peak;
@@ -915,12 +1086,14 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
     CL_CHECK_GOTO(clEnqueueWriteBuffer(h->s->queue, bt, CL_TRUE, 0, (size_t)P * sizeof(float), thr, 0, NULL, NULL),
                   done);
     /* pass 1: the figures */
-    if ((rc = launch_pass(h, sweep, 1, bp, bt, P, g, bo, m->label, &out->device_seconds)) != 0)
+    if ((rc = launch_pass(h, sweep, 1, bp, bt, P, g, bo, brt, m->label, &out->device_seconds)) != 0)
         goto done;
     CL_CHECK_GOTO(clEnqueueReadBuffer(h->s->queue, bo, CL_TRUE, 0, rows * HEMI_OUT_STRIDE * sizeof(float), raw, 0,
                                       NULL, NULL), done);
     if ((rc = probe(h, probe_k, bp, out)) != 0)
         goto done;
+    if (out->ref_table)   /* the device read the reference's double values rounded to float: half an ulp */
+        out->ref_float_error = 0x1p-24;
     if (lobe_ref)   /* the samples' largest reference values, from pass 1, never above the peak by more than float
                        rounding: kept as the scale of the check when they are */
         for (int i = 0; i < P; ++i)
@@ -939,6 +1112,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
             pp->below += (long long)o[HEMI_O_BELOW];
             pp->invalid += (long long)o[HEMI_O_INVALID];
             pp->eval_below += (long long)o[HEMI_O_EVAL_BELOW];
+            pp->uncovered += (long long)o[HEMI_O_UNCOVERED];
         }
         pp->rms_device = sqrt(sumsq * rms_scale);
         pp->rms = rms_double(out, pp);
@@ -946,6 +1120,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
         out->below += pp->below;
         out->invalid += pp->invalid;
         out->eval_below += pp->eval_below;
+        out->uncovered += pp->uncovered;
         double t = thr[i];
         one_figure(out, pp, raw, i, FIG_EPI_REL, HEMI_O_EPI_REL, t, &pp->dev_epi_rel, &pp->epi_rel, &pp->chk_epi_rel,
                    &pp->dbl_epi_rel);
@@ -1007,6 +1182,9 @@ done:
         clReleaseMemObject(bt);
     if (bp)
         clReleaseMemObject(bp);
+    if (brt)
+        clReleaseMemObject(brt);
+    free(ftab);
     free(raw);
     free(thr);
     free(pv);

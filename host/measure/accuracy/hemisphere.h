@@ -8,6 +8,7 @@
 #define BRDF_HEMISPHERE_H
 
 #include "clsession.h"
+#include "merl.h"
 #include "models.h"
 
 #define HEMI_DEFAULT_NH 48
@@ -21,6 +22,10 @@
 #define HEMI_MAX_WORK 5e8          /* grid points x axis values of one run */
 /* "a few units of 2^-24 peak" (docs/definitions.md, Device check) */
 #define HEMI_FLOOR_UNITS 8.0
+/* Values of a table reference (a user model or a measured material as the reference: one per
+   grid point and axis value, kernels/hemisphere.cl's rtab): 64 MiB of floats on the device and
+   128 MiB of doubles on the host at most (8 axis values of the MERL tables' 90x90x180 fit) */
+#define HEMI_MAX_TABLE (1L << 24)
 
 /* What an axis sweeps: the shininess slot under one of its engine names, or a named parameter. */
 enum hemi_quantity { HQ_N, HQ_ALPHA, HQ_ROUGHNESS, HQ_M, HQ_PARAM };
@@ -63,7 +68,7 @@ struct hemi_per_p {
     double dbl_epi_rel, dbl_att_abs, dbl_whole_abs;   /* the double figure at the device's point */
     double rms;                        /* RMS of cos(theta_i) (f - f_ref) over dw_i dw_o, in double */
     double rms_device;                 /* the same quadrature summed by the device in float */
-    long long used, below, invalid, eval_below;
+    long long used, below, invalid, eval_below, uncovered;
 };
 
 struct hemi_check {
@@ -81,7 +86,9 @@ struct hemi_result {
     struct hemi_per_p *per_p;
     struct hemi_extreme epicentre, attenuation, whole, rms;   /* over the range, refined in double */
     struct hemi_extreme grid_epicentre, grid_attenuation, grid_whole;   /* as the device found them */
-    long long used, below, invalid, eval_below;
+    long long used, below, invalid, eval_below, uncovered;
+    int ref_table;                     /* 1: the device read the reference's double values (a table reference) */
+    double *ref_values;                /* those values in double, per (p, theta_h, theta_d, phi_d); NAN: not covered */
     double float_cancellation;         /* max |f_device - f_double| / peak at random samples */
     double ref_float_error;            /* the same of the reference */
     int checks_at_float_noise;         /* figures the device resolves only to its float noise */
@@ -100,9 +107,32 @@ struct hemi_ctx {
     int nprogs;
 };
 
+/* A measured material as the sweep's reference (--reference merl:FILE.binary): the luminance of
+ * its table's cell holding (theta_h, theta_d, phi_d), NAN where a channel was not measured. info
+ * comes first, so that a model_spec names it (spec.info == &hm->info); it is no model of the
+ * registry. */
+struct hemi_measured {
+    struct model_info info;
+    char id[300];
+    struct merl_material mat;
+};
+/* Reads the material of path into *hm and names it in *spec ("merl:NAME"). 0 or EXIT_USAGE /
+ * EXIT_RUNTIME with a one-line message in err (the reader's, which starts with the path). */
+int hemisphere_measured_open(const char *path, struct hemi_measured *hm, struct model_spec *spec, char *err,
+                             size_t errlen);
+void hemisphere_measured_close(struct hemi_measured *hm);
+/* 1 when a model can be the reference of the hemisphere sweep: a built-in, a full user model, a
+ * measured material. */
+int hemisphere_reference_ok(const struct model_spec *ref);
+
 /* 1 when the model is measured by the hemisphere sweep: a user full BRDF or a built-in
  * physical model (its lobe sweep puts V below the horizon past 45 degrees). */
 int hemisphere_applies(const struct model_spec *m);
+
+/* hemisphere_applies, with the reference named on the command line (NULL: none): a full BRDF
+ * measured against a built-in Fresnel or shadowing-masking term is that term's lobe of one angle,
+ * as when its header names the term. */
+int hemisphere_applies_against(const struct model_spec *m, const struct model_spec *named_ref);
 
 /* Parses --axis NAME[=MIN:MAX] or PARAM:ROLE[=MIN:MAX] into *a (count and n range from the caller). 0 or EXIT_USAGE. */
 int hemisphere_axis_parse(const char *text, struct hemi_axis *a, char *err, size_t errlen);
@@ -113,6 +143,10 @@ int hemisphere_fixed_parse(const char *text, struct hemi_fixed *fixed, int *coun
 int hemisphere_axis_check(struct hemi_axis *a, const struct hemi_fixed *fixed, int nfixed,
                           const struct model_spec *m, const struct model_spec *ref, double n_min, double n_max,
                           char *err, size_t errlen);
+/* Checks that a reference the host evaluates at every grid point (a user model, a measured
+ * material) has room for its values (HEMI_MAX_TABLE). 0 or EXIT_USAGE. */
+int hemisphere_table_check(const struct model_spec *ref, const struct hemi_grid *g, int points, char *err,
+                           size_t errlen);
 /* Checks a grid. 0 or EXIT_USAGE. */
 int hemisphere_grid_check(const struct hemi_grid *g, int points, char *err, size_t errlen);
 
@@ -134,6 +168,9 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
                    const struct hemi_grid *g, struct hemi_result *out);
 void hemisphere_result_free(struct hemi_result *r);
 const char *hemisphere_status(const struct hemi_result *r);
+/* How the device had the reference: "device code", "host double values" (a user model as the
+ * reference) or "measured table" (its cells looked up by the host). */
+const char *hemisphere_reference_source(const struct hemi_result *r);
 
 /* A model's value in double at L, V about N = z (kind HEMI_KIND_*; vals = n, p0, p1). */
 double hemisphere_eval_host(const struct model_spec *m, int kind, const double L[3], const double V[3],

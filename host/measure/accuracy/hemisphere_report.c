@@ -32,6 +32,9 @@ void hemisphere_json_rows(struct jw *w, const struct hemi_result *res, int count
             jw_kv_num(w, r->model.info->params[p].name, r->model.params[p]);
         jw_obj_end(w);
         jw_kv_str(w, "reference", r->reference.label);
+        /* how the device had the reference: its own code, or the host's double values read from a
+           table (a user model or a measured material as the reference) */
+        jw_kv_str(w, "reference_source", hemisphere_reference_source(r));
         jw_kv_str(w, "status", hemisphere_status(r));
         if (r->reason[0])
             jw_kv_str(w, "reason", r->reason);
@@ -62,6 +65,7 @@ void hemisphere_json_rows(struct jw *w, const struct hemi_result *res, int count
         jw_kv_int(w, "below_horizon", r->below);
         jw_kv_int(w, "evaluated_below_horizon", r->eval_below);
         jw_kv_int(w, "invalid", r->invalid);
+        jw_kv_int(w, "uncovered", r->uncovered);
         jw_obj_end(w);
         jw_kv_obj(w, "check");
         jw_kv_str(w, "status", r->check.exceeded ? "exceeded" : "ok");
@@ -126,6 +130,9 @@ void hemisphere_print_table(FILE *f, const struct hemi_result *res, int count)
                    "the horizon (not samples), %lld evaluated below it\n",
                 r->model.label, r->reference.label, r->axis.name, r->axis.min, r->axis.max, r->axis.count, r->grid.nh,
                 r->grid.nd, r->grid.np, r->used, r->below, r->eval_below);
+        if (r->uncovered > 0)
+            fprintf(f, "  %lld grid points above the horizon where the reference has no value (not samples)\n",
+                    r->uncovered);
         const struct { const char *what; const struct hemi_extreme *e; int pct; } rows[] = {
             { "max delta (epicentre)", &r->epicentre, 1 },
             { "max Delta (attenuation)", &r->attenuation, 0 },

@@ -284,6 +284,7 @@ int image_pass(struct render_device *dev, const struct scene_data *sd,
         compute_metrics(&g, y0, y1, im.rgba_m, im.spec_m, rgba_r, spec_r, o->threshold, im.errimg, im.signed_m,
                         &mr->metrics);
         check_reference(&g, y0, y1, m, mr->mode, &res->light, o, im.rgba_m, im.spec_m, &mr->check);
+        render_worst_pixel(&g, &res->light, &mr->metrics, im.spec_m, spec_r, &mr->worst);
         size_t off = (size_t)y0 * w, n = (size_t)(y1 - y0) * w;
         render_rgba_to_rgb(im.rgba_m + off, n, im.rgb_m);
         render_rgba_to_rgb(rgba_r + off, n, im.rgb_r);

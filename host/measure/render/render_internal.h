@@ -31,6 +31,9 @@ void model_region(const struct scene_data *sd, const struct render_options *o, i
 
 /* ---- metrics (render_metrics.c) ---- */
 
+/* The worst pixel of m (metrics' max_x, max_y) with its light, eye and normal (render_report.h). */
+void render_worst_pixel(const struct gbuffer *g, const struct render_light *lt, const struct image_metrics *mt,
+                        const float *spec_m, const float *spec_r, struct render_worst_pixel *wp);
 void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsigned *rgba_m,
                      const float *spec_m, const unsigned *rgba_r, const float *spec_r,
                      double threshold, float *errimg, float *signed_img, struct image_metrics *mt);

@@ -68,6 +68,27 @@ void compute_metrics(const struct gbuffer *g, int y0, int y1, const unsigned *rg
     }
 }
 
+void render_worst_pixel(const struct gbuffer *g, const struct render_light *lt, const struct image_metrics *mt,
+                        const float *spec_m, const float *spec_r, struct render_worst_pixel *wp)
+{
+    memset(wp, 0, sizeof *wp);
+    if (mt->max_x < 0 || mt->nonfinite)
+        return;
+    size_t i = (size_t)mt->max_y * g->width + mt->max_x;
+    double pos[3];
+    for (int c = 0; c < 3; c++) {
+        pos[c] = gbuffer_plane(g, GB_PX + c)[i];
+        wp->N[c] = gbuffer_plane(g, GB_NX + c)[i];
+    }
+    render_pixel_geometry(lt, pos, wp->V, wp->L, &wp->e);   /* as render_shade_ref and the kernel take them */
+    wp->n = gbuffer_plane(g, GB_SHIN)[i];
+    wp->x = mt->max_x;
+    wp->y = mt->max_y;
+    wp->spec_model = spec_m[i];
+    wp->spec_reference = spec_r[i];
+    wp->valid = 1;
+}
+
 /* One pixel of the device's output against the double reference. */
 static void check_pixel(const struct gbuffer *g, size_t pi, const struct model_spec *m, int mode,
                         const struct render_light *lt, const struct render_options *o,

@@ -218,6 +218,21 @@ static void write_model_json(struct jw *w, int si, const struct model_result *mr
         jw_kv_str(w, "contact_sheet_caption", mr->contact_caption);   /* as drawn */
     }
     write_metrics_json(w, &mr->metrics, threshold);
+    if (mr->worst.valid) {
+        const struct render_worst_pixel *wp = &mr->worst;
+        jw_kv_obj(w, "worst_pixel");
+        jw_kv_str(w, "what", "the pixel of max_abs: specular radiance = e (N.L) ks f(L, V) for the model and its "
+                             "reference; L, V unit directions to the light and the eye, N the normal as shaded");
+        jw_kv_int_pair(w, "pixel", wp->x, wp->y);
+        jw_kv_nums(w, "L", wp->L, 3);
+        jw_kv_nums(w, "V", wp->V, 3);
+        jw_kv_nums(w, "N", wp->N, 3);
+        jw_kv_num(w, "n", wp->n);
+        jw_kv_num(w, "irradiance", wp->e);
+        jw_kv_num(w, "specular_model", wp->spec_model);
+        jw_kv_num(w, "specular_reference", wp->spec_reference);
+        jw_obj_end(w);
+    }
     jw_kv_obj(w, "double_reference_check");
     jw_kv_int(w, "samples", mr->check.samples);
     jw_kv_num(w, "max_abs_specular_difference", mr->check.max_abs);

@@ -69,6 +69,16 @@ struct model_result {
     char image[256], error[256], contact[256];  /* paths relative to out_dir */
     char signed_error[256];    /* the signed error image, beside error */
     char contact_caption[400]; /* the contact sheet's caption, as drawn (render.json has it) */
+    /* The pixel of the largest |model - reference| (metrics.max_x, max_y) and what shaded it, so
+       that the figure can be worked out again from the two BRDFs' formulas at that pixel's vectors
+       (docs/user-models.md, "Render against the hemisphere sweep"): specular = e (N.L) ks f. */
+    struct render_worst_pixel {
+        int valid;
+        int x, y;
+        double L[3], V[3], N[3];   /* unit directions to the light and the eye; the normal as shaded */
+        double n, e;               /* the pixel's shininess; the irradiance at normal incidence */
+        double spec_model, spec_reference;   /* the device's specular radiances there */
+    } worst;
 };
 
 /* Launch times kept per entry, in launch order, for a rank test between runs (compare). */
