@@ -350,6 +350,11 @@ static struct val construct(struct sl *S, struct type t, struct expr *e)
                                      .uniform = parts[i].uniform };
         }
         parts[i] = sl_to_float(S, parts[i], e->args[i]->t);
+        /* half3(x): each value becomes binary16; vec3(x), float3(x): the values' precision */
+        if (t.half == 1 && parts[i].t.half != 1)
+            parts[i] = sl_round_half(S, parts[i]);
+        if (t.half != 1)
+            r.t.half = i == 0 ? parts[i].t.half : sl_half_of(r.t.half, parts[i].t.half);
         total += parts[i].t.n;
     }
     r.uniform = 0;
@@ -454,7 +459,7 @@ static struct val ev_swizzle(struct sl *S, struct expr *e)
     for (int i = 0; i < e->nswz; ++i)
         if (e->swz[i] >= v.t.n)
             FAIL(S, e->t, "component %c of a %s", "xyzw"[e->swz[i]], sl_type_name(S, v.t));
-    r.t = (struct type){ .b = B_FLOAT, .n = e->nswz };
+    r.t = (struct type){ .b = B_FLOAT, .n = e->nswz, .half = v.t.half };
     r.uniform = v.uniform;
     for (int i = 0; i < e->nswz; ++i)
         r.c[i] = v.c[e->swz[i]];
@@ -528,9 +533,14 @@ static struct val ev_ternary(struct sl *S, struct expr *e)
     int n = a.t.n > b.t.n ? a.t.n : b.t.n;
     if (a.t.n != b.t.n && a.t.n != 1 && b.t.n != 1)
         FAIL(S, e->t, "?: between a %s and a %s", sl_type_name(S, a.t), sl_type_name(S, b.t));
+    int h = sl_half_of(a.t.half, b.t.half);
+    if (h == 1) {
+        a = a.t.half == 1 ? a : sl_round_half(S, a);
+        b = b.t.half == 1 ? b : sl_round_half(S, b);
+    }
     if (n > 1)
         c.c[0] = sl_temp_cond(S, c.c[0], c.uniform);
-    r.t = (struct type){ .b = B_FLOAT, .n = n };
+    r.t = (struct type){ .b = B_FLOAT, .n = n, .half = h };
     r.uniform = 0;
     for (int i = 0; i < n; ++i)
         r.c[i] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[a.t.n == 1 ? 0 : i], b.c[b.t.n == 1 ? 0 : i]);
@@ -603,6 +613,7 @@ static struct val ev_index(struct sl *S, struct expr *e)
     }
     if (v.t.b != B_FLOAT || v.t.n < 2)
         FAIL(S, e->t, "indexing a %s (a vector or an array is indexed)", sl_type_name(S, v.t));
+    r.t.half = v.t.half;
     if (index_of(S, e->b, v.t.n, sl_sfmt(S, "a %s", sl_type_name(S, v.t)), &k, &idx)) {
         r.c[0] = v.c[k];
         return r;
@@ -623,7 +634,7 @@ static struct val ev_call(struct sl *S, struct expr *e)
         return construct(S, t, e);
     const struct sdef *sd = sl_find_struct(S, e->t);
     if (sd)
-        return construct(S, (struct type){ B_STRUCT, 1, sd }, e);
+        return construct(S, (struct type){ .b = B_STRUCT, .n = 1, .st = sd }, e);
     struct func *f = sl_find_func(S, e->t);
     if (f)
         return call_user(S, f, e);
@@ -666,6 +677,7 @@ struct val sl_ev(struct sl *S, struct expr *e)
     switch (e->k) {
     case E_FLT:
         r.c[0] = sl_sfmt(S, "RSPLAT(%s)", sl_float_literal(S, e->t));
+        r.t.half = 2; /* a literal takes the precision of what it meets */
         return r;
     case E_INT:
         return ev_int(S, e);

@@ -63,6 +63,9 @@ struct type {
     int b;
     int n; /* components: 1 to 4 (vectors of float only) */
     const struct sdef *st; /* B_STRUCT: its definition */
+    int half;              /* B_FLOAT: 0 float (highp), 1 binary16 (half, min16float, mediump:
+                              each operation's result goes through RHALF), 2 a literal or an int
+                              made float, which takes the other operand's precision */
 };
 
 #define SL_MAX_FIELDS 16
@@ -212,6 +215,7 @@ struct sl {
     struct sym **loop_syms;    /* inside a while/do loop: the float variables it writes */
     int nloop_syms, loop_syms_cap;
     int depth;                 /* of the parser's recursion */
+    int default_half;          /* `precision mediump float;` (or lowp) was written: float is binary16 */
 };
 
 
@@ -299,6 +303,11 @@ struct val sl_sym_val(struct sym *s);
 struct sym *sl_declare_array(struct sl *S, struct scope *sc, const struct tok *name, struct type t, int n);
 const char *sl_op_text(int op);
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where);
+/* The precision of an operation of a and b (struct type's half): float when either is,
+ * binary16 when either is and the other is too or a literal, else a literal's. */
+int sl_half_of(int a, int b);
+/* v (a float value) rounded to binary16: each component through RHALF, v.t.half 1. */
+struct val sl_round_half(struct sl *S, struct val v);
 /* The built-in function a call names, or NULL. */
 const struct builtin *sl_find_builtin(const struct tok *t);
 struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *e);

@@ -59,7 +59,7 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     w[t->len] = '\0';
     *shader_only = 0;
     if (strcmp(w, "float") == 0 || strcmp(w, "half") == 0 || strcmp(w, "min16float") == 0) {
-        *ty = (struct type){ .b = B_FLOAT, .n = 1 };
+        *ty = (struct type){ .b = B_FLOAT, .n = 1, .half = w[0] != 'f' };
         return 1;
     }
     if (strcmp(w, "int") == 0 || strcmp(w, "uint") == 0) {
@@ -86,7 +86,7 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
         w[l - 1] = '\0';
         if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0 ||
             strcmp(w, "min16float") == 0) {
-            *ty = (struct type){ .b = B_FLOAT, .n = last - '0' };
+            *ty = (struct type){ .b = B_FLOAT, .n = last - '0', .half = w[0] == 'h' || w[0] == 'm' };
             *shader_only = 1;
             return 1;
         }
@@ -423,12 +423,17 @@ static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
 {
     int save = S->pos;
     *is_const = 0;
+    int prec = -1; /* a precision qualifier: 1 mediump or lowp (binary16), 0 highp */
     for (;;) {
         const struct tok *t = sl_peek(S);
         if (sl_tok_is(t, "const")) {
             *is_const = 1;
             next(S);
         } else if (sl_tok_is(t, "static") || is_qualifier(t)) {
+            if (sl_tok_is(t, "mediump") || sl_tok_is(t, "lowp"))
+                prec = 1;
+            else if (sl_tok_is(t, "highp"))
+                prec = 0;
             next(S);
         } else {
             break;
@@ -440,12 +445,15 @@ static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
     if (sl_type_of_name(t, ty, &so) && !sl_tok_is(peek_at(S, 1), "(")) {
         if (so)
             S->shader_only = 1;
+        /* float and vecN take the qualifier, else the default of `precision mediump float;` */
+        if (ty->b == B_FLOAT && ty->half == 0 && (prec == 1 || (prec == -1 && S->default_half)))
+            ty->half = 1;
         next(S);
         return 1;
     }
     const struct sdef *st = sl_find_struct(S, t);
     if (st && !sl_tok_is(peek_at(S, 1), "(")) {
-        *ty = (struct type){ B_STRUCT, 1, st };
+        *ty = (struct type){ .b = B_STRUCT, .n = 1, .st = st };
         S->shader_only = 1;
         next(S);
         return 1;
@@ -775,6 +783,11 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
             continue;
         }
         if (sl_tok_is(start, "precision")) {
+            /* precision mediump float; makes float binary16 in what follows (highp: float) */
+            next(S);
+            const struct tok *q = sl_peek(S);
+            if (sl_tok_is(peek_at(S, 1), "float"))
+                S->default_half = sl_tok_is(q, "mediump") || sl_tok_is(q, "lowp");
             while (sl_peek(S)->k != K_EOF && !accept(S, ";"))
                 next(S);
             continue;
