@@ -94,7 +94,8 @@ struct expr {
     struct type ctor;
 };
 
-enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL, S_WHILE, S_DO };
+enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL, S_WHILE, S_DO, S_BREAK, S_CONTINUE,
+                 S_SWITCH, S_CASE };
 struct stmt {
     int k;
     const struct tok *t;
@@ -122,6 +123,17 @@ struct func {
     struct stmt *body;
     const struct tok *close;
     struct func *next;
+};
+
+/* A loop or a switch being emitted: the lanes that left it by break and, for a loop, those that
+ * skip the rest of this iteration by continue, as flags made at the first break or continue (an
+ * int where the condition is the same in every lane, else a REAL mask). Every statement inside
+ * runs under all of them (effective, shaderlang_emit.c), the enclosing loops' too. */
+struct loopctx {
+    struct loopctx *up;
+    int is_switch;
+    const char *brk_int, *brk_real;    /* 1 while the lane has not broken out */
+    const char *cont_int, *cont_real;  /* 1 while the lane has not continued (reset each iteration) */
 };
 
 struct val;
@@ -216,6 +228,7 @@ struct sl {
     int nloop_syms, loop_syms_cap;
     int depth;                 /* of the parser's recursion */
     int default_half;          /* `precision mediump float;` (or lowp) was written: float is binary16 */
+    struct loopctx *loops;     /* the innermost loop or switch being emitted (NULL: none) */
 };
 
 

@@ -116,9 +116,6 @@ static int is_qualifier(const struct tok *t)
 static void check_unsupported_word(struct sl *S, const struct tok *t)
 {
     static const struct { const char *w, *why; } words[] = {
-        { "switch", "switch is not supported (use if/else)" },
-        { "break", "break is not supported" },
-        { "continue", "continue is not supported" },
         { "discard", "discard is not supported" },
         { "uniform", "uniforms are not supported: declare the model's parameters in the header "
                      "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
@@ -670,6 +667,45 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
             expect(S, ";");
         else
             s->s3 = parse_statement(S, 0);
+        return s;
+    }
+    if (sl_tok_is(t, "break") || sl_tok_is(t, "continue")) {
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, sl_tok_is(t, "break") ? S_BREAK : S_CONTINUE, t);
+        expect(S, ";");
+        return s;
+    }
+    if (sl_tok_is(t, "case") || sl_tok_is(t, "default"))
+        FAIL(S, t, "'%.*s' outside a switch", t->len, t->p);
+    if (sl_tok_is(t, "switch")) {
+        /* switch (EXPR) { case K: ... default: ... }: the labels are S_CASE items of its block
+           (e: the constant, NULL for default) among its statements */
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, S_SWITCH, t);
+        expect(S, "(");
+        s->e = parse_expr(S);
+        expect(S, ")");
+        const struct tok *open = sl_peek(S);
+        expect(S, "{");
+        s->s1 = sl_new_stmt(S, S_BLOCK, open);
+        while (!accept(S, "}")) {
+            const struct tok *l = sl_peek(S);
+            if (l->k == K_EOF)
+                FAIL(S, open, "the switch's '{' is not closed");
+            struct stmt *item;
+            if (sl_tok_is(l, "case") || sl_tok_is(l, "default")) {
+                next(S);
+                item = sl_new_stmt(S, S_CASE, l);
+                if (sl_tok_is(l, "case"))
+                    item->e = parse_expr(S);
+                expect(S, ":");
+            } else {
+                item = parse_statement(S, 0);
+            }
+            block_add(S, s->s1, item);
+        }
         return s;
     }
     if (sl_tok_is(t, "for")) {
