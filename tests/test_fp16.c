@@ -206,6 +206,28 @@ static int test_sgphong(struct accuracy_ctx *a)
                (double)got16[i], want, (double)got32[i], exact);
     }
 
+    /* HLSL's literal 0.1h is a half constant (1638 x 2^-14 = 0.0999755859375, worked in the table
+       above) even in a float product; 0.1 without the suffix takes the float's precision */
+    {
+        struct user_model *um = NULL;
+        char err[600] = "";
+        struct model_spec hl;
+        int ok = usermodel_parse_expression("hlit=float y = c * 0.1h; float z = c * 0.1; return y + 8.0 * z;", &um,
+                                            err, sizeof err) == 0 &&
+                 usermodel_register(um, err, sizeof err) == 0 && model_spec_parse("hlit", &hl, err, sizeof err) == 0;
+        CHECK(ok, "hlit: %s", err);
+        float hc[2] = { 0.5f, 0.75f }, hn[2] = { 1.0f, 1.0f }, hv[2];
+        if (ok && accuracy_open(&h, a->s, "-DBRDF_FP16=1") == 0) {
+            CHECK(accuracy_probe(&h, &hl, hc, hn, 2, hv) == 0, "hlit on the device");
+            accuracy_close(&h);
+            for (int i = 0; i < 2; ++i) {
+                float want = hc[i] * 0.0999755859375f + 8.0f * (hc[i] * 0.1f);
+                CHECK(fabsf(hv[i] - want) <= 1e-6f, "hlit(%g) = %.9g, want %.9g", (double)hc[i], (double)hv[i],
+                      (double)want);
+            }
+        }
+    }
+
     /* the accuracy rows: fp16 beside fp32 for the half lobe, the fp16 error the larger; none
        for the float lobe, whose fp32 figures are the half lobe's (the same formula) */
     struct accuracy_grid g = { 2, 200, 22, 1024 };

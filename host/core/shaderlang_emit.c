@@ -682,6 +682,8 @@ struct val sl_ev(struct sl *S, struct expr *e)
     case E_FLT:
         r.c[0] = sl_sfmt(S, "RSPLAT(%s)", sl_float_literal(S, e->t));
         r.t.half = 2; /* a literal takes the precision of what it meets */
+        if (e->t->p[e->t->len - 1] == 'h' || e->t->p[e->t->len - 1] == 'H')
+            r = sl_round_half(S, r); /* HLSL's 0.1h is a half constant, even where it meets a float */
         return r;
     case E_INT:
         return ev_int(S, e);
