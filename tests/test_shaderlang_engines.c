@@ -2,7 +2,8 @@
  * libraries (tests/test_shaderlang_files/style_*.{hlsl,glsl}, written for this test: an HLSL
  * BRDF library with PI macros, Pow5, rcp, saturate and float3 swizzles; GLSL light functions with
  * mix and an inout accumulator; a GLSL PBR file with function-like macros, #ifdef and a
- * square() helper), each run as written with a one-line wrapper that maps the sweep's n to a
+ * square() helper; a tutorial's fragment shader of functions of vectors, mix of vec3, a const
+ * PI), each run as written with a one-line wrapper that maps the sweep's n to a
  * roughness, evaluated through the model's own evaluation of (L, V, N) (model_eval_full_host:
  * the translated text, compiled as the double reference) at five points each, against the same
  * formulas written a second time here in C, reduced to luminance (0.2126 R + 0.7152 G + 0.0722 B,
@@ -80,6 +81,25 @@ static double bj_c(const double *L, const double *V, const double *N, double n)
     return lum(F);
 }
 
+/* style_learnopengl.glsl: D = a2 / (pi (NoH^2 (a2 - 1) + 1)^2) with a = roughness^2 = sqrt(2/(n+2)),
+   G = G1(NoV) G1(NoL), G1(x) = x / (x (1 - k) + k), k = (roughness + 1)^2 / 8, F = F0 + (1 - F0)
+   (1 - HoV)^5 with F0 = 0.04 + (albedo - 0.04) 0.5, albedo (0.9, 0.6, 0.3); D G F / (4 NoV NoL + 1e-4). */
+static double lo_c(const double *L, const double *V, const double *N, double n)
+{
+    double rough = sqrt(sqrt(2.0 / (n + 2.0))), a = rough * rough, a2 = a * a, H[3];
+    half_vector(L, V, H);
+    double NoH = fmax(dot3(N, H), 0.0), NoV = fmax(dot3(N, V), 0.0), NoL = fmax(dot3(N, L), 0.0);
+    double d = NoH * NoH * (a2 - 1.0) + 1.0, D = a2 / (PI_ * d * d);
+    double k = (rough + 1.0) * (rough + 1.0) / 8.0;
+    double G = NoV / (NoV * (1.0 - k) + k) * (NoL / (NoL * (1.0 - k) + k));
+    double albedo[3] = { 0.9, 0.6, 0.3 }, F[3], HoV = fmax(dot3(H, V), 0.0);
+    for (int i = 0; i < 3; ++i) {
+        double f0 = 0.04 + (albedo[i] - 0.04) * 0.5;
+        F[i] = D * G * (f0 + (1.0 - f0) * pow(clamp01(1.0 - HoV), 5.0)) / (4.0 * NoV * NoL + 0.0001);
+    }
+    return lum(F);
+}
+
 static int load(const char *file, const char *label, struct model_spec *spec)
 {
     char path[1024], err[600] = "";
@@ -115,8 +135,8 @@ int main(void)
         const char *file, *label;
         int kind;
     } models[] = { { "style_unreal.hlsl", "styleue:Spec=0.6", 0 }, { "style_godot.glsl", "stylegd", 1 },
-                   { "style_babylon.glsl", "stylebj", 2 } };
-    for (int m = 0; m < 3; ++m) {
+                   { "style_babylon.glsl", "stylebj", 2 }, { "style_learnopengl.glsl", "stylelo", 3 } };
+    for (int m = 0; m < 4; ++m) {
         struct model_spec spec;
         char name[32];
         snprintf(name, sizeof name, "%.*s", (int)strcspn(models[m].label, ":"), models[m].label);
@@ -128,8 +148,9 @@ int main(void)
             unit(pts[p] + 3, V);
             unit(pts[p] + 6, N);
             double got = model_eval_full_host(&spec, L, V, N, n);
-            double want = models[m].kind == 0 ? ue_c(L, V, N, n, 0.6) : models[m].kind == 1 ? gd_c(L, V, N, n)
-                                                                                            : bj_c(L, V, N, n);
+            int kind = models[m].kind;
+            double want = kind == 0 ? ue_c(L, V, N, n, 0.6) : kind == 1 ? gd_c(L, V, N, n)
+                          : kind == 2 ? bj_c(L, V, N, n) : lo_c(L, V, N, n);
             CHECK(fabs(got - want) <= 1e-9 * fabs(want), "%s at point %d (n = %g): %.12g, C %.12g", name, p, n, got,
                   want);
             printf("%s point %d: %.9g (C %.9g)\n", name, p, got, want);
