@@ -1,5 +1,6 @@
 /* test_shaderlang_flow.c - break, continue and switch in GLSL and HLSL models
- * (tests/test_shaderlang_files/flow_glsl.glsl, flow_hlsl.hlsl): each value against the same code
+ * (tests/test_shaderlang_files/flow_glsl.glsl, flow_hlsl.hlsl; flow_return.glsl: a switch
+ * whose every way in returns ends the function): each value against the same code
  * written here in C, with C's own break, continue and switch (so the translator's lane masks
  * are checked against real control flow), in double on the host (the model's reference) and in
  * float on the device (the sixteen-lane build the sweeps use); and the errors of a misplaced
@@ -100,6 +101,21 @@ static double flow_hlsl(double c, double n, int m)
     return s + 100.0 * w;
 }
 
+/* flow_return.glsl in C. */
+static double flow_return(double c, double n, int m)
+{
+    double x = c;
+    switch (m) {
+    case 0:
+        return c;
+    case 1:
+        x = c * c;
+        /* fall through */
+    default:
+        return x + n;
+    }
+}
+
 static int load(const char *file, const char *label, struct model_spec *spec)
 {
     char path[1024], err[600] = "";
@@ -169,9 +185,20 @@ static void test_errors(void)
     }
 }
 
-static void test_host(struct model_spec mg[4][5], struct model_spec mh[6])
+static void test_host(struct model_spec mg[4][5], struct model_spec mh[6], struct model_spec mr[4])
 {
     char err[600];
+    for (int m = 0; m < 4; ++m) {
+        char label[64];
+        snprintf(label, sizeof label, "flowret:m=%d", m);
+        CHECK(model_spec_parse(label, &mr[m], err, sizeof err) == 0, "%s: %s", label, err);
+        for (int i = 0; i < 5; ++i)
+            for (int j = 0; j < 3; ++j) {
+                double got = model_eval_host(&mr[m], cs[i], ns[j]), want = flow_return(cs[i], ns[j], m);
+                CHECK(fabs(got - want) <= 1e-12 * fmax(1.0, fabs(want)), "%s at c=%g n=%g: %.17g, C %.17g", label,
+                      cs[i], ns[j], got, want);
+            }
+    }
     for (int m = 0; m < 4; ++m)
         for (int part = 0; part < 5; ++part) {
             char label[64];
@@ -199,21 +226,24 @@ static void test_host(struct model_spec mg[4][5], struct model_spec mh[6])
 
 /* The same values from the sixteen-lane float build, where the lanes' masks really differ (the
    fifteen points go in one launch, so lanes disagree on every lane-dependent break). */
-static int test_device(struct accuracy_ctx *a, struct model_spec mg[4][5], struct model_spec mh[6])
+static int test_device(struct accuracy_ctx *a, struct model_spec mg[4][5], struct model_spec mh[6],
+                       struct model_spec mr[4])
 {
     float c[15], n[15], out[15];
     for (int i = 0; i < 15; ++i) {
         c[i] = (float)cs[i % 5];
         n[i] = (float)ns[i / 5];
     }
-    for (int k = 0; k < 4 * 5 + 6; ++k) {
-        const struct model_spec *m = k < 20 ? &mg[k / 5][k % 5] : &mh[k - 20];
+    for (int k = 0; k < 4 * 5 + 6 + 4; ++k) {
+        const struct model_spec *m = k < 20 ? &mg[k / 5][k % 5] : k < 26 ? &mh[k - 20] : &mr[k - 26];
         int rc = accuracy_probe(a, m, c, n, 15, out);
         CHECK(rc == 0, "%s on the device", m->label);
         if (rc)
             return rc;
         for (int i = 0; i < 15; ++i) {
-            double want = k < 20 ? flow_glsl(c[i], n[i], k / 5, k % 5) : flow_hlsl(c[i], n[i], k - 20);
+            double want = k < 20   ? flow_glsl(c[i], n[i], k / 5, k % 5)
+                          : k < 26 ? flow_hlsl(c[i], n[i], k - 20)
+                                   : flow_return(c[i], n[i], k - 26);
             CHECK(fabs(out[i] - want) <= 1e-5 * fmax(1.0, fabs(want)), "%s at c=%g n=%g on the device: %.9g, C %.9g",
                   m->label, (double)c[i], (double)n[i], (double)out[i], want);
         }
@@ -224,17 +254,18 @@ static int test_device(struct accuracy_ctx *a, struct model_spec mg[4][5], struc
 int main(void)
 {
     test_errors();
-    struct model_spec g, h;
-    static struct model_spec mg[4][5], mh[6];
-    if (!load("flow_glsl.glsl", "flowglsl", &g) || !load("flow_hlsl.hlsl", "flowhlsl", &h))
+    struct model_spec g, h, r;
+    static struct model_spec mg[4][5], mh[6], mr[4];
+    if (!load("flow_glsl.glsl", "flowglsl", &g) || !load("flow_hlsl.hlsl", "flowhlsl", &h) ||
+        !load("flow_return.glsl", "flowret", &r))
         return check_summary();
-    test_host(mg, mh);
+    test_host(mg, mh, mr);
     struct cl_session s;
     int rc = test_session_open(&s);
     if (rc == 0) {
         struct accuracy_ctx a;
         if ((rc = accuracy_open(&a, &s, "")) == 0) {
-            rc = test_device(&a, mg, mh);
+            rc = test_device(&a, mg, mh, mr);
             accuracy_close(&a);
         }
         clsession_close(&s);

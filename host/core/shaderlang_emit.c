@@ -713,12 +713,39 @@ struct val sl_ev(struct sl *S, struct expr *e)
 
 /* ---- statements -------------------------------------------------------------------------- */
 
+/* A break or continue that leaves s's enclosing switch (not one of a loop or switch inside s). */
+static int leaves_switch(const struct stmt *s)
+{
+    if (!s)
+        return 0;
+    switch (s->k) {
+    case S_BREAK:
+    case S_CONTINUE: return 1;
+    case S_BLOCK:
+        for (int i = 0; i < s->n; ++i)
+            if (leaves_switch(s->items[i]))
+                return 1;
+        return 0;
+    case S_IF: return leaves_switch(s->s1) || leaves_switch(s->s2);
+    default: return 0;
+    }
+}
+
 int sl_stmt_returns(const struct stmt *s)
 {
     if (!s)
         return 0;
     switch (s->k) {
     case S_RET: return 1;
+    case S_SWITCH: {
+        /* every way in ends in a return: a default label, nothing that leaves the switch, and a
+           last statement that returns (the sections fall through to it) */
+        const struct stmt *b = s->s1;
+        int has_default = 0;
+        for (int i = 0; i < b->n; ++i)
+            has_default |= b->items[i]->k == S_CASE && !b->items[i]->e;
+        return has_default && b->n > 0 && !leaves_switch(b) && sl_stmt_returns(b->items[b->n - 1]);
+    }
     case S_BLOCK:
         for (int i = 0; i < s->n; ++i)
             if (sl_stmt_returns(s->items[i]))
