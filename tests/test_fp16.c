@@ -7,15 +7,18 @@
  *     phongapprox_half.hlsl; in GLSL under `precision mediump float`, phongapprox_mediump.glsl), evaluated by the fp16 build at five points, against the same
  *     formula simulated here in C, every step rounded to binary16 by to_binary16 (written from
  *     the format's definition, independently of the device's helper);
- *   - its accuracy row: fp16 figures beside the fp32 ones, the fp16 error the larger, and no
- *     fp16 member for the same lobe written in float. */
+ *   - its accuracy row: fp16 figures beside the fp32 ones, the fp16 error the larger, the max
+ *     Delta recomputed at its point with the simulation against phongn in double, the JSON row's
+ *     fp16 member, and no fp16 member for the same lobe written in float. */
 #include "accuracy.h"
+#include "accuracy_report.h"
 #include "check.h"
 #include "clsession.h"
 #include "models.h"
 #include "testutil.h"
 #include "usermodel.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -258,6 +261,26 @@ static int test_sgphong(struct accuracy_ctx *a)
         CHECK(fabs(d - r.fp16.attenuation.value) <= 0x1p-10 * (n + 2.0) / (2.0 * 3.14159265358979323846) + 1e-6,
               "fp16 max Delta %.6g at n = %g, x = %.6g; simulated there %.6g", r.fp16.attenuation.value, n,
               r.fp16.attenuation.x, d);
+        /* the row as written: an fp16 member with the same figures; none for the float lobe */
+        char dir[512], path[600], err[300];
+        if (test_tmpdir_make(dir, sizeof dir, "test_fp16") == 0) {
+            snprintf(path, sizeof path, "%s/acc.json", dir);
+            struct accuracy_result both[2] = { r, rf };
+            CHECK(accuracy_write_json(path, both, 2, a->s, "", err, sizeof err) == 0, "accuracy.json: %s", err);
+            json_error_t je;
+            json_t *doc = json_load_file(path, 0, &je);
+            json_t *rows = json_object_get(doc, "results");
+            json_t *f16 = json_object_get(json_array_get(rows, 0), "fp16");
+            CHECK(f16 && json_number_value(json_object_get(f16, "max_rel")) == r.fp16.epicentre.value &&
+                      json_number_value(json_object_get(f16, "max_abs")) == r.fp16.attenuation.value &&
+                      json_number_value(json_object_get(f16, "ratio_rel_to_fp32")) == r.fp16.ratio_rel &&
+                      json_is_boolean(json_object_get(f16, "device_has_cl_khr_fp16")),
+                  "the half lobe's JSON row has its fp16 member");
+            CHECK(json_array_size(rows) == 2 && !json_object_get(json_array_get(rows, 1), "fp16"),
+                  "the float lobe's JSON row has none");
+            json_decref(doc);
+            test_tmpdir_done(dir);
+        }
         printf("sgphong fp32: max delta %.4g, max Delta %.4g; fp16: max delta %.4g (%.3gx), max Delta %.4g (%.3gx)\n",
                r.epicentre.value, r.attenuation.value, r.fp16.epicentre.value, r.fp16.ratio_rel,
                r.fp16.attenuation.value, r.fp16.ratio_abs);

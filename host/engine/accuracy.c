@@ -547,6 +547,7 @@ static int fp16_stage(struct accuracy_ctx *a, const struct model_spec *m, const 
         }
     out->fp16.ratio_rel = out->fp16.epicentre.value / out->epicentre.value;
     out->fp16.ratio_abs = out->fp16.attenuation.value / out->attenuation.value;
+    out->fp16.device_fp16 = a->s->has_fp16;
     out->fp16.present = 1;
 done:
     memcpy(a->build_options, saved, sizeof saved);

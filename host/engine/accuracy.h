@@ -101,6 +101,7 @@ struct accuracy_result {
         struct acc_extreme epicentre, attenuation; /* max delta (relative), max Delta (absolute) */
         double ratio_rel, ratio_abs;               /* over epicentre.value, attenuation.value */
         long long invalid_count;                   /* fp16 values that were NaN, Inf or negative */
+        int device_fp16;                           /* the device has cl_khr_fp16 (not used: emulated) */
         double device_seconds;
     } fp16;
     char reason[640];

@@ -101,6 +101,7 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
             jw_kv_int(&w, "invalid_count", r->fp16.invalid_count);
             jw_kv_str(&w, "evaluation", "every half operation's result rounded to binary16 (round to nearest even, "
                                         "vstore_half_rte) on the device; the reference in double");
+            jw_kv_bool(&w, "device_has_cl_khr_fp16", r->fp16.device_fp16);
             jw_kv_str(&w, "what", "max_rel: max delta over the epicentre, max_abs: max Delta over the attenuation "
                                   "zone, each at the per-n maximum the device grid found; ratios over the fp32 "
                                   "figures (epicentre.max_rel, attenuation.max_abs)");
