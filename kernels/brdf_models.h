@@ -48,6 +48,30 @@
 /* A scalar broadcast to REAL (a vector literal in OpenCL C, a cast in C). */
 #define RSPLAT(x) ((REAL)(x))
 
+/* RHALF(x): a value of a shader's half-precision code (half, min16float, mediump: the
+ * shader-language translator wraps each such operation's result, host/core/shaderlang_check.c).
+ * The fp16 build of the accuracy sweep (-DBRDF_FP16, host/engine/accuracy.c) rounds it to
+ * binary16, to nearest with ties to even, through vstore_half_rte and reads it back with
+ * vload_half: both are core OpenCL C on every device, with or without cl_khr_fp16. Every other
+ * build (float, the double reference, the host's C) keeps the value as it is. */
+#if defined(BRDF_FP16) && defined(__OPENCL_VERSION__)
+__attribute__((overloadable)) static inline float brdf_round_half(float x)
+{
+    ushort b[1];
+    vstore_half_rte(x, 0, (__private half *)b);
+    return vload_half(0, (__private const half *)b);
+}
+__attribute__((overloadable)) static inline float16 brdf_round_half(float16 x)
+{
+    ushort b[16];
+    vstore_half16_rte(x, 0, (__private half *)b);
+    return vload_half16(0, (__private const half *)b);
+}
+#define RHALF(x) brdf_round_half(x)
+#else
+#define RHALF(x) (x)
+#endif
+
 #define BRDF_PI 3.14159265358979323846
 
 #include "brdf_shared.h"

@@ -535,6 +535,7 @@ int clsession_open(struct cl_session *s, int platform_index, int device_index, c
     const char *spec = getenv("BRDFBENCH_SPECIALISE");
     s->specialise = spec && *spec ? atoi(spec) != 0 : strstr(s->platform_name, "Portable Computing Language") == NULL;
     s->has_fp64 = strstr(ext, "cl_khr_fp64") != NULL;
+    s->has_fp16 = strstr(ext, "cl_khr_fp16") != NULL;
 
     s->ctx = clCreateContext(NULL, 1, &s->device, NULL, NULL, &e);
     if (e != CL_SUCCESS) {

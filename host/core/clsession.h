@@ -24,6 +24,7 @@ struct cl_session {
     int specialise;               /* build one program per built-in model (-DBRDF_ONLY_MODEL), not one for all */
     cl_ulong global_mem, max_alloc;
     int has_fp64;
+    int has_fp16;                 /* cl_khr_fp16 (said in an fp16 accuracy row; binary16 is emulated either way) */
     double last_build_seconds;    /* wall time of the latest clsession_build */
     double build_seconds_total;   /* of every build of the session */
     int builds;

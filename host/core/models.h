@@ -135,6 +135,8 @@ struct model_runtime {
     int (*isolated)(const struct model_spec *spec, void (*fn)(void *ctx, void *out), void *ctx, void *out,
                     size_t outlen);
     int lobe_declared;            /* the model's file names its lobe (psi or theta_h) */
+    int fp16;                     /* its text computes in binary16 (a shader's half code, RHALF):
+                                     the accuracy sweep measures an fp16 build of it too */
 };
 #define MODELS_MAX_USER 8
 /* Returns 0, or -1 when the table is full. */

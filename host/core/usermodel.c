@@ -197,6 +197,7 @@ static void usermodel_fill_runtime(struct user_model *um)
     um->runtime.eval_full_host = um->full ? runtime_eval_full : NULL;
     um->runtime.isolated = usermodel_isolated;
     um->runtime.lobe_declared = um->lobe_declared;
+    um->runtime.fp16 = strstr(um->device_source, "RHALF(") != NULL;
 }
 
 int usermodel_host_ready(const struct user_model *cum)

@@ -124,7 +124,7 @@ static int is_allowed_builtin(const char *s, size_t n)
         "abs", "abs_diff", "add_sat", "hadd", "rhadd", "clz", "ctz", "mad_hi", "mad_sat", "mul_hi", "rotate",
         "sub_sat", "upsample", "popcount", "mad24", "mul24",
         "brdf_quadratic", "brdf_pow_lobe", "brdf_sin2", "brdf_alpha_from_n", "brdf_d_beckmann", "brdf_d_ggx",
-        "brdf_phong_norm", "brdf_blinn_norm", "RC", "RSPLAT",
+        "brdf_phong_norm", "brdf_blinn_norm", "RC", "RSPLAT", "RHALF",
         NULL };
     if (word_in(s, n, fns))
         return 1;

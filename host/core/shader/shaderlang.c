@@ -256,7 +256,7 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
     S->line_next = fline + 2;
     sl_push_scope(S, 1);
     S->globals = S->scope;
-    struct fnctx fc = { .ret = { .b = B_FLOAT, .n = 1 }, .is_model = 1 };
+    struct fnctx fc = { .ret = { .b = B_FLOAT, .n = 1, .half = model && !full ? model->ret.half : 0 }, .is_model = 1 };
     S->fn = &fc;
     /* The arguments: in the function form in a scope of their own under the globals (a helper
        sees the globals, not the model's arguments); in the body form among the globals. */
@@ -271,12 +271,14 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
         /* L, V, N, n, then the parameters */
         for (int i = 0; i < model->nparams; ++i) {
             struct sym *s = sl_declare(S, args, model->pname[i], model->pty[i]);
+            int rh = model->pty[i].b == B_FLOAT && model->pty[i].half == 1;
+            const char *o = rh ? "RHALF(" : "", *e = rh ? ")" : "";
             for (int k = 0; k < model->pty[i].n && i < 3; ++k)
-                sl_out_line(S, "REAL %s = sl_a%d_%c;", s->c[k], i, "xyz"[k]);
+                sl_out_line(S, "REAL %s = %ssl_a%d_%c%s;", s->c[k], o, i, "xyz"[k], e);
             if (i == 3)
-                sl_out_line(S, "REAL %s = sl_n;", s->c[0]);
+                sl_out_line(S, "REAL %s = %ssl_n%s;", s->c[0], o, e);
             else if (i > 3)
-                sl_out_line(S, "REAL %s = RSPLAT(sl_p%d);", s->c[0], i - 4);
+                sl_out_line(S, "REAL %s = %sRSPLAT(sl_p%d)%s;", s->c[0], o, i - 4, e);
         }
     }
     for (int i = 0; i < 2 + h->nparams && !full; ++i) {
@@ -293,12 +295,14 @@ static void emit_function(struct sl *S, struct func *model, struct stmt *body, s
             ty.b = h->integer[i - 2] ? B_INT : B_FLOAT;
         }
         struct sym *s = sl_declare(S, args, pn, ty);
+        /* a half argument arrives in binary16 */
+        int rh = ty.b == B_FLOAT && ty.half == 1;
         if (i < 2)
-            sl_out_line(S, "REAL %s = sl_%c;", s->c[0], i == 0 ? 'c' : 'n');
+            sl_out_line(S, "REAL %s = %ssl_%c%s;", s->c[0], rh ? "RHALF(" : "", i == 0 ? 'c' : 'n', rh ? ")" : "");
         else if (ty.b == B_INT)
             sl_out_line(S, "int %s = (int)sl_p%d;", s->c[0], i - 2);
         else
-            sl_out_line(S, "REAL %s = RSPLAT(sl_p%d);", s->c[0], i - 2);
+            sl_out_line(S, "REAL %s = %sRSPLAT(sl_p%d)%s;", s->c[0], rh ? "RHALF(" : "", i - 2, rh ? ")" : "");
     }
     if (model) {
         S->scope = S->globals;

@@ -249,7 +249,7 @@ struct val sl_to_float(struct sl *S, struct val v, const struct tok *where)
             if (!isdigit((unsigned char)*p))
                 digits = 0;
         v.c[0] = digits ? sl_sfmt(S, "RSPLAT(%s.0)", s) : sl_sfmt(S, "RSPLAT((RSCALAR)(%s))", s);
-        v.t = (struct type){ .b = B_FLOAT, .n = 1 };
+        v.t = (struct type){ .b = B_FLOAT, .n = 1, .half = 2 }; /* an int takes the other operand's precision */
         return v;
     }
     FAIL(S, where, "a %s where a number is expected", sl_type_name(S, v.t));
@@ -259,6 +259,12 @@ struct val sl_to_float(struct sl *S, struct val v, const struct tok *where)
  * (HLSL's float3 v = 0). */
 struct val sl_convert(struct sl *S, struct val v, struct type t, const struct tok *where, const char *what)
 {
+    /* into a binary16 variable, parameter or result: the value stored is rounded */
+    if (t.b == B_FLOAT && t.half == 1 && (v.t.b == B_INT || (v.t.b == B_FLOAT && v.t.half != 1))) {
+        struct type full = t;
+        full.half = 0;
+        return sl_round_half(S, sl_convert(S, v, full, where, what));
+    }
     if (sl_same_type(t, v.t))
         return v;
     if (t.b == B_STRUCT || v.t.b == B_STRUCT)
@@ -397,7 +403,25 @@ const char *sl_op_text(int op)
     }
 }
 
-/* a OP b for the arithmetic operators, with int promotion and scalar broadcast. */
+int sl_half_of(int a, int b)
+{
+    if (a == 0 || b == 0)
+        return 0;
+    return a == 1 || b == 1 ? 1 : 2;
+}
+
+struct val sl_round_half(struct sl *S, struct val v)
+{
+    if (v.t.b != B_FLOAT)
+        return v;
+    for (int i = 0; i < v.t.n; ++i)
+        v.c[i] = sl_sfmt(S, "RHALF(%s)", v.c[i]);
+    v.t.half = 1;
+    return v;
+}
+
+/* a OP b for the arithmetic operators, with int promotion and scalar broadcast. An operation
+ * in binary16 (sl_half_of) rounds its literal operand as a half constant and its result. */
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where)
 {
     if ((sl_is_matrix(a.t) && (b.t.b == B_FLOAT || b.t.b == B_INT || sl_is_matrix(b.t))) ||
@@ -416,17 +440,26 @@ struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const stru
     if (a.t.n != b.t.n && a.t.n != 1 && b.t.n != 1)
         FAIL(S, where, "'%s' of a %s and a %s", sl_op_text(op), sl_type_name(S, a.t), sl_type_name(S, b.t));
     int n = a.t.n > b.t.n ? a.t.n : b.t.n;
+    int h = sl_half_of(a.t.half, b.t.half);
+    if (h == 1) {
+        if (a.t.half != 1)
+            a = sl_round_half(S, a);
+        if (b.t.half != 1)
+            b = sl_round_half(S, b);
+    }
     if (n > 1) {
         if (a.t.n == 1)
             a.c[0] = sl_temp_real(S, a.c[0]);
         if (b.t.n == 1)
             b.c[0] = sl_temp_real(S, b.c[0]);
     }
-    r.t = (struct type){ .b = B_FLOAT, .n = n };
+    r.t = (struct type){ .b = B_FLOAT, .n = n, .half = h };
     for (int i = 0; i < n; ++i) {
         const char *x = a.c[a.t.n == 1 ? 0 : i], *y = b.c[b.t.n == 1 ? 0 : i];
         r.c[i] = op == '%' ? sl_sfmt(S, "fmod(%s, %s)", x, y) : sl_sfmt(S, "(%s %s %s)", x, sl_op_text(op), y);
     }
+    if (h == 1)
+        r = sl_round_half(S, r);
     return n > 1 ? sl_temp_val(S, r) : r;
 }
 
@@ -516,6 +549,9 @@ static const char *dot_of(struct sl *S, struct val a, struct val b)
     return sl_sfmt(S, "(%s)", s);
 }
 
+static struct val builtin_value(struct sl *S, const struct builtin *bi, struct expr *e, struct val *a, int n,
+                                int width);
+
 struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *e)
 {
     struct val a[SL_MAX_ARGS];
@@ -529,6 +565,7 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
     if (bi->shader_only)
         S->shader_only = 1;
     int width = 1;
+    int h = 2;   /* the call's precision: its arguments' (sl_half_of) */
     for (int i = 0; i < n; ++i) {
         a[i] = sl_ev(S, e->args[i]);
         if (a[i].t.b != B_FLOAT && a[i].t.b != B_INT)
@@ -539,7 +576,25 @@ struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *
                 FAIL(S, e->args[i]->t, "%s of vectors of different sizes", bi->name);
             width = a[i].t.n;
         }
+        h = sl_half_of(h, a[i].t.half);
     }
+    /* In binary16 a literal argument is a half constant; the result is rounded once (a dot
+       product, length or normalize too: as one fused operation, docs/user-models.md). */
+    if (h == 1)
+        for (int i = 0; i < n; ++i)
+            if (a[i].t.half != 1)
+                a[i] = sl_round_half(S, a[i]);
+    struct val r = builtin_value(S, bi, e, a, n, width);
+    if (h == 1)
+        r = sl_round_half(S, r);
+    else
+        r.t.half = h;
+    return r.t.n > 1 ? sl_temp_val(S, r) : r;
+}
+
+static struct val builtin_value(struct sl *S, const struct builtin *bi, struct expr *e, struct val *a, int n,
+                                int width)
+{
     struct val r = { .t = { .b = B_FLOAT, .n = 1 } };
     switch (bi->kind) {
     case BK_CW:

@@ -264,7 +264,11 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
     S->cur_pred = NULL;
     S->inlining[S->ninline++] = f;
     S->fn = &fc;
+    /* the function's statements are its own: no loop of the caller's to break out of */
+    struct loopctx *saved_loops = S->loops;
+    S->loops = NULL;
     sl_emit_block(S, f->body, NULL, 0);
+    S->loops = saved_loops;
     S->fn = saved_fn;
     --S->ninline;
     S->scope = saved_scope;
@@ -350,6 +354,11 @@ static struct val construct(struct sl *S, struct type t, struct expr *e)
                                      .uniform = parts[i].uniform };
         }
         parts[i] = sl_to_float(S, parts[i], e->args[i]->t);
+        /* half3(x): each value becomes binary16; vec3(x), float3(x): the values' precision */
+        if (t.half == 1 && parts[i].t.half != 1)
+            parts[i] = sl_round_half(S, parts[i]);
+        if (t.half != 1)
+            r.t.half = i == 0 ? parts[i].t.half : sl_half_of(r.t.half, parts[i].t.half);
         total += parts[i].t.n;
     }
     r.uniform = 0;
@@ -454,7 +463,7 @@ static struct val ev_swizzle(struct sl *S, struct expr *e)
     for (int i = 0; i < e->nswz; ++i)
         if (e->swz[i] >= v.t.n)
             FAIL(S, e->t, "component %c of a %s", "xyzw"[e->swz[i]], sl_type_name(S, v.t));
-    r.t = (struct type){ .b = B_FLOAT, .n = e->nswz };
+    r.t = (struct type){ .b = B_FLOAT, .n = e->nswz, .half = v.t.half };
     r.uniform = v.uniform;
     for (int i = 0; i < e->nswz; ++i)
         r.c[i] = v.c[e->swz[i]];
@@ -528,9 +537,14 @@ static struct val ev_ternary(struct sl *S, struct expr *e)
     int n = a.t.n > b.t.n ? a.t.n : b.t.n;
     if (a.t.n != b.t.n && a.t.n != 1 && b.t.n != 1)
         FAIL(S, e->t, "?: between a %s and a %s", sl_type_name(S, a.t), sl_type_name(S, b.t));
+    int h = sl_half_of(a.t.half, b.t.half);
+    if (h == 1) {
+        a = a.t.half == 1 ? a : sl_round_half(S, a);
+        b = b.t.half == 1 ? b : sl_round_half(S, b);
+    }
     if (n > 1)
         c.c[0] = sl_temp_cond(S, c.c[0], c.uniform);
-    r.t = (struct type){ .b = B_FLOAT, .n = n };
+    r.t = (struct type){ .b = B_FLOAT, .n = n, .half = h };
     r.uniform = 0;
     for (int i = 0; i < n; ++i)
         r.c[i] = sl_sfmt(S, "(%s ? %s : %s)", c.c[0], a.c[a.t.n == 1 ? 0 : i], b.c[b.t.n == 1 ? 0 : i]);
@@ -603,6 +617,7 @@ static struct val ev_index(struct sl *S, struct expr *e)
     }
     if (v.t.b != B_FLOAT || v.t.n < 2)
         FAIL(S, e->t, "indexing a %s (a vector or an array is indexed)", sl_type_name(S, v.t));
+    r.t.half = v.t.half;
     if (index_of(S, e->b, v.t.n, sl_sfmt(S, "a %s", sl_type_name(S, v.t)), &k, &idx)) {
         r.c[0] = v.c[k];
         return r;
@@ -623,7 +638,7 @@ static struct val ev_call(struct sl *S, struct expr *e)
         return construct(S, t, e);
     const struct sdef *sd = sl_find_struct(S, e->t);
     if (sd)
-        return construct(S, (struct type){ B_STRUCT, 1, sd }, e);
+        return construct(S, (struct type){ .b = B_STRUCT, .n = 1, .st = sd }, e);
     struct func *f = sl_find_func(S, e->t);
     if (f)
         return call_user(S, f, e);
@@ -666,6 +681,9 @@ struct val sl_ev(struct sl *S, struct expr *e)
     switch (e->k) {
     case E_FLT:
         r.c[0] = sl_sfmt(S, "RSPLAT(%s)", sl_float_literal(S, e->t));
+        r.t.half = 2; /* a literal takes the precision of what it meets */
+        if (e->t->p[e->t->len - 1] == 'h' || e->t->p[e->t->len - 1] == 'H')
+            r = sl_round_half(S, r); /* HLSL's 0.1h is a half constant, even where it meets a float */
         return r;
     case E_INT:
         return ev_int(S, e);
@@ -695,12 +713,39 @@ struct val sl_ev(struct sl *S, struct expr *e)
 
 /* ---- statements -------------------------------------------------------------------------- */
 
+/* A break or continue that leaves s's enclosing switch (not one of a loop or switch inside s). */
+static int leaves_switch(const struct stmt *s)
+{
+    if (!s)
+        return 0;
+    switch (s->k) {
+    case S_BREAK:
+    case S_CONTINUE: return 1;
+    case S_BLOCK:
+        for (int i = 0; i < s->n; ++i)
+            if (leaves_switch(s->items[i]))
+                return 1;
+        return 0;
+    case S_IF: return leaves_switch(s->s1) || leaves_switch(s->s2);
+    default: return 0;
+    }
+}
+
 int sl_stmt_returns(const struct stmt *s)
 {
     if (!s)
         return 0;
     switch (s->k) {
     case S_RET: return 1;
+    case S_SWITCH: {
+        /* every way in ends in a return: a default label, nothing that leaves the switch, and a
+           last statement that returns (the sections fall through to it) */
+        const struct stmt *b = s->s1;
+        int has_default = 0;
+        for (int i = 0; i < b->n; ++i)
+            has_default |= b->items[i]->k == S_CASE && !b->items[i]->e;
+        return has_default && b->n > 0 && !leaves_switch(b) && sl_stmt_returns(b->items[b->n - 1]);
+    }
     case S_BLOCK:
         for (int i = 0; i < s->n; ++i)
             if (sl_stmt_returns(s->items[i]))
@@ -711,15 +756,62 @@ int sl_stmt_returns(const struct stmt *s)
     }
 }
 
-/* "pred and the lane still runs", or NULL for every lane. */
+/* The flag of a break or continue as a condition: an int as it is, a REAL mask compared. */
+static const char *flag_cond(struct sl *S, const char *var, int is_int)
+{
+    return is_int ? var : sl_sfmt(S, "(%s != RSPLAT(0.0))", var);
+}
+
+/* "pred and the lane still runs" (has not returned, broken out of or continued past any loop or
+ * switch it is in), or NULL for every lane. */
 static const char *effective(struct sl *S, const char *pred)
 {
     const char *live = S->fn->live;
-    if (!pred)
-        return live;
-    if (!live)
-        return pred;
-    return sl_sfmt(S, "(%s && %s)", pred, live);
+    const char *r = pred;
+    if (live)
+        r = r ? sl_sfmt(S, "(%s && %s)", r, live) : live;
+    for (const struct loopctx *L = S->loops; L; L = L->up) {
+        const char *f[4] = { L->brk_int, L->cont_int, L->brk_real, L->cont_real };
+        for (int i = 0; i < 4; ++i)
+            if (f[i]) {
+                const char *c = flag_cond(S, f[i], i < 2);
+                r = r ? sl_sfmt(S, "(%s && %s)", r, c) : c;
+            }
+    }
+    return r;
+}
+
+/* break (is_continue 0) or continue under pred: the lanes where it runs leave the innermost
+ * loop or switch (continue: the rest of the innermost loop's iteration). Its flag is made
+ * where it is first needed (the translated code is one straight block, so it is seen after). */
+static void emit_break(struct sl *S, struct stmt *st, const char *pred, int is_continue)
+{
+    struct loopctx *L = S->loops;
+    while (is_continue && L && L->is_switch)
+        L = L->up;
+    if (!L)
+        FAIL(S, st->t, "'%s' outside a %s", is_continue ? "continue" : "break", is_continue ? "loop" : "loop or switch");
+    const char *E = effective(S, pred);
+    int uniform = !E || !strstr(E, "RSPLAT");
+    const char **flag = is_continue ? (uniform ? &L->cont_int : &L->cont_real) : (uniform ? &L->brk_int : &L->brk_real);
+    if (!*flag) {
+        *flag = sl_sfmt(S, uniform ? "sl_bk%d" : "sl_k%d", ++S->ntemp);
+        sl_out_line(S, uniform ? "int %s = 1;" : "REAL %s = RSPLAT(1.0);", *flag);
+    }
+    const char *off = uniform ? "0" : "RSPLAT(0.0)";
+    if (E)
+        sl_out_line(S, "%s = (%s) ? %s : %s;", *flag, E, off, *flag);
+    else
+        sl_out_line(S, "%s = %s;", *flag, off);
+}
+
+/* A new iteration of loop L: no lane has continued past it yet. */
+static void loop_iteration(struct sl *S, const struct loopctx *L)
+{
+    if (L->cont_int)
+        sl_out_line(S, "%s = 1;", L->cont_int);
+    if (L->cont_real)
+        sl_out_line(S, "%s = RSPLAT(1.0);", L->cont_real);
 }
 
 static const char *and_cond(struct sl *S, const char *a, const char *b)
@@ -1156,18 +1248,23 @@ static void emit_while(struct sl *S, struct stmt *st, const char *pred, int is_d
     S->loop_syms = sl_arena_alloc(S, sizeof *S->loop_syms * 16);
     S->nloop_syms = 0;
     S->loop_syms_cap = 16;
+    struct loopctx L = { .up = S->loops };
+    S->loops = &L;
     for (int it = 0; it <= SL_MAX_WHILE; ++it) {
         if (++S->unrolled > SL_MAX_UNROLL_TOTAL)
             FAIL(S, st->t, "the loops unroll to more than %d iterations in all (nested loops multiply; "
                  "a while or do loop is unrolled %d times)", SL_MAX_UNROLL_TOTAL, SL_MAX_WHILE);
         S->stmt_line = st->t->line;
+        loop_iteration(S, &L);
         if (!is_do || it > 0) {
             struct val c = sl_ev(S, st->e);
             if (c.t.b != B_BOOL)
                 FAIL(S, st->e->t, "the condition of %s is a %s, not a comparison", is_do ? "do ... while" : "while",
                      sl_type_name(S, c.t));
             if (uniform < 0) {
-                uniform = c.uniform && (!pred || !strstr(pred, "RSPLAT")) && !S->fn->live;
+                const char *outer = effective(S, NULL);
+                uniform = c.uniform && (!pred || !strstr(pred, "RSPLAT")) && !S->fn->live &&
+                          (!outer || !strstr(outer, "RSPLAT"));
                 w = sl_sfmt(S, uniform ? "sl_bw%d" : "sl_w%d", k);
                 sl_out_line(S, uniform ? "int %s = 1;" : "REAL %s = RSPLAT(1.0);", w);
                 wc = uniform ? w : sl_sfmt(S, "(%s != RSPLAT(0.0))", w);
@@ -1184,8 +1281,10 @@ static void emit_while(struct sl *S, struct stmt *st, const char *pred, int is_d
             bp = sl_temp_cond(S, and_cond(S, pred, wc), uniform > 0);
         sl_emit_block(S, st->s3, bp, 1);
     }
-    /* lanes that did not finish: what the loop wrote becomes NaN */
+    /* lanes that did not finish (nor break out): what the loop wrote becomes NaN */
+    loop_iteration(S, &L);
     const char *E = effective(S, and_cond(S, pred, wc));
+    S->loops = L.up;
     for (int i = 0; i < S->nloop_syms; ++i) {
         struct sym *s = S->loop_syms[i];
         for (int c = 0; c < s->t.n; ++c)
@@ -1226,6 +1325,8 @@ static void emit_for(struct sl *S, struct stmt *st, const char *pred)
     if (inc->op == '-')
         step = -step;
     int count = 0;
+    struct loopctx L = { .up = S->loops };
+    S->loops = &L;
     for (long i = i0;; i += step) {
         int go = c->op == '<' ? i < bound : c->op == 'L' ? i <= bound : c->op == '>' ? i > bound : i >= bound;
         if (!go)
@@ -1236,6 +1337,7 @@ static void emit_for(struct sl *S, struct stmt *st, const char *pred)
         if (++S->unrolled > SL_MAX_UNROLL_TOTAL)
             FAIL(S, st->t, "the loops unroll to more than %d iterations in all (nested loops multiply; "
                  "one loop may have %d)", SL_MAX_UNROLL_TOTAL, SL_MAX_UNROLL);
+        loop_iteration(S, &L);
         sl_push_scope(S, 0);
         struct sym *s = sl_declare(S, S->scope, d->name, d->ty);
         s->is_const = 1;
@@ -1246,6 +1348,68 @@ static void emit_for(struct sl *S, struct stmt *st, const char *pred)
         if (sl_stmt_returns(st->s3))
             FAIL(S, st->t, "a return inside a for loop is not supported");
     }
+    S->loops = L.up;
+}
+
+/* switch (SEL) { case K: ... default: ... }: SEL an int (the same in every lane), each label a
+ * constant. An int flag says "fallen into a section" (a case that matches, or default when none
+ * does, at the label's place; then on through the sections that follow, as C falls through);
+ * the statements run under it, and break leaves the switch (emit_break). */
+static void emit_switch(struct sl *S, struct stmt *st, const char *pred)
+{
+    struct val sel = sl_ev(S, st->e);
+    if (sel.t.b != B_INT)
+        FAIL(S, st->e->t, "switch on a %s: the selector is an int", sl_type_name(S, sel.t));
+    sel = sl_temp_val(S, sel);
+    struct stmt *b = st->s1;
+    const char *any = NULL; /* "one of the cases matches" */
+    int ndefault = 0;
+    long *seen = sl_arena_alloc(S, sizeof *seen * (size_t)(b->n + 1));
+    int nseen = 0;
+    for (int i = 0; i < b->n; ++i) {
+        struct stmt *c = b->items[i];
+        if (c->k != S_CASE)
+            continue;
+        if (!c->e) {
+            if (ndefault++)
+                FAIL(S, c->t, "a second default label in one switch");
+            continue;
+        }
+        long k;
+        if (!const_int(S, c->e, &k))
+            FAIL(S, c->e->t, "a case label is a constant integer");
+        for (int j = 0; j < nseen; ++j)
+            if (seen[j] == k)
+                FAIL(S, c->t, "case %ld appears twice in one switch", k);
+        seen[nseen++] = k;
+        const char *m = sl_sfmt(S, "(%s == %ld)", sel.c[0], k);
+        any = any ? sl_sfmt(S, "%s | %s", any, m) : m; /* | of 0/1: no warning where both are constant */
+    }
+    int pred_uniform = !pred || !strstr(pred, "RSPLAT");
+    const char *in = sl_sfmt(S, "sl_bs%d", ++S->ntemp);
+    sl_out_line(S, "int %s = 0;", in);
+    struct loopctx L = { .up = S->loops, .is_switch = 1 };
+    S->loops = &L;
+    sl_push_scope(S, 0);
+    const char *bp = NULL;
+    for (int i = 0; i < b->n; ++i) {
+        struct stmt *c = b->items[i];
+        S->stmt_line = c->t->line;
+        if (c->k == S_CASE) {
+            long k = 0;
+            if (c->e)
+                const_int(S, c->e, &k);
+            const char *m = c->e ? sl_sfmt(S, "(%s == %ld)", sel.c[0], k) : any ? sl_sfmt(S, "!(%s)", any) : "1";
+            sl_out_line(S, "%s = %s | %s;", in, in, m);
+            bp = sl_temp_cond(S, and_cond(S, pred, in), pred_uniform);
+            continue;
+        }
+        if (!bp)
+            continue; /* before the first label: never run */
+        emit_stmt(S, c, bp);
+    }
+    S->scope = S->scope->up;
+    S->loops = L.up;
 }
 
 static void emit_stmt_inner(struct sl *S, struct stmt *st, const char *pred);
@@ -1285,6 +1449,15 @@ static void emit_stmt_inner(struct sl *S, struct stmt *st, const char *pred)
     case S_DO:
         emit_while(S, st, pred, st->k == S_DO);
         return;
+    case S_BREAK:
+    case S_CONTINUE:
+        emit_break(S, st, pred, st->k == S_CONTINUE);
+        return;
+    case S_SWITCH:
+        emit_switch(S, st, pred);
+        return;
+    case S_CASE:
+        FAIL(S, st->t, "a case label outside a switch");
     case S_IF: {
         struct val c = sl_ev(S, st->e);
         if (c.t.b != B_BOOL)

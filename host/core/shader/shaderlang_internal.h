@@ -63,6 +63,9 @@ struct type {
     int b;
     int n; /* components: 1 to 4 (vectors of float only) */
     const struct sdef *st; /* B_STRUCT: its definition */
+    int half;              /* B_FLOAT: 0 float (highp), 1 binary16 (half, min16float, mediump:
+                              each operation's result goes through RHALF), 2 a literal or an int
+                              made float, which takes the other operand's precision */
 };
 
 #define SL_MAX_FIELDS 16
@@ -91,7 +94,8 @@ struct expr {
     struct type ctor;
 };
 
-enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL, S_WHILE, S_DO };
+enum stmt_kind { S_DECL, S_ASSIGN, S_IF, S_BLOCK, S_RET, S_FOR, S_EMPTY, S_CALL, S_WHILE, S_DO, S_BREAK, S_CONTINUE,
+                 S_SWITCH, S_CASE };
 struct stmt {
     int k;
     const struct tok *t;
@@ -119,6 +123,17 @@ struct func {
     struct stmt *body;
     const struct tok *close;
     struct func *next;
+};
+
+/* A loop or a switch being emitted: the lanes that left it by break and, for a loop, those that
+ * skip the rest of this iteration by continue, as flags made at the first break or continue (an
+ * int where the condition is the same in every lane, else a REAL mask). Every statement inside
+ * runs under all of them (effective, shaderlang_emit.c), the enclosing loops' too. */
+struct loopctx {
+    struct loopctx *up;
+    int is_switch;
+    const char *brk_int, *brk_real;    /* 1 while the lane has not broken out */
+    const char *cont_int, *cont_real;  /* 1 while the lane has not continued (reset each iteration) */
 };
 
 struct val;
@@ -212,6 +227,8 @@ struct sl {
     struct sym **loop_syms;    /* inside a while/do loop: the float variables it writes */
     int nloop_syms, loop_syms_cap;
     int depth;                 /* of the parser's recursion */
+    int default_half;          /* `precision mediump float;` (or lowp) was written: float is binary16 */
+    struct loopctx *loops;     /* the innermost loop or switch being emitted (NULL: none) */
 };
 
 
@@ -299,6 +316,11 @@ struct val sl_sym_val(struct sym *s);
 struct sym *sl_declare_array(struct sl *S, struct scope *sc, const struct tok *name, struct type t, int n);
 const char *sl_op_text(int op);
 struct val sl_arith(struct sl *S, int op, struct val a, struct val b, const struct tok *where);
+/* The precision of an operation of a and b (struct type's half): float when either is,
+ * binary16 when either is and the other is too or a literal, else a literal's. */
+int sl_half_of(int a, int b);
+/* v (a float value) rounded to binary16: each component through RHALF, v.t.half 1. */
+struct val sl_round_half(struct sl *S, struct val v);
 /* The built-in function a call names, or NULL. */
 const struct builtin *sl_find_builtin(const struct tok *t);
 struct val sl_call_builtin(struct sl *S, const struct builtin *bi, struct expr *e);

@@ -59,7 +59,7 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
     w[t->len] = '\0';
     *shader_only = 0;
     if (strcmp(w, "float") == 0 || strcmp(w, "half") == 0 || strcmp(w, "min16float") == 0) {
-        *ty = (struct type){ .b = B_FLOAT, .n = 1 };
+        *ty = (struct type){ .b = B_FLOAT, .n = 1, .half = w[0] != 'f' };
         return 1;
     }
     if (strcmp(w, "int") == 0 || strcmp(w, "uint") == 0) {
@@ -86,7 +86,7 @@ int sl_type_of_name(const struct tok *t, struct type *ty, int *shader_only)
         w[l - 1] = '\0';
         if (strcmp(w, "vec") == 0 || strcmp(w, "float") == 0 || strcmp(w, "half") == 0 ||
             strcmp(w, "min16float") == 0) {
-            *ty = (struct type){ .b = B_FLOAT, .n = last - '0' };
+            *ty = (struct type){ .b = B_FLOAT, .n = last - '0', .half = w[0] == 'h' || w[0] == 'm' };
             *shader_only = 1;
             return 1;
         }
@@ -116,9 +116,6 @@ static int is_qualifier(const struct tok *t)
 static void check_unsupported_word(struct sl *S, const struct tok *t)
 {
     static const struct { const char *w, *why; } words[] = {
-        { "switch", "switch is not supported (use if/else)" },
-        { "break", "break is not supported" },
-        { "continue", "continue is not supported" },
         { "discard", "discard is not supported" },
         { "uniform", "uniforms are not supported: declare the model's parameters in the header "
                      "('param: NAME MIN MAX DEFAULT') and take them as the function's arguments after c and n" },
@@ -423,12 +420,17 @@ static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
 {
     int save = S->pos;
     *is_const = 0;
+    int prec = -1; /* a precision qualifier: 1 mediump or lowp (binary16), 0 highp */
     for (;;) {
         const struct tok *t = sl_peek(S);
         if (sl_tok_is(t, "const")) {
             *is_const = 1;
             next(S);
         } else if (sl_tok_is(t, "static") || is_qualifier(t)) {
+            if (sl_tok_is(t, "mediump") || sl_tok_is(t, "lowp"))
+                prec = 1;
+            else if (sl_tok_is(t, "highp"))
+                prec = 0;
             next(S);
         } else {
             break;
@@ -440,12 +442,15 @@ static int parse_decl_type(struct sl *S, struct type *ty, int *is_const)
     if (sl_type_of_name(t, ty, &so) && !sl_tok_is(peek_at(S, 1), "(")) {
         if (so)
             S->shader_only = 1;
+        /* float and vecN take the qualifier, else the default of `precision mediump float;` */
+        if (ty->b == B_FLOAT && ty->half == 0 && (prec == 1 || (prec == -1 && S->default_half)))
+            ty->half = 1;
         next(S);
         return 1;
     }
     const struct sdef *st = sl_find_struct(S, t);
     if (st && !sl_tok_is(peek_at(S, 1), "(")) {
-        *ty = (struct type){ B_STRUCT, 1, st };
+        *ty = (struct type){ .b = B_STRUCT, .n = 1, .st = st };
         S->shader_only = 1;
         next(S);
         return 1;
@@ -664,6 +669,45 @@ static struct stmt *parse_statement_inner(struct sl *S, int top_body)
             s->s3 = parse_statement(S, 0);
         return s;
     }
+    if (sl_tok_is(t, "break") || sl_tok_is(t, "continue")) {
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, sl_tok_is(t, "break") ? S_BREAK : S_CONTINUE, t);
+        expect(S, ";");
+        return s;
+    }
+    if (sl_tok_is(t, "case") || sl_tok_is(t, "default"))
+        FAIL(S, t, "'%.*s' outside a switch", t->len, t->p);
+    if (sl_tok_is(t, "switch")) {
+        /* switch (EXPR) { case K: ... default: ... }: the labels are S_CASE items of its block
+           (e: the constant, NULL for default) among its statements */
+        next(S);
+        S->statement_form = 1;
+        struct stmt *s = sl_new_stmt(S, S_SWITCH, t);
+        expect(S, "(");
+        s->e = parse_expr(S);
+        expect(S, ")");
+        const struct tok *open = sl_peek(S);
+        expect(S, "{");
+        s->s1 = sl_new_stmt(S, S_BLOCK, open);
+        while (!accept(S, "}")) {
+            const struct tok *l = sl_peek(S);
+            if (l->k == K_EOF)
+                FAIL(S, open, "the switch's '{' is not closed");
+            struct stmt *item;
+            if (sl_tok_is(l, "case") || sl_tok_is(l, "default")) {
+                next(S);
+                item = sl_new_stmt(S, S_CASE, l);
+                if (sl_tok_is(l, "case"))
+                    item->e = parse_expr(S);
+                expect(S, ":");
+            } else {
+                item = parse_statement(S, 0);
+            }
+            block_add(S, s->s1, item);
+        }
+        return s;
+    }
     if (sl_tok_is(t, "for")) {
         next(S);
         S->statement_form = 1;
@@ -775,6 +819,11 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
             continue;
         }
         if (sl_tok_is(start, "precision")) {
+            /* precision mediump float; makes float binary16 in what follows (highp: float) */
+            next(S);
+            const struct tok *q = sl_peek(S);
+            if (sl_tok_is(peek_at(S, 1), "float"))
+                S->default_half = sl_tok_is(q, "mediump") || sl_tok_is(q, "lowp");
             while (sl_peek(S)->k != K_EOF && !accept(S, ";"))
                 next(S);
             continue;

@@ -92,6 +92,18 @@ struct accuracy_result {
     double points;                 /* samples evaluated (each: the model and its reference) */
     int ok;                        /* 0 when figures are missing; reason says why */
     int device_disagrees;          /* the check exceeded its bound: reason says where */
+    /* A model with binary16 code (its runtime's fp16): the same sweep of its fp16 build (every
+       half operation rounded to binary16, kernels/brdf_models.h RHALF). Each per-n maximum is
+       located on the device grid, then the fp16 value there is taken from the device and the
+       reference's in double on the host; the ratios are over the fp32 figures above. */
+    struct {
+        int present;
+        struct acc_extreme epicentre, attenuation; /* max delta (relative), max Delta (absolute) */
+        double ratio_rel, ratio_abs;               /* over epicentre.value, attenuation.value */
+        long long invalid_count;                   /* fp16 values that were NaN, Inf or negative */
+        int device_fp16;                           /* the device has cl_khr_fp16 (not used: emulated) */
+        double device_seconds;
+    } fp16;
     char reason[640];
 };
 

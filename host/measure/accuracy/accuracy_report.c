@@ -87,6 +87,26 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
                               "model's own float error; "
                               "probe: model values at 4096 points against double, relative to the reference's peak");
         jw_obj_end(&w);
+        if (r->fp16.present) {
+            /* binary16 code: the same sweep of its fp16 build beside the fp32 figures above */
+            jw_kv_obj(&w, "fp16");
+            jw_kv_num(&w, "max_rel", r->fp16.epicentre.value);
+            jw_kv_num(&w, "max_rel_at_n", r->fp16.epicentre.n);
+            jw_kv_num(&w, "max_rel_at_x", r->fp16.epicentre.x);
+            jw_kv_num(&w, "max_abs", r->fp16.attenuation.value);
+            jw_kv_num(&w, "max_abs_at_n", r->fp16.attenuation.n);
+            jw_kv_num(&w, "max_abs_at_x", r->fp16.attenuation.x);
+            jw_kv_num(&w, "ratio_rel_to_fp32", r->fp16.ratio_rel);
+            jw_kv_num(&w, "ratio_abs_to_fp32", r->fp16.ratio_abs);
+            jw_kv_int(&w, "invalid_count", r->fp16.invalid_count);
+            jw_kv_str(&w, "evaluation", "every half operation's result rounded to binary16 (round to nearest even, "
+                                        "vstore_half_rte) on the device; the reference in double");
+            jw_kv_bool(&w, "device_has_cl_khr_fp16", r->fp16.device_fp16);
+            jw_kv_str(&w, "what", "max_rel: max delta over the epicentre, max_abs: max Delta over the attenuation "
+                                  "zone, each at the per-n maximum the device grid found; ratios over the fp32 "
+                                  "figures (epicentre.max_rel, attenuation.max_abs)");
+            jw_obj_end(&w);
+        }
         jw_kv_obj(&w, "invalid");
         jw_kv_int(&w, "count", r->invalid_count);
         jw_kv_num(&w, "at_n", r->invalid_n);
@@ -169,6 +189,10 @@ void accuracy_print_table(FILE *f, const struct accuracy_result *res, int count)
         }
         fprintf(f, "%-22s %-8s %s %s %s  %s %s %s  %s  %8.3g\n", r->model.label, r->reference.info->id, epi, en, ex,
                 att, an, ax, whole, r->points / r->device_seconds * 1e-9);
+        if (r->fp16.present)   /* the same code in binary16, beside the fp32 line */
+            fprintf(f, "  fp16: max delta %.4g%% (%.3gx fp32), max Delta %.4g (%.3gx fp32), %lld invalid values\n",
+                    100.0 * r->fp16.epicentre.value, r->fp16.ratio_rel, r->fp16.attenuation.value, r->fp16.ratio_abs,
+                    r->fp16.invalid_count);
         if (strcmp(accuracy_status(r), "ok") != 0)
             fprintf(f, "  status: %s\n", accuracy_status(r));
         if (r->reason[0])
