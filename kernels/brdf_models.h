@@ -49,8 +49,8 @@
 #define RSPLAT(x) ((REAL)(x))
 
 /* RHALF(x): a value of a shader's half-precision code (half, min16float, mediump: the
- * shader-language translator wraps each such operation's result, host/core/shaderlang_check.c).
- * The fp16 build of the accuracy sweep (-DBRDF_FP16, host/engine/accuracy.c) rounds it to
+ * shader-language translator wraps each such operation's result, host/core/shader/shaderlang_check.c).
+ * The fp16 build of the accuracy sweep (-DBRDF_FP16, host/measure/accuracy/accuracy.c) rounds it to
  * binary16, to nearest with ties to even, through vstore_half_rte and reads it back with
  * vload_half: both are core OpenCL C on every device, with or without cl_khr_fp16. Every other
  * build (float, the double reference, the host's C) keeps the value as it is. */

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench_translate.sh - how long the shader-language translator (host/core/shaderlang*.c) takes
+# bench_translate.sh - how long the shader-language translator (host/core/shader/shaderlang*.c) takes
 # for a 300-line shader: helper functions, vectors, if/else, a constant loop, and two nested
 # constant loops of 32 (1024 bodies, the case that was cubic), each as a .glsl file (checked by
 # glslang first, then translated) and under a name brdfbench's parser reads alone. A benchmark,

@@ -1,5 +1,5 @@
 # fp16.sh - bad-input rows of break, continue and switch in shader-language models
-# (host/core/shaderlang_emit.c): a break outside a loop or switch, a continue outside a loop, a
+# (host/core/shader/shaderlang_emit.c): a break outside a loop or switch, a continue outside a loop, a
 # float selector, a repeated or non-constant label, a label outside a switch: refused at the
 # user's line and column with exit 2 before anything is compiled (a *.shader file shows
 # brdfbench's own check, a .glsl file glslang's). Sourced by tests/test_cli_errors.sh (its `t`).

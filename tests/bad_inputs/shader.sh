@@ -1,4 +1,4 @@
-# shader.sh - bad-input rows of the shader-language models (host/core/shaderlang*.c): what a
+# shader.sh - bad-input rows of the shader-language models (host/core/shader/shaderlang*.c): what a
 # shader cannot do is refused at parse, at the user's file, line and column, with exit 2, before
 # anything is compiled or run (in a .glsl/.hlsl file, what brdfbench's parser accepts is then
 # checked by glslang, the reference compiler, whose message it prints; a file of another name,
