@@ -92,6 +92,11 @@ grep -c "^cpu0 | m2 | default | n .* evals_per_s: the latest run ([^)]*run12.jso
     && ok || bad "step: --fail-if-slower lines: $(cat "$T/err")"
 grep -q "|.*m2 | default | n uniform.* 7 (run07.json)" "$T/h_step/history.md" || grep -q "m2 \\\\| default \\\\| n uniform\|m2 | default" "$T/h_step/history.md" \
     && ok || bad "history.md lacks the change"
+# The verdict is reproducible: the same runs, given in another order, give the same documents
+# byte for byte (the dates order them; nothing random or timed enters the method).
+"$BIN" history $(shuffled "$T/step" | sort -r) --out "$T/h_step_again" >/dev/null 2>"$T/err" &&
+    cmp -s "$T/h_step/history.json" "$T/h_step_again/history.json" &&
+    cmp -s "$T/h_step/history.md" "$T/h_step_again/history.md" && ok || bad "history of the same runs twice differs"
 # a lenient threshold: a 30% slowdown is not more than 40% slower (the minimum change follows it, as in compare)
 "$BIN" history $(shuffled "$T/step") --out "$T/h_step2" --fail-if-slower 40 >"$T/out" 2>"$T/err"
 [ $? -eq 0 ] && ok || bad "--fail-if-slower 40 on a 30% step: $(cat "$T/err")"
