@@ -22,13 +22,19 @@
 # Printed per condition: the rows, the share of rows with no change called (the calibration
 # goal: at least 95% on flat and flat-load), and for planted and synthetic the share of the
 # planted rows (STEP_MODEL's; synthetic's s00..s19) whose one change is called at STEP_FROM,
-# and the share of the other rows with any change (for synthetic the calibration figure).
+# the share of them with a change at STEP_FROM among others, and the share of the other rows
+# with any change (for synthetic the calibration figure).
+#
+# Also printed: the machine's load while the runs were made (the 1-minute load average each
+# run's context records at its start: min, median, max), and on stderr every change called,
+# as "condition-series row: run index (ratio)", so that a share can be traced to its runs.
 #
 # Environment: BRDFBENCH (default build/brdfbench), MODELS (default cq2,fq2,phong), TP_FLAGS
 # (default below), STEP_MODEL (default fq2), STEP_FROM (default 7), CONDITIONS (default
 # "synthetic flat flat-load"; planted always follows flat), RUN_SD and REP_SD (synthetic's noise,
-# default 0.02 and 0.03), KEEP=1 keeps the runs. A benchmark, not a
-# test: its figures go into notes, never into assertions.
+# default 0.02 and 0.03), MIN_CHANGES (history's --min-change, percent; default 10; a list such
+# as "10 25" evaluates the same runs once per value, a line each), KEEP=1 keeps the runs.
+# A benchmark, not a test: its figures go into notes, never into assertions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${BRDFBENCH:-build/brdfbench}
@@ -41,6 +47,7 @@ STEP_FROM=${STEP_FROM:-7}
 CONDS=${CONDITIONS:-synthetic flat flat-load}
 RUN_SD=${RUN_SD:-0.02}
 REP_SD=${REP_SD:-0.03}
+MIN_CHANGES=${MIN_CHANGES:-10}
 W=$(mktemp -d)
 [ -n "${KEEP:-}" ] && echo "runs kept in $W" || trap 'rm -rf "$W"' EXIT
 
@@ -113,59 +120,98 @@ for r in range(runs):
 PY
 }
 
-# counts of one history: "ROWS NOCHANGE STEP_ROWS STEP_AT_RIGHT_RUN OTHER_ROWS OTHER_CHANGED"
+# counts of one history: "ROWS NOCHANGE STEP_ROWS STEP_AT_RIGHT_RUN OTHER_ROWS OTHER_CHANGED
+# STEP_FOUND" (STEP_AT_RIGHT_RUN: planted rows whose one change is at STEP_FROM; STEP_FOUND:
+# planted rows with a change at STEP_FROM, whatever else is called in them);
+# every change called goes to stderr, tagged with TAG
 tally() {
-    python3 - "$1/history.json" "$STEP_MODEL" "$STEP_FROM" <<'PY'
+    python3 - "$1/history.json" "$STEP_MODEL" "$STEP_FROM" "${2:-}" <<'PY'
 import json, sys
 h = json.load(open(sys.argv[1]))
-model, start = sys.argv[2], int(sys.argv[3])
+model, start, tag = sys.argv[2], int(sys.argv[3]), sys.argv[4]
 rows = [r for r in h["rows"] if not r["label"].startswith("peak")]
 step = [r for r in rows if r["label"].split(" | ")[0] == model or (model == "s" and r["label"].startswith("s"))]
 other = [r for r in rows if r not in step]
 right = sum(1 for r in step if len(r["changes"]) == 1 and r["changes"][0]["index"] == start)
+if tag != "synthetic":
+    for r in rows:
+        for c in r["changes"]:
+            print("  %s %s: run %d (%.3f)" % (tag, r["label"], c["index"], c["ratio"]), file=sys.stderr)
+found = sum(1 for r in step if any(c["index"] == start for c in r["changes"]))
 print(len(rows), sum(1 for r in rows if not r["changes"]), len(step), right, len(other),
-      sum(1 for r in other if r["changes"]))
+      sum(1 for r in other if r["changes"]), found)
 PY
 }
 
-declare -A rows nochange steprows stepright otherrows otherchanged
-add() {   # COND COUNTS...
+# the 1-minute load averages at the start of the runs in DIR, one a line
+loads() {
+    python3 - "$1" <<'PY'
+import json, os, sys
+for run in sorted(os.listdir(sys.argv[1])):
+    ctx = json.load(open(os.path.join(sys.argv[1], run, "throughput.json")))["context"]
+    print(ctx.get("throughput", {}).get("loadavg_start", "nan").split()[0])
+PY
+}
+
+declare -A rows nochange steprows stepright otherrows otherchanged stepfound loadavg
+add() {   # COND COUNTS...   (COND: condition@min-change)
     local c=$1
     rows[$c]=$(( ${rows[$c]:-0} + $2 )); nochange[$c]=$(( ${nochange[$c]:-0} + $3 ))
     steprows[$c]=$(( ${steprows[$c]:-0} + $4 )); stepright[$c]=$(( ${stepright[$c]:-0} + $5 ))
     otherrows[$c]=$(( ${otherrows[$c]:-0} + $6 )); otherchanged[$c]=$(( ${otherchanged[$c]:-0} + $7 ))
+    stepfound[$c]=$(( ${stepfound[$c]:-0} + $8 ))
+}
+
+# history of the runs DIR/run* at every minimum change: "history DIR COND SERIES"
+history_all() {
+    local mc
+    for mc in $MIN_CHANGES; do
+        "$B" history "$1"/run* --min-change "$mc" --out "$1-h$mc" >/dev/null
+        if [ "$2" = synthetic ]; then
+            add "synthetic@$mc" $(STEP_MODEL=s tally "$1-h$mc" synthetic)
+        else
+            add "$2@$mc" $(tally "$1-h$mc" "$2-$3 min $mc%")
+        fi
+    done
 }
 
 for s in $(seq 1 "$SERIES"); do
     for cond in $CONDS; do
         if [ "$cond" = synthetic ]; then
             synthetic "$W/synthetic-$s" "$s"
-            "$B" history "$W/synthetic-$s"/run* --out "$W/h-synthetic-$s" >/dev/null
-            add synthetic $(STEP_MODEL=s tally "$W/h-synthetic-$s")
+            history_all "$W/synthetic-$s" synthetic "$s"
             continue
         fi
         load=none; [ "$cond" = flat-load ] && load=load
         series "$W/$cond-$s" "$load"
-        "$B" history "$W/$cond-$s"/run* --out "$W/h-$cond-$s" >/dev/null
-        add "$cond" $(tally "$W/h-$cond-$s")
+        loadavg[$cond]="${loadavg[$cond]:-} $(loads "$W/$cond-$s" | tr '\n' ' ')"
+        history_all "$W/$cond-$s" "$cond" "$s"
         if [ "$cond" = flat ]; then
             plant "$W/flat-$s" "$W/planted-$s"
-            "$B" history "$W/planted-$s"/run* --out "$W/h-planted-$s" >/dev/null
-            add planted $(tally "$W/h-planted-$s")
+            history_all "$W/planted-$s" planted "$s"
         fi
     done
     echo "series $s of $SERIES done" >&2
 done
 
 echo "history calibration: $SERIES series of $RUNS runs, models $MODELS, $TP_FLAGS"
-printf '%-10s %6s %22s %30s %24s\n' condition rows "no change called" "planted rows: one change at $STEP_FROM" "other rows: a change"
-for c in synthetic flat flat-load planted; do
-    [ -n "${rows[$c]:-}" ] || continue
-    share() { [ "$2" -gt 0 ] && python3 -c "print('%d/%d = %.1f%%' % ($1, $2, 100.0 * $1 / $2))" || echo "-"; }
-    if [ "$c" = planted ] || [ "$c" = synthetic ]; then
-        printf '%-10s %6d %22s %30s %24s\n' "$c" "${rows[$c]}" "$(share "${nochange[$c]}" "${rows[$c]}")" \
-            "$(share "${stepright[$c]}" "${steprows[$c]}")" "$(share "${otherchanged[$c]}" "${otherrows[$c]}")"
-    else
-        printf '%-10s %6d %22s %30s %24s\n' "$c" "${rows[$c]}" "$(share "${nochange[$c]}" "${rows[$c]}")" "-" "-"
-    fi
+for c in flat flat-load; do
+    [ -n "${loadavg[$c]:-}" ] || continue
+    python3 -c "import statistics as s, sys; v = [float(x) for x in sys.argv[2:]]; print('%s: 1-minute load average at the runs\' start: min %.2f, median %.2f, max %.2f (%d runs, %s cores)' % (sys.argv[1], min(v), s.median(v), max(v), len(v), '$(nproc)'))" "$c" ${loadavg[$c]}
+done
+printf '%-10s %6s %6s %22s %30s %26s %24s\n' condition "min %" rows "no change called" "planted rows: one change at $STEP_FROM" \
+    "planted rows: a change at $STEP_FROM" "other rows: a change"
+share() { [ "$2" -gt 0 ] && python3 -c "print('%d/%d = %.1f%%' % ($1, $2, 100.0 * $1 / $2))" || echo "-"; }
+for mc in $MIN_CHANGES; do
+    for cond in synthetic flat flat-load planted; do
+        c="$cond@$mc"
+        [ -n "${rows[$c]:-}" ] || continue
+        if [ "$cond" = planted ] || [ "$cond" = synthetic ]; then
+            printf '%-10s %6s %6d %22s %30s %26s %24s\n' "$cond" "$mc" "${rows[$c]}" "$(share "${nochange[$c]}" "${rows[$c]}")" \
+                "$(share "${stepright[$c]}" "${steprows[$c]}")" "$(share "${stepfound[$c]}" "${steprows[$c]}")" \
+                "$(share "${otherchanged[$c]}" "${otherrows[$c]}")"
+        else
+            printf '%-10s %6s %6d %22s %30s %26s %24s\n' "$cond" "$mc" "${rows[$c]}" "$(share "${nochange[$c]}" "${rows[$c]}")" "-" "-" "-"
+        fi
+    done
 done

@@ -6,7 +6,9 @@
 # in the latest run only. Expected: no change on jitter alone; the step called at run 7 in m2's
 # two rows and in no other, ratio 0.7 within the jitter, with its interval and p;
 # --fail-if-slower exits 1 when the latest run's segment is slower (naming the row), 0 when
-# not. The runs are given out of order: the dates order them. No device.
+# not; a machine 40% slower in the absolute rates alone (normalised ones unmoved) is no change;
+# the same runs in another order give the same documents. The runs are given out of order: the
+# dates order them. No device.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -17,6 +19,9 @@ gen() {
     "$PY" - "$@" <<'EOF'
 import json, math, os, sys
 out, step_model, step_from = sys.argv[1], sys.argv[2], int(sys.argv[3])
+# DRIFT=1: the machine 40% slower from run 7 in every row's absolute rates, its normalised
+# rates as in the flat series (the reference kernel slowed with it, so the ratio held)
+drift = os.environ.get("DRIFT") == "1"
 os.makedirs(out, exist_ok=True)
 models = {"m1": 1e8, "m2": 2e8, "m3": 5e7}
 for r in range(12):
@@ -28,6 +33,8 @@ for r in range(12):
             reps = [rate * scale * (1 + 0.03 * math.sin(1.7 * i + 2.3 * r + q)) * (1 + 0.02 * math.cos(1.3 * r + q))
                     for i in range(10)]
             norm = [v / 1e11 for v in reps]
+            if drift and r + 1 >= 7:
+                reps = [v * 0.6 for v in reps]
             srt = sorted(reps)
             rows.append({"device": "", "model": m, "keys": {"label": m, "variant": "default", "n_mode": mode},
                          "row": "%s | default | n %s" % (m, mode), "status": "ok",
@@ -45,6 +52,7 @@ EOF
 gen "$T/flat" none 99
 gen "$T/step" m2 7
 gen "$T/last" m3 12
+DRIFT=1 gen "$T/drift" none 99
 # the files in a shuffled order: the runs' dates put them back
 shuffled() { for i in 05 12 01 09 03 07 11 02 08 04 10 06; do echo "$1/run$i.json"; done; }
 
@@ -92,6 +100,16 @@ grep -c "^cpu0 | m2 | default | n .* evals_per_s: the latest run ([^)]*run12.jso
     && ok || bad "step: --fail-if-slower lines: $(cat "$T/err")"
 grep -q "|.*m2 | default | n uniform.* 7 (run07.json)" "$T/h_step/history.md" || grep -q "m2 \\\\| default \\\\| n uniform\|m2 | default" "$T/h_step/history.md" \
     && ok || bad "history.md lacks the change"
+# The verdict is reproducible: the same runs, given in another order, give the same documents
+# byte for byte (the dates order them; nothing random or timed enters the method).
+"$BIN" history $(shuffled "$T/step" | sort -r) --out "$T/h_step_again" >/dev/null 2>"$T/err" &&
+    cmp -s "$T/h_step/history.json" "$T/h_step_again/history.json" &&
+    cmp -s "$T/h_step/history.md" "$T/h_step_again/history.md" && ok || bad "history of the same runs twice differs"
+# History decides on the normalised rates, as compare: the machine 40% slower from run 7 in the
+# absolute rates, with the normalised ones those of the flat series, is no change in any row
+# (the absolute rates alone would give a change of 0.6 at run 7 in all six).
+"$BIN" history $(shuffled "$T/drift") --out "$T/h_drift" >"$T/out" 2>"$T/err" &&
+    grep -q "history: 12 runs (by run date), 6 rows, 0 changes" "$T/out" && ok || bad "machine drift: $(head -3 "$T/out" "$T/err")"
 # a lenient threshold: a 30% slowdown is not more than 40% slower (the minimum change follows it, as in compare)
 "$BIN" history $(shuffled "$T/step") --out "$T/h_step2" --fail-if-slower 40 >"$T/out" 2>"$T/err"
 [ $? -eq 0 ] && ok || bad "--fail-if-slower 40 on a 30% step: $(cat "$T/err")"
