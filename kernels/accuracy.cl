@@ -105,12 +105,17 @@ static void store_ilanes(int v, int *a) { a[0] = v; }
 __kernel void accuracy_sweep(const int model, const float p0, const float p1,
                              const int ref_model, const float rp0, const float rp1,
                              __global const float *n_values, const int n_count,
-                             const int samples, __global float *out)
+                             const int samples, const int chunks, __global float *out)
 {
+    /* chunks work-items per n, each over a contiguous run of the samples (1 on a CPU device;
+       a GPU needs more work-items than there are values of n): work-item gid writes its own
+       maxima and the host keeps the largest of each n's chunks (accuracy_sweep_device). */
     const int gid = (int)get_global_id(0);
-    if (gid >= n_count)
+    if (gid >= n_count * chunks)
         return;
-    const float n = n_values[gid];
+    const int per = samples / chunks;   /* a multiple of ACC_W (the host chooses chunks so) */
+    const int i0 = (gid % chunks) * per, i1 = i0 + per;
+    const float n = n_values[gid / chunks];
     const REAL nv = (REAL)(n);
     const float s_e = -expm1(-(float)BRDF_ZONE_K / n);               /* epicentre end in s (docs/definitions.md) */
     const REAL lane = ACC_LANES;
@@ -131,7 +136,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
     ACC_IVEC bad = (ACC_IVEC)(0);
     REAL bad_s = (REAL)(NAN);
 
-    for (int i = 0; i < samples; i += ACC_W) {
+    for (int i = i0; i < i1; i += ACC_W) {
         /* Epicentre (the last sample is s_e itself, up to rounding). */
         REAL s = fmin(((float)i + lane) * epi_step, s_e);
         if (c_only) {   /* onto the float cosines, never past the zone's end */
@@ -143,7 +148,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         /* An invalid model value (NaN, Inf, negative) is counted, not folded into a maximum:
            its error becomes NaN, which never wins. */
         ACC_IVEC invalid = isless(f, 0.0f) | !isfinite(f);
-        bad_s = select(bad_s, s, invalid & isnan(bad_s));
+        bad_s = select(bad_s, fmin(bad_s, s), invalid);   /* the smallest invalid s */
         bad += ACC_TRUE_COUNT(invalid);
         REAL d = select(fabs(f - r), (REAL)(NAN), invalid);
         KEEP_MAX(epi_rel, epi_rel_s, d / r, s);
@@ -158,7 +163,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         f = brdf_eval_s(model, s, nv, p0, p1);
         r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
         invalid = isless(f, 0.0f) | !isfinite(f);
-        bad_s = select(bad_s, s, invalid & isnan(bad_s));
+        bad_s = select(bad_s, fmin(bad_s, s), invalid);   /* the smallest invalid s */
         bad += ACC_TRUE_COUNT(invalid);
         d = select(fabs(f - r), (REAL)(NAN), invalid);
         KEEP_MAX(att_abs, att_abs_s, d, s);
@@ -182,8 +187,7 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
     store_lanes(bad_s, bc);
     for (int q = 0; q < ACC_W; ++q) {
         bad_total += ba[q];
-        if (isnan(first_bad) && !isnan(bc[q]))
-            first_bad = bc[q];
+        first_bad = fmin(first_bad, bc[q]);   /* the smallest invalid s: any launch shape gives it */
     }
     o[6] = (float)bad_total;
     o[7] = first_bad;

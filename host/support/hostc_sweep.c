@@ -76,7 +76,7 @@ static inline __attribute__((always_inline)) void hostc_fold(struct hostc_lanes 
         for (int l = 0; l < 16; ++l) {
             float fv = f[q + l], sv = s[q + l];
             int invalid = fv < 0.0f || !isfinite(fv);
-            L->bad_s[l] = invalid && isnan(L->bad_s[l]) ? sv : L->bad_s[l];
+            L->bad_s[l] = invalid ? fminf(L->bad_s[l], sv) : L->bad_s[l];   /* the smallest invalid s */
             L->bad[l] += invalid;
             float d = invalid ? NAN : fabs(fv - r[q + l]);
             if (epicentre) {
@@ -166,8 +166,7 @@ void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1
     float first_bad = NAN;
     for (int l = 0; l < 16; ++l) {
         bad += L.bad[l];
-        if (isnan(first_bad) && !isnan(L.bad_s[l]))
-            first_bad = L.bad_s[l];
+        first_bad = fminf(first_bad, L.bad_s[l]);
     }
     o[6] = (float)bad;
     o[7] = first_bad;

@@ -470,6 +470,52 @@ done:
 /* An explicit work-group size for the sweep. Left to PoCL, a range such as 999 = 27 x 37
  * became a single work-group and ran on one thread; a few work-items per group leaves enough
  * groups (about 8 per compute unit) to keep every thread busy. */
+/* Work-items per n of the sweep (kernels/accuracy.cl's chunks): 1 on a CPU device, where the
+   values of n already outnumber the cores; on a GPU, doubled until the launch holds 512
+   work-items per compute unit (clsession_default_work_items) or a chunk would hold fewer than
+   256 samples, each chunk a multiple of 16 samples (the kernel's vector width). */
+long sweep_chunks(const struct cl_session *s, long count, long samples)
+{
+    /* BRDFBENCH_SWEEP_CHUNKS=K forces K (a power of 2 dividing samples / 16), so that the
+       chunked path can be checked on any device (tests/test_sweep_chunks.sh) */
+    const char *force = getenv("BRDFBENCH_SWEEP_CHUNKS");
+    if (force && *force) {
+        long k = strtol(force, NULL, 10);
+        if (k >= 1 && (k & (k - 1)) == 0 && (samples / 16) % k == 0)
+            return k;
+    }
+    if (s->is_cpu || count <= 0)
+        return 1;
+    long target = clsession_default_work_items(s, 1L << 24), chunks = 1;
+    while (count * chunks < target && (samples / 16) % (chunks * 2) == 0 && samples / (chunks * 2) >= 256)
+        chunks *= 2;
+    return chunks;
+}
+
+/* The per-n maxima of a chunked sweep (kernels/accuracy.cl's record, ACC_OUT_STRIDE floats
+   per work-item, chunks consecutive work-items per n) merged into one record per n, as one
+   work-item over all the samples would have written it: each maximum the first chunk's that
+   no later chunk exceeds (isgreater: a NaN never wins), its position with it; the invalid
+   values summed; the invalid position the smallest s of any chunk. */
+void accuracy_merge_chunks(const float *chunked, long count, long chunks, float *raw)
+{
+    for (long i = 0; i < count; ++i) {
+        const float *c = chunked + (size_t)i * (size_t)chunks * ACC_OUT_STRIDE;
+        float *o = raw + (size_t)i * ACC_OUT_STRIDE;
+        memcpy(o, c, ACC_OUT_STRIDE * sizeof *o);
+        for (long k = 1; k < chunks; ++k) {
+            const float *q = c + (size_t)k * ACC_OUT_STRIDE;
+            for (int f = 0; f < 6; f += 2)
+                if (isgreater(q[f], o[f]) || (isnan(o[f]) && !isnan(q[f]))) {
+                    o[f] = q[f];
+                    o[f + 1] = q[f + 1];
+                }
+            o[6] += q[6];
+            o[7] = fminf(o[7], q[7]);   /* the smallest invalid s (fminf: a NaN is no position) */
+        }
+    }
+}
+
 static size_t sweep_local_size(long count, cl_uint compute_units)
 {
     long per_group = count / (8L * (long)(compute_units ? compute_units : 1));
@@ -763,7 +809,7 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     cl_mem bn = NULL, bo = NULL;
     cl_event ev = NULL;
     cl_kernel sweep, probe_unused;
-    float *nv = NULL;
+    float *nv = NULL, *chunked = NULL;
     *device_seconds = NAN;
     if ((rc = kernels_for(a, m, &sweep, &probe_unused)) != 0)
         return rc;
@@ -779,12 +825,14 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
         nv[i] = (float)accuracy_grid_n(g, i);
     bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), nv, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(n values)", done);
-    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, (size_t)count * ACC_OUT_STRIDE * sizeof(float), NULL, &e);
+    size_t nout = (size_t)count * (size_t)sweep_chunks(a->s, count, g->samples);
+    bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, nout * ACC_OUT_STRIDE * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sweep out)", done);
     cl_int id = m->info->kernel_id, ref_id = ref.info->kernel_id;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)ref.params[0], rp1 = (float)ref.params[1];
     cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
+    cl_int chunks = (cl_int)sweep_chunks(a->s, count, g->samples);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
@@ -794,22 +842,35 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
-    size_t local = sweep_local_size(count, a->s->compute_units);
-    size_t global = ((size_t)count + local - 1) / local * local;
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof chunks, &chunks), done);
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 10, sizeof bo, &bo), done);
+    size_t local = chunks > 1 ? 256 : sweep_local_size(count, a->s->compute_units);
+    size_t global = (nout + local - 1) / local * local;
     double t0 = wall_seconds();
     if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
         goto done;
     int used_wall = 0;
     *device_seconds = cl_event_seconds_or_wall(ev, wall_seconds() - t0, &used_wall);
     a->timer_wall |= used_wall;
-    if (raw)
-        CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
-                                          raw, 0, NULL, NULL), done);
+    if (raw && chunks == 1) {
+        CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, nout * ACC_OUT_STRIDE * sizeof(float), raw, 0,
+                                          NULL, NULL), done);
+    } else if (raw) {
+        chunked = malloc(nout * ACC_OUT_STRIDE * sizeof *chunked);
+        if (!chunked) {
+            fprintf(stderr, "brdfbench: out of memory for the sweep's %zu chunk maxima\n", nout);
+            rc = EXIT_RUNTIME;
+            goto done;
+        }
+        CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, nout * ACC_OUT_STRIDE * sizeof(float), chunked,
+                                          0, NULL, NULL), done);
+        accuracy_merge_chunks(chunked, count, chunks, raw);
+    }
 done:
     if (ev) clReleaseEvent(ev);
     if (bo) clReleaseMemObject(bo);
     if (bn) clReleaseMemObject(bn);
     free(nv);
+    free(chunked);
     return rc;
 }

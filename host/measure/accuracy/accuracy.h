@@ -145,6 +145,12 @@ void accuracy_result_free(struct accuracy_result *r);
  * returns its raw per-n output (n_count x 8 floats as kernels/accuracy.cl lays them out; raw may
  * be NULL) and the kernel's time from its profiling event (NAN if the timer failed).
  * Returns 0 or an exit code. */
+/* The sweep's work-items per n on device s (1 on a CPU device; more on a GPU, so that the
+ * launch fills it) and the merge of their per-chunk maxima into one record per n
+ * (ACC_OUT_STRIDE floats each), as accuracy_sweep_device does it. */
+struct cl_session;
+long sweep_chunks(const struct cl_session *s, long count, long samples);
+void accuracy_merge_chunks(const float *chunked, long count, long chunks, float *raw);
 int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                           float *raw, double *device_seconds);
 /* Evaluates a model on the device at count points (c[i], n[i]); out has count values. */
