@@ -120,12 +120,67 @@ void accuracy_close(struct accuracy_ctx *a)
 {
     cl_kernel *const kernels[] = { &a->sweep, &a->probe };
     clsession_release_kernels(&a->program, 2, kernels);
+    cl_kernel *const table_kernels[] = { &a->table_sweep, &a->table_probe };
+    clsession_release_kernels(&a->table_program, 2, table_kernels);
+}
+
+int accuracy_reference_is_table(const struct model_spec *ref)
+{
+    return ref && ref->info && !model_is_builtin(ref->info);
+}
+
+int accuracy_reference_check(const struct accuracy_grid *g, const struct model_spec *ref, const struct cl_session *s,
+                             char *err, size_t errlen)
+{
+    if (!accuracy_reference_is_table(ref))
+        return 0;
+    long count = accuracy_grid_count(g);
+    double points = (double)count * 2.0 * (double)g->samples;
+    if (count < 1)   /* a grid that accuracy_grid_check refuses */
+        return 0;
+    if (points > (double)ACC_MAX_TABLE_POINTS) {
+        snprintf(err, errlen, "--samples: %s is evaluated by the host at each of %.4g samples (%ld values of n x 2 "
+                              "zones x %ld samples) (accepted: at most %ld with a user model as --reference)",
+                 ref->label, points, count, g->samples, ACC_MAX_TABLE_POINTS);
+        return EXIT_USAGE;
+    }
+    double bytes = points * sizeof(float);
+    if (s && (bytes > (double)s->max_alloc || bytes > 0.5 * (double)s->global_mem)) {
+        snprintf(err, errlen, "--samples: the table of %s's values needs %.3g bytes, more than the device allows "
+                              "(%.3g)", ref->label, bytes, (double)s->max_alloc);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* The kernels of the table build (ACC_REF_TABLE) that evaluate model m. */
+static int table_kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
+{
+    if (!a->table_options[0])
+        snprintf(a->table_options, sizeof a->table_options, "%s%s-DACC_REF_TABLE", a->build_options,
+                 a->build_options[0] ? " " : "");
+    int rc = 0;
+    if (!a->s->specialise && !a->table_program && model_is_builtin(m->info)) {
+        static const char *const names[] = { "accuracy_sweep", "models_probe" };
+        cl_kernel *const kernels[] = { &a->table_sweep, &a->table_probe };
+        rc = clsession_build_kernels(a->s, "accuracy.cl", NULL, a->table_options, &a->table_program, 2, names,
+                                     kernels);
+    }
+    if (rc == 0)
+        rc = programs_kernel(a->s, "accuracy.cl", a->table_options, m, "accuracy_sweep", a->table_sweep, sweep);
+    if (rc == 0)
+        rc = programs_kernel(a->s, "accuracy.cl", a->table_options, m, "models_probe", a->table_probe, probe);
+    if (rc == 0)   /* the reference's double evaluation on the host */
+        rc = programs_host(a->s, a->reference);
+    return rc;
 }
 
 /* The sweep and probe kernels that evaluate model m (host/core/programs.h: the shared ones,
  * or those of a build with the model's text, cached for the session). */
 static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
 {
+    if (accuracy_reference_is_table(a->reference))
+        return table_kernels_for(a, m, sweep, probe);
     if (a->reference) {   /* --reference: a build with that reference's case where builds are specialised */
         int rc = programs_kernel_ref(a->s, "accuracy.cl", a->build_options, m, a->reference, "accuracy_sweep",
                                      a->sweep, sweep);
@@ -527,7 +582,10 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
 
     /* The double stage asks a user model for one value at a time: it runs as one phase in
        the host reference's sandbox (model_run_isolated), which hands back the per-n figures. */
-    if (model_run_isolated(&out->model, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
+    /* A built-in model against a user reference runs in the reference's sandbox (inside one, every
+       user model's code is called directly). */
+    const struct model_spec *isolate = model_is_builtin(out->model.info) ? &out->reference : &out->model;
+    if (model_run_isolated(isolate, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }
@@ -670,13 +728,83 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     return rc;
 }
 
+/* The reference's values at the sweep's samples: the table holds, per n, the s of each sample
+   (the first launch wrote them), replaced by f_ref(1 - s, n) in double rounded to float. Run by
+   model_run_isolated in the reference's sandbox. */
+struct table_fill {
+    const struct model_spec *ref;
+    const float *s, *n;
+    long count, per_n;
+};
+
+static void fill_table(void *ctx, void *out_v)
+{
+    const struct table_fill *f = ctx;
+    float *out = out_v;
+    for (long i = 0; i < f->count; ++i)
+        for (long k = 0; k < f->per_n; ++k) {
+            size_t at = (size_t)i * (size_t)f->per_n + (size_t)k;
+            out[at] = (float)model_eval_host(f->ref, 1.0 - (double)f->s[at], (double)f->n[i]);
+        }
+}
+
+/* Launches the sweep over every n once, adding its time to *seconds. */
+static int launch_sweep(struct accuracy_ctx *a, cl_kernel sweep, long count, const char *label, double *seconds)
+{
+    cl_event ev = NULL;
+    size_t local = sweep_local_size(count, a->s->compute_units);
+    size_t global = ((size_t)count + local - 1) / local * local;
+    double t0 = wall_seconds();
+    int rc = clsession_launch(a->s, sweep, 1, &global, &local, label, &ev);
+    if (rc == 0) {
+        int used_wall = 0;
+        double t = cl_event_seconds_or_wall(ev, wall_seconds() - t0, &used_wall);
+        *seconds = isnan(*seconds) ? t : *seconds + t;
+        a->timer_wall |= used_wall;
+    }
+    if (ev)
+        clReleaseEvent(ev);
+    return rc;
+}
+
+/* The reference table of a user-model reference: the samples' s from a first launch, their
+   reference values from the host, written back for the comparing launch. */
+static int reference_table(struct accuracy_ctx *a, cl_kernel sweep, const struct model_spec *ref, const float *nv,
+                           long count, long samples, cl_mem bt, double *seconds)
+{
+    int rc = 0;
+    size_t points = (size_t)count * 2 * (size_t)samples;
+    float *sv = malloc(points * sizeof *sv), *rv = malloc(points * sizeof *rv);
+    cl_int pass = 0;
+    if (!sv || !rv) {
+        fprintf(stderr, "brdfbench: out of memory for the %zu values of %s\n", points, ref->label);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 10, sizeof pass, &pass), done);
+    if ((rc = launch_sweep(a, sweep, count, ref->label, seconds)) != 0)
+        goto done;
+    CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *sv, sv, 0, NULL, NULL), done);
+    struct table_fill f = { ref, sv, nv, count, 2 * samples };
+    if (model_run_isolated(ref, fill_table, &f, rv, points * sizeof *rv) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    CL_CHECK_GOTO(clEnqueueWriteBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *rv, rv, 0, NULL, NULL), done);
+    pass = 1;
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 10, sizeof pass, &pass), done);
+done:
+    free(rv);
+    free(sv);
+    return rc;
+}
+
 int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                           float *raw, double *device_seconds)
 {
     int rc = 0;
     cl_int e;
-    cl_mem bn = NULL, bo = NULL;
-    cl_event ev = NULL;
+    cl_mem bn = NULL, bo = NULL, bt = NULL;
     cl_kernel sweep, probe_unused;
     float *nv = NULL;
     *device_seconds = NAN;
@@ -710,19 +838,27 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof bo, &bo), done);
-    size_t local = sweep_local_size(count, a->s->compute_units);
-    size_t global = ((size_t)count + local - 1) / local * local;
-    double t0 = wall_seconds();
-    if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
+    if (accuracy_reference_is_table(&ref)) {   /* a user model's values, from the host (ACC_REF_TABLE) */
+        char err[512];
+        if (accuracy_reference_check(g, &ref, a->s, err, sizeof err)) {
+            fprintf(stderr, "brdfbench: %s\n", err);
+            rc = EXIT_USAGE;
+            goto done;
+        }
+        bt = clCreateBuffer(a->s->ctx, CL_MEM_READ_WRITE, (size_t)count * 2 * (size_t)g->samples * sizeof(float),
+                            NULL, &e);
+        CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reference table)", done);
+        CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof bt, &bt), done);
+        if ((rc = reference_table(a, sweep, &ref, nv, count, g->samples, bt, device_seconds)) != 0)
+            goto done;
+    }
+    if ((rc = launch_sweep(a, sweep, count, m->label, device_seconds)) != 0)
         goto done;
-    int used_wall = 0;
-    *device_seconds = cl_event_seconds_or_wall(ev, wall_seconds() - t0, &used_wall);
-    a->timer_wall |= used_wall;
     if (raw)
         CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, (size_t)count * ACC_OUT_STRIDE * sizeof(float),
                                           raw, 0, NULL, NULL), done);
 done:
-    if (ev) clReleaseEvent(ev);
+    if (bt) clReleaseMemObject(bt);
     if (bo) clReleaseMemObject(bo);
     if (bn) clReleaseMemObject(bn);
     free(nv);
