@@ -14,7 +14,7 @@
 #     and of the built-in cq2 against the user c^n, equal those of the built-in cq2 against the
 #     built-in phong (brdf_models.h's two formulas: the independent check) to 1e-9 relative, at the
 #     same n; the same through the scalar, specialised builds (BRDFBENCH_SPECIALISE=1) and through
-#     --model NAME=EXPR with --reference user:NAME.
+#     --model NAME=EXPR with --reference user:NAME, and with c^n as a GLSL file.
 set -u
 . "$(dirname "${BASH_SOURCE[0]}")/testlib.sh"
 brdf_test_init
@@ -119,6 +119,15 @@ same "$T/bu1.json" "cq2 against upw.cl, specialised builds"
 run "--model q --reference user:r" accuracy --model 'q=(0.5*n*(c-1)+1) > 0 ? (0.5*n*(c-1)+1)*(0.5*n*(c-1)+1) : 0' \
     --model 'r=pow(c, n)' --models q --reference user:r "${GRID[@]}" --json "$T/ex.json"
 same "$T/ex.json" "q=EXPR against user:r"
+# a GLSL lobe file as the reference (translated to the same user-model form)
+cat >"$T/pw.glsl" <<'EOF2'
+/* brdfbench-model
+ * name: gpw
+ */
+float gpw(float c, float n) { return pow(c, n); }
+EOF2
+run "uf against gpw.glsl" accuracy --model-file "$T/f.cl" --reference "$T/pw.glsl" "${GRID[@]}" --json "$T/ug.json"
+same "$T/ug.json" "uf against gpw.glsl"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
