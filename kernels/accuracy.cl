@@ -25,6 +25,12 @@
  *   [6] number of invalid model values (NaN, Inf or negative) [7] the first such s
  * The s values are the exact float inputs the models saw, so the host can recompute every
  * reduced figure in double at the same input.
+ *
+ * Built with -DACC_REF_TABLE (a reference that is a user model, whose text a program beside the
+ * model's cannot hold), the reference is not evaluated here but read from ref_table: a first
+ * launch (table_pass 0) writes every sample's s there (per n: the epicentre's samples, then the
+ * attenuation's), the host replaces each with the reference's double value rounded to float
+ * (host/measure/accuracy/accuracy.c), and a second launch (table_pass 1) compares.
  */
 /* ACC_W samples per step of the loop: 16 (float16, for PoCL, which vectorises explicit vectors
    to 512 bits) or 1 (scalar float: a driver that vectorises across work-items itself, as
@@ -95,17 +101,29 @@ static float lane_of(float16 v, int k)
 
 static void store_lanes(float16 v, float *a) { vstore16(v, 0, a); }
 static void store_ilanes(int16 v, int *a) { vstore16(v, 0, a); }
+#ifdef ACC_REF_TABLE
+static void table_store(float16 v, __global float *p) { vstore16(v, 0, p); }
+static float16 table_load(__global const float *p) { return vload16(0, p); }
+#endif
 #else
 static int argmax_lane(float v) { (void)v; return 0; }
 static float lane_of(float v, int k) { (void)k; return v; }
 static void store_lanes(float v, float *a) { a[0] = v; }
 static void store_ilanes(int v, int *a) { a[0] = v; }
+#ifdef ACC_REF_TABLE
+static void table_store(float v, __global float *p) { p[0] = v; }
+static float table_load(__global const float *p) { return p[0]; }
+#endif
 #endif
 
 __kernel void accuracy_sweep(const int model, const float p0, const float p1,
                              const int ref_model, const float rp0, const float rp1,
                              __global const float *n_values, const int n_count,
-                             const int samples, const int chunks, __global float *out)
+                             const int samples, const int chunks, __global float *out
+#ifdef ACC_REF_TABLE
+                             , const int table_pass, __global float *ref_table
+#endif
+                             )
 {
     /* chunks work-items per n, each over a contiguous run of the samples (1 on a CPU device;
        a GPU needs more work-items than there are values of n): work-item gid writes its own
@@ -136,6 +154,9 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
     ACC_IVEC bad = (ACC_IVEC)(0);
     REAL bad_s = (REAL)(NAN);
 
+#ifdef ACC_REF_TABLE
+    __global float *tab = ref_table + (size_t)(gid / chunks) * 2 * (size_t)samples;   /* this n's samples */
+#endif
     for (int i = i0; i < i1; i += ACC_W) {
         /* Epicentre (the last sample is s_e itself, up to rounding). */
         REAL s = fmin(((float)i + lane) * epi_step, s_e);
@@ -143,8 +164,17 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
             const REAL c = 1.0f - s;
             s = select(1.0f - c, 1.0f - nextafter(c, (REAL)(2.0f)), isgreater(1.0f - c, s_e));
         }
+#ifdef ACC_REF_TABLE
+        if (table_pass == 0) {   /* the samples only: the epicentre's now, the attenuation's below */
+            table_store(s, tab + i);
+        } else {
+#endif
         REAL f = brdf_eval_s(model, s, nv, p0, p1);
+#ifdef ACC_REF_TABLE
+        REAL r = table_load(tab + i);
+#else
         REAL r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
+#endif
         /* An invalid model value (NaN, Inf, negative) is counted, not folded into a maximum:
            its error becomes NaN, which never wins. */
         ACC_IVEC invalid = isless(f, 0.0f) | !isfinite(f);
@@ -153,6 +183,9 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         REAL d = select(fabs(f - r), (REAL)(NAN), invalid);
         KEEP_MAX(epi_rel, epi_rel_s, d / r, s);
         KEEP_MAX(epi_abs, epi_abs_s, d, s);
+#ifdef ACC_REF_TABLE
+        }
+#endif
 
         /* Attenuation; s never passes 1 (x = pi/2). */
         s = fmin(att_lane * exp2((float)i * log2_r), 1.0f);
@@ -160,8 +193,19 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
             const REAL c = 1.0f - s;
             s = select(1.0f - c, 1.0f - nextafter(c, (REAL)(0.0f)), isless(1.0f - c, s_e));
         }
+#ifdef ACC_REF_TABLE
+        if (table_pass == 0) {
+            table_store(s, tab + samples + i);
+            continue;
+        }
+        REAL f = brdf_eval_s(model, s, nv, p0, p1);
+        REAL r = table_load(tab + samples + i);
+        ACC_IVEC invalid;
+        REAL d;
+#else
         f = brdf_eval_s(model, s, nv, p0, p1);
         r = brdf_eval_s(ref_model, s, nv, rp0, rp1);
+#endif
         invalid = isless(f, 0.0f) | !isfinite(f);
         bad_s = select(bad_s, fmin(bad_s, s), invalid);   /* the smallest invalid s */
         bad += ACC_TRUE_COUNT(invalid);

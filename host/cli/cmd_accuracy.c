@@ -406,14 +406,27 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
             hemisphere_table_check(&plan->refs[k], &plan->grid, points, err, errlen))
             return -1;
     }
-    if (reference_text && kept > 0 && !model_is_builtin(named_ref.info)) {
-        /* the lobe sweep compares on the device, where a program holds one user model's text (the
-           model's); a user model or a measured material is a reference of the hemisphere sweep */
-        snprintf(err, errlen, "--reference: %s is the reference of full BRDFs only, and %s is a lobe model of c and n "
-                              "(accepted for a lobe model: a built-in, e.g. blinn or ggx)", named_ref.label,
-                 models[0].label);
+    const struct user_model *ref_um = reference_text ? usermodel_of(&named_ref) : NULL;
+    if (reference_text && kept > 0 && ref_um && !ref_um->full && !usermodel_host_ready(ref_um)) {
+        /* the lobe sweep reads a user reference's double values, computed on the host */
+        snprintf(err, errlen, "--reference: %s: its text does not compile as C for the host's double evaluation "
+                              "(%.200s), so it cannot be a reference (accepted: a model file whose text is C, a "
+                              "built-in)", named_ref.label, ref_um->host_error);
         return -1;
     }
+    if (reference_text && kept > 0 && !model_is_builtin(named_ref.info) && !(ref_um && !ref_um->full)) {
+        /* a lobe model is measured against a lobe: a built-in or a user lobe model (a table of its
+           double values, host/measure/accuracy/accuracy.c); a full BRDF or a measured material is a
+           reference of the hemisphere sweep */
+        snprintf(err, errlen, "--reference: %s is the reference of full BRDFs only, and %s is a lobe model of c and n "
+                              "(accepted for a lobe model: a built-in, e.g. blinn or ggx, or a user lobe model)",
+                 named_ref.label, models[0].label);
+        return -1;
+    }
+    /* a user lobe reference's table of host values fits the grid (the device's memory is checked once
+       the session is open) */
+    if (reference_text && kept > 0 && accuracy_reference_check(lobe_grid, &named_ref, NULL, err, errlen))
+        return -1;
     if (plan->count == 0 && (sweep_text || fixed->count > 0)) {
         snprintf(err, errlen, "%s applies to the hemisphere sweep of full BRDFs, and none is among the models "
                               "(accepted: with a full user model, ct-ggx, ct-beckmann, brady or he)",
@@ -507,7 +520,8 @@ static int accuracy_main(int argc, char **argv)
     rc = cli_run_session("accuracy", &s, &dev);
     if (rc)
         return rc;
-    if (accuracy_grid_check(&grid, &s, err, sizeof err)) {
+    if (accuracy_grid_check(&grid, &s, err, sizeof err) ||
+        (reference_text && nmodels > 0 && accuracy_reference_check(&grid, &plan.lobe_reference, &s, err, sizeof err))) {
         clsession_close(&s);
         goto usage_error;
     }

@@ -22,7 +22,6 @@ t 2 "^brdfbench accuracy: --hemisphere-grid: 2x2x2 is out of range \(accepted: e
     accuracy --models ct-ggx --hemisphere-grid 2x2x2
 t 2 "^brdfbench accuracy: --hemisphere-grid: 'abc' is not NHxNDxNP" accuracy --models ct-ggx --hemisphere-grid abc
 t 2 "^brdfbench accuracy: --axis-points" accuracy --models ct-ggx --axis-points 0
-t 2 "^brdfbench accuracy: --reference: b is the reference of full BRDFs only, and a is a lobe model of c and n" \
-    accuracy --model 'a=pow(c,n)' --model 'b=c' --reference b
+# (a user lobe model as the reference of a lobe model is measured: tests/test_reference_lobe.sh)
 t 2 "^brdfbench accuracy: --hemisphere-grid: 1024x1024x1024 cells x 8 axis values is 8.59e\+09 grid points \(accepted: at most 5e\+08" \
     accuracy --models ct-ggx --hemisphere-grid 1024x1024x1024

@@ -47,3 +47,15 @@ t 2 "^brdfbench gate: $T/rgate2.json:1:73: gate 1: \"reference\": unknown model 
     gate "$T/rgate2.json"
 t 2 "^brdfbench gate: $T/rgate3.json:1:150: gate 2: \"reference\": sq is a lobe of c and n, not a BRDF of \(L, V\)" \
     gate "$T/rgate3.json"
+# a user lobe model as the reference of a lobe model: its text must compile as C (the host evaluates
+# it in double at every sample), and its table of n values x 2 zones x samples must fit
+cat >"$T/rnotc.cl" <<'EOF2'
+/* brdfbench-model
+ * name: rnotc
+ */
+REAL rnotc(REAL c, REAL n) { return mad24(1, 1, 0) * pow(c, n); }
+EOF2
+t 2 "^brdfbench accuracy: --reference: rnotc: its text does not compile as C for the host's double evaluation \(.*\), so it cannot be a reference \(accepted: a model file whose text is C, a built-in\)" \
+    accuracy --models cq2 --reference "$T/rnotc.cl"
+t 2 "^brdfbench accuracy: --samples: rlobe is evaluated by the host at each of 1.309e\+08 samples \(999 values of n x 2 zones x 65536 samples\) \(accepted: at most 16777216 with a user model as --reference\)" \
+    accuracy --models cq2 --reference "$T/rlobe.cl" --samples 65536

@@ -120,12 +120,67 @@ void accuracy_close(struct accuracy_ctx *a)
 {
     cl_kernel *const kernels[] = { &a->sweep, &a->probe };
     clsession_release_kernels(&a->program, 2, kernels);
+    cl_kernel *const table_kernels[] = { &a->table_sweep, &a->table_probe };
+    clsession_release_kernels(&a->table_program, 2, table_kernels);
+}
+
+int accuracy_reference_is_table(const struct model_spec *ref)
+{
+    return ref && ref->info && !model_is_builtin(ref->info);
+}
+
+int accuracy_reference_check(const struct accuracy_grid *g, const struct model_spec *ref, const struct cl_session *s,
+                             char *err, size_t errlen)
+{
+    if (!accuracy_reference_is_table(ref))
+        return 0;
+    long count = accuracy_grid_count(g);
+    double points = (double)count * 2.0 * (double)g->samples;
+    if (count < 1)   /* a grid that accuracy_grid_check refuses */
+        return 0;
+    if (points > (double)ACC_MAX_TABLE_POINTS) {
+        snprintf(err, errlen, "--samples: %s is evaluated by the host at each of %.4g samples (%ld values of n x 2 "
+                              "zones x %ld samples) (accepted: at most %ld with a user model as --reference)",
+                 ref->label, points, count, g->samples, ACC_MAX_TABLE_POINTS);
+        return EXIT_USAGE;
+    }
+    double bytes = points * sizeof(float);
+    if (s && (bytes > (double)s->max_alloc || bytes > 0.5 * (double)s->global_mem)) {
+        snprintf(err, errlen, "--samples: the table of %s's values needs %.3g bytes, more than the device allows "
+                              "(%.3g)", ref->label, bytes, (double)s->max_alloc);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* The kernels of the table build (ACC_REF_TABLE) that evaluate model m. */
+static int table_kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
+{
+    if (!a->table_options[0])
+        snprintf(a->table_options, sizeof a->table_options, "%s%s-DACC_REF_TABLE", a->build_options,
+                 a->build_options[0] ? " " : "");
+    int rc = 0;
+    if (!a->s->specialise && !a->table_program && model_is_builtin(m->info)) {
+        static const char *const names[] = { "accuracy_sweep", "models_probe" };
+        cl_kernel *const kernels[] = { &a->table_sweep, &a->table_probe };
+        rc = clsession_build_kernels(a->s, "accuracy.cl", NULL, a->table_options, &a->table_program, 2, names,
+                                     kernels);
+    }
+    if (rc == 0)
+        rc = programs_kernel(a->s, "accuracy.cl", a->table_options, m, "accuracy_sweep", a->table_sweep, sweep);
+    if (rc == 0)
+        rc = programs_kernel(a->s, "accuracy.cl", a->table_options, m, "models_probe", a->table_probe, probe);
+    if (rc == 0)   /* the reference's double evaluation on the host */
+        rc = programs_host(a->s, a->reference);
+    return rc;
 }
 
 /* The sweep and probe kernels that evaluate model m (host/core/programs.h: the shared ones,
  * or those of a build with the model's text, cached for the session). */
 static int kernels_for(struct accuracy_ctx *a, const struct model_spec *m, cl_kernel *sweep, cl_kernel *probe)
 {
+    if (accuracy_reference_is_table(a->reference))
+        return table_kernels_for(a, m, sweep, probe);
     if (a->reference) {   /* --reference: a build with that reference's case where builds are specialised */
         int rc = programs_kernel_ref(a->s, "accuracy.cl", a->build_options, m, a->reference, "accuracy_sweep",
                                      a->sweep, sweep);
@@ -522,88 +577,6 @@ static size_t sweep_local_size(long count, cl_uint compute_units)
     return (size_t)(per_group < 1 ? 1 : per_group > 8 ? 8 : per_group);
 }
 
-/* The fp16 figures of a model with binary16 code (accuracy_result's fp16): its fp16 build
- * (-DBRDF_FP16: kernels/brdf_models.h's RHALF rounds) swept on the same grid; at each per-n
- * maximum the device found, the fp16 value is probed on the device and the reference's taken
- * in double here, so the figures are fp16 against double as the fp32 ones are. Returns 0 or
- * an exit code. */
-static int fp16_stage(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
-                      struct accuracy_result *out)
-{
-    const struct model_runtime *rt = models_runtime(m->info);
-    if (!rt || !rt->fp16)
-        return 0;
-    long count = out->n_count;
-    float *raw = malloc((size_t)count * ACC_OUT_STRIDE * sizeof *raw);
-    float *c = malloc((size_t)count * 2 * sizeof *c), *n = malloc((size_t)count * 2 * sizeof *n);
-    float *v = malloc((size_t)count * 2 * sizeof *v);
-    char saved[sizeof a->build_options];
-    memcpy(saved, a->build_options, sizeof saved);
-    int rc = 0;
-    if (!raw || !c || !n || !v) {
-        fprintf(stderr, "brdfbench: out of memory for %ld values of n\n", count);
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    size_t used = strlen(a->build_options);
-    if (used + 16 >= sizeof a->build_options) {
-        fprintf(stderr, "brdfbench: build options too long for the fp16 build\n");
-        rc = EXIT_RUNTIME;
-        goto done;
-    }
-    snprintf(a->build_options + used, sizeof a->build_options - used, "%s-DBRDF_FP16=1", used ? " " : "");
-    int timer_wall = a->timer_wall;
-    rc = accuracy_sweep_device(a, m, g, raw, &out->fp16.device_seconds);
-    a->timer_wall = timer_wall;
-    if (rc)
-        goto done;
-    /* the probe points: each n's epicentre and attenuation maxima (zone 2i, 2i + 1) */
-    out->fp16.invalid_count = 0;
-    for (long i = 0; i < count; ++i) {
-        const float *o = raw + i * ACC_OUT_STRIDE;
-        out->fp16.invalid_count += (long long)o[6];
-        for (int z = 0; z < 2; ++z) {
-            float fig = o[2 * z], sv = o[2 * z + 1];
-            c[2 * i + z] = fig >= 0 && sv >= 0 ? (float)(1.0 - (double)sv) : NAN;
-            n[2 * i + z] = (float)out->per_n[i].n;
-        }
-    }
-    for (long k = 0; k < 2 * count; ++k)
-        if (isnan(c[k]))
-            c[k] = 1.0f;   /* probed, not used */
-    rc = accuracy_probe(a, m, c, n, (size_t)(2 * count), v);
-    if (rc)
-        goto done;
-    struct acc_extreme *best[2] = { &out->fp16.epicentre, &out->fp16.attenuation };
-    for (int z = 0; z < 2; ++z)
-        best[z]->value = best[z]->n = best[z]->x = NAN;
-    for (long i = 0; i < count; ++i)
-        for (int z = 0; z < 2; ++z) {
-            const float *o = raw + i * ACC_OUT_STRIDE;
-            long k = 2 * i + z;
-            if (!(o[2 * z] >= 0) || !(v[k] >= 0) || !isfinite(v[k]))
-                continue;
-            double r = model_eval_host(&out->reference, (double)c[k], (double)n[k]);
-            double d = fabs((double)v[k] - r) / (z == 0 ? r : 1.0);
-            if (d > best[z]->value || isnan(best[z]->value)) {
-                best[z]->value = d;
-                best[z]->n = out->per_n[i].n;
-                best[z]->x = angle_of_s(1.0 - (double)c[k]);
-            }
-        }
-    out->fp16.ratio_rel = out->fp16.epicentre.value / out->epicentre.value;
-    out->fp16.ratio_abs = out->fp16.attenuation.value / out->attenuation.value;
-    out->fp16.device_fp16 = a->s->has_fp16;
-    out->fp16.present = 1;
-done:
-    memcpy(a->build_options, saved, sizeof saved);
-    free(v);
-    free(n);
-    free(c);
-    free(raw);
-    return rc;
-}
-
 static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                             struct accuracy_result *out)
 {
@@ -655,7 +628,10 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
 
     /* The double stage asks a user model for one value at a time: it runs as one phase in
        the host reference's sandbox (model_run_isolated), which hands back the per-n figures. */
-    if (model_run_isolated(&out->model, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
+    /* A built-in model against a user reference runs in the reference's sandbox (inside one, every
+       user model's code is called directly). */
+    const struct model_spec *isolate = model_is_builtin(out->model.info) ? &out->reference : &out->model;
+    if (model_run_isolated(isolate, double_stage, out, out->per_n, (size_t)count * sizeof *out->per_n) != 0) {
         rc = EXIT_RUNTIME;
         goto done;
     }
@@ -674,9 +650,6 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
     out->grid_whole = (grid_epi_abs.value > out->grid_attenuation.value || isnan(out->grid_attenuation.value))
                           ? grid_epi_abs : out->grid_attenuation;
     rc = check_probe(a, out);
-    if (rc)
-        goto done;
-    rc = fp16_stage(a, m, g, out);
     if (rc)
         goto done;
 
@@ -801,13 +774,84 @@ int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struc
     return rc;
 }
 
+/* The reference's values at the sweep's samples: the table holds, per n, the s of each sample
+   (the first launch wrote them), replaced by f_ref(1 - s, n) in double rounded to float. Run by
+   model_run_isolated in the reference's sandbox. */
+struct table_fill {
+    const struct model_spec *ref;
+    const float *s, *n;
+    long count, per_n;
+};
+
+static void fill_table(void *ctx, void *out_v)
+{
+    const struct table_fill *f = ctx;
+    float *out = out_v;
+    for (long i = 0; i < f->count; ++i)
+        for (long k = 0; k < f->per_n; ++k) {
+            size_t at = (size_t)i * (size_t)f->per_n + (size_t)k;
+            out[at] = (float)model_eval_host(f->ref, 1.0 - (double)f->s[at], (double)f->n[i]);
+        }
+}
+
+/* Launches the sweep over every n once (chunks work-items per n), adding its time to *seconds. */
+static int launch_sweep(struct accuracy_ctx *a, cl_kernel sweep, long count, long chunks, const char *label,
+                        double *seconds)
+{
+    cl_event ev = NULL;
+    size_t local = chunks > 1 ? 256 : sweep_local_size(count, a->s->compute_units);
+    size_t global = ((size_t)count * (size_t)chunks + local - 1) / local * local;
+    double t0 = wall_seconds();
+    int rc = clsession_launch(a->s, sweep, 1, &global, &local, label, &ev);
+    if (rc == 0) {
+        int used_wall = 0;
+        double t = cl_event_seconds_or_wall(ev, wall_seconds() - t0, &used_wall);
+        *seconds = isnan(*seconds) ? t : *seconds + t;
+        a->timer_wall |= used_wall;
+    }
+    if (ev)
+        clReleaseEvent(ev);
+    return rc;
+}
+
+/* The reference table of a user-model reference: the samples' s from a first launch, their
+   reference values from the host, written back for the comparing launch. */
+static int reference_table(struct accuracy_ctx *a, cl_kernel sweep, const struct model_spec *ref, const float *nv,
+                           long count, long chunks, long samples, cl_mem bt, double *seconds)
+{
+    int rc = 0;
+    size_t points = (size_t)count * 2 * (size_t)samples;
+    float *sv = malloc(points * sizeof *sv), *rv = malloc(points * sizeof *rv);
+    cl_int pass = 0;
+    if (!sv || !rv) {
+        fprintf(stderr, "brdfbench: out of memory for the %zu values of %s\n", points, ref->label);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof pass, &pass), done);
+    if ((rc = launch_sweep(a, sweep, count, chunks, ref->label, seconds)) != 0)
+        goto done;
+    CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *sv, sv, 0, NULL, NULL), done);
+    struct table_fill f = { ref, sv, nv, count, 2 * samples };
+    if (model_run_isolated(ref, fill_table, &f, rv, points * sizeof *rv) != 0) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    CL_CHECK_GOTO(clEnqueueWriteBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *rv, rv, 0, NULL, NULL), done);
+    pass = 1;
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof pass, &pass), done);
+done:
+    free(rv);
+    free(sv);
+    return rc;
+}
+
 int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                           float *raw, double *device_seconds)
 {
     int rc = 0;
     cl_int e;
-    cl_mem bn = NULL, bo = NULL;
-    cl_event ev = NULL;
+    cl_mem bn = NULL, bo = NULL, bt = NULL;
     cl_kernel sweep, probe_unused;
     float *nv = NULL, *chunked = NULL;
     *device_seconds = NAN;
@@ -825,14 +869,14 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
         nv[i] = (float)accuracy_grid_n(g, i);
     bn = clCreateBuffer(a->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)count * sizeof(float), nv, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(n values)", done);
-    size_t nout = (size_t)count * (size_t)sweep_chunks(a->s, count, g->samples);
+    long chunks = sweep_chunks(a->s, count, g->samples);
+    size_t nout = (size_t)count * (size_t)chunks;
     bo = clCreateBuffer(a->s->ctx, CL_MEM_WRITE_ONLY, nout * ACC_OUT_STRIDE * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sweep out)", done);
     cl_int id = m->info->kernel_id, ref_id = ref.info->kernel_id;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)ref.params[0], rp1 = (float)ref.params[1];
     cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
-    cl_int chunks = (cl_int)sweep_chunks(a->s, count, g->samples);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
@@ -842,16 +886,25 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof chunks, &chunks), done);
+    cl_int chunks_arg = (cl_int)chunks;
+    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof chunks_arg, &chunks_arg), done);
     CL_CHECK_GOTO(clSetKernelArg(sweep, 10, sizeof bo, &bo), done);
-    size_t local = chunks > 1 ? 256 : sweep_local_size(count, a->s->compute_units);
-    size_t global = (nout + local - 1) / local * local;
-    double t0 = wall_seconds();
-    if ((rc = clsession_launch(a->s, sweep, 1, &global, &local, m->label, &ev)) != 0)
+    if (accuracy_reference_is_table(&ref)) {   /* a user model's values, from the host (ACC_REF_TABLE) */
+        char err[512];
+        if (accuracy_reference_check(g, &ref, a->s, err, sizeof err)) {
+            fprintf(stderr, "brdfbench: %s\n", err);
+            rc = EXIT_USAGE;
+            goto done;
+        }
+        bt = clCreateBuffer(a->s->ctx, CL_MEM_READ_WRITE, (size_t)count * 2 * (size_t)g->samples * sizeof(float),
+                            NULL, &e);
+        CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reference table)", done);
+        CL_CHECK_GOTO(clSetKernelArg(sweep, 12, sizeof bt, &bt), done);
+        if ((rc = reference_table(a, sweep, &ref, nv, count, chunks, g->samples, bt, device_seconds)) != 0)
+            goto done;
+    }
+    if ((rc = launch_sweep(a, sweep, count, chunks, m->label, device_seconds)) != 0)
         goto done;
-    int used_wall = 0;
-    *device_seconds = cl_event_seconds_or_wall(ev, wall_seconds() - t0, &used_wall);
-    a->timer_wall |= used_wall;
     if (raw && chunks == 1) {
         CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bo, CL_TRUE, 0, nout * ACC_OUT_STRIDE * sizeof(float), raw, 0,
                                           NULL, NULL), done);
@@ -867,7 +920,7 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
         accuracy_merge_chunks(chunked, count, chunks, raw);
     }
 done:
-    if (ev) clReleaseEvent(ev);
+    if (bt) clReleaseMemObject(bt);
     if (bo) clReleaseMemObject(bo);
     if (bn) clReleaseMemObject(bn);
     free(nv);

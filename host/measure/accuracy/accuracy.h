@@ -114,6 +114,12 @@ struct accuracy_ctx {
     char build_options[256];
     int timer_wall;                /* the driver's profiling events gave no time: wall time used */
     const struct model_spec *reference;   /* NULL: each model's own reference; else this one (--reference) */
+    /* A reference that is a user model is read from a table of its double values (kernels/accuracy.cl,
+       ACC_REF_TABLE): that build's kernels, made on first use (the shared ones where builds are not
+       specialised), and its options. */
+    cl_program table_program;
+    cl_kernel table_sweep, table_probe;
+    char table_options[288];
 };
 
 
@@ -123,6 +129,16 @@ int accuracy_grid_check(const struct accuracy_grid *g, const struct cl_session *
 /* Number of n values of a grid and the i-th one (as the device sees it: rounded to float). */
 long accuracy_grid_count(const struct accuracy_grid *g);
 double accuracy_grid_n(const struct accuracy_grid *g, long i);
+
+/* A reference that is a user model is evaluated by the host in double at every sample of the
+ * sweep (n values x 2 zones x samples), held as a table the device reads. */
+#define ACC_MAX_TABLE_POINTS 16777216L
+/* 1 when ref is such a reference (a user model: no case of the device's model dispatch). */
+int accuracy_reference_is_table(const struct model_spec *ref);
+/* Checks that grid g's table for reference ref fits (its points, and the device's memory when s
+ * is given). Returns 0 or EXIT_USAGE with a one-line message naming the argument. */
+int accuracy_reference_check(const struct accuracy_grid *g, const struct model_spec *ref, const struct cl_session *s,
+                             char *err, size_t errlen);
 
 /* Builds the sweep program once. Returns 0 or an exit code. */
 int accuracy_open(struct accuracy_ctx *a, struct cl_session *s, const char *build_options);

@@ -59,6 +59,9 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
             jw_kv_num(&w, r->model.info->params[p].name, r->model.params[p]);
         jw_obj_end(&w);
         jw_kv_str(&w, "reference", r->reference.label);
+        /* a user model as the reference: its values from the host, in double (a table the device reads) */
+        jw_kv_str(&w, "reference_source",
+                  accuracy_reference_is_table(&r->reference) ? "host double values" : "device code");
         jw_kv_num(&w, "n_min", r->grid.n_min);
         jw_kv_num(&w, "n_max", r->grid.n_max);
         jw_kv_str(&w, "status", accuracy_status(r));
