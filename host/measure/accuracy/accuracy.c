@@ -577,6 +577,88 @@ static size_t sweep_local_size(long count, cl_uint compute_units)
     return (size_t)(per_group < 1 ? 1 : per_group > 8 ? 8 : per_group);
 }
 
+/* The fp16 figures of a model with binary16 code (accuracy_result's fp16): its fp16 build
+ * (-DBRDF_FP16: kernels/brdf_models.h's RHALF rounds) swept on the same grid; at each per-n
+ * maximum the device found, the fp16 value is probed on the device and the reference's taken
+ * in double here, so the figures are fp16 against double as the fp32 ones are. Returns 0 or
+ * an exit code. */
+static int fp16_stage(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
+                      struct accuracy_result *out)
+{
+    const struct model_runtime *rt = models_runtime(m->info);
+    if (!rt || !rt->fp16)
+        return 0;
+    long count = out->n_count;
+    float *raw = malloc((size_t)count * ACC_OUT_STRIDE * sizeof *raw);
+    float *c = malloc((size_t)count * 2 * sizeof *c), *n = malloc((size_t)count * 2 * sizeof *n);
+    float *v = malloc((size_t)count * 2 * sizeof *v);
+    char saved[sizeof a->build_options];
+    memcpy(saved, a->build_options, sizeof saved);
+    int rc = 0;
+    if (!raw || !c || !n || !v) {
+        fprintf(stderr, "brdfbench: out of memory for %ld values of n\n", count);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    size_t used = strlen(a->build_options);
+    if (used + 16 >= sizeof a->build_options) {
+        fprintf(stderr, "brdfbench: build options too long for the fp16 build\n");
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    snprintf(a->build_options + used, sizeof a->build_options - used, "%s-DBRDF_FP16=1", used ? " " : "");
+    int timer_wall = a->timer_wall;
+    rc = accuracy_sweep_device(a, m, g, raw, &out->fp16.device_seconds);
+    a->timer_wall = timer_wall;
+    if (rc)
+        goto done;
+    /* the probe points: each n's epicentre and attenuation maxima (zone 2i, 2i + 1) */
+    out->fp16.invalid_count = 0;
+    for (long i = 0; i < count; ++i) {
+        const float *o = raw + i * ACC_OUT_STRIDE;
+        out->fp16.invalid_count += (long long)o[6];
+        for (int z = 0; z < 2; ++z) {
+            float fig = o[2 * z], sv = o[2 * z + 1];
+            c[2 * i + z] = fig >= 0 && sv >= 0 ? (float)(1.0 - (double)sv) : NAN;
+            n[2 * i + z] = (float)out->per_n[i].n;
+        }
+    }
+    for (long k = 0; k < 2 * count; ++k)
+        if (isnan(c[k]))
+            c[k] = 1.0f;   /* probed, not used */
+    rc = accuracy_probe(a, m, c, n, (size_t)(2 * count), v);
+    if (rc)
+        goto done;
+    struct acc_extreme *best[2] = { &out->fp16.epicentre, &out->fp16.attenuation };
+    for (int z = 0; z < 2; ++z)
+        best[z]->value = best[z]->n = best[z]->x = NAN;
+    for (long i = 0; i < count; ++i)
+        for (int z = 0; z < 2; ++z) {
+            const float *o = raw + i * ACC_OUT_STRIDE;
+            long k = 2 * i + z;
+            if (!(o[2 * z] >= 0) || !(v[k] >= 0) || !isfinite(v[k]))
+                continue;
+            double r = model_eval_host(&out->reference, (double)c[k], (double)n[k]);
+            double d = fabs((double)v[k] - r) / (z == 0 ? r : 1.0);
+            if (d > best[z]->value || isnan(best[z]->value)) {
+                best[z]->value = d;
+                best[z]->n = out->per_n[i].n;
+                best[z]->x = angle_of_s(1.0 - (double)c[k]);
+            }
+        }
+    out->fp16.ratio_rel = out->fp16.epicentre.value / out->epicentre.value;
+    out->fp16.ratio_abs = out->fp16.attenuation.value / out->attenuation.value;
+    out->fp16.device_fp16 = a->s->has_fp16;
+    out->fp16.present = 1;
+done:
+    memcpy(a->build_options, saved, sizeof saved);
+    free(v);
+    free(n);
+    free(c);
+    free(raw);
+    return rc;
+}
+
 static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                             struct accuracy_result *out)
 {
@@ -650,6 +732,9 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
     out->grid_whole = (grid_epi_abs.value > out->grid_attenuation.value || isnan(out->grid_attenuation.value))
                           ? grid_epi_abs : out->grid_attenuation;
     rc = check_probe(a, out);
+    if (rc)
+        goto done;
+    rc = fp16_stage(a, m, g, out);
     if (rc)
         goto done;
 
