@@ -15,6 +15,7 @@
 /* ---- constructors, casts and calls --------------------------------------------------------- */
 
 static int const_int(struct sl *S, struct expr *e, long *out);
+static struct val val_float(void);
 
 static int field_index(const struct sdef *d, const struct tok *f)
 {
@@ -158,8 +159,17 @@ static int conversion_cost(struct type a, struct type p, int mode)
 static struct val call_user(struct sl *S, struct func *first, struct expr *e)
 {
     struct val args[SL_MAX_ARGS];
-    for (int i = 0; i < e->nargs; ++i)
-        args[i] = sl_ev(S, e->args[i]);
+    struct sym *arrs[SL_MAX_ARGS]; /* an argument naming an array (for an array parameter) */
+    for (int i = 0; i < e->nargs; ++i) {
+        struct sym *as = e->args[i]->k == E_VAR ? sl_lookup(S, e->args[i]->t) : NULL;
+        arrs[i] = as && as->arr_n ? as : NULL;
+        if (arrs[i]) {
+            args[i] = val_float();
+            args[i].t = as->t;
+        } else {
+            args[i] = sl_ev(S, e->args[i]);
+        }
+    }
     struct func *f = NULL;
     int best = -1, tie = 0, candidates = 0;
     for (struct func *g = first; g; g = g->next) {
@@ -170,7 +180,9 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
             continue;
         int cost = 0;
         for (int i = 0; i < e->nargs && cost >= 0; ++i) {
-            int c = conversion_cost(args[i].t, g->pty[i], g->pmode[i]);
+            int c = !arrs[i] != !g->parr[i] ? -1
+                    : arrs[i] ? (sl_same_type(args[i].t, g->pty[i]) ? 0 : -1)
+                              : conversion_cost(args[i].t, g->pty[i], g->pmode[i]);
             cost = c < 0 ? -1 : cost + c;
         }
         if (cost < 0)
@@ -207,7 +219,23 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
              sl_type_name(S, f->ret));
     if (f->ret.b != B_VOID && !sl_stmt_returns(f->body))
         FAIL(S, f->close, "%.*s can reach its end without returning a value", f->name->len, f->name->p);
+    long alen[SL_MAX_ARGS] = { 0 };
     for (int i = 0; i < e->nargs; ++i) {
+        if (f->parr[i] || arrs[i]) {
+            /* an array passed by value: the same element type and length */
+            if (!f->parr[i])
+                FAIL(S, e->args[i]->t, "argument %d of %.*s is an array: it takes a %s", i + 1, f->name->len,
+                     f->name->p, sl_type_name(S, f->pty[i]));
+            if (f->pmode[i] != PM_IN)
+                FAIL(S, f->pname[i], "an %s array parameter: array parameters are passed in only",
+                     f->pmode[i] == PM_OUT ? "out" : "inout");
+            if (!const_int(S, f->parr[i], &alen[i]) || alen[i] < 1 || alen[i] > SL_MAX_ARRAY)
+                FAIL(S, f->parr[i]->t, "an array parameter's length is a constant integer from 1 to %d", SL_MAX_ARRAY);
+            if (!arrs[i] || !sl_same_type(args[i].t, f->pty[i]) || arrs[i]->arr_n != alen[i])
+                FAIL(S, e->args[i]->t, "argument %d of %.*s takes a %s[%ld]: pass an array of that type and length",
+                     i + 1, f->name->len, f->name->p, sl_type_name(S, f->pty[i]), alen[i]);
+            continue;
+        }
         if (f->pmode[i] != PM_IN) {
             int comp[4], ncomp;
             out_target(S, e->args[i], comp, &ncomp);
@@ -247,6 +275,15 @@ static struct val call_user(struct sl *S, struct func *first, struct expr *e)
     S->stmt_line = f->name->line;
     struct sym *psym[SL_MAX_ARGS];
     for (int i = 0; i < f->nparams; ++i) {
+        if (f->parr[i]) {
+            /* a copy of each element, so the callee's writes stay its own */
+            struct sym *p = sl_declare_array(S, S->scope, f->pname[i], f->pty[i], (int)alen[i]);
+            psym[i] = p;
+            for (long k = 0; k < alen[i]; ++k)
+                for (int c = 0; c < f->pty[i].n; ++c)
+                    sl_out_line(S, "REAL %s = %s;", p->elem[k]->c[c], arrs[i]->elem[k]->c[c]);
+            continue;
+        }
         struct sym *p = sl_declare(S, S->scope, f->pname[i], f->pty[i]);
         psym[i] = p;
         if (f->pty[i].b == B_STRUCT) {

@@ -120,6 +120,7 @@ struct func {
     struct type pty[SL_MAX_ARGS];
     const struct tok *pname[SL_MAX_ARGS];
     int pmode[SL_MAX_ARGS];  /* PM_IN, PM_OUT, PM_INOUT */
+    struct expr *parr[SL_MAX_ARGS]; /* an array parameter TYPE NAME[LEN]: its length (else NULL) */
     struct stmt *body;
     const struct tok *close;
     struct func *next;

@@ -878,10 +878,19 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
                 if (pn->k != K_ID)
                     FAIL(S, pn, "expected a parameter name, found %s", tok_desc(S, pn));
                 next(S);
+                struct expr *alen = NULL;
+                if (accept(S, "[")) {
+                    /* an array parameter (GLSL's const in vec3 v[4]): passed by value, its length a constant */
+                    if (sl_tok_is(sl_peek(S), "]"))
+                        FAIL(S, sl_peek(S), "an array parameter needs its length (%.*s[N])", pn->len, pn->p);
+                    alen = parse_expr(S);
+                    expect(S, "]");
+                }
                 if (sl_tok_is(sl_peek(S), ":"))
                     FAIL(S, sl_peek(S), "HLSL semantics (': NAME') are not supported on a model's parameters");
                 if (f->nparams == SL_MAX_ARGS)
                     FAIL(S, pn, "more than %d parameters", SL_MAX_ARGS);
+                f->parr[f->nparams] = alen;
                 if (mode != PM_IN && pc)
                     FAIL(S, pt0, "an %s parameter cannot be const", mode == PM_OUT ? "out" : "inout");
                 f->pty[f->nparams] = pt;
@@ -899,7 +908,7 @@ struct stmt *sl_parse_program(struct sl *S, struct stmt *globals)
             int same = g->name->len == name->len && strncmp(g->name->p, name->p, (size_t)name->len) == 0 &&
                        g->nparams == f->nparams;
             for (int i = 0; same && i < f->nparams; ++i)
-                same = g->pty[i].b == f->pty[i].b && g->pty[i].n == f->pty[i].n;
+                same = g->pty[i].b == f->pty[i].b && g->pty[i].n == f->pty[i].n && !g->parr[i] == !f->parr[i];
             if (same)
                 FAIL(S, name, "function '%.*s' is defined twice with the same parameter types (line %d)", name->len,
                      name->p, g->name->line);
