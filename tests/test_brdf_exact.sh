@@ -20,21 +20,7 @@ export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$T/pocl-cache}"
 mkdir -p "$POCL_CACHE_DIR"
 GRID=(--hemisphere-grid 16x16x32 --axis-points 3)
 
-# value FILE PYTHON-EXPRESSION: the expression over r (the first hemisphere row) and h
-value() {
-    python3 -c "
-import json, sys, math
-d = json.load(open(sys.argv[1]))
-rows = [x for x in d['results'] if x.get('sweep') == 'hemisphere']
-r = rows[0] if rows else None
-h = r['hemisphere'] if r else None
-print($2)" "$1"
-}
-holds() {
-    local v
-    v=$(value "$1" "$2" 2>&1)
-    if [ "$v" = "True" ]; then ok; else bad "$3: $2 -> $v"; fi
-}
+# value / holds: testlib.sh (the first hemisphere row r and h = r['hemisphere'] of a JSON)
 
 cat >"$T/bphong.brdf" <<'EOF2'
 analytic

@@ -30,11 +30,7 @@ d = json.load(open(sys.argv[1]))
 r = [x for x in d['results'] if x.get('sweep') != 'hemisphere'][0]
 print($2)" "$1"
 }
-holds() {
-    local v
-    v=$(value "$1" "$2" 2>&1)
-    if [ "$v" = "True" ]; then ok; else bad "$3: $2 -> $v"; fi
-}
+# holds: testlib.sh (over this value, the first lobe row)
 run() {   # run WHAT ARGS...: brdfbench with ARGS, exit 0 expected
     local what=$1
     shift

@@ -33,3 +33,21 @@ BRDF_JSONCHECK="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/jsoncheck.py"
 jsoncheck() {
     python3 "$BRDF_JSONCHECK" "$@"
 }
+
+# value FILE PYTHON-EXPRESSION: the expression over r, the first hemisphere row of an
+# accuracy.json, and h = r['hemisphere'] (None where there is none); holds FILE CONDITION WHAT:
+# ok when the condition is True, else a failure naming WHAT and what it gave.
+value() {
+    python3 -c "
+import json, sys, math
+d = json.load(open(sys.argv[1]))
+rows = [x for x in d['results'] if x.get('sweep') == 'hemisphere']
+r = rows[0] if rows else None
+h = r['hemisphere'] if r else None
+print($2)" "$1"
+}
+holds() {
+    local v
+    v=$(value "$1" "$2" 2>&1)
+    if [ "$v" = "True" ]; then ok; else bad "$3: $2 -> $v"; fi
+}
