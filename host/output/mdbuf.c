@@ -146,3 +146,23 @@ int md_write_file_free(struct md_buf *b, const char *path, char *err, size_t err
     md_free(b);
     return rc;
 }
+
+void str_appendf(char **out, size_t *len, const char *fmt, ...)
+{
+    if (!out)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        return;
+    char *s = realloc(*out, *len + (size_t)n + 1);
+    if (!s)
+        return;
+    va_start(ap, fmt);
+    vsnprintf(s + *len, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    *out = s;
+    *len += (size_t)n;
+}

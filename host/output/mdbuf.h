@@ -14,6 +14,10 @@ struct md_buf {
 void md_init(struct md_buf *b);
 /* Appends formatted text, whatever its length. */
 void md_printf(struct md_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Appends formatted text to a malloc'd string *out of *len bytes (NULL and 0 at first; out NULL:
+ * nothing), whatever its length; on an allocation failure the string stays as it was. For the
+ * messages that are handed back as a plain string (compare's and history's --fail-if-slower). */
+void str_appendf(char **out, size_t *len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* Appends n bytes of text as they are. */
 void md_append(struct md_buf *b, const char *text, size_t n);
 /* Text for a markdown table cell: '|' escaped, '<', '>', '&' as HTML entities, control

@@ -6,6 +6,8 @@
 #include "jsonr.h"
 #include "outdir.h"
 #include "ranktest.h"
+#include "mdbuf.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -229,28 +231,6 @@ int compare_few_reps(const struct compare_set *set)
     return few;
 }
 
-static void append(char **out, size_t *len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static void append(char **out, size_t *len, const char *fmt, ...)
-{
-    if (!out)
-        return;
-    char line[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        return;
-    if ((size_t)n >= sizeof line)
-        n = (int)sizeof line - 1;
-    char *s = realloc(*out, *len + (size_t)n + 1);
-    if (!s)
-        return;
-    memcpy(s + *len, line, (size_t)n + 1);
-    *out = s;
-    *len += (size_t)n;
-}
-
 /* A row the baseline measured that run k lost: missing from it, or failed there (status failed,
    device_disagrees, a figure not finite). A row that was not ok in the baseline either, or that
    is new in run k, is no loss. Returns what happened, or NULL. */
@@ -285,24 +265,24 @@ int compare_failures(const struct compare_set *set, double slower_pct, int less_
             int slower = r->sense == CMP_SPEED && c->verdict == CMP_V_SLOWER && c->ratio < 1.0 - slower_pct / 100.0;
             if (slower_pct >= 0 && slower && (!set->confirm || (k == 1 && slower_all))) {
                 ++count;
-                append(out, &len, "%s: %s %s%s%s %s: %.3gx the baseline (p = %.2g)", set->run[k].name,
+                str_appendf(out, &len, "%s: %s %s%s%s %s: %.3gx the baseline (p = %.2g)", set->run[k].name,
                        cmp_kind_name(r->kind), dev, *dev ? " | " : "", r->key, r->metric, c->ratio,
                        set->holm ? c->p_adj : c->p);
                 for (int q = 2; set->confirm && q < set->nruns; ++q)
-                    append(out, &len, "; confirmed by %s: %.3gx", set->run[q].name, r->cell[q].ratio);
-                append(out, &len, "\n");
+                    str_appendf(out, &len, "; confirmed by %s: %.3gx", set->run[q].name, r->cell[q].ratio);
+                str_appendf(out, &len, "\n");
             }
             const char *lost = lost_in(r, k);
             int watched = (slower_pct >= 0 && r->sense == CMP_SPEED) ||
                           (less_accurate && (r->sense == CMP_ERROR || r->sense == CMP_SCORE));
             if (lost && watched) {
                 ++count;
-                append(out, &len, "%s: %s %s%s%s %s: %s (the baseline has %.4g)\n", set->run[k].name,
+                str_appendf(out, &len, "%s: %s %s%s%s %s: %s (the baseline has %.4g)\n", set->run[k].name,
                        cmp_kind_name(r->kind), dev, *dev ? " | " : "", r->key, r->metric, lost, r->cell[0].value);
             }
             if (less_accurate && (r->sense == CMP_ERROR || r->sense == CMP_SCORE) && c->verdict == CMP_V_WORSE) {
                 ++count;
-                append(out, &len, "%s: %s %s%s%s %s: %.4g against %.4g (%+.3g)\n", set->run[k].name,
+                str_appendf(out, &len, "%s: %s %s%s%s %s: %.4g against %.4g (%+.3g)\n", set->run[k].name,
                        cmp_kind_name(r->kind), dev, *dev ? " | " : "", r->key, r->metric, c->value,
                        r->cell[0].value, c->change);
             }

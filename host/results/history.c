@@ -231,26 +231,6 @@ int history_evaluate(struct hist_set *h)
     return 0;
 }
 
-static void append(char **out, size_t *len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static void append(char **out, size_t *len, const char *fmt, ...)
-{
-    char line[1400];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        return;
-    if ((size_t)n >= sizeof line)
-        n = (int)sizeof line - 1;
-    char *s = realloc(*out, *len + (size_t)n + 1);
-    if (!s)
-        return;
-    memcpy(s + *len, line, (size_t)n + 1);
-    *out = s;
-    *len += (size_t)n;
-}
-
 int history_slower(const struct hist_set *h, double pct, char **out)
 {
     int count = 0;
@@ -264,7 +244,7 @@ int history_slower(const struct hist_set *h, double pct, char **out)
         if (!(c->ratio < 1.0 - pct / 100.0))
             continue;
         ++count;
-        append(out, &len, "%s%s%s %s: the latest run (%s) is in a segment %.3gx the one before, from run %d (%s, "
+        str_appendf(out, &len, "%s%s%s %s: the latest run (%s) is in a segment %.3gx the one before, from run %d (%s, "
                           "commit %s; interval %.3g..%.3g, p = %.2g)\n",
                r->device, *r->device ? " | " : "", r->label, r->metric, h->runs[h->nruns - 1].name, c->ratio,
                c->at + 1, h->runs[c->at].name, *h->runs[c->at].commit ? h->runs[c->at].commit : "?", c->lo, c->hi,
