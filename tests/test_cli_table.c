@@ -4,6 +4,7 @@
  * the same model twice in --models is one; a parameter twice is refused. */
 #define _POSIX_C_SOURCE 200809L
 #include "check.h"
+#include "cli.h"
 #include "cli_table.h"
 #include "exitcodes.h"
 
@@ -102,5 +103,19 @@ int main(void)
     CHECK(n == 2, "two values of Q are two models: %d", n);
     CHECK(cli_model_list("fq:Q=0.5,Q=0.6", list, 8, err, sizeof err) < 0 &&
               strstr(err, "model 'fq': parameter Q given twice") == err, "%s", err);
+    CHECK_CASE("shell line of a command (run.json's command)");
+    {
+        /* expected lines written by hand: plain words as they are, a word with a blank, a
+           paren, a quote or a glob in single quotes, a ' inside as '\'' */
+        char *argv[] = { "all", "--quick", "--model", "q=pow(c, n)", "--out", "res/it's", "*", "" };
+        char line[256];
+        cli_shell_join(line, sizeof line, "brdfbench all", 8, argv);
+        CHECK(strcmp(line, "brdfbench all --quick --model 'q=pow(c, n)' --out 'res/it'\\''s' '*' ''") == 0,
+              "quoted line: %s", line);
+        char small[32];
+        cli_shell_join(small, sizeof small, "brdfbench all", 4, argv);
+        CHECK(strcmp(small, "brdfbench all --quick --model") == 0, "an argument that does not fit is left out: %s",
+              small);
+    }
     return check_summary();
 }

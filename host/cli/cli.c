@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "exitcodes.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -91,4 +92,46 @@ void device_options_init(struct device_options *o)
     o->device = -1;
     o->kernel_dir = NULL;
     o->timeout = 0.0;
+}
+
+/* Whether a shell would take the argument as one word as it is: nonempty, and only characters
+   that are neither blanks, quotes, globs nor operators. */
+static int shell_plain(const char *a)
+{
+    if (!*a)
+        return 0;
+    for (const char *p = a; *p; ++p)
+        if (!(isalnum((unsigned char)*p) || strchr("_-./:=,+@%", *p)))
+            return 0;
+    return 1;
+}
+
+void cli_shell_join(char *out, size_t len, const char *prefix, int argc, char **argv)
+{
+    if (!len)
+        return;
+    size_t used = (size_t)snprintf(out, len, "%s", prefix);
+    if (used >= len)
+        return;
+    char word[4096];
+    for (int i = 1; i < argc; ++i) {
+        size_t w = 0;
+        int plain = shell_plain(argv[i]);
+        if (!plain)
+            word[w++] = '\'';
+        for (const char *p = argv[i]; *p && w + 6 < sizeof word; ++p) {
+            if (*p == '\'' && !plain) {
+                memcpy(word + w, "'\\''", 4);
+                w += 4;
+            } else {
+                word[w++] = *p;
+            }
+        }
+        if (!plain)
+            word[w++] = '\'';
+        word[w] = '\0';
+        if (used + 1 + w >= len)
+            return;   /* a cut argument would be another command */
+        used += (size_t)snprintf(out + used, len - used, " %s", word);
+    }
 }

@@ -17,6 +17,10 @@ int cli_parse_size_wxh(const char *arg, const char *text, long max_side,
 const char *cli_flag_value(int argc, char **argv, int *i, const char *name, char *err, size_t errlen);
 /* 1 when argv[i] is `name` or starts with `name=`. */
 int cli_flag_is(const char *argv_i, const char *name);
+/* prefix and argv[1..argc-1] as one shell command line, each argument that a shell would split or
+ * expand in single quotes (a ' inside as '\''), so that the line run again is the same command;
+ * cut at len - 1 bytes (an argument that does not fit whole is left out). */
+void cli_shell_join(char *out, size_t len, const char *prefix, int argc, char **argv);
 
 /* Device selection flags shared by every command that runs kernels. */
 struct device_options {

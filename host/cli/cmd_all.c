@@ -486,9 +486,7 @@ static int parse_all(struct all_run *r, int argc, char **argv)
     const char *models_text = "all";
     int quick = 0;
     device_options_init(&r->dev);
-    size_t used = (size_t)snprintf(r->command, sizeof r->command, "brdfbench all");
-    for (int i = 1; i < argc && used < sizeof r->command; i++)
-        used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
+    cli_shell_join(r->command, sizeof r->command, "brdfbench all", argc, argv);
 
     /* The grid flags: given ones replace the (quick or full) defaults of the main sweep and
        the heatmaps' range of n. */
