@@ -295,7 +295,7 @@ def compare_accuracy_rows_tagged(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
-    assert d["schema"] == "brdfbench.accuracy/1" and len(d["results"]) == 2
+    assert d["schema"] == "brdfbench.accuracy/2" and len(d["results"]) == 2
     assert d["results"][1]["device"] == d["results"][0]["device"] + " #2"
 
 

@@ -258,7 +258,7 @@ def cli_accuracy_accuracy_contract(*args):
     import subprocess
     import math
     argv = ["check_json", *args]
-    d, ctx = load_result(argv[1], "brdfbench.accuracy/1",
+    d, ctx = load_result(argv[1], "brdfbench.accuracy/2",
                          ("date", "device", "platform_version", "build_options", "git_revision", "grid"))
     assert ctx["grid"]["n_min"] == 2 and ctx["grid"]["n_max"] == 50 and ctx["grid"]["samples_per_zone"] == 256
     res = d["results"]

@@ -1,4 +1,4 @@
-"""rows_layouts.py - the rows of throughput, render, fit and frontier result files written a
+"""rows_layouts.py - the rows of throughput, accuracy, render, fit and frontier result files written a
 second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
 tests/test_rows_primary.sh: what the program reads from a file's "rows" member and from an old
 file's layout (host/results/rdoc_read.c) is checked against this independent mapping.
@@ -89,7 +89,49 @@ def _frontier(d):
     return out
 
 
-KINDS = {"throughput": _throughput, "render": _render, "fit": _fit, "frontier": _frontier}
+def _accuracy(d):
+    """A row per result: a lobe sweep's (label | the run's grid) with its four figures, the
+    device check's float cancellation where it is a number and the fp16 figures of code in half;
+    a hemisphere sweep's (label | vs REF, hemisphere AXIS MIN..MAX xCOUNT, NHxNDxNP) with its
+    hemisphere.* figures. Every figure an error: unit 1, lower is better, not timed."""
+    g = d["context"].get("grid")
+    grid = ("n %s..%s step %s, %s samples per zone" % (_g(g["n_min"]), _g(g["n_max"]), _g(g["n_step"]),
+                                                       _g(g["samples_per_zone"]))) if g else ""
+
+    def err(v):
+        return ("1", "lower", False, v, [])
+    out = {}
+    for r in d["results"]:
+        row = {STATUS: _status(r)}
+        h = r.get("hemisphere")
+        if h:
+            ax, hg = h["axis"], h["grid"]
+            key = "vs %s, hemisphere %s %.9g..%.9g x%.0f, %.0fx%.0fx%.0f" % (
+                r["reference"][:60], ax["name"][:40], ax["min"], ax["max"], ax["count"], hg["theta_h"], hg["theta_d"],
+                hg["phi_d"])
+            for name, v in (("epicentre.max_rel", h["epicentre"]["max_rel"]),
+                            ("attenuation.max_abs", h["attenuation"]["max_abs"]),
+                            ("whole.max_abs", h["whole"]["max_abs"]), ("rms", h["rms"]),
+                            ("float_cancellation", h["float_cancellation"]),
+                            ("evaluated_below_horizon", h["samples"]["evaluated_below_horizon"])):
+                row["hemisphere." + name] = err(v)
+        else:
+            key = grid
+            row["epicentre.max_rel"] = err(r["epicentre"]["max_rel"])
+            row["attenuation.max_abs"] = err(r["attenuation"]["max_abs"])
+            row["whole.max_abs"] = err(r["whole"]["max_abs"])
+            row["invalid.count"] = err(r["invalid"]["count"])
+            fc = r["check"].get("float_cancellation")
+            if isinstance(fc, (int, float)):
+                row["check.float_cancellation"] = err(fc)
+            if "fp16" in r:
+                for name in ("max_rel", "max_abs", "invalid_count"):
+                    row["fp16." + name] = err(r["fp16"][name])
+        out["%s | %s" % (r["label"][:120], key[:120])] = row
+    return out
+
+
+KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier}
 
 
 def expected(doc):

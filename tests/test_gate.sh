@@ -194,6 +194,10 @@ import json, sys
 d = json.load(open(sys.argv[1]))
 for r in d["results"]:
     if r["label"] == "fq2": r["epicentre"]["max_rel"] *= 0.99
+# the rows member, what gate --baseline reads, says the same
+for r in d["rows"]["rows"]:
+    for m in r["metrics"]:
+        if r["keys"]["label"] == "fq2" and m["name"] == "epicentre.max_rel": m["value"] *= 0.99
 json.dump(d, open(sys.argv[2], "w"))
 PY
 "$BIN" gate "$T/base.json" --baseline "$T/lower.json" --json "$T/b2.json" --junit "$T/b2.xml" --quiet >"$T/out" 2>"$T/err"

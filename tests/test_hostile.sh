@@ -250,7 +250,7 @@ run 60 accuracy --json nowhere/acc.json
 
 # ---- Low: accuracy --device all --json - makes no results folder; stdout is one document -----
 mkdir -p dv && (cd dv && timeout -s KILL 120 "$BIN" accuracy --device all --models fq2 --n-max 10 --samples 16 --json - >../out 2>../err; echo $? >../rc)
-[ "$(cat rc)" = 0 ] && [ -z "$(ls -A dv)" ] && python3 -c 'import json,sys; d = json.load(open("out")); assert d["schema"] == "brdfbench.accuracy/1" and all("device" in r for r in d["results"])' &&
+[ "$(cat rc)" = 0 ] && [ -z "$(ls -A dv)" ] && python3 -c 'import json,sys; d = json.load(open("out")); assert d["schema"] == "brdfbench.accuracy/2" and all("device" in r for r in d["results"])' &&
     ok || bad "accuracy --device all --json -: exit $(cat rc), left $(ls -A dv), stdout $(head -c 200 out)"
 
 # ---- Low: SIGTERM of accuracy --out a/b/D leaves no folder it made -------------------------
@@ -308,7 +308,10 @@ rm -rf gb && cp -r base gb
 python3 - <<'PY'
 import json
 d = json.load(open("gb/accuracy.json"))
+# the layout and the rows member (what readers read since accuracy/2) say the same
 d["results"][0]["status"] = "failed"
+d["rows"]["rows"][0]["status"] = "failed"
+d["rows"]["rows"][0]["reason"] = "failed"
 json.dump(d, open("gb/accuracy.json", "w"))
 PY
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_max":50,"samples":256,"max":0.1}]}' >gbase.json
@@ -319,6 +322,10 @@ import json
 d = json.load(open("gb/accuracy.json"))
 d["results"][0]["status"] = "ok"
 d["results"][0]["epicentre"]["max_rel"] = None
+row = d["rows"]["rows"][0]
+row["status"] = "ok"
+row.pop("reason", None)
+next(m for m in row["metrics"] if m["name"] == "epicentre.max_rel")["value"] = None
 json.dump(d, open("gb/accuracy.json", "w"))
 PY
 run 120 gate gbase.json --baseline gb

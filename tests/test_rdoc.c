@@ -303,7 +303,7 @@ static void check_refused(void)
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, path) &&
           strstr(err, "is not a result file with figures"), "another schema: %s", err);
     test_write_file(path, "{\"schema\": \"brdfbench.accuracy/7\", \"results\": []}\n");
-    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "this version reads \"brdfbench.accuracy/1\""),
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "this version reads \"brdfbench.accuracy/2\""),
           "another version: %s", err);
     test_write_file(path, "{\"schema\": \"brdfbench.accuracy/1\", \"results\": [{\"label\": \"a|b\"}]}\n");
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "'|'"), "a label that breaks tables: %s", err);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_rows_primary.sh - throughput.json, render.json, fit.json and frontier.json carry their
+# test_rows_primary.sh - throughput.json, accuracy.json, render.json, fit.json and frontier.json carry their
 # rows (a "rows" member, built by the engine where it measures), and every reader reads them;
 # files of the previous versions (written before the files carried rows) are read by their
 # layout, so kept baselines still work.
@@ -12,7 +12,8 @@
 #   out and its schema set to the previous version (the upgrade function's path): the two
 #   derivations are independent (one from the engine's memory, one from the file's detail) and
 #   must give the same rows document, context lines included.
-# - tests/fixtures/rows-v-previous/: a run of the version before rows (commit 099c3f9, the
+# - tests/fixtures/rows-v-previous/: a run of the version before rows (commit 099c3f9, and
+#   48575e2 for accuracy.json: lobe rows, an fp16 row of half code, a hemisphere row; the
 #   commands in its README.md); compare of it against a new run of the same commands pairs every
 #   row (the row set of both is the layout mapping's).
 set -u
@@ -25,10 +26,11 @@ OLD="$SRC/tests/fixtures/rows-v-previous"
 # 1. an old run (previous schemas, no rows member) reads through the upgrade functions: rows
 #    as the layout mapping says, the schema named as the file's
 declare -A PREV=([throughput]=brdfbench.throughput/3 [render]=brdfbench.render/1 [fit]=brdfbench.fit/1
-                 [frontier]=brdfbench.frontier/1)
+                 [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1)
 declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/2 [fit]=brdfbench.fit/2
-                [frontier]=brdfbench.frontier/2)
-for k in throughput render fit frontier; do
+                [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/2)
+KINDS="throughput render fit frontier accuracy"
+for k in $KINDS; do
     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if d["schema"] == sys.argv[2] and "rows" not in d else 1)' \
         "$OLD/$k.json" "${PREV[$k]}" && ok || bad "fixture $k.json is not a ${PREV[$k]} file without rows"
     "$BIN" rows "$OLD/$k.json" --format json --output "$T/old_$k.rows.json" 2>"$T/err" && ok || bad "rows $k (old): $(cat "$T/err")"
@@ -44,7 +46,17 @@ mkdir -p new
 "$BIN" fit --n-min 2 --n-max 6 --samples 16 --json new/fit.json --quiet >/dev/null 2>"$T/err" || bad "fit: $(cat "$T/err")"
 "$BIN" frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image --json new/frontier.json \
     >/dev/null 2>"$T/err" || bad "frontier: $(cat "$T/err")"
-for k in throughput render fit frontier; do
+# accuracy: lobe rows (phong, fq2), an fp16 row (half code) and a hemisphere row (ct-ggx)
+"$BIN" accuracy --models phong,fq2,ct-ggx --model-file "$SRC/tests/test_shaderlang_files/phongapprox_half.hlsl" \
+    --n-max 20 --samples 16 --hemisphere-grid 8x8x16 --axis-points 2 --json new/accuracy.json >/dev/null 2>"$T/err" \
+    || bad "accuracy: $(cat "$T/err")"
+python3 - new/accuracy.json <<'PY' && ok || bad "new accuracy.json: not lobe, fp16 and hemisphere rows"
+import json, sys
+rows = json.load(open(sys.argv[1]))["rows"]["rows"]
+names = [{m["name"] for m in r["metrics"]} for r in rows]
+assert len(rows) == 4 and "fp16.max_rel" in names[2] and "hemisphere.rms" in names[3], names
+PY
+for k in $KINDS; do
     python3 - "new/$k.json" "${NOW[$k]}" "${PREV[$k]}" "up_$k.json" <<'PY' && ok || bad "new $k.json: schema or rows member"
 import json, sys
 d = json.load(open(sys.argv[1]))
@@ -114,7 +126,7 @@ sys.path.insert(0, os.path.dirname(sys.argv[2]))
 import rows_layouts
 c = json.load(open(sys.argv[1]))
 want = set()
-for k in ("throughput", "render", "fit", "frontier"):
+for k in ("throughput", "render", "fit", "frontier", "accuracy"):
     for row, metrics in rows_layouts.expected(json.load(open(os.path.join(sys.argv[3], k + ".json")))).items():
         want |= {(k, row, m) for m in metrics if m != rows_layouts.STATUS}
 got = {(r["kind"], r["key"], r["metric"]) for r in c["rows"]}
@@ -124,7 +136,7 @@ PY
 
 # 4. compare's and rows' outputs are the same read through the rows members or the upgrade
 #    functions: the same files compared with themselves both ways
-mkdir -p up && for k in throughput render fit frontier; do cp "up_$k.json" "up/$k.json"; done
+mkdir -p up && for k in $KINDS; do cp "up_$k.json" "up/$k.json"; done
 "$BIN" compare new new --json "$T/cmp_new.json" >/dev/null 2>&1
 "$BIN" compare up up --json "$T/cmp_up.json" >/dev/null 2>&1
 "$BIN" rows new >"$T/rows_new.md" 2>&1

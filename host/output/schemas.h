@@ -5,7 +5,9 @@
 #ifndef BRDF_SCHEMAS_H
 #define BRDF_SCHEMAS_H
 
-#define ACCURACY_SCHEMA "brdfbench.accuracy/1"
+#define ACCURACY_SCHEMA "brdfbench.accuracy/2"   /* /2: the file carries its rows (rdoc.h) */
+/* the previous version, read by its layout (rdoc_read.c: upgrade_accuracy_v1) */
+#define ACCURACY_SCHEMA_V1 "brdfbench.accuracy/1"
 #define CLAIMS_SCHEMA "brdfbench.claims/1"
 #define COMPARE_SCHEMA "brdfbench.compare/1"
 #define ENERGY_SCHEMA "brdfbench.energy/1"

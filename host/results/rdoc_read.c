@@ -3,8 +3,7 @@
  * is read by one generic path, the same as a brdfbench.rows/1 document. A file of a previous
  * version, written before the files carried rows, is read by the upgrade function of its schema
  * (one per old schema, below): the one place that still knows those layouts, so a baseline
- * kept from an earlier version keeps working. accuracy.json does not carry rows yet: its
- * current layout is read by read_accuracy. */
+ * kept from an earlier version keeps working. */
 #include "rdoc_read.h"
 
 #include <errno.h>
@@ -21,7 +20,7 @@
 
 typedef int (*layout_reader)(const struct jr_doc *, struct rdoc *, char *, size_t);
 static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
-static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
@@ -38,8 +37,7 @@ static const struct {
 };
 
 /* The schemas read by their layout: each previous version of a kind, with the function that
- * turns it into rows (its rows are those the version written now carries), and accuracy.json's
- * current version, which carries no rows yet. */
+ * turns it into rows (its rows are those the version written now carries). */
 static const struct {
     const char *schema;
     int kind;
@@ -51,7 +49,7 @@ static const struct {
        what is there */
     { THROUGHPUT_SCHEMA_V2, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
     { THROUGHPUT_SCHEMA_V1, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
-    { ACCURACY_SCHEMA, RD_KIND_ACCURACY, read_accuracy },
+    { ACCURACY_SCHEMA_V1, RD_KIND_ACCURACY, upgrade_accuracy_v1 },
     { RENDER_SCHEMA_V1, RD_KIND_RENDER, upgrade_render_v1 },
     { FIT_SCHEMA_V1, RD_KIND_FIT, upgrade_fit_v1 },
     { FRONTIER_SCHEMA_V1, RD_KIND_FRONTIER, upgrade_frontier_v1 },
@@ -298,9 +296,15 @@ static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *e
     return 0;
 }
 
-/* ---- accuracy.json ------------------------------------------------------------------------- */
+/* ---- brdfbench.accuracy/1 ------------------------------------------------------------------ */
 
-static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+/* The upgrade of brdfbench.accuracy/1: the context line "accuracy grid"; a row per result
+ * (keys label and grid; attributes n_min, n_max, n_step). A lobe sweep's row has
+ * epicentre.max_rel, attenuation.max_abs, whole.max_abs, invalid.count, check.float_cancellation
+ * (where written) and, for code in half, fp16.max_rel, fp16.max_abs, fp16.invalid_count; a
+ * hemisphere sweep's row (a "hemisphere" member) its grid "vs REF, hemisphere AXIS ..", the
+ * attribute reference and its hemisphere.* figures. */
+static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     static const char *const figures[] = { "epicentre.max_rel", "attenuation.max_abs", "whole.max_abs",
                                            "invalid.count" };
@@ -364,6 +368,13 @@ static int read_accuracy(const struct jr_doc *j, struct rdoc *d, char *err, size
         const struct jr_value *fc = path_get(row, "check.float_cancellation");
         if (fc && fc->type == JR_NUM)   /* written since the device check's float floor */
             rd_row_metric(d, r, "check.float_cancellation", "1", RD_LOWER, 0, fc->num);
+        const struct jr_value *h16 = jr_get(row, "fp16");
+        if (h16 && h16->type == JR_OBJ) {   /* code in half: its binary16 build's sweep */
+            static const char *const f16[][2] = { { "max_rel", "fp16.max_rel" }, { "max_abs", "fp16.max_abs" },
+                                                  { "invalid_count", "fp16.invalid_count" } };
+            for (size_t f = 0; f < sizeof f16 / sizeof f16[0]; ++f)
+                rd_row_metric(d, r, f16[f][1], "1", RD_LOWER, 0, jr_num_or_nan(h16, f16[f][0]));
+        }
     }
     return 0;
 }

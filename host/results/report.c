@@ -124,7 +124,7 @@ static int accuracy_table(struct md_buf *b, const struct report_input *in, char 
 {
     struct jr_doc d;
     md_printf(b, "## Accuracy per model\n\n");
-    int rc = read_doc(in->run_dir, "accuracy.json", ACCURACY_SCHEMA, NULL, &d, err, errlen);
+    int rc = read_doc(in->run_dir, "accuracy.json", ACCURACY_SCHEMA, ACCURACY_SCHEMA_V1, &d, err, errlen);
     const struct jr_value *rows = rc ? NULL : jr_get(&d.root, "results");
     if (rc == 2) return 2;
     if (!rows || rows->type != JR_ARR || rows->count < 1) {

@@ -4,6 +4,7 @@
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
+#include "rdoc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -30,10 +31,72 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
     return accuracy_write_json_full(path, res, count, NULL, 0, s, build_options, err, errlen);
 }
 
+/* accuracy.json's rows, built from the results in memory: a row per model of the lobe sweep
+   (keys label and grid; attributes n_min, n_max, n_step; the sweep's figures, the device
+   check's float cancellation and, for code in half, the fp16 figures), then the hemisphere
+   sweep's rows (hemisphere_rows). Every figure is an error: lower is better, not timed. */
+static void accuracy_rows(struct rdoc *d, const struct accuracy_result *res, int count,
+                          const struct hemi_result *hres, int hcount)
+{
+    char grid[RD_TEXT] = "", text[RD_TEXT];
+    double n_step = NAN;
+    if (count > 0) {
+        const struct accuracy_grid *g = &res[0].grid;
+        snprintf(grid, sizeof grid, "n %g..%g step %g, %g samples per zone", g->n_min, g->n_max, g->n_step,
+                 (double)g->samples);
+        n_step = g->n_step;
+    }
+    rd_ctx_put(&d->ctx, "accuracy grid", grid);
+    for (int i = 0; i < count; ++i) {
+        const struct accuracy_result *r = &res[i];
+        struct rd_row *row = rdoc_row(d, "", r->model.label);
+        if (!row)
+            return;
+        snprintf(text, sizeof text, "%.120s", r->model.label);
+        rd_row_key(row, "label", NULL, text);
+        snprintf(text, sizeof text, "%.120s", grid);
+        rd_row_key(row, "grid", NULL, text);
+        const char *status = accuracy_status(r);
+        if (strcmp(status, "ok") != 0)
+            rd_row_fail(row, status, r->reason[0] ? r->reason : status);
+        snprintf(text, sizeof text, "%.17g", r->grid.n_min);
+        rd_row_attr(row, "n_min", text);
+        snprintf(text, sizeof text, "%.17g", r->grid.n_max);
+        rd_row_attr(row, "n_max", text);
+        snprintf(text, sizeof text, "%.17g", n_step);
+        rd_row_attr(row, "n_step", text);
+        rd_row_metric(d, row, "epicentre.max_rel", "1", RD_LOWER, 0, r->epicentre.value);
+        rd_row_metric(d, row, "attenuation.max_abs", "1", RD_LOWER, 0, r->attenuation.value);
+        rd_row_metric(d, row, "whole.max_abs", "1", RD_LOWER, 0, r->whole.value);
+        rd_row_metric(d, row, "invalid.count", "1", RD_LOWER, 0, (double)r->invalid_count);
+        if (isfinite(r->probe_rel_diff))   /* written as null otherwise: no figure */
+            rd_row_metric(d, row, "check.float_cancellation", "1", RD_LOWER, 0, r->probe_rel_diff);
+        if (r->fp16.present) {   /* the same sweep of the code's binary16 build */
+            rd_row_metric(d, row, "fp16.max_rel", "1", RD_LOWER, 0, r->fp16.epicentre.value);
+            rd_row_metric(d, row, "fp16.max_abs", "1", RD_LOWER, 0, r->fp16.attenuation.value);
+            rd_row_metric(d, row, "fp16.invalid_count", "1", RD_LOWER, 0, (double)r->fp16.invalid_count);
+        }
+    }
+    hemisphere_rows(d, hres, hcount, n_step);
+}
+
 int accuracy_write_json_full(const char *path, const struct accuracy_result *res, int count,
                              const struct hemi_result *hres, int hcount, const struct cl_session *s,
                              const char *build_options, char *err, size_t errlen)
 {
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    rdoc_init(d, ACCURACY_SCHEMA, "accuracy", "accuracy.json");
+    accuracy_rows(d, res, count, hres, hcount);
+    if (d->oom) {
+        rdoc_free(d);
+        free(d);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     struct jw w;
     jw_doc_begin(&w, ACCURACY_SCHEMA, s, build_options);
     if (count > 0) {
@@ -129,6 +192,9 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
     }
     hemisphere_json_rows(&w, hres, hcount);
     jw_arr_end(&w);
+    rdoc_json_rows_member(&w, d);
+    rdoc_free(d);
+    free(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

@@ -2,7 +2,10 @@
  * rdoc_read.c as hemisphere.* metrics), its per-parameter CSV lines and the printed table. */
 #include "hemisphere_report.h"
 
+#include "rdoc.h"
+
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static void extreme(struct jw *w, const char *key, const char *metric, const struct hemi_extreme *e,
@@ -17,6 +20,43 @@ static void extreme(struct jw *w, const char *key, const char *metric, const str
     if (grid)
         jw_kv_num(w, "grid_value", grid->value);
     jw_obj_end(w);
+}
+
+void hemisphere_rows(struct rdoc *d, const struct hemi_result *res, int count, double n_step)
+{
+    char text[RD_TEXT];
+    for (int i = 0; i < count; ++i) {
+        const struct hemi_result *r = &res[i];
+        struct rd_row *row = rdoc_row(d, "", r->model.label);
+        if (!row)
+            return;
+        snprintf(text, sizeof text, "%.120s", r->model.label);
+        rd_row_key(row, "label", NULL, text);
+        /* a full BRDF's row: its axis and hemisphere grid are its grid */
+        snprintf(text, sizeof text, "vs %.60s, hemisphere %.40s %.9g..%.9g x%.0f, %.0fx%.0fx%.0f", r->reference.label,
+                 r->axis.name, r->axis.min, r->axis.max, (double)r->axis.count, (double)r->grid.nh,
+                 (double)r->grid.nd, (double)r->grid.np);
+        rd_row_key(row, "grid", NULL, text);
+        const char *status = hemisphere_status(r);
+        if (strcmp(status, "ok") != 0)
+            rd_row_fail(row, status, r->reason[0] ? r->reason : status);
+        /* no n range of its own: the attributes say so (nan), as the rows of earlier files */
+        rd_row_attr(row, "n_min", "nan");
+        rd_row_attr(row, "n_max", "nan");
+        snprintf(text, sizeof text, "%.17g", n_step);
+        rd_row_attr(row, "n_step", text);
+        rd_row_attr(row, "reference", r->reference.label);
+        const struct { const char *name; double v; } fig[] = {
+            { "hemisphere.epicentre.max_rel", r->epicentre.value },
+            { "hemisphere.attenuation.max_abs", r->attenuation.value },
+            { "hemisphere.whole.max_abs", r->whole.value },
+            { "hemisphere.rms", r->rms.value },
+            { "hemisphere.float_cancellation", r->float_cancellation },
+            { "hemisphere.evaluated_below_horizon", (double)r->eval_below },
+        };
+        for (size_t f = 0; f < sizeof fig / sizeof fig[0]; ++f)
+            rd_row_metric(d, row, fig[f].name, "1", RD_LOWER, 0, fig[f].v);
+    }
 }
 
 void hemisphere_json_rows(struct jw *w, const struct hemi_result *res, int count)
