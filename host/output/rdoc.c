@@ -614,3 +614,31 @@ int rdoc_from_rows_member(const struct jr_doc *j, const struct jr_value *member,
                        "context, devices and rows of a brdfbench.rows/1 document)");
     return read_rows_body(j, member, d, err, errlen);
 }
+
+struct rdoc *rdoc_new(const char *schema, const char *kind, const char *file, char *err, size_t errlen)
+{
+    struct rdoc *d = malloc(sizeof *d);
+    if (!d) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    rdoc_init(d, schema, kind, file);
+    return d;
+}
+
+int rdoc_built(struct rdoc *d, char *err, size_t errlen)
+{
+    if (!d->oom)
+        return 0;
+    rdoc_delete(d);
+    snprintf(err, errlen, "out of memory");
+    return -1;
+}
+
+void rdoc_delete(struct rdoc *d)
+{
+    if (!d)
+        return;
+    rdoc_free(d);
+    free(d);
+}

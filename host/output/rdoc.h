@@ -101,6 +101,12 @@ struct rdoc {
 
 void rdoc_init(struct rdoc *d, const char *schema, const char *kind, const char *file);
 void rdoc_free(struct rdoc *d);
+/* A result file's writer's rows: rdoc_new allocates and initialises the document (NULL with
+ * "out of memory" in err); rdoc_built checks it after the rows are added (0, or -1 with the
+ * document deleted and "out of memory" in err); rdoc_delete frees it. */
+struct rdoc *rdoc_new(const char *schema, const char *kind, const char *file, char *err, size_t errlen);
+int rdoc_built(struct rdoc *d, char *err, size_t errlen);
+void rdoc_delete(struct rdoc *d);
 
 /* A context entry; the first value given for a key is kept. */
 void rd_ctx_put(struct rd_context *c, const char *key, const char *value);

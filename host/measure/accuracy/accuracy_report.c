@@ -84,19 +84,12 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
                              const struct hemi_result *hres, int hcount, const struct cl_session *s,
                              const char *build_options, char *err, size_t errlen)
 {
-    struct rdoc *d = malloc(sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "out of memory");
+    struct rdoc *d = rdoc_new(ACCURACY_SCHEMA, "accuracy", "accuracy.json", err, errlen);
+    if (!d)
         return -1;
-    }
-    rdoc_init(d, ACCURACY_SCHEMA, "accuracy", "accuracy.json");
     accuracy_rows(d, res, count, hres, hcount);
-    if (d->oom) {
-        rdoc_free(d);
-        free(d);
-        snprintf(err, errlen, "out of memory");
+    if (rdoc_built(d, err, errlen))
         return -1;
-    }
     struct jw w;
     jw_doc_begin(&w, ACCURACY_SCHEMA, s, build_options);
     if (count > 0) {
@@ -193,8 +186,7 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
     hemisphere_json_rows(&w, hres, hcount);
     jw_arr_end(&w);
     rdoc_json_rows_member(&w, d);
-    rdoc_free(d);
-    free(d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

@@ -124,19 +124,12 @@ static void fit_rows(struct rdoc *d, const struct fit_report *r)
 int fit_write_json(const char *path, const struct fit_report *r, const struct cl_session *s,
                           const char *build_options, char *err, size_t errlen)
 {
-    struct rdoc *d = malloc(sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "out of memory");
+    struct rdoc *d = rdoc_new(FIT_SCHEMA, "fit", "fit.json", err, errlen);
+    if (!d)
         return -1;
-    }
-    rdoc_init(d, FIT_SCHEMA, "fit", "fit.json");
     fit_rows(d, r);
-    if (d->oom) {
-        rdoc_free(d);
-        free(d);
-        snprintf(err, errlen, "out of memory");
+    if (rdoc_built(d, err, errlen))
         return -1;
-    }
     struct jw w;
     jw_doc_begin(&w, FIT_SCHEMA, s, build_options);
     jw_kv_obj(&w, "grid");
@@ -190,8 +183,7 @@ int fit_write_json(const char *path, const struct fit_report *r, const struct cl
     jw_obj_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
     rdoc_json_rows_member(&w, d);
-    rdoc_free(d);
-    free(d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

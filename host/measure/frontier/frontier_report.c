@@ -63,19 +63,12 @@ static void frontier_rows(struct rdoc *d, const struct frontier_report *r)
 int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
                         size_t errlen)
 {
-    struct rdoc *d = malloc(sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "out of memory");
+    struct rdoc *d = rdoc_new(FRONTIER_SCHEMA, "frontier", "frontier.json", err, errlen);
+    if (!d)
         return -1;
-    }
-    rdoc_init(d, FRONTIER_SCHEMA, "frontier", "frontier.json");
     frontier_rows(d, r);
-    if (d->oom) {
-        rdoc_free(d);
-        free(d);
-        snprintf(err, errlen, "out of memory");
+    if (rdoc_built(d, err, errlen))
         return -1;
-    }
     struct jw w;
     jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
     #define F(KIND, MEMBER, KEY) JW_FIELD(KIND, struct frontier_options, MEMBER, KEY)
@@ -140,8 +133,7 @@ int frontier_write_json(const char *path, const struct frontier_report *r, const
     jw_arr_end(&w);
     jw_kv_num(&w, "seconds", r->seconds);
     rdoc_json_rows_member(&w, d);
-    rdoc_free(d);
-    free(d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

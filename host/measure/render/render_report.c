@@ -359,21 +359,14 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
                       const struct scene_result *res, int display_code_error, char *err,
                       size_t errlen)
 {
-    struct rdoc *d = malloc(sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "out of memory");
+    struct rdoc *d = rdoc_new(RENDER_SCHEMA, "render", "render.json", err, errlen);
+    if (!d)
         return -1;
-    }
-    rdoc_init(d, RENDER_SCHEMA, "render", "render.json");
     for (int si = 0; si < RENDER_SCENE_COUNT; si++)
         if (res[si].done)
             scene_rows(d, si, &res[si], o);
-    if (d->oom) {
-        rdoc_free(d);
-        free(d);
-        snprintf(err, errlen, "out of memory");
+    if (rdoc_built(d, err, errlen))
         return -1;
-    }
     struct jw w;
     jw_doc_begin(&w, RENDER_SCHEMA, s, "");
     jw_kv_int(&w, "work_items_per_launch", render_work_items(s));
@@ -409,8 +402,7 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
     }
     jw_arr_end(&w);
     rdoc_json_rows_member(&w, d);
-    rdoc_free(d);
-    free(d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }

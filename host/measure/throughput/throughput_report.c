@@ -469,19 +469,12 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
     char hex[FINGERPRINTED][24];
     for (size_t i = 0; i < FINGERPRINTED; ++i)
         kernel_fingerprint(fingerprinted[i], hex[i]);
-    struct rdoc *d = malloc(sizeof *d);
-    if (!d) {
-        snprintf(err, errlen, "out of memory");
+    struct rdoc *d = rdoc_new(THROUGHPUT_SCHEMA, "throughput", "throughput.json", err, errlen);
+    if (!d)
         return -1;
-    }
-    rdoc_init(d, THROUGHPUT_SCHEMA, "throughput", "throughput.json");
     tp_rows(r, hex, d);
-    if (d->oom) {
-        rdoc_free(d);
-        free(d);
-        snprintf(err, errlen, "out of memory");
+    if (rdoc_built(d, err, errlen))
         return -1;
-    }
     struct jw w;
     jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
     json_context(&w, r, hex);
@@ -502,8 +495,7 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
         json_sweep_ran(&w, r);
     jw_obj_end(&w);
     rdoc_json_rows_member(&w, d);
-    rdoc_free(d);
-    free(d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
