@@ -242,6 +242,24 @@ static void start_glslang(struct sl *S)
         initialised = 1;
     }
 }
+
+/* glslang started, the header's preamble (its defines) in *pre and a NUL-terminated copy of the
+   text to give it (malloc'd); out of memory is the model's error. */
+static char *glslang_prepare(struct sl *S, const struct header *h, const char *text, size_t len, struct md_buf *pre)
+{
+    start_glslang(S);
+    md_init(pre);
+    write_preamble(pre, h);
+    char *code = malloc(len + 1);
+    if (!code || pre->failed) {
+        free(code);
+        md_free(pre);
+        sl_fail_at(S, 0, 0, "out of memory");
+    }
+    memcpy(code, text, len);
+    code[len] = '\0';
+    return code;
+}
 #endif
 
 /* The line of the text that a compiler numbers `logical` (#line N numbers the next line N), or 0. */
@@ -283,18 +301,8 @@ void sl_validate(struct sl *S, const char *text, size_t len, int first_line, con
 #else
     if (lang < 0)
         return;
-    start_glslang(S);
     struct md_buf pre;
-    md_init(&pre);
-    write_preamble(&pre, h);
-    char *code = malloc(len + 1);
-    if (!code || pre.failed) {
-        free(code);
-        md_free(&pre);
-        sl_fail_at(S, 0, 0, "out of memory");
-    }
-    memcpy(code, text, len);
-    code[len] = '\0';
+    char *code = glslang_prepare(S, h, text, len, &pre);
     glslang_input_t in;
     set_input(&in, lang, code);
     glslang_shader_t *sh = glslang_shader_create(&in);
@@ -382,18 +390,8 @@ const char *sl_preprocess(struct sl *S, const char *text, size_t len, int first_
                "this text needs a preprocessor (#if, #ifdef, function-like macros, defines), and brdfbench was "
                "built without glslang (Debian's glslang-dev; scripts/setup.sh installs it)");
 #else
-    start_glslang(S);
     struct md_buf pre;
-    md_init(&pre);
-    write_preamble(&pre, h);
-    char *code = malloc(len + 1);
-    if (!code || pre.failed) {
-        free(code);
-        md_free(&pre);
-        sl_fail_at(S, 0, 0, "out of memory");
-    }
-    memcpy(code, text, len);
-    code[len] = '\0';
+    char *code = glslang_prepare(S, h, text, len, &pre);
     glslang_input_t in;
     set_input(&in, language_of(S->origin) == 1, code);
     glslang_shader_t *sh = glslang_shader_create(&in);
