@@ -329,9 +329,50 @@ static void check_refused(void)
     }
 }
 
+/* Texts of a row and of the document: written into the rows member, read back as they were
+   (several lines, a '|', 600 bytes: a text has no length limit), replaced when given again; a
+   text with an escape character is refused. Expected values are the strings given here. */
+static void check_texts(void)
+{
+    CHECK_CASE("texts of rows and documents");
+    char err[512];
+    struct rdoc d;
+    rdoc_init(&d, "brdfbench.claims/2", "claims", "claims.json");
+    char longtext[601];
+    memset(longtext, 'a', 600);
+    longtext[600] = 0;
+    struct rd_row *r = rdoc_row(&d, NULL, "P1-delta");
+    rd_row_key(r, "id", NULL, "P1-delta");
+    CHECK(rd_row_text(&d, r, "claim", "max | delta\nsecond line") == 0 && rd_row_text(&d, r, "note", longtext) == 0 &&
+          rd_row_textf(&d, r, "note", "%s %d", "replaced", 7) == 0 && rdoc_text(&d, "rule", longtext) == 0,
+          "texts added");
+    CHECK(r->ntexts == 2 && strcmp(rd_row_text_get(r, "note"), "replaced 7") == 0, "a text given again replaces it");
+    CHECK(strcmp(rd_row_text_or(r, "absent", "fb"), "fb") == 0 && rdoc_text_get(&d, "absent") == NULL,
+          "absent texts");
+    struct md_buf b;
+    md_init(&b);
+    rdoc_json(&d, &b);
+    CHECK(b.s && strstr(b.s, "\"rule\": \"aaaa") && strstr(b.s, "\"claim\": \"max | delta\\nsecond line\""),
+          "texts in the JSON");
+    struct rdoc back;
+    CHECK(rows_of("texts.json", b.s ? b.s : "", &back, err, sizeof err) == 0, "read back: %s", err);
+    if (back.nrows == 1) {
+        CHECK(strcmp(rd_row_text_or(&back.rows[0], "claim", ""), "max | delta\nsecond line") == 0 &&
+              strcmp(rd_row_text_or(&back.rows[0], "note", ""), "replaced 7") == 0 &&
+              strcmp(rdoc_text_or(&back, "rule", ""), longtext) == 0, "the texts as they were written");
+        rdoc_free(&back);
+    } else
+        CHECK(0, "one row read back: %d", back.nrows);
+    md_free(&b);
+    rdoc_free(&d);
+    CHECK(rows_of("texts_bad.json", "{\"schema\": \"brdfbench.rows/1\", \"source\": {\"kind\": \"claims\"}, "
+                  "\"rows\": [{\"keys\": {}, \"metrics\": [], \"texts\": {\"t\": \"a\\u001b[2Jb\"}}]}\n", &back, err,
+                  sizeof err) == 2 && strstr(err, "escape character"), "an escape character refused: %s", err);
+}
+
 int main(void)
 {
     static void (*const tests[])(void) = { check_throughput, check_accuracy, check_render_fit, check_rows_member,
-                                                  check_refused };
+                                                  check_refused, check_texts };
     return test_run_in_tmpdir(dir, sizeof dir, "test_rdoc", tests, sizeof tests / sizeof tests[0]);
 }

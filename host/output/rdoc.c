@@ -2,6 +2,7 @@
 #include "rdoc.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,13 @@ void rdoc_init(struct rdoc *d, const char *schema, const char *kind, const char 
     snprintf(d->file, sizeof d->file, "%s", file ? file : "");
 }
 
+static void free_texts(struct rd_text *t, int n)
+{
+    for (int i = 0; i < n; ++i)
+        free(t[i].value);
+    free(t);
+}
+
 void rdoc_free(struct rdoc *d)
 {
     for (int i = 0; i < d->nrows; ++i) {
@@ -39,10 +47,14 @@ void rdoc_free(struct rdoc *d)
             free(d->rows[i].metrics[m].norm);
         }
         free(d->rows[i].metrics);
+        free_texts(d->rows[i].texts, d->rows[i].ntexts);
     }
     free(d->rows);
     d->rows = NULL;
     d->nrows = d->cap = 0;
+    free_texts(d->texts, d->ntexts);
+    d->texts = NULL;
+    d->ntexts = d->tcap = 0;
 }
 
 void rd_ctx_put(struct rd_context *c, const char *key, const char *value)
@@ -176,6 +188,117 @@ int rd_metric_normalised(struct rdoc *d, struct rd_metric *m, const double *v, i
     return n > 0 && !m->norm ? -1 : 0;
 }
 
+/* The text named name in (*t, *n), replaced or added. */
+static int put_text(struct rdoc *d, struct rd_text **t, int *n, int *cap, const char *name, const char *value)
+{
+    char *copy = strdup(value ? value : "");
+    if (!copy) {
+        d->oom = 1;
+        return -1;
+    }
+    for (int i = 0; i < *n; ++i)
+        if (strcmp((*t)[i].name, name) == 0) {
+            free((*t)[i].value);
+            (*t)[i].value = copy;
+            return 0;
+        }
+    struct rd_text *grown = room_for_one(*t, *n, cap, sizeof **t, 4);
+    if (!grown) {
+        free(copy);
+        d->oom = 1;
+        return -1;
+    }
+    *t = grown;
+    struct rd_text *x = &(*t)[(*n)++];
+    snprintf(x->name, sizeof x->name, "%s", name);
+    x->value = copy;
+    return 0;
+}
+
+static const char *get_text(const struct rd_text *t, int n, const char *name)
+{
+    for (int i = 0; i < n; ++i)
+        if (strcmp(t[i].name, name) == 0)
+            return t[i].value;
+    return NULL;
+}
+
+int rd_row_text(struct rdoc *d, struct rd_row *r, const char *name, const char *value)
+{
+    return put_text(d, &r->texts, &r->ntexts, &r->tcap, name, value);
+}
+
+int rdoc_text(struct rdoc *d, const char *name, const char *value)
+{
+    return put_text(d, &d->texts, &d->ntexts, &d->tcap, name, value);
+}
+
+/* vsnprintf into a malloc'd string (NULL out of memory). */
+static char *vformat(const char *fmt, va_list ap)
+{
+    va_list again;
+    va_copy(again, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (s)
+        vsnprintf(s, (size_t)n + 1, fmt, again);
+    va_end(again);
+    return s;
+}
+
+int rd_row_textf(struct rdoc *d, struct rd_row *r, const char *name, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    char *s = vformat(fmt, ap);
+    va_end(ap);
+    int rc = s ? rd_row_text(d, r, name, s) : (d->oom = 1, -1);
+    free(s);
+    return rc;
+}
+
+int rdoc_textf(struct rdoc *d, const char *name, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    char *s = vformat(fmt, ap);
+    va_end(ap);
+    int rc = s ? rdoc_text(d, name, s) : (d->oom = 1, -1);
+    free(s);
+    return rc;
+}
+
+const char *rd_row_text_get(const struct rd_row *r, const char *name) { return get_text(r->texts, r->ntexts, name); }
+const char *rdoc_text_get(const struct rdoc *d, const char *name) { return get_text(d->texts, d->ntexts, name); }
+
+const char *rd_row_text_or(const struct rd_row *r, const char *name, const char *fallback)
+{
+    const char *t = rd_row_text_get(r, name);
+    return t ? t : fallback;
+}
+
+const char *rdoc_text_or(const struct rdoc *d, const char *name, const char *fallback)
+{
+    const char *t = rdoc_text_get(d, name);
+    return t ? t : fallback;
+}
+
+double rd_row_value(const struct rd_row *r, const char *name)
+{
+    const struct rd_metric *m = rd_row_find(r, name);
+    return m ? m->value : NAN;
+}
+
+const struct rd_row *rdoc_find_row(const struct rdoc *d, const char *key, const char *value)
+{
+    for (int i = 0; i < d->nrows; ++i) {
+        const char *v = rd_row_key_value(&d->rows[i], key);
+        if (v && strcmp(v, value) == 0)
+            return &d->rows[i];
+    }
+    return NULL;
+}
+
 struct rd_metric *rd_row_find(const struct rd_row *r, const char *name)
 {
     for (int m = 0; m < r->nmetrics; ++m)
@@ -217,6 +340,17 @@ static void json_context(struct jw *w, const char *key, const struct rd_context 
     jw_obj_end(w);
 }
 
+/* A "texts" object, written only when there are texts (files without any stay as they were). */
+static void json_texts(struct jw *w, const struct rd_text *t, int n)
+{
+    if (n <= 0)
+        return;
+    jw_kv_obj(w, "texts");
+    for (int i = 0; i < n; ++i)
+        jw_kv_str(w, t[i].name, t[i].value);
+    jw_obj_end(w);
+}
+
 static void json_metric(struct jw *w, const struct rd_metric *m)
 {
     jw_obj_begin(w);
@@ -252,6 +386,7 @@ static void json_rows_body(struct jw *w, const struct rdoc *d)
         jw_obj_end(w);
     }
     jw_arr_end(w);
+    json_texts(w, d->texts, d->ntexts);
     jw_kv_arr(w, "rows");
     for (int i = 0; i < d->nrows; ++i) {
         const struct rd_row *r = &d->rows[i];
@@ -275,6 +410,7 @@ static void json_rows_body(struct jw *w, const struct rdoc *d)
         for (int m = 0; m < r->nmetrics; ++m)
             json_metric(w, &r->metrics[m]);
         jw_arr_end(w);
+        json_texts(w, r->texts, r->ntexts);
         jw_obj_end(w);
     }
     jw_arr_end(w);
@@ -458,6 +594,29 @@ static int text_ok(const struct jr_doc *j, const struct jr_value *v, const char 
     return 0;
 }
 
+/* A "texts" object: strings of any length, lines allowed but no other control character. */
+static int read_texts(const struct jr_doc *j, const struct jr_value *o, struct rdoc *d, struct rd_row *r, char *err,
+                      size_t errlen)
+{
+    if (!o)
+        return 0;
+    if (o->type != JR_OBJ)
+        return jr_fail(j, o, err, errlen, "\"texts\" is not an object (accepted: an object of strings)");
+    for (size_t k = 0; k < o->count; ++k) {
+        const struct jr_value *v = &o->items[k];
+        if (v->type != JR_STR)
+            return jr_fail(j, v, err, errlen, "text \"%.40s\" must be a string", o->keys[k]);
+        for (const char *p = v->str; *p; ++p)
+            if (((unsigned char)*p < 0x20 && *p != '\n') || *p == 0x7f)
+                return jr_fail(j, v, err, errlen, "text \"%.40s\" holds %s (accepted: text without control "
+                               "characters other than newlines, as brdfbench writes it)", o->keys[k],
+                               *p == 0x1b ? "an escape character" : "a control character");
+        if (r ? rd_row_text(d, r, o->keys[k], v->str) : rdoc_text(d, o->keys[k], v->str))
+            return 0;
+    }
+    return 0;
+}
+
 /* The metric's numbers, and its unit as one line of table-safe text. */
 static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int timed, char *err, size_t errlen)
 {
@@ -568,7 +727,7 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
     for (size_t m = 0; m < metrics->count; ++m)
         if (read_metric(j, &metrics->items[m], d, r, err, errlen))
             return 2;
-    return 0;
+    return read_texts(j, jr_get(ro, "texts"), d, r, err, errlen);
 }
 
 /* The context, devices and rows of obj (a rows document's root, or a result file's "rows"
@@ -587,6 +746,8 @@ static int read_rows_body(const struct jr_doc *j, const struct jr_value *obj, st
         if (dv)
             read_ctx(jr_get(&devs->items[i], "context"), &dv->ctx);
     }
+    if (read_texts(j, jr_get(obj, "texts"), d, NULL, err, errlen))
+        return 2;
     for (size_t i = 0; i < rows->count; ++i)
         if (read_row(j, &rows->items[i], d, err, errlen))
             return 2;

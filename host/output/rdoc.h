@@ -52,6 +52,14 @@ struct rd_metric {
     int norm_cpu;          /* norm is per CPU second (a CPU device) */
 };
 
+/* A text of a row or of the document: what a page shows in words (a claim as the paper states
+ * it, a verdict's sentence, why a model is where it is), of any length, on one line or several.
+ * compare, gate and the exports ignore texts; report.md and the pages read them. */
+struct rd_text {
+    char name[RD_NAME];
+    char *value;           /* malloc'd */
+};
+
 struct rd_key {
     char name[32];
     char value[RD_TEXT];
@@ -70,6 +78,8 @@ struct rd_row {
     int line;                      /* the line of the row in its file (0: unknown) */
     struct rd_metric *metrics;
     int nmetrics, cap;
+    struct rd_text *texts;
+    int ntexts, tcap;
     int retries, disturbed;        /* preemption retries and disturbed repetitions behind the row */
     int truncated;                 /* a key past RD_MAX_KEYS was dropped, or the label or a key was cut
                                       (two distinct rows could then read as one: the readers refuse it) */
@@ -96,6 +106,8 @@ struct rdoc {
     int disturbed;                 /* repetitions the runner kept although preempted */
     struct rd_row *rows;
     int nrows, cap;
+    struct rd_text *texts;         /* the document's texts (a verdict paragraph, a note under a table) */
+    int ntexts, tcap;
     int oom;                       /* an allocation failed: the document is incomplete */
 };
 
@@ -134,6 +146,24 @@ int rd_metric_reps(struct rdoc *d, struct rd_metric *m, const double *v, int n);
 /* The same repetitions normalised by the run's reference kernel in the same round (per CPU
  * second on a CPU device: per_cpu_second). */
 int rd_metric_normalised(struct rdoc *d, struct rd_metric *m, const double *v, int n, int per_cpu_second);
+/* A text of the row (rd_row_text) or of the document (rdoc_text), copied; a text given again
+ * under the same name replaces the first. Returns 0, or -1 out of memory (d->oom set). */
+int rd_row_text(struct rdoc *d, struct rd_row *r, const char *name, const char *value);
+int rdoc_text(struct rdoc *d, const char *name, const char *value);
+/* A formatted text of the row or the document (printf's format). */
+int rd_row_textf(struct rdoc *d, struct rd_row *r, const char *name, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+int rdoc_textf(struct rdoc *d, const char *name, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The text named name of the row or of the document, or NULL (the _or forms: fallback instead). */
+const char *rd_row_text_get(const struct rd_row *r, const char *name);
+const char *rdoc_text_get(const struct rdoc *d, const char *name);
+const char *rd_row_text_or(const struct rd_row *r, const char *name, const char *fallback);
+const char *rdoc_text_or(const struct rdoc *d, const char *name, const char *fallback);
+/* The value of the row's metric named name, or NAN when the row has none. */
+double rd_row_value(const struct rd_row *r, const char *name);
+/* The first row whose key (or attribute) key has the value value, or NULL. */
+const struct rd_row *rdoc_find_row(const struct rdoc *d, const char *key, const char *value);
+
 /* The metric named name of the row, or NULL. */
 struct rd_metric *rd_row_find(const struct rd_row *r, const char *name);
 /* The key named name of the row, or NULL. */
