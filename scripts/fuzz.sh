@@ -26,7 +26,7 @@ status=0
 for target in gates modelfile; do
     # Linked by clang++: the library holds C++ (host/draw/draw.cpp) and UBSan's C++ runtime.
     # shellcheck disable=SC2086
-    clang $san -fsanitize=fuzzer -DCL_TARGET_OPENCL_VERSION=120 -I host/cli $(for d in host/measure host/measure/*/ host/results; do printf -- "-I %s " "$d"; done) -I host/core -I host/core/shader -I host/output -I kernels \
+    clang $san -fsanitize=fuzzer -DCL_TARGET_OPENCL_VERSION=120 -I host/cli $(for d in host/measure host/measure/*/ host/results host/results/*/; do printf -- "-I %s " "$d"; done) -I host/core -I host/core/shader -I host/output -I kernels \
         -c "tests/fuzz/fuzz_$target.c" -o "$B/fuzz_$target.o"
     # shellcheck disable=SC2086
     clang++ $san -fsanitize=fuzzer "$B/fuzz_$target.o" "$B/libbrdfcore.a" $libs -o "$B/fuzz_$target"

@@ -6,6 +6,7 @@
 #include "jsonr.h"
 #include "outdir.h"
 #include "plots.h"
+#include "report_docs.h"
 #include "report_run.h"
 #include "room.h"
 #include "schemas.h"
@@ -47,6 +48,7 @@ static void md_num(struct md_buf *b, double v, const char *fmt)
 struct report_input {
     const char *run_dir;
     struct report_run_doc run;
+    struct report_docs docs;          /* the result files' rows: what the sections are drawn from */
     struct report_picture *pictures;  /* run.json's, then those of the image passes */
     int npictures, cap;
     int out_of_memory;
@@ -421,12 +423,14 @@ int report_build(const char *run_dir, char **text, char *err, size_t errlen)
     in.run_dir = run_dir;
     *text = NULL;
     if (report_run_read(run_dir, &in.run, err, errlen)) return 2;
+    report_docs_init(&in.docs, run_dir);
     md_init(&b);
     int rc = read_pictures(&in);
     if (!rc) rc = body(&b, &in, err, errlen);
     if (!rc && b.failed) rc = 3;
     if (rc == 3) snprintf(err, errlen, "report.md: out of memory");
     report_run_free(&in.run);
+    report_docs_free(&in.docs);
     free(in.pictures);
     if (rc) {
         md_free(&b);
