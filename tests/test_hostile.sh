@@ -330,16 +330,28 @@ json.dump(d, open("gb/accuracy.json", "w"))
 PY
 run 120 gate gbase.json --baseline gb
 [ $rc -eq 0 ] && grep -q 'baseline: the entry of fq2 (line 1) has no number for this metric, not used' out && ok || bad "gate --baseline, a figure not measured: exit $rc: $(head -c 300 out)"
+# a row that declares its figure higher-is-better bounds nothing: the gate takes the metric's
+# meaning from the row, as compare does, instead of assuming it
+python3 - <<'PY'
+import json
+d = json.load(open("gb/accuracy.json"))
+m = next(m for m in d["rows"]["rows"][0]["metrics"] if m["name"] == "epicentre.max_rel")
+m["value"], m["direction"] = 0.01, "higher"
+json.dump(d, open("gb/accuracy.json", "w"))
+PY
+run 120 gate gbase.json --baseline gb
+[ $rc -eq 0 ] && grep -q 'baseline: the entry of fq2 (line 1) declares epicentre.max_rel higher is better, not used as a bound' out && ok || bad "gate --baseline, a figure declared higher-is-better: exit $rc: $(head -c 300 out)"
 # a figure no run writes (a string) is a corrupted baseline: refused before the gates run, as
 # compare refuses it (the rows reader's check), naming the file, the line and the member
 python3 - <<'PY'
 import json
 d = json.load(open("gb/accuracy.json"))
-d["results"][0]["epicentre"]["max_rel"] = "small"
+m = next(m for m in d["rows"]["rows"][0]["metrics"] if m["name"] == "epicentre.max_rel")
+m["value"], m["direction"] = "small", "lower"
 json.dump(d, open("gb/accuracy.json", "w"))
 PY
 run 120 gate gbase.json --baseline gb
-[ $rc -eq 2 ] && grep -q 'gate: --baseline: gb/accuracy.json:1:[0-9]*: "max_rel" is a string' err && ok || bad "gate --baseline, a string figure: exit $rc: $(head -c 300 err)"
+[ $rc -eq 2 ] && grep -q 'gate: --baseline: gb/accuracy.json:[0-9]*:[0-9]*: "value" is not a number' err && ok || bad "gate --baseline, a string figure: exit $rc: $(head -c 300 err)"
 # base was made with the default n step, 1 (accuracy --help)
 printf '{"gates":[{"model":"fq2","metric":"epicentre.max_rel","n_max":50,"n_step":2,"samples":256,"max":0.1}]}' >gstep.json
 run 120 gate gstep.json --baseline base

@@ -319,6 +319,9 @@ static void check_refused(void)
           "\"reps\" is not a number" },
         { "{\"name\": \"e\", \"direction\": \"lower\", \"timed\": false, \"value\": 1e200}", "\"value\" is 1e+200" },
         { "{\"name\": \"e\", \"direction\": \"lower\", \"unit\": \"a|b\", \"value\": 1}", "\"unit\" holds '|'" },
+        /* a figure declared lower-is-better is a magnitude whatever its name (a cost, a count) */
+        { "{\"name\": \"cost\", \"direction\": \"lower\", \"timed\": false, \"value\": -1}",
+          "\"value\" of cost is -1 (accepted: a figure where lower is better is in [0, 1e+100]" },
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
         char text[600];

@@ -567,19 +567,6 @@ static int figure_ok(const struct jr_doc *j, const struct jr_value *v, const cha
                    timed ? "a rate in [0, 1e+18]" : "a number in [-1e+100, 1e+100]");
 }
 
-/* An error figure (the last part of the metric's name: max_rel, max_abs, rmse, ...) is never
-   negative, as in the result files it stands for (compare_check.c): -1 would read as "better". */
-static int is_error_metric(const char *name)
-{
-    static const char *const errs[] = { "max_rel", "max_abs", "rmse", "mean_abs", "max_abs_whole", NULL };
-    const char *last = strrchr(name, '.');
-    last = last ? last + 1 : name;
-    for (int i = 0; errs[i]; ++i)
-        if (strcmp(last, errs[i]) == 0)
-            return 1;
-    return 0;
-}
-
 /* A text of the document that reaches the terminal or a table: one line, no control
    character (an escape sequence would drive the terminal). */
 static int text_ok(const struct jr_doc *j, const struct jr_value *v, const char *key, char *err, size_t errlen)
@@ -618,7 +605,8 @@ static int read_texts(const struct jr_doc *j, const struct jr_value *o, struct r
 }
 
 /* The metric's numbers, and its unit as one line of table-safe text. */
-static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int timed, char *err, size_t errlen)
+static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int timed, int direction, char *err,
+                     size_t errlen)
 {
     static const char *const figures[] = { "value", "min", "max" };
     const char *name = jr_str_or(mo, "name", "");
@@ -628,9 +616,11 @@ static int metric_ok(const struct jr_doc *j, const struct jr_value *mo, int time
         const struct jr_value *v = jr_get(mo, figures[k]);
         if (figure_ok(j, v, figures[k], timed, err, errlen))
             return 2;
-        if (v && v->type == JR_NUM && !timed && is_error_metric(name) && !(v->num >= 0))
-            return jr_fail(j, v, err, errlen, "\"%s\" of %.60s is %.6g (accepted: an error in [0, 1e+100], or null "
-                           "when not measured)", figures[k], name, v->num);
+        /* a figure where lower is better (an error, a count, a cost) is a magnitude, as the row
+           declares it: -1 would read as "better" */
+        if (v && v->type == JR_NUM && !timed && direction == RD_LOWER && !(v->num >= 0))
+            return jr_fail(j, v, err, errlen, "\"%s\" of %.60s is %.6g (accepted: a figure where lower is better is "
+                           "in [0, 1e+100], or null when not measured)", figures[k], name, v->num);
     }
     static const char *const arrays[] = { "reps", "normalised_reps" };
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
@@ -659,7 +649,7 @@ static int read_metric(const struct jr_doc *j, const struct jr_value *mo, struct
                        "\"direction\" is \"%.40s\" (accepted: higher, lower, neither)", dir);
     const struct jr_value *tv = jr_get(mo, "timed");
     const int timed = tv && tv->type == JR_BOOL && tv->num != 0;
-    if (metric_ok(j, mo, timed, err, errlen))
+    if (metric_ok(j, mo, timed, direction, err, errlen))
         return 2;
     struct rd_metric *m = rd_row_metric(d, r, name, jr_str_or(mo, "unit", "1"), direction, timed,
                                         jr_num_or_nan(mo, "value"));
@@ -709,9 +699,14 @@ static int read_row(const struct jr_doc *j, const struct jr_value *ro, struct rd
             return 2;
     for (int in_label = 1; in_label >= 0; --in_label) {
         const struct jr_value *o = in_label ? keys : attrs;
-        for (size_t k = 0; o && o->type == JR_OBJ && k < o->count; ++k)
+        for (size_t k = 0; o && o->type == JR_OBJ && k < o->count; ++k) {
             if (text_ok(j, &o->items[k], o->keys[k], err, errlen))
                 return 2;
+            /* the label joins the keys with " | ": a key holding '|' would make two rows one */
+            if (in_label && strchr(o->items[k].str, '|'))
+                return jr_fail(j, &o->items[k], err, errlen, "\"%.40s\" holds '|', which would break the table "
+                               "(accepted: one line of text without '|', as brdfbench writes it)", o->keys[k]);
+        }
     }
     /* the label as written (it may carry prefixes the keys do not) */
     snprintf(r->label, sizeof r->label, "%s", jr_str_or(ro, "row", r->label));

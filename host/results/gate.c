@@ -488,18 +488,6 @@ int gate_same_number(double a, double b)
     return fabs(a - b) <= 1e-9 * fmax(1.0, fabs(a));
 }
 
-/* The metric of accuracy.json's rows that gate metric m bounds, or NULL when it is none of them. */
-static const char *baseline_metric(enum gate_metric m)
-{
-    switch (m) {
-    case GATE_EPICENTRE_MAX_REL: return "epicentre.max_rel";
-    case GATE_ATTENUATION_MAX_ABS: return "attenuation.max_abs";
-    case GATE_WHOLE_MAX_ABS: return "whole.max_abs";
-    case GATE_INVALID_COUNT: return "invalid.count";
-    default: return NULL;   /* not part of accuracy.json */
-    }
-}
-
 /* A row's attribute as a number (NAN when it has none). */
 static double row_number(const struct rd_row *r, const char *name)
 {
@@ -526,11 +514,15 @@ static void baseline_of(struct gate *gt, const struct rdoc *doc)
         if (!label || strcmp(label, gt->model.label) != 0 || !gate_same_number(row_number(r, "n_min"), gt->grid.n_min) ||
             !gate_same_number(row_number(r, "n_max"), gt->grid.n_max))
             continue;
-        const char *metric = baseline_metric(gt->metric);
-        const struct rd_metric *m = metric ? rd_row_find(r, metric) : NULL;
+        /* the gate's metric is the row's metric of the same name, as the row declares it: a
+           baseline bounds a figure where lower is better */
+        const struct rd_metric *m = rd_row_find(r, metrics[gt->metric].name);
         if (!r->ok)   /* a failed figure is no bound to hold a run to */
             snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s is %.40s (line %d), not used",
                      gt->model.label, r->status, r->line);
+        else if (m && m->direction != RD_LOWER)
+            snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s (line %d) declares %s %s is better, "
+                     "not used as a bound", gt->model.label, r->line, m->name, rd_direction_name(m->direction));
         else if (m && isfinite(m->value)) {
             gt->baseline = m->value;
             gt->baseline_status = GATE_BASELINE_OK;   /* judged after the run */
