@@ -11,7 +11,8 @@
 #define CLAIMS_SCHEMA "brdfbench.claims/1"
 #define COMPARE_SCHEMA "brdfbench.compare/1"
 #define ENERGY_SCHEMA "brdfbench.energy/1"
-#define FIELD_SCHEMA "brdfbench.field/1"
+#define FIELD_SCHEMA "brdfbench.field/2"          /* /2: the file carries its rows */
+#define FIELD_SCHEMA_V1 "brdfbench.field/1"
 #define FIT_SCHEMA "brdfbench.fit/2"              /* /2: the file carries its rows (rdoc.h) */
 #define FIT_SCHEMA_V1 "brdfbench.fit/1"           /* before the rows: read by its layout */
 #define FIT_FAMILY_SCHEMA "brdfbench.fit_family/1"

@@ -521,8 +521,8 @@ static void baseline_of(struct gate *gt, const struct rdoc *doc)
             snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s is %.40s (line %d), not used",
                      gt->model.label, r->status, r->line);
         else if (m && m->direction != RD_LOWER)
-            snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %s (line %d) declares %s %s is better, "
-                     "not used as a bound", gt->model.label, r->line, m->name, rd_direction_name(m->direction));
+            snprintf(gt->baseline_note, sizeof gt->baseline_note, "the entry of %.60s (line %d) declares %.40s %s is "
+                     "better, not used as a bound", gt->model.label, r->line, m->name, rd_direction_name(m->direction));
         else if (m && isfinite(m->value)) {
             gt->baseline = m->value;
             gt->baseline_status = GATE_BASELINE_OK;   /* judged after the run */

@@ -24,8 +24,11 @@ static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err
 static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+static int upgrade_field_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 
-/* The kinds: what they are called, their file and the version written now. */
+/* The kinds: what they are called, their file and the version written now; a kind with one
+ * file per model (field_MODEL.json: a heatmap's grid, whose maxima the accuracy rows give
+ * refined) is read when named, not as part of a run folder. */
 static const struct {
     const char *name, *file, *schema;
 } kinds[RD_KIND_COUNT] = {
@@ -34,6 +37,7 @@ static const struct {
     { "render", "render.json", RENDER_SCHEMA },
     { "fit", "fit.json", FIT_SCHEMA },
     { "frontier", "frontier.json", FRONTIER_SCHEMA },
+    { "field", "field_MODEL.json", FIELD_SCHEMA },
 };
 
 /* The schemas read by their layout: each previous version of a kind, with the function that
@@ -53,6 +57,7 @@ static const struct {
     { RENDER_SCHEMA_V1, RD_KIND_RENDER, upgrade_render_v1 },
     { FIT_SCHEMA_V1, RD_KIND_FIT, upgrade_fit_v1 },
     { FRONTIER_SCHEMA_V1, RD_KIND_FRONTIER, upgrade_frontier_v1 },
+    { FIELD_SCHEMA_V1, RD_KIND_FIELD, upgrade_field_v1 },
 };
 
 const char *rd_kind_name(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].name : "?"; }
@@ -600,6 +605,46 @@ static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err
     return 0;
 }
 
+/* The upgrade of brdfbench.field/1: the row field_report.c's field_rows() makes, from the
+ * peaks and the check block of the layout. */
+static int upgrade_field_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+{
+    const char *model, *ref;
+    const struct jr_value *grid;
+    if (jr_need_str(j, &j->root, "model", &model, err, errlen) || jr_need_str(j, &j->root, "reference", &ref, err, errlen) ||
+        jr_need(j, &j->root, "grid", JR_OBJ, &grid, err, errlen))
+        return 2;
+    char text[RD_TEXT];
+    snprintf(text, sizeof text, "%.0f n x %.0f x, n %g..%g log-spaced, attenuation to %g x_e", jr_num_or_nan(grid, "rows"),
+             jr_num_or_nan(grid, "cols"), jr_num_or_nan(grid, "n_min"), jr_num_or_nan(grid, "n_max"),
+             jr_num_or_nan(grid, "u_max"));
+    rd_ctx_put(&d->ctx, "heatmap grid", text);
+    struct rd_row *r = rdoc_row(d, NULL, model);
+    if (!r)
+        return 0;
+    rd_row_key(r, "model", NULL, model);
+    rd_row_attr(r, "reference", ref);
+    r->line = j->root.line;
+    static const struct {
+        const char *path, *name, *unit;
+        int direction;
+    } m[] = {
+        { "epicentre_max_rel.value", "epicentre.max_rel", "1", RD_LOWER },
+        { "epicentre_max_rel.n", "epicentre.max_rel.at_n", "1", RD_NEITHER },
+        { "epicentre_max_rel.x", "epicentre.max_rel.at_x", "rad", RD_NEITHER },
+        { "attenuation_max_abs.value", "attenuation.max_abs", "1", RD_LOWER },
+        { "attenuation_max_abs.n", "attenuation.max_abs.at_n", "1", RD_NEITHER },
+        { "attenuation_max_abs.x", "attenuation.max_abs.at_x", "rad", RD_NEITHER },
+        { "check.max_rel_diff", "check.max_rel_diff", "1", RD_LOWER },
+        { "check.max_abs_diff", "check.max_abs_diff", "1", RD_LOWER },
+    };
+    for (size_t k = 0; k < sizeof m / sizeof m[0]; ++k) {
+        const struct jr_value *v = path_get(&j->root, m[k].path);
+        rd_row_metric(d, r, m[k].name, m[k].unit, m[k].direction, 0, v && v->type == JR_NUM ? v->num : NAN);
+    }
+    return 0;
+}
+
 /* ---- files --------------------------------------------------------------------------------- */
 
 /* The kind a schema string names, by its name before the '/' ("brdfbench.fit/1" -> fit), or
@@ -697,7 +742,8 @@ int rdoc_read_folder(const char *dir, int only, struct rdoc d[RD_KIND_COUNT], in
     for (int k = 0; k < RD_KIND_COUNT; ++k) {
         char file[4200];
         struct stat st;
-        if ((only >= 0 && k != only) || path_join(file, sizeof file, dir, kinds[k].file) || stat(file, &st) != 0)
+        if ((only >= 0 && k != only) || strstr(kinds[k].file, "MODEL") || path_join(file, sizeof file, dir, kinds[k].file) ||
+            stat(file, &st) != 0)
             continue;
         if (rdoc_read_file(file, &d[*found], err, errlen)) {
             for (int i = 0; i < *found; ++i)

@@ -7,6 +7,7 @@
 #include "exitcodes.h"
 #include "jsonr.h"
 #include "jsonw.h"
+#include "rdoc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -35,9 +36,46 @@ static void jw_field(struct jw *w, const char *key, const float *v, size_t count
     jw_arr_end(w);
 }
 
+/* The field's rows: one row, the model against its reference, with the maxima of the
+ * picture's grid (the accuracy sweep's rows hold the refined ones) and where they are, and the
+ * device-against-double check of its cells. */
+static struct rdoc *field_rows(const char *path, const struct field_result *r, char *err, size_t errlen)
+{
+    const char *base = strrchr(path, '/');
+    struct rdoc *d = rdoc_new(FIELD_SCHEMA, "field", base ? base + 1 : path, err, errlen);
+    if (!d)
+        return NULL;
+    char grid[RD_TEXT];
+    snprintf(grid, sizeof grid, "%d n x %d x, n %g..%g log-spaced, attenuation to %g x_e", r->grid.rows, r->grid.cols,
+             r->grid.n_min, r->grid.n_max, r->u_max);
+    rd_ctx_put(&d->ctx, "heatmap grid", grid);
+    struct rd_row *row = rdoc_row(d, NULL, r->model.label);
+    if (row) {
+        rd_row_key(row, "model", NULL, r->model.label);
+        rd_row_attr(row, "reference", r->reference.label);
+        static const struct {
+            const char *name, *unit;
+            int direction;
+        } m[] = {
+            { "epicentre.max_rel", "1", RD_LOWER }, { "epicentre.max_rel.at_n", "1", RD_NEITHER },
+            { "epicentre.max_rel.at_x", "rad", RD_NEITHER }, { "attenuation.max_abs", "1", RD_LOWER },
+            { "attenuation.max_abs.at_n", "1", RD_NEITHER }, { "attenuation.max_abs.at_x", "rad", RD_NEITHER },
+            { "check.max_rel_diff", "1", RD_LOWER }, { "check.max_abs_diff", "1", RD_LOWER },
+        };
+        const double v[] = { r->epi_peak.value, r->epi_peak.n, r->epi_peak.x, r->att_peak.value, r->att_peak.n,
+                             r->att_peak.x, r->check_rel_diff, r->check_abs_diff };
+        for (size_t k = 0; k < sizeof m / sizeof m[0]; ++k)
+            rd_row_metric(d, row, m[k].name, m[k].unit, m[k].direction, 0, v[k]);
+    }
+    return rdoc_built(d, err, errlen) ? NULL : d;
+}
+
 int field_write_json(const char *path, const struct field_result *r, const struct cl_session *s, char *err,
                      size_t errlen)
 {
+    struct rdoc *rows = field_rows(path, r, err, errlen);
+    if (!rows)
+        return -1;
     struct jw w;
     jw_doc_begin(&w, FIELD_SCHEMA, s, "");
     jw_obj_end(&w);
@@ -71,6 +109,8 @@ int field_write_json(const char *path, const struct field_result *r, const struc
     size_t cells = (size_t)r->grid.rows * r->grid.cols;
     jw_field(&w, "epicentre_rel", r->epi_rel, cells);
     jw_field(&w, "attenuation_abs", r->att_abs, cells);
+    rdoc_json_rows_member(&w, rows);
+    rdoc_delete(rows);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
@@ -110,8 +150,9 @@ int field_read_json(const char *path, struct field_result *r, char *err, size_t 
     char why[256];
     int rc = 2;
     if (jr_need_str(&d, root, "schema", &schema, err, errlen)) goto done;
-    if (strcmp(schema, FIELD_SCHEMA) != 0) {
-        jr_fail(&d, jr_get(root, "schema"), err, errlen, "schema \"%s\", expected \"%s\"", schema, FIELD_SCHEMA);
+    if (strcmp(schema, FIELD_SCHEMA) != 0 && strcmp(schema, FIELD_SCHEMA_V1) != 0) {
+        jr_fail(&d, jr_get(root, "schema"), err, errlen, "schema \"%s\", expected \"%s\" (or \"%s\")", schema,
+                FIELD_SCHEMA, FIELD_SCHEMA_V1);
         goto done;
     }
     if (jr_need_str(&d, root, "model", &model, err, errlen) || jr_need_str(&d, root, "reference", &ref, err, errlen) ||
