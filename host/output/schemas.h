@@ -15,7 +15,8 @@
 #define FIELD_SCHEMA_V1 "brdfbench.field/1"
 #define FIT_SCHEMA "brdfbench.fit/2"              /* /2: the file carries its rows (rdoc.h) */
 #define FIT_SCHEMA_V1 "brdfbench.fit/1"           /* before the rows: read by its layout */
-#define FIT_FAMILY_SCHEMA "brdfbench.fit_family/1"
+#define FIT_FAMILY_SCHEMA "brdfbench.fit_family/2"   /* /2: the file carries its rows */
+#define FIT_FAMILY_SCHEMA_V1 "brdfbench.fit_family/1"
 #define FRONTIER_SCHEMA "brdfbench.frontier/2"    /* /2: the file carries its rows */
 #define FRONTIER_SCHEMA_V1 "brdfbench.frontier/1" /* before the rows: read by its layout */
 #define GATES_SCHEMA "brdfbench.gates/1"        /* the gates file (input) */

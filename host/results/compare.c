@@ -279,18 +279,26 @@ static int read_run(struct compare_set *set, int run, const char *path, char *er
     snprintf(r->name, sizeof r->name, "%s", base ? base + 1 : buf);
     if (!S_ISDIR(st.st_mode))
         return read_file(set, run, path, err, errlen);
-    int found = 0;
-    for (int k = 0; k < CMP_KIND_COUNT; ++k) {
-        char file[4200];
-        if (path_join(file, sizeof file, path, rd_kind_file(k)))
-            continue;
-        if (stat(file, &st) != 0)
-            continue;
-        int rc = read_file(set, run, file, err, errlen);
-        if (rc)
-            return rc;
-        ++found;
+    /* the folder's result files, each read once by the one reader of a run folder */
+    struct rdoc *docs = calloc(RD_KIND_COUNT, sizeof *docs);
+    int found = 0, rc = 0;
+    if (!docs) {
+        fail(err, errlen, "out of memory reading %s", path);
+        return 2;
     }
+    if (rdoc_read_folder(path, -1, docs, &found, err, errlen))
+        rc = 2;
+    for (int i = 0; i < found; ++i) {
+        if (!rc) {
+            char file[4200];
+            if (path_join(file, sizeof file, path, docs[i].file) == 0)
+                rc = add_doc(set, run, &docs[i], file, err, errlen);
+        }
+        rdoc_free(&docs[i]);
+    }
+    free(docs);
+    if (rc)
+        return rc;
     if (!found) {
         fail(err, errlen, "%s: no result file (%s, %s, %s, %s or %s)", path, rd_kind_file(0), rd_kind_file(1),
              rd_kind_file(2), rd_kind_file(3), rd_kind_file(4));

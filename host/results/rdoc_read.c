@@ -25,6 +25,7 @@ static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, 
 static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_field_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
+static int upgrade_fit_family_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 
 /* The kinds: what they are called, their file and the version written now; a kind with one
  * file per model (field_MODEL.json: a heatmap's grid, whose maxima the accuracy rows give
@@ -38,6 +39,7 @@ static const struct {
     { "fit", "fit.json", FIT_SCHEMA },
     { "frontier", "frontier.json", FRONTIER_SCHEMA },
     { "field", "field_MODEL.json", FIELD_SCHEMA },
+    { "fit_family", "fit.json", FIT_FAMILY_SCHEMA },   /* `fit --family`'s fit.json */
 };
 
 /* The schemas read by their layout: each previous version of a kind, with the function that
@@ -58,6 +60,7 @@ static const struct {
     { FIT_SCHEMA_V1, RD_KIND_FIT, upgrade_fit_v1 },
     { FRONTIER_SCHEMA_V1, RD_KIND_FRONTIER, upgrade_frontier_v1 },
     { FIELD_SCHEMA_V1, RD_KIND_FIELD, upgrade_field_v1 },
+    { FIT_FAMILY_SCHEMA_V1, RD_KIND_FIT_FAMILY, upgrade_fit_family_v1 },
 };
 
 const char *rd_kind_name(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].name : "?"; }
@@ -645,6 +648,82 @@ static int upgrade_field_v1(const struct jr_doc *j, struct rdoc *d, char *err, s
     return 0;
 }
 
+/* A family point's figures from its layout object: its parameters (the members that are not
+ * one of the known figures), cap, errors and where they are reached; as family_rows() in
+ * host/measure/fit/fit_report.c declares them. */
+static void family_point(struct rdoc *d, struct rd_row *r, const struct jr_value *o, const char *cap_key)
+{
+    static const char *const known[] = { "status", "reason", "cap", "cap_reason", "max_abs_cap", "max_rel",
+                                         "max_rel_at_n", "max_abs", "max_abs_at_n", "model" };
+    for (size_t k = 0; k < o->count; ++k) {
+        size_t i = 0;
+        while (i < sizeof known / sizeof known[0] && strcmp(o->keys[k], known[i]) != 0)
+            ++i;
+        if (i == sizeof known / sizeof known[0] && o->items[k].type == JR_NUM)
+            rd_row_metric(d, r, o->keys[k], "1", RD_NEITHER, 0, o->items[k].num);
+    }
+    const struct jr_value *cap = cap_key ? jr_get(o, cap_key) : NULL;
+    if (cap && cap->type == JR_NUM)
+        rd_row_metric(d, r, "cap", "1", RD_NEITHER, 0, cap->num);
+    static const struct { const char *key, *name; int direction; } fig[] = {
+        { "max_rel", "max_rel", RD_LOWER }, { "max_rel_at_n", "max_rel.at_n", RD_NEITHER },
+        { "max_abs", "max_abs", RD_LOWER }, { "max_abs_at_n", "max_abs.at_n", RD_NEITHER },
+    };
+    for (size_t k = 0; k < sizeof fig / sizeof fig[0]; ++k) {
+        const struct jr_value *v = jr_get(o, fig[k].key);
+        if (v || fig[k].direction == RD_LOWER)
+            rd_row_metric(d, r, fig[k].name, "1", fig[k].direction, 0, v && v->type == JR_NUM ? v->num : NAN);
+    }
+}
+
+/* The upgrade of brdfbench.fit_family/1 (`fit --family`): the rows family_rows() makes. */
+static int upgrade_fit_family_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
+{
+    const char *family;
+    if (jr_need_str(j, &j->root, "family", &family, err, errlen))
+        return 2;
+    char text[RD_TEXT];
+    snprintf(text, sizeof text, "%s, objective %s", family, jr_str_or(&j->root, "objective", "max_rel"));
+    rd_ctx_put(&d->ctx, "family fit", text);
+    static const char *const names[3] = { "fit", "min_max_rel", "min_max_abs" };
+    for (int i = 0; i < 3; ++i) {
+        const struct jr_value *o = jr_get(&j->root, names[i]);
+        if (!o || o->type != JR_OBJ)
+            continue;
+        struct rd_row *r = rdoc_row(d, NULL, family);
+        if (!r)
+            return 0;
+        rd_row_key(r, "point", NULL, names[i]);
+        row_status(r, o);
+        family_point(d, r, o, "cap");
+    }
+    const struct jr_value *tr = jr_get(&j->root, "tradeoff");
+    for (size_t k = 0; tr && tr->type == JR_ARR && k < tr->count; ++k) {
+        if (tr->items[k].type != JR_OBJ)
+            continue;
+        struct rd_row *r = rdoc_row(d, NULL, family);
+        if (!r)
+            return 0;
+        snprintf(text, sizeof text, "tradeoff %zu of %zu", k + 1, tr->count);
+        rd_row_key(r, "point", NULL, text);
+        r->line = tr->items[k].line;
+        family_point(d, r, &tr->items[k], "max_abs_cap");
+    }
+    const struct jr_value *dev = jr_get(&j->root, "device");
+    if (dev && dev->type == JR_OBJ) {
+        struct rd_row *r = rdoc_row(d, NULL, family);
+        if (!r)
+            return 0;
+        rd_row_key(r, "point", NULL, "device");
+        if (jr_get(dev, "model"))
+            rd_row_attr(r, "model", jr_str_or(dev, "model", ""));
+        row_status(r, dev);
+        if (r->ok)
+            family_point(d, r, dev, NULL);
+    }
+    return 0;
+}
+
 /* ---- files --------------------------------------------------------------------------------- */
 
 /* The kind a schema string names, by its name before the '/' ("brdfbench.fit/1" -> fit), or
@@ -742,13 +821,24 @@ int rdoc_read_folder(const char *dir, int only, struct rdoc d[RD_KIND_COUNT], in
     for (int k = 0; k < RD_KIND_COUNT; ++k) {
         char file[4200];
         struct stat st;
-        if ((only >= 0 && k != only) || strstr(kinds[k].file, "MODEL") || path_join(file, sizeof file, dir, kinds[k].file) ||
+        /* a file two kinds share (fit.json: a fit, or a family fit) is read once, and is of the
+           kind its schema names; a kind of one file per model is read only when named */
+        int seen = 0;
+        for (int e = 0; e < k; ++e)
+            seen |= strcmp(kinds[e].file, kinds[k].file) == 0;
+        if (seen || strstr(kinds[k].file, "MODEL") || path_join(file, sizeof file, dir, kinds[k].file) ||
             stat(file, &st) != 0)
+            continue;
+        if (only >= 0 && strcmp(kinds[only].file, kinds[k].file) != 0)
             continue;
         if (rdoc_read_file(file, &d[*found], err, errlen)) {
             for (int i = 0; i < *found; ++i)
                 rdoc_free(&d[i]);
             return 2;
+        }
+        if (only >= 0 && strcmp(d[*found].kind, kinds[only].name) != 0) {
+            rdoc_free(&d[*found]);
+            continue;
         }
         ++*found;
     }

@@ -239,9 +239,78 @@ static void jw_fit_point(struct jw *w, const struct fit_family_report *r, const 
     jw_obj_end(w);
 }
 
+/* A point's figures as metrics: its parameters and cap (neither: what was found, not how
+ * well), its two errors (lower) and the n where each is reached (neither). */
+static void family_point_metrics(struct rdoc *d, struct rd_row *row, const struct fit_family_report *r,
+                                 const double *params, double cap, double max_rel, double max_rel_n, double max_abs,
+                                 double max_abs_n)
+{
+    for (int k = 0; params && k < r->nparams; ++k)
+        rd_row_metric(d, row, r->param_names[k], "1", RD_NEITHER, 0, params[k]);
+    if (!isnan(cap))
+        rd_row_metric(d, row, "cap", "1", RD_NEITHER, 0, cap);
+    rd_row_metric(d, row, "max_rel", "1", RD_LOWER, 0, max_rel);
+    if (!isnan(max_rel_n))
+        rd_row_metric(d, row, "max_rel.at_n", "1", RD_NEITHER, 0, max_rel_n);
+    rd_row_metric(d, row, "max_abs", "1", RD_LOWER, 0, max_abs);
+    if (!isnan(max_abs_n))
+        rd_row_metric(d, row, "max_abs.at_n", "1", RD_NEITHER, 0, max_abs_n);
+}
+
+/* The family fit's rows: the fit, the two ends of the trade-off, each trade-off point (with its
+ * cap on max Delta) and the device sweep of the fitted model. */
+static struct rdoc *family_rows(const char *path, const struct fit_family_report *r, char *err, size_t errlen)
+{
+    const char *base = strrchr(path, '/');
+    struct rdoc *d = rdoc_new(FIT_FAMILY_SCHEMA, "fit_family", base ? base + 1 : path, err, errlen);
+    if (!d)
+        return NULL;
+    char text[RD_TEXT];
+    snprintf(text, sizeof text, "%s, objective %s", r->family, r->opt.objective == FIT_MAX_ABS ? "max_abs" : "max_rel");
+    rd_ctx_put(&d->ctx, "family fit", text);
+    static const char *const names[3] = { "fit", "min_max_rel", "min_max_abs" };
+    const struct fit_point *pts[3] = { &r->best, &r->min_rel, &r->min_abs };
+    for (int i = 0; i < 3; ++i) {
+        struct rd_row *row = rdoc_row(d, NULL, r->family);
+        if (!row)
+            break;
+        rd_row_key(row, "point", NULL, names[i]);
+        if (!pts[i]->ok)
+            rd_row_fail(row, "infeasible", pts[i]->reason);
+        family_point_metrics(d, row, r, pts[i]->params, pts[i]->cap, pts[i]->max_rel, pts[i]->max_rel_n,
+                             pts[i]->max_abs, pts[i]->max_abs_n);
+    }
+    for (int j = 0; j < r->tradeoff_count; ++j) {
+        struct rd_row *row = rdoc_row(d, NULL, r->family);
+        if (!row)
+            break;
+        /* keyed by its place (the caps themselves move with the two ends between runs) */
+        snprintf(text, sizeof text, "tradeoff %d of %d", j + 1, r->tradeoff_count);
+        rd_row_key(row, "point", NULL, text);
+        family_point_metrics(d, row, r, r->tradeoff[j].params, r->tradeoff[j].cap, r->tradeoff[j].max_rel, NAN,
+                             r->tradeoff[j].max_abs, NAN);
+    }
+    struct rd_row *row = rdoc_row(d, NULL, r->family);
+    if (row) {
+        rd_row_key(row, "point", NULL, "device");
+        if (r->have_sweep) {
+            rd_row_attr(row, "model", r->sweep.model.label);
+            family_point_metrics(d, row, r, NULL, NAN, r->sweep.epicentre.value, r->sweep.epicentre.n,
+                                 r->sweep.attenuation.value, r->sweep.attenuation.n);
+        } else {
+            rd_row_fail(row, "not measured", r->best.ok ? "no device kernel for this family (power m other than 2, 3, "
+                                                          "4)" : "no fitted model");
+        }
+    }
+    return rdoc_built(d, err, errlen) ? NULL : d;
+}
+
 int fit_family_write_json(const char *path, const struct fit_family_report *r, const struct cl_session *s,
                           char *err, size_t errlen)
 {
+    struct rdoc *rows = family_rows(path, r, err, errlen);
+    if (!rows)
+        return -1;
     struct jw w;
     jw_doc_begin(&w, FIT_FAMILY_SCHEMA, s, "");
     jw_kv_obj(&w, "grid");
@@ -285,6 +354,8 @@ int fit_family_write_json(const char *path, const struct fit_family_report *r, c
         jw_obj_end(&w);
     }
     jw_kv_num(&w, "seconds", r->seconds);
+    rdoc_json_rows_member(&w, rows);
+    rdoc_delete(rows);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
