@@ -49,9 +49,12 @@ static struct rdoc *claims_rows(const struct repro *p, char *err, size_t errlen)
         rd_row_attr(x, "kind", c->kind);
         rd_row_attr(x, "source", c->source);
         /* what was claimed and what was measured: figures with no better or worse (a verdict
-           is the distance between them, given as a text) */
-        rd_row_metric(d, x, "claimed", "1", RD_NEITHER, 0, c->claimed);
-        rd_row_metric(d, x, "measured", "1", RD_NEITHER, 0, c->measured);
+           is the distance between them, given as a text); a claim that is not a single number
+           has none (compare would read a null as a figure that failed) */
+        if (isfinite(c->claimed))
+            rd_row_metric(d, x, "claimed", "1", RD_NEITHER, 0, c->claimed);
+        if (isfinite(c->measured))
+            rd_row_metric(d, x, "measured", "1", RD_NEITHER, 0, c->measured);
         rd_row_text(d, x, "claim", c->text);
         rd_row_text(d, x, "claimed_text", c->claimed_text);
         rd_row_text(d, x, "measured_text", c->measured_text);

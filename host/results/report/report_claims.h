@@ -11,7 +11,9 @@
  * - claims: context "claim grid" ("n step 1, 4096 samples per zone") and, when the page carries
  *   the physically based models' section, "physically based models" = "physical.json"; a row
  *   per claim, key id, attributes kind ("claim" or "check") and source, metrics claimed and
- *   measured (unit 1, direction neither, null when not a single number), texts claim,
+ *   measured (unit 1, direction neither; left out where the claim or the measurement is not a
+ *   single number, as claims.json's null with its reason: compare would read a null as a
+ *   figure that failed), texts claim,
  *   claimed_text, measured_text, tolerance, verdict ("reproduced", "within noise",
  *   "not reproduced"), note, method.
  * - q_sweep: context "Q grid" ("Q = 0.01..0.99 step 0.01, n in [2, 1000] step 1, 1024 samples

@@ -33,7 +33,7 @@ static int plain(const struct jr_doc *j, const struct jr_value *obj, const char 
 /* The upgrade of brdfbench.claims/1: the context line "claim grid" (and the physically based
  * models' line when the claims carry their cost rows: the page then holds physical.json's
  * section); a row per claim (key id; attributes kind, source; metrics claimed and measured,
- * neither better nor worse; texts claim, claimed_text, measured_text, tolerance, verdict, note,
+ * neither better nor worse, where each is a single number (not null); texts claim, claimed_text, measured_text, tolerance, verdict, note,
  * method). */
 int upgrade_claims_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
@@ -64,8 +64,15 @@ int upgrade_claims_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t 
         rd_row_key(r, "id", NULL, id);
         for (size_t k = 0; k < sizeof attrs / sizeof attrs[0]; ++k)
             rd_row_attr(r, attrs[k], jr_str_or(c, attrs[k], ""));
-        rd_row_metric(d, r, "claimed", "1", RD_NEITHER, 0, jr_num_or_nan(c, "claimed"));
-        rd_row_metric(d, r, "measured", "1", RD_NEITHER, 0, jr_num_or_nan(c, "measured"));
+        static const char *const figs[] = { "claimed", "measured" };
+        for (size_t k = 0; k < sizeof figs / sizeof figs[0]; ++k) {
+            const struct jr_value *v = jr_get(c, figs[k]);
+            if (v && v->type == JR_NUM && fabs(v->num) <= RD_MAX_VALUE)
+                rd_row_metric(d, r, figs[k], "1", RD_NEITHER, 0, v->num);
+            else if (v && v->type != JR_NULL)
+                return jr_fail(j, v, err, errlen, "\"%s\" is not a number (accepted: a number in [-1e+100, 1e+100], "
+                               "or null when the claim is not a single number)", figs[k]);
+        }
         for (size_t k = 0; k < sizeof texts / sizeof texts[0]; ++k) {
             if (plain(j, c, texts[k], 1, err, errlen))
                 return 2;
