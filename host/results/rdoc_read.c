@@ -67,6 +67,14 @@ const char *rd_kind_name(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].
 const char *rd_kind_file(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].file : "?"; }
 const char *rd_kind_schema(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].schema : "?"; }
 
+void rd_kind_names(char *out, size_t len)
+{
+    if (len)
+        out[0] = '\0';
+    for (int k = 0; k < RD_KIND_COUNT && len; ++k)
+        snprintf(out + strlen(out), len - strlen(out), "%s%s", k ? ", " : "", kinds[k].name);
+}
+
 int rd_kind_of_name(const char *name)
 {
     for (int k = 0; k < RD_KIND_COUNT; ++k)

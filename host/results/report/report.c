@@ -224,8 +224,9 @@ static int claims_block(struct md_buf *b, struct report_input *in, char *err, si
         physical = report_doc(&in->docs, "physical.json", &rc, err, errlen);
         if (!physical) q_sweep = NULL;
     }
-    if (!q_sweep) {
-        if (rc == 1) snprintf(err + strlen(err), errlen - strlen(err), " (run.json records its part as done)");
+    if (!q_sweep) {   /* missing or unreadable, though run.json says the part ran */
+        size_t n = strlen(err);
+        snprintf(err + n, errlen - n, " (run.json records its part as done)");
         return 2;
     }
     struct md_buf page;
