@@ -34,6 +34,14 @@ for k in $KINDS; do
     python3 "$LAYOUTS" "old/$k.json" "old_$k.rows.json" && ok || bad "old $k.json: the upgrade's rows differ from its layout's"
 done
 
+# the kinds a user may name list these three (the list comes from the kinds' table)
+expect 2 "--kind: 'plots' is not a kind of result \(accepted: .*claims, q_sweep, physical" rows old --kind plots
+expect 2 "--kind: 'plots' is not a kind of result \(accepted: .*claims, q_sweep, physical" history old old --kind plots
+# `rows` of the folder with --kind: that kind's file alone
+"$BIN" rows old --kind q_sweep --format json --output kind_q.rows.json 2>"$T/err" && ok || bad "rows --kind q_sweep: $(cat "$T/err")"
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if d["source"]["kind"] == "q_sweep" else 1)' \
+    kind_q.rows.json && ok || bad "rows --kind q_sweep read another kind"
+
 # embed PAGE REPORT OUT: REPORT with its claims section replaced by PAGE as report.md embeds a
 # page: the page's "# " title line dropped, a '#' before every other line that starts with '#',
 # then a blank line
