@@ -570,7 +570,7 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
                     }
                     if (!err[0] && p.have_physical) {
                         path_join(path, sizeof path, o->io.out_dir, "physical.json");
-                        pbcost_write_json(path, s, &p.physical, err, sizeof err);
+                        pbcost_write_json(path, s, &p.physical, rows.physical, err, sizeof err);
                     }
                 }
             }

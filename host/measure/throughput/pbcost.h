@@ -92,11 +92,12 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
 int pbcost_he_terms(double nl, double nv, double lv, double sigma0);
 
 /* Writers (pbcost_report.c). pbcost_rows: physical.json's rows (report_claims.h says what they
- * hold), NULL with "out of memory" in err; free with rdoc_delete. */
+ * hold), NULL with "out of memory" in err; free with rdoc_delete. pbcost_write_json writes rows
+ * as the file's rows member (NULL: the rows of r, made here). */
 struct rdoc;
 struct rdoc *pbcost_rows(const struct pbcost_result *r, char *err, size_t errlen);
-int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r, char *err,
-                      size_t errlen);
+int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r,
+                      const struct rdoc *rows, char *err, size_t errlen);
 void pbcost_print_table(FILE *f, const struct pbcost_result *r);
 
 #endif

@@ -57,11 +57,11 @@ static const struct jw_field row_figures[] = {
 };
 #undef F
 
-int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r, char *err,
-                      size_t errlen)
+int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r,
+                      const struct rdoc *rows, char *err, size_t errlen)
 {
-    struct rdoc *d = pbcost_rows(r, err, errlen);
-    if (!d)
+    struct rdoc *own = rows ? NULL : pbcost_rows(r, err, errlen);
+    if (!rows && !own)
         return -1;
     struct jw w;
     jw_doc_begin(&w, PBCOST_SCHEMA, s, "");
@@ -122,8 +122,8 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
     if (r->o.nmeasured)
         jw_kv_str(&w, "lookup_note", PBCOST_LOOKUP_NOTE);
     jw_kv_num(&w, "seconds", r->seconds);
-    rdoc_json_rows_member(&w, d);
-    rdoc_delete(d);
+    rdoc_json_rows_member(&w, rows ? rows : own);
+    rdoc_delete(own);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
