@@ -350,7 +350,7 @@ def reproduce_cli_claims_q_sweep(*args):
     argv = ["-", *args]
     d = argv[1]
     c = load(d + "/claims.json")
-    has_context(c, "brdfbench.claims/1", ("date", "device", "git_revision", "grid"))
+    has_context(c, "brdfbench.claims/2", ("date", "device", "git_revision", "grid"))
     rows = {r["id"]: r for r in c["claims"]}
     need = ["P1-eq11-lhs", "P1-eq12-a", "P1-eq12-b", "P1-eq12-c", "P1-xi", "P1-xi64", "P1-fig3-fvol", "P1-4.5x",
             "P1-fig5-zone", "P2-fq", "P2-fq2-rel", "P2-fq2-abs", "P2-f2-rel", "P2-f2-abs", "P2-6.3x", "P2-fig4",
@@ -397,7 +397,7 @@ def reproduce_cli_claims_q_sweep(*args):
     assert abs(rows["P1-xi"]["measured"] - root) < 1e-12
 
     q = load(d + "/q_sweep.json")
-    assert q["schema"] == "brdfbench.q_sweep/1"
+    assert q["schema"] == "brdfbench.q_sweep/2"
     assert len(q["Q"]) == len(q["max_rel"]) == len(q["max_abs"]) == len(q["max_abs_attenuation"]) > 10
     assert q["context"]["grid"]["q_step"] == 0.05 and q["context"]["grid"]["samples_per_zone"] == 256
     # the refined minimiser is no worse than any Q of the sweep's grid

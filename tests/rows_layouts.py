@@ -1,5 +1,5 @@
-"""rows_layouts.py - the rows of throughput, accuracy, render, fit and frontier result files written a
-second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
+"""rows_layouts.py - the rows of throughput, accuracy, render, fit, frontier, claims, q_sweep and
+physical result files written a second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
 tests/test_rows_primary.sh: what the program reads from a file's "rows" member and from an old
 file's layout (host/results/rdoc_read.c) is checked against this independent mapping.
 
@@ -131,7 +131,68 @@ def _accuracy(d):
     return out
 
 
-KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier}
+def _claims(d):
+    """A row per claim (its id) with what was claimed and what was measured, each where it is a
+    number (a claim that is not one has null with a reason in the layout): unit 1, neither better
+    nor worse, not timed."""
+    out = {}
+    for c in d["claims"]:
+        row = {STATUS: ("ok", None)}
+        for name in ("claimed", "measured"):
+            if c[name] is not None:
+                row[name] = ("1", "neither", False, c[name], [])
+        out[c["id"]] = row
+    return out
+
+
+def _q_sweep(d):
+    """A row per Q ("fq:Q=" and Q to 10 significant digits) with its figures; cq2's row (f2)
+    and the minimising Q's (best)."""
+    out = {}
+    for i, q in enumerate(d["Q"]):
+        out["fq:Q=%.10g" % q] = {"Q": ("1", "neither", False, q, []),
+                                 "max_rel": ("1", "lower", False, d["max_rel"][i], []),
+                                 "max_abs": ("1", "lower", False, d["max_abs"][i], []),
+                                 "max_abs_attenuation": ("1", "lower", False, d["max_abs_attenuation"][i], []),
+                                 "max_rel_at_n": ("1", "neither", False, d["max_rel_at_n"][i], []),
+                                 STATUS: ("ok", None)}
+    out["cq2 (f2 of paper 2)"] = {"max_rel": ("1", "lower", False, d["f2"]["max_rel"], []),
+                                  "max_abs": ("1", "lower", False, d["f2"]["max_abs"], []), STATUS: ("ok", None)}
+    b = d["best"]
+    out["fq at the best Q"] = {"Q": ("1", "neither", False, b["Q"], []),
+                               "max_rel": ("1", "lower", False, b["max_rel"], []),
+                               "max_abs": ("1", "lower", False, b["max_abs"], []),
+                               "host_max_rel": ("1", "lower", False, b["host_max_rel"], []), STATUS: ("ok", None)}
+    return out
+
+
+def _physical(d):
+    """A row per cost row (its model): the rate of the median launch (timed; the rows carry the
+    normalised repetitions, not absolute ones), the ratios, the check, the albedo and He's terms
+    where the layout has them; then a row per angle of He's terms table ("He terms | THETA deg")
+    with the mirror and off-mirror counts per sigma0/lambda."""
+    out = {}
+    figs = (("ratio_to_fq2", "neither"), ("ratio_to_phong", "neither"), ("ratio_to_pow", "neither"),
+            ("check_max_abs_of_peak", "lower"), ("albedo_normal_incidence", "neither"), ("he_terms_mean", "neither"),
+            ("he_terms_max", "neither"))
+    for r in d["cost"]["rows"]:
+        row = {"evaluations_per_s": ("1/s", "higher", True, r["evaluations_per_s"], []), STATUS: ("ok", None)}
+        for name, direction in figs:
+            if name in r:
+                row[name] = ("1", direction, False, r[name], [])
+        out[r["model"]] = row
+    he = d["he_terms"]
+    for i, theta in enumerate(he["theta_deg"]):
+        row = {STATUS: ("ok", None)}
+        for k, ratio in enumerate(he["sigma0_over_lambda"]):
+            row["terms_mirror@%s" % _g(ratio)] = ("1", "neither", False, he["mirror"][i][k], [])
+            row["terms_off@%s" % _g(ratio)] = ("1", "neither", False, he["off_mirror"][i][k], [])
+        out["He terms | %s deg" % _g(theta)] = row
+    return out
+
+
+KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier,
+         "claims": _claims, "q_sweep": _q_sweep, "physical": _physical}
 
 
 def expected(doc):

@@ -441,8 +441,8 @@ rj Q "d['parts']['bogus'] = {'status': 'ok'}"
 t 2 "^brdfbench report: Q/run.json:1:[0-9]+: unknown part \"bogus\"" report Q
 rj Q "d['parts']['claims'] = {'status': 'missing'}"
 t 2 "^brdfbench report: Q/run.json:1:[0-9]+: member \"reason\" is missing" report Q
-ff Q claims.md
-t 2 "^brdfbench report: Q/claims.md: is a FIFO, not a regular file \(run.json records its part as done\)" report Q
+ff Q claims.json
+t 2 "^brdfbench report: Q/claims.json: is a FIFO, not a regular file \(run.json records its part as done\)" report Q
 ff Q accuracy.json
 t 2 "^brdfbench report: Q/accuracy.json: is a FIFO, not a regular file" report Q
 # heatmap: field files fed back
@@ -501,7 +501,7 @@ t 2 "^brdfbench rows: expected FILE\|RUN_DIR \(a result file or a run folder\)" 
 t 2 "^brdfbench rows: unexpected argument 'b'" rows R0 b
 t 2 "^brdfbench rows: nothere: no such file or folder \(accepted: a result file or a run folder\)" rows nothere
 t 2 "^brdfbench rows: --format: 'xml' is not a format \(accepted: md, csv, json\)" rows R0 --format xml
-t 2 "^brdfbench rows: --kind: 'claims' is not a kind of result \(accepted: throughput, accuracy, render, fit, frontier\)" rows R0 --kind claims
+t 2 "^brdfbench rows: --kind: 'plots' is not a kind of result \(accepted: throughput, accuracy, render, fit, frontier" rows R0 --kind plots
 t 2 "^brdfbench rows: --format csv writes one document and R0 holds [0-9]+ \(name one with --kind: throughput, accuracy" rows R0 --format csv
 t 2 "^brdfbench rows: --format json writes one document" rows R0 --format json --output rows_out.json
 if [ -e rows_out.json ]; then fail=$((fail + 1)); echo "FAIL: rows: a refused run wrote its --output" >&2; fi

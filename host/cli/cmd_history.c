@@ -19,8 +19,9 @@ static int call_kind(const char *flag, const char *value, void *dest, char *err,
 {
     int k = rd_kind_of_name(value);
     if (k < 0) {
-        snprintf(err, errlen, "%s: '%s' is not a kind of result (accepted: %s, %s, %s, %s, %s)", flag, value,
-                 rd_kind_name(0), rd_kind_name(1), rd_kind_name(2), rd_kind_name(3), rd_kind_name(4));
+        char names[256];
+        rd_kind_names(names, sizeof names);
+        snprintf(err, errlen, "%s: '%s' is not a kind of result (accepted: %s)", flag, value, names);
         return EXIT_USAGE;
     }
     *(int *)dest = k;

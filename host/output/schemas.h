@@ -8,7 +8,8 @@
 #define ACCURACY_SCHEMA "brdfbench.accuracy/2"   /* /2: the file carries its rows (rdoc.h) */
 /* the previous version, read by its layout (rdoc_read.c: upgrade_accuracy_v1) */
 #define ACCURACY_SCHEMA_V1 "brdfbench.accuracy/1"
-#define CLAIMS_SCHEMA "brdfbench.claims/1"
+#define CLAIMS_SCHEMA "brdfbench.claims/2"        /* /2: the file carries its rows (rdoc.h) */
+#define CLAIMS_SCHEMA_V1 "brdfbench.claims/1"     /* before the rows: read by its layout */
 #define COMPARE_SCHEMA "brdfbench.compare/1"
 #define ENERGY_SCHEMA "brdfbench.energy/1"
 #define FIELD_SCHEMA "brdfbench.field/2"          /* /2: the file carries its rows */
@@ -23,9 +24,11 @@
 #define GATE_RESULT_SCHEMA "brdfbench.gate/1"   /* gate's --json result (output) */
 #define LIST_SCHEMA "brdfbench.list/1"
 #define MEASURED_SCHEMA "brdfbench.measured/1"
-#define PBCOST_SCHEMA "brdfbench.physical/1"
+#define PBCOST_SCHEMA "brdfbench.physical/2"      /* /2: the file carries its rows */
+#define PBCOST_SCHEMA_V1 "brdfbench.physical/1"   /* before the rows: read by its layout */
 #define PLOTS_SCHEMA "brdfbench.plots/1"
-#define Q_SWEEP_SCHEMA "brdfbench.q_sweep/1"
+#define Q_SWEEP_SCHEMA "brdfbench.q_sweep/2"      /* /2: the file carries its rows */
+#define Q_SWEEP_SCHEMA_V1 "brdfbench.q_sweep/1"   /* before the rows: read by its layout */
 #define RENDER_SCHEMA "brdfbench.render/2"        /* /2: the file carries its rows */
 #define RENDER_SCHEMA_V1 "brdfbench.render/1"     /* before the rows: read by its layout */
 #define HISTORY_SCHEMA "brdfbench.history/1"  /* `brdfbench history` (history.h) */

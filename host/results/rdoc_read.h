@@ -16,11 +16,14 @@
 
 #include "rdoc.h"
 
-enum rd_kind { RD_KIND_THROUGHPUT = 0, RD_KIND_ACCURACY, RD_KIND_RENDER, RD_KIND_FIT, RD_KIND_FRONTIER, RD_KIND_FIELD, RD_KIND_FIT_FAMILY, RD_KIND_COUNT };
+enum rd_kind { RD_KIND_THROUGHPUT = 0, RD_KIND_ACCURACY, RD_KIND_RENDER, RD_KIND_FIT, RD_KIND_FRONTIER,
+               RD_KIND_CLAIMS, RD_KIND_Q_SWEEP, RD_KIND_PHYSICAL, RD_KIND_FIELD, RD_KIND_FIT_FAMILY, RD_KIND_COUNT };
 const char *rd_kind_name(int kind);     /* "throughput", ... ("?" for another number) */
 const char *rd_kind_file(int kind);     /* "throughput.json", ... */
 const char *rd_kind_schema(int kind);   /* the version written now */
 int rd_kind_of_name(const char *name);  /* the inverse of rd_kind_name; -1 for another */
+/* Every kind's name, "throughput, accuracy, ...", into out (a message's accepted list). */
+void rd_kind_names(char *out, size_t len);
 
 /* Reads the result file at path (a regular file) into d. Returns 0, or 2 with a one-line
  * reason naming the file: unreadable, not strict JSON, a schema that is none of the kinds or

@@ -9,7 +9,7 @@ t 2 "^brdfbench store: expected a store command \(accepted: add, list, export\)"
 t 2 "^brdfbench store: 'frob' is not a store command \(accepted: add, list, export\)" store frob
 t 2 "^brdfbench store add: expected RUN_DIR\|FILE\.\.\. \(run folders or result files\)" store add --db st.sqlite
 t 2 "^brdfbench store add: nothere: no such file or folder \(accepted: a run folder, a result file or a rows document\)" store add nothere --db st.sqlite
-t 2 "^brdfbench store add: --kind: 'claims' is not a kind of result \(accepted: throughput, accuracy, render, fit, frontier\)" store add R0 --kind claims --db st.sqlite
+t 2 "^brdfbench store add: --kind: 'plots' is not a kind of result \(accepted: throughput, accuracy, render, fit, frontier" store add R0 --kind plots --db st.sqlite
 t 2 "^brdfbench store add: base: no result file of kind render \(accepted: a run folder with throughput.json" store add base --kind render --db st.sqlite
 t 2 "^brdfbench store add: --db: " store add R0 --db ""
 t 2 "^brdfbench store list: nostore.sqlite: no such store \(No such file or directory; brdfbench store add makes one\)" store list --db nostore.sqlite
@@ -23,7 +23,7 @@ t 2 "^brdfbench store list: unexpected argument 'x'" store list x --db junk.sqli
 t 2 "^brdfbench history: --db and run folders or files given together \(accepted: one of them\)" history --db junk.sqlite R0
 t 2 "^brdfbench history: 1 run folders or files holds 1 run of kind throughput \(a history takes 2 or more\)" history R0 --out hist_out
 t 2 "^brdfbench history: base: no throughput.json in the folder \(accepted: a run folder with one, or --kind\)" history base base --out hist_out
-t 2 "^brdfbench history: --kind: 'claims' is not a kind of result" history R0 R0 --kind claims
+t 2 "^brdfbench history: --kind: 'plots' is not a kind of result" history R0 R0 --kind plots
 t 2 "^brdfbench history: --fail-if-slower: '150' is (not|out)" history R0 R0 --fail-if-slower 150
 t 2 "^brdfbench history: --min-change: '-1' is (not|out)" history R0 R0 --min-change -1
 t 2 "^brdfbench history: --alpha: '0.9' is (not|out)" history R0 R0 --alpha 0.9

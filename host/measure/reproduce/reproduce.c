@@ -497,6 +497,7 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
     }
     double t0 = wall_seconds();
     struct repro p;
+    struct repro_rows rows = { 0 };
     memset(&p, 0, sizeof p);
     p.s = s;
     p.o = o;
@@ -546,19 +547,22 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
             r->not_reproduced++;
     }
     r->seconds = wall_seconds() - t0;
-    r->markdown = reproduce_claims_markdown(&p);
+    /* the rows of every file, once: each file's rows member, and claims.md drawn from them */
+    if (reproduce_rows(&p, &rows, err, sizeof err) == 0 && !(r->markdown = reproduce_claims_markdown(&rows)))
+        snprintf(err, sizeof err, "claims.md: out of memory");
     if (!r->markdown) {
+        fprintf(stderr, "brdfbench reproduce: %s\n", err);
         rc = EXIT_RUNTIME;
         goto done;
     }
     if (o->io.out_dir) {
         char path[4200];
         path_join(path, sizeof path, o->io.out_dir, "claims.json");
-        if (reproduce_write_claims_json(&p, path, err, sizeof err) == 0) {
+        if (reproduce_write_claims_json(&p, rows.claims, path, err, sizeof err) == 0) {
             path_join(path, sizeof path, o->io.out_dir, "claims.md");
             if (write_file_atomic(path, r->markdown, strlen(r->markdown), err, sizeof err) == 0) {
                 path_join(path, sizeof path, o->io.out_dir, "q_sweep.json");
-                if (reproduce_write_q_sweep_json(&p, path, err, sizeof err) == 0) {
+                if (reproduce_write_q_sweep_json(&p, rows.q_sweep, path, err, sizeof err) == 0) {
                     err[0] = '\0';
                     if (p.have_energy && p.energy.json) {
                         path_join(path, sizeof path, o->io.out_dir, "energy.json");
@@ -566,7 +570,7 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
                     }
                     if (!err[0] && p.have_physical) {
                         path_join(path, sizeof path, o->io.out_dir, "physical.json");
-                        pbcost_write_json(path, s, &p.physical, err, sizeof err);
+                        pbcost_write_json(path, s, &p.physical, rows.physical, err, sizeof err);
                     }
                 }
             }
@@ -584,6 +588,7 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
         rc = EXIT_RUNTIME;
     }
 done:
+    reproduce_rows_free(&rows);
     repro_free(&p);
     if (!report)
         reproduce_report_free(r);

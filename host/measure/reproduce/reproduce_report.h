@@ -1,5 +1,5 @@
 /* reproduce_report.h - the state of a claims run (reproduce.c fills it) and its writers
- * (reproduce_report.c: claims.json, claims.md, q_sweep.json, the printed table). */
+ * (reproduce_report.c: the rows, claims.json, claims.md, q_sweep.json, the printed table). */
 #ifndef BRDF_REPRODUCE_REPORT_H
 #define BRDF_REPRODUCE_REPORT_H
 
@@ -38,11 +38,22 @@ struct repro {
     int consistency_failed;
 };
 
+/* The rows of the run's files, built in memory once: written as each file's rows member and
+ * drawn as claims.md (report_claims.h says what they hold). */
+struct rdoc;
+struct repro_rows {
+    struct rdoc *claims, *q_sweep, *physical;   /* physical: NULL when the cost was not measured */
+};
+/* Returns 0, or -1 with "out of memory" in err (nothing kept). */
+int reproduce_rows(const struct repro *p, struct repro_rows *rows, char *err, size_t errlen);
+void reproduce_rows_free(struct repro_rows *rows);
 /* claims.md's text (malloc'd; NULL when out of memory). */
-char *reproduce_claims_markdown(const struct repro *p);
-/* claims.json and q_sweep.json. Return 0, or non-zero with a message in err. */
-int reproduce_write_claims_json(const struct repro *p, const char *path, char *err, size_t errlen);
-int reproduce_write_q_sweep_json(const struct repro *p, const char *path, char *err, size_t errlen);
+char *reproduce_claims_markdown(const struct repro_rows *rows);
+/* claims.json and q_sweep.json, each with its rows. Return 0, or non-zero with a message in err. */
+int reproduce_write_claims_json(const struct repro *p, const struct rdoc *rows, const char *path, char *err,
+                                size_t errlen);
+int reproduce_write_q_sweep_json(const struct repro *p, const struct rdoc *rows, const char *path, char *err,
+                                 size_t errlen);
 /* One row per claim with its verdict, and the summary line. */
 void reproduce_print_table(FILE *f, const struct repro *p);
 

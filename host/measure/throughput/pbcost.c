@@ -581,7 +581,7 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
         return rc;
     char path[4200], err[512];
     path_join(path, sizeof path, o->io.out_dir, "physical.json");
-    if (pbcost_write_json(path, s, r, err, sizeof err)) {
+    if (pbcost_write_json(path, s, r, NULL, err, sizeof err)) {
         fprintf(stderr, "brdfbench: %s\n", err);
         return EXIT_RUNTIME;
     }

@@ -4,7 +4,8 @@
  * pow(), Phong, Blinn-Phong, fq2 and every physically based model of the registry, with the
  * ratios to fq2 and to Phong taken within one run; the He model's terms per evaluation; and
  * each physically based model's white-furnace albedo at normal incidence. pbcost.c measures,
- * pbcost_report.c writes physical.json, its markdown and the table. */
+ * pbcost_report.c writes physical.json (with its rows) and the table; the page's section is drawn
+ * from the rows (report_claims.h). */
 #ifndef BRDF_PBCOST_H
 #define BRDF_PBCOST_H
 
@@ -90,10 +91,13 @@ int pbcost_run(struct cl_session *s, const struct pbcost_options *o, struct pbco
  * wavelength, tau and index and rms roughness sigma0 (micrometres). */
 int pbcost_he_terms(double nl, double nv, double lv, double sigma0);
 
-/* Writers (pbcost_report.c). */
-int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r, char *err,
-                      size_t errlen);
-char *pbcost_markdown(const struct pbcost_result *r);
+/* Writers (pbcost_report.c). pbcost_rows: physical.json's rows (report_claims.h says what they
+ * hold), NULL with "out of memory" in err; free with rdoc_delete. pbcost_write_json writes rows
+ * as the file's rows member (NULL: the rows of r, made here). */
+struct rdoc;
+struct rdoc *pbcost_rows(const struct pbcost_result *r, char *err, size_t errlen);
+int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r,
+                      const struct rdoc *rows, char *err, size_t errlen);
 void pbcost_print_table(FILE *f, const struct pbcost_result *r);
 
 #endif

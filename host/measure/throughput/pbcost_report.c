@@ -1,6 +1,6 @@
-/* pbcost_report.c - physical.json, the markdown section and the table of the physically based
- * models' cost, He's terms per evaluation and their albedo at normal incidence (pbcost.c
- * measures them). */
+/* pbcost_report.c - physical.json with its rows, and the table of the physically based models'
+ * cost, He's terms per evaluation and their albedo at normal incidence (pbcost.c measures them;
+ * the markdown section is drawn from the rows: report_claims.c). */
 #include "pbcost.h"
 
 #include "context.h"
@@ -8,6 +8,7 @@
 #include "outdir.h"
 #include "jsonw.h"
 #include "mdbuf.h"
+#include "rdoc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -56,9 +57,12 @@ static const struct jw_field row_figures[] = {
 };
 #undef F
 
-int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r, char *err,
-                      size_t errlen)
+int pbcost_write_json(const char *path, const struct cl_session *s, const struct pbcost_result *r,
+                      const struct rdoc *rows, char *err, size_t errlen)
 {
+    struct rdoc *own = rows ? NULL : pbcost_rows(r, err, errlen);
+    if (!rows && !own)
+        return -1;
     struct jw w;
     jw_doc_begin(&w, PBCOST_SCHEMA, s, "");
     jw_obj_end(&w);
@@ -118,58 +122,74 @@ int pbcost_write_json(const char *path, const struct cl_session *s, const struct
     if (r->o.nmeasured)
         jw_kv_str(&w, "lookup_note", PBCOST_LOOKUP_NOTE);
     jw_kv_num(&w, "seconds", r->seconds);
+    rdoc_json_rows_member(&w, rows ? rows : own);
+    rdoc_delete(own);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
 
-char *pbcost_markdown(const struct pbcost_result *r)
+struct rdoc *pbcost_rows(const struct pbcost_result *r, char *err, size_t errlen)
 {
-    struct md_buf b;
-    md_init(&b);
-    md_printf(&b, "\n## Physically based models: cost, terms, albedo\n\n"
-                  "Evaluations per second from full vectors (N, L, V) made in registers, per evaluation three "
-                  "normalisations, three dot products and the model (float16, n = %g, the median of %d launches, rows "
-                  "interleaved with pow() as every round's reference); ratios are this row's evaluations/s over "
-                  "fq2's, Phong's and pow()'s in the same run, compare's estimates on the normalised repetitions, "
-                  "with compare's verdict against fq2 and Phong. Check: largest |device - double| over %d random (N, L, V), relative to the sample's peak. "
-                  "Albedo: white-furnace albedo at normal incidence (double quadrature).\n\n",
-              r->o.n, r->o.reps, PBCOST_CHECK_POINTS);
+    struct rdoc *d = rdoc_new(PBCOST_SCHEMA, "physical", "physical.json", err, errlen);
+    if (!d)
+        return NULL;
+    char buf[64];
+    snprintf(buf, sizeof buf, "%g", r->o.n);
+    rd_ctx_put(&d->ctx, "n", buf);
+    snprintf(buf, sizeof buf, "%d", r->o.reps);
+    rd_ctx_put(&d->ctx, "reps", buf);
+    snprintf(buf, sizeof buf, "%d", PBCOST_CHECK_POINTS);
+    rd_ctx_put(&d->ctx, "check_points", buf);
     if (r->o.nmeasured)
-        md_printf(&b, "Note: %s.\n\n", PBCOST_LOOKUP_NOTE);
-    md_printf(&b, "| model | evaluates | G evaluations/s | vs fq2 | vs Phong | vs pow() | check | He terms "
-                  "(mean, max) | albedo at normal incidence |\n|---|---|---|---|---|---|---|---|---|\n");
-    /* "0.78x (slower)": the ratio and compare's verdict on it */
+        rdoc_text(d, "lookup_note", PBCOST_LOOKUP_NOTE);
     for (int i = 0; i < r->count; ++i) {
         const struct pbcost_row *row = &r->rows[i];
-        char terms[64] = "", alb[64] = "";
-        if (isfinite(row->terms_mean))
-            snprintf(terms, sizeof terms, "%.1f, %.0f", row->terms_mean, row->terms_max);
+        struct rd_row *x = rdoc_row(d, "", row->name);
+        if (!x)
+            break;
+        rd_row_key(x, "model", NULL, row->name);
+        rd_row_attr(x, "evaluates", kind_names[row->kind]);
+        rd_row_attr(x, "physically_based", row->physical ? "true" : "false");
+        /* the rate of the median launch, its range from the slowest and fastest launches, and
+           the repetitions normalised by the pow() row of the same round (compare's basis) */
+        struct rd_metric *m = rd_row_metric(d, x, "evaluations_per_s", "1/s", RD_HIGHER, 1, row->evals_per_s);
+        if (m) {
+            m->lo = row->max_s > 0 ? row->evals_per_launch / row->max_s : NAN;
+            m->hi = row->evals_per_s_fastest;
+            rd_metric_normalised(d, m, row->norm_reps, row->nnorm, 0);
+        }
+        /* ratios of rates within the run: figures, not a speed to rank runs by */
+        rd_row_metric(d, x, "ratio_to_fq2", "1", RD_NEITHER, 0, row->ratio_to_fq2);
+        rd_row_metric(d, x, "ratio_to_phong", "1", RD_NEITHER, 0, row->ratio_to_phong);
+        rd_row_metric(d, x, "ratio_to_pow", "1", RD_NEITHER, 0, row->ratio_to_pow);
+        rd_row_metric(d, x, "check_max_abs_of_peak", "1", RD_LOWER, 0, row->check_max_abs_of_peak);
         if (row->physical)
-            snprintf(alb, sizeof alb, "%.4f", row->albedo_normal);
-        md_printf(&b, "| %s | %s | %.3g | %.3gx (%s) | %.3gx (%s) | %.3gx | %.2g %s | %s | %s |\n", row->name,
-                  kind_names[row->kind], row->evals_per_s * 1e-9, row->ratio_to_fq2, cmp_verdict_name(row->vs_fq2.verdict),
-                  row->ratio_to_phong, cmp_verdict_name(row->vs_phong.verdict), row->ratio_to_pow, row->check_max_abs_of_peak, row->status, terms, alb);
+            rd_row_metric(d, x, "albedo_normal_incidence", "1", RD_NEITHER, 0, row->albedo_normal);
+        if (isfinite(row->terms_mean)) {
+            rd_row_metric(d, x, "he_terms_mean", "1", RD_NEITHER, 0, row->terms_mean);
+            rd_row_metric(d, x, "he_terms_max", "1", RD_NEITHER, 0, row->terms_max);
+        }
+        rd_row_text(d, x, "vs_fq2", cmp_verdict_name(row->vs_fq2.verdict));
+        rd_row_text(d, x, "vs_phong", cmp_verdict_name(row->vs_phong.verdict));
+        rd_row_text(d, x, "check_status", row->status);
     }
-    md_printf(&b, "\nTerms of He's directional-diffuse sum per evaluation (stopped at float resolution), "
-                  "rough aluminium's lambda, tau and index, sigma0 = ratio x lambda; mirror direction / 20 "
-                  "degrees past it:\n\n| theta |");
-    for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
-        md_printf(&b, " sigma0/lambda = %g |", r->terms_ratio[j]);
-    md_printf(&b, "\n|---|");
-    for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
-        md_printf(&b, "---|");
-    md_printf(&b, "\n");
+    /* He's terms: a row per angle, the mirror and off-mirror counts per sigma0 / lambda */
     for (int i = 0; i < PBCOST_TERMS_THETA; ++i) {
-        md_printf(&b, "| %g deg |", r->terms_theta[i]);
-        for (int j = 0; j < PBCOST_TERMS_RATIO; ++j)
-            md_printf(&b, " %d / %d |", r->terms_mirror[i][j], r->terms_off[i][j]);
-        md_printf(&b, "\n");
+        struct rd_row *x = rdoc_row(d, "", "he");
+        if (!x)
+            break;
+        rd_row_key(x, "table", NULL, "He terms");
+        snprintf(buf, sizeof buf, "%g deg", r->terms_theta[i]);
+        rd_row_key(x, "theta", NULL, buf);
+        for (int j = 0; j < PBCOST_TERMS_RATIO; ++j) {
+            char name[RD_NAME];
+            snprintf(name, sizeof name, "terms_mirror@%g", r->terms_ratio[j]);
+            rd_row_metric(d, x, name, "1", RD_NEITHER, 0, r->terms_mirror[i][j]);
+            snprintf(name, sizeof name, "terms_off@%g", r->terms_ratio[j]);
+            rd_row_metric(d, x, name, "1", RD_NEITHER, 0, r->terms_off[i][j]);
+        }
     }
-    if (b.failed) {
-        md_free(&b);
-        return NULL;
-    }
-    return b.s;
+    return rdoc_built(d, err, errlen) ? NULL : d;
 }
 
 void pbcost_print_table(FILE *f, const struct pbcost_result *r)

@@ -6,6 +6,7 @@
 #include "jsonr.h"
 #include "outdir.h"
 #include "plots.h"
+#include "report_claims.h"
 #include "report_docs.h"
 #include "report_run.h"
 #include "room.h"
@@ -209,6 +210,35 @@ static int page_block(struct md_buf *b, const struct report_input *in, const cha
     return 0;
 }
 
+/* The claims of the papers: the page reproduce wrote as claims.md, drawn here from the same rows
+ * (claims.json's, q_sweep.json's grid, physical.json's when the claims run measured the cost)
+ * and embedded as claims.md was: its title dropped, its headings one level down. */
+static int claims_block(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
+{
+    md_printf(b, "## Claims of the papers\n\n");
+    if (part_unavailable(b, in, REPORT_PART_CLAIMS)) return 0;
+    int rc;
+    const struct rdoc *claims = report_doc(&in->docs, "claims.json", &rc, err, errlen), *q_sweep = NULL, *physical = NULL;
+    if (claims) q_sweep = report_doc(&in->docs, "q_sweep.json", &rc, err, errlen);
+    if (q_sweep && rd_ctx_get(&claims->ctx, REPORT_CLAIMS_PHYSICAL_CTX)) {
+        physical = report_doc(&in->docs, "physical.json", &rc, err, errlen);
+        if (!physical) q_sweep = NULL;
+    }
+    if (!q_sweep) {   /* missing or unreadable, though run.json says the part ran */
+        size_t n = strlen(err);
+        snprintf(err + n, errlen - n, " (run.json records its part as done)");
+        return 2;
+    }
+    struct md_buf page;
+    md_init(&page);
+    rc = report_claims_page(&page, claims, q_sweep, physical);
+    if (!rc) md_embed(b, page.s ? page.s : "");
+    md_free(&page);
+    if (rc) return rc;
+    md_printf(b, "\n\n");
+    return 0;
+}
+
 /* "Beyond the papers": the family's limit, the best affine fit (uncapped and capped at fq2's
  * max Delta) and the models it is compared with, from fit.json. A fit's row is there when its
  * device sweep ran: then it leads fit.json's "compare" list, in that order. */
@@ -389,7 +419,7 @@ static int body(struct md_buf *b, struct report_input *in, char *err, size_t err
 {
     header(b, in);
     steps(b, in);
-    int rc = page_block(b, in, "Claims of the papers", REPORT_PART_CLAIMS, err, errlen);
+    int rc = claims_block(b, in, err, errlen);
     if (!rc) rc = fit_block(b, in, err, errlen);
     if (!rc) rc = accuracy_table(b, in, err, errlen);
     if (!rc) rc = page_block(b, in, "Throughput", REPORT_PART_THROUGHPUT, err, errlen);

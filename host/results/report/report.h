@@ -27,7 +27,8 @@ struct report_picture {
 };
 
 /* The parts of a run that other commands make, each a section of report.md with the file it
- * comes from: claims (claims.md, written by reproduce), fit (fit.json), throughput
+ * comes from: claims (claims.json's rows, with q_sweep.json's and physical.json's, drawn as
+ * reproduce draws claims.md: report_claims.h), fit (fit.json), throughput
  * (throughput.md), images (render.json), frontier (frontier.md), measured (measured.md). */
 enum report_part {
     REPORT_PART_CLAIMS = 0,
