@@ -225,9 +225,7 @@ int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const flo
         return rc;
     cl_int id = m->info->kernel_id;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(probe, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 2, sizeof p1, &p1), done);
+    CL_SET_ARGS_GOTO(done, probe, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1));
     rc = cl_run_points16(a->s, probe, 3, c, n, count, out);
 done:
     return rc;
@@ -922,7 +920,7 @@ static int reference_table(struct accuracy_ctx *a, cl_kernel sweep, const struct
         rc = EXIT_RUNTIME;
         goto done;
     }
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof pass, &pass), done);
+    CL_SET_ARGS_GOTO(done, sweep, 11, CL_ARG(pass));
     if ((rc = launch_sweep(a, sweep, count, chunks, ref->label, seconds)) != 0)
         goto done;
     CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *sv, sv, 0, NULL, NULL), done);
@@ -933,7 +931,7 @@ static int reference_table(struct accuracy_ctx *a, cl_kernel sweep, const struct
     }
     CL_CHECK_GOTO(clEnqueueWriteBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *rv, rv, 0, NULL, NULL), done);
     pass = 1;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof pass, &pass), done);
+    CL_SET_ARGS_GOTO(done, sweep, 11, CL_ARG(pass));
 done:
     free(rv);
     free(sv);
@@ -971,18 +969,10 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)ref.params[0], rp1 = (float)ref.params[1];
     cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 3, sizeof ref_id, &ref_id), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 4, sizeof rp0, &rp0), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 5, sizeof rp1, &rp1), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
+    CL_SET_ARGS_GOTO(done, sweep, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(ref_id), CL_ARG(rp0), CL_ARG(rp1),
+                     CL_ARG(bn), CL_ARG(ncount), CL_ARG(samples));
     cl_int chunks_arg = (cl_int)chunks;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof chunks_arg, &chunks_arg), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 10, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, sweep, 9, CL_ARG(chunks_arg), CL_ARG(bo));
     if (accuracy_reference_is_table(&ref)) {   /* a user model's values, from the host (ACC_REF_TABLE) */
         char err[512];
         if (accuracy_reference_check(g, &ref, a->s, err, sizeof err)) {
@@ -993,7 +983,7 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
         bt = clCreateBuffer(a->s->ctx, CL_MEM_READ_WRITE, (size_t)count * 2 * (size_t)g->samples * sizeof(float),
                             NULL, &e);
         CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reference table)", done);
-        CL_CHECK_GOTO(clSetKernelArg(sweep, 12, sizeof bt, &bt), done);
+        CL_SET_ARGS_GOTO(done, sweep, 12, CL_ARG(bt));
         if ((rc = reference_table(a, sweep, &ref, nv, count, chunks, g->samples, bt, device_seconds)) != 0)
             goto done;
     }

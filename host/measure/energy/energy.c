@@ -91,13 +91,8 @@ int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, d
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(eq11 out)", done);
     float k = (float)zone_k;
     cl_int count = NN, tcount = EQ11_INNER_ORDER;
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 0, sizeof k, &k), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 1, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 2, sizeof count, &count), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 3, sizeof bt, &bt), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 4, sizeof bw, &bw), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 5, sizeof tcount, &tcount), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 6, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, c->eq11, 0, CL_ARG(k), CL_ARG(bn), CL_ARG(count), CL_ARG(bt), CL_ARG(bw), CL_ARG(tcount),
+                     CL_ARG(bo));
     size_t global = NN;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->eq11, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(c->s, c->eq11, NULL), done);
@@ -234,17 +229,8 @@ static int albedo_device_ex(struct integrate_ctx *c, const struct model_spec *m,
     cl_int id = m->info->kernel_id, md = mode, nodes = ENERGY_MAX_NODES;
     cl_int phi = refine ? 2 * ENERGY_PHI_COUNT : ENERGY_PHI_COUNT;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 3, sizeof md, &md), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 4, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 5, sizeof bt, &bt), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 6, sizeof bx, &bx), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 7, sizeof bw, &bw), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 8, sizeof nodes, &nodes), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 9, sizeof phi, &phi), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 10, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, c->albedo, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(md), CL_ARG(bn), CL_ARG(bt),
+                     CL_ARG(bx), CL_ARG(bw), CL_ARG(nodes), CL_ARG(phi), CL_ARG(bo));
     size_t global[2] = { ENERGY_MAX_NODES, (size_t)count };
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->albedo, 2, NULL, global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(c->s, c->albedo, m->label), done);
@@ -447,14 +433,8 @@ int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long 
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity out)", done);
     cl_int id = m->info->kernel_id, lobe = m->info->lobe == LOBE_PSI ? 0 : 1, count = (cl_int)pairs;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 3, sizeof lobe, &lobe), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 4, sizeof bd, &bd), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 5, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 6, sizeof count, &count), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 7, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, c->recip, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(lobe), CL_ARG(bd), CL_ARG(bn),
+                     CL_ARG(count), CL_ARG(bo));
     size_t global = (size_t)pairs;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->recip, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(c->s, c->recip, m->label), done);

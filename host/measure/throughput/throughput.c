@@ -11,6 +11,7 @@
 #include "outdir.h"
 #include "programs.h"
 #include "runner.h"
+#include "stats.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -110,12 +111,6 @@ int throughput_options_check(const struct throughput_options *o, char *err, size
 
 /* ---- figures ---------------------------------------------------------------------------- */
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 struct tp_stats tp_stats_of(const double *v, int n)
 {
     struct tp_stats s = { NAN, NAN, NAN };
@@ -126,10 +121,10 @@ struct tp_stats tp_stats_of(const double *v, int n)
             sorted[k++] = v[i];
     if (k == 0)
         return s;
-    qsort(sorted, (size_t)k, sizeof *sorted, cmp_double);
+    qsort(sorted, (size_t)k, sizeof *sorted, stats_cmp_double);
     s.min = sorted[0];
     s.max = sorted[k - 1];
-    s.median = (k % 2) ? sorted[k / 2] : 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]);
+    s.median = stats_median_sorted(sorted, (size_t)k);
     return s;
 }
 
