@@ -18,12 +18,10 @@
  * No sample needs a cosine: the epicentre's are multiples of a step, the attenuation's a
  * per-lane factor times one scalar exp2 per 16 samples.
  *
- * Per n it writes ACC_OUT_STRIDE floats:
- *   [0] max relative error in the epicentre   [1] the s where it occurs
- *   [2] max absolute error in the attenuation [3] the s where it occurs
- *   [4] max absolute error in the epicentre   [5] the s where it occurs
- *   [6] number of invalid model values (NaN, Inf or negative) [7] the first such s
- * The s values are the exact float inputs the models saw, so the host can recompute every
+ * Per n it writes ACC_OUT_STRIDE floats at the positions of brdf_shared.h's enum acc_out_field:
+ * the max relative error in the epicentre, the max absolute errors in the attenuation and in
+ * the epicentre, each with the s where it occurs, and the number of invalid model values (NaN,
+ * Inf or negative) with the first such s. The s values are the exact float inputs the models saw, so the host can recompute every
  * reduced figure in double at the same input.
  *
  * Built with -DACC_REF_TABLE (a reference that is a user model, whose text a program beside the
@@ -215,14 +213,14 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
 
     __global float *o = out + (size_t)gid * ACC_OUT_STRIDE;
     int k = argmax_lane(epi_rel);
-    o[0] = lane_of(epi_rel, k);
-    o[1] = lane_of(epi_rel_s, k);
+    o[ACC_O_EPI_REL] = lane_of(epi_rel, k);
+    o[ACC_O_EPI_REL_S] = lane_of(epi_rel_s, k);
     k = argmax_lane(att_abs);
-    o[2] = lane_of(att_abs, k);
-    o[3] = lane_of(att_abs_s, k);
+    o[ACC_O_ATT_ABS] = lane_of(att_abs, k);
+    o[ACC_O_ATT_ABS_S] = lane_of(att_abs_s, k);
     k = argmax_lane(epi_abs);
-    o[4] = lane_of(epi_abs, k);
-    o[5] = lane_of(epi_abs_s, k);
+    o[ACC_O_EPI_ABS] = lane_of(epi_abs, k);
+    o[ACC_O_EPI_ABS_S] = lane_of(epi_abs_s, k);
     int bad_total = 0;
     float first_bad = NAN;
     int ba[ACC_W];
@@ -233,8 +231,8 @@ __kernel void accuracy_sweep(const int model, const float p0, const float p1,
         bad_total += ba[q];
         first_bad = fmin(first_bad, bc[q]);   /* the smallest invalid s: any launch shape gives it */
     }
-    o[6] = (float)bad_total;
-    o[7] = first_bad;
+    o[ACC_O_INVALID] = (float)bad_total;
+    o[ACC_O_INVALID_S] = first_bad;
 }
 
 /* Evaluates a model at given points, 16 per work-item, through the same float16 code path

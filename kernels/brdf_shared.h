@@ -9,9 +9,22 @@
    x_e(n) = acos(exp(-0.511/n)), as s = 1 - cos x: s_e(n) = -expm1(-0.511/n). */
 #define BRDF_ZONE_K 0.511
 
-/* accuracy_sweep's output: floats per n (kernels/accuracy.cl writes them, host/measure/accuracy/accuracy.c
-   reads them) */
-#define ACC_OUT_STRIDE 8
+/* accuracy_sweep's output record: ACC_OUT_STRIDE floats per n (per work-item of a chunked sweep),
+   at these positions. kernels/accuracy.cl and the tuned-C sweep (host/support/hostc_sweep.c)
+   write them; host/measure/accuracy/accuracy.c and the throughput sweep's check
+   (host/measure/throughput/throughput.c) read them. Each maximum's s is the float input the
+   model saw there. */
+enum acc_out_field {
+    ACC_O_EPI_REL = 0,     /* max relative error in the epicentre */
+    ACC_O_EPI_REL_S = 1,   /* the s where it occurs */
+    ACC_O_ATT_ABS = 2,     /* max absolute error in the attenuation */
+    ACC_O_ATT_ABS_S = 3,
+    ACC_O_EPI_ABS = 4,     /* max absolute error in the epicentre */
+    ACC_O_EPI_ABS_S = 5,
+    ACC_O_INVALID = 6,     /* number of invalid model values (NaN, Inf or negative) */
+    ACC_O_INVALID_S = 7,   /* the smallest s of one (NaN: none) */
+    ACC_OUT_STRIDE = 8     /* floats per record */
+};
 
 /* The throughput loops: independent streams per work-item and lanes per stream
    (kernels/throughput.cl; host/support/hostc_baseline.c repeats the loop in C on the same inputs) */

@@ -15,22 +15,26 @@
 #ifndef BRDF_HEMISPHERE_GEOM_H
 #define BRDF_HEMISPHERE_GEOM_H
 
-/* The kernel's output per (parameter value, theta_h row): HEMI_OUT_STRIDE floats. */
-#define HEMI_OUT_STRIDE 13
-#define HEMI_O_EPI_REL 0       /* max relative error over the epicentre samples */
-#define HEMI_O_EPI_REL_AT 1    /* its sample index j NP + k within the row */
-#define HEMI_O_ATT_ABS 2       /* max absolute error over the other samples */
-#define HEMI_O_ATT_ABS_AT 3
-#define HEMI_O_EPI_ABS 4       /* max absolute error over the epicentre samples */
-#define HEMI_O_EPI_ABS_AT 5
-#define HEMI_O_SUMSQ 6         /* sum of sin(th) dth cos td sin td (cos^2 ti + cos^2 to) (f - f_ref)^2 */
-#define HEMI_O_USED 7          /* samples with N.L > 0 and N.V > 0 (evaluated) */
-#define HEMI_O_BELOW 8         /* grid points with N.L <= 0 or N.V <= 0 (not samples, not evaluated) */
-#define HEMI_O_INVALID 9       /* model values NaN, Inf or negative (excluded from the maxima) */
-#define HEMI_O_EVAL_BELOW 10   /* evaluated samples whose vectors the model saw below the horizon: 0 */
-#define HEMI_O_REF_PEAK 11     /* the row's largest reference value */
-#define HEMI_O_UNCOVERED 12    /* grid points above the horizon where a table reference has no value
-                                  (a measured material's unmeasured cell): not samples */
+/* The kernel's output record per (parameter value, theta_h row): HEMI_OUT_STRIDE floats, at
+   these positions (kernels/hemisphere.cl writes them, host/measure/accuracy/hemisphere.c reads
+   them). */
+enum hemi_out_field {
+    HEMI_O_EPI_REL = 0,      /* max relative error over the epicentre samples */
+    HEMI_O_EPI_REL_AT = 1,   /* its sample index j NP + k within the row */
+    HEMI_O_ATT_ABS = 2,      /* max absolute error over the other samples */
+    HEMI_O_ATT_ABS_AT = 3,
+    HEMI_O_EPI_ABS = 4,      /* max absolute error over the epicentre samples */
+    HEMI_O_EPI_ABS_AT = 5,
+    HEMI_O_SUMSQ = 6,        /* sum of sin(th) dth cos td sin td (cos^2 ti + cos^2 to) (f - f_ref)^2 */
+    HEMI_O_USED = 7,         /* samples with N.L > 0 and N.V > 0 (evaluated) */
+    HEMI_O_BELOW = 8,        /* grid points with N.L <= 0 or N.V <= 0 (not samples, not evaluated) */
+    HEMI_O_INVALID = 9,      /* model values NaN, Inf or negative (excluded from the maxima) */
+    HEMI_O_EVAL_BELOW = 10,  /* evaluated samples whose vectors the model saw below the horizon: 0 */
+    HEMI_O_REF_PEAK = 11,    /* the row's largest reference value */
+    HEMI_O_UNCOVERED = 12,   /* grid points above the horizon where a table reference has no value
+                                (a measured material's unmeasured cell): not samples */
+    HEMI_OUT_STRIDE = 13     /* floats per record */
+};
 
 /* Where a model's value comes from in the sweep (the kernel is built with the kind and id of
    the model and of its reference as constants). */

@@ -13,21 +13,17 @@
 #define REAL float
 #define RSCALAR float
 #include "brdf_models.h"
+#include "integrate_shared.h"   /* the albedo modes and the records' positions */
 
 #define INT_PI_F 3.14159265358979324f
-
-/* Modes of albedo_partial (must match host/measure/energy/energy.h). */
-#define ALBEDO_PSI 0       /* lobe f(cos psi) around R: phong family                        */
-#define ALBEDO_HALF 1      /* lobe f(cos theta_h) used as the BRDF: blinn family            */
-#define ALBEDO_MICRO 2     /* D(theta_h) / (4 cos theta_i cos theta_o): F = G = 1          */
-#define ALBEDO_DCOS 3      /* D(theta_h) cos theta_h over the whole half-vector hemisphere  */
 
 /*
  * Eq. 11 after u = cos x (cos x sin x dx = -u du): every term is an integral over
  * u in [c_e, 1], c_e = exp(-K/n). With h = 1 - c_e = -expm1(-K/n) and u = 1 - h t, t in [0, 1],
  * (u - 1) = -h t is exact and u^(n+1) = exp((n+1) log1p(-h t)), so the rounding of u near 1
  * (float spacing 6e-8, amplified n times by a power) never enters.
- * out[4 i + 0..3] = int u^(n+1) du, n^2 int (u-1)^2 u du, 2n int (u-1) u du, int u du.
+ * out[EQ11_TERMS i + t], t of enum eq11_term (integrate_shared.h) = int u^(n+1) du,
+ * n^2 int (u-1)^2 u du, 2n int (u-1) u du, int u du.
  */
 __kernel void eq11_terms(const float zone_k, __global const float *n_values, const int n_count,
                          __global const float *t_nodes, __global const float *t_weights, const int t_count,
@@ -47,10 +43,11 @@ __kernel void eq11_terms(const float zone_k, __global const float *n_values, con
         b -= w * ht * u;
         c += w * u;
     }
-    out[4 * i + 0] = h * lhs;
-    out[4 * i + 1] = n * n * h * a;
-    out[4 * i + 2] = 2.0f * n * h * b;
-    out[4 * i + 3] = h * c;
+    __global float *o = out + (size_t)i * EQ11_TERMS;
+    o[EQ11_T_LOBE] = h * lhs;
+    o[EQ11_T_SQUARE] = n * n * h * a;
+    o[EQ11_T_LINEAR] = 2.0f * n * h * b;
+    o[EQ11_T_CONST] = h * c;
 }
 
 /* int_0^{2 pi} max(a + b cos(phi), 0) dphi for b >= 0, in closed form. */
@@ -134,6 +131,7 @@ __kernel void reciprocity_pairs(const int model, const float p0, const float p1,
         return;
     const float3 nrm = vload3(3 * i + 0, dirs), l = vload3(3 * i + 1, dirs), v = vload3(3 * i + 2, dirs);
     const float n = n_values[i];
-    out[2 * i + 0] = brdf_eval(model, lobe_cosine(lobe, nrm, l, v), n, p0, p1);
-    out[2 * i + 1] = brdf_eval(model, lobe_cosine(lobe, nrm, v, l), n, p0, p1);
+    __global float *o = out + (size_t)i * RECIP_STRIDE;
+    o[RECIP_LV] = brdf_eval(model, lobe_cosine(lobe, nrm, l, v), n, p0, p1);
+    o[RECIP_VL] = brdf_eval(model, lobe_cosine(lobe, nrm, v, l), n, p0, p1);
 }

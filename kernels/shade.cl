@@ -36,31 +36,12 @@
 #define REAL float16
 #define RSCALAR float
 #include "brdf_models.h"
-
-/* Shading modes: which cosine feeds the model and whether it is a microfacet D. */
-#define SHADE_LOBE_PSI 0
-#define SHADE_LOBE_THETA_H 1
-#define SHADE_CT_BECKMANN 2 /* Cook-Torrance with the Smith G of the Beckmann distribution */
-#define SHADE_CT_GGX 3      /* Cook-Torrance with the Smith G of GGX */
-#define SHADE_PHYSICAL 4    /* a physically based BRDF of (N, L, V): brdf_pb_eval_ud */
-#define SHADE_USER_FULL 5   /* a user full BRDF at the pixel's L, V, N: brdf_user_full */
-#define SHADE_MEASURED 6    /* a measured material: the MERL table's luminance (merl_table) */
-
-/* Display table: bin of radiance x = (float bits >> 15) - DISPLAY_BIN0, clamped to
- * [0, DISPLAY_BINS - 1]; covers x in [2^-16, 2^8) (below: code 0, above: saturated). */
-#define DISPLAY_MIN_EXP (-16)
-#define DISPLAY_MAX_EXP 8
-#define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
-#define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
+/* the G-buffer's planes, the shading modes, the parameters' positions, the display table */
+#include "shade_shared.h"
 
 #define BACKGROUND_RGBA 0xff2a2620u /* sRGB (32, 38, 42), opaque */
 
-/* params (float16 by value):
- *   s0 s1 s2  eye position            s3  ambient radiance
- *   s4 s5 s6  light: unit direction towards it, or its position
- *   s7        1 for a point light (E = I / d^2), 0 for a directional one (E = I)
- *   s8        light intensity I       s9  kd      sa  ks      sb  Schlick F0
- *   sc..sf    unused */
+/* params (float16 by value): the positions of shade_shared.h's enum shade_param */
 
 static uint16 display_lookup(__global const uint *table, float16 x)
 {
@@ -84,17 +65,22 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
     const uint c0 = min(gid * per, nchunks);
     const uint c1 = min(c0 + per, nchunks);
 
-    __global const float *gpx = gbuf;
-    __global const float *gpy = gbuf + stride;
-    __global const float *gpz = gbuf + 2 * (size_t)stride;
-    __global const float *gnx = gbuf + 3 * (size_t)stride;
-    __global const float *gny = gbuf + 4 * (size_t)stride;
-    __global const float *gnz = gbuf + 5 * (size_t)stride;
-    __global const float *gsh = gbuf + 6 * (size_t)stride;
+    __global const float *gpx = gbuf + GB_PX * (size_t)stride;
+    __global const float *gpy = gbuf + GB_PY * (size_t)stride;
+    __global const float *gpz = gbuf + GB_PZ * (size_t)stride;
+    __global const float *gnx = gbuf + GB_NX * (size_t)stride;
+    __global const float *gny = gbuf + GB_NY * (size_t)stride;
+    __global const float *gnz = gbuf + GB_NZ * (size_t)stride;
+    __global const float *gsh = gbuf + GB_SHIN * (size_t)stride;
 
-    const float ambient = params.s3;
-    const int point_light = params.s7 > 0.5f;
-    const float kd = params.s9, ks = params.sa, f0 = params.sb;
+    float pa[SHADE_PARAMS];   /* the parameters by position */
+    vstore16(params, 0, pa);
+    const float eye_x = pa[SHADE_P_EYE], eye_y = pa[SHADE_P_EYE + 1], eye_z = pa[SHADE_P_EYE + 2];
+    const float light_x = pa[SHADE_P_LIGHT], light_y = pa[SHADE_P_LIGHT + 1], light_z = pa[SHADE_P_LIGHT + 2];
+    const float intensity = pa[SHADE_P_INTENSITY];
+    const float ambient = pa[SHADE_P_AMBIENT];
+    const int point_light = pa[SHADE_P_POINT] > 0.5f;
+    const float kd = pa[SHADE_P_KD], ks = pa[SHADE_P_KS], f0 = pa[SHADE_P_F0];
 
     for (uint ch = c0; ch < c1; ++ch) {
         float16 px = vload16(ch, gpx), py = vload16(ch, gpy), pz = vload16(ch, gpz);
@@ -103,7 +89,7 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
         int16 fg = isgreater(n, 0.0f);
 
         /* V: towards the eye */
-        float16 vx = params.s0 - px, vy = params.s1 - py, vz = params.s2 - pz;
+        float16 vx = eye_x - px, vy = eye_y - py, vz = eye_z - pz;
         float16 vinv = rsqrt(vx * vx + vy * vy + vz * vz);
         vx *= vinv;
         vy *= vinv;
@@ -112,20 +98,20 @@ __kernel void shade(__global const float *gbuf, const uint stride, const uint nc
         /* L: towards the light; e: irradiance at normal incidence */
         float16 lx, ly, lz, e;
         if (point_light) {
-            lx = params.s4 - px;
-            ly = params.s5 - py;
-            lz = params.s6 - pz;
+            lx = light_x - px;
+            ly = light_y - py;
+            lz = light_z - pz;
             float16 d2 = lx * lx + ly * ly + lz * lz;
             float16 linv = rsqrt(d2);
             lx *= linv;
             ly *= linv;
             lz *= linv;
-            e = params.s8 / d2;
+            e = intensity / d2;
         } else {
-            lx = (float16)params.s4;
-            ly = (float16)params.s5;
-            lz = (float16)params.s6;
-            e = (float16)params.s8;
+            lx = (float16)light_x;
+            ly = (float16)light_y;
+            lz = (float16)light_z;
+            e = (float16)intensity;
         }
         float16 ndotl = nx * lx + ny * ly + nz * lz;
         float16 ndotv = nx * vx + ny * vy + nz * vz;

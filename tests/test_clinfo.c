@@ -4,12 +4,25 @@
  * here); a number matches the plain call; a query of no device fails with the buffer empty and
  * the number zeroed; CL_SET_ARGS sets a kernel's arguments in order (the kernel, written here,
  * stores its second argument through its first, read back) and stops at an argument of the wrong
- * size with CL_INVALID_ARG_SIZE. */
+ * size with CL_INVALID_ARG_SIZE, naming the kernel, the argument's index and the error
+ * (CL_SET_ARGS_WHY; CL_SET_ARGS_GOTO's line on stderr and its exit code 3). */
 #include "check.h"
 #include "clsession.h"
 #include "exitcodes.h"
 
 #include <string.h>
+
+/* CL_SET_ARGS_GOTO in a function of the project's shape: 0, or EXIT_RUNTIME with its line on
+   stderr (ctest shows it) when x's size is not the kernel's second argument's. */
+#define set_wrong(k, out, x) set_args_goto((k), (out), &(x), sizeof(x))
+static int set_args_goto(cl_kernel k, cl_mem out, const void *x, size_t size)
+{
+    int rc = 0;
+    cl_uint i = 0;
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(out), ((struct cl_arg){ size, x }), CL_ARG(i));
+done:
+    return rc;
+}
 
 int main(void)
 {
@@ -80,6 +93,18 @@ int main(void)
     CHECK(e == CL_INVALID_ARG_SIZE, "a double for a float: %s", cl_error_name(e));
     e = CL_SET_ARGS(k, 1, CL_ARG(v), CL_ARG(i));   /* from the second argument on */
     CHECK(e == CL_SUCCESS, "from argument 1: %s", cl_error_name(e));
+    /* the words of a failure: the kernel's name "put" (the source above), argument 1 (the float),
+       CL_INVALID_ARG_SIZE, whose code is -51 in CL/cl.h */
+    char why[256] = "";
+    e = CL_SET_ARGS_WHY(k, 0, why, sizeof why, CL_ARG(out), CL_ARG(wrong), CL_ARG(i));
+    CHECK(e == CL_INVALID_ARG_SIZE &&
+              strcmp(why, "clSetKernelArg(put, argument 1) failed with CL_INVALID_ARG_SIZE (-51)") == 0,
+          "why: '%s'", why);
+    why[0] = '\0';
+    e = CL_SET_ARGS_WHY(k, 0, why, sizeof why, CL_ARG(out), CL_ARG(v), CL_ARG(i));
+    CHECK(e == CL_SUCCESS && why[0] == '\0', "no words on success: '%s'", why);
+    CHECK(set_wrong(k, out, wrong) == EXIT_RUNTIME, "CL_SET_ARGS_GOTO: exit code 3 (EXIT_RUNTIME) on a failure");
+    CHECK(set_wrong(k, out, v) == 0, "CL_SET_ARGS_GOTO: 0 on success");
 
     clReleaseMemObject(out);
     clReleaseKernel(k);

@@ -283,7 +283,7 @@ int cl_run_points16(struct cl_session *s, cl_kernel k, cl_uint first_arg, const 
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points n)", done);
     bo = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, padded * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(points out)", done);
-    CL_CHECK_GOTO(CL_SET_ARGS(k, first_arg, CL_ARG(bc), CL_ARG(bn), CL_ARG(bo)), done);
+    CL_SET_ARGS_GOTO(done, k, first_arg, CL_ARG(bc), CL_ARG(bn), CL_ARG(bo));
     size_t global = padded / 16;
     if ((rc = clsession_launch(s, k, 1, &global, NULL, NULL, NULL)) != 0)
         goto done;
@@ -354,14 +354,32 @@ cl_int cl_device_value(cl_device_id d, cl_device_info what, void *value, size_t 
     return e;
 }
 
-cl_int cl_set_args(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n)
+cl_int cl_set_args(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n, char *why, size_t whylen)
 {
     for (cl_uint i = 0; i < n; ++i) {
         cl_int e = clSetKernelArg(k, first + i, args[i].size, args[i].value);
-        if (e != CL_SUCCESS)
-            return e;
+        if (e == CL_SUCCESS)
+            continue;
+        if (why && whylen) {
+            /* the kernel by its function name ("?" where the driver cannot say it) */
+            char name[128] = "?";
+            if (!k || clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
+                snprintf(name, sizeof name, "?");
+            snprintf(why, whylen, "clSetKernelArg(%s, argument %u) failed with %s (%d)", name, (unsigned)(first + i),
+                     cl_error_name(e), (int)e);
+        }
+        return e;
     }
     return CL_SUCCESS;
+}
+
+int cl_set_args_report(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n, const char *file, int line)
+{
+    char why[256];
+    if (cl_set_args(k, first, args, n, why, sizeof why) == CL_SUCCESS)
+        return 0;
+    fprintf(stderr, "brdfbench: OpenCL error: %s at %s:%d\n", why, file, line);
+    return EXIT_RUNTIME;
 }
 
 static const char *no_device_hint =

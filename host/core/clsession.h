@@ -73,12 +73,29 @@ struct cl_arg {
     const void *value;
 };
 #define CL_ARG(x) ((struct cl_arg){ sizeof(x), &(x) })
-/* Sets n arguments as the kernel's arguments first, first + 1, ...: CL_SUCCESS or the first
- * failure's error. CL_SET_ARGS(k, first, CL_ARG(a), CL_ARG(b), ...) counts them. */
-cl_int cl_set_args(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n);
-#define CL_SET_ARGS(k, first, ...)                                                                                   \
-    cl_set_args((k), (first), (const struct cl_arg[]){ __VA_ARGS__ },                                                \
-                (cl_uint)(sizeof((struct cl_arg[]){ __VA_ARGS__ }) / sizeof(struct cl_arg)))
+/* Sets n arguments as the kernel's arguments first, first + 1, ...: CL_SUCCESS, or the first
+ * failure's error with why (when not NULL) saying which, in one line: "clSetKernelArg(KERNEL,
+ * argument I) failed with CL_NAME (code)", KERNEL the kernel's function name. */
+cl_int cl_set_args(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n, char *why, size_t whylen);
+/* The same, a failure reported on stderr as cl_report does (with file:line): 0 or EXIT_RUNTIME. */
+int cl_set_args_report(cl_kernel k, cl_uint first, const struct cl_arg *args, cl_uint n, const char *file, int line);
+/* The argument list of the macros below: CL_ARG(a), CL_ARG(b), ... as an array and its count. */
+#define CL_ARG_LIST(...)                                                                                             \
+    (const struct cl_arg[]){ __VA_ARGS__ }, (cl_uint)(sizeof((struct cl_arg[]){ __VA_ARGS__ }) / sizeof(struct cl_arg))
+/* CL_SET_ARGS_GOTO(label, k, first, CL_ARG(a), CL_ARG(b), ...): sets them as arguments first,
+ * first + 1, ...; on a failure reports it (kernel, argument, error) and jumps to `label` with
+ * rc = EXIT_RUNTIME (the enclosing function declares `int rc`), as CL_CHECK_GOTO. */
+#define CL_SET_ARGS_GOTO(label, k, first, ...)                                                                       \
+    do {                                                                                                             \
+        if (cl_set_args_report((k), (first), CL_ARG_LIST(__VA_ARGS__), __FILE__, __LINE__) != 0) {                   \
+            rc = EXIT_RUNTIME;                                                                                       \
+            goto label;                                                                                              \
+        }                                                                                                            \
+    } while (0)
+/* CL_SET_ARGS_WHY(k, first, why, whylen, CL_ARG(a), ...): cl_set_args of the list (a cl_int);
+ * CL_SET_ARGS(k, first, CL_ARG(a), ...) the same without the words. */
+#define CL_SET_ARGS_WHY(k, first, why, whylen, ...) cl_set_args((k), (first), CL_ARG_LIST(__VA_ARGS__), (why), (whylen))
+#define CL_SET_ARGS(k, first, ...) cl_set_args((k), (first), CL_ARG_LIST(__VA_ARGS__), NULL, 0)
 
 /* Opens platform/device (indices; -1 = first with a device). Returns 0, EXIT_USAGE for an
  * index out of range, EXIT_RUNTIME, or EXIT_NO_DEVICE with a hint in err. */

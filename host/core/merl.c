@@ -315,9 +315,8 @@ int merl_eval_device(struct cl_session *s, const struct merl_material *m, const 
     buf[4] = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, count * sizeof(int), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(merl cell)", done);
     cl_uint n = (cl_uint)count;
-    CL_CHECK_GOTO(CL_SET_ARGS(kernel, 0, CL_ARG(buf[0]), CL_ARG(buf[1]), CL_ARG(buf[2]), CL_ARG(n), CL_ARG(buf[3]),
-                              CL_ARG(buf[4])),
-                  done);
+    CL_SET_ARGS_GOTO(done, kernel, 0, CL_ARG(buf[0]), CL_ARG(buf[1]), CL_ARG(buf[2]), CL_ARG(n), CL_ARG(buf[3]),
+                     CL_ARG(buf[4]));
     size_t global = (count + 63) / 64 * 64;
     rc = clsession_launch(s, kernel, 1, &global, NULL, m->name, NULL);
     if (rc)

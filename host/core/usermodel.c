@@ -967,18 +967,17 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
     cl_int e = CL_SUCCESS;
     double result = NAN;
     cl_mem out = um->ref_out;
+    char why[256] = "";   /* which argument failed, when one did */
     /* One point per launch: the accuracy sweep's refinement asks for points one at a time. */
     if (um->ref_is_double) {
         double args[4] = { m->params[0], m->params[1], c, n };
-        for (cl_uint k = 0; k < 4 && e == CL_SUCCESS; ++k)
-            e = clSetKernelArg(um->ref_point, k, sizeof(double), &args[k]);
+        e = CL_SET_ARGS_WHY(um->ref_point, 0, why, sizeof why, CL_ARG(args[0]), CL_ARG(args[1]), CL_ARG(args[2]),
+                            CL_ARG(args[3]), CL_ARG(out));
     } else {
         float args[4] = { (float)m->params[0], (float)m->params[1], (float)c, (float)n };
-        for (cl_uint k = 0; k < 4 && e == CL_SUCCESS; ++k)
-            e = clSetKernelArg(um->ref_point, k, sizeof(float), &args[k]);
+        e = CL_SET_ARGS_WHY(um->ref_point, 0, why, sizeof why, CL_ARG(args[0]), CL_ARG(args[1]), CL_ARG(args[2]),
+                            CL_ARG(args[3]), CL_ARG(out));
     }
-    if (e == CL_SUCCESS)
-        e = clSetKernelArg(um->ref_point, 4, sizeof out, &out);
     size_t one = 1;
     if (e == CL_SUCCESS)
         e = clEnqueueNDRangeKernel(s->queue, um->ref_point, 1, NULL, &one, NULL, 0, NULL, NULL);
@@ -1000,8 +999,11 @@ double usermodel_eval_host(const struct model_spec *m, double c, double n)
 fail:
     if (!um->ref_warned) {
         um->ref_warned = 1;
-        fprintf(stderr, "brdfbench: evaluating the reference of user model '%s' failed with %s\n", um->name,
-                cl_error_name(e));
+        if (why[0])
+            fprintf(stderr, "brdfbench: evaluating the reference of user model '%s': %s\n", um->name, why);
+        else
+            fprintf(stderr, "brdfbench: evaluating the reference of user model '%s' failed with %s\n", um->name,
+                    cl_error_name(e));
     }
     return NAN;
 }

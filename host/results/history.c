@@ -15,6 +15,7 @@
 #include "mdbuf.h"
 #include "outdir.h"
 #include "schemas.h"
+#include "stats.h"
 
 /* ---- order --------------------------------------------------------------------------------- */
 
@@ -79,12 +80,6 @@ static int find_row(const struct hist_set *h, const char *kind, const char *devi
     return -1;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double median_of(const double *v, int n, double *lo, double *hi)
 {
     double *t = malloc((size_t)(n > 0 ? n : 1) * sizeof *t);
@@ -95,8 +90,8 @@ static double median_of(const double *v, int n, double *lo, double *hi)
     double m = NAN;
     *lo = *hi = NAN;
     if (k > 0) {
-        qsort(t, (size_t)k, sizeof *t, cmp_double);
-        m = k % 2 ? t[k / 2] : 0.5 * (t[k / 2 - 1] + t[k / 2]);
+        qsort(t, (size_t)k, sizeof *t, stats_cmp_double);
+        m = stats_median_sorted(t, (size_t)k);
         *lo = t[0];
         *hi = t[k - 1];
     }

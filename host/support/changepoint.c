@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "ranktest.h"
+#include "stats.h"
 
 void cp_defaults(struct cp_settings *s)
 {
@@ -35,12 +36,6 @@ static int has_values(const struct cp_sample *s)
     return 0;
 }
 
-static int cmp_double(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return (a > b) - (a < b);
-}
-
 /* The median of the logs of a run's positive finite values (NAN: none). tmp: room for n. */
 static double run_level(const struct cp_sample *s, double *tmp)
 {
@@ -50,8 +45,8 @@ static double run_level(const struct cp_sample *s, double *tmp)
             tmp[n++] = log(s->v[i]);
     if (n == 0)
         return NAN;
-    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
-    return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+    qsort(tmp, (size_t)n, sizeof *tmp, stats_cmp_double);
+    return stats_median_sorted(tmp, (size_t)n);
 }
 
 struct cp_state {
@@ -138,8 +133,8 @@ static void run_spread(struct cp_state *st, double *tmp)
         st->run_sd = 0;
         return;
     }
-    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
-    double med = n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+    qsort(tmp, (size_t)n, sizeof *tmp, stats_cmp_double);
+    double med = stats_median_sorted(tmp, (size_t)n);
     st->run_sd = med / (0.6745 * sqrt(2.0));
 }
 

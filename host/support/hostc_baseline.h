@@ -32,10 +32,11 @@ int hostc_supports(int model_id);
 int hostc_throughput(int model_id, float p0, float p1, const struct tp_inputs *in, int threads, float *sums,
                      double *seconds, char *err, size_t errlen);
 
-/* One n of the sweep (host/support/hostc_sweep.c): writes the 8 floats of kernels/accuracy.cl. */
+/* One n of the sweep (host/support/hostc_sweep.c): writes kernels/accuracy.cl's record (kernels/brdf_shared.h,
+   enum acc_out_field). */
 void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1, float n, long samples, float *o);
 /* The accuracy sweep of kernels/accuracy.cl in C: same zones, sampling in s = 1 - cos x,
- * reductions and output layout (8 floats per n), with the reference lobe as
+ * reductions and output layout (ACC_OUT_STRIDE floats per n), with the reference lobe as
  * expf(n log1pf(-s)). Returns 0 or -1 with a message. */
 int hostc_sweep(int model_id, float p0, float p1, int ref_id, float rp0, float rp1, const float *n_values,
                 long n_count, long samples, int threads, float *out, double *seconds, char *err, size_t errlen);

@@ -95,15 +95,15 @@ static inline __attribute__((always_inline)) void hostc_fold(struct hostc_lanes 
         }
 }
 
-/* The largest lane of v (the first one on ties) and its s, into o[0], o[1]. */
-static void hostc_lane_max(const float *v, const float *s, float *o)
+/* The largest lane of v (the first one on ties) and its s, into o[at], o[at_s]. */
+static void hostc_lane_max(const float *v, const float *s, float *o, int at, int at_s)
 {
     int k = 0;
     for (int l = 1; l < 16; ++l)
         if (v[l] > v[k])
             k = l;
-    o[0] = v[k];
-    o[1] = s[k];
+    o[at] = v[k];
+    o[at_s] = s[k];
 }
 
 /* One n of accuracy_sweep (kernels/accuracy.cl): the same samples in s = 1 - cos x, the same
@@ -159,15 +159,15 @@ void hostc_sweep_n_any(int id, float p0, float p1, int ref, float rp0, float rp1
         reference(s, r, count, n, rp0, rp1);
         hostc_fold(&L, 0, s, f, r, count);
     }
-    hostc_lane_max(L.epi_rel, L.epi_rel_s, o);
-    hostc_lane_max(L.att_abs, L.att_abs_s, o + 2);
-    hostc_lane_max(L.epi_abs, L.epi_abs_s, o + 4);
+    hostc_lane_max(L.epi_rel, L.epi_rel_s, o, ACC_O_EPI_REL, ACC_O_EPI_REL_S);
+    hostc_lane_max(L.att_abs, L.att_abs_s, o, ACC_O_ATT_ABS, ACC_O_ATT_ABS_S);
+    hostc_lane_max(L.epi_abs, L.epi_abs_s, o, ACC_O_EPI_ABS, ACC_O_EPI_ABS_S);
     long bad = 0;
     float first_bad = NAN;
     for (int l = 0; l < 16; ++l) {
         bad += L.bad[l];
         first_bad = fminf(first_bad, L.bad_s[l]);
     }
-    o[6] = (float)bad;
-    o[7] = first_bad;
+    o[ACC_O_INVALID] = (float)bad;
+    o[ACC_O_INVALID_S] = first_bad;
 }

@@ -15,7 +15,8 @@
 
 #include "geometry.h"
 
-enum gbuffer_plane { GB_PX, GB_PY, GB_PZ, GB_NX, GB_NY, GB_NZ, GB_SHIN, GB_NPLANES };
+/* enum gbuffer_plane: the planes, in the order kernels/shade.cl reads them */
+#include "shade_shared.h"
 
 /* Every plane's length is a multiple of this many pixels; the padding is background. */
 #define GBUFFER_ALIGN 1024

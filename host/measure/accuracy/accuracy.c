@@ -225,9 +225,7 @@ int accuracy_probe(struct accuracy_ctx *a, const struct model_spec *m, const flo
         return rc;
     cl_int id = m->info->kernel_id;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(probe, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(probe, 2, sizeof p1, &p1), done);
+    CL_SET_ARGS_GOTO(done, probe, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1));
     rc = cl_run_points16(a->s, probe, 3, c, n, count, out);
 done:
     return rc;
@@ -554,19 +552,26 @@ long sweep_chunks(const struct cl_session *s, long count, long samples)
    values summed; the invalid position the smallest s of any chunk. */
 void accuracy_merge_chunks(const float *chunked, long count, long chunks, float *raw)
 {
+    /* each maximum of the record and the position of its s (kernels/brdf_shared.h) */
+    static const int acc_maxima[3][2] = {
+        { ACC_O_EPI_REL, ACC_O_EPI_REL_S }, { ACC_O_ATT_ABS, ACC_O_ATT_ABS_S }, { ACC_O_EPI_ABS, ACC_O_EPI_ABS_S }
+    };
     for (long i = 0; i < count; ++i) {
         const float *c = chunked + (size_t)i * (size_t)chunks * ACC_OUT_STRIDE;
         float *o = raw + (size_t)i * ACC_OUT_STRIDE;
         memcpy(o, c, ACC_OUT_STRIDE * sizeof *o);
         for (long k = 1; k < chunks; ++k) {
             const float *q = c + (size_t)k * ACC_OUT_STRIDE;
-            for (int f = 0; f < 6; f += 2)
+            for (int j = 0; j < 3; ++j) {
+                const int f = acc_maxima[j][0], at = acc_maxima[j][1];
                 if (isgreater(q[f], o[f]) || (isnan(o[f]) && !isnan(q[f]))) {
                     o[f] = q[f];
-                    o[f + 1] = q[f + 1];
+                    o[at] = q[at];
                 }
-            o[6] += q[6];
-            o[7] = fminf(o[7], q[7]);   /* the smallest invalid s (fminf: a NaN is no position) */
+            }
+            o[ACC_O_INVALID] += q[ACC_O_INVALID];
+            /* the smallest invalid s (fminf: a NaN is no position) */
+            o[ACC_O_INVALID_S] = fminf(o[ACC_O_INVALID_S], q[ACC_O_INVALID_S]);
         }
     }
 }
@@ -612,13 +617,15 @@ static int fp16_stage(struct accuracy_ctx *a, const struct model_spec *m, const 
     a->timer_wall = timer_wall;
     if (rc)
         goto done;
-    /* the probe points: each n's epicentre and attenuation maxima (zone 2i, 2i + 1) */
+    /* the probe points: each n's epicentre and attenuation maxima (zone 2i, 2i + 1), at these
+       positions of the record (kernels/brdf_shared.h) */
+    static const int zone_max[2][2] = { { ACC_O_EPI_REL, ACC_O_EPI_REL_S }, { ACC_O_ATT_ABS, ACC_O_ATT_ABS_S } };
     out->fp16.invalid_count = 0;
     for (long i = 0; i < count; ++i) {
         const float *o = raw + i * ACC_OUT_STRIDE;
-        out->fp16.invalid_count += (long long)o[6];
+        out->fp16.invalid_count += (long long)o[ACC_O_INVALID];
         for (int z = 0; z < 2; ++z) {
-            float fig = o[2 * z], sv = o[2 * z + 1];
+            float fig = o[zone_max[z][0]], sv = o[zone_max[z][1]];
             c[2 * i + z] = fig >= 0 && sv >= 0 ? (float)(1.0 - (double)sv) : NAN;
             n[2 * i + z] = (float)out->per_n[i].n;
         }
@@ -636,7 +643,7 @@ static int fp16_stage(struct accuracy_ctx *a, const struct model_spec *m, const 
         for (int z = 0; z < 2; ++z) {
             const float *o = raw + i * ACC_OUT_STRIDE;
             long k = 2 * i + z;
-            if (!(o[2 * z] >= 0) || !(v[k] >= 0) || !isfinite(v[k]))
+            if (!(o[zone_max[z][0]] >= 0) || !(v[k] >= 0) || !isfinite(v[k]))
                 continue;
             double r = model_eval_host(&out->reference, (double)c[k], (double)n[k]);
             double d = fabs((double)v[k] - r) / (z == 0 ? r : 1.0);
@@ -695,16 +702,16 @@ static int accuracy_compute(struct accuracy_ctx *a, const struct model_spec *m, 
         const float *o = raw + i * ACC_OUT_STRIDE;
         struct acc_per_n *p = &out->per_n[i];
         p->n = nv[i];
-        p->epi_rel = o[0]; p->epi_rel_s = o[1];
-        p->att_abs = o[2]; p->att_abs_s = o[3];
-        p->epi_abs = o[4]; p->epi_abs_s = o[5];
-        p->invalid_count = o[6]; p->invalid_s = o[7];
-        if (o[6] > 0) {
+        p->epi_rel = o[ACC_O_EPI_REL]; p->epi_rel_s = o[ACC_O_EPI_REL_S];
+        p->att_abs = o[ACC_O_ATT_ABS]; p->att_abs_s = o[ACC_O_ATT_ABS_S];
+        p->epi_abs = o[ACC_O_EPI_ABS]; p->epi_abs_s = o[ACC_O_EPI_ABS_S];
+        p->invalid_count = o[ACC_O_INVALID]; p->invalid_s = o[ACC_O_INVALID_S];
+        if (o[ACC_O_INVALID] > 0) {
             if (out->invalid_count == 0) {
                 out->invalid_n = p->n;
-                out->invalid_x = angle_of_s((double)o[7]);
+                out->invalid_x = angle_of_s((double)o[ACC_O_INVALID_S]);
             }
-            out->invalid_count += (long long)o[6];
+            out->invalid_count += (long long)o[ACC_O_INVALID];
         }
     }
 
@@ -913,7 +920,7 @@ static int reference_table(struct accuracy_ctx *a, cl_kernel sweep, const struct
         rc = EXIT_RUNTIME;
         goto done;
     }
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof pass, &pass), done);
+    CL_SET_ARGS_GOTO(done, sweep, 11, CL_ARG(pass));
     if ((rc = launch_sweep(a, sweep, count, chunks, ref->label, seconds)) != 0)
         goto done;
     CL_CHECK_GOTO(clEnqueueReadBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *sv, sv, 0, NULL, NULL), done);
@@ -924,7 +931,7 @@ static int reference_table(struct accuracy_ctx *a, cl_kernel sweep, const struct
     }
     CL_CHECK_GOTO(clEnqueueWriteBuffer(a->s->queue, bt, CL_TRUE, 0, points * sizeof *rv, rv, 0, NULL, NULL), done);
     pass = 1;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 11, sizeof pass, &pass), done);
+    CL_SET_ARGS_GOTO(done, sweep, 11, CL_ARG(pass));
 done:
     free(rv);
     free(sv);
@@ -962,18 +969,10 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)ref.params[0], rp1 = (float)ref.params[1];
     cl_int ncount = (cl_int)count, samples = (cl_int)g->samples;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 3, sizeof ref_id, &ref_id), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 4, sizeof rp0, &rp0), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 5, sizeof rp1, &rp1), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 6, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 7, sizeof ncount, &ncount), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 8, sizeof samples, &samples), done);
+    CL_SET_ARGS_GOTO(done, sweep, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(ref_id), CL_ARG(rp0), CL_ARG(rp1),
+                     CL_ARG(bn), CL_ARG(ncount), CL_ARG(samples));
     cl_int chunks_arg = (cl_int)chunks;
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 9, sizeof chunks_arg, &chunks_arg), done);
-    CL_CHECK_GOTO(clSetKernelArg(sweep, 10, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, sweep, 9, CL_ARG(chunks_arg), CL_ARG(bo));
     if (accuracy_reference_is_table(&ref)) {   /* a user model's values, from the host (ACC_REF_TABLE) */
         char err[512];
         if (accuracy_reference_check(g, &ref, a->s, err, sizeof err)) {
@@ -984,7 +983,7 @@ int accuracy_sweep_device(struct accuracy_ctx *a, const struct model_spec *m, co
         bt = clCreateBuffer(a->s->ctx, CL_MEM_READ_WRITE, (size_t)count * 2 * (size_t)g->samples * sizeof(float),
                             NULL, &e);
         CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reference table)", done);
-        CL_CHECK_GOTO(clSetKernelArg(sweep, 12, sizeof bt, &bt), done);
+        CL_SET_ARGS_GOTO(done, sweep, 12, CL_ARG(bt));
         if ((rc = reference_table(a, sweep, &ref, nv, count, chunks, g->samples, bt, device_seconds)) != 0)
             goto done;
     }

@@ -178,18 +178,8 @@ int field_run(struct field_ctx *f, const struct model_spec *m, const struct fiel
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
     float rp0 = (float)out->reference.params[0], rp1 = (float)out->reference.params[1];
     float log_u = (float)log(out->u_max);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 3, sizeof rid, &rid), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 4, sizeof rp0, &rp0), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 5, sizeof rp1, &rp1), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 6, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 7, sizeof rows, &rows), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 8, sizeof cols, &cols), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 9, sizeof log_u, &log_u), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 10, sizeof be, &be), done);
-    CL_CHECK_GOTO(clSetKernelArg(kernel, 11, sizeof ba, &ba), done);
+    CL_SET_ARGS_GOTO(done, kernel, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(rid), CL_ARG(rp0), CL_ARG(rp1),
+                     CL_ARG(bn), CL_ARG(rows), CL_ARG(cols), CL_ARG(log_u), CL_ARG(be), CL_ARG(ba));
     size_t global[2] = {(size_t)cols, (size_t)rows};
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(f->s->queue, kernel, 2, NULL, global, NULL, 0, NULL, &ev), done);
     CL_CHECK_GOTO(clsession_finish(f->s, kernel, m->label), done);

@@ -757,15 +757,8 @@ static int launch_pass(struct hemi_ctx *h, cl_kernel k, int pass, cl_mem bp, cl_
     int rc = 0;
     cl_event ev = NULL;
     cl_int ps = pass, pc = p_count, nh = g->nh, nd = g->nd, np = g->np;
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof ps, &ps), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof bp, &bp), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof bt, &bt), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof pc, &pc), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof nh, &nh), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 5, sizeof nd, &nd), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof np, &np), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 7, sizeof bo, &bo), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 8, sizeof brt, &brt), done);
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(ps), CL_ARG(bp), CL_ARG(bt), CL_ARG(pc), CL_ARG(nh), CL_ARG(nd), CL_ARG(np),
+                     CL_ARG(bo), CL_ARG(brt));
     size_t local = 4, global = ((size_t)p_count * (size_t)g->nh + local - 1) / local * local;
     double t0 = wall_seconds();
     if ((rc = clsession_launch(h->s, k, 1, &global, &local, label, &ev)) != 0)
@@ -951,13 +944,8 @@ static int probe(struct hemi_ctx *h, cl_kernel k, cl_mem bp, struct hemi_result 
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe parameters)", done);
     bo = clCreateBuffer(h->s->ctx, CL_MEM_WRITE_ONLY, (size_t)count * 2 * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(probe out)", done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof bp, &bp), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof bth, &bth), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof btd, &btd), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof bpd, &bpd), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof bpv, &bpv), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 5, sizeof cnt, &cnt), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(bp), CL_ARG(bth), CL_ARG(btd), CL_ARG(bpd), CL_ARG(bpv), CL_ARG(cnt),
+                     CL_ARG(bo));
     size_t global = (size_t)count / (size_t)hemi_lanes(h);
     if ((rc = clsession_launch(h->s, k, 1, &global, NULL, r->model.label, NULL)) != 0)
         goto done;

@@ -58,14 +58,14 @@ static int gl_nodes(int order, double a, double b, double *x, double *w)
     return 0;
 }
 
-int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, double n_hi, double out[4])
+int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, double n_hi, double out[EQ11_TERMS])
 {
     int rc = 0;
     cl_int e;
     cl_mem bn = NULL, bt = NULL, bw = NULL, bo = NULL;
     enum { NN = EQ11_PANELS * EQ11_OUTER_ORDER };
     double nx[NN], nw[NN], tx[EQ11_INNER_ORDER], tw[EQ11_INNER_ORDER];
-    float fn[NN], ft[EQ11_INNER_ORDER], fw[EQ11_INNER_ORDER], fo[4 * NN];
+    float fn[NN], ft[EQ11_INNER_ORDER], fw[EQ11_INNER_ORDER], fo[EQ11_TERMS * NN];
     /* The terms fall like 1/n: panels equal in log n keep each one equally smooth. */
     double r = pow(n_hi / n_lo, 1.0 / EQ11_PANELS);
     for (int p = 0; p < EQ11_PANELS; ++p) {
@@ -91,21 +91,16 @@ int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, d
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(eq11 out)", done);
     float k = (float)zone_k;
     cl_int count = NN, tcount = EQ11_INNER_ORDER;
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 0, sizeof k, &k), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 1, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 2, sizeof count, &count), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 3, sizeof bt, &bt), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 4, sizeof bw, &bw), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 5, sizeof tcount, &tcount), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->eq11, 6, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, c->eq11, 0, CL_ARG(k), CL_ARG(bn), CL_ARG(count), CL_ARG(bt), CL_ARG(bw), CL_ARG(tcount),
+                     CL_ARG(bo));
     size_t global = NN;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->eq11, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(c->s, c->eq11, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, sizeof fo, fo, 0, NULL, NULL), done);
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < EQ11_TERMS; ++j) {   /* enum eq11_term's order */
         double sum = 0;
         for (int i = 0; i < NN; ++i)
-            sum += nw[i] * (double)fo[4 * i + j];
+            sum += nw[i] * (double)fo[EQ11_TERMS * i + j];
         out[j] = sum;
     }
 done:
@@ -234,17 +229,8 @@ static int albedo_device_ex(struct integrate_ctx *c, const struct model_spec *m,
     cl_int id = m->info->kernel_id, md = mode, nodes = ENERGY_MAX_NODES;
     cl_int phi = refine ? 2 * ENERGY_PHI_COUNT : ENERGY_PHI_COUNT;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 3, sizeof md, &md), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 4, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 5, sizeof bt, &bt), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 6, sizeof bx, &bx), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 7, sizeof bw, &bw), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 8, sizeof nodes, &nodes), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 9, sizeof phi, &phi), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->albedo, 10, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, c->albedo, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(md), CL_ARG(bn), CL_ARG(bt),
+                     CL_ARG(bx), CL_ARG(bw), CL_ARG(nodes), CL_ARG(phi), CL_ARG(bo));
     size_t global[2] = { ENERGY_MAX_NODES, (size_t)count };
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->albedo, 2, NULL, global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(c->s, c->albedo, m->label), done);
@@ -414,7 +400,7 @@ int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long 
     cl_mem bd = NULL, bn = NULL, bo = NULL;
     double *dirs = malloc((size_t)pairs * 9 * sizeof *dirs), *nv = malloc((size_t)pairs * sizeof *nv);
     float *fd = malloc((size_t)pairs * 9 * sizeof *fd), *fn = malloc((size_t)pairs * sizeof *fn);
-    float *fo = malloc((size_t)pairs * 2 * sizeof *fo);
+    float *fo = malloc((size_t)pairs * RECIP_STRIDE * sizeof *fo);
     memset(device, 0, sizeof *device);
     memset(host, 0, sizeof *host);
     device->diff = host->diff = -1;   /* the first pair is always kept */
@@ -443,22 +429,16 @@ int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long 
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity dirs)", done);
     bn = clCreateBuffer(c->s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)pairs * sizeof(float), fn, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity n)", done);
-    bo = clCreateBuffer(c->s->ctx, CL_MEM_WRITE_ONLY, (size_t)pairs * 2 * sizeof(float), NULL, &e);
+    bo = clCreateBuffer(c->s->ctx, CL_MEM_WRITE_ONLY, (size_t)pairs * RECIP_STRIDE * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(reciprocity out)", done);
     cl_int id = m->info->kernel_id, lobe = m->info->lobe == LOBE_PSI ? 0 : 1, count = (cl_int)pairs;
     float p0 = (float)m->params[0], p1 = (float)m->params[1];
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 0, sizeof id, &id), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 3, sizeof lobe, &lobe), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 4, sizeof bd, &bd), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 5, sizeof bn, &bn), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 6, sizeof count, &count), done);
-    CL_CHECK_GOTO(clSetKernelArg(c->recip, 7, sizeof bo, &bo), done);
+    CL_SET_ARGS_GOTO(done, c->recip, 0, CL_ARG(id), CL_ARG(p0), CL_ARG(p1), CL_ARG(lobe), CL_ARG(bd), CL_ARG(bn),
+                     CL_ARG(count), CL_ARG(bo));
     size_t global = (size_t)pairs;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(c->s->queue, c->recip, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(c->s, c->recip, m->label), done);
-    CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, (size_t)pairs * 2 * sizeof(float), fo, 0, NULL,
+    CL_CHECK_GOTO(clEnqueueReadBuffer(c->s->queue, bo, CL_TRUE, 0, (size_t)pairs * RECIP_STRIDE * sizeof(float), fo, 0, NULL,
                                       NULL), done);
     for (long i = 0; i < pairs; ++i) {
         double dd[9];
@@ -467,12 +447,13 @@ int reciprocity_check(struct integrate_ctx *c, const struct model_spec *m, long 
         double peak = fabs(model_eval_host(m, 1.0, nv[i]));
         if (!(peak > 0))
             peak = 1.0;
-        keep_worst(device, fabs((double)fo[2 * i] - (double)fo[2 * i + 1]) / peak, nv[i], dd, fo[2 * i], fo[2 * i + 1]);
+        const float lv = fo[RECIP_STRIDE * i + RECIP_LV], vl = fo[RECIP_STRIDE * i + RECIP_VL];   /* f(L, V), f(V, L) */
+        keep_worst(device, fabs((double)lv - (double)vl) / peak, nv[i], dd, lv, vl);
         int lb = m->info->lobe;
         double a = model_eval_host(m, lobe_cosine_host(lb, dd, dd + 3, dd + 6), nv[i]);
         double b = model_eval_host(m, lobe_cosine_host(lb, dd, dd + 6, dd + 3), nv[i]);
         keep_worst(host, fabs(a - b) / peak, nv[i], dd, a, b);
-        device->eval_error = fmax(device->eval_error, fmax(fabs(fo[2 * i] - a), fabs(fo[2 * i + 1] - b)) / peak);
+        device->eval_error = fmax(device->eval_error, fmax(fabs(lv - a), fabs(vl - b)) / peak);
     }
 done:
     if (bo) clReleaseMemObject(bo);

@@ -19,10 +19,7 @@
 
 #include "clsession.h"
 #include "models.h"
-
-
-/* Albedo modes (must match kernels/integrate.cl). */
-enum albedo_mode { ALBEDO_PSI = 0, ALBEDO_HALF = 1, ALBEDO_MICRO = 2, ALBEDO_DCOS = 3 };
+#include "integrate_shared.h"   /* enum albedo_mode, the kernels' records (kernels/) */
 
 #define ENERGY_GL_ORDER 16        /* Gauss-Legendre nodes per panel */
 #define ENERGY_MAX_PANELS 28
@@ -41,10 +38,11 @@ struct integrate_ctx {
 int integrate_open(struct integrate_ctx *c, struct cl_session *s);
 void integrate_close(struct integrate_ctx *c);
 
-/* Paper 1's eq. 11 on the device: out[0..3] = the double integrals over n in [n_lo, n_hi] and
- * x in [0, acos(exp(-zone_k/n))] of c^n, n^2 (c-1)^2, 2n (c-1) and 1, each times cos x sin x.
+/* Paper 1's eq. 11 on the device: out[0..EQ11_TERMS-1] (enum eq11_term's order) = the double
+ * integrals over n in [n_lo, n_hi] and x in [0, acos(exp(-zone_k/n))] of c^n, n^2 (c-1)^2,
+ * 2n (c-1) and 1, each times cos x sin x.
  * Inner integrals on the device (float), the outer Gauss-Legendre sum on the host (double). */
-int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, double n_hi, double out[4]);
+int integrate_eq11_device(struct integrate_ctx *c, double zone_k, double n_lo, double n_hi, double out[EQ11_TERMS]);
 
 /* The albedo mode of a registry model: ALBEDO_PSI / ALBEDO_HALF for a normalised lobe,
  * ALBEDO_MICRO for a microfacet distribution, -1 for a model that is not normalised. */

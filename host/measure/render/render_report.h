@@ -8,19 +8,9 @@
 #include "clsession.h"
 #include "render.h"
 
-/* Host copies of kernels/shade.cl's constants (shading modes, display table); the tests
-   compare the device's output with the host's exact curves, so a mismatch shows there. */
-#define SHADE_LOBE_PSI 0
-#define SHADE_LOBE_THETA_H 1
-#define SHADE_CT_BECKMANN 2
-#define SHADE_CT_GGX 3
-#define SHADE_PHYSICAL 4
-#define SHADE_USER_FULL 5
-#define SHADE_MEASURED 6
-#define DISPLAY_MIN_EXP (-16)
-#define DISPLAY_MAX_EXP 8
-#define DISPLAY_BINS ((DISPLAY_MAX_EXP - DISPLAY_MIN_EXP) * 256)
-#define DISPLAY_BIN0 ((127 + DISPLAY_MIN_EXP) << 8)
+/* kernels/shade.cl's constants (shading modes, display table, the parameters' positions),
+   the same header as the kernel's */
+#include "shade_shared.h"
 
 /* Work-items of one launch: each walks a contiguous run of pixels, so a few per core
    balance the load without barriers; the same count for every size keeps one launch

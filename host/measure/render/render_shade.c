@@ -223,19 +223,17 @@ done:
 static void shade_params(const struct render_light *lt, const struct render_options *o,
                          cl_float16 *p)
 {
-    memset(p, 0, sizeof *p);
-    p->s[0] = (float)lt->eye[0];
-    p->s[1] = (float)lt->eye[1];
-    p->s[2] = (float)lt->eye[2];
-    p->s[3] = (float)o->ambient;
-    p->s[4] = (float)lt->light[0];
-    p->s[5] = (float)lt->light[1];
-    p->s[6] = (float)lt->light[2];
-    p->s[7] = lt->point ? 1.0f : 0.0f;
-    p->s[8] = (float)lt->intensity;
-    p->s[9] = (float)o->kd;
-    p->s[10] = (float)o->ks;
-    p->s[11] = (float)o->f0;
+    memset(p, 0, sizeof *p);   /* kernels/shade_shared.h's positions */
+    for (int k = 0; k < 3; ++k) {
+        p->s[SHADE_P_EYE + k] = (float)lt->eye[k];
+        p->s[SHADE_P_LIGHT + k] = (float)lt->light[k];
+    }
+    p->s[SHADE_P_AMBIENT] = (float)o->ambient;
+    p->s[SHADE_P_POINT] = lt->point ? 1.0f : 0.0f;
+    p->s[SHADE_P_INTENSITY] = (float)lt->intensity;
+    p->s[SHADE_P_KD] = (float)o->kd;
+    p->s[SHADE_P_KS] = (float)o->ks;
+    p->s[SHADE_P_F0] = (float)o->f0;
 }
 
 static int set_common_args(cl_kernel k, cl_mem gbuf, size_t stride, size_t npix, cl_mem rgba,
@@ -243,11 +241,7 @@ static int set_common_args(cl_kernel k, cl_mem gbuf, size_t stride, size_t npix,
 {
     int rc = 0;
     cl_uint st = (cl_uint)stride, nch = (cl_uint)((npix + 15) / 16);
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof gbuf, &gbuf), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof st, &st), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof nch, &nch), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof rgba, &rgba), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof spec, &spec), done);
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(gbuf), CL_ARG(st), CL_ARG(nch), CL_ARG(rgba), CL_ARG(spec));
 done:
     return rc;
 }
@@ -268,15 +262,9 @@ int render_device_shade(struct render_device *d, cl_mem gbuf, size_t stride, siz
     cl_float p0 = (cl_float)m->params[0], p1 = (cl_float)m->params[1];
     cl_float16 params;
     shade_params(lt, o, &params);
-    CL_CHECK_GOTO(clSetKernelArg(shade, 5, sizeof kmode, &kmode), done);
-    CL_CHECK_GOTO(clSetKernelArg(shade, 6, sizeof kmodel, &kmodel), done);
-    CL_CHECK_GOTO(clSetKernelArg(shade, 7, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(shade, 8, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(shade, 9, sizeof params, &params), done);
-    CL_CHECK_GOTO(clSetKernelArg(shade, 10, sizeof d->display_table, &d->display_table),
-                  done);
+    CL_SET_ARGS_GOTO(done, shade, 5, CL_ARG(kmode), CL_ARG(kmodel), CL_ARG(p0), CL_ARG(p1), CL_ARG(params));
     cl_mem merl = d->merl_table ? d->merl_table : d->no_table;
-    CL_CHECK_GOTO(clSetKernelArg(shade, 11, sizeof merl, &merl), done);
+    CL_SET_ARGS_GOTO(done, shade, 10, CL_ARG(d->display_table), CL_ARG(merl));
     rc = launch(d, shade, m->label, seconds);
     if (rc)
         return rc;

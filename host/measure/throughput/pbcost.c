@@ -7,6 +7,7 @@
 
 #include "exitcodes.h"
 #include "outdir.h"
+#include "stats.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -182,12 +183,7 @@ static int check_full_row(struct cl_session *s, cl_program prog, struct pbcost_r
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_full_points input)", done);
     b[1] = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof out, NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_full_points output)", done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 2, sizeof b[0], &b[0]), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof count, &count), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof b[1], &b[1]), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 5, sizeof table, &table), done);
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(p0), CL_ARG(p1), CL_ARG(b[0]), CL_ARG(count), CL_ARG(b[1]), CL_ARG(table));
     size_t global = P / PBCOST_LANES;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
@@ -245,16 +241,15 @@ static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *r
     const float *src[4] = { nl, nv, lv, nn };
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec_points)", done);
     float p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(p0), CL_ARG(p1));
     for (int j = 0; j < 4; ++j) {
         b[j] = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof nl, (void *)src[j], &e);
         CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_vec_points input)", done);
-        CL_CHECK_GOTO(clSetKernelArg(k, (cl_uint)(2 + j), sizeof b[j], &b[j]), done);
+        CL_SET_ARGS_GOTO(done, k, (cl_uint)(2 + j), CL_ARG(b[j]));
     }
     b[4] = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof out, NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(tp_vec_points output)", done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 6, sizeof b[4], &b[4]), done);
+    CL_SET_ARGS_GOTO(done, k, 6, CL_ARG(b[4]));
     size_t global = P / PBCOST_LANES;
     CL_CHECK_GOTO(clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, NULL, 0, NULL, NULL), done);
     CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
@@ -300,8 +295,7 @@ static int launch(struct cl_session *s, cl_kernel k, long iters, double *seconds
     cl_int it = (cl_int)iters;
     float step = (float)(0.754877666 / (double)iters);
     cl_event ev = NULL;
-    CL_CHECK_GOTO(clSetKernelArg(k, 3, sizeof step, &step), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 4, sizeof it, &it), done);
+    CL_SET_ARGS_GOTO(done, k, 3, CL_ARG(step), CL_ARG(it));
     /* each work-item is a long loop already (clsession_group_size: 1 on a CPU device) */
     size_t local;
     const size_t *lp = clsession_group_size(s, global, &local);
@@ -330,12 +324,6 @@ static int pbcost_item_launch(void *ctx, long iters, double *seconds, char *reas
         return -1;
     }
     return 0;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /* White-furnace albedo at normal incidence: 2 pi int_0^(pi/2) f(L = N, V(theta)) cos sin dtheta
@@ -413,10 +401,8 @@ static int row_setup(struct cl_session *s, cl_program prog, const struct pbcost_
     *kern = clCreateKernel(rprog, name, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_vec)", done);
     float n = (float)o->n, p0 = (float)row->spec.params[0], p1 = (float)row->spec.params[1];
-    CL_CHECK_GOTO(clSetKernelArg(*kern, 0, sizeof n, &n), done);
-    CL_CHECK_GOTO(clSetKernelArg(*kern, 1, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(*kern, 2, sizeof p1, &p1), done);
-    CL_CHECK_GOTO(clSetKernelArg(*kern, 5, sizeof out, &out), done);
+    CL_SET_ARGS_GOTO(done, *kern, 0, CL_ARG(n), CL_ARG(p0), CL_ARG(p1));
+    CL_SET_ARGS_GOTO(done, *kern, 5, CL_ARG(out));
     if (row->kind >= 4) {
         if (row->kind == 5) {
             if ((rc = merl_table_buffer(s, row->merl, table)) != 0)
@@ -425,7 +411,7 @@ static int row_setup(struct cl_session *s, cl_program prog, const struct pbcost_
             *table = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY, 16 * sizeof(float), NULL, &e);
             CL_CHECK_ERR_GOTO(e, "clCreateBuffer(physical dummy table)", done);
         }
-        CL_CHECK_GOTO(clSetKernelArg(*kern, 6, sizeof *table, table), done);
+        CL_SET_ARGS_GOTO(done, *kern, 6, CL_ARG(*table));
         rc = check_full_row(s, rprog, row, o->n, *table);
     } else {
         rc = check_row(s, prog, row, o->n);
@@ -525,12 +511,12 @@ static int pbcost_measure(struct cl_session *s, const struct pbcost_options *o, 
             }
             double *v = it->seconds;
             int k = it->nreps;
-            qsort(v, (size_t)k, sizeof *v, cmp_double);
+            qsort(v, (size_t)k, sizeof *v, stats_cmp_double);
             row->iters = it->iters;
             row->evals_per_launch = (double)global * (double)row->iters * PBCOST_STREAMS * PBCOST_LANES;
             row->min_s = v[0];
             row->max_s = v[k - 1];
-            row->med_s = k % 2 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
+            row->med_s = stats_median_sorted(v, (size_t)k);
             row->evals_per_s = row->med_s > 0 ? row->evals_per_launch / row->med_s : NAN;
             row->evals_per_s_fastest = row->min_s > 0 ? row->evals_per_launch / row->min_s : NAN;
             /* per CPU second where the runner keeps it (a CPU device: another process's share of

@@ -11,6 +11,7 @@
 #include "outdir.h"
 #include "programs.h"
 #include "runner.h"
+#include "stats.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -110,12 +111,6 @@ int throughput_options_check(const struct throughput_options *o, char *err, size
 
 /* ---- figures ---------------------------------------------------------------------------- */
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 struct tp_stats tp_stats_of(const double *v, int n)
 {
     struct tp_stats s = { NAN, NAN, NAN };
@@ -126,10 +121,10 @@ struct tp_stats tp_stats_of(const double *v, int n)
             sorted[k++] = v[i];
     if (k == 0)
         return s;
-    qsort(sorted, (size_t)k, sizeof *sorted, cmp_double);
+    qsort(sorted, (size_t)k, sizeof *sorted, stats_cmp_double);
     s.min = sorted[0];
     s.max = sorted[k - 1];
-    s.median = (k % 2) ? sorted[k / 2] : 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]);
+    s.median = stats_median_sorted(sorted, (size_t)k);
     return s;
 }
 
@@ -492,7 +487,7 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
     r->sweep_n_count = accuracy_grid_count(g);
     r->sw = calloc((size_t)r->nmodels, sizeof *r->sw);
     float *nv = malloc((size_t)r->sweep_n_count * sizeof *nv);
-    size_t per = (size_t)r->sweep_n_count * 8;
+    size_t per = (size_t)r->sweep_n_count * ACC_OUT_STRIDE;
     float *outs = malloc(2 * (size_t)r->nmodels * per * sizeof *outs);
     struct model_spec *refs = calloc((size_t)r->nmodels, sizeof *refs);
     struct tp_sweep_item *si = calloc(2 * (size_t)r->nmodels, sizeof *si);
@@ -560,8 +555,10 @@ static void tp_measure_sweep(struct tp_run *r, int quiet)
         w->agree = 0;
         const float *dev = si[d].out, *hco = si[d + 1].out;
         for (long i = 0; i < r->sweep_n_count; ++i)
-            for (int q = 0; q < 6; q += 2) {
-                double x = rel_diff(dev[i * 8 + q], hco[i * 8 + q]);
+            for (int j = 0; j < 3; ++j) {   /* the record's maxima (kernels/brdf_shared.h) */
+                static const int maxima[3] = { ACC_O_EPI_REL, ACC_O_ATT_ABS, ACC_O_EPI_ABS };
+                const size_t q = (size_t)i * ACC_OUT_STRIDE + (size_t)maxima[j];
+                double x = rel_diff(dev[q], hco[q]);
                 if (!(x <= w->agree))
                     w->agree = x;
             }

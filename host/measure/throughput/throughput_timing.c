@@ -30,27 +30,24 @@ struct tp_kernel_run {
     double work_per_iter;         /* work of one iteration over the whole launch */
 };
 
-static cl_int tp_set_iters(struct tp_kernel_run *r, long iters)
+/* The argument setters below return CL_SUCCESS or the error, with why saying which kernel and
+   argument (cl_set_args). */
+static cl_int tp_set_iters(struct tp_kernel_run *r, long iters, char *why, size_t whylen)
 {
     cl_int e, it = (cl_int)iters;
     if (r->kind == 2)
-        return clSetKernelArg(r->k, 2, sizeof it, &it);
+        return CL_SET_ARGS_WHY(r->k, 2, why, whylen, CL_ARG(it));
     struct tp_inputs in;
     tp_inputs_for(r->o, r->kind == 1 ? TP_N_VARYING : TP_N_UNIFORM, (long)r->global, iters, &in);
-    if (r->kind == 0) {
-        if ((e = clSetKernelArg(r->k, 3, sizeof in.dc, &in.dc)) != CL_SUCCESS)
-            return e;
-        return clSetKernelArg(r->k, 4, sizeof it, &it);
-    }
-    if ((e = clSetKernelArg(r->k, 2, sizeof in.dn_step, &in.dn_step)) != CL_SUCCESS)
+    if (r->kind == 0)
+        return CL_SET_ARGS_WHY(r->k, 3, why, whylen, CL_ARG(in.dc), CL_ARG(it));
+    if ((e = CL_SET_ARGS_WHY(r->k, 2, why, whylen, CL_ARG(in.dn_step))) != CL_SUCCESS)
         return e;
-    if ((e = clSetKernelArg(r->k, 5, sizeof in.dc, &in.dc)) != CL_SUCCESS)
-        return e;
-    return clSetKernelArg(r->k, 6, sizeof it, &it);
+    return CL_SET_ARGS_WHY(r->k, 5, why, whylen, CL_ARG(in.dc), CL_ARG(it));
 }
 
 /* Sets the arguments that stay fixed: n, parameters, output. */
-static cl_int tp_set_fixed(struct tp_kernel_run *r, const struct model_spec *m)
+static cl_int tp_set_fixed(struct tp_kernel_run *r, const struct model_spec *m, char *why, size_t whylen)
 {
     cl_int e;
     float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
@@ -58,41 +55,40 @@ static cl_int tp_set_fixed(struct tp_kernel_run *r, const struct model_spec *m)
     tp_inputs_for(r->o, r->kind == 1 ? TP_N_VARYING : TP_N_UNIFORM, (long)r->global, 1, &in);
     if (r->kind == 2) {
         float a = 0.999f, b = 0.001f;   /* x <- a x + b converges to 1 */
-        if ((e = clSetKernelArg(r->k, 0, sizeof a, &a)) != CL_SUCCESS) return e;
-        if ((e = clSetKernelArg(r->k, 1, sizeof b, &b)) != CL_SUCCESS) return e;
-        return clSetKernelArg(r->k, 3, sizeof r->out, &r->out);
+        if ((e = CL_SET_ARGS_WHY(r->k, 0, why, whylen, CL_ARG(a), CL_ARG(b))) != CL_SUCCESS)
+            return e;
+        return CL_SET_ARGS_WHY(r->k, 3, why, whylen, CL_ARG(r->out));
     }
     if (r->kind == 0) {
-        if ((e = clSetKernelArg(r->k, 0, sizeof in.n_uniform, &in.n_uniform)) != CL_SUCCESS) return e;
-        if ((e = clSetKernelArg(r->k, 1, sizeof p0, &p0)) != CL_SUCCESS) return e;
-        if ((e = clSetKernelArg(r->k, 2, sizeof p1, &p1)) != CL_SUCCESS) return e;
-        return clSetKernelArg(r->k, 5, sizeof r->out, &r->out);
+        if ((e = CL_SET_ARGS_WHY(r->k, 0, why, whylen, CL_ARG(in.n_uniform), CL_ARG(p0), CL_ARG(p1))) != CL_SUCCESS)
+            return e;
+        return CL_SET_ARGS_WHY(r->k, 5, why, whylen, CL_ARG(r->out));
     }
-    if ((e = clSetKernelArg(r->k, 0, sizeof in.n_lo, &in.n_lo)) != CL_SUCCESS) return e;
-    if ((e = clSetKernelArg(r->k, 1, sizeof in.dn_lane, &in.dn_lane)) != CL_SUCCESS) return e;
-    if ((e = clSetKernelArg(r->k, 3, sizeof p0, &p0)) != CL_SUCCESS) return e;
-    if ((e = clSetKernelArg(r->k, 4, sizeof p1, &p1)) != CL_SUCCESS) return e;
-    return clSetKernelArg(r->k, 7, sizeof r->out, &r->out);
+    if ((e = CL_SET_ARGS_WHY(r->k, 0, why, whylen, CL_ARG(in.n_lo), CL_ARG(in.dn_lane))) != CL_SUCCESS ||
+        (e = CL_SET_ARGS_WHY(r->k, 3, why, whylen, CL_ARG(p0), CL_ARG(p1))) != CL_SUCCESS)
+        return e;
+    return CL_SET_ARGS_WHY(r->k, 7, why, whylen, CL_ARG(r->out));
 }
 
 /* One launch: event time and wall time (enqueue to finish); where the driver's profiling
    events give no time, the wall time stands in for the event time and *used_wall says so
-   (cl_event_seconds_or_wall). Returns an OpenCL error or 0. */
+   (cl_event_seconds_or_wall). Returns an OpenCL error, with why saying which call failed, or 0. */
 static cl_int tp_launch_once(struct tp_kernel_run *r, long iters, double *event_s, double *wall_s, int *used_wall,
-                             const char **call)
+                             char *why, size_t whylen)
 {
     cl_event ev = NULL;
-    cl_int e = tp_set_iters(r, iters);
-    *call = "clSetKernelArg";
+    cl_int e = tp_set_iters(r, iters, why, whylen);
     if (e != CL_SUCCESS)
         return e;
     double t0 = wall_seconds();
-    *call = "clEnqueueNDRangeKernel";
+    const char *call = "clEnqueueNDRangeKernel";
     e = clEnqueueNDRangeKernel(r->s->queue, r->k, 1, NULL, &r->global, r->local ? &r->local : NULL, 0, NULL, &ev);
     if (e == CL_SUCCESS) {
-        *call = "clFinish";
+        call = "clFinish";
         e = clsession_finish(r->s, r->k, NULL);
     }
+    if (e != CL_SUCCESS)
+        snprintf(why, whylen, "%s failed with %s", call, cl_error_name(e));
     *wall_s = wall_seconds() - t0;
     *event_s = (e == CL_SUCCESS) ? cl_event_seconds_or_wall(ev, *wall_s, used_wall) : NAN;
     if (ev)
@@ -113,10 +109,10 @@ static int tp_dev_launch(void *ctx, long iters, double *seconds, char *reason, s
     struct tp_dev_ctx *d = ctx;
     double wall;
     int used_wall = 0;
-    const char *call = "";
-    cl_int e = tp_launch_once(&d->kr, iters, seconds, &wall, &used_wall, &call);
+    char why[256] = "";
+    cl_int e = tp_launch_once(&d->kr, iters, seconds, &wall, &used_wall, why, sizeof why);
     if (e != CL_SUCCESS) {
-        snprintf(reason, reason_len, "launch: %s failed with %s", call, cl_error_name(e));
+        snprintf(reason, reason_len, "launch: %s", why);
         return -1;
     }
     d->timer_wall |= used_wall;   /* the figure says which timer gave its times */
@@ -227,8 +223,9 @@ static int tp_peak_setup(struct cl_session *s, const char *options, long work_it
         tp_fig_fail(f, "clCreateBuffer failed with %s", cl_error_name(e));
         return -1;
     }
-    if ((e = tp_set_fixed(&d->kr, NULL)) != CL_SUCCESS) {
-        tp_fig_fail(f, "clSetKernelArg failed with %s", cl_error_name(e));
+    char why[256];
+    if ((e = tp_set_fixed(&d->kr, NULL, why, sizeof why)) != CL_SUCCESS) {
+        tp_fig_fail(f, "%s", why);
         return -1;
     }
     return 0;
@@ -270,8 +267,9 @@ static int tp_dev_item(struct tp_bench *b, struct tp_job *j, struct tp_dev_ctx *
         tp_fig_fail(j->f, "clCreateBuffer(sums) failed with %s", cl_error_name(e));
         return -1;
     }
-    if ((e = tp_set_fixed(&d->kr, j->m)) != CL_SUCCESS) {
-        tp_fig_fail(j->f, "clSetKernelArg failed with %s", cl_error_name(e));
+    char why[256];
+    if ((e = tp_set_fixed(&d->kr, j->m, why, sizeof why)) != CL_SUCCESS) {
+        tp_fig_fail(j->f, "%s", why);
         return -1;
     }
     *it = (struct runner_item){ .name = j->m ? j->m->label : "pow", .launch = tp_dev_launch, .ctx = d,
@@ -413,8 +411,7 @@ int tp_program_points(struct tp_program *p, const struct model_spec *m, const fl
     k = tp_kernel(p, "points", m, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_points)", done);
     float p0 = m ? (float)m->params[0] : 0.0f, p1 = m ? (float)m->params[1] : 0.0f;
-    CL_CHECK_GOTO(clSetKernelArg(k, 0, sizeof p0, &p0), done);
-    CL_CHECK_GOTO(clSetKernelArg(k, 1, sizeof p1, &p1), done);
+    CL_SET_ARGS_GOTO(done, k, 0, CL_ARG(p0), CL_ARG(p1));
     rc = cl_run_points16(p->s, k, 2, c, n, count, out);
 done:
     if (k) clReleaseKernel(k);
@@ -449,12 +446,11 @@ int tp_program_launch(struct tp_program *p, const struct model_spec *m, int nmod
     CL_CHECK_ERR_GOTO(e, "clCreateKernel(tp_uniform/tp_varying)", done);
     r.out = clCreateBuffer(p->s->ctx, CL_MEM_WRITE_ONLY, (size_t)work_items * 16 * sizeof(float), NULL, &e);
     CL_CHECK_ERR_GOTO(e, "clCreateBuffer(sums)", done);
-    CL_CHECK_GOTO(tp_set_fixed(&r, m), done);
+    char why[256];
     double wall;
-    const char *call;
-    e = tp_launch_once(&r, iters, event_seconds, &wall, NULL, &call);
-    if (e != CL_SUCCESS) {
-        cl_report(call, e, __FILE__, __LINE__);
+    if (tp_set_fixed(&r, m, why, sizeof why) != CL_SUCCESS ||
+        tp_launch_once(&r, iters, event_seconds, &wall, NULL, why, sizeof why) != CL_SUCCESS) {
+        fprintf(stderr, "brdfbench: OpenCL error: %s at %s:%d\n", why, __FILE__, __LINE__);
         rc = EXIT_RUNTIME;
         goto done;
     }
