@@ -46,16 +46,35 @@ def _render(d):
             met = mo["metrics"]
             ok = met.get("status", "ok") == "ok"
             row = {STATUS: _status(met)}
-            for name, unit, direction in (("max_abs", "1", "lower"), ("rmse", "1", "lower"), ("psnr_db", "dB", "higher")):
+            for name, unit, direction in (("max_abs", "1", "lower"), ("rmse", "1", "lower"), ("psnr_db", "dB", "higher"),
+                                          ("share_above_threshold", "1", "lower")):
                 if met[name] is not None or not ok:   # the PSNR of identical images is left out
                     row[name] = (unit, direction, False, met[name], [])
             out["%s | %s" % (size, mo["model"])] = row
         for tm in sc["timings"]:
-            metric = "mpixel_per_s@%sx%s" % (_g(tm["width"]), _g(tm["height"]))
+            at = "@%sx%s" % (_g(tm["width"]), _g(tm["height"]))
             for en in tm["entries"]:
                 key = "%s | %s" % (sc["scene"], en["name"])
-                out.setdefault(key, {STATUS: ("ok", None)})[metric] = ("Mpixel/s", "higher", True, en["mpixel_per_s"],
-                                                                     en["mpixel_per_s_reps"])
+                row = out.setdefault(key, {STATUS: ("ok", None)})
+                row["mpixel_per_s" + at] = ("Mpixel/s", "higher", True, en["mpixel_per_s"], en["mpixel_per_s_reps"])
+                # the share of the copy kernel's speed and the speed-up against the reference, as shown
+                row["fraction_of_copy" + at] = ("1", "higher", False, en["fraction_of_copy"], [])
+                if "speedup_vs_reference" in en:
+                    row["speedup_vs_reference" + at] = ("1", "higher", False, en["speedup_vs_reference"], [])
+        hc = sc.get("he_comparison")
+        if hc:   # He's model: the Blinn-Phong fit to it, then each model shaded at that n against it
+            out["%s | %s | Blinn-Phong fit" % (size, hc["model"])] = {
+                "n_fit": ("1", "neither", False, hc["n_fit"], []), "k_fit": ("1", "neither", False, hc["k_fit"], []),
+                "relative_rms_residual": ("1", "lower", False, hc["relative_rms_residual"], []), STATUS: ("ok", None)}
+            for en in hc["entries"]:
+                met = en["metrics"]
+                ok = met.get("status", "ok") == "ok"
+                row = {STATUS: _status(met)}
+                for name, v in (("max_abs", met["max_abs"]), ("mean_abs", met["mean_abs"]),
+                                ("max_abs_vs_blinn_fit", en["max_abs_vs_blinn_fit"])):
+                    if v is not None or not ok:
+                        row[name] = ("1", "lower", False, v, [])
+                out["%s | %s | %s" % (size, hc["model"], en["name"])] = row
     return out
 
 
@@ -69,6 +88,11 @@ def _fit(d):
             "a": ("1", "neither", False, obj["a"], []), "b": ("1", "neither", False, obj["b"], []),
             "max_rel": ("1", "lower", False, obj["max_rel"], []), "max_abs": ("1", "lower", False, obj["max_abs"], []),
             STATUS: _status(obj)}
+    # the family's limit: the largest per-n minimax max delta over the grid, and where
+    lim = d["limit_overall"]
+    out["per-n minimax k(n): the family's limit | %s" % grid[:120]] = {
+        "max_rel": ("1", "lower", False, lim["max_rel"], []), "at_n": ("1", "neither", False, lim["at_n"], []),
+        STATUS: ("ok", None)}
     for c in d["compare"]:
         if c["model"].startswith("quad:"):   # the fitted models themselves: their rows are above
             continue
@@ -127,6 +151,12 @@ def _accuracy(d):
             if "fp16" in r:
                 for name in ("max_rel", "max_abs", "invalid_count"):
                     row["fp16." + name] = err(r["fp16"][name])
+            # where the maxima and the first invalid value lie (x in radians), and the device
+            # check in units of the 4th significant digit
+            for zone in ("epicentre", "attenuation", "invalid"):
+                row[zone + ".at_n"] = ("1", "neither", False, r[zone]["at_n"], [])
+                row[zone + ".at_x"] = ("rad", "neither", False, r[zone]["at_x"], [])
+            row["check.in_4th_digit_units"] = ("4th-digit units", "lower", False, r["check"]["in_4th_digit_units"], [])
         out["%s | %s" % (r["label"][:120], key[:120])] = row
     return out
 

@@ -27,8 +27,8 @@ OLD="$SRC/tests/fixtures/rows-v-previous"
 #    as the layout mapping says, the schema named as the file's
 declare -A PREV=([throughput]=brdfbench.throughput/3 [render]=brdfbench.render/1 [fit]=brdfbench.fit/1
                  [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1)
-declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/2 [fit]=brdfbench.fit/2
-                [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/2)
+declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/3 [fit]=brdfbench.fit/3
+                [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/3)
 KINDS="throughput render fit frontier accuracy"
 for k in $KINDS; do
     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if d["schema"] == sys.argv[2] and "rows" not in d else 1)' \
@@ -116,7 +116,7 @@ python3 "$LAYOUTS" tampered.json "$T/tampered.rows.json" 2>/dev/null && bad "a c
 # a new schema without its rows member is refused, naming the file and what is missing
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); del d["rows"]; json.dump(d, open(sys.argv[2], "w"))' \
     new/fit.json norows.json
-expect 2 'norows.json: schema "brdfbench.fit/2" without its "rows"' rows norows.json
+expect 2 'norows.json: schema "brdfbench.fit/3" without its "rows"' rows norows.json
 
 # 3. compare of the old run and the new run pairs every row (the metrics of the layout mapping)
 "$BIN" compare "$OLD" new --json "$T/cmp.json" >/dev/null 2>"$T/err" && ok || bad "compare old new: $(cat "$T/err")"

@@ -84,12 +84,4 @@ int report_build(const char *run_dir, char **text, char *err, size_t errlen);
  * output). Returns 0, 2 (as report_build) or 3 when it cannot be written. */
 int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen);
 
-/* Summarises run_dir/render.json (written by render_run) for the report: per scene a table of
- * the image metrics and timings into md, and each picture that exists through add(ctx, file,
- * caption) (contact sheets inline; the separate image and error PNGs linked from the table).
- * Returns 0, or 2 with a message naming the file when it is missing or malformed. */
-int report_render_summary(const char *run_dir, struct md_buf *md,
-                          void (*add)(void *ctx, const char *file, const char *caption), void *ctx, char *err,
-                          size_t errlen);
-
 #endif
