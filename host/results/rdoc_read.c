@@ -16,6 +16,7 @@
 #include "compare_check.h"
 #include "jsonr.h"
 #include "outdir.h"
+#include "rdoc_upgrade_energy.h"
 #include "schemas.h"
 
 typedef int (*layout_reader)(const struct jr_doc *, struct rdoc *, char *, size_t);
@@ -34,6 +35,7 @@ static const struct {
     { "render", "render.json", RENDER_SCHEMA },
     { "fit", "fit.json", FIT_SCHEMA },
     { "frontier", "frontier.json", FRONTIER_SCHEMA },
+    { "energy", "energy.json", ENERGY_SCHEMA },
 };
 
 /* The schemas read by their layout: each previous version of a kind, with the function that
@@ -58,6 +60,7 @@ static const struct {
     { ACCURACY_SCHEMA_V2, RD_KIND_ACCURACY, upgrade_accuracy_v1 },
     { RENDER_SCHEMA_V2, RD_KIND_RENDER, upgrade_render_v1 },
     { FIT_SCHEMA_V2, RD_KIND_FIT, upgrade_fit_v1 },
+    { ENERGY_SCHEMA_V1, RD_KIND_ENERGY, upgrade_energy_v1 },
     { FRONTIER_SCHEMA_V1, RD_KIND_FRONTIER, upgrade_frontier_v1 },
 };
 
@@ -609,15 +612,17 @@ static struct rd_row *fit_row(struct rdoc *d, const struct jr_value *obj, const 
 static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     char grid[RD_TEXT], text[RD_TEXT];
+    (void)err;
+    (void)errlen;
     const struct jr_value *g = jr_get(jr_get(&j->root, "context"), "grid");
-    if (!g)
-        return jr_fail(j, &j->root, err, errlen, "no context grid");
     grid_text(jr_get(&j->root, "context"), grid, sizeof grid);
     rd_ctx_put(&d->ctx, "fit grid", grid);
-    snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_min"));
-    rd_ctx_put(&d->ctx, "fit n_min", text);
-    snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_max"));
-    rd_ctx_put(&d->ctx, "fit n_max", text);
+    if (g) {   /* the n range report.md names */
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_min"));
+        rd_ctx_put(&d->ctx, "fit n_min", text);
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_max"));
+        rd_ctx_put(&d->ctx, "fit n_max", text);
+    }
     const struct jr_value *cmp = jr_get(&j->root, "compare");
     size_t ncmp = cmp && cmp->type == JR_ARR ? cmp->count : 0, k = 0;
     const struct jr_value *fits[2] = { &j->root, jr_get(&j->root, "capped_at_fq2") };
