@@ -1,4 +1,4 @@
-"""rows_layouts.py - the rows of throughput, accuracy, render, fit and frontier result files written a
+"""rows_layouts.py - the rows of throughput, accuracy, render, fit, frontier and energy result files written a
 second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
 tests/test_rows_primary.sh: what the program reads from a file's "rows" member and from an old
 file's layout (host/results/rdoc_read.c) is checked against this independent mapping.
@@ -161,7 +161,39 @@ def _accuracy(d):
     return out
 
 
-KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier}
+def _energy(d):
+    """A row per model and integrand of the albedo tables (the largest albedo and where: n, theta_i
+    in degrees, neither better higher nor lower; the refinement's change and the normal-incidence
+    difference from the closed form, errors), per model of the lobes' reciprocity (the worst
+    difference of the peak on the device with its n, the device's evaluation error where written,
+    on the host) and per model and shading mode of the image pass's (device, host, pairs lit)."""
+    def fig(unit, direction, v):
+        return (unit, direction, False, v, [])
+    out = {}
+    for m in d["albedo"]["models"]:
+        out["albedo | %s | %s" % (m["model"], m["integrand"])] = {
+            "max_albedo": fig("1", "neither", m["max_albedo"]), "max_at_n": fig("1", "neither", m["max_at_n"]),
+            "max_at_theta_i_deg": fig("deg", "neither", m["max_at_theta_i_deg"]),
+            "refine_change": fig("1", "lower", m["refine_change"]),
+            "normal_incidence_max_diff": fig("1", "lower", m["normal_incidence_max_diff"]), STATUS: ("ok", None)}
+    for m in d["reciprocity"]["models"]:
+        dev, host = m["device_worst"], m["host_worst"]
+        row = {"device.max_diff_of_peak": fig("1", "lower", dev["max_diff_of_peak"]),
+               "device.at_n": fig("1", "neither", dev["n"]),
+               "host.max_diff_of_peak": fig("1", "lower", host["max_diff_of_peak"]), STATUS: ("ok", None)}
+        if "max_eval_error_of_peak" in dev:
+            row["device.max_eval_error_of_peak"] = fig("1", "lower", dev["max_eval_error_of_peak"])
+        out["reciprocity | %s" % m["model"]] = row
+    for m in d["reciprocity_image_pass"]["models"]:
+        out["reciprocity_image_pass | %s | mode %d" % (m["model"], m["shading_mode"])] = {
+            "device_max_rel_diff": fig("1", "lower", m["device_max_rel_diff"]),
+            "host_max_rel_diff": fig("1", "lower", m["host_max_rel_diff"]),
+            "pairs_lit_both_ways": fig("1", "neither", m["pairs_lit_both_ways"]), STATUS: ("ok", None)}
+    return out
+
+
+KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier,
+         "energy": _energy}
 
 
 def expected(doc):
