@@ -1,12 +1,11 @@
-/* render_report.c - the writers of the image passes: render.json, the markdown summary for
- * the report and the timings printed per scene (render.c measures, this file writes). */
+/* render_report.c - the writers of the image passes: render.json with its rows (what report.md's
+ * image passes are drawn from) and the lines printed per scene (render.c measures, this file
+ * writes). */
 #include "render_report.h"
 
 #include "context.h"
 #include "jsonw.h"
-#include "mdbuf.h"
 #include "rdoc.h"
-#include "report.h"
 #include "schemas.h"
 
 #include <math.h>
@@ -482,80 +481,6 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
     rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
-}
-
-/* The markdown summary: per scene a table of the models' figures. */
-char *render_summary_markdown(const struct render_options *o, const struct scene_result *res,
-                              const struct cl_session *s)
-{
-    struct md_buf b;
-    md_init(&b);
-    md_printf(&b, "Device: %s (%s). Images %dx%d; timings: median of %d launches after %d "
-              "warm-up, each after a copy-kernel launch over the same %d bytes per pixel.\n\n",
-              s->device_name, s->platform_version, o->width, o->height, o->reps, o->warmup,
-              RENDER_DEVICE_BYTES_PER_PIXEL);
-    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
-        const struct scene_result *sr = &res[si];
-        if (!sr->done)
-            continue;
-        md_printf(&b, "### %s\n\n", render_scene_names[si]);
-        if (sr->grid_contact[0])
-            md_printf(&b, "![%s contact sheet](%s)\n\n", render_scene_names[si], sr->grid_contact);
-        const struct size_timing *big = sr->ntimings ? &sr->timings[sr->ntimings - 1] : NULL;
-        md_printf(&b, "| model | reference | max abs error (radiance) | of reference peak | mean abs error | "
-                  "PSNR (dB) | > %g | ref check |", o->threshold);
-        if (big)
-            md_printf(&b, " Mpixel/s at %dx%d | of copy | vs reference |", big->w, big->h);
-        md_printf(&b, "\n|---|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
-        for (int mi = 0; mi < o->nmodels; mi++) {
-            const struct model_result *mr = &sr->models[mi];
-            char psnr[32];
-            struct image_metrics sm = shown(&mr->metrics);
-            if (isfinite(sm.psnr_db))
-                snprintf(psnr, sizeof psnr, "%.1f", sm.psnr_db);
-            else
-                snprintf(psnr, sizeof psnr, "%s", sm.nonfinite ? "not finite" : "identical");
-            md_printf(&b, "| %s | %s | %.4g | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
-                      mr->ref.label, sm.max_abs, render_max_of_peak(&sm), sm.mean_abs, psnr,
-                      100.0 * sm.share_above, mr->check.within ? "ok" : "out of bound");
-            if (big) {
-                const struct timed_entry *te = NULL;
-                for (int k = 0; k < big->nentries; k++)
-                    if (big->entries[k].is_model &&
-                        strcmp(big->entries[k].spec.label, o->models[mi].label) == 0)
-                        te = &big->entries[k];
-                const struct timed_entry *re = te ? reference_entry(big, te) : NULL;
-                if (te)
-                    md_printf(&b, " %.0f | %.0f%% | %.2fx |", mpix(big, te->med),
-                              100.0 * te->copy_med / te->med, re ? re->med / te->med : NAN);
-            }
-            md_printf(&b, "\n");
-        }
-        if (sr->he.done) {
-            const struct he_comparison *hc = &sr->he;
-            md_printf(&b, "\n%s shaded by He et al. 1991 (`%s`) beside Blinn-Phong fitted to its specular radiance "
-                          "(n = %.4g, scale %.4g, relative rms residual %.3g over %zu pixels) and the cheap lobes at "
-                          "that n (theta_h):\n\n| shaded by | max abs error vs He | mean abs error vs He | max abs "
-                          "vs the Blinn-Phong fit |\n|---|---|---|---|\n",
-                      render_scene_names[si], hc->he.label, hc->n_fit, hc->k_fit, hc->rel_rms, hc->fit_pixels);
-            for (int k = 0; k < hc->count; k++)
-                md_printf(&b, "| %s | %.4g | %.4g | %.4g |\n", hc->e[k].label, hc->e[k].metrics.max_abs,
-                          hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
-            if (hc->count > 0 && hc->e[0].contact[0])
-                md_printf(&b, "\n![%s: He | Blinn-Phong fit | error](%s)\n", render_scene_names[si], hc->e[0].contact);
-        }
-        if (big)
-            md_printf(&b, "\nCopy kernel at %dx%d: %.0f Mpixel/s (%.1f GB/s).\n", big->w, big->h,
-                      mpix(big, big->copy_med),
-                      (double)big->w * big->h * RENDER_DEVICE_BYTES_PER_PIXEL / big->copy_med *
-                          1e-9);
-        md_printf(&b, "\n");
-    }
-    if (b.failed) {
-        md_free(&b);
-        return NULL;
-    }
-    return b.s;
 }
 
 void render_print_scene(const struct scene_result *sr)

@@ -40,7 +40,7 @@ enum report_part {
 };
 
 /* The page of a part, written beside its JSON by `all` (claims.md comes from reproduce), or
- * NULL for the parts whose section is made from their JSON (fit, images). */
+ * NULL for the parts whose section is drawn from their file's rows (fit, images). */
 const char *report_part_page(int part);
 
 struct report_part_state {
@@ -76,8 +76,8 @@ struct cl_session;
 int report_run_write(const char *run_dir, const struct report_run *run, const struct cl_session *s, char *err,
                      size_t errlen);
 
-/* report.md's text, made from the run folder alone: run.json, accuracy.json, fit.json,
- * render.json and the parts' pages. *text is malloc'd. Returns 0, or 2 with a message naming
+/* report.md's text, made from the run folder alone: run.json, the rows of accuracy.json,
+ * fit.json and render.json (report_docs.h), and the parts' pages. *text is malloc'd. Returns 0, or 2 with a message naming
  * the file that is missing or malformed, or 3 when out of memory. */
 int report_build(const char *run_dir, char **text, char *err, size_t errlen);
 /* Builds report.md and writes it atomically to out (NULL: run_dir/report.md; "-": standard
