@@ -777,9 +777,11 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
     layout_reader layout;
     int kind = kind_of_schema(schema, &layout);
     if (kind < 0) {
-        snprintf(err, errlen, "%s: schema \"%.60s\" is not a result file with figures (accepted: %s, %s, %s, %s, %s, %s)",
-                 j->name, schema, kinds[0].schema, kinds[1].schema, kinds[2].schema, kinds[3].schema,
-                 kinds[4].schema, ROWS_SCHEMA);
+        char accepted[RD_KIND_COUNT * 32 + 32] = "";
+        for (int k = 0; k < RD_KIND_COUNT; ++k)
+            snprintf(accepted + strlen(accepted), sizeof accepted - strlen(accepted), "%s, ", kinds[k].schema);
+        snprintf(err, errlen, "%s: schema \"%.60s\" is not a result file with figures (accepted: %s%s)", j->name,
+                 schema, accepted, ROWS_SCHEMA);
         return 2;
     }
     const int current = strcmp(schema, kinds[kind].schema) == 0;
