@@ -134,20 +134,26 @@ def compare_accuracy_verdicts(*args):
     argv = ["-", *args]
     d, a, b = (json.load(open(p)) for p in argv[1:4])
     val = lambda doc, label, fig: [r for r in doc["results"] if r["label"] == label][0][fig.split(".")[0]][fig.split(".")[1]]
-    seen = 0
+    seen = positions = 0
     for r in d["rows"]:
         label = r["key"].split(" | ")[0]
         va, vb = val(a, label, r["metric"]), val(b, label, r["metric"])
         c = r["cells"][1]
+        at = r["metric"].endswith((".at_n", ".at_x"))
+        if at and (va is None or vb is None):
+            continue   # no invalid value: no position of the first
         # the 4th significant digit, as printed with 4 digits
         same = "%.3e" % va == "%.3e" % vb
-        want = "unchanged" if same else ("changed, better" if vb < va else "changed, worse")
+        # where a maximum lies is neither better nor worse: only changed or not
+        want = "unchanged" if same else ("changed" if at else "changed, better" if vb < va else "changed, worse")
         assert c["verdict"] == want, (r["key"], r["metric"], c["verdict"], want)
         assert math.isclose(c["change"], vb - va, rel_tol=1e-9, abs_tol=1e-300), (c["change"], vb - va)
-        seen += 1
-    # cq2 and fq2, each: epicentre, attenuation, whole range, invalid count, and the float-cancellation
+        positions += at
+        seen += not at
+    # cq2 and fq2, each: epicentre, attenuation, whole range, invalid count, the float-cancellation
     # figure (check.float_cancellation, a metric of its own since the device check's float floor)
-    assert seen == 2 * 5, seen
+    # and the device check in 4th-digit units; the maxima's n and x of the two zones
+    assert seen == 2 * 6 and positions == 2 * 4, (seen, positions)
     verd = {(r["key"].split(" | ")[0], r["metric"]): r["cells"][1]["verdict"] for r in d["rows"]}
     assert verd[("cq2", "epicentre.max_rel")] == "changed, worse"
     assert verd[("cq2", "attenuation.max_abs")] == "changed, better"
@@ -226,7 +232,7 @@ def compare_fit_rows(*args):
     assert best == {"a": "changed", "b": "unchanged", "max_rel": "changed, better", "max_abs": "unchanged"}, best
     # every model fit.json compares with, except the fitted quad: itself, by its moving label
     others = sorted(r["key"].split(" | ")[0] for r in rows if r["metric"] == "max_rel" and " | n " in r["key"]
-                    and not r["key"].startswith(("best", "capped")))
+                    and not r["key"].startswith(("best", "capped", "per-n minimax")))
     want = sorted(m["model"] for m in f["compare"] if not m["model"].startswith("quad:"))
     assert others == want and len(want) > 0, (others, want)
 
@@ -295,7 +301,7 @@ def compare_accuracy_rows_tagged(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
-    assert d["schema"] == "brdfbench.accuracy/2" and len(d["results"]) == 2
+    assert d["schema"] == "brdfbench.accuracy/3" and len(d["results"]) == 2
     assert d["results"][1]["device"] == d["results"][0]["device"] + " #2"
 
 
@@ -404,7 +410,7 @@ def reproduce_cli_claims_q_sweep(*args):
     assert q["best"]["max_rel"] <= min(q["max_rel"]) + 1e-9
 
     e = load(d + "/energy.json")
-    assert e["schema"] == "brdfbench.energy/1"
+    assert e["schema"] == "brdfbench.energy/2" and e["rows"]["rows"]
     assert len(e["reciprocity_image_pass"]["models"]) > 0 and len(e["albedo"]["models"]) > 0
     md = open(d + "/claims.md").read()
     assert "| id | source | claim | claimed | measured | tolerance | verdict | where / why |" in md
@@ -417,7 +423,7 @@ def reproduce_cli_fit_against_indep(*args):
     argv = ["-", *args]
     f = load(argv[1])
     indep = argv[2]
-    assert f["schema"] == "brdfbench.fit/2"
+    assert f["schema"] == "brdfbench.fit/3"
     for k in ("a", "b", "max_rel", "max_abs", "limit", "model"):
         assert k in f, k
     lim = f["limit"]

@@ -15,7 +15,7 @@ def render_cli_render_contract(*args):
     """check_json of test_render_cli.sh: render.json contract"""
     import os
     argv = ["check_json", *args]
-    d, _ = load_result(argv[1], "brdfbench.render/2",
+    d, _ = load_result(argv[1], "brdfbench.render/3",
                        ("date", "device", "platform_version", "build_options", "git_revision"))
     scenes = {s["scene"]: s for s in d["scenes"]}
     assert sorted(scenes) == ["spheres", "teapot"], sorted(scenes)
@@ -258,7 +258,7 @@ def cli_accuracy_accuracy_contract(*args):
     import subprocess
     import math
     argv = ["check_json", *args]
-    d, ctx = load_result(argv[1], "brdfbench.accuracy/2",
+    d, ctx = load_result(argv[1], "brdfbench.accuracy/3",
                          ("date", "device", "platform_version", "build_options", "git_revision", "grid"))
     assert ctx["grid"]["n_min"] == 2 and ctx["grid"]["n_max"] == 50 and ctx["grid"]["samples_per_zone"] == 256
     res = d["results"]

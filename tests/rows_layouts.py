@@ -1,5 +1,5 @@
-"""rows_layouts.py - the rows of throughput, accuracy, render, fit, frontier, claims, q_sweep and
-physical result files written a second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
+"""rows_layouts.py - the rows of throughput, accuracy, render, fit, frontier, claims, q_sweep,
+physical and energy result files written a second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
 tests/test_rows_primary.sh: what the program reads from a file's "rows" member and from an old
 file's layout (host/results/rdoc_read.c) is checked against this independent mapping.
 
@@ -46,16 +46,35 @@ def _render(d):
             met = mo["metrics"]
             ok = met.get("status", "ok") == "ok"
             row = {STATUS: _status(met)}
-            for name, unit, direction in (("max_abs", "1", "lower"), ("rmse", "1", "lower"), ("psnr_db", "dB", "higher")):
+            for name, unit, direction in (("max_abs", "1", "lower"), ("rmse", "1", "lower"), ("psnr_db", "dB", "higher"),
+                                          ("share_above_threshold", "1", "lower")):
                 if met[name] is not None or not ok:   # the PSNR of identical images is left out
                     row[name] = (unit, direction, False, met[name], [])
             out["%s | %s" % (size, mo["model"])] = row
         for tm in sc["timings"]:
-            metric = "mpixel_per_s@%sx%s" % (_g(tm["width"]), _g(tm["height"]))
+            at = "@%sx%s" % (_g(tm["width"]), _g(tm["height"]))
             for en in tm["entries"]:
                 key = "%s | %s" % (sc["scene"], en["name"])
-                out.setdefault(key, {STATUS: ("ok", None)})[metric] = ("Mpixel/s", "higher", True, en["mpixel_per_s"],
-                                                                     en["mpixel_per_s_reps"])
+                row = out.setdefault(key, {STATUS: ("ok", None)})
+                row["mpixel_per_s" + at] = ("Mpixel/s", "higher", True, en["mpixel_per_s"], en["mpixel_per_s_reps"])
+                # the share of the copy kernel's speed and the speed-up against the reference, as shown
+                row["fraction_of_copy" + at] = ("1", "higher", False, en["fraction_of_copy"], [])
+                if "speedup_vs_reference" in en:
+                    row["speedup_vs_reference" + at] = ("1", "higher", False, en["speedup_vs_reference"], [])
+        hc = sc.get("he_comparison")
+        if hc:   # He's model: the Blinn-Phong fit to it, then each model shaded at that n against it
+            out["%s | %s | Blinn-Phong fit" % (size, hc["model"])] = {
+                "n_fit": ("1", "neither", False, hc["n_fit"], []), "k_fit": ("1", "neither", False, hc["k_fit"], []),
+                "relative_rms_residual": ("1", "lower", False, hc["relative_rms_residual"], []), STATUS: ("ok", None)}
+            for en in hc["entries"]:
+                met = en["metrics"]
+                ok = met.get("status", "ok") == "ok"
+                row = {STATUS: _status(met)}
+                for name, v in (("max_abs", met["max_abs"]), ("mean_abs", met["mean_abs"]),
+                                ("max_abs_vs_blinn_fit", en["max_abs_vs_blinn_fit"])):
+                    if v is not None or not ok:
+                        row[name] = ("1", "lower", False, v, [])
+                out["%s | %s | %s" % (size, hc["model"], en["name"])] = row
     return out
 
 
@@ -69,6 +88,11 @@ def _fit(d):
             "a": ("1", "neither", False, obj["a"], []), "b": ("1", "neither", False, obj["b"], []),
             "max_rel": ("1", "lower", False, obj["max_rel"], []), "max_abs": ("1", "lower", False, obj["max_abs"], []),
             STATUS: _status(obj)}
+    # the family's limit: the largest per-n minimax max delta over the grid, and where
+    lim = d["limit_overall"]
+    out["per-n minimax k(n): the family's limit | %s" % grid[:120]] = {
+        "max_rel": ("1", "lower", False, lim["max_rel"], []), "at_n": ("1", "neither", False, lim["at_n"], []),
+        STATUS: ("ok", None)}
     for c in d["compare"]:
         if c["model"].startswith("quad:"):   # the fitted models themselves: their rows are above
             continue
@@ -127,6 +151,12 @@ def _accuracy(d):
             if "fp16" in r:
                 for name in ("max_rel", "max_abs", "invalid_count"):
                     row["fp16." + name] = err(r["fp16"][name])
+            # where the maxima and the first invalid value lie (x in radians), and the device
+            # check in units of the 4th significant digit
+            for zone in ("epicentre", "attenuation", "invalid"):
+                row[zone + ".at_n"] = ("1", "neither", False, r[zone]["at_n"], [])
+                row[zone + ".at_x"] = ("rad", "neither", False, r[zone]["at_x"], [])
+            row["check.in_4th_digit_units"] = ("4th-digit units", "lower", False, r["check"]["in_4th_digit_units"], [])
         out["%s | %s" % (r["label"][:120], key[:120])] = row
     return out
 
@@ -191,8 +221,39 @@ def _physical(d):
     return out
 
 
+def _energy(d):
+    """A row per model and integrand of the albedo tables (the largest albedo and where: n, theta_i
+    in degrees, neither better higher nor lower; the refinement's change and the normal-incidence
+    difference from the closed form, errors), per model of the lobes' reciprocity (the worst
+    difference of the peak on the device with its n, the device's evaluation error where written,
+    on the host) and per model and shading mode of the image pass's (device, host, pairs lit)."""
+    def fig(unit, direction, v):
+        return (unit, direction, False, v, [])
+    out = {}
+    for m in d["albedo"]["models"]:
+        out["albedo | %s | %s" % (m["model"], m["integrand"])] = {
+            "max_albedo": fig("1", "neither", m["max_albedo"]), "max_at_n": fig("1", "neither", m["max_at_n"]),
+            "max_at_theta_i_deg": fig("deg", "neither", m["max_at_theta_i_deg"]),
+            "refine_change": fig("1", "lower", m["refine_change"]),
+            "normal_incidence_max_diff": fig("1", "lower", m["normal_incidence_max_diff"]), STATUS: ("ok", None)}
+    for m in d["reciprocity"]["models"]:
+        dev, host = m["device_worst"], m["host_worst"]
+        row = {"device.max_diff_of_peak": fig("1", "lower", dev["max_diff_of_peak"]),
+               "device.at_n": fig("1", "neither", dev["n"]),
+               "host.max_diff_of_peak": fig("1", "lower", host["max_diff_of_peak"]), STATUS: ("ok", None)}
+        if "max_eval_error_of_peak" in dev:
+            row["device.max_eval_error_of_peak"] = fig("1", "lower", dev["max_eval_error_of_peak"])
+        out["reciprocity | %s" % m["model"]] = row
+    for m in d["reciprocity_image_pass"]["models"]:
+        out["reciprocity_image_pass | %s | mode %d" % (m["model"], m["shading_mode"])] = {
+            "device_max_rel_diff": fig("1", "lower", m["device_max_rel_diff"]),
+            "host_max_rel_diff": fig("1", "lower", m["host_max_rel_diff"]),
+            "pairs_lit_both_ways": fig("1", "neither", m["pairs_lit_both_ways"]), STATUS: ("ok", None)}
+    return out
+
+
 KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier,
-         "claims": _claims, "q_sweep": _q_sweep, "physical": _physical}
+         "claims": _claims, "q_sweep": _q_sweep, "physical": _physical, "energy": _energy}
 
 
 def expected(doc):

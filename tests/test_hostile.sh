@@ -250,7 +250,7 @@ run 60 accuracy --json nowhere/acc.json
 
 # ---- Low: accuracy --device all --json - makes no results folder; stdout is one document -----
 mkdir -p dv && (cd dv && timeout -s KILL 120 "$BIN" accuracy --device all --models fq2 --n-max 10 --samples 16 --json - >../out 2>../err; echo $? >../rc)
-[ "$(cat rc)" = 0 ] && [ -z "$(ls -A dv)" ] && python3 -c 'import json,sys; d = json.load(open("out")); assert d["schema"] == "brdfbench.accuracy/2" and all("device" in r for r in d["results"])' &&
+[ "$(cat rc)" = 0 ] && [ -z "$(ls -A dv)" ] && python3 -c 'import json,sys; d = json.load(open("out")); assert d["schema"] == "brdfbench.accuracy/3" and all("device" in r for r in d["results"])' &&
     ok || bad "accuracy --device all --json -: exit $(cat rc), left $(ls -A dv), stdout $(head -c 200 out)"
 
 # ---- Low: SIGTERM of accuracy --out a/b/D leaves no folder it made -------------------------

@@ -164,8 +164,16 @@ static void check_accuracy(void)
     char label[300];
     snprintf(label, sizeof label, "fq2 | %s", grid);
     const struct rd_row *fq = row_labelled(&d, label);
-    CHECK(fq && fq->nmetrics == 4, "fq2: the model and the grid, four figures");
-    if (fq && fq->nmetrics == 4) {
+    /* the four figures, then where the maxima and the first invalid value lie and the device
+       check in 4th-digit units (not in this file: NAN) */
+    CHECK(fq && fq->nmetrics == 11, "fq2: the model and the grid, four figures and seven the report shows");
+    if (fq && fq->nmetrics == 11) {
+        for (int k = 4; k < 10; ++k)
+            CHECK(isnan(fq->metrics[k].value) && fq->metrics[k].direction == RD_NEITHER &&
+                  strstr(fq->metrics[k].name, ".at_"), "position %d: %s, neither better higher nor lower", k,
+                  fq->metrics[k].name);
+        CHECK(strcmp(fq->metrics[10].name, "check.in_4th_digit_units") == 0 && isnan(fq->metrics[10].value) &&
+              fq->metrics[10].direction == RD_LOWER, "the device check: %s", fq->metrics[10].name);
         static const char *const names[4] = { "epicentre.max_rel", "attenuation.max_abs", "whole.max_abs",
                                               "invalid.count" };
         static const double values[4] = { 0.01257, 0.0214, 0.0214, 0 };
@@ -216,7 +224,11 @@ static void check_render_fit(void)
                   &d, err, sizeof err) == 0, "fit read: %s", err);
     /* the fit itself (its coefficients and figures) and fq2; the quadratic's own compare row
        is the fit again under a label that moves with its coefficients: left out */
-    CHECK(d.nrows == 2, "two rows: %d", d.nrows);
+    CHECK(d.nrows == 3, "three rows: %d", d.nrows);
+    /* the family's limit: no limit_overall in this file, its figures NAN */
+    const struct rd_row *lim = row_labelled(&d, "per-n minimax k(n): the family's limit | n 2..10 step 1, 64 samples per zone");
+    CHECK(lim && lim->nmetrics == 2 && isnan(rd_row_value(lim, "max_rel")) && rd_row_find(lim, "at_n") &&
+          rd_row_find(lim, "at_n")->direction == RD_NEITHER, "the family's limit row: max_rel, at_n");
     const struct rd_row *best = row_labelled(&d, "best affine k(n) | n 2..10 step 1, 64 samples per zone");
     CHECK(best && best->nmetrics == 4 && rd_row_find(best, "a")->value == 0.25 &&
           rd_row_find(best, "a")->direction == RD_NEITHER && rd_row_find(best, "max_abs")->value == 0.02,
@@ -303,7 +315,7 @@ static void check_refused(void)
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, path) &&
           strstr(err, "is not a result file with figures"), "another schema: %s", err);
     test_write_file(path, "{\"schema\": \"brdfbench.accuracy/7\", \"results\": []}\n");
-    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "this version reads \"brdfbench.accuracy/2\""),
+    CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "this version reads \"brdfbench.accuracy/3\""),
           "another version: %s", err);
     test_write_file(path, "{\"schema\": \"brdfbench.accuracy/1\", \"results\": [{\"label\": \"a|b\"}]}\n");
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "'|'"), "a label that breaks tables: %s", err);

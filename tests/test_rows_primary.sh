@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_rows_primary.sh - throughput.json, accuracy.json, render.json, fit.json and frontier.json carry their
+# test_rows_primary.sh - throughput.json, accuracy.json, render.json, fit.json, frontier.json and energy.json carry their
 # rows (a "rows" member, built by the engine where it measures), and every reader reads them;
 # files of the previous versions (written before the files carried rows) are read by their
 # layout, so kept baselines still work.
@@ -13,7 +13,8 @@
 #   derivations are independent (one from the engine's memory, one from the file's detail) and
 #   must give the same rows document, context lines included.
 # - tests/fixtures/rows-v-previous/: a run of the version before rows (commit 099c3f9, and
-#   48575e2 for accuracy.json: lobe rows, an fp16 row of half code, a hemisphere row; the
+#   48575e2 for accuracy.json: lobe rows, an fp16 row of half code, a hemisphere row; c0bc643 for
+#   energy.json; the
 #   commands in its README.md); compare of it against a new run of the same commands pairs every
 #   row (the row set of both is the layout mapping's).
 set -u
@@ -26,10 +27,10 @@ OLD="$SRC/tests/fixtures/rows-v-previous"
 # 1. an old run (previous schemas, no rows member) reads through the upgrade functions: rows
 #    as the layout mapping says, the schema named as the file's
 declare -A PREV=([throughput]=brdfbench.throughput/3 [render]=brdfbench.render/1 [fit]=brdfbench.fit/1
-                 [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1)
-declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/2 [fit]=brdfbench.fit/2
-                [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/2)
-KINDS="throughput render fit frontier accuracy"
+                 [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1 [energy]=brdfbench.energy/1)
+declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/3 [fit]=brdfbench.fit/3
+                [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/3 [energy]=brdfbench.energy/2)
+KINDS="throughput render fit frontier accuracy energy"
 for k in $KINDS; do
     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if d["schema"] == sys.argv[2] and "rows" not in d else 1)' \
         "$OLD/$k.json" "${PREV[$k]}" && ok || bad "fixture $k.json is not a ${PREV[$k]} file without rows"
@@ -50,6 +51,9 @@ mkdir -p new
 "$BIN" accuracy --models phong,fq2,ct-ggx --model-file "$SRC/tests/test_shaderlang_files/phongapprox_half.hlsl" \
     --n-max 20 --samples 16 --hemisphere-grid 8x8x16 --axis-points 2 --json new/accuracy.json >/dev/null 2>"$T/err" \
     || bad "accuracy: $(cat "$T/err")"
+# energy: reproduce's albedo and reciprocity checks (its other figures on coarse grids)
+"$BIN" reproduce --out rep --samples 16 --no-grid-check --q-step 0.5 --q-samples 16 --q-n-step 499 --quiet \
+    >/dev/null 2>"$T/err" && cp rep/energy.json new/energy.json || bad "reproduce (energy): $(cat "$T/err")"
 python3 - new/accuracy.json <<'PY' && ok || bad "new accuracy.json: not lobe, fp16 and hemisphere rows"
 import json, sys
 rows = json.load(open(sys.argv[1]))["rows"]["rows"]
@@ -85,6 +89,24 @@ if a != b:
 assert a["rows"] and all(r["metrics"] for r in a["rows"]), "no rows, or a row without metrics"
 PY
 done
+# He's comparison (a mesh scene): its rows in the rows member as in the layout, and the same
+# through the upgrade function
+mkdir -p he
+"$BIN" render --scene bunny --models phong,fq2 --size 64x32 --time-sizes 64x32 --reps 3 --warmup 0 \
+    --json he/render.json >/dev/null 2>"$T/err" || bad "render bunny: $(cat "$T/err")"
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); del d["rows"]; d["schema"]="brdfbench.render/1"; json.dump(d, open(sys.argv[2], "w"))' \
+    he/render.json he/up_render.json
+"$BIN" rows he/render.json --format json --output "$T/he.rows.json" 2>"$T/err" && ok || bad "rows he: $(cat "$T/err")"
+"$BIN" rows he/up_render.json --format json --output "$T/he_up.rows.json" 2>"$T/err" && ok || bad "rows he up: $(cat "$T/err")"
+python3 "$LAYOUTS" he/render.json "$T/he.rows.json" && ok || bad "bunny render.json: its rows member differs from its layout's"
+python3 - "$T/he.rows.json" "$T/he_up.rows.json" <<'PY' && ok || bad "bunny render.json: rows member and upgrade function read differently"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+del a["source"]["schema"], b["source"]["schema"]
+assert a == b, [(x["row"], y["row"]) for x, y in zip(a["rows"], b["rows"]) if x != y][:3]
+assert sum(r["attributes"].get("he") == "entry" for r in a["rows"]) >= 2, "no rows of He's comparison"
+PY
+
 # rows not measured: a model whose values are NaN has its rows failed, with the reason, in the
 # rows member as in the layout (status and reason are part of the mapping)
 mkdir -p nan
@@ -116,7 +138,7 @@ python3 "$LAYOUTS" tampered.json "$T/tampered.rows.json" 2>/dev/null && bad "a c
 # a new schema without its rows member is refused, naming the file and what is missing
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); del d["rows"]; json.dump(d, open(sys.argv[2], "w"))' \
     new/fit.json norows.json
-expect 2 'norows.json: schema "brdfbench.fit/2" without its "rows"' rows norows.json
+expect 2 'norows.json: schema "brdfbench.fit/3" without its "rows"' rows norows.json
 
 # 3. compare of the old run and the new run pairs every row (the metrics of the layout mapping)
 "$BIN" compare "$OLD" new --json "$T/cmp.json" >/dev/null 2>"$T/err" && ok || bad "compare old new: $(cat "$T/err")"
@@ -126,7 +148,7 @@ sys.path.insert(0, os.path.dirname(sys.argv[2]))
 import rows_layouts
 c = json.load(open(sys.argv[1]))
 want = set()
-for k in ("throughput", "render", "fit", "frontier", "accuracy"):
+for k in ("throughput", "render", "fit", "frontier", "accuracy", "energy"):
     for row, metrics in rows_layouts.expected(json.load(open(os.path.join(sys.argv[3], k + ".json")))).items():
         want |= {(k, row, m) for m in metrics if m != rows_layouts.STATUS}
 got = {(r["kind"], r["key"], r["metric"]) for r in c["rows"]}

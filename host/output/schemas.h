@@ -5,16 +5,20 @@
 #ifndef BRDF_SCHEMAS_H
 #define BRDF_SCHEMAS_H
 
-#define ACCURACY_SCHEMA "brdfbench.accuracy/2"   /* /2: the file carries its rows (rdoc.h) */
-/* the previous version, read by its layout (rdoc_read.c: upgrade_accuracy_v1) */
+#define ACCURACY_SCHEMA "brdfbench.accuracy/3"   /* /3: its rows carry what report.md shows */
+/* the previous versions, read by their layout (rdoc_read.c: upgrade_accuracy_v1); /2 carries
+   rows without the report's figures */
+#define ACCURACY_SCHEMA_V2 "brdfbench.accuracy/2"
 #define ACCURACY_SCHEMA_V1 "brdfbench.accuracy/1"
 #define CLAIMS_SCHEMA "brdfbench.claims/2"        /* /2: the file carries its rows (rdoc.h) */
 #define CLAIMS_SCHEMA_V1 "brdfbench.claims/1"     /* before the rows: read by its layout */
 #define COMPARE_SCHEMA "brdfbench.compare/1"
-#define ENERGY_SCHEMA "brdfbench.energy/1"
+#define ENERGY_SCHEMA "brdfbench.energy/2"       /* /2: the file carries its rows (rdoc.h) */
+#define ENERGY_SCHEMA_V1 "brdfbench.energy/1"    /* before the rows: read by its layout */
 #define FIELD_SCHEMA "brdfbench.field/2"          /* /2: the file carries its rows */
 #define FIELD_SCHEMA_V1 "brdfbench.field/1"
-#define FIT_SCHEMA "brdfbench.fit/2"              /* /2: the file carries its rows (rdoc.h) */
+#define FIT_SCHEMA "brdfbench.fit/3"              /* /3: its rows carry what report.md shows */
+#define FIT_SCHEMA_V2 "brdfbench.fit/2"           /* rows without the report's: read by its layout */
 #define FIT_SCHEMA_V1 "brdfbench.fit/1"           /* before the rows: read by its layout */
 #define FIT_FAMILY_SCHEMA "brdfbench.fit_family/2"   /* /2: the file carries its rows */
 #define FIT_FAMILY_SCHEMA_V1 "brdfbench.fit_family/1"
@@ -29,7 +33,8 @@
 #define PLOTS_SCHEMA "brdfbench.plots/1"
 #define Q_SWEEP_SCHEMA "brdfbench.q_sweep/2"      /* /2: the file carries its rows */
 #define Q_SWEEP_SCHEMA_V1 "brdfbench.q_sweep/1"   /* before the rows: read by its layout */
-#define RENDER_SCHEMA "brdfbench.render/2"        /* /2: the file carries its rows */
+#define RENDER_SCHEMA "brdfbench.render/3"        /* /3: its rows carry what report.md shows */
+#define RENDER_SCHEMA_V2 "brdfbench.render/2"     /* rows without the report's: read by its layout */
 #define RENDER_SCHEMA_V1 "brdfbench.render/1"     /* before the rows: read by its layout */
 #define HISTORY_SCHEMA "brdfbench.history/1"  /* `brdfbench history` (history.h) */
 #define ROWS_SCHEMA "brdfbench.rows/1"        /* `brdfbench rows`: any result file as rows (rdoc.h) */

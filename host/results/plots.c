@@ -302,20 +302,26 @@ done:
 
 /* ---- the quick-run stamp ------------------------------------------------------------------ */
 
-/* The grid of run_dir/accuracy.json (its context block): 1 quick, 0 not, -1 unreadable. */
+/* A context line's number of the rows, or NAN when it is not there or no number. */
+static double ctx_number(const struct rdoc *d, const char *key)
+{
+    const char *v = rd_ctx_get(&d->ctx, key);
+    char *end;
+    double x = v && *v ? strtod(v, &end) : NAN;
+    return v && *v && !*end ? x : NAN;
+}
+
+/* The grid of run_dir/accuracy.json (its rows' context: accuracy n_step, samples per zone): 1
+   quick, 0 not, -1 unreadable. */
 static int accuracy_json_quick(const char *path)
 {
-    struct jr_doc d;
+    struct rdoc d;
     char err[512];
-    if (jr_parse_file(path, &d, err, sizeof err)) return -1;
-    const struct jr_value *grid = jr_get(jr_get(&d.root, "context"), "grid");
-    double step = 0, samples = 0;
-    int rc = -1;
-    if (grid && !jr_need_num(&d, grid, "n_step", &step, err, sizeof err) &&
-        !jr_need_num(&d, grid, "samples_per_zone", &samples, err, sizeof err))
-        rc = step >= 10 || samples <= 256;   /* all --quick: n step 10, 256 samples per zone */
-    jr_free(&d);
-    return rc;
+    if (rdoc_read_file(path, &d, err, sizeof err)) return -1;
+    double step = ctx_number(&d, "accuracy n_step"), samples = ctx_number(&d, "accuracy samples per zone");
+    rdoc_free(&d);
+    if (!isfinite(step) || !isfinite(samples)) return -1;
+    return step >= 10 || samples <= 256;   /* all --quick: n step 10, 256 samples per zone */
 }
 
 bool plots_run_is_quick(const char *run_dir)

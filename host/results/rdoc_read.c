@@ -16,6 +16,7 @@
 #include "compare_check.h"
 #include "jsonr.h"
 #include "outdir.h"
+#include "rdoc_upgrade_energy.h"
 #include "schemas.h"
 #include "rdoc_upgrade_claims.h"
 
@@ -42,6 +43,7 @@ static const struct {
     { "claims", "claims.json", CLAIMS_SCHEMA },
     { "q_sweep", "q_sweep.json", Q_SWEEP_SCHEMA },
     { "physical", "physical.json", PBCOST_SCHEMA },
+    { "energy", "energy.json", ENERGY_SCHEMA },
     { "field", "field_MODEL.json", FIELD_SCHEMA },
     { "fit_family", "fit.json", FIT_FAMILY_SCHEMA },   /* `fit --family`'s fit.json */
 };
@@ -62,6 +64,13 @@ static const struct {
     { ACCURACY_SCHEMA_V1, RD_KIND_ACCURACY, upgrade_accuracy_v1 },
     { RENDER_SCHEMA_V1, RD_KIND_RENDER, upgrade_render_v1 },
     { FIT_SCHEMA_V1, RD_KIND_FIT, upgrade_fit_v1 },
+    /* /2 of these has the layout of /1 and rows without what report.md shows (the reference,
+       the maxima's positions, the verdict, the pictures, ...): read by that layout, its rows
+       member left aside */
+    { ACCURACY_SCHEMA_V2, RD_KIND_ACCURACY, upgrade_accuracy_v1 },
+    { RENDER_SCHEMA_V2, RD_KIND_RENDER, upgrade_render_v1 },
+    { FIT_SCHEMA_V2, RD_KIND_FIT, upgrade_fit_v1 },
+    { ENERGY_SCHEMA_V1, RD_KIND_ENERGY, upgrade_energy_v1 },
     { FRONTIER_SCHEMA_V1, RD_KIND_FRONTIER, upgrade_frontier_v1 },
     /* rdoc_upgrade_claims.c */
     { CLAIMS_SCHEMA_V1, RD_KIND_CLAIMS, upgrade_claims_v1 },
@@ -322,10 +331,12 @@ static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *e
 
 /* ---- brdfbench.accuracy/1 ------------------------------------------------------------------ */
 
-/* The upgrade of brdfbench.accuracy/1: the context line "accuracy grid"; a row per result
- * (keys label and grid; attributes n_min, n_max, n_step). A lobe sweep's row has
- * epicentre.max_rel, attenuation.max_abs, whole.max_abs, invalid.count, check.float_cancellation
- * (where written) and, for code in half, fp16.max_rel, fp16.max_abs, fp16.invalid_count; a
+/* The upgrade of brdfbench.accuracy/1 (and /2): the context line "accuracy grid" and the grid's
+ * numbers; a row per result (keys label and grid; attributes n_min, n_max, n_step). A lobe
+ * sweep's row has the attribute reference, epicentre.max_rel, attenuation.max_abs,
+ * whole.max_abs, invalid.count, check.float_cancellation (where written), for code in half
+ * fp16.max_rel, fp16.max_abs, fp16.invalid_count, then epicentre.at_n/at_x,
+ * attenuation.at_n/at_x, invalid.at_n/at_x and check.in_4th_digit_units; a
  * hemisphere sweep's row (a "hemisphere" member) its grid "vs REF, hemisphere AXIS ..", the
  * attribute reference and its hemisphere.* figures. */
 static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
@@ -339,6 +350,15 @@ static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err
     const struct jr_value *g = jr_get(jr_get(&j->root, "context"), "grid");
     grid_text(jr_get(&j->root, "context"), grid, sizeof grid);
     rd_ctx_put(&d->ctx, "accuracy grid", grid);
+    if (g) {   /* the grid's numbers, for report.md */
+        static const char *const num[][2] = { { "n_min", "accuracy n_min" }, { "n_max", "accuracy n_max" },
+                                              { "n_step", "accuracy n_step" },
+                                              { "samples_per_zone", "accuracy samples per zone" } };
+        for (size_t k = 0; k < sizeof num / sizeof num[0]; ++k) {
+            snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, num[k][0]));
+            rd_ctx_put(&d->ctx, num[k][1], text);
+        }
+    }
     for (size_t i = 0; i < rows->count; ++i) {
         const struct jr_value *row = &rows->items[i];
         const char *label;
@@ -385,6 +405,7 @@ static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err
             }
             continue;
         }
+        rd_row_attr(r, "reference", jr_str_or(row, "reference", ""));
         for (size_t f = 0; f < sizeof figures / sizeof figures[0]; ++f) {
             const struct jr_value *v = path_get(row, figures[f]);
             rd_row_metric(d, r, figures[f], "1", RD_LOWER, 0, v && v->type == JR_NUM ? v->num : NAN);
@@ -399,18 +420,48 @@ static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err
             for (size_t f = 0; f < sizeof f16 / sizeof f16[0]; ++f)
                 rd_row_metric(d, r, f16[f][1], "1", RD_LOWER, 0, jr_num_or_nan(h16, f16[f][0]));
         }
+        /* what report.md shows beside the figures: where the maxima and the first invalid value
+           lie, and the device check in 4th-digit units */
+        static const char *const at[] = { "epicentre.at_n", "epicentre.at_x", "attenuation.at_n", "attenuation.at_x",
+                                          "invalid.at_n", "invalid.at_x" };
+        for (size_t f = 0; f < sizeof at / sizeof at[0]; ++f) {
+            const struct jr_value *v = path_get(row, at[f]);
+            rd_row_metric(d, r, at[f], at[f][strlen(at[f]) - 1] == 'x' ? "rad" : "1", RD_NEITHER, 0,
+                          v && v->type == JR_NUM ? v->num : NAN);
+        }
+        const struct jr_value *units = path_get(row, "check.in_4th_digit_units");
+        rd_row_metric(d, r, "check.in_4th_digit_units", "4th-digit units", RD_LOWER, 0,
+                      units && units->type == JR_NUM ? units->num : NAN);
     }
     return 0;
 }
 
 /* ---- render.json --------------------------------------------------------------------------- */
 
-/* A scene's image figures: a row per model. */
-static void render_models(struct rdoc *d, const struct jr_value *sc, const char *scene, const char *device)
+/* A row's error figures from a render.json metrics object (names, units, directions as
+   host/measure/render/render_report.c declares them): none where they are not finite in a
+   measured row (the PSNR of identical images). */
+static void render_figures(struct rdoc *d, struct rd_row *r, const struct jr_value *met, const struct jr_value *entry)
 {
     static const struct { const char *name, *unit; int direction; } metrics[] = {
-        { "max_abs", "1", RD_LOWER }, { "rmse", "1", RD_LOWER }, { "psnr_db", "dB", RD_HIGHER } };
+        { "max_abs", "1", RD_LOWER }, { "rmse", "1", RD_LOWER }, { "psnr_db", "dB", RD_HIGHER },
+        { "share_above_threshold", "1", RD_LOWER } };
+    static const char *const he[] = { "max_abs", "mean_abs", "max_abs_vs_blinn_fit" };
+    for (size_t k = 0; met && k < (entry ? 3 : sizeof metrics / sizeof metrics[0]); ++k) {
+        const char *name = entry ? he[k] : metrics[k].name;
+        double v = jr_num_or_nan(entry && k == 2 ? entry : met, name);
+        if (!isfinite(v) && r->ok)
+            continue;   /* a PSNR of identical images is null (infinite): nothing to compare */
+        rd_row_metric(d, r, name, entry ? "1" : metrics[k].unit, entry ? RD_LOWER : metrics[k].direction, 0, v);
+    }
+}
+
+/* A scene's image figures: a row per model, with the texts report.md shows (the device-vs-double
+   check, the picture files; on the first, the scene's source, contact sheet and timed size). */
+static void render_models(struct rdoc *d, const struct jr_value *sc, const char *scene, const char *device)
+{
     const struct jr_value *img = jr_get(sc, "image"), *models = jr_get(sc, "models");
+    const struct jr_value *timings = jr_get(sc, "timings");
     char text[RD_TEXT];
     for (size_t m = 0; models && m < models->count; ++m) {
         const struct jr_value *mo = &models->items[m], *met = jr_get(mo, "metrics");
@@ -421,56 +472,119 @@ static void render_models(struct rdoc *d, const struct jr_value *sc, const char 
         snprintf(text, sizeof text, "%s %gx%g", scene, jr_num_or_nan(img, "width"), jr_num_or_nan(img, "height"));
         rd_row_key(r, "scene", NULL, text);
         rd_row_key(r, "model", NULL, model);
+        rd_row_attr(r, "scene_name", scene);
+        rd_row_attr(r, "reference", jr_str_or(mo, "reference", ""));
         row_status(r, met);
-        for (size_t k = 0; met && k < sizeof metrics / sizeof metrics[0]; ++k) {
-            double v = jr_num_or_nan(met, metrics[k].name);
-            if (!isfinite(v) && r->ok)
-                continue;   /* a PSNR of identical images is null (infinite): nothing to compare */
-            rd_row_metric(d, r, metrics[k].name, metrics[k].unit, metrics[k].direction, 0, v);
+        render_figures(d, r, met, NULL);
+        const struct jr_value *within = jr_get(jr_get(mo, "double_reference_check"), "within_bound");
+        if (within && within->type == JR_BOOL)
+            rd_row_text(d, r, "double_reference_check", within->num ? "within bound" : "outside bound");
+        static const char *const files[] = { "image", "error_image", "signed_error_image", "contact_sheet" };
+        const struct jr_value *fo = jr_get(mo, "files");
+        for (size_t f = 0; fo && f < sizeof files / sizeof files[0]; ++f)
+            if (jr_str_or(fo, files[f], NULL))
+                rd_row_text(d, r, files[f], jr_str_or(fo, files[f], ""));
+        if (m == 0) {
+            if (jr_str_or(sc, "source", NULL))
+                rd_row_text(d, r, "scene_source", jr_str_or(sc, "source", ""));
+            if (jr_str_or(img, "contact_sheet", NULL))
+                rd_row_text(d, r, "scene_contact_sheet", jr_str_or(img, "contact_sheet", ""));
+            if (timings && timings->type == JR_ARR && timings->count > 0)
+                rd_row_textf(d, r, "scene_timed_size", "%.0f x %.0f", jr_num_or_nan(&timings->items[0], "width"),
+                             jr_num_or_nan(&timings->items[0], "height"));
         }
     }
 }
 
-/* A scene's timings: a row per timed entry and image size. */
+/* A scene's timings: a row per timed entry and image size (attributes size, selected_model):
+   its speed with range and repetitions, its fraction of the copy kernel and its speed-up
+   against its reference. */
 static int render_timings(const struct jr_doc *j, struct rdoc *d, const struct jr_value *sc, const char *scene,
                           const char *device, char *err, size_t errlen)
 {
     const struct jr_value *timings = jr_get(sc, "timings");
     for (size_t t = 0; timings && t < timings->count; ++t) {
         const struct jr_value *tm = &timings->items[t], *entries = jr_get(tm, "entries");
-        char metric[64];
-        snprintf(metric, sizeof metric, "mpixel_per_s@%gx%g", jr_num_or_nan(tm, "width"), jr_num_or_nan(tm, "height"));
+        char metric[64], size[28];
+        snprintf(size, sizeof size, "%gx%g", jr_num_or_nan(tm, "width"), jr_num_or_nan(tm, "height"));
         for (size_t e = 0; entries && e < entries->count; ++e) {
-            const struct jr_value *en = &entries->items[e];
+            const struct jr_value *en = &entries->items[e], *sel = jr_get(en, "selected_model");
             const char *name = jr_str_or(en, "name", jr_str_or(en, "model", "?"));
             struct rd_row *r = rdoc_row(d, device, jr_str_or(en, "model", name));
             if (!r)
                 return 0;
             rd_row_key(r, "scene", NULL, scene);
             rd_row_key(r, "entry", NULL, name);
+            rd_row_attr(r, "size", size);
+            rd_row_attr(r, "selected_model", sel && sel->type == JR_BOOL && sel->num ? "true" : "false");
             const char *reason = jr_str_or(en, "reason", NULL);
             if (reason && *reason)
                 rd_row_fail(r, "failed", reason);
             double v = jr_num_or_nan(en, "mpixel_per_s"), med = jr_num_or_nan(en, "median_ms");
+            snprintf(metric, sizeof metric, "mpixel_per_s@%s", size);
             struct rd_metric *m = rd_row_metric(d, r, metric, "Mpixel/s", RD_HIGHER, 1, v);
-            if (!m || !r->ok || !isfinite(v))
-                continue;
-            /* Mpixel/s is inversely proportional to the time: the slowest run gives lo */
-            m->lo = v * med / jr_num_or_nan(en, "max_ms");
-            m->hi = v * med / jr_num_or_nan(en, "min_ms");
-            /* the launches' own rates, for the rank test (an older render.json without them is
-               compared by its min..max range) */
-            if (jr_get(en, "mpixel_per_s_reps") &&
-                take_reps(j, en, "mpixel_per_s_reps", &m->reps, &m->nreps, err, errlen))
-                return 2;
+            if (m && r->ok && isfinite(v)) {
+                /* Mpixel/s is inversely proportional to the time: the slowest run gives lo */
+                m->lo = v * med / jr_num_or_nan(en, "max_ms");
+                m->hi = v * med / jr_num_or_nan(en, "min_ms");
+                /* the launches' own rates, for the rank test (an older render.json without them is
+                   compared by its min..max range) */
+                if (jr_get(en, "mpixel_per_s_reps") &&
+                    take_reps(j, en, "mpixel_per_s_reps", &m->reps, &m->nreps, err, errlen))
+                    return 2;
+            }
+            snprintf(metric, sizeof metric, "fraction_of_copy@%s", size);
+            rd_row_metric(d, r, metric, "1", RD_HIGHER, 0, jr_num_or_nan(en, "fraction_of_copy"));
+            if (jr_get(en, "speedup_vs_reference")) {
+                snprintf(metric, sizeof metric, "speedup_vs_reference@%s", size);
+                rd_row_metric(d, r, metric, "1", RD_HIGHER, 0, jr_num_or_nan(en, "speedup_vs_reference"));
+            }
         }
     }
     return 0;
 }
 
-/* The upgrade of brdfbench.render/1: per scene a row per model (keys scene "NAME WxH", model;
- * max_abs, rmse, psnr_db) and a row per timed entry and image size (keys scene, entry;
- * mpixel_per_s@WxH with its range and repetitions). */
+/* A scene's He comparison: the Blinn-Phong fit's row, then one per model shaded at its n. */
+static void render_he(struct rdoc *d, const struct jr_value *sc, const char *scene, const char *device)
+{
+    const struct jr_value *hc = jr_get(sc, "he_comparison"), *img = jr_get(sc, "image");
+    const struct jr_value *entries = jr_get(hc, "entries");
+    if (!entries || entries->type != JR_ARR)
+        return;
+    char key[RD_TEXT];
+    snprintf(key, sizeof key, "%s %gx%g", scene, jr_num_or_nan(img, "width"), jr_num_or_nan(img, "height"));
+    const char *he = jr_str_or(hc, "model", "?");
+    for (long k = -1; k < (long)entries->count; ++k) {
+        const struct jr_value *en = k < 0 ? NULL : &entries->items[k];
+        const char *name = en ? jr_str_or(en, "name", "?") : "Blinn-Phong fit";
+        struct rd_row *r = rdoc_row(d, device, en ? name : he);
+        if (!r)
+            return;
+        rd_row_key(r, "scene", NULL, key);
+        rd_row_key(r, "against", NULL, he);
+        rd_row_key(r, "shaded_by", NULL, name);
+        rd_row_attr(r, "scene_name", scene);
+        rd_row_attr(r, "he", en ? "entry" : "fit");
+        if (!en) {
+            rd_row_metric(d, r, "n_fit", "1", RD_NEITHER, 0, jr_num_or_nan(hc, "n_fit"));
+            rd_row_metric(d, r, "k_fit", "1", RD_NEITHER, 0, jr_num_or_nan(hc, "k_fit"));
+            rd_row_metric(d, r, "relative_rms_residual", "1", RD_LOWER, 0, jr_num_or_nan(hc, "relative_rms_residual"));
+            continue;
+        }
+        row_status(r, jr_get(en, "metrics"));
+        render_figures(d, r, jr_get(en, "metrics"), en);
+        const char *contact = jr_str_or(jr_get(en, "files"), "contact_sheet", NULL);
+        if (contact)
+            rd_row_text(d, r, "contact_sheet", contact);
+    }
+}
+
+/* The upgrade of brdfbench.render/1 (and /2): per scene a row per model (keys scene "NAME WxH",
+ * model; attributes scene_name, reference; max_abs, rmse, psnr_db, share_above_threshold; texts
+ * double_reference_check and the files), a row per timed entry and image size (keys scene,
+ * entry; attributes size, selected_model; mpixel_per_s@WxH with its range and repetitions,
+ * fraction_of_copy@WxH, speedup_vs_reference@WxH) and He's comparison (keys scene, against,
+ * shaded_by). */
 static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
     const struct jr_value *scenes;
@@ -485,6 +599,7 @@ static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, 
         render_models(d, sc, scene, device);
         if (render_timings(j, d, sc, scene, device, err, errlen))
             return 2;
+        render_he(d, sc, scene, device);
     }
     return 0;
 }
@@ -492,13 +607,14 @@ static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, 
 /* ---- brdfbench.fit/1 ------------------------------------------------------------------------- */
 
 /* A row of fit figures: the coefficients where the row is the fit itself, then its errors. */
-static void fit_row(struct rdoc *d, const struct jr_value *obj, const char *role, const char *grid, int with_coefs)
+static struct rd_row *fit_row(struct rdoc *d, const struct jr_value *obj, const char *role, const char *grid,
+                              int with_coefs)
 {
     static const char *const errs[] = { "max_rel", "max_abs" };
     static const char *const coefs[] = { "a", "b" };
     struct rd_row *r = rdoc_row(d, "", "fit");
     if (!r)
-        return;
+        return NULL;
     char text[RD_TEXT];
     snprintf(text, sizeof text, "%.120s", role);
     rd_row_key(r, "role", NULL, text);
@@ -509,29 +625,61 @@ static void fit_row(struct rdoc *d, const struct jr_value *obj, const char *role
         rd_row_metric(d, r, coefs[k], "1", RD_NEITHER, 0, jr_num_or_nan(obj, coefs[k]));
     for (int k = 0; k < 2; ++k)
         rd_row_metric(d, r, errs[k], "1", RD_LOWER, 0, jr_num_or_nan(obj, errs[k]));
+    return r;
 }
 
-/* The upgrade of brdfbench.fit/1: the best affine fit and the fit capped at fq2's max Delta
- * (a, b, max_rel, max_abs), then each compared model (max_rel, max_abs); the context line
- * "fit grid". */
+/* The upgrade of brdfbench.fit/1 (and /2): the best affine fit and the fit capped at fq2's max
+ * Delta (a, b, max_rel, max_abs; attribute model: the model its device sweep ran, which then
+ * leads the "compare" list, else ""), the family's limit (max_rel, at_n), then each compared
+ * model (max_rel, max_abs; attribute model); the context lines "fit grid", "fit n_min",
+ * "fit n_max" and the document's text "verdict". */
 static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
 {
+    char grid[RD_TEXT], text[RD_TEXT];
     (void)err;
     (void)errlen;
-    char grid[RD_TEXT];
+    const struct jr_value *g = jr_get(jr_get(&j->root, "context"), "grid");
     grid_text(jr_get(&j->root, "context"), grid, sizeof grid);
     rd_ctx_put(&d->ctx, "fit grid", grid);
-    fit_row(d, &j->root, "best affine k(n)", grid, 1);
-    const struct jr_value *capped = jr_get(&j->root, "capped_at_fq2");
-    if (capped && capped->type == JR_OBJ)
-        fit_row(d, capped, "capped at fq2's max Delta", grid, 1);
+    if (g) {   /* the n range report.md names */
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_min"));
+        rd_ctx_put(&d->ctx, "fit n_min", text);
+        snprintf(text, sizeof text, "%.17g", jr_num_or_nan(g, "n_max"));
+        rd_ctx_put(&d->ctx, "fit n_max", text);
+    }
     const struct jr_value *cmp = jr_get(&j->root, "compare");
-    for (size_t i = 0; cmp && cmp->type == JR_ARR && i < cmp->count; ++i) {
+    size_t ncmp = cmp && cmp->type == JR_ARR ? cmp->count : 0, k = 0;
+    const struct jr_value *fits[2] = { &j->root, jr_get(&j->root, "capped_at_fq2") };
+    static const char *const roles[2] = { "best affine k(n)", "capped at fq2's max Delta" };
+    for (int i = 0; i < 2; ++i) {
+        if (!fits[i] || fits[i]->type != JR_OBJ)
+            continue;
+        struct rd_row *r = fit_row(d, fits[i], roles[i], grid, 1);
+        /* a fit whose sweep ran leads the compare list, in this order */
+        const char *model = jr_str_or(fits[i], "model", "");
+        const int swept = model[0] && k < ncmp && strcmp(jr_str_or(&cmp->items[k], "model", ""), model) == 0;
+        k += swept;
+        if (r)
+            rd_row_attr(r, "model", swept ? model : "");
+    }
+    const struct jr_value *lim = jr_get(&j->root, "limit_overall");
+    struct rd_row *r = rdoc_row(d, "", "fit");
+    if (r) {
+        rd_row_key(r, "role", NULL, "per-n minimax k(n): the family's limit");
+        snprintf(text, sizeof text, "%.120s", grid);
+        rd_row_key(r, "grid", NULL, text);
+        rd_row_metric(d, r, "max_rel", "1", RD_LOWER, 0, jr_num_or_nan(lim, "max_rel"));
+        rd_row_metric(d, r, "at_n", "1", RD_NEITHER, 0, jr_num_or_nan(lim, "at_n"));
+    }
+    for (size_t i = 0; i < ncmp; ++i) {
         const char *model = jr_str_or(&cmp->items[i], "model", "?");
         if (strncmp(model, "quad:", 5) == 0)
             continue;   /* the fitted model itself: its label moves with its coefficients */
-        fit_row(d, &cmp->items[i], model, grid, 0);
+        struct rd_row *c = fit_row(d, &cmp->items[i], model, grid, 0);
+        if (c)
+            rd_row_attr(c, "model", model);
     }
+    rdoc_text(d, "verdict", jr_str_or(jr_get(&j->root, "verdict"), "text", ""));
     return 0;
 }
 
@@ -771,11 +919,9 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
     layout_reader layout;
     int kind = kind_of_schema(schema, &layout);
     if (kind < 0) {
-        char accepted[1024] = "";
-        for (int k = 0; k < RD_KIND_COUNT; ++k) {
-            size_t n = strlen(accepted);
-            snprintf(accepted + n, sizeof accepted - n, "%s, ", kinds[k].schema);
-        }
+        char accepted[RD_KIND_COUNT * 32 + 32] = "";
+        for (int k = 0; k < RD_KIND_COUNT; ++k)
+            snprintf(accepted + strlen(accepted), sizeof accepted - strlen(accepted), "%s, ", kinds[k].schema);
         snprintf(err, errlen, "%s: schema \"%.60s\" is not a result file with figures (accepted: %s%s)", j->name,
                  schema, accepted, ROWS_SCHEMA);
         return 2;
@@ -787,8 +933,9 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
         return 2;
     }
     const struct jr_value *rows = jr_get(&j->root, "rows");
-    if (rows && rows->type != JR_OBJ && layout)
-        rows = NULL;   /* an old frontier layout's array of rows: read by that layout */
+    if (layout)
+        rows = NULL;   /* a previous version (an old frontier layout's array of rows, a rows member
+                          with less than the version written now): read by its layout */
     if (!layout && !rows) {
         snprintf(err, errlen, "%s: schema \"%.60s\" without its \"rows\" (accepted: the file as brdfbench writes it, "
                  "which carries its rows)", j->name, schema);
@@ -800,8 +947,8 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
         return 2;
     rdoc_init(d, schema, kinds[kind].name, kinds[kind].file);
     read_contexts(j, d);
-    /* a file that carries its rows is read by them, whatever its version; one without, by the
-       layout of its version */
+    /* a file of the version written now is read by its rows; one of a previous version, by the
+       layout of that version */
     if (rows ? rdoc_from_rows_member(j, rows, d, err, errlen) : layout(j, d, err, errlen)) {
         rdoc_free(d);
         return 2;

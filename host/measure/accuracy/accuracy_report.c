@@ -32,9 +32,13 @@ int accuracy_write_json(const char *path, const struct accuracy_result *res, int
 }
 
 /* accuracy.json's rows, built from the results in memory: a row per model of the lobe sweep
-   (keys label and grid; attributes n_min, n_max, n_step; the sweep's figures, the device
-   check's float cancellation and, for code in half, the fp16 figures), then the hemisphere
-   sweep's rows (hemisphere_rows). Every figure is an error: lower is better, not timed. */
+   (keys label and grid; attributes n_min, n_max, n_step and reference; the sweep's figures, the
+   device check's float cancellation and, for code in half, the fp16 figures, each an error:
+   lower is better, not timed; then what report.md's table shows beside them: where each maximum
+   and the first invalid value lie (n, x: neither better higher nor lower) and the device check
+   in units of the 4th significant digit), then the hemisphere sweep's rows (hemisphere_rows).
+   The context carries the grid as text and its numbers (accuracy n_min, n_max, n_step, samples
+   per zone). */
 static void accuracy_rows(struct rdoc *d, const struct accuracy_result *res, int count,
                           const struct hemi_result *hres, int hcount)
 {
@@ -47,6 +51,16 @@ static void accuracy_rows(struct rdoc *d, const struct accuracy_result *res, int
         n_step = g->n_step;
     }
     rd_ctx_put(&d->ctx, "accuracy grid", grid);
+    if (count > 0) {
+        const struct accuracy_grid *g = &res[0].grid;
+        const struct { const char *key; double v; } num[] = {
+            { "accuracy n_min", g->n_min }, { "accuracy n_max", g->n_max }, { "accuracy n_step", g->n_step },
+            { "accuracy samples per zone", (double)g->samples } };
+        for (size_t k = 0; k < sizeof num / sizeof num[0]; ++k) {
+            snprintf(text, sizeof text, "%.17g", num[k].v);
+            rd_ctx_put(&d->ctx, num[k].key, text);
+        }
+    }
     for (int i = 0; i < count; ++i) {
         const struct accuracy_result *r = &res[i];
         struct rd_row *row = rdoc_row(d, "", r->model.label);
@@ -65,6 +79,7 @@ static void accuracy_rows(struct rdoc *d, const struct accuracy_result *res, int
         rd_row_attr(row, "n_max", text);
         snprintf(text, sizeof text, "%.17g", n_step);
         rd_row_attr(row, "n_step", text);
+        rd_row_attr(row, "reference", r->reference.label);
         rd_row_metric(d, row, "epicentre.max_rel", "1", RD_LOWER, 0, r->epicentre.value);
         rd_row_metric(d, row, "attenuation.max_abs", "1", RD_LOWER, 0, r->attenuation.value);
         rd_row_metric(d, row, "whole.max_abs", "1", RD_LOWER, 0, r->whole.value);
@@ -76,6 +91,14 @@ static void accuracy_rows(struct rdoc *d, const struct accuracy_result *res, int
             rd_row_metric(d, row, "fp16.max_abs", "1", RD_LOWER, 0, r->fp16.attenuation.value);
             rd_row_metric(d, row, "fp16.invalid_count", "1", RD_LOWER, 0, (double)r->fp16.invalid_count);
         }
+        const struct { const char *name; double v; } at[] = {
+            { "epicentre.at_n", r->epicentre.n }, { "epicentre.at_x", r->epicentre.x },
+            { "attenuation.at_n", r->attenuation.n }, { "attenuation.at_x", r->attenuation.x },
+            { "invalid.at_n", r->invalid_n }, { "invalid.at_x", r->invalid_x } };
+        for (size_t k = 0; k < sizeof at / sizeof at[0]; ++k)
+            rd_row_metric(d, row, at[k].name, at[k].name[strlen(at[k].name) - 1] == 'x' ? "rad" : "1", RD_NEITHER, 0,
+                          at[k].v);
+        rd_row_metric(d, row, "check.in_4th_digit_units", "4th-digit units", RD_LOWER, 0, accuracy_check_in_digits(r));
     }
     hemisphere_rows(d, hres, hcount, n_step);
 }

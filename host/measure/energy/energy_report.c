@@ -6,6 +6,7 @@
 #include "exitcodes.h"
 #include "jsonw.h"
 #include "outdir.h"
+#include "rdoc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -176,15 +177,87 @@ static void json_reciprocity(struct jw *w, const struct energy_summary *sum)
                        sum->pass_count, sum, json_reciprocity_pass_model);
 }
 
+/* energy.json's rows, built from the summary in memory: a row per model and integrand of the
+   albedo tables (keys check "albedo", model, integrand: the largest albedo with the n and
+   theta_i where it is reached, neither better higher nor lower; the change when the quadrature
+   is refined and the largest difference from the closed form at normal incidence, errors), a
+   row per model of the lobes' reciprocity (keys check "reciprocity", model; attribute lobe: the
+   worst |f(L,V) - f(V,L)| of the peak on the device with its n and its evaluation error, and on
+   the host) and a row per model of the image pass's (keys check "reciprocity_image_pass", model,
+   shading mode: the worst relative difference on the device and on the host, the pairs lit
+   both ways). The context: the quadrature's tolerance and the reciprocity's pairs per model. */
+static void energy_rows(struct rdoc *d, const struct energy_summary *sum)
+{
+    char text[RD_TEXT];
+    snprintf(text, sizeof text, "%.17g", sum->quadrature_tolerance);
+    rd_ctx_put(&d->ctx, "energy quadrature tolerance", text);
+    snprintf(text, sizeof text, "%ld", sum->recip_pairs);
+    rd_ctx_put(&d->ctx, "energy reciprocity pairs", text);
+    for (int i = 0; i < sum->count; ++i) {
+        const struct energy_model_summary *m = &sum->models[i];
+        struct rd_row *r = rdoc_row(d, "", m->spec.label);
+        if (!r)
+            return;
+        rd_row_key(r, "check", NULL, "albedo");
+        rd_row_key(r, "model", NULL, m->spec.label);
+        rd_row_key(r, "integrand", NULL, mode_name(m->mode));
+        rd_row_metric(d, r, "max_albedo", "1", RD_NEITHER, 0, m->max_albedo);
+        rd_row_metric(d, r, "max_at_n", "1", RD_NEITHER, 0, m->max_at_n);
+        rd_row_metric(d, r, "max_at_theta_i_deg", "deg", RD_NEITHER, 0, m->max_at_theta_deg);
+        rd_row_metric(d, r, "refine_change", "1", RD_LOWER, 0, m->refine_change);
+        rd_row_metric(d, r, "normal_incidence_max_diff", "1", RD_LOWER, 0, m->normal_max_diff);
+    }
+    for (int i = 0; i < sum->recip_count; ++i) {
+        const struct recip_summary *rs = &sum->recip[i];
+        struct rd_row *r = rdoc_row(d, "", rs->spec.label);
+        if (!r)
+            return;
+        rd_row_key(r, "check", NULL, "reciprocity");
+        rd_row_key(r, "model", NULL, rs->spec.label);
+        rd_row_attr(r, "lobe", rs->spec.info->lobe == LOBE_PSI ? "psi" : "theta_h");
+        rd_row_metric(d, r, "device.max_diff_of_peak", "1", RD_LOWER, 0, rs->device.diff);
+        rd_row_metric(d, r, "device.at_n", "1", RD_NEITHER, 0, rs->device.n);
+        if (rs->device.eval_error > 0)   /* written where the device's values were compared with double */
+            rd_row_metric(d, r, "device.max_eval_error_of_peak", "1", RD_LOWER, 0, rs->device.eval_error);
+        rd_row_metric(d, r, "host.max_diff_of_peak", "1", RD_LOWER, 0, rs->host.diff);
+    }
+    for (int i = 0; i < sum->pass_count; ++i) {
+        const struct recip_pass_summary *q = &sum->pass[i];
+        struct rd_row *r = rdoc_row(d, "", q->spec.label);
+        if (!r)
+            return;
+        rd_row_key(r, "check", NULL, "reciprocity_image_pass");
+        rd_row_key(r, "model", NULL, q->spec.label);
+        snprintf(text, sizeof text, "%d", q->mode);
+        rd_row_key(r, "shading_mode", "mode ", text);
+        rd_row_metric(d, r, "device_max_rel_diff", "1", RD_LOWER, 0, q->device_worst);
+        rd_row_metric(d, r, "host_max_rel_diff", "1", RD_LOWER, 0, q->host_worst);
+        rd_row_metric(d, r, "pairs_lit_both_ways", "1", RD_NEITHER, 0, (double)q->lit);
+    }
+}
+
 int energy_write(const struct cl_session *s, struct energy_summary *sum, int keep_json, const char *out_dir)
 {
     int rc = 0;
+    char err[512];
+    struct rdoc *d = rdoc_new(ENERGY_SCHEMA, "energy", "energy.json", err, sizeof err);
+    if (d) {
+        energy_rows(d, sum);
+        if (rdoc_built(d, err, sizeof err))
+            d = NULL;
+    }
+    if (!d) {
+        fprintf(stderr, "brdfbench: energy.json: %s\n", err);
+        return EXIT_RUNTIME;
+    }
     struct jw w;
     jw_doc_begin(&w, ENERGY_SCHEMA, s, "");
     jw_obj_end(&w);
     json_albedo(&w, sum);
     json_reciprocity(&w, sum);
     jw_kv_num(&w, "seconds", sum->seconds);
+    rdoc_json_rows_member(&w, d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     if (keep_json && !w.out.failed) {
         /* the caller may write the text later, beside its own files */
@@ -195,7 +268,7 @@ int energy_write(const struct cl_session *s, struct energy_summary *sum, int kee
         }
     }
     if (out_dir) {
-        char path[4200], err[512];
+        char path[4200];
         path_join(path, sizeof path, out_dir, "energy.json");
         if (jw_write_file(&w, path, err, sizeof err)) {
             fprintf(stderr, "brdfbench: %s\n", err);

@@ -95,7 +95,8 @@ static struct rd_row *fit_row(struct rdoc *d, const char *role, const char *grid
     return row;
 }
 
-/* A fitted model's row: infeasible (no coefficients) with the fit's reason. */
+/* A fitted model's row: infeasible (no coefficients) with the fit's reason; its attribute model
+   names the model its device sweep ran ("" when none ran: report.md then has no line for it). */
 static void fitted_row(struct rdoc *d, const char *role, const char *grid, const struct fit_model *m)
 {
     const int ok = m->fit.feasible;
@@ -104,21 +105,42 @@ static void fitted_row(struct rdoc *d, const char *role, const char *grid, const
                                  m->have_sweep ? m->sweep.attenuation.value : NAN);
     if (row && !ok)
         rd_row_fail(row, "infeasible", m->fit.reason[0] ? m->fit.reason : "no fit");
+    if (row)
+        rd_row_attr(row, "model", m->have_sweep ? m->sweep.model.label : "");
 }
 
-/* fit.json's rows: the best affine fit, the fit capped at fq2's max Delta, and the models the
-   fits are compared with (fq2 first), over the run's grid. */
+/* fit.json's rows: the best affine fit, the fit capped at fq2's max Delta, the family's limit
+   (the per-n minimax k(n): its largest max delta over the grid and the n where it is reached),
+   and the models the fits are compared with (fq2 first; attribute model, the label in full),
+   over the run's grid; the context's fit n_min and n_max, and the verdict as the document's
+   text. */
 static void fit_rows(struct rdoc *d, const struct fit_report *r)
 {
-    char grid[RD_TEXT];
+    char grid[RD_TEXT], text[RD_TEXT];
     snprintf(grid, sizeof grid, "n %g..%g step %g, %g samples per zone", r->grid.n_min, r->grid.n_max, r->grid.n_step,
              (double)r->grid.samples);
     rd_ctx_put(&d->ctx, "fit grid", grid);
+    snprintf(text, sizeof text, "%.17g", r->grid.n_min);
+    rd_ctx_put(&d->ctx, "fit n_min", text);
+    snprintf(text, sizeof text, "%.17g", r->grid.n_max);
+    rd_ctx_put(&d->ctx, "fit n_max", text);
     fitted_row(d, "best affine k(n)", grid, &r->main);
     fitted_row(d, "capped at fq2's max Delta", grid, &r->at_fq2_cap);
-    for (int i = 0; i < r->compare_count; ++i)
-        fit_row(d, r->compare[i].model.label, grid, 0, NAN, NAN, r->compare[i].epicentre.value,
-                r->compare[i].attenuation.value);
+    struct rd_row *limit = rdoc_row(d, "", "fit");
+    if (limit) {
+        rd_row_key(limit, "role", NULL, "per-n minimax k(n): the family's limit");
+        snprintf(text, sizeof text, "%.120s", grid);
+        rd_row_key(limit, "grid", NULL, text);
+        rd_row_metric(d, limit, "max_rel", "1", RD_LOWER, 0, r->limit_max);
+        rd_row_metric(d, limit, "at_n", "1", RD_NEITHER, 0, r->limit_max_n);
+    }
+    for (int i = 0; i < r->compare_count; ++i) {
+        struct rd_row *row = fit_row(d, r->compare[i].model.label, grid, 0, NAN, NAN, r->compare[i].epicentre.value,
+                                     r->compare[i].attenuation.value);
+        if (row)
+            rd_row_attr(row, "model", r->compare[i].model.label);
+    }
+    rdoc_text(d, "verdict", r->verdict);
 }
 
 int fit_write_json(const char *path, const struct fit_report *r, const struct cl_session *s,

@@ -238,8 +238,7 @@ static int stage_commit(const char *out_dir, char *stage, char *old_dir, size_t 
 
 void render_result_free(struct render_result *r)
 {
-    free(r->summary_md);
-    r->summary_md = NULL;
+    (void)r;   /* nothing held today: kept so that callers need not change when it holds more */
 }
 
 int render_run(struct cl_session *s, const struct render_options *o, struct render_result *r)
@@ -249,7 +248,6 @@ int render_run(struct cl_session *s, const struct render_options *o, struct rend
     const size_t errlen = sizeof r->err;
     int rc = 0;
     err[0] = '\0';
-    r->summary_md = NULL;
     if ((rc = run_check(s, o, err, errlen)))
         return rc;
 
@@ -286,7 +284,6 @@ int render_run(struct cl_session *s, const struct render_options *o, struct rend
         rc = EXIT_RUNTIME;
         goto done;
     }
-    r->summary_md = render_summary_markdown(o, res, s);
 done:
     for (int si = 0; si < RENDER_SCENE_COUNT; si++)
         mesh_free(&scenes[si].mesh);

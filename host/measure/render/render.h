@@ -70,12 +70,11 @@ void render_options_default(struct render_options *o);
 int render_check_size(const struct cl_session *s, const char *what, long width, long height,
                       int nmodels_rows, char *err, size_t errlen);
 
-/* What a run gives back: a markdown summary (tables of metrics and speeds, the sphere grid's
- * contact sheet) for a report (malloc'd), and the message of a failure. Unlike the other
+/* What a run gives back: the message of a failure (report.md's image passes are drawn from
+ * render.json's rows: host/results/report/report_render.c). Unlike the other
  * engines, render leaves its message to the caller (r->err), because it also runs inside them
  * (the frontier's teapot pass, all's image passes), which name the pass. */
 struct render_result {
-    char *summary_md;
     char err[1024];
 };
 void render_result_free(struct render_result *r);

@@ -1,12 +1,11 @@
-/* render_report.c - the writers of the image passes: render.json, the markdown summary for
- * the report and the timings printed per scene (render.c measures, this file writes). */
+/* render_report.c - the writers of the image passes: render.json with its rows (what report.md's
+ * image passes are drawn from) and the lines printed per scene (render.c measures, this file
+ * writes). */
 #include "render_report.h"
 
 #include "context.h"
 #include "jsonw.h"
-#include "mdbuf.h"
 #include "rdoc.h"
-#include "report.h"
 #include "schemas.h"
 
 #include <math.h>
@@ -306,53 +305,130 @@ static void write_timings_json(struct jw *w, const struct scene_result *sr)
     jw_arr_end(w);
 }
 
+/* A row's error figures against its reference, with its status: none of them where they are not
+   finite (a NaN pixel: the row is then failed, its figures null; the PSNR of identical images). */
+static void image_error_metrics(struct rdoc *d, struct rd_row *r, const struct image_metrics *sm)
+{
+    if (sm->nonfinite)
+        rd_row_fail(r, "nonfinite", "the model's radiance is NaN or Inf at some foreground pixels: no error figure");
+    const struct { const char *name, *unit; int direction; double v; } errs[] = {
+        { "max_abs", "1", RD_LOWER, sm->max_abs }, { "rmse", "1", RD_LOWER, sm->rmse },
+        { "psnr_db", "dB", RD_HIGHER, sm->psnr_db }, { "share_above_threshold", "1", RD_LOWER, sm->share_above } };
+    for (size_t k = 0; k < sizeof errs / sizeof errs[0]; ++k)
+        if (isfinite(errs[k].v) || !r->ok)
+            rd_row_metric(d, r, errs[k].name, errs[k].unit, errs[k].direction, 0, errs[k].v);
+}
+
+/* A scene's He comparison: a row for the Blinn-Phong fit to He's image (n_fit, k_fit: neither;
+   its relative rms residual), then one per model shaded at that n (max_abs, mean_abs against
+   He's image, max_abs_vs_blinn_fit; text contact_sheet). Keys scene "NAME WxH", against (He's
+   model), shaded_by; attributes scene_name and he ("fit" or "entry"). */
+static void he_rows(struct rdoc *d, int si, const struct he_comparison *hc, const char *scene)
+{
+    for (int k = -1; k < hc->count; k++) {
+        struct rd_row *r = rdoc_row(d, "", k < 0 ? hc->he.label : hc->e[k].label);
+        if (!r)
+            return;
+        rd_row_key(r, "scene", NULL, scene);
+        rd_row_key(r, "against", NULL, hc->he.label);
+        rd_row_key(r, "shaded_by", NULL, k < 0 ? "Blinn-Phong fit" : hc->e[k].label);
+        rd_row_attr(r, "scene_name", render_scene_names[si]);
+        rd_row_attr(r, "he", k < 0 ? "fit" : "entry");
+        if (k < 0) {
+            rd_row_metric(d, r, "n_fit", "1", RD_NEITHER, 0, hc->n_fit);
+            rd_row_metric(d, r, "k_fit", "1", RD_NEITHER, 0, hc->k_fit);
+            rd_row_metric(d, r, "relative_rms_residual", "1", RD_LOWER, 0, hc->rel_rms);
+            continue;
+        }
+        const struct he_entry *en = &hc->e[k];
+        struct image_metrics sm = shown(&en->metrics);
+        if (sm.nonfinite)
+            rd_row_fail(r, "nonfinite", "the model's radiance is NaN or Inf at some foreground pixels: no error figure");
+        const struct { const char *name; double v; } errs[] = {
+            { "max_abs", sm.max_abs }, { "mean_abs", sm.mean_abs }, { "max_abs_vs_blinn_fit", en->max_abs_vs_blinn } };
+        for (size_t q = 0; q < sizeof errs / sizeof errs[0]; ++q)
+            if (isfinite(errs[q].v) || !r->ok)
+                rd_row_metric(d, r, errs[q].name, "1", RD_LOWER, 0, errs[q].v);
+        if (en->error[0] && en->contact[0])
+            rd_row_text(d, r, "contact_sheet", en->contact);
+    }
+}
+
 /* A scene's rows: one per model with its image's error figures against its reference (none
-   where they are not finite: a NaN pixel, or the PSNR of identical images), then one per
-   timed entry and image size with its speed, range and launches. */
+   where they are not finite: a NaN pixel, or the PSNR of identical images) and the share of
+   pixels above the threshold; attributes scene_name and reference; texts: the device-vs-double
+   check's verdict, the picture files and, on the scene's first model, the scene's source, its
+   contact sheet and the size its timings' table shows (the first timed). Then one row per timed
+   entry and image size with its speed, range and launches, its fraction of the copy kernel and
+   speed-up against its reference (attributes size and selected_model); then He's comparison
+   (he_rows). */
 static void scene_rows(struct rdoc *d, int si, const struct scene_result *sr, const struct render_options *o)
 {
-    static const struct { const char *name, *unit; int direction; } errs[] = {
-        { "max_abs", "1", RD_LOWER }, { "rmse", "1", RD_LOWER }, { "psnr_db", "dB", RD_HIGHER } };
-    char text[RD_TEXT];
+    char scene[RD_TEXT];
+    snprintf(scene, sizeof scene, "%s %gx%g", render_scene_names[si], (double)o->width, (double)o->height);
     for (int mi = 0; mi < o->nmodels; mi++) {
-        struct image_metrics sm = shown(&sr->models[mi].metrics);
+        const struct model_result *mr = &sr->models[mi];
+        struct image_metrics sm = shown(&mr->metrics);
         struct rd_row *r = rdoc_row(d, "", o->models[mi].label);
         if (!r)
             return;
-        snprintf(text, sizeof text, "%s %gx%g", render_scene_names[si], (double)o->width, (double)o->height);
-        rd_row_key(r, "scene", NULL, text);
+        rd_row_key(r, "scene", NULL, scene);
         rd_row_key(r, "model", NULL, o->models[mi].label);
-        if (sm.nonfinite)
-            rd_row_fail(r, "nonfinite", "the model's radiance is NaN or Inf at some foreground pixels: no error figure");
-        const double v[3] = { sm.max_abs, sm.rmse, sm.psnr_db };
-        for (int k = 0; k < 3; ++k)
-            if (isfinite(v[k]) || !r->ok)
-                rd_row_metric(d, r, errs[k].name, errs[k].unit, errs[k].direction, 0, v[k]);
+        rd_row_attr(r, "scene_name", render_scene_names[si]);
+        rd_row_attr(r, "reference", mr->ref.label);
+        image_error_metrics(d, r, &sm);
+        rd_row_text(d, r, "double_reference_check", mr->check.within ? "within bound" : "outside bound");
+        if (mr->image[0]) {
+            rd_row_text(d, r, "image", mr->image);
+            rd_row_text(d, r, "error_image", mr->error);
+            if (mr->signed_error[0])
+                rd_row_text(d, r, "signed_error_image", mr->signed_error);
+            rd_row_text(d, r, "contact_sheet", mr->contact);
+        }
+        if (mi == 0) {
+            rd_row_text(d, r, "scene_source", sr->source);
+            if (sr->grid_contact[0])
+                rd_row_text(d, r, "scene_contact_sheet", sr->grid_contact);
+            if (sr->ntimings > 0)
+                rd_row_textf(d, r, "scene_timed_size", "%d x %d", sr->timings[0].w, sr->timings[0].h);
+        }
     }
     for (int ti = 0; ti < sr->ntimings; ti++) {
         const struct size_timing *st = &sr->timings[ti];
-        char metric[64];
-        snprintf(metric, sizeof metric, "mpixel_per_s@%gx%g", (double)st->w, (double)st->h);
+        char metric[64], size[28];
+        snprintf(size, sizeof size, "%gx%g", (double)st->w, (double)st->h);
         for (int k = 0; k < st->nentries; k++) {
             const struct timed_entry *te = &st->entries[k];
+            const struct timed_entry *re = reference_entry(st, te);
             struct rd_row *r = rdoc_row(d, "", te->spec.label);
             if (!r)
                 return;
             rd_row_key(r, "scene", NULL, render_scene_names[si]);
             rd_row_key(r, "entry", NULL, te->name);
+            rd_row_attr(r, "size", size);
+            rd_row_attr(r, "selected_model", te->is_model ? "true" : "false");
             const double v = mpix(st, te->med);
+            snprintf(metric, sizeof metric, "mpixel_per_s@%s", size);
             struct rd_metric *m = rd_row_metric(d, r, metric, "Mpixel/s", RD_HIGHER, 1, v);
-            if (!m || !isfinite(v))
-                continue;
-            /* Mpixel/s is inversely proportional to the time: the slowest launch gives lo */
-            m->lo = v * (te->med * 1e3) / (te->max * 1e3);
-            m->hi = v * (te->med * 1e3) / (te->min * 1e3);
-            double reps[RENDER_MAX_KEPT_REPS];
-            for (int q = 0; q < te->nreps; q++)
-                reps[q] = mpix(st, te->rep_s[q]);
-            rd_metric_reps(d, m, reps, te->nreps);
+            if (m && isfinite(v)) {
+                /* Mpixel/s is inversely proportional to the time: the slowest launch gives lo */
+                m->lo = v * (te->med * 1e3) / (te->max * 1e3);
+                m->hi = v * (te->med * 1e3) / (te->min * 1e3);
+                double reps[RENDER_MAX_KEPT_REPS];
+                for (int q = 0; q < te->nreps; q++)
+                    reps[q] = mpix(st, te->rep_s[q]);
+                rd_metric_reps(d, m, reps, te->nreps);
+            }
+            snprintf(metric, sizeof metric, "fraction_of_copy@%s", size);
+            rd_row_metric(d, r, metric, "1", RD_HIGHER, 0, te->copy_med / te->med);
+            if (re) {
+                snprintf(metric, sizeof metric, "speedup_vs_reference@%s", size);
+                rd_row_metric(d, r, metric, "1", RD_HIGHER, 0, re->med / te->med);
+            }
         }
     }
+    if (sr->he.done)
+        he_rows(d, si, &sr->he, scene);
 }
 
 int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
@@ -405,80 +481,6 @@ int render_write_json(const char *path, const struct cl_session *s, const struct
     rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
-}
-
-/* The markdown summary: per scene a table of the models' figures. */
-char *render_summary_markdown(const struct render_options *o, const struct scene_result *res,
-                              const struct cl_session *s)
-{
-    struct md_buf b;
-    md_init(&b);
-    md_printf(&b, "Device: %s (%s). Images %dx%d; timings: median of %d launches after %d "
-              "warm-up, each after a copy-kernel launch over the same %d bytes per pixel.\n\n",
-              s->device_name, s->platform_version, o->width, o->height, o->reps, o->warmup,
-              RENDER_DEVICE_BYTES_PER_PIXEL);
-    for (int si = 0; si < RENDER_SCENE_COUNT; si++) {
-        const struct scene_result *sr = &res[si];
-        if (!sr->done)
-            continue;
-        md_printf(&b, "### %s\n\n", render_scene_names[si]);
-        if (sr->grid_contact[0])
-            md_printf(&b, "![%s contact sheet](%s)\n\n", render_scene_names[si], sr->grid_contact);
-        const struct size_timing *big = sr->ntimings ? &sr->timings[sr->ntimings - 1] : NULL;
-        md_printf(&b, "| model | reference | max abs error (radiance) | of reference peak | mean abs error | "
-                  "PSNR (dB) | > %g | ref check |", o->threshold);
-        if (big)
-            md_printf(&b, " Mpixel/s at %dx%d | of copy | vs reference |", big->w, big->h);
-        md_printf(&b, "\n|---|---|---|---|---|---|---|---|%s\n", big ? "---|---|---|" : "");
-        for (int mi = 0; mi < o->nmodels; mi++) {
-            const struct model_result *mr = &sr->models[mi];
-            char psnr[32];
-            struct image_metrics sm = shown(&mr->metrics);
-            if (isfinite(sm.psnr_db))
-                snprintf(psnr, sizeof psnr, "%.1f", sm.psnr_db);
-            else
-                snprintf(psnr, sizeof psnr, "%s", sm.nonfinite ? "not finite" : "identical");
-            md_printf(&b, "| %s | %s | %.4g | %.4g | %.4g | %s | %.2f%% | %s |", o->models[mi].label,
-                      mr->ref.label, sm.max_abs, render_max_of_peak(&sm), sm.mean_abs, psnr,
-                      100.0 * sm.share_above, mr->check.within ? "ok" : "out of bound");
-            if (big) {
-                const struct timed_entry *te = NULL;
-                for (int k = 0; k < big->nentries; k++)
-                    if (big->entries[k].is_model &&
-                        strcmp(big->entries[k].spec.label, o->models[mi].label) == 0)
-                        te = &big->entries[k];
-                const struct timed_entry *re = te ? reference_entry(big, te) : NULL;
-                if (te)
-                    md_printf(&b, " %.0f | %.0f%% | %.2fx |", mpix(big, te->med),
-                              100.0 * te->copy_med / te->med, re ? re->med / te->med : NAN);
-            }
-            md_printf(&b, "\n");
-        }
-        if (sr->he.done) {
-            const struct he_comparison *hc = &sr->he;
-            md_printf(&b, "\n%s shaded by He et al. 1991 (`%s`) beside Blinn-Phong fitted to its specular radiance "
-                          "(n = %.4g, scale %.4g, relative rms residual %.3g over %zu pixels) and the cheap lobes at "
-                          "that n (theta_h):\n\n| shaded by | max abs error vs He | mean abs error vs He | max abs "
-                          "vs the Blinn-Phong fit |\n|---|---|---|---|\n",
-                      render_scene_names[si], hc->he.label, hc->n_fit, hc->k_fit, hc->rel_rms, hc->fit_pixels);
-            for (int k = 0; k < hc->count; k++)
-                md_printf(&b, "| %s | %.4g | %.4g | %.4g |\n", hc->e[k].label, hc->e[k].metrics.max_abs,
-                          hc->e[k].metrics.mean_abs, hc->e[k].max_abs_vs_blinn);
-            if (hc->count > 0 && hc->e[0].contact[0])
-                md_printf(&b, "\n![%s: He | Blinn-Phong fit | error](%s)\n", render_scene_names[si], hc->e[0].contact);
-        }
-        if (big)
-            md_printf(&b, "\nCopy kernel at %dx%d: %.0f Mpixel/s (%.1f GB/s).\n", big->w, big->h,
-                      mpix(big, big->copy_med),
-                      (double)big->w * big->h * RENDER_DEVICE_BYTES_PER_PIXEL / big->copy_med *
-                          1e-9);
-        md_printf(&b, "\n");
-    }
-    if (b.failed) {
-        md_free(&b);
-        return NULL;
-    }
-    return b.s;
 }
 
 void render_print_scene(const struct scene_result *sr)

@@ -160,9 +160,6 @@ extern const char *const render_mode_names[RENDER_MODE_COUNT];
 int render_write_json(const char *path, const struct cl_session *s, const struct render_options *o,
                       const struct scene_result *res, int display_code_error, char *err,
                       size_t errlen);
-/* The markdown summary for the report (malloc'd; NULL when out of memory). */
-char *render_summary_markdown(const struct render_options *o, const struct scene_result *res,
-                              const struct cl_session *s);
 /* Progress on stdout: a scene's source, one model's image figures, the scene's device-vs-double
  * check over its models, He's comparison. */
 void render_print_scene(const struct scene_result *sr);

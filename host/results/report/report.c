@@ -7,13 +7,13 @@
 #include "outdir.h"
 #include "plots.h"
 #include "report_claims.h"
+#include "report_accuracy.h"
 #include "report_docs.h"
+#include "report_render.h"
 #include "report_run.h"
 #include "room.h"
-#include "schemas.h"
 
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,23 +26,6 @@ static int file_exists(const char *dir, const char *name)
     struct stat st;
     if (path_join(path, sizeof path, dir, name)) return 0;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
-
-static void md_pct(struct md_buf *b, double v)
-{
-    if (isfinite(v)) md_printf(b, " %.4g%% |", 100 * v);
-    else md_printf(b, " n/a |");
-}
-
-static void md_num(struct md_buf *b, double v, const char *fmt)
-{
-    if (isfinite(v)) {
-        md_printf(b, " ");
-        md_printf(b, fmt, v);
-        md_printf(b, " |");
-    } else {
-        md_printf(b, " n/a |");
-    }
 }
 
 /* What report.md is made of, as read from the run folder. */
@@ -83,90 +66,13 @@ static double num_at(const struct jr_value *o, const char *obj, const char *key)
     return v ? jr_num_or_nan(v, key) : NAN;
 }
 
-/* A result document of the run folder, checked against its schema (or `older`, a previous
- * version with the same members, when not NULL). Returns 0, 1 when the file does not exist, or
- * 2 with a message. */
-static int read_doc(const char *run_dir, const char *name, const char *schema, const char *older, struct jr_doc *d,
-                    char *err, size_t errlen)
+/* "Accuracy per model", from accuracy.json's rows (report_accuracy.c). */
+static int accuracy_table(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
 {
-    char path[4200];
-    const char *have;
-    if (path_join(path, sizeof path, run_dir, name)) {
-        snprintf(err, errlen, "%s/%s: path too long", run_dir, name);
-        return 2;
-    }
-    struct stat st;
-    if (stat(path, &st) != 0 && errno == ENOENT) return 1;
-    if (jr_parse_file(path, d, err, errlen)) return 2;
-    if (jr_need_str(d, &d->root, "schema", &have, err, errlen) ||
-        (strcmp(have, schema) != 0 && !(older && strcmp(have, older) == 0) && jr_fail(d, &d->root, err, errlen, "schema \"%s\" is not %s", have, schema))) {
-        jr_free(d);
-        return 2;
-    }
-    return 0;
-}
-
-static const char *accuracy_status_text(struct md_buf *b, const struct jr_value *r)
-{
-    const char *status = jr_str_or(r, "status", ""), *reason = jr_str_or(r, "reason", "");
-    if (strcmp(status, "failed") == 0 || strcmp(status, "device_disagrees") == 0) {
-        md_printf(b, " %s: ", status);
-        md_cell_text(b, reason);
-        return " |\n";
-    }
-    if (strcmp(status, "invalid_values") == 0) {
-        md_printf(b, " %lld invalid values (first at n = %g, x = %g)", (long long)num_at(r, "invalid", "count"),
-                  num_at(r, "invalid", "at_n"), num_at(r, "invalid", "at_x"));
-        return " |\n";
-    }
-    if (strcmp(jr_str_or(r, "label", ""), jr_str_or(r, "reference", "")) == 0) return " reference (zero by definition) |\n";
-    return " ok |\n";
-}
-
-static int accuracy_table(struct md_buf *b, const struct report_input *in, char *err, size_t errlen)
-{
-    struct jr_doc d;
-    md_printf(b, "## Accuracy per model\n\n");
-    int rc = read_doc(in->run_dir, "accuracy.json", ACCURACY_SCHEMA, ACCURACY_SCHEMA_V1, &d, err, errlen);
-    const struct jr_value *rows = rc ? NULL : jr_get(&d.root, "results");
+    int rc;
+    const struct rdoc *acc = report_doc(&in->docs, "accuracy.json", &rc, err, errlen);
     if (rc == 2) return 2;
-    if (!rows || rows->type != JR_ARR || rows->count < 1) {
-        md_printf(b, "Not available: the accuracy sweep did not run.\n\n");
-        if (!rc) jr_free(&d);
-        return 0;
-    }
-    const struct jr_value *ctx = jr_get(&d.root, "context"), *grid = ctx ? jr_get(ctx, "grid") : NULL;
-    if (grid)
-        md_printf(b,
-                  "Dense grid: n from %g to %g in steps of %g, %ld samples per zone per n; each maximum located on the "
-                  "device (float) and then recomputed and refined in double on the host. delta = |f - f_ref| / f_ref "
-                  "over the epicentre x in [0, x_e(n)], x_e(n) = acos(exp(-0.511/n)); Delta = |f - f_ref| over the "
-                  "attenuation zone (x_e(n), pi/2] and over the whole range. x is psi for the Phong family, theta_h "
-                  "for the Blinn family and the microfacet distributions.\n\n",
-                  num_at(grid, NULL, "n_min"), num_at(grid, NULL, "n_max"), num_at(grid, NULL, "n_step"),
-                  (long)num_at(grid, NULL, "samples_per_zone"));
-    md_printf(b, "| model | reference | max delta, epicentre | at n | at x (rad) | max Delta, attenuation | at n | at x (rad) "
-                 "| max Delta, whole range | device vs double (4th-digit units) | status |\n");
-    md_printf(b, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-    for (size_t i = 0; i < rows->count; i++) {
-        const struct jr_value *r = &rows->items[i];
-        md_printf(b, "| `");
-        md_cell_text(b, jr_str_or(r, "label", ""));
-        md_printf(b, "` | `");
-        md_cell_text(b, jr_str_or(r, "reference", ""));
-        md_printf(b, "` |");
-        md_pct(b, num_at(r, "epicentre", "max_rel"));
-        md_num(b, num_at(r, "epicentre", "at_n"), "%.6g");
-        md_num(b, num_at(r, "epicentre", "at_x"), "%.5f");
-        md_num(b, num_at(r, "attenuation", "max_abs"), "%.4g");
-        md_num(b, num_at(r, "attenuation", "at_n"), "%.6g");
-        md_num(b, num_at(r, "attenuation", "at_x"), "%.5f");
-        md_num(b, num_at(r, "whole", "max_abs"), "%.4g");
-        md_num(b, num_at(r, "check", "in_4th_digit_units"), "%.2g");
-        md_printf(b, "%s", accuracy_status_text(b, r));
-    }
-    md_printf(b, "\n");
-    jr_free(&d);
+    report_accuracy_table(b, acc);
     return 0;
 }
 
@@ -240,46 +146,16 @@ static int claims_block(struct md_buf *b, struct report_input *in, char *err, si
 }
 
 /* "Beyond the papers": the family's limit, the best affine fit (uncapped and capped at fq2's
- * max Delta) and the models it is compared with, from fit.json. A fit's row is there when its
- * device sweep ran: then it leads fit.json's "compare" list, in that order. */
-static int fit_block(struct md_buf *b, const struct report_input *in, char *err, size_t errlen)
+ * max Delta) and the models it is compared with, from fit.json's rows (report_accuracy.c). */
+static int fit_block(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
 {
-    struct jr_doc d;
     md_printf(b, "## Beyond the papers: the best affine cosine-quadratic model\n\n");
     if (part_unavailable(b, in, REPORT_PART_FIT)) return 0;
-    int rc = read_doc(in->run_dir, "fit.json", FIT_SCHEMA, FIT_SCHEMA_V1, &d, err, errlen);
+    int rc;
+    const struct rdoc *fit = report_doc(&in->docs, "fit.json", &rc, err, errlen);
     if (rc == 1) snprintf(err, errlen, "%s/fit.json: missing (run.json records its part as done)", in->run_dir);
     if (rc) return 2;
-    const struct jr_value *root = &d.root, *cmp = jr_get(root, "compare"), *ctx = jr_get(root, "context");
-    const struct jr_value *grid = ctx ? jr_get(ctx, "grid") : NULL;
-    if (!cmp || cmp->type != JR_ARR || !grid) {
-        jr_free(&d);
-        snprintf(err, errlen, "%s/fit.json: no \"compare\" list or no context grid", in->run_dir);
-        return 2;
-    }
-    md_printf(b, "For f = (k(n)(c - 1) + 1)^2 zeroed past its root, over n in [%g, %g] (`brdfbench fit`, `fit.json`):\n\n",
-              num_at(grid, NULL, "n_min"), num_at(grid, NULL, "n_max"));
-    md_printf(b, "| model | max δ (epicentre) | max Δ (attenuation) |\n|---|---|---|\n");
-    md_printf(b, "| per-n minimax k(n): the family's limit | %.4f%% (n = %g) | |\n",
-              100 * num_at(root, "limit_overall", "max_rel"), num_at(root, "limit_overall", "at_n"));
-    const struct jr_value *fits[2] = { root, jr_get(root, "capped_at_fq2") };
-    static const char *const notes[2] = { " (best affine, uncapped)", " (max Δ capped at fq2's)" };
-    size_t k = 0;
-    for (int i = 0; i < 2; ++i) {
-        const char *model = fits[i] ? jr_str_or(fits[i], "model", "") : "";
-        if (!model[0] || k >= cmp->count || strcmp(jr_str_or(&cmp->items[k], "model", ""), model) != 0) continue;
-        md_printf(b, "| `%s`%s | %.4f%% | %.5f |\n", model, notes[i], 100 * num_at(&cmp->items[k], "epicentre", "max_rel"),
-                  num_at(&cmp->items[k], "attenuation", "max_abs"));
-        k++;
-    }
-    for (; k < cmp->count; ++k)
-        md_printf(b, "| %s | %.4f%% | %.5f |\n", jr_str_or(&cmp->items[k], "model", ""),
-                  100 * num_at(&cmp->items[k], "epicentre", "max_rel"), num_at(&cmp->items[k], "attenuation", "max_abs"));
-    const struct jr_value *verdict = jr_get(root, "verdict");
-    if (verdict && jr_str_or(verdict, "text", "")[0]) md_printf(b, "\n%s\n", jr_str_or(verdict, "text", ""));
-    md_printf(b, "\n\n");
-    jr_free(&d);
-    return 0;
+    return report_fit_block(b, fit, in->run_dir, err, errlen);
 }
 
 /* The image passes: the scenes left out, then render.json's summary with its pictures. */
@@ -290,7 +166,10 @@ static int images_block(struct md_buf *b, struct report_input *in, char *err, si
     const char *note = in->run.images_note;
     md_printf(b, "%s", note);
     if (note[0]) md_printf(b, "\n\n");
-    if (report_render_summary(in->run_dir, b, add_image_picture, in, err, errlen)) return 2;
+    int rc;
+    const struct rdoc *render = report_doc(&in->docs, "render.json", &rc, err, errlen);
+    if (rc) return 2;
+    report_render_summary(render, in->run_dir, b, add_image_picture, in);
     md_printf(b, "\n\n");
     return 0;
 }
@@ -483,151 +362,4 @@ int report_rebuild(const char *run_dir, const char *out, char *err, size_t errle
     }
     free(text);
     return rc;
-}
-
-/* ---- image passes (render.json) ------------------------------------------------------ */
-
-/* The timing entry of a selected model in a scene's first timing size, or NULL. */
-static const struct jr_value *timing_of(const struct jr_value *scene, const char *label, double *w, double *h)
-{
-    const struct jr_value *timings = jr_get(scene, "timings");
-    if (!timings || timings->type != JR_ARR || timings->count < 1) return NULL;
-    const struct jr_value *t = &timings->items[0];
-    *w = jr_num_or_nan(t, "width");
-    *h = jr_num_or_nan(t, "height");
-    const struct jr_value *entries = jr_get(t, "entries");
-    if (!entries || entries->type != JR_ARR) return NULL;
-    for (size_t i = 0; i < entries->count; i++) {
-        const struct jr_value *e = &entries->items[i];
-        const struct jr_value *sel = jr_get(e, "selected_model");
-        if (strcmp(jr_str_or(e, "model", ""), label) == 0 && sel && sel->type == JR_BOOL && sel->num) return e;
-    }
-    return NULL;
-}
-
-/* A scene's He comparison (render.json, "he_comparison"): He's model beside Blinn-Phong fitted
- * to it and the cheap lobes at that n, with the contact sheets. */
-static void report_he_comparison(const char *run_dir, struct md_buf *md, const struct jr_value *sc, const char *name,
-                                 void (*add)(void *ctx, const char *file, const char *caption), void *ctx)
-{
-    const struct jr_value *hc = jr_get(sc, "he_comparison");
-    const struct jr_value *entries = hc ? jr_get(hc, "entries") : NULL;
-    if (!entries || entries->type != JR_ARR)
-        return;
-    md_printf(md, "%s shaded by He et al. 1991 (`%s`) beside Blinn-Phong fitted to its specular radiance by least "
-                  "squares (n = %.4g, scale %.4g, relative rms residual %.3g) and the cheap lobes at that n, errors "
-                  "against He's image:\n\n| shaded by | max abs error | mean abs error | max abs vs the fit |\n"
-                  "|---|---:|---:|---:|\n",
-              name, jr_str_or(hc, "model", "?"), jr_num_or_nan(hc, "n_fit"), jr_num_or_nan(hc, "k_fit"),
-              jr_num_or_nan(hc, "relative_rms_residual"));
-    for (size_t k = 0; k < entries->count; k++) {
-        const struct jr_value *e = &entries->items[k], *mt = jr_get(e, "metrics"), *files = jr_get(e, "files");
-        md_printf(md, "| `");
-        md_cell_text(md, jr_str_or(e, "name", "?"));
-        md_printf(md, "` |");
-        md_num(md, mt ? jr_num_or_nan(mt, "max_abs") : NAN, "%.4g");
-        md_num(md, mt ? jr_num_or_nan(mt, "mean_abs") : NAN, "%.4g");
-        md_num(md, jr_num_or_nan(e, "max_abs_vs_blinn_fit"), "%.4g");
-        md_printf(md, "\n");
-        const char *contact = files ? jr_str_or(files, "contact_sheet", NULL) : NULL;
-        /* the pictures of the fit and of fq2 (the others are in the run folder) */
-        if (contact && add && file_exists(run_dir, contact) &&
-            (k == 0 || strncmp(jr_str_or(e, "name", ""), "fq2@", 4) == 0)) {
-            char caption[400];
-            snprintf(caption, sizeof caption, "%s: He's model, %s, |error| against He (max %.3g)", name,
-                     jr_str_or(e, "name", "?"), mt ? jr_num_or_nan(mt, "max_abs") : NAN);
-            add(ctx, contact, caption);
-        }
-    }
-    md_printf(md, "\n");
-}
-
-int report_render_summary(const char *run_dir, struct md_buf *md,
-                          void (*add)(void *ctx, const char *file, const char *caption), void *ctx, char *err,
-                          size_t errlen)
-{
-    char path[4096];
-    struct jr_doc d;
-    if (path_join(path, sizeof path, run_dir, "render.json")) {
-        snprintf(err, errlen, "%s/render.json: path too long", run_dir);
-        return 2;
-    }
-    if (jr_parse_file(path, &d, err, errlen)) return 2;
-    const struct jr_value *scenes;
-    if (jr_need(&d, &d.root, "scenes", JR_ARR, &scenes, err, errlen)) {
-        jr_free(&d);
-        return 2;
-    }
-    const struct jr_value *opt = jr_get(&d.root, "options");
-    const struct jr_value *size = opt ? jr_get(opt, "image_size") : NULL;
-    md_printf(md, "Each model shades full images on the device; its error image is |model - reference| of the "
-                  "specular radiance (inferno, colour bar in the picture), the reference being the model's own "
-                  "(phong, blinn, or the normalised lobes). Metrics over the foreground pixels; PSNR on the 8-bit "
-                  "colours; timing: median kernel time at the timed size, as Mpixel/s and as a fraction of a copy "
-                  "kernel moving the same bytes. Files: `render.json`, `render/<scene>/`.");
-    if (size && size->type == JR_OBJ)
-        md_printf(md, " Images %.0f x %.0f.", jr_num_or_nan(size, "width"), jr_num_or_nan(size, "height"));
-    md_printf(md, "\n\n");
-    for (size_t si = 0; si < scenes->count; si++) {
-        const struct jr_value *sc = &scenes->items[si];
-        const char *name = jr_str_or(sc, "scene", "?");
-        const struct jr_value *models = jr_get(sc, "models"), *image = jr_get(sc, "image");
-        md_printf(md, "### Scene: %s\n\n", name);
-        const char *src = jr_str_or(sc, "source", NULL);
-        if (src) md_printf(md, "Source: `%s`.\n\n", src);
-        if (!models || models->type != JR_ARR) continue;
-        const char *grid = image ? jr_str_or(image, "contact_sheet", NULL) : NULL;
-        if (grid && add) {
-            char caption[200];
-            snprintf(caption, sizeof caption, "%s: every model (rows) at each shininess (columns), with its error image",
-                     name);
-            add(ctx, grid, caption);
-        }
-        double tw = NAN, th = NAN;
-        md_printf(md, "| model | reference | max abs error | RMSE | PSNR (dB) | share above threshold | double check | "
-                      "Mpixel/s | of copy | speed-up vs reference | files |\n");
-        md_printf(md, "|---|---|---:|---:|---:|---:|---|---:|---:|---:|---|\n");
-        for (size_t mi = 0; mi < models->count; mi++) {
-            const struct jr_value *m = &models->items[mi], *mt = jr_get(m, "metrics");
-            const struct jr_value *chk = jr_get(m, "double_reference_check"), *files = jr_get(m, "files");
-            const char *label = jr_str_or(m, "model", "?");
-            md_printf(md, "| `");
-            md_cell_text(md, label);
-            md_printf(md, "` | `");
-            md_cell_text(md, jr_str_or(m, "reference", "?"));
-            md_printf(md, "` |");
-            md_num(md, mt ? jr_num_or_nan(mt, "max_abs") : NAN, "%.4g");
-            md_num(md, mt ? jr_num_or_nan(mt, "rmse") : NAN, "%.4g");
-            md_num(md, mt ? jr_num_or_nan(mt, "psnr_db") : NAN, "%.1f");
-            md_pct(md, mt ? jr_num_or_nan(mt, "share_above_threshold") : NAN);
-            const struct jr_value *within = chk ? jr_get(chk, "within_bound") : NULL;
-            md_printf(md, " %s |", within && within->type == JR_BOOL ? (within->num ? "within bound" : "**outside bound**")
-                                                                   : "n/a");
-            const struct jr_value *te = timing_of(sc, label, &tw, &th);
-            md_num(md, te ? jr_num_or_nan(te, "mpixel_per_s") : NAN, "%.0f");
-            md_num(md, te ? jr_num_or_nan(te, "fraction_of_copy") : NAN, "%.2f");
-            md_num(md, te ? jr_num_or_nan(te, "speedup_vs_reference") : NAN, "%.2f");
-            const char *img = files ? jr_str_or(files, "image", NULL) : NULL;
-            const char *errimg = files ? jr_str_or(files, "error_image", NULL) : NULL;
-            const char *contact = files ? jr_str_or(files, "contact_sheet", NULL) : NULL;
-            if (img && file_exists(run_dir, img)) md_printf(md, " [image](%s)", img);
-            if (errimg && file_exists(run_dir, errimg)) md_printf(md, " [error](%s)", errimg);
-            const char *signed_img = files ? jr_str_or(files, "signed_error_image", NULL) : NULL;
-            if (signed_img && file_exists(run_dir, signed_img)) md_printf(md, " [signed error](%s)", signed_img);
-            md_printf(md, " |\n");
-            /* a model against itself has a black error image: its contact sheet shows nothing new */
-            if (contact && strcmp(label, jr_str_or(m, "reference", "")) != 0 && add) {
-                char caption[400];
-                snprintf(caption, sizeof caption, "%s, %s against %s: reference, model, |error| (max %.3g, PSNR %.1f dB)",
-                         name, label, jr_str_or(m, "reference", "?"), mt ? jr_num_or_nan(mt, "max_abs") : NAN,
-                         mt ? jr_num_or_nan(mt, "psnr_db") : NAN);
-                add(ctx, contact, caption);
-            }
-        }
-        if (isfinite(tw)) md_printf(md, "\nTimed at %.0f x %.0f.\n", tw, th);
-        md_printf(md, "\n");
-        report_he_comparison(run_dir, md, sc, name, add, ctx);
-    }
-    jr_free(&d);
-    return 0;
 }

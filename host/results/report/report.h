@@ -41,7 +41,7 @@ enum report_part {
 };
 
 /* The page of a part, written beside its JSON by `all` (claims.md comes from reproduce), or
- * NULL for the parts whose section is made from their JSON (fit, images). */
+ * NULL for the parts whose section is drawn from their file's rows (fit, images). */
 const char *report_part_page(int part);
 
 struct report_part_state {
@@ -77,20 +77,12 @@ struct cl_session;
 int report_run_write(const char *run_dir, const struct report_run *run, const struct cl_session *s, char *err,
                      size_t errlen);
 
-/* report.md's text, made from the run folder alone: run.json, accuracy.json, fit.json,
- * render.json and the parts' pages. *text is malloc'd. Returns 0, or 2 with a message naming
+/* report.md's text, made from the run folder alone: run.json, the rows of accuracy.json,
+ * fit.json and render.json (report_docs.h), and the parts' pages. *text is malloc'd. Returns 0, or 2 with a message naming
  * the file that is missing or malformed, or 3 when out of memory. */
 int report_build(const char *run_dir, char **text, char *err, size_t errlen);
 /* Builds report.md and writes it atomically to out (NULL: run_dir/report.md; "-": standard
  * output). Returns 0, 2 (as report_build) or 3 when it cannot be written. */
 int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen);
-
-/* Summarises run_dir/render.json (written by render_run) for the report: per scene a table of
- * the image metrics and timings into md, and each picture that exists through add(ctx, file,
- * caption) (contact sheets inline; the separate image and error PNGs linked from the table).
- * Returns 0, or 2 with a message naming the file when it is missing or malformed. */
-int report_render_summary(const char *run_dir, struct md_buf *md,
-                          void (*add)(void *ctx, const char *file, const char *caption), void *ctx, char *err,
-                          size_t errlen);
 
 #endif
