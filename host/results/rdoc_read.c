@@ -259,24 +259,47 @@ static void kernel_sources(struct rdoc *d, const struct jr_value *tp)
         rd_ctx_put(&d->ctx, "kernel sources", buf);
 }
 
+/* Whether results a and b are of the same device, build variant and n mode. */
+static int same_figure_set(const struct jr_value *a, const struct jr_value *b)
+{
+    static const char *const keys[] = { "device", "variant", "n_mode" };
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; ++k)
+        if (strcmp(jr_str_or(a, keys[k], ""), jr_str_or(b, keys[k], "")) != 0)
+            return 0;
+    return 1;
+}
+
 /* The label of the model's own reference where a result of the same device has it, else NULL
    (the engine's model_reference attribute: the registry's reference of the label, measured in
-   the same run). */
+   the same run). A model the registry does not know here (a user model of that run) has the
+   result whose rate gives the file's ratio_to_model_reference, to the bit (the file's numbers
+   are written with 17 digits, so the division is the engine's). */
 static const char *model_reference_in(const struct jr_value *results, const struct jr_value *row, char *buf,
                                       size_t len)
 {
     struct model_spec spec, ref;
     char why[200];
-    if (strcmp(jr_str_or(row, "kind", ""), "model") != 0 ||
-        model_spec_parse(jr_str_or(row, "label", ""), &spec, why, sizeof why))
+    if (strcmp(jr_str_or(row, "kind", ""), "model") != 0)
         return NULL;
-    model_reference_spec(&spec, &ref);
-    for (size_t i = 0; i < results->count; ++i)
-        if (strcmp(jr_str_or(&results->items[i], "label", ""), ref.label) == 0 &&
-            strcmp(jr_str_or(&results->items[i], "device", ""), jr_str_or(row, "device", "")) == 0) {
-            snprintf(buf, len, "%s", ref.label);
+    if (model_spec_parse(jr_str_or(row, "label", ""), &spec, why, sizeof why) == 0) {
+        model_reference_spec(&spec, &ref);
+        for (size_t i = 0; i < results->count; ++i)
+            if (strcmp(jr_str_or(&results->items[i], "label", ""), ref.label) == 0 &&
+                strcmp(jr_str_or(&results->items[i], "device", ""), jr_str_or(row, "device", "")) == 0) {
+                snprintf(buf, len, "%s", ref.label);
+                return buf;
+            }
+        return NULL;
+    }
+    double q = jr_num_or_nan(row, "ratio_to_model_reference"), f = jr_num_or_nan(jr_get(row, "evals_per_s"), "median");
+    for (size_t i = 0; isfinite(q) && i < results->count; ++i) {
+        const struct jr_value *o = &results->items[i];
+        double g = jr_num_or_nan(jr_get(o, "evals_per_s"), "median");
+        if (same_figure_set(o, row) && strcmp(jr_str_or(o, "status", ""), "ok") == 0 && g > 0 && f / g == q) {
+            snprintf(buf, len, "%s", jr_str_or(o, "label", ""));
             return buf;
         }
+    }
     return NULL;
 }
 
