@@ -42,9 +42,9 @@ def _throughput(d):
             out[label]["host_c.evals_per_s"] = ("1/s", "higher", True, hc["evals_per_s"]["median"],
                                                 hc["evals_per_s_reps"])
         if acc.get("status") == "ok":
-            out[label]["accuracy.max_diff_of_peak"] = ("1", "lower", False, acc["max_diff_of_peak"], [])
+            out[label]["accuracy.max_diff_of_peak"] = ("1", "neither", False, acc["max_diff_of_peak"], [])
         if acc.get("nonfinite", 0) > 0:
-            out[label]["accuracy.nonfinite"] = ("1", "lower", False, acc["nonfinite"], [])
+            out[label]["accuracy.nonfinite"] = ("1", "neither", False, acc["nonfinite"], [])
     # the accuracy sweep: a row per model, its points and each side's points per second
     sw = d.get("sweep", {})
     for m in sw.get("models", []) if sw.get("status", "not run") != "not run" else []:

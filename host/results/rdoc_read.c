@@ -323,9 +323,9 @@ static int throughput_page_record(const struct jr_doc *j, struct rdoc *d, struct
             return 2;
     }
     if (acc && strcmp(jr_str_or(acc, "status", ""), "ok") == 0)
-        rd_row_metric(d, r, "accuracy.max_diff_of_peak", "1", RD_LOWER, 0, jr_num_or_nan(acc, "max_diff_of_peak"));
+        rd_row_metric(d, r, "accuracy.max_diff_of_peak", "1", RD_NEITHER, 0, jr_num_or_nan(acc, "max_diff_of_peak"));
     if (acc && jr_num_or_nan(acc, "nonfinite") > 0)
-        rd_row_metric(d, r, "accuracy.nonfinite", "1", RD_LOWER, 0, jr_num_or_nan(acc, "nonfinite"));
+        rd_row_metric(d, r, "accuracy.nonfinite", "1", RD_NEITHER, 0, jr_num_or_nan(acc, "nonfinite"));
     const struct jr_value *finite = jr_get(row, "values_finite");
     if (r->ok && finite && finite->type == JR_BOOL && !finite->num)
         rd_row_text(d, r, "note", jr_str_or(row, "note", "some values were NaN or Inf under these build options"));

@@ -495,9 +495,9 @@ static void tp_rows(const struct tp_run *r, char hex[][24], struct rdoc *d)
                 rd_metric_normalised(d, cm, c->rep_norm, c->nreps, 0);
         }
         if (e->acc_ok[v])
-            rd_row_metric(d, row, "accuracy.max_diff_of_peak", "1", RD_LOWER, 0, e->acc_max_diff[v]);
+            rd_row_metric(d, row, "accuracy.max_diff_of_peak", "1", RD_NEITHER, 0, e->acc_max_diff[v]);
         if (e->acc_nonfinite[v] > 0)
-            rd_row_metric(d, row, "accuracy.nonfinite", "1", RD_LOWER, 0, (double)e->acc_nonfinite[v]);
+            rd_row_metric(d, row, "accuracy.nonfinite", "1", RD_NEITHER, 0, (double)e->acc_nonfinite[v]);
         if (f->ok && !f->finite)
             rd_row_text(d, row, "note", "some values were NaN or Inf under these build options (their sum is not "
                                         "finite); the rate is the rate of that code");

@@ -28,7 +28,8 @@ struct report_picture {
 
 /* The parts of a run that other commands make, each a section of report.md with the file it
  * comes from: claims (claims.md, written by reproduce), fit (fit.json), throughput
- * (throughput.md), images (render.json), frontier (frontier.md), measured (measured.md). */
+ * (throughput.json's rows; its page throughput.md is drawn from them), images (render.json),
+ * frontier (frontier.md), measured (measured.md). */
 enum report_part {
     REPORT_PART_CLAIMS = 0,
     REPORT_PART_FIT,
