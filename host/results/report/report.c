@@ -201,36 +201,12 @@ static int page_block(struct md_buf *b, const struct report_input *in, const cha
         snprintf(err, errlen, "%s: %s (run.json records its part as done)", path, rc == -2 ? "out of memory" : why);
         return rc == -2 ? 3 : 2;
     }
-    /* claims.md is a page of its own; frontier.md and measured.md are written as this section */
-    if (part == REPORT_PART_CLAIMS) md_embed(b, text);
+    /* claims.md and throughput.md are pages of their own; frontier.md and measured.md are
+       written as this section */
+    if (part == REPORT_PART_CLAIMS || part == REPORT_PART_THROUGHPUT) md_embed(b, text);
     else md_printf(b, "%s", text);
     md_printf(b, "\n\n");
     free(text);
-    return 0;
-}
-
-/* "Throughput": the throughput page drawn from throughput.json's rows (report_throughput.h),
- * taken in as a page of its own (md_embed), as throughput.md was. */
-static int throughput_block(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
-{
-    md_printf(b, "## Throughput\n\n");
-    if (part_unavailable(b, in, REPORT_PART_THROUGHPUT)) return 0;
-    int rc;
-    const struct rdoc *tp = report_doc(&in->docs, "throughput.json", &rc, err, errlen);
-    if (!tp) {
-        if (rc == 1) snprintf(err, errlen, "%s/throughput.json: missing (run.json records its part as done)", in->run_dir);
-        return 2;
-    }
-    struct md_buf page;
-    md_init(&page);
-    if (report_throughput_page(&page, tp, 1)) {
-        md_free(&page);
-        snprintf(err, errlen, "out of memory");
-        return 3;
-    }
-    md_embed(b, page.s ? page.s : "");
-    md_printf(b, "\n\n");
-    md_free(&page);
     return 0;
 }
 
@@ -325,6 +301,31 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
         }
     }
     if (!any) md_printf(b, "No pictures in this section.\n\n");
+}
+
+/* "Throughput": the throughput page drawn from throughput.json's rows (report_throughput.h),
+ * taken in as a page of its own (md_embed), as throughput.md was. */
+static int throughput_block(struct md_buf *b, struct report_input *in, char *err, size_t errlen)
+{
+    md_printf(b, "## Throughput\n\n");
+    if (part_unavailable(b, in, REPORT_PART_THROUGHPUT)) return 0;
+    int rc;
+    const struct rdoc *tp = report_doc(&in->docs, "throughput.json", &rc, err, errlen);
+    if (!tp) {
+        if (rc == 1) snprintf(err, errlen, "%s/throughput.json: missing (run.json records its part as done)", in->run_dir);
+        return 2;
+    }
+    struct md_buf page;
+    md_init(&page);
+    if (report_throughput_page(&page, tp, 1)) {
+        md_free(&page);
+        snprintf(err, errlen, "out of memory");
+        return 3;
+    }
+    md_embed(b, page.s ? page.s : "");
+    md_printf(b, "\n\n");
+    md_free(&page);
+    return 0;
 }
 
 static void header(struct md_buf *b, const struct report_input *in)
