@@ -19,7 +19,8 @@ def compare_scaled_run_factor_verdicts(*args):
     f = float(argv[2])
     assert d["schema"] == "brdfbench.compare/1"
     assert [r["name"] for r in d["runs"]] == ["a", "slow"]
-    rows = [r for r in d["rows"] if r["kind"] == "throughput" and r["model"] != "peak"]
+    # the rates (each result row's accuracy beside its rate is no rate: not scaled)
+    rows = [r for r in d["rows"] if r["kind"] == "throughput" and r["model"] != "peak" and r["metric"] == "evals_per_s"]
     assert len(rows) == 2 * 4, len(rows)   # pow, cq2, fq2, phong x uniform, varying
     for r in rows:
         base, cand = r["cells"]
@@ -36,7 +37,7 @@ def compare_csv_rows(*args):
     """test_compare.sh: compare.csv"""
     import csv, sys
     argv = ["-", *args]
-    rows = [r for r in csv.DictReader(open(argv[1])) if r["key"] != "peak (reference kernel)"]
+    rows = [r for r in csv.DictReader(open(argv[1])) if r["key"] != "peak (reference kernel)" and r["metric"] == "evals_per_s"]
     assert len(rows) == 2 * 8, len(rows)
     assert {r["run"] for r in rows} == {"a", "slow"}
     assert all(r["verdict"] == "slower" for r in rows if r["run"] == "slow")
@@ -48,7 +49,7 @@ def compare_reversed_faster(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
-    assert all(r["cells"][1]["verdict"] == "faster" for r in d["rows"] if r["model"] != "peak"), d["rows"]
+    assert all(r["cells"][1]["verdict"] == "faster" for r in d["rows"] if r["model"] != "peak" and r["sense"] == "speed"), d["rows"]
 
 
 @check
@@ -57,9 +58,12 @@ def compare_self_ratio_1_same(*args):
     import json, math, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
-    # the model rows and the run's peak (its reference kernel) as a row of its own
-    assert len(d["rows"]) == 8 + 1 and d["rows"][0]["key"] == "peak (reference kernel)", [r["key"] for r in d["rows"]]
-    for r in d["rows"]:
+    # the model rows and the run's peak (its reference kernel) as a row of its own; the figures
+    # beside the rates (each row's accuracy) are the same values: unchanged
+    rates = [r for r in d["rows"] if r["sense"] == "speed"]
+    assert len(rates) == 8 + 1 and rates[0]["key"] == "peak (reference kernel)", [r["key"] for r in rates]
+    assert all(r["cells"][1]["verdict"] == "unchanged" for r in d["rows"] if r["sense"] != "speed")
+    for r in rates:
         c = r["cells"][1]
         # identical repetitions: every value tied with its copy, U = 12.5 = E U, p = 1, ratio 1;
         # "same" when the ratio's interval lies within the threshold's band (compare.h; here 0, from
@@ -77,7 +81,7 @@ def compare_3_repetitions_undecided(*args):
     argv = ["-", *args]
     d = json.load(open(argv[1]))
     for r in d["rows"]:
-        if r["model"] == "peak":
+        if r["model"] == "peak" or r["sense"] != "speed":
             continue
         c = r["cells"][1]
         # fully separated, yet p = 2/20: the test cannot reach 0.05 with these sizes
@@ -96,7 +100,7 @@ def compare_two_real_runs(*args):
         q = sorted(math.log(u) - math.log(v) for u in x for v in y)
         n = len(q)
         return math.exp(q[n // 2] if n % 2 else 0.5 * (q[n // 2 - 1] + q[n // 2]))
-    rows = [r for r in d["rows"] if r["model"] != "peak"]
+    rows = [r for r in d["rows"] if r["model"] != "peak" and r["sense"] == "speed"]
     assert len(rows) == len(ma) == len(mb) == 8
     verdicts = []
     for r in rows:
@@ -118,6 +122,7 @@ def compare_mismatched_rows_listed(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
+    d["rows"] = [r for r in d["rows"] if r["sense"] == "speed"]   # the rates
     by = {r["key"]: r for r in d["rows"]}
     assert len(d["rows"]) == 8 + 1 + 1, len(d["rows"])   # 6 shared, 2 phong, 1 lyon, the peak
     for k in ("phong | default | n uniform", "phong | default | n varying"):
@@ -243,7 +248,7 @@ def compare_device_0_0_rows_tagged(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
-    assert d["schema"] == "brdfbench.throughput/4"
+    assert d["schema"] == "brdfbench.throughput/5"
     devs = d["context"]["devices"]
     assert [x["index"] for x in devs] == ["0:0", "0:0"], devs
     name = devs[0]["device"]
@@ -268,7 +273,9 @@ def compare_devices_side_by_side(*args):
     assert d["layout"] == "devices of one run"
     name = t["context"]["devices"][0]["device"]
     assert [r["name"] for r in d["runs"]] == [name, name + " #2"]
-    assert len(d["rows"]) == 8 + 1 and all(r["in_all_runs"] and r["device"] == "" for r in d["rows"])
+    assert all(r["in_all_runs"] and r["device"] == "" for r in d["rows"])
+    d["rows"] = [r for r in d["rows"] if r["sense"] == "speed"]   # the rates
+    assert len(d["rows"]) == 8 + 1
     # two devices are compared on what they deliver: the absolute rates (normalised ones compare a
     # device with itself)
     med = {(r["device"], r["label"], r["variant"], r["n_mode"]): r["evals_per_s_reps"] for r in t["results"]}
@@ -291,6 +298,7 @@ def compare_dev_against_dev_rows_keyed(*args):
     import json, sys
     argv = ["-", *args]
     d = json.load(open(argv[1]))
+    d["rows"] = [r for r in d["rows"] if r["sense"] == "speed"]   # the rates
     assert len(d["rows"]) == 2 * (8 + 1) and len({r["device"] for r in d["rows"]}) == 2
     assert all(r["cells"][1]["verdict"] in ("same", "noisy") and r["cells"][1]["ratio"] == 1.0 for r in d["rows"])
 

@@ -320,7 +320,7 @@ def cli_accuracy_invalid_values_folded_into_maxima(*args):
 def throughput_cli_throughput_contract(*args):
     """check_json of test_throughput_cli.sh: throughput.json contract"""
     argv = ["check_json", *args]
-    d, ctx = load_result(argv[1], "brdfbench.throughput/4",
+    d, ctx = load_result(argv[1], "brdfbench.throughput/5",
                          ("date", "device", "platform_version", "build_options", "git_revision", "throughput"))
     assert ctx["throughput"]["reps"] == 2 and ctx["throughput"]["work_items"] == 4
     # the recorded work-group size is the launch's: 1 on a CPU device (PoCL spreads groups over

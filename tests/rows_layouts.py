@@ -35,6 +35,25 @@ def _throughput(d):
         label = "%s | %s | n %s" % (r["label"], r["variant"], r["n_mode"])
         out[label] = {"evals_per_s": ("1/s", "higher", True, r["evals_per_s"]["median"], r["evals_per_s_reps"]),
                       STATUS: _status(r)}
+        # what the throughput page reads beside the rate: the tuned C loop's rate (timed with the
+        # default build options), the accuracy against the double reference
+        hc, acc = r.get("host_c", {}), r.get("accuracy", {})
+        if r["variant"] == "default" and hc.get("status") == "ok":
+            out[label]["host_c.evals_per_s"] = ("1/s", "higher", True, hc["evals_per_s"]["median"],
+                                                hc["evals_per_s_reps"])
+        if acc.get("status") == "ok":
+            out[label]["accuracy.max_diff_of_peak"] = ("1", "neither", False, acc["max_diff_of_peak"], [])
+        if acc.get("nonfinite", 0) > 0:
+            out[label]["accuracy.nonfinite"] = ("1", "neither", False, acc["nonfinite"], [])
+    # the accuracy sweep: a row per model, its points and each side's points per second
+    sw = d.get("sweep", {})
+    for m in sw.get("models", []) if sw.get("status", "not run") != "not run" else []:
+        ok = m.get("status") == "ok"
+        row = {"points": ("1", "neither", False, m["points"], []), STATUS: _status(m)}
+        for side in ("device", "host_c"):
+            row[side + "_points_per_s"] = ("1/s", "higher", True,
+                                           m["points"] / m[side + "_seconds"]["median"] if ok else None, [])
+        out["%s | accuracy sweep" % m["label"]] = row
     return out
 
 

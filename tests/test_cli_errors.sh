@@ -491,7 +491,7 @@ t 2 "^brdfbench compare: C3/accuracy.json: empty file" compare base C3 --out run
 t 2 "^brdfbench gate: --baseline: C1/accuracy.json: is a FIFO, not a regular file" gate good.json --baseline C1
 t 2 "^brdfbench gate: --baseline: /dev/zero: is a character device, not a regular file" gate good.json --baseline /dev/zero
 t 2 "^brdfbench gate: --baseline: R0/plots.json: schema \"brdfbench.plots/1\" is not a result file with figures" gate good.json --baseline R0/plots.json
-t 2 "^brdfbench gate: --baseline: R0/throughput.json: the figures of throughput.json \(schema brdfbench.throughput/4\), not an accuracy.json \(schema brdfbench.accuracy/3 expected\)" gate good.json --baseline R0/throughput.json
+t 2 "^brdfbench gate: --baseline: R0/throughput.json: the figures of throughput.json \(schema brdfbench.throughput/5\), not an accuracy.json \(schema brdfbench.accuracy/3 expected\)" gate good.json --baseline R0/throughput.json
 mkdir -p C4
 t 2 "^brdfbench gate: --baseline: C4/accuracy.json: cannot open: No such file" gate good.json --baseline C4
 python3 -c 'import json; d = json.load(open("base/accuracy.json")); d["results"] = {}; d.pop("rows"); d["schema"] = "brdfbench.accuracy/1"; json.dump(d, open("bad_results.json", "w"))'
@@ -693,7 +693,7 @@ rows = d.get("results") or d.get("models") or d.get("scenes") or d.get("compare"
 exec(sys.argv[2])
 # the layout edited: the file in the previous version's form (no "rows" member), read by that
 # layout (a current file's rows member would not show the edit)
-PREV = {"brdfbench.throughput/4": "brdfbench.throughput/3", "brdfbench.render/3": "brdfbench.render/1",
+PREV = {"brdfbench.throughput/5": "brdfbench.throughput/3", "brdfbench.render/3": "brdfbench.render/1",
         "brdfbench.fit/3": "brdfbench.fit/1", "brdfbench.frontier/2": "brdfbench.frontier/1",
         "brdfbench.accuracy/3": "brdfbench.accuracy/1"}
 if d.get("schema") in PREV:

@@ -5,7 +5,8 @@
  *   - field and plot JSON survive a round trip, and broken files are refused with the file,
  *     line and problem named;
  *   - every picture decodes with its expected size;
- *   - report.md links only files that exist. */
+ *   - report.md links only files that exist; its throughput section is drawn from the rows of
+ *     throughput.json (the figures worked by hand below). */
 #define _POSIX_C_SOURCE 200809L
 #include "accuracy.h"
 #include "accuracy_report.h"
@@ -295,8 +296,26 @@ static void test_plots_and_report(struct cl_session *s)
     /* the run folder as `all` leaves it: accuracy.json, the throughput page, run.json */
     path_in(path, sizeof path, "accuracy.json");
     CHECK(accuracy_write_json(path, res, 2, NULL, "", err, sizeof err) == 0, "accuracy.json: %s", err);
-    path_in(path, sizeof path, "throughput.md");
-    test_write_file(path, "# brdfbench throughput\n\n| model | rate |\n|---|---|\n| fvol | 2.5 |\n");
+    /* throughput.json as the engine writes it, its rows alone read: a peak of 100 GFLOP/s (50 G
+       FMA/s), pow() at 1 G/s and fvol at 2.5 G/s (2.4 to 2.6) in the uniform mode */
+    path_in(path, sizeof path, "throughput.json");
+    test_write_file(path,
+        "{\"schema\": \"brdfbench.throughput/5\", \"context\": {}, \"rows\": {\"context\": {}, "
+        "\"disturbed_reps\": 0, \"devices\": [], \"texts\": {\"reps\": \"5\", \"tuned_c_threads\": \"2\"}, \"rows\": ["
+        "{\"device\": \"\", \"model\": \"peak\", \"keys\": {\"reference\": \"peak (reference kernel)\"}, "
+        "\"attributes\": {}, \"row\": \"peak (reference kernel)\", \"status\": \"ok\", \"preemption_retries\": 0, "
+        "\"disturbed_reps\": 0, \"metrics\": [{\"name\": \"flops_per_s\", \"unit\": \"FLOP/s\", "
+        "\"direction\": \"higher\", \"timed\": true, \"value\": 1e11}]},"
+        "{\"device\": \"\", \"model\": \"pow\", \"keys\": {\"label\": \"pow\", \"variant\": \"default\", "
+        "\"n_mode\": \"uniform\"}, \"attributes\": {\"kind\": \"builtin\"}, \"row\": \"pow | default | n uniform\", "
+        "\"status\": \"ok\", \"preemption_retries\": 0, \"disturbed_reps\": 0, \"metrics\": [{\"name\": "
+        "\"evals_per_s\", \"unit\": \"1/s\", \"direction\": \"higher\", \"timed\": true, \"value\": 1e9, "
+        "\"min\": 1e9, \"max\": 1e9}]},"
+        "{\"device\": \"\", \"model\": \"fvol\", \"keys\": {\"label\": \"fvol\", \"variant\": \"default\", "
+        "\"n_mode\": \"uniform\"}, \"attributes\": {\"kind\": \"model\"}, \"row\": \"fvol | default | n uniform\", "
+        "\"status\": \"ok\", \"preemption_retries\": 0, \"disturbed_reps\": 0, \"metrics\": [{\"name\": "
+        "\"evals_per_s\", \"unit\": \"1/s\", \"direction\": \"higher\", \"timed\": true, \"value\": 2.5e9, "
+        "\"min\": 2.4e9, \"max\": 2.6e9}]}]}}\n");
     struct report_step steps[2] = {
         {"accuracy", "2 models", 1.25, 0},
         {"claims", "", 0, 3},
@@ -335,8 +354,13 @@ static void test_plots_and_report(struct cl_session *s)
               "report.md says why left_out.png was not drawn");
         CHECK(strstr(text, "never_written.png") && strstr(text, "was not written"), "the missing picture is named");
         CHECK(strstr(text, "`fvol`") && strstr(text, "`cq2`"), "accuracy table rows");
-        CHECK(strstr(text, "| fvol | 2.5 |") != NULL, "throughput block included");
-        CHECK(strstr(text, "# brdfbench throughput") == NULL, "the page's own title is dropped");
+        /* fvol: 2.5 G/s, 2.5 x pow()'s 1 G/s, 2.5 / 50 G FMA/s = 5% of peak; no reference, no C loop */
+        CHECK(strstr(text, "## Throughput\n\ndevice peak: 100 GFLOP/s (float16 FMA chains) = 50 G FMA/s;") != NULL,
+              "throughput section: the peak line from the peak row");
+        CHECK(strstr(text, "| fvol | uniform | 2.5 | 2.4 - 2.6 | 2.5 | - | - | 5% | - |\n") != NULL,
+              "throughput section: fvol's row and its ratios, from the rows");
+        CHECK(strstr(text, "(median of 5 launches, profiling events; tuned C: 2 threads)") != NULL,
+              "throughput section: the launches and threads from the document's texts");
         CHECK(strstr(text, "Not available: not in this test") != NULL, "missing sections say why");
         /* the step list: two steps from run.json (1.25 s shown to a tenth: "1.2" under
            round-half-even of printf, or "1.3"), a failed one, then the report's own line */
@@ -355,12 +379,12 @@ static void test_plots_and_report(struct cl_session *s)
         free(again);
         free(text);
     }
-    /* a run folder without run.json, and one whose throughput page is gone, are named */
+    /* a run folder without run.json, and one whose throughput.json is gone, are named */
     char *none = NULL;
-    path_in(path, sizeof path, "throughput.md");
+    path_in(path, sizeof path, "throughput.json");
     remove(path);
-    CHECK(report_build(dir, &none, err, sizeof err) == 2 && none == NULL && strstr(err, "throughput.md"),
-          "the missing page is named: %s", err);
+    CHECK(report_build(dir, &none, err, sizeof err) == 2 && none == NULL && strstr(err, "throughput.json"),
+          "the missing file is named: %s", err);
     path_in(path, sizeof path, "run.json");
     remove(path);
     CHECK(report_build(dir, &none, err, sizeof err) == 2 && strstr(err, "run.json"), "no run.json: %s", err);

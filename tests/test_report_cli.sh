@@ -114,8 +114,8 @@ for f in claims.md throughput.md frontier.md; do [ -s "$RUN/$f" ] && ok || bad "
 # what report cannot rebuild is named: exit 2
 expect 2 "run.json: .*No such file" report "$T/out3"
 cp -r "$RUN/." "$T/broken"
-rm "$T/broken/throughput.md"
-expect 2 "throughput.md: .*run.json records its part as done" report "$T/broken" --output -
+rm "$T/broken/throughput.json"
+expect 2 "throughput.json: .*run.json records its part as done" report "$T/broken" --output -
 printf '{"schema": "brdfbench.run/1", "command": 3}\n' >"$T/broken/run.json"
 expect 2 "run.json:1:[0-9]+: member \"command\" is a number, a string expected" report "$T/broken"
 expect 2 "RUN_DIR '$T/nosuch' is not a folder" report "$T/nosuch"

@@ -28,7 +28,7 @@ OLD="$SRC/tests/fixtures/rows-v-previous"
 #    as the layout mapping says, the schema named as the file's
 declare -A PREV=([throughput]=brdfbench.throughput/3 [render]=brdfbench.render/1 [fit]=brdfbench.fit/1
                  [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1 [energy]=brdfbench.energy/1)
-declare -A NOW=([throughput]=brdfbench.throughput/4 [render]=brdfbench.render/3 [fit]=brdfbench.fit/3
+declare -A NOW=([throughput]=brdfbench.throughput/5 [render]=brdfbench.render/3 [fit]=brdfbench.fit/3
                 [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/3 [energy]=brdfbench.energy/2)
 KINDS="throughput render fit frontier accuracy energy"
 for k in $KINDS; do
@@ -124,6 +124,43 @@ for k in throughput frontier; do
         "nan/$k.json" "nan/up_$k.json" "${PREV[$k]}"
     "$BIN" rows "nan/up_$k.json" --format json --output "$T/nan_up_$k.rows.json" 2>"$T/err" && ok || bad "rows nan up $k: $(cat "$T/err")"
     python3 "$LAYOUTS" "nan/up_$k.json" "$T/nan_up_$k.rows.json" && ok || bad "nan $k.json (previous form): upgrade differs from its layout's"
+done
+
+# the throughput page's record (throughput): the tuned C loop, two build options and the accuracy
+# sweep in the rows member as in the layout mapping, and the same rows from the previous form
+# (/3, no rows member) and from a /4 file, whose rows were written before they carried the page's
+# record: both read by the layout
+mkdir -p page
+"$BIN" throughput --models phong,fq2 --variants default,fast-relaxed-math --n-modes uniform --reps 2 --min-time 0.001 \
+    --work-items 64 --sweep-samples 16 --sweep-n-step 200 --sweep-reps 1 --json page/throughput.json >/dev/null \
+    2>"$T/err" || bad "throughput page: $(cat "$T/err")"
+python3 - page/throughput.json page/up3.json page/up4.json <<'PY' && ok || bad "page/throughput.json: no C rate, accuracy or sweep row"
+import json, sys
+d = json.load(open(sys.argv[1]))
+rows = d["rows"]["rows"]
+names = {m["name"] for r in rows for m in r["metrics"]}
+assert {"host_c.evals_per_s", "accuracy.max_diff_of_peak", "device_points_per_s"} <= names, names
+assert d["rows"]["texts"]["reps"] == "2", d["rows"].get("texts")
+e = dict(d); del e["rows"]; e["schema"] = "brdfbench.throughput/3"
+json.dump(e, open(sys.argv[2], "w"))
+del d["rows"]["texts"]
+for r in d["rows"]["rows"]:
+    r["attributes"].pop("model_reference", None)
+    r.pop("texts", None)
+d["schema"] = "brdfbench.throughput/4"
+json.dump(d, open(sys.argv[3], "w"))
+PY
+for f in throughput up3 up4; do
+    "$BIN" rows "page/$f.json" --format json --output "$T/page_$f.rows.json" 2>"$T/err" && ok || bad "rows page $f: $(cat "$T/err")"
+    python3 "$LAYOUTS" page/throughput.json "$T/page_$f.rows.json" && ok || bad "page $f: rows differ from the layout's"
+done
+for f in up3 up4; do
+    python3 - "$T/page_throughput.rows.json" "$T/page_$f.rows.json" <<'PY' && ok || bad "page $f: read differently from the rows member"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+del a["source"]["schema"], b["source"]["schema"]
+sys.exit(0 if a == b else 1)
+PY
 done
 
 # the check bites: a value changed in the rows member is what the reader reports

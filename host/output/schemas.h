@@ -39,12 +39,15 @@
 #define HISTORY_SCHEMA "brdfbench.history/1"  /* `brdfbench history` (history.h) */
 #define ROWS_SCHEMA "brdfbench.rows/1"        /* `brdfbench rows`: any result file as rows (rdoc.h) */
 #define RUN_SCHEMA "brdfbench.run/1"          /* run.json of `all`: what report.md is made of */
-#define THROUGHPUT_SCHEMA "brdfbench.throughput/4"   /* /4: the file carries its rows (rdoc.h) */
+#define THROUGHPUT_SCHEMA "brdfbench.throughput/5"   /* /5: its rows carry what the throughput page shows */
+#define THROUGHPUT_SCHEMA_V4 "brdfbench.throughput/4"   /* rows without the page's: read by its layout (/3's) */
 /* older throughput documents the readers still take, by their layout: /3 is /4 without the
    rows member; /2 has the same results without the runner's normalised rates; /1 (plot only)
    has the rates alone */
 #define THROUGHPUT_SCHEMA_V3 "brdfbench.throughput/3"
 #define THROUGHPUT_SCHEMA_V2 "brdfbench.throughput/2"
 #define THROUGHPUT_SCHEMA_V1 "brdfbench.throughput/1"
+/* a /4 file written before its rows carried the throughput page's record (no "reps" text in
+   them) is read by /3's layout, which it holds too (rdoc_read.c) */
 
 #endif

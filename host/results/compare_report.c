@@ -40,7 +40,9 @@ static void fmt_value(char *buf, size_t len, const struct cmp_row *r, double v)
 /* The row's name in a table: device, key and (where a kind has several) the figure. */
 static void row_label(char *buf, size_t len, const struct cmp_row *r)
 {
-    if (r->kind == CMP_THROUGHPUT)
+    /* a throughput row's rate goes by its key alone; the figures beside it (the tuned C loop's
+       rate, the accuracy) are named */
+    if (r->kind == CMP_THROUGHPUT && (strcmp(r->metric, "evals_per_s") == 0 || strcmp(r->metric, "flops_per_s") == 0))
         snprintf(buf, len, "%s%s%s", r->device, *r->device ? " | " : "", r->key);
     else
         snprintf(buf, len, "%s%s%s: %s", r->device, *r->device ? " | " : "", r->key, r->metric);

@@ -15,6 +15,7 @@
 
 #include "compare_check.h"
 #include "jsonr.h"
+#include "models.h"
 #include "outdir.h"
 #include "rdoc_upgrade_energy.h"
 #include "schemas.h"
@@ -55,6 +56,8 @@ static const struct {
     int kind;
     layout_reader read;
 } layouts[] = {
+    /* /4 is /3 with a rows member that lacks what the throughput page reads */
+    { THROUGHPUT_SCHEMA_V4, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
     { THROUGHPUT_SCHEMA_V3, RD_KIND_THROUGHPUT, upgrade_throughput_v3 },
     /* /2 is /3 without the normalised rates, /1 without the repetitions (compare refuses it:
        nothing to decide a verdict on; plot draws its rates): the same function, which takes
@@ -291,6 +294,133 @@ static void kernel_sources(struct rdoc *d, const struct jr_value *tp)
         rd_ctx_put(&d->ctx, "kernel sources", buf);
 }
 
+/* Whether results a and b are of the same device, build variant and n mode. */
+static int same_figure_set(const struct jr_value *a, const struct jr_value *b)
+{
+    static const char *const keys[] = { "device", "variant", "n_mode" };
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; ++k)
+        if (strcmp(jr_str_or(a, keys[k], ""), jr_str_or(b, keys[k], "")) != 0)
+            return 0;
+    return 1;
+}
+
+/* The label of the model's own reference where a result of the same device has it, else NULL
+   (the engine's model_reference attribute: the registry's reference of the label, measured in
+   the same run). A model the registry does not know here (a user model of that run) has the
+   result whose rate gives the file's ratio_to_model_reference, to the bit (the file's numbers
+   are written with 17 digits, so the division is the engine's). */
+static const char *model_reference_in(const struct jr_value *results, const struct jr_value *row, char *buf,
+                                      size_t len)
+{
+    struct model_spec spec, ref;
+    char why[200];
+    if (strcmp(jr_str_or(row, "kind", ""), "model") != 0)
+        return NULL;
+    if (model_spec_parse(jr_str_or(row, "label", ""), &spec, why, sizeof why) == 0) {
+        model_reference_spec(&spec, &ref);
+        for (size_t i = 0; i < results->count; ++i)
+            if (strcmp(jr_str_or(&results->items[i], "label", ""), ref.label) == 0 &&
+                strcmp(jr_str_or(&results->items[i], "device", ""), jr_str_or(row, "device", "")) == 0) {
+                snprintf(buf, len, "%s", ref.label);
+                return buf;
+            }
+        return NULL;
+    }
+    double q = jr_num_or_nan(row, "ratio_to_model_reference"), f = jr_num_or_nan(jr_get(row, "evals_per_s"), "median");
+    for (size_t i = 0; isfinite(q) && i < results->count; ++i) {
+        const struct jr_value *o = &results->items[i];
+        double g = jr_num_or_nan(jr_get(o, "evals_per_s"), "median");
+        if (same_figure_set(o, row) && strcmp(jr_str_or(o, "status", ""), "ok") == 0 && g > 0 && f / g == q) {
+            snprintf(buf, len, "%s", jr_str_or(o, "label", ""));
+            return buf;
+        }
+    }
+    return NULL;
+}
+
+/* What the throughput page reads of a result beside its rate (report_throughput.h): the model's
+   reference, the tuned C loop's rate (default variant) or why its ratio is missing, the
+   accuracy against the double reference, and the note of values not all finite. */
+static int throughput_page_record(const struct jr_doc *j, struct rdoc *d, struct rd_row *r,
+                                  const struct jr_value *results, const struct jr_value *row, char *err, size_t errlen)
+{
+    char ref[RD_TEXT];
+    if (model_reference_in(results, row, ref, sizeof ref))
+        rd_row_attr(r, "model_reference", ref);
+    const struct jr_value *hc = jr_get(row, "host_c"), *acc = jr_get(row, "accuracy");
+    int deflt = strcmp(jr_str_or(row, "variant", ""), "default") == 0;
+    if (deflt && hc && strcmp(jr_str_or(hc, "status", ""), "ok") == 0) {
+        int rc;
+        struct rd_metric *m = rate_metric(j, d, r, hc, "evals_per_s", "1/s", err, errlen, &rc);
+        if (m)
+            snprintf(m->name, sizeof m->name, "host_c.evals_per_s");
+        if (rc || (m && take_normalised(j, hc, m, err, errlen)))
+            return 2;
+    }
+    if (acc && strcmp(jr_str_or(acc, "status", ""), "ok") == 0)
+        rd_row_metric(d, r, "accuracy.max_diff_of_peak", "1", RD_NEITHER, 0, jr_num_or_nan(acc, "max_diff_of_peak"));
+    if (acc && jr_num_or_nan(acc, "nonfinite") > 0)
+        rd_row_metric(d, r, "accuracy.nonfinite", "1", RD_NEITHER, 0, jr_num_or_nan(acc, "nonfinite"));
+    const struct jr_value *finite = jr_get(row, "values_finite");
+    if (r->ok && finite && finite->type == JR_BOOL && !finite->num)
+        rd_row_text(d, r, "note", jr_str_or(row, "note", "some values were NaN or Inf under these build options"));
+    if (deflt && hc && jr_get(hc, "sums_check") && strcmp(jr_str_or(hc, "status", ""), "failed") == 0)
+        rd_row_text(d, r, "host_c_reason", jr_str_or(hc, "reason", "failed"));
+    return 0;
+}
+
+/* The page's document texts (the launches behind each median, the C loop's threads: the
+   machine's cores where the file records none, as the run used them) and a row per model of
+   the accuracy sweep (points, and each side's points per second from its seconds). */
+static void throughput_sweep(struct rdoc *d, const struct jr_value *root, const struct jr_value *tp)
+{
+    char buf[64];
+    if (tp && isfinite(jr_num_or_nan(tp, "reps"))) {
+        snprintf(buf, sizeof buf, "%.0f", jr_num_or_nan(tp, "reps"));
+        rdoc_text(d, "reps", buf);
+    }
+    double threads = tp ? jr_num_or_nan(tp, "host_c_threads") : NAN;
+    if (!(threads > 0))
+        threads = jr_num_or_nan(jr_get(root, "context"), "host_cores");
+    if (isfinite(threads)) {
+        snprintf(buf, sizeof buf, "%.0f", threads);
+        rdoc_text(d, "tuned_c_threads", buf);
+    }
+    const struct jr_value *sw = jr_get(root, "sweep"), *models = jr_get(sw, "models");
+    if (!sw || strcmp(jr_str_or(sw, "status", "not run"), "not run") == 0)
+        return;
+    rdoc_textf(d, "sweep_grid", "n %g..%g step %g, %.0f samples per zone", jr_num_or_nan(sw, "n_min"),
+               jr_num_or_nan(sw, "n_max"), jr_num_or_nan(sw, "n_step"), jr_num_or_nan(sw, "samples_per_zone"));
+    if (jr_get(sw, "reason"))
+        rdoc_text(d, "sweep_reason", jr_str_or(sw, "reason", ""));
+    /* the sweep of a --device all file is its first device's, as its other sections are */
+    const struct jr_value *devs = jr_get(jr_get(root, "context"), "devices");
+    const char *device = devs && devs->type == JR_ARR && devs->count >= 2
+                             ? jr_str_or(&devs->items[0], "tag", jr_str_or(&devs->items[0], "device", "?")) : "";
+    for (size_t i = 0; models && models->type == JR_ARR && i < models->count; ++i) {
+        const struct jr_value *m = &models->items[i];
+        struct rd_row *r = rdoc_row(d, device, jr_str_or(m, "label", ""));
+        if (!r)
+            return;
+        rd_row_key(r, "label", NULL, jr_str_or(m, "label", ""));
+        rd_row_key(r, "sweep", NULL, "accuracy sweep");
+        row_status(r, m);
+        double pts = jr_num_or_nan(m, "points");
+        rd_row_metric(d, r, "points", "1", RD_NEITHER, 0, pts);
+        static const char *const sides[2][2] = { { "device_points_per_s", "device_seconds" },
+                                                 { "host_c_points_per_s", "host_c_seconds" } };
+        for (int k = 0; k < 2; ++k) {
+            const struct jr_value *sec = jr_get(m, sides[k][1]);
+            struct rd_metric *x = rd_row_metric(d, r, sides[k][0], "1/s", RD_HIGHER, 1,
+                                                r->ok ? pts / jr_num_or_nan(sec, "median") : NAN);
+            if (x && r->ok) {
+                x->lo = pts / jr_num_or_nan(sec, "max");
+                x->hi = pts / jr_num_or_nan(sec, "min");
+            }
+        }
+    }
+}
+
 /* The upgrade of brdfbench.throughput/3 (and of /2 and /1, which hold less of the same): a row
  * for each device's peak kernel (flops_per_s), then one per result (keys label, variant, n mode;
  * attribute kind) with its evals_per_s, its range, repetitions and normalised repetitions; the
@@ -321,11 +451,13 @@ static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *e
         row_status(r, row);
         int rc;
         struct rd_metric *m = rate_metric(j, d, r, row, "evals_per_s", "1/s", err, errlen, &rc);
-        if (rc || (m && take_normalised(j, row, m, err, errlen)))
+        if (rc || (m && take_normalised(j, row, m, err, errlen)) ||
+            throughput_page_record(j, d, r, rows, row, err, errlen))
             return 2;
         r->retries = (int)fmax(0, jr_num_or_nan(row, "preemption_retries"));
         r->disturbed = (int)fmax(0, jr_num_or_nan(row, "disturbed_reps"));
     }
+    throughput_sweep(d, &j->root, tp);
     return 0;
 }
 

@@ -10,6 +10,7 @@
 #include "hostc_baseline.h"
 #include "outdir.h"
 #include "programs.h"
+#include "rdoc.h"
 #include "runner.h"
 #include "stats.h"
 
@@ -603,6 +604,7 @@ static int tp_run_all(struct cl_session *s, const struct throughput_options *o, 
         return EXIT_RUNTIME;
     int rc = 0;
     float *sums = NULL, *csums = NULL;
+    struct rdoc *rows = NULL;
     r->s = s;
     r->o = o;
     if (o->model_count > 0) {
@@ -654,22 +656,25 @@ static int tp_run_all(struct cl_session *s, const struct throughput_options *o, 
     r->steal_end = runner_steal_seconds();
 
     char path[4200];
-    if (path_join(path, sizeof path, out_dir, "throughput.json") || tp_write_json(r, path, err, sizeof err) ||
-        path_join(path, sizeof path, out_dir, "throughput.csv") || tp_write_csv(r, path, err, sizeof err)) {
+    /* the rows are what throughput.json carries and what the page is drawn from */
+    if (!(rows = tp_rows_new(r, err, sizeof err)) || path_join(path, sizeof path, out_dir, "throughput.json") ||
+        tp_write_json(r, rows, path, err, sizeof err) || path_join(path, sizeof path, out_dir, "throughput.csv") ||
+        tp_write_csv(r, path, err, sizeof err)) {
         fprintf(stderr, "brdfbench throughput: %s\n", err);
         rc = EXIT_RUNTIME;
         goto done;
     }
     if (!quiet) {
-        char *t = tp_tables_text(r, 0);
+        char *t = tp_tables_text(rows, 0);
         if (t)
             fputs(t, stdout);
         printf("written: %s/throughput.json, %s/throughput.csv\n", out_dir, out_dir);
         free(t);
     }
     if (markdown)
-        *markdown = tp_tables_text(r, 1);
+        *markdown = tp_tables_text(rows, 1);
 done:
+    rdoc_delete(rows);
     free(csums);
     free(sums);
     if (r) {

@@ -1,12 +1,13 @@
-/* throughput_report.c - writes what a throughput run measured: throughput.json (schema in
- * throughput.h), throughput.csv (one line per row) and the summary tables for stdout and
- * report.md. Nothing here measures. */
+/* throughput_report.c - writes what a throughput run measured: its rows, throughput.json
+ * (schema in throughput.h) and throughput.csv (one line per row); the summary tables for stdout
+ * and throughput.md are the page of the rows (report_throughput.c). Nothing here measures. */
 #include "throughput_report.h"
 #include "context.h"
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "outdir.h"
 #include "rdoc.h"
+#include "report_throughput.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -412,9 +413,23 @@ static struct rd_metric *rate_metric(struct rdoc *d, struct rd_row *row, const c
     return m;
 }
 
+/* A sweep time's rate: the model's points over each timed run (the fastest run the largest). */
+static struct rd_metric *sweep_rate(struct rdoc *d, struct rd_row *row, const char *name, double points,
+                                    struct tp_stats s, int ok)
+{
+    struct rd_metric *m = rd_row_metric(d, row, name, "1/s", RD_HIGHER, 1, ok ? points / s.median : NAN);
+    if (m && ok) {
+        m->lo = points / s.max;
+        m->hi = points / s.min;
+    }
+    return m;
+}
+
 /* The run's rows (rdoc.h): the peak kernel's (its reference), then one per measured model,
-   build variant and n mode, in the order of "results"; the run's settings and machine record
-   as context lines. What compare, gate --baseline, plot and rows read. */
+   build variant and n mode, in the order of "results", then one per model of the accuracy
+   sweep; the run's settings and machine record as context lines. What compare, gate
+   --baseline, plot and rows read, and what the throughput page is drawn from
+   (report_throughput.h lists what it takes). */
 static void tp_rows(const struct tp_run *r, char hex[][24], struct rdoc *d)
 {
     const struct throughput_options *o = r->o;
@@ -431,6 +446,15 @@ static void tp_rows(const struct tp_run *r, char hex[][24], struct rdoc *d)
     for (size_t i = 0; i < FINGERPRINTED; ++i)
         snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "%s%s %.8s", i ? ", " : "", fingerprinted[i], hex[i]);
     rd_ctx_put(&d->ctx, "kernel sources", buf);
+    /* the page's words: the launches behind each median, the C loop's threads (the machine's
+       online CPUs unless --threads says), the sweep's grid and why it measured nothing */
+    rdoc_textf(d, "reps", "%d", o->reps);
+    rdoc_textf(d, "tuned_c_threads", "%d", r->threads);
+    if (r->sweep_ran)
+        rdoc_textf(d, "sweep_grid", "n %g..%g step %g, %ld samples per zone", o->sweep_grid.n_min,
+                   o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples);
+    if (r->sweep_ran && r->sweep_reason[0])
+        rdoc_text(d, "sweep_reason", r->sweep_reason);
 
     struct rd_row *row = rdoc_row(d, "", "peak");
     if (!row)
@@ -449,6 +473,8 @@ static void tp_rows(const struct tp_run *r, char hex[][24], struct rdoc *d)
         rd_row_key(row, "variant", NULL, tp_variant_name(v));
         rd_row_key(row, "n_mode", "n ", nmode_names[m]);
         rd_row_attr(row, "kind", e->m ? "model" : "builtin");
+        if (e->ref_entry >= 0)   /* the model's own reference, measured in this run */
+            rd_row_attr(row, "model_reference", r->e[e->ref_entry].label);
         if (!f->ok)
             rd_row_fail(row, "failed", f->reason);
         struct rd_metric *mt = rate_metric(d, row, "evals_per_s", "1/s", f,
@@ -459,22 +485,59 @@ static void tp_rows(const struct tp_run *r, char hex[][24], struct rdoc *d)
             rd_metric_normalised(d, mt, f->rep_cpu_norm, f->nreps, 1);
         else if (mt && f->ok && f->has_norm)
             rd_metric_normalised(d, mt, f->rep_norm, f->nreps, 0);
+        /* the tuned C loop doing the same evaluations: timed beside the default variant */
+        const struct tp_figure *c = &e->hostc[m];
+        if (v == TP_VARIANT_DEFAULT && o->host_c && c->ok) {
+            struct rd_metric *cm = rate_metric(d, row, "host_c.evals_per_s", "1/s", c, c->rate);
+            if (cm && c->has_cpu_norm)
+                rd_metric_normalised(d, cm, c->rep_cpu_norm, c->nreps, 1);
+            else if (cm && c->has_norm)
+                rd_metric_normalised(d, cm, c->rep_norm, c->nreps, 0);
+        }
+        if (e->acc_ok[v])
+            rd_row_metric(d, row, "accuracy.max_diff_of_peak", "1", RD_NEITHER, 0, e->acc_max_diff[v]);
+        if (e->acc_nonfinite[v] > 0)
+            rd_row_metric(d, row, "accuracy.nonfinite", "1", RD_NEITHER, 0, (double)e->acc_nonfinite[v]);
+        if (f->ok && !f->finite)
+            rd_row_text(d, row, "note", "some values were NaN or Inf under these build options (their sum is not "
+                                        "finite); the rate is the rate of that code");
+        if (v == TP_VARIANT_DEFAULT && o->host_c && c->checked && !c->ok)
+            rd_row_text(d, row, "host_c_reason", c->reason);
         row->retries = f->retries > 0 ? f->retries : 0;
         row->disturbed = f->disturbed > 0 ? f->disturbed : 0;
     }
+    for (int k = 0; r->sweep_ran && k < r->nsw; ++k) {
+        const struct tp_sweep_model *s = &r->sw[k];
+        if (!(row = rdoc_row(d, "", s->label)))
+            return;
+        rd_row_key(row, "label", NULL, s->label);
+        rd_row_key(row, "sweep", NULL, "accuracy sweep");
+        if (!s->ok)
+            rd_row_fail(row, "failed", s->reason);
+        rd_row_metric(d, row, "points", "1", RD_NEITHER, 0, s->points);
+        sweep_rate(d, row, "device_points_per_s", s->points, s->dev_s, s->ok);
+        sweep_rate(d, row, "host_c_points_per_s", s->points, s->hostc_s, s->ok);
+    }
 }
 
-int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen)
+/* The run's rows (tp_rows), or NULL with "out of memory" in err. */
+struct rdoc *tp_rows_new(const struct tp_run *r, char *err, size_t errlen)
 {
     char hex[FINGERPRINTED][24];
     for (size_t i = 0; i < FINGERPRINTED; ++i)
         kernel_fingerprint(fingerprinted[i], hex[i]);
     struct rdoc *d = rdoc_new(THROUGHPUT_SCHEMA, "throughput", "throughput.json", err, errlen);
     if (!d)
-        return -1;
+        return NULL;
     tp_rows(r, hex, d);
-    if (rdoc_built(d, err, errlen))
-        return -1;
+    return rdoc_built(d, err, errlen) ? NULL : d;
+}
+
+int tp_write_json(const struct tp_run *r, const struct rdoc *d, const char *path, char *err, size_t errlen)
+{
+    char hex[FINGERPRINTED][24];
+    for (size_t i = 0; i < FINGERPRINTED; ++i)
+        kernel_fingerprint(fingerprinted[i], hex[i]);
     struct jw w;
     jw_doc_begin(&w, THROUGHPUT_SCHEMA, r->s, r->options[TP_VARIANT_DEFAULT]);
     json_context(&w, r, hex);
@@ -495,7 +558,6 @@ int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t er
         json_sweep_ran(&w, r);
     jw_obj_end(&w);
     rdoc_json_rows_member(&w, d);
-    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
@@ -538,189 +600,13 @@ int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t err
     return md_write_file_free(&t, path, err, errlen);
 }
 
-/* A figure in G/s with 3 significant digits, or a dash. */
-static const char *gfmt(char *buf, size_t len, double v)
-{
-    if (isfinite(v))
-        snprintf(buf, len, "%.3g", v * 1e-9);
-    else
-        snprintf(buf, len, "-");
-    return buf;
-}
-
-static const char *xfmt(char *buf, size_t len, double v, const char *suffix)
-{
-    if (isfinite(v))
-        snprintf(buf, len, "%.3g%s", v, suffix);
-    else
-        snprintf(buf, len, "-");
-    return buf;
-}
-
-/* The summary tables, as text (md = 0) or markdown (md = 1). */
-/* One cell of the build-options table: entry e's rate under variant vv in n mode m (x default)
- * and its accuracy. Returns whether the rate's values were not all finite. */
-static int variant_cell(const struct tp_entry *e, int vv, int m, char *cell, size_t cell_len, char *accs,
-                        size_t accs_len)
-{
-    char a[32];
-    const struct tp_figure *f = &e->dev[vv][m];
-    const struct tp_figure *f0 = &e->dev[TP_VARIANT_DEFAULT][m];
-    if (!e->measured[vv][m] || !f->ok)
-        snprintf(cell, cell_len, "%s", e->measured[vv][m] ? "failed" : "-");
-    else if (vv != TP_VARIANT_DEFAULT && f0->ok)
-        snprintf(cell, cell_len, "%s%s (%.2fx)", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median),
-                 f->rate.median / f0->rate.median);
-    else
-        snprintf(cell, cell_len, "%s%s", f->finite ? "" : "!", gfmt(a, sizeof a, f->rate.median));
-    if (e->acc_ok[vv])
-        snprintf(accs, accs_len, "%.2g%s", e->acc_max_diff[vv], e->acc_nonfinite[vv] ? "*" : "");
-    else
-        snprintf(accs, accs_len, "-");
-    return !f->finite && f->ok;
-}
-
-/* The device peak and the default build options' table. */
-static void table_default(const struct tp_run *r, struct md_buf *t, int md)
-{
-    const struct throughput_options *o = r->o;
-    char a[32], b[32], c[32], d[32], e2[32], f2[32], g2[32], h2[32];
-    if (r->peak.ok)
-        md_printf(t, "%sdevice peak: %.4g GFLOP/s (float16 FMA chains) = %.4g G FMA/s; fraction of peak = evaluations/s "
-                     "per FMA/s\n\n", md ? "" : "", r->peak.rate.median * 1e-9, peak_fma_per_s(r) * 1e-9);
-    else
-        md_printf(t, "device peak: not measured (%s)\n\n", r->peak.reason);
-    int v = TP_VARIANT_DEFAULT;
-    if (variant_on(r, v)) {
-        md_printf(t, "%sG evaluations/s, default build options (median of %d launches, profiling events; "
-                     "tuned C: %d threads)%s\n\n", md ? "**" : "", o->reps, r->threads, md ? "**" : "");
-        if (md)
-            md_printf(t, "| model | n | G evals/s | min - max | x pow() | x model ref | x tuned C | of peak | C G evals/s |\n"
-                         "|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
-        else
-            md_printf(t, "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", "model", "n", "G evals/s", "min - max",
-                      "x pow()", "x ref", "x tuned C", "of peak", "C G/s");
-        for (int m = 0; m < TP_NMODE_COUNT; ++m)
-            for (int i = 0; i < r->nentries; ++i) {
-                const struct tp_entry *e = &r->e[i];
-                if (!e->measured[v][m])
-                    continue;
-                const struct tp_figure *f = &e->dev[v][m];
-                struct tp_ratios q = ratios_of(r, i, v, m);
-                char range[80];
-                if (f->ok)
-                    snprintf(range, sizeof range, "%s - %s", gfmt(a, sizeof a, f->rate.min), gfmt(b, sizeof b, f->rate.max));
-                else
-                    snprintf(range, sizeof range, "failed");
-                const char *label = e->m ? e->label : "pow() built-in";
-                md_printf(t, md ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
-                                : "%-18s %-8s %10s %17s %8s %8s %9s %8s %10s\n", label, nmode_names[m],
-                          gfmt(c, sizeof c, f->ok ? f->rate.median : NAN), range,
-                          xfmt(d, sizeof d, q.to_reference, ""), xfmt(e2, sizeof e2, q.to_model_reference, ""),
-                          xfmt(f2, sizeof f2, q.to_host_c, ""), xfmt(g2, sizeof g2, q.of_peak * 100, "%"),
-                          gfmt(h2, sizeof h2, e->hostc[m].ok ? e->hostc[m].rate.median : NAN));
-            }
-        /* a C loop whose sums are not the device's has no ratio: say so where the ratio is missing */
-        for (int m = 0; m < TP_NMODE_COUNT; ++m)
-            for (int i = 0; i < r->nentries; ++i)
-                if (r->e[i].measured[v][m] && r->e[i].hostc[m].checked && !r->e[i].hostc[m].ok)
-                    md_printf(t, "%sx tuned C, %s %s: none: %s\n", md ? "- " : "! ",
-                              r->e[i].m ? r->e[i].label : "pow()", nmode_names[m], r->e[i].hostc[m].reason);
-        md_printf(t, "\n");
-    }
-}
-
-/* Build options: speed beside accuracy. */
-static void table_variants(const struct tp_run *r, struct md_buf *t, int md)
-{
-    int nvar = 0;
-    for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
-        nvar += variant_on(r, vv);
-    if (nvar > 1 || !variant_on(r, TP_VARIANT_DEFAULT)) {
-        md_printf(t, "%sbuild options: G evaluations/s (x default) | max |device - double| / reference peak%s\n\n",
-                  md ? "**" : "", md ? "**" : "");
-        if (md) {
-            md_printf(t, "| model | n |");
-            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
-                if (variant_on(r, vv))
-                    md_printf(t, " %s | accuracy |", tp_variant_name(vv));
-            md_printf(t, "\n|---|---|");
-            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
-                if (variant_on(r, vv))
-                    md_printf(t, "---:|---:|");
-            md_printf(t, "\n");
-        } else {
-            md_printf(t, "%-18s %-8s", "model", "n");
-            for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
-                if (variant_on(r, vv))
-                    md_printf(t, " %17s %9s", tp_variant_name(vv), "accuracy");
-            md_printf(t, "\n");
-        }
-        int nonfinite = 0;
-        for (int m = 0; m < TP_NMODE_COUNT; ++m)
-            for (int i = 0; i < r->nentries; ++i) {
-                const struct tp_entry *e = &r->e[i];
-                int any = 0;
-                for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv)
-                    any |= variant_on(r, vv) && vv != TP_VARIANT_DEFAULT && e->measured[vv][m];
-                if (!any)
-                    continue;
-                const char *label = e->m ? e->label : "pow() built-in";
-                md_printf(t, md ? "| %s | %s |" : "%-18s %-8s", label, nmode_names[m]);
-                for (int vv = 0; vv < TP_VARIANT_COUNT; ++vv) {
-                    if (!variant_on(r, vv))
-                        continue;
-                    char cell[64], accs[32];
-                    nonfinite |= variant_cell(e, vv, m, cell, sizeof cell, accs, sizeof accs);
-                    md_printf(t, md ? " %s | %s |" : " %17s %9s", cell, accs);
-                }
-                md_printf(t, "\n");
-            }
-        if (nonfinite)
-            md_printf(t, "\n! some values were NaN or Inf under these build options (timed all the same)\n");
-        md_printf(t, "\n");
-    }
-}
-
-/* The accuracy sweep, device against tuned C. */
-static void table_sweep(const struct tp_run *r, struct md_buf *t)
-{
-    const struct throughput_options *o = r->o;
-    if (r->sweep_ran) {
-        double dsum = 0, hsum = 0, pts = 0;
-        int ok = 0;
-        for (int k = 0; k < r->nsw; ++k)
-            if (r->sw[k].ok) {
-                dsum += r->sw[k].dev_s.median;
-                hsum += r->sw[k].hostc_s.median;
-                pts += r->sw[k].points;
-                ++ok;
-            }
-        if (ok > 0)
-            md_printf(t, "accuracy sweep (n %g..%g step %g, %ld samples per zone, %d model%s, %.3g points): device %.3f s "
-                         "(%.3g G points/s), tuned C %.3f s (%.3g G points/s): %.2fx\n",
-                      o->sweep_grid.n_min, o->sweep_grid.n_max, o->sweep_grid.n_step, o->sweep_grid.samples, ok, ok == 1 ? "" : "s", pts,
-                      dsum, pts / dsum * 1e-9, hsum, pts / hsum * 1e-9, hsum / dsum);
-        else
-            md_printf(t, "accuracy sweep: not measured (%s)\n", r->sweep_reason[0] ? r->sweep_reason : "every model failed");
-    }
-}
-
-static void render_tables(const struct tp_run *r, struct md_buf *t, int md)
-{
-    table_default(r, t, md);
-    table_variants(r, t, md);
-    table_sweep(r, t);
-}
-
-char *tp_tables_text(const struct tp_run *r, int md)
+char *tp_tables_text(const struct rdoc *d, int md)
 {
     struct md_buf t;
     md_init(&t);
-    render_tables(r, &t, md);
-    if (t.failed) {
+    if (report_throughput_page(&t, d, md)) {
         md_free(&t);
         return NULL;
     }
-    return t.s;
+    return t.s ? t.s : calloc(1, 1);
 }

@@ -1,6 +1,6 @@
 /* throughput_report.h - what a throughput run measured (struct tp_run, filled by
- * throughput.c) and its writers in throughput_report.c: throughput.json, throughput.csv and
- * the summary tables (text for stdout, markdown for report.md). Internal to the throughput
+ * throughput.c) and its writers in throughput_report.c: its rows, throughput.json and
+ * throughput.csv; the page (text for stdout, throughput.md) is drawn from the rows. Internal to the throughput
  * engine: other code reads its results through throughput.json. */
 #ifndef BRDF_THROUGHPUT_REPORT_H
 #define BRDF_THROUGHPUT_REPORT_H
@@ -107,10 +107,16 @@ static inline int nmode_on(const struct tp_run *r, int v, int m)
     return (modes >> m) & 1u;
 }
 
-/* throughput.json and throughput.csv of a run. Return 0, or -1 with err filled. */
-int tp_write_json(const struct tp_run *r, const char *path, char *err, size_t errlen);
+struct rdoc;
+/* The run's rows (rdoc.h), as throughput.json carries them and the page is drawn from them:
+ * rdoc_delete them; NULL with "out of memory" in err. */
+struct rdoc *tp_rows_new(const struct tp_run *r, char *err, size_t errlen);
+/* throughput.json (its detail and the rows d) and throughput.csv of a run. Return 0, or -1 with
+ * err filled. */
+int tp_write_json(const struct tp_run *r, const struct rdoc *d, const char *path, char *err, size_t errlen);
 int tp_write_csv(const struct tp_run *r, const char *path, char *err, size_t errlen);
-/* The summary tables as text (md = 0) or markdown (md = 1): malloc'd, NULL when out of memory. */
-char *tp_tables_text(const struct tp_run *r, int md);
+/* The page of the rows (report_throughput.h) as text (md = 0) or markdown (md = 1, throughput.md):
+ * malloc'd, NULL when out of memory. */
+char *tp_tables_text(const struct rdoc *d, int md);
 
 #endif

@@ -29,7 +29,8 @@ struct report_picture {
 /* The parts of a run that other commands make, each a section of report.md with the file it
  * comes from: claims (claims.json's rows, with q_sweep.json's and physical.json's, drawn as
  * reproduce draws claims.md: report_claims.h), fit (fit.json), throughput
- * (throughput.md), images (render.json), frontier (frontier.md), measured (measured.md). */
+ * (throughput.json's rows; its page throughput.md is drawn from them), images (render.json),
+ * frontier (frontier.md), measured (measured.md). */
 enum report_part {
     REPORT_PART_CLAIMS = 0,
     REPORT_PART_FIT,
