@@ -16,7 +16,8 @@
 
 #include "rdoc.h"
 
-enum rd_kind { RD_KIND_THROUGHPUT = 0, RD_KIND_ACCURACY, RD_KIND_RENDER, RD_KIND_FIT, RD_KIND_FRONTIER, RD_KIND_COUNT };
+enum rd_kind { RD_KIND_THROUGHPUT = 0, RD_KIND_ACCURACY, RD_KIND_RENDER, RD_KIND_FIT, RD_KIND_FRONTIER, RD_KIND_MEASURED,
+               RD_KIND_COUNT };
 const char *rd_kind_name(int kind);     /* "throughput", ... ("?" for another number) */
 const char *rd_kind_file(int kind);     /* "throughput.json", ... */
 const char *rd_kind_schema(int kind);   /* the version written now */

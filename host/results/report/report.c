@@ -7,6 +7,8 @@
 #include "outdir.h"
 #include "plots.h"
 #include "report_docs.h"
+#include "report_frontier.h"
+#include "report_measured.h"
 #include "report_run.h"
 #include "room.h"
 #include "schemas.h"
@@ -209,6 +211,25 @@ static int page_block(struct md_buf *b, const struct report_input *in, const cha
     return 0;
 }
 
+/* A part's section drawn from the rows of its result file by its page function (the function
+ * the engine wrote its page with): "Which lobe to ship" from frontier.json, "Measured
+ * materials" from measured.json. */
+static int rows_block(struct md_buf *b, struct report_input *in, const char *heading, int part, const char *file,
+                      int (*page)(struct md_buf *, const struct rdoc *), char *err, size_t errlen)
+{
+    md_printf(b, "## %s\n\n", heading);
+    if (part_unavailable(b, in, part)) return 0;
+    int rc;
+    const struct rdoc *d = report_doc(&in->docs, file, &rc, err, errlen);
+    if (!d) {
+        if (rc == 1) snprintf(err + strlen(err), errlen - strlen(err), " (run.json records its part as done)");
+        return 2;
+    }
+    if (page(b, d)) return 3;
+    md_printf(b, "\n\n");
+    return 0;
+}
+
 /* "Beyond the papers": the family's limit, the best affine fit (uncapped and capped at fq2's
  * max Delta) and the models it is compared with, from fit.json. A fit's row is there when its
  * device sweep ran: then it leads fit.json's "compare" list, in that order. */
@@ -407,10 +428,12 @@ static int body(struct md_buf *b, struct report_input *in, char *err, size_t err
     if ((rc = images_block(b, in, err, errlen)) != 0) return rc;
     pictures(b, in, REPORT_IMAGES);
     if (in->run.part_ran[REPORT_PART_FRONTIER] &&
-        (rc = page_block(b, in, "Which lobe to ship", REPORT_PART_FRONTIER, err, errlen)) != 0)
+        (rc = rows_block(b, in, "Which lobe to ship", REPORT_PART_FRONTIER, "frontier.json", report_frontier_page, err,
+                         errlen)) != 0)
         return rc;
     if (in->run.part_ran[REPORT_PART_MEASURED] &&
-        (rc = page_block(b, in, "Measured materials", REPORT_PART_MEASURED, err, errlen)) != 0)
+        (rc = rows_block(b, in, "Measured materials", REPORT_PART_MEASURED, "measured.json", report_measured_page, err,
+                         errlen)) != 0)
         return rc;
     return in->out_of_memory ? 3 : 0;
 }
