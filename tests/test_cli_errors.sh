@@ -695,7 +695,8 @@ exec(sys.argv[2])
 # layout (a current file's rows member would not show the edit)
 PREV = {"brdfbench.throughput/4": "brdfbench.throughput/3", "brdfbench.render/2": "brdfbench.render/1",
         "brdfbench.fit/2": "brdfbench.fit/1", "brdfbench.frontier/2": "brdfbench.frontier/1",
-        "brdfbench.accuracy/2": "brdfbench.accuracy/1"}
+        "brdfbench.accuracy/2": "brdfbench.accuracy/1",
+        "brdfbench.frontier/3": "brdfbench.frontier/1"}
 if d.get("schema") in PREV:
     d.pop("rows", None)
     d["schema"] = PREV[d["schema"]]
