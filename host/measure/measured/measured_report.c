@@ -36,10 +36,16 @@ static void measured_rows(struct rdoc *d, const struct measured_report *r)
     rd_ctx_put(&d->ctx, "fit_cells_max", buf);
     for (int i = 0; i < r->count; ++i) {
         const struct measured_material *m = &r->materials[i];
+        /* measured_run names the pictures; a report made otherwise, by the name's file-name form */
+        char stem[300];
+        if (m->stem[0])
+            snprintf(stem, sizeof stem, "%s", m->stem);
+        else
+            measured_file_name(m->name, stem, sizeof stem);
         struct rd_row *row = rdoc_row(d, "", "");
         if (!row)
             return;
-        rd_row_key(row, "material", NULL, m->stem);
+        rd_row_key(row, "material", NULL, stem);
         const struct { const char *name; long v; } counts[] = {
             { "cells", m->cells }, { "unmeasured_cells", m->unmeasured }, { rgb[0], m->negative[0] },
             { rgb[1], m->negative[1] }, { rgb[2], m->negative[2] }, { "below_horizon_cells", m->below_horizon },
@@ -57,7 +63,7 @@ static void measured_rows(struct rdoc *d, const struct measured_report *r)
             struct rd_row *fr = rdoc_row(d, "", measured_fit_name[k]);
             if (!fr)
                 return;
-            rd_row_key(fr, "material", NULL, m->stem);
+            rd_row_key(fr, "material", NULL, stem);
             rd_row_key(fr, MEASURED_FIT_KEY, "fit ", measured_fit_name[k]);
             if (!f->ok)
                 rd_row_fail(fr, strcmp(f->reason, "not run") == 0 ? "not run" : "not converged", f->reason);
@@ -79,7 +85,7 @@ static void measured_rows(struct rdoc *d, const struct measured_report *r)
             struct rd_row *lr = rdoc_row(d, "", lb->spec.label);
             if (!lr)
                 return;
-            rd_row_key(lr, "material", NULL, m->stem);
+            rd_row_key(lr, "material", NULL, stem);
             rd_row_key(lr, MEASURED_LOBE_KEY, NULL, lb->spec.label);
             rd_row_metric(d, lr, "err_measured", "1", RD_LOWER, 0, lb->err_measured);
             rd_row_metric(d, lr, "err_phong", "1", RD_LOWER, 0, lb->err_phong);
