@@ -106,5 +106,18 @@ rm R2/measured.json
 rc=$?
 [ "$rc" -eq 2 ] && grep -q 'measured.json: missing (run.json records its part as done)' "$T/err" && ok \
     || bad "report without measured.json: exit $rc: $(cat "$T/err")"
+# 6. a material whose file name holds '|' (legal in a file name; a table's cell separator): its
+#    name is written with '?' there, as a control character is, so that measured.json stays
+#    readable (its readers refuse a '|' in a name); the pictures' stem has '_' as before
+mkdir -p pipe && cp m.binary 'pipe/a|b.binary'
+"$BIN" measured 'pipe/a|b.binary' --fit-cells 2000 --out P --quiet >/dev/null 2>"$T/err" && ok || bad "measured a|b: $(cat "$T/err")"
+"$BIN" rows P/measured.json --format json --output "$T/p.rows.json" 2>"$T/err" && ok || bad "rows of a|b: $(cat "$T/err")"
+python3 - P/measured.json "$T/p.rows.json" <<'PY' && ok || bad "material a|b: its name or its rows"
+import json, sys
+d, rows = (json.load(open(p)) for p in sys.argv[1:3])
+assert d["materials"][0]["name"] == "a?b", d["materials"][0]["name"]
+assert rows["rows"][0]["keys"] == {"material": "a_b"} and rows["rows"][0]["texts"]["name"] == "a?b", rows["rows"][0]
+PY
+[ -s P/measured_errors_a_b.png ] && ok || bad "the picture of a|b is not measured_errors_a_b.png"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
