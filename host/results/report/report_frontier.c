@@ -15,12 +15,16 @@ struct fr_model {
     int on_front;
 };
 
+/* A figure as a file gives it back: a NaN of either sign is null there, read as NAN (so a page
+   made from the rows in memory prints "nan" where the one made from the file does). */
+static double fig(double v) { return isnan(v) ? NAN : v; }
+
 static void rate_of(const struct rd_row *r, const char *name, double out[3])
 {
     const struct rd_metric *m = rd_row_find(r, name);
-    out[0] = m ? m->lo : NAN;
-    out[1] = m ? m->value : NAN;
-    out[2] = m ? m->hi : NAN;
+    out[0] = m ? fig(m->lo) : NAN;
+    out[1] = m ? fig(m->value) : NAN;
+    out[2] = m ? fig(m->hi) : NAN;
 }
 
 static void model_of(const struct rd_row *r, struct fr_model *m)
@@ -32,9 +36,9 @@ static void model_of(const struct rd_row *r, struct fr_model *m)
     for (int k = 0; k < 2; ++k) {
         char name[RD_NAME];
         snprintf(name, sizeof name, "%s.max_rel", ranges[k]);
-        m->max_rel[k] = rd_row_value(r, name);
+        m->max_rel[k] = fig(rd_row_value(r, name));
         snprintf(name, sizeof name, "%s.max_abs", ranges[k]);
-        m->max_abs[k] = rd_row_value(r, name);
+        m->max_abs[k] = fig(rd_row_value(r, name));
     }
     rate_of(r, FRONTIER_RATE_UNIFORM, m->rate[0]);
     rate_of(r, FRONTIER_RATE_VARYING, m->rate[1]);

@@ -48,10 +48,12 @@ static const struct rd_row *row_of(const struct rdoc *d, const char *material, c
     return NULL;
 }
 
-/* A metric of a row that may be missing (NaN then). */
+/* A metric of a row that may be missing (NaN then); a NaN of either sign as NAN, as the file
+   gives it back (null), so that the page made from the rows in memory is the report's. */
 static double value(const struct rd_row *r, const char *name)
 {
-    return r ? rd_row_value(r, name) : NAN;
+    double v = r ? rd_row_value(r, name) : NAN;
+    return isnan(v) ? NAN : v;
 }
 
 static void material(struct md_buf *b, const struct rdoc *d, const struct rd_row *m, const char *stem)
@@ -77,8 +79,8 @@ static void material(struct md_buf *b, const struct rdoc *d, const struct rd_row
         const struct rd_row *r = &d->rows[i];
         const char *mat = rd_row_key_value(r, "material"), *lobe = rd_row_key_value(r, MEASURED_LOBE_KEY);
         if (mat && lobe && strcmp(mat, stem) == 0)
-            md_printf(b, "| %s | %.5g | %.5g | %.4g |\n", lobe, rd_row_value(r, "err_measured"),
-                      rd_row_value(r, "err_phong"), rd_row_value(r, "ratio"));
+            md_printf(b, "| %s | %.5g | %.5g | %.4g |\n", lobe, value(r, "err_measured"), value(r, "err_phong"),
+                      value(r, "ratio"));
     }
     md_printf(b, "\n![%s: each lobe's error against the material and against Blinn-Phong](measured_errors_%s.png)"
                  "\n\n![%s: the measured slice with the fitted curves](measured_slice_%s.png)\n\n",
