@@ -113,7 +113,7 @@ def report_cli_frontier_all_models(*args):
 def measured_cli_measured(*args):
     """check_json of test_measured_cli.sh: measured.json"""
     argv = ["check_json", *args]
-    d, _ = load_result(argv[1], "brdfbench.measured/1", ["date", "device", "git_revision", "grid"])
+    d, _ = load_result(argv[1], "brdfbench.measured/2", ["date", "device", "git_revision", "grid"])
     m = d["materials"][0]
     assert m["name"] == "blinn64", m["name"]
     assert m["unmeasured_cells"] == 32400 and m["negative_cells_rgb"] == [0, 32400, 0], m["negative_cells_rgb"]
@@ -158,7 +158,7 @@ def frontier_cli_fit_contract_or_fit_worse(*args):
     argv = ["-", *args]
     t = argv[1]
     f = load(t + "/fit/fit.json")
-    assert f["schema"] == "brdfbench.fit_family/1"
+    assert f["schema"] == "brdfbench.fit_family/2"
     assert f["family"] == "pow4" and f["objective"] == "max_rel"
     assert f["fit"]["status"] == "ok"
     assert f["model"].startswith("pow4:a=")
@@ -178,7 +178,7 @@ def frontier_cli_frontier_contract_bounds(*args):
     argv = ["-", *args]
     d = argv[1]
     j = load(d + "/frontier.json")
-    has_context(j, "brdfbench.frontier/2", ("date", "device", "git_revision"))
+    has_context(j, "brdfbench.frontier/3", ("date", "device", "git_revision"))
     m = {r["model"]: r for r in j["models"]}
     assert set(m) == {"phong", "fq2", "pow4fit"}
     p4, fq2 = m["pow4fit"]["n_2_1000"], m["fq2"]["n_2_1000"]

@@ -1,5 +1,5 @@
 """rows_layouts.py - the rows of throughput, accuracy, render, fit, frontier, claims, q_sweep,
-physical and energy result files written a second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
+physical, energy and measured result files written a second time, in Python, from each kind's own layout (the members docs/schemas/ describes), for
 tests/test_rows_primary.sh: what the program reads from a file's "rows" member and from an old
 file's layout (host/results/rdoc_read.c) is checked against this independent mapping.
 
@@ -121,6 +121,9 @@ def _fit(d):
 
 
 def _frontier(d):
+    """A row per model: its accuracy figures and PSNR, then what the page shows beside them: the
+    median rates (their min and max are checked by test_rows_primary.sh) and the front, figures
+    of direction neither."""
     out = {}
     for m in d["models"]:
         row = {STATUS: _status(m)}
@@ -128,7 +131,65 @@ def _frontier(d):
             for fig in ("max_rel", "max_abs"):
                 row["%s.%s" % (rng, fig)] = ("1", "lower", False, m[rng][fig], [])
         row["psnr_db"] = ("dB", "higher", False, m["psnr_db"], [])
+        for mode in ("uniform", "varying"):
+            row["evals_per_s_" + mode] = ("1/s", "neither", False, m["rate_" + mode]["median"], [])
+        row["on_front"] = ("1", "neither", False, 1 if m["on_front"] else 0, [])
         out[m["model"]] = row
+    return out
+
+
+_STEM_KEEP = set("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-")
+
+
+def _measured_stems(names):
+    """Each material's picture stem: its name with every character outside [A-Za-z0-9._-] made
+    '_', then -2, -3, ... when an earlier material has that stem (docs/measured.md)."""
+    stems = []
+    for name in names:
+        base = "".join(chr(b) if chr(b) in _STEM_KEEP else "_" for b in name.encode())   # byte by byte, as C
+        stem, k = base, 2
+        while stem in stems:
+            stem, k = "%s-%d" % (base, k), k + 1
+        stems.append(stem)
+    return stems
+
+
+def _measured(d):
+    """A row per material (its cell counts and device check), per fit (its parameters and RMS
+    errors, failed when the fit did not converge or did not run) and per lobe (its errors against
+    the material and the fitted Blinn-Phong, and their ratio), keyed by the material's stem."""
+    def fig(v, direction="neither"):
+        return ("1", direction, False, v, [])
+    out = {}
+    mats = d["materials"]
+    for mat, stem in zip(mats, _measured_stems([m["name"] for m in mats])):
+        dc = mat["device_check"]
+        row = {STATUS: ("ok", None)}
+        for name, v in (("cells", mat["cells"]), ("unmeasured_cells", mat["unmeasured_cells"]),
+                        ("negative_cells.red", mat["negative_cells_rgb"][0]),
+                        ("negative_cells.green", mat["negative_cells_rgb"][1]),
+                        ("negative_cells.blue", mat["negative_cells_rgb"][2]),
+                        ("below_horizon_cells", mat["below_horizon_cells"]), ("used_cells", mat["used_cells"]),
+                        ("fit_cells", mat["fit_cells"]), ("device_check.points", dc["points"]),
+                        ("device_check.same_cell", dc["same_cell"])):
+            row[name] = fig(v)
+        row["device_check.value_differs"] = fig(dc["value_differs"], "lower")
+        out[stem] = row
+        for member, name in (("blinn_phong", "blinn-phong"), ("ct_beckmann", "ct-beckmann"), ("ct_ggx", "ct-ggx")):
+            f = mat[member]
+            row = {STATUS: _status(f)}
+            for p in (("n",) if member == "blinn_phong" else ("alpha", "n_of_alpha", "F0")):
+                row[p] = fig(f[p])
+            row["ks"] = ("1/sr", "neither", False, f["ks"], [])
+            row["kd"] = ("1/sr", "neither", False, f["kd"], [])
+            row["rms"] = fig(f["rms"], "lower")
+            row["rms_fit_cells"] = fig(f["rms_fit_cells"], "lower")
+            row["iterations"] = fig(f["iterations"])
+            out["%s | fit %s" % (stem, name)] = row
+        for lb in mat["lobes"]:
+            out["%s | %s" % (stem, lb["model"])] = {
+                "err_measured": fig(lb["err_measured"], "lower"), "err_phong": fig(lb["err_phong"], "lower"),
+                "ratio": fig(lb["ratio"]), STATUS: ("ok", None)}
     return out
 
 
@@ -272,7 +333,8 @@ def _energy(d):
 
 
 KINDS = {"throughput": _throughput, "accuracy": _accuracy, "render": _render, "fit": _fit, "frontier": _frontier,
-         "claims": _claims, "q_sweep": _q_sweep, "physical": _physical, "energy": _energy}
+         "claims": _claims, "q_sweep": _q_sweep, "physical": _physical, "energy": _energy,
+         "measured": _measured}
 
 
 def expected(doc):

@@ -694,7 +694,7 @@ exec(sys.argv[2])
 # the layout edited: the file in the previous version's form (no "rows" member), read by that
 # layout (a current file's rows member would not show the edit)
 PREV = {"brdfbench.throughput/5": "brdfbench.throughput/3", "brdfbench.render/3": "brdfbench.render/1",
-        "brdfbench.fit/3": "brdfbench.fit/1", "brdfbench.frontier/2": "brdfbench.frontier/1",
+        "brdfbench.fit/3": "brdfbench.fit/1", "brdfbench.frontier/3": "brdfbench.frontier/1",
         "brdfbench.accuracy/3": "brdfbench.accuracy/1"}
 if d.get("schema") in PREV:
     d.pop("rows", None)

@@ -50,7 +50,7 @@ json_alone() {   # json_alone WHAT SCHEMA ARGS...
     cp "$T/doc.json" "$T/$what.json"
 }
 json_alone render brdfbench.render/3 render --scene spheres --models phong,fq2 --size 64x32 --time-sizes none --reps 1 --warmup 0
-json_alone frontier brdfbench.frontier/2 frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image
+json_alone frontier brdfbench.frontier/3 frontier --models phong,fq2 --samples 64 --reps 1 --rounds 1 --no-image
 json_alone reproduce brdfbench.claims/2 reproduce --samples 64 --no-grid-check --q-step 0.1 --q-samples 64 --q-n-step 50 --no-energy
 "$BIN" accuracy --models fq2,cq2 --n-min 2 --n-max 6 --samples 16 --json "$T/acc.json" --csv "$T/accuracy.csv" >/dev/null 2>&1
 json_alone compare brdfbench.compare/1 compare "$T/acc.json" "$T/acc.json"

@@ -290,7 +290,7 @@ static void check_rows_member(void)
           nm->nmetrics == 1 && isnan(nm->metrics[0].value), "the failed row, its reason and its missing PSNR");
     rdoc_free(&d);
 
-    test_write_file(path, "{\"schema\": \"brdfbench.frontier/2\", \"models\": []}\n");
+    test_write_file(path, "{\"schema\": \"brdfbench.frontier/3\", \"models\": []}\n");
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 2 && strstr(err, "without its \"rows\""),
           "the current version without its rows: %s", err);
     /* the previous version of the same layout reads by that layout (its upgrade function) */
@@ -299,9 +299,13 @@ static void check_rows_member(void)
     CHECK(rdoc_read_file(path, &d, err, sizeof err) == 0, "frontier/1 read: %s", err);
     fq = row_labelled(&d, "fq2");
     /* max_rel, max_abs and the PSNR; the n where a maximum is reached is no figure */
-    CHECK(fq && fq->nmetrics == 3 && rd_row_find(fq, "n_2_1000.max_abs")->value == 0.01 &&
+    /* the rows of the version written now: the ranges' figures (null where the file has none),
+       the PSNR, both rates (null: no rate member) and the front (0: no on_front member) */
+    CHECK(fq && fq->nmetrics == 8 && rd_row_find(fq, "n_2_1000.max_abs")->value == 0.01 &&
+          isnan(rd_row_find(fq, "n_16_1000.max_rel")->value) && isnan(rd_row_value(fq, "evals_per_s_uniform")) &&
+          rd_row_value(fq, "on_front") == 0 &&
           rd_row_find(fq, "psnr_db")->direction == RD_HIGHER && strcmp(rd_row_find(fq, "psnr_db")->unit, "dB") == 0,
-          "frontier/1: three figures");
+          "frontier/1: the rows frontier/3 carries");
     rdoc_free(&d);
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_rows_primary.sh - throughput.json, accuracy.json, render.json, fit.json, frontier.json and energy.json carry their
+# test_rows_primary.sh - throughput.json, accuracy.json, render.json, fit.json, frontier.json, energy.json and measured.json carry their
 # rows (a "rows" member, built by the engine where it measures), and every reader reads them;
 # files of the previous versions (written before the files carried rows) are read by their
 # layout, so kept baselines still work.
@@ -14,7 +14,7 @@
 #   must give the same rows document, context lines included.
 # - tests/fixtures/rows-v-previous/: a run of the version before rows (commit 099c3f9, and
 #   48575e2 for accuracy.json: lobe rows, an fp16 row of half code, a hemisphere row; c0bc643 for
-#   energy.json; the
+#   energy.json; 61a5e59 for measured.json, a material of tests/merl_synth; the
 #   commands in its README.md); compare of it against a new run of the same commands pairs every
 #   row (the row set of both is the layout mapping's).
 set -u
@@ -27,10 +27,13 @@ OLD="$SRC/tests/fixtures/rows-v-previous"
 # 1. an old run (previous schemas, no rows member) reads through the upgrade functions: rows
 #    as the layout mapping says, the schema named as the file's
 declare -A PREV=([throughput]=brdfbench.throughput/3 [render]=brdfbench.render/1 [fit]=brdfbench.fit/1
-                 [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1 [energy]=brdfbench.energy/1)
+                 [frontier]=brdfbench.frontier/1 [accuracy]=brdfbench.accuracy/1 [energy]=brdfbench.energy/1
+                 [measured]=brdfbench.measured/1)
 declare -A NOW=([throughput]=brdfbench.throughput/5 [render]=brdfbench.render/3 [fit]=brdfbench.fit/3
-                [frontier]=brdfbench.frontier/2 [accuracy]=brdfbench.accuracy/3 [energy]=brdfbench.energy/2)
-KINDS="throughput render fit frontier accuracy energy"
+                [frontier]=brdfbench.frontier/3 [accuracy]=brdfbench.accuracy/3 [energy]=brdfbench.energy/2
+                [measured]=brdfbench.measured/2)
+KINDS="throughput render fit frontier accuracy energy measured"
+SYN=${MERL_SYNTH:?MERL_SYNTH must name the merl_synth writer}
 for k in $KINDS; do
     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if d["schema"] == sys.argv[2] and "rows" not in d else 1)' \
         "$OLD/$k.json" "${PREV[$k]}" && ok || bad "fixture $k.json is not a ${PREV[$k]} file without rows"
@@ -54,6 +57,10 @@ mkdir -p new
 # energy: reproduce's albedo and reciprocity checks (its other figures on coarse grids)
 "$BIN" reproduce --out rep --samples 16 --no-grid-check --q-step 0.5 --q-samples 16 --q-n-step 499 --quiet \
     >/dev/null 2>"$T/err" && cp rep/energy.json new/energy.json || bad "reproduce (energy): $(cat "$T/err")"
+# measured: the fixture's material again (a Blinn-Phong lobe, n = 64, ks = 2.5, kd = 0.08), the same name
+"$SYN" m.binary blinn 64 2.5 0.08 >/dev/null || bad "merl_synth"
+"$BIN" measured m.binary --fit-cells 2000 --json new/measured.json --quiet >/dev/null 2>"$T/err" \
+    || bad "measured: $(cat "$T/err")"
 python3 - new/accuracy.json <<'PY' && ok || bad "new accuracy.json: not lobe, fp16 and hemisphere rows"
 import json, sys
 rows = json.load(open(sys.argv[1]))["rows"]["rows"]
@@ -105,6 +112,29 @@ a, b = (json.load(open(p)) for p in sys.argv[1:3])
 del a["source"]["schema"], b["source"]["schema"]
 assert a == b, [(x["row"], y["row"]) for x, y in zip(a["rows"], b["rows"]) if x != y][:3]
 assert sum(r["attributes"].get("he") == "entry" for r in a["rows"]) >= 2, "no rows of He's comparison"
+PY
+# frontier.json of brdfbench.frontier/2 carried a rows member of its accuracy figures alone: such
+# a file is read by its layout (the rows the page needs: rates, front, kind, source), never by
+# that thinner member. The new file in /2's form (its rows member cut to /2's five figures, no
+# texts, no attributes, no context lines) reads as the new file does.
+python3 - new/frontier.json v2_frontier.json <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["schema"] = "brdfbench.frontier/2"
+d["rows"]["context"] = {}
+for r in d["rows"]["rows"]:
+    r["metrics"], r["attributes"] = r["metrics"][:5], {}
+    r.pop("texts", None)
+json.dump(d, open(sys.argv[2], "w"))
+PY
+"$BIN" rows v2_frontier.json --format json --output "$T/v2_frontier.rows.json" 2>"$T/err" && ok || bad "rows frontier/2: $(cat "$T/err")"
+python3 - "$T/new_frontier.rows.json" "$T/v2_frontier.rows.json" <<'PY' && ok || bad "frontier/2: not read by its layout"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert b["source"]["schema"] == "brdfbench.frontier/2", b["source"]
+del a["source"]["schema"], b["source"]["schema"]
+assert a == b, [k for k in a if a[k] != b[k]]
+assert all(r["texts"]["source"] and "kind" in r["attributes"] for r in b["rows"]), "no source text or kind attribute"
 PY
 
 # rows not measured: a model whose values are NaN has its rows failed, with the reason, in the
@@ -185,7 +215,7 @@ sys.path.insert(0, os.path.dirname(sys.argv[2]))
 import rows_layouts
 c = json.load(open(sys.argv[1]))
 want = set()
-for k in ("throughput", "render", "fit", "frontier", "accuracy", "energy"):
+for k in ("throughput", "render", "fit", "frontier", "accuracy", "energy", "measured"):
     for row, metrics in rows_layouts.expected(json.load(open(os.path.join(sys.argv[3], k + ".json")))).items():
         want |= {(k, row, m) for m in metrics if m != rows_layouts.STATUS}
 got = {(r["kind"], r["key"], r["metric"]) for r in c["rows"]}

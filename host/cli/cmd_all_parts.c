@@ -21,7 +21,8 @@
 #include <string.h>
 #include <unistd.h>
 
-/* A part's page beside its JSON (report_part_page), which report.md takes in as its section. */
+/* A part's page beside its JSON (report_part_page), drawn from the rows of that JSON by the function
+   that draws report.md's section of the part. */
 static int write_page(struct all_run *r, int which, const char *text)
 {
     char path[4300], err[1024];

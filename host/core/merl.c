@@ -50,9 +50,10 @@ static void material_name(const char *path, char *name, size_t len)
         n -= 7;
     snprintf(name, len, "%.*s", (int)(n < len ? n : len - 1), base);
     /* a control character of a file name (a newline, ESC) never reaches a terminal, a table
-       or a heading as it is */
+       or a heading as it is, nor a '|': measured.json's readers take a name with one for a
+       broken table cell (compare_check.c) */
     for (char *p = name; *p; ++p)
-        if ((unsigned char)*p < 0x20 || *p == 0x7f)
+        if ((unsigned char)*p < 0x20 || *p == 0x7f || *p == '|')
             *p = '?';
 }
 

@@ -22,12 +22,14 @@
 #define FIT_SCHEMA_V1 "brdfbench.fit/1"           /* before the rows: read by its layout */
 #define FIT_FAMILY_SCHEMA "brdfbench.fit_family/2"   /* /2: the file carries its rows */
 #define FIT_FAMILY_SCHEMA_V1 "brdfbench.fit_family/1"
-#define FRONTIER_SCHEMA "brdfbench.frontier/2"    /* /2: the file carries its rows */
+#define FRONTIER_SCHEMA "brdfbench.frontier/3"    /* /3: its rows carry what its page shows */
+#define FRONTIER_SCHEMA_V2 "brdfbench.frontier/2" /* rows of the accuracy figures alone: read by its layout */
 #define FRONTIER_SCHEMA_V1 "brdfbench.frontier/1" /* before the rows: read by its layout */
 #define GATES_SCHEMA "brdfbench.gates/1"        /* the gates file (input) */
 #define GATE_RESULT_SCHEMA "brdfbench.gate/1"   /* gate's --json result (output) */
 #define LIST_SCHEMA "brdfbench.list/1"
-#define MEASURED_SCHEMA "brdfbench.measured/1"
+#define MEASURED_SCHEMA "brdfbench.measured/2"    /* /2: the file carries its rows */
+#define MEASURED_SCHEMA_V1 "brdfbench.measured/1" /* before the rows: read by its layout */
 #define PBCOST_SCHEMA "brdfbench.physical/2"      /* /2: the file carries its rows */
 #define PBCOST_SCHEMA_V1 "brdfbench.physical/1"   /* before the rows: read by its layout */
 #define PLOTS_SCHEMA "brdfbench.plots/1"

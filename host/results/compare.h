@@ -40,6 +40,7 @@ enum cmp_kind {
     CMP_RENDER = RD_KIND_RENDER,
     CMP_FIT = RD_KIND_FIT,
     CMP_FRONTIER = RD_KIND_FRONTIER,
+    CMP_MEASURED = RD_KIND_MEASURED,
     CMP_KIND_COUNT = RD_KIND_COUNT
 };
 const char *cmp_kind_name(int kind);      /* "throughput", ... */

@@ -105,6 +105,8 @@ static const char *kind_heading(int kind)
     case CMP_FIT: return "fit: the fitted coefficients and their max delta and max Delta (4th significant digit)";
     case CMP_FRONTIER: return "frontier: each model's rate (repetitions tested where the file keeps them) and "
                               "accuracy (4th significant digit)";
+    case CMP_MEASURED: return "measured: each material's fits and each lobe's error against it (4th significant "
+                              "digit)";
     }
     return "?";
 }

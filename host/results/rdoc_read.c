@@ -2,8 +2,8 @@
  * rows (its "rows" member, written where the figures are measured: rdoc_json_rows_member) and
  * is read by one generic path, the same as a brdfbench.rows/1 document. A file of a previous
  * version, written before the files carried rows, is read by the upgrade function of its schema
- * (one per old schema, below): the one place that still knows those layouts, so a baseline
- * kept from an earlier version keeps working. */
+ * (one per old schema, below; frontier's and measured's in host/results/upgrade/): the one
+ * place that still knows those layouts, so a baseline kept from an earlier version keeps working. */
 #include "rdoc_read.h"
 
 #include <errno.h>
@@ -20,13 +20,14 @@
 #include "rdoc_upgrade_energy.h"
 #include "schemas.h"
 #include "rdoc_upgrade_claims.h"
+#include "rdoc_upgrade_frontier.h"
+#include "rdoc_upgrade_measured.h"
 
 typedef int (*layout_reader)(const struct jr_doc *, struct rdoc *, char *, size_t);
 static int upgrade_throughput_v3(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_accuracy_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_render_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
-static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_field_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 static int upgrade_fit_family_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen);
 
@@ -45,6 +46,7 @@ static const struct {
     { "q_sweep", "q_sweep.json", Q_SWEEP_SCHEMA },
     { "physical", "physical.json", PBCOST_SCHEMA },
     { "energy", "energy.json", ENERGY_SCHEMA },
+    { "measured", "measured.json", MEASURED_SCHEMA },
     { "field", "field_MODEL.json", FIELD_SCHEMA },
     { "fit_family", "fit.json", FIT_FAMILY_SCHEMA },   /* `fit --family`'s fit.json */
 };
@@ -81,6 +83,9 @@ static const struct {
     { PBCOST_SCHEMA_V1, RD_KIND_PHYSICAL, upgrade_physical_v1 },
     { FIELD_SCHEMA_V1, RD_KIND_FIELD, upgrade_field_v1 },
     { FIT_FAMILY_SCHEMA_V1, RD_KIND_FIT_FAMILY, upgrade_fit_family_v1 },
+    /* /2 is /1 with a rows member of the accuracy figures alone: read by the same layout */
+    { FRONTIER_SCHEMA_V2, RD_KIND_FRONTIER, upgrade_frontier_v1 },
+    { MEASURED_SCHEMA_V1, RD_KIND_MEASURED, upgrade_measured_v1 },
 };
 
 const char *rd_kind_name(int k) { return k >= 0 && k < RD_KIND_COUNT ? kinds[k].name : "?"; }
@@ -815,95 +820,6 @@ static int upgrade_fit_v1(const struct jr_doc *j, struct rdoc *d, char *err, siz
     return 0;
 }
 
-/* ---- brdfbench.frontier/1 -------------------------------------------------------------------- */
-
-/* frontier.json: rows keyed by model; every number of a row (and of its objects, one level
-   down) whose name says what it is: a rate (per_s; an object of min/median/max gives its
-   median and range) is higher-is-better and timed, psnr a score, max_rel/max_abs/rmse an
-   error. Returns the direction, or -1 for a member that is no figure. */
-static int frontier_direction(const char *name, int *timed, const char **unit)
-{
-    *timed = 0;
-    *unit = "1";
-    if (strstr(name, "per_s")) {
-        *timed = 1;
-        *unit = "1/s";
-        return RD_HIGHER;
-    }
-    if (strstr(name, "psnr")) {
-        *unit = "dB";
-        return RD_HIGHER;
-    }
-    if (strstr(name, "max_rel") || strstr(name, "max_abs") || strstr(name, "rmse"))
-        return RD_LOWER;
-    return -1;
-}
-
-/* pass 0: the figures; pass 1: the repetitions of rates read in pass 0 */
-static void frontier_members(const struct jr_doc *j, struct rdoc *d, struct rd_row *r, const struct jr_value *obj,
-                             const char *prefix, int depth, int pass)
-{
-    for (size_t k = 0; k < obj->count; ++k) {
-        const struct jr_value *v = &obj->items[k];
-        char name[64];
-        snprintf(name, sizeof name, "%s%s%s", prefix, *prefix ? "." : "", obj->keys[k]);
-        int timed;
-        const char *unit;
-        int dir = frontier_direction(name, &timed, &unit);
-        if (v->type == JR_OBJ && dir >= 0 && timed && jr_get(v, "median")) {
-            struct rd_metric *m = pass ? NULL : rd_row_metric(d, r, name, unit, dir, 1, jr_num_or_nan(v, "median"));
-            if (m) {
-                m->lo = jr_num_or_nan(v, "min");
-                m->hi = jr_num_or_nan(v, "max");
-            }
-        } else if (v->type == JR_OBJ && depth < 1) {
-            frontier_members(j, d, r, v, name, depth + 1, pass);
-        } else if ((v->type == JR_NUM || v->type == JR_NULL) && dir >= 0 && !strstr(name, "_at")) {
-            if (!pass)
-                rd_row_metric(d, r, name, unit, dir, timed, v->type == JR_NUM ? v->num : NAN);
-        } else if (pass && v->type == JR_ARR && dir >= 0 && timed && strstr(name, "_reps")) {
-            /* the repetitions of the rate named without _reps (a file's array that is not
-               numbers is left out) */
-            char base[64], e[8];
-            snprintf(base, sizeof base, "%.*s", (int)(strstr(name, "_reps") - name), name);
-            struct rd_metric *m = rd_row_find(r, base);
-            if (m)
-                take_reps(j, obj, obj->keys[k], &m->reps, &m->nreps, e, sizeof e);
-        }
-    }
-}
-
-/* The upgrade of brdfbench.frontier/1: a row per model, with its status and reason, and the
- * figures its members' names say (frontier_direction). */
-static int upgrade_frontier_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
-{
-    static const char *const arrays[] = { "results", "models", "points", "rows" };
-    const struct jr_value *rows = NULL;
-    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && !rows; ++i) {
-        const struct jr_value *v = jr_get(&j->root, arrays[i]);
-        if (v && v->type == JR_ARR)
-            rows = v;
-    }
-    if (!rows)
-        return jr_fail(j, &j->root, err, errlen, "no array of rows (results, models, points or rows)");
-    for (size_t i = 0; i < rows->count; ++i) {
-        const struct jr_value *row = &rows->items[i];
-        if (row->type != JR_OBJ)
-            continue;
-        const char *model = jr_str_or(row, "model", jr_str_or(row, "label", NULL));
-        if (!model)
-            return jr_fail(j, row, err, errlen, "a row without \"model\" or \"label\"");
-        struct rd_row *r = rdoc_row(d, jr_str_or(row, "device", ""), model);
-        if (!r)
-            return 0;
-        rd_row_key(r, "model", NULL, model);
-        row_status(r, row);   /* a model with no finite error figure: failed, with the reason */
-        for (int pass = 0; pass < 2; ++pass)
-            frontier_members(j, d, r, row, "", 0, pass);
-    }
-    return 0;
-}
-
 /* The upgrade of brdfbench.field/1: the row field_report.c's field_rows() makes, from the
  * peaks and the check block of the layout. */
 static int upgrade_field_v1(const struct jr_doc *j, struct rdoc *d, char *err, size_t errlen)
@@ -1066,8 +982,8 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
     }
     const struct jr_value *rows = jr_get(&j->root, "rows");
     if (layout)
-        rows = NULL;   /* a previous version (an old frontier layout's array of rows, a rows member
-                          with less than the version written now): read by its layout */
+        rows = NULL;   /* a previous version is read by its layout: a rows member it has (frontier/2's)
+                          lacks what the rows carry now, an old frontier layout's "rows" is its array */
     if (!layout && !rows) {
         snprintf(err, errlen, "%s: schema \"%.60s\" without its \"rows\" (accepted: the file as brdfbench writes it, "
                  "which carries its rows)", j->name, schema);
@@ -1080,7 +996,7 @@ static int read_doc(const struct jr_doc *j, struct rdoc *d, char *err, size_t er
     rdoc_init(d, schema, kinds[kind].name, kinds[kind].file);
     read_contexts(j, d);
     /* a file of the version written now is read by its rows; one of a previous version, by the
-       layout of that version */
+       layout of its version */
     if (rows ? rdoc_from_rows_member(j, rows, d, err, errlen) : layout(j, d, err, errlen)) {
         rdoc_free(d);
         return 2;

@@ -17,7 +17,8 @@
 #include "rdoc.h"
 
 enum rd_kind { RD_KIND_THROUGHPUT = 0, RD_KIND_ACCURACY, RD_KIND_RENDER, RD_KIND_FIT, RD_KIND_FRONTIER,
-               RD_KIND_CLAIMS, RD_KIND_Q_SWEEP, RD_KIND_PHYSICAL, RD_KIND_ENERGY, RD_KIND_FIELD, RD_KIND_FIT_FAMILY,
+               RD_KIND_CLAIMS, RD_KIND_Q_SWEEP, RD_KIND_PHYSICAL, RD_KIND_ENERGY, RD_KIND_MEASURED, RD_KIND_FIELD,
+               RD_KIND_FIT_FAMILY,
                RD_KIND_COUNT };
 const char *rd_kind_name(int kind);     /* "throughput", ... ("?" for another number) */
 const char *rd_kind_file(int kind);     /* "throughput.json", ... */

@@ -1,5 +1,6 @@
 /* frontier_report.c - frontier.json, frontier.csv, the two scatter plots, the printed table and
- * the "Which lobe to ship" markdown, from a filled struct frontier_report (frontier.c). */
+ * the "Which lobe to ship" markdown, from a filled struct frontier_report (frontier.c). The
+ * markdown is report_frontier_page (host/results/report) of the rows frontier.json carries. */
 #include "frontier_report.h"
 #include "context.h"
 #include "draw.h"
@@ -7,6 +8,7 @@
 #include "jsonw.h"
 #include "mdbuf.h"
 #include "rdoc.h"
+#include "report_frontier.h"
 #include "outdir.h"
 
 #include <math.h>
@@ -38,15 +40,25 @@ static const char *const frontier_definitions[][2] = {
 };
 
 /* frontier.json's rows: one per model with its accuracy over each n range (max delta and max
-   Delta, lower is better) and its teapot PSNR. */
+   Delta, lower is better) and its teapot PSNR; then what the "Which lobe to ship" page shows
+   (report_frontier.h): the model's kind and source, its rates (median, min and max over the
+   rounds) and whether it is on the front, figures of direction neither (the frontier's short
+   timing is no verdict's: throughput.json's rates are), and why a PSNR is missing. The context
+   lines rounds and reps say how the rates were timed. */
 static void frontier_rows(struct rdoc *d, const struct frontier_report *r)
 {
+    char buf[32];
+    snprintf(buf, sizeof buf, "%d", r->opt.rounds);
+    rd_ctx_put(&d->ctx, "rounds", buf);
+    snprintf(buf, sizeof buf, "%d", r->opt.reps);
+    rd_ctx_put(&d->ctx, "reps", buf);
     for (int i = 0; i < r->count; ++i) {
         const struct frontier_row *row = &r->rows[i];
         struct rd_row *rr = rdoc_row(d, "", row->spec.label);
         if (!rr)
             return;
         rd_row_key(rr, "model", NULL, row->spec.label);
+        rd_row_attr(rr, "kind", model_kind_name(row->kind));
         if (!(isfinite(row->max_rel[0]) && isfinite(row->max_abs[0])))
             rd_row_fail(rr, "failed", FRONTIER_UNMEASURED);
         for (int k = 0; k < 2; ++k) {
@@ -57,17 +69,36 @@ static void frontier_rows(struct rdoc *d, const struct frontier_report *r)
             rd_row_metric(d, rr, name, "1", RD_LOWER, 0, row->max_abs[k]);
         }
         rd_row_metric(d, rr, "psnr_db", "dB", RD_HIGHER, 0, row->psnr_db);
+        for (int m = 0; m < 2; ++m) {
+            struct rd_metric *rate = rd_row_metric(d, rr, m ? FRONTIER_RATE_VARYING : FRONTIER_RATE_UNIFORM, "1/s",
+                                                   RD_NEITHER, 0, row->rate[m][1]);
+            if (rate) {
+                rate->lo = row->rate[m][0];
+                rate->hi = row->rate[m][2];
+            }
+        }
+        rd_row_metric(d, rr, "on_front", "1", RD_NEITHER, 0, row->on_front ? 1.0 : 0.0);
+        rd_row_text(d, rr, "source", row->spec.info->description);
+        if (!isfinite(row->psnr_db))
+            rd_row_text(d, rr, "psnr_reason", row->psnr_reason[0] ? row->psnr_reason : "not measured");
     }
+}
+
+/* The rows of r (rdoc_delete), or NULL with the reason in err. */
+static struct rdoc *frontier_doc(const struct frontier_report *r, char *err, size_t errlen)
+{
+    struct rdoc *d = rdoc_new(FRONTIER_SCHEMA, "frontier", "frontier.json", err, errlen);
+    if (!d)
+        return NULL;
+    frontier_rows(d, r);
+    return rdoc_built(d, err, errlen) ? NULL : d;
 }
 
 int frontier_write_json(const char *path, const struct frontier_report *r, const struct cl_session *s, char *err,
                         size_t errlen)
 {
-    struct rdoc *d = rdoc_new(FRONTIER_SCHEMA, "frontier", "frontier.json", err, errlen);
+    struct rdoc *d = frontier_doc(r, err, errlen);
     if (!d)
-        return -1;
-    frontier_rows(d, r);
-    if (rdoc_built(d, err, errlen))
         return -1;
     struct jw w;
     jw_doc_begin(&w, FRONTIER_SCHEMA, s, "");
@@ -234,86 +265,17 @@ void frontier_print(FILE *f, const struct frontier_report *r)
     }
 }
 
-/* The most accurate non-reference model (least max delta, then least max Delta) whose rate
-   is at least `budget` (its max rate >= budget: spreads again); -1 if none. */
-static int best_within(const struct frontier_report *r, double budget, int range)
-{
-    int best = -1;
-    for (int i = 0; i < r->count; ++i) {
-        const struct frontier_row *row = &r->rows[i];
-        if (row->kind == MODEL_KIND_REFERENCE || !isfinite(row->max_rel[range]) || !isfinite(row->rate[0][2]))
-            continue;
-        if (budget > 0 && row->rate[0][2] < budget)
-            continue;
-        if (best < 0 || row->max_rel[range] < r->rows[best].max_rel[range] ||
-            (row->max_rel[range] == r->rows[best].max_rel[range] &&
-             row->max_abs[range] < r->rows[best].max_abs[range]))
-            best = i;
-    }
-    return best;
-}
-
 char *frontier_markdown(const struct frontier_report *r)
 {
+    char err[256];
+    struct rdoc *d = frontier_doc(r, err, sizeof err);
+    if (!d)
+        return NULL;
     struct md_buf b;
     md_init(&b);
-    md_printf(&b, "Cost is the device's evaluations/s with n uniform (the median over %d rounds over every model of "
-                  "each round's median of %d launches; spreads over the rounds that overlap count as equal), "
-                  "accuracy the largest epicentre delta and attenuation Delta (frontier.json, frontier.csv, "
-                  "frontier_max_rel.png, frontier_max_abs.png).\n\n", r->opt.rounds, r->opt.reps);
-    md_printf(&b, "| model | kind | front | evals/s (uniform) | evals/s (varying) | max delta, n >= 2 | max Delta, n >= 2 "
-                  "| max delta, n >= 16 | max Delta, n >= 16 | teapot PSNR (dB) |\n");
-    md_printf(&b, "|---|---|---|---|---|---|---|---|---|---|\n");
-    for (int i = 0; i < r->count; ++i) {
-        const struct frontier_row *row = &r->rows[i];
-        md_printf(&b, "| %s | %s | %s | %.3g | %.3g | %.4f%% | %.4f | %.4f%% | %.4f | ", row->spec.label,
-                  model_kind_name(row->kind), row->on_front ? "**yes**" : "", row->rate[0][1], row->rate[1][1],
-                  100 * row->max_rel[0], row->max_abs[0], 100 * row->max_rel[1], row->max_abs[1]);
-        if (isfinite(row->psnr_db))
-            md_printf(&b, "%.1f |\n", row->psnr_db);
-        else
-            md_printf(&b, "%s |\n", row->psnr_reason);
-    }
-    md_printf(&b, "\nSources (brdfbench list; docs/frontier.md has the formulas and the operation counts):\n\n");
-    for (int i = 0; i < r->count; ++i) {
-        const struct frontier_row *row = &r->rows[i];
-        md_printf(&b, "- `%s`: ", row->spec.label);
-        md_cell_text(&b, row->spec.info->description);
-        md_printf(&b, "\n");
-    }
-    md_printf(&b, "\nThe front: ");
-    for (int i = 0, k = 0; i < r->count; ++i)
-        if (r->rows[i].on_front)
-            md_printf(&b, "%s%s", k++ ? ", " : "", r->rows[i].spec.label);
-    md_printf(&b, ".\n\n");
-    if (r->fq2 >= 0 && isfinite(r->rows[r->fq2].rate[0][0])) {
-        double fq2_lo = r->rows[r->fq2].rate[0][0];
-        double budgets[3] = { fq2_lo, 0.25 * fq2_lo, 0.0 };
-        const char *names[3] = { "at least fq2's rate", "at least a quarter of fq2's rate", "any cost" };
-        md_printf(&b, "The most accurate approximation (least max delta, then least max Delta; the references excluded) "
-                      "for a budget of evaluations/s:\n\n| budget | n from 2 | n from 16 |\n|---|---|---|\n");
-        for (int k = 0; k < 3; ++k) {
-            md_printf(&b, "| %s |", names[k]);
-            for (int range = 0; range < 2; ++range) {
-                int i = best_within(r, budgets[k], range);
-                if (i < 0)
-                    md_printf(&b, " none |");
-                else
-                    md_printf(&b, " %s (%.4f%%, %.4f; %.3g/s) |", r->rows[i].spec.label, 100 * r->rows[i].max_rel[range],
-                              r->rows[i].max_abs[range], r->rows[i].rate[0][1]);
-            }
-            md_printf(&b, "\n");
-        }
-    } else {
-        md_printf(&b, "fq2 is not in this run (or its rate is missing): no budgets relative to it.\n");
-    }
-    if (frontier_plots_drawable(r))
-        md_printf(&b, "\n![evaluations/s against max delta](frontier_max_rel.png)\n"
-                      "![evaluations/s against max Delta](frontier_max_abs.png)\n");
-    else
-        md_printf(&b, "\nThe plots of evaluations/s against max delta and max Delta are not drawn: no model has a "
-                      "measured rate.\n");
-    if (b.failed) {
+    int rc = report_frontier_page(&b, d);
+    rdoc_delete(d);
+    if (rc) {
         md_free(&b);
         return NULL;
     }

@@ -17,8 +17,9 @@ int frontier_plots_drawable(const struct frontier_report *r);
 int frontier_write_plots(const char *dir, const struct frontier_report *r, char *err, size_t errlen);
 /* The table on f. */
 void frontier_print(FILE *f, const struct frontier_report *r);
-/* The body of "Which lobe to ship" (no heading): the table, the front and the most accurate
- * model per budget (malloc'd; NULL when out of memory). */
+/* The body of "Which lobe to ship" (no heading): report_frontier_page of the rows frontier.json
+ * carries (the table, the front and the most accurate model per budget), which report.md's
+ * section draws from the same rows (malloc'd; NULL when out of memory). */
 char *frontier_markdown(const struct frontier_report *r);
 
 #endif

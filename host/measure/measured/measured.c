@@ -8,6 +8,7 @@
 #include "exitcodes.h"
 #include "outdir.h"
 #include "programs.h"
+#include "report_measured.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -615,19 +616,11 @@ int measured_run(struct cl_session *s, const struct measured_options *o, struct 
     /* Pictures are named after the material's file name, made safe: two materials whose names
        give one (a/gold.binary and b/gold.binary, "a b" and a_b) would overwrite each other's
        pictures, so a later one takes -2, -3, ... */
-    for (int i = 0; i < out->count; ++i) {
+    const char *taken[MEASURED_MAX_MATERIALS];
+    for (int i = 0; i < out->count && i < MEASURED_MAX_MATERIALS; ++i) {
         struct measured_material *m = &out->materials[i];
-        char base[256];
-        measured_file_name(m->name, base, sizeof base);
-        snprintf(m->stem, sizeof m->stem, "%s", base);
-        for (int k = 2;; ++k) {
-            int taken = 0;
-            for (int j = 0; j < i && !taken; ++j)
-                taken = strcmp(out->materials[j].stem, m->stem) == 0;
-            if (!taken)
-                break;
-            snprintf(m->stem, sizeof m->stem, "%s-%d", base, k);
-        }
+        report_measured_stem(m->name, taken, i, m->stem, sizeof m->stem);
+        taken[i] = m->stem;
     }
     char path[4300];
     if (o->io.out_dir && (path_join(path, sizeof path, o->io.out_dir, "measured.json") ||

@@ -1,15 +1,20 @@
-/* measured_report.c - measured.json, the printed table and the pictures of `brdfbench measured`
- * (measured_report.h). measured.c measures; this file only turns the results into files. */
+/* measured_report.c - measured.json (with its rows), the printed table, the pictures and the page
+ * of `brdfbench measured` (measured_report.h). measured.c measures; this file only turns the
+ * results into files. The page is report_measured_page (host/results/report) of the rows. */
 #include "measured_report.h"
 
 #include "context.h"
 #include "draw.h"
 #include "jsonw.h"
 #include "outdir.h"
+#include "rdoc.h"
+#include "report_measured.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+#define MEASURED_RATIO_REASON "the lobe equals the fitted Blinn-Phong on every cell"
 
 #define METRIC_TEXT                                                                                                 \
     "per cell r = ln(1 + cos(theta_i) f_model) - ln(1 + cos(theta_i) Y), Y the measured luminance "               \
@@ -18,14 +23,87 @@
 
 void measured_file_name(const char *name, char *out, size_t len)
 {
-    size_t i = 0;
-    for (; name[i] && i + 1 < len; ++i) {
-        char c = name[i];
-        int keep = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' ||
-                   c == '_' || c == '-';
-        out[i] = keep ? c : '_';
+    report_measured_file_name(name, out, len);
+}
+
+/* measured.json's rows (report_measured.h says what each holds): a row per material, per fit
+   and per lobe, keyed by the material's picture stem. */
+static void measured_rows(struct rdoc *d, const struct measured_report *r)
+{
+    static const char *const rgb[3] = { "negative_cells.red", "negative_cells.green", "negative_cells.blue" };
+    char buf[32];
+    snprintf(buf, sizeof buf, "%ld", r->opt.fit_cells);
+    rd_ctx_put(&d->ctx, "fit_cells_max", buf);
+    for (int i = 0; i < r->count; ++i) {
+        const struct measured_material *m = &r->materials[i];
+        /* measured_run names the pictures; a report made otherwise, by the name's file-name form */
+        char stem[300];
+        if (m->stem[0])
+            snprintf(stem, sizeof stem, "%s", m->stem);
+        else
+            measured_file_name(m->name, stem, sizeof stem);
+        struct rd_row *row = rdoc_row(d, "", "");
+        if (!row)
+            return;
+        rd_row_key(row, "material", NULL, stem);
+        const struct { const char *name; long v; } counts[] = {
+            { "cells", m->cells }, { "unmeasured_cells", m->unmeasured }, { rgb[0], m->negative[0] },
+            { rgb[1], m->negative[1] }, { rgb[2], m->negative[2] }, { "below_horizon_cells", m->below_horizon },
+            { "used_cells", m->used_cells }, { "fit_cells", m->fit_cells }, { "device_check.points", m->device_points },
+            { "device_check.same_cell", m->device_same_cell },
+        };
+        for (size_t k = 0; k < sizeof counts / sizeof counts[0]; ++k)
+            rd_row_metric(d, row, counts[k].name, "1", RD_NEITHER, 0, (double)counts[k].v);
+        rd_row_metric(d, row, "device_check.value_differs", "1", RD_LOWER, 0, (double)m->device_value_diff);
+        rd_row_text(d, row, "name", m->name);
+        rd_row_text(d, row, "path", m->path);
+        rd_row_text(d, row, "device_check", m->device_points == 0 ? "not run" : m->device_ok ? "ok" : "mismatch");
+        for (int k = 0; k < MFIT_COUNT; ++k) {
+            const struct measured_fit *f = &m->fit[k];
+            struct rd_row *fr = rdoc_row(d, "", measured_fit_name[k]);
+            if (!fr)
+                return;
+            rd_row_key(fr, "material", NULL, stem);
+            rd_row_key(fr, MEASURED_FIT_KEY, "fit ", measured_fit_name[k]);
+            if (!f->ok)
+                rd_row_fail(fr, strcmp(f->reason, "not run") == 0 ? "not run" : "not converged", f->reason);
+            if (k == MFIT_BLINN) {
+                rd_row_metric(d, fr, "n", "1", RD_NEITHER, 0, f->n);
+            } else {
+                rd_row_metric(d, fr, "alpha", "1", RD_NEITHER, 0, f->alpha);
+                rd_row_metric(d, fr, "n_of_alpha", "1", RD_NEITHER, 0, f->n);
+                rd_row_metric(d, fr, "F0", "1", RD_NEITHER, 0, f->f0);
+            }
+            rd_row_metric(d, fr, "ks", "1/sr", RD_NEITHER, 0, f->ks);
+            rd_row_metric(d, fr, "kd", "1/sr", RD_NEITHER, 0, f->kd);
+            rd_row_metric(d, fr, "rms", "1", RD_LOWER, 0, f->rms);
+            rd_row_metric(d, fr, "rms_fit_cells", "1", RD_LOWER, 0, f->rms_fit);
+            rd_row_metric(d, fr, "iterations", "1", RD_NEITHER, 0, f->iterations);
+        }
+        for (int l = 0; l < m->nlobes; ++l) {
+            const struct measured_lobe *lb = &m->lobes[l];
+            struct rd_row *lr = rdoc_row(d, "", lb->spec.label);
+            if (!lr)
+                return;
+            rd_row_key(lr, "material", NULL, stem);
+            rd_row_key(lr, MEASURED_LOBE_KEY, NULL, lb->spec.label);
+            rd_row_metric(d, lr, "err_measured", "1", RD_LOWER, 0, lb->err_measured);
+            rd_row_metric(d, lr, "err_phong", "1", RD_LOWER, 0, lb->err_phong);
+            rd_row_metric(d, lr, "ratio", "1", RD_NEITHER, 0, lb->ratio);
+            if (!isfinite(lb->ratio))
+                rd_row_text(d, lr, "ratio_reason", MEASURED_RATIO_REASON);
+        }
     }
-    out[i] = '\0';
+}
+
+/* The rows of r (rdoc_delete), or NULL with the reason in err. */
+static struct rdoc *measured_doc(const struct measured_report *r, char *err, size_t errlen)
+{
+    struct rdoc *d = rdoc_new(MEASURED_SCHEMA, "measured", "measured.json", err, errlen);
+    if (!d)
+        return NULL;
+    measured_rows(d, r);
+    return rdoc_built(d, err, errlen) ? NULL : d;
 }
 
 static void jw_fit(struct jw *w, const char *key, const struct measured_fit *f, int physical)
@@ -54,6 +132,9 @@ static void jw_fit(struct jw *w, const char *key, const struct measured_fit *f, 
 int measured_write_json(const char *path, const struct measured_report *r, const struct cl_session *s, char *err,
                         size_t errlen)
 {
+    struct rdoc *d = measured_doc(r, err, errlen);
+    if (!d)
+        return -1;
     struct jw w;
     jw_doc_begin(&w, MEASURED_SCHEMA, s, "");
     jw_kv_obj(&w, "grid");
@@ -100,7 +181,7 @@ int measured_write_json(const char *path, const struct measured_report *r, const
             jw_kv_num(&w, "err_phong", lb->err_phong);
             jw_kv_num(&w, "ratio", lb->ratio);
             if (!isfinite(lb->ratio))
-                jw_kv_str(&w, "ratio_reason", "the lobe equals the fitted Blinn-Phong on every cell");
+                jw_kv_str(&w, "ratio_reason", MEASURED_RATIO_REASON);
             jw_obj_end(&w);
         }
         jw_arr_end(&w);
@@ -131,6 +212,8 @@ int measured_write_json(const char *path, const struct measured_report *r, const
         jw_obj_end(&w);
     }
     jw_arr_end(&w);
+    rdoc_json_rows_member(&w, d);
+    rdoc_delete(d);
     jw_obj_end(&w);
     return jw_write_file_free(&w, path, err, errlen);
 }
@@ -230,40 +313,15 @@ int measured_write_plots(const char *dir, const struct measured_report *r, char 
     return 0;
 }
 
-void measured_markdown(struct md_buf *md, const struct measured_report *r)
+int measured_markdown(struct md_buf *md, const struct measured_report *r)
 {
-    md_printf(md, "Each material's Blinn-Phong fit `ks cos(theta_h)^n + kd` and Cook-Torrance fits (alpha, F0, ks, "
-                  "kd), by least squares on luminance in r = ln(1 + cos(theta_i) f) - ln(1 + cos(theta_i) Y) over its "
-                  "measured cells; then every cheap lobe at the fitted n, scaled the same way: its RMS error against "
-                  "the material, against the fitted Blinn-Phong, and the ratio (docs/measured.md; data in "
-                  "`measured.json`).\n\n");
-    for (int i = 0; i < r->count; ++i) {
-        const struct measured_material *m = &r->materials[i];
-        const struct measured_fit *bp = &m->fit[MFIT_BLINN], *be = &m->fit[MFIT_CT_BECKMANN],
-                                  *gg = &m->fit[MFIT_CT_GGX];
-        md_printf(md, "### ");
-        md_text(md, m->name);   /* a file's name: no markdown or HTML of its own */
-        md_printf(md, "\n\n%ld cells used (%ld unmeasured, %ld below the surface); device lookup %s.\n\n",
-                  m->used_cells, m->unmeasured, m->below_horizon,
-                  m->device_points == 0 ? "not run" : m->device_ok ? "ok at every cell" : "**disagrees**");
-        md_printf(md, "| fit | parameters | RMS error |\n|---|---|---|\n");
-        md_printf(md, "| blinn-phong | n = %.5g, ks = %.5g, kd = %.5g | %.4g |\n", bp->n, bp->ks, bp->kd, bp->rms);
-        md_printf(md, "| ct-beckmann | alpha = %.5g, F0 = %.4g, ks = %.5g, kd = %.5g | %.4g |\n", be->alpha, be->f0,
-                  be->ks, be->kd, be->rms);
-        md_printf(md, "| ct-ggx | alpha = %.5g, F0 = %.4g, ks = %.5g, kd = %.5g | %.4g |\n\n", gg->alpha, gg->f0,
-                  gg->ks, gg->kd, gg->rms);
-        md_printf(md, "| lobe | error vs material | error vs Blinn-Phong | ratio |\n|---|---|---|---|\n");
-        for (int l = 0; l < m->nlobes; ++l) {
-            const struct measured_lobe *lb = &m->lobes[l];
-            md_printf(md, "| %s | %.5g | %.5g | %.4g |\n", lb->spec.label, lb->err_measured, lb->err_phong, lb->ratio);
-        }
-        char fname[300];
-        if (m->stem[0])
-            snprintf(fname, sizeof fname, "%s", m->stem);
-        else
-            measured_file_name(m->name, fname, sizeof fname);
-        md_printf(md, "\n![%s: each lobe's error against the material and against Blinn-Phong](measured_errors_%s.png)"
-                      "\n\n![%s: the measured slice with the fitted curves](measured_slice_%s.png)\n\n",
-                  fname, fname, fname, fname);
+    char err[256];
+    struct rdoc *d = measured_doc(r, err, sizeof err);
+    if (!d) {
+        md->failed = 1;
+        return -1;
     }
+    int rc = report_measured_page(md, d);
+    rdoc_delete(d);
+    return rc;
 }

@@ -15,9 +15,11 @@ void measured_print(FILE *f, const struct measured_report *r);
 /* measured_errors_<name>.png and measured_slice_<name>.png per material into dir. */
 int measured_write_plots(const char *dir, const struct measured_report *r, char *err, size_t errlen);
 /* report.md's section (brdfbench all --measured DIR): per material the fits and the lobes'
- * errors, with the pictures measured_write_plots wrote. */
-void measured_markdown(struct md_buf *md, const struct measured_report *r);
-/* The file-name form of a material's name: characters outside [A-Za-z0-9._-] become '_'. */
+ * errors, with the pictures measured_write_plots wrote: report_measured_page of the rows
+ * measured.json carries. Returns 0, or -1 out of memory (md->failed set). */
+int measured_markdown(struct md_buf *md, const struct measured_report *r);
+/* The file-name form of a material's name: characters outside [A-Za-z0-9._-] become '_'
+ * (report_measured_file_name). */
 void measured_file_name(const char *name, char *out, size_t len);
 
 #endif

@@ -10,6 +10,8 @@
 #include "report_accuracy.h"
 #include "report_docs.h"
 #include "report_render.h"
+#include "report_frontier.h"
+#include "report_measured.h"
 #include "report_run.h"
 #include "report_throughput.h"
 #include "room.h"
@@ -90,30 +92,22 @@ static int part_unavailable(struct md_buf *b, const struct report_input *in, int
     return 1;
 }
 
-/* A part's own page (claims.md, throughput.md, ...) as a section of this one. */
-static int page_block(struct md_buf *b, const struct report_input *in, const char *heading, int part, char *err,
-                      size_t errlen)
+/* A part's section drawn from the rows of its result file by its page function (the function
+ * the engine wrote its page with): "Which lobe to ship" from frontier.json, "Measured
+ * materials" from measured.json. */
+static int rows_block(struct md_buf *b, struct report_input *in, const char *heading, int part, const char *file,
+                      int (*page)(struct md_buf *, const struct rdoc *), char *err, size_t errlen)
 {
     md_printf(b, "## %s\n\n", heading);
     if (part_unavailable(b, in, part)) return 0;
-    char path[4200], why[200], *text = NULL;
-    size_t len = 0;
-    const char *page = report_part_page(part);
-    if (path_join(path, sizeof path, in->run_dir, page)) {
-        snprintf(err, errlen, "%s/%s: path too long", in->run_dir, page);
+    int rc;
+    const struct rdoc *d = report_doc(&in->docs, file, &rc, err, errlen);
+    if (!d) {
+        if (rc == 1) snprintf(err + strlen(err), errlen - strlen(err), " (run.json records its part as done)");
         return 2;
     }
-    int rc = infile_read(path, 0, (size_t)64 << 20, &text, &len, why, sizeof why);
-    if (rc) {
-        snprintf(err, errlen, "%s: %s (run.json records its part as done)", path, rc == -2 ? "out of memory" : why);
-        return rc == -2 ? 3 : 2;
-    }
-    /* claims.md and throughput.md are pages of their own; frontier.md and measured.md are
-       written as this section */
-    if (part == REPORT_PART_CLAIMS || part == REPORT_PART_THROUGHPUT) md_embed(b, text);
-    else md_printf(b, "%s", text);
+    if (page(b, d)) return 3;
     md_printf(b, "\n\n");
-    free(text);
     return 0;
 }
 
@@ -342,10 +336,12 @@ static int body(struct md_buf *b, struct report_input *in, char *err, size_t err
     if ((rc = images_block(b, in, err, errlen)) != 0) return rc;
     pictures(b, in, REPORT_IMAGES);
     if (in->run.part_ran[REPORT_PART_FRONTIER] &&
-        (rc = page_block(b, in, "Which lobe to ship", REPORT_PART_FRONTIER, err, errlen)) != 0)
+        (rc = rows_block(b, in, "Which lobe to ship", REPORT_PART_FRONTIER, "frontier.json", report_frontier_page, err,
+                         errlen)) != 0)
         return rc;
     if (in->run.part_ran[REPORT_PART_MEASURED] &&
-        (rc = page_block(b, in, "Measured materials", REPORT_PART_MEASURED, err, errlen)) != 0)
+        (rc = rows_block(b, in, "Measured materials", REPORT_PART_MEASURED, "measured.json", report_measured_page, err,
+                         errlen)) != 0)
         return rc;
     return in->out_of_memory ? 3 : 0;
 }

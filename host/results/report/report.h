@@ -41,7 +41,7 @@ enum report_part {
     REPORT_PART_COUNT
 };
 
-/* The page of a part, written beside its JSON by `all` (claims.md comes from reproduce), or
+/* The page of a part, written beside its JSON by `all` (claims.md by reproduce) from the JSON's rows, or
  * NULL for the parts whose section is drawn from their file's rows (fit, images). */
 const char *report_part_page(int part);
 
