@@ -132,23 +132,23 @@ static int test_device(struct accuracy_ctx *a)
         struct accuracy_ctx b;
         struct accuracy_result r1, r2, r3, r4;
         if ((rc = accuracy_open(&b, a->s, "")) != 0) return rc;
-        accuracy_forget_sweeps();
-        long hits = accuracy_reused_sweeps();
+        accuracy_forget_sweeps(a->s);
+        long hits = accuracy_reused_sweeps(a->s);
         if ((rc = run(a, "fq2", 2, 200, 3, 256, &r1)) || (rc = run(&b, "fq2", 2, 200, 3, 256, &r2))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1, "the second ask is reused (%ld -> %ld)", hits,
-              accuracy_reused_sweeps());
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1, "the second ask is reused (%ld -> %ld)", hits,
+              accuracy_reused_sweeps(a->s));
         CHECK(r2.per_n != r1.per_n && r2.n_count == r1.n_count &&
                   memcmp(r2.per_n, r1.per_n, (size_t)r1.n_count * sizeof *r1.per_n) == 0 &&
                   r2.epicentre.value == r1.epicentre.value && r2.attenuation.value == r1.attenuation.value,
               "a reused sweep is an own copy of the first");
         if ((rc = run(&b, "fq2", 2, 200, 4, 256, &r3))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1 && r3.n_count != r1.n_count, "another grid is run");
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.n_count != r1.n_count, "another grid is run");
         accuracy_result_free(&r3);
         if ((rc = run(&b, "fvol", 2, 200, 3, 256, &r3))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1 && r3.epicentre.value != r1.epicentre.value, "another model is run");
-        accuracy_forget_sweeps();
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.epicentre.value != r1.epicentre.value, "another model is run");
+        accuracy_forget_sweeps(a->s);
         if ((rc = run(&b, "fq2", 2, 200, 3, 256, &r4))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1, "after forgetting, the sweep runs again");
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1, "after forgetting, the sweep runs again");
         CHECK(r4.epicentre.value == r1.epicentre.value && r4.attenuation.value == r1.attenuation.value &&
                   r4.whole.value == r1.whole.value && r4.epicentre.n == r1.epicentre.n,
               "a sweep run again gives the copy's figures: fq2 %.17g vs %.17g", r4.epicentre.value, r1.epicentre.value);

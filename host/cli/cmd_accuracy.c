@@ -508,7 +508,8 @@ static int accuracy_main(int argc, char **argv)
     int to_folder = out_dir || (!json_path && !csv_path);
     int doc_on_stdout = cli_is_stdout(json_path) || cli_is_stdout(csv_path);
 
-    struct cl_session s;
+    struct brdf_run run;
+    struct cl_session *s = &run.s;
     int rc = cli_run_check_documents("accuracy", json_path, csv_path);
     if (rc)
         return rc;
@@ -517,26 +518,26 @@ static int accuracy_main(int argc, char **argv)
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         return EXIT_RUNTIME;
     }
-    rc = cli_run_session("accuracy", &s, &dev);
+    rc = cli_run_session("accuracy", &run, &dev);
     if (rc)
         return rc;
-    if (accuracy_grid_check(&grid, &s, err, sizeof err) ||
-        (reference_text && nmodels > 0 && accuracy_reference_check(&grid, &plan.lobe_reference, &s, err, sizeof err))) {
-        clsession_close(&s);
+    if (accuracy_grid_check(&grid, s, err, sizeof err) ||
+        (reference_text && nmodels > 0 && accuracy_reference_check(&grid, &plan.lobe_reference, s, err, sizeof err))) {
+        brdf_run_close(&run);
         goto usage_error;
     }
     struct accuracy_ctx actx;
     struct accuracy_result *res = calloc((size_t)nmodels + 1, sizeof *res);
     int done = 0;
     if (!res) {
-        clsession_close(&s);
+        brdf_run_close(&run);
         return EXIT_RUNTIME;
     }
     struct hemi_ctx hctx;
-    hemisphere_open(&hctx, &s, "");
+    hemisphere_open(&hctx, s, "");
     struct hemi_result hres[MAX_MODELS];
     int hdone = 0;
-    rc = accuracy_open(&actx, &s, "");
+    rc = accuracy_open(&actx, s, "");
     if (rc)
         goto cleanup;
     if (reference_text && nmodels > 0)
@@ -551,9 +552,9 @@ static int accuracy_main(int argc, char **argv)
     if ((rc = prepare_run_dir(to_folder, out_dir, run_dir, sizeof run_dir)))
         goto cleanup;
     if (!quiet)
-        fprintf(stderr, "device: %s (%s); %d kernel build%s %.2f s%s\n", s.device_name, s.platform_version,
-                s.builds, s.builds == 1 ? "" : "s", s.build_seconds_total,
-                s.specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
+        fprintf(stderr, "device: %s (%s); %d kernel build%s %.2f s%s\n", s->device_name, s->platform_version,
+                s->builds, s->builds == 1 ? "" : "s", s->build_seconds_total,
+                s->specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
     if ((rc = sweep_models(&actx, models, nmodels, &grid, res, &done, quiet)))
         goto cleanup;
     for (; hdone < plan.count; ++hdone) {
@@ -568,7 +569,7 @@ static int accuracy_main(int argc, char **argv)
         rc = EXIT_RUNTIME;
         goto cleanup;
     }
-    int wrc = write_documents(res, nmodels, &s, actx.build_options, to_folder ? run_dir : NULL, !out_dir, json_path,
+    int wrc = write_documents(res, nmodels, s, actx.build_options, to_folder ? run_dir : NULL, !out_dir, json_path,
                               csv_path, err, sizeof err);
     if (wrc) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
@@ -577,7 +578,7 @@ static int accuracy_main(int argc, char **argv)
     }
     int npictures = 0;
     if (pictures && to_folder && nmodels > 0 &&
-        (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet, &npictures)) != 0)
+        (rc = accuracy_pictures(s, models, res, nmodels, &grid, run_dir, quiet, &npictures)) != 0)
         goto cleanup;
     if (pictures && to_folder && nmodels > 0 &&
         (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
@@ -602,7 +603,7 @@ cleanup:
         accuracy_result_free(&res[m]);
     free(res);
     accuracy_close(&actx);
-    clsession_close(&s);
+    brdf_run_close(&run);
     return rc;
 
 usage_error:

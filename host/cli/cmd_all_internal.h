@@ -9,9 +9,10 @@
 #include "field.h"
 #include "plots.h"
 #include "report.h"
+#include "run.h"
 
 #define ALL_MAX_MODELS 64
-#define ALL_MAX_Q 256
+#define ALL_MAX_Q RUN_MAX_Q
 #define ALL_STEPS_BASE 10
 
 struct all_settings {
@@ -24,7 +25,7 @@ struct all_settings {
 
 struct all_run {
     struct all_settings set;
-    struct cl_session s;
+    struct brdf_run run;           /* the session and what the steps share: the Q sweep's figures */
     struct accuracy_ctx actx;
     int actx_open;
     const char *results_root;
@@ -40,10 +41,6 @@ struct all_run {
     int models_given;              /* --models: every step measures just those */
     struct accuracy_result *acc;
     int nacc;
-    /* Q sweep */
-    int nq;
-    double q[ALL_MAX_Q], q_delta[ALL_MAX_Q], q_Delta[ALL_MAX_Q];
-    double f2_delta, f2_Delta;
     struct plot_set plots;
     struct report_picture *pics;
     int npics, cappics;
