@@ -5,7 +5,8 @@
  *   - per-n maxima of several models match a brute-force maximum over 400001 points in
  *     double on the host (no device, no refinement);
  *   - doubling the samples moves no reported figure in its 4th significant digit;
- *   - the grid helpers' counts, worked by hand. */
+ *   - the grid helpers' counts, worked by hand;
+ *   - each sweep once per session, and nothing shared between sessions. */
 #include "accuracy.h"
 #include "check.h"
 #include "exitcodes.h"
@@ -157,6 +158,33 @@ static int test_device(struct accuracy_ctx *a)
         accuracy_result_free(&r3);
         accuracy_result_free(&r4);
         accuracy_close(&b);
+    }
+
+    /* The sweeps already run belong to the run's session (host/core/run.h), not to the process:
+     * another session on the same device starts with none and runs the sweep itself, and its
+     * count is its own; closing it leaves the first session's sweeps and count as they were. */
+    {
+        struct cl_session s2;
+        char err[512];
+        if ((rc = clsession_open(&s2, -1, -1, err, sizeof err)) != 0) return rc;
+        struct accuracy_ctx c;
+        struct accuracy_result r1, r2;
+        if ((rc = accuracy_open(&c, &s2, "")) != 0) return rc;
+        if ((rc = run(a, "fq2", 2, 200, 5, 256, &r1))) return rc;   /* remembered in a->s */
+        long hits = accuracy_reused_sweeps(a->s);
+        int kept = a->s->sweeps.count;
+        CHECK(accuracy_reused_sweeps(&s2) == 0 && s2.sweeps.count == 0, "a new session holds no sweeps");
+        if ((rc = run(&c, "fq2", 2, 200, 5, 256, &r2))) return rc;
+        CHECK(accuracy_reused_sweeps(&s2) == 0 && s2.sweeps.count == 1, "the new session ran the sweep itself");
+        CHECK(accuracy_reused_sweeps(a->s) == hits, "the first session's count is its own");
+        CHECK(r2.epicentre.value == r1.epicentre.value, "the same sweep gives the same figure: %.17g vs %.17g",
+              r2.epicentre.value, r1.epicentre.value);
+        accuracy_result_free(&r1);
+        accuracy_result_free(&r2);
+        accuracy_close(&c);
+        clsession_close(&s2);
+        CHECK(s2.sweeps.count == 0 && s2.sweeps.items == NULL, "closing a session releases its sweeps");
+        CHECK(a->s->sweeps.count == kept, "closing another session leaves this one's sweeps (%d)", kept);
     }
     return 0;
 }

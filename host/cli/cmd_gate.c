@@ -145,8 +145,7 @@ int cmd_gate(int argc, char **argv)
         goto usage_error;
 
     struct gate_set gs;
-    gate_allow_outside_model_files(outside_model_files);
-    int rc = gate_set_load(gates_path, &gs, err, sizeof err);
+    int rc = gate_set_load(gates_path, outside_model_files, &gs, err, sizeof err);
     if (rc) {
         fprintf(stderr, "brdfbench gate: %s\n", err);
         return rc;

@@ -482,12 +482,11 @@ static void brdf_qualified_name(struct user_model *um, const char *path)
     memcpy(um->qualified + nl + 1, base, bl + 1);
 }
 
-/* Set while the translation of a --model expression is parsed: machine-made text, whose own
-   brdfbench_* names are not the user's (the expression itself was checked). */
-static int translating_expression;
-
-int usermodel_parse_file_text(const char *text, size_t len, const char *path, struct user_model **out,
-                              char *err, size_t errlen)
+/* usermodel_parse_file_text; translating_expression: the text is the translation of a --model
+   expression, machine-made text whose own brdfbench_* names are not the user's (the expression
+   itself was checked). */
+static int parse_file_text(const char *text, size_t len, const char *path, int translating_expression,
+                           struct user_model **out, char *err, size_t errlen)
 {
     *out = NULL;
     if (len == 0)
@@ -625,9 +624,7 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
             text = NULL;
         }
         if (sl == 0) {
-            translating_expression = 1;
-            sl = usermodel_parse_file_text(text, tlen, origin, out, err, errlen);
-            translating_expression = 0;
+            sl = parse_file_text(text, tlen, origin, 1, out, err, errlen);
             free(text);
             if (sl == 0) {
                 (*out)->from_file = 0;
@@ -699,6 +696,12 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
     usermodel_fill_runtime(um);
     *out = um;
     return 0;
+}
+
+int usermodel_parse_file_text(const char *text, size_t len, const char *path, struct user_model **out,
+                              char *err, size_t errlen)
+{
+    return parse_file_text(text, len, path, 0, out, err, errlen);
 }
 
 /* ---- the registry ---------------------------------------------------------------------- */
