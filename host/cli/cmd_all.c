@@ -379,7 +379,8 @@ static int step_plots(struct all_run *r)
     return 0;
 }
 
-/* run.json, then report.md made from the run folder as `brdfbench report` makes it. */
+/* run.json, then report.md made as `brdfbench report` makes it from the run folder, with the rows
+ * the steps put into r->docs taken from memory instead of their files. */
 static int step_report(struct all_run *r, double wall)
 {
     double t = wall_seconds();
@@ -396,7 +397,7 @@ static int step_report(struct all_run *r, double wall)
     };
     memcpy(run.parts, r->parts, sizeof run.parts);
     int rc = report_run_write(r->run_dir, &run, &r->run.s, err, sizeof err) ? EXIT_RUNTIME : 0;
-    if (!rc) rc = report_rebuild(r->run_dir, NULL, err, sizeof err) ? EXIT_RUNTIME : 0;
+    if (!rc) rc = report_rebuild_docs(r->run_dir, &r->docs, NULL, err, sizeof err) ? EXIT_RUNTIME : 0;
     if (rc) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         return rc;
@@ -443,6 +444,7 @@ static void run_free(struct all_run *r)
     plots_free(&r->plots);
     free(r->pics);
     free(r->steps);
+    report_docs_free(&r->docs);
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
@@ -555,6 +557,7 @@ static int open_run(struct all_run *r)
         brdf_run_close(&r->run);
         return rc == 2 ? EXIT_USAGE : EXIT_RUNTIME;
     }
+    report_docs_init(&r->docs, r->run_dir);
     if (!r->quiet)
         fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->run.s.device_name, r->run.s.platform_version, r->final_dir,
                 r->set.quick ? " (quick grids)" : "");

@@ -9,6 +9,7 @@
 #include "field.h"
 #include "plots.h"
 #include "report.h"
+#include "report_docs.h"
 #include "run.h"
 
 #define ALL_MAX_MODELS 64
@@ -50,6 +51,8 @@ struct all_run {
     int part_failures, part_rc;
     char picture_error[1024];
     struct report_part_state parts[REPORT_PART_COUNT];
+    struct report_docs docs;       /* rows the steps hold in memory, for report.md (report_docs_put):
+                                      a file put there is not read back */
     char images_note[512];         /* the scenes left out */
     const char *measured_dir;      /* --measured DIR: the measured materials' section */
     const char *out_dir;           /* --out, or NULL: a new folder under results_root */
