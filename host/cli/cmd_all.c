@@ -631,9 +631,11 @@ static int finish_run(struct all_run *r)
 
 int cmd_all(int argc, char **argv)
 {
-    static struct all_run run; /* large; one per process */
-    struct all_run *r = &run;
-    memset(r, 0, sizeof *r);
+    struct all_run *r = calloc(1, sizeof *r);   /* large: on the heap */
+    if (!r) {
+        fprintf(stderr, "brdfbench all: out of memory\n");
+        return EXIT_RUNTIME;
+    }
     r->t0 = wall_seconds();
     r->tty = isatty(STDERR_FILENO);
     r->results_root = "results";
@@ -641,13 +643,14 @@ int cmd_all(int argc, char **argv)
     for (int i = 1; i < argc && used < sizeof r->command; i++)
         used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
     int rc = parse_all(r, argc, argv);
-    if (rc >= 0) return rc;
+    if (rc >= 0) goto done;
     char err[1024];
     if (draw_module_check(err, sizeof err)) {   /* the pictures would fail after the long run */
         fprintf(stderr, "brdfbench all: %s\n", err);
-        return EXIT_RUNTIME;
+        rc = EXIT_RUNTIME;
+        goto done;
     }
-    if ((rc = open_run(r)) != 0) return rc;
+    if ((rc = open_run(r)) != 0) goto done;
     rc = run_steps(r);
     if (!rc) rc = finish_run(r);
     if (rc) {
@@ -658,5 +661,7 @@ int cmd_all(int argc, char **argv)
     }
     run_free(r);
     brdf_run_close(&r->run);
+done:
+    free(r);
     return rc;
 }
