@@ -146,7 +146,8 @@ static int test_device(struct accuracy_ctx *a)
         CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.n_count != r1.n_count, "another grid is run");
         accuracy_result_free(&r3);
         if ((rc = run(&b, "fvol", 2, 200, 3, 256, &r3))) return rc;
-        CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.epicentre.value != r1.epicentre.value, "another model is run");
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.epicentre.value != r1.epicentre.value,
+              "another model is run");
         accuracy_forget_sweeps(a->s);
         if ((rc = run(&b, "fq2", 2, 200, 3, 256, &r4))) return rc;
         CHECK(accuracy_reused_sweeps(a->s) == hits + 1, "after forgetting, the sweep runs again");

@@ -566,8 +566,8 @@ static int accuracy_main(int argc, char **argv, struct full_plan *plan)
     if ((rc = sweep_models(&actx, models, nmodels, &grid, res, &done, quiet)))
         goto cleanup;
     for (; hdone < plan->count; ++hdone) {
-        if ((rc = hemisphere_run(&hctx, &plan->models[hdone], &plan->refs[hdone], &plan->axes[hdone], fixed.v, fixed.count,
-                                 &plan->grid, &hres[hdone])) != 0)
+        if ((rc = hemisphere_run(&hctx, &plan->models[hdone], &plan->refs[hdone], &plan->axes[hdone], fixed.v,
+                                 fixed.count, &plan->grid, &hres[hdone])) != 0)
             goto cleanup;
     }
     if (to_folder && !out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {

@@ -223,8 +223,8 @@ static int step_q_sweep(struct all_run *r)
         qs->f2_max_abs = res.whole.value;
         accuracy_result_free(&res);
     }
-    all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone", qs->n,
-              r->set.q_min, qs->q[qs->n - 1], g->n_min, g->n_max, g->n_step, g->samples);
+    all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone",
+                  qs->n, r->set.q_min, qs->q[qs->n - 1], g->n_min, g->n_max, g->n_step, g->samples);
     return 0;
 }
 
@@ -559,8 +559,8 @@ static int open_run(struct all_run *r)
     }
     report_docs_init(&r->docs, r->run_dir);
     if (!r->quiet)
-        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->run.s.device_name, r->run.s.platform_version, r->final_dir,
-                r->set.quick ? " (quick grids)" : "");
+        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->run.s.device_name, r->run.s.platform_version,
+                r->final_dir, r->set.quick ? " (quick grids)" : "");
     return 0;
 }
 

@@ -32,8 +32,8 @@ struct host_entry {
 #define ENTRIES(s) ((struct program_entry *)(s)->programs.items)
 #define HOSTS(s) ((struct host_entry *)(s)->hosts.items)
 
-/* The table with room for one more element (room.h), or NULL with a message when memory is
- * out (the table is then unchanged). */
+/* Room for one more element in the table (room.h): 0, or -1 with a message when memory is out
+ * (the table is then unchanged). */
 static int make_room(struct cl_session_table *t, size_t size)
 {
     void *grown = room_for_one(t->items, t->count, &t->cap, size, 8);

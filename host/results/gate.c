@@ -424,7 +424,8 @@ int gate_set_parse_text(const char *text, size_t len, const char *name, const ch
         goto done;
     }
     for (size_t i = 0; i < gates->count; ++i) {
-        if ((rc = parse_gate(&doc, &gates->items[i], (int)i, base_dir, outside_allowed, &out->gates[i], err, errlen)) != 0)
+        if ((rc = parse_gate(&doc, &gates->items[i], (int)i, base_dir, outside_allowed, &out->gates[i], err,
+                             errlen)) != 0)
             goto done;
         out->count++;
     }
