@@ -570,6 +570,7 @@ void clsession_close(struct cl_session *s)
     s->ctx = NULL;
 }
 
+/* --kernel-dir: a setting of the process's flags, the same for every session it opens. */
 static const char *kernel_dir_override = NULL;
 
 void clsession_set_kernel_dir(const char *dir) { kernel_dir_override = dir; }
