@@ -5,7 +5,8 @@
  *   - per-n maxima of several models match a brute-force maximum over 400001 points in
  *     double on the host (no device, no refinement);
  *   - doubling the samples moves no reported figure in its 4th significant digit;
- *   - the grid helpers' counts, worked by hand. */
+ *   - the grid helpers' counts, worked by hand;
+ *   - each sweep once per session, and nothing shared between sessions. */
 #include "accuracy.h"
 #include "check.h"
 #include "exitcodes.h"
@@ -132,23 +133,24 @@ static int test_device(struct accuracy_ctx *a)
         struct accuracy_ctx b;
         struct accuracy_result r1, r2, r3, r4;
         if ((rc = accuracy_open(&b, a->s, "")) != 0) return rc;
-        accuracy_forget_sweeps();
-        long hits = accuracy_reused_sweeps();
+        accuracy_forget_sweeps(a->s);
+        long hits = accuracy_reused_sweeps(a->s);
         if ((rc = run(a, "fq2", 2, 200, 3, 256, &r1)) || (rc = run(&b, "fq2", 2, 200, 3, 256, &r2))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1, "the second ask is reused (%ld -> %ld)", hits,
-              accuracy_reused_sweeps());
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1, "the second ask is reused (%ld -> %ld)", hits,
+              accuracy_reused_sweeps(a->s));
         CHECK(r2.per_n != r1.per_n && r2.n_count == r1.n_count &&
                   memcmp(r2.per_n, r1.per_n, (size_t)r1.n_count * sizeof *r1.per_n) == 0 &&
                   r2.epicentre.value == r1.epicentre.value && r2.attenuation.value == r1.attenuation.value,
               "a reused sweep is an own copy of the first");
         if ((rc = run(&b, "fq2", 2, 200, 4, 256, &r3))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1 && r3.n_count != r1.n_count, "another grid is run");
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.n_count != r1.n_count, "another grid is run");
         accuracy_result_free(&r3);
         if ((rc = run(&b, "fvol", 2, 200, 3, 256, &r3))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1 && r3.epicentre.value != r1.epicentre.value, "another model is run");
-        accuracy_forget_sweeps();
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1 && r3.epicentre.value != r1.epicentre.value,
+              "another model is run");
+        accuracy_forget_sweeps(a->s);
         if ((rc = run(&b, "fq2", 2, 200, 3, 256, &r4))) return rc;
-        CHECK(accuracy_reused_sweeps() == hits + 1, "after forgetting, the sweep runs again");
+        CHECK(accuracy_reused_sweeps(a->s) == hits + 1, "after forgetting, the sweep runs again");
         CHECK(r4.epicentre.value == r1.epicentre.value && r4.attenuation.value == r1.attenuation.value &&
                   r4.whole.value == r1.whole.value && r4.epicentre.n == r1.epicentre.n,
               "a sweep run again gives the copy's figures: fq2 %.17g vs %.17g", r4.epicentre.value, r1.epicentre.value);
@@ -157,6 +159,33 @@ static int test_device(struct accuracy_ctx *a)
         accuracy_result_free(&r3);
         accuracy_result_free(&r4);
         accuracy_close(&b);
+    }
+
+    /* The sweeps already run belong to the run's session (host/core/run.h), not to the process:
+     * another session on the same device starts with none and runs the sweep itself, and its
+     * count is its own; closing it leaves the first session's sweeps and count as they were. */
+    {
+        struct cl_session s2;
+        char err[512];
+        if ((rc = clsession_open(&s2, -1, -1, err, sizeof err)) != 0) return rc;
+        struct accuracy_ctx c;
+        struct accuracy_result r1, r2;
+        if ((rc = accuracy_open(&c, &s2, "")) != 0) return rc;
+        if ((rc = run(a, "fq2", 2, 200, 5, 256, &r1))) return rc;   /* remembered in a->s */
+        long hits = accuracy_reused_sweeps(a->s);
+        int kept = a->s->sweeps.count;
+        CHECK(accuracy_reused_sweeps(&s2) == 0 && s2.sweeps.count == 0, "a new session holds no sweeps");
+        if ((rc = run(&c, "fq2", 2, 200, 5, 256, &r2))) return rc;
+        CHECK(accuracy_reused_sweeps(&s2) == 0 && s2.sweeps.count == 1, "the new session ran the sweep itself");
+        CHECK(accuracy_reused_sweeps(a->s) == hits, "the first session's count is its own");
+        CHECK(r2.epicentre.value == r1.epicentre.value, "the same sweep gives the same figure: %.17g vs %.17g",
+              r2.epicentre.value, r1.epicentre.value);
+        accuracy_result_free(&r1);
+        accuracy_result_free(&r2);
+        accuracy_close(&c);
+        clsession_close(&s2);
+        CHECK(s2.sweeps.count == 0 && s2.sweeps.items == NULL, "closing a session releases its sweeps");
+        CHECK(a->s->sweeps.count == kept, "closing another session leaves this one's sweeps (%d)", kept);
     }
     return 0;
 }

@@ -18,7 +18,9 @@
 #include "models.h"
 #include "outdir.h"
 #include "plots.h"
+#include "rdoc_read.h"
 #include "report.h"
+#include "report_docs.h"
 #include "testutil.h"
 
 #include <math.h>
@@ -377,6 +379,34 @@ static void test_plots_and_report(struct cl_session *s)
         CHECK(report_build(dir, &again, err, sizeof err) == 0 && again && strcmp(again, text) == 0,
               "report_build gives the page report_rebuild wrote");
         free(again);
+        /* The rows a run holds in memory (report_docs_put): the rows accuracy.json carries, put
+           before the page is built, give the page the file gives; report_doc gives put rows
+           without reading a file (memory.json is none); a second put of a name is refused. */
+        static struct report_docs docs;   /* large */
+        struct rdoc acc, mem;
+        report_docs_init(&docs, dir);
+        path_in(path, sizeof path, "accuracy.json");
+        CHECK(rdoc_read_file(path, &acc, err, sizeof err) == 0 && acc.nrows == 2, "accuracy.json's rows: %s", err);
+        int nrows = acc.nrows;
+        CHECK(report_docs_put(&docs, "accuracy.json", &acc, err, sizeof err) == 0 && acc.rows == NULL,
+              "rows put (and moved): %s", err);
+        rdoc_init(&mem, "brdfbench.rows/1", "accuracy", "memory.json");
+        CHECK(report_docs_put(&docs, "memory.json", &mem, err, sizeof err) == 0, "a second document put");
+        rdoc_init(&mem, "brdfbench.rows/1", "accuracy", "memory.json");
+        CHECK(report_docs_put(&docs, "memory.json", &mem, err, sizeof err) == -1 && strstr(err, "already"),
+              "the same name twice is refused: %s", err);
+        int drc = -1;
+        const struct rdoc *got = report_doc(&docs, "accuracy.json", &drc, err, sizeof err);
+        CHECK(drc == 0 && got && got->nrows == nrows, "report_doc gives the put rows");
+        got = report_doc(&docs, "memory.json", &drc, err, sizeof err);
+        CHECK(drc == 0 && got && got->nrows == 0 && strcmp(got->file, "memory.json") == 0,
+              "a put document is not looked for in the folder");
+        char *from_memory = NULL;
+        CHECK(report_build_docs(dir, &docs, &from_memory, err, sizeof err) == 0 && from_memory &&
+                  strcmp(from_memory, text) == 0,
+              "report.md from the rows in memory is the page from the files");
+        free(from_memory);
+        report_docs_free(&docs);
         free(text);
     }
     /* a run folder without run.json, and one whose throughput.json is gone, are named */

@@ -18,10 +18,10 @@ static void cli_run_error(const char *cmd, const char *err)
     fprintf(stderr, "brdfbench %s: %s\n", cmd, err);
 }
 
-int cli_run_session(const char *cmd, struct cl_session *s, const struct device_options *dev)
+int cli_run_session(const char *cmd, struct brdf_run *run, const struct device_options *dev)
 {
     char err[1024];
-    int rc = clsession_open(s, dev->platform, dev->device, err, sizeof err);
+    int rc = brdf_run_open(run, dev->platform, dev->device, err, sizeof err);
     if (rc)
         cli_run_error(cmd, err);
     return rc;
@@ -44,18 +44,6 @@ int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir
         return EXIT_RUNTIME;
     }
     return 0;
-}
-
-int cli_run_open(const char *cmd, struct cl_session *s, const struct device_options *dev, const char *out_dir,
-                 int temp, char *run_dir, size_t run_dir_len, char *tmp_dir, size_t tmp_dir_len)
-{
-    int rc = cli_run_session(cmd, s, dev);
-    if (rc)
-        return rc;
-    rc = cli_run_folder(cmd, out_dir, temp, run_dir, run_dir_len, tmp_dir, tmp_dir_len);
-    if (rc)
-        clsession_close(s);
-    return rc;
 }
 
 int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir)
@@ -135,28 +123,29 @@ void cli_engine_init(struct cli_engine_run *e, const char *cmd, const char *docu
 
 int cli_run_engine(struct cli_engine_run *e)
 {
-    struct cl_session s;
+    struct brdf_run run;
+    struct cl_session *s = &run.s;
     char err[1024];
     const int temp = (e->json_path || e->csv_path) && !e->out_dir;
     e->run_dir[0] = e->tmp_dir[0] = '\0';
     int rc = cli_run_check_documents(e->cmd, e->json_path, e->csv_path);
     if (!rc)
-        rc = cli_run_session(e->cmd, &s, &e->dev);
+        rc = cli_run_session(e->cmd, &run, &e->dev);
     if (rc)
         return rc;
-    if (e->check && (rc = e->check(&s, e->ctx, err, sizeof err)) != 0) {
+    if (e->check && (rc = e->check(s, e->ctx, err, sizeof err)) != 0) {
         cli_run_error(e->cmd, err);
-        clsession_close(&s);
+        brdf_run_close(&run);
         return rc;
     }
     rc = cli_run_folder(e->cmd, e->out_dir, temp, e->run_dir, sizeof e->run_dir, e->tmp_dir, sizeof e->tmp_dir);
     if (rc) {
-        clsession_close(&s);
+        brdf_run_close(&run);
         return rc;
     }
     /* the tables stay off a document on stdout */
     e->quiet = e->quiet || cli_is_stdout(e->json_path) || cli_is_stdout(e->csv_path);
-    rc = e->run(&s, e->run_dir, e->quiet, e->ctx);
+    rc = e->run(s, e->run_dir, e->quiet, e->ctx);
     if (!rc || (e->complete_on && rc == e->complete_on)) {
         int frc = cli_run_latest(e->cmd, e->out_dir, e->tmp_dir, e->run_dir);
         if (!frc && e->json_path)
@@ -166,6 +155,6 @@ int cli_run_engine(struct cli_engine_run *e)
         if (frc) rc = frc;
     }
     cli_temp_dir_remove(e->tmp_dir);
-    clsession_close(&s);
+    brdf_run_close(&run);
     return rc;
 }

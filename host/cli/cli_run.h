@@ -1,11 +1,12 @@
 /* cli_run.h - the steps every measuring command takes around its engine's run, each reporting
  * its own failure as "brdfbench CMD: message" on stderr:
- *   cli_run_session   opens the OpenCL session of the device flags (its exit code, 0 when open);
+ *   cli_run_session   opens the run (host/core/run.h: its session and what the session's engines
+ *                     share) on the device of the device flags: its exit code, 0 when open. The
+ *                     one path by which every command opens a device: cli_run_engine, and
+ *                     accuracy, all and gate, which make their folders their own way;
  *   cli_run_folder    makes the run folder: a temporary one when `temp` (a --json/--csv document
  *                     without --out, cli_temp_dir), else --out or a new results/<date-time>
  *                     (outdir_for_command); 0 or EXIT_RUNTIME;
- *   cli_run_open      cli_run_session then cli_run_folder, the session closed again when the
- *                     folder fails; 0 (session open, folder made) or the exit code;
  *   cli_run_latest    points results/latest at the run folder when it is a new results/<date-time>
  *                     (no --out, not temporary); 0 or EXIT_RUNTIME;
  *   cli_run_check_documents  checks --json/--csv before the work;
@@ -18,12 +19,11 @@
 
 #include "cli.h"
 #include "clsession.h"
+#include "run.h"
 
-int cli_run_session(const char *cmd, struct cl_session *s, const struct device_options *dev);
+int cli_run_session(const char *cmd, struct brdf_run *run, const struct device_options *dev);
 int cli_run_folder(const char *cmd, const char *out_dir, int temp, char *run_dir, size_t run_dir_len, char *tmp_dir,
                    size_t tmp_dir_len);
-int cli_run_open(const char *cmd, struct cl_session *s, const struct device_options *dev, const char *out_dir,
-                 int temp, char *run_dir, size_t run_dir_len, char *tmp_dir, size_t tmp_dir_len);
 int cli_run_latest(const char *cmd, const char *out_dir, const char *tmp_dir, const char *run_dir);
 /* Checks --json and --csv paths (either may be NULL) before any work (output_file_check): 0 or
  * EXIT_RUNTIME, so a missing or read-only folder fails at once, not after the measurement. */
@@ -37,7 +37,8 @@ int cli_run_finish(const char *cmd, const char *out_dir, const char *tmp_dir, co
 /* The contract of a measuring command: its engine's run as a function of the session, the
  * run folder and whether to keep its tables off standard output. Every measuring command but
  * accuracy (whose folder under results/ is named after its sweep and made after its kernel
- * builds, cmd_accuracy.c) and all (its staged folder, cmd_all.c) goes through cli_run_engine;
+ * builds, cmd_accuracy.c), all (its staged folder, cmd_all.c) and gate (no folder) goes through
+ * cli_run_engine; those three open their run through cli_run_session, as cli_run_engine does;
  * compare, which opens no device, makes its folder with cli_run_folder after the runs are read. */
 typedef int (*cli_engine_fn)(struct cl_session *s, const char *run_dir, int quiet, void *ctx);
 /* A check after the session opened and before any folder is made (sizes against the device):

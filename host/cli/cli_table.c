@@ -295,6 +295,8 @@ static void write_wrapped(FILE *out, const char *text, int col)
     }
 }
 
+/* How the process prints a command's --help: main.c sets it around the one command it runs
+   (a command's entry point takes only argc and argv), so it is the process's, not a run's. */
 static enum cli_help_format help_format = CLI_HELP_TEXT;
 static FILE *help_out;
 static const char *command_summary, *command_example;
@@ -527,15 +529,6 @@ int cli_call_timeout(const char *flag, const char *value, void *dest, char *err,
     return 0;
 }
 
-/* The files read by --model-file, by their real path: the same file named twice (by the same
- * or another path) is read once. */
-#define CLI_MAX_MODEL_FILES 16
-static struct {
-    char real[PATH_MAX];
-    const char *as_given;
-} model_files[CLI_MAX_MODEL_FILES];
-static int model_file_count;
-
 int cli_call_model_file(const char *flag, const char *value, void *dest, char *err, size_t errlen)
 {
     (void)dest;
@@ -543,19 +536,14 @@ int cli_call_model_file(const char *flag, const char *value, void *dest, char *e
         snprintf(err, errlen, "%s: empty file name", flag);
         return EXIT_USAGE;
     }
-    char real[PATH_MAX];
-    int have_real = realpath(value, real) != NULL;
-    for (int i = 0; have_real && i < model_file_count; ++i)
-        if (strcmp(model_files[i].real, real) == 0) {
-            cli_note("%s %s: the same file as %s, read once", flag, value, model_files[i].as_given);
-            return 0;
-        }
-    if (usermodel_load_file(value, NULL, err, errlen))
+    /* The same file named twice (by the same or another path, a link) is read once: the
+       registry gives the model it defined (usermodel_load_file), and no model is added. */
+    const struct user_model *um = NULL;
+    int before = usermodel_count();
+    if (usermodel_load_file(value, &um, err, errlen))
         return EXIT_USAGE;
-    if (have_real && model_file_count < CLI_MAX_MODEL_FILES) {
-        snprintf(model_files[model_file_count].real, sizeof model_files[model_file_count].real, "%s", real);
-        model_files[model_file_count++].as_given = value;
-    }
+    if (um && usermodel_count() == before)
+        cli_note("%s %s: the same file as %s, read once", flag, value, um->origin);
     return 0;
 }
 
@@ -563,9 +551,13 @@ int cli_call_define(const char *flag, const char *value, void *dest, char *err, 
 {
     (void)dest;
     /* a define changes the files read after it: one after every file would change nothing */
-    if (model_file_count > 0) {
+    const struct user_model *last_file = NULL;   /* the latest model file read (the registry's) */
+    for (int i = usermodel_count() - 1; i >= 0 && !last_file; --i)
+        if (usermodel_at(i)->from_file)
+            last_file = usermodel_at(i);
+    if (last_file) {
         snprintf(err, errlen, "%s %.60s: given after --model-file %s; put -D before the --model-file flags it is "
-                 "for", flag, value, model_files[model_file_count - 1].as_given);
+                 "for", flag, value, last_file->origin);
         return EXIT_USAGE;
     }
     return shaderlang_define(value, err, errlen);

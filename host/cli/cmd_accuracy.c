@@ -119,53 +119,57 @@ static int prepare_run_dir(int to_folder, const char *out_dir, char *run_dir, si
     return 0;
 }
 
-/* accuracy.json (csv 0) or accuracy.csv (csv 1) at path. */
-/* The hemisphere sweep's results, written after the lobe sweep's rows (set once the sweeps ran). */
-static const struct hemi_result *doc_hres;
-static int doc_hcount;
+/* What the documents hold: the lobe sweep's results, then the hemisphere sweep's. */
+struct acc_docs {
+    const struct accuracy_result *res;
+    int nmodels;
+    const struct hemi_result *hres;
+    int hcount;
+    const struct cl_session *s;
+    const char *build_options;
+};
 
-static int write_document(int csv, const char *path, const struct accuracy_result *res, int nmodels,
-                          const struct cl_session *s, const char *build_options, char *err, size_t errlen)
+/* accuracy.json (csv 0) or accuracy.csv (csv 1) at path. */
+static int write_document(int csv, const char *path, const struct acc_docs *d, char *err, size_t errlen)
 {
-    return csv ? accuracy_write_csv_full(path, res, nmodels, doc_hres, doc_hcount, err, errlen)
-               : accuracy_write_json_full(path, res, nmodels, doc_hres, doc_hcount, s, build_options, err, errlen);
+    return csv ? accuracy_write_csv_full(path, d->res, d->nmodels, d->hres, d->hcount, err, errlen)
+               : accuracy_write_json_full(path, d->res, d->nmodels, d->hres, d->hcount, d->s, d->build_options, err,
+                                          errlen);
 }
 
 /* --json or --csv: one document where the flag says (a file, or standard output). */
-static int write_flag_document(int csv, const char *flag_path, const struct accuracy_result *res, int nmodels,
-                               const struct cl_session *s, const char *build_options, char *err, size_t errlen)
+static int write_flag_document(int csv, const char *flag_path, const struct acc_docs *d, char *err, size_t errlen)
 {
     struct cli_output o;
     const char *wp;
     int wrc = cli_output_path(&o, flag_path, csv ? "accuracy.csv" : "accuracy.json", &wp, err, errlen);
     if (!wrc)
-        wrc = write_document(csv, wp, res, nmodels, s, build_options, err, errlen);
+        wrc = write_document(csv, wp, d, err, errlen);
     int frc = cli_output_finish(&o, !wrc, err, errlen);
     return wrc ? wrc : frc;
 }
 
 /* accuracy.json and accuracy.csv in run_dir (when not NULL; results/latest moved to it when
  * set_latest), then the --json and --csv documents. 0, or non-zero with the message in err. */
-static int write_documents(const struct accuracy_result *res, int nmodels, const struct cl_session *s,
-                           const char *build_options, const char *run_dir, int set_latest, const char *json_path,
+static int write_documents(const struct acc_docs *d, const char *run_dir, int set_latest, const char *json_path,
                            const char *csv_path, char *err, size_t errlen)
 {
     char path[4200];
     int wrc = 0;
     if (run_dir) {
         path_join(path, sizeof path, run_dir, "accuracy.json");
-        wrc = write_document(0, path, res, nmodels, s, build_options, err, errlen);
+        wrc = write_document(0, path, d, err, errlen);
         if (!wrc) {
             path_join(path, sizeof path, run_dir, "accuracy.csv");
-            wrc = write_document(1, path, res, nmodels, s, build_options, err, errlen);
+            wrc = write_document(1, path, d, err, errlen);
         }
         if (!wrc && set_latest)
             wrc = outdir_set_latest("results", run_dir, err, errlen);
     }
     if (!wrc && json_path)
-        wrc = write_flag_document(0, json_path, res, nmodels, s, build_options, err, errlen);
+        wrc = write_flag_document(0, json_path, d, err, errlen);
     if (!wrc && csv_path)
-        wrc = write_flag_document(1, csv_path, res, nmodels, s, build_options, err, errlen);
+        wrc = write_flag_document(1, csv_path, d, err, errlen);
     return wrc;
 }
 
@@ -219,12 +223,14 @@ static int sweep_models(struct accuracy_ctx *actx, const struct model_spec *mode
 }
 
 /* The table, the device-against-double check, the device time and what was written. */
-static void print_summary(const struct accuracy_result *res, int nmodels, const struct accuracy_grid *g,
-                          const char *run_dir, int npictures, const char *json_path, const char *csv_path)
+static void print_summary(const struct acc_docs *d, const struct accuracy_grid *g, const char *run_dir,
+                          int npictures, const char *json_path, const char *csv_path)
 {
+    const struct accuracy_result *res = d->res;
+    const int nmodels = d->nmodels;
     if (nmodels > 0)
         accuracy_print_table(stdout, res, nmodels);
-    hemisphere_print_table(stdout, doc_hres, doc_hcount);
+    hemisphere_print_table(stdout, d->hres, d->hcount);
     double worst = 0, dev_s = 0, pts = 0;
     int beyond = 0;
     for (int m = 0; m < nmodels; ++m) {
@@ -276,11 +282,10 @@ struct full_plan {
     int count;
     struct hemi_grid grid;
     struct model_spec lobe_reference;   /* --reference for the lobe models */
+    /* A measured material named by --reference, open for the run (closed by cmd_accuracy). */
+    struct hemi_measured measured_ref;
+    int measured_ref_open;
 };
-
-/* A measured material named by --reference, open for the run (closed by cmd_accuracy). */
-static struct hemi_measured measured_ref;
-static int measured_ref_open;
 
 static int ends_with(const char *s, const char *tail)
 {
@@ -307,7 +312,8 @@ static int names_file(const char *text)
  * read as --model-file reads it (the same file as a --model-file is the same model); else a
  * built-in with parameters (ct-ggx:F0=0.04) or a user model's name (NAME@FILE.brdf included).
  * 0, or -1 with the message in err. */
-static int resolve_reference(const char *text, struct model_spec *out, char *err, size_t errlen)
+static int resolve_reference(const char *text, struct full_plan *plan, struct model_spec *out, char *err,
+                             size_t errlen)
 {
     char inner[700];
     if (strncmp(text, "merl:", 5) == 0 || ends_with(text, ".binary")) {
@@ -316,15 +322,15 @@ static int resolve_reference(const char *text, struct model_spec *out, char *err
             snprintf(err, errlen, "--reference: merl: names no file (accepted: merl:FILE.binary, a MERL file)");
             return -1;
         }
-        if (measured_ref_open) {
-            hemisphere_measured_close(&measured_ref);
-            measured_ref_open = 0;
+        if (plan->measured_ref_open) {
+            hemisphere_measured_close(&plan->measured_ref);
+            plan->measured_ref_open = 0;
         }
-        if (hemisphere_measured_open(path, &measured_ref, out, inner, sizeof inner)) {
+        if (hemisphere_measured_open(path, &plan->measured_ref, out, inner, sizeof inner)) {
             snprintf(err, errlen, "--reference: %.*s", (int)errlen - 16, inner);
             return -1;
         }
-        measured_ref_open = 1;
+        plan->measured_ref_open = 1;
         return 0;
     }
     /* the model's id: the text up to its parameters (NAME:p=v) */
@@ -379,7 +385,7 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     if (hemisphere_grid_check(&plan->grid, points, err, errlen))
         return -1;
     struct model_spec named_ref;
-    if (reference_text && resolve_reference(reference_text, &named_ref, err, errlen))
+    if (reference_text && resolve_reference(reference_text, plan, &named_ref, err, errlen))
         return -1;
     if (reference_text)
         plan->lobe_reference = named_ref;
@@ -436,19 +442,23 @@ static int plan_full_models(struct model_spec *models, int nmodels, struct full_
     return kept;
 }
 
-static int accuracy_main(int argc, char **argv);
+static int accuracy_main(int argc, char **argv, struct full_plan *plan);
 
 int cmd_accuracy(int argc, char **argv)
 {
-    int rc = accuracy_main(argc, argv);
-    if (measured_ref_open) {
-        hemisphere_measured_close(&measured_ref);
-        measured_ref_open = 0;
+    struct full_plan *plan = calloc(1, sizeof *plan);   /* large: the models, references and axes */
+    if (!plan) {
+        fprintf(stderr, "brdfbench accuracy: out of memory\n");
+        return EXIT_RUNTIME;
     }
+    int rc = accuracy_main(argc, argv, plan);
+    if (plan->measured_ref_open)
+        hemisphere_measured_close(&plan->measured_ref);
+    free(plan);
     return rc;
 }
 
-static int accuracy_main(int argc, char **argv)
+static int accuracy_main(int argc, char **argv, struct full_plan *plan)
 {
     /* --device all or a list: one run per device, rows gathered (cli_devices.c) */
     int per_device = cli_per_device(argc, argv, "accuracy", cmd_accuracy, "accuracy.json", "results", "accuracy.csv");
@@ -497,9 +507,7 @@ static int accuracy_main(int argc, char **argv)
     if (nmodels < 0)
         goto usage_error;
     /* the full BRDFs leave the lobe list for the hemisphere sweep */
-    struct full_plan plan;
-    memset(&plan, 0, sizeof plan);
-    nmodels = plan_full_models(models, nmodels, &plan, reference_text, sweep_text, &fixed, sweep_points, hgrid_text,
+    nmodels = plan_full_models(models, nmodels, plan, reference_text, sweep_text, &fixed, sweep_points, hgrid_text,
                                &grid, err, sizeof err);
     if (nmodels < 0)
         goto usage_error;
@@ -508,7 +516,8 @@ static int accuracy_main(int argc, char **argv)
     int to_folder = out_dir || (!json_path && !csv_path);
     int doc_on_stdout = cli_is_stdout(json_path) || cli_is_stdout(csv_path);
 
-    struct cl_session s;
+    struct brdf_run run;
+    struct cl_session *s = &run.s;
     int rc = cli_run_check_documents("accuracy", json_path, csv_path);
     if (rc)
         return rc;
@@ -517,30 +526,30 @@ static int accuracy_main(int argc, char **argv)
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         return EXIT_RUNTIME;
     }
-    rc = cli_run_session("accuracy", &s, &dev);
+    rc = cli_run_session("accuracy", &run, &dev);
     if (rc)
         return rc;
-    if (accuracy_grid_check(&grid, &s, err, sizeof err) ||
-        (reference_text && nmodels > 0 && accuracy_reference_check(&grid, &plan.lobe_reference, &s, err, sizeof err))) {
-        clsession_close(&s);
+    if (accuracy_grid_check(&grid, s, err, sizeof err) ||
+        (reference_text && nmodels > 0 && accuracy_reference_check(&grid, &plan->lobe_reference, s, err, sizeof err))) {
+        brdf_run_close(&run);
         goto usage_error;
     }
     struct accuracy_ctx actx;
     struct accuracy_result *res = calloc((size_t)nmodels + 1, sizeof *res);
     int done = 0;
     if (!res) {
-        clsession_close(&s);
+        brdf_run_close(&run);
         return EXIT_RUNTIME;
     }
     struct hemi_ctx hctx;
-    hemisphere_open(&hctx, &s, "");
+    hemisphere_open(&hctx, s, "");
     struct hemi_result hres[MAX_MODELS];
     int hdone = 0;
-    rc = accuracy_open(&actx, &s, "");
+    rc = accuracy_open(&actx, s, "");
     if (rc)
         goto cleanup;
     if (reference_text && nmodels > 0)
-        actx.reference = &plan.lobe_reference;
+        actx.reference = &plan->lobe_reference;
     for (int m = 0; m < nmodels && !rc; ++m)
         rc = accuracy_prepare(&actx, &models[m]);   /* a user model's compile error before any sweep */
     if (rc)
@@ -551,25 +560,23 @@ static int accuracy_main(int argc, char **argv)
     if ((rc = prepare_run_dir(to_folder, out_dir, run_dir, sizeof run_dir)))
         goto cleanup;
     if (!quiet)
-        fprintf(stderr, "device: %s (%s); %d kernel build%s %.2f s%s\n", s.device_name, s.platform_version,
-                s.builds, s.builds == 1 ? "" : "s", s.build_seconds_total,
-                s.specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
+        fprintf(stderr, "device: %s (%s); %d kernel build%s %.2f s%s\n", s->device_name, s->platform_version,
+                s->builds, s->builds == 1 ? "" : "s", s->build_seconds_total,
+                s->specialise ? " (one program per model: the rest are built as the sweep reaches them)" : "");
     if ((rc = sweep_models(&actx, models, nmodels, &grid, res, &done, quiet)))
         goto cleanup;
-    for (; hdone < plan.count; ++hdone) {
-        if ((rc = hemisphere_run(&hctx, &plan.models[hdone], &plan.refs[hdone], &plan.axes[hdone], fixed.v, fixed.count,
-                                 &plan.grid, &hres[hdone])) != 0)
+    for (; hdone < plan->count; ++hdone) {
+        if ((rc = hemisphere_run(&hctx, &plan->models[hdone], &plan->refs[hdone], &plan->axes[hdone], fixed.v,
+                                 fixed.count, &plan->grid, &hres[hdone])) != 0)
             goto cleanup;
     }
-    doc_hres = hres;
-    doc_hcount = hdone;
     if (to_folder && !out_dir && outdir_new_run("results", run_dir, sizeof run_dir, err, sizeof err)) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
         goto cleanup;
     }
-    int wrc = write_documents(res, nmodels, &s, actx.build_options, to_folder ? run_dir : NULL, !out_dir, json_path,
-                              csv_path, err, sizeof err);
+    const struct acc_docs docs = { res, nmodels, hres, hdone, s, actx.build_options };
+    int wrc = write_documents(&docs, to_folder ? run_dir : NULL, !out_dir, json_path, csv_path, err, sizeof err);
     if (wrc) {
         fprintf(stderr, "brdfbench accuracy: %s\n", err);
         rc = EXIT_RUNTIME;
@@ -577,7 +584,7 @@ static int accuracy_main(int argc, char **argv)
     }
     int npictures = 0;
     if (pictures && to_folder && nmodels > 0 &&
-        (rc = accuracy_pictures(&s, models, res, nmodels, &grid, run_dir, quiet, &npictures)) != 0)
+        (rc = accuracy_pictures(s, models, res, nmodels, &grid, run_dir, quiet, &npictures)) != 0)
         goto cleanup;
     if (pictures && to_folder && nmodels > 0 &&
         (rc = plots_heatmaps_shared_step("accuracy", run_dir, shared_scale)) != 0)
@@ -591,18 +598,16 @@ static int accuracy_main(int argc, char **argv)
         npictures += hdrawn;
     }
     if (!quiet && !doc_on_stdout)
-        print_summary(res, nmodels, &grid, to_folder ? run_dir : NULL, npictures, json_path, csv_path);
+        print_summary(&docs, &grid, to_folder ? run_dir : NULL, npictures, json_path, csv_path);
 cleanup:
     for (int m = 0; m < hdone; ++m)
         hemisphere_result_free(&hres[m]);
-    doc_hres = NULL;
-    doc_hcount = 0;
     hemisphere_close(&hctx);
     for (int m = 0; m < done; ++m)
         accuracy_result_free(&res[m]);
     free(res);
     accuracy_close(&actx);
-    clsession_close(&s);
+    brdf_run_close(&run);
     return rc;
 
 usage_error:

@@ -8,6 +8,7 @@
 
 #include "accuracy.h"
 #include "accuracy_report.h"
+#include "cli_run.h"
 #include "cli_table.h"
 #include "draw.h"
 #include "commands.h"
@@ -23,7 +24,6 @@
 #include "render.h"
 #include "reproduce.h"
 #include "throughput.h"
-#include "jsonr.h"
 #include "heatmaps_shared.h"
 #include "report.h"
 #include "room.h"
@@ -145,7 +145,7 @@ static int step_accuracy(struct all_run *r)
     double t = wall_seconds();
     char err[1024], path[4200];
     int rc;
-    if (accuracy_grid_check(&r->set.grid, &r->s, err, sizeof err)) {
+    if (accuracy_grid_check(&r->set.grid, &r->run.s, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         return EXIT_USAGE;
     }
@@ -157,7 +157,7 @@ static int step_accuracy(struct all_run *r)
         r->nacc = m + 1;
     }
     path_join(path, sizeof path, r->run_dir, "accuracy.json");
-    if (accuracy_write_json(path, r->acc, r->nacc, &r->s, r->actx.build_options, err, sizeof err)) goto fail;
+    if (accuracy_write_json(path, r->acc, r->nacc, &r->run.s, r->actx.build_options, err, sizeof err)) goto fail;
     path_join(path, sizeof path, r->run_dir, "accuracy.csv");
     if (accuracy_write_csv(path, r->acc, r->nacc, err, sizeof err)) goto fail;
     all_step_done(r, "accuracy", t, "%d models, n in [%g, %g] step %g, %ld samples per zone -> accuracy.json, accuracy.csv",
@@ -169,67 +169,33 @@ fail:
 }
 
 /* max delta (epicentre) and max Delta (whole range) of f_Q for Q on a grid, and of f2
- * (cq2), which does not depend on Q, on the same n grid: paper 2 figs. 2-3. */
-/* The Q sweep the claims check wrote (q_sweep.json), so the plots show the figures its
- * verdicts use. Returns 0, or 2 when the file is missing or malformed (message in err). */
-static int read_q_sweep(struct all_run *r, char *err, size_t errlen)
-{
-    char path[4200];
-    struct jr_doc d;
-    path_join(path, sizeof path, r->run_dir, "q_sweep.json");
-    if (jr_parse_file(path, &d, err, errlen)) return 2;
-    double *q = NULL, *rel = NULL, *abs_ = NULL;
-    size_t nq = 0, nr = 0, na = 0;
-    const struct jr_value *f2;
-    int rc = 2;
-    if (jr_need_num_array(&d, &d.root, "Q", &q, &nq, err, errlen) ||
-        jr_need_num_array(&d, &d.root, "max_rel", &rel, &nr, err, errlen) ||
-        jr_need_num_array(&d, &d.root, "max_abs", &abs_, &na, err, errlen) ||
-        jr_need(&d, &d.root, "f2", JR_OBJ, &f2, err, errlen) ||
-        jr_need_num(&d, f2, "max_rel", &r->f2_delta, err, errlen) ||
-        jr_need_num(&d, f2, "max_abs", &r->f2_Delta, err, errlen))
-        goto done;
-    if (nq != nr || nq != na || nq < 1 || nq > ALL_MAX_Q) {
-        jr_fail(&d, &d.root, err, errlen, "\"Q\", \"max_rel\", \"max_abs\" must hold 1 to %d values each", ALL_MAX_Q);
-        goto done;
-    }
-    for (size_t i = 0; i < nq; i++) {
-        r->q[i] = q[i];
-        r->q_delta[i] = rel[i];
-        r->q_Delta[i] = abs_[i];
-    }
-    r->nq = (int)nq;
-    rc = 0;
-done:
-    free(q);
-    free(rel);
-    free(abs_);
-    jr_free(&d);
-    return rc;
-}
-
+ * (cq2), which does not depend on Q, on the same n grid: paper 2 figs. 2-3, into the run object
+ * (run.h: q_sweep). The claims check runs that sweep too (q_sweep.json): when it ran, its
+ * figures are already there (all_step_claims), so the plots show the figures its verdicts use. */
 static int step_q_sweep(struct all_run *r)
 {
     double t = wall_seconds();
     char err[1024];
     int rc;
+    struct run_q_sweep *qs = &r->run.q_sweep;
     if (r->parts[REPORT_PART_CLAIMS].ran && !r->parts[REPORT_PART_CLAIMS].missing[0]) {
         /* the claims check ran its own Q sweep: use it */
-        if (read_q_sweep(r, err, sizeof err) == 0) {
-            all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], read from q_sweep.json", r->nq, r->q[0],
-                      r->q[r->nq - 1]);
+        if (qs->n > 0) {
+            all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], the claims check's (q_sweep.json)",
+                          qs->n, qs->q[0], qs->q[qs->n - 1]);
             return 0;
         }
-        fprintf(stderr, "brdfbench all: %s; running the Q sweep here\n", err);
+        fprintf(stderr, "brdfbench all: the claims check gave no Q sweep of 1 to %d values; running the Q sweep "
+                "here\n", RUN_MAX_Q);
     }
     const struct accuracy_grid *g = &r->set.q_grid;
-    if (accuracy_grid_check(g, &r->s, err, sizeof err)) {
+    if (accuracy_grid_check(g, &r->run.s, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: Q sweep: %s\n", err);
         return EXIT_USAGE;
     }
-    r->nq = 0;
+    qs->n = 0;
     int total = (int)floor((r->set.q_max - r->set.q_min) / r->set.q_step + 1e-9) + 1;
-    if (total > ALL_MAX_Q) total = ALL_MAX_Q;
+    if (total > RUN_MAX_Q) total = RUN_MAX_Q;
     for (int i = 0; i < total; i++) {
         double q = r->set.q_min + i * r->set.q_step;
         char text[64];
@@ -242,23 +208,23 @@ static int step_q_sweep(struct all_run *r)
         }
         all_progress(r, "Q sweep", i, total, text);
         if ((rc = accuracy_run(&r->actx, &m, g, &res)) != 0) return rc;
-        r->q[r->nq] = q;
-        r->q_delta[r->nq] = res.epicentre.value;
-        r->q_Delta[r->nq] = res.whole.value;
-        r->nq++;
+        qs->q[qs->n] = q;
+        qs->max_rel[qs->n] = res.epicentre.value;
+        qs->max_abs[qs->n] = res.whole.value;
+        qs->n++;
         accuracy_result_free(&res);
     }
     struct model_spec f2;
     struct accuracy_result res;
-    r->f2_delta = r->f2_Delta = NAN;
+    qs->f2_max_rel = qs->f2_max_abs = NAN;
     if (model_spec_parse("cq2", &f2, err, sizeof err) == 0) {
         if ((rc = accuracy_run(&r->actx, &f2, g, &res)) != 0) return rc;
-        r->f2_delta = res.epicentre.value;
-        r->f2_Delta = res.whole.value;
+        qs->f2_max_rel = res.epicentre.value;
+        qs->f2_max_abs = res.whole.value;
         accuracy_result_free(&res);
     }
-    all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone", r->nq,
-              r->set.q_min, r->q[r->nq - 1], g->n_min, g->n_max, g->n_step, g->samples);
+    all_step_done(r, "Q sweep", t, "f_Q for %d values of Q in [%g, %g], n in [%g, %g] step %g, %ld samples per zone",
+                  qs->n, r->set.q_min, qs->q[qs->n - 1], g->n_min, g->n_max, g->n_step, g->samples);
     return 0;
 }
 
@@ -266,7 +232,7 @@ static int step_heatmaps(struct all_run *r)
 {
     double t = wall_seconds();
     struct field_ctx f;
-    int rc = field_open(&f, &r->s, "");
+    int rc = field_open(&f, &r->run.s, "");
     if (rc) return rc;
     int drawn = 0, total = 0;
     double worst_rel = 0, worst_abs = 0;
@@ -284,7 +250,7 @@ static int step_heatmaps(struct all_run *r)
         field_safe_label(spec->label, safe, sizeof safe);
         snprintf(name, sizeof name, "field_%s.json", safe);
         path_join(path, sizeof path, r->run_dir, name);
-        if (field_write_json(path, &fr, &r->s, err, sizeof err)) {
+        if (field_write_json(path, &fr, &r->run.s, err, sizeof err)) {
             fprintf(stderr, "brdfbench all: %s\n", err);
             field_result_free(&fr);
             rc = EXIT_RUNTIME;
@@ -367,16 +333,17 @@ static int step_plots(struct all_run *r)
                      "no normalised or microfacet model ran (--models named none: fq2n, phongn, blinnn, beckmann, "
                      "ggx, ...)");
     }
-    if (r->nq > 0) {
+    const struct run_q_sweep *qs = &r->run.q_sweep;
+    if (qs->n > 0) {
         plots_add_against_q(&r->plots, "fq_max_rel_error_vs_q.png",
                             "max delta of f_Q over the epicentre (n in [2, 1000]) against Q, with f2 (paper 2, fig. 2)",
                             "f_Q: max relative error delta over the epicentre against Q (paper 2, fig. 2)",
-                            "max delta over the epicentre", 1, r->q, r->q_delta, r->nq, "fq (f_Q)", r->f2_delta,
+                            "max delta over the epicentre", 1, qs->q, qs->max_rel, qs->n, "fq (f_Q)", qs->f2_max_rel,
                             "cq2 (f2), independent of Q", 0.64);
         plots_add_against_q(&r->plots, "fq_max_abs_error_vs_q.png",
                             "max Delta of f_Q over [0, pi/2] (n in [2, 1000]) against Q, with f2 (paper 2, fig. 3)",
                             "f_Q: max absolute error Delta against Q (paper 2, fig. 3)", "max Delta over [0, pi/2]", 0,
-                            r->q, r->q_Delta, r->nq, "fq (f_Q)", r->f2_Delta, "cq2 (f2), independent of Q", 0.64);
+                            qs->q, qs->max_abs, qs->n, "fq (f_Q)", qs->f2_max_abs, "cq2 (f2), independent of Q", 0.64);
     }
     /* throughput bars, when the throughput step wrote its results */
     path_join(path, sizeof path, r->run_dir, "throughput.json");
@@ -395,7 +362,7 @@ static int step_plots(struct all_run *r)
         }
     }
     path_join(path, sizeof path, r->run_dir, "plots.json");
-    if (plots_write_json(&r->plots, path, &r->s, err, sizeof err)) {
+    if (plots_write_json(&r->plots, path, &r->run.s, err, sizeof err)) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         return EXIT_RUNTIME;
     }
@@ -412,7 +379,8 @@ static int step_plots(struct all_run *r)
     return 0;
 }
 
-/* run.json, then report.md made from the run folder as `brdfbench report` makes it. */
+/* run.json, then report.md made as `brdfbench report` makes it from the run folder, with the rows
+ * the steps put into r->docs taken from memory instead of their files. */
 static int step_report(struct all_run *r, double wall)
 {
     double t = wall_seconds();
@@ -428,8 +396,8 @@ static int step_report(struct all_run *r, double wall)
         .npictures = r->npics,
     };
     memcpy(run.parts, r->parts, sizeof run.parts);
-    int rc = report_run_write(r->run_dir, &run, &r->s, err, sizeof err) ? EXIT_RUNTIME : 0;
-    if (!rc) rc = report_rebuild(r->run_dir, NULL, err, sizeof err) ? EXIT_RUNTIME : 0;
+    int rc = report_run_write(r->run_dir, &run, &r->run.s, err, sizeof err) ? EXIT_RUNTIME : 0;
+    if (!rc) rc = report_rebuild_docs(r->run_dir, &r->docs, NULL, err, sizeof err) ? EXIT_RUNTIME : 0;
     if (rc) {
         fprintf(stderr, "brdfbench all: %s\n", err);
         return rc;
@@ -476,6 +444,7 @@ static void run_free(struct all_run *r)
     plots_free(&r->plots);
     free(r->pics);
     free(r->steps);
+    report_docs_free(&r->docs);
     if (r->actx_open) accuracy_close(&r->actx);
 }
 
@@ -566,11 +535,9 @@ usage_error:
 static int open_run(struct all_run *r)
 {
     char err[1024];
-    int rc = clsession_open(&r->s, r->dev.platform, r->dev.device, err, sizeof err);
-    if (rc) {
-        fprintf(stderr, "brdfbench all: %s\n", err);
+    int rc = cli_run_session("all", &r->run, &r->dev);
+    if (rc)
         return rc;
-    }
     /* The run is built in a fresh staging folder beside its final place and swapped in only
      * when complete (outdir_stage_begin): a failure, a deadline or a signal leaves an earlier
      * run in --out as it was, and no half run anywhere. The places are checked before any
@@ -578,7 +545,7 @@ static int open_run(struct all_run *r)
     if (!r->out_dir) {
         if (outdir_new_run(r->results_root, r->final_dir, sizeof r->final_dir, err, sizeof err)) {
             fprintf(stderr, "brdfbench all: %s\n", err);
-            clsession_close(&r->s);
+            brdf_run_close(&r->run);
             return EXIT_RUNTIME;
         }
     } else {
@@ -587,12 +554,13 @@ static int open_run(struct all_run *r)
     if ((rc = outdir_stage_begin(r->final_dir, r->out_dir ? "--out" : NULL, r->run_dir, sizeof r->run_dir, err,
                                  sizeof err)) != 0) {
         fprintf(stderr, "brdfbench all: %s\n", err);
-        clsession_close(&r->s);
+        brdf_run_close(&r->run);
         return rc == 2 ? EXIT_USAGE : EXIT_RUNTIME;
     }
+    report_docs_init(&r->docs, r->run_dir);
     if (!r->quiet)
-        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->s.device_name, r->s.platform_version, r->final_dir,
-                r->set.quick ? " (quick grids)" : "");
+        fprintf(stderr, "brdfbench all: %s (%s) -> %s%s\n", r->run.s.device_name, r->run.s.platform_version,
+                r->final_dir, r->set.quick ? " (quick grids)" : "");
     return 0;
 }
 
@@ -603,7 +571,7 @@ static int run_steps(struct all_run *r)
 {
     int rc;
     plots_init(&r->plots);
-    if ((rc = accuracy_open(&r->actx, &r->s, "")) != 0) return rc;
+    if ((rc = accuracy_open(&r->actx, &r->run.s, "")) != 0) return rc;
     r->actx_open = 1;
     outdir_reassert_signal_handlers();
 
@@ -652,9 +620,9 @@ static int finish_run(struct all_run *r)
         return rc;
     }
     if (!r->quiet) {
-        if (accuracy_reused_sweeps() > 0)
+        if (accuracy_reused_sweeps(&r->run.s) > 0)
             fprintf(stderr, "[%6.1f s] %ld accuracy sweeps asked for by more than one part were run once\n", all_elapsed(r),
-                    accuracy_reused_sweeps());
+                    accuracy_reused_sweeps(&r->run.s));
         fprintf(stderr, "[%6.1f s] done: %s/report.md\n", all_elapsed(r), r->final_dir);
         printf("%s/report.md\n", r->final_dir);
     }
@@ -663,9 +631,11 @@ static int finish_run(struct all_run *r)
 
 int cmd_all(int argc, char **argv)
 {
-    static struct all_run run; /* large; one per process */
-    struct all_run *r = &run;
-    memset(r, 0, sizeof *r);
+    struct all_run *r = calloc(1, sizeof *r);   /* large: on the heap */
+    if (!r) {
+        fprintf(stderr, "brdfbench all: out of memory\n");
+        return EXIT_RUNTIME;
+    }
     r->t0 = wall_seconds();
     r->tty = isatty(STDERR_FILENO);
     r->results_root = "results";
@@ -673,13 +643,14 @@ int cmd_all(int argc, char **argv)
     for (int i = 1; i < argc && used < sizeof r->command; i++)
         used += (size_t)snprintf(r->command + used, sizeof r->command - used, " %s", argv[i]);
     int rc = parse_all(r, argc, argv);
-    if (rc >= 0) return rc;
+    if (rc >= 0) goto done;
     char err[1024];
     if (draw_module_check(err, sizeof err)) {   /* the pictures would fail after the long run */
         fprintf(stderr, "brdfbench all: %s\n", err);
-        return EXIT_RUNTIME;
+        rc = EXIT_RUNTIME;
+        goto done;
     }
-    if ((rc = open_run(r)) != 0) return rc;
+    if ((rc = open_run(r)) != 0) goto done;
     rc = run_steps(r);
     if (!rc) rc = finish_run(r);
     if (rc) {
@@ -689,6 +660,8 @@ int cmd_all(int argc, char **argv)
                 r->out_dir ? "; " : "", r->out_dir ? r->out_dir : "", r->out_dir ? " is as it was before" : "");
     }
     run_free(r);
-    clsession_close(&r->s);
+    brdf_run_close(&r->run);
+done:
+    free(r);
     return rc;
 }

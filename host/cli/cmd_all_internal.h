@@ -9,9 +9,11 @@
 #include "field.h"
 #include "plots.h"
 #include "report.h"
+#include "report_docs.h"
+#include "run.h"
 
 #define ALL_MAX_MODELS 64
-#define ALL_MAX_Q 256
+#define ALL_MAX_Q RUN_MAX_Q
 #define ALL_STEPS_BASE 10
 
 struct all_settings {
@@ -24,7 +26,7 @@ struct all_settings {
 
 struct all_run {
     struct all_settings set;
-    struct cl_session s;
+    struct brdf_run run;           /* the session and what the steps share: the Q sweep's figures */
     struct accuracy_ctx actx;
     int actx_open;
     const char *results_root;
@@ -40,10 +42,6 @@ struct all_run {
     int models_given;              /* --models: every step measures just those */
     struct accuracy_result *acc;
     int nacc;
-    /* Q sweep */
-    int nq;
-    double q[ALL_MAX_Q], q_delta[ALL_MAX_Q], q_Delta[ALL_MAX_Q];
-    double f2_delta, f2_Delta;
     struct plot_set plots;
     struct report_picture *pics;
     int npics, cappics;
@@ -53,6 +51,8 @@ struct all_run {
     int part_failures, part_rc;
     char picture_error[1024];
     struct report_part_state parts[REPORT_PART_COUNT];
+    struct report_docs docs;       /* rows the steps hold in memory, for report.md (report_docs_put):
+                                      a file put there is not read back */
     char images_note[512];         /* the scenes left out */
     const char *measured_dir;      /* --measured DIR: the measured materials' section */
     const char *out_dir;           /* --out, or NULL: a new folder under results_root */

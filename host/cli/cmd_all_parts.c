@@ -67,7 +67,9 @@ int all_step_claims(struct all_run *r)
     memset(&rep, 0, sizeof rep);
     all_progress(r, "claims", 0, 1, "reproduce");
     o.io = (struct engine_io){ r->run_dir, 1 };
-    int rc = reproduce_run(&r->s, &o, &rep);
+    int rc = reproduce_run(&r->run.s, &o, &rep);
+    if (!rc)
+        r->run.q_sweep = rep.q_sweep;   /* the Q step and the plots take it from the run, not the file */
     if (!rc && !rep.markdown)
         snprintf(r->parts[REPORT_PART_CLAIMS].missing, sizeof r->parts[0].missing,
                  "the claims check ran but gave no table.");
@@ -92,7 +94,7 @@ int all_step_fit(struct all_run *r)
     memset(&rep, 0, sizeof rep);
     all_progress(r, "fit", 0, 1, "fitting");
     o.io = (struct engine_io){ r->run_dir, 1 };
-    int rc = fit_run(&r->s, &o, &rep);
+    int rc = fit_run(&r->run.s, &o, &rep);
     if (!rc) all_step_done(r, "fit", t, "best affine %s -> fit.json", rep.main.spec_text);
     fit_report_free(&rep);
     return rc ? part_failed("the fit", rc) : 0;
@@ -123,7 +125,7 @@ int all_step_throughput(struct all_run *r)
     }
     all_progress(r, "throughput", 0, 1, "measuring");
     struct throughput_result res = { 0 };
-    int rc = throughput_run(&r->s, &o, &res);
+    int rc = throughput_run(&r->run.s, &o, &res);
     if (rc) {
         throughput_result_free(&res);
         return part_failed("the throughput measurement", rc);
@@ -171,7 +173,7 @@ int all_step_images(struct all_run *r)
     }
     all_progress(r, "images", 0, 1, "render");
     struct render_result res;
-    int rc = render_run(&r->s, &o, &res);
+    int rc = render_run(&r->run.s, &o, &res);
     render_result_free(&res);
     if (rc) {
         fprintf(stderr, "brdfbench all: image passes: %s\n", res.err);
@@ -214,7 +216,7 @@ int all_step_frontier(struct all_run *r)
     all_progress(r, "frontier", 0, 1, "measuring");
     struct frontier_result res = { 0 };
     o.io = (struct engine_io){ r->run_dir, 1 };
-    int rc = frontier_run(&r->s, &o, &res);
+    int rc = frontier_run(&r->run.s, &o, &res);
     if (!rc && res.markdown) rc = write_page(r, REPORT_PART_FRONTIER, res.markdown);
     else if (!rc)
         snprintf(r->parts[REPORT_PART_FRONTIER].missing, sizeof r->parts[0].missing,
@@ -243,7 +245,7 @@ int all_step_measured(struct all_run *r)
         o.io = (struct engine_io){ r->run_dir, 1 };
         o.paths = files;
         o.count = nfiles;
-        rc = measured_run(&r->s, &o, &rep);
+        rc = measured_run(&r->run.s, &o, &rep);
         snprintf(err, sizeof err, "%s", rep.err);
     }
     if (rc && err[0])

@@ -145,8 +145,7 @@ int cmd_gate(int argc, char **argv)
         goto usage_error;
 
     struct gate_set gs;
-    gate_allow_outside_model_files(outside_model_files);
-    int rc = gate_set_load(gates_path, &gs, err, sizeof err);
+    int rc = gate_set_load(gates_path, outside_model_files, &gs, err, sizeof err);
     if (rc) {
         fprintf(stderr, "brdfbench gate: %s\n", err);
         return rc;
@@ -164,28 +163,29 @@ int cmd_gate(int argc, char **argv)
         return EXIT_RUNTIME;
     }
 
-    struct cl_session s;
-    rc = cli_run_session("gate", &s, &dev);
+    struct brdf_run run;
+    struct cl_session *s = &run.s;
+    rc = cli_run_session("gate", &run, &dev);
     if (rc) {
         gate_set_free(&gs);
         return rc;
     }
-    if ((rc = gate_set_check_device(&gs, &s, err, sizeof err)) != 0) {
+    if ((rc = gate_set_check_device(&gs, s, err, sizeof err)) != 0) {
         fprintf(stderr, "brdfbench gate: %s\n", err);
         goto done;
     }
     if (!quiet)
-        fprintf(stderr, "device: %s (%s)\n", s.device_name, s.platform_version);
-    if ((rc = gate_set_run(&gs, &s, quiet ? NULL : stderr)) != 0)
+        fprintf(stderr, "device: %s (%s)\n", s->device_name, s->platform_version);
+    if ((rc = gate_set_run(&gs, s, quiet ? NULL : stderr)) != 0)
         goto done;
     /* a document on standard output: the gate lines go to stderr */
     print_gates(cli_is_stdout(junit) || cli_is_stdout(json) ? stderr : stdout, &gs, quiet);
     fflush(stdout);
-    if ((rc = write_reports(&gs, &s, junit, json)) != 0)
+    if ((rc = write_reports(&gs, s, junit, json)) != 0)
         goto done;
     rc = gate_set_failures(&gs) > 0 ? EXIT_GATE_FAIL : EXIT_OK;
 done:
-    clsession_close(&s);
+    brdf_run_close(&run);
     gate_set_free(&gs);
     return rc;
 

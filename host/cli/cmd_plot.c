@@ -22,10 +22,9 @@
 
 /* Redraws one field file; returns 0, 2 (input) or 3 (picture). Messages start with
    "brdfbench CMD: " and, for a model the user named, "--label LABEL: ". */
-/* --quiet: no list of the pictures drawn (errors are still said) */
-static int plot_quiet;
-
-static int redraw_field(const char *cmd, const char *model, const char *dir, const char *json_name, int *drawn)
+/* quiet (--quiet): no list of the pictures drawn (errors are still said) */
+static int redraw_field(const char *cmd, const char *model, const char *dir, const char *json_name, int quiet,
+                        int *drawn)
 {
     char path[4096], png[4096], name[512], err[1024], what[320] = "";
     struct field_result fr;
@@ -48,7 +47,7 @@ static int redraw_field(const char *cmd, const char *model, const char *dir, con
         fprintf(stderr, "brdfbench %s: %s\n", cmd, err);
         rc = EXIT_RUNTIME;
     } else {
-        if (!plot_quiet)
+        if (!quiet)
             printf("%s\n", png);
         ++*drawn;
     }
@@ -79,7 +78,7 @@ static void run_labels(const char *dir, char *out, size_t len)
 }
 
 /* Every field_*.json of dir in name order (or only the one of `model`). */
-static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, int *drawn, int *worst)
+static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, int quiet, int *drawn, int *worst)
 {
     if (model) {
         char stem[256], name[320], path[4096];
@@ -94,7 +93,7 @@ static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, 
             *worst = EXIT_USAGE;
             return 0;
         }
-        int rc = redraw_field(cmd, model, dir, name, drawn);
+        int rc = redraw_field(cmd, model, dir, name, quiet, drawn);
         if (rc > *worst) *worst = rc;
         return 0;
     }
@@ -110,7 +109,7 @@ static int redraw_heatmaps(const char *cmd, const char *dir, const char *model, 
         closedir(probe);
     }
     for (size_t i = 0; i < count; i++) {
-        int rc = redraw_field(cmd, NULL, dir, names[i], drawn);
+        int rc = redraw_field(cmd, NULL, dir, names[i], quiet, drawn);
         if (rc == EXIT_USAGE || (rc && *worst != EXIT_USAGE)) *worst = rc;
         free(names[i]);
     }
@@ -122,12 +121,12 @@ static int redraw(int argc, char **argv, int heatmaps_only)
 {
     const char *name = heatmaps_only ? "heatmap" : "plot";
     const char *dir = NULL, *model = NULL;
-    int shared = 0;
+    int shared = 0, quiet = 0;
     char err[1024];
-    const struct cli_flag plot_flags[] = { CLI_FLAG_SHARED_SCALE(&shared), CLI_FLAG_QUIET(&plot_quiet) };
+    const struct cli_flag plot_flags[] = { CLI_FLAG_SHARED_SCALE(&shared), CLI_FLAG_QUIET(&quiet) };
     const struct cli_flag heatmap_flags[] = {
         CLI_FLAG_SHARED_SCALE(&shared),
-        CLI_FLAG_QUIET(&plot_quiet),
+        CLI_FLAG_QUIET(&quiet),
         { .name = "--label", .value = "LABEL", .kind = CLI_TEXT, .dest = &model,
           .help = "redraw only the model of this label, as the run names it (e.g. fvol or fq:Q=0.64)",
           .def = "every model of the run" },
@@ -190,14 +189,14 @@ static int redraw(int argc, char **argv, int heatmaps_only)
                 fprintf(stderr, "brdfbench %s: %s\n", name, err);
                 worst = EXIT_RUNTIME;
             } else {
-                if (!plot_quiet)
+                if (!quiet)
                     printf("%s\n", png);
                 drawn++;
             }
         }
         plots_free(&set);
     }
-    int nfields = redraw_heatmaps(name, dir, model, &drawn, &worst);
+    int nfields = redraw_heatmaps(name, dir, model, quiet, &drawn, &worst);
     if (model && worst == EXIT_USAGE)
         return worst;   /* the one line above says what is wrong with --model */
     if (heatmaps_only && !model && nfields == 0) {
@@ -211,11 +210,11 @@ static int redraw(int argc, char **argv, int heatmaps_only)
             fprintf(stderr, "brdfbench %s: %s\n", name, err);
             if (rc > worst) worst = rc;
         } else {
-            if (!plot_quiet)
+            if (!quiet)
                 printf("%s/%s\n", dir, HEATMAPS_SHARED_FILE);
         }
     }
-    if (!plot_quiet)
+    if (!quiet)
         fprintf(stderr, "brdfbench %s: %d picture(s) redrawn in %s\n", name, drawn, dir);
     return worst;
 }

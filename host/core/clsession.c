@@ -84,7 +84,9 @@ double cl_event_seconds_or_wall(cl_event ev, double wall, int *used_wall)
 
 /* The launch watchdog: one thread, started at the first launch, sleeping until the armed
  * deadline. The main thread is blocked in the OpenCL wait while it is armed, so what the
- * watchdog does on firing (write(2), unlink, rmdir, _exit) needs no lock it could hold. */
+ * watchdog does on firing (write(2), unlink, rmdir, _exit) needs no lock it could hold.
+ * Process-wide by nature (one watchdog thread per process, shared by every session): the
+ * statics below are not a run's state (host/core/run.h). */
 static pthread_mutex_t wd_lock = PTHREAD_MUTEX_INITIALIZER;
 static pthread_cond_t wd_cond;
 static int wd_started, wd_armed;
@@ -575,6 +577,9 @@ void clsession_close(struct cl_session *s)
     if (s->release_cache)
         s->release_cache(s);
     s->release_cache = NULL;
+    if (s->release_sweeps)
+        s->release_sweeps(s);
+    s->release_sweeps = NULL;
     if (s->queue)
         clReleaseCommandQueue(s->queue);
     if (s->ctx)
@@ -583,6 +588,7 @@ void clsession_close(struct cl_session *s)
     s->ctx = NULL;
 }
 
+/* --kernel-dir: a setting of the process's flags, the same for every session it opens. */
 static const char *kernel_dir_override = NULL;
 
 void clsession_set_kernel_dir(const char *dir) { kernel_dir_override = dir; }

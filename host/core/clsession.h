@@ -11,6 +11,12 @@
 #include "exitcodes.h"
 #include <stddef.h>
 
+/* A growing table kept by a session for a layer above it (room.h grows it). */
+struct cl_session_table {
+    void *items;
+    int count, cap;
+};
+
 struct cl_session {
     cl_platform_id platform;
     cl_device_id device;
@@ -28,9 +34,15 @@ struct cl_session {
     double last_build_seconds;    /* wall time of the latest clsession_build */
     double build_seconds_total;   /* of every build of the session */
     int builds;
-    /* Objects cached for the session's life (host/core/programs.c): clsession_close calls
-       release_cache first, while the context still exists. */
+    /* What the session's engines share for its life, so that a run holds it in one place
+       (host/core/run.h) rather than in file-scope tables: the program cache (host/core/programs.c:
+       its builds and host evaluators) and the sweeps already run (accuracy.c's memo). Each
+       table's element type is its owner's own. clsession_close calls release_cache and
+       release_sweeps first, while the context still exists. */
+    struct cl_session_table programs, hosts, sweeps;
+    long sweep_reuses;            /* asks for a sweep answered from `sweeps` */
     void (*release_cache)(struct cl_session *s);
+    void (*release_sweeps)(struct cl_session *s);
 };
 
 /* Name of an OpenCL error code ("CL_BUILD_PROGRAM_FAILURE"). */

@@ -503,6 +503,7 @@ struct hj_phase {
     double c, n;
     unsigned char out[];
 };
+/* Set only in a phase's forked child: what that process is, so it is the process's, not a run's. */
 static struct hj_phase *hj_inside;
 
 static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, size_t count, double *out)

@@ -53,11 +53,19 @@ const struct model_info *models_at(int i)
     return (i >= 0 && i < models_count()) ? &registry[i] : NULL;
 }
 
+/* The models added at run time (models_register: the user models, usermodel.c): the process's,
+ * not a run's, because they are defined by the command line's flags before any run opens and
+ * every layer resolves a model's name (models_find, model_spec_parse) with no run at hand. One
+ * table for every kind of registered model. */
 static struct {
     const struct model_info *info;
     const struct model_runtime *rt;
 } user_models[MODELS_MAX_USER];
 static int user_model_count;
+
+int models_user_count(void) { return user_model_count; }
+
+const struct model_info *models_user_at(int i) { return i >= 0 && i < user_model_count ? user_models[i].info : NULL; }
 
 int models_register(const struct model_info *info, const struct model_runtime *rt)
 {

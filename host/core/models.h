@@ -142,6 +142,9 @@ struct model_runtime {
 /* Returns 0, or -1 when the table is full. */
 int models_register(const struct model_info *info, const struct model_runtime *rt);
 void models_unregister_all(void);
+/* The registered models, in the order registered (usermodel_at reads them as user models). */
+int models_user_count(void);
+const struct model_info *models_user_at(int i);
 /* The runtime of a model registered with models_register, or NULL for a built-in model. */
 const struct model_runtime *models_runtime(const struct model_info *info);
 /* fn(ctx, out) through spec's runtime's isolation (models of run-time code), else in place.

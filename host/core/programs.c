@@ -11,7 +11,6 @@
 #define PROGRAMS_MAX_KERNELS 16
 
 struct program_entry {
-    const struct cl_session *s;
     const struct model_runtime *rt;   /* NULL: a built-in model's specialised build */
     int model_id;                     /* that model's kernel id (rt NULL) */
     char *kernel_file, *extra_before, *options;
@@ -25,23 +24,25 @@ struct program_entry {
 
 /* Host evaluators opened on a session's device. */
 struct host_entry {
-    const struct cl_session *s;
     const struct model_runtime *rt;
 };
 
-static struct program_entry *entries;
-static int entry_count, entry_cap;
-static struct host_entry *hosts;
-static int host_count, host_cap;
+/* The session's tables (clsession.h: programs, hosts): the cache lives with the session it
+   serves, so a run holds it (host/core/run.h) and closing the session releases it. */
+#define ENTRIES(s) ((struct program_entry *)(s)->programs.items)
+#define HOSTS(s) ((struct host_entry *)(s)->hosts.items)
 
-/* The table with room for one more element (room.h), or NULL with a message when memory is
- * out (the table is then unchanged). */
-static void *make_room(void *table, int count, int *cap, size_t size)
+/* Room for one more element in the table (room.h): 0, or -1 with a message when memory is out
+ * (the table is then unchanged). */
+static int make_room(struct cl_session_table *t, size_t size)
 {
-    void *grown = room_for_one(table, count, cap, size, 8);
-    if (!grown)
+    void *grown = room_for_one(t->items, t->count, &t->cap, size, 8);
+    if (!grown) {
         fprintf(stderr, "brdfbench: out of memory\n");
-    return grown;
+        return -1;
+    }
+    t->items = grown;
+    return 0;
 }
 
 static int same_text(const char *a, const char *b) { return strcmp(a ? a : "", b ? b : "") == 0; }
@@ -61,19 +62,16 @@ int programs_host(struct cl_session *s, const struct model_spec *m)
     const struct model_runtime *rt = m ? models_runtime(m->info) : NULL;
     if (!rt || !rt->open_host)
         return 0;
-    for (int i = 0; i < host_count; ++i)
-        if (hosts[i].s == s && hosts[i].rt == rt)
+    for (int i = 0; i < s->hosts.count; ++i)
+        if (HOSTS(s)[i].rt == rt)
             return rt->open_host(rt, s);   /* idempotent */
-    struct host_entry *room = make_room(hosts, host_count, &host_cap, sizeof *hosts);
-    if (!room)
+    if (make_room(&s->hosts, sizeof(struct host_entry)))
         return EXIT_RUNTIME;
-    hosts = room;
     int rc = rt->open_host(rt, s);
     if (rc)
         return rc;
-    hosts[host_count].s = s;
-    hosts[host_count].rt = rt;
-    ++host_count;
+    HOSTS(s)[s->hosts.count].rt = rt;
+    ++s->hosts.count;
     s->release_cache = programs_release;
     return 0;
 }
@@ -87,18 +85,16 @@ static int entry_add(struct cl_session *s, const char *kernel_file, const char *
 static int entry_for(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
                      const struct model_runtime *rt, int model_id, int ref_id, struct program_entry **out)
 {
-    for (int i = 0; i < entry_count; ++i) {
-        struct program_entry *e = &entries[i];
-        if (e->s == s && e->rt == rt && (rt || e->model_id == model_id) && strcmp(e->kernel_file, kernel_file) == 0 &&
+    for (int i = 0; i < s->programs.count; ++i) {
+        struct program_entry *e = &ENTRIES(s)[i];
+        if (e->rt == rt && (rt || e->model_id == model_id) && strcmp(e->kernel_file, kernel_file) == 0 &&
             same_text(e->extra_before, extra_before) && same_text(e->options, options)) {
             *out = e;
             return 0;
         }
     }
-    struct program_entry *room = make_room(entries, entry_count, &entry_cap, sizeof *entries);
-    if (!room)
+    if (make_room(&s->programs, sizeof(struct program_entry)))
         return EXIT_RUNTIME;
-    entries = room;
     if (!rt) {
         char opts[1100];
         snprintf(opts, sizeof opts, "%s%s-DBRDF_ONLY_MODEL=%d -DBRDF_ONLY_REF=%d", options ? options : "",
@@ -140,16 +136,15 @@ static int entry_for(struct cl_session *s, const char *kernel_file, const char *
 static int entry_add(struct cl_session *s, const char *kernel_file, const char *extra_before, const char *options,
                      const struct model_runtime *rt, int model_id, cl_program program, struct program_entry **out)
 {
-    struct program_entry *e = &entries[entry_count];
+    struct program_entry *e = &ENTRIES(s)[s->programs.count];
     memset(e, 0, sizeof *e);
-    e->s = s;
     e->rt = rt;
     e->model_id = model_id;
     e->kernel_file = dup_text(kernel_file);
     e->extra_before = dup_text(extra_before);
     e->options = dup_text(options);
     e->program = program;
-    ++entry_count;
+    ++s->programs.count;
     s->release_cache = programs_release;
     if (!e->kernel_file || !e->extra_before || !e->options) {
         fprintf(stderr, "brdfbench: out of memory\n");
@@ -245,13 +240,8 @@ int programs_kernel_ref(struct cl_session *s, const char *kernel_file, const cha
 
 void programs_release(struct cl_session *s)
 {
-    int kept = 0;
-    for (int i = 0; i < entry_count; ++i) {
-        struct program_entry *e = &entries[i];
-        if (e->s != s) {
-            entries[kept++] = *e;
-            continue;
-        }
+    for (int i = 0; i < s->programs.count; ++i) {
+        struct program_entry *e = &ENTRIES(s)[i];
         for (int k = 0; k < e->kernel_count; ++k) {
             clReleaseKernel(e->kernels[k].kernel);
             free(e->kernels[k].name);
@@ -262,33 +252,12 @@ void programs_release(struct cl_session *s)
         free(e->extra_before);
         free(e->options);
     }
-    entry_count = kept;
-    kept = 0;
-    for (int i = 0; i < host_count; ++i) {
-        if (hosts[i].s != s) {
-            hosts[kept++] = hosts[i];
-            continue;
-        }
-        if (hosts[i].rt->close_host)
-            hosts[i].rt->close_host(hosts[i].rt, s);
-    }
-    host_count = kept;
-    if (entry_count == 0) {
-        free(entries);
-        entries = NULL;
-        entry_cap = 0;
-    }
-    if (host_count == 0) {
-        free(hosts);
-        hosts = NULL;
-        host_cap = 0;
-    }
+    for (int i = 0; i < s->hosts.count; ++i)
+        if (HOSTS(s)[i].rt->close_host)
+            HOSTS(s)[i].rt->close_host(HOSTS(s)[i].rt, s);
+    free(s->programs.items);
+    free(s->hosts.items);
+    s->programs = s->hosts = (struct cl_session_table){ NULL, 0, 0 };
 }
 
-int programs_build_count(const struct cl_session *s)
-{
-    int n = 0;
-    for (int i = 0; i < entry_count; ++i)
-        n += entries[i].s == s;
-    return n;
-}
+int programs_build_count(const struct cl_session *s) { return s->programs.count; }

@@ -28,8 +28,9 @@
 #undef REAL
 #undef RSCALAR
 
-static struct user_model *registry[USERMODEL_MAX];
-static int registry_count;
+/* The registered user models are the model registry's (models.c: models_user_at), one table for
+   both: a user model's info is its first member. */
+static struct user_model *registry_at(int i) { return (struct user_model *)usermodel_at(i); }
 
 /* ---- small text helpers ------------------------------------------------------------- */
 
@@ -482,12 +483,11 @@ static void brdf_qualified_name(struct user_model *um, const char *path)
     memcpy(um->qualified + nl + 1, base, bl + 1);
 }
 
-/* Set while the translation of a --model expression is parsed: machine-made text, whose own
-   brdfbench_* names are not the user's (the expression itself was checked). */
-static int translating_expression;
-
-int usermodel_parse_file_text(const char *text, size_t len, const char *path, struct user_model **out,
-                              char *err, size_t errlen)
+/* usermodel_parse_file_text; translating_expression: the text is the translation of a --model
+   expression, machine-made text whose own brdfbench_* names are not the user's (the expression
+   itself was checked). */
+static int parse_file_text(const char *text, size_t len, const char *path, int translating_expression,
+                           struct user_model **out, char *err, size_t errlen)
 {
     *out = NULL;
     if (len == 0)
@@ -625,9 +625,7 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
             text = NULL;
         }
         if (sl == 0) {
-            translating_expression = 1;
-            sl = usermodel_parse_file_text(text, tlen, origin, out, err, errlen);
-            translating_expression = 0;
+            sl = parse_file_text(text, tlen, origin, 1, out, err, errlen);
             free(text);
             if (sl == 0) {
                 (*out)->from_file = 0;
@@ -701,6 +699,12 @@ int usermodel_parse_expression(const char *arg, struct user_model **out, char *e
     return 0;
 }
 
+int usermodel_parse_file_text(const char *text, size_t len, const char *path, struct user_model **out,
+                              char *err, size_t errlen)
+{
+    return parse_file_text(text, len, path, 0, out, err, errlen);
+}
+
 /* ---- the registry ---------------------------------------------------------------------- */
 
 int usermodel_register(struct user_model *um, char *err, size_t errlen)
@@ -733,45 +737,43 @@ int usermodel_register(struct user_model *um, char *err, size_t errlen)
         usermodel_free(um);
         return EXIT_USAGE;
     }
-    if (registry_count >= USERMODEL_MAX || models_register(&um->info, &um->runtime) != 0) {
+    if (usermodel_count() >= USERMODEL_MAX || models_register(&um->info, &um->runtime) != 0) {
         snprintf(err, errlen, "%s: at most %d user models per run", um->origin, USERMODEL_MAX);
         usermodel_free(um);
         return EXIT_USAGE;
     }
-    registry[registry_count++] = um;
     return 0;
 }
 
 void usermodel_clear_all(void)
 {
+    for (int i = usermodel_count() - 1; i >= 0; --i)
+        usermodel_free(registry_at(i));
     models_unregister_all();
-    for (int i = 0; i < registry_count; ++i)
-        usermodel_free(registry[i]);
-    registry_count = 0;
 }
 
-int usermodel_count(void) { return registry_count; }
+int usermodel_count(void) { return models_user_count(); }
 
-const struct user_model *usermodel_at(int i) { return (i >= 0 && i < registry_count) ? registry[i] : NULL; }
+const struct user_model *usermodel_at(int i) { return usermodel_of_info(models_user_at(i)); }
 
 const char *usermodel_names(void)
 {
     static char names[USERMODEL_MAX * (USERMODEL_NAME_MAX + 1) + 1];
     size_t used = 0;
     names[0] = '\0';
-    for (int i = 0; i < registry_count; ++i)
-        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? "," : "", registry[i]->name);
+    for (int i = 0; i < usermodel_count(); ++i)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? "," : "", registry_at(i)->name);
     return names;
 }
 
 int usermodel_append_all(struct model_spec *models, int *count, int max, char *err, size_t errlen)
 {
-    for (int i = 0; i < registry_count; ++i) {
+    for (int i = 0; i < usermodel_count(); ++i) {
         if (*count >= max) {
             snprintf(err, errlen, "at most %d models per run (with the user models)", max);
             return EXIT_USAGE;
         }
-        model_spec_default(&registry[i]->info, &models[(*count)++]);
+        model_spec_default(&registry_at(i)->info, &models[(*count)++]);
     }
     return 0;
 }
@@ -791,13 +793,13 @@ int usermodel_load_file(const char *path, const struct user_model **out, char *e
        model it defined. */
     struct stat st_new, st_old;
     int have_new = stat(path, &st_new) == 0;
-    for (int i = 0; i < registry_count; ++i)
-        if (registry[i]->from_file &&
-            (strcmp(registry[i]->origin, path) == 0 ||
-             (have_new && stat(registry[i]->origin, &st_old) == 0 && st_old.st_dev == st_new.st_dev &&
+    for (int i = 0; i < usermodel_count(); ++i)
+        if (registry_at(i)->from_file &&
+            (strcmp(registry_at(i)->origin, path) == 0 ||
+             (have_new && stat(registry_at(i)->origin, &st_old) == 0 && st_old.st_dev == st_new.st_dev &&
               st_old.st_ino == st_new.st_ino))) {
             if (out)
-                *out = registry[i];
+                *out = registry_at(i);
             return 0;
         }
     /* A regular file, its size checked before it is read (no FIFO or device: infile.h). */

@@ -361,6 +361,7 @@ int usermodel_check_text(const char *text, size_t len, const char *what, int is_
  * reported (with the point), again every 10 s, and one that runs past the launch deadline
  * (--timeout, clsession_timeout) ends the run as a runaway kernel does: one line, the run's
  * unfinished outputs removed (outdir_remove_own), exit 3. */
+/* Shared with the one watcher thread (pthread_once) of the process: process-wide by nature. */
 static _Atomic unsigned long host_seq;
 static _Atomic int host_busy;
 static const struct user_model *volatile host_model;

@@ -25,6 +25,7 @@
 #define BRDF_DRAW_MODULE_RELDIR "../lib/brdfbench"
 #endif
 
+/* The drawing module, opened once per process (pthread_once): the process's, not a run's. */
 static const struct draw_module_api *mod;
 static char mod_err[3 * PATH_MAX + 1024]; /* room for the paths it names */
 static pthread_once_t mod_once = PTHREAD_ONCE_INIT;

@@ -26,7 +26,9 @@ int path_join(char *out, size_t outlen, const char *dir, const char *name)
 }
 
 /* What this process made: folders (in creation order) and the temporary file of the write in
- * progress. Fixed storage, so outdir_remove_own needs no allocation. */
+ * progress. Fixed storage, so outdir_remove_own needs no allocation. Process-wide by nature, as
+ * are this file's other statics: a signal handler, the stop thread and the launch watchdog tidy
+ * up from them, and none of those can be handed a run object. */
 #define OWN_DIRS_MAX 64
 static char own_dirs[OWN_DIRS_MAX][OUTDIR_PATH_MAX];
 static volatile int own_dir_count;

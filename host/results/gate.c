@@ -97,10 +97,7 @@ static int resolve_path(char *out, size_t outlen, const char *base_dir, const ch
 
 /* A model file is a program run on the host (compiled by libtcc into this process, and by
  * the OpenCL driver): a gates file may name only the model files in its own folder or below
- * it, unless the command line allows others (gate_allow_outside_model_files). */
-static int outside_allowed;
-
-void gate_allow_outside_model_files(int allow) { outside_allowed = allow; }
+ * it, unless the command line allows others (outside_allowed, passed down from gate_set_load). */
 
 /* 1 when path (which exists) lies in base_dir or below it, links resolved. */
 static int lies_inside(const char *path, const char *base_dir)
@@ -117,7 +114,8 @@ static int lies_inside(const char *path, const char *base_dir)
 /* The user model a gate declares with "model_file" or "expression", registered. */
 static int gate_user_model(const struct jr_doc *d, const char *where,
                            const struct jr_value *model_v, const struct jr_value *file_v,
-                           const struct jr_value *expr_v, const char *base_dir, char *err, size_t errlen)
+                           const struct jr_value *expr_v, const char *base_dir, int outside_allowed, char *err,
+                           size_t errlen)
 {
     char msg[1024];
     if (file_v && expr_v)
@@ -189,7 +187,8 @@ static int gate_known_members(const struct jr_doc *d, const struct jr_value *gv,
 /* The gate's metric (metric_v) and what it needs: a model albedo.max can take, and for
    measured.rms the "measured" file. */
 static int gate_metric(const struct jr_doc *d, const struct jr_value *gv, const struct jr_value *metric_v,
-                       const char *where, const char *base_dir, struct gate *g, char *err, size_t errlen)
+                       const char *where, const char *base_dir, int outside_allowed, struct gate *g, char *err,
+                       size_t errlen)
 {
     char msg[1024];
     const struct jr_value *v;
@@ -324,7 +323,7 @@ static int gate_labels(const struct jr_doc *d, const struct jr_value *gv, const 
 }
 
 static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int index, const char *base_dir,
-                      struct gate *g, char *err, size_t errlen)
+                      int outside_allowed, struct gate *g, char *err, size_t errlen)
 {
     char where[32], msg[1024];
     snprintf(where, sizeof where, "gate %d: ", index + 1);
@@ -347,11 +346,11 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
         list_metrics(msg, sizeof msg);
         return jr_fail(d, gv, err, errlen, "%s\"metric\" is missing (accepted: %s)", where, msg);
     }
-    if (gate_user_model(d, where, model_v, file_v, expr_v, base_dir, err, errlen))
+    if (gate_user_model(d, where, model_v, file_v, expr_v, base_dir, outside_allowed, err, errlen))
         return EXIT_USAGE;
     if (model_spec_parse(model_v->str, &g->model, msg, sizeof msg))
         return jr_fail(d, model_v, err, errlen, "%s%s", where, msg);
-    if (gate_metric(d, gv, metric_v, where, base_dir, g, err, errlen) ||
+    if (gate_metric(d, gv, metric_v, where, base_dir, outside_allowed, g, err, errlen) ||
         gate_grid_bounds(d, gv, where, g, err, errlen) || gate_labels(d, gv, where, g, err, errlen))
         return EXIT_USAGE;
     g->measured = g->at_n = g->at_x = NAN;
@@ -360,7 +359,7 @@ static int parse_gate(const struct jr_doc *d, const struct jr_value *gv, int ind
     return 0;
 }
 
-int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir,
+int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir, int outside_allowed,
                         struct gate_set *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
@@ -425,7 +424,8 @@ int gate_set_parse_text(const char *text, size_t len, const char *name, const ch
         goto done;
     }
     for (size_t i = 0; i < gates->count; ++i) {
-        if ((rc = parse_gate(&doc, &gates->items[i], (int)i, base_dir, &out->gates[i], err, errlen)) != 0)
+        if ((rc = parse_gate(&doc, &gates->items[i], (int)i, base_dir, outside_allowed, &out->gates[i], err,
+                             errlen)) != 0)
             goto done;
         out->count++;
     }
@@ -439,7 +439,7 @@ done:
     return rc;
 }
 
-int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errlen)
+int gate_set_load(const char *path, int outside_allowed, struct gate_set *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
     /* named on the command line: a pipe is accepted (gate <(make-gates)), a device is not */
@@ -469,7 +469,7 @@ int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errl
         snprintf(base, sizeof base, ".");
     if (slash == base)
         snprintf(base, sizeof base, "/");
-    int rc = gate_set_parse_text(buf, len, path, base, out, err, errlen);
+    int rc = gate_set_parse_text(buf, len, path, base, outside_allowed, out, err, errlen);
     free(buf);
     return rc;
 }

@@ -85,10 +85,14 @@ struct gate_set {
 
 /* Parses a gates file's text. name is used in messages ("name:line:col: problem"); model
  * files named in it are read relative to base_dir. User models it defines are registered
- * (host/core/usermodel.h). Returns 0, or EXIT_USAGE with a message. No device is needed. */
-int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir,
+ * (host/core/usermodel.h). outside_allowed (gate --allow-outside-model-files): by default a
+ * "model_file" or "measured" file must lie in base_dir or below it, links resolved, since a
+ * model file is a program run on the host (docs/gates.md); 1 lifts that. Returns 0, or
+ * EXIT_USAGE with a message. No device is needed. */
+int gate_set_parse_text(const char *text, size_t len, const char *name, const char *base_dir, int outside_allowed,
                         struct gate_set *out, char *err, size_t errlen);
-int gate_set_load(const char *path, struct gate_set *out, char *err, size_t errlen);
+/* The same for the gates file at path (base_dir: its folder). */
+int gate_set_load(const char *path, int outside_allowed, struct gate_set *out, char *err, size_t errlen);
 void gate_set_free(struct gate_set *g);
 
 /* Reads a baseline: a run folder holding accuracy.json, or such a file. Sets each gate's
@@ -104,9 +108,5 @@ int gate_set_run(struct gate_set *g, struct cl_session *s, FILE *progress);
 /* Number of gates that failed (after gate_set_run). */
 int gate_set_failures(const struct gate_set *g);
 
-/* Lets a gates file name model files outside its own folder (gate --allow-outside-model-files).
- * By default a "model_file" must lie in the gates file's folder or below it, links resolved:
- * a model file is a program run on the host (docs/gates.md). */
-void gate_allow_outside_model_files(int allow);
 
 #endif

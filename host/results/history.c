@@ -19,11 +19,9 @@
 
 /* ---- order --------------------------------------------------------------------------------- */
 
-static int by_commit;   /* the key history_order sorts on; qsort has no context argument */
-
-static int cmp_runs(const void *a, const void *b)
+/* by_commit: the commit dates first (every run has one), then the run dates. */
+static int cmp_runs(const struct hist_run *x, const struct hist_run *y, int by_commit)
 {
-    const struct hist_run *x = a, *y = b;
     int c = by_commit ? strcmp(x->commit_date, y->commit_date) : 0;
     if (!c)
         c = strcmp(x->date, y->date);
@@ -35,13 +33,12 @@ void history_order(struct hist_set *h)
     int all = h->nruns > 0;
     for (int i = 0; i < h->nruns; ++i)
         all &= h->runs[i].commit_date[0] != 0;
-    by_commit = all;
     snprintf(h->order, sizeof h->order, "%s", all ? "commit date" : "run date");
     /* insertion sort: stable, so runs of the same date keep the order they were given in */
     for (int i = 1; i < h->nruns; ++i) {
         struct hist_run t = h->runs[i];
         int j = i - 1;
-        while (j >= 0 && cmp_runs(&h->runs[j], &t) > 0) {
+        while (j >= 0 && cmp_runs(&h->runs[j], &t, all) > 0) {
             h->runs[j + 1] = h->runs[j];
             --j;
         }

@@ -326,6 +326,8 @@ static int accuracy_json_quick(const char *path)
 
 bool plots_run_is_quick(const char *run_dir)
 {
+    /* the last answer, kept while the file is the same one (its inode, size and time): a cache of
+       a file's content, not a run's state */
     static char last_dir[4096];
     static struct stat last_st;
     static int last_answer = -1;

@@ -17,7 +17,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     struct gate_set gs;
     char err[2048];
     err[0] = '\0';
-    int rc = gate_set_parse_text((const char *)data, size, "fuzz.json", "/nonexistent-brdfbench-fuzz", &gs, err,
+    int rc = gate_set_parse_text((const char *)data, size, "fuzz.json", "/nonexistent-brdfbench-fuzz", 0, &gs, err,
                                  sizeof err);
     if (rc == 0) {
         /* A parsed set is complete: every gate has a model, a metric and a bound. */

@@ -21,6 +21,7 @@ static const struct tok mat_name[2][3] = { { { K_ID, 0, 0, "mat2", 4 }, { K_ID, 
                                              { K_ID, 0, 0, "mat4", 4 } },
                                            { { K_ID, 0, 0, "float2x2", 8 }, { K_ID, 0, 0, "float3x3", 8 },
                                              { K_ID, 0, 0, "float4x4", 8 } } };
+/* Constant definitions, filled on first use (the same for every run of the process). */
 static struct sdef mat_def[2][3];
 
 /* The definition of an n x n matrix, by rows (HLSL) or by columns (GLSL). */

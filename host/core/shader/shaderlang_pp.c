@@ -25,7 +25,8 @@
 #include <glslang/Public/resource_limits_c.h>
 #endif
 
-/* The defines of the command line (-D), for every shader-language file read after them. */
+/* The defines of the command line (-D), for every shader-language file read after them: settings
+   of the process's flags, read with the model registry's files (models.c), before any run opens. */
 static char cli_defines[SL_MAX_DEFINES][SL_DEFINE_MAX + 1];
 static int cli_ndefines;
 

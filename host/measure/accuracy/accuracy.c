@@ -785,9 +785,9 @@ done:
 /* ---- each figure once ------------------------------------------------------------------
  * A sweep is a function of the model, the grid, the device, its driver and platform, and the
  * program's source and build options (the kernel source is the process's: embedded, or
- * --kernel-dir's): the parts of one process (the claims, the fit, the accuracy table, the
- * frontier, the gates of `all` or `gate`) that ask for the same sweep get the first one's
- * result instead of running it again. */
+ * --kernel-dir's): the parts of one run (the claims, the fit, the accuracy table, the
+ * frontier, the gates of `all` or `gate`, all on its one session) that ask for the same sweep
+ * get the first one's result instead of running it again. */
 struct sweep_memo {
     char device[256], driver[256], platform[256], options[256], reference[MODEL_LABEL_MAX];
     int specialise;
@@ -795,16 +795,21 @@ struct sweep_memo {
     struct accuracy_grid grid;
     struct accuracy_result result;
 };
-static struct sweep_memo *memo;
-static int nmemo, capmemo;
-static long memo_hits;
+/* The session's table of sweeps already run (clsession.h: sweeps), so the memo lives with the
+   run that asked for them (host/core/run.h) and goes when its session closes. */
+#define MEMO(s) ((struct sweep_memo *)(s)->sweeps.items)
 
+/* The key, field by field: the model (its entry, the values of its own parameters, its label),
+   the grid, the build options, the device and the reference. */
 static int same_sweep(const struct sweep_memo *e, const struct accuracy_ctx *a, const struct model_spec *m,
                       const struct accuracy_grid *g)
 {
-    return e->specialise == a->s->specialise && e->model.info == m->info &&
-           memcmp(e->model.params, m->params, sizeof m->params) == 0 && strcmp(e->model.label, m->label) == 0 &&
-           memcmp(&e->grid, g, sizeof *g) == 0 && strcmp(e->options, a->build_options) == 0 &&
+    if (e->model.info != m->info || strcmp(e->model.label, m->label) != 0)
+        return 0;
+    for (int p = 0; p < m->info->nparams && p < MODEL_MAX_PARAMS; p++)
+        if (e->model.params[p] != m->params[p]) return 0;
+    return e->specialise == a->s->specialise && e->grid.n_min == g->n_min && e->grid.n_max == g->n_max &&
+           e->grid.n_step == g->n_step && e->grid.samples == g->samples && strcmp(e->options, a->build_options) == 0 &&
            strcmp(e->device, a->s->device_name) == 0 && strcmp(e->driver, a->s->driver_version) == 0 &&
            strcmp(e->platform, a->s->platform_version) == 0 &&
            strcmp(e->reference, a->reference ? a->reference->label : "") == 0;
@@ -820,45 +825,49 @@ static int copy_result(struct accuracy_result *dst, const struct accuracy_result
     return 0;
 }
 
+static void release_sweeps(struct cl_session *s) { accuracy_forget_sweeps(s); }
+
 static void remember(const struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                      const struct accuracy_result *r)
 {
-    struct sweep_memo *grown = room_for_one(memo, nmemo, &capmemo, sizeof *grown, 32);
+    struct cl_session *s = a->s;
+    struct sweep_memo *grown = room_for_one(s->sweeps.items, s->sweeps.count, &s->sweeps.cap, sizeof *grown, 32);
     if (!grown) return; /* not remembered: a later ask runs the sweep again */
-    memo = grown;
-    struct sweep_memo *e = &memo[nmemo];
+    s->sweeps.items = grown;
+    s->release_sweeps = release_sweeps;
+    struct sweep_memo *e = &grown[s->sweeps.count];
     memset(e, 0, sizeof *e);
-    snprintf(e->device, sizeof e->device, "%s", a->s->device_name);
-    snprintf(e->driver, sizeof e->driver, "%s", a->s->driver_version);
+    snprintf(e->device, sizeof e->device, "%s", s->device_name);
+    snprintf(e->driver, sizeof e->driver, "%s", s->driver_version);
     snprintf(e->options, sizeof e->options, "%s", a->build_options);
-    snprintf(e->platform, sizeof e->platform, "%s", a->s->platform_version);
+    snprintf(e->platform, sizeof e->platform, "%s", s->platform_version);
     snprintf(e->reference, sizeof e->reference, "%s", a->reference ? a->reference->label : "");
-    e->specialise = a->s->specialise;
+    e->specialise = s->specialise;
     e->model = *m;
     e->grid = *g;
-    if (copy_result(&e->result, r) == 0) nmemo++;
+    if (copy_result(&e->result, r) == 0) s->sweeps.count++;
 }
 
-long accuracy_reused_sweeps(void) { return memo_hits; }
+long accuracy_reused_sweeps(const struct cl_session *s) { return s->sweep_reuses; }
 
-void accuracy_forget_sweeps(void)
+void accuracy_forget_sweeps(struct cl_session *s)
 {
-    for (int i = 0; i < nmemo; i++) accuracy_result_free(&memo[i].result);
-    free(memo);
-    memo = NULL;
-    nmemo = capmemo = 0;
+    for (int i = 0; i < s->sweeps.count; i++) accuracy_result_free(&MEMO(s)[i].result);
+    free(s->sweeps.items);
+    s->sweeps = (struct cl_session_table){ NULL, 0, 0 };
 }
 
 int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                  struct accuracy_result *out)
 {
-    for (int i = 0; i < nmemo; i++) {
-        if (!same_sweep(&memo[i], a, m, g)) continue;
-        if (copy_result(out, &memo[i].result)) {
+    for (int i = 0; i < a->s->sweeps.count; i++) {
+        const struct sweep_memo *e = &MEMO(a->s)[i];
+        if (!same_sweep(e, a, m, g)) continue;
+        if (copy_result(out, &e->result)) {
             memset(out, 0, sizeof *out);
             return EXIT_RUNTIME;
         }
-        memo_hits++;
+        a->s->sweep_reuses++;
         return 0;
     }
     int rc = accuracy_compute(a, m, g, out);

@@ -148,14 +148,15 @@ void accuracy_close(struct accuracy_ctx *a);
  * first reports a user model's compile error (EXIT_USAGE) before any sweep runs. */
 int accuracy_prepare(struct accuracy_ctx *a, const struct model_spec *m);
 /* Runs the sweep of one model over a checked grid. Returns 0 or an exit code. A sweep asked
- * for again in the same process (the same model, grid, device, driver and build
- * options) is not run again: out receives a copy of the first one's result. */
+ * for again on the same session (the same model, grid, device, driver, build options and
+ * reference) is not run again: out receives a copy of the first one's result (the session
+ * keeps them, clsession.h: sweeps). */
 int accuracy_run(struct accuracy_ctx *a, const struct model_spec *m, const struct accuracy_grid *g,
                  struct accuracy_result *out);
-/* How many sweeps accuracy_run gave from an earlier one, and forgetting them all (a test that
- * changes what a sweep would give, or the end of a run). */
-long accuracy_reused_sweeps(void);
-void accuracy_forget_sweeps(void);
+/* How many sweeps accuracy_run gave from an earlier one on session s, and forgetting them all
+ * (a test that changes what a sweep would give; clsession_close does it too). */
+long accuracy_reused_sweeps(const struct cl_session *s);
+void accuracy_forget_sweeps(struct cl_session *s);
 void accuracy_result_free(struct accuracy_result *r);
 /* Only the device part of a sweep, for timing it: runs the kernel of model m over grid g and
  * returns its raw per-n output (n_count x 8 floats as kernels/accuracy.cl lays them out; raw may

@@ -43,10 +43,17 @@ double fit_power_eval(double c, double n, double a, double b, int m)
     return brdf_power(fmax(c, 0.0), a * n + b, m);
 }
 
-static int fam_epi_samples = FAM_EPI_SAMPLES, fam_att_samples = FAM_ATT_SAMPLES, fam_nm_iter = FAM_NM_ITER;
+/* How finely a family's figures are found: samples per zone and Nelder-Mead iterations (fewer
+   for a model whose host evaluation runs on the device, fit_family_run). */
+struct fam_precision {
+    int epi_samples, att_samples, nm_iter;
+};
+static const struct fam_precision fam_fine = { FAM_EPI_SAMPLES, FAM_ATT_SAMPLES, FAM_NM_ITER },
+                                  fam_slow = { FAM_SLOW_EPI, FAM_SLOW_ATT, FAM_SLOW_NM_ITER };
 
 struct fam_eval {
     struct model_spec spec;       /* registry or user model; unused with power_m */
+    const struct fam_precision *prec;
     int power_m;
     double n, sign;
     int abs_mode;                 /* 0: |f/r - 1|, 1: |f - r| */
@@ -93,18 +100,19 @@ static void fam_at_n(struct fam_eval *e, double n, double *max_rel, double *max_
     double xe = zone_epicentre_end(n);
     e->n = n;
     e->abs_mode = 0;
-    *max_rel = fam_zone_max(e, 0.0, xe, fam_epi_samples, 1);
+    *max_rel = fam_zone_max(e, 0.0, xe, e->prec->epi_samples, 1);
     e->abs_mode = 1;
-    *max_abs = fam_zone_max(e, xe, half_pi - xe, fam_att_samples, 2);
+    *max_abs = fam_zone_max(e, xe, half_pi - xe, e->prec->att_samples, 2);
 }
 
-void fit_family_figures(const struct model_spec *family, int power_m, const double *params, const double *n,
-                        long count, struct fit_point *out)
+static void figures(const struct fam_precision *prec, const struct model_spec *family, int power_m,
+                    const double *params, const double *n, long count, struct fit_point *out)
 {
     struct fam_eval e;
     memset(&e, 0, sizeof e);
     if (family)
         e.spec = *family;
+    e.prec = prec;
     e.power_m = power_m;
     e.spec.params[0] = params[0];
     e.spec.params[1] = params[1];
@@ -119,7 +127,14 @@ void fit_family_figures(const struct model_spec *family, int power_m, const doub
     }
 }
 
+void fit_family_figures(const struct model_spec *family, int power_m, const double *params, const double *n,
+                        long count, struct fit_point *out)
+{
+    figures(&fam_fine, family, power_m, params, n, count, out);
+}
+
 struct fam_search {
+    const struct fam_precision *prec;
     const struct model_spec *family;
     int power_m, nparams;
     double lo[2], hi[2], fixed[2];
@@ -141,7 +156,7 @@ static double fam_objective(const gsl_vector *v, void *p)
     if (outside > 0)
         return 1e3 * (1 + outside);
     struct fit_point pt;
-    fit_family_figures(S->family, S->power_m, params, S->n, S->count, &pt);
+    figures(S->prec, S->family, S->power_m, params, S->n, S->count, &pt);
     double primary = S->objective == FIT_MAX_ABS ? pt.max_abs : pt.max_rel;
     double other = S->objective == FIT_MAX_ABS ? pt.max_rel : pt.max_abs;
     if (isfinite(S->cap) && other > S->cap)
@@ -164,7 +179,7 @@ static void fam_minimise(const struct fam_search *S, const double *start, double
             gsl_vector_set(step, k, fmax(0.05 * fabs(cur[k]), 0.01) / (1 << (2 * run)));
         }
         gsl_multimin_fminimizer_set(m, &fn, x, step);
-        for (int it = 0; it < fam_nm_iter; ++it) {
+        for (int it = 0; it < S->prec->nm_iter; ++it) {
             if (gsl_multimin_fminimizer_iterate(m))
                 break;
             if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(m), 1e-10) == GSL_SUCCESS)
@@ -188,7 +203,7 @@ static void fam_fit_point(struct fam_search *S, const double *start, int objecti
     S->cap = cap;
     double best[2];
     fam_minimise(S, start, best);
-    fit_family_figures(S->family, S->power_m, best, n_all, count_all, out);
+    figures(S->prec, S->family, S->power_m, best, n_all, count_all, out);
     out->cap = cap;
     double other = objective == FIT_MAX_ABS ? out->max_rel : out->max_abs;
     out->ok = !isfinite(cap) || other <= cap * (1 + 1e-6);
@@ -332,9 +347,7 @@ int fit_family_run(struct cl_session *s, const struct fit_options *o, struct fit
         return EXIT_USAGE;
     r->nparams = S.nparams;
     int slow = !o->power_m && model_eval_host_on_device(&family);
-    fam_epi_samples = slow ? FAM_SLOW_EPI : FAM_EPI_SAMPLES;
-    fam_att_samples = slow ? FAM_SLOW_ATT : FAM_ATT_SAMPLES;
-    fam_nm_iter = slow ? FAM_SLOW_NM_ITER : FAM_NM_ITER;
+    S.prec = slow ? &fam_slow : &fam_fine;
     int search_n = slow ? FAM_SLOW_SEARCH_N : FAM_SEARCH_N;
     /* The device programs (a user model's own, and its double reference) before the search. */
     struct accuracy_ctx actx;

@@ -173,6 +173,26 @@ static int run_sweeps(struct repro *p)
     return 0;
 }
 
+/* A figure as q_sweep.json carries it: a value that is not finite is written as null, read as NaN. */
+static double as_written(double v) { return isfinite(v) ? v : NAN; }
+
+/* The Q sweep's figures for the report's caller (reproduce_report.q_sweep): the run's, or none
+   (n 0) when there are none or more than RUN_MAX_Q. */
+static void keep_q_sweep(const struct repro *p, struct run_q_sweep *out)
+{
+    out->n = 0;
+    if (p->nq < 1 || p->nq > RUN_MAX_Q)
+        return;
+    for (int i = 0; i < p->nq; ++i) {
+        out->q[i] = as_written(p->q[i]);
+        out->max_rel[i] = as_written(p->q_rel[i]);
+        out->max_abs[i] = as_written(p->q_abs[i]);
+    }
+    out->f2_max_rel = as_written(p->f2_rel);
+    out->f2_max_abs = as_written(p->f2_abs);
+    out->n = p->nq;
+}
+
 static int run_q_sweep(struct repro *p)
 {
     const struct reproduce_options *o = p->o;
@@ -547,6 +567,7 @@ int reproduce_run(struct cl_session *s, const struct reproduce_options *o, struc
             r->not_reproduced++;
     }
     r->seconds = wall_seconds() - t0;
+    keep_q_sweep(&p, &r->q_sweep);
     /* the rows of every file, once: each file's rows member, and claims.md drawn from them */
     if (reproduce_rows(&p, &rows, err, sizeof err) == 0 && !(r->markdown = reproduce_claims_markdown(&rows)))
         snprintf(err, sizeof err, "claims.md: out of memory");

@@ -17,6 +17,7 @@
 
 #include "clsession.h"
 #include "engine.h"
+#include "run.h"
 
 
 struct reproduce_options {
@@ -55,6 +56,10 @@ struct reproduce_report {
     int reproduced, not_reproduced, within_noise;
     char *markdown;          /* claims.md's text (malloc'd) */
     double seconds;
+    /* The Q sweep behind paper 2's figs. 2-3 (also in q_sweep.json), for a later step of the
+       same run (`all`'s plots), each figure as q_sweep.json has it (NaN where the file has null);
+       n 0 when it ran no Q or more than RUN_MAX_Q. */
+    struct run_q_sweep q_sweep;
 };
 
 /* Checks every claim and writes claims.json, claims.md, q_sweep.json (and energy.json) into

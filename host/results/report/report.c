@@ -346,23 +346,32 @@ static int body(struct md_buf *b, struct report_input *in, char *err, size_t err
     return in->out_of_memory ? 3 : 0;
 }
 
-int report_build(const char *run_dir, char **text, char *err, size_t errlen)
+int report_build_docs(const char *run_dir, struct report_docs *docs, char **text, char *err, size_t errlen)
 {
-    struct report_input in;
+    /* on the heap: the rows of every result file are large for a stack */
+    struct report_input *in = calloc(1, sizeof *in);
     struct md_buf b;
-    memset(&in, 0, sizeof in);
-    in.run_dir = run_dir;
     *text = NULL;
-    if (report_run_read(run_dir, &in.run, err, errlen)) return 2;
-    report_docs_init(&in.docs, run_dir);
+    if (!in) {
+        snprintf(err, errlen, "report.md: out of memory");
+        return 3;
+    }
+    in->run_dir = run_dir;
+    if (report_run_read(run_dir, &in->run, err, errlen)) {
+        free(in);
+        return 2;
+    }
+    in->docs = *docs;   /* the sections read (and add to) the caller's docs; handed back below */
+    in->docs.run_dir = run_dir;
     md_init(&b);
-    int rc = read_pictures(&in);
-    if (!rc) rc = body(&b, &in, err, errlen);
+    int rc = read_pictures(in);
+    if (!rc) rc = body(&b, in, err, errlen);
     if (!rc && b.failed) rc = 3;
     if (rc == 3) snprintf(err, errlen, "report.md: out of memory");
-    report_run_free(&in.run);
-    report_docs_free(&in.docs);
-    free(in.pictures);
+    *docs = in->docs;
+    report_run_free(&in->run);
+    free(in->pictures);
+    free(in);
     if (rc) {
         md_free(&b);
         return rc;
@@ -371,10 +380,37 @@ int report_build(const char *run_dir, char **text, char *err, size_t errlen)
     return 0;
 }
 
-int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen)
+/* report_build and report_rebuild: a docs of the folder's files alone, on the heap. */
+static struct report_docs *folder_docs(const char *run_dir, char *err, size_t errlen)
+{
+    struct report_docs *docs = malloc(sizeof *docs);
+    if (docs)
+        report_docs_init(docs, run_dir);
+    else
+        snprintf(err, errlen, "report.md: out of memory");
+    return docs;
+}
+
+static void folder_docs_free(struct report_docs *docs)
+{
+    report_docs_free(docs);
+    free(docs);
+}
+
+int report_build(const char *run_dir, char **text, char *err, size_t errlen)
+{
+    struct report_docs *docs = folder_docs(run_dir, err, errlen);
+    *text = NULL;
+    if (!docs) return 3;
+    int rc = report_build_docs(run_dir, docs, text, err, errlen);
+    folder_docs_free(docs);
+    return rc;
+}
+
+int report_rebuild_docs(const char *run_dir, struct report_docs *docs, const char *out, char *err, size_t errlen)
 {
     char *text = NULL, path[4200];
-    int rc = report_build(run_dir, &text, err, errlen);
+    int rc = report_build_docs(run_dir, docs, &text, err, errlen);
     if (rc) return rc;
     if (!out && path_join(path, sizeof path, run_dir, "report.md")) {
         snprintf(err, errlen, "%s/report.md: path too long", run_dir);
@@ -383,5 +419,14 @@ int report_rebuild(const char *run_dir, const char *out, char *err, size_t errle
         rc = write_file_atomic(out ? out : path, text, strlen(text), err, errlen) ? 3 : 0;
     }
     free(text);
+    return rc;
+}
+
+int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen)
+{
+    struct report_docs *docs = folder_docs(run_dir, err, errlen);
+    if (!docs) return 3;
+    int rc = report_rebuild_docs(run_dir, docs, out, err, errlen);
+    folder_docs_free(docs);
     return rc;
 }

@@ -85,5 +85,12 @@ int report_build(const char *run_dir, char **text, char *err, size_t errlen);
 /* Builds report.md and writes it atomically to out (NULL: run_dir/report.md; "-": standard
  * output). Returns 0, 2 (as report_build) or 3 when it cannot be written. */
 int report_rebuild(const char *run_dir, const char *out, char *err, size_t errlen);
+/* The same, with the rows of docs (report_docs.h: report_docs_init(docs, run_dir), then
+ * report_docs_put for the rows the run holds in memory): a file put there is not read back, any
+ * other is read from run_dir as report_build reads it. docs stays the caller's (it holds the
+ * files read too; report_docs_free frees it). */
+struct report_docs;
+int report_build_docs(const char *run_dir, struct report_docs *docs, char **text, char *err, size_t errlen);
+int report_rebuild_docs(const char *run_dir, struct report_docs *docs, const char *out, char *err, size_t errlen);
 
 #endif

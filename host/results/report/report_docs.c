@@ -55,3 +55,24 @@ const struct rdoc *report_doc(struct report_docs *docs, const char *file, int *r
     }
     return &docs->doc[i];
 }
+
+int report_docs_put(struct report_docs *docs, const char *file, struct rdoc *rdoc, char *err, size_t errlen)
+{
+    int i = 0;
+    while (i < docs->count && strcmp(docs->file[i], file) != 0)
+        ++i;
+    if (i < docs->count || docs->count == REPORT_DOCS_MAX || strlen(file) >= sizeof docs->file[0]) {
+        snprintf(err, errlen, "%s: %s", file,
+                 i < docs->count ? "already among the report's rows" : "more result files than the report reads");
+        rdoc_free(rdoc);
+        memset(rdoc, 0, sizeof *rdoc);
+        return -1;
+    }
+    snprintf(docs->file[i], sizeof docs->file[i], "%s", file);
+    docs->state[i] = 0;
+    docs->why[i][0] = '\0';
+    docs->doc[i] = *rdoc;   /* moved: its rows and texts are docs' now */
+    memset(rdoc, 0, sizeof *rdoc);
+    docs->count++;
+    return 0;
+}

@@ -27,5 +27,12 @@ void report_docs_free(struct report_docs *docs);
  * not there (*rc = 1, err "FOLDER/FILE: missing") or cannot be read (*rc = 2, err the reader's
  * message naming the file); else *rc = 0. */
 const struct rdoc *report_doc(struct report_docs *docs, const char *file, int *rc, char *err, size_t errlen);
+/* Rows a run holds in memory for file (`all`: the rows an engine built and wrote as the file's rows
+ * member), so that report_doc gives them instead of reading the file back. The rows must be the
+ * ones the file carries (what rdoc_read_file would give), so that report.md from memory and
+ * `brdfbench report RUN` from the files are the same page. *rdoc moves into docs (which frees
+ * it; *rdoc is left empty). 0, or -1 with a message when file is already there or docs is full
+ * (*rdoc is then freed). */
+int report_docs_put(struct report_docs *docs, const char *file, struct rdoc *rdoc, char *err, size_t errlen);
 
 #endif
