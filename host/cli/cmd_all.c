@@ -157,7 +157,15 @@ static int step_accuracy(struct all_run *r)
         r->nacc = m + 1;
     }
     path_join(path, sizeof path, r->run_dir, "accuracy.json");
-    if (accuracy_write_json(path, r->acc, r->nacc, &r->run.s, r->actx.build_options, err, sizeof err)) goto fail;
+    /* the rows written as accuracy.json's rows member go to the report as they are: its accuracy
+       table is drawn from them, not from the file read back (`brdfbench report` reads the file,
+       and gives the same page) */
+    struct rdoc *rows = NULL;
+    if (accuracy_write_json_keep(path, r->acc, r->nacc, &r->run.s, r->actx.build_options, &rows, err, sizeof err))
+        goto fail;
+    rc = report_docs_put(&r->docs, "accuracy.json", rows, err, sizeof err);
+    free(rows);
+    if (rc) goto fail;
     path_join(path, sizeof path, r->run_dir, "accuracy.csv");
     if (accuracy_write_csv(path, r->acc, r->nacc, err, sizeof err)) goto fail;
     all_step_done(r, "accuracy", t, "%d models, n in [%g, %g] step %g, %ld samples per zone -> accuracy.json, accuracy.csv",

@@ -103,9 +103,29 @@ static void accuracy_rows(struct rdoc *d, const struct accuracy_result *res, int
     hemisphere_rows(d, hres, hcount, n_step);
 }
 
+static int write_json(const char *path, const struct accuracy_result *res, int count, const struct hemi_result *hres,
+                      int hcount, const struct cl_session *s, const char *build_options, struct rdoc **keep, char *err,
+                      size_t errlen);
+
 int accuracy_write_json_full(const char *path, const struct accuracy_result *res, int count,
                              const struct hemi_result *hres, int hcount, const struct cl_session *s,
                              const char *build_options, char *err, size_t errlen)
+{
+    return write_json(path, res, count, hres, hcount, s, build_options, NULL, err, errlen);
+}
+
+int accuracy_write_json_keep(const char *path, const struct accuracy_result *res, int count,
+                             const struct cl_session *s, const char *build_options, struct rdoc **rows, char *err,
+                             size_t errlen)
+{
+    *rows = NULL;
+    return write_json(path, res, count, NULL, 0, s, build_options, rows, err, errlen);
+}
+
+/* The file, and its rows: freed, or handed over in *keep when the file is written. */
+static int write_json(const char *path, const struct accuracy_result *res, int count, const struct hemi_result *hres,
+                      int hcount, const struct cl_session *s, const char *build_options, struct rdoc **keep, char *err,
+                      size_t errlen)
 {
     struct rdoc *d = rdoc_new(ACCURACY_SCHEMA, "accuracy", "accuracy.json", err, errlen);
     if (!d)
@@ -209,9 +229,13 @@ int accuracy_write_json_full(const char *path, const struct accuracy_result *res
     hemisphere_json_rows(&w, hres, hcount);
     jw_arr_end(&w);
     rdoc_json_rows_member(&w, d);
-    rdoc_delete(d);
     jw_obj_end(&w);
-    return jw_write_file_free(&w, path, err, errlen);
+    int rc = jw_write_file_free(&w, path, err, errlen);
+    if (keep && rc == 0)
+        *keep = d;
+    else
+        rdoc_delete(d);
+    return rc;
 }
 
 int accuracy_write_csv(const char *path, const struct accuracy_result *res, int count, char *err, size_t errlen)

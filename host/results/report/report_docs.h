@@ -1,6 +1,6 @@
-/* report_docs.h - the rows of a run folder's result files, read once for report.md: every
- * section of the page is drawn from them (and from run.json), never from a file's own layout
- * or from a page an engine wrote. A page an engine writes beside its JSON (claims.md,
+/* report_docs.h - the rows of a run folder's result files, read once for report.md (implemented in
+ * report.c): every section of the page is drawn from them (and from run.json), never from a file's
+ * own layout or from a page an engine wrote. A page an engine writes beside its JSON (claims.md,
  * throughput.md, ...) is made by the same function of the same rows, so the two agree. */
 #ifndef BRDF_REPORT_DOCS_H
 #define BRDF_REPORT_DOCS_H
