@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "jsonw.h"
+#include "stats.h"
 
 /* Metrics of a row that the format takes: timed (gbench), finite of a direction (action;
  * direction < 0: any, for bmf). */
@@ -71,12 +72,6 @@ static int flush(struct jw *w, struct md_buf *out, char *err, size_t errlen)
 
 /* ---- google/benchmark ------------------------------------------------------------------- */
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* An iteration is a million items (evaluations, FLOPs): its time in microseconds, 1e12 / rate,
  * is a number of a few digits for rates from 1e6 to 1e12 per second, which compare.py's
  * table (whole units) shows. */
@@ -100,8 +95,8 @@ static struct gb_stats stats_of(const double *v, int n)
     for (int i = 0; i < n; ++i)
         sum += (t[i] = v[i]);
     s.mean = sum / n;
-    qsort(t, (size_t)n, sizeof *t, cmp_double);
-    s.median = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+    qsort(t, (size_t)n, sizeof *t, stats_cmp_double);
+    s.median = stats_median_sorted(t, (size_t)n);
     double ss = 0;
     for (int i = 0; i < n; ++i)
         ss += (t[i] - s.mean) * (t[i] - s.mean);

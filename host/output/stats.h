@@ -1,4 +1,4 @@
-/* stats.h - the order statistics every timing and quadrature part shares: qsort's comparison of
+/* stats.h - the order statistics every timing, export and quadrature part shares: qsort's comparison of
  * doubles and the median, written once (the renderer's timing, the runner's rounds, the rank
  * test, the energy quadrature's nodes). */
 #ifndef BRDF_STATS_H
