@@ -32,9 +32,10 @@ struct host_entry {
 #define ENTRIES(s) ((struct program_entry *)(s)->programs.items)
 #define HOSTS(s) ((struct host_entry *)(s)->hosts.items)
 
-/* Room for one more element in the table (room.h): 0, or -1 with a message when memory is out
- * (the table is then unchanged). */
-static int make_room(struct cl_session_table *t, size_t size)
+/* Room for one more element in the session's table t (room.h): 0, or -1 with a message when
+ * memory is out (the table is then unchanged). From the first room on, closing the session
+ * releases the tables, also when no entry was added (a build that failed). */
+static int make_room(struct cl_session *s, struct cl_session_table *t, size_t size)
 {
     void *grown = room_for_one(t->items, t->count, &t->cap, size, 8);
     if (!grown) {
@@ -42,6 +43,7 @@ static int make_room(struct cl_session_table *t, size_t size)
         return -1;
     }
     t->items = grown;
+    s->release_cache = programs_release;
     return 0;
 }
 
@@ -65,7 +67,7 @@ int programs_host(struct cl_session *s, const struct model_spec *m)
     for (int i = 0; i < s->hosts.count; ++i)
         if (HOSTS(s)[i].rt == rt)
             return rt->open_host(rt, s);   /* idempotent */
-    if (make_room(&s->hosts, sizeof(struct host_entry)))
+    if (make_room(s, &s->hosts, sizeof(struct host_entry)))
         return EXIT_RUNTIME;
     int rc = rt->open_host(rt, s);
     if (rc)
@@ -93,7 +95,7 @@ static int entry_for(struct cl_session *s, const char *kernel_file, const char *
             return 0;
         }
     }
-    if (make_room(&s->programs, sizeof(struct program_entry)))
+    if (make_room(s, &s->programs, sizeof(struct program_entry)))
         return EXIT_RUNTIME;
     if (!rt) {
         char opts[1100];
