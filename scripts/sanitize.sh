@@ -99,7 +99,7 @@ set +e
 #                         in test_accuracy and test_cli_accuracy, user models' in test_usermodel.
 # Every unit and device C test and the bad-input and hostile-input tables (test_cli_errors,
 # test_hostile) run under the sanitizers.
-ctest --output-on-failure -j2 --timeout 900 -LE no_sanitizer 2>&1 | tee "$log"
+ctest --output-on-failure -j3 --timeout 900 -LE no_sanitizer   # -j3: as scripts/test.sh 2>&1 | tee "$log"
 rc=${PIPESTATUS[0]}
 set -e
 if [ "$rc" -ne 0 ] && grep -q "LeakSanitizer has encountered a fatal error" "$log"; then
