@@ -506,7 +506,7 @@ t 2 "^brdfbench rows: --format csv writes one document and R0 holds [0-9]+ \(nam
 t 2 "^brdfbench rows: --format json writes one document" rows R0 --format json --output rows_out.json
 if [ -e rows_out.json ]; then fail=$((fail + 1)); echo "FAIL: rows: a refused run wrote its --output" >&2; fi
 t 2 "^brdfbench rows: base: no result file of kind render \(accepted: throughput.json, accuracy.json" rows base --kind render
-t 2 "^brdfbench rows: C4: no result file \(accepted: " rows C4
+t 2 "^brdfbench rows: C4: no result file \(accepted: throughput.json, accuracy.json, render.json, fit.json, frontier.json, claims.json, q_sweep.json, physical.json, energy.json, measured.json, or a brdfbench.rows/1 document\)" rows C4
 t 2 "^brdfbench rows: C1/accuracy.json: is a FIFO, not a regular file" rows C1
 t 2 "^brdfbench rows: good.json:1:1: member \"schema\" is missing" rows good.json
 t 2 "^brdfbench rows: R0/plots.json: schema \"brdfbench.plots/1\" is not a result file with figures" rows R0/plots.json

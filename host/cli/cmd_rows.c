@@ -65,9 +65,10 @@ static int read_docs(const char *path, int only, struct rdoc docs[RD_KIND_COUNT]
         }
     }
     if (*n == 0) {
-        snprintf(err, errlen, "%s: no result file%s%s (accepted: %s, %s, %s, %s, %s, or a brdfbench.rows/1 document)",
-                 path, only >= 0 ? " of kind " : "", only >= 0 ? rd_kind_name(only) : "", rd_kind_file(0),
-                 rd_kind_file(1), rd_kind_file(2), rd_kind_file(3), rd_kind_file(4));
+        char files[512];
+        rd_kind_files(files, sizeof files);
+        snprintf(err, errlen, "%s: no result file%s%s (accepted: %s, or a brdfbench.rows/1 document)", path,
+                 only >= 0 ? " of kind " : "", only >= 0 ? rd_kind_name(only) : "", files);
         return EXIT_USAGE;
     }
     return 0;

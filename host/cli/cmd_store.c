@@ -155,10 +155,11 @@ static int store_add_cmd(int argc, char **argv)
             }
         }
         if (found == 0) {
-            fprintf(stderr, "brdfbench store add: %s: no result file%s%s (accepted: a run folder with %s, %s, %s, %s "
-                            "or %s, or such a file or a rows document)\n", path, only >= 0 ? " of kind " : "",
-                    only >= 0 ? kind : "", rd_kind_file(0), rd_kind_file(1), rd_kind_file(2), rd_kind_file(3),
-                    rd_kind_file(4));
+            char files[512];
+            rd_kind_files(files, sizeof files);
+            fprintf(stderr, "brdfbench store add: %s: no result file%s%s (accepted: a run folder with any of %s, "
+                            "or such a file or a rows document)\n", path, only >= 0 ? " of kind " : "",
+                    only >= 0 ? kind : "", files);
             rc = EXIT_USAGE;
             goto cleanup;
         }

@@ -300,8 +300,9 @@ static int read_run(struct compare_set *set, int run, const char *path, char *er
     if (rc)
         return rc;
     if (!found) {
-        fail(err, errlen, "%s: no result file (%s, %s, %s, %s or %s)", path, rd_kind_file(0), rd_kind_file(1),
-             rd_kind_file(2), rd_kind_file(3), rd_kind_file(4));
+        char files[512];
+        rd_kind_files(files, sizeof files);
+        fail(err, errlen, "%s: no result file (any of %s)", path, files);
         return 2;
     }
     return 0;

@@ -100,6 +100,19 @@ void rd_kind_names(char *out, size_t len)
         snprintf(out + strlen(out), len - strlen(out), "%s%s", k ? ", " : "", kinds[k].name);
 }
 
+void rd_kind_files(char *out, size_t len)
+{
+    if (len)
+        out[0] = '\0';
+    for (int k = 0; k < RD_KIND_COUNT && len; ++k) {
+        int seen = strstr(kinds[k].file, "MODEL") != NULL;   /* one file per model: named, not found */
+        for (int e = 0; e < k; ++e)
+            seen |= strcmp(kinds[e].file, kinds[k].file) == 0;
+        if (!seen)
+            snprintf(out + strlen(out), len - strlen(out), "%s%s", *out ? ", " : "", kinds[k].file);
+    }
+}
+
 int rd_kind_of_name(const char *name)
 {
     for (int k = 0; k < RD_KIND_COUNT; ++k)

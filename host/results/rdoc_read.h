@@ -26,6 +26,8 @@ const char *rd_kind_schema(int kind);   /* the version written now */
 int rd_kind_of_name(const char *name);  /* the inverse of rd_kind_name; -1 for another */
 /* Every kind's name, "throughput, accuracy, ...", into out (a message's accepted list). */
 void rd_kind_names(char *out, size_t len);
+/* The files a run folder's rows are read from ("throughput.json, accuracy.json, ..."), each once. */
+void rd_kind_files(char *out, size_t len);
 
 /* Reads the result file at path (a regular file) into d. Returns 0, or 2 with a one-line
  * reason naming the file: unreadable, not strict JSON, a schema that is none of the kinds or

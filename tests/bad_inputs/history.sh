@@ -10,7 +10,7 @@ t 2 "^brdfbench store: 'frob' is not a store command \(accepted: add, list, expo
 t 2 "^brdfbench store add: expected RUN_DIR\|FILE\.\.\. \(run folders or result files\)" store add --db st.sqlite
 t 2 "^brdfbench store add: nothere: no such file or folder \(accepted: a run folder, a result file or a rows document\)" store add nothere --db st.sqlite
 t 2 "^brdfbench store add: --kind: 'plots' is not a kind of result \(accepted: throughput, accuracy, render, fit, frontier" store add R0 --kind plots --db st.sqlite
-t 2 "^brdfbench store add: base: no result file of kind render \(accepted: a run folder with throughput.json" store add base --kind render --db st.sqlite
+t 2 "^brdfbench store add: base: no result file of kind render \(accepted: a run folder with any of throughput.json, accuracy.json, render.json, fit.json, frontier.json, claims.json, q_sweep.json, physical.json, energy.json, measured.json," store add base --kind render --db st.sqlite
 t 2 "^brdfbench store add: --db: " store add R0 --db ""
 t 2 "^brdfbench store list: nostore.sqlite: no such store \(No such file or directory; brdfbench store add makes one\)" store list --db nostore.sqlite
 printf 'these words are not an SQLite database, whatever the name says\n' >junk.sqlite
