@@ -16,14 +16,13 @@
 #include "report_throughput.h"
 #include "room.h"
 
-
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-static int file_exists(const char *dir, const char *name)
+int report_file_exists(const char *dir, const char *name)
 {
     char path[4096];
     struct stat st;
@@ -262,7 +261,7 @@ static void pictures(struct md_buf *b, const struct report_input *in, int sectio
             md_printf(b, ": ");
             md_cell_text(b, p->not_drawn);
             md_printf(b, "\n\n");
-        } else if (file_exists(in->run_dir, p->file) && safe_link(p->file)) {
+        } else if (report_file_exists(in->run_dir, p->file) && safe_link(p->file)) {
             md_printf(b, "![%s](%s)\n\n*", p->file, p->file);
             md_cell_text(b, p->caption);
             md_printf(b, "*\n\n");
@@ -344,7 +343,7 @@ static void header(struct md_buf *b, const struct report_input *in)
                      "\"%s\".\n", PLOTS_QUICK_STAMP);
     md_printf(b, "\nData files beside this page:");
     for (size_t i = 0; i < sizeof data / sizeof data[0]; i++)
-        if (file_exists(in->run_dir, data[i].file)) md_printf(b, " `%s`: %s;", data[i].file, data[i].what);
+        if (report_file_exists(in->run_dir, data[i].file)) md_printf(b, " `%s`: %s;", data[i].file, data[i].what);
     md_printf(b, " `field_<model>.json`: every heatmap's grid. ");
     {
         /* the folder as the user named it: inline code, whatever it holds */

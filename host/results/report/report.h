@@ -93,4 +93,7 @@ struct report_docs;
 int report_build_docs(const char *run_dir, struct report_docs *docs, char **text, char *err, size_t errlen);
 int report_rebuild_docs(const char *run_dir, struct report_docs *docs, const char *out, char *err, size_t errlen);
 
+/* A file the run names (a picture) is in run_dir and not empty: a section links it only then. */
+int report_file_exists(const char *dir, const char *name);
+
 #endif

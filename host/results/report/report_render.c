@@ -5,18 +5,10 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "outdir.h"
+#include "report.h"
 #include "report_accuracy.h"
-
-static int file_exists(const char *dir, const char *name)
-{
-    char path[4096];
-    struct stat st;
-    if (path_join(path, sizeof path, dir, name)) return 0;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
 
 static const char *attr(const struct rd_row *r, const char *name)
 {
@@ -91,7 +83,7 @@ static void he_comparison(const struct rdoc *d, const struct rd_row *first, cons
         md_printf(md, "\n");
         const char *contact = rd_row_text_get(e, "contact_sheet");
         /* the pictures of the fit and of fq2 (the others are in the run folder) */
-        if (contact && add && file_exists(run_dir, contact) && (k == 0 || strncmp(entry, "fq2@", 4) == 0)) {
+        if (contact && add && report_file_exists(run_dir, contact) && (k == 0 || strncmp(entry, "fq2@", 4) == 0)) {
             char caption[400];
             snprintf(caption, sizeof caption, "%s: He's model, %s, |error| against He (max %.3g)", name, entry,
                      rd_row_value(e, "max_abs"));
@@ -146,7 +138,7 @@ static void scene(const struct rdoc *d, const struct rd_row *first, const char *
                                                 { "signed_error_image", "signed error" } };
         for (size_t f = 0; f < sizeof links / sizeof links[0]; f++) {
             const char *file = rd_row_text_get(m, links[f][0]);
-            if (file && file_exists(run_dir, file)) md_printf(md, " [%s](%s)", links[f][1], file);
+            if (file && report_file_exists(run_dir, file)) md_printf(md, " [%s](%s)", links[f][1], file);
         }
         md_printf(md, " |\n");
         /* a model against itself has a black error image: its contact sheet shows nothing new */
