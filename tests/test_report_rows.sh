@@ -27,8 +27,8 @@ json.dump(d, open(sys.argv[1], "w"))
 PY
 done
 # as rewritten, the report is the old one still (the rows say what the layout says)
-"$BIN" report run --output same.md 2>err && ok || bad "report: $(cat err)"
-cmp -s same.md run/report.md && ok || bad "the rows member gives another report: $(diff run/report.md same.md | head -5)"
+"$BIN" report run --output same_report.txt 2>err && ok || bad "report: $(cat err)"
+cmp -s same_report.txt run/report.md && ok || bad "the rows member gives another report: $(diff run/report.md same_report.txt | head -5)"
 
 # the edits, in the rows members only
 python3 - <<'PY'
@@ -46,12 +46,12 @@ row = [x for x in r["rows"]["rows"] if x["model"] == "cq2" and x["attributes"].g
 row["texts"]["image"] = "render/spheres/fq2.png"   # a file that exists: the link shows it
 json.dump(r, open("run/render.json", "w"))
 PY
-"$BIN" report run --output edited.md 2>err && ok || bad "report (edited): $(cat err)"
+"$BIN" report run --output edited_report.txt 2>err && ok || bad "report (edited): $(cat err)"
 # fq2's max delta: 100 * 0.0123456 with 4 significant digits
 want=$(python3 -c 'print("| `fq2` | `phong` | %.4g%% |" % (100 * 0.0123456))')
-grep -qF "$want" edited.md && ok || bad "accuracy table: fq2's max delta is not the rows' ($want)"
-grep -qxF "a verdict written in the rows alone" edited.md && ok || bad "fit section: the verdict is not the rows' text"
-grep -qE '^\| `cq2` \| `phong` \|.*\| \[image\]\(render/spheres/fq2\.png\) ' edited.md && ok \
+grep -qF "$want" edited_report.txt && ok || bad "accuracy table: fq2's max delta is not the rows' ($want)"
+grep -qxF "a verdict written in the rows alone" edited_report.txt && ok || bad "fit section: the verdict is not the rows' text"
+grep -qE '^\| `cq2` \| `phong` \|.*\| \[image\]\(render/spheres/fq2\.png\) ' edited_report.txt && ok \
     || bad "image passes: cq2's image link is not the rows' file"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -68,11 +68,11 @@ PY
 #    previous version's claims.md, physically based models' section included
 mkdir run && tar -C run -xJf "$SRC/tests/fixtures/run-v48575e2/run.tar.xz" || { echo "cannot unpack the run fixture"; exit 1; }
 cp old/claims.json old/claims.md old/q_sweep.json old/physical.json run/
-embed old/claims.md run/report.md expected_old.md
+embed old/claims.md run/report.md expected_old.txt
 rm run/claims.md
-"$BIN" report run --output report_old.md 2>"$T/err" && ok || bad "report of the previous version's claims: $(cat "$T/err")"
-cmp -s expected_old.md report_old.md && ok || bad "report's claims section differs from the previous version's claims.md: $(diff expected_old.md report_old.md | head -6)"
-grep -q "^### Physically based models: cost, terms, albedo" report_old.md && ok || bad "no physically based models' section"
+"$BIN" report run --output report_old.txt 2>"$T/err" && ok || bad "report of the previous version's claims: $(cat "$T/err")"
+cmp -s expected_old.txt report_old.txt && ok || bad "report's claims section differs from the previous version's claims.md: $(diff expected_old.txt report_old.txt | head -6)"
+grep -q "^### Physically based models: cost, terms, albedo" report_old.txt && ok || bad "no physically based models' section"
 
 # 3. a new run: each file carries its rows under its new schema; the rows member against the
 #    layout mapping and against the upgrade function's reading of the same file
@@ -119,17 +119,17 @@ PY
 #    of the folder first), and a verdict changed in the rows member is what the section shows
 rm -rf run2 && mkdir run2 && tar -C run2 -xJf "$SRC/tests/fixtures/run-v48575e2/run.tar.xz"
 rm run2/claims.md && cp new/claims.json new/q_sweep.json new/physical.json run2/
-embed new/claims.md run2/report.md expected_new.md
-"$BIN" report run2 --output report_new.md 2>"$T/err" && ok || bad "report of the new claims: $(cat "$T/err")"
-cmp -s expected_new.md report_new.md && ok || bad "report's claims section differs from claims.md: $(diff expected_new.md report_new.md | head -6)"
+embed new/claims.md run2/report.md expected_new.txt
+"$BIN" report run2 --output report_new.txt 2>"$T/err" && ok || bad "report of the new claims: $(cat "$T/err")"
+cmp -s expected_new.txt report_new.txt && ok || bad "report's claims section differs from claims.md: $(diff expected_new.txt report_new.txt | head -6)"
 python3 - run2/claims.json <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
 d["rows"]["rows"][0]["texts"]["verdict"] = "tampered verdict"
 json.dump(d, open(sys.argv[1], "w"))
 PY
-"$BIN" report run2 --output report_tampered.md 2>"$T/err"
-grep -q '\*\*tampered verdict\*\*' report_tampered.md && ok || bad "the section does not show the rows' verdict"
+"$BIN" report run2 --output report_tampered.txt 2>"$T/err"
+grep -q '\*\*tampered verdict\*\*' report_tampered.txt && ok || bad "the section does not show the rows' verdict"
 # the physically based models' section needs physical.json when the claims say it is there
 rm run2/physical.json
 expect 2 'run2/physical.json: missing \(run.json records its part as done\)' report run2 --output -
