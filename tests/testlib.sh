@@ -51,3 +51,29 @@ holds() {
     v=$(value "$1" "$2" 2>&1)
     if [ "$v" = "True" ]; then ok; else bad "$3: $2 -> $v"; fi
 }
+
+# rows_both_ways FILE NOW PREV CHECK: FILE carries its rows under schema NOW; its rows, and those
+# of the same file as version PREV wrote it (the rows member taken out, so read by PREV's layout
+# through its upgrade function), are each what `python3 CHECK FILE ROWS_JSON` accepts (the test's
+# second writing of the rows from the layout), and the two readings give the same rows.
+rows_both_ways() {
+    local file=$1 now=$2 prev=$3 check=$4 base
+    base=$(basename "$file" .json)
+    python3 - "$file" "$now" "$prev" "$T/$base.prev.json" <<'PY' && ok || bad "$file: not a $now file with its rows"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["schema"] == sys.argv[2] and d["rows"]["rows"], d["schema"]
+del d["rows"]
+d["schema"] = sys.argv[3]
+json.dump(d, open(sys.argv[4], "w"))
+PY
+    "$BIN" rows "$file" --format json --output "$T/$base.rows.json" 2>"$T/err" && ok || bad "rows $file: $(cat "$T/err")"
+    "$BIN" rows "$T/$base.prev.json" --format json --output "$T/$base.prev.rows.json" 2>"$T/err" && ok ||
+        bad "rows $file as $prev: $(cat "$T/err")"
+    python3 "$check" "$file" "$T/$base.rows.json" && ok || bad "$file: its rows member differs from its layout's"
+    python3 - "$T/$base.rows.json" "$T/$base.prev.rows.json" <<'PY' && ok || bad "$file: the rows member and the upgrade read differently"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a["rows"] == b["rows"], (a["rows"], b["rows"])
+PY
+}
