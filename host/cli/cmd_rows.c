@@ -115,10 +115,16 @@ int cmd_rows(int argc, char **argv)
         fprintf(stderr, "brdfbench rows: %s\n", err);
         return EXIT_USAGE;
     }
-    struct rdoc docs[RD_KIND_COUNT];
+    /* on the heap: a document holds its context and its devices' (about 170 kB), one per kind */
+    struct rdoc *docs = calloc(RD_KIND_COUNT, sizeof *docs);
     int n = 0;
+    if (!docs) {
+        fprintf(stderr, "brdfbench rows: out of memory\n");
+        return EXIT_RUNTIME;
+    }
     if (read_docs(args.positional[0], only, docs, &n, err, sizeof err)) {
         fprintf(stderr, "brdfbench rows: %s\n", err);
+        free(docs);
         return EXIT_USAGE;
     }
     int rc = EXIT_OK;
@@ -157,5 +163,6 @@ int cmd_rows(int argc, char **argv)
     }
     for (int i = 0; i < n; ++i)
         rdoc_free(&docs[i]);
+    free(docs);
     return rc;
 }
