@@ -11,6 +11,7 @@
 #include "rdoc_read.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
