@@ -19,5 +19,6 @@ fi
 cd build
 # Three tests at a time on CI's two cores: some spend much of their time waiting (test_hostile's
 # signals at set moments, lock holders and deadlines, test_deadline's runaway kernels' limits), and
-# a third test keeps the cores busy meanwhile. Tests never assert a time.
+# a third test keeps the cores busy meanwhile. Tests never assert a time; the two whose verdicts
+# rest on timings of real runs (test_ci_doc, test_compare_verdicts) run alone (RUN_SERIAL).
 ctest --output-on-failure -j3 --timeout 600
