@@ -14,6 +14,8 @@
 #include "clsession.h"
 #include "exitcodes.h"
 #include "field.h"
+#include "hemisphere.h"
+#include "hostjit.h"
 #include "models.h"
 #include "programs.h"
 #include "testutil.h"
@@ -139,6 +141,77 @@ static void host_checks(void)
     CHECK(models_runtime(sq.info) != NULL && models_runtime(models_find("fq2")) == NULL, "models_runtime");
 }
 
+/* The hemisphere sweep of a full user model (Blinn-Phong as BRDF Explorer's files write it, so
+ * the built-in blinn is its reference) evaluates the model in double at every grid point (the
+ * RMS), at the probe's samples and through the refinement: hundreds of thousands of values. They
+ * are computed in its sandbox's child in a few stages, not asked for one by one: a request to
+ * the sandbox (hostjit_round_trips) waits for the other process to be scheduled, twice, which on
+ * a busy machine made a run of seconds take minutes. Counted: each value taken outside a stage
+ * is a request (the P peak ratios at L = V = N, where the model's n is the axis value), and a
+ * sandboxed stage asks for one value first (usermodel_isolated: (c, n) = (1, 1), which the
+ * model's cache of recent values holds from the first stage, the probe's, on), so P + 1
+ * requests; before the stages, one per value: 16 x 16 x 32 x P for the RMS alone. */
+static void hemisphere_trips(struct cl_session *s)
+{
+    static const char text[] = "analytic\n::begin parameters\nfloat n 1 1000 100\n::end parameters\n"
+                               "::begin shader\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)\n{\n"
+                               "    vec3 H = normalize(L + V);\n    return vec3(pow(max(0.0, dot(N, H)), n));\n}\n"
+                               "::end shader\n";
+    struct user_model *um = NULL;
+    char err[512] = "";
+    int rc = usermodel_parse_file_text(text, sizeof text - 1, "tripbp.brdf", &um, err, sizeof err);
+    if (rc == 0)
+        rc = usermodel_register(um, err, sizeof err);
+    CHECK(rc == 0, "registering tripbp.brdf: %s", err);
+    struct model_spec m, ref;
+    if (rc || model_spec_parse("tripbp", &m, err, sizeof err) || model_spec_parse("blinn", &ref, err, sizeof err)) {
+        CHECK(0, "tripbp or blinn: %s", err);
+        return;
+    }
+    struct hemi_axis axis;
+    memset(&axis, 0, sizeof axis);
+    CHECK(hemisphere_axis_parse("n", &axis, err, sizeof err) == 0, "--axis n: %s", err);
+    axis.count = 2;
+    CHECK(hemisphere_axis_check(&axis, NULL, 0, &m, &ref, 2, 300, err, sizeof err) == 0, "the axis: %s", err);
+    struct hemi_grid g = { 16, 16, 32 };
+    struct hemi_ctx h;
+    struct hemi_result r;
+    hemisphere_open(&h, s, "");
+    unsigned long before = hostjit_round_trips();
+    rc = hemisphere_run(&h, &m, &ref, &axis, NULL, 0, &g, &r);
+    unsigned long trips = hostjit_round_trips() - before;
+    CHECK(rc == 0, "the hemisphere sweep of tripbp against blinn: exit %d", rc);
+    CHECK(trips == (unsigned long)axis.count + 1, "requests to the sandbox: %lu (expected P + 1 = %d)", trips,
+          axis.count + 1);
+    /* the model is blinn written again: its figures are rounding, the double RMS below 1e-12 of
+       the peak (the double stage ran and handed its values back) */
+    CHECK(rc == 0 && r.p_count == 2 && r.per_p[0].rms < 1e-12 * r.per_p[0].peak && r.per_p[0].peak > 0,
+          "tripbp against blinn: RMS %g at peak %g", rc ? NAN : r.per_p[0].rms, rc ? NAN : r.per_p[0].peak);
+    if (rc == 0)
+        hemisphere_result_free(&r);
+    hemisphere_close(&h);
+
+    /* model_eval_host_many: the values of one call are model_eval_host's, in one sandbox stage
+       (one request: the stage's first value) */
+    struct model_spec sq;
+    if (model_spec_parse("sq", &sq, err, sizeof err) == 0) {
+        enum { K = 1000 };
+        static double c[K], n[K], v[K];
+        for (int i = 0; i < K; ++i) {
+            c[i] = (i + 0.5) / K;
+            n[i] = 2.0 + i % 37;
+        }
+        before = hostjit_round_trips();
+        CHECK(model_eval_host_many(&sq, c, n, K, v) == 0, "model_eval_host_many of sq");
+        CHECK(hostjit_round_trips() - before == 1, "model_eval_host_many: %lu requests (expected 1)",
+              hostjit_round_trips() - before);
+        double worst = 0;
+        for (int i = 0; i < K; ++i)
+            worst = fmax(worst, fabs(v[i] - sq_closed_form(c[i], n[i])));
+        CHECK(worst <= 1e-15, "model_eval_host_many of sq against its formula: %g", worst);
+    }
+}
+
 static void device_checks(struct cl_session *s)
 {
     struct model_spec sq, fq2, m24;
@@ -176,6 +249,7 @@ static void device_checks(struct cl_session *s)
     accuracy_close(&a1);
     accuracy_close(&a2);
     field_close(&f);
+    hemisphere_trips(s);
     clsession_close(s);
     CHECK(programs_build_count(s) == 0, "the session's builds are released with it: %d", programs_build_count(s));
 }

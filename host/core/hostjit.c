@@ -506,6 +506,12 @@ struct hj_phase {
 /* Set only in a phase's forked child: what that process is, so it is the process's, not a run's. */
 static struct hj_phase *hj_inside;
 
+/* Requests handed to a sandbox's child in this process (hostjit_round_trips): each costs a
+   trip to the other process and back, a scheduler's wake-up each way on a busy machine. */
+static _Atomic unsigned long hj_round_trips;
+
+unsigned long hostjit_round_trips(void) { return atomic_load(&hj_round_trips); }
+
 static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, size_t count, double *out)
 {
     if (!j || j->dead)
@@ -533,6 +539,7 @@ static int eval_in_child(struct hostjit *j, uint32_t kind, const double *args, s
         sh->count = now;
         memcpy(sh->args, args, now * per * sizeof(double));
         uint32_t r = ++j->seq;
+        atomic_fetch_add(&hj_round_trips, 1);
         atomic_store(&sh->req, r);
         if (atomic_load(&sh->child_sleeps))
             hj_futex(&sh->req, FUTEX_WAKE, 1, NULL);

@@ -49,6 +49,10 @@ int hostjit_eval_many(struct hostjit *j, const double *args, size_t count, doubl
 /* args: L, V, N (3 each), n, p0, p1 */
 int hostjit_eval_full(struct hostjit *j, const double args[12], double *out);
 const char *hostjit_failure(const struct hostjit *j);
+/* The requests this process has handed to sandbox children so far (every hostjit's): a
+ * measure of how often brdfbench's work waited for the other process, which a phase of many
+ * values avoids by running in one child (hostjit_isolated, model_run_isolated). */
+unsigned long hostjit_round_trips(void);
 /* A whole phase of brdfbench's own work that evaluates the model value after value (a
  * search that asks for one point at a time, where a round trip per value would cost more
  * than the formula): fn(ctx, out) runs in a forked child under the same filter, widened to

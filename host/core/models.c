@@ -332,6 +332,58 @@ int model_run_isolated(const struct model_spec *spec, void (*fn)(void *ctx, void
     return 0;
 }
 
+int model_run_isolated_pair(const struct model_spec *a, const struct model_spec *b,
+                            void (*fn)(void *ctx, void *out), void *ctx, void *out, size_t outlen)
+{
+    const struct model_runtime *ra = a ? models_runtime(a->info) : NULL, *rb = b ? models_runtime(b->info) : NULL;
+    int ia = ra && ra->isolated, ib = rb && rb->isolated;
+    /* Inside one sandbox every run-time model's host code is called directly; a model whose
+       double values take a device launch each (its host code did not compile) cannot be
+       evaluated there, so fn then runs in place, as model_run_isolated does for one model.
+       (model_eval_host_on_device compiles the host code where it has not been yet: in this
+       process, before the sandbox, where the compiler may run.) */
+    if ((ia && model_eval_host_on_device(a)) || (ib && model_eval_host_on_device(b))) {
+        fn(ctx, out);
+        return 0;
+    }
+    return ia ? model_run_isolated(a, fn, ctx, out, outlen) : model_run_isolated(b ? b : a, fn, ctx, out, outlen);
+}
+
+struct many_ctx {
+    const struct model_spec *spec;
+    const double *c, *n, *L, *V, *N;
+    size_t count;
+};
+
+static void lobe_many(void *vctx, void *vout)
+{
+    const struct many_ctx *m = vctx;
+    double *out = vout;
+    for (size_t i = 0; i < m->count; ++i)
+        out[i] = model_eval_host(m->spec, m->c[i], m->n[i]);
+}
+
+static void full_many(void *vctx, void *vout)
+{
+    const struct many_ctx *m = vctx;
+    double *out = vout;
+    for (size_t i = 0; i < m->count; ++i)
+        out[i] = model_eval_full_host(m->spec, m->L + 3 * i, m->V + 3 * i, m->N + 3 * i, m->n[i]);
+}
+
+int model_eval_host_many(const struct model_spec *spec, const double *c, const double *n, size_t count, double *out)
+{
+    struct many_ctx m = { spec, c, n, NULL, NULL, NULL, count };
+    return count ? model_run_isolated(spec, lobe_many, &m, out, count * sizeof *out) : 0;
+}
+
+int model_eval_full_host_many(const struct model_spec *spec, const double *L, const double *V, const double *N,
+                              const double *n, size_t count, double *out)
+{
+    struct many_ctx m = { spec, NULL, n, L, V, N, count };
+    return count ? model_run_isolated(spec, full_many, &m, out, count * sizeof *out) : 0;
+}
+
 int model_lobe_declared(const struct model_info *info)
 {
     const struct model_runtime *rt = models_runtime(info);

@@ -151,6 +151,17 @@ const struct model_runtime *models_runtime(const struct model_info *info);
  * Returns 0 or an exit code. */
 int model_run_isolated(const struct model_spec *spec, void (*fn)(void *ctx, void *out), void *ctx, void *out,
                        size_t outlen);
+/* fn(ctx, out) as model_run_isolated, for work that evaluates two models (a model and its
+ * reference, either built in or of run-time code): one sandbox serves both. */
+int model_run_isolated_pair(const struct model_spec *a, const struct model_spec *b,
+                            void (*fn)(void *ctx, void *out), void *ctx, void *out, size_t outlen);
+/* count values of model_eval_host (c[i], n[i]) or of model_eval_full_host (L, V, N: 3 doubles
+ * a point; n[i]) into out, through model_run_isolated: a model of run-time code is called in
+ * one sandbox for all of them, not in a round trip to it per value. Returns 0 or an exit code
+ * (the sandbox failed: said on stderr). */
+int model_eval_host_many(const struct model_spec *spec, const double *c, const double *n, size_t count, double *out);
+int model_eval_full_host_many(const struct model_spec *spec, const double *L, const double *V, const double *N,
+                              const double *n, size_t count, double *out);
 /* 1 when a model registered at run time declares its lobe in its file's header. */
 int model_lobe_declared(const struct model_info *info);
 /* The note of spec's runtime (NULL for a built-in model or a double evaluation). */

@@ -795,7 +795,7 @@ static void row_max(const float *raw, int p, const struct hemi_grid *g, int valu
 }
 
 /* One figure at one p: the device's maximum, the double at its point, the refined maximum. */
-static void one_figure(struct hemi_result *r, struct hemi_per_p *pp, const float *raw, int p, enum figure fig,
+static void one_figure(const struct hemi_result *r, struct hemi_per_p *pp, const float *raw, int p, enum figure fig,
                        int value_at, double threshold, struct hemi_extreme *dev, struct hemi_extreme *dbl,
                        double *chk, double *dbl_at)
 {
@@ -864,7 +864,7 @@ static void fold_check(struct hemi_result *r, double d, double dbl_at, double fi
    quadrature: midpoints, the Jacobian 4 cos td sin td sin th, phi_h's 2 pi, phi_d folded onto
    [0, pi) with the weight cos^2 ti + cos^2 to), divided by the measure (2 pi)^2 of the pair of
    hemispheres. An invalid model value adds nothing, as on the device. */
-static double rms_double(const struct hemi_result *r, const struct hemi_per_p *pp)
+static double rms_double(const struct hemi_result *r, const struct hemi_per_p *pp, int ip)
 {
     const struct hemi_grid *g = &r->grid;
     double sum = 0;
@@ -880,7 +880,7 @@ static double rms_double(const struct hemi_result *r, const struct hemi_per_p *p
                     continue;
                 double f = hemisphere_eval_host(&r->model, r->model_kind, L, V, pp->mvals);
                 double fr = r->ref_values
-                                ? r->ref_values[(((size_t)(pp - r->per_p) * g->nh + i) * g->nd + j) * g->np + k]
+                                ? r->ref_values[(((size_t)ip * g->nh + i) * g->nd + j) * g->np + k]
                                 : hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
                 if (!(f >= 0) || !isfinite(f) || !isfinite(fr))
                     continue;
@@ -893,6 +893,37 @@ static double rms_double(const struct hemi_result *r, const struct hemi_per_p *p
     return sqrt(sum * 8.0 * pi * (pi / 2 / g->nd) * (pi / g->np) / (4.0 * pi * pi));
 }
 
+/* The double stage of every p: the RMS and the three figures (the double at the device's
+   maximum, then refined), into out (p_count hemi_per_p, copies of r->per_p with these filled).
+   Run through model_run_isolated_pair, so that a user model's code (the model's, the
+   reference's) is called directly in one sandbox for the whole stage: the RMS and the
+   refinement ask for values one at a time, hundreds of thousands of them, and a round trip to
+   the sandbox per value made the stage wait on the scheduler for each on a busy machine. */
+struct double_stage_ctx {
+    const struct hemi_result *r;
+    const float *raw;
+    const float *thr;
+};
+
+static void double_stage(void *vctx, void *vout)
+{
+    const struct double_stage_ctx *c = vctx;
+    const struct hemi_result *r = c->r;
+    struct hemi_per_p *out = vout;
+    for (int i = 0; i < r->p_count; ++i) {
+        struct hemi_per_p *pp = &out[i];
+        *pp = r->per_p[i];
+        pp->rms = rms_double(r, pp, i);
+        double t = c->thr[i];
+        one_figure(r, pp, c->raw, i, FIG_EPI_REL, HEMI_O_EPI_REL, t, &pp->dev_epi_rel, &pp->epi_rel,
+                   &pp->chk_epi_rel, &pp->dbl_epi_rel);
+        one_figure(r, pp, c->raw, i, FIG_ATT_ABS, HEMI_O_ATT_ABS, t, &pp->dev_att_abs, &pp->att_abs,
+                   &pp->chk_att_abs, &pp->dbl_att_abs);
+        one_figure(r, pp, c->raw, i, FIG_WHOLE_ABS, HEMI_O_EPI_ABS, t, &pp->dev_whole_abs, &pp->whole_abs,
+                   &pp->chk_whole_abs, &pp->dbl_whole_abs);
+    }
+}
+
 static void range_max(const struct hemi_result *r, size_t off, struct hemi_extreme *out)
 {
     out->value = out->p = out->th = out->td = out->pd = NAN;
@@ -900,6 +931,28 @@ static void range_max(const struct hemi_result *r, size_t off, struct hemi_extre
         const struct hemi_extreme *e = (const struct hemi_extreme *)((const char *)&r->per_p[i] + off);
         if (e->value > out->value || (isnan(out->value) && isfinite(e->value)))
             *out = *e;
+    }
+}
+
+/* The probe's double values: the model's at each of count samples, then the reference's
+   (vout: 2 count doubles), in one sandbox for a user model's code (model_run_isolated_pair). */
+struct probe_values_ctx {
+    const struct hemi_result *r;
+    const float *pts;
+    const int *pv;
+    int count;
+};
+
+static void probe_values(void *vctx, void *vout)
+{
+    const struct probe_values_ctx *c = vctx;
+    double *o = vout;
+    for (int i = 0; i < c->count; ++i) {
+        const struct hemi_per_p *pp = &c->r->per_p[c->pv[i / 16]];
+        double L[3], V[3];
+        hemisphere_dirs(c->pts[i], c->pts[c->count + i], c->pts[2 * c->count + i], L, V);
+        o[i] = hemisphere_eval_host(&c->r->model, c->r->model_kind, L, V, pp->mvals);
+        o[c->count + i] = hemisphere_eval_host(&c->r->reference, c->r->ref_kind, L, V, pp->rvals);
     }
 }
 
@@ -912,6 +965,7 @@ static int probe(struct hemi_ctx *h, cl_kernel k, cl_mem bp, struct hemi_result 
     cl_mem bth = NULL, btd = NULL, bpd = NULL, bpv = NULL, bo = NULL;
     float *pts = malloc((size_t)count * 3 * sizeof *pts), *out = malloc((size_t)count * 2 * sizeof *out);
     int *pv = malloc((size_t)groups * sizeof *pv);
+    double *dbl = NULL;
     if (!pts || !out || !pv) {
         rc = EXIT_RUNTIME;
         goto done;
@@ -952,12 +1006,17 @@ static int probe(struct hemi_ctx *h, cl_kernel k, cl_mem bp, struct hemi_result 
     CL_CHECK_GOTO(clEnqueueReadBuffer(h->s->queue, bo, CL_TRUE, 0, (size_t)count * 2 * sizeof(float), out, 0, NULL,
                                       NULL), done);
     r->float_cancellation = r->ref_float_error = 0;
+    if (!(dbl = malloc((size_t)count * 2 * sizeof *dbl))) {
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    const struct probe_values_ctx pc = { r, pts, pv, count };
+    if ((rc = model_run_isolated_pair(&r->model, &r->reference, probe_values, (void *)&pc, dbl,
+                                      (size_t)count * 2 * sizeof *dbl)) != 0)
+        goto done;
     for (int i = 0; i < count; ++i) {
         const struct hemi_per_p *pp = &r->per_p[pv[i / 16]];
-        double L[3], V[3];
-        hemisphere_dirs(pts[i], pts[count + i], pts[2 * count + i], L, V);
-        double f = hemisphere_eval_host(&r->model, r->model_kind, L, V, pp->mvals);
-        double fr = hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
+        double f = dbl[i], fr = dbl[count + i];
         if (!(pp->peak > 0))
             continue;
         double d = fabs((double)out[i] - f) / pp->peak, dr = fabs((double)out[count + i] - fr) / pp->peak;
@@ -972,6 +1031,7 @@ done:
     if (bpd) clReleaseMemObject(bpd);
     if (btd) clReleaseMemObject(btd);
     if (bth) clReleaseMemObject(bth);
+    free(dbl);
     free(pv);
     free(out);
     free(pts);
@@ -986,6 +1046,7 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
     cl_int e;
     cl_mem bp = NULL, bt = NULL, bo = NULL, brt = NULL;
     float *pv = NULL, *thr = NULL, *raw = NULL, *ftab = NULL;
+    struct hemi_per_p *staged = NULL;
     cl_kernel sweep, probe_k;
     memset(out, 0, sizeof *out);
     out->model = *m;
@@ -1103,19 +1164,25 @@ int hemisphere_run(struct hemi_ctx *h, const struct model_spec *m, const struct 
             pp->uncovered += (long long)o[HEMI_O_UNCOVERED];
         }
         pp->rms_device = sqrt(sumsq * rms_scale);
-        pp->rms = rms_double(out, pp);
         out->used += pp->used;
         out->below += pp->below;
         out->invalid += pp->invalid;
         out->eval_below += pp->eval_below;
         out->uncovered += pp->uncovered;
-        double t = thr[i];
-        one_figure(out, pp, raw, i, FIG_EPI_REL, HEMI_O_EPI_REL, t, &pp->dev_epi_rel, &pp->epi_rel, &pp->chk_epi_rel,
-                   &pp->dbl_epi_rel);
-        one_figure(out, pp, raw, i, FIG_ATT_ABS, HEMI_O_ATT_ABS, t, &pp->dev_att_abs, &pp->att_abs, &pp->chk_att_abs,
-                   &pp->dbl_att_abs);
-        one_figure(out, pp, raw, i, FIG_WHOLE_ABS, HEMI_O_EPI_ABS, t, &pp->dev_whole_abs, &pp->whole_abs,
-                   &pp->chk_whole_abs, &pp->dbl_whole_abs);
+    }
+    struct double_stage_ctx dc = { out, raw, thr };
+    staged = malloc((size_t)P * sizeof *staged);
+    if (!staged) {
+        fprintf(stderr, "brdfbench: out of memory for the hemisphere sweep of %s\n", m->label);
+        rc = EXIT_RUNTIME;
+        goto done;
+    }
+    if ((rc = model_run_isolated_pair(&out->model, &out->reference, double_stage, &dc, staged,
+                                      (size_t)P * sizeof *staged)) != 0)
+        goto done;
+    memcpy(out->per_p, staged, (size_t)P * sizeof *staged);
+    for (int i = 0; i < P; ++i) {
+        struct hemi_per_p *pp = &out->per_p[i];
         /* the whole domain's maximum: the larger of the two zones' (each refined over all samples) */
         if (pp->att_abs.value > pp->whole_abs.value || isnan(pp->whole_abs.value)) {
             pp->whole_abs = pp->att_abs;
@@ -1172,6 +1239,7 @@ done:
         clReleaseMemObject(bp);
     if (brt)
         clReleaseMemObject(brt);
+    free(staged);
     free(ftab);
     free(raw);
     free(thr);

@@ -15,6 +15,36 @@
 
 #define PIC_CELLS 96
 
+/* The heatmap's cells in double, rel (delta) then abs (Delta), 2 PIC_CELLS^2 floats into vout:
+   in one sandbox for a user model's code (model_run_isolated_pair), not a round trip per value. */
+struct cells_ctx {
+    const struct hemi_result *r;
+    const struct hemi_per_p *pp;
+    double pd, threshold;
+};
+
+static void heatmap_cells(void *vctx, void *vout)
+{
+    const struct cells_ctx *c = vctx;
+    float *rel = vout, *abs_err = rel + PIC_CELLS * PIC_CELLS;
+    for (int row = 0; row < PIC_CELLS; ++row)
+        for (int col = 0; col < PIC_CELLS; ++col) {
+            double th = (col + 0.5) / PIC_CELLS * (M_PI / 2), td = (row + 0.5) / PIC_CELLS * (M_PI / 2);
+            double L[3], V[3];
+            hemisphere_dirs(th, td, c->pd, L, V);
+            float a = NAN, d = NAN;
+            if (L[2] > 0 && V[2] > 0) {
+                double f = hemisphere_eval_host(&c->r->model, c->r->model_kind, L, V, c->pp->mvals);
+                double fr = hemisphere_eval_host(&c->r->reference, c->r->ref_kind, L, V, c->pp->rvals);
+                a = (float)fabs(f - fr);
+                if (fr >= c->threshold)
+                    d = (float)(fabs(f - fr) / fr);
+            }
+            rel[row * PIC_CELLS + col] = d;
+            abs_err[row * PIC_CELLS + col] = a;
+        }
+}
+
 static int heatmap(const struct hemi_result *r, const char *dir, const char *safe, char *err, size_t errlen)
 {
     const struct hemi_extreme *w = isfinite(r->whole.value) ? &r->whole : &r->epicentre;
@@ -24,30 +54,19 @@ static int heatmap(const struct hemi_result *r, const char *dir, const char *saf
             pp = &r->per_p[i];
     if (!pp || !isfinite(w->pd))
         return 0;   /* no figure: nothing to draw */
-    float *rel = malloc(PIC_CELLS * PIC_CELLS * sizeof *rel), *abs_err = malloc(PIC_CELLS * PIC_CELLS * sizeof *abs_err);
-    if (!rel || !abs_err) {
-        free(rel);
-        free(abs_err);
+    float *rel = malloc(2 * PIC_CELLS * PIC_CELLS * sizeof *rel), *abs_err = rel + PIC_CELLS * PIC_CELLS;
+    if (!rel) {
         snprintf(err, errlen, "out of memory for the hemisphere heatmap of %s", r->model.label);
         return EXIT_RUNTIME;
     }
-    double threshold = exp(-0.511) * pp->peak;
-    for (int row = 0; row < PIC_CELLS; ++row)
-        for (int col = 0; col < PIC_CELLS; ++col) {
-            double th = (col + 0.5) / PIC_CELLS * (M_PI / 2), td = (row + 0.5) / PIC_CELLS * (M_PI / 2);
-            double L[3], V[3];
-            hemisphere_dirs(th, td, w->pd, L, V);
-            float a = NAN, d = NAN;
-            if (L[2] > 0 && V[2] > 0) {
-                double f = hemisphere_eval_host(&r->model, r->model_kind, L, V, pp->mvals);
-                double fr = hemisphere_eval_host(&r->reference, r->ref_kind, L, V, pp->rvals);
-                a = (float)fabs(f - fr);
-                if (fr >= threshold)
-                    d = (float)(fabs(f - fr) / fr);
-            }
-            rel[row * PIC_CELLS + col] = d;
-            abs_err[row * PIC_CELLS + col] = a;
-        }
+    const struct cells_ctx cc = { r, pp, w->pd, exp(-0.511) * pp->peak };
+    int rc = model_run_isolated_pair(&r->model, &r->reference, heatmap_cells, (void *)&cc, rel,
+                                     2 * PIC_CELLS * PIC_CELLS * sizeof *rel);
+    if (rc) {
+        free(rel);
+        snprintf(err, errlen, "the double values of the hemisphere heatmap of %s failed", r->model.label);
+        return rc;
+    }
     char sub_rel[160], sub_abs[160], title[400], name[300], path[4400];
     snprintf(sub_rel, sizeof sub_rel, "delta where f_ref >= e^-0.511 peak");
     snprintf(sub_abs, sizeof sub_abs, "Delta (grey: below the horizon)");
@@ -63,9 +82,8 @@ static int heatmap(const struct hemi_result *r, const char *dir, const char *saf
     };
     snprintf(name, sizeof name, "hemisphere_heatmap_%s.png", safe);
     path_join(path, sizeof path, dir, name);
-    int rc = draw_heatmap_figure(path, title, 2, panels, NULL, err, errlen) ? EXIT_RUNTIME : 0;
+    rc = draw_heatmap_figure(path, title, 2, panels, NULL, err, errlen) ? EXIT_RUNTIME : 0;
     free(rel);
-    free(abs_err);
     return rc;
 }
 

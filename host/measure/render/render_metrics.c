@@ -119,10 +119,41 @@ static void check_pixel(const struct gbuffer *g, size_t pi, const struct model_s
 /* The device's specular radiance and colours against the double reference on up to
    o->ref_samples foreground pixels of rows [y0, y1), spread evenly, plus the brightest
    (the highlight's peak, where the lobe matters most). */
+struct check_ctx {
+    const struct gbuffer *g;
+    int y0, y1;
+    const struct model_spec *m;
+    int mode;
+    const struct render_light *lt;
+    const struct render_options *o;
+    const unsigned *rgba;
+    const float *spec;
+};
+
+static void check_reference_in(void *vctx, void *vout);
+
 void check_reference(const struct gbuffer *g, int y0, int y1, const struct model_spec *m,
                      int mode, const struct render_light *lt, const struct render_options *o,
                      const unsigned *rgba, const float *spec, struct reference_check *rc)
 {
+    /* in one sandbox for a user model's code (model_run_isolated), not a round trip to it per
+       pixel; a sandbox that fails stops the run there (usermodel_isolated) */
+    const struct check_ctx c = { g, y0, y1, m, mode, lt, o, rgba, spec };
+    memset(rc, 0, sizeof *rc);
+    (void)model_run_isolated(m, check_reference_in, (void *)&c, rc, sizeof *rc);
+}
+
+static void check_reference_in(void *vctx, void *vout)
+{
+    const struct check_ctx *c = vctx;
+    const struct gbuffer *g = c->g;
+    int y0 = c->y0, y1 = c->y1, mode = c->mode;
+    const struct model_spec *m = c->m;
+    const struct render_light *lt = c->lt;
+    const struct render_options *o = c->o;
+    const unsigned *rgba = c->rgba;
+    const float *spec = c->spec;
+    struct reference_check *rc = vout;
     const float *sh = gbuffer_plane(g, GB_SHIN);
     memset(rc, 0, sizeof *rc);
     size_t first = (size_t)y0 * g->width, last = (size_t)y1 * g->width, fg = 0;

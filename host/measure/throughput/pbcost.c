@@ -153,6 +153,45 @@ static double full_eval_host(const struct pbcost_row *row, const double L[3], co
     return row->kind == 5 ? merl_luminance(row->merl, L, V, N) : model_eval_full_host(&row->spec, L, V, N, n);
 }
 
+/* The rows' double values at the check's points, P of them into out: run through
+   model_run_isolated, so that a user model's code is called in one sandbox for all of them
+   rather than in a round trip to it per value. g: a vector row's planes (Lxyz Vxyz Nxyz n);
+   else the cosines nl, nv, lv, n. */
+struct check_values_ctx {
+    const struct pbcost_row *row;
+    const float *g, *nl, *nv, *lv, *nn;
+    int count;
+};
+
+static void check_values(void *vctx, void *vout)
+{
+    const struct check_values_ctx *c = vctx;
+    double *out = vout;
+    int P = c->count;
+    for (int i = 0; i < P; ++i) {
+        if (!c->g) {
+            out[i] = row_eval_host(c->row, c->nl[i], c->nv[i], c->lv[i], c->nn[i]);
+            continue;
+        }
+        double L[3], V[3], N[3];
+        for (int j = 0; j < 3; ++j) {
+            L[j] = c->g[j * P + i];
+            V[j] = c->g[(3 + j) * P + i];
+            N[j] = c->g[(6 + j) * P + i];
+        }
+        out[i] = full_eval_host(c->row, L, V, N, c->g[9 * P + i]);
+    }
+}
+
+static int check_values_run(const struct check_values_ctx *c, double *out)
+{
+    if (c->row->kind == 5 || c->row->kind == 2 || c->row->kind == 3) {   /* measured, built-in, the power */
+        check_values((void *)c, out);
+        return 0;
+    }
+    return model_run_isolated(&c->row->spec, check_values, (void *)c, out, (size_t)c->count * sizeof *out);
+}
+
 /* check_row for the rows of vectors (kinds 4, 5): the same random pairs about N = z, passed as
    the vectors themselves (planes Lxyz Vxyz Nxyz n). */
 static int check_full_row(struct cl_session *s, cl_program prog, struct pbcost_row *row, double n, cl_mem table)
@@ -190,16 +229,11 @@ static int check_full_row(struct cl_session *s, cl_program prog, struct pbcost_r
     CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, b[1], CL_TRUE, 0, sizeof out, out, 0, NULL, NULL), done);
     static double host[P];
     double peak = 0, worst = 0;
-    for (int i = 0; i < P; ++i) {
-        double L[3], V[3], N[3];
-        for (int j = 0; j < 3; ++j) {
-            L[j] = g[j * P + i];
-            V[j] = g[(3 + j) * P + i];
-            N[j] = g[(6 + j) * P + i];
-        }
-        host[i] = full_eval_host(row, L, V, N, g[9 * P + i]);
+    const struct check_values_ctx cv = { row, g, NULL, NULL, NULL, NULL, P };
+    if ((rc = check_values_run(&cv, host)) != 0)
+        goto done;
+    for (int i = 0; i < P; ++i)
         peak = fmax(peak, fabs(host[i]));
-    }
     for (int i = 0; i < P; ++i) {
         double d = fabs(out[i] - host[i]) / fmax(peak, 1e-300);
         if (!(d <= worst))
@@ -255,12 +289,16 @@ static int check_row(struct cl_session *s, cl_program prog, struct pbcost_row *r
     CL_CHECK_GOTO(clsession_finish(s, k, NULL), done);
     CL_CHECK_GOTO(clEnqueueReadBuffer(s->queue, b[4], CL_TRUE, 0, sizeof out, out, 0, NULL, NULL), done);
     double peak = 0, worst = 0;
+    static double host[P];
+    const struct check_values_ctx cv = { row, NULL, nl, nv, lv, nn, P };
+    if ((rc = check_values_run(&cv, host)) != 0)
+        goto done;
     for (int i = 0; i < P; ++i)
-        peak = fmax(peak, fabs(row_eval_host(row, nl[i], nv[i], lv[i], nn[i])));
+        peak = fmax(peak, fabs(host[i]));
     row->terms_mean = row->terms_max = NAN;
     double tsum = 0, tmax = 0;
     for (int i = 0; i < P; ++i) {
-        double h = row_eval_host(row, nl[i], nv[i], lv[i], nn[i]);
+        double h = host[i];
         double d = fabs(out[i] - h) / fmax(peak, 1e-300);
         if (!(d <= worst))
             worst = d;   /* a NaN stays the worst */
