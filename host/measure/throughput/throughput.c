@@ -316,10 +316,12 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
         for (int k = 0; k < TP_ACC_POINTS; ++k) {
             dc[k] = c[k];
             dn[k] = n[k];
-            host[k] = pow(dc[k], dn[k]);   /* the power kernel's own row (no model) */
             peak[k] = 1.0;
         }
-        if (e->m) {
+        if (!e->m) {   /* the power kernel's own row (no model) */
+            for (int k = 0; k < TP_ACC_POINTS; ++k)
+                host[k] = pow(dc[k], dn[k]);
+        } else {
             struct model_spec ref;
             model_reference_spec(e->m, &ref);
             int bad_host = model_eval_host_many(e->m, dc, dn, TP_ACC_POINTS, host);
