@@ -2,6 +2,7 @@
  * The host reference compiles kernels/brdf_models.h with REAL = double, so each formula
  * exists once; this file adds only names, parameter domains and descriptions. */
 #include "models.h"
+#include "exitcodes.h"
 
 #include <errno.h>
 #include <math.h>
@@ -382,6 +383,29 @@ int model_eval_full_host_many(const struct model_spec *spec, const double *L, co
 {
     struct many_ctx m = { spec, NULL, n, L, V, N, count };
     return count ? model_run_isolated(spec, full_many, &m, out, count * sizeof *out) : 0;
+}
+
+int model_values_and_peaks(const struct model_spec *m, const struct model_spec *ref, const float *c, const float *n,
+                           size_t count, double *value, double *peak)
+{
+    double *dc = malloc(2 * count * sizeof *dc), *dn = dc ? dc + count : NULL;
+    if (!dc) {
+        fprintf(stderr, "brdfbench: out of memory for the double values of %zu points\n", count);
+        return EXIT_RUNTIME;
+    }
+    for (size_t i = 0; i < count; ++i) {
+        dc[i] = c[i];
+        dn[i] = n[i];
+    }
+    int rc = model_eval_host_many(m, dc, dn, count, value);
+    for (size_t i = 0; i < count; ++i)
+        dc[i] = 1.0;
+    if (!rc)
+        rc = model_eval_host_many(ref, dc, dn, count, peak);
+    for (size_t i = 0; !rc && i < count; ++i)
+        peak[i] = fabs(peak[i]);
+    free(dc);
+    return rc;
 }
 
 int model_lobe_declared(const struct model_info *info)

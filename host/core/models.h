@@ -162,6 +162,11 @@ int model_run_isolated_pair(const struct model_spec *a, const struct model_spec 
 int model_eval_host_many(const struct model_spec *spec, const double *c, const double *n, size_t count, double *out);
 int model_eval_full_host_many(const struct model_spec *spec, const double *L, const double *V, const double *N,
                               const double *n, size_t count, double *out);
+/* The host's side of a check of a model's device values at float points (c[i], n[i]): the
+ * model's double values into value and its reference's peak |f_ref(1, n[i])| into peak, each
+ * model's through one model_eval_host_many. Returns 0 or an exit code. */
+int model_values_and_peaks(const struct model_spec *m, const struct model_spec *ref, const float *c, const float *n,
+                           size_t count, double *value, double *peak);
 /* 1 when a model registered at run time declares its lobe in its file's header. */
 int model_lobe_declared(const struct model_info *info);
 /* The note of spec's runtime (NULL for a built-in model or a double evaluation). */

@@ -486,7 +486,7 @@ static int check_probe(struct accuracy_ctx *a, struct accuracy_result *r)
 {
     float *c = malloc(ACC_PROBE_POINTS * sizeof *c), *n = malloc(ACC_PROBE_POINTS * sizeof *n);
     float *out = malloc(ACC_PROBE_POINTS * sizeof *out);
-    double *dc = NULL;
+    double *host = NULL;
     int rc = 0;
     if (!c || !n || !out) {
         rc = EXIT_RUNTIME;
@@ -506,33 +506,22 @@ static int check_probe(struct accuracy_ctx *a, struct accuracy_result *r)
     rc = accuracy_probe(a, &r->model, c, n, ACC_PROBE_POINTS, out);
     if (rc)
         goto done;
-    /* the double values, each model's in one call (model_eval_host_many: one sandbox for a
-       user model's code, not a round trip per value) */
-    dc = malloc(ACC_PROBE_POINTS * 4 * sizeof *dc);
-    if (!dc) {
+    /* the double values, each model's in one sandbox stage for a user model's code */
+    if (!(host = malloc(ACC_PROBE_POINTS * 2 * sizeof *host))) {
         rc = EXIT_RUNTIME;
         goto done;
     }
-    double *dn = dc + ACC_PROBE_POINTS, *host = dn + ACC_PROBE_POINTS, *one = host + ACC_PROBE_POINTS;
-    for (int i = 0; i < ACC_PROBE_POINTS; ++i) {
-        dc[i] = c[i];
-        dn[i] = n[i];
-    }
-    if ((rc = model_eval_host_many(&r->model, dc, dn, ACC_PROBE_POINTS, host)) != 0)
-        goto done;
-    for (int i = 0; i < ACC_PROBE_POINTS; ++i)
-        dc[i] = 1.0;
-    if ((rc = model_eval_host_many(&r->reference, dc, dn, ACC_PROBE_POINTS, one)) != 0)
+    double *peak = host + ACC_PROBE_POINTS;
+    if ((rc = model_values_and_peaks(&r->model, &r->reference, c, n, ACC_PROBE_POINTS, host, peak)) != 0)
         goto done;
     r->probe_rel_diff = 0;
     for (int i = 0; i < ACC_PROBE_POINTS; ++i) {
-        double peak = fabs(one[i]);
-        double d = fabs((double)out[i] - host[i]) / (peak > 0 ? peak : 1.0);
+        double d = fabs((double)out[i] - host[i]) / (peak[i] > 0 ? peak[i] : 1.0);
         if (!(d <= r->probe_rel_diff))
             r->probe_rel_diff = d;
     }
 done:
-    free(dc);
+    free(host);
     free(out);
     free(n);
     free(c);

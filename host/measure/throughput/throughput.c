@@ -310,24 +310,17 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
             snprintf(e->acc_reason[v], TP_REASON, "the user model's double reference failed (see stderr)");
             continue;
         }
-        /* the double values, each model's in one call (model_eval_host_many: one sandbox for a
-           user model's code, not a round trip per value) */
-        static double dc[TP_ACC_POINTS], dn[TP_ACC_POINTS], host[TP_ACC_POINTS], peak[TP_ACC_POINTS];
-        for (int k = 0; k < TP_ACC_POINTS; ++k) {
-            dc[k] = c[k];
-            dn[k] = n[k];
-            peak[k] = 1.0;
-        }
+        /* the double values, each model's in one sandbox stage for a user model's code */
+        static double host[TP_ACC_POINTS], peak[TP_ACC_POINTS];
         if (!e->m) {   /* the power kernel's own row (no model) */
-            for (int k = 0; k < TP_ACC_POINTS; ++k)
-                host[k] = pow(dc[k], dn[k]);
+            for (int k = 0; k < TP_ACC_POINTS; ++k) {
+                host[k] = pow((double)c[k], (double)n[k]);
+                peak[k] = 1.0;
+            }
         } else {
             struct model_spec ref;
             model_reference_spec(e->m, &ref);
-            int bad_host = model_eval_host_many(e->m, dc, dn, TP_ACC_POINTS, host);
-            for (int k = 0; k < TP_ACC_POINTS; ++k)
-                dc[k] = 1.0;
-            if (bad_host || model_eval_host_many(&ref, dc, dn, TP_ACC_POINTS, peak)) {
+            if (model_values_and_peaks(e->m, &ref, c, n, TP_ACC_POINTS, host, peak)) {
                 snprintf(e->acc_reason[v], TP_REASON, "the user model's double reference failed (see stderr)");
                 continue;
             }
@@ -335,12 +328,11 @@ static void tp_accuracy(struct tp_run *r, struct tp_program *p, int v, const flo
         double worst = 0;
         long bad = 0;
         for (int k = 0; k < TP_ACC_POINTS; ++k) {
-            double d0 = fabs(peak[k]);
             if (!isfinite(out[k])) {
                 ++bad;   /* a lobe is finite everywhere; NaN or Inf is a broken model */
                 continue;
             }
-            double d = fabs((double)out[k] - host[k]) / (d0 > 0 ? d0 : 1.0);
+            double d = fabs((double)out[k] - host[k]) / (peak[k] > 0 ? peak[k] : 1.0);
             if (!(d <= worst))
                 worst = d;
         }
